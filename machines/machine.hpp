@@ -1,0 +1,139 @@
+#pragma once
+// A machine definition: everything twinpost knows about one machine and its control.
+// Loaded from TOML (machines/machine_loader.hpp); the built-in ones live in
+// machines/builtin/*.toml. Plain data: no behaviour beyond small look-ups.
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace twinpost {
+
+/// The one exception type for fatal configuration errors (bad machine file, bad format).
+/// The message is complete, e.g. "m.toml:12:3: error: waits.first must be <= waits.last".
+struct config_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// How a wait names its partners when three or more channels exist.
+enum class partner_style {
+  none,          ///< 2-channel controls: plain `M100` in both channels
+  path_numbers,  ///< Fanuc `M100 P12`, `P123` (digits of the channel numbers, ascending)
+  binary,        ///< Fanuc with parameter 8103#1: P = sum of 2^(channel-1)
+};
+
+/// Rules for wait codes (Fanuc waiting M-codes, Mazak M950-M997, ...).
+struct wait_rules {
+  char address = 'M';            ///< the address letter of the wait code
+  int first = 0;                 ///< lowest code of the range
+  int last = 0;                  ///< highest code of the range
+  int step = 1;                  ///< distance between allocated codes
+  std::vector<int> excluded;     ///< codes inside the range that mean something else
+  bool reuse = false;            ///< when the range is used up, start again at `first`
+  partner_style partners = partner_style::none;
+  char partner_address = 'P';    ///< address of the partner list
+  /// True when `code` lies in the range, on the step grid, and is not excluded.
+  bool is_wait_code(int code) const;
+};
+
+/// A spindle of the machine (main, sub, live tool).
+struct spindle_def {
+  std::string name;                ///< "main", "sub", "live"
+  int cw = 3, ccw = 4, stop = 5;   ///< M-codes
+  std::optional<int> select;       ///< M-code that selects this spindle (Mazak M901/M902)
+  std::string clamp;               ///< max-speed clamp block, e.g. "G50 S{max}" or "G92 S{max} R1"
+  double max_rpm = 0;              ///< machine limit; 0 = none
+};
+
+/// An axis of a channel.
+struct axis_def {
+  char address = 'X';
+  bool diameter = false;   ///< X programmed as a diameter (lathe)
+  bool mirror = false;     ///< sign inverted against the CL (a lower turret)
+  std::optional<double> min, max;  ///< travel limits in machine units, if known
+};
+
+/// A channel (Fanuc path, Mazak head, Citizen system): one program stream.
+struct channel_def {
+  int number = 1;                  ///< 1-based channel number
+  std::string name;                ///< "upper", "lower", "path1", ...
+  std::vector<int> heads;          ///< CL HEAD numbers served by this channel (HEAD/1 -> 1)
+  std::vector<std::string> head_names;  ///< CL head words served (MAIN, SIDE)
+  std::string kind = "turret";     ///< "turret" (lathe tools, T0505) or "mill_head" (T05 M6)
+  std::string tool_call;           ///< tool call format, e.g. "T{tool:02}{offset:02}" or "T{tool} M6"
+  std::string spindle = "main";    ///< the spindle this channel works on at start
+  std::vector<axis_def> axes;      ///< at least X and Z
+  std::string file_suffix;         ///< for split layout, e.g. "_1" or ".P-2"
+  /// The axis with this address, or nullptr.
+  const axis_def* axis(char address) const;
+};
+
+/// How the channels' programs are laid out in files.
+enum class layout_kind { split, merged_appended, merged_sections };
+
+/// Output program format: numbers, blocks, comments, program frame.
+struct program_format {
+  std::string extension = ".nc";    ///< output file extension
+  std::string file_name = "{name}"; ///< base name; {name} = sanitized PARTNO, {program} = number
+  int program_number = 1000;        ///< O-number used when the job gives none
+  std::string program_line = "O{program:04} ({name})";  ///< first block of a program
+  std::vector<std::string> header;  ///< blocks after the program line
+  std::vector<std::string> footer;  ///< blocks before the end code
+  std::string end_code = "M30";     ///< last block of each channel's program
+  bool percent_lines = true;        ///< '%' at the start and end of a file
+  std::string section_marker;       ///< merged layouts: "G109 L{channel}" or "${channel}"
+  int sequence_start = 0;           ///< 0 = no N numbers
+  int sequence_step = 10;
+  char comment_open = '(';
+  char comment_close = ')';
+  int comment_max = 0;              ///< longest comment text; 0 = unlimited
+  int block_max = 0;                ///< longest block; 0 = unlimited
+  int decimals_metric = 3;          ///< decimals of linear axes in mm
+  int decimals_inch = 4;            ///< decimals of linear axes in inch
+  bool trailing_point = true;       ///< "X10." for whole numbers (false: "X10")
+  bool arcs_ijk = true;             ///< G2/G3 with I/K (false: R)
+};
+
+/// The control's codes for lathe output.
+struct control_codes {
+  std::string css = "G96";
+  std::string rpm = "G97";
+  std::string feed_per_rev = "G99";
+  std::string feed_per_min = "G98";
+  std::string home = "G28 U0 W0";
+  std::string dwell = "G4 U{seconds}";   ///< dwell block
+  std::vector<std::string> coolant_on = {"M8"};
+  std::string coolant_off = "M9";
+};
+
+/// Rates used by the timeline.
+struct motion_limits {
+  double rapid = 20000;           ///< mm/min
+  double max_feed = 10000;        ///< mm/min
+  double tool_change_seconds = 1; ///< time of one tool change
+};
+
+/// One machine and its control.
+struct machine {
+  std::string name;                  ///< "integrex-i200st"
+  std::string description;
+  std::string control;               ///< "mazak-smoothx", "fanuc-0i-td", ...
+  std::string source;                ///< file the definition came from (for messages)
+  std::vector<channel_def> channels; ///< ordered by number
+  std::vector<spindle_def> spindles;
+  wait_rules waits;
+  layout_kind layout = layout_kind::split;
+  program_format program;
+  control_codes codes;
+  motion_limits limits;
+
+  /// The channel that serves CL head `head`, or nullptr.
+  const channel_def* channel_for_head(int head) const;
+  /// The channel that serves CL head word `word` (MAIN, SIDE), or nullptr.
+  const channel_def* channel_for_head(std::string_view word) const;
+  /// The spindle named `name`, or nullptr.
+  const spindle_def* spindle(std::string_view name) const;
+};
+
+}  // namespace twinpost

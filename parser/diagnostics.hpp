@@ -1,0 +1,46 @@
+#pragma once
+// Compiler-style diagnostics: `file:line:col: error: message`, the source line, a caret.
+// The library reports into a sink; only the command-line tool prints.
+#include <string>
+#include <vector>
+
+namespace twinpost {
+
+enum class severity { note, warning, error };
+
+/// One diagnostic. line and column are 1-based; column 0 means "no column".
+struct diagnostic {
+  severity level = severity::error;
+  std::string file;
+  int line = 0;
+  int column = 0;
+  std::string message;
+  std::string source_line;  ///< the physical source line, without its line ending
+};
+
+/// Formats `d` as `file:line:col: error: message`, then the source line and a caret line
+/// when a source line is known. Ends with a newline.
+std::string format_diagnostic(const diagnostic& d);
+
+/// Receives diagnostics as they happen.
+class diagnostic_sink {
+ public:
+  virtual ~diagnostic_sink() = default;
+  virtual void report(diagnostic d) = 0;
+};
+
+/// A sink that keeps every diagnostic and counts errors.
+class diagnostic_list : public diagnostic_sink {
+ public:
+  void report(diagnostic d) override;
+  const std::vector<diagnostic>& all() const { return items_; }
+  int errors() const { return errors_; }
+  int warnings() const { return warnings_; }
+
+ private:
+  std::vector<diagnostic> items_;
+  int errors_ = 0;
+  int warnings_ = 0;
+};
+
+}  // namespace twinpost
