@@ -1,0 +1,47 @@
+#pragma once
+// Small helpers shared by the sub-commands: option parsing with clear errors, files,
+// and a diagnostic sink that prints to stderr as diagnostics arrive.
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <string>
+
+#include "cli/commands.hpp"
+#include "parser/diagnostics.hpp"
+
+namespace twinpost::cli {
+
+/// Parses `a`; on a bad option prints "twinpost COMMAND: ..." to stderr and returns false.
+bool parse_options(const args& a, const boost::program_options::options_description& opts,
+                   const boost::program_options::positional_options_description& pos,
+                   boost::program_options::variables_map& vm, const char* command);
+
+/// The options' help text.
+std::string to_string(const boost::program_options::options_description& opts);
+
+/// An open file, closed on destruction.
+class open_file {
+ public:
+  explicit open_file(const std::string& path, const char* mode = "rb");
+  ~open_file();
+  open_file(const open_file&) = delete;
+  open_file& operator=(const open_file&) = delete;
+  explicit operator bool() const { return f_ != nullptr; }
+  std::FILE* get() const { return f_; }
+
+ private:
+  std::FILE* f_;
+};
+
+/// Prints each diagnostic to stderr at once and counts them.
+class printing_sink : public diagnostic_sink {
+ public:
+  void report(diagnostic d) override;
+  int errors() const { return errors_; }
+  int warnings() const { return warnings_; }
+
+ private:
+  int errors_ = 0;
+  int warnings_ = 0;
+};
+
+}  // namespace twinpost::cli

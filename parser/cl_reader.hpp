@@ -1,0 +1,42 @@
+#pragma once
+// The streaming CL reader: bytes in, typed events out, one at a time. Records are parsed as
+// they are read; nothing holds the whole file. Problems go to a diagnostic sink as
+// `file:line:col` diagnostics and reading goes on.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "parser/diagnostics.hpp"
+#include "parser/dialect.hpp"
+#include "parser/events.hpp"
+#include "parser/line_reader.hpp"
+
+namespace twinpost {
+
+struct cl_reader_options {
+  std::string file_name = "<input>";  ///< used in diagnostics
+  std::optional<dialect> forced;       ///< --dialect; detected from the file otherwise
+};
+
+class cl_reader {
+ public:
+  cl_reader(byte_source& src, cl_reader_options options, diagnostic_sink& sink);
+  ~cl_reader();
+  cl_reader(const cl_reader&) = delete;
+  cl_reader& operator=(const cl_reader&) = delete;
+
+  /// The next event; false at the end of the input.
+  bool next(event& out);
+  /// The dialect in use.
+  dialect current_dialect() const;
+  /// Logical records read so far.
+  std::size_t records() const;
+  /// Bytes read so far.
+  std::size_t bytes() const;
+
+ private:
+  struct impl;
+  std::unique_ptr<impl> impl_;
+};
+
+}  // namespace twinpost

@@ -1,0 +1,42 @@
+#pragma once
+// An X3 primitive for CL numbers on top of std::from_chars: locale-free and correctly
+// rounded (x3::double_ is not, boostorg/spirit#668). Accepts `95.`, `.9625`, `-0.000000`,
+// `+1`, `1.5E-3`; refuses `inf`/`nan` and a number glued to a word (`1STPECK` is a word).
+#include <charconv>
+#include <cmath>
+
+#include "parser/detail/config.hpp"
+
+namespace twinpost::parser_detail {
+
+inline bool is_word_char(char c) {
+  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+}
+
+struct cl_number_parser : x3::parser<cl_number_parser> {
+  using attribute_type = double;
+  static bool const has_attribute = true;
+
+  template <class Iterator, class Context, class RContext, class Attribute>
+  bool parse(Iterator& first, Iterator const& last, Context const&, RContext&, Attribute& attr) const {
+    const char* p = first;
+    bool negative = false;
+    if (p != last && (*p == '+' || *p == '-')) {
+      negative = *p == '-';
+      ++p;
+    }
+    // from_chars would take "inf" and "nan": insist on a digit or a point first.
+    if (p == last || !((*p >= '0' && *p <= '9') || *p == '.')) return false;
+    double value = 0;
+    auto [end, ec] = std::from_chars(p, last, value);
+    if (ec != std::errc() || !std::isfinite(value)) return false;
+    if (end != last && is_word_char(*end)) return false;
+    first = end;
+    x3::traits::move_to(negative ? -value : value, attr);
+    return true;
+  }
+};
+
+inline const cl_number_parser cl_number{};
+
+}  // namespace twinpost::parser_detail

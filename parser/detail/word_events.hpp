@@ -1,0 +1,38 @@
+#pragma once
+// Readers for single records whose meaning needs no state beyond the units: SPINDL, FEDRAT,
+// COOLNT, CUTCOM, CYCLE, DELAY, AUXFUN/PREFUN, tool calls, sync records. Minor words are
+// matched by name, never by position: `SPINDL/RPM,800` and `SPINDL/800,RPM` read alike.
+#include <optional>
+
+#include "parser/detail/build_issue.hpp"
+#include "parser/events.hpp"
+#include "parser/record.hpp"
+
+namespace twinpost::detail {
+
+spindle_event read_spindl(const cl_record& r, build_issues& issues);
+feed_event read_fedrat(const cl_record& r, unit_system units, build_issues& issues);
+coolant_event read_coolnt(const cl_record& r, build_issues& issues);
+cutcom_event read_cutcom(const cl_record& r, build_issues& issues);
+cycle_event read_cycle(const cl_record& r);
+std::optional<delay_event> read_delay(const cl_record& r, build_issues& issues);
+std::optional<aux_event> read_aux(const cl_record& r, bool prefun, build_issues& issues);
+/// LOADTL, LOAD/TOOL, SELECT/TOOL, TURRET.
+std::optional<tool_event> read_tool(const cl_record& r, tool_source source, build_issues& issues);
+std::optional<head_event> read_head(const cl_record& r, build_issues& issues);
+std::optional<channel_event> read_channel(const cl_record& r, build_issues& issues);
+/// CATIA SYNC/k,c1,c2[,master].
+std::optional<sync_event> read_sync(const cl_record& r, build_issues& issues);
+/// ICAM SYNCTR/NEXT[,marker[,channels...]]; `last_marker` numbers markers left out.
+std::optional<sync_event> read_synctr(const cl_record& r, int& last_marker, build_issues& issues);
+/// MANUSpost `$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=n`, if it is one.
+std::optional<sync_event> read_manus_sync(std::string_view comment_text);
+
+/// The record's numbers, in order.
+std::vector<double> numbers_of(const cl_record& r);
+/// The record's arguments as written, joined with ','.
+std::string args_text(const cl_record& r);
+/// An upper-case copy of a word.
+std::string upper(std::string_view w);
+
+}  // namespace twinpost::detail

@@ -1,0 +1,25 @@
+#pragma once
+// CAM dialects of CL text and the conventions that differ between them.
+#include <optional>
+#include <string_view>
+
+namespace twinpost {
+
+enum class dialect : unsigned char { generic, creo, nx, catia, solidworks, makino };
+
+/// Guesses the dialect from the first bytes of a file: Creo `$$* Pro/CLfile`, NX
+/// `TOOL PATH/`, CATIA `$$*CATIA0`, Makino `APTCL-SPEC,MAKINO`, SolidWorks CAM `UNIT/MM`,
+/// `CSI_SET_` or `OPFEATSTART`; generic ISO 4343 APT otherwise.
+dialect detect_dialect(std::string_view head);
+
+/// The dialect's name as used by --dialect ("creo", "nx", ...).
+std::string_view dialect_name(dialect d);
+
+/// The dialect named `name`, if any.
+std::optional<dialect> dialect_from_name(std::string_view name);
+
+/// True when the dialect's CIRCLE moves counter-clockwise about its (i,j,k): Creo,
+/// SolidWorks CAM, CATIA and generic APT; NX and Makino-style files move clockwise.
+bool circle_is_ccw(dialect d);
+
+}  // namespace twinpost

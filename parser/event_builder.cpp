@@ -1,0 +1,134 @@
+#include "parser/event_builder.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "parser/detail/word_events.hpp"
+
+namespace twinpost {
+
+using detail::numbers_of;
+using detail::upper;
+
+namespace {
+
+// Four numbers and nothing else: a row of the `$$*CATIA0` matrix.
+bool matrix_row(std::string_view text, std::vector<double>& out) {
+  double row[4];
+  int k = 0;
+  const char* p = text.data();
+  const char* end = p + text.size();
+  while (p < end) {
+    while (p < end && (*p == ' ' || *p == '\t')) ++p;
+    if (p == end) break;
+    if (k == 4) return false;
+    if (*p == '+') ++p;
+    auto [q, ec] = std::from_chars(p, end, row[k]);
+    if (ec != std::errc()) return false;
+    ++k;
+    p = q;
+  }
+  if (k != 4) return false;
+  out.insert(out.end(), row, row + 4);
+  return true;
+}
+
+}  // namespace
+
+void event_builder::build(const cl_record& r, int line, std::vector<event>& out, build_issues& issues) {
+  switch (r.kind) {
+    case record_kind::comment:
+      comment(r, line, out);
+      return;
+    case record_kind::coordinates: {
+      if (!in_goto_) {
+        issues.push_back({severity::error, r.args.empty() ? 0 : r.args.front().offset,
+                          "coordinate line without a preceding GOTO"});
+        return;
+      }
+      std::vector<double> n = numbers_of(r);
+      if ((n.size() != 3 && n.size() != 6) || n.size() != r.args.size()) {
+        issues.push_back({severity::error, r.args.front().offset,
+                          fmt::format("a GOTO point takes 3 or 6 numbers, found {}", r.args.size())});
+        return;
+      }
+      point(n, true, motion_kind::go_to, line, out);
+      return;
+    }
+    case record_kind::text: {
+      end_of_motion_record();
+      text_event t;
+      t.major = upper(r.major);
+      t.text = std::string(r.text);
+      if (t.major == "PARTNO") t.kind = text_kind::partno;
+      else if (t.major == "PPRINT") t.kind = text_kind::pprint;
+      else if (t.major == "INSERT") t.kind = text_kind::insert;
+      else if (t.major == "TPRINT") t.kind = text_kind::tprint;
+      else if (t.major == "OPFEATSTART") t.kind = text_kind::op_start;
+      else if (t.major == "OPFEATEND") t.kind = text_kind::op_end;
+      else if (t.major == "TOOL PATH") t.kind = text_kind::toolpath;
+      else t.kind = text_kind::other;
+      out.push_back({line, std::move(t)});
+      return;
+    }
+    case record_kind::statement:
+      statement(r, line, out, issues);
+      return;
+  }
+}
+
+void event_builder::end_of_motion_record() {
+  in_goto_ = false;
+  rapid_record_ = false;
+  if (circle_used_) circle_.reset(), circle_used_ = false;
+}
+
+void event_builder::comment(const cl_record& r, int line, std::vector<event>& out) {
+  if (r.data_comment) {
+    // Creo `$$->` records: CSYS and CUTTER carry data; the rest are kept as data comments.
+    if (word_is(r.major, "CSYS")) {
+      out.push_back({line, coordsys_event{"$$-> CSYS", numbers_of(r)}});
+      return;
+    }
+    if (word_is(r.major, "CUTTER")) {
+      out.push_back({line, tool_data_event{"$$-> CUTTER", {}, numbers_of(r)}});
+      return;
+    }
+    std::string text = upper(r.major);
+    if (!r.args.empty()) text += " / " + detail::args_text(r);
+    out.push_back({line, comment_event{comment_kind::data, std::move(text)}});
+    return;
+  }
+  std::string_view t = r.text;
+  if (catia_rows_ >= 0) {
+    if (matrix_row(t, catia_matrix_) && ++catia_rows_ == 3) {
+      out.push_back({catia_line_, coordsys_event{"$$*CATIA0", std::move(catia_matrix_)}});
+      catia_matrix_.clear();
+      catia_rows_ = -1;
+    }
+  }
+  if (!t.empty() && t.front() == '*') {
+    if (t.substr(0, 7) == "*CATIA0") catia_rows_ = 0, catia_matrix_.clear(), catia_line_ = line;
+    std::string_view h = t.substr(1);
+    while (!h.empty() && h.front() == ' ') h.remove_prefix(1);
+    out.push_back({line, comment_event{comment_kind::header, std::string(h)}});
+    return;
+  }
+  if (upper(t.substr(0, 4)) == "UDE:") {
+    if (auto s = detail::read_manus_sync(t)) {
+      out.push_back({line, *s});
+      return;
+    }
+    out.push_back({line, comment_event{comment_kind::ude, std::string(t)}});
+    return;
+  }
+  out.push_back({line, comment_event{comment_kind::plain, std::string(t)}});
+}
+
+void event_builder::finish(build_issues& issues) {
+  if (circle_ && !circle_used_)
+    issues.push_back({severity::error, 0, "CIRCLE has no end point", circle_->line});
+}
+
+}  // namespace twinpost

@@ -1,0 +1,56 @@
+#pragma once
+// Dialect knowledge: turns CL records into typed events, one record at a time. Keeps the
+// little state the records need: position, modal tool axis, one-shot RAPID, a pending
+// CIRCLE waiting for its end point, units, ICAM marker numbers.
+#include <optional>
+#include <vector>
+
+#include "parser/detail/build_issue.hpp"
+#include "parser/dialect.hpp"
+#include "parser/events.hpp"
+#include "parser/record.hpp"
+
+namespace twinpost {
+
+class event_builder {
+ public:
+  explicit event_builder(dialect d) : dialect_(d) {}
+
+  /// Appends the events of record `r` (from physical line `line`) to `out`.
+  void build(const cl_record& r, int line, std::vector<event>& out, build_issues& issues);
+  /// Reports what the end of input leaves open (a CIRCLE with no end point).
+  void finish(build_issues& issues);
+
+ private:
+  struct pending_circle {
+    vec3 center;
+    vec3 normal{0, 0, 1};
+    std::optional<double> radius;
+    std::optional<bool> ccw;  // explicit CLOCKWISE / COUNTERCLOCKWISE word
+    int line = 0;
+  };
+
+  void statement(const cl_record& r, int line, std::vector<event>& out, build_issues& issues);
+  void comment(const cl_record& r, int line, std::vector<event>& out);
+  void motion(const cl_record& r, motion_kind kind, int line, std::vector<event>& out, build_issues& issues);
+  void point(const std::vector<double>& n, bool continued, motion_kind kind, int line,
+             std::vector<event>& out);
+  void circle(const cl_record& r, int line, build_issues& issues);
+  void end_of_motion_record();
+
+  dialect dialect_;
+  unit_system units_ = unit_system::mm;
+  vec3 pos_;
+  std::optional<vec3> axis_;
+  bool rapid_ = false;        // RAPID seen, waiting for its move
+  bool rapid_record_ = false; // the current GOTO record is rapid (its coordinate lines too)
+  bool in_goto_ = false;      // the last statement was a GOTO: coordinate lines continue it
+  std::optional<pending_circle> circle_;
+  bool circle_used_ = false;  // the pending circle has had its GOTO
+  int icam_marker_ = 0;
+  int catia_rows_ = -1;       // >= 0 while reading the `$$*CATIA0` matrix rows
+  std::vector<double> catia_matrix_;
+  int catia_line_ = 0;
+};
+
+}  // namespace twinpost

@@ -1,0 +1,145 @@
+#include "parser/line_reader.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+namespace twinpost {
+
+std::size_t file_source::read(char* dst, std::size_t n) { return std::fread(dst, 1, n, file_); }
+
+std::size_t string_source::read(char* dst, std::size_t n) {
+  std::size_t k = std::min(n, text_.size());
+  std::memcpy(dst, text_.data(), k);
+  text_.remove_prefix(k);
+  return k;
+}
+
+line_reader::line_reader(byte_source& src, std::size_t chunk) : src_(src), buf_(chunk < 16 ? 16 : chunk) {}
+
+bool line_reader::fill() {
+  if (eof_) return false;
+  if (begin_ > 0) {
+    std::memmove(buf_.data(), buf_.data() + begin_, end_ - begin_);
+    end_ -= begin_;
+    begin_ = 0;
+  }
+  if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);  // a line longer than the buffer
+  std::size_t n = src_.read(buf_.data() + end_, buf_.size() - end_);
+  if (n == 0) eof_ = true;
+  end_ += n;
+  return n > 0;
+}
+
+std::string_view line_reader::peek(std::size_t n) {
+  while (end_ - begin_ < n && fill()) {
+  }
+  return {buf_.data() + begin_, std::min(n, end_ - begin_)};
+}
+
+bool line_reader::next_physical(std::string_view& line) {
+  std::size_t scanned = begin_;
+  for (;;) {
+    const char* base = buf_.data();
+    const void* nl = std::memchr(base + scanned, '\n', end_ - scanned);
+    if (nl) {
+      std::size_t pos = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
+      line = {base + begin_, pos - begin_};
+      consumed_ += pos + 1 - begin_;
+      begin_ = pos + 1;
+      break;
+    }
+    std::size_t had = end_ - begin_;
+    if (!fill()) {
+      if (end_ == begin_) return false;
+      line = {buf_.data() + begin_, end_ - begin_};  // last line without a newline
+      consumed_ += end_ - begin_;
+      begin_ = end_;
+      break;
+    }
+    scanned = begin_ + had;
+  }
+  ++line_no_;
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return true;
+}
+
+namespace {
+
+bool blank(char c) { return c == ' ' || c == '\t'; }
+
+// The data part of a physical line: [0, data_end), and whether it continues on the next.
+struct line_shape {
+  std::size_t data_end;
+  bool continues;
+};
+
+line_shape shape_of(std::string_view line) {
+  std::size_t first = 0;
+  while (first < line.size() && blank(line[first])) ++first;
+  std::string_view rest = line.substr(first);
+  std::size_t end = line.size();
+  if (rest.substr(0, 2) == "$$") {
+    if (rest.substr(0, 4) != "$$->") return {line.size(), false};  // plain comment
+  } else {
+    std::size_t c = line.find("$$");  // trailing comment
+    if (c != std::string_view::npos) end = c;
+  }
+  std::size_t last = end;
+  while (last > first && blank(line[last - 1])) --last;
+  if (last > first + 1 && line[last - 1] == '$' && line[last - 2] != '$')
+    return {last - 1, true};
+  if (last == first + 1 && line[first] == '$') return {first, true};
+  return {end, false};
+}
+
+bool all_blank(std::string_view s) {
+  return std::all_of(s.begin(), s.end(), [](char c) { return blank(c); });
+}
+
+}  // namespace
+
+bool line_reader::next(logical_record& out) {
+  std::string_view line;
+  line_shape shape{};
+  do {
+    if (!next_physical(line)) return false;
+    shape = shape_of(line);
+  } while (all_blank(line.substr(0, shape.data_end)) && !shape.continues);
+
+  segments_.clear();
+  out.line = line_no_;
+  if (!shape.continues) {  // the common case: no copy at all
+    segments_.push_back({0, line_no_, 0, line});
+    out.text = line.substr(0, shape.data_end);
+    return true;
+  }
+  // A continued record: copy its lines, since refilling the buffer moves them.
+  joined_.clear();
+  std::size_t used = 0;
+  auto keep = [&](std::string_view physical, std::size_t data_end) {
+    if (physical_.size() <= used) physical_.emplace_back();
+    physical_[used].assign(physical);
+    segments_.push_back({joined_.size(), line_no_, 0, physical_[used]});
+    joined_.append(physical.substr(0, data_end));
+    ++used;
+  };
+  keep(line, shape.data_end);
+  while (shape.continues && next_physical(line)) {
+    shape = shape_of(line);
+    keep(line, shape.data_end);
+  }
+  // Views into physical_ strings stay valid: those strings are not touched until next().
+  for (std::size_t i = 0; i < used; ++i) segments_[i].physical = physical_[i];
+  out.text = joined_;
+  return true;
+}
+
+source_position line_reader::locate(std::size_t offset) const {
+  if (segments_.empty()) return {};
+  auto it = std::upper_bound(segments_.begin(), segments_.end(), offset,
+                             [](std::size_t o, const segment& s) { return o < s.offset; });
+  const segment& s = it == segments_.begin() ? segments_.front() : *(it - 1);
+  return {s.line, static_cast<int>(s.column0 + (offset - s.offset)) + 1, s.physical};
+}
+
+}  // namespace twinpost

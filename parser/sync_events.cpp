@@ -1,0 +1,95 @@
+// Records that select heads and channels and mark synchronisation points.
+#include <cctype>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "parser/detail/word_events.hpp"
+
+namespace twinpost::detail {
+
+namespace {
+int as_int(double v) { return static_cast<int>(std::lround(v)); }
+std::size_t where(const cl_record& r) { return r.args.empty() ? r.major_offset : r.args.front().offset; }
+}  // namespace
+
+std::optional<head_event> read_head(const cl_record& r, build_issues& issues) {
+  head_event e;
+  if (!r.args.empty() && r.args[0].kind == arg_kind::number && r.args[0].number >= 1) {
+    e.which = head_select::number;
+    e.number = as_int(r.args[0].number);
+    return e;
+  }
+  if (!r.args.empty() && r.args[0].kind == arg_kind::word) {
+    std::string_view w = r.args[0].word;
+    if (word_is(w, "MAIN")) return head_event{head_select::main, 0};
+    if (word_is(w, "SIDE")) return head_event{head_select::side, 0};
+    if (word_is(w, "BOTH")) return head_event{head_select::both, 0};
+  }
+  issues.push_back({severity::error, where(r), "HEAD needs a head number, MAIN, SIDE or BOTH"});
+  return std::nullopt;
+}
+
+std::optional<channel_event> read_channel(const cl_record& r, build_issues& issues) {
+  if (!r.args.empty() && r.args[0].kind == arg_kind::number && r.args[0].number >= 1)
+    return channel_event{as_int(r.args[0].number)};
+  issues.push_back({severity::error, where(r), fmt::format("{} needs a channel number", upper(r.major))});
+  return std::nullopt;
+}
+
+std::optional<sync_event> read_sync(const cl_record& r, build_issues& issues) {
+  std::vector<double> n = numbers_of(r);
+  if (n.size() < 3) {
+    issues.push_back({severity::error, where(r), "SYNC needs a sync number and two channels"});
+    return std::nullopt;
+  }
+  sync_event e;
+  e.source = sync_source::catia;
+  e.index = as_int(n[0]);
+  e.channels = {as_int(n[1]), as_int(n[2])};
+  if (n.size() > 3) e.master = as_int(n[3]);
+  return e;
+}
+
+std::optional<sync_event> read_synctr(const cl_record& r, int& last_marker, build_issues& issues) {
+  if (r.args.empty() || r.args[0].kind != arg_kind::word || !word_is(r.args[0].word, "NEXT")) {
+    issues.push_back({severity::error, where(r), "SYNCTR needs NEXT[,marker[,channels]]"});
+    return std::nullopt;
+  }
+  sync_event e;
+  e.source = sync_source::icam;
+  std::size_t i = 1;
+  if (i < r.args.size() && r.args[i].kind == arg_kind::number) {
+    e.index = as_int(r.args[i].number);
+    ++i;
+  } else {
+    e.index = last_marker + 1;  // ICAM: a marker left out is the previous one plus one
+  }
+  last_marker = e.index;
+  for (; i < r.args.size(); ++i)
+    if (r.args[i].kind == arg_kind::number) e.channels.push_back(as_int(r.args[i].number));
+  return e;
+}
+
+std::optional<sync_event> read_manus_sync(std::string_view text) {
+  // UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=n
+  std::string u = upper(text);
+  if (u.rfind("UDE:", 0) != 0 || u.find("SYNCHRONIZATION") == std::string::npos) return std::nullopt;
+  std::size_t eq = u.find("NUMBER=");
+  if (eq == std::string::npos) return std::nullopt;
+  std::size_t p = eq + 7;
+  while (p < u.size() && u[p] == ' ') ++p;
+  int n = 0;
+  bool any = false;
+  while (p < u.size() && std::isdigit(static_cast<unsigned char>(u[p]))) {
+    n = n * 10 + (u[p] - '0');
+    any = true;
+    ++p;
+  }
+  if (!any) return std::nullopt;
+  sync_event e;
+  e.source = sync_source::manus;
+  e.index = n;
+  return e;
+}
+
+}  // namespace twinpost::detail
