@@ -1,0 +1,161 @@
+#include "channels/router.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+namespace twinpost {
+
+channel_router::channel_router(const machine& m, sync_policy policy, channel_sink& sink,
+                               diagnostic_sink& diags, std::string file)
+    : m_(m), policy_(policy), sink_(sink), diags_(diags), file_(std::move(file)), codes_(m.waits),
+      busy_(m.channels.size() + 1, false) {
+  const channel_def* first = m_.channel_for_head(1);
+  active_ = {first ? first->number : 1};
+}
+
+void channel_router::error(int line, std::string message) {
+  diagnostic d;
+  d.file = file_;
+  d.line = line;
+  d.message = std::move(message);
+  diags_.report(std::move(d));
+}
+
+const channel_def* channel_router::head_channel(const head_event& h) const {
+  switch (h.which) {
+    case head_select::number: return m_.channel_for_head(h.number);
+    case head_select::main: return m_.channel_for_head(std::string_view("MAIN"));
+    case head_select::side: return m_.channel_for_head(std::string_view("SIDE"));
+    case head_select::both: return nullptr;
+  }
+  return nullptr;
+}
+
+void channel_router::route(const event& e) {
+  if (const auto* h = std::get_if<head_event>(&e.data)) {
+    if (h->which == head_select::both) {
+      const channel_def* a = m_.channel_for_head(1);
+      const channel_def* b = m_.channel_for_head(2);
+      if (!a || !b || a == b) return error(e.line, fmt::format("HEAD/BOTH: machine '{}' has no two channels for heads 1 and 2", m_.name));
+      std::vector<int> both{a->number, b->number};
+      std::sort(both.begin(), both.end());
+      return select(both, e.line, true);
+    }
+    const channel_def* c = head_channel(*h);
+    if (!c) {
+      std::string what = h->which == head_select::number ? std::to_string(h->number)
+                         : h->which == head_select::main ? "MAIN" : "SIDE";
+      return error(e.line, fmt::format("HEAD/{}: machine '{}' has no channel for this head", what, m_.name));
+    }
+    return select({c->number}, e.line, false);
+  }
+  if (const auto* c = std::get_if<channel_event>(&e.data)) {
+    if (c->channel < 1 || c->channel > static_cast<int>(m_.channels.size()))
+      return error(e.line, fmt::format("CHANNEL {}: machine '{}' has {} channels", c->channel, m_.name, m_.channels.size()));
+    return select({c->channel}, e.line, false);
+  }
+  if (const auto* s = std::get_if<sync_event>(&e.data)) return explicit_sync(*s, e.line);
+  bool job_level = false;
+  if (const auto* t = std::get_if<text_event>(&e.data)) job_level = t->kind == text_kind::partno;
+  if (std::holds_alternative<units_event>(e.data) || std::holds_alternative<machin_event>(e.data))
+    job_level = true;
+  if (job_level) return sink_.on_event(0, e, false);
+  for (int ch : active_) {
+    busy_[static_cast<std::size_t>(ch)] = true;
+    sink_.on_event(ch, e, both_);
+  }
+}
+
+void channel_router::select(std::vector<int> channels, int line, bool both) {
+  if (channels == active_ && both == both_) return;
+  std::vector<int> all = active_;
+  all.insert(all.end(), channels.begin(), channels.end());
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  // HEAD/BOTH is always framed by waits; plain switches wait only under the sequential policy.
+  if (both || both_) rendezvous(all, line, both ? "HEAD/BOTH" : "the end of HEAD/BOTH");
+  else if (policy_ == sync_policy::sequential && all.size() > 1) rendezvous(all, line, "a head switch");
+  active_ = std::move(channels);
+  both_ = both;
+}
+
+void channel_router::rendezvous(const std::vector<int>& channels, int line, const std::string& what) {
+  // Consecutive marks with nothing between them collapse into one.
+  bool any_busy = std::any_of(channels.begin(), channels.end(),
+                              [&](int c) { return busy_[static_cast<std::size_t>(c)]; });
+  if (!any_busy && rendezvous_ > 0) return;
+  auto code = codes_.next();
+  if (!code) {
+    return error(line, fmt::format("no wait code left for {}: {}{}-{}{} is used up and machine '{}' does not reuse codes",
+                                   what, m_.waits.address, m_.waits.first, m_.waits.address, m_.waits.last, m_.name));
+  }
+  wait_mark w;
+  w.code = *code;
+  w.partners = channels;
+  w.partner_text = partner_list(channels, m_.waits.partners);
+  w.cl_line = line;
+  for (int c : channels) {
+    sink_.on_wait(c, w);
+    busy_[static_cast<std::size_t>(c)] = false;
+  }
+  ++rendezvous_;
+}
+
+void channel_router::explicit_sync(const sync_event& s, int line) {
+  ++explicit_;
+  if (policy_ != sync_policy::explicit_marks) {
+    if (!warned_ignored_) {
+      diagnostic d;
+      d.level = severity::warning;
+      d.file = file_;
+      d.line = line;
+      d.message = "sync records ignored under --sync sequential";
+      diags_.report(std::move(d));
+      warned_ignored_ = true;
+    }
+    return;
+  }
+  std::vector<int> partners = s.channels;
+  if (partners.empty())
+    for (const channel_def& c : m_.channels) partners.push_back(c.number);
+  for (int ch : active_) partners.push_back(ch);
+  std::sort(partners.begin(), partners.end());
+  partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+  for (int p : partners)
+    if (p < 1 || p > static_cast<int>(m_.channels.size()))
+      return error(line, fmt::format("sync {} names channel {}, machine '{}' has {} channels", s.index, p, m_.name, m_.channels.size()));
+  if (partners.size() < 2) return error(line, fmt::format("sync {} has no partner channel", s.index));
+  for (int ch : active_) {
+    // The same sync record twice in a row in one channel is one wait.
+    if (last_sync_line_ >= 0 && last_sync_index_ == s.index && last_sync_channel_ == ch &&
+        !busy_[static_cast<std::size_t>(ch)])
+      continue;
+    int nth = seen_[{ch, s.index}]++;
+    auto key = std::make_pair(s.index, nth);
+    auto it = sync_codes_.find(key);
+    if (it == sync_codes_.end()) {
+      auto code = codes_.next();
+      if (!code)
+        return error(line, fmt::format("no wait code left for sync {}: {}{}-{}{} is used up and machine '{}' does not reuse codes",
+                                       s.index, m_.waits.address, m_.waits.first, m_.waits.address, m_.waits.last, m_.name));
+      it = sync_codes_.emplace(key, *code).first;
+      ++rendezvous_;
+    }
+    wait_mark w;
+    w.code = it->second;
+    w.partners = partners;
+    w.partner_text = partner_list(partners, m_.waits.partners);
+    w.cl_line = line;
+    sink_.on_wait(ch, w);
+    busy_[static_cast<std::size_t>(ch)] = false;
+    last_sync_channel_ = ch;
+  }
+  last_sync_line_ = line;
+  last_sync_index_ = s.index;
+}
+
+void channel_router::finish(int last_line) {
+  if (both_) select({active_.front()}, last_line, false);
+}
+
+}  // namespace twinpost

@@ -1,0 +1,83 @@
+#pragma once
+// Routes the CL event stream to the machine's channels and places the waits.
+//
+// - HEAD/n, HEAD/MAIN|SIDE select the channel that serves that head (machine map);
+//   CHANNEL,n / CHANNL/n select channel n; events before the first selection go to head 1.
+// - HEAD/BOTH: a wait in both channels, the following events go to both, and another wait
+//   when a single head is selected again.
+// - Waits come from explicit sync records (CATIA SYNC, ICAM SYNCTR, MANUSpost UDE) or, under
+//   the sequential policy, from every head switch. A wait's code comes from the machine's
+//   range in turn; the k-th explicit sync of a channel gets the code of that sync number.
+// - Job-level events (PARTNO, UNITS, MACHIN) go to channel 0.
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "channels/wait_allocator.hpp"
+#include "machines/machine.hpp"
+#include "parser/diagnostics.hpp"
+#include "parser/events.hpp"
+
+namespace twinpost {
+
+enum class sync_policy { explicit_marks, sequential, automatic };
+
+/// A wait placed in a channel.
+struct wait_mark {
+  int code = 0;
+  std::vector<int> partners;  ///< all channels taking part, ascending, own channel included
+  std::string partner_text;   ///< the P value in the machine's style, "" when none
+  int cl_line = 0;            ///< the CL record that caused it
+};
+
+/// Receives the routed stream.
+class channel_sink {
+ public:
+  virtual ~channel_sink() = default;
+  /// An event for channel `ch` (0 = the job as a whole). `both`: a HEAD/BOTH copy.
+  virtual void on_event(int ch, const event& e, bool both) = 0;
+  /// A wait for channel `ch`.
+  virtual void on_wait(int ch, const wait_mark& w) = 0;
+};
+
+class channel_router {
+ public:
+  /// `policy` must be explicit_marks or sequential here (automatic is resolved by the caller).
+  channel_router(const machine& m, sync_policy policy, channel_sink& sink, diagnostic_sink& diags,
+                 std::string file);
+
+  /// Routes one event.
+  void route(const event& e);
+  /// Closes an open HEAD/BOTH section at the end of the job.
+  void finish(int last_line);
+  /// Waits placed, counted once per rendezvous.
+  int rendezvous() const { return rendezvous_; }
+  /// Explicit sync records seen.
+  int explicit_marks() const { return explicit_; }
+
+ private:
+  void select(std::vector<int> channels, int line, bool both);
+  void rendezvous(const std::vector<int>& channels, int line, const std::string& what);
+  void explicit_sync(const sync_event& s, int line);
+  void error(int line, std::string message);
+  const channel_def* head_channel(const head_event& h) const;
+
+  const machine& m_;
+  sync_policy policy_;
+  channel_sink& sink_;
+  diagnostic_sink& diags_;
+  std::string file_;
+  wait_allocator codes_;
+  std::vector<int> active_;          // channels receiving events now
+  bool both_ = false;                // inside HEAD/BOTH
+  std::vector<bool> busy_;           // per channel: events since its last wait
+  std::map<std::pair<int, int>, int> sync_codes_;  // (sync number, occurrence) -> code
+  std::map<std::pair<int, int>, int> seen_;        // (channel, sync number) -> occurrences
+  int last_sync_line_ = -1, last_sync_index_ = -1, last_sync_channel_ = -1;
+  int rendezvous_ = 0;
+  int explicit_ = 0;
+  bool warned_ignored_ = false;
+};
+
+}  // namespace twinpost

@@ -1,0 +1,44 @@
+// twinpost machines: lists the built-in machine definitions, one per line.
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+#include "machines/machine_loader.hpp"
+
+namespace twinpost::cli {
+
+namespace {
+
+const char* const machines_usage =
+    "usage: twinpost machines\n"
+    "\n"
+    "Lists the built-in machine definitions: name, then description.\n"
+    "Pass a name to --machine, or a path to your own TOML file (see docs/machines.md).\n";
+
+}  // namespace
+
+int run_machines(const args& a) {
+  for (const std::string& arg : a) {
+    if (arg == "--help" || arg == "-h") {
+      std::fputs(machines_usage, stdout);
+      return 0;
+    }
+  }
+  if (!a.empty()) {
+    const std::string& arg = a.front();
+    fmt::print(stderr, "twinpost machines: {} '{}'\n\n{}",
+               arg.starts_with('-') ? "unknown option" : "unexpected argument", arg,
+               machines_usage);
+    return 2;
+  }
+  const std::vector<machine_summary> all = builtin_machines();
+  std::size_t width = 0;
+  for (const machine_summary& m : all) width = std::max(width, m.name.size());
+  for (const machine_summary& m : all) fmt::print("{:<{}}  {}\n", m.name, width, m.description);
+  return 0;
+}
+
+}  // namespace twinpost::cli

@@ -1,0 +1,82 @@
+#include "formats/block_writer.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fmt/format.h>
+
+namespace twinpost {
+
+namespace {
+constexpr std::size_t flush_at = 1 << 18;
+}
+
+block_writer::block_writer(const std::string& path, const program_format& fmt)
+    : path_(path), fmt_(fmt), seq_(fmt.sequence_start) {
+  f_ = std::fopen(path.c_str(), "wb");
+  if (!f_) throw config_error(fmt::format("twinpost: error: cannot write '{}': {}", path, std::strerror(errno)));
+  buf_.reserve(flush_at + 4096);
+}
+
+block_writer::~block_writer() {
+  if (f_) std::fclose(f_);
+}
+
+void block_writer::put(std::string_view s) {
+  buf_.append(s);
+  buf_ += '\n';
+  if (buf_.size() >= flush_at) {
+    if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size())
+      throw config_error(fmt::format("twinpost: error: cannot write '{}'", path_));
+    buf_.clear();
+  }
+}
+
+void block_writer::block(std::string_view words) {
+  ++blocks_;
+  if (fmt_.sequence_start > 0) {
+    std::string line = fmt::format("N{} ", seq_);
+    seq_ += fmt_.sequence_step;
+    line.append(words);
+    put(line);
+    return;
+  }
+  put(words);
+}
+
+void block_writer::comment(std::string_view text) {
+  std::string s;
+  s += fmt_.comment_open;
+  s += safe_comment_text(text, fmt_);
+  s += fmt_.comment_close;
+  put(s);
+}
+
+void block_writer::raw(std::string_view line) { put(line); }
+
+void block_writer::close() {
+  if (!f_) return;
+  bool ok = std::fwrite(buf_.data(), 1, buf_.size(), f_) == buf_.size();
+  buf_.clear();
+  ok = std::fclose(f_) == 0 && ok;
+  f_ = nullptr;
+  if (!ok) throw config_error(fmt::format("twinpost: error: cannot write '{}'", path_));
+}
+
+std::string safe_comment_text(std::string_view text, const program_format& fmt) {
+  std::string s;
+  for (unsigned char c : text) {
+    if (c >= 'a' && c <= 'z') c = static_cast<unsigned char>(c - 'a' + 'A');
+    if (c == static_cast<unsigned char>(fmt.comment_open) || c == static_cast<unsigned char>(fmt.comment_close) ||
+        c == '(' || c == ')' || c == ';' || c == '%')
+      c = ' ';
+    if (c < 0x20 || c >= 0x7f) c = ' ';  // control bytes and ISO-8859-1 letters
+    s += static_cast<char>(c);
+  }
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  while (!s.empty() && s.front() == ' ') s.erase(s.begin());
+  if (fmt.comment_max > 0 && static_cast<int>(s.size()) > fmt.comment_max)
+    s.resize(static_cast<std::size_t>(fmt.comment_max));
+  return s;
+}
+
+}  // namespace twinpost

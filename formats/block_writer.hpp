@@ -1,0 +1,44 @@
+#pragma once
+// Writes NC blocks of one channel to a file through a large buffer: sequence numbers,
+// comments made safe for the control, block-length limits. One writer per channel.
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "machines/machine.hpp"
+
+namespace twinpost {
+
+class block_writer {
+ public:
+  /// Opens `path` for writing; throws config_error when it cannot.
+  block_writer(const std::string& path, const program_format& fmt);
+  ~block_writer();
+  block_writer(const block_writer&) = delete;
+  block_writer& operator=(const block_writer&) = delete;
+
+  /// Writes one block (words separated by blanks), numbered when the format says so.
+  void block(std::string_view words);
+  /// Writes a comment block, made safe: upper case, no parentheses inside, length-limited.
+  void comment(std::string_view text);
+  /// Writes a line as it is (program frame lines, user INSERT text).
+  void raw(std::string_view line);
+  /// Flushes and closes; throws config_error on a write error.
+  void close();
+  long blocks() const { return blocks_; }
+
+ private:
+  void put(std::string_view s);
+  std::FILE* f_ = nullptr;
+  std::string path_;
+  const program_format& fmt_;
+  std::string buf_;
+  long seq_;
+  long blocks_ = 0;
+};
+
+/// `text` as the control accepts it in a comment: upper case, printable ASCII, no comment
+/// delimiters, cut to `max` characters (0 = no limit).
+std::string safe_comment_text(std::string_view text, const program_format& fmt);
+
+}  // namespace twinpost

@@ -1,0 +1,72 @@
+// channel_writer: spindle, feed and tool blocks.
+#include <cmath>
+#include <fmt/format.h>
+
+#include "formats/channel_writer.hpp"
+#include "machines/machine_loader.hpp"
+
+namespace twinpost {
+
+void channel_writer::spindle(const spindle_event& s, int line) {
+  if (!s.spindle.empty()) {
+    const spindle_def* sel = m_.spindle(s.spindle);
+    if (!sel) return error(line, fmt::format("machine '{}' has no {} spindle", m_.name, s.spindle));
+    if (sel != spindle_) {
+      spindle_ = sel;
+      if (sel->select) out_.block(fmt::format("M{}", *sel->select));
+    }
+  }
+  if (!spindle_) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
+  const spindle_def& sp = *spindle_;
+  if (s.mode == spindle_mode::off) return out_.block(fmt::format("M{}", sp.stop));
+  if (s.mode == spindle_mode::orient || s.mode == spindle_mode::lock)
+    return error(line, "spindle ORIENT/LOCK is not supported on a lathe channel yet");
+  int m = s.dir == rotation::ccw ? sp.ccw : sp.cw;
+  if (s.mode == spindle_mode::sfm || s.mode == spindle_mode::smm) {
+    double smm = s.mode == spindle_mode::sfm ? s.speed * 0.3048 : s.speed;
+    if (!s.max_rpm && sp.max_rpm <= 0)
+      return error(line, "constant surface speed needs MAXRPM (or a spindle limit in the machine)");
+    double clamp = s.max_rpm ? *s.max_rpm : sp.max_rpm;
+    if (sp.max_rpm > 0 && clamp > sp.max_rpm)
+      return error(line, fmt::format("MAXRPM {} exceeds the {} spindle's limit of {} rpm", clamp, sp.name, sp.max_rpm));
+    template_args a = sample_template_args();
+    a.max = clamp;
+    a.rpm = clamp;
+    a.channel = ch_.number;
+    if (!sp.clamp.empty()) out_.block(format_template(sp.clamp, a));
+    out_.block(fmt::format("{} S{} M{}", m_.codes.css, format_nc_number(smm, {0, false}), m));
+    return;
+  }
+  if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
+    return error(line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
+  out_.block(fmt::format("{} S{} M{}", m_.codes.rpm, format_nc_number(s.speed, {0, false}), m));
+}
+
+void channel_writer::feed(const feed_event& f, int line) {
+  if (f.mode == feed_mode::inverse_time) return error(line, "inverse-time feed is not supported on a lathe channel");
+  per_rev_ = f.mode == feed_mode::per_rev;
+  feed_value_ = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
+  const std::string& g = per_rev_ ? m_.codes.feed_per_rev : m_.codes.feed_per_min;
+  if (g != feed_g_) {
+    out_.block(g);
+    feed_g_ = g;
+    last_f_.clear();
+  }
+}
+
+void channel_writer::tool(const tool_event& t, int line) {
+  if (t.preselect) return;
+  (void)line;
+  if (t.tool == tool_) return;
+  out_.block(m_.codes.home);  // index the turret away from the part
+  last_x_.clear(), last_y_.clear(), last_z_.clear();
+  motion_g_ = -1;
+  template_args a = sample_template_args();
+  a.tool = t.tool;
+  a.offset = t.offset.value_or(t.tool);
+  a.channel = ch_.number;
+  out_.block(format_template(ch_.tool_call, a));
+  tool_ = t.tool;
+}
+
+}  // namespace twinpost

@@ -1,0 +1,86 @@
+#include "formats/channel_writer.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "machines/machine_loader.hpp"
+
+namespace twinpost {
+
+channel_writer::channel_writer(const machine& m, const channel_def& ch, const std::string& body_path,
+                               diagnostic_sink& diags, std::string cl_file)
+    : m_(m), ch_(ch), diags_(diags), cl_file_(std::move(cl_file)), out_(body_path, m.program) {
+  axis_style_ = {m.program.decimals_metric, m.program.trailing_point};
+  const axis_def* x = ch.axis('X');
+  x_factor_ = (x && !x->diameter) ? 1.0 : 2.0;
+  if (x && x->mirror) x_factor_ = -x_factor_;
+  has_y_ = ch.axis('Y') != nullptr;
+  spindle_ = m.spindle(ch.spindle);
+}
+
+void channel_writer::error(int line, std::string message) {
+  diagnostic d;
+  d.file = cl_file_;
+  d.line = line;
+  d.message = fmt::format("channel {}: {}", ch_.number, message);
+  diags_.report(std::move(d));
+}
+
+std::string channel_writer::axis_word(char address, double value, std::string& last) {
+  std::string v = format_nc_number(value, axis_style_);
+  if (v == last) return {};
+  last = v;
+  return fmt::format(" {}{}", address, v);
+}
+
+void channel_writer::on_wait(const wait_mark& w) {
+  std::string b = fmt::format("{}{}", m_.waits.address, w.code);
+  if (!w.partner_text.empty()) b += fmt::format(" {}{}", m_.waits.partner_address, w.partner_text);
+  out_.block(b);
+  ++waits_;
+}
+
+void channel_writer::on_event(const event& e, bool both) {
+  // A HEAD/BOTH copy on a mirrored channel runs on the opposite side of the spindle centre.
+  const axis_def* x = ch_.axis('X');
+  side_ = (both && x && x->mirror) ? -1.0 : 1.0;
+  std::visit(
+      [&](const auto& d) {
+        using T = std::decay_t<decltype(d)>;
+        if constexpr (std::is_same_v<T, motion_event>) motion(d, e.line);
+        else if constexpr (std::is_same_v<T, arc_event>) arc(d, e.line);
+        else if constexpr (std::is_same_v<T, spindle_event>) spindle(d, e.line);
+        else if constexpr (std::is_same_v<T, feed_event>) feed(d, e.line);
+        else if constexpr (std::is_same_v<T, tool_event>) tool(d, e.line);
+        else if constexpr (std::is_same_v<T, coolant_event>) {
+          if (d.mode == "OFF") out_.block(m_.codes.coolant_off);
+          else if (!m_.codes.coolant_on.empty()) out_.block(m_.codes.coolant_on.front());
+        } else if constexpr (std::is_same_v<T, cutcom_event>) {
+          pending_g_ = d.side == "LEFT" ? "G41" : d.side == "RIGHT" ? "G42" : d.side == "OFF" ? "G40" : "";
+        } else if constexpr (std::is_same_v<T, cycle_event>) {
+          if (d.type == "OFF") cycle_.reset();
+          else if (d.type != "ON" && d.type != "INIT") cycle_ = d;
+        } else if constexpr (std::is_same_v<T, delay_event>) {
+          template_args a = sample_template_args();
+          a.seconds = d.value;
+          a.ms = static_cast<int>(std::lround(d.value * 1000));
+          if (d.revolutions) error(e.line, "DELAY in revolutions is not supported; give seconds");
+          else out_.block(format_template(m_.codes.dwell, a));
+        } else if constexpr (std::is_same_v<T, aux_event>) {
+          out_.block(fmt::format("{}{}", d.prefun ? 'G' : 'M', d.code));
+        } else if constexpr (std::is_same_v<T, text_event>) {
+          if (d.kind == text_kind::insert) out_.raw(d.text);
+          else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint || d.kind == text_kind::op_start ||
+                   d.kind == text_kind::toolpath)
+            out_.comment(d.text);
+        } else if constexpr (std::is_same_v<T, units_event>) {
+          set_units(d.units);
+        }
+        // FROM-only state, tool data, coordinate systems, comments, ends: no block.
+      },
+      e.data);
+}
+
+void channel_writer::finish() { out_.close(); }
+
+}  // namespace twinpost

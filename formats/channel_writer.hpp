@@ -1,0 +1,68 @@
+#pragma once
+// Turns one channel's routed events into lathe NC blocks (G18, X in diameter, Z), keeping
+// that channel's modal state: tool, spindle and its mode, feed mode, motion G-code, last
+// axis words (modal suppression), cutter compensation, an active drilling cycle.
+// Lengths are written in millimetres: an inch CL is converted on the way.
+#include <optional>
+#include <string>
+
+#include "channels/router.hpp"
+#include "formats/block_writer.hpp"
+#include "formats/number_format.hpp"
+#include "machines/machine.hpp"
+#include "parser/diagnostics.hpp"
+#include "parser/events.hpp"
+
+namespace twinpost {
+
+class channel_writer {
+ public:
+  channel_writer(const machine& m, const channel_def& ch, const std::string& body_path,
+                 diagnostic_sink& diags, std::string cl_file);
+
+  /// The job's units (UNITS record); inch values are converted to mm.
+  void set_units(unit_system u) { scale_ = u == unit_system::inch ? 25.4 : 1.0; }
+  void on_event(const event& e, bool both);
+  void on_wait(const wait_mark& w);
+  /// Ends the body: coolant and spindle off are the footer's job; closes the file.
+  void finish();
+  long blocks() const { return out_.blocks(); }
+  int waits() const { return waits_; }
+
+ private:
+  void motion(const motion_event& m, int line);
+  void arc(const arc_event& a, int line);
+  void spindle(const spindle_event& s, int line);
+  void feed(const feed_event& f, int line);
+  void tool(const tool_event& t, int line);
+  void cycle_point(const vec3& p, int line);
+  void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
+  void error(int line, std::string message);
+  std::string axis_word(char address, double value, std::string& last);
+  double nc_x(double x_cl) const { return x_cl * scale_ * x_factor_ * side_; }
+
+  const machine& m_;
+  const channel_def& ch_;
+  diagnostic_sink& diags_;
+  std::string cl_file_;
+  block_writer out_;
+  number_style axis_style_;
+  double scale_ = 1.0;        // CL units -> mm
+  double x_factor_ = 2.0;     // diameter (2) or radius (1), negative when mirrored
+  double side_ = 1.0;         // -1 while a HEAD/BOTH copy runs on the opposite side
+  bool has_y_ = false;
+  const spindle_def* spindle_ = nullptr;
+  int motion_g_ = -1;         // last G0/G1/G2/G3
+  std::string last_x_, last_y_, last_z_;
+  std::string feed_g_;        // G99/G98 (G95/G94) in force
+  std::string last_f_;
+  bool per_rev_ = false;      // feed mode of the last FEDRAT
+  double feed_value_ = 0;
+  std::string pending_g_;     // G40/G41/G42 waiting for the next move
+  std::optional<cycle_event> cycle_;
+  vec3 pos_;                  // last CL point of this channel
+  int tool_ = -1;
+  int waits_ = 0;
+};
+
+}  // namespace twinpost

@@ -1,0 +1,199 @@
+#include "formats/post_job.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <memory>
+#include <unistd.h>
+
+#include "channels/sync_check.hpp"
+#include "formats/channel_writer.hpp"
+#include "formats/program_frame.hpp"
+#include "parser/cl_reader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace twinpost {
+
+namespace {
+
+// Counts what passes through, so the run knows whether it failed.
+class counting_sink : public diagnostic_sink {
+ public:
+  explicit counting_sink(diagnostic_sink& next) : next_(next) {}
+  void report(diagnostic d) override {
+    if (d.level == severity::error) ++errors;
+    next_.report(std::move(d));
+  }
+  int errors = 0;
+
+ private:
+  diagnostic_sink& next_;
+};
+
+// Routes events to the channel writers; job-level events set the name and units.
+class writers_sink : public channel_sink {
+ public:
+  std::vector<std::unique_ptr<channel_writer>> writers;  // index = channel - 1
+  std::string partno;
+  void on_event(int ch, const event& e, bool both) override {
+    if (ch == 0) {
+      if (const auto* t = std::get_if<text_event>(&e.data)) {
+        if (partno.empty()) partno = t->text;
+      }
+      if (const auto* u = std::get_if<units_event>(&e.data))
+        for (auto& w : writers) w->set_units(u->units);
+      return;
+    }
+    writers[static_cast<std::size_t>(ch - 1)]->on_event(e, both);
+  }
+  void on_wait(int ch, const wait_mark& w) override { writers[static_cast<std::size_t>(ch - 1)]->on_wait(w); }
+};
+
+// Removes the temporary folder (and the output folder if this run made it) unless released.
+struct cleanup {
+  fs::path tmp;
+  fs::path made_dir;
+  bool armed = true;
+  ~cleanup() {
+    std::error_code ec;
+    if (!tmp.empty()) fs::remove_all(tmp, ec);
+    if (armed && !made_dir.empty()) fs::remove(made_dir, ec);  // only if still empty
+  }
+};
+
+}  // namespace
+
+std::string safe_file_stem(std::string_view partno) {
+  std::string s;
+  for (char c : partno) {
+    bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+    s += ok ? c : '_';
+    if (s.size() == 32) break;
+  }
+  while (!s.empty() && (s.back() == '_' || s.back() == '-')) s.pop_back();
+  std::size_t lead = 0;
+  while (lead < s.size() && (s[lead] == '_' || s[lead] == '-')) ++lead;
+  s.erase(0, lead);
+  return s.empty() ? "PROGRAM" : s;
+}
+
+post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& diags) {
+  post_summary sum;
+  counting_sink sink(diags);
+  cleanup clean;
+  fs::path out(o.out_dir);
+  std::error_code ec;
+  if (!fs::exists(out, ec)) {
+    fs::create_directories(out, ec);
+    if (ec) throw config_error(fmt::format("twinpost: error: cannot create '{}': {}", o.out_dir, ec.message()));
+    clean.made_dir = out;
+  }
+  std::FILE* in = std::fopen(o.cl_path.c_str(), "rb");
+  if (!in) throw config_error(fmt::format("twinpost: error: cannot read '{}'", o.cl_path));
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> in_guard(in, &std::fclose);
+
+  clean.tmp = out / fmt::format(".twinpost-{}", ::getpid());
+  fs::create_directories(clean.tmp, ec);
+  if (ec) throw config_error(fmt::format("twinpost: error: cannot write in '{}': {}", o.out_dir, ec.message()));
+
+  sum.policy = o.policy;
+  if (o.policy == sync_policy::automatic) {
+    sum.policy = has_explicit_sync(o.cl_path) ? sync_policy::explicit_marks : sync_policy::sequential;
+    if (sum.policy == sync_policy::sequential) {
+      diagnostic d;
+      d.level = severity::warning;
+      d.file = o.cl_path;
+      d.message = "no sync records in the job: channels wait for each other at every head switch "
+                  "(sequential); concurrent machining needs SYNC/SYNCTR records";
+      sink.report(std::move(d));
+    }
+  }
+
+  writers_sink ws;
+  for (const channel_def& ch : m.channels)
+    ws.writers.push_back(std::make_unique<channel_writer>(m, ch, (clean.tmp / fmt::format("body{}", ch.number)).string(),
+                                                          sink, o.cl_path));
+  channel_router router(m, sum.policy, ws, sink, o.cl_path);
+  cl_reader_options ro;
+  ro.file_name = o.cl_path;
+  ro.forced = o.forced_dialect;
+  file_source src(in);
+  cl_reader reader(src, ro, sink);
+  event e;
+  int last_line = 0;
+  while (reader.next(e)) {
+    last_line = e.line;
+    router.route(e);
+  }
+  router.finish(last_line);
+  for (auto& w : ws.writers) w->finish();
+  sum.records = static_cast<long>(reader.records());
+  sum.channels = static_cast<int>(m.channels.size());
+  sum.waits = router.rendezvous();
+  for (auto& w : ws.writers) sum.blocks += w->blocks();
+  if (sink.errors > 0) return sum;
+
+  frame_request req;
+  req.machine_def = &m;
+  req.layout = o.layout.value_or(m.layout);
+  req.name = safe_file_stem(ws.partno);
+  req.tmp_dir = clean.tmp.string();
+  std::vector<framed_file> files = frame_programs(req);
+
+  // The same check as `twinpost check`, on the files exactly as they will be written.
+  std::vector<nc_source> sources;
+  for (const framed_file& f : files) sources.push_back({(out / f.name).string(), read_whole_file(f.tmp_path)});
+  sync_result check = check_nc_files(sources, m);
+  for (const diagnostic& d : check.diagnostics) sink.report(d);
+  if (!check.ok) return sum;
+
+  for (const framed_file& f : files) {
+    fs::path target = out / f.name;
+    fs::rename(f.tmp_path, target, ec);
+    if (ec) throw config_error(fmt::format("twinpost: error: cannot write '{}': {}", target.string(), ec.message()));
+    sum.files.push_back(target.string());
+  }
+  clean.armed = false;
+  sum.ok = true;
+  return sum;
+}
+
+}  // namespace twinpost
+
+namespace twinpost {
+
+bool has_explicit_sync(const std::string& path) {
+  // A line whose record starts with SYNC (SYNC/, SYNCTR/) or a MANUSpost sync UDE. Comment
+  // lines never count, so a `$$ SYNC` remark cannot switch the policy.
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return false;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> guard(f, &std::fclose);
+  std::vector<char> buf(1 << 20);
+  std::string carry;
+  std::size_t n;
+  auto starts = [](std::string_view l, std::string_view w) {
+    if (l.size() < w.size()) return false;
+    for (std::size_t i = 0; i < w.size(); ++i)
+      if (std::toupper(static_cast<unsigned char>(l[i])) != w[i]) return false;
+    return true;
+  };
+  auto check_line = [&](std::string_view l) {
+    while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
+    if (starts(l, "SYNC")) return true;
+    return starts(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos;
+  };
+  while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) {
+    carry.append(buf.data(), n);
+    std::size_t start = 0, nl;
+    while ((nl = carry.find('\n', start)) != std::string::npos) {
+      if (check_line(std::string_view(carry).substr(start, nl - start))) return true;
+      start = nl + 1;
+    }
+    carry.erase(0, start);
+  }
+  return check_line(carry);
+}
+
+}  // namespace twinpost

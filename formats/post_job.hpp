@@ -1,0 +1,47 @@
+#pragma once
+// Posting a CL job end to end: parser -> channels -> formats -> files. Every channel's
+// body goes to its own temporary file on disk while posting (the auxiliary stream of the
+// merged layout included); the programs are framed in the machine's layout, checked by
+// the same synchronisation checker as `twinpost check`, and only then renamed into place.
+// A failed run leaves no file behind.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "channels/router.hpp"
+#include "machines/machine.hpp"
+#include "parser/diagnostics.hpp"
+#include "parser/dialect.hpp"
+
+namespace twinpost {
+
+struct post_options {
+  std::string cl_path;
+  std::string out_dir;
+  std::optional<layout_kind> layout;   ///< the machine's layout unless given
+  sync_policy policy = sync_policy::automatic;
+  std::optional<dialect> forced_dialect;
+};
+
+struct post_summary {
+  bool ok = false;
+  std::vector<std::string> files;  ///< written, in channel order
+  int channels = 0;
+  long blocks = 0;
+  int waits = 0;                   ///< rendezvous placed
+  sync_policy policy = sync_policy::sequential;  ///< the policy actually used
+  long records = 0;
+};
+
+/// Posts `o.cl_path` for machine `m`. Problems go to `diags`; the summary says whether
+/// files were written. Throws config_error for I/O failures (nothing is left behind).
+post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& diags);
+
+/// A PARTNO made safe as a file name: letters, digits, '_' and '-' only, at most 32
+/// characters, never empty, never a path.
+std::string safe_file_stem(std::string_view partno);
+
+/// True when the CL text has a record-level sync (SYNC/, SYNCTR/ or a MANUSpost UDE).
+bool has_explicit_sync(const std::string& path);
+
+}  // namespace twinpost

@@ -1,0 +1,294 @@
+// Machine definitions: TOML text -> validated struct machine. The schema is documented in
+// docs/machines.md; each table of the file is read by one function below, and checks that
+// need more than one table run at the end.
+#include "machines/machine_loader.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+#include <fmt/format.h>
+
+#include "machines/builtin_machines.hpp"
+#include "machines/toml_reader.hpp"
+
+namespace twinpost {
+
+namespace {
+
+using detail::table_reader;
+
+// Nodes that the checks across tables report at.
+struct anchors {
+  const toml::node* layout = nullptr;     // machine.layout, when given
+  const toml::table* program = nullptr;   // [program], when given
+  const toml::table* waits = nullptr;     // [waits]
+  const toml::node* partners = nullptr;   // waits.partners, when given
+};
+
+void read_machine_table(const table_reader& root, machine& m, anchors& at) {
+  const toml::table* t = root.sub_table("machine");
+  if (!t) root.fail_here("machine.name is required");
+  table_reader r(*t, "machine", root.source(), {"name", "description", "control", "layout"});
+  r.require("name");
+  r.read("name", m.name);
+  if (m.name.empty()) r.fail(*r.find("name"), "machine.name must not be empty");
+  r.read("description", m.description);
+  r.read("control", m.control);
+  std::string layout;
+  if (r.read("layout", layout)) {
+    at.layout = r.find("layout");
+    if (layout == "split") m.layout = layout_kind::split;
+    else if (layout == "merged_appended") m.layout = layout_kind::merged_appended;
+    else if (layout == "merged_sections") m.layout = layout_kind::merged_sections;
+    else
+      r.fail(*at.layout, fmt::format("machine.layout must be split, merged_appended or "
+                                     "merged_sections, not '{}'", layout));
+  }
+}
+
+void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
+  const toml::table* t = root.sub_table("waits");
+  if (!t) root.fail_here("waits.first is required");
+  at.waits = t;
+  table_reader r(*t, "waits", root.source(),
+                 {"address", "first", "last", "step", "excluded", "reuse", "partners",
+                  "partner_address"});
+  r.read_char("address", w.address, true);
+  r.require("first");
+  r.require("last");
+  r.read("first", w.first);
+  r.read("last", w.last);
+  if (w.first < 0) r.fail(*r.find("first"), fmt::format("waits.first must be >= 0, not {}", w.first));
+  if (w.first > w.last)
+    r.fail(*r.find("first"), fmt::format("waits.first ({}) must be <= waits.last ({})",
+                                         w.first, w.last));
+  if (r.read("step", w.step) && w.step < 1)
+    r.fail(*r.find("step"), fmt::format("waits.step must be >= 1, not {}", w.step));
+  if (r.read("excluded", w.excluded)) {
+    const toml::array& codes = *r.find("excluded")->as_array();
+    for (std::size_t i = 0; i < w.excluded.size(); ++i)
+      if (w.excluded[i] < w.first || w.excluded[i] > w.last)
+        r.fail(*codes.get(i), fmt::format("waits.excluded: {} is outside the wait range {}..{}",
+                                          w.excluded[i], w.first, w.last));
+  }
+  r.read("reuse", w.reuse);
+  std::string partners;
+  if (r.read("partners", partners)) {
+    at.partners = r.find("partners");
+    if (partners == "none") w.partners = partner_style::none;
+    else if (partners == "path_numbers") w.partners = partner_style::path_numbers;
+    else if (partners == "binary") w.partners = partner_style::binary;
+    else
+      r.fail(*at.partners, fmt::format("waits.partners must be none, path_numbers or binary, "
+                                       "not '{}'", partners));
+  }
+  r.read_char("partner_address", w.partner_address, true);
+}
+
+// File names are built from these, so a separator could write outside the output directory.
+void check_file_part(const table_reader& r, std::string_view key, const std::string& value) {
+  if (value.find_first_of("/\\") != std::string::npos)
+    r.fail(*r.find(key), fmt::format("{} must not contain a path separator", r.key_path(key)));
+}
+
+void check_min(const table_reader& r, std::string_view key, int value, int min) {
+  if (value < min)
+    r.fail(*r.find(key), fmt::format("{} must be >= {}, not {}", r.key_path(key), min, value));
+}
+
+void read_program(const table_reader& root, program_format& p, anchors& at) {
+  const toml::table* t = root.sub_table("program");
+  if (!t) return;
+  at.program = t;
+  table_reader r(*t, "program", root.source(),
+                 {"extension", "file_name", "program_number", "program_line", "header",
+                  "footer", "end_code", "percent_lines", "section_marker", "sequence_start",
+                  "sequence_step", "comment_open", "comment_close", "comment_max",
+                  "block_max", "decimals_metric", "decimals_inch", "trailing_point",
+                  "arcs_ijk"});
+  if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
+  r.read_template("file_name", p.file_name);
+  if (r.read("program_number", p.program_number)) check_min(r, "program_number", p.program_number, 0);
+  r.read_template("program_line", p.program_line);
+  r.read_templates("header", p.header);
+  r.read_templates("footer", p.footer);
+  r.read_template("end_code", p.end_code);
+  r.read("percent_lines", p.percent_lines);
+  r.read_template("section_marker", p.section_marker);
+  if (r.read("sequence_start", p.sequence_start)) check_min(r, "sequence_start", p.sequence_start, 0);
+  if (r.read("sequence_step", p.sequence_step)) check_min(r, "sequence_step", p.sequence_step, 1);
+  r.read_char("comment_open", p.comment_open, false);
+  r.read_char("comment_close", p.comment_close, false);
+  if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
+  if (r.read("block_max", p.block_max)) check_min(r, "block_max", p.block_max, 0);
+  for (std::string_view key : {"decimals_metric", "decimals_inch"}) {
+    int d = 0;
+    if (!r.read(key, d)) continue;
+    if (d < 0 || d > 6)
+      r.fail(*r.find(key), fmt::format("{} must be in 0..6, not {}", r.key_path(key), d));
+    (key == "decimals_metric" ? p.decimals_metric : p.decimals_inch) = d;
+  }
+  r.read("trailing_point", p.trailing_point);
+  r.read("arcs_ijk", p.arcs_ijk);
+}
+
+void read_codes(const table_reader& root, control_codes& c) {
+  const toml::table* t = root.sub_table("codes");
+  if (!t) return;
+  table_reader r(*t, "codes", root.source(),
+                 {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on",
+                  "coolant_off"});
+  r.read_template("css", c.css);
+  r.read_template("rpm", c.rpm);
+  r.read_template("feed_per_rev", c.feed_per_rev);
+  r.read_template("feed_per_min", c.feed_per_min);
+  r.read_template("home", c.home);
+  r.read_template("dwell", c.dwell);
+  r.read_templates("coolant_on", c.coolant_on);
+  r.read_template("coolant_off", c.coolant_off);
+}
+
+void read_positive(const table_reader& r, std::string_view key, double& out, bool zero_ok) {
+  if (r.read(key, out) && (out < 0 || (!zero_ok && out == 0)))
+    r.fail(*r.find(key), fmt::format("{} must be {} 0, not {}", r.key_path(key),
+                                     zero_ok ? ">=" : ">", out));
+}
+
+void read_limits(const table_reader& root, motion_limits& l) {
+  const toml::table* t = root.sub_table("limits");
+  if (!t) return;
+  table_reader r(*t, "limits", root.source(), {"rapid", "max_feed", "tool_change_seconds"});
+  read_positive(r, "rapid", l.rapid, false);
+  read_positive(r, "max_feed", l.max_feed, false);
+  read_positive(r, "tool_change_seconds", l.tool_change_seconds, true);
+}
+
+void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
+  for (const toml::table* t : root.tables("spindle")) {
+    table_reader r(*t, "spindle", root.source(),
+                   {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm"});
+    spindle_def s;
+    r.require("name");
+    r.read("name", s.name);
+    for (const spindle_def& earlier : out)
+      if (earlier.name == s.name)
+        r.fail(*r.find("name"), fmt::format("duplicate spindle name '{}'", s.name));
+    r.read("cw", s.cw);
+    r.read("ccw", s.ccw);
+    r.read("stop", s.stop);
+    r.read("select", s.select);
+    r.read_template("clamp", s.clamp);
+    read_positive(r, "max_rpm", s.max_rpm, true);
+    out.push_back(std::move(s));
+  }
+}
+
+void check_across_tables(const table_reader& root, const machine& m, const anchors& at) {
+  if (m.layout != layout_kind::split && m.program.section_marker.empty()) {
+    const std::string message = fmt::format(
+        "layout {} needs program.section_marker",
+        m.layout == layout_kind::merged_appended ? "merged_appended" : "merged_sections");
+    if (at.program) root.fail(*at.program, message);
+    root.fail(*at.layout, message);
+  }
+  if (m.channels.size() >= 3 && m.waits.partners == partner_style::none) {
+    const std::string message = fmt::format(
+        "waits.partners must be path_numbers or binary on a machine with {} channels",
+        m.channels.size());
+    if (at.partners) root.fail(*at.partners, message);
+    root.fail(*at.waits, message);
+  }
+}
+
+}  // namespace
+
+machine parse_machine(std::string_view toml_text, std::string_view source) {
+  toml::table doc;
+  try {
+    doc = toml::parse(toml_text, source);
+  } catch (const toml::parse_error& e) {
+    detail::fail_at(source, e.source(), e.description());
+  }
+  table_reader root(doc, "", source,
+                    {"machine", "channel", "spindle", "waits", "program", "codes", "limits"});
+  machine m;
+  m.source = std::string(source);
+  anchors at;
+  read_machine_table(root, m, at);
+  read_waits(root, m.waits, at);
+  read_program(root, m.program, at);
+  read_codes(root, m.codes);
+  read_limits(root, m.limits);
+  read_spindles(root, m.spindles);
+  detail::read_channels(root, m);
+  check_across_tables(root, m, at);
+  return m;
+}
+
+machine load_machine(std::string_view name_or_path) {
+  for (const builtin_machine_file& f : builtin_machine_files())
+    if (f.name == name_or_path)
+      return parse_machine(f.toml, fmt::format("machines/builtin/{}.toml", f.name));
+  const std::string path(name_or_path);
+  std::error_code ec;
+  // A directory opens as a stream on Linux and reads as empty: refuse it here.
+  if (std::filesystem::is_regular_file(path, ec)) {
+    std::ifstream in(path, std::ios::binary);
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (in && !in.bad()) return parse_machine(text, path);
+  }
+  if (path.find_first_of("/\\.") == std::string::npos)
+    throw config_error(fmt::format(
+        "twinpost: error: unknown machine '{}': no built-in machine and no file of that name",
+        path));
+  throw config_error(fmt::format("twinpost: error: cannot read machine file '{}'", path));
+}
+
+std::vector<machine_summary> builtin_machines() {
+  std::vector<machine_summary> out;
+  for (const builtin_machine_file& f : builtin_machine_files()) {
+    machine m = load_machine(f.name);
+    out.push_back({m.name, m.description});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const machine_summary& a, const machine_summary& b) { return a.name < b.name; });
+  return out;
+}
+
+namespace {
+
+// fmt numbers named arguments as well, so "{}" or "{0}" would quietly print the program
+// number where the author meant, say, the spindle limit.
+void reject_positional(std::string_view tpl) {
+  for (std::size_t i = 0; i + 1 < tpl.size(); ++i) {
+    if (tpl[i] != '{') continue;
+    const char c = tpl[i + 1];
+    if (c == '{') {
+      ++i;
+      continue;
+    }
+    if (c == '}' || c == ':' || (c >= '0' && c <= '9'))
+      throw fmt::format_error("positional placeholder; use a name such as {tool}");
+  }
+}
+
+}  // namespace
+
+std::string format_template(std::string_view tpl, const template_args& a) {
+  reject_positional(tpl);
+  return fmt::format(fmt::runtime(tpl), fmt::arg("program", a.program), fmt::arg("name", a.name),
+                     fmt::arg("channel", a.channel), fmt::arg("max", a.max),
+                     fmt::arg("tool", a.tool), fmt::arg("offset", a.offset),
+                     fmt::arg("seconds", a.seconds), fmt::arg("ms", a.ms),
+                     fmt::arg("rpm", a.rpm));
+}
+
+template_args sample_template_args() {
+  return {.program = 1000, .name = "PART", .channel = 1, .max = 3000, .tool = 1, .offset = 1,
+          .seconds = 1.5, .ms = 1500, .rpm = 1000};
+}
+
+}  // namespace twinpost

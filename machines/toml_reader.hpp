@@ -1,0 +1,87 @@
+#pragma once
+// Checked reading of the TOML tables of a machine definition. Every read checks the type,
+// every table rejects keys it does not know, and every error is a config_error carrying
+// the file, line and column of the offending node. Internal to machines/: toml++ types
+// appear here, so nothing outside machines/ includes this header.
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+namespace twinpost {
+struct machine;
+}
+
+namespace twinpost::detail {
+
+/// Throws config_error "SOURCE:LINE:COL: error: MESSAGE" for the start of `where`.
+[[noreturn]] void fail_at(std::string_view source, const toml::source_region& where,
+                          std::string_view message);
+
+/// "an integer", "a string", ... for messages about a node of type `t`.
+std::string_view type_phrase(toml::node_type t);
+
+/// Reads the keys of one table; `path` names the table in messages ("waits", "channel.axis",
+/// "" for the document root).
+class table_reader {
+ public:
+  /// Throws for the first key of `t` (in file order) that is not in `known`.
+  table_reader(const toml::table& t, std::string path, std::string_view source,
+               std::initializer_list<std::string_view> known);
+
+  /// The value of `key`, or nullptr.
+  const toml::node* find(std::string_view key) const;
+  /// "waits.first" for key "first" of table "waits".
+  std::string key_path(std::string_view key) const;
+  /// The table itself (its position is where a missing key is reported).
+  const toml::table& table() const { return table_; }
+  std::string_view source() const { return source_; }
+
+  /// Throws `message` at node `n`.
+  [[noreturn]] void fail(const toml::node& n, std::string_view message) const;
+  /// Throws `message` at this table.
+  [[noreturn]] void fail_here(std::string_view message) const;
+  /// Throws "PATH.KEY is required" at this table when `key` is absent.
+  void require(std::string_view key) const;
+
+  // Each read leaves `out` untouched and returns false when the key is absent.
+  bool read(std::string_view key, std::string& out) const;
+  bool read(std::string_view key, int& out) const;
+  bool read(std::string_view key, double& out) const;  ///< integers are accepted too
+  bool read(std::string_view key, bool& out) const;
+  bool read(std::string_view key, std::optional<int>& out) const;
+  bool read(std::string_view key, std::optional<double>& out) const;
+  bool read(std::string_view key, std::vector<int>& out) const;
+  bool read(std::string_view key, std::vector<std::string>& out) const;
+  /// A string of exactly one character; `letter` also demands an upper-case letter A-Z.
+  bool read_char(std::string_view key, char& out, bool letter) const;
+  /// A string that is a format template, checked by formatting it with the sample values.
+  bool read_template(std::string_view key, std::string& out) const;
+  /// An array of format templates, each checked.
+  bool read_templates(std::string_view key, std::vector<std::string>& out) const;
+
+  /// The sub-table `key`, or nullptr when absent.
+  const toml::table* sub_table(std::string_view key) const;
+  /// The tables of array `key` ([[key]]), in file order; empty when absent.
+  std::vector<const toml::table*> tables(std::string_view key) const;
+
+ private:
+  [[noreturn]] void wrong_type(std::string_view key, const toml::node& n,
+                               std::string_view wanted) const;
+  int to_int(std::string_view key, const toml::node& n) const;
+  void check_template(std::string_view key, const toml::node& n) const;
+
+  const toml::table& table_;
+  std::string path_;
+  std::string_view source_;
+};
+
+/// Reads every [[channel]] with its [[channel.axis]] into `m` (after the spindles, which
+/// channels name), checks numbers and heads across channels, and sorts them by number.
+/// Lives in machine_channels.cpp.
+void read_channels(const table_reader& root, machine& m);
+
+}  // namespace twinpost::detail

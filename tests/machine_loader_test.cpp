@@ -1,0 +1,231 @@
+// Machine definitions: the built-in machines, loading by name and path, the small look-ups
+// and templates. The validation errors are in machine_validation_test.cpp.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "machines/machine.hpp"
+#include "machines/machine_loader.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+// Lines 1-5 of most documents below: a valid [machine] and [waits].
+const std::string head =
+    "[machine]\n"
+    "name = \"m\"\n"
+    "[waits]\n"
+    "first = 100\n"
+    "last = 103\n";
+
+// Two valid channels, appended after the line that a test is about.
+const std::string two_channels =
+    "[[channel]]\n"
+    "number = 1\n"
+    "axis = [{address = \"X\"}, {address = \"Z\"}]\n"
+    "[[channel]]\n"
+    "number = 2\n"
+    "axis = [{address = \"X\"}, {address = \"Z\"}]\n";
+
+const std::string xz = "axis = [{address = \"X\"}, {address = \"Z\"}]\n";
+
+}  // namespace
+
+TEST_CASE("a minimal machine loads with the documented defaults", "[machines]") {
+  const machine m = parse_machine(head + two_channels, "m.toml");
+  CHECK(m.name == "m");
+  CHECK(m.source == "m.toml");
+  CHECK(m.layout == layout_kind::split);
+  CHECK(m.waits.address == 'M');
+  CHECK(m.waits.step == 1);
+  CHECK(m.waits.partners == partner_style::none);
+  REQUIRE(m.channels.size() == 2);
+  CHECK(m.channels[0].kind == "turret");
+  CHECK(m.channels[0].tool_call == "T{tool:02}{offset:02}");
+  CHECK(m.channels[0].spindle == "main");
+  CHECK(m.program.extension == ".nc");
+  CHECK(m.program.program_line == "O{program:04} ({name})");
+  CHECK(m.codes.dwell == "G4 U{seconds}");
+  CHECK(m.limits.rapid == 20000);
+}
+
+TEST_CASE("channels are sorted by number and a mill head defaults to an M6 tool call",
+          "[machines]") {
+  const machine m = parse_machine(head +
+                                      "[[channel]]\nnumber = 2\nkind = \"mill_head\"\n" + xz +
+                                      "[[channel]]\nnumber = 1\n" + xz,
+                                  "m.toml");
+  REQUIRE(m.channels.size() == 2);
+  CHECK(m.channels[0].number == 1);
+  CHECK(m.channels[1].number == 2);
+  CHECK(m.channels[1].tool_call == "T{tool:02} M6");
+}
+
+TEST_CASE("built-in integrex-i200st", "[machines]") {
+  const machine m = load_machine("integrex-i200st");
+  CHECK(m.name == "integrex-i200st");
+  CHECK(m.source == "machines/builtin/integrex-i200st.toml");
+  CHECK(m.control == "mazak-smoothx");
+  CHECK(m.layout == layout_kind::merged_appended);
+  CHECK(m.program.section_marker == "G109 L{channel}");
+  CHECK(m.program.extension == ".EIA");
+  CHECK(format_template(m.program.program_line, sample_template_args()) == "O1000(PART)");
+  CHECK(m.program.end_code == "M30");
+  CHECK(m.program.header.at(0) == "G21");
+  CHECK(m.codes.feed_per_min == "G94");
+  CHECK(m.codes.feed_per_rev == "G95");
+  CHECK(m.codes.css == "G96");
+  CHECK(m.codes.rpm == "G97");
+  CHECK(m.waits.first == 950);
+  CHECK(m.waits.last == 997);
+  CHECK(m.waits.step == 1);
+  CHECK_FALSE(m.waits.reuse);
+  CHECK(m.limits.rapid == 40000);
+
+  REQUIRE(m.channels.size() == 2);
+  const channel_def& upper = m.channels[0];
+  CHECK(upper.name == "upper");
+  CHECK(upper.kind == "mill_head");
+  CHECK(upper.tool_call == "T{tool:02} M6");
+  CHECK(m.channel_for_head(1) == &upper);
+  CHECK(m.channel_for_head("MAIN") == &upper);
+  const channel_def& lower = m.channels[1];
+  CHECK(lower.name == "lower");
+  CHECK(lower.kind == "turret");
+  CHECK(lower.tool_call == "T{tool:02}{offset:02}");
+  CHECK(m.channel_for_head(2) == &lower);
+  CHECK(m.channel_for_head("side") == &lower);
+  REQUIRE(lower.axis('X'));
+  CHECK(lower.axis('X')->diameter);
+  CHECK(lower.axis('X')->mirror);
+  CHECK_FALSE(upper.axis('X')->mirror);
+  CHECK(lower.axis('Y') == nullptr);
+
+  const spindle_def* main_sp = m.spindle("main");
+  const spindle_def* sub_sp = m.spindle("sub");
+  const spindle_def* live = m.spindle("live");
+  REQUIRE(main_sp);
+  REQUIRE(sub_sp);
+  REQUIRE(live);
+  CHECK((main_sp->cw == 203 && main_sp->ccw == 204 && main_sp->stop == 205));
+  CHECK((sub_sp->cw == 303 && sub_sp->ccw == 304 && sub_sp->stop == 305));
+  CHECK(main_sp->select == 901);
+  CHECK(sub_sp->select == 902);
+  CHECK(main_sp->clamp == "G92 S{max} R1");
+  CHECK(sub_sp->clamp == "G92 S{max} R2");
+  CHECK((live->cw == 3 && live->ccw == 4 && live->stop == 5));
+  CHECK_FALSE(live->select);
+  CHECK(m.spindle("tail") == nullptr);
+  CHECK(m.channel_for_head(3) == nullptr);
+  CHECK(m.channel_for_head("BOTH") == nullptr);
+}
+
+TEST_CASE("built-in fanuc-0itd-twin", "[machines]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  CHECK(m.name == "fanuc-0itd-twin");
+  CHECK(m.layout == layout_kind::split);
+  CHECK(m.program.extension == ".nc");
+  CHECK(m.program.header == std::vector<std::string>{"G40 G80 G99 G18"});
+  CHECK(m.program.end_code == "M30");
+  CHECK(m.codes.home == "G28 U0 W0");
+  CHECK(m.codes.dwell == "G4 U{seconds}");
+  CHECK(m.codes.feed_per_rev == "G99");
+  CHECK(m.codes.feed_per_min == "G98");
+  CHECK(m.waits.first == 100);
+  CHECK(m.waits.last == 103);
+  CHECK(m.waits.reuse);
+  CHECK(m.waits.partners == partner_style::none);
+  REQUIRE(m.channels.size() == 2);
+  for (const channel_def& c : m.channels) {
+    CHECK(c.kind == "turret");
+    CHECK(c.tool_call == "T{tool:02}{offset:02}");
+    REQUIRE(c.axis('X'));
+    CHECK(c.axis('X')->diameter);
+  }
+  CHECK_FALSE(m.channels[0].axis('X')->mirror);  // path 1: upper turret, X as in the CL
+  CHECK(m.channels[1].axis('X')->mirror);        // path 2: lower turret, below the centre
+  CHECK(m.channels[0].file_suffix == "_1");
+  CHECK(m.channels[1].file_suffix == "_2");
+  REQUIRE(m.spindle("main"));
+  CHECK(m.spindle("main")->clamp == "G50 S{max}");
+}
+
+TEST_CASE("built-in fanuc-31i-3path", "[machines]") {
+  const machine m = load_machine("fanuc-31i-3path");
+  CHECK(m.name == "fanuc-31i-3path");
+  CHECK(m.layout == layout_kind::split);
+  REQUIRE(m.channels.size() == 3);
+  CHECK(m.channels[2].kind == "mill_head");
+  CHECK(m.channel_for_head(3) == &m.channels[2]);
+  CHECK(m.waits.first == 200);
+  CHECK(m.waits.last == 299);
+  CHECK(m.waits.partners == partner_style::path_numbers);
+  CHECK(m.waits.partner_address == 'P');
+}
+
+TEST_CASE("builtin_machines lists every built-in, sorted, with its description",
+          "[machines]") {
+  const std::vector<machine_summary> all = builtin_machines();
+  REQUIRE(all.size() == 3);
+  CHECK(all[0].name == "fanuc-0itd-twin");
+  CHECK(all[1].name == "fanuc-31i-3path");
+  CHECK(all[2].name == "integrex-i200st");
+  for (const machine_summary& s : all) CHECK_FALSE(s.description.empty());
+}
+
+TEST_CASE("load_machine reads a file, and names what it cannot read", "[machines]") {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  const std::string path = (dir / "twinpost_machine_loader_test.toml").string();
+  {
+    std::ofstream out(path);
+    out << head << two_channels;
+  }
+  CHECK(load_machine(path).source == path);
+  std::filesystem::remove(path);
+  CHECK_THROWS_WITH(load_machine(path),
+                    "twinpost: error: cannot read machine file '" + path + "'");
+  CHECK_THROWS_WITH(load_machine(dir.string()),
+                    "twinpost: error: cannot read machine file '" + dir.string() + "'");
+  CHECK_THROWS_WITH(load_machine("integrex"),
+                    "twinpost: error: unknown machine 'integrex': no built-in machine and no "
+                    "file of that name");
+}
+
+TEST_CASE("is_wait_code: range, step and excluded codes", "[machines]") {
+  wait_rules w;
+  w.first = 100;
+  w.last = 110;
+  w.step = 2;
+  w.excluded = {104};
+  CHECK(w.is_wait_code(100));
+  CHECK(w.is_wait_code(102));
+  CHECK_FALSE(w.is_wait_code(101));  // off the step grid
+  CHECK_FALSE(w.is_wait_code(104));  // excluded
+  CHECK(w.is_wait_code(110));
+  CHECK_FALSE(w.is_wait_code(98));
+  CHECK_FALSE(w.is_wait_code(112));
+}
+
+TEST_CASE("format_template formats the named placeholders", "[machines]") {
+  template_args a;
+  a.program = 42;
+  a.name = "SHAFT";
+  a.channel = 2;
+  a.max = 3500;
+  a.tool = 5;
+  a.offset = 7;
+  a.seconds = 0.5;
+  a.ms = 500;
+  a.rpm = 1200;
+  CHECK(format_template("O{program:04}({name})", a) == "O0042(SHAFT)");
+  CHECK(format_template("T{tool:02}{offset:02}", a) == "T0507");
+  CHECK(format_template("G92 S{max} R{channel}", a) == "G92 S3500 R2");
+  CHECK(format_template("G4 U{seconds} (P{ms}) S{rpm}", a) == "G4 U0.5 (P500) S1200");
+  CHECK(format_template("{{literal}}", a) == "{literal}");
+  CHECK_THROWS_AS(format_template("G50 S{}", a), fmt::format_error);
+  CHECK_THROWS_AS(format_template("T{tol}", a), fmt::format_error);
+}
