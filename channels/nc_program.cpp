@@ -1,0 +1,396 @@
+#include "channels/nc_program.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
+
+namespace twinpost {
+
+namespace {
+
+bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+char upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
+
+bool all_digits(std::string_view s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), is_digit);
+}
+
+/// Index just past the `[...]` group that opens at `i` (groups nest).
+std::size_t skip_brackets(std::string_view s, std::size_t i) {
+  int depth = 0;
+  for (; i < s.size(); ++i) {
+    if (s[i] == '[') ++depth;
+    if (s[i] == ']' && --depth == 0) return i + 1;
+  }
+  return i;
+}
+
+/// An unsigned integer value ("100", "03"); false for signs, points and expressions.
+bool to_int(std::string_view s, int& out) {
+  if (!all_digits(s)) return false;
+  auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && end == s.data() + s.size();
+}
+
+/// Upper case, blanks and comments removed: how a marker line is compared.
+std::string squeeze(std::string_view s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '(') {
+      i = s.find(')', i);
+      if (i == std::string_view::npos) break;
+      continue;
+    }
+    if (s[i] == ';') break;
+    if (!is_blank(s[i])) out += upper(s[i]);
+  }
+  return out;
+}
+
+/// A section marker template split around "{channel}".
+struct marker_pattern {
+  bool active = false;
+  std::string prefix, suffix;
+};
+
+marker_pattern make_marker(std::string_view tpl) {
+  constexpr std::string_view hole = "{channel}";
+  const std::size_t at = tpl.find(hole);
+  if (at == std::string_view::npos) return {};
+  marker_pattern p{true, squeeze(tpl.substr(0, at)), squeeze(tpl.substr(at + hole.size()))};
+  p.active = !p.prefix.empty();  // a bare number would make every numbered line a marker
+  return p;
+}
+
+/// The channel a marker line opens, or -1 when `line` is no marker.
+int marker_channel(const marker_pattern& mk, std::string_view line) {
+  const std::string s = squeeze(line);
+  std::string_view v = s;
+  // A sequence number may precede the marker ("N10 G109 L1").
+  if (mk.prefix[0] != 'N' && v.size() > 1 && v[0] == 'N' && is_digit(v[1])) {
+    v.remove_prefix(1);
+    while (!v.empty() && is_digit(v[0])) v.remove_prefix(1);
+  }
+  if (!v.starts_with(mk.prefix)) return -1;
+  v.remove_prefix(mk.prefix.size());
+  std::size_t d = 0;
+  while (d < v.size() && is_digit(v[d])) ++d;
+  int channel = 0;
+  if (d == 0 || d > 4 || !to_int(v.substr(0, d), channel)) return -1;
+  return v.substr(d).starts_with(mk.suffix) ? channel : -1;
+}
+
+/// Turns NC files into channel programs; one per read_nc_programs call.
+class reader {
+ public:
+  reader(const machine& m, diagnostic_sink& sink, nc_programs& out)
+      : m_(m), sink_(sink), out_(out), state_(out.channels.size()) {
+    end_codes_ = {2, 30, 99};  // M02, M30, M99 end a program on every control
+    for (const nc_word& w : split_nc_words(m.program.end_code)) {
+      int code = 0;
+      if (w.address == 'M' && to_int(w.value, code)) end_codes_.push_back(code);
+    }
+  }
+
+  /// Reads a whole file as the program of `channel` (split layout).
+  void read_split(const nc_source& f, int channel) {
+    out_.channels[static_cast<std::size_t>(channel - 1)].file = f.name;
+    for_each_line(f, [&](int no, std::string_view line) { read_line(f, no, line, channel); });
+  }
+
+  /// Reads a file with section markers (merged layouts).
+  void read_sections(const nc_source& f) {
+    for (nc_channel_program& p : out_.channels) p.file = f.name;
+    const marker_pattern mk = make_marker(m_.program.section_marker);
+    if (!mk.active) {
+      report(severity::error, {f.name, 0, 0, {}},
+             fmt::format("this machine has {} channels but one file was given, and its "
+                         "programs have no section markers: give one file per channel",
+                         out_.channels.size()));
+      return;
+    }
+    // Without any marker every wait would be "outside the sections": say the one thing.
+    bool any_marker = false;
+    for_each_line(f, [&](int, std::string_view line) {
+      any_marker = any_marker || marker_channel(mk, line) >= 0;
+    });
+    if (!any_marker) {
+      report(severity::error, {f.name, 0, 0, {}},
+             fmt::format("no section marker ({}) in this file: this machine has {} channels; "
+                         "give one file per channel, or one file with sections",
+                         m_.program.section_marker, out_.channels.size()));
+      return;
+    }
+    int current = 0;  // 0: common blocks or a data section; -1: an unknown channel's section
+    for_each_line(f, [&](int no, std::string_view line) {
+      const int c = marker_channel(mk, line);
+      if (c < 0) return read_line(f, no, line, current);
+      current = c;
+      if (c > static_cast<int>(out_.channels.size())) {
+        report(severity::error, {f.name, no, 1, std::string(line)},
+               fmt::format("section for channel {}, which this machine does not have", c));
+        current = -1;
+        return;
+      }
+      if (c > 0) state_[static_cast<std::size_t>(c - 1)].has_section = true;
+      read_line(f, no, line, current);  // the marker block may carry more words (T0101)
+    });
+    for (std::size_t i = 0; i < state_.size(); ++i) {
+      if (state_[i].has_section) continue;
+      std::string marker = m_.program.section_marker;
+      marker.replace(marker.find("{channel}"), 9, std::to_string(i + 1));
+      report(severity::error, {f.name, 0, 0, {}},
+             fmt::format("no section for channel {} ({}) in this file", i + 1, marker));
+    }
+  }
+
+  /// Settles where each channel's program ends.
+  void finish() {
+    for (std::size_t i = 0; i < state_.size(); ++i) {
+      nc_channel_program& p = out_.channels[i];
+      const channel_state& st = state_[i];
+      if (!st.ended) p.end = {st.last_file, st.last_line, 0, std::string(st.last_text)};
+      if (p.end.file.empty()) p.end.file = p.file;
+    }
+  }
+
+ private:
+  struct channel_state {
+    bool has_section = false;
+    bool ended = false;
+    // The last block read, kept as a view into the source so that lines are not copied.
+    std::string last_file;
+    int last_line = 0;
+    std::string_view last_text;
+  };
+
+  template <class F>
+  static void for_each_line(const nc_source& f, F&& on_line) {
+    std::string_view text = f.text;
+    if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
+    int no = 0;
+    std::size_t pos = 0;
+    while (pos < text.size()) {
+      // Lines end in LF, CR LF or a lone CR (old controls' tapes).
+      const std::size_t eol = std::min(text.find_first_of("\r\n", pos), text.size());
+      const std::string_view line = text.substr(pos, eol - pos);
+      pos = eol + 1;
+      if (eol < text.size() && text[eol] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
+      on_line(++no, line);
+    }
+  }
+
+  void report(severity level, nc_place at, std::string message) {
+    sink_.report({level, std::move(at.file), at.line, at.column, std::move(message),
+                  std::move(at.source_line)});
+  }
+
+  std::string name(const nc_word& w) const { return fmt::format("{}{}", w.address, w.value); }
+
+  /// An M-code that is no wait but may have been meant as one (the checker judges).
+  bool looks_like_wait(int code, const nc_word* partner, bool has_g) const {
+    const wait_rules& wr = m_.waits;
+    if (std::find(wr.excluded.begin(), wr.excluded.end(), code) != wr.excluded.end())
+      return false;
+    if (code >= wr.first && code <= wr.last) return true;  // in the range, off its step
+    // M98/M198 P calls a subprogram, and with a G-code the P is the G-code's (G04 P).
+    return partner && !has_g && code != 98 && code != 198;
+  }
+
+  nc_wait make_wait(int channel, int code, const nc_word* partner, nc_place at) const {
+    nc_wait w;
+    w.channel = channel;
+    w.code = code;
+    if (partner) {
+      w.has_partner_list = true;
+      w.partner_text = partner->value;
+      w.partners_readable = !partner->expression &&
+                            decode_partner_list(partner->value, m_.waits.partners, w.partners);
+      w.partner_column = partner->column;
+    }
+    w.where = std::move(at);
+    return w;
+  }
+
+  // `channel`: 1..n a channel, 0 common blocks or data, -1 an unknown channel's section.
+  void read_line(const nc_source& f, int no, std::string_view line, int channel) {
+    const std::vector<nc_word> words = split_nc_words(line);
+    if (words.empty()) return;
+    const wait_rules& wr = m_.waits;
+    const nc_word* partner = nullptr;
+    bool has_g = false;
+    for (const nc_word& w : words) {
+      if (w.address == wr.partner_address && !partner) partner = &w;
+      has_g = has_g || w.address == 'G';
+    }
+    auto at = [&](int column) { return nc_place{f.name, no, column, std::string(line)}; };
+
+    const nc_word* wait = nullptr;
+    int wait_code = 0;
+    const nc_word* end = nullptr;
+    std::vector<std::pair<const nc_word*, int>> near;
+    for (const nc_word& w : words) {
+      if (w.address == wr.address && w.expression && channel >= 0) {
+        report(severity::warning, at(w.column),
+               fmt::format("{} is a variable or expression: a wait given so cannot be checked",
+                           name(w)));
+        continue;
+      }
+      int code = 0;
+      if (!to_int(w.value, code)) continue;
+      if (w.address == wr.address && wr.is_wait_code(code)) {
+        if (!wait) {
+          wait = &w;
+          wait_code = code;
+        } else if (channel >= 0) {
+          report(severity::error, at(w.column),
+                 fmt::format("two waits in one block ({} and {}): a wait needs a block of its "
+                             "own", name(*wait), name(w)));
+        }
+      } else if (w.address == 'M' && std::find(end_codes_.begin(), end_codes_.end(), code) !=
+                                         end_codes_.end()) {
+        if (!end) end = &w;
+      } else if (w.address == wr.address && looks_like_wait(code, partner, has_g)) {
+        near.emplace_back(&w, code);
+      }
+    }
+    if (channel < 0) return;
+    if (channel == 0) {
+      if (wait)
+        report(severity::warning, at(wait->column),
+               fmt::format("wait {} lies outside every channel's section and is not checked",
+                           name(*wait)));
+      return;
+    }
+    channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
+    nc_channel_program& prog = out_.channels[static_cast<std::size_t>(channel - 1)];
+    if (st.ended) {
+      if (wait)
+        report(severity::warning, at(wait->column),
+               fmt::format("wait {} comes after the end of channel {}'s program at {}:{} and "
+                           "is not checked",
+                           name(*wait), channel, prog.end.file, prog.end.line));
+      return;
+    }
+    if (st.last_file != f.name) st.last_file = f.name;
+    st.last_line = no;
+    st.last_text = line;
+    if (wait) prog.waits.push_back(make_wait(channel, wait_code, partner, at(wait->column)));
+    for (const auto& [w, code] : near)
+      prog.near_waits.push_back(make_wait(channel, code, partner, at(w->column)));
+    if (end) {
+      st.ended = true;
+      prog.end = at(end->column);
+    }
+  }
+
+  const machine& m_;
+  diagnostic_sink& sink_;
+  nc_programs& out_;
+  std::vector<channel_state> state_;
+  std::vector<int> end_codes_;
+};
+
+}  // namespace
+
+std::vector<nc_word> split_nc_words(std::string_view line) {
+  std::vector<nc_word> words;
+  const std::size_t first = line.find_first_not_of(" \t");
+  if (first != std::string_view::npos && line[first] == '%') return words;
+  const std::size_t n = line.size();
+  std::size_t i = 0;
+  while (i < n) {
+    const char c = line[i];
+    if (c == '(') {
+      const std::size_t close = line.find(')', i);
+      if (close == std::string_view::npos) break;  // an unclosed comment runs to the end
+      i = close + 1;
+    } else if (c == ';') {
+      break;
+    } else if (c == '/') {
+      i += i + 1 < n && is_digit(line[i + 1]) ? 2 : 1;  // block delete, optionally /1../9
+    } else if (c == '[') {
+      i = skip_brackets(line, i);
+    } else if (c == '#') {
+      for (++i; i < n && is_digit(line[i]);) ++i;  // a variable, not a word
+    } else if (is_letter(c)) {
+      std::size_t j = i;
+      while (j < n && is_letter(line[j])) ++j;
+      if (j - i > 1) {  // IF, GOTO, THEN, WHILE, ...: a keyword of macro statements
+        i = j;
+        continue;
+      }
+      nc_word w;
+      w.address = upper(c);
+      w.column = static_cast<int>(i) + 1;
+      std::size_t k = j;
+      while (k < n && is_blank(line[k])) ++k;
+      std::size_t v = k < n && (line[k] == '+' || line[k] == '-') ? k + 1 : k;
+      std::size_t d = v;
+      while (d < n && (is_digit(line[d]) || line[d] == '.')) ++d;
+      if (d > v) {
+        w.value = std::string(line.substr(k, d - k));
+      } else if (k < n && (line[k] == '#' || line[k] == '[')) {
+        d = k + 1;
+        if (line[k] == '[') d = skip_brackets(line, k);
+        else if (d < n && line[d] == '[') d = skip_brackets(line, d);
+        else while (d < n && is_digit(line[d])) ++d;
+        w.value = std::string(line.substr(k, d - k));
+        w.expression = true;
+      } else {
+        i = j;  // a letter with no value
+        continue;
+      }
+      words.push_back(std::move(w));
+      i = d;
+    } else {
+      ++i;
+    }
+  }
+  return words;
+}
+
+bool decode_partner_list(std::string_view text, partner_style style, std::vector<int>& out) {
+  out.clear();
+  if (!all_digits(text)) return false;
+  if (style != partner_style::binary) {
+    for (char c : text) out.push_back(c - '0');
+    return true;
+  }
+  std::uint64_t mask = 0;
+  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), mask);
+  if (ec != std::errc() || end != text.data() + text.size()) return false;
+  for (int bit = 0; bit < 64; ++bit)
+    if ((mask >> bit) & 1U) out.push_back(bit + 1);
+  return true;
+}
+
+nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m,
+                             diagnostic_sink& sink) {
+  nc_programs out;
+  for (std::size_t i = 0; i < m.channels.size(); ++i)
+    out.channels.push_back({static_cast<int>(i) + 1, {}, {}, {}, {}});
+  reader r(m, sink, out);
+  if (files.empty()) {
+    sink.report({severity::error, "twinpost", 0, 0, "no NC files given", {}});
+  } else if (files.size() == out.channels.size()) {
+    for (std::size_t i = 0; i < files.size(); ++i)
+      r.read_split(files[i], static_cast<int>(i) + 1);
+  } else if (files.size() == 1) {
+    r.read_sections(files[0]);
+  } else {
+    sink.report({severity::error, files[0].name, 0, 0,
+                 fmt::format("this machine has {} channels but {} files were given: give one "
+                             "file per channel, or one file with sections",
+                             m.channels.size(), files.size()),
+                 {}});
+  }
+  r.finish();
+  return out;
+}
+
+}  // namespace twinpost

@@ -1,0 +1,86 @@
+#pragma once
+// Reading NC programs (twinpost's own or anyone else's) into per-channel wait lists, the
+// input of the synchronisation checker (channels/sync_check.hpp).
+//
+// Layouts, chosen from the number of files:
+// - one file per channel (split): file 1 is channel 1, file 2 channel 2, ...;
+// - one file with section markers (merged): machine.program.section_marker with
+//   "{channel}" standing for the channel number, e.g. Mazak "G109 L{channel}" or
+//   Citizen/Mitsubishi "${channel}". Blocks before the first marker are common and belong
+//   to no channel; "$0"-style section 0 is data. Sections may come in any order and a
+//   channel's sections may appear more than once: they are joined in file order.
+//
+// A wait is a word of address machine.waits.address whose code satisfies
+// machine.waits.is_wait_code(). The reader judges syntax and layout only; the rules
+// (partner lists, pairing, deadlocks) are the checker's.
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "machines/machine.hpp"
+#include "parser/diagnostics.hpp"
+
+namespace twinpost {
+
+/// One NC file: its name (used in messages) and its full text.
+struct nc_source {
+  std::string name;
+  std::string text;
+};
+
+/// A place in an NC file.
+struct nc_place {
+  std::string file;
+  int line = 0;             ///< 1-based; 0 = no line (e.g. a channel without a program)
+  int column = 0;           ///< 1-based; 0 = no column
+  std::string source_line;  ///< the physical line, without its line ending
+};
+
+/// One word of an NC block.
+struct nc_word {
+  char address = 0;         ///< upper case letter
+  std::string value;        ///< the number as written ("100", "-1.5"); empty when none
+  bool expression = false;  ///< the value is a variable or expression (M#100, M[#1+2])
+  int column = 0;           ///< 1-based column of the address letter
+};
+
+/// Splits one physical NC line into its words. Skips `(...)` and `;` comments, `%` lines,
+/// block delete `/` (`/2`), `#` variables, `[...]` expressions and keywords (IF, GOTO, ...).
+/// Reads glued (`M100P12`), spaced (`M100 P12`, `M 100`) and lower-case words.
+std::vector<nc_word> split_nc_words(std::string_view line);
+
+/// One wait as written in a channel's program (or an M-code that looks like one).
+struct nc_wait {
+  int channel = 0;                ///< 1-based channel number
+  int code = 0;                   ///< the wait code, e.g. 100 for M100
+  bool has_partner_list = false;  ///< the block carries a partner list (P word)
+  std::string partner_text;       ///< the partner list's value as written ("12")
+  bool partners_readable = false; ///< partner_text could be decoded
+  std::vector<int> partners;      ///< decoded channels as written (path digits or mask bits)
+  int partner_column = 0;         ///< column of the P word
+  nc_place where;                 ///< the wait's M-word
+};
+
+/// The waits of one channel's program, in program order.
+struct nc_channel_program {
+  int channel = 0;               ///< 1-based channel number
+  std::string file;              ///< the file the program was read from
+  std::vector<nc_wait> waits;    ///< codes that are waits of the machine
+  std::vector<nc_wait> near_waits;  ///< other codes that look like waits (the checker judges)
+  nc_place end;                  ///< the end code (M30, M02, M99) or the last block
+};
+
+/// All channels' programs: channel n at index n-1, one entry per machine channel.
+struct nc_programs {
+  std::vector<nc_channel_program> channels;
+};
+
+/// Decodes a partner list value as written (`12` -> {1,2}; binary `3` -> {1,2}); false
+/// when `text` is not a list in that style (a sign, a point, an empty value).
+bool decode_partner_list(std::string_view text, partner_style style, std::vector<int>& out);
+
+/// Reads `files` as the programs of machine `m`; layout and syntax problems go to `sink`.
+nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m,
+                             diagnostic_sink& sink);
+
+}  // namespace twinpost

@@ -1,0 +1,306 @@
+#include "channels/sync_check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <map>
+#include <tuple>
+
+namespace twinpost {
+
+namespace {
+
+using channel_mask = std::uint64_t;
+constexpr int max_channels = 64;  // partner sets are bit masks
+
+channel_mask bit_of(int channel) { return channel_mask{1} << (channel - 1); }
+
+/// A wait as the simulation sees it: what partners must agree on.
+struct sim_wait {
+  int code = 0;
+  channel_mask partners = 0;  ///< always includes the wait's own channel
+  bool plain = false;         ///< written without the partner list that was optional
+  const nc_wait* src = nullptr;
+  bool matches(const sim_wait& o) const {
+    return code == o.code && partners == o.partners && plain == o.plain;
+  }
+};
+
+/// "channel 2", "channels 2 and 3", "channels 1, 2 and 3".
+std::string channel_list(const std::vector<int>& cs) {
+  if (cs.size() == 1) return fmt::format("channel {}", cs[0]);
+  std::string out = "channels ";
+  for (std::size_t i = 0; i < cs.size(); ++i) {
+    if (i > 0) out += i + 1 == cs.size() ? " and " : ", ";
+    out += std::to_string(cs[i]);
+  }
+  return out;
+}
+
+std::string place(const nc_place& p) { return fmt::format("{}:{}", p.file, p.line); }
+
+/// One check of one set of programs.
+class checker {
+ public:
+  checker(const nc_programs& p, const machine& m)
+      : progs_(p), m_(m), n_(static_cast<int>(p.channels.size())) {}
+
+  sync_result run() {
+    if (n_ > max_channels) {
+      report(severity::error, {}, 0,
+             fmt::format("{} channels: the checker handles at most {}", n_, max_channels));
+    } else {
+      all_ = n_ == max_channels ? ~channel_mask{0} : bit_of(n_ + 1) - 1;
+      for (const nc_channel_program& c : progs_.channels) {
+        sims_.emplace_back();
+        for (const nc_wait& w : c.waits) sims_.back().push_back(normalise(w));
+        for (const nc_wait& w : c.near_waits) judge_near_wait(w);
+      }
+      sort_by_place();
+      pos_.assign(sims_.size(), 0);
+      simulate();
+      explain_stuck();
+    }
+    for (std::size_t i = 0; i < progs_.channels.size(); ++i) {
+      const nc_channel_program& c = progs_.channels[i];
+      const int paired = i < pos_.size() ? static_cast<int>(pos_[i]) : 0;
+      result_.channels.push_back({c.channel, c.file, static_cast<int>(c.waits.size()), paired});
+      result_.paired += paired;
+    }
+    return std::move(result_);
+  }
+
+ private:
+  void report(severity level, const nc_place& at, int column, std::string message) {
+    result_.diagnostics.push_back(
+        {level, at.file, at.line, column, std::move(message), at.source_line});
+  }
+
+  std::string code_text(int code) const { return fmt::format("{}{}", m_.waits.address, code); }
+
+  std::string wait_text(const nc_wait& w) const {
+    if (!w.has_partner_list) return code_text(w.code);
+    return fmt::format("{} {}{}", code_text(w.code), m_.waits.partner_address, w.partner_text);
+  }
+
+  std::string partner_text(const nc_wait& w) const {
+    return fmt::format("partner list {}{} of wait {}", m_.waits.partner_address,
+                       w.partner_text, code_text(w.code));
+  }
+
+  /// Checks a wait's partner list (PS0161) and turns it into the set partners agree on.
+  sim_wait normalise(const nc_wait& w) {
+    sim_wait s{w.code, all_, false, &w};
+    const nc_place& at = w.where;
+    if (m_.waits.partners == partner_style::none) {
+      if (w.has_partner_list)
+        report(severity::error, at, w.partner_column,
+               fmt::format("wait {} has a partner list, but this machine's waits take none",
+                           wait_text(w)));
+    } else if (!w.has_partner_list) {
+      if (n_ >= 3)
+        report(severity::error, at, at.column,
+               fmt::format("wait {} has no partner list: with {} channels every wait must "
+                           "name its partners (Fanuc PS0161)",
+                           code_text(w.code), n_));
+      else
+        s.plain = true;
+    } else if (!w.partners_readable) {
+      report(severity::error, at, w.partner_column,
+             fmt::format("{} is not {} (Fanuc PS0161)", partner_text(w),
+                         m_.waits.partners == partner_style::binary
+                             ? "a channel mask"
+                             : "a list of channel numbers"));
+    } else {
+      s.partners = partner_mask(w);
+    }
+    return s;
+  }
+
+  channel_mask partner_mask(const nc_wait& w) {
+    channel_mask mask = 0;
+    std::string problem;
+    for (int p : w.partners) {
+      if (p < 1 || p > n_) {
+        if (problem.empty())
+          problem = fmt::format("names channel {}, which this machine does not have", p);
+      } else if (mask & bit_of(p)) {
+        if (problem.empty()) problem = fmt::format("names channel {} twice", p);
+      } else {
+        mask |= bit_of(p);
+      }
+    }
+    const channel_mask own = bit_of(w.channel);
+    if (problem.empty() && !(mask & own))
+      problem = fmt::format("in channel {} does not name channel {}", w.channel, w.channel);
+    else if (problem.empty() && mask == own)
+      problem = "names no channel but its own";
+    if (!problem.empty())
+      report(severity::error, w.where, w.partner_column,
+             fmt::format("{} {} (Fanuc PS0161)", partner_text(w), problem));
+    return mask | own;
+  }
+
+  /// An M-code in the wait range but off its step, or one that carries a partner list.
+  void judge_near_wait(const nc_wait& w) {
+    const wait_rules& wr = m_.waits;
+    const std::string range = fmt::format("{}-{}", code_text(wr.first), code_text(wr.last));
+    if (w.code >= wr.first && w.code <= wr.last) {
+      report(severity::warning, w.where, w.where.column,
+             fmt::format("{} lies in the wait range {} but off its step of {}: it is not "
+                         "checked as a wait",
+                         code_text(w.code), range, wr.step));
+      return;
+    }
+    if (!w.has_partner_list || !w.partners_readable || w.partners.size() < 2) return;
+    channel_mask seen = 0;
+    for (int p : w.partners) {
+      if (p < 1 || p > n_ || (seen & bit_of(p))) return;  // not a plausible partner list
+      seen |= bit_of(p);
+    }
+    report(severity::error, w.where, w.where.column,
+           fmt::format("{} looks like a wait, but {} is not a wait code of this machine ({})",
+                       wait_text(w), code_text(w.code), range));
+  }
+
+  /// Static problems in file order, as a compiler lists them.
+  void sort_by_place() {
+    std::map<std::string, std::size_t> file_order;
+    for (const nc_channel_program& c : progs_.channels) file_order.emplace(c.file, file_order.size());
+    auto key = [&](const diagnostic& d) {
+      auto it = file_order.find(d.file);
+      return std::tuple(it == file_order.end() ? file_order.size() : it->second, d.line,
+                        d.column);
+    };
+    std::stable_sort(result_.diagnostics.begin(), result_.diagnostics.end(),
+                     [&](const diagnostic& a, const diagnostic& b) { return key(a) < key(b); });
+  }
+
+  bool finished(int c) const { return pos_[c - 1] >= sims_[c - 1].size(); }
+  const sim_wait& current(int c) const { return sims_[c - 1][pos_[c - 1]]; }
+
+  template <class F>
+  static void for_each_channel(channel_mask mask, F&& f) {
+    for (; mask != 0; mask &= mask - 1) f(std::countr_zero(mask) + 1);
+  }
+
+  /// Runs all channels together. A channel is looked at only when it reaches a new wait;
+  /// the last partner to arrive releases the group, so the work is linear in the waits.
+  void simulate() {
+    std::vector<int> todo;
+    for (int c = n_; c >= 1; --c) todo.push_back(c);
+    while (!todo.empty()) {
+      const int c = todo.back();
+      todo.pop_back();
+      if (finished(c)) continue;
+      const sim_wait& w = current(c);
+      bool ready = true;
+      for_each_channel(w.partners, [&](int p) {
+        ready = ready && (p == c || (!finished(p) && current(p).matches(w)));
+      });
+      if (!ready) continue;
+      for_each_channel(w.partners, [&](int p) {
+        ++pos_[p - 1];
+        todo.push_back(p);
+      });
+    }
+  }
+
+  /// Says why each channel that did not reach its end is stuck; names every one of them.
+  void explain_stuck() {
+    std::vector<bool> covered(static_cast<std::size_t>(n_) + 1, false);
+    std::vector<std::vector<int>> blocked_by(static_cast<std::size_t>(n_) + 1);
+    for (int a = 1; a <= n_; ++a) {
+      if (finished(a)) continue;
+      const sim_wait& w = current(a);
+      std::vector<int> ended;
+      for_each_channel(w.partners, [&](int b) {
+        if (b == a) return;
+        if (finished(b)) return ended.push_back(b);
+        const sim_wait& o = current(b);
+        if (o.matches(w)) return;
+        if (!(o.partners & bit_of(a))) return blocked_by[a].push_back(b);
+        // Both wait for each other on different waits: neither can ever go on.
+        covered[a] = covered[b] = true;
+        if (a < b) report_mismatch(w, o);
+      });
+      if (!ended.empty()) {
+        covered[a] = true;
+        report_unpaired(w, ended);
+      }
+    }
+    std::string chain;
+    const nc_place* first = nullptr;
+    for (int a = 1; a <= n_; ++a) {
+      if (finished(a) || covered[a]) continue;
+      const nc_wait& w = *current(a).src;
+      if (!first) first = &w.where;
+      chain += fmt::format("{}channel {} waits at {} ({}) for {}", chain.empty() ? "" : "; ", a,
+                           place(w.where), wait_text(w), channel_list(blocked_by[a]));
+    }
+    if (first) report(severity::error, *first, first->column, "deadlock: " + chain);
+  }
+
+  void report_unpaired(const sim_wait& w, const std::vector<int>& ended) {
+    std::string how;
+    for (int c : ended) {
+      const nc_place& end = progs_.channels[static_cast<std::size_t>(c - 1)].end;
+      how += how.empty() ? "" : "; ";
+      how += end.line > 0 ? fmt::format("channel {} ends at {} without a matching wait", c,
+                                        place(end))
+                          : fmt::format("channel {} has no program", c);
+    }
+    report(severity::error, w.src->where, w.src->where.column,
+           fmt::format("wait {} of channel {} is never met: {}", wait_text(*w.src),
+                       w.src->channel, how));
+  }
+
+  void report_mismatch(const sim_wait& a, const sim_wait& b) {
+    const char* why = a.code != b.code     ? "different codes"
+                      : a.plain != b.plain ? "one with a partner list, one without"
+                                           : "different partner lists";
+    report(severity::error, a.src->where, a.src->where.column,
+           fmt::format("deadlock: channel {} waits on {} at {} while channel {} waits on {} "
+                       "at {} ({}, Fanuc PS0160)",
+                       a.src->channel, wait_text(*a.src), place(a.src->where), b.src->channel,
+                       wait_text(*b.src), place(b.src->where), why));
+  }
+
+  const nc_programs& progs_;
+  const machine& m_;
+  const int n_;
+  channel_mask all_ = 0;
+  std::vector<std::vector<sim_wait>> sims_;  ///< per channel, in program order
+  std::vector<std::size_t> pos_;             ///< per channel: index of its current wait
+  sync_result result_;
+};
+
+void count(sync_result& r) {
+  r.errors = r.warnings = 0;
+  for (const diagnostic& d : r.diagnostics) {
+    r.errors += d.level == severity::error;
+    r.warnings += d.level == severity::warning;
+  }
+  r.ok = r.errors == 0;
+}
+
+}  // namespace
+
+sync_result check_sync(const nc_programs& programs, const machine& m) {
+  sync_result r = checker(programs, m).run();
+  count(r);
+  return r;
+}
+
+sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m) {
+  diagnostic_list read;
+  const nc_programs programs = read_nc_programs(files, m, read);
+  sync_result r = checker(programs, m).run();
+  r.diagnostics.insert(r.diagnostics.begin(), read.all().begin(), read.all().end());
+  count(r);
+  return r;
+}
+
+}  // namespace twinpost

@@ -1,0 +1,49 @@
+#pragma once
+// The synchronisation checker: proves that the waits of all channels pair up and that the
+// channels, run together, cannot deadlock. The post command runs it on its own output
+// before writing; `twinpost check` runs it on any NC programs.
+//
+// Rules (see docs/checker.md):
+// - pairing is by code and by order: the k-th wait of a channel meets the k-th wait of
+//   its partners, with the same code and the same partner list; codes may be reused;
+// - a channel that reaches a wait stops until every partner reaches its matching wait;
+// - with three or more channels on a machine with partner lists, every wait names its
+//   partners, including its own channel, and only channels the machine has (PS0161);
+// - a machine whose waits take no partner list must get none;
+// - an M-code that looks like a wait but is not one of the machine's wait codes is flagged.
+// The simulation is linear in the number of waits.
+#include <string>
+#include <vector>
+
+#include "channels/nc_program.hpp"
+#include "machines/machine.hpp"
+#include "parser/diagnostics.hpp"
+
+namespace twinpost {
+
+/// Per channel: how many waits its program has and how many met their partners.
+struct channel_sync_summary {
+  int channel = 0;
+  std::string file;
+  int waits = 0;
+  int paired = 0;
+};
+
+/// The outcome of a check.
+struct sync_result {
+  bool ok = true;                          ///< no errors
+  std::vector<diagnostic> diagnostics;     ///< problems in report order
+  std::vector<channel_sync_summary> channels;
+  int paired = 0;                          ///< waits of all channels that met their partners
+  int errors = 0;
+  int warnings = 0;
+};
+
+/// Checks the waits of `programs` against the rules of machine `m` and simulates the
+/// channels together; reports unpaired waits, mismatches and deadlocks.
+sync_result check_sync(const nc_programs& programs, const machine& m);
+
+/// Reads `files` as NC programs of machine `m` and checks them: reading problems first.
+sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m);
+
+}  // namespace twinpost

@@ -1,0 +1,226 @@
+// Reading NC programs into per-channel wait lists (channels/nc_program.hpp).
+#include <catch2/catch.hpp>
+
+#include "channels/nc_program.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+machine two_channels(int first, int last, std::string marker) {
+  machine m;
+  m.name = "test";
+  m.channels.resize(2);
+  m.channels[0].number = 1;
+  m.channels[1].number = 2;
+  m.waits.first = first;
+  m.waits.last = last;
+  m.program.section_marker = std::move(marker);
+  return m;
+}
+
+machine mazak() { return two_channels(950, 997, "G109 L{channel}"); }
+machine citizen() { return two_channels(600, 699, "${channel}"); }
+
+std::string words_of(std::string_view line) {
+  std::string out;
+  for (const nc_word& w : split_nc_words(line)) {
+    if (!out.empty()) out += ' ';
+    out += w.address + w.value + (w.expression ? "!" : "") + "@" + std::to_string(w.column);
+  }
+  return out;
+}
+
+std::string messages(const diagnostic_list& d) {
+  std::string out;
+  for (const diagnostic& x : d.all()) out += format_diagnostic(x);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("split_nc_words reads words the way controls do", "[check]") {
+  CHECK(words_of("N10 G0 X10. Z-1.5") == "N10@1 G0@5 X10.@8 Z-1.5@13");
+  CHECK(words_of("M100P12") == "M100@1 P12@5");
+  CHECK(words_of("m100 p12") == "M100@1 P12@6");
+  CHECK(words_of("M 100") == "M100@1");
+  CHECK(words_of("M3 M8 M100") == "M3@1 M8@4 M100@7");
+  CHECK(words_of("(M100 WAIT) G0") == "G0@13");
+  CHECK(words_of("G0 ; M100 after the end of block") == "G0@1");
+  CHECK(words_of("/M100") == "M100@2");
+  CHECK(words_of("/2 M100") == "M100@4");
+  CHECK(words_of("%") == "");
+  CHECK(words_of("  % M100") == "");
+  CHECK(words_of("(unclosed M100") == "");
+  CHECK(words_of("M#100 M[#1+2]") == "M#100!@1 M[#1+2]!@7");
+  CHECK(words_of("IF [#1 EQ 0] GOTO 100") == "");
+  CHECK(words_of("#100=5 M101") == "M101@8");
+}
+
+TEST_CASE("decode_partner_list reads path digits and binary masks", "[check]") {
+  std::vector<int> p;
+  CHECK(decode_partner_list("12", partner_style::path_numbers, p));
+  CHECK(p == std::vector<int>{1, 2});
+  CHECK(decode_partner_list("7", partner_style::binary, p));
+  CHECK(p == std::vector<int>{1, 2, 3});
+  CHECK(decode_partner_list("5", partner_style::binary, p));
+  CHECK(p == std::vector<int>{1, 3});
+  CHECK_FALSE(decode_partner_list("-12", partner_style::path_numbers, p));
+  CHECK_FALSE(decode_partner_list("1.5", partner_style::path_numbers, p));
+  CHECK_FALSE(decode_partner_list("", partner_style::binary, p));
+}
+
+TEST_CASE("split files: file n is channel n; comments hold no waits", "[check]") {
+  const machine m = two_channels(100, 103, "");
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs(
+      {{"a.nc", "%\nO1000 (PART M100)\nG0 X10.\nn20 m100 (wait)\nM101;\nM30\n%\n"},
+       {"b.nc", "%\r\nO1000\r\nM100\r\nG1 X1. F.2 (M101 IS NEXT)\r\nM101\r\n"}},
+      m, d);
+  CHECK(messages(d) == "");
+  REQUIRE(p.channels.size() == 2);
+  const nc_channel_program& a = p.channels[0];
+  CHECK(a.file == "a.nc");
+  REQUIRE(a.waits.size() == 2);
+  CHECK(a.waits[0].code == 100);
+  CHECK(a.waits[0].channel == 1);
+  CHECK(a.waits[0].where.line == 4);
+  CHECK(a.waits[0].where.column == 5);
+  CHECK(a.waits[0].where.source_line == "n20 m100 (wait)");
+  CHECK(a.waits[1].where.line == 5);
+  CHECK(a.end.line == 6);  // the M30 block
+  CHECK(a.end.source_line == "M30");
+  const nc_channel_program& b = p.channels[1];
+  REQUIRE(b.waits.size() == 2);
+  CHECK(b.waits[1].where.source_line == "M101");  // no CR left over
+  CHECK(b.end.line == 5);  // no end code: the last block
+}
+
+TEST_CASE("partner lists are recorded as written", "[check]") {
+  machine m = two_channels(100, 199, "");
+  m.channels.resize(3);
+  m.channels[2].number = 3;
+  m.waits.partners = partner_style::path_numbers;
+  diagnostic_list d;
+  const nc_programs p =
+      read_nc_programs({{"1.nc", "M100P12\nM101 P1.5\n"}, {"2.nc", ""}, {"3.nc", "M102"}}, m, d);
+  REQUIRE(p.channels[0].waits.size() == 2);
+  const nc_wait& w = p.channels[0].waits[0];
+  CHECK(w.has_partner_list);
+  CHECK(w.partner_text == "12");
+  CHECK(w.partners == std::vector<int>{1, 2});
+  CHECK(w.partner_column == 5);
+  CHECK_FALSE(p.channels[0].waits[1].partners_readable);
+  CHECK_FALSE(p.channels[2].waits[0].has_partner_list);
+  CHECK(p.channels[1].end.line == 0);  // an empty file has no program
+}
+
+TEST_CASE("Mazak merged file: common blocks, interleaved sections", "[check]") {
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs({{"part.eia",
+                                           "%\n"
+                                           "O1306(PART)\n"       // 2: common
+                                           "G109 L1 (UPPER)\n"  // 3
+                                           "M950\n"             // 4
+                                           "g109l2\n"           // 5
+                                           "M950\n"             // 6
+                                           "M951\n"             // 7
+                                           "N100 G109 L1\n"     // 8
+                                           "T0101\n"            // 9
+                                           "M951\n"             // 10
+                                           "M30\n"              // 11
+                                           "%\n"}},
+                                         mazak(), d);
+  CHECK(messages(d) == "");
+  REQUIRE(p.channels[0].waits.size() == 2);
+  CHECK(p.channels[0].waits[0].where.line == 4);
+  CHECK(p.channels[0].waits[1].where.line == 10);
+  CHECK(p.channels[0].end.line == 11);
+  REQUIRE(p.channels[1].waits.size() == 2);
+  CHECK(p.channels[1].waits[1].where.line == 7);
+  CHECK(p.channels[1].end.line == 7);  // its last block
+  CHECK(p.channels[1].file == "part.eia");
+}
+
+TEST_CASE("a marker block may carry more words", "[check]") {
+  diagnostic_list d;
+  const nc_programs p =
+      read_nc_programs({{"p.eia", "G109 L1 M950\nG109 L2\nM950\n"}}, mazak(), d);
+  CHECK(messages(d) == "");
+  REQUIRE(p.channels[0].waits.size() == 1);
+  CHECK(p.channels[0].waits[0].where.column == 9);
+  CHECK(p.channels[0].end.line == 1);
+  CHECK(p.channels[1].waits.size() == 1);
+}
+
+TEST_CASE("Citizen merged file: $1, $2 and the $0 data section", "[check]") {
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs({{"c.nc",
+                                           "%\nO3162(PART)\n$1\nM600\nM02\n$2\nM600\nM602\n"
+                                           "M99\n$0\nM601\n%\n"}},
+                                         citizen(), d);
+  CHECK(messages(d) ==
+        "c.nc:11:1: warning: wait M601 lies outside every channel's section and is not "
+        "checked\nM601\n^\n");
+  CHECK(p.channels[0].waits.size() == 1);
+  CHECK(p.channels[0].end.line == 5);
+  REQUIRE(p.channels[1].waits.size() == 2);
+  CHECK(p.channels[1].end.line == 9);
+}
+
+TEST_CASE("layout problems are reported", "[check]") {
+  diagnostic_list d;
+  read_nc_programs({{"a", ""}, {"b", ""}, {"c", ""}}, mazak(), d);
+  CHECK(messages(d) ==
+        "a: error: this machine has 2 channels but 3 files were given: give one file per "
+        "channel, or one file with sections\n");
+
+  diagnostic_list none;
+  read_nc_programs({{"one.eia", "M950\n"}}, mazak(), none);
+  CHECK(messages(none) ==
+        "one.eia: error: no section marker (G109 L{channel}) in this file: this machine has 2 "
+        "channels; give one file per channel, or one file with sections\n");
+
+  diagnostic_list missing;
+  read_nc_programs({{"m.eia", "G109 L1\nM950\nG109 L3\nM950\n"}}, mazak(), missing);
+  CHECK(messages(missing) ==
+        "m.eia:3:1: error: section for channel 3, which this machine does not have\n"
+        "G109 L3\n^\n"
+        "m.eia: error: no section for channel 2 (G109 L2) in this file\n");
+
+  diagnostic_list unmarked;
+  read_nc_programs({{"u.nc", "M100\n"}}, two_channels(100, 103, ""), unmarked);
+  CHECK(messages(unmarked) ==
+        "u.nc: error: this machine has 2 channels but one file was given, and its programs "
+        "have no section markers: give one file per channel\n");
+}
+
+TEST_CASE("waits after the end, two waits in a block, expressions", "[check]") {
+  const machine m = two_channels(100, 103, "");
+  diagnostic_list d;
+  const nc_programs p =
+      read_nc_programs({{"a.nc", "M100 M101\nM#1\nM30\nM102\n"}, {"b.nc", "M100\n"}}, m, d);
+  CHECK(messages(d) ==
+        "a.nc:1:6: error: two waits in one block (M100 and M101): a wait needs a block of its "
+        "own\nM100 M101\n     ^\n"
+        "a.nc:2:1: warning: M#1 is a variable or expression: a wait given so cannot be "
+        "checked\nM#1\n^\n"
+        "a.nc:4:1: warning: wait M102 comes after the end of channel 1's program at a.nc:3 "
+        "and is not checked\nM102\n^\n");
+  CHECK(p.channels[0].waits.size() == 1);
+}
+
+TEST_CASE("near waits: off-step codes and M-codes with partner lists", "[check]") {
+  machine m = two_channels(100, 198, "");
+  m.waits.step = 2;
+  m.waits.excluded = {198};
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs(
+      {{"a.nc", "M101\nM250 P12\nM98 P1000\nG4 P12 M250\nM198 P12\nM100\n"}, {"b.nc", ""}}, m,
+      d);
+  REQUIRE(p.channels[0].waits.size() == 1);
+  REQUIRE(p.channels[0].near_waits.size() == 2);
+  CHECK(p.channels[0].near_waits[0].code == 101);
+  CHECK(p.channels[0].near_waits[1].code == 250);
+  CHECK(p.channels[0].near_waits[1].partner_text == "12");
+}

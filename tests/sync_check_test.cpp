@@ -1,0 +1,296 @@
+// The synchronisation checker and its report (channels/sync_check.hpp,
+// channels/sync_report_format.hpp). Messages are asserted to the letter.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+
+#include "channels/sync_check.hpp"
+#include "channels/sync_report_format.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+machine make_machine(int channels, int first, int last, partner_style partners,
+                     std::string marker = "") {
+  machine m;
+  m.name = "test";
+  for (int c = 1; c <= channels; ++c) {
+    m.channels.emplace_back();
+    m.channels.back().number = c;
+  }
+  m.waits.first = first;
+  m.waits.last = last;
+  m.waits.partners = partners;
+  m.program.section_marker = std::move(marker);
+  return m;
+}
+
+/// Mazak-like twin head: M950-M997, one merged file with G109 L1 / G109 L2 sections.
+machine mazak() { return make_machine(2, 950, 997, partner_style::none, "G109 L{channel}"); }
+/// Fanuc 2-path: M100-M103, plain waits in both paths.
+machine fanuc2() { return make_machine(2, 100, 103, partner_style::none); }
+/// Fanuc 3-path: M100-M197, partners as path numbers (P12, P123).
+machine fanuc3() { return make_machine(3, 100, 197, partner_style::path_numbers); }
+/// Fanuc 3-path with parameter 8103#1: partners as a binary mask (P3, P7).
+machine fanuc3_binary() { return make_machine(3, 100, 197, partner_style::binary); }
+
+std::string check_text(const std::vector<nc_source>& files, const machine& m) {
+  return format_sync_text(check_nc_files(files, m));
+}
+
+}  // namespace
+
+TEST_CASE("sound 2-path programs pass with the exact summary", "[check]") {
+  const sync_result r = check_nc_files({{"O1000_1.nc", "%\nO1000\nM100\nG0 X10.\nM101\nM102\nM30\n%\n"},
+                                        {"O1000_2.nc", "%\nO1000\nM100\nM101\nT0202\nM102\nM30\n%\n"}},
+                                       fanuc2());
+  CHECK(r.ok);
+  CHECK(r.paired == 6);
+  REQUIRE(r.channels.size() == 2);
+  CHECK(r.channels[1].file == "O1000_2.nc");
+  CHECK(r.channels[1].waits == 3);
+  CHECK(r.channels[1].paired == 3);
+  CHECK(format_sync_text(r) == "check: 2 channels, 6 waits paired, 0 errors\n");
+}
+
+TEST_CASE("codes may be reused: pairing is by order", "[check]") {
+  const std::string one = "M100\nM101\nM100\nM101\nM100\nM30\n";
+  CHECK(check_text({{"a", one}, {"b", one}}, fanuc2()) ==
+        "check: 2 channels, 10 waits paired, 0 errors\n");
+}
+
+TEST_CASE("deadlock in Mazak syntax, one merged file", "[check]") {
+  const std::string part =
+      "%\n"
+      "O1306(PART)\n"
+      "G109 L1\n"
+      "G0 X100. Z50.\n"
+      "M951 (WAIT B)\n"
+      "M950\n"
+      "G109 L2\n"
+      "M950\n"
+      "M951\n"
+      "M30\n"
+      "%\n";
+  const sync_result r = check_nc_files({{"part.eia", part}}, mazak());
+  CHECK_FALSE(r.ok);
+  CHECK(format_sync_text(r) ==
+        "part.eia:5:1: error: deadlock: channel 1 waits on M951 at part.eia:5 while channel 2 "
+        "waits on M950 at part.eia:8 (different codes, Fanuc PS0160)\n"
+        "M951 (WAIT B)\n"
+        "^\n"
+        "check: 2 channels, 0 waits paired, 1 error\n");
+}
+
+TEST_CASE("deadlock in Fanuc syntax, split files", "[check]") {
+  const std::string text = check_text({{"O1000.nc", "O1000\nN10 M101\nN20 M100\nM30\n"},
+                                       {"O1000.P-2", "O1000\nN10 M100\nN20 M101\nM30\n"}},
+                                      fanuc2());
+  CHECK(text ==
+        "O1000.nc:2:5: error: deadlock: channel 1 waits on M101 at O1000.nc:2 while channel 2 "
+        "waits on M100 at O1000.P-2:2 (different codes, Fanuc PS0160)\n"
+        "N10 M101\n"
+        "    ^\n"
+        "check: 2 channels, 0 waits paired, 1 error\n");
+}
+
+TEST_CASE("unpaired wait in Mazak syntax", "[check]") {
+  const std::string part =
+      "G109 L1\n"
+      "M950\n"
+      "M951\n"
+      "G109 L2\n"
+      "M950\n"
+      "G0 X10.\n";
+  CHECK(check_text({{"p.eia", part}}, mazak()) ==
+        "p.eia:3:1: error: wait M951 of channel 1 is never met: channel 2 ends at p.eia:6 "
+        "without a matching wait\n"
+        "M951\n"
+        "^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
+}
+
+TEST_CASE("unpaired wait in Fanuc syntax", "[check]") {
+  CHECK(check_text({{"a.nc", "M100\nM30\n"}, {"b.nc", "M100\nM101\nM30\n"}}, fanuc2()) ==
+        "b.nc:2:1: error: wait M101 of channel 2 is never met: channel 1 ends at a.nc:2 "
+        "without a matching wait\n"
+        "M101\n"
+        "^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
+  CHECK(check_text({{"a.nc", "M100\n"}, {"b.nc", "(nothing)\n"}}, fanuc2()) ==
+        "a.nc:1:1: error: wait M100 of channel 1 is never met: channel 2 has no program\n"
+        "M100\n"
+        "^\n"
+        "check: 2 channels, 0 waits paired, 1 error\n");
+}
+
+TEST_CASE("comments holding wait codes are not waits", "[check]") {
+  CHECK(check_text({{"a", "(M100 ON BOTH)\nM100\n; M101\n"},
+                    {"b", "M100 (THEN M101)\n/ (M102)\n"}},
+                   fanuc2()) == "check: 2 channels, 2 waits paired, 0 errors\n");
+}
+
+TEST_CASE("3 paths: glued and spaced partner lists pair", "[check]") {
+  // The ncplot7py example: 1-2 meet at M250, 2-3 at M260, all three at M500.
+  const machine m = make_machine(3, 200, 998, partner_style::path_numbers);
+  const sync_result r = check_nc_files(
+      {{"1", "M250P12\nM500 P123\nM30\n"}, {"2", "m250p12\nM260 P23\nM500P123\n"},
+       {"3", "M260 P23\nM500 P123\n"}},
+      m);
+  CHECK(format_sync_text(r) == "check: 3 channels, 7 waits paired, 0 errors\n");
+  CHECK(r.channels[1].paired == 3);
+}
+
+TEST_CASE("3 paths: partner list problems (PS0161)", "[check]") {
+  const std::string text =
+      check_text({{"1.nc", "M100\nM101 P23\nM102 P14\nM103 P1\nM104 P112\nM105 P1.5\n"},
+                  {"2.nc", ""},
+                  {"3.nc", ""}},
+                 fanuc3());
+  CHECK(text ==
+        "1.nc:1:1: error: wait M100 has no partner list: with 3 channels every wait must name "
+        "its partners (Fanuc PS0161)\nM100\n^\n"
+        "1.nc:2:6: error: partner list P23 of wait M101 in channel 1 does not name channel 1 "
+        "(Fanuc PS0161)\nM101 P23\n     ^\n"
+        "1.nc:3:6: error: partner list P14 of wait M102 names channel 4, which this machine "
+        "does not have (Fanuc PS0161)\nM102 P14\n     ^\n"
+        "1.nc:4:6: error: partner list P1 of wait M103 names no channel but its own (Fanuc "
+        "PS0161)\nM103 P1\n     ^\n"
+        "1.nc:5:6: error: partner list P112 of wait M104 names channel 1 twice (Fanuc "
+        "PS0161)\nM104 P112\n     ^\n"
+        "1.nc:6:6: error: partner list P1.5 of wait M105 is not a list of channel numbers "
+        "(Fanuc PS0161)\nM105 P1.5\n     ^\n"
+        "1.nc:1:1: error: wait M100 of channel 1 is never met: channel 2 has no program; "
+        "channel 3 has no program\nM100\n^\n"
+        "check: 3 channels, 0 waits paired, 7 errors\n");
+}
+
+TEST_CASE("3 paths: partners whose lists disagree (PS0160)", "[check]") {
+  CHECK(check_text({{"1.nc", "M100 P123\n"}, {"2.nc", "M100 P123\n"}, {"3.nc", "M100 P13\n"}},
+                   fanuc3()) ==
+        "1.nc:1:1: error: deadlock: channel 1 waits on M100 P123 at 1.nc:1 while channel 3 "
+        "waits on M100 P13 at 3.nc:1 (different partner lists, Fanuc PS0160)\n"
+        "M100 P123\n^\n"
+        "2.nc:1:1: error: deadlock: channel 2 waits at 2.nc:1 (M100 P123) for channel 3\n"
+        "M100 P123\n^\n"
+        "check: 3 channels, 0 waits paired, 2 errors\n");
+}
+
+TEST_CASE("3 paths: a cyclic deadlock names every stuck channel", "[check]") {
+  CHECK(check_text({{"1.nc", "M100 P12\nM101 P13\n"},
+                    {"2.nc", "M102 P23\nM100 P12\n"},
+                    {"3.nc", "M101 P13\nM102 P23\n"}},
+                   fanuc3()) ==
+        "1.nc:1:1: error: deadlock: channel 1 waits at 1.nc:1 (M100 P12) for channel 2; "
+        "channel 2 waits at 2.nc:1 (M102 P23) for channel 3; channel 3 waits at 3.nc:1 "
+        "(M101 P13) for channel 1\n"
+        "M100 P12\n^\n"
+        "check: 3 channels, 0 waits paired, 1 error\n");
+}
+
+TEST_CASE("3 paths: a channel may wait while others meet", "[check]") {
+  // Channel 1 waits for 2 at M100 while 2 first meets 3 at M101.
+  CHECK(check_text({{"1", "M100 P12\n"}, {"2", "M101 P23\nM100 P12\n"}, {"3", "M101 P23\n"}},
+                   fanuc3()) == "check: 3 channels, 4 waits paired, 0 errors\n");
+}
+
+TEST_CASE("binary partner masks", "[check]") {
+  CHECK(check_text({{"1", "M100 P3\nM101 P7\n"}, {"2", "M100 P3\nM101 P7\n"}, {"3", "M101P7\n"}},
+                   fanuc3_binary()) == "check: 3 channels, 5 waits paired, 0 errors\n");
+  CHECK(check_text({{"1", ""}, {"2", "M100 P5\n"}, {"3", ""}}, fanuc3_binary()) ==
+        "2:1:6: error: partner list P5 of wait M100 in channel 2 does not name channel 2 "
+        "(Fanuc PS0161)\nM100 P5\n     ^\n"
+        "2:1:1: error: wait M100 P5 of channel 2 is never met: channel 1 has no program; "
+        "channel 3 has no program\n"
+        "M100 P5\n^\n"
+        "check: 3 channels, 0 waits paired, 2 errors\n");
+}
+
+TEST_CASE("2 channels: a partner list where the machine takes none", "[check]") {
+  CHECK(check_text({{"a", "M100 P12\n"}, {"b", "M100\n"}}, fanuc2()) ==
+        "a:1:6: error: wait M100 P12 has a partner list, but this machine's waits take none\n"
+        "M100 P12\n     ^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
+}
+
+TEST_CASE("2 paths with optional P: plain and P12 forms do not meet", "[check]") {
+  const machine m = make_machine(2, 100, 103, partner_style::path_numbers);
+  CHECK(check_text({{"a", "M100 P12\nM101\n"}, {"b", "M100 P12\nM101 P12\n"}}, m) ==
+        "a:2:1: error: deadlock: channel 1 waits on M101 at a:2 while channel 2 waits on M101 "
+        "P12 at b:2 (one with a partner list, one without, Fanuc PS0160)\n"
+        "M101\n^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
+}
+
+TEST_CASE("M-codes that look like waits outside the range", "[check]") {
+  machine m = fanuc3();
+  m.waits.step = 2;
+  CHECK(check_text({{"1", "M250 P12\nM101\nM98 P12\n"}, {"2", ""}, {"3", ""}}, m) ==
+        "1:1:1: error: M250 P12 looks like a wait, but M250 is not a wait code of this machine "
+        "(M100-M197)\nM250 P12\n^\n"
+        "1:2:1: warning: M101 lies in the wait range M100-M197 but off its step of 2: it is "
+        "not checked as a wait\nM101\n^\n"
+        "check: 3 channels, 0 waits paired, 1 error, 1 warning\n");
+}
+
+TEST_CASE("Mazak sections interleaved and repeated", "[check]") {
+  const std::string part =
+      "O1(P)\n"
+      "G109 L2\nM950\n"
+      "G109 L1\nM950\nM951\n"
+      "G109 L2\nM951\nM952\n"
+      "G109 L1\nM952\nM30\n";
+  const sync_result r = check_nc_files({{"p.eia", part}}, mazak());
+  CHECK(format_sync_text(r) == "check: 2 channels, 6 waits paired, 0 errors\n");
+  CHECK(r.channels[0].waits == 3);
+}
+
+TEST_CASE("the JSON report", "[check]") {
+  const sync_result r =
+      check_nc_files({{"a \"1\".nc", "M100\nM101\n"}, {"b.nc", "M100\n"}}, fanuc2());
+  CHECK(format_sync_json(r) ==
+        "{\n"
+        "  \"ok\": false,\n"
+        "  \"channels\": [\n"
+        "    {\"channel\": 1, \"file\": \"a \\\"1\\\".nc\", \"waits\": 2, \"paired\": 1},\n"
+        "    {\"channel\": 2, \"file\": \"b.nc\", \"waits\": 1, \"paired\": 1}\n"
+        "  ],\n"
+        "  \"paired\": 2,\n"
+        "  \"errors\": 1,\n"
+        "  \"warnings\": 0,\n"
+        "  \"problems\": [\n"
+        "    {\"file\": \"a \\\"1\\\".nc\", \"line\": 2, \"column\": 1, \"severity\": \"error\", "
+        "\"message\": \"wait M101 of channel 1 is never met: channel 2 ends at b.nc:1 without "
+        "a matching wait\"}\n"
+        "  ]\n"
+        "}\n");
+  const sync_result ok = check_nc_files({{"a", "M100\n"}, {"b", "M100\n"}}, fanuc2());
+  CHECK(format_sync_json(ok) ==
+        "{\n  \"ok\": true,\n  \"channels\": [\n"
+        "    {\"channel\": 1, \"file\": \"a\", \"waits\": 1, \"paired\": 1},\n"
+        "    {\"channel\": 2, \"file\": \"b\", \"waits\": 1, \"paired\": 1}\n"
+        "  ],\n  \"paired\": 2,\n  \"errors\": 0,\n  \"warnings\": 0,\n  \"problems\": []\n}\n");
+}
+
+TEST_CASE("json_quote escapes and keeps JSON valid", "[check]") {
+  CHECK(json_quote("a\\b\"c\n\t\x01") == "\"a\\\\b\\\"c\\n\\t\\u0001\"");
+  CHECK(json_quote("\xC3\xA9") == "\"\xC3\xA9\"");  // valid UTF-8 stays
+  CHECK(json_quote("\xE9t\xC3") == "\"\\ufffdt\\ufffd\"");  // Latin-1 and a cut sequence
+}
+
+TEST_CASE("the simulation is linear in the number of waits", "[check]") {
+  // 3 paths, 60000 waits each, pairs 1-2 then 2-3 then all: quadratic rescans would crawl.
+  std::string a, b, c;
+  for (int i = 0; i < 20000; ++i) {
+    a += "M100 P12\nM102 P123\n";
+    b += "M100 P12\nM101 P23\nM102 P123\n";
+    c += "M101 P23\nM102 P123\n";
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const sync_result r = check_nc_files({{"1", a}, {"2", b}, {"3", c}}, fanuc3());
+  const auto took = std::chrono::steady_clock::now() - start;
+  CHECK(r.ok);
+  CHECK(r.paired == 140000);
+  CHECK(took < std::chrono::seconds(5));
+}
