@@ -1,10 +1,17 @@
 #include "formats/number_format.hpp"
 
 #include <charconv>
+#include <cmath>
 
 namespace twinpost {
 
-void append_number(std::string& out, double v, const number_style& style) {
+namespace {
+
+constexpr double pow10[] = {1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+
+// The exact rule: std::to_chars rounds the binary value correctly. Slow (it is a general
+// printf engine), so it only settles the cases the fast path below cannot.
+void append_exact(std::string& out, double v, const number_style& style) {
   char buf[64];
   auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, style.decimals);
   char* begin = buf;
@@ -19,6 +26,44 @@ void append_number(std::string& out, double v, const number_style& style) {
     if (*p >= '1' && *p <= '9') zero = false;
   if (zero && *begin == '-') ++begin;
   out.append(begin, end);
+}
+
+}  // namespace
+
+void append_number(std::string& out, double v, const number_style& style) {
+  // Fast path: scale to an integer count of the last decimal. The product carries an error
+  // of about one unit in 1e16; unless its fraction sits within 1e-7 of a half, rounding it
+  // decides exactly as rounding the binary value would, so the output equals to_chars'.
+  int d = style.decimals;
+  double scaled = v * pow10[d < 0 ? 0 : d > 9 ? 9 : d];
+  double a = std::fabs(scaled);
+  if (d < 0 || d > 9 || !(a < 1e15)) return append_exact(out, v, style);
+  double fl = std::floor(a);
+  double frac = a - fl;
+  if (std::fabs(frac - 0.5) < 1e-7) return append_exact(out, v, style);
+  unsigned long long n = static_cast<unsigned long long>(fl) + (frac > 0.5 ? 1 : 0);
+  char digits[24];
+  int k = 0;
+  do {
+    digits[k++] = static_cast<char>('0' + n % 10);
+    n /= 10;
+  } while (n > 0);
+  while (k <= d) digits[k++] = '0';  // at least one digit before the point
+  int first_kept = 0;                // trailing zeros of the fraction are dropped
+  while (first_kept < d && digits[first_kept] == '0') ++first_kept;
+  bool zero = true;
+  for (int i = 0; i < k; ++i)
+    if (digits[i] != '0') zero = false;
+  if (scaled < 0 && !zero) out += '-';
+  for (int i = k - 1; i >= d; --i) out += digits[i];
+  if (first_kept < d) {
+    out += '.';
+    for (int i = d - 1; i >= first_kept; --i) out += digits[i];
+  } else if (d > 0 && style.trailing_point) {
+    out += '.';
+  } else if (d == 0 && style.trailing_point) {
+    // to_chars with no decimals prints no point; keep that rule for the zero-decimal style.
+  }
 }
 
 std::string format_nc_number(double v, const number_style& style) {
