@@ -1,5 +1,8 @@
 #include "channels/nc_program.hpp"
 
+#include <cstdio>
+#include <memory>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -114,21 +117,15 @@ class reader {
       return;
     }
     // Without any marker every wait would be "outside the sections": say the one thing.
+    // One pass: the warnings about waits outside the sections wait until a marker is seen.
     bool any_marker = false;
-    for_each_line(f, [&](int, std::string_view line) {
-      any_marker = any_marker || marker_channel(mk, line) >= 0;
-    });
-    if (!any_marker) {
-      report(severity::error, {f.name, 0, 0, {}},
-             fmt::format("no section marker ({}) in this file: this machine has {} channels; "
-                         "give one file per channel, or one file with sections",
-                         m_.program.section_marker, out_.channels.size()));
-      return;
-    }
+    deferred_.clear();
+    deferring_ = true;
     int current = 0;  // 0: common blocks or a data section; -1: an unknown channel's section
     for_each_line(f, [&](int no, std::string_view line) {
       const int c = marker_channel(mk, line);
       if (c < 0) return read_line(f, no, line, current);
+      any_marker = true;
       current = c;
       if (c > static_cast<int>(out_.channels.size())) {
         report(severity::error, {f.name, no, 1, std::string(line)},
@@ -139,6 +136,16 @@ class reader {
       if (c > 0) state_[static_cast<std::size_t>(c - 1)].has_section = true;
       read_line(f, no, line, current);  // the marker block may carry more words (T0101)
     });
+    deferring_ = false;
+    if (!any_marker) {
+      report(severity::error, {f.name, 0, 0, {}},
+             fmt::format("no section marker ({}) in this file: this machine has {} channels; "
+                         "give one file per channel, or one file with sections",
+                         m_.program.section_marker, out_.channels.size()));
+      return;
+    }
+    for (diagnostic& d : deferred_) sink_.report(std::move(d));
+    deferred_.clear();
     for (std::size_t i = 0; i < state_.size(); ++i) {
       if (state_[i].has_section) continue;
       std::string marker = m_.program.section_marker;
@@ -153,7 +160,7 @@ class reader {
     for (std::size_t i = 0; i < state_.size(); ++i) {
       nc_channel_program& p = out_.channels[i];
       const channel_state& st = state_[i];
-      if (!st.ended) p.end = {st.last_file, st.last_line, 0, std::string(st.last_text)};
+      if (!st.ended) p.end = {st.last_file, st.last_line, 0, st.last_text};
       if (p.end.file.empty()) p.end.file = p.file;
     }
   }
@@ -165,11 +172,14 @@ class reader {
     // The last block read, kept as a view into the source so that lines are not copied.
     std::string last_file;
     int last_line = 0;
-    std::string_view last_text;
+    std::string last_text;
   };
+  std::vector<diagnostic> deferred_;  // outside-section warnings, until a marker is seen
+  bool deferring_ = false;
 
   template <class F>
   static void for_each_line(const nc_source& f, F&& on_line) {
+    if (!f.path.empty()) return stream_lines(f.path, on_line);
     std::string_view text = f.text;
     if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
     int no = 0;
@@ -184,7 +194,52 @@ class reader {
     }
   }
 
+  // The same lines as above, read from a file a megabyte at a time.
+  template <class F>
+  static void stream_lines(const std::string& path, F&& on_line) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
+    std::vector<char> buf(1 << 20);
+    std::string carry;
+    int no = 0;
+    bool first = true, skip_lf = false;
+    std::size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), file.get())) > 0) {
+      std::string_view chunk(buf.data(), n);
+      if (first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
+      first = false;
+      std::size_t pos = 0;
+      if (skip_lf && !chunk.empty() && chunk[0] == '\n') pos = 1;  // CR LF split by the chunk
+      skip_lf = false;
+      while (pos < chunk.size()) {
+        std::size_t eol = chunk.find_first_of("\r\n", pos);
+        if (eol == std::string_view::npos) {
+          carry.append(chunk.substr(pos));
+          break;
+        }
+        std::string_view line = chunk.substr(pos, eol - pos);
+        if (!carry.empty()) {
+          carry.append(line);
+          line = carry;
+        }
+        on_line(++no, line);
+        carry.clear();
+        pos = eol + 1;
+        if (chunk[eol] == '\r') {
+          if (pos < chunk.size() && chunk[pos] == '\n') ++pos;
+          else if (pos == chunk.size()) skip_lf = true;
+        }
+      }
+    }
+    if (!carry.empty()) on_line(++no, carry);
+  }
+
   void report(severity level, nc_place at, std::string message) {
+    if (deferring_ && level == severity::warning) {
+      deferred_.push_back({level, std::move(at.file), at.line, at.column, std::move(message),
+                           std::move(at.source_line)});
+      return;
+    }
     sink_.report({level, std::move(at.file), at.line, at.column, std::move(message),
                   std::move(at.source_line)});
   }
@@ -218,6 +273,17 @@ class reader {
 
   // `channel`: 1..n a channel, 0 common blocks or data, -1 an unknown channel's section.
   void read_line(const nc_source& f, int no, std::string_view line, int channel) {
+    if (channel > 0 && plain_block(line)) {
+      // A block with no M-word, comment or special character holds no wait and no end:
+      // only remember it as the channel's last block. Most of a program is such blocks.
+      channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
+      if (!st.ended) {
+        if (st.last_file != f.name) st.last_file = f.name;
+        st.last_line = no;
+        st.last_text.assign(line);
+      }
+      return;
+    }
     const std::vector<nc_word> words = split_nc_words(line);
     if (words.empty()) return;
     const wait_rules& wr = m_.waits;
@@ -278,7 +344,7 @@ class reader {
     }
     if (st.last_file != f.name) st.last_file = f.name;
     st.last_line = no;
-    st.last_text = line;
+    st.last_text.assign(line);
     if (wait) prog.waits.push_back(make_wait(channel, wait_code, partner, at(wait->column)));
     for (const auto& [w, code] : near)
       prog.near_waits.push_back(make_wait(channel, code, partner, at(w->column)));
@@ -286,6 +352,21 @@ class reader {
       st.ended = true;
       prog.end = at(end->column);
     }
+  }
+
+  // True for a non-blank line that can hold neither a wait nor an end code nor anything
+  // split_nc_words treats specially (comments, block delete, variables, '%').
+  bool plain_block(std::string_view line) const {
+    const char wa = upper(m_.waits.address);
+    const char wl = static_cast<char>(wa - 'A' + 'a');
+    bool any = false;
+    for (char c : line) {
+      if (c == 'M' || c == 'm' || c == wa || c == wl || c == '(' || c == ';' || c == '/' ||
+          c == '#' || c == '[' || c == '%' || c == '$')
+        return false;
+      any = any || !is_blank(c);
+    }
+    return any;
   }
 
   const machine& m_;

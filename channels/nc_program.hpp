@@ -22,10 +22,12 @@
 
 namespace twinpost {
 
-/// One NC file: its name (used in messages) and its full text.
+/// One NC file: its name (used in messages) and its full text, or the path to read it
+/// from piece by piece (memory stays flat however long the program is).
 struct nc_source {
   std::string name;
   std::string text;
+  std::string path = {};  ///< when set, the file is streamed from here and `text` is ignored
 };
 
 /// A place in an NC file.

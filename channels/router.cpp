@@ -84,11 +84,8 @@ void channel_router::rendezvous(const std::vector<int>& channels, int line, cons
   bool any_busy = std::any_of(channels.begin(), channels.end(),
                               [&](int c) { return busy_[static_cast<std::size_t>(c)]; });
   if (!any_busy && rendezvous_ > 0) return;
-  auto code = codes_.next();
-  if (!code) {
-    return error(line, fmt::format("no wait code left for {}: {}{}-{}{} is used up and machine '{}' does not reuse codes",
-                                   what, m_.waits.address, m_.waits.first, m_.waits.address, m_.waits.last, m_.name));
-  }
+  auto code = next_code(line, what);
+  if (!code) return;
   wait_mark w;
   w.code = *code;
   w.partners = channels;
@@ -134,10 +131,8 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
     auto key = std::make_pair(s.index, nth);
     auto it = sync_codes_.find(key);
     if (it == sync_codes_.end()) {
-      auto code = codes_.next();
-      if (!code)
-        return error(line, fmt::format("no wait code left for sync {}: {}{}-{}{} is used up and machine '{}' does not reuse codes",
-                                       s.index, m_.waits.address, m_.waits.first, m_.waits.address, m_.waits.last, m_.name));
+      auto code = next_code(line, fmt::format("sync {}", s.index));
+      if (!code) return;
       it = sync_codes_.emplace(key, *code).first;
       ++rendezvous_;
     }
@@ -152,6 +147,17 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   }
   last_sync_line_ = line;
   last_sync_index_ = s.index;
+}
+
+std::optional<int> channel_router::next_code(int line, const std::string& what) {
+  auto code = codes_.next();
+  if (!code && !exhausted_) {
+    // Said once: every later mark would repeat it.
+    error(line, fmt::format("no wait code left for {}: {}{}-{}{} is used up and machine '{}' does not reuse codes",
+                            what, m_.waits.address, m_.waits.first, m_.waits.address, m_.waits.last, m_.name));
+    exhausted_ = true;
+  }
+  return code;
 }
 
 void channel_router::finish(int last_line) {

@@ -10,6 +10,7 @@
 //   range in turn; the k-th explicit sync of a channel gets the code of that sync number.
 // - Job-level events (PARTNO, UNITS, MACHIN) go to channel 0.
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,6 +62,7 @@ class channel_router {
   void rendezvous(const std::vector<int>& channels, int line, const std::string& what);
   void explicit_sync(const sync_event& s, int line);
   void error(int line, std::string message);
+  std::optional<int> next_code(int line, const std::string& what);
   const channel_def* head_channel(const head_event& h) const;
 
   const machine& m_;
@@ -78,6 +80,7 @@ class channel_router {
   int rendezvous_ = 0;
   int explicit_ = 0;
   bool warned_ignored_ = false;
+  bool exhausted_ = false;
 };
 
 }  // namespace twinpost

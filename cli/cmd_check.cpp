@@ -27,16 +27,12 @@ const char* const check_usage =
     "Exit status: 0 sound, 1 problems found, 2 usage or configuration error.\n"
     "\n";
 
-/// The whole file as bytes; false when it cannot be read.
-bool read_file(const std::string& path, std::string& text) {
+/// True when `path` is a regular file that opens for reading.
+bool readable(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) return false;  // opens, but reads nothing
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  text = std::move(buffer).str();
-  return !in.bad();
+  open_file probe(path);
+  return static_cast<bool>(probe);
 }
 
 }  // namespace
@@ -71,12 +67,12 @@ int run_check(const args& a) {
 
   std::vector<nc_source> sources;
   for (const std::string& path : vm["file"].as<std::vector<std::string>>()) {
-    nc_source s{path, {}};
-    if (!read_file(path, s.text)) {
+    // Streamed by the checker: an NC program may be far larger than memory should hold.
+    if (!readable(path)) {
       fmt::print(stderr, "twinpost: error: cannot read '{}'\n", path);
       return 2;
     }
-    sources.push_back(std::move(s));
+    sources.push_back({path, {}, path});
   }
 
   const sync_result r = check_nc_files(sources, m);

@@ -10,36 +10,39 @@ namespace {
 constexpr double y_tolerance = 1e-4;
 }
 
+void channel_writer::append_feed(std::string& out) {
+  std::size_t at = out.size();
+  out += " F";
+  append_number(out, feed_value_, {per_rev_ ? 4 : 1, m_.program.trailing_point});
+  std::string_view f(out.data() + at + 2, out.size() - at - 2);
+  if (f == last_f_) {
+    out.resize(at);
+    return;
+  }
+  last_f_.assign(f);
+}
+
 void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, int line) {
   if (!has_y_ && std::abs(y_cl * scale_) > y_tolerance)
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
-  std::string words;
+  line_.clear();
   if (!pending_g_.empty()) {
-    words += pending_g_;
-    pending_g_.clear();
+    line_ += ' ';
+    line_ += pending_g_;
   }
   if (g != motion_g_) {
-    words += words.empty() ? "" : " ";
-    words += fmt::format("G{}", g);
+    line_ += rapid ? " G0" : " G1";
   }
-  std::string axes = axis_word('X', nc_x(x_cl), last_x_);
-  if (has_y_) axes += axis_word('Y', y_cl * scale_, last_y_);
-  axes += axis_word('Z', z_cl * scale_, last_z_);
-  if (axes.empty() && words.empty()) return;  // already there
-  if (axes.empty() && g == motion_g_) return;
+  bool moved = axis_word(line_, 'X', nc_x(x_cl), last_x_);
+  if (has_y_) moved = axis_word(line_, 'Y', y_cl * scale_, last_y_) || moved;
+  moved = axis_word(line_, 'Z', z_cl * scale_, last_z_) || moved;
+  if (!moved) return;  // already there: nothing to write, the modal codes wait for a move
+  pending_g_.clear();
   motion_g_ = g;
-  if (!rapid && feed_value_ > 0) {
-    std::string f = format_nc_number(feed_value_, {per_rev_ ? 4 : 1, m_.program.trailing_point});
-    if (f != last_f_) {
-      axes += fmt::format(" F{}", f);
-      last_f_ = f;
-    }
-  } else if (!rapid) {
-    error(line, "feed move with no feed rate (FEDRAT) in force");
-  }
-  if (words.empty()) axes.erase(0, 1);
-  out_.block(words + axes);
+  if (!rapid && feed_value_ > 0) append_feed(line_);
+  else if (!rapid) error(line, "feed move with no feed rate (FEDRAT) in force");
+  out_.block(std::string_view(line_).substr(1));
 }
 
 void channel_writer::motion(const motion_event& mv, int line) {
@@ -114,8 +117,7 @@ void channel_writer::arc(const arc_event& a, int line) {
     words += fmt::format(" R{}", format_nc_number((over_half ? -1 : 1) * a.radius * scale_, axis_style_));
   }
   if (feed_value_ > 0) {
-    std::string f = format_nc_number(feed_value_, {per_rev_ ? 4 : 1, m_.program.trailing_point});
-    if (f != last_f_) words += fmt::format(" F{}", f), last_f_ = f;
+    append_feed(words);
   } else {
     error(line, "arc with no feed rate (FEDRAT) in force");
   }

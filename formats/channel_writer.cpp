@@ -26,11 +26,19 @@ void channel_writer::error(int line, std::string message) {
   diags_.report(std::move(d));
 }
 
-std::string channel_writer::axis_word(char address, double value, std::string& last) {
-  std::string v = format_nc_number(value, axis_style_);
-  if (v == last) return {};
-  last = v;
-  return fmt::format(" {}{}", address, v);
+bool channel_writer::axis_word(std::string& out, char address, double value, std::string& last) {
+  // Formats straight into the block: no temporary strings on the hot path.
+  std::size_t at = out.size();
+  out += ' ';
+  out += address;
+  append_number(out, value, axis_style_);
+  std::string_view v(out.data() + at + 2, out.size() - at - 2);
+  if (v == last) {
+    out.resize(at);  // modal: the axis is already there
+    return false;
+  }
+  last.assign(v);
+  return true;
 }
 
 void channel_writer::on_wait(const wait_mark& w) {

@@ -38,7 +38,9 @@ class channel_writer {
   void cycle_point(const vec3& p, int line);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
   void error(int line, std::string message);
-  std::string axis_word(char address, double value, std::string& last);
+  /// Appends " X12.5" to `out` unless `last` already holds that value (modal suppression).
+  bool axis_word(std::string& out, char address, double value, std::string& last);
+  void append_feed(std::string& out);
   double nc_x(double x_cl) const { return x_cl * scale_ * x_factor_ * side_; }
 
   const machine& m_;
@@ -56,6 +58,7 @@ class channel_writer {
   std::string last_x_, last_y_, last_z_;
   std::string feed_g_;        // G99/G98 (G95/G94) in force
   std::string last_f_;
+  std::string line_;          // the block being built, reused
   bool per_rev_ = false;      // feed mode of the last FEDRAT
   double feed_value_ = 0;
   std::string pending_g_;     // G40/G41/G42 waiting for the next move

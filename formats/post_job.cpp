@@ -144,7 +144,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
 
   // The same check as `twinpost check`, on the files exactly as they will be written.
   std::vector<nc_source> sources;
-  for (const framed_file& f : files) sources.push_back({(out / f.name).string(), read_whole_file(f.tmp_path)});
+  for (const framed_file& f : files) sources.push_back({(out / f.name).string(), {}, f.tmp_path});
   sync_result check = check_nc_files(sources, m);
   for (const diagnostic& d : check.diagnostics) sink.report(d);
   if (!check.ok) return sum;

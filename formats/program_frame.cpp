@@ -90,13 +90,4 @@ std::vector<framed_file> frame_programs(const frame_request& r) {
   return out;
 }
 
-std::string read_whole_file(const std::string& path) {
-  file_ptr f = open_or_throw(path, "rb");
-  std::string s;
-  std::vector<char> buf(1 << 20);
-  std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), f.get())) > 0) s.append(buf.data(), n);
-  return s;
-}
-
 }  // namespace twinpost

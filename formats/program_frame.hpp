@@ -24,7 +24,4 @@ struct framed_file {
 /// Writes the framed files into the temporary folder; throws config_error on I/O errors.
 std::vector<framed_file> frame_programs(const frame_request& r);
 
-/// The whole content of a file; throws config_error when it cannot be read.
-std::string read_whole_file(const std::string& path);
-
 }  // namespace twinpost

@@ -83,7 +83,7 @@ TEST_CASE("built-in integrex-i200st", "[machines]") {
   CHECK(m.waits.first == 950);
   CHECK(m.waits.last == 997);
   CHECK(m.waits.step == 1);
-  CHECK_FALSE(m.waits.reuse);
+  CHECK(m.waits.reuse);
   CHECK(m.limits.rapid == 40000);
 
   REQUIRE(m.channels.size() == 2);
