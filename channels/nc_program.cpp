@@ -1,6 +1,8 @@
 #include "channels/nc_program.hpp"
 
+#include <array>
 #include <cstdio>
+#include <cstring>
 #include <memory>
 
 #include <fmt/format.h>
@@ -186,12 +188,22 @@ class reader {
     std::size_t pos = 0;
     while (pos < text.size()) {
       // Lines end in LF, CR LF or a lone CR (old controls' tapes).
-      const std::size_t eol = std::min(text.find_first_of("\r\n", pos), text.size());
+      const std::size_t eol = std::min(line_end(text, pos), text.size());
       const std::string_view line = text.substr(pos, eol - pos);
       pos = eol + 1;
       if (eol < text.size() && text[eol] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
       on_line(++no, line);
     }
+  }
+
+  // The first CR or LF at or after `pos` (memchr twice beats find_first_of on long text).
+  static std::size_t line_end(std::string_view text, std::size_t pos) {
+    const char* base = text.data();
+    const void* lf = std::memchr(base + pos, '\n', text.size() - pos);
+    std::size_t end = lf ? static_cast<std::size_t>(static_cast<const char*>(lf) - base) : text.size();
+    const void* cr = std::memchr(base + pos, '\r', end - pos);
+    if (cr) return static_cast<std::size_t>(static_cast<const char*>(cr) - base);
+    return lf ? end : std::string_view::npos;
   }
 
   // The same lines as above, read from a file a megabyte at a time.
@@ -212,7 +224,7 @@ class reader {
       if (skip_lf && !chunk.empty() && chunk[0] == '\n') pos = 1;  // CR LF split by the chunk
       skip_lf = false;
       while (pos < chunk.size()) {
-        std::size_t eol = chunk.find_first_of("\r\n", pos);
+        std::size_t eol = line_end(chunk, pos);
         if (eol == std::string_view::npos) {
           carry.append(chunk.substr(pos));
           break;
@@ -357,21 +369,27 @@ class reader {
   // True for a non-blank line that can hold neither a wait nor an end code nor anything
   // split_nc_words treats specially (comments, block delete, variables, '%').
   bool plain_block(std::string_view line) const {
-    const char wa = upper(m_.waits.address);
-    const char wl = static_cast<char>(wa - 'A' + 'a');
     bool any = false;
     for (char c : line) {
-      if (c == 'M' || c == 'm' || c == wa || c == wl || c == '(' || c == ';' || c == '/' ||
-          c == '#' || c == '[' || c == '%' || c == '$')
-        return false;
+      if (special_[static_cast<unsigned char>(c)]) return false;
       any = any || !is_blank(c);
     }
     return any;
   }
 
+  // The characters that make a block worth a full look (see plain_block).
+  static std::array<bool, 256> special_chars(char wait_address) {
+    std::array<bool, 256> t{};
+    const char wa = upper(wait_address);
+    for (char c : {'M', 'm', wa, static_cast<char>(wa - 'A' + 'a'), '(', ';', '/', '#', '[', '%', '$'})
+      t[static_cast<unsigned char>(c)] = true;
+    return t;
+  }
+
   const machine& m_;
   diagnostic_sink& sink_;
   nc_programs& out_;
+  std::array<bool, 256> special_ = special_chars(m_.waits.address);
   std::vector<channel_state> state_;
   std::vector<int> end_codes_;
 };

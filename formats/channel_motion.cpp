@@ -11,15 +11,17 @@ constexpr double y_tolerance = 1e-4;
 }
 
 void channel_writer::append_feed(std::string& out) {
-  std::size_t at = out.size();
-  out += " F";
-  append_number(out, feed_value_, {per_rev_ ? 4 : 1, m_.program.trailing_point});
-  std::string_view f(out.data() + at + 2, out.size() - at - 2);
-  if (f == last_f_) {
-    out.resize(at);
-    return;
+  // The F word is modal: formatted once per feed value, written when it changes.
+  if (feed_value_ != feed_text_value_ || per_rev_ != feed_text_per_rev_) {
+    feed_text_.clear();
+    append_number(feed_text_, feed_value_, {per_rev_ ? 4 : 1, m_.program.trailing_point});
+    feed_text_value_ = feed_value_;
+    feed_text_per_rev_ = per_rev_;
   }
-  last_f_.assign(f);
+  if (feed_text_ == last_f_) return;
+  out += " F";
+  out += feed_text_;
+  last_f_ = feed_text_;
 }
 
 void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, int line) {

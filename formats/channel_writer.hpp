@@ -59,6 +59,9 @@ class channel_writer {
   std::string feed_g_;        // G99/G98 (G95/G94) in force
   std::string last_f_;
   std::string line_;          // the block being built, reused
+  std::string feed_text_;     // feed_value_ formatted, for the mode in feed_text_per_rev_
+  double feed_text_value_ = -1;
+  bool feed_text_per_rev_ = false;
   bool per_rev_ = false;      // feed mode of the last FEDRAT
   double feed_value_ = 0;
   std::string pending_g_;     // G40/G41/G42 waiting for the next move

@@ -42,28 +42,31 @@ void append_number(std::string& out, double v, const number_style& style) {
   double frac = a - fl;
   if (std::fabs(frac - 0.5) < 1e-7) return append_exact(out, v, style);
   unsigned long long n = static_cast<unsigned long long>(fl) + (frac > 0.5 ? 1 : 0);
-  char digits[24];
+  // Digits from the right into a small buffer, then one append.
+  char buf[40];
+  char* end = buf + sizeof buf;
+  char* p = end;
   int k = 0;
+  bool in_fraction_zeros = true;  // trailing zeros of the fraction are dropped
+  for (; k < d; ++k) {
+    char c = static_cast<char>('0' + n % 10);
+    n /= 10;
+    if (in_fraction_zeros && c == '0') continue;
+    in_fraction_zeros = false;
+    *--p = c;
+  }
+  if (p != end) *--p = '.';
+  else if (d > 0 && style.trailing_point) *--p = '.';
   do {
-    digits[k++] = static_cast<char>('0' + n % 10);
+    *--p = static_cast<char>('0' + n % 10);
     n /= 10;
   } while (n > 0);
-  while (k <= d) digits[k++] = '0';  // at least one digit before the point
-  int first_kept = 0;                // trailing zeros of the fraction are dropped
-  while (first_kept < d && digits[first_kept] == '0') ++first_kept;
+  // Whatever rounds to zero prints as zero, never "-0." or "-0".
   bool zero = true;
-  for (int i = 0; i < k; ++i)
-    if (digits[i] != '0') zero = false;
-  if (scaled < 0 && !zero) out += '-';
-  for (int i = k - 1; i >= d; --i) out += digits[i];
-  if (first_kept < d) {
-    out += '.';
-    for (int i = d - 1; i >= first_kept; --i) out += digits[i];
-  } else if (d > 0 && style.trailing_point) {
-    out += '.';
-  } else if (d == 0 && style.trailing_point) {
-    // to_chars with no decimals prints no point; keep that rule for the zero-decimal style.
-  }
+  for (char* q = p; q < end; ++q)
+    if (*q >= '1' && *q <= '9') zero = false;
+  if (scaled < 0 && !zero) *--p = '-';
+  out.append(p, static_cast<std::size_t>(end - p));
 }
 
 std::string format_nc_number(double v, const number_style& style) {
