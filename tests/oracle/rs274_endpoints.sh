@@ -1,0 +1,314 @@
+#!/usr/bin/env bash
+# Oracle: reads a posted program back with LinuxCNC's standalone interpreter and compares
+# every move with the CL job it came from.
+#
+#   rs274_endpoints.sh TWINPOST JOB MACHINE [WORKDIR|-] [post options...]
+#
+# 1. posts JOB for MACHINE (a built-in name, or a machine TOML file) into WORKDIR/out;
+# 2. splits the program per channel (split files by suffix, or merged sections by marker);
+# 3. strips what rs274 does not read or what is not motion: waits and other M words, G109,
+#    G92 S R / G50 S, T words and M6, G96/G97 S, G94/G95/G98/G99, G4, G28 U0 W0 lines,
+#    G40-G42, G54-G59, G49/G67/G69/G80, % and O lines, comments; prefixes G18 G21 G90 G7
+#    (G7: X in diameter; G8 for a radius channel) and runs `rs274 -g`;
+# 4. takes STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED from the canonical output (X as a
+#    radius, Z, and for arcs the centre and the sense) and compares them, within 0.001 mm,
+#    with the CL moves of the heads that channel serves, from `twinpost parse --json JOB`:
+#    GOTO and arc events between HEAD records (HEAD/BOTH copies go to both channels on the
+#    head-1 side), X mirrored where the machine mirrors the channel, drilling cycles expanded
+#    as the CL defines them (rapid to RAPTO above the hole, feed to FEDTO or DEPTH, pecks of
+#    STEP with a rapid out to the R plane and back to 0.5 mm above the last depth, rapid
+#    out). Points that repeat the previous one are dropped on both sides (no block is
+#    written for them); GOHOME and tool changes write G28, which is stripped, so they are
+#    not moves here either.
+#
+# Exit: 0 all moves agree, 1 a difference (listed), 2 usage or post failure,
+#       77 skipped (rs274 or python3 >= 3.11 missing).
+set -u
+
+if ! command -v rs274 >/dev/null 2>&1; then
+  echo "oracle: rs274 is not installed (apt-get install linuxcnc-uspace); skipped"
+  exit 77
+fi
+if ! command -v python3 >/dev/null 2>&1 || ! python3 -c 'import tomllib' >/dev/null 2>&1; then
+  echo "oracle: python3 with tomllib (3.11+) is not available; skipped"
+  exit 77
+fi
+if [ $# -lt 3 ]; then
+  echo "usage: rs274_endpoints.sh TWINPOST JOB MACHINE [WORKDIR|-] [post options...]" >&2
+  exit 2
+fi
+
+here="$(cd "$(dirname "$0")" && pwd)"
+exec python3 - "$here" "$@" <<'PYTHON'
+import json, math, os, re, shutil, subprocess, sys, tempfile, tomllib
+
+here, twinpost, job, machine = sys.argv[1:5]
+rest = sys.argv[5:]
+work = rest.pop(0) if rest else "-"
+post_args = rest
+TOL = 0.001 + 1e-9
+
+def die(code, text):
+    print(f"oracle: {text}")
+    sys.exit(code)
+
+if work == "-" or work == "":
+    work = tempfile.mkdtemp(prefix="twinpost-oracle-")
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(work)
+
+# --- the machine -----------------------------------------------------------------------
+toml_path = machine if machine.endswith(".toml") else os.path.join(here, "..", "..", "machines", "builtin", machine + ".toml")
+if not os.path.exists(toml_path):
+    die(2, f"no machine file {toml_path}")
+with open(toml_path, "rb") as f:
+    mdef = tomllib.load(f)
+channels = []
+for ch in mdef.get("channel", []):
+    axes = {a["address"]: a for a in ch.get("axis", [])}
+    x = axes.get("X")
+    channels.append({
+        "number": ch["number"],
+        "heads": ch.get("heads", []),
+        "head_names": [n.upper() for n in ch.get("head_names", [])],
+        "suffix": ch.get("file_suffix", ""),
+        "diameter": (x.get("diameter", False) if x else True),
+        "mirror": bool(x and x.get("mirror", False)),
+        "x_min": x.get("min") if x else None,
+        "x_max": x.get("max") if x else None,
+    })
+by_number = {c["number"]: c for c in channels}
+layout = mdef.get("machine", {}).get("layout", "split")
+program = mdef.get("program", {})
+
+# --- post and parse --------------------------------------------------------------------
+out_dir = os.path.join(work, "out")
+r = subprocess.run([twinpost, "post", job, "--machine", machine, "-o", out_dir] + post_args,
+                   capture_output=True, text=True)
+if r.returncode != 0:
+    die(2, f"post failed ({r.returncode}):\n{r.stdout}{r.stderr}")
+r = subprocess.run([twinpost, "parse", job, "--json"], capture_output=True, text=True)
+if r.returncode != 0:
+    die(2, f"parse failed ({r.returncode}):\n{r.stderr}")
+events = [json.loads(l) for l in r.stdout.splitlines() if l.strip()]
+
+# --- split the program per channel ------------------------------------------------------
+files = sorted(os.listdir(out_dir))
+texts = {}
+if layout == "split":
+    ext = program.get("extension", "")
+    for c in channels:
+        want = [f for f in files if f.endswith(c["suffix"] + ext)]
+        if len(want) != 1:
+            die(1, f"channel {c['number']}: expected one file ending '{c['suffix']}{ext}', found {want}")
+        with open(os.path.join(out_dir, want[0]), encoding="latin-1") as f:
+            texts[c["number"]] = (want[0], f.read().splitlines())
+else:
+    if len(files) != 1:
+        die(1, f"merged layout: expected one file, found {files}")
+    marker = program.get("section_marker", "")
+    if "{channel}" not in marker:
+        die(2, f"merged layout without a {{channel}} section marker: '{marker}'")
+    before, after = marker.replace(" ", "").split("{channel}", 1)
+    rx = re.compile("^" + re.escape(before.upper()) + r"(\d+)" + re.escape(after.upper()) + "$")
+    current = None
+    with open(os.path.join(out_dir, files[0]), encoding="latin-1") as f:
+        for line in f.read().splitlines():
+            m = rx.match(line.replace(" ", "").upper())
+            if m:
+                current = int(m.group(1))
+                texts.setdefault(current, (files[0], []))
+                continue
+            if current is not None:
+                texts[current][1].append(line)
+
+# --- NC to rs274 -----------------------------------------------------------------------
+DROP_BLOCK_G = {4, 10, 28, 50, 53, 92, 109}
+KEEP_G = {0, 1, 2, 3, 18, 21, 90}
+KEEP_WORDS = set("XYZIKRF")
+word_rx = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
+
+def clean(lines):
+    out = []
+    for raw in lines:
+        line = re.sub(r"\([^)]*\)", "", raw.upper()).split(";")[0].strip()
+        if not line or line.startswith("%") or re.match(r"^O\d", line):
+            continue
+        words = word_rx.findall(line)
+        codes = [(a, float(v)) for a, v in words]
+        if any(a == "M" and int(v) in (2, 30, 99) for a, v in codes):
+            break  # the channel's program ends here
+        if any(a == "G" and int(round(v)) in DROP_BLOCK_G for a, v in codes):
+            continue
+        # A motion G-code in a block without axis words (the header's `G0 G90 G54 ...`)
+        # would make rs274 move to where it is; twinpost writes G0/G1 on every first move.
+        has_axis = any(a in "XYZ" for a, _ in codes)
+        kept = []
+        for (a, v), (_, text) in zip(codes, words):
+            if a == "G":
+                if not has_axis and v in (0, 1, 2, 3):
+                    continue
+                if v == int(v) and int(v) in KEEP_G:
+                    kept.append(f"G{int(v)}")
+            elif a in KEEP_WORDS:
+                kept.append(a + text)
+        if kept:
+            out.append(" ".join(kept))
+    return out
+
+ARGS = re.compile(r"\(([^)]*)\)")
+
+def nc_moves(number, lines, diameter):
+    ngc = os.path.join(work, f"channel{number}.ngc")
+    canon = os.path.join(work, f"channel{number}.canon")
+    with open(ngc, "w") as f:
+        f.write("G18 G21 G90 " + ("G7" if diameter else "G8") + "\n")
+        f.write("\n".join(clean(lines)) + "\nM2\n")
+    r = subprocess.run(["rs274", "-g", ngc, canon], capture_output=True, text=True)
+    text = open(canon).read() if os.path.exists(canon) else ""
+    moves, errors = [], []
+    for l in text.splitlines():
+        for kind in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED"):
+            if kind + "(" in l:
+                v = [float(s) for s in ARGS.search(l).group(1).split(",")]
+                if kind == "ARC_FEED":  # XZ plane: first axis Z, second axis X
+                    moves.append({"kind": "arc", "x": v[1], "z": v[0], "cx": v[3], "cz": v[2], "ccw": v[4] > 0})
+                else:
+                    moves.append({"kind": "rapid" if kind == "STRAIGHT_TRAVERSE" else "feed", "x": v[0], "z": v[2]})
+    out = (r.stdout + r.stderr).strip().splitlines()
+    bad = [l for l in out if l.strip() and l.strip() != "executing"]
+    if bad:
+        errors = bad
+    return moves, errors
+
+# --- CL moves per channel --------------------------------------------------------------
+def channel_for_head(h):
+    for c in channels:
+        if isinstance(h, int) and h in c["heads"]:
+            return c["number"]
+        if isinstance(h, str) and h.upper() in c["head_names"]:
+            return c["number"]
+    return None
+
+cl = {c["number"]: [] for c in channels}
+first = channel_for_head(1) or 1
+active = [(first, -1.0 if by_number[first]["mirror"] else 1.0)]
+scale = 1.0
+cycle = None
+
+def emit(move):
+    for ch, sign in active:
+        m = dict(move)
+        m["x"] = sign * move["x"]
+        if "cx" in m:
+            m["cx"] = sign * move["cx"]
+            m["ccw"] = move["ccw"] if sign > 0 else not move["ccw"]
+        cl[ch].append(m)
+
+def expand_cycle(c, x, z, line):
+    p = dict(c)
+    clear = z + p.get("RAPTO", p.get("CLEAR", 0.0)) * scale
+    if "FEDTO" in p:
+        bottom = p["FEDTO"] * scale
+    elif "DEPTH" in p:
+        bottom = z - p["DEPTH"] * scale
+    else:
+        die(1, f"CL line {line}: cycle without FEDTO or DEPTH")
+    emit({"kind": "rapid", "x": x, "z": clear, "line": line})
+    step = p.get("STEP", 0.0) * scale
+    depth = clear
+    if step > 0 and c["type"] == "DEEP":
+        while depth - step > bottom:
+            depth -= step
+            emit({"kind": "feed", "x": x, "z": depth, "line": line})
+            emit({"kind": "rapid", "x": x, "z": clear, "line": line})
+            emit({"kind": "rapid", "x": x, "z": depth + 0.5, "line": line})
+    emit({"kind": "feed", "x": x, "z": bottom, "line": line})
+    emit({"kind": "rapid", "x": x, "z": clear, "line": line})
+
+for e in events:
+    kind, line = e.get("event"), e.get("line")
+    if kind == "units":
+        scale = 25.4 if e.get("units") == "inch" else 1.0
+    elif kind == "head":
+        h = e.get("head")
+        if h == "BOTH":
+            a, b = channel_for_head(1), channel_for_head(2)
+            active = [(a, 1.0), (b, 1.0)]
+        else:
+            n = channel_for_head(h)
+            if n is None:
+                die(2, f"CL line {line}: no channel for head {h}")
+            active = [(n, -1.0 if by_number[n]["mirror"] else 1.0)]
+    elif kind == "channel":
+        n = int(e["channel"])
+        active = [(n, -1.0 if by_number[n]["mirror"] else 1.0)]
+    elif kind == "cycle":
+        cycle = None if e.get("type") in ("OFF", "ON", "INIT") else e
+    elif kind in ("goto", "godlta"):
+        x, z = e["x"] * scale, e["z"] * scale
+        if cycle:
+            expand_cycle(cycle, x, z, line)
+        else:
+            emit({"kind": "rapid" if e.get("rapid") else "feed", "x": x, "z": z, "line": line})
+    elif kind == "arc":
+        ccw_about_y = (e["dir"] == "ccw") == (e["j"] > 0)
+        emit({"kind": "arc", "x": e["x"] * scale, "z": e["z"] * scale, "cx": e["cx"] * scale,
+              "cz": e["cz"] * scale, "ccw": ccw_about_y, "line": line})
+
+def dedupe(moves):
+    out, last = [], None
+    for m in moves:
+        here_ = (round(m["x"], 3), round(m["z"], 3))
+        if m["kind"] != "arc" and last is not None and abs(here_[0] - last[0]) <= TOL and abs(here_[1] - last[1]) <= TOL:
+            continue
+        out.append(m)
+        last = here_
+    return out
+
+def show(m):
+    s = f"{m['kind']} X(radius) {m['x']:.3f} Z {m['z']:.3f}"
+    if m["kind"] == "arc":
+        s += f" centre {m['cx']:.3f},{m['cz']:.3f} {'ccw' if m['ccw'] else 'cw'} about +Y"
+    return s
+
+# --- compare ---------------------------------------------------------------------------
+name = os.path.basename(os.path.dirname(os.path.abspath(job))) or job
+failed = False
+for c in channels:
+    n = c["number"]
+    fname, lines = texts.get(n, ("<none>", []))
+    nc, errors = nc_moves(n, lines, c["diameter"])
+    nc, want = dedupe(nc), dedupe(cl[n])
+    problems = [f"rs274: {l}" for l in errors]
+    for i in range(max(len(nc), len(want))):
+        if i >= len(nc):
+            problems.append(f"move {i + 1}: CL line {want[i].get('line')} {show(want[i])}: no NC move")
+            continue
+        if i >= len(want):
+            problems.append(f"move {i + 1}: NC {show(nc[i])}: no CL move")
+            continue
+        a, b = nc[i], want[i]
+        same = a["kind"] == b["kind"] and abs(a["x"] - b["x"]) <= TOL and abs(a["z"] - b["z"]) <= TOL
+        if same and a["kind"] == "arc":
+            same = abs(a["cx"] - b["cx"]) <= TOL and abs(a["cz"] - b["cz"]) <= TOL and a["ccw"] == b["ccw"]
+        if not same:
+            problems.append(f"move {i + 1}: CL line {b.get('line')} {show(b)}; NC {show(a)}")
+    # X is measured from the spindle centre, so the channel's X travel applies as written
+    # (Z is not checked: the program's Z is relative to a work offset).
+    factor = 2.0 if c["diameter"] else 1.0
+    for i, m in enumerate(nc):
+        x = m["x"] * factor
+        if (c["x_min"] is not None and x < c["x_min"] - TOL) or (c["x_max"] is not None and x > c["x_max"] + TOL):
+            problems.append(f"move {i + 1}: NC X{x:.3f} is outside the channel's X travel {c['x_min']}..{c['x_max']}")
+    problems = problems[:12]
+    if problems:
+        failed = True
+        print(f"oracle: {name} on {machine}: channel {n} ({fname}): {len(problems)} problem(s)", flush=True)
+        for p in problems:
+            print(f"  {p}")
+    else:
+        print(f"oracle: {name} on {machine}: channel {n} ({fname}): {len(nc)} moves agree with the CL")
+print(f"oracle: work files in {work}")
+sys.exit(1 if failed else 0)
+PYTHON
