@@ -60,8 +60,13 @@ void channel_router::route(const event& e) {
   if (std::holds_alternative<units_event>(e.data) || std::holds_alternative<machin_event>(e.data))
     job_level = true;
   if (job_level) return sink_.on_event(0, e, false);
+  // Records that write no block (ends, comments, tool geometry, ...) do not make a channel
+  // busy: a mark after them still collapses with the one before.
+  bool writes = !(std::holds_alternative<end_event>(e.data) || std::holds_alternative<comment_event>(e.data) ||
+                  std::holds_alternative<passthrough_event>(e.data) || std::holds_alternative<tool_data_event>(e.data) ||
+                  std::holds_alternative<coordsys_event>(e.data) || std::holds_alternative<multax_event>(e.data));
   for (int ch : active_) {
-    busy_[static_cast<std::size_t>(ch)] = true;
+    if (writes) busy_[static_cast<std::size_t>(ch)] = true;
     sink_.on_event(ch, e, both_);
   }
 }
@@ -79,11 +84,13 @@ void channel_router::select(std::vector<int> channels, int line, bool both) {
   both_ = both;
 }
 
-void channel_router::rendezvous(const std::vector<int>& channels, int line, const std::string& what) {
+void channel_router::rendezvous(const std::vector<int>& channels, int line, const std::string& what,
+                                bool force) {
   // Consecutive marks with nothing between them collapse into one.
+  // So does a mark before any channel has done anything: the programs start together.
   bool any_busy = std::any_of(channels.begin(), channels.end(),
                               [&](int c) { return busy_[static_cast<std::size_t>(c)]; });
-  if (!any_busy && rendezvous_ > 0) return;
+  if (!any_busy && !force) return;
   auto code = next_code(line, what);
   if (!code) return;
   wait_mark w;
@@ -95,6 +102,7 @@ void channel_router::rendezvous(const std::vector<int>& channels, int line, cons
     sink_.on_wait(c, w);
     busy_[static_cast<std::size_t>(c)] = false;
   }
+  last_partners_ = channels;
   ++rendezvous_;
 }
 
@@ -147,6 +155,7 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   }
   last_sync_line_ = line;
   last_sync_index_ = s.index;
+  last_partners_ = partners;
 }
 
 std::optional<int> channel_router::next_code(int line, const std::string& what) {
@@ -162,6 +171,12 @@ std::optional<int> channel_router::next_code(int line, const std::string& what) 
 
 void channel_router::finish(int last_line) {
   if (both_) select({active_.front()}, last_line, false);
+  // A last rendezvous of every channel before the programs' footers: a channel that ends
+  // first must not stop the spindle or the coolant another channel is still cutting with.
+  std::vector<int> all;
+  for (const channel_def& c : m_.channels) all.push_back(c.number);
+  // Channels that took no part in the last mark (an idle third path) must wait too.
+  if (all.size() > 1) rendezvous(all, last_line, "the end of the programs", last_partners_ != all);
 }
 
 }  // namespace twinpost

@@ -59,7 +59,10 @@ class channel_router {
 
  private:
   void select(std::vector<int> channels, int line, bool both);
-  void rendezvous(const std::vector<int>& channels, int line, const std::string& what);
+  /// A wait in every channel of `channels`, unless none has worked since its last wait
+  /// (consecutive marks collapse) and `force` is off.
+  void rendezvous(const std::vector<int>& channels, int line, const std::string& what,
+                  bool force = false);
   void explicit_sync(const sync_event& s, int line);
   void error(int line, std::string message);
   std::optional<int> next_code(int line, const std::string& what);
@@ -74,6 +77,7 @@ class channel_router {
   std::vector<int> active_;          // channels receiving events now
   bool both_ = false;                // inside HEAD/BOTH
   std::vector<bool> busy_;           // per channel: events since its last wait
+  std::vector<int> last_partners_;   // the channels of the last mark
   std::map<std::pair<int, int>, int> sync_codes_;  // (sync number, occurrence) -> code
   std::map<std::pair<int, int>, int> seen_;        // (channel, sync number) -> occurrences
   int last_sync_line_ = -1, last_sync_index_ = -1, last_sync_channel_ = -1;

@@ -263,9 +263,11 @@ class checker {
                                            : "different partner lists";
     report(severity::error, a.src->where, a.src->where.column,
            fmt::format("deadlock: channel {} waits on {} at {} while channel {} waits on {} "
-                       "at {} ({}, Fanuc PS0160)",
+                       "at {} ({}{})",
                        a.src->channel, wait_text(*a.src), place(a.src->where), b.src->channel,
-                       wait_text(*b.src), place(b.src->where), why));
+                       wait_text(*b.src), place(b.src->where), why,
+                       // Name the alarm only where it is the control's own.
+                       m_.control.find("fanuc") != std::string::npos ? ", Fanuc PS0160" : ""));
   }
 
   const nc_programs& progs_;

@@ -130,33 +130,35 @@ void channel_writer::arc(const arc_event& a, int line) {
 }
 
 void channel_writer::cycle_point(const vec3& p, int line) {
-  // Drilling on the spindle axis, written as plain moves every control reads:
-  // rapid to the clearance plane, feed to depth (in pecks with STEP), rapid back out.
+  // Drilling along the spindle axis, written as plain moves every control reads: rapid to
+  // the clearance plane, feed to depth (in pecks with STEP), rapid back out. The tool axis
+  // says which way is into the part: -Z for a tool looking down +Z, +Z for one facing back.
   const cycle_event& c = *cycle_;
   auto param = [&](std::string_view name) -> std::optional<double> {
     for (const auto& [k, v] : c.params)
       if (k == name) return v;
     return std::nullopt;
   };
-  double clear = p.z + param("RAPTO").value_or(param("CLEAR").value_or(0));
+  double into = axis_.z < 0 ? 1.0 : -1.0;  // the direction of drilling along Z
+  double clear = p.z - into * param("RAPTO").value_or(param("CLEAR").value_or(0));
   std::optional<double> bottom = param("FEDTO");
-  if (!bottom && param("DEPTH")) bottom = p.z - *param("DEPTH");
+  if (!bottom && param("DEPTH")) bottom = p.z + into * *param("DEPTH");
   if (!bottom) return error(line, fmt::format("CYCLE/{} needs FEDTO or DEPTH", c.type));
   for (const char* unit : {"MMPR", "IPR", "MMPM", "IPM"}) {
     if (auto f = param(unit)) {
       feed_value_ = *f * ((unit[0] == 'I') ? 25.4 : 1.0);
-      per_rev_ = unit[3] == 'R';
+      feed_mode(std::string_view(unit).back() == 'R');
     }
   }
   double step = param("STEP").value_or(0);
   linear(true, p.x, p.y, clear, line);
   double z = clear;
   if (step > 0 && c.type == "DEEP") {
-    while (z - step > *bottom) {
-      z -= step;
+    while ((*bottom - (z + into * step)) * into > 0) {
+      z += into * step;
       linear(false, p.x, p.y, z, line);
       linear(true, p.x, p.y, clear, line);
-      linear(true, p.x, p.y, z + 0.5 / scale_, line);  // back down near the last depth
+      linear(true, p.x, p.y, z - into * 0.5 / scale_, line);  // back down near the last depth
     }
   }
   linear(false, p.x, p.y, *bottom, line);

@@ -44,8 +44,12 @@ void channel_writer::spindle(const spindle_event& s, int line) {
 
 void channel_writer::feed(const feed_event& f, int line) {
   if (f.mode == feed_mode::inverse_time) return error(line, "inverse-time feed is not supported on a lathe channel");
-  per_rev_ = f.mode == feed_mode::per_rev;
   feed_value_ = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
+  feed_mode(f.mode == feed_mode::per_rev);
+}
+
+void channel_writer::feed_mode(bool per_rev) {
+  per_rev_ = per_rev;
   const std::string& g = per_rev_ ? m_.codes.feed_per_rev : m_.codes.feed_per_min;
   if (g != feed_g_) {
     out_.block(g);

@@ -55,7 +55,10 @@ void channel_writer::on_event(const event& e, bool both) {
   std::visit(
       [&](const auto& d) {
         using T = std::decay_t<decltype(d)>;
-        if constexpr (std::is_same_v<T, motion_event>) motion(d, e.line);
+        if constexpr (std::is_same_v<T, motion_event>) {
+          if (d.axis) axis_ = *d.axis;
+          motion(d, e.line);
+        }
         else if constexpr (std::is_same_v<T, arc_event>) arc(d, e.line);
         else if constexpr (std::is_same_v<T, spindle_event>) spindle(d, e.line);
         else if constexpr (std::is_same_v<T, feed_event>) feed(d, e.line);
@@ -64,7 +67,10 @@ void channel_writer::on_event(const event& e, bool both) {
           if (d.mode == "OFF") out_.block(m_.codes.coolant_off);
           else if (!m_.codes.coolant_on.empty()) out_.block(m_.codes.coolant_on.front());
         } else if constexpr (std::is_same_v<T, cutcom_event>) {
-          pending_g_ = d.side == "LEFT" ? "G41" : d.side == "RIGHT" ? "G42" : d.side == "OFF" ? "G40" : "";
+          // Mirroring X turns the tool's left into its right, as it turns G2 into G3.
+          bool left = d.side == "LEFT", right = d.side == "RIGHT";
+          if (mirrored()) std::swap(left, right);
+          pending_g_ = left ? "G41" : right ? "G42" : d.side == "OFF" ? "G40" : "";
         } else if constexpr (std::is_same_v<T, cycle_event>) {
           if (d.type == "OFF") cycle_.reset();
           else if (d.type != "ON" && d.type != "INIT") cycle_ = d;
@@ -81,6 +87,8 @@ void channel_writer::on_event(const event& e, bool both) {
           else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint || d.kind == text_kind::op_start ||
                    d.kind == text_kind::toolpath)
             out_.comment(d.text);
+        } else if constexpr (std::is_same_v<T, tool_axis_event>) {
+          axis_ = d.axis;
         } else if constexpr (std::is_same_v<T, units_event>) {
           set_units(d.units);
         }

@@ -42,6 +42,10 @@ class channel_writer {
   bool axis_word(std::string& out, char address, double value, std::string& last);
   void append_feed(std::string& out);
   double nc_x(double x_cl) const { return x_cl * scale_ * x_factor_ * side_; }
+  /// True when this channel's X runs against the CL (a mirrored turret, not a BOTH copy).
+  bool mirrored() const { return x_factor_ * side_ < 0; }
+  /// Writes the feed-mode code (G99/G98 or G95/G94) when it changes.
+  void feed_mode(bool per_rev);
 
   const machine& m_;
   const channel_def& ch_;
@@ -67,6 +71,7 @@ class channel_writer {
   std::string pending_g_;     // G40/G41/G42 waiting for the next move
   std::optional<cycle_event> cycle_;
   vec3 pos_;                  // last CL point of this channel
+  vec3 axis_{0, 0, 1};        // tool axis, from GOTO i,j,k or TLAXIS
   int tool_ = -1;
   int waits_ = 0;
 };

@@ -17,12 +17,8 @@ set(TWINPOST_SAMPLE_WORK ${CMAKE_BINARY_DIR}/sample-runs)
 # Posts whose current output is known to be wrong. Their tests are registered but disabled
 # (ctest lists them as "Not Run (Disabled)") and they have no golden files, so that a wrong
 # program is never frozen as the expected one. Remove an entry once the bug is fixed, then
-# make and review its golden files (docs/samples.md).
-#   fanuc-31i-3path: the lower turret (channel 2) is not mirrored, so its tools at CL x < 0
-#     come out as negative diameters (X-60. where the turret's travel is X-10..400).
-set(TWINPOST_SAMPLE_KNOWN_BAD
-  shaft-od-drill.fanuc-31i-3path
-  transfer-to-sub.fanuc-31i-3path)
+# make and review its golden files (docs/samples.md). None at present.
+set(TWINPOST_SAMPLE_KNOWN_BAD)
 
 file(GLOB _tp_machine_files CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/machines/builtin/*.toml)
 set(_tp_machines "")

@@ -189,3 +189,8 @@ TEST_CASE("validation: templates are formatted once at load", "[machines]") {
         "m.toml:7:18: error: program.section_marker: bad template \"${chanel}\": argument "
         "not found");
 }
+
+TEST_CASE("a spindle code inside the wait range is refused", "[machines]") {
+  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\ncw = 103\n" + two_channels) ==
+        "m.toml:8:6: error: spindle.cw M103 is a wait code of this machine (waits M100-M103)");
+}

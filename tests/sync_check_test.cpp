@@ -12,9 +12,10 @@ using namespace twinpost;
 namespace {
 
 machine make_machine(int channels, int first, int last, partner_style partners,
-                     std::string marker = "") {
+                     std::string marker = "", std::string control = "fanuc-test") {
   machine m;
   m.name = "test";
+  m.control = std::move(control);
   for (int c = 1; c <= channels; ++c) {
     m.channels.emplace_back();
     m.channels.back().number = c;
@@ -27,7 +28,9 @@ machine make_machine(int channels, int first, int last, partner_style partners,
 }
 
 /// Mazak-like twin head: M950-M997, one merged file with G109 L1 / G109 L2 sections.
-machine mazak() { return make_machine(2, 950, 997, partner_style::none, "G109 L{channel}"); }
+machine mazak() {
+  return make_machine(2, 950, 997, partner_style::none, "G109 L{channel}", "mazak-smoothx");
+}
 /// Fanuc 2-path: M100-M103, plain waits in both paths.
 machine fanuc2() { return make_machine(2, 100, 103, partner_style::none); }
 /// Fanuc 3-path: M100-M197, partners as path numbers (P12, P123).
@@ -77,7 +80,7 @@ TEST_CASE("deadlock in Mazak syntax, one merged file", "[check]") {
   CHECK_FALSE(r.ok);
   CHECK(format_sync_text(r) ==
         "part.eia:5:1: error: deadlock: channel 1 waits on M951 at part.eia:5 while channel 2 "
-        "waits on M950 at part.eia:8 (different codes, Fanuc PS0160)\n"
+        "waits on M950 at part.eia:8 (different codes)\n"
         "M951 (WAIT B)\n"
         "^\n"
         "check: 2 channels, 0 waits paired, 1 error\n");
