@@ -211,13 +211,14 @@ class reader {
   static void stream_lines(const std::string& path, F&& on_line) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
-    std::vector<char> buf(1 << 20);
+    constexpr std::size_t chunk_bytes = 1 << 20;
+    auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);  // no zeroing: it is overwritten
     std::string carry;
     int no = 0;
     bool first = true, skip_lf = false;
     std::size_t n;
-    while ((n = std::fread(buf.data(), 1, buf.size(), file.get())) > 0) {
-      std::string_view chunk(buf.data(), n);
+    while ((n = std::fread(buf.get(), 1, chunk_bytes, file.get())) > 0) {
+      std::string_view chunk(buf.get(), n);
       if (first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
       first = false;
       std::size_t pos = 0;

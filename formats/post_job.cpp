@@ -170,7 +170,8 @@ bool has_explicit_sync(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) return false;
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> guard(f, &std::fclose);
-  std::vector<char> buf(1 << 20);
+  constexpr std::size_t chunk_bytes = 1 << 20;
+  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);  // no zeroing: it is overwritten
   std::string carry;
   std::size_t n;
   auto starts = [](std::string_view l, std::string_view w) {
@@ -184,8 +185,8 @@ bool has_explicit_sync(const std::string& path) {
     if (starts(l, "SYNC")) return true;
     return starts(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos;
   };
-  while ((n = std::fread(buf.data(), 1, buf.size(), f)) > 0) {
-    carry.append(buf.data(), n);
+  while ((n = std::fread(buf.get(), 1, chunk_bytes, f)) > 0) {
+    carry.append(buf.get(), n);
     std::size_t start = 0, nl;
     while ((nl = carry.find('\n', start)) != std::string::npos) {
       if (check_line(std::string_view(carry).substr(start, nl - start))) return true;

@@ -26,10 +26,11 @@ void put_line(std::FILE* f, std::string_view s) {
 // Copies a channel body in large pieces: it may be far bigger than memory should hold.
 void copy_body(std::FILE* to, const std::string& body_path) {
   file_ptr from = open_or_throw(body_path, "rb");
-  std::vector<char> buf(1 << 20);
+  constexpr std::size_t chunk_bytes = 1 << 20;
+  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);  // no zeroing: it is overwritten
   std::size_t n;
-  while ((n = std::fread(buf.data(), 1, buf.size(), from.get())) > 0)
-    if (std::fwrite(buf.data(), 1, n, to) != n) throw config_error("twinpost: error: cannot write the program");
+  while ((n = std::fread(buf.get(), 1, chunk_bytes, from.get())) > 0)
+    if (std::fwrite(buf.get(), 1, n, to) != n) throw config_error("twinpost: error: cannot write the program");
 }
 
 int program_number(const machine& m, const std::string& name) {
