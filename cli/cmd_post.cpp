@@ -1,5 +1,8 @@
 // twinpost post JOB --machine M -o DIR [--layout L] [--sync P]: post a CL job.
 #include <boost/program_options.hpp>
+#include <chrono>
+#include <filesystem>
+#include <unistd.h>
 #include <fmt/format.h>
 
 #include "cli/cli_util.hpp"
@@ -65,8 +68,23 @@ int run_post(const args& a) {
     fmt::print(stderr, "twinpost post: machine '{}' has no section marker for a merged layout\n", m.name);
     return 2;
   }
+  // Progress on stderr only for a person watching a terminal: never in logs or pipes.
+  std::error_code ec;
+  const auto total = std::filesystem::file_size(o.cl_path, ec);
+  bool shown = false;
+  if (!ec && ::isatty(2)) {
+    auto last = std::chrono::steady_clock::now();
+    o.progress = [&, total](std::size_t bytes) {
+      auto now = std::chrono::steady_clock::now();
+      if (now - last < std::chrono::milliseconds(250)) return;
+      last = now;
+      shown = true;
+      fmt::print(stderr, "\rpost: {:3}% of {} MB", total ? bytes * 100 / total : 100, total >> 20);
+    };
+  }
   printing_sink sink;
   post_summary s = post_job(o, m, sink);
+  if (shown) fmt::print(stderr, "\r{:30}\r", "");
   if (!s.ok) {
     fmt::print(stderr, "post: failed with {} error{}; no file written\n", sink.errors(), sink.errors() == 1 ? "" : "s");
     return 1;

@@ -18,6 +18,8 @@ namespace twinpost {
 
 namespace {
 
+constexpr std::size_t progress_every = 1 << 16;  // events between progress calls
+
 // Counts what passes through, so the run knows whether it failed.
 class counting_sink : public diagnostic_sink {
  public:
@@ -123,9 +125,14 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   cl_reader reader(src, ro, sink);
   event e;
   int last_line = 0;
+  std::size_t until_progress = progress_every;
   while (reader.next(e)) {
     last_line = e.line;
     router.route(e);
+    if (--until_progress == 0) {
+      until_progress = progress_every;
+      if (o.progress) o.progress(reader.bytes());
+    }
   }
   router.finish(last_line);
   for (auto& w : ws.writers) w->finish();

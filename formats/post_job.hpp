@@ -4,6 +4,8 @@
 // merged layout included); the programs are framed in the machine's layout, checked by
 // the same synchronisation checker as `twinpost check`, and only then renamed into place.
 // A failed run leaves no file behind.
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +23,8 @@ struct post_options {
   std::optional<layout_kind> layout;   ///< the machine's layout unless given
   sync_policy policy = sync_policy::automatic;
   std::optional<dialect> forced_dialect;
+  /// Called now and then (every 64k records) with the CL bytes read so far; may be empty.
+  std::function<void(std::size_t bytes)> progress;
 };
 
 struct post_summary {
