@@ -10,7 +10,8 @@ usage: bench/run.sh [options]
   --sizes "1e5 1e6"    record counts to run (default: "1e5 1e6")
   --kinds "mill3 ..."  job kinds (default: "mill3 mill5 lathe2")
   --mode parse|post    what to time (default: parse)
-  --machine NAME       machine for --mode post (default: fanuc-0itd-twin)
+  --machine NAME       machine for the lathe2 job in --mode post (default: fanuc-0itd-twin);
+                       the mill jobs are posted for bench/bench-mill.toml
   --build DIR          build directory (default: <repo>/build-bench, Release)
   --rebuild            run the build even when the binaries exist
   --repeat R           timed runs per row, best one reported (default: 3)
@@ -125,12 +126,17 @@ best_of() {
   printf -v "${prefix}_rc" '%s' "$one_rc"
 }
 
-# set_cmd FILE: the command under test for one CL file, in the array `cmd`.
+# machine_for KIND: the lathe job goes to the twin-turret machine, milling jobs to a mill.
+machine_for() {
+  if [[ $1 == lathe2 ]]; then echo "$machine"; else echo "$repo/bench/bench-mill.toml"; fi
+}
+
+# set_cmd FILE KIND: the command under test for one CL file, in the array `cmd`.
 set_cmd() {
   if [[ $mode == parse ]]; then
     cmd=("$twinpost" parse "$1")
   else
-    cmd=("$twinpost" post "$1" --machine "$machine" -o "$work/out")
+    cmd=("$twinpost" post "$1" --machine "$(machine_for "$2")" -o "$work/out")
   fi
 }
 
@@ -151,7 +157,7 @@ post_accepts() {
   local small
   small=$(job "$1" 40)
   rm -rf "$work/probe"
-  "$twinpost" post "$small" --machine "$machine" -o "$work/probe" >/dev/null 2>"$work/probe.err"
+  "$twinpost" post "$small" --machine "$(machine_for "$1")" -o "$work/probe" >/dev/null 2>"$work/probe.err"
 }
 
 # --- header -------------------------------------------------------------------------------
@@ -159,7 +165,7 @@ cpu=$(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || 
 commit=$(git -C "$repo" rev-parse --short HEAD 2>/dev/null || echo none)
 if [[ -n $(git -C "$repo" status --porcelain 2>/dev/null) ]]; then commit="$commit (dirty tree)"; fi
 echo "# twinpost $mode benchmark: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores ($cpu), commit $commit"
-if [[ $mode == post ]]; then echo "# machine: $machine"; fi
+if [[ $mode == post ]]; then echo "# machines: lathe2 on $machine, mill3/mill5 on bench/bench-mill.toml"; fi
 echo "# binary: $twinpost, built $(date -u -r "$twinpost" '+%Y-%m-%d %H:%M UTC')"
 echo "# best of $repeat warm-cache runs; cache: $cache"
 echo
@@ -180,7 +186,7 @@ if [[ $do_sizes == 1 ]]; then
       bytes=$(stat -c %s "$file")
       cat "$file" >/dev/null  # warm the page cache
       best_of "$repeat" cat cat "$file"
-      set_cmd "$file"
+      set_cmd "$file" "$kind"
       run_timed warm "${cmd[@]}"  # warm-up run
       best_of "$repeat" tool "${cmd[@]}"
       note=""
@@ -209,7 +215,7 @@ fi
 # --- start-up: a ~1 KB job, best of 20 --------------------------------------------------
 if [[ $do_startup == 1 ]]; then
   small=$(job lathe2 40)
-  set_cmd "$small"
+  set_cmd "$small" lathe2
   if command -v hyperfine >/dev/null; then
     hyperfine -N --warmup 3 --runs 20 --prepare "rm -rf $work/out" --export-json "$work/hf.json" "${cmd[*]}" >/dev/null
     best=$(python3 -c 'import json,sys; print("%.2f" % (min(json.load(open(sys.argv[1]))["results"][0]["times"]) * 1e3))' "$work/hf.json")

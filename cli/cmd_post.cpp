@@ -90,8 +90,8 @@ int run_post(const args& a) {
     return 1;
   }
   const char* policy = s.policy == sync_policy::explicit_marks ? "explicit" : "sequential";
-  fmt::print("post: {} records, {} channels, {} blocks, {} waits ({}), {} warning{}\n", s.records, s.channels, s.blocks,
-             s.waits, policy, sink.warnings(), sink.warnings() == 1 ? "" : "s");
+  fmt::print("post: {} records, {} channel{}, {} blocks, {} waits ({}), {} warning{}\n", s.records, s.channels,
+             s.channels == 1 ? "" : "s", s.blocks, s.waits, policy, sink.warnings(), sink.warnings() == 1 ? "" : "s");
   for (const std::string& f : s.files) fmt::print("  wrote {}\n", f);
   return 0;
 }

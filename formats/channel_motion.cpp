@@ -71,61 +71,74 @@ void channel_writer::motion(const motion_event& mv, int line) {
 }
 
 void channel_writer::arc(const arc_event& a, int line) {
-  // A lathe channel interpolates in G18 (the ZX plane): the arc's axis must be +-Y.
+  // The plane comes from the arc's axis: +-Z G17 (XY), +-Y G18 (ZX, the lathe's), +-X G19 (YZ).
+  // In each, counter-clockwise about the positive axis is G3 (Z = X x Y, Y = Z x X, X = Y x Z).
   double nlen = std::sqrt(a.normal.x * a.normal.x + a.normal.y * a.normal.y + a.normal.z * a.normal.z);
-  if (nlen == 0 || std::abs(std::abs(a.normal.y) / nlen - 1) > 1e-6) {
-    error(line, fmt::format("arc about ({},{},{}) is not in the XZ plane of a lathe channel",
-                            a.normal.x, a.normal.y, a.normal.z));
+  auto along = [&](double c) { return nlen > 0 && std::abs(std::abs(c) / nlen - 1) <= 1e-6; };
+  int plane = along(a.normal.z) ? 17 : along(a.normal.y) ? 18 : along(a.normal.x) ? 19 : 0;
+  auto fail = [&](std::string message) {
+    error(line, std::move(message));
     pos_ = a.end;
-    return;
+  };
+  if (plane == 0)
+    return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane", a.normal.x,
+                            a.normal.y, a.normal.z));
+  if (plane != 18 && !has_y_)
+    return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
+  if (!has_y_ && std::abs(a.end.y * scale_) > y_tolerance)
+    return fail(fmt::format("Y {} on a channel without a Y axis", a.end.y));
+  double axis_sign = plane == 17 ? a.normal.z : plane == 18 ? a.normal.y : a.normal.x;
+  bool ccw = a.ccw == (axis_sign > 0);
+  // Mirroring X reflects the XY and ZX planes, which reverses their sense; YZ has no X.
+  double mirror = mirrored() ? -1.0 : 1.0;
+  if (mirror < 0 && plane != 19) ccw = !ccw;
+  int g = ccw ? 3 : 2;
+
+  line_.clear();
+  if (!pending_g_.empty()) line_ += ' ', line_ += pending_g_;
+  if (plane != plane_) {
+    line_ += fmt::format(" G{}", plane);
+    plane_ = plane;
   }
-  if (!has_y_ && std::abs(a.end.y * scale_) > y_tolerance) {
-    error(line, fmt::format("Y {} on a channel without a Y axis", a.end.y));
-    pos_ = a.end;
-    return;
-  }
-  // Counter-clockwise about +Y is G3 in G18 (Y = Z x X); mirroring X reverses the sense.
-  bool ccw_about_y = a.ccw == (a.normal.y > 0);
-  double mirror = (x_factor_ < 0 ? -1.0 : 1.0) * side_;
-  if (mirror < 0) ccw_about_y = !ccw_about_y;
-  int g = ccw_about_y ? 3 : 2;
-  std::string words;
-  if (!pending_g_.empty()) {
-    words += pending_g_ + " ";
-    pending_g_.clear();
-  }
-  words += fmt::format("G{}", g);
-  std::string x = format_nc_number(nc_x(a.end.x), axis_style_);
-  std::string z = format_nc_number(a.end.z * scale_, axis_style_);
-  words += fmt::format(" X{} Z{}", x, z);
+  line_ += g == 3 ? " G3" : " G2";
+  // Both axes of the plane always; the third only when it moves (a helix).
+  axis_word(line_, 'X', nc_x(a.end.x), last_x_, plane != 19);
+  if (plane != 18 || has_y_) axis_word(line_, 'Y', a.end.y * scale_, last_y_, plane != 18);
+  axis_word(line_, 'Z', a.end.z * scale_, last_z_, plane != 17);
+
+  // In-plane coordinates of start and end about the centre, (u, v) with the normal = u x v.
+  auto uv = [&](const vec3& p) -> std::pair<double, double> {
+    vec3 d{p.x - a.center.x, p.y - a.center.y, p.z - a.center.z};
+    if (plane == 17) return {d.x, d.y};
+    if (plane == 18) return {d.z, d.x};
+    return {d.y, d.z};
+  };
   if (m_.program.arcs_ijk) {
-    // I and K run from the start point to the centre; I is a radius value, in the channel's X sense.
-    double i = (a.center.x - a.start.x) * scale_ * mirror;
-    double k = (a.center.z - a.start.z) * scale_;
-    words += fmt::format(" I{} K{}", format_nc_number(i, axis_style_), format_nc_number(k, axis_style_));
+    // I, J, K run from the start point to the centre; I is a radius value in the channel's X sense.
+    auto offset = [&](char address, double v) {
+      line_ += ' ';
+      line_ += address;
+      append_number(line_, v * scale_, axis_style_);
+    };
+    if (plane != 19) offset('I', (a.center.x - a.start.x) * mirror);
+    if (plane != 18) offset('J', a.center.y - a.start.y);
+    if (plane != 17) offset('K', a.center.z - a.start.z);
   } else {
-    bool full = std::abs(a.start.x - a.end.x) < 1e-9 && std::abs(a.start.z - a.end.z) < 1e-9;
-    if (full) {
-      error(line, "a full circle cannot be written with R; the machine must take I/K arcs");
-      pos_ = a.end;
-      return;
-    }
+    auto [su, sv] = uv(a.start);
+    auto [eu, ev] = uv(a.end);
+    if (std::abs(su - eu) < 1e-9 && std::abs(sv - ev) < 1e-9)
+      return fail("a full circle cannot be written with R; the machine must take I/K arcs");
     // The long way round (over 180 degrees) takes a negative R.
-    double sx = a.start.x - a.center.x, sz = a.start.z - a.center.z;
-    double ex = a.end.x - a.center.x, ez = a.end.z - a.center.z;
-    double cross = sz * ex - sx * ez;  // > 0: counter-clockwise about +Y from start to end
-    bool ccw_y = a.ccw == (a.normal.y > 0);
-    bool over_half = (cross > 0) != ccw_y;
-    words += fmt::format(" R{}", format_nc_number((over_half ? -1 : 1) * a.radius * scale_, axis_style_));
+    bool short_way_ccw = su * ev - sv * eu > 0;
+    bool over_half = short_way_ccw != (a.ccw == (axis_sign > 0));
+    line_ += " R";
+    append_number(line_, (over_half ? -1 : 1) * a.radius * scale_, axis_style_);
   }
-  if (feed_value_ > 0) {
-    append_feed(words);
-  } else {
-    error(line, "arc with no feed rate (FEDRAT) in force");
-  }
-  last_x_ = x, last_z_ = z;
+  if (feed_value_ > 0) append_feed(line_);
+  else error(line, "arc with no feed rate (FEDRAT) in force");
+  pending_g_.clear();
   motion_g_ = g;
-  out_.block(words);
+  out_.block(std::string_view(line_).substr(1));
   pos_ = a.end;
 }
 

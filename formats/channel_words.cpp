@@ -7,6 +7,13 @@
 
 namespace twinpost {
 
+namespace {
+// `code words`, or just `words` when the machine has no such code (a mill has no G97).
+std::string join_words(const std::string& code, std::string words) {
+  return code.empty() ? words : code + " " + words;
+}
+}  // namespace
+
 void channel_writer::spindle(const spindle_event& s, int line) {
   if (!s.spindle.empty()) {
     const spindle_def* sel = m_.spindle(s.spindle);
@@ -34,12 +41,12 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     a.rpm = clamp;
     a.channel = ch_.number;
     if (!sp.clamp.empty()) out_.block(format_template(sp.clamp, a));
-    out_.block(fmt::format("{} S{} M{}", m_.codes.css, format_nc_number(smm, {0, false}), m));
+    out_.block(join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
     return;
   }
   if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
     return error(line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
-  out_.block(fmt::format("{} S{} M{}", m_.codes.rpm, format_nc_number(s.speed, {0, false}), m));
+  out_.block(join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m)));
 }
 
 void channel_writer::feed(const feed_event& f, int line) {

@@ -15,6 +15,10 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   x_factor_ = (x && !x->diameter) ? 1.0 : 2.0;
   if (x && x->mirror) x_factor_ = -x_factor_;
   has_y_ = ch.axis('Y') != nullptr;
+  // The plane in force after the header (G18 on a lathe, G17 on a mill).
+  for (const std::string& block : m.program.header)
+    for (const char* g : {"G17", "G18", "G19"})
+      if (block.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
   spindle_ = m.spindle(ch.spindle);
 }
 
@@ -26,14 +30,15 @@ void channel_writer::error(int line, std::string message) {
   diags_.report(std::move(d));
 }
 
-bool channel_writer::axis_word(std::string& out, char address, double value, std::string& last) {
+bool channel_writer::axis_word(std::string& out, char address, double value, std::string& last,
+                               bool always) {
   // Formats straight into the block: no temporary strings on the hot path.
   std::size_t at = out.size();
   out += ' ';
   out += address;
   append_number(out, value, axis_style_);
   std::string_view v(out.data() + at + 2, out.size() - at - 2);
-  if (v == last) {
+  if (v == last && !always) {
     out.resize(at);  // modal: the axis is already there
     return false;
   }

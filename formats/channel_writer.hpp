@@ -38,8 +38,9 @@ class channel_writer {
   void cycle_point(const vec3& p, int line);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
   void error(int line, std::string message);
-  /// Appends " X12.5" to `out` unless `last` already holds that value (modal suppression).
-  bool axis_word(std::string& out, char address, double value, std::string& last);
+  /// Appends " X12.5" to `out` unless `last` already holds that value (modal suppression)
+  /// and `always` is off; returns whether it wrote the word.
+  bool axis_word(std::string& out, char address, double value, std::string& last, bool always = false);
   void append_feed(std::string& out);
   double nc_x(double x_cl) const { return x_cl * scale_ * x_factor_ * side_; }
   /// True when this channel's X runs against the CL (a mirrored turret, not a BOTH copy).
@@ -59,6 +60,7 @@ class channel_writer {
   bool has_y_ = false;
   const spindle_def* spindle_ = nullptr;
   int motion_g_ = -1;         // last G0/G1/G2/G3
+  int plane_ = 18;            // G17/G18/G19 in force (lathe headers set G18)
   std::string last_x_, last_y_, last_z_;
   std::string feed_g_;        // G99/G98 (G95/G94) in force
   std::string last_f_;

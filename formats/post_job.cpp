@@ -103,7 +103,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   sum.policy = o.policy;
   if (o.policy == sync_policy::automatic) {
     sum.policy = has_explicit_sync(o.cl_path) ? sync_policy::explicit_marks : sync_policy::sequential;
-    if (sum.policy == sync_policy::sequential) {
+    if (sum.policy == sync_policy::sequential && m.channels.size() > 1) {
       diagnostic d;
       d.level = severity::warning;
       d.file = o.cl_path;
