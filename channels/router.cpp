@@ -6,9 +6,9 @@
 namespace twinpost {
 
 channel_router::channel_router(const machine& m, sync_policy policy, channel_sink& sink,
-                               diagnostic_sink& diags, std::string file)
+                               diagnostic_sink& diags, std::string file, std::vector<int> job_channels)
     : m_(m), policy_(policy), sink_(sink), diags_(diags), file_(std::move(file)), codes_(m.waits),
-      busy_(m.channels.size() + 1, false) {
+      busy_(m.channels.size() + 1, false), job_channels_(std::move(job_channels)) {
   const channel_def* first = m_.channel_for_head(1);
   active_ = {first ? first->number : 1};
 }
@@ -120,9 +120,8 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
     }
     return;
   }
-  std::vector<int> partners = s.channels;
-  if (partners.empty())
-    for (const channel_def& c : m_.channels) partners.push_back(c.number);
+  // No channel list: every channel the job uses (an idle third path is left out).
+  std::vector<int> partners = s.channels.empty() ? job_channels_ : s.channels;
   for (int ch : active_) partners.push_back(ch);
   std::sort(partners.begin(), partners.end());
   partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
@@ -131,15 +130,22 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
       return error(line, fmt::format("sync {} names channel {}, machine '{}' has {} channels", s.index, p, m_.name, m_.channels.size()));
   if (partners.size() < 2) return error(line, fmt::format("sync {} has no partner channel", s.index));
   for (int ch : active_) {
+    // ICAM: a SYNCTR/NEXT without a marker is the channel's previous marker plus one.
+    int index = s.index;
+    if (s.source == sync_source::icam) {
+      int& last = auto_marker_[ch];
+      if (s.automatic) index = last + 1;
+      last = index;
+    }
     // The same sync record twice in a row in one channel is one wait.
-    if (last_sync_line_ >= 0 && last_sync_index_ == s.index && last_sync_channel_ == ch &&
+    if (last_sync_line_ >= 0 && last_sync_index_ == index && last_sync_channel_ == ch &&
         !busy_[static_cast<std::size_t>(ch)])
       continue;
-    int nth = seen_[{ch, s.index}]++;
-    auto key = std::make_pair(s.index, nth);
+    int nth = seen_[{ch, index}]++;
+    auto key = std::make_pair(index, nth);
     auto it = sync_codes_.find(key);
     if (it == sync_codes_.end()) {
-      auto code = next_code(line, fmt::format("sync {}", s.index));
+      auto code = next_code(line, fmt::format("sync {}", index));
       if (!code) return;
       it = sync_codes_.emplace(key, *code).first;
       ++rendezvous_;
@@ -152,9 +158,9 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
     sink_.on_wait(ch, w);
     busy_[static_cast<std::size_t>(ch)] = false;
     last_sync_channel_ = ch;
+    last_sync_index_ = index;
   }
   last_sync_line_ = line;
-  last_sync_index_ = s.index;
   last_partners_ = partners;
 }
 

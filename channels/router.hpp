@@ -45,8 +45,9 @@ class channel_sink {
 class channel_router {
  public:
   /// `policy` must be explicit_marks or sequential here (automatic is resolved by the caller).
+  /// `job_channels`: the channels the job uses (a sync naming no channels means these).
   channel_router(const machine& m, sync_policy policy, channel_sink& sink, diagnostic_sink& diags,
-                 std::string file);
+                 std::string file, std::vector<int> job_channels);
 
   /// Routes one event.
   void route(const event& e);
@@ -78,6 +79,8 @@ class channel_router {
   bool both_ = false;                // inside HEAD/BOTH
   std::vector<bool> busy_;           // per channel: events since its last wait
   std::vector<int> last_partners_;   // the channels of the last mark
+  std::vector<int> job_channels_;    // the channels the job uses
+  std::map<int, int> auto_marker_;   // per channel: the last ICAM marker number
   std::map<std::pair<int, int>, int> sync_codes_;  // (sync number, occurrence) -> code
   std::map<std::pair<int, int>, int> seen_;        // (channel, sync number) -> occurrences
   int last_sync_line_ = -1, last_sync_index_ = -1, last_sync_channel_ = -1;

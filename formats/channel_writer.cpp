@@ -32,6 +32,10 @@ void channel_writer::error(int line, std::string message) {
 
 bool channel_writer::axis_word(std::string& out, char address, double value, std::string& last,
                                bool always) {
+  // The same value as last time prints the same text: no need to format it to know.
+  double& last_value = address == 'X' ? last_x_value_ : address == 'Y' ? last_y_value_ : last_z_value_;
+  if (!always && !last.empty() && value == last_value) return false;
+  last_value = value;
   // Formats straight into the block: no temporary strings on the hot path.
   std::size_t at = out.size();
   out += ' ';

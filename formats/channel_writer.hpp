@@ -61,7 +61,8 @@ class channel_writer {
   const spindle_def* spindle_ = nullptr;
   int motion_g_ = -1;         // last G0/G1/G2/G3
   int plane_ = 18;            // G17/G18/G19 in force (lathe headers set G18)
-  std::string last_x_, last_y_, last_z_;
+  std::string last_x_, last_y_, last_z_;  // axis words written last ("" = unknown)
+  double last_x_value_ = 0, last_y_value_ = 0, last_z_value_ = 0;  // and the values they came from
   std::string feed_g_;        // G99/G98 (G95/G94) in force
   std::string last_f_;
   std::string line_;          // the block being built, reused

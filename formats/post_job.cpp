@@ -9,6 +9,7 @@
 
 #include "channels/sync_check.hpp"
 #include "formats/channel_writer.hpp"
+#include "formats/job_scan.hpp"
 #include "formats/program_frame.hpp"
 #include "parser/cl_reader.hpp"
 
@@ -100,9 +101,12 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   fs::create_directories(clean.tmp, ec);
   if (ec) throw config_error(fmt::format("twinpost: error: cannot write in '{}': {}", o.out_dir, ec.message()));
 
+  // One quick pass over the text before posting: does the job carry sync records, and which
+  // channels does it use (a sync naming no channels means those)?
+  const job_scan scan = scan_job(o.cl_path);
   sum.policy = o.policy;
   if (o.policy == sync_policy::automatic) {
-    sum.policy = has_explicit_sync(o.cl_path) ? sync_policy::explicit_marks : sync_policy::sequential;
+    sum.policy = scan.explicit_sync ? sync_policy::explicit_marks : sync_policy::sequential;
     if (sum.policy == sync_policy::sequential && m.channels.size() > 1) {
       diagnostic d;
       d.level = severity::warning;
@@ -117,7 +121,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   for (const channel_def& ch : m.channels)
     ws.writers.push_back(std::make_unique<channel_writer>(m, ch, (clean.tmp / fmt::format("body{}", ch.number)).string(),
                                                           sink, o.cl_path));
-  channel_router router(m, sum.policy, ws, sink, o.cl_path);
+  channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
   cl_reader_options ro;
   ro.file_name = o.cl_path;
   ro.forced = o.forced_dialect;
@@ -169,39 +173,3 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
 
 }  // namespace twinpost
 
-namespace twinpost {
-
-bool has_explicit_sync(const std::string& path) {
-  // A line whose record starts with SYNC (SYNC/, SYNCTR/) or a MANUSpost sync UDE. Comment
-  // lines never count, so a `$$ SYNC` remark cannot switch the policy.
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return false;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> guard(f, &std::fclose);
-  constexpr std::size_t chunk_bytes = 1 << 20;
-  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);  // no zeroing: it is overwritten
-  std::string carry;
-  std::size_t n;
-  auto starts = [](std::string_view l, std::string_view w) {
-    if (l.size() < w.size()) return false;
-    for (std::size_t i = 0; i < w.size(); ++i)
-      if (std::toupper(static_cast<unsigned char>(l[i])) != w[i]) return false;
-    return true;
-  };
-  auto check_line = [&](std::string_view l) {
-    while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
-    if (starts(l, "SYNC")) return true;
-    return starts(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos;
-  };
-  while ((n = std::fread(buf.get(), 1, chunk_bytes, f)) > 0) {
-    carry.append(buf.get(), n);
-    std::size_t start = 0, nl;
-    while ((nl = carry.find('\n', start)) != std::string::npos) {
-      if (check_line(std::string_view(carry).substr(start, nl - start))) return true;
-      start = nl + 1;
-    }
-    carry.erase(0, start);
-  }
-  return check_line(carry);
-}
-
-}  // namespace twinpost

@@ -45,7 +45,4 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
 /// characters, never empty, never a path.
 std::string safe_file_stem(std::string_view partno);
 
-/// True when the CL text has a record-level sync (SYNC/, SYNCTR/ or a MANUSpost UDE).
-bool has_explicit_sync(const std::string& path);
-
 }  // namespace twinpost

@@ -9,7 +9,7 @@ namespace twinpost {
 
 struct cl_reader::impl {
   impl(byte_source& src, cl_reader_options o, diagnostic_sink& s)
-      : lines(src), options(std::move(o)), sink(s),
+      : lines(src, o.chunk_size), options(std::move(o)), sink(s),
         d(options.forced ? *options.forced : detect_dialect(lines.peek(64 * 1024))), builder(d) {}
 
   void report(const build_issue& i) {
@@ -47,6 +47,7 @@ struct cl_reader::impl {
       record_error err;
       if (!parse_record(lr.text, rec, err)) {
         report(build_issue{severity::error, err.offset, err.message});
+        builder.skip_record(rec.kind);
         continue;
       }
       issues.clear();

@@ -16,6 +16,7 @@ namespace twinpost {
 struct cl_reader_options {
   std::string file_name = "<input>";  ///< used in diagnostics
   std::optional<dialect> forced;       ///< --dialect; detected from the file otherwise
+  std::size_t chunk_size = 1 << 20;    ///< bytes read at a time (tests and the fuzzer use small ones)
 };
 
 class cl_reader {

@@ -25,7 +25,7 @@ bool matrix_row(std::string_view text, std::vector<double>& out) {
     if (k == 4) return false;
     if (*p == '+') ++p;
     auto [q, ec] = std::from_chars(p, end, row[k]);
-    if (ec != std::errc()) return false;
+    if (ec != std::errc() || !std::isfinite(row[k])) return false;  // from_chars takes "nan"
     ++k;
     p = q;
   }
@@ -37,17 +37,19 @@ bool matrix_row(std::string_view text, std::vector<double>& out) {
 }  // namespace
 
 void event_builder::build(const cl_record& r, int line, std::vector<event>& out, build_issues& issues) {
+  if (r.kind != record_kind::comment && r.kind != record_kind::coordinates) after_bad_record_ = false;
   switch (r.kind) {
     case record_kind::comment:
       comment(r, line, out);
       return;
     case record_kind::coordinates: {
+      if (after_bad_record_) return;  // points of a GOTO that did not parse: reported already
       if (!in_goto_) {
         issues.push_back({severity::error, r.args.empty() ? 0 : r.args.front().offset,
                           "coordinate line without a preceding GOTO"});
         return;
       }
-      std::vector<double> n = numbers_of(r);
+      const std::vector<double>& n = numbers(r);
       if ((n.size() != 3 && n.size() != 6) || n.size() != r.args.size()) {
         issues.push_back({severity::error, r.args.front().offset,
                           fmt::format("a GOTO point takes 3 or 6 numbers, found {}", r.args.size())});
@@ -76,6 +78,19 @@ void event_builder::build(const cl_record& r, int line, std::vector<event>& out,
       statement(r, line, out, issues);
       return;
   }
+}
+
+const std::vector<double>& event_builder::numbers(const cl_record& r) {
+  numbers_.clear();
+  for (const cl_arg& a : r.args)
+    if (a.kind == arg_kind::number) numbers_.push_back(a.number);
+  return numbers_;
+}
+
+void event_builder::skip_record(record_kind seen) {
+  if (seen == record_kind::coordinates && in_goto_) return;
+  end_of_motion_record();
+  after_bad_record_ = true;
 }
 
 void event_builder::end_of_motion_record() {

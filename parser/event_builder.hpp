@@ -18,6 +18,10 @@ class event_builder {
 
   /// Appends the events of record `r` (from physical line `line`) to `out`.
   void build(const cl_record& r, int line, std::vector<event>& out, build_issues& issues);
+  /// Notes a record that could not be parsed (already reported; `seen` is what it looked
+  /// like). It ends a GOTO, and the coordinate lines right after it are dropped without
+  /// further errors; a bad coordinate line inside a GOTO leaves the GOTO going.
+  void skip_record(record_kind seen);
   /// Reports what the end of input leaves open (a CIRCLE with no end point).
   void finish(build_issues& issues);
 
@@ -33,6 +37,8 @@ class event_builder {
   void statement(const cl_record& r, int line, std::vector<event>& out, build_issues& issues);
   void comment(const cl_record& r, int line, std::vector<event>& out);
   void motion(const cl_record& r, motion_kind kind, int line, std::vector<event>& out, build_issues& issues);
+  /// The record's numbers in a vector reused from record to record (no allocation per GOTO).
+  const std::vector<double>& numbers(const cl_record& r);
   void point(const std::vector<double>& n, bool continued, motion_kind kind, int line,
              std::vector<event>& out);
   void circle(const cl_record& r, int line, build_issues& issues);
@@ -45,6 +51,8 @@ class event_builder {
   bool rapid_ = false;        // RAPID seen, waiting for its move
   bool rapid_record_ = false; // the current GOTO record is rapid (its coordinate lines too)
   bool in_goto_ = false;      // the last statement was a GOTO: coordinate lines continue it
+  bool after_bad_record_ = false;  // the last record (comments aside) did not parse
+  std::vector<double> numbers_;    // scratch for numbers()
   std::optional<pending_circle> circle_;
   bool circle_used_ = false;  // the pending circle has had its GOTO
   int icam_marker_ = 0;

@@ -4,6 +4,7 @@
 
 #include "parser/detail/word_events.hpp"
 #include "parser/event_builder.hpp"
+#include "parser/event_text.hpp"
 
 namespace twinpost {
 
@@ -82,7 +83,7 @@ void event_builder::statement(const cl_record& r, int line, std::vector<event>& 
     for (std::size_t i = 0; i < r.args.size(); ++i) {
       const cl_arg& a = r.args[i];
       std::string s = a.kind == arg_kind::word ? std::string(a.word)
-                      : a.kind == arg_kind::number ? fmt::format("{}", a.number) : std::string();
+                      : a.kind == arg_kind::number ? format_number(a.number) : std::string();
       if (i == 0) e.name = std::move(s);
       else e.args.push_back(std::move(s));
     }
@@ -115,7 +116,7 @@ void event_builder::statement(const cl_record& r, int line, std::vector<event>& 
 
 void event_builder::motion(const cl_record& r, motion_kind kind, int line, std::vector<event>& out,
                            build_issues& issues) {
-  std::vector<double> n = numbers_of(r);
+  const std::vector<double>& n = numbers(r);
   bool words = n.size() != r.args.size();
   if (kind == motion_kind::home && r.args.empty()) {
     point({pos_.x, pos_.y, pos_.z}, false, kind, line, out);

@@ -1,6 +1,7 @@
 #include "parser/event_text.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <fmt/format.h>
 
 namespace twinpost {
@@ -188,20 +189,26 @@ fields describe_event(const event& e) {
   return f;
 }
 
-// Text values are quoted only when they hold a blank, a quote or nothing.
+// Text values are quoted (JSON-style) only when they hold a blank, a quote, a control or
+// non-ASCII byte, or nothing: the text form stays one line of plain ASCII.
 std::string text_value(const std::string& s) {
-  if (!s.empty() && s.find_first_of(" \t\"") == std::string::npos) return s;
-  return json_string(s);
+  bool plain = !s.empty();
+  for (unsigned char c : s)
+    if (c <= ' ' || c == '"' || c >= 0x7f) plain = false;
+  return plain ? s : json_string(s);
 }
 
 }  // namespace
 
+// A number for JSON: JSON has no inf or nan (a GODLTA or a computed radius can overflow).
+static std::string json_number(double v) { return std::isfinite(v) ? format_number(v) : "null"; }
+
 // Numbers joined with ','.
-static std::string number_list(const std::vector<double>& v) {
+static std::string number_list(const std::vector<double>& v, bool json = false) {
   std::string s;
   for (std::size_t i = 0; i < v.size(); ++i) {
     if (i) s += ',';
-    s += format_number(v[i]);
+    s += json ? json_number(v[i]) : format_number(v[i]);
   }
   return s;
 }
@@ -223,7 +230,7 @@ std::string json_string(std::string_view s) {
       case '\r': out += "\\r"; break;
       case '\t': out += "\\t"; break;
       default:
-        if (c < 0x20) out += fmt::format("\\u{:04x}", c);
+        if (c < 0x20 || c == 0x7f) out += fmt::format("\\u{:04x}", c);
         else if (c >= 0x80) out += fmt::format("\\u{:04x}", c);  // CL comments may be ISO-8859-1
         else out += static_cast<char>(c);
     }
@@ -254,11 +261,11 @@ std::string event_to_json(const event& e) {
   for (const field& x : f.f) {
     out += fmt::format(",{}:", json_string(x.key));
     switch (x.t) {
-      case field::type::number: out += format_number(x.number); break;
+      case field::type::number: out += json_number(x.number); break;
       case field::type::text: out += json_string(x.text); break;
       case field::type::flag: out += "true"; break;
       case field::type::numbers: {
-        out += fmt::format("[{}]", number_list(x.numbers));
+        out += fmt::format("[{}]", number_list(x.numbers, true));
         break;
       }
     }

@@ -149,6 +149,7 @@ struct sync_event {
   int index = 0;              ///< sync number / marker
   std::vector<int> channels;  ///< partners as written; empty = all channels
   std::optional<int> master;
+  bool automatic = false;     ///< ICAM marker left out: each channel counts its own (router)
 };
 
 struct tool_axis_event {

@@ -36,6 +36,7 @@ struct cl_record {
   std::string_view text;      ///< text records and comments: the free text, blanks trimmed
   bool data_comment = false;  ///< parsed from inside a `$$->` pseudo-comment (Creo)
   std::string_view source;    ///< the whole logical record text; offsets count from here
+  std::size_t arg_start = 0;  ///< grammar scratch: where the argument being read starts
 
   void clear() {
     kind = record_kind::statement;

@@ -13,12 +13,19 @@ namespace x3 = boost::spirit::x3;
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
-// The token at `p` for a message: a run up to the next blank, comma or slash.
-std::string_view token_at(std::string_view text, std::size_t p) {
+// The token at `p` for a message: a run up to the next blank, comma or slash. Control and
+// non-ASCII bytes are written as \xHH so that a message is always plain ASCII.
+// With `one_byte` only the byte at `p` (an unexpected character is shown alone).
+std::string token_at(std::string_view text, std::size_t p, bool one_byte = false) {
   std::size_t e = p;
-  while (e < text.size() && !is_blank(text[e]) && text[e] != ',' && text[e] != '/') ++e;
+  while (!one_byte && e < text.size() && !is_blank(text[e]) && text[e] != ',' && text[e] != '/') ++e;
   if (e == p) e = p + 1;
-  return text.substr(p, e - p);
+  std::string out;
+  for (unsigned char c : text.substr(p, e - p)) {
+    if (c < 0x20 || c >= 0x7f) out += fmt::format("\\x{:02X}", c);
+    else out += static_cast<char>(c);
+  }
+  return out;
 }
 
 bool run_grammar(std::string_view text, cl_record& out, std::size_t& stop) {
@@ -38,7 +45,7 @@ record_error describe_stop(std::string_view text, const cl_record& rec, std::siz
   std::size_t p = stop;
   while (p < text.size() && is_blank(text[p])) ++p;
   if (p >= text.size()) return {stop, "unexpected end of record"};
-  std::string_view tok = token_at(text, p);
+  std::string tok = token_at(text, p);
   if (rec.major.empty() && rec.kind == record_kind::statement)
     return {p, fmt::format("expected a major word, found '{}'", tok)};
   std::size_t major_end = rec.major_offset + rec.major.size();
@@ -49,7 +56,7 @@ record_error describe_stop(std::string_view text, const cl_record& rec, std::siz
   char c = text[p];
   if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-' || c == '+')
     return {p, fmt::format("expected ',' between arguments, found '{}'", tok)};
-  return {p, fmt::format("unexpected '{}' in argument list", tok)};
+  return {p, fmt::format("unexpected '{}' in argument list", token_at(text, p, true))};
 }
 
 }  // namespace

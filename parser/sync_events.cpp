@@ -2,13 +2,13 @@
 #include <cctype>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 
 #include "parser/detail/word_events.hpp"
 
 namespace twinpost::detail {
 
 namespace {
-int as_int(double v) { return static_cast<int>(std::lround(v)); }
 std::size_t where(const cl_record& r) { return r.args.empty() ? r.major_offset : r.args.front().offset; }
 }  // namespace
 
@@ -62,7 +62,9 @@ std::optional<sync_event> read_synctr(const cl_record& r, int& last_marker, buil
     e.index = as_int(r.args[i].number);
     ++i;
   } else {
-    e.index = last_marker + 1;  // ICAM: a marker left out is the previous one plus one
+    e.automatic = true;
+    // ICAM: a marker left out is the previous one plus one (saturating: no overflow).
+    e.index = last_marker < std::numeric_limits<int>::max() ? last_marker + 1 : last_marker;
   }
   last_marker = e.index;
   for (; i < r.args.size(); ++i)
@@ -81,7 +83,9 @@ std::optional<sync_event> read_manus_sync(std::string_view text) {
   int n = 0;
   bool any = false;
   while (p < u.size() && std::isdigit(static_cast<unsigned char>(u[p]))) {
-    n = n * 10 + (u[p] - '0');
+    int digit = u[p] - '0';
+    if (n > (std::numeric_limits<int>::max() - digit) / 10) return std::nullopt;  // too big: not a sync
+    n = n * 10 + digit;
     any = true;
     ++p;
   }

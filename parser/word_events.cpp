@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
+
+#include "parser/event_text.hpp"
 
 namespace twinpost::detail {
 
@@ -45,15 +48,21 @@ struct arg_use {
       if (used[i] || r.args[i].kind == arg_kind::empty) continue;
       const cl_arg& a = r.args[i];
       std::string what = a.kind == arg_kind::word ? fmt::format("word '{}'", a.word)
-                                                  : fmt::format("number {}", a.number);
+                                                  : fmt::format("number {}", format_number(a.number));
       issues.push_back({severity::warning, a.offset, fmt::format("{} ignored in {}", what, major)});
     }
   }
 };
 
-int as_int(double v) { return static_cast<int>(std::lround(v)); }
-
 }  // namespace
+
+int as_int(double v) {
+  constexpr double lo = std::numeric_limits<int>::min();
+  constexpr double hi = std::numeric_limits<int>::max();
+  if (!(v > lo)) return std::numeric_limits<int>::min();
+  if (!(v < hi)) return std::numeric_limits<int>::max();
+  return static_cast<int>(std::lround(v));
+}
 
 std::string upper(std::string_view w) {
   std::string s(w);
@@ -74,7 +83,7 @@ std::string args_text(const cl_record& r) {
   for (std::size_t i = 0; i < r.args.size(); ++i) {
     if (i) s += ',';
     const cl_arg& a = r.args[i];
-    if (a.kind == arg_kind::number) s += fmt::format("{}", a.number);
+    if (a.kind == arg_kind::number) s += format_number(a.number);  // never "-0"
     if (a.kind == arg_kind::word) s += a.word;
   }
   return s;

@@ -15,6 +15,7 @@
 
 #include "parser/detail/grammar.hpp"
 #include "parser/detail/number_parser.hpp"
+#include "parser/detail/text_major_parser.hpp"
 
 namespace twinpost::parser_detail {
 
@@ -30,16 +31,24 @@ inline std::string_view trimmed(std::string_view s) {
   return s;
 }
 
-const auto set_arg_offset = [](auto& ctx) {
-  cl_record& r = x3::get<record_tag>(ctx);
-  r.args.back().offset = static_cast<std::size_t>(x3::_attr(ctx).begin() - r.source.data());
-};
 
+// Offsets count from the start of the record text (r.source); _where is the matched range.
+template <class Ctx>
+std::size_t here(Ctx& ctx, const cl_record& r) {
+  return static_cast<std::size_t>(x3::_where(ctx).begin() - r.source.data());
+}
+
+// Where the next argument starts (eps matches an empty range there).
+const auto mark_arg = [](auto& ctx) {
+  cl_record& r = x3::get<record_tag>(ctx);
+  r.arg_start = here(ctx, r);
+};
 const auto push_number = [](auto& ctx) {
   cl_record& r = x3::get<record_tag>(ctx);
   cl_arg a;
   a.kind = arg_kind::number;
   a.number = x3::_attr(ctx);
+  a.offset = r.arg_start;
   r.args.push_back(a);
 };
 const auto push_word = [](auto& ctx) {
@@ -47,10 +56,14 @@ const auto push_word = [](auto& ctx) {
   cl_arg a;
   a.kind = arg_kind::word;
   a.word = view_of(x3::_attr(ctx));
+  a.offset = static_cast<std::size_t>(a.word.data() - r.source.data());
   r.args.push_back(a);
 };
 const auto push_empty = [](auto& ctx) {
-  x3::get<record_tag>(ctx).args.push_back(cl_arg{});
+  cl_record& r = x3::get<record_tag>(ctx);
+  cl_arg a;
+  a.offset = here(ctx, r);
+  r.args.push_back(a);
 };
 const auto set_major = [](auto& ctx) {
   cl_record& r = x3::get<record_tag>(ctx);
@@ -74,39 +87,33 @@ const auto set_text = [](auto& ctx) {
 
 }  // namespace actions
 
+// Character classes are explicit ASCII sets, never x3::alnum/alpha/digit: those call
+// std::isalnum on a plain (signed) char and assert on ISO-8859-1 bytes >= 0x80.
 const auto blanks = x3::omit[*x3::char_(" \t")];
-const auto word_char = x3::alnum | x3::char_('_');
-const auto boundary = !word_char;
+const auto digit = x3::char_("0-9");
+const auto letter = x3::char_("A-Za-z");
+const auto word_char = x3::char_("A-Za-z0-9_");
 
 // Words start with a letter, digit or '_' and may hold '-', '.', '#' (END-OF-PATH,
 // MILL-20MM, 1STPECK, G98). A number is tried first, so "12.5" never becomes a word.
 const auto word = x3::raw[word_char >> *(word_char | x3::char_("-.#"))];
 
-// Records whose rest is free text, commas and slashes included.
-struct text_major_symbols : x3::symbols<x3::unused_type> {
-  text_major_symbols() {
-    add("PARTNO")("PPRINT")("INSERT")("TPRINT")("OPFEATSTART")("OPFEATEND")("TOOL PATH")
-        ("TITLES")("REMARK");
-  }
-};
-const text_major_symbols text_majors;
-
 const auto major_word =
-    x3::raw[x3::alpha >> *(word_char | x3::char_('-'))];
+    x3::raw[letter >> *(word_char | x3::char_('-'))];
 
-const auto arg = blanks >>
-                 x3::raw[cl_number[actions::push_number] | word[actions::push_word] |
-                         x3::eps[actions::push_empty]][actions::set_arg_offset] >>
+const auto arg = blanks >> x3::eps[actions::mark_arg] >>
+                 (cl_number[actions::push_number] | word[actions::push_word] |
+                  x3::eps[actions::push_empty]) >>
                  blanks;
 const auto arg_list = arg % ',';
 
 const auto comment = blanks >> x3::lit("$$") >> x3::raw[*x3::char_][actions::set_comment];
 
-const auto coordinates = blanks >> &(x3::digit | x3::char_(".+-")) >>
+const auto coordinates = blanks >> &(digit | x3::char_(".+-")) >>
                          x3::eps[actions::set_coordinates_kind] >> arg_list;
 
 const auto text_record =
-    blanks >> x3::raw[x3::no_case[text_majors] >> boundary][actions::set_major] >>
+    blanks >> x3::raw[text_major][actions::set_major] >>
     x3::eps[actions::set_text_kind] >> blanks >> -x3::lit('/') >>
     x3::raw[*x3::char_][actions::set_text];
 

@@ -34,5 +34,7 @@ std::vector<double> numbers_of(const cl_record& r);
 std::string args_text(const cl_record& r);
 /// An upper-case copy of a word.
 std::string upper(std::string_view w);
+/// `v` rounded to the nearest int, clamped to the int range (CL numbers can be anything).
+int as_int(double v);
 
 }  // namespace twinpost::detail

@@ -1,0 +1,107 @@
+#include "formats/job_scan.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string_view>
+
+namespace twinpost {
+
+namespace {
+
+bool starts_word(std::string_view line, std::string_view word) {
+  if (line.size() < word.size()) return false;
+  for (std::size_t i = 0; i < word.size(); ++i)
+    if (std::toupper(static_cast<unsigned char>(line[i])) != word[i]) return false;
+  return true;
+}
+
+// The first argument after the major word: "HEAD / 2" -> "2", "CHANNEL,1" -> "1".
+std::string first_arg(std::string_view rest) {
+  std::size_t p = 0;
+  while (p < rest.size() && (rest[p] == ' ' || rest[p] == '\t')) ++p;
+  if (p < rest.size() && (rest[p] == '/' || rest[p] == ',')) ++p;
+  while (p < rest.size() && (rest[p] == ' ' || rest[p] == '\t')) ++p;
+  std::string a;
+  while (p < rest.size() && std::isalnum(static_cast<unsigned char>(rest[p])))
+    a += static_cast<char>(std::toupper(static_cast<unsigned char>(rest[p++])));
+  return a;
+}
+
+void scan_line(std::string_view l, job_scan& s) {
+  while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
+  // Most lines are motion (GOTO, coordinates): one look at the first letter settles them.
+  if (l.empty()) return;
+  char c = static_cast<char>(std::toupper(static_cast<unsigned char>(l.front())));
+  if (c != 'S' && c != 'H' && c != 'C' && c != '$') return;
+  if (starts_word(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
+  if (starts_word(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos) s.explicit_sync = true;
+  if (starts_word(l, "HEAD")) {
+    std::string a = first_arg(l.substr(4));
+    if (a == "BOTH") {
+      s.heads.push_back(1);
+      s.heads.push_back(2);
+    } else if (!a.empty() && std::isdigit(static_cast<unsigned char>(a[0]))) {
+      s.heads.push_back(std::atoi(a.c_str()));
+    } else if (!a.empty()) {
+      s.head_words.push_back(a);
+    }
+  }
+  std::size_t n = starts_word(l, "CHANNEL") ? 7 : starts_word(l, "CHANNL") ? 6 : 0;
+  if (n > 0) {
+    std::string a = first_arg(l.substr(n));
+    if (!a.empty() && std::isdigit(static_cast<unsigned char>(a[0]))) s.channels.push_back(std::atoi(a.c_str()));
+  }
+}
+
+}  // namespace
+
+job_scan scan_job(const std::string& path) {
+  job_scan s;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!f) return s;
+  constexpr std::size_t chunk_bytes = 1 << 20;
+  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);
+  std::string carry;
+  std::size_t n;
+  while ((n = std::fread(buf.get(), 1, chunk_bytes, f.get())) > 0) {
+    std::string_view chunk(buf.get(), n);
+    std::size_t start = 0;
+    for (;;) {
+      const void* nl = std::memchr(chunk.data() + start, '\n', chunk.size() - start);
+      if (!nl) break;
+      std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - chunk.data());
+      if (carry.empty()) {
+        scan_line(chunk.substr(start, end - start), s);
+      } else {
+        carry.append(chunk.substr(start, end - start));
+        scan_line(carry, s);
+        carry.clear();
+      }
+      start = end + 1;
+    }
+    carry.append(chunk.substr(start));
+  }
+  scan_line(carry, s);
+  return s;
+}
+
+std::vector<int> used_channels(const job_scan& scan, const machine& m) {
+  std::vector<int> used;
+  auto add = [&](const channel_def* c) {
+    if (c) used.push_back(c->number);
+  };
+  add(m.channel_for_head(1));
+  for (int h : scan.heads) add(m.channel_for_head(h));
+  for (const std::string& w : scan.head_words) add(m.channel_for_head(std::string_view(w)));
+  for (int c : scan.channels)
+    if (c >= 1 && c <= static_cast<int>(m.channels.size())) used.push_back(c);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  return used;
+}
+
+}  // namespace twinpost
