@@ -3,6 +3,7 @@
 #include <cctype>
 #include <fmt/format.h>
 
+#include "parser/detail/fast_record.hpp"
 #include "parser/detail/grammar.hpp"
 
 namespace twinpost {
@@ -62,6 +63,12 @@ record_error describe_stop(std::string_view text, const cl_record& rec, std::siz
 }  // namespace
 
 bool parse_record(std::string_view text, cl_record& out, record_error& err) {
+  // Most records of a long job are numeric statements (GOTO/x,y,z): read them directly.
+  if (parser_detail::parse_numeric_statement(text, out)) return true;
+  return parse_record_with_grammar(text, out, err);
+}
+
+bool parse_record_with_grammar(std::string_view text, cl_record& out, record_error& err) {
   std::size_t stop = 0;
   bool ok = run_grammar(text, out, stop);
   if (ok && out.kind == record_kind::comment && out.text.substr(0, 2) == "->") {

@@ -20,4 +20,8 @@ struct record_error {
 /// plain comment. Returns false and fills `err` when the record is malformed.
 bool parse_record(std::string_view text, cl_record& out, record_error& err);
 
+/// The same through the X3 grammar alone, without the fast path for numeric statements
+/// (tests and the fuzzer hold the two to the same result).
+bool parse_record_with_grammar(std::string_view text, cl_record& out, record_error& err);
+
 }  // namespace twinpost

@@ -177,6 +177,17 @@ TEST_CASE("numbers: trailing point, leading point, -0, exponent, plus sign", "[p
               "3\tgoto x=-0.5 y=100 z=-12000"});
 }
 
+TEST_CASE("numbers read exactly, on the fast path and past it", "[parser][lexical]") {
+  // Up to 15 digits take the exact integer / power-of-ten path, longer ones from_chars:
+  // either way the shortest round-trip form comes back.
+  CHECK(events_of("GOTO/0.1,0.3,0.123456789012345\n"
+                  "GOTO/123456789012345,1234567890123456,0.12345678901234567\n"
+                  "GOTO/000000000000000012.5,-7.4675,1E-7\n") ==
+        lines{"1\tgoto x=0.1 y=0.3 z=0.123456789012345",
+              "2\tgoto x=123456789012345 y=1234567890123456 z=0.12345678901234566",
+              "3\tgoto x=12.5 y=-7.4675 z=1e-07"});
+}
+
 TEST_CASE("minus zero never prints as -0, in passthrough arguments either", "[parser][lexical]") {
   // Regression: passthrough and MACHIN arguments were printed with fmt's "{}" ("-0").
   CHECK(events_of("ROTABL/ -0.000000,BAXIS,TABLE,CCLW \n"

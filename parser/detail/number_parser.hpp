@@ -6,39 +6,10 @@
 #include <cmath>
 
 #include "parser/detail/config.hpp"
+#include "parser/detail/lexical.hpp"
 
 namespace twinpost::parser_detail {
 
-inline bool is_word_char(char c) {
-  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
-}
-
-// The common CL number (`123.4567`, at most 15 digits, no exponent) without from_chars:
-// the digits as an exact integer divided by an exact power of ten is one correctly rounded
-// IEEE division (Clinger's fast path), so the value equals from_chars'. Returns the end of
-// the number, or nullptr to hand the text to from_chars (exponents, long numbers, "." alone).
-inline const char* fast_decimal(const char* p, const char* last, double& value) {
-  static constexpr double pow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8,
-                                     1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-  unsigned long long mantissa = 0;
-  int digits = 0, fraction = 0;
-  while (p != last && *p >= '0' && *p <= '9') {
-    mantissa = mantissa * 10 + static_cast<unsigned>(*p++ - '0');
-    if (++digits > 15) return nullptr;
-  }
-  if (p != last && *p == '.') {
-    ++p;
-    while (p != last && *p >= '0' && *p <= '9') {
-      mantissa = mantissa * 10 + static_cast<unsigned>(*p++ - '0');
-      ++fraction;
-      if (++digits > 15) return nullptr;
-    }
-  }
-  if (digits == 0) return nullptr;
-  if (p != last && (*p == 'e' || *p == 'E')) return nullptr;
-  value = static_cast<double>(mantissa) / pow10[fraction];
-  return p;
-}
 
 struct cl_number_parser : x3::parser<cl_number_parser> {
   using attribute_type = double;

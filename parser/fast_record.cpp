@@ -1,0 +1,54 @@
+#include "parser/detail/fast_record.hpp"
+
+#include "parser/detail/lexical.hpp"
+
+namespace twinpost::parser_detail {
+
+namespace {
+bool blank(char c) { return c == ' ' || c == '\t'; }
+bool letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+}  // namespace
+
+bool parse_numeric_statement(std::string_view text, cl_record& out) {
+  const char* const begin = text.data();
+  const char* const end = begin + text.size();
+  const char* p = begin;
+  while (p != end && blank(*p)) ++p;
+  if (p == end || !letter(*p)) return false;
+  if (text_major_length(std::string_view(p, static_cast<std::size_t>(end - p))) != 0) return false;
+  const char* major = p;
+  while (p != end && (is_word_char(*p) || *p == '-')) ++p;
+  out.clear();
+  out.source = text;
+  out.kind = record_kind::statement;
+  out.major = std::string_view(major, static_cast<std::size_t>(p - major));
+  out.major_offset = static_cast<std::size_t>(major - begin);
+  while (p != end && blank(*p)) ++p;
+  if (p == end) return true;  // a bare major: RAPID, FINI
+  if (*p != '/') return false;
+  ++p;
+  for (;;) {
+    while (p != end && blank(*p)) ++p;
+    const char* start = p;
+    bool negative = false;
+    if (p != end && (*p == '+' || *p == '-')) negative = *p++ == '-';
+    if (p == end || !((*p >= '0' && *p <= '9') || *p == '.')) return false;
+    double value = 0;
+    p = fast_decimal(p, end, value);
+    if (!p || (p != end && is_word_char(*p))) return false;
+    cl_arg a;
+    a.kind = arg_kind::number;
+    a.number = negative ? -value : value;
+    a.offset = static_cast<std::size_t>(start - begin);
+    out.args.push_back(a);
+    while (p != end && blank(*p)) ++p;
+    if (p == end) return true;
+    if (*p != ',') return false;
+    ++p;
+    const char* after = p;
+    while (after != end && blank(*after)) ++after;
+    if (after == end) return true;  // a trailing comma carries nothing (as in the grammar)
+  }
+}
+
+}  // namespace twinpost::parser_detail
