@@ -78,14 +78,17 @@ void channel_router::select(std::vector<int> channels, int line, bool both) {
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());
   // HEAD/BOTH is always framed by waits; plain switches wait only under the sequential policy.
-  if (both || both_) rendezvous(all, line, both ? "HEAD/BOTH" : "the end of HEAD/BOTH");
+  // (Forced: the balance-cut codes need their waits even where nothing was cut before.)
+  if (both || both_)
+    rendezvous(all, line, both ? "HEAD/BOTH" : "the end of HEAD/BOTH", true,
+               both ? wait_mark::section::opens_both : wait_mark::section::closes_both);
   else if (policy_ == sync_policy::sequential && all.size() > 1) rendezvous(all, line, "a head switch");
   active_ = std::move(channels);
   both_ = both;
 }
 
 void channel_router::rendezvous(const std::vector<int>& channels, int line, const std::string& what,
-                                bool force) {
+                                bool force, wait_mark::section both) {
   // Consecutive marks with nothing between them collapse into one.
   // So does a mark before any channel has done anything: the programs start together.
   bool any_busy = std::any_of(channels.begin(), channels.end(),
@@ -98,6 +101,7 @@ void channel_router::rendezvous(const std::vector<int>& channels, int line, cons
   w.partners = channels;
   w.partner_text = partner_list(channels, m_.waits.partners);
   w.cl_line = line;
+  w.both = both;
   for (int c : channels) {
     sink_.on_wait(c, w);
     busy_[static_cast<std::size_t>(c)] = false;

@@ -30,6 +30,8 @@ struct wait_mark {
   std::vector<int> partners;  ///< all channels taking part, ascending, own channel included
   std::string partner_text;   ///< the P value in the machine's style, "" when none
   int cl_line = 0;            ///< the CL record that caused it
+  /// The wait opens or closes a HEAD/BOTH (balance cutting) section.
+  enum class section { none, opens_both, closes_both } both = section::none;
 };
 
 /// Receives the routed stream.
@@ -63,7 +65,7 @@ class channel_router {
   /// A wait in every channel of `channels`, unless none has worked since its last wait
   /// (consecutive marks collapse) and `force` is off.
   void rendezvous(const std::vector<int>& channels, int line, const std::string& what,
-                  bool force = false);
+                  bool force = false, wait_mark::section both = wait_mark::section::none);
   void explicit_sync(const sync_event& s, int line);
   void error(int line, std::string message);
   std::optional<int> next_code(int line, const std::string& what);

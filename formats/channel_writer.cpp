@@ -51,10 +51,15 @@ bool channel_writer::axis_word(std::string& out, char address, double value, std
 }
 
 void channel_writer::on_wait(const wait_mark& w) {
+  // Balance cutting: wait, G68 ... cut ... G69, wait, in both channels.
+  if (w.both == wait_mark::section::closes_both && !m_.codes.balance_off.empty())
+    out_.block(m_.codes.balance_off);
   std::string b = fmt::format("{}{}", m_.waits.address, w.code);
   if (!w.partner_text.empty()) b += fmt::format(" {}{}", m_.waits.partner_address, w.partner_text);
   out_.block(b);
   ++waits_;
+  if (w.both == wait_mark::section::opens_both && !m_.codes.balance_on.empty())
+    out_.block(m_.codes.balance_on);
 }
 
 void channel_writer::on_event(const event& e, bool both) {

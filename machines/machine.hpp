@@ -105,6 +105,11 @@ struct control_codes {
   std::string dwell = "G4 U{seconds}";   ///< dwell block
   std::vector<std::string> coolant_on = {"M8"};
   std::string coolant_off = "M9";
+  /// Balance cutting (HEAD/BOTH): written in both channels right after the wait that opens
+  /// the section and right before the wait that closes it (Fanuc G68/G69, Mazak M562/M563).
+  /// Empty: the machine has none and the two heads simply cut together.
+  std::string balance_on;
+  std::string balance_off;
 };
 
 /// Rates used by the timeline.
