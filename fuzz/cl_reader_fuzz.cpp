@@ -1,12 +1,18 @@
 // libFuzzer target: arbitrary bytes through the whole CL reader (line reader, grammar,
-// event builder) and both event renderings. Build and run: fuzz/build.sh (docs/fuzzing.md).
+// event builder) and both event renderings, and every line through the fast path for
+// numeric statements and the grammar, which must agree. Build and run: fuzz/build.sh (docs/fuzzing.md).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 
+#include <cstdlib>
+#include <cstring>
+
 #include "parser/cl_reader.hpp"
+#include "parser/detail/fast_record.hpp"
 #include "parser/event_text.hpp"
+#include "parser/record_parser.hpp"
 
 namespace {
 
@@ -19,10 +25,31 @@ class formatting_sink : public twinpost::diagnostic_sink {
   std::size_t bytes_ = 0;
 };
 
+// The fast path for numeric statements must read every record it accepts exactly as the
+// X3 grammar does: each line of the input is tried as a record, and a difference aborts.
+void check_fast_path(std::string_view text) {
+  while (!text.empty()) {
+    std::size_t nl = text.find('\n');
+    std::string_view line = text.substr(0, nl);
+    text = nl == std::string_view::npos ? std::string_view() : text.substr(nl + 1);
+    twinpost::cl_record fast, slow;
+    if (!twinpost::parser_detail::parse_numeric_statement(line, fast)) continue;
+    twinpost::record_error err;
+    bool same = twinpost::parse_record_with_grammar(line, slow, err) && fast.kind == slow.kind &&
+                fast.major == slow.major && fast.major_offset == slow.major_offset &&
+                fast.args.size() == slow.args.size();
+    for (std::size_t i = 0; same && i < fast.args.size(); ++i)
+      same = fast.args[i].kind == slow.args[i].kind && fast.args[i].offset == slow.args[i].offset &&
+             std::memcmp(&fast.args[i].number, &slow.args[i].number, sizeof(double)) == 0;
+    if (!same) std::abort();
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string_view text(reinterpret_cast<const char*>(data), size);
+  check_fast_path(text);
   twinpost::string_source src(text);
   formatting_sink sink;
   twinpost::cl_reader_options options;
