@@ -52,6 +52,24 @@ void close_or_throw(file_ptr& f, const std::string& path) {
   if (std::ferror(raw) || std::fclose(raw) != 0) throw config_error(fmt::format("twinpost: error: cannot write '{}'", path));
 }
 
+// One program file: '%', the program line, the channels (each after its section marker
+// in a merged layout), '%'.
+framed_file write_program(const frame_request& r, template_args a, framed_file ff,
+                          const std::vector<const channel_def*>& channels, bool markers) {
+  const machine& m = *r.machine_def;
+  file_ptr f = open_or_throw(ff.tmp_path, "wb");
+  if (m.program.percent_lines) put_line(f.get(), "%");
+  put_line(f.get(), format_template(m.program.program_line, a));
+  for (const channel_def* ch : channels) {
+    a.channel = ch->number;
+    if (markers) put_line(f.get(), format_template(m.program.section_marker, a));
+    write_channel(f.get(), m, *ch, r, a);
+  }
+  if (m.program.percent_lines) put_line(f.get(), "%");
+  close_or_throw(f, ff.tmp_path);
+  return ff;
+}
+
 }  // namespace
 
 std::vector<framed_file> frame_programs(const frame_request& r) {
@@ -62,32 +80,17 @@ std::vector<framed_file> frame_programs(const frame_request& r) {
   std::string stem = format_template(m.program.file_name, a);
   std::vector<framed_file> out;
   if (r.layout == layout_kind::split) {
-    for (const channel_def& ch : m.channels) {
-      a.channel = ch.number;
-      framed_file ff{stem + ch.file_suffix + m.program.extension, fmt::format("{}/framed{}", r.tmp_dir, ch.number)};
-      file_ptr f = open_or_throw(ff.tmp_path, "wb");
-      if (m.program.percent_lines) put_line(f.get(), "%");
-      put_line(f.get(), format_template(m.program.program_line, a));
-      write_channel(f.get(), m, ch, r, a);
-      if (m.program.percent_lines) put_line(f.get(), "%");
-      close_or_throw(f, ff.tmp_path);
-      out.push_back(ff);
-    }
+    for (const channel_def& ch : m.channels)
+      out.push_back(write_program(r, a,
+                                  {stem + ch.file_suffix + m.program.extension,
+                                   fmt::format("{}/framed{}", r.tmp_dir, ch.number)},
+                                  {&ch}, false));
     return out;
   }
   // Merged: one program; each channel follows its section marker (G109 L1 / $1).
-  framed_file ff{stem + m.program.extension, fmt::format("{}/framed", r.tmp_dir)};
-  file_ptr f = open_or_throw(ff.tmp_path, "wb");
-  if (m.program.percent_lines) put_line(f.get(), "%");
-  put_line(f.get(), format_template(m.program.program_line, a));
-  for (const channel_def& ch : m.channels) {
-    a.channel = ch.number;
-    put_line(f.get(), format_template(m.program.section_marker, a));
-    write_channel(f.get(), m, ch, r, a);
-  }
-  if (m.program.percent_lines) put_line(f.get(), "%");
-  close_or_throw(f, ff.tmp_path);
-  out.push_back(ff);
+  std::vector<const channel_def*> all;
+  for (const channel_def& ch : m.channels) all.push_back(&ch);
+  out.push_back(write_program(r, a, {stem + m.program.extension, fmt::format("{}/framed", r.tmp_dir)}, all, true));
   return out;
 }
 
