@@ -111,21 +111,18 @@ class reader {
   void read_sections(const nc_source& f) {
     for (nc_channel_program& p : out_.channels) p.file = f.name;
     const marker_pattern mk = make_marker(m_.program.section_marker);
-    if (!mk.active) {
-      report(severity::error, {f.name, 0, 0, {}},
-             fmt::format("this machine has {} channels but one file was given, and its "
-                         "programs have no section markers: give one file per channel",
-                         out_.channels.size()));
-      return;
-    }
+    // `$n` sections (Citizen/Mitsubishi, twinpost's merged-sections layout) are read on any
+    // machine as well: a line `$1` means nothing else in a program.
+    const marker_pattern dollar = make_marker("${channel}");
     // Without any marker every wait would be "outside the sections": say the one thing.
     // One pass: the warnings about waits outside the sections wait until a marker is seen.
-    bool any_marker = false;
+    bool any_marker = false, dollar_seen = false;
     deferred_.clear();
     deferring_ = true;
     int current = 0;  // 0: common blocks or a data section; -1: an unknown channel's section
     for_each_line(f, [&](int no, std::string_view line) {
-      const int c = marker_channel(mk, line);
+      int c = mk.active ? marker_channel(mk, line) : -1;
+      if (c < 0 && (c = marker_channel(dollar, line)) >= 0) dollar_seen = true;
       if (c < 0) return read_line(f, no, line, current);
       any_marker = true;
       current = c;
@@ -140,17 +137,25 @@ class reader {
     });
     deferring_ = false;
     if (!any_marker) {
-      report(severity::error, {f.name, 0, 0, {}},
-             fmt::format("no section marker ({}) in this file: this machine has {} channels; "
-                         "give one file per channel, or one file with sections",
-                         m_.program.section_marker, out_.channels.size()));
+      deferred_.clear();
+      if (!mk.active)
+        report(severity::error, {f.name, 0, 0, {}},
+               fmt::format("this machine has {} channels but one file was given, and its "
+                           "programs have no section markers: give one file per channel",
+                           out_.channels.size()));
+      else
+        report(severity::error, {f.name, 0, 0, {}},
+               fmt::format("no section marker ({}) in this file: this machine has {} channels; "
+                           "give one file per channel, or one file with sections",
+                           m_.program.section_marker, out_.channels.size()));
       return;
     }
     for (diagnostic& d : deferred_) sink_.report(std::move(d));
     deferred_.clear();
     for (std::size_t i = 0; i < state_.size(); ++i) {
       if (state_[i].has_section) continue;
-      std::string marker = m_.program.section_marker;
+      // Name the marker in the form the file uses: the machine's, or `$n`.
+      std::string marker = mk.active && !dollar_seen ? m_.program.section_marker : "${channel}";
       marker.replace(marker.find("{channel}"), 9, std::to_string(i + 1));
       report(severity::error, {f.name, 0, 0, {}},
              fmt::format("no section for channel {} ({}) in this file", i + 1, marker));

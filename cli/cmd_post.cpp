@@ -64,8 +64,8 @@ int run_post(const args& a) {
     }
   }
   machine m = load_machine(vm["machine"].as<std::string>());
-  if (o.layout && *o.layout != layout_kind::split && m.program.section_marker.empty()) {
-    fmt::print(stderr, "twinpost post: machine '{}' has no section marker for a merged layout\n", m.name);
+  if (o.layout == layout_kind::merged_appended && m.program.section_marker.empty()) {
+    fmt::print(stderr, "twinpost post: machine '{}' has no section marker for merged-appended\n", m.name);
     return 2;
   }
   // Progress on stderr only for a person watching a terminal: never in logs or pipes.

@@ -57,12 +57,14 @@ void close_or_throw(file_ptr& f, const std::string& path) {
 framed_file write_program(const frame_request& r, template_args a, framed_file ff,
                           const std::vector<const channel_def*>& channels, bool markers) {
   const machine& m = *r.machine_def;
+  // Appended programs follow the machine's own marker (Mazak G109 L1); sections are `$n`.
+  const std::string marker = r.layout == layout_kind::merged_sections ? "${channel}" : m.program.section_marker;
   file_ptr f = open_or_throw(ff.tmp_path, "wb");
   if (m.program.percent_lines) put_line(f.get(), "%");
   put_line(f.get(), format_template(m.program.program_line, a));
   for (const channel_def* ch : channels) {
     a.channel = ch->number;
-    if (markers) put_line(f.get(), format_template(m.program.section_marker, a));
+    if (markers) put_line(f.get(), format_template(marker, a));
     write_channel(f.get(), m, *ch, r, a);
   }
   if (m.program.percent_lines) put_line(f.get(), "%");

@@ -79,7 +79,12 @@ for ch in mdef.get("channel", []):
     })
 by_number = {c["number"]: c for c in channels}
 layout = mdef.get("machine", {}).get("layout", "split")
-program = mdef.get("program", {})
+program = dict(mdef.get("program", {}))
+# --layout in the sample's post.args wins over the machine's; merged-sections uses `$n`.
+if "--layout" in post_args:
+    layout = post_args[post_args.index("--layout") + 1].replace("-", "_")
+    if layout == "merged_sections":
+        program["section_marker"] = "${channel}"
 
 # --- post and parse --------------------------------------------------------------------
 out_dir = os.path.join(work, "out")
