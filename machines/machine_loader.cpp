@@ -3,6 +3,8 @@
 // need more than one table run at the end.
 #include "machines/machine_loader.hpp"
 
+#include <array>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +30,24 @@ struct anchors {
   const toml::node* partners = nullptr;   // waits.partners, when given
 };
 
+// Reads `key` as one of three names; anything else fails with "T.key must be a, b or c".
+// Returns the key's node (for later messages), or nullptr when the key is absent.
+template <class E>
+const toml::node* read_enum(const table_reader& r, std::string_view key,
+                            const std::array<std::pair<std::string_view, E>, 3>& names, E& out) {
+  std::string text;
+  if (!r.read(key, text)) return nullptr;
+  for (const auto& [name, value] : names) {
+    if (text == name) {
+      out = value;
+      return r.find(key);
+    }
+  }
+  r.fail(*r.find(key), fmt::format("{} must be {}, {} or {}, not '{}'", r.key_path(key), names[0].first,
+                                   names[1].first, names[2].first, text));
+  return nullptr;
+}
+
 void read_machine_table(const table_reader& root, machine& m, anchors& at) {
   const toml::table* t = root.sub_table("machine");
   if (!t) root.fail_here("machine.name is required");
@@ -37,16 +57,11 @@ void read_machine_table(const table_reader& root, machine& m, anchors& at) {
   if (m.name.empty()) r.fail(*r.find("name"), "machine.name must not be empty");
   r.read("description", m.description);
   r.read("control", m.control);
-  std::string layout;
-  if (r.read("layout", layout)) {
-    at.layout = r.find("layout");
-    if (layout == "split") m.layout = layout_kind::split;
-    else if (layout == "merged_appended") m.layout = layout_kind::merged_appended;
-    else if (layout == "merged_sections") m.layout = layout_kind::merged_sections;
-    else
-      r.fail(*at.layout, fmt::format("machine.layout must be split, merged_appended or "
-                                     "merged_sections, not '{}'", layout));
-  }
+  at.layout = read_enum<layout_kind>(r, "layout",
+                                     {{{"split", layout_kind::split},
+                                       {"merged_appended", layout_kind::merged_appended},
+                                       {"merged_sections", layout_kind::merged_sections}}},
+                                     m.layout);
 }
 
 void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
@@ -75,16 +90,11 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
                                           w.excluded[i], w.first, w.last));
   }
   r.read("reuse", w.reuse);
-  std::string partners;
-  if (r.read("partners", partners)) {
-    at.partners = r.find("partners");
-    if (partners == "none") w.partners = partner_style::none;
-    else if (partners == "path_numbers") w.partners = partner_style::path_numbers;
-    else if (partners == "binary") w.partners = partner_style::binary;
-    else
-      r.fail(*at.partners, fmt::format("waits.partners must be none, path_numbers or binary, "
-                                       "not '{}'", partners));
-  }
+  at.partners = read_enum<partner_style>(r, "partners",
+                                         {{{"none", partner_style::none},
+                                           {"path_numbers", partner_style::path_numbers},
+                                           {"binary", partner_style::binary}}},
+                                         w.partners);
   r.read_char("partner_address", w.partner_address, true);
 }
 
