@@ -28,6 +28,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   if (!has_y_ && std::abs(y_cl * scale_) > y_tolerance)
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
+  check_side(nc_x(x_cl), x_cl, line);
   line_.clear();
   if (!pending_g_.empty()) {
     line_ += ' ';
@@ -87,6 +88,7 @@ void channel_writer::arc(const arc_event& a, int line) {
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
   if (!has_y_ && std::abs(a.end.y * scale_) > y_tolerance)
     return fail(fmt::format("Y {} on a channel without a Y axis", a.end.y));
+  check_side(nc_x(a.end.x), a.end.x, line);
   double axis_sign = plane == 17 ? a.normal.z : plane == 18 ? a.normal.y : a.normal.x;
   bool ccw = a.ccw == (axis_sign > 0);
   // Mirroring X reflects the XY and ZX planes, which reverses their sense; YZ has no X.

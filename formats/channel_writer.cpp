@@ -50,6 +50,27 @@ bool channel_writer::axis_word(std::string& out, char address, double value, std
   return true;
 }
 
+void channel_writer::check_side(double x_nc, double x_cl, int line) {
+  // A diameter below -5 mm is not facing past centre any more: the tool is on the other
+  // side of the spindle. On a mirrored (lower) turret that means the CL gave this head
+  // positive x, i.e. the upper side: its own frame, or a head mix-up. Say so, once.
+  constexpr double past_centre = -5.0;
+  const axis_def* x = ch_.axis('X');
+  if (warned_side_ || !x || !x->diameter || x_nc >= past_centre) return;
+  warned_side_ = true;
+  diagnostic d;
+  d.level = severity::warning;
+  d.file = cl_file_;
+  d.line = line;
+  d.message = fmt::format(
+      "channel {}: X{} is past the spindle centre line (CL x = {}){}", ch_.number,
+      format_nc_number(x_nc, axis_style_), x_cl,
+      mirrored() ? "; a lower turret's tools sit at CL x < 0: check the head's coordinates or the "
+                   "machine's mirror setting"
+                 : "");
+  diags_.report(std::move(d));
+}
+
 void channel_writer::on_wait(const wait_mark& w) {
   // Balance cutting: wait, G68 ... cut ... G69, wait, in both channels.
   if (w.both == wait_mark::section::closes_both && !m_.codes.balance_off.empty())

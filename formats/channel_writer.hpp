@@ -38,6 +38,8 @@ class channel_writer {
   void cycle_point(const vec3& p, int line);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
   void error(int line, std::string message);
+  /// Warns once per channel when a turret goes well past the spindle centre line.
+  void check_side(double x_nc, double x_cl, int line);
   /// Appends " X12.5" to `out` unless `last` already holds that value (modal suppression)
   /// and `always` is off; returns whether it wrote the word.
   bool axis_word(std::string& out, char address, double value, std::string& last, bool always = false);
@@ -77,6 +79,7 @@ class channel_writer {
   vec3 axis_{0, 0, 1};        // tool axis, from GOTO i,j,k or TLAXIS
   int tool_ = -1;
   int waits_ = 0;
+  bool warned_side_ = false;
 };
 
 }  // namespace twinpost
