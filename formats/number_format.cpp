@@ -42,29 +42,30 @@ void append_number(std::string& out, double v, const number_style& style) {
   double frac = a - fl;
   if (std::fabs(frac - 0.5) < 1e-7) return append_exact(out, v, style);
   unsigned long long n = static_cast<unsigned long long>(fl) + (frac > 0.5 ? 1 : 0);
-  // Digits from the right into a small buffer, then one append.
+  const bool zero = n == 0;  // whatever rounds to zero prints as zero, never "-0." or "-0"
+  // Split into whole and fraction, drop the fraction's trailing zeros, write right to left.
+  static constexpr unsigned long long scale[] = {1, 10, 100, 1000, 10000, 100000, 1000000,
+                                                 10000000, 100000000, 1000000000};
+  unsigned long long whole = n / scale[d];
+  unsigned long long fraction = n % scale[d];
+  int fraction_digits = d;
+  while (fraction_digits > 0 && fraction % 10 == 0 && fraction != 0) {
+    fraction /= 10;
+    --fraction_digits;
+  }
+  if (fraction == 0) fraction_digits = 0;
   char buf[40];
   char* end = buf + sizeof buf;
   char* p = end;
-  int k = 0;
-  bool in_fraction_zeros = true;  // trailing zeros of the fraction are dropped
-  for (; k < d; ++k) {
-    char c = static_cast<char>('0' + n % 10);
-    n /= 10;
-    if (in_fraction_zeros && c == '0') continue;
-    in_fraction_zeros = false;
-    *--p = c;
+  for (int k = 0; k < fraction_digits; ++k) {
+    *--p = static_cast<char>('0' + fraction % 10);
+    fraction /= 10;
   }
-  if (p != end) *--p = '.';
-  else if (d > 0 && style.trailing_point) *--p = '.';
+  if (fraction_digits > 0 || (d > 0 && style.trailing_point)) *--p = '.';
   do {
-    *--p = static_cast<char>('0' + n % 10);
-    n /= 10;
-  } while (n > 0);
-  // Whatever rounds to zero prints as zero, never "-0." or "-0".
-  bool zero = true;
-  for (char* q = p; q < end; ++q)
-    if (*q >= '1' && *q <= '9') zero = false;
+    *--p = static_cast<char>('0' + whole % 10);
+    whole /= 10;
+  } while (whole > 0);
   if (scaled < 0 && !zero) *--p = '-';
   out.append(p, static_cast<std::size_t>(end - p));
 }
