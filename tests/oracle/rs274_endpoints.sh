@@ -169,7 +169,10 @@ def nc_moves(number, lines, diameter):
     with open(ngc, "w") as f:
         f.write("G18 G21 G90 " + ("G7" if diameter else "G8") + "\n")
         f.write("\n".join(clean(lines)) + "\nM2\n")
-    r = subprocess.run(["rs274", "-g", ngc, canon], capture_output=True, text=True)
+    # rs274 keeps its tool table in $HOME/.tool.mmap, truncated at start: oracles running
+    # side by side (ctest -j) would share it, so each gets its work folder as HOME.
+    env = dict(os.environ, HOME=work)
+    r = subprocess.run(["rs274", "-g", ngc, canon], capture_output=True, text=True, env=env)
     text = open(canon).read() if os.path.exists(canon) else ""
     moves, errors = [], []
     for l in text.splitlines():
