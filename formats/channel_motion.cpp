@@ -55,7 +55,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
       return;
     case motion_kind::home:
       out_.block(m_.codes.home);
-      last_x_.clear(), last_y_.clear(), last_z_.clear();
+      forget_axes();
       motion_g_ = -1;
       pos_ = mv.pos;
       return;

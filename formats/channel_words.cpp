@@ -70,7 +70,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   (void)line;
   if (t.tool == tool_) return;
   out_.block(m_.codes.home);  // index the turret away from the part
-  last_x_.clear(), last_y_.clear(), last_z_.clear();
+  forget_axes();
   motion_g_ = -1;
   template_args a = sample_template_args();
   a.tool = t.tool;

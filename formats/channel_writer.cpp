@@ -30,23 +30,27 @@ void channel_writer::error(int line, std::string message) {
   diags_.report(std::move(d));
 }
 
-bool channel_writer::axis_word(std::string& out, char address, double value, std::string& last,
+bool channel_writer::axis_word(std::string& out, char address, double value, axis_memory& last,
                                bool always) {
-  // The same value as last time prints the same text: no need to format it to know.
-  double& last_value = address == 'X' ? last_x_value_ : address == 'Y' ? last_y_value_ : last_z_value_;
-  if (!always && !last.empty() && value == last_value) return false;
-  last_value = value;
-  // Formats straight into the block: no temporary strings on the hot path.
-  std::size_t at = out.size();
+  // The same value as last time prints the same word: no need to round it to know.
+  if (!always && last.known && value == last.value) return false;
+  std::int64_t n;
+  if (!round_fixed(value, axis_style_.decimals, n)) {
+    // Out of any machine's travel; written as it is, and never taken as modal.
+    out += ' ';
+    out += address;
+    append_number(out, value, axis_style_);
+    last.known = false;
+    return true;
+  }
+  bool same = last.known && n == last.n;
+  last.known = true;
+  last.n = n;
+  last.value = value;
+  if (same && !always) return false;  // modal: the axis is already there
   out += ' ';
   out += address;
-  append_number(out, value, axis_style_);
-  std::string_view v(out.data() + at + 2, out.size() - at - 2);
-  if (v == last && !always) {
-    out.resize(at);  // modal: the axis is already there
-    return false;
-  }
-  last.assign(v);
+  append_fixed(out, n, axis_style_);
   return true;
 }
 

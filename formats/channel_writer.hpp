@@ -3,6 +3,7 @@
 // that channel's modal state: tool, spindle and its mode, feed mode, motion G-code, last
 // axis words (modal suppression), cutter compensation, an active drilling cycle.
 // Lengths are written in millimetres: an inch CL is converted on the way.
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -40,9 +41,16 @@ class channel_writer {
   void error(int line, std::string message);
   /// Warns once per channel when a turret goes well past the spindle centre line.
   void check_side(double x_nc, double x_cl, int line);
-  /// Appends " X12.5" to `out` unless `last` already holds that value (modal suppression)
+  /// The last word written on one axis, for modal suppression.
+  struct axis_memory {
+    bool known = false;   ///< false after a tool change or home: the next word is written
+    std::int64_t n = 0;   ///< the word's value in the last decimal place (12.346 -> 12346)
+    double value = 0;     ///< the value it was rounded from
+  };
+  /// Appends " X12.5" to `out` unless `last` already holds that word (modal suppression)
   /// and `always` is off; returns whether it wrote the word.
-  bool axis_word(std::string& out, char address, double value, std::string& last, bool always = false);
+  bool axis_word(std::string& out, char address, double value, axis_memory& last, bool always = false);
+  void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(std::string& out);
   double nc_x(double x_cl) const { return x_cl * scale_ * x_factor_ * side_; }
   /// True when this channel's X runs against the CL (a mirrored turret, not a BOTH copy).
@@ -63,8 +71,7 @@ class channel_writer {
   const spindle_def* spindle_ = nullptr;
   int motion_g_ = -1;         // last G0/G1/G2/G3
   int plane_ = 18;            // G17/G18/G19 in force (lathe headers set G18)
-  std::string last_x_, last_y_, last_z_;  // axis words written last ("" = unknown)
-  double last_x_value_ = 0, last_y_value_ = 0, last_z_value_ = 0;  // and the values they came from
+  axis_memory last_x_, last_y_, last_z_;  // axis words written last
   std::string feed_g_;        // G99/G98 (G95/G94) in force
   std::string last_f_;
   std::string line_;          // the block being built, reused

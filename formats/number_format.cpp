@@ -2,17 +2,25 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstring>
 
 namespace twinpost {
 
 namespace {
 
 constexpr double pow10[] = {1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+constexpr std::int64_t ipow10[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000,
+                                   100000000, 1000000000};
 
-// The exact rule: std::to_chars rounds the binary value correctly. Slow (it is a general
-// printf engine), so it only settles the cases the fast path below cannot.
+// "00" .. "99": two digits per division.
+constexpr char two_digits[] =
+    "0001020304050607080910111213141516171819202122232425262728293031323334353637383940414243444546474849"
+    "5051525354555657585960616263646566676869707172737475767778798081828384858687888990919293949596979899";
+
+// The general rule: std::to_chars rounds the binary value correctly. Only for values outside
+// round_fixed's range.
 void append_exact(std::string& out, double v, const number_style& style) {
-  char buf[64];
+  char buf[400];
   auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, style.decimals);
   char* begin = buf;
   char* end = r.ptr;
@@ -28,46 +36,77 @@ void append_exact(std::string& out, double v, const number_style& style) {
   out.append(begin, end);
 }
 
+// Writes `v` in decimal ending just before `end`; returns the first character.
+char* write_digits(char* end, std::uint64_t v) {
+  while (v >= 100) {
+    std::uint64_t q = v / 100;
+    std::memcpy(end -= 2, two_digits + 2 * (v - q * 100), 2);
+    v = q;
+  }
+  if (v >= 10) {
+    std::memcpy(end -= 2, two_digits + 2 * v, 2);
+  } else {
+    *--end = static_cast<char>('0' + v);
+  }
+  return end;
+}
+
 }  // namespace
 
-void append_number(std::string& out, double v, const number_style& style) {
-  // Fast path: scale to an integer count of the last decimal. The product carries an error
-  // of about one unit in 1e16; unless its fraction sits within 1e-7 of a half, rounding it
-  // decides exactly as rounding the binary value would, so the output equals to_chars'.
-  int d = style.decimals;
-  double scaled = v * pow10[d < 0 ? 0 : d > 9 ? 9 : d];
-  double a = std::fabs(scaled);
-  if (d < 0 || d > 9 || !(a < 1e15)) return append_exact(out, v, style);
-  double fl = std::floor(a);
-  double frac = a - fl;
-  if (std::fabs(frac - 0.5) < 1e-7) return append_exact(out, v, style);
-  unsigned long long n = static_cast<unsigned long long>(fl) + (frac > 0.5 ? 1 : 0);
-  const bool zero = n == 0;  // whatever rounds to zero prints as zero, never "-0." or "-0"
-  // Split into whole and fraction, drop the fraction's trailing zeros, write right to left.
-  static constexpr unsigned long long scale[] = {1, 10, 100, 1000, 10000, 100000, 1000000,
-                                                 10000000, 100000000, 1000000000};
-  unsigned long long whole = n / scale[d];
-  unsigned long long fraction = n % scale[d];
-  int fraction_digits = d;
-  while (fraction_digits > 0 && fraction % 10 == 0 && fraction != 0) {
-    fraction /= 10;
-    --fraction_digits;
+bool round_fixed(double v, int decimals, std::int64_t& n) {
+  if (decimals < 0 || decimals > 9) return false;
+  double a = std::fabs(v);
+  double scale = pow10[decimals];
+  double p = a * scale;  // the product, rounded to a double
+  if (!(p < 1e15)) return false;
+  double fl = std::floor(p);
+  double frac = p - fl;  // exact: p < 2^52
+  auto k = static_cast<std::int64_t>(fl);
+  if (frac > 0.5) {
+    ++k;
+  } else if (frac == 0.5) {
+    // Only an exact half in p needs the product's rounding error e (a * scale = p + e,
+    // exactly, by fma); elsewhere |e| <= ulp(p)/2 cannot carry the true product across the
+    // half. A true tie goes to even, as to_chars does.
+    double e = std::fma(a, scale, -p);
+    if (e > 0 || (e == 0 && (k & 1))) ++k;
   }
-  if (fraction == 0) fraction_digits = 0;
-  char buf[40];
+  n = v < 0 ? -k : k;
+  return true;
+}
+
+void append_fixed(std::string& out, std::int64_t n, const number_style& style) {
+  int d = style.decimals;
+  std::uint64_t mag = n < 0 ? static_cast<std::uint64_t>(-n) : static_cast<std::uint64_t>(n);
+  auto scale = static_cast<std::uint64_t>(ipow10[d]);
+  std::uint64_t whole = mag / scale;
+  std::uint64_t fraction = mag - whole * scale;
+  char buf[48];
   char* end = buf + sizeof buf;
   char* p = end;
-  for (int k = 0; k < fraction_digits; ++k) {
-    *--p = static_cast<char>('0' + fraction % 10);
-    fraction /= 10;
+  if (fraction != 0) {
+    // Drop the fraction's trailing zeros, then pad it to its width with leading zeros.
+    int digits = d;
+    while (fraction % 10 == 0) {
+      fraction /= 10;
+      --digits;
+    }
+    char* f = write_digits(end, fraction);
+    p = end - digits;
+    while (f > p) *--f = '0';
+    *--p = '.';
+  } else if (d > 0 && style.trailing_point) {
+    *--p = '.';
   }
-  if (fraction_digits > 0 || (d > 0 && style.trailing_point)) *--p = '.';
-  do {
-    *--p = static_cast<char>('0' + whole % 10);
-    whole /= 10;
-  } while (whole > 0);
-  if (scaled < 0 && !zero) *--p = '-';
+  p = write_digits(p, whole);
+  if (n < 0) *--p = '-';
   out.append(p, static_cast<std::size_t>(end - p));
+}
+
+void append_number(std::string& out, double v, const number_style& style) {
+  std::int64_t n;
+  if (round_fixed(v, style.decimals, n)) return append_fixed(out, n, style);
+  append_exact(out, v, style);
 }
 
 std::string format_nc_number(double v, const number_style& style) {

@@ -44,6 +44,13 @@ TEST_CASE("NC numbers: trailing point, trimmed zeros, no -0", "[formats]") {
   CHECK(format_nc_number(-0.0001, plain) == "0");
   CHECK(format_nc_number(1200.4, {0, false}) == "1200");
   CHECK(format_nc_number(0.25, {4, true}) == "0.25");
+  // Exact ties go to even, as std::to_chars and printf round them.
+  CHECK(format_nc_number(0.0625, fanuc) == "0.062");
+  CHECK(format_nc_number(12.1875, fanuc) == "12.188");
+  CHECK(format_nc_number(-0.125, {2, true}) == "-0.12");
+  CHECK(format_nc_number(2.5, {0, false}) == "2");
+  CHECK(format_nc_number(3.5, {0, false}) == "4");
+  CHECK(format_nc_number(1e20, fanuc) == "100000000000000000000.");
 }
 
 TEST_CASE("NC numbers: the fast path agrees with to_chars", "[formats]") {
@@ -58,7 +65,9 @@ TEST_CASE("NC numbers: the fast path agrees with to_chars", "[formats]") {
         double v = wide(rng);
         double on_grid = std::round(grid(rng)) / 10000.0;             // CL-like 4-decimal values
         double tie = (std::round(grid(rng)) + 0.5) / std::pow(10, decimals);  // near halves
-        for (double x : {v, on_grid, tie})
+        // Exact binary halves: odd / 2^(d+1) is k + 0.5 in units of 10^-d (0.0625 at 3).
+        double exact_tie = (2 * std::round(grid(rng) / 2) + 1) / std::pow(2, decimals + 1);
+        for (double x : {v, on_grid, tie, exact_tie})
           if (format_nc_number(x, s) != reference(x, s)) ++mismatches;
       }
     }
