@@ -127,12 +127,11 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   ro.forced = o.forced_dialect;
   file_source src(in);
   cl_reader reader(src, ro, sink);
-  event e;
   int last_line = 0;
   std::size_t until_progress = progress_every;
-  while (reader.next(e)) {
-    last_line = e.line;
-    router.route(e);
+  while (const event* e = reader.next()) {
+    last_line = e->line;
+    router.route(*e);
     if (--until_progress == 0) {
       until_progress = progress_every;
       if (o.progress) o.progress(reader.bytes());

@@ -75,9 +75,15 @@ cl_reader::cl_reader(byte_source& src, cl_reader_options options, diagnostic_sin
 
 cl_reader::~cl_reader() = default;
 
+const event* cl_reader::next() {
+  if (impl_->head >= impl_->queue.size() && !impl_->refill()) return nullptr;
+  return &impl_->queue[impl_->head++];
+}
+
 bool cl_reader::next(event& out) {
-  if (impl_->head >= impl_->queue.size() && !impl_->refill()) return false;
-  out = std::move(impl_->queue[impl_->head++]);
+  const event* e = next();
+  if (!e) return false;
+  out = *e;
   return true;
 }
 

@@ -26,7 +26,10 @@ class cl_reader {
   cl_reader(const cl_reader&) = delete;
   cl_reader& operator=(const cl_reader&) = delete;
 
-  /// The next event; false at the end of the input.
+  /// The next event, or nullptr at the end of the input. The event stays valid until the
+  /// next call; nothing is copied (the fast way, for posting).
+  const event* next();
+  /// The next event copied into `out`; false at the end of the input.
   bool next(event& out);
   /// The dialect in use.
   dialect current_dialect() const;

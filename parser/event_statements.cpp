@@ -164,7 +164,10 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
     out.push_back({line, a});
     return;
   }
-  motion_event e;
+  // Built in place in the queue: the event is read from where it was written.
+  event& ev = out.emplace_back();
+  ev.line = line;
+  motion_event& e = ev.data.emplace<motion_event>();
   e.kind = kind;
   e.pos = p;
   e.axis = axis_;
@@ -175,7 +178,6 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
     rapid_ = false;
   }
   pos_ = p;
-  out.push_back({line, e});
 }
 
 void event_builder::circle(const cl_record& r, int line, build_issues& issues) {
