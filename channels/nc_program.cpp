@@ -71,22 +71,67 @@ marker_pattern make_marker(std::string_view tpl) {
   return p;
 }
 
-/// The channel a marker line opens, or -1 when `line` is no marker.
-int marker_channel(const marker_pattern& mk, std::string_view line) {
-  const std::string s = squeeze(line);
-  std::string_view v = s;
-  // A sequence number may precede the marker ("N10 G109 L1").
-  if (mk.prefix[0] != 'N' && v.size() > 1 && v[0] == 'N' && is_digit(v[1])) {
-    v.remove_prefix(1);
-    while (!v.empty() && is_digit(v[0])) v.remove_prefix(1);
+/// A line as squeeze() sees it, walked without copying: upper case, blanks and comments
+/// skipped, nothing after ';'.
+class squeezed {
+ public:
+  explicit squeezed(std::string_view s) : s_(s) { skip(); }
+  bool done() const { return i_ >= s_.size(); }
+  char peek() const { return upper(s_[i_]); }
+  void next() {
+    ++i_;
+    skip();
   }
-  if (!v.starts_with(mk.prefix)) return -1;
-  v.remove_prefix(mk.prefix.size());
-  std::size_t d = 0;
-  while (d < v.size() && is_digit(v[d])) ++d;
-  int channel = 0;
-  if (d == 0 || d > 4 || !to_int(v.substr(0, d), channel)) return -1;
-  return v.substr(d).starts_with(mk.suffix) ? channel : -1;
+
+ private:
+  void skip() {
+    while (i_ < s_.size()) {
+      const char c = s_[i_];
+      if (is_blank(c)) {
+        ++i_;
+      } else if (c == '(') {
+        const std::size_t close = s_.find(')', i_);
+        i_ = close == std::string_view::npos ? s_.size() : close + 1;
+      } else if (c == ';') {
+        i_ = s_.size();
+      } else {
+        return;
+      }
+    }
+  }
+  std::string_view s_;
+  std::size_t i_ = 0;
+};
+
+/// The channel a marker line opens, or -1 when `line` is no marker. Called for every line
+/// of a merged program, so it walks the line in place and gives up at the first mismatch.
+int marker_channel(const marker_pattern& mk, std::string_view line) {
+  squeezed w(line);
+  // A sequence number may precede the marker ("N10 G109 L1").
+  if (mk.prefix[0] != 'N' && !w.done() && w.peek() == 'N') {
+    squeezed after = w;
+    after.next();
+    if (!after.done() && is_digit(after.peek())) {
+      w = after;
+      while (!w.done() && is_digit(w.peek())) w.next();
+    }
+  }
+  for (char c : mk.prefix) {
+    if (w.done() || w.peek() != c) return -1;
+    w.next();
+  }
+  int channel = 0, digits = 0;
+  while (!w.done() && is_digit(w.peek())) {
+    if (++digits > 4) return -1;
+    channel = channel * 10 + (w.peek() - '0');
+    w.next();
+  }
+  if (digits == 0) return -1;
+  for (char c : mk.suffix) {
+    if (w.done() || w.peek() != c) return -1;
+    w.next();
+  }
+  return channel;
 }
 
 /// Turns NC files into channel programs; one per read_nc_programs call.
@@ -176,17 +221,36 @@ class reader {
   struct channel_state {
     bool has_section = false;
     bool ended = false;
-    // The last block read, kept as a view into the source so that lines are not copied.
+    // The last block read. A plain block is only noted as a view into the line buffer
+    // (`pending`), and copied when the buffer moves on: most blocks are plain.
     std::string last_file;
     int last_line = 0;
     std::string last_text;
+    const nc_source* pending_source = nullptr;
+    std::string_view pending_text;
   };
+
+  // Copies the plain blocks noted as views, before the lines they point into go away.
+  void settle() {
+    for (channel_state& st : state_) {
+      if (!st.pending_source) continue;
+      st.last_file = st.pending_source->name;
+      st.last_text.assign(st.pending_text);
+      st.pending_source = nullptr;
+    }
+  }
   std::vector<diagnostic> deferred_;  // outside-section warnings, until a marker is seen
   bool deferring_ = false;
 
+  // Calls on_line for every line; lines are views that stay valid until settle() is called
+  // (at the end of each chunk read from disk, and at the end).
   template <class F>
-  static void for_each_line(const nc_source& f, F&& on_line) {
-    if (!f.path.empty()) return stream_lines(f.path, on_line);
+  void for_each_line(const nc_source& f, F&& on_line) {
+    if (!f.path.empty()) {
+      stream_lines(f.path, on_line);
+      settle();
+      return;
+    }
     std::string_view text = f.text;
     if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);  // UTF-8 byte order mark
     int no = 0;
@@ -199,6 +263,7 @@ class reader {
       if (eol < text.size() && text[eol] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
       on_line(++no, line);
     }
+    settle();
   }
 
   // The first CR or LF at or after `pos` (memchr twice beats find_first_of on long text).
@@ -213,7 +278,7 @@ class reader {
 
   // The same lines as above, read from a file a megabyte at a time.
   template <class F>
-  static void stream_lines(const std::string& path, F&& on_line) {
+  void stream_lines(const std::string& path, F&& on_line) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
     constexpr std::size_t chunk_bytes = 1 << 20;
@@ -236,11 +301,13 @@ class reader {
           break;
         }
         std::string_view line = chunk.substr(pos, eol - pos);
-        if (!carry.empty()) {
+        const bool carried = !carry.empty();
+        if (carried) {
           carry.append(line);
           line = carry;
         }
         on_line(++no, line);
+        if (carried) settle();  // the line lives in `carry`, cleared now
         carry.clear();
         pos = eol + 1;
         if (chunk[eol] == '\r') {
@@ -248,6 +315,7 @@ class reader {
           else if (pos == chunk.size()) skip_lf = true;
         }
       }
+      settle();  // the buffer is read over next
     }
     if (!carry.empty()) on_line(++no, carry);
   }
@@ -296,9 +364,9 @@ class reader {
       // only remember it as the channel's last block. Most of a program is such blocks.
       channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
       if (!st.ended) {
-        if (st.last_file != f.name) st.last_file = f.name;
         st.last_line = no;
-        st.last_text.assign(line);
+        st.pending_source = &f;
+        st.pending_text = line;
       }
       return;
     }
@@ -360,6 +428,7 @@ class reader {
                            name(*wait), channel, prog.end.file, prog.end.line));
       return;
     }
+    st.pending_source = nullptr;
     if (st.last_file != f.name) st.last_file = f.name;
     st.last_line = no;
     st.last_text.assign(line);

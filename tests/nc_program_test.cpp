@@ -1,6 +1,10 @@
 // Reading NC programs into per-channel wait lists (channels/nc_program.hpp).
 #include <catch2/catch.hpp>
 
+#include <cstdio>
+#include <filesystem>
+#include <unistd.h>
+
 #include "channels/nc_program.hpp"
 
 using namespace twinpost;
@@ -223,4 +227,42 @@ TEST_CASE("near waits: off-step codes and M-codes with partner lists", "[check]"
   CHECK(p.channels[0].near_waits[0].code == 101);
   CHECK(p.channels[0].near_waits[1].code == 250);
   CHECK(p.channels[0].near_waits[1].partner_text == "12");
+}
+
+TEST_CASE("streamed files: the last block survives the reader's buffer", "[check]") {
+  // Two files of over two megabytes each (the reader takes one at a time), streamed from
+  // disk, neither with an end code: each channel's end is its last block, named with its own
+  // file and text, though the buffer it was read into has since been read over by the
+  // blank lines that follow it.
+  const std::filesystem::path tmp = std::filesystem::temp_directory_path() /
+                                    ("twinpost-nc-stream-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(tmp);
+  const std::string dir = tmp.string();
+  auto write = [&](const std::string& name, const std::string& last) {
+    std::string text = "O1000\nM100\n";
+    for (int i = 0; text.size() < (1u << 20) + 5000; ++i) text += "G1 X" + std::to_string(i) + ". Z-1.\n";
+    text += last + "\n";
+    int lines = 0;  // the last block's line
+    for (char c : text) lines += c == '\n';
+    text.append((1u << 20) + 100, '\n');
+    const std::string path = dir + "/" + name;
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    REQUIRE(f);
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+    return std::pair{path, lines};
+  };
+  auto [a_path, a_lines] = write("stream_a.nc", "G0 X100. Z5.");
+  auto [b_path, b_lines] = write("stream_b.nc", "G0 X200. Z9.");
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs({{"a.nc", {}, a_path}, {"b.nc", {}, b_path}},
+                                         two_channels(100, 103, ""), d);
+  CHECK(p.channels[0].end.file == "a.nc");
+  CHECK(p.channels[0].end.line == a_lines);
+  CHECK(p.channels[0].end.source_line == "G0 X100. Z5.");
+  CHECK(p.channels[1].end.file == "b.nc");
+  CHECK(p.channels[1].end.line == b_lines);
+  CHECK(p.channels[1].end.source_line == "G0 X200. Z9.");
+  CHECK(p.channels[0].waits.size() == 1);
+  std::filesystem::remove_all(tmp);
 }
