@@ -59,12 +59,11 @@ bool round_fixed(double v, int decimals, std::int64_t& n) {
   double scale = pow10[decimals];
   double p = a * scale;  // the product, rounded to a double
   if (!(p < 1e15)) return false;
-  double fl = std::floor(p);
-  double frac = p - fl;  // exact: p < 2^52
-  auto k = static_cast<std::int64_t>(fl);
-  if (frac > 0.5) {
-    ++k;
-  } else if (frac == 0.5) {
+  // p >= 0: truncation is floor, and exact (p < 2^52).
+  auto k = static_cast<std::int64_t>(p);
+  double frac = p - static_cast<double>(k);
+  k += frac > 0.5;  // no branch: the fraction is anyone's guess
+  if (frac == 0.5) [[unlikely]] {
     // Only an exact half in p needs the product's rounding error e (a * scale = p + e,
     // exactly, by fma); elsewhere |e| <= ulp(p)/2 cannot carry the true product across the
     // half. A true tie goes to even, as to_chars does.
@@ -75,9 +74,12 @@ bool round_fixed(double v, int decimals, std::int64_t& n) {
   return true;
 }
 
-void append_fixed(std::string& out, std::int64_t n, const number_style& style) {
+namespace {
+
+// Any decimals, any size: digits one division at a time.
+void append_fixed_general(std::string& out, std::int64_t n, const number_style& style) {
   int d = style.decimals;
-  std::uint64_t mag = n < 0 ? static_cast<std::uint64_t>(-n) : static_cast<std::uint64_t>(n);
+  std::uint64_t mag = n < 0 ? 0 - static_cast<std::uint64_t>(n) : static_cast<std::uint64_t>(n);
   auto scale = static_cast<std::uint64_t>(ipow10[d]);
   std::uint64_t whole = mag / scale;
   std::uint64_t fraction = mag - whole * scale;
@@ -101,6 +103,72 @@ void append_fixed(std::string& out, std::int64_t n, const number_style& style) {
   p = write_digits(p, whole);
   if (n < 0) *--p = '-';
   out.append(p, static_cast<std::size_t>(end - p));
+}
+
+// The eight digits of v < 10^8, zero-padded, at p[0..8): four pairs, no loop.
+void eight_digits(char* p, std::uint32_t v) {
+  const std::uint32_t hi = v / 10000, lo = v % 10000;
+  std::memcpy(p, two_digits + 2 * (hi / 100), 2);
+  std::memcpy(p + 2, two_digits + 2 * (hi % 100), 2);
+  std::memcpy(p + 4, two_digits + 2 * (lo / 100), 2);
+  std::memcpy(p + 6, two_digits + 2 * (lo % 100), 2);
+}
+
+// Decimal digits of 0 < v < 10^8 (1 for 0), without a branch.
+int digit_count(std::uint32_t v) {
+  return 1 + (v >= 10) + (v >= 100) + (v >= 1000) + (v >= 10000) + (v >= 100000) +
+         (v >= 1000000) + (v >= 10000000);
+}
+
+// D decimals, whole part below 10^8 (every coordinate a machine has): fixed-width digit
+// pairs cut to length, so the work is the same whatever the number, with no loops to
+// mispredict. Anything else goes the general way.
+template <int D>
+void append_fixed_d(std::string& out, std::int64_t n, const number_style& style) {
+  constexpr std::uint64_t scale = ipow10[D];
+  const bool negative = n < 0;
+  const std::uint64_t mag = negative ? 0 - static_cast<std::uint64_t>(n) : static_cast<std::uint64_t>(n);
+  const std::uint64_t whole = mag / scale;
+  if (whole >= 100000000) return append_fixed_general(out, n, style);
+  const auto fraction = static_cast<std::uint32_t>(mag - whole * scale);
+  char digits[16];
+  char buf[40];
+  char* p = buf;
+  *p = '-';
+  p += negative;
+  eight_digits(digits, static_cast<std::uint32_t>(whole));
+  const int count = digit_count(static_cast<std::uint32_t>(whole));
+  std::memcpy(p, digits + 8 - count, 8);  // eight bytes copied, `count` of them kept
+  p += count;
+  if constexpr (D > 0) {
+    if (fraction != 0) {
+      *p++ = '.';
+      eight_digits(digits, fraction);
+      std::memcpy(p, digits + 8 - D, D);
+      p += D;
+      while (p[-1] == '0') --p;  // 12.500 -> 12.5 (the fraction is not zero: a digit stays)
+    } else if (style.trailing_point) {
+      *p++ = '.';
+    }
+  }
+  out.append(buf, static_cast<std::size_t>(p - buf));
+}
+
+}  // namespace
+
+void append_fixed(std::string& out, std::int64_t n, const number_style& style) {
+  switch (style.decimals) {
+    case 0: return append_fixed_d<0>(out, n, style);
+    case 1: return append_fixed_d<1>(out, n, style);
+    case 2: return append_fixed_d<2>(out, n, style);
+    case 3: return append_fixed_d<3>(out, n, style);
+    case 4: return append_fixed_d<4>(out, n, style);
+    case 5: return append_fixed_d<5>(out, n, style);
+    case 6: return append_fixed_d<6>(out, n, style);
+    case 7: return append_fixed_d<7>(out, n, style);
+    case 8: return append_fixed_d<8>(out, n, style);
+    default: return append_fixed_general(out, n, style);
+  }
 }
 
 void append_number(std::string& out, double v, const number_style& style) {

@@ -56,9 +56,10 @@ TEST_CASE("NC numbers: trailing point, trimmed zeros, no -0", "[formats]") {
 TEST_CASE("NC numbers: the fast path agrees with to_chars", "[formats]") {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> wide(-2000, 2000);
+  std::uniform_real_distribution<double> huge(-5e8, 5e8);  // whole parts past eight digits
   std::uniform_real_distribution<double> grid(-2e6, 2e6);
   long mismatches = 0;
-  for (int decimals : {0, 1, 3, 4}) {
+  for (int decimals : {0, 1, 2, 3, 4, 6, 8, 9}) {
     for (bool point : {true, false}) {
       number_style s{decimals, point};
       for (int i = 0; i < 50000; ++i) {
@@ -67,7 +68,7 @@ TEST_CASE("NC numbers: the fast path agrees with to_chars", "[formats]") {
         double tie = (std::round(grid(rng)) + 0.5) / std::pow(10, decimals);  // near halves
         // Exact binary halves: odd / 2^(d+1) is k + 0.5 in units of 10^-d (0.0625 at 3).
         double exact_tie = (2 * std::round(grid(rng) / 2) + 1) / std::pow(2, decimals + 1);
-        for (double x : {v, on_grid, tie, exact_tie})
+        for (double x : {v, on_grid, tie, exact_tie, huge(rng)})
           if (format_nc_number(x, s) != reference(x, s)) ++mismatches;
       }
     }
