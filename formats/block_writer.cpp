@@ -10,8 +10,8 @@ namespace {
 constexpr std::size_t flush_at = 1 << 18;
 }
 
-block_writer::block_writer(const std::string& path, const program_format& fmt)
-    : path_(path), fmt_(fmt), seq_(fmt.sequence_start) {
+block_writer::block_writer(const std::string& path, const program_format& fmt, framing frame)
+    : frame_(std::move(frame)), path_(path), fmt_(fmt), seq_(fmt.sequence_start) {
   f_ = std::fopen(path.c_str(), "wb");
   if (!f_) throw config_error(fmt::format("twinpost: error: cannot write '{}': {}", path, std::strerror(errno)));
   buf_.reserve(flush_at + 4096);
@@ -21,7 +21,16 @@ block_writer::~block_writer() {
   if (f_) std::fclose(f_);
 }
 
+void block_writer::start() {
+  started_ = true;
+  if (frame_.head) {
+    head_ = frame_.head();
+    buf_.append(head_);
+  }
+}
+
 void block_writer::put(std::string_view s) {
+  if (!started_) [[unlikely]] start();
   buf_.append(s);
   buf_ += '\n';
   if (buf_.size() >= flush_at) {
@@ -55,6 +64,8 @@ void block_writer::raw(std::string_view line) { put(line); }
 
 void block_writer::close() {
   if (!f_) return;
+  if (!started_) start();
+  if (frame_.tail) buf_.append(frame_.tail());
   bool ok = std::fwrite(buf_.data(), 1, buf_.size(), f_) == buf_.size();
   buf_.clear();
   ok = std::fclose(f_) == 0 && ok;

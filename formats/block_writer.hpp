@@ -2,6 +2,7 @@
 // Writes NC blocks of one channel to a file through a large buffer: sequence numbers,
 // comments made safe for the control, block-length limits. One writer per channel.
 #include <cstdio>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -11,8 +12,14 @@ namespace twinpost {
 
 class block_writer {
  public:
+  /// Text around the blocks, as whole lines: `head` is asked for just before the first line
+  /// is written (or at close, when there is none), `tail` at close. Empty: nothing.
+  struct framing {
+    std::function<std::string()> head, tail;
+  };
+
   /// Opens `path` for writing; throws config_error when it cannot.
-  block_writer(const std::string& path, const program_format& fmt);
+  block_writer(const std::string& path, const program_format& fmt, framing frame = {});
   ~block_writer();
   block_writer(const block_writer&) = delete;
   block_writer& operator=(const block_writer&) = delete;
@@ -26,9 +33,15 @@ class block_writer {
   /// Flushes and closes; throws config_error on a write error.
   void close();
   long blocks() const { return blocks_; }
+  /// The head written (see framing), "" before the first line.
+  const std::string& head_written() const { return head_; }
 
  private:
   void put(std::string_view s);
+  void start();
+  framing frame_;
+  std::string head_;
+  bool started_ = false;
   std::FILE* f_ = nullptr;
   std::string path_;
   const program_format& fmt_;

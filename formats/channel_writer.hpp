@@ -18,8 +18,9 @@ namespace twinpost {
 
 class channel_writer {
  public:
-  channel_writer(const machine& m, const channel_def& ch, const std::string& body_path,
-                 diagnostic_sink& diags, std::string cl_file);
+  /// Writes the channel's blocks to `path`, framed by `frame` (see block_writer).
+  channel_writer(const machine& m, const channel_def& ch, const std::string& path,
+                 diagnostic_sink& diags, std::string cl_file, block_writer::framing frame = {});
 
   /// The job's units (UNITS record); inch values are converted to mm.
   void set_units(unit_system u) { scale_ = u == unit_system::inch ? 25.4 : 1.0; }
@@ -28,6 +29,7 @@ class channel_writer {
   /// Ends the body: coolant and spindle off are the footer's job; closes the file.
   void finish();
   long blocks() const { return out_.blocks(); }
+  const std::string& head_written() const { return out_.head_written(); }
   int waits() const { return waits_; }
 
  private:

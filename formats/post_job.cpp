@@ -117,10 +117,27 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     }
   }
 
+  // Each channel writes straight into its program file where its blocks open one (the
+  // name from PARTNO as known by then); the others of a merged program spill to a body file.
   writers_sink ws;
-  for (const channel_def& ch : m.channels)
-    ws.writers.push_back(std::make_unique<channel_writer>(m, ch, (clean.tmp / fmt::format("body{}", ch.number)).string(),
-                                                          sink, o.cl_path));
+  frame_request req;
+  req.machine_def = &m;
+  req.layout = o.layout.value_or(m.layout);
+  req.tmp_dir = clean.tmp.string();
+  auto request_now = [&req, &ws] {
+    frame_request r = req;
+    r.name = safe_file_stem(ws.partno);
+    return r;
+  };
+  for (const channel_def& ch : m.channels) {
+    const channel_target target = frame_target(req, ch);
+    block_writer::framing frame;
+    if (target.direct) {
+      frame.head = [&request_now, &ch] { return frame_head(request_now(), ch); };
+      frame.tail = [&request_now, &ch] { return frame_tail(request_now(), ch); };
+    }
+    ws.writers.push_back(std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
+  }
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
   cl_reader_options ro;
   ro.file_name = o.cl_path;
@@ -145,12 +162,10 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   for (auto& w : ws.writers) sum.blocks += w->blocks();
   if (sink.errors > 0) return sum;
 
-  frame_request req;
-  req.machine_def = &m;
-  req.layout = o.layout.value_or(m.layout);
   req.name = safe_file_stem(ws.partno);
-  req.tmp_dir = clean.tmp.string();
-  std::vector<framed_file> files = frame_programs(req);
+  std::vector<std::string> heads;
+  for (auto& w : ws.writers) heads.push_back(w->head_written());
+  std::vector<framed_file> files = finish_frames(req, heads);
 
   // The same check as `twinpost check`, on the files exactly as they will be written.
   std::vector<nc_source> sources;

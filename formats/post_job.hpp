@@ -1,9 +1,9 @@
 #pragma once
-// Posting a CL job end to end: parser -> channels -> formats -> files. Every channel's
-// body goes to its own temporary file on disk while posting (the auxiliary stream of the
-// merged layout included); the programs are framed in the machine's layout, checked by
-// the same synchronisation checker as `twinpost check`, and only then renamed into place.
-// A failed run leaves no file behind.
+// Posting a CL job end to end: parser -> channels -> formats -> files. Every channel
+// writes to its own temporary file on disk while posting: its program file where its blocks
+// open one, a body file otherwise (the auxiliary streams of a merged layout, appended when
+// all is read); the programs are checked by the same synchronisation checker as
+// `twinpost check`, and only then renamed into place. A failed run leaves no file behind.
 #include <cstddef>
 #include <functional>
 #include <optional>

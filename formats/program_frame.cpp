@@ -18,19 +18,28 @@ file_ptr open_or_throw(const std::string& path, const char* mode) {
   return {f, &std::fclose};
 }
 
-void put_line(std::FILE* f, std::string_view s) {
-  std::fwrite(s.data(), 1, s.size(), f);
-  std::fputc('\n', f);
+void add_line(std::string& out, std::string_view s) {
+  out.append(s);
+  out += '\n';
 }
 
-// Copies a channel body in large pieces: it may be far bigger than memory should hold.
-void copy_body(std::FILE* to, const std::string& body_path) {
-  file_ptr from = open_or_throw(body_path, "rb");
+void put(std::FILE* f, std::string_view s) { std::fwrite(s.data(), 1, s.size(), f); }
+
+// Copies `from` (from byte `skip` on) in large pieces: it may be far bigger than memory should hold.
+void copy_file(std::FILE* to, const std::string& from_path, long skip = 0) {
+  file_ptr from = open_or_throw(from_path, "rb");
+  if (skip > 0 && std::fseek(from.get(), skip, SEEK_SET) != 0)
+    throw config_error(fmt::format("twinpost: error: cannot read '{}'", from_path));
   constexpr std::size_t chunk_bytes = 1 << 20;
   auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);  // no zeroing: it is overwritten
   std::size_t n;
   while ((n = std::fread(buf.get(), 1, chunk_bytes, from.get())) > 0)
     if (std::fwrite(buf.get(), 1, n, to) != n) throw config_error("twinpost: error: cannot write the program");
+}
+
+void close_or_throw(file_ptr& f, const std::string& path) {
+  std::FILE* raw = f.release();
+  if (std::ferror(raw) || std::fclose(raw) != 0) throw config_error(fmt::format("twinpost: error: cannot write '{}'", path));
 }
 
 int program_number(const machine& m, const std::string& name) {
@@ -39,60 +48,102 @@ int program_number(const machine& m, const std::string& name) {
   return m.program.program_number;
 }
 
-void write_channel(std::FILE* f, const machine& m, const channel_def& ch, const frame_request& r,
-                   const template_args& a) {
-  for (const std::string& h : m.program.header) put_line(f, format_template(h, a));
-  copy_body(f, fmt::format("{}/body{}", r.tmp_dir, ch.number));
-  for (const std::string& h : m.program.footer) put_line(f, format_template(h, a));
-  put_line(f, m.program.end_code);
+template_args args_for(const frame_request& r, const channel_def* ch) {
+  template_args a = sample_template_args();
+  a.name = r.name;
+  a.program = program_number(*r.machine_def, r.name);
+  if (ch) a.channel = ch->number;
+  return a;
 }
 
-void close_or_throw(file_ptr& f, const std::string& path) {
-  std::FILE* raw = f.release();
-  if (std::ferror(raw) || std::fclose(raw) != 0) throw config_error(fmt::format("twinpost: error: cannot write '{}'", path));
+bool merged(const frame_request& r) { return r.layout != layout_kind::split; }
+
+// The first channel opens a merged program; the others are appended after it.
+bool opens_file(const frame_request& r, const channel_def& ch) {
+  return !merged(r) || &ch == &r.machine_def->channels.front();
 }
 
-// One program file: '%', the program line, the channels (each after its section marker
-// in a merged layout), '%'.
-framed_file write_program(const frame_request& r, template_args a, framed_file ff,
-                          const std::vector<const channel_def*>& channels, bool markers) {
+// A channel's section: marker (merged layouts) and header lines.
+std::string channel_opening(const frame_request& r, const channel_def& ch) {
   const machine& m = *r.machine_def;
+  const template_args a = args_for(r, &ch);
+  std::string s;
   // Appended programs follow the machine's own marker (Mazak G109 L1); sections are `$n`.
-  const std::string marker = r.layout == layout_kind::merged_sections ? "${channel}" : m.program.section_marker;
-  file_ptr f = open_or_throw(ff.tmp_path, "wb");
-  if (m.program.percent_lines) put_line(f.get(), "%");
-  put_line(f.get(), format_template(m.program.program_line, a));
-  for (const channel_def* ch : channels) {
-    a.channel = ch->number;
-    if (markers) put_line(f.get(), format_template(marker, a));
-    write_channel(f.get(), m, *ch, r, a);
-  }
-  if (m.program.percent_lines) put_line(f.get(), "%");
-  close_or_throw(f, ff.tmp_path);
-  return ff;
+  if (merged(r))
+    add_line(s, format_template(r.layout == layout_kind::merged_sections ? "${channel}" : m.program.section_marker, a));
+  for (const std::string& h : m.program.header) add_line(s, format_template(h, a));
+  return s;
 }
+
+std::string channel_closing(const frame_request& r, const channel_def& ch) {
+  const machine& m = *r.machine_def;
+  const template_args a = args_for(r, &ch);
+  std::string s;
+  for (const std::string& f : m.program.footer) add_line(s, format_template(f, a));
+  add_line(s, m.program.end_code);
+  return s;
+}
+
+std::string file_opening(const frame_request& r) {
+  const machine& m = *r.machine_def;
+  std::string s;
+  if (m.program.percent_lines) add_line(s, "%");
+  add_line(s, format_template(m.program.program_line, args_for(r, nullptr)));
+  return s;
+}
+
+std::string file_closing(const frame_request& r) { return r.machine_def->program.percent_lines ? "%\n" : ""; }
 
 }  // namespace
 
-std::vector<framed_file> frame_programs(const frame_request& r) {
+channel_target frame_target(const frame_request& r, const channel_def& ch) {
+  if (!merged(r)) return {fmt::format("{}/framed{}", r.tmp_dir, ch.number), true};
+  if (opens_file(r, ch)) return {fmt::format("{}/framed", r.tmp_dir), true};
+  return {fmt::format("{}/body{}", r.tmp_dir, ch.number), false};
+}
+
+std::string frame_head(const frame_request& r, const channel_def& ch) {
+  return file_opening(r) + channel_opening(r, ch);
+}
+
+std::string frame_tail(const frame_request& r, const channel_def& ch) {
+  std::string s = channel_closing(r, ch);
+  if (!merged(r)) s += file_closing(r);  // a merged program closes after its last channel
+  return s;
+}
+
+std::vector<framed_file> finish_frames(const frame_request& r, const std::vector<std::string>& heads) {
   const machine& m = *r.machine_def;
-  template_args a = sample_template_args();
-  a.name = r.name;
-  a.program = program_number(m, r.name);
-  std::string stem = format_template(m.program.file_name, a);
+  std::string stem = format_template(m.program.file_name, args_for(r, nullptr));
   std::vector<framed_file> out;
-  if (r.layout == layout_kind::split) {
-    for (const channel_def& ch : m.channels)
-      out.push_back(write_program(r, a,
-                                  {stem + ch.file_suffix + m.program.extension,
-                                   fmt::format("{}/framed{}", r.tmp_dir, ch.number)},
-                                  {&ch}, false));
-    return out;
+  for (const channel_def& ch : m.channels) {
+    if (!opens_file(r, ch)) continue;
+    const std::string path = frame_target(r, ch).path;
+    const std::string& written = heads[static_cast<std::size_t>(ch.number - 1)];
+    const std::string head = frame_head(r, ch);
+    if (written != head) {
+      // Begun under another name: the same blocks under the right head, in a new file.
+      const std::string renamed = path + ".head";
+      file_ptr f = open_or_throw(renamed, "wb");
+      put(f.get(), head);
+      copy_file(f.get(), path, static_cast<long>(written.size()));
+      close_or_throw(f, renamed);
+      if (std::rename(renamed.c_str(), path.c_str()) != 0)
+        throw config_error(fmt::format("twinpost: error: cannot write '{}'", path));
+    }
+    out.push_back({merged(r) ? stem + m.program.extension : stem + ch.file_suffix + m.program.extension, path});
   }
-  // Merged: one program; each channel follows its section marker (G109 L1 / $1).
-  std::vector<const channel_def*> all;
-  for (const channel_def& ch : m.channels) all.push_back(&ch);
-  out.push_back(write_program(r, a, {stem + m.program.extension, fmt::format("{}/framed", r.tmp_dir)}, all, true));
+  if (!merged(r)) return out;
+  // Merged: the other channels, each after its section marker, then the closing '%'.
+  file_ptr f = open_or_throw(out.front().tmp_path, "ab");
+  for (const channel_def& ch : m.channels) {
+    if (opens_file(r, ch)) continue;
+    put(f.get(), channel_opening(r, ch));
+    copy_file(f.get(), frame_target(r, ch).path);
+    put(f.get(), channel_closing(r, ch));
+  }
+  put(f.get(), file_closing(r));
+  close_or_throw(f, out.front().tmp_path);
   return out;
 }
 

@@ -2,6 +2,11 @@
 // Frames the channels' bodies into the files the control expects: program line, header,
 // body, footer and end code per channel, laid out as split files, one merged program with
 // the channels appended after their section markers, or `$n` sections.
+//
+// Posting streams: a channel whose blocks open a program file (every channel of a split
+// layout, the first channel of a merged one) writes them straight into that file, between
+// the head and tail given here. The other channels of a merged program spill their blocks
+// to a body file on disk, and finish_frames appends them after the first one's.
 #include <string>
 #include <vector>
 
@@ -12,8 +17,14 @@ namespace twinpost {
 struct frame_request {
   const machine* machine_def = nullptr;
   layout_kind layout = layout_kind::split;
-  std::string name;     ///< safe program name (from PARTNO)
-  std::string tmp_dir;  ///< holds body1, body2, ...; the framed files are written here too
+  std::string name;     ///< safe program name (from PARTNO), as far as it is known
+  std::string tmp_dir;  ///< the program files and spilled bodies are written here
+};
+
+/// Where a channel's blocks go.
+struct channel_target {
+  std::string path;     ///< the program file's temporary path, or a body file
+  bool direct = false;  ///< true: the program file itself (frame_head before, frame_tail after)
 };
 
 struct framed_file {
@@ -21,7 +32,20 @@ struct framed_file {
   std::string tmp_path;  ///< where it was written
 };
 
-/// Writes the framed files into the temporary folder; throws config_error on I/O errors.
-std::vector<framed_file> frame_programs(const frame_request& r);
+channel_target frame_target(const frame_request& r, const channel_def& ch);
+
+/// The lines before a direct channel's blocks: '%', the program line, its section marker
+/// (merged layouts) and the channel header; each line ends in '\n'.
+std::string frame_head(const frame_request& r, const channel_def& ch);
+
+/// The lines after a direct channel's blocks: footer, end code, and the closing '%' when the
+/// channel ends its file.
+std::string frame_tail(const frame_request& r, const channel_def& ch);
+
+/// Completes the program files once every channel has finished: appends the spilled
+/// channels of a merged program, and gives a file a new head when the name it was begun
+/// under (`heads`: per channel, the head written, "" for spilled channels) is not `r.name`
+/// (a PARTNO after the first block). Throws config_error on I/O errors.
+std::vector<framed_file> finish_frames(const frame_request& r, const std::vector<std::string>& heads);
 
 }  // namespace twinpost

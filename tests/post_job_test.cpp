@@ -3,6 +3,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 
 #include "formats/job_scan.hpp"
@@ -52,4 +54,66 @@ TEST_CASE("the channels a job uses, on a 3-path machine", "[post]") {
   CHECK(used_channels(s, m) == std::vector<int>{1, 2});
   s.heads = {3};
   CHECK(used_channels(s, m) == std::vector<int>{1, 2, 3});
+}
+
+namespace {
+std::string read_file(const std::filesystem::path& p) {
+  std::string s;
+  std::FILE* f = std::fopen(p.string().c_str(), "rb");
+  if (!f) return "(missing)";
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) s.append(buf, n);
+  std::fclose(f);
+  return s;
+}
+
+// The files a post writes: name -> contents.
+std::map<std::string, std::string> post_files(const std::string& cl, const std::string& machine_name,
+                                              std::optional<layout_kind> layout, const std::string& tag) {
+  const auto dir = std::filesystem::temp_directory_path() / ("twinpost-late-partno-" + tag);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string job = (dir / "job.cls").string();
+  std::FILE* f = std::fopen(job.c_str(), "wb");
+  std::fwrite(cl.data(), 1, cl.size(), f);
+  std::fclose(f);
+  post_options o;
+  o.cl_path = job;
+  o.out_dir = (dir / "out").string();
+  o.layout = layout;
+  diagnostic_list d;
+  const post_summary s = post_job(o, load_machine(machine_name), d);
+  std::map<std::string, std::string> files;
+  if (!s.ok) files["(failed)"] = "";
+  for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
+    files[e.path().filename().string()] = read_file(e.path());
+  std::filesystem::remove_all(dir);
+  return files;
+}
+}  // namespace
+
+TEST_CASE("a PARTNO after the first blocks still names the program and its head", "[post]") {
+  // Channels write straight into their program files, head first; a name that comes late
+  // gives the file a new head. Either way the files are those of the PARTNO-first job.
+  const std::string body =
+      "HEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,5\nGOTO/20,0,-10\n"
+      "HEAD/2\nTURRET/4,4\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\nGOTO/-10,0,5\nGOTO/-10,0,-3\n";
+  const std::string early = "PARTNO/LATE NAME 7\n" + body + "FINI\n";
+  const std::string late = body + "PARTNO/LATE NAME 7\nFINI\n";
+  struct run {
+    const char* machine;
+    std::optional<layout_kind> layout;
+    const char* file;
+  };
+  for (const run& r : {run{"fanuc-0itd-twin", {}, "LATE_NAME_7_1.nc"},
+                       run{"integrex-i200st", {}, "LATE_NAME_7.EIA"},
+                       run{"fanuc-31i-3path", layout_kind::merged_sections, "LATE_NAME_7.nc"}}) {
+    INFO(r.machine);
+    const auto a = post_files(early, r.machine, r.layout, "early");
+    const auto b = post_files(late, r.machine, r.layout, "late");
+    REQUIRE(a.count(r.file) == 1);
+    CHECK(a.at(r.file).find("(LATE_NAME_7)") != std::string::npos);
+    CHECK(a == b);
+  }
 }
