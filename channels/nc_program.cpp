@@ -149,7 +149,7 @@ class reader {
   /// Reads a whole file as the program of `channel` (split layout).
   void read_split(const nc_source& f, int channel) {
     out_.channels[static_cast<std::size_t>(channel - 1)].file = f.name;
-    for_each_line(f, [&](int no, std::string_view line) { read_line(f, no, line, channel); });
+    for_each_line(f, [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); });
   }
 
   /// Reads a file with section markers (merged layouts).
@@ -165,10 +165,10 @@ class reader {
     deferred_.clear();
     deferring_ = true;
     int current = 0;  // 0: common blocks or a data section; -1: an unknown channel's section
-    for_each_line(f, [&](int no, std::string_view line) {
+    for_each_line(f, [&](int no, std::string_view line, bool plain) {
       int c = mk.active ? marker_channel(mk, line) : -1;
       if (c < 0 && (c = marker_channel(dollar, line)) >= 0) dollar_seen = true;
-      if (c < 0) return read_line(f, no, line, current);
+      if (c < 0) return read_line(f, no, line, current, plain);
       any_marker = true;
       current = c;
       if (c > static_cast<int>(out_.channels.size())) {
@@ -178,7 +178,7 @@ class reader {
         return;
       }
       if (c > 0) state_[static_cast<std::size_t>(c - 1)].has_section = true;
-      read_line(f, no, line, current);  // the marker block may carry more words (T0101)
+      read_line(f, no, line, current, false);  // the marker block may carry more words (T0101)
     });
     deferring_ = false;
     if (!any_marker) {
@@ -261,7 +261,7 @@ class reader {
       const std::string_view line = text.substr(pos, eol - pos);
       pos = eol + 1;
       if (eol < text.size() && text[eol] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
-      on_line(++no, line);
+      on_line(++no, line, false);
     }
     settle();
   }
@@ -276,18 +276,21 @@ class reader {
     return lf ? end : std::string_view::npos;
   }
 
-  // The same lines as above, read from a file a megabyte at a time.
+  // The same lines as above, read from a file a megabyte at a time. Most lines are plain
+  // blocks: one strcspn over the stop characters (the special ones, CR and LF; SSE4.2 in
+  // glibc) finds the end of such a line and says it is plain in the same pass.
   template <class F>
   void stream_lines(const std::string& path, F&& on_line) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
     constexpr std::size_t chunk_bytes = 1 << 20;
-    auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);  // no zeroing: it is overwritten
+    auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes + 1);  // + the NUL strcspn stops at
     std::string carry;
     int no = 0;
     bool first = true, skip_lf = false;
     std::size_t n;
     while ((n = std::fread(buf.get(), 1, chunk_bytes, file.get())) > 0) {
+      buf[n] = '\0';
       std::string_view chunk(buf.get(), n);
       if (first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
       first = false;
@@ -295,6 +298,16 @@ class reader {
       if (skip_lf && !chunk.empty() && chunk[0] == '\n') pos = 1;  // CR LF split by the chunk
       skip_lf = false;
       while (pos < chunk.size()) {
+        if (carry.empty() && !is_blank(chunk[pos])) {
+          // A line that reaches its LF with no stop character on the way, and does not start
+          // blank, is a plain block (an embedded NUL stops strcspn too: the slow way then).
+          const std::size_t len = std::strcspn(chunk.data() + pos, stops_.c_str());
+          if (len > 0 && chunk.data()[pos + len] == '\n') {
+            on_line(++no, chunk.substr(pos, len), true);
+            pos += len + 1;
+            continue;
+          }
+        }
         std::size_t eol = line_end(chunk, pos);
         if (eol == std::string_view::npos) {
           carry.append(chunk.substr(pos));
@@ -306,7 +319,7 @@ class reader {
           carry.append(line);
           line = carry;
         }
-        on_line(++no, line);
+        on_line(++no, line, false);
         if (carried) settle();  // the line lives in `carry`, cleared now
         carry.clear();
         pos = eol + 1;
@@ -317,7 +330,7 @@ class reader {
       }
       settle();  // the buffer is read over next
     }
-    if (!carry.empty()) on_line(++no, carry);
+    if (!carry.empty()) on_line(++no, carry, false);
   }
 
   void report(severity level, nc_place at, std::string message) {
@@ -358,8 +371,9 @@ class reader {
   }
 
   // `channel`: 1..n a channel, 0 common blocks or data, -1 an unknown channel's section.
-  void read_line(const nc_source& f, int no, std::string_view line, int channel) {
-    if (channel > 0 && plain_block(line)) {
+  // `plain`: the caller knows the line is a plain block (see plain_block).
+  void read_line(const nc_source& f, int no, std::string_view line, int channel, bool plain) {
+    if (channel > 0 && (plain || plain_block(line))) {
       // A block with no M-word, comment or special character holds no wait and no end:
       // only remember it as the channel's last block. Most of a program is such blocks.
       channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
@@ -461,10 +475,19 @@ class reader {
     return t;
   }
 
+  // The special characters with CR and LF: where strcspn stops in stream_lines.
+  static std::string stop_chars(const std::array<bool, 256>& special) {
+    std::string s = "\r\n";
+    for (int c = 1; c < 256; ++c)
+      if (special[static_cast<std::size_t>(c)]) s += static_cast<char>(c);
+    return s;
+  }
+
   const machine& m_;
   diagnostic_sink& sink_;
   nc_programs& out_;
   std::array<bool, 256> special_ = special_chars(m_.waits.address);
+  std::string stops_ = stop_chars(special_);
   std::vector<channel_state> state_;
   std::vector<int> end_codes_;
 };
