@@ -29,15 +29,35 @@ void block_writer::start() {
   }
 }
 
-void block_writer::put(std::string_view s) {
-  if (!started_) [[unlikely]] start();
-  buf_.append(s);
-  buf_ += '\n';
+void block_writer::flush_if_full() {
   if (buf_.size() >= flush_at) {
     if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size())
       throw config_error(fmt::format("twinpost: error: cannot write '{}'", path_));
     buf_.clear();
   }
+}
+
+void block_writer::put(std::string_view s) {
+  if (!started_) [[unlikely]] start();
+  buf_.append(s);
+  buf_ += '\n';
+  flush_if_full();
+}
+
+std::string& block_writer::open_block() {
+  if (!started_) [[unlikely]] start();
+  open_at_ = buf_.size();
+  return buf_;
+}
+
+void block_writer::end_block() {
+  ++blocks_;
+  if (fmt_.sequence_start > 0) {
+    buf_.insert(open_at_, fmt::format("N{} ", seq_));
+    seq_ += fmt_.sequence_step;
+  }
+  buf_ += '\n';
+  flush_if_full();
 }
 
 void block_writer::block(std::string_view words) {

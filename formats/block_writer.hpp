@@ -26,6 +26,12 @@ class block_writer {
 
   /// Writes one block (words separated by blanks), numbered when the format says so.
   void block(std::string_view words);
+  /// Starts a block built in place: words appended to the returned buffer (from its current
+  /// end, no separator before the first) go straight to the output. end_block() writes it,
+  /// drop_block() takes it back. Nothing else may be written in between.
+  std::string& open_block();
+  void end_block();
+  void drop_block() { buf_.resize(open_at_); }
   /// Writes a comment block, made safe: upper case, no parentheses inside, length-limited.
   void comment(std::string_view text);
   /// Writes a line as it is (program frame lines, user INSERT text).
@@ -39,9 +45,11 @@ class block_writer {
  private:
   void put(std::string_view s);
   void start();
+  void flush_if_full();
   framing frame_;
   std::string head_;
   bool started_ = false;
+  std::size_t open_at_ = 0;
   std::FILE* f_ = nullptr;
   std::string path_;
   const program_format& fmt_;

@@ -19,7 +19,8 @@ void channel_writer::append_feed(std::string& out) {
     feed_text_per_rev_ = per_rev_;
   }
   if (feed_text_ == last_f_) return;
-  out += " F";
+  separate(out);
+  out += 'F';
   out += feed_text_;
   last_f_ = feed_text_;
 }
@@ -29,23 +30,27 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
   check_side(nc_x(x_cl), x_cl, line);
-  line_.clear();
-  if (!pending_g_.empty()) {
-    line_ += ' ';
-    line_ += pending_g_;
-  }
+  // Built in place, in the writer's buffer: the most common block goes out without a copy.
+  std::string& b = out_.open_block();
+  word_start_ = b.size();
+  if (!pending_g_.empty()) b += pending_g_;
   if (g != motion_g_) {
-    line_ += rapid ? " G0" : " G1";
+    separate(b);
+    b += rapid ? "G0" : "G1";
   }
-  bool moved = axis_word(line_, 'X', nc_x(x_cl), last_x_);
-  if (has_y_) moved = axis_word(line_, 'Y', y_cl * scale_, last_y_) || moved;
-  moved = axis_word(line_, 'Z', z_cl * scale_, last_z_) || moved;
-  if (!moved) return;  // already there: nothing to write, the modal codes wait for a move
-  pending_g_.clear();
-  motion_g_ = g;
-  if (!rapid && feed_value_ > 0) append_feed(line_);
-  else if (!rapid) error(line, "feed move with no feed rate (FEDRAT) in force");
-  out_.block(std::string_view(line_).substr(1));
+  bool moved = axis_word(b, 'X', nc_x(x_cl), last_x_);
+  if (has_y_) moved = axis_word(b, 'Y', y_cl * scale_, last_y_) || moved;
+  moved = axis_word(b, 'Z', z_cl * scale_, last_z_) || moved;
+  if (moved) {
+    pending_g_.clear();
+    motion_g_ = g;
+    if (!rapid && feed_value_ > 0) append_feed(b);
+    else if (!rapid) error(line, "feed move with no feed rate (FEDRAT) in force");
+    out_.end_block();
+  } else {
+    out_.drop_block();  // already there: nothing to write, the modal codes wait for a move
+  }
+  word_start_ = std::string::npos;
 }
 
 void channel_writer::motion(const motion_event& mv, int line) {

@@ -14,6 +14,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   const axis_def* x = ch.axis('X');
   x_factor_ = (x && !x->diameter) ? 1.0 : 2.0;
   if (x && x->mirror) x_factor_ = -x_factor_;
+  x_mirror_ = x && x->mirror;
   has_y_ = ch.axis('Y') != nullptr;
   // The plane in force after the header (G18 on a lathe, G17 on a mill).
   for (const std::string& block : m.program.header)
@@ -37,7 +38,7 @@ bool channel_writer::axis_word(std::string& out, char address, double value, axi
   std::int64_t n;
   if (!round_fixed(value, axis_style_.decimals, n)) {
     // Out of any machine's travel; written as it is, and never taken as modal.
-    out += ' ';
+    separate(out);
     out += address;
     append_number(out, value, axis_style_);
     last.known = false;
@@ -48,7 +49,7 @@ bool channel_writer::axis_word(std::string& out, char address, double value, axi
   last.n = n;
   last.value = value;
   if (same && !always) return false;  // modal: the axis is already there
-  out += ' ';
+  separate(out);
   out += address;
   append_fixed(out, n, axis_style_);
   return true;
@@ -59,8 +60,9 @@ void channel_writer::check_side(double x_nc, double x_cl, int line) {
   // side of the spindle. On a mirrored (lower) turret that means the CL gave this head
   // positive x, i.e. the upper side: its own frame, or a head mix-up. Say so, once.
   constexpr double past_centre = -5.0;
+  if (warned_side_ || x_nc >= past_centre) return;
   const axis_def* x = ch_.axis('X');
-  if (warned_side_ || !x || !x->diameter || x_nc >= past_centre) return;
+  if (!x || !x->diameter) return;
   warned_side_ = true;
   diagnostic d;
   d.level = severity::warning;
@@ -89,8 +91,7 @@ void channel_writer::on_wait(const wait_mark& w) {
 
 void channel_writer::on_event(const event& e, bool both) {
   // A HEAD/BOTH copy on a mirrored channel runs on the opposite side of the spindle centre.
-  const axis_def* x = ch_.axis('X');
-  side_ = (both && x && x->mirror) ? -1.0 : 1.0;
+  side_ = (both && x_mirror_) ? -1.0 : 1.0;
   std::visit(
       [&](const auto& d) {
         using T = std::decay_t<decltype(d)>;

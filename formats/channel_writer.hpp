@@ -54,6 +54,10 @@ class channel_writer {
   bool axis_word(std::string& out, char address, double value, axis_memory& last, bool always = false);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(std::string& out);
+  /// A blank before the next word, unless it is the first of a block built in place.
+  void separate(std::string& out) const {
+    if (out.size() != word_start_) out += ' ';
+  }
   double nc_x(double x_cl) const { return x_cl * scale_ * x_factor_ * side_; }
   /// True when this channel's X runs against the CL (a mirrored turret, not a BOTH copy).
   bool mirrored() const { return x_factor_ * side_ < 0; }
@@ -69,6 +73,7 @@ class channel_writer {
   double scale_ = 1.0;        // CL units -> mm
   double x_factor_ = 2.0;     // diameter (2) or radius (1), negative when mirrored
   double side_ = 1.0;         // -1 while a HEAD/BOTH copy runs on the opposite side
+  bool x_mirror_ = false;     // the channel's X axis is mirrored (a lower turret)
   bool has_y_ = false;
   const spindle_def* spindle_ = nullptr;
   int motion_g_ = -1;         // last G0/G1/G2/G3
@@ -76,7 +81,8 @@ class channel_writer {
   axis_memory last_x_, last_y_, last_z_;  // axis words written last
   std::string feed_g_;        // G99/G98 (G95/G94) in force
   std::string last_f_;
-  std::string line_;          // the block being built, reused
+  std::string line_;          // the block being built, reused (arcs; moves are built in place)
+  std::size_t word_start_ = std::string::npos;  // where a block built in place begins
   std::string feed_text_;     // feed_value_ formatted, for the mode in feed_text_per_rev_
   double feed_text_value_ = -1;
   bool feed_text_per_rev_ = false;
