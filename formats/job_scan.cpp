@@ -12,10 +12,13 @@ namespace twinpost {
 
 namespace {
 
+// ASCII only, inline: std::toupper is a library call per character and locale-bound.
+char upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
+
 bool starts_word(std::string_view line, std::string_view word) {
   if (line.size() < word.size()) return false;
   for (std::size_t i = 0; i < word.size(); ++i)
-    if (std::toupper(static_cast<unsigned char>(line[i])) != word[i]) return false;
+    if (upper(line[i]) != word[i]) return false;
   return true;
 }
 
@@ -27,7 +30,7 @@ std::string first_arg(std::string_view rest) {
   while (p < rest.size() && (rest[p] == ' ' || rest[p] == '\t')) ++p;
   std::string a;
   while (p < rest.size() && std::isalnum(static_cast<unsigned char>(rest[p])))
-    a += static_cast<char>(std::toupper(static_cast<unsigned char>(rest[p++])));
+    a += upper(rest[p++]);
   return a;
 }
 
@@ -35,7 +38,7 @@ void scan_line(std::string_view l, job_scan& s) {
   while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
   // Most lines are motion (GOTO, coordinates): one look at the first letter settles them.
   if (l.empty()) return;
-  char c = static_cast<char>(std::toupper(static_cast<unsigned char>(l.front())));
+  char c = upper(l.front());
   if (c != 'S' && c != 'H' && c != 'C' && c != '$') return;
   if (starts_word(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
   if (starts_word(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos) s.explicit_sync = true;

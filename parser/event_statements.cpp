@@ -165,9 +165,9 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
     return;
   }
   // Built in place in the queue: the event is read from where it was written.
-  event& ev = out.emplace_back();
+  event& ev = out.emplace_back();  // its data is a default motion_event, the first alternative
   ev.line = line;
-  motion_event& e = ev.data.emplace<motion_event>();
+  motion_event& e = std::get<motion_event>(ev.data);
   e.kind = kind;
   e.pos = p;
   e.axis = axis_;
