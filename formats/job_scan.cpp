@@ -60,6 +60,30 @@ void scan_line(std::string_view l, job_scan& s) {
   }
 }
 
+// The complete lines of `text` (it ends just after a '\n'; text[size] is a NUL). Only lines
+// that start, after blanks, with S, H, C or $ can matter, and motion records have none of
+// those letters at all: one strcspn (SSE4.2 in glibc) skips whole runs of them.
+void scan_lines(std::string_view text, job_scan& s) {
+  const char* const begin = text.data();
+  const char* const end = begin + text.size();
+  const char* p = begin;
+  while (p < end) {
+    const char* hit = p + std::strcspn(p, "SsHhCc$");
+    if (hit >= end) return;
+    if (*hit == '\0') {  // an embedded NUL stops strcspn: go on after it
+      p = hit + 1;
+      continue;
+    }
+    // The line the hit is on; it counts only if nothing but blanks comes before it.
+    const char* line = hit;
+    while (line > begin && (line[-1] == ' ' || line[-1] == '\t')) --line;
+    const char* eol = static_cast<const char*>(std::memchr(hit, '\n', static_cast<std::size_t>(end - hit)));
+    if (!eol) eol = end;
+    if (line == begin || line[-1] == '\n' || line[-1] == '\r') scan_line(std::string_view(line, static_cast<std::size_t>(eol - line)), s);
+    p = eol + 1;
+  }
+}
+
 }  // namespace
 
 job_scan scan_job(const std::string& path) {
@@ -67,26 +91,36 @@ job_scan scan_job(const std::string& path) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!f) return s;
   constexpr std::size_t chunk_bytes = 1 << 20;
-  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);
-  std::string carry;
+  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes + 1);  // + a NUL for strcspn
+  std::string carry;  // a line begun in the previous chunk
   std::size_t n;
   while ((n = std::fread(buf.get(), 1, chunk_bytes, f.get())) > 0) {
+    buf[n] = '\0';
     std::string_view chunk(buf.get(), n);
     std::size_t start = 0;
-    for (;;) {
-      const void* nl = std::memchr(chunk.data() + start, '\n', chunk.size() - start);
-      if (!nl) break;
-      std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - chunk.data());
-      if (carry.empty()) {
-        scan_line(chunk.substr(start, end - start), s);
-      } else {
-        carry.append(chunk.substr(start, end - start));
-        scan_line(carry, s);
-        carry.clear();
+    if (!carry.empty()) {
+      const void* nl = std::memchr(chunk.data(), '\n', chunk.size());
+      if (!nl) {
+        carry.append(chunk);
+        continue;
       }
+      std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - chunk.data());
+      carry.append(chunk.substr(0, end));
+      scan_line(carry, s);
+      carry.clear();
       start = end + 1;
     }
-    carry.append(chunk.substr(start));
+    // Whole lines here; what follows the last '\n' waits for the next chunk.
+    std::size_t last = chunk.rfind('\n');
+    if (last == std::string_view::npos || last < start) {
+      carry.append(chunk.substr(start));
+      continue;
+    }
+    char saved = buf[last + 1];
+    buf[last + 1] = '\0';
+    scan_lines(chunk.substr(start, last + 1 - start), s);
+    buf[last + 1] = saved;
+    carry.append(chunk.substr(last + 1));
   }
   scan_line(carry, s);
   return s;

@@ -117,3 +117,18 @@ TEST_CASE("a PARTNO after the first blocks still names the program and its head"
     CHECK(a == b);
   }
 }
+
+TEST_CASE("the job scan looks only at first words, across read chunks", "[post]") {
+  // Letters it looks for inside a line do not count; the reader takes a megabyte at a
+  // time, so a HEAD record may straddle two reads, and the last line needs no newline.
+  std::string text = "PARTNO SHAFT\nGOTO/1,2,3 $$ HEAD/7\nINSERT SYNC/1,1,2\n  \tCHANNL/2\n";
+  while (text.size() < (1u << 20) - 3) text += "GOTO/10.0000,0.0000,-5.0000\n";
+  text.resize((1u << 20) - 3);  // the cut falls inside "HEAD/3"
+  text += "\nHEAD/3\n";
+  for (int i = 0; i < 1000; ++i) text += "goto/1,2,3\n";
+  text += "\thead / 4";
+  job_scan s = scan_job(write_temp(text));
+  CHECK_FALSE(s.explicit_sync);
+  CHECK(s.heads == std::vector<int>{3, 4});
+  CHECK(s.channels == std::vector<int>{2});
+}
