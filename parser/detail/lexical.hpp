@@ -7,9 +7,17 @@
 
 namespace twinpost::parser_detail {
 
-inline bool is_word_char(char c) {
-  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
-}
+// Letters, digits and '_' (ASCII only), one table look-up: it is asked after every number.
+inline constexpr auto word_chars = [] {
+  struct table {
+    bool in[256] = {};
+  } t;
+  for (int c = 0; c < 256; ++c)
+    t.in[c] = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+  return t;
+}();
+
+inline bool is_word_char(char c) { return word_chars.in[static_cast<unsigned char>(c)]; }
 
 // The common CL number (`123.4567`, at most 15 digits, no exponent) without from_chars:
 // the digits as an exact integer divided by an exact power of ten is one correctly rounded
