@@ -149,7 +149,9 @@ class reader {
   /// Reads a whole file as the program of `channel` (split layout).
   void read_split(const nc_source& f, int channel) {
     out_.channels[static_cast<std::size_t>(channel - 1)].file = f.name;
-    for_each_line(f, [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); });
+    // Runs of plain blocks may be skipped: only the last of a run matters here.
+    for_each_line(f, [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); },
+                  true);
   }
 
   /// Reads a file with section markers (merged layouts).
@@ -244,10 +246,12 @@ class reader {
 
   // Calls on_line for every line; lines are views that stay valid until settle() is called
   // (at the end of each chunk read from disk, and at the end).
+  // `runs`: a run of plain blocks may be handed on as its last block alone (line numbers
+  // still count them all); for callers that look only at the last one.
   template <class F>
-  void for_each_line(const nc_source& f, F&& on_line) {
+  void for_each_line(const nc_source& f, F&& on_line, bool runs = false) {
     if (!f.path.empty()) {
-      stream_lines(f.path, on_line);
+      stream_lines(f.path, on_line, runs);
       settle();
       return;
     }
@@ -280,7 +284,7 @@ class reader {
   // blocks: one strcspn over the stop characters (the special ones, CR and LF; SSE4.2 in
   // glibc) finds the end of such a line and says it is plain in the same pass.
   template <class F>
-  void stream_lines(const std::string& path, F&& on_line) {
+  void stream_lines(const std::string& path, F&& on_line, bool runs) {
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
     constexpr std::size_t chunk_bytes = 1 << 20;
@@ -298,6 +302,25 @@ class reader {
       if (skip_lf && !chunk.empty() && chunk[0] == '\n') pos = 1;  // CR LF split by the chunk
       skip_lf = false;
       while (pos < chunk.size()) {
+        if (runs && carry.empty()) {
+          // Every whole line before the next special character or CR is a plain block (or
+          // blank): count them with no call per line, and hand on the last one.
+          const char* base = chunk.data();
+          const std::size_t stop = pos + std::strcspn(base + pos, run_stops_.c_str());
+          const void* nl = stop > pos ? memrchr(base + pos, '\n', stop - pos) : nullptr;
+          if (nl) {
+            const std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
+            const void* before = end > pos ? memrchr(base + pos, '\n', end - pos) : nullptr;
+            const std::size_t start = before ? static_cast<std::size_t>(static_cast<const char*>(before) - base) + 1 : pos;
+            const std::string_view last = chunk.substr(start, end - start);
+            if (last.find_first_not_of(" \t") != std::string_view::npos) {
+              no += static_cast<int>(std::count(base + pos, base + end + 1, '\n'));
+              on_line(no, last, true);
+              pos = end + 1;
+              continue;
+            }
+          }
+        }
         if (carry.empty() && !is_blank(chunk[pos])) {
           // A line that reaches its LF with no stop character on the way, and does not start
           // blank, is a plain block (an embedded NUL stops strcspn too: the slow way then).
@@ -488,6 +511,7 @@ class reader {
   nc_programs& out_;
   std::array<bool, 256> special_ = special_chars(m_.waits.address);
   std::string stops_ = stop_chars(special_);
+  std::string run_stops_ = "\r" + stops_.substr(2);  // no LF: a run of lines ends at CR or a special
   std::vector<channel_state> state_;
   std::vector<int> end_codes_;
 };

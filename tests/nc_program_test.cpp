@@ -266,3 +266,63 @@ TEST_CASE("streamed files: the last block survives the reader's buffer", "[check
   CHECK(p.channels[0].waits.size() == 1);
   std::filesystem::remove_all(tmp);
 }
+
+namespace {
+// Everything the reader found, as one text to compare.
+std::string summary(const nc_programs& p, const diagnostic_list& d) {
+  std::string s;
+  for (const nc_channel_program& c : p.channels) {
+    s += "channel " + std::to_string(c.channel) + " end " + std::to_string(c.end.line) + ":" +
+         std::to_string(c.end.column) + " [" + c.end.source_line + "]\n";
+    for (const nc_wait& w : c.waits)
+      s += " wait M" + std::to_string(w.code) + " P" + w.partner_text + " at " + std::to_string(w.where.line) +
+           ":" + std::to_string(w.where.column) + " [" + w.where.source_line + "]\n";
+    for (const nc_wait& w : c.near_waits) s += " near M" + std::to_string(w.code) + " at " + std::to_string(w.where.line) + "\n";
+  }
+  return s + messages(d);
+}
+}  // namespace
+
+TEST_CASE("streamed and in-memory reading agree, runs of plain blocks included", "[check]") {
+  // Split files of a few megabytes: plain blocks in long runs (read from disk, they are
+  // counted, not visited, one by one), with waits, comments, blank and indented lines,
+  // CR LF endings in one stretch and lines on the read boundaries. From disk and from
+  // memory the reader must find the same.
+  std::uint32_t seed = 12345;
+  auto next = [&seed] { return seed = seed * 1664525u + 1013904223u; };
+  auto program = [&](int waits_from) {
+    std::string t = "%\nO0001 (T)\n";
+    int wait = waits_from;
+    while (t.size() < (3u << 20)) {
+      switch (next() % 40) {
+        case 0: t += "M" + std::to_string(100 + (wait++ % 100)) + "\n"; break;
+        case 1: t += "(COMMENT M5)\n"; break;
+        case 2: t += "\n"; break;
+        case 3: t += "   G1 X1. Z2.\n"; break;
+        case 4: t += "G0 X5.\r\n"; break;
+        case 5: t += " \t \n"; break;
+        default: t += "G1 X" + std::to_string(next() % 1000) + ". Z-" + std::to_string(next() % 97) + ".5\n";
+      }
+    }
+    return t + "G1 X1. Z1.\n\n  \n";  // no end code: the last block ends the program
+  };
+  const std::string a = program(100), b = program(100);
+  const std::filesystem::path tmp = std::filesystem::temp_directory_path() /
+                                    ("twinpost-nc-runs-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(tmp);
+  auto put = [&](const std::string& name, const std::string& text) {
+    const std::string path = (tmp / name).string();
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    std::fwrite(text.data(), 1, text.size(), f);
+    std::fclose(f);
+    return path;
+  };
+  const machine m = two_channels(100, 199, "");
+  diagnostic_list from_disk, from_memory;
+  const nc_programs disk = read_nc_programs({{"a.nc", {}, put("a.nc", a)}, {"b.nc", {}, put("b.nc", b)}}, m, from_disk);
+  const nc_programs memory = read_nc_programs({{"a.nc", a}, {"b.nc", b}}, m, from_memory);
+  std::filesystem::remove_all(tmp);
+  REQUIRE(memory.channels[0].waits.size() > 1000);
+  CHECK(memory.channels[0].end.source_line == "G1 X1. Z1.");
+  CHECK(summary(disk, from_disk) == summary(memory, from_memory));
+}
