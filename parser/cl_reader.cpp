@@ -64,7 +64,7 @@ struct cl_reader::impl {
   event_builder builder;
   cl_record rec;
   build_issues issues;
-  std::vector<event> queue;
+  event_queue queue;
   std::size_t head = 0;
   std::size_t record_count = 0;
   bool finished = false;

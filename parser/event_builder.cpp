@@ -36,7 +36,7 @@ bool matrix_row(std::string_view text, std::vector<double>& out) {
 
 }  // namespace
 
-void event_builder::build(const cl_record& r, int line, std::vector<event>& out, build_issues& issues) {
+void event_builder::build(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   if (r.kind != record_kind::comment && r.kind != record_kind::coordinates) after_bad_record_ = false;
   switch (r.kind) {
     case record_kind::comment:
@@ -99,7 +99,7 @@ void event_builder::end_of_motion_record() {
   if (circle_used_) circle_.reset(), circle_used_ = false;
 }
 
-void event_builder::comment(const cl_record& r, int line, std::vector<event>& out) {
+void event_builder::comment(const cl_record& r, int line, event_queue& out) {
   if (r.data_comment) {
     // Creo `$$->` records: CSYS and CUTTER carry data; the rest are kept as data comments.
     if (word_is(r.major, "CSYS")) {

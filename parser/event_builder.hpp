@@ -7,6 +7,7 @@
 
 #include "parser/detail/build_issue.hpp"
 #include "parser/dialect.hpp"
+#include "parser/event_queue.hpp"
 #include "parser/events.hpp"
 #include "parser/record.hpp"
 
@@ -17,7 +18,7 @@ class event_builder {
   explicit event_builder(dialect d) : dialect_(d) {}
 
   /// Appends the events of record `r` (from physical line `line`) to `out`.
-  void build(const cl_record& r, int line, std::vector<event>& out, build_issues& issues);
+  void build(const cl_record& r, int line, event_queue& out, build_issues& issues);
   /// Notes a record that could not be parsed (already reported; `seen` is what it looked
   /// like). It ends a GOTO, and the coordinate lines right after it are dropped without
   /// further errors; a bad coordinate line inside a GOTO leaves the GOTO going.
@@ -34,13 +35,13 @@ class event_builder {
     int line = 0;
   };
 
-  void statement(const cl_record& r, int line, std::vector<event>& out, build_issues& issues);
-  void comment(const cl_record& r, int line, std::vector<event>& out);
-  void motion(const cl_record& r, motion_kind kind, int line, std::vector<event>& out, build_issues& issues);
+  void statement(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void comment(const cl_record& r, int line, event_queue& out);
+  void motion(const cl_record& r, motion_kind kind, int line, event_queue& out, build_issues& issues);
   /// The record's numbers in a vector reused from record to record (no allocation per GOTO).
   const std::vector<double>& numbers(const cl_record& r);
   void point(const std::vector<double>& n, bool continued, motion_kind kind, int line,
-             std::vector<event>& out);
+             event_queue& out);
   void circle(const cl_record& r, int line, build_issues& issues);
   void end_of_motion_record();
 

@@ -27,7 +27,7 @@ std::size_t where(const cl_record& r) { return r.args.empty() ? r.major_offset :
 
 }  // namespace
 
-void event_builder::statement(const cl_record& r, int line, std::vector<event>& out, build_issues& issues) {
+void event_builder::statement(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   std::string_view m = r.major;
   end_of_motion_record();
   if (word_is(m, "GOTO")) return motion(r, motion_kind::go_to, line, out, issues);
@@ -114,7 +114,7 @@ void event_builder::statement(const cl_record& r, int line, std::vector<event>& 
   out.push_back({line, passthrough_event{upper(m), detail::args_text(r), known}});
 }
 
-void event_builder::motion(const cl_record& r, motion_kind kind, int line, std::vector<event>& out,
+void event_builder::motion(const cl_record& r, motion_kind kind, int line, event_queue& out,
                            build_issues& issues) {
   const std::vector<double>& n = numbers(r);
   bool words = n.size() != r.args.size();
@@ -146,7 +146,7 @@ void event_builder::motion(const cl_record& r, motion_kind kind, int line, std::
 }
 
 void event_builder::point(const std::vector<double>& n, bool continued, motion_kind kind, int line,
-                          std::vector<event>& out) {
+                          event_queue& out) {
   vec3 p{n[0], n[1], n[2]};
   if (kind == motion_kind::delta) p = {pos_.x + p.x, pos_.y + p.y, pos_.z + p.z};
   if (n.size() == 6) axis_ = vec3{n[3], n[4], n[5]};  // modal: NX repeats it only on change
@@ -165,9 +165,7 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
     return;
   }
   // Built in place in the queue: the event is read from where it was written.
-  event& ev = out.emplace_back();  // its data is a default motion_event, the first alternative
-  ev.line = line;
-  motion_event& e = std::get<motion_event>(ev.data);
+  motion_event& e = out.next_motion(line);  // every field set below
   e.kind = kind;
   e.pos = p;
   e.axis = axis_;
