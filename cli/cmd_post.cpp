@@ -89,9 +89,12 @@ int run_post(const args& a) {
     fmt::print(stderr, "post: failed with {} error{}; no file written\n", sink.errors(), sink.errors() == 1 ? "" : "s");
     return 1;
   }
-  const char* policy = s.policy == sync_policy::explicit_marks ? "explicit" : "sequential";
-  fmt::print("post: {} records, {} channel{}, {} blocks, {} waits ({}), {} warning{}\n", s.records, s.channels,
-             s.channels == 1 ? "" : "s", s.blocks, s.waits, policy, sink.warnings(), sink.warnings() == 1 ? "" : "s");
+  // One channel waits for nobody: no policy to report.
+  const std::string waits = s.channels == 1 ? "no waits (one channel)"
+                            : fmt::format("{} waits ({})", s.waits,
+                                          s.policy == sync_policy::explicit_marks ? "explicit" : "sequential");
+  fmt::print("post: {} records, {} channel{}, {} blocks, {}, {} warning{}\n", s.records, s.channels,
+             s.channels == 1 ? "" : "s", s.blocks, waits, sink.warnings(), sink.warnings() == 1 ? "" : "s");
   for (const std::string& f : s.files) fmt::print("  wrote {}\n", f);
   return 0;
 }

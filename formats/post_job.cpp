@@ -102,11 +102,14 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   if (ec) throw config_error(fmt::format("twinpost: error: cannot write in '{}': {}", o.out_dir, ec.message()));
 
   // One quick pass over the text before posting: does the job carry sync records, and which
-  // channels does it use (a sync naming no channels means those)?
-  const job_scan scan = scan_job(o.cl_path);
+  // channels does it use (a sync naming no channels means those)? A one-channel machine has
+  // nothing to wait for: no pass (a long 5-axis job is read once), and a sync record in its
+  // job is an error under the explicit policy (no partner channel).
+  const bool one_channel = m.channels.size() == 1;
+  const job_scan scan = one_channel ? job_scan{} : scan_job(o.cl_path);
   sum.policy = o.policy;
   if (o.policy == sync_policy::automatic) {
-    sum.policy = scan.explicit_sync ? sync_policy::explicit_marks : sync_policy::sequential;
+    sum.policy = one_channel || scan.explicit_sync ? sync_policy::explicit_marks : sync_policy::sequential;
     if (sum.policy == sync_policy::sequential && m.channels.size() > 1) {
       diagnostic d;
       d.level = severity::warning;

@@ -68,10 +68,11 @@ std::string read_file(const std::filesystem::path& p) {
   return s;
 }
 
-// The files a post writes: name -> contents.
-std::map<std::string, std::string> post_files(const std::string& cl, const std::string& machine_name,
-                                              std::optional<layout_kind> layout, const std::string& tag) {
-  const auto dir = std::filesystem::temp_directory_path() / ("twinpost-late-partno-" + tag);
+// The files a post writes: name -> contents ("(failed)" when the post failed).
+std::map<std::string, std::string> post_files(const std::string& cl, const machine& m, const std::string& tag,
+                                              diagnostic_list* diags = nullptr,
+                                              std::optional<layout_kind> layout = {}) {
+  const auto dir = std::filesystem::temp_directory_path() / ("twinpost-post-files-" + tag);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string job = (dir / "job.cls").string();
@@ -82,12 +83,13 @@ std::map<std::string, std::string> post_files(const std::string& cl, const std::
   o.cl_path = job;
   o.out_dir = (dir / "out").string();
   o.layout = layout;
-  diagnostic_list d;
-  const post_summary s = post_job(o, load_machine(machine_name), d);
+  diagnostic_list own;
+  const post_summary s = post_job(o, m, diags ? *diags : own);
   std::map<std::string, std::string> files;
   if (!s.ok) files["(failed)"] = "";
-  for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
-    files[e.path().filename().string()] = read_file(e.path());
+  if (std::filesystem::exists(dir / "out"))
+    for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
+      files[e.path().filename().string()] = read_file(e.path());
   std::filesystem::remove_all(dir);
   return files;
 }
@@ -110,8 +112,8 @@ TEST_CASE("a PARTNO after the first blocks still names the program and its head"
                        run{"integrex-i200st", {}, "LATE_NAME_7.EIA"},
                        run{"fanuc-31i-3path", layout_kind::merged_sections, "LATE_NAME_7.nc"}}) {
     INFO(r.machine);
-    const auto a = post_files(early, r.machine, r.layout, "early");
-    const auto b = post_files(late, r.machine, r.layout, "late");
+    const auto a = post_files(early, load_machine(r.machine), "early", nullptr, r.layout);
+    const auto b = post_files(late, load_machine(r.machine), "late", nullptr, r.layout);
     REQUIRE(a.count(r.file) == 1);
     CHECK(a.at(r.file).find("(LATE_NAME_7)") != std::string::npos);
     CHECK(a == b);
@@ -131,4 +133,24 @@ TEST_CASE("the job scan looks only at first words, across read chunks", "[post]"
   CHECK_FALSE(s.explicit_sync);
   CHECK(s.heads == std::vector<int>{3, 4});
   CHECK(s.channels == std::vector<int>{2});
+}
+
+TEST_CASE("a one-channel machine: no pre-pass, and a sync record is an error", "[post]") {
+  // Nothing to wait for on one channel: the job is read once, and a SYNC in it (a job made
+  // for a twin-turret machine) fails the post with the reason instead of being ignored.
+  const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml");
+  const std::string job = "PARTNO ONE\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,500\n"
+                          "GOTO/0,0,5\nGOTO/10,0,0\n";
+  const auto ok = post_files(job + "FINI\n", m, "one-ok");
+  REQUIRE(ok.count("ONE.nc") == 1);
+  CHECK(ok.at("ONE.nc") ==
+        "%\nO1000 (ONE)\nG21\nG90 G17 G40 G49 G80\nG91 G28 Z0\nT01 M6\nS1000 M3\nG94\n"
+        "G1 X0. Y0. Z5. F500.\nX10. Z0.\nM9\nM5\nG91 G28 Z0\nM30\n%\n");
+  diagnostic_list d;
+  const auto bad = post_files(job + "SYNC/1,1,2\nFINI\n", m, "one-sync", &d);
+  CHECK(bad.count("(failed)") == 1);
+  CHECK(bad.size() == 1);  // nothing written
+  REQUIRE(d.all().size() == 1);
+  CHECK(d.all()[0].message == "sync 1 names channel 2, machine 'bench-mill' has 1 channels");
+  CHECK(d.all()[0].line == 7);
 }
