@@ -44,7 +44,7 @@ void block_writer::put(std::string_view s) {
   flush_if_full();
 }
 
-std::string& block_writer::open_block() {
+text_buffer& block_writer::open_block() {
   if (!started_) [[unlikely]] start();
   open_at_ = buf_.size();
   return buf_;

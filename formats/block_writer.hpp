@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "formats/text_buffer.hpp"
 #include "machines/machine.hpp"
 
 namespace twinpost {
@@ -29,9 +30,9 @@ class block_writer {
   /// Starts a block built in place: words appended to the returned buffer (from its current
   /// end, no separator before the first) go straight to the output. end_block() writes it,
   /// drop_block() takes it back. Nothing else may be written in between.
-  std::string& open_block();
+  text_buffer& open_block();
   void end_block();
-  void drop_block() { buf_.resize(open_at_); }
+  void drop_block() { buf_.truncate(open_at_); }
   /// Writes a comment block, made safe: upper case, no parentheses inside, length-limited.
   void comment(std::string_view text);
   /// Writes a line as it is (program frame lines, user INSERT text).
@@ -53,7 +54,7 @@ class block_writer {
   std::FILE* f_ = nullptr;
   std::string path_;
   const program_format& fmt_;
-  std::string buf_;
+  text_buffer buf_;
   long seq_;
   long blocks_ = 0;
 };

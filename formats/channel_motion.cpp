@@ -10,7 +10,7 @@ namespace {
 constexpr double y_tolerance = 1e-4;
 }
 
-void channel_writer::append_feed(std::string& out) {
+void channel_writer::append_feed(text_buffer& out) {
   // The F word is modal: formatted once per feed value, written when it changes.
   if (feed_value_ != feed_text_value_ || per_rev_ != feed_text_per_rev_) {
     feed_text_.clear();
@@ -31,7 +31,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   int g = rapid ? 0 : 1;
   check_side(nc_x(x_cl), x_cl, line);
   // Built in place, in the writer's buffer: the most common block goes out without a copy.
-  std::string& b = out_.open_block();
+  text_buffer& b = out_.open_block();
   word_start_ = b.size();
   if (!pending_g_.empty()) b += pending_g_;
   if (g != motion_g_) {
@@ -145,7 +145,7 @@ void channel_writer::arc(const arc_event& a, int line) {
   else error(line, "arc with no feed rate (FEDRAT) in force");
   pending_g_.clear();
   motion_g_ = g;
-  out_.block(std::string_view(line_).substr(1));
+  out_.block(line_.view().substr(1));
   pos_ = a.end;
 }
 

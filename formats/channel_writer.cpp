@@ -31,7 +31,7 @@ void channel_writer::error(int line, std::string message) {
   diags_.report(std::move(d));
 }
 
-bool channel_writer::axis_word(std::string& out, char address, double value, axis_memory& last,
+bool channel_writer::axis_word(text_buffer& out, char address, double value, axis_memory& last,
                                bool always) {
   // The same value as last time prints the same word: no need to round it to know.
   if (!always && last.known && value == last.value) return false;

@@ -51,11 +51,11 @@ class channel_writer {
   };
   /// Appends " X12.5" to `out` unless `last` already holds that word (modal suppression)
   /// and `always` is off; returns whether it wrote the word.
-  bool axis_word(std::string& out, char address, double value, axis_memory& last, bool always = false);
+  bool axis_word(text_buffer& out, char address, double value, axis_memory& last, bool always = false);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
-  void append_feed(std::string& out);
+  void append_feed(text_buffer& out);
   /// A blank before the next word, unless it is the first of a block built in place.
-  void separate(std::string& out) const {
+  void separate(text_buffer& out) const {
     if (out.size() != word_start_) out += ' ';
   }
   double nc_x(double x_cl) const { return x_cl * scale_ * x_factor_ * side_; }
@@ -81,7 +81,7 @@ class channel_writer {
   axis_memory last_x_, last_y_, last_z_;  // axis words written last
   std::string feed_g_;        // G99/G98 (G95/G94) in force
   std::string last_f_;
-  std::string line_;          // the block being built, reused (arcs; moves are built in place)
+  text_buffer line_;          // the block being built, reused (arcs; moves are built in place)
   std::size_t word_start_ = std::string::npos;  // where a block built in place begins
   std::string feed_text_;     // feed_value_ formatted, for the mode in feed_text_per_rev_
   double feed_text_value_ = -1;

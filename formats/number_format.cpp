@@ -78,7 +78,7 @@ bool round_fixed(double v, int decimals, std::int64_t& n) {
 namespace {
 
 // Any decimals, any size: digits one division at a time.
-void append_fixed_general(std::string& out, std::int64_t n, const number_style& style) {
+char* write_fixed_general(char* out, std::int64_t n, const number_style& style) {
   int d = style.decimals;
   std::uint64_t mag = n < 0 ? 0 - static_cast<std::uint64_t>(n) : static_cast<std::uint64_t>(n);
   auto scale = static_cast<std::uint64_t>(ipow10[d]);
@@ -103,7 +103,8 @@ void append_fixed_general(std::string& out, std::int64_t n, const number_style& 
   }
   p = write_digits(p, whole);
   if (n < 0) *--p = '-';
-  out.append(p, static_cast<std::size_t>(end - p));
+  std::memcpy(out, p, static_cast<std::size_t>(end - p));
+  return out + (end - p);
 }
 
 // The eight digits of v < 10^8, zero-padded, as ASCII in one little-endian word (the first
@@ -135,13 +136,10 @@ int digit_count(std::uint32_t v) {
 // `out`: fixed-width digits cut to length, the same work whatever the number, no loop to
 // mispredict and no digit stored twice. Anything else goes the general way.
 template <int D>
-void append_fixed_d(std::string& out, std::int64_t n, const number_style& style) {
+char* write_fixed_d(char* p, std::int64_t n, const number_style& style) {
   constexpr std::uint64_t scale = ipow10[D];
   const bool negative = n < 0;
   const std::uint64_t mag = negative ? 0 - static_cast<std::uint64_t>(n) : static_cast<std::uint64_t>(n);
-  const std::size_t at = out.size();
-  out.resize(at + 32);  // room for "-12345678.12345678" with 8-byte stores; cut back below
-  char* p = out.data() + at;
   *p = '-';
   p += negative;
   if (mag < 100000000) {
@@ -173,10 +171,7 @@ void append_fixed_d(std::string& out, std::int64_t n, const number_style& style)
     }
   } else {
     const std::uint64_t whole = mag / scale;
-    if (whole >= 100000000) {
-      out.resize(at);
-      return append_fixed_general(out, n, style);
-    }
+    if (whole >= 100000000) return write_fixed_general(p - negative, n, style);
     const auto fraction = static_cast<std::uint32_t>(mag - whole * scale);
     const int count = digit_count(static_cast<std::uint32_t>(whole));
     store8(p, last_bytes(eight_digits(static_cast<std::uint32_t>(whole)), count));
@@ -194,24 +189,45 @@ void append_fixed_d(std::string& out, std::int64_t n, const number_style& style)
       }
     }
   }
-  out.resize(static_cast<std::size_t>(p - out.data()));
+  return p;
 }
+
+// Writes a count made by round_fixed at p (kMaxFixed bytes of room); returns the end.
+char* write_fixed(char* p, std::int64_t n, const number_style& style) {
+  switch (style.decimals) {
+    case 0: return write_fixed_d<0>(p, n, style);
+    case 1: return write_fixed_d<1>(p, n, style);
+    case 2: return write_fixed_d<2>(p, n, style);
+    case 3: return write_fixed_d<3>(p, n, style);
+    case 4: return write_fixed_d<4>(p, n, style);
+    case 5: return write_fixed_d<5>(p, n, style);
+    case 6: return write_fixed_d<6>(p, n, style);
+    case 7: return write_fixed_d<7>(p, n, style);
+    case 8: return write_fixed_d<8>(p, n, style);
+    default: return write_fixed_general(p, n, style);
+  }
+}
+
+// "-9223372036854775808." and the 8-byte stores past the end of a short number fit.
+constexpr std::size_t max_fixed = 48;
 
 }  // namespace
 
+void append_fixed(text_buffer& out, std::int64_t n, const number_style& style) {
+  out.commit(write_fixed(out.room(max_fixed), n, style));
+}
+
 void append_fixed(std::string& out, std::int64_t n, const number_style& style) {
-  switch (style.decimals) {
-    case 0: return append_fixed_d<0>(out, n, style);
-    case 1: return append_fixed_d<1>(out, n, style);
-    case 2: return append_fixed_d<2>(out, n, style);
-    case 3: return append_fixed_d<3>(out, n, style);
-    case 4: return append_fixed_d<4>(out, n, style);
-    case 5: return append_fixed_d<5>(out, n, style);
-    case 6: return append_fixed_d<6>(out, n, style);
-    case 7: return append_fixed_d<7>(out, n, style);
-    case 8: return append_fixed_d<8>(out, n, style);
-    default: return append_fixed_general(out, n, style);
-  }
+  char buf[max_fixed];
+  out.append(buf, static_cast<std::size_t>(write_fixed(buf, n, style) - buf));
+}
+
+void append_number(text_buffer& out, double v, const number_style& style) {
+  std::int64_t n;
+  if (round_fixed(v, style.decimals, n)) return append_fixed(out, n, style);
+  std::string exact;
+  append_exact(exact, v, style);
+  out += exact;
 }
 
 void append_number(std::string& out, double v, const number_style& style) {

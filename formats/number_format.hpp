@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include "formats/text_buffer.hpp"
+
 namespace twinpost {
 
 struct number_style {
@@ -17,9 +19,11 @@ struct number_style {
 bool round_fixed(double v, int decimals, std::int64_t& n);
 
 /// Appends a count made by round_fixed in `style` ("12.346", "10.", "-0.5").
+void append_fixed(text_buffer& out, std::int64_t n, const number_style& style);
 void append_fixed(std::string& out, std::int64_t n, const number_style& style);
 
 /// Appends `v` rounded to the style's decimals (correctly rounded, as std::to_chars does).
+void append_number(text_buffer& out, double v, const number_style& style);
 void append_number(std::string& out, double v, const number_style& style);
 
 /// `v` as a string in `style`.
