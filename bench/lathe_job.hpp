@@ -6,7 +6,8 @@
 //   TURRET/t,t
 //   SPINDL/SMM,200,MAXRPM,3000,CLW
 //   FEDRAT/0.25,MMPR
-//   RAPID / GOTO/x,0,z ...            roughing passes along -Z, Y = 0, X as radius
+//   RAPID / GOTO/x,0,z ...            roughing passes along -Z, Y = 0, X as radius; the
+//                                     HEAD/2 turret (a lower one) works at x < 0
 //   CIRCLE/xc,0,zc,0,+-1,0,r + GOTO   arcs in the XZ plane (counter-clockwise about the
 //                                     normal, as CATIA and Creo mean it)
 //   SYNC/k,1,2                        the same sync indices, in the same order, in the
@@ -30,6 +31,7 @@ class lathe_job {
     heads_[0].number = 1;
     heads_[1].number = 2;
     heads_[1].x_cut = 38;
+    heads_[1].side = -1;  // the lower turret: its tools sit below the spindle centre
   }
 
   /// Writes a whole job of exactly `records` records (at least `minimum_records`).
@@ -56,6 +58,7 @@ class lathe_job {
 
   struct head_state {
     int number = 1;
+    double side = 1;  // the sign of x in the CL: the geometry below is worked out for +x
     grid_point pos = grid_point::of(x_stock + 5, 0, z_clear + 20);
     double x_cut = x_stock - 1;
     double z_end = 100;
@@ -112,10 +115,16 @@ class lathe_job {
     w_.end_record();
   }
 
+  // A point as the head's CL gives it: x negated on the lower turret (exactly: grid units).
+  static grid_point mirrored(const head_state& h, grid_point p) {
+    if (h.side < 0) p.x = -p.x;
+    return p;
+  }
+
   void go(head_state& h, double x, double z) {
     h.pos = grid_point::of(x, 0, z);
     w_.text("GOTO/");
-    put_xyz(w_, h.pos);
+    put_xyz(w_, mirrored(h, h.pos));
     w_.end_record();
   }
 
@@ -174,9 +183,10 @@ class lathe_job {
       double cx = h.pos.dx() - v[0], cz = h.pos.dz() - v[2];
       double ex = cx + e[0], ez = cz + e[2];
       if (cx <= 0 || ex < x_min || ex > x_stock + 2 || ez < h.z_end - 5 || ez > z_clear) continue;
+      // Mirrored in x (HEAD/2), the same arc turns the other way about the same normal.
       w_.text("CIRCLE/");
-      put_xyz(w_, grid_point::of(cx, 0, cz));
-      w_.text(",0.0000000,").number(side, 7).text(",0.0000000,").number(r, 4);
+      put_xyz(w_, mirrored(h, grid_point::of(cx, 0, cz)));
+      w_.text(",0.0000000,").number(side * h.side, 7).text(",0.0000000,").number(r, 4);
       w_.end_record();
       go(h, ex, ez);
       return true;

@@ -17,8 +17,9 @@
 #    head-1 side), X mirrored where the machine mirrors the channel, drilling cycles expanded
 #    as the CL defines them (rapid to RAPTO above the hole, feed to FEDTO or DEPTH, pecks of
 #    STEP with a rapid out to the R plane and back to 0.5 mm above the last depth, rapid
-#    out). Points that repeat the previous one are dropped on both sides (no block is
-#    written for them); GOHOME and tool changes write G28, which is stripped, so they are
+#    out). Points that round to the NC words of the previous one (X on the program's
+#    0.001 mm grid, in diameter where the channel has it; Z on 0.001 mm) are dropped on both
+#    sides (no block is written for them); GOHOME and tool changes write G28, which is stripped, so they are
 #    not moves here either.
 #
 # Exit: 0 all moves agree, 1 a difference (listed), 2 usage or post failure,
@@ -264,11 +265,13 @@ for e in events:
         emit({"kind": "arc", "x": e["x"] * scale, "z": e["z"] * scale, "cx": e["cx"] * scale,
               "cz": e["cz"] * scale, "ccw": ccw_about_y, "line": line})
 
-def dedupe(moves):
+def dedupe(moves, diameter):
+    # A point that rounds to the same NC words as the one before it writes no block: X on the
+    # 0.001 mm grid of the program (a diameter on diameter channels), Z on 0.001 mm.
     out, last = [], None
     for m in moves:
-        here_ = (round(m["x"], 3), round(m["z"], 3))
-        if m["kind"] != "arc" and last is not None and abs(here_[0] - last[0]) <= TOL and abs(here_[1] - last[1]) <= TOL:
+        here_ = (round(m["x"] * (2000 if diameter else 1000)), round(m["z"] * 1000))
+        if m["kind"] != "arc" and here_ == last:
             continue
         out.append(m)
         last = here_
@@ -287,7 +290,7 @@ for c in channels:
     n = c["number"]
     fname, lines = texts.get(n, ("<none>", []))
     nc, errors = nc_moves(n, lines, c["diameter"])
-    nc, want = dedupe(nc), dedupe(cl[n])
+    nc, want = dedupe(nc, c["diameter"]), dedupe(cl[n], c["diameter"])
     problems = [f"rs274: {l}" for l in errors]
     for i in range(max(len(nc), len(want))):
         if i >= len(nc):
