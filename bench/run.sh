@@ -12,6 +12,8 @@ usage: bench/run.sh [options]
   --mode parse|post    what to time (default: parse)
   --machine NAME       machine for the lathe2 job in --mode post (default: fanuc-0itd-twin);
                        the mill jobs are posted for bench/bench-mill.toml
+  --layout L           output layout for the lathe2 job (split, merged-appended,
+                       merged-sections; default: the machine's own)
   --build DIR          build directory (default: <repo>/build-bench, Release)
   --rebuild            run the build even when the binaries exist
   --repeat R           timed runs per row, best one reported (default: 3)
@@ -26,6 +28,7 @@ sizes="1e5 1e6"
 kinds="mill3 mill5 lathe2"
 mode=parse
 machine=fanuc-0itd-twin
+layout=""
 build="$repo/build-bench"
 rebuild=0
 repeat=3
@@ -41,6 +44,7 @@ while [[ $# -gt 0 ]]; do
     --kinds) kinds=$2; shift 2 ;;
     --mode) mode=$2; shift 2 ;;
     --machine) machine=$2; shift 2 ;;
+    --layout) layout=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
     --rebuild) rebuild=1; shift ;;
     --repeat) repeat=$2; shift 2 ;;
@@ -137,6 +141,7 @@ set_cmd() {
     cmd=("$twinpost" parse "$1")
   else
     cmd=("$twinpost" post "$1" --machine "$(machine_for "$2")" -o "$work/out")
+    if [[ -n $layout && $2 == lathe2 ]]; then cmd+=(--layout "$layout"); fi
   fi
 }
 
@@ -165,7 +170,7 @@ cpu=$(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || 
 commit=$(git -C "$repo" rev-parse --short HEAD 2>/dev/null || echo none)
 if [[ -n $(git -C "$repo" status --porcelain 2>/dev/null) ]]; then commit="$commit (dirty tree)"; fi
 echo "# twinpost $mode benchmark: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores ($cpu), commit $commit"
-if [[ $mode == post ]]; then echo "# machines: lathe2 on $machine, mill3/mill5 on bench/bench-mill.toml"; fi
+if [[ $mode == post ]]; then echo "# machines: lathe2 on $machine${layout:+ (layout $layout)}, mill3/mill5 on bench/bench-mill.toml"; fi
 echo "# binary: $twinpost, built $(date -u -r "$twinpost" '+%Y-%m-%d %H:%M UTC')"
 echo "# best of $repeat warm-cache runs; cache: $cache"
 echo
