@@ -18,6 +18,8 @@ usage: bench/run.sh [options]
   --rebuild            run the build even when the binaries exist
   --repeat R           timed runs per row, best one reported (default: 3)
   --cache DIR          where generated jobs are kept (default: /tmp/twinpost-bench)
+  --baseline BIN       also time another twinpost binary (an older build) on every row,
+                       runs interleaved with the tool's, and give the speed-up in the note
   --startup            only measure the start-up time (~1 KB job, best of 20)
   --no-startup         skip the start-up measurement
 EOF
@@ -29,6 +31,7 @@ kinds="mill3 mill5 lathe2"
 mode=parse
 machine=fanuc-0itd-twin
 layout=""
+baseline=""
 build="$repo/build-bench"
 rebuild=0
 repeat=3
@@ -45,6 +48,7 @@ while [[ $# -gt 0 ]]; do
     --mode) mode=$2; shift 2 ;;
     --machine) machine=$2; shift 2 ;;
     --layout) layout=$2; shift 2 ;;
+    --baseline) baseline=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
     --rebuild) rebuild=1; shift ;;
     --repeat) repeat=$2; shift 2 ;;
@@ -96,11 +100,13 @@ first_error() { grep -m1 'error' "$1" || head -1 "$1"; }
 
 # run_timed PREFIX CMD...: runs CMD once, stdout to /dev/null, stderr to $work/stderr; sets
 # ${PREFIX}_s (wall seconds), ${PREFIX}_kb (peak RSS in KiB) and ${PREFIX}_rc (exit code).
-# A post run gets a fresh, empty output folder, outside the timed part.
+# A post run gets a fresh, empty output folder, outside the timed part, and starts with no
+# dirty pages of an earlier run waiting to be written back.
 run_timed() {
   local prefix=$1; shift
   local t0 t1 rc=0 kb=0
   rm -rf "$work/out"
+  sync  # the previous run's output is written back now, not during this one
   stamp t0
   if [[ $have_time == 1 ]]; then
     /usr/bin/time -f %M -o "$work/rss" "$@" >/dev/null 2>"$work/stderr" || rc=$?
@@ -173,6 +179,7 @@ echo "# twinpost $mode benchmark: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cor
 if [[ $mode == post ]]; then echo "# machines: lathe2 on $machine${layout:+ (layout $layout)}, mill3/mill5 on bench/bench-mill.toml"; fi
 echo "# binary: $twinpost, built $(date -u -r "$twinpost" '+%Y-%m-%d %H:%M UTC')"
 echo "# best of $repeat warm-cache runs; cache: $cache"
+if [[ -n $baseline ]]; then echo "# baseline: $baseline, built $(date -u -r "$baseline" '+%Y-%m-%d %H:%M UTC')"; fi
 echo
 
 fmt='%-7s %10s %8s %8s %9s %11s %8s %8s %8s  %s\n'
@@ -193,14 +200,34 @@ if [[ $do_sizes == 1 ]]; then
       best_of "$repeat" cat cat "$file"
       set_cmd "$file" "$kind"
       run_timed warm "${cmd[@]}"  # warm-up run
-      best_of "$repeat" tool "${cmd[@]}"
       note=""
+      if [[ -n $baseline ]]; then
+        # Interleaved with the baseline binary, run for run: a slow spell of this shared
+        # machine hits both alike, so their ratio holds where absolute times do not.
+        base_cmd=("$baseline" "${cmd[@]:1}")
+        tool_s="" tool_kb=0 base_s=""
+        for ((i = 0; i < repeat; i++)); do
+          run_timed one "${cmd[@]}"
+          tool_rc=$one_rc
+          if [[ $one_rc != 0 ]]; then break; fi
+          if [[ -z $tool_s ]] || awk -v a="$one_s" -v b="$tool_s" 'BEGIN { exit !(a < b) }'; then tool_s=$one_s; fi
+          if ((one_kb > tool_kb)); then tool_kb=$one_kb; fi
+          run_timed one "${base_cmd[@]}"
+          if [[ -z $base_s ]] || awk -v a="$one_s" -v b="$base_s" 'BEGIN { exit !(a < b) }'; then base_s=$one_s; fi
+        done
+        if [[ $tool_rc == 0 ]]; then
+          note=$(awk -v a="$base_s" -v b="$tool_s" 'BEGIN { printf "baseline %.3f s, x%.2f", a, a / b }')
+        fi
+        run_timed check "${cmd[@]}"  # for the diagnostics count below: the tool's own stderr
+      else
+        best_of "$repeat" tool "${cmd[@]}"
+      fi
       if [[ $tool_rc != 0 ]]; then
         note="exit $tool_rc: $(first_error "$work/stderr")"
         tool_s=0 tool_kb=0
       else
         diags=$(grep -c ': \(error\|warning\):' "$work/stderr" || true)
-        if [[ $diags != 0 ]]; then note="$diags diagnostics"; fi
+        if [[ $diags != 0 ]]; then note="${note:+$note; }$diags diagnostics"; fi
       fi
       awk -v kind="$kind" -v n="$n" -v bytes="$bytes" -v cat_s="$cat_s" -v tool_s="$tool_s" \
           -v kb="$tool_kb" -v have_time="$have_time" -v note="$note" -v fmt="$fmt" 'BEGIN {
