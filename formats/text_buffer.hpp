@@ -22,7 +22,7 @@ class text_buffer {
   /// Forgets everything from `n` on (n <= size()).
   void truncate(std::size_t n) { size_ = n; }
   void reserve(std::size_t n) {
-    if (n > cap_) grow(n - size_);
+    if (n > cap_) reallocate(n);
   }
 
   /// At least `n` writable bytes at the end; write there, then commit() the end.
@@ -55,6 +55,9 @@ class text_buffer {
   void grow(std::size_t n) {
     std::size_t cap = cap_ < 256 ? 256 : cap_;
     while (cap - size_ < n) cap *= 2;
+    reallocate(cap);
+  }
+  void reallocate(std::size_t cap) {
     auto bigger = std::make_unique_for_overwrite<char[]>(cap);
     if (size_) std::memcpy(bigger.get(), data_.get(), size_);
     data_ = std::move(bigger);
