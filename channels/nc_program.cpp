@@ -317,15 +317,27 @@ class reader {
           const void* nl = stop > pos ? memrchr(base + pos, '\n', stop - pos) : nullptr;
           if (nl) {
             const std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
-            const void* before = end > pos ? memrchr(base + pos, '\n', end - pos) : nullptr;
-            const std::size_t start = before ? static_cast<std::size_t>(static_cast<const char*>(before) - base) + 1 : pos;
-            const std::string_view last = chunk.substr(start, end - start);
-            if (last.find_first_not_of(" \t") != std::string_view::npos) {
-              no += count_newlines(base + pos, end + 1 - pos);
-              on_line(no, last, true);
-              pos = end + 1;
-              continue;
+            const int total = count_newlines(base + pos, end + 1 - pos);
+            // The last line of the run that is not blank is handed on (blank lines hold
+            // nothing); walking back over blank ones visits each once, as they are consumed.
+            std::size_t line_end = end;
+            int after = 0;  // lines of the run after the one handed on
+            for (;;) {
+              const void* before = line_end > pos ? memrchr(base + pos, '\n', line_end - pos) : nullptr;
+              const std::size_t start =
+                  before ? static_cast<std::size_t>(static_cast<const char*>(before) - base) + 1 : pos;
+              const std::string_view line = chunk.substr(start, line_end - start);
+              if (line.find_first_not_of(" \t") != std::string_view::npos) {
+                on_line(no + total - after, line, true);
+                break;
+              }
+              if (!before) break;  // all blank
+              line_end = start - 1;
+              ++after;
             }
+            no += total;
+            pos = end + 1;
+            continue;
           }
         }
         if (carry.empty() && !is_blank(chunk[pos])) {
