@@ -287,6 +287,38 @@ class reader {
     return lf ? end : std::string_view::npos;
   }
 
+  // From `pos` in a NUL-terminated chunk: every whole line before the next special
+  // character or CR is a plain block (or blank). Counts them with no call per line, hands on
+  // the last one that is not blank (blank lines hold nothing), and moves `pos` and `no`
+  // past them. False when there is no such line at `pos`.
+  template <class F>
+  bool consume_run(std::string_view chunk, std::size_t& pos, int& no, F& on_line) {
+    const char* base = chunk.data();
+    const std::size_t stop = pos + std::strcspn(base + pos, run_stops_.c_str());
+    const void* nl = stop > pos ? memrchr(base + pos, '\n', stop - pos) : nullptr;
+    if (!nl) return false;
+    const std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
+    const int total = count_newlines(base + pos, end + 1 - pos);
+    // Walking back over blank lines visits each once: they are consumed with the run.
+    std::size_t line_end = end;
+    int after = 0;  // lines of the run after the one handed on
+    for (;;) {
+      const void* before = line_end > pos ? memrchr(base + pos, '\n', line_end - pos) : nullptr;
+      const std::size_t start = before ? static_cast<std::size_t>(static_cast<const char*>(before) - base) + 1 : pos;
+      const std::string_view line = chunk.substr(start, line_end - start);
+      if (line.find_first_not_of(" \t") != std::string_view::npos) {
+        on_line(no + total - after, line, true);
+        break;
+      }
+      if (!before) break;  // all blank
+      line_end = start - 1;
+      ++after;
+    }
+    no += total;
+    pos = end + 1;
+    return true;
+  }
+
   // The same lines as above, read from a file a megabyte at a time. Most lines are plain
   // blocks: one strcspn over the stop characters (the special ones, CR and LF; SSE4.2 in
   // glibc) finds the end of such a line and says it is plain in the same pass.
@@ -309,37 +341,7 @@ class reader {
       if (skip_lf && !chunk.empty() && chunk[0] == '\n') pos = 1;  // CR LF split by the chunk
       skip_lf = false;
       while (pos < chunk.size()) {
-        if (runs && carry.empty()) {
-          // Every whole line before the next special character or CR is a plain block (or
-          // blank): count them with no call per line, and hand on the last one.
-          const char* base = chunk.data();
-          const std::size_t stop = pos + std::strcspn(base + pos, run_stops_.c_str());
-          const void* nl = stop > pos ? memrchr(base + pos, '\n', stop - pos) : nullptr;
-          if (nl) {
-            const std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
-            const int total = count_newlines(base + pos, end + 1 - pos);
-            // The last line of the run that is not blank is handed on (blank lines hold
-            // nothing); walking back over blank ones visits each once, as they are consumed.
-            std::size_t line_end = end;
-            int after = 0;  // lines of the run after the one handed on
-            for (;;) {
-              const void* before = line_end > pos ? memrchr(base + pos, '\n', line_end - pos) : nullptr;
-              const std::size_t start =
-                  before ? static_cast<std::size_t>(static_cast<const char*>(before) - base) + 1 : pos;
-              const std::string_view line = chunk.substr(start, line_end - start);
-              if (line.find_first_not_of(" \t") != std::string_view::npos) {
-                on_line(no + total - after, line, true);
-                break;
-              }
-              if (!before) break;  // all blank
-              line_end = start - 1;
-              ++after;
-            }
-            no += total;
-            pos = end + 1;
-            continue;
-          }
-        }
+        if (runs && carry.empty() && consume_run(chunk, pos, no, on_line)) continue;
         if (carry.empty() && !is_blank(chunk[pos])) {
           // A line that reaches its LF with no stop character on the way, and does not start
           // blank, is a plain block (an embedded NUL stops strcspn too: the slow way then).
