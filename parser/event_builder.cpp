@@ -81,9 +81,12 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
 }
 
 const std::vector<double>& event_builder::numbers(const cl_record& r) {
-  numbers_.clear();
+  // Sized once, then written through a pointer: no capacity check per number.
+  if (numbers_.size() < r.args.size()) numbers_.resize(r.args.size());
+  double* p = numbers_.data();
   for (const cl_arg& a : r.args)
-    if (a.kind == arg_kind::number) numbers_.push_back(a.number);
+    if (a.kind == arg_kind::number) *p++ = a.number;
+  numbers_.resize(static_cast<std::size_t>(p - numbers_.data()));
   return numbers_;
 }
 

@@ -27,27 +27,26 @@ bool parse_numeric_statement(std::string_view text, cl_record& out) {
   if (p == end) return true;  // a bare major: RAPID, FINI
   if (*p != '/') return false;
   ++p;
-  for (;;) {
+  for (bool first = true;; first = false) {
     while (p != end && blank(*p)) ++p;
+    // Nothing after '/' is the grammar's to judge; nothing after a comma is a trailing
+    // comma, which carries nothing (as in the grammar).
+    if (p == end) return !first;
     const char* start = p;
     bool negative = false;
-    if (p != end && (*p == '+' || *p == '-')) negative = *p++ == '-';
+    if (*p == '+' || *p == '-') negative = *p++ == '-';
     if (p == end || !((*p >= '0' && *p <= '9') || *p == '.')) return false;
     double value = 0;
     p = fast_decimal(p, end, value);
     if (!p || (p != end && is_word_char(*p))) return false;
-    cl_arg a;
+    cl_arg& a = out.args.emplace_back();
     a.kind = arg_kind::number;
     a.number = negative ? -value : value;
     a.offset = static_cast<std::size_t>(start - begin);
-    out.args.push_back(a);
     while (p != end && blank(*p)) ++p;
     if (p == end) return true;
     if (*p != ',') return false;
     ++p;
-    const char* after = p;
-    while (after != end && blank(*after)) ++after;
-    if (after == end) return true;  // a trailing comma carries nothing (as in the grammar)
   }
 }
 
