@@ -15,6 +15,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   x_factor_ = (x && !x->diameter) ? 1.0 : 2.0;
   if (x && x->mirror) x_factor_ = -x_factor_;
   x_mirror_ = x && x->mirror;
+  x_diameter_ = x && x->diameter;
   has_y_ = ch.axis('Y') != nullptr;
   // The plane in force after the header (G18 on a lathe, G17 on a mill).
   for (const std::string& block : m.program.header)
@@ -60,9 +61,7 @@ void channel_writer::check_side(double x_nc, double x_cl, int line) {
   // side of the spindle. On a mirrored (lower) turret that means the CL gave this head
   // positive x, i.e. the upper side: its own frame, or a head mix-up. Say so, once.
   constexpr double past_centre = -5.0;
-  if (warned_side_ || x_nc >= past_centre) return;
-  const axis_def* x = ch_.axis('X');
-  if (!x || !x->diameter) return;
+  if (warned_side_ || !x_diameter_ || x_nc >= past_centre) return;
   warned_side_ = true;
   diagnostic d;
   d.level = severity::warning;

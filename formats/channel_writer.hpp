@@ -74,6 +74,7 @@ class channel_writer {
   double x_factor_ = 2.0;     // diameter (2) or radius (1), negative when mirrored
   double side_ = 1.0;         // -1 while a HEAD/BOTH copy runs on the opposite side
   bool x_mirror_ = false;     // the channel's X axis is mirrored (a lower turret)
+  bool x_diameter_ = false;   // and programmed in diameter (a lathe's)
   bool has_y_ = false;
   const spindle_def* spindle_ = nullptr;
   int motion_g_ = -1;         // last G0/G1/G2/G3
