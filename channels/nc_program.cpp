@@ -144,8 +144,8 @@ int marker_channel(const marker_pattern& mk, std::string_view line) {
 /// Turns NC files into channel programs; one per read_nc_programs call.
 class reader {
  public:
-  reader(const machine& m, diagnostic_sink& sink, nc_programs& out)
-      : m_(m), sink_(sink), out_(out), state_(out.channels.size()) {
+  reader(const machine& m, diagnostic_sink& sink, nc_programs& out, const nc_read_options& options)
+      : m_(m), sink_(sink), out_(out), options_(options), state_(out.channels.size()) {
     end_codes_ = {2, 30, 99};  // M02, M30, M99 end a program on every control
     for (const nc_word& w : split_nc_words(m.program.end_code)) {
       int code = 0;
@@ -490,7 +490,11 @@ class reader {
     if (st.last_file != f.name) st.last_file = f.name;
     st.last_line = no;
     st.last_text.assign(line);
-    if (wait) prog.waits.push_back(make_wait(channel, wait_code, partner, at(wait->column)));
+    if (wait) {
+      nc_wait w = make_wait(channel, wait_code, partner, at(wait->column));
+      if (options_.on_wait) options_.on_wait(w);
+      else prog.waits.push_back(std::move(w));
+    }
     for (const auto& [w, code] : near)
       prog.near_waits.push_back(make_wait(channel, code, partner, at(w->column)));
     if (end) {
@@ -530,6 +534,7 @@ class reader {
   const machine& m_;
   diagnostic_sink& sink_;
   nc_programs& out_;
+  const nc_read_options& options_;
   std::array<bool, 256> special_ = special_chars(m_.waits.address);
   std::string stops_ = stop_chars(special_);
   std::string run_stops_ = "\r" + stops_.substr(2);  // no LF: a run of lines ends at CR or a special
@@ -612,11 +617,11 @@ bool decode_partner_list(std::string_view text, partner_style style, std::vector
 }
 
 nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m,
-                             diagnostic_sink& sink) {
+                             diagnostic_sink& sink, const nc_read_options& options) {
   nc_programs out;
   for (std::size_t i = 0; i < m.channels.size(); ++i)
     out.channels.push_back({static_cast<int>(i) + 1, {}, {}, {}, {}});
-  reader r(m, sink, out);
+  reader r(m, sink, out, options);
   if (files.empty()) {
     sink.report({severity::error, "twinpost", 0, 0, "no NC files given", {}});
   } else if (files.size() == out.channels.size()) {

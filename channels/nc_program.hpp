@@ -13,6 +13,7 @@
 // A wait is a word of address machine.waits.address whose code satisfies
 // machine.waits.is_wait_code(). The reader judges syntax and layout only; the rules
 // (partner lists, pairing, deadlocks) are the checker's.
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -81,8 +82,15 @@ struct nc_programs {
 /// when `text` is not a list in that style (a sign, a point, an empty value).
 bool decode_partner_list(std::string_view text, partner_style style, std::vector<int>& out);
 
+/// How to read. With `on_wait` set, each wait is handed to it as it is read and not kept in
+/// the programs (their `waits` stay empty): a check of a long program then holds only what
+/// it simulates.
+struct nc_read_options {
+  std::function<void(const nc_wait&)> on_wait;
+};
+
 /// Reads `files` as the programs of machine `m`; layout and syntax problems go to `sink`.
 nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m,
-                             diagnostic_sink& sink);
+                             diagnostic_sink& sink, const nc_read_options& options = {});
 
 }  // namespace twinpost

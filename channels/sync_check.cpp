@@ -45,14 +45,33 @@ std::string place(const nc_place& p) { return fmt::format("{}:{}", p.file, p.lin
 class checker {
  public:
   checker(const nc_programs& p, const machine& m)
-      : progs_(p), m_(m), n_(static_cast<int>(p.channels.size())) {}
+      : progs_(p), m_(m), n_(static_cast<int>(p.channels.size())) {
+    if (n_ <= max_channels) all_ = n_ == max_channels ? ~channel_mask{0} : bit_of(n_ + 1) - 1;
+  }
+
+  // The compact check (see check_nc_files): waits are taken one by one as they are read,
+  // and only their simulation entries are kept.
+  void begin_compact() { sims_.assign(static_cast<std::size_t>(n_), {}); }
+  void take(const nc_wait& w) {
+    sim_wait s = normalise(w);
+    s.src = nullptr;  // the wait is gone after this call: a finding means a full check
+    sims_[static_cast<std::size_t>(w.channel - 1)].push_back(s);
+  }
+  bool nothing_found() const { return result_.diagnostics.empty(); }
+  /// Simulates the channels together; true when every one reaches its end.
+  bool all_paired() {
+    pos_.assign(sims_.size(), 0);
+    simulate();
+    for (int c = 1; c <= n_; ++c)
+      if (!finished(c)) return false;
+    return true;
+  }
 
   sync_result run() {
     if (n_ > max_channels) {
       report(severity::error, {}, 0,
              fmt::format("{} channels: the checker handles at most {}", n_, max_channels));
     } else {
-      all_ = n_ == max_channels ? ~channel_mask{0} : bit_of(n_ + 1) - 1;
       for (const nc_channel_program& c : progs_.channels) {
         sims_.emplace_back();
         for (const nc_wait& w : c.waits) sims_.back().push_back(normalise(w));
@@ -296,13 +315,53 @@ sync_result check_sync(const nc_programs& programs, const machine& m) {
   return r;
 }
 
-sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m) {
+namespace {
+
+// Reads the files keeping every wait, and checks them with all messages.
+sync_result full_check(const std::vector<nc_source>& files, const machine& m) {
   diagnostic_list read;
   const nc_programs programs = read_nc_programs(files, m, read);
   sync_result r = checker(programs, m).run();
   r.diagnostics.insert(r.diagnostics.begin(), read.all().begin(), read.all().end());
   count(r);
   return r;
+}
+
+}  // namespace
+
+sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m) {
+  // First the compact way: each wait is kept only as its 32-byte simulation entry, so a
+  // sound program of any length is checked in memory that does not grow with its waits.
+  // Anything at all to say (a reading problem, a wait that looks wrong, a channel that does
+  // not reach its end) has the files read again the full way, which says it: the same
+  // reader, the same rules and the same simulation, with every wait kept for the messages.
+  if (m.channels.size() <= static_cast<std::size_t>(max_channels)) {
+    nc_programs shape;  // one program per machine channel, as read_nc_programs makes them
+    shape.channels.resize(m.channels.size());
+    checker compact(shape, m);
+    compact.begin_compact();
+    std::vector<int> waits(m.channels.size(), 0);
+    nc_read_options options;
+    options.on_wait = [&](const nc_wait& w) {
+      compact.take(w);
+      ++waits[static_cast<std::size_t>(w.channel - 1)];
+    };
+    diagnostic_list read;
+    const nc_programs programs = read_nc_programs(files, m, read, options);
+    bool near_waits = false;
+    for (const nc_channel_program& c : programs.channels) near_waits = near_waits || !c.near_waits.empty();
+    if (read.all().empty() && !near_waits && compact.nothing_found() && compact.all_paired()) {
+      sync_result r;
+      for (std::size_t i = 0; i < programs.channels.size(); ++i) {
+        const nc_channel_program& c = programs.channels[i];
+        r.channels.push_back({c.channel, c.file, waits[i], waits[i]});
+        r.paired += waits[i];
+      }
+      count(r);
+      return r;
+    }
+  }
+  return full_check(files, m);
 }
 
 }  // namespace twinpost
