@@ -7,6 +7,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "file_test_support.hpp"
 #include "formats/block_writer.hpp"
 #include "formats/number_format.hpp"
 #include "formats/text_buffer.hpp"
@@ -14,17 +15,6 @@
 using namespace twinpost;
 
 namespace {
-std::string slurp(const std::string& path) {
-  std::string s;
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return "(missing)";
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) s.append(buf, n);
-  std::fclose(f);
-  return s;
-}
-
 std::string temp_path(const char* name) {
   return (std::filesystem::temp_directory_path() / (std::string(name) + "-" + std::to_string(::getpid()))).string();
 }
@@ -80,7 +70,7 @@ TEST_CASE("block_writer: numbered blocks built in place, dropped blocks, framing
     CHECK(w.blocks() == 3);
     w.close();
   }
-  CHECK(slurp(path) ==
+  CHECK(test::read_file(path) ==
         "%\nO1000 (T)\nN10 G28 U0 W0\nN15 G0 X64.\n(ROUGH OD  FAST)\n(INSERT TEXT AS IT IS)\nN20 G1 Z-40.\nM30\n%\n");
   std::filesystem::remove(path);
 }
@@ -97,6 +87,6 @@ TEST_CASE("block_writer: a file with no block still gets its head and tail", "[f
     w.close();
     CHECK(w.head_written() == "%\n");
   }
-  CHECK(slurp(path) == "%\nM30\n%\n");
+  CHECK(test::read_file(path) == "%\nM30\n%\n");
   std::filesystem::remove(path);
 }

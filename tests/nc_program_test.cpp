@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "channels/nc_program.hpp"
+#include "file_test_support.hpp"
 
 using namespace twinpost;
 
@@ -246,10 +247,7 @@ TEST_CASE("streamed files: the last block survives the reader's buffer", "[check
     for (char c : text) lines += c == '\n';
     text.append((1u << 20) + 100, '\n');
     const std::string path = dir + "/" + name;
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    REQUIRE(f);
-    std::fwrite(text.data(), 1, text.size(), f);
-    std::fclose(f);
+    REQUIRE(test::write_file(path, text));
     return std::pair{path, lines};
   };
   auto [a_path, a_lines] = write("stream_a.nc", "G0 X100. Z5.");
@@ -312,9 +310,7 @@ TEST_CASE("streamed and in-memory reading agree, runs of plain blocks included",
   std::filesystem::create_directories(tmp);
   auto put = [&](const std::string& name, const std::string& text) {
     const std::string path = (tmp / name).string();
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    std::fwrite(text.data(), 1, text.size(), f);
-    std::fclose(f);
+    REQUIRE(test::write_file(path, text));
     return path;
   };
   const machine m = two_channels(100, 199, "");

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "file_test_support.hpp"
 #include "formats/job_scan.hpp"
 #include "formats/post_job.hpp"
 #include "machines/machine_loader.hpp"
@@ -27,9 +28,7 @@ TEST_CASE("a PARTNO never leaves the output folder", "[post]") {
 namespace {
 std::string write_temp(const std::string& text) {
   std::string path = (std::filesystem::temp_directory_path() / "twinpost_scan_test.cls").string();
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  std::fwrite(text.data(), 1, text.size(), f);
-  std::fclose(f);
+  REQUIRE(test::write_file(path, text));
   return path;
 }
 }  // namespace
@@ -57,17 +56,6 @@ TEST_CASE("the channels a job uses, on a 3-path machine", "[post]") {
 }
 
 namespace {
-std::string read_file(const std::filesystem::path& p) {
-  std::string s;
-  std::FILE* f = std::fopen(p.string().c_str(), "rb");
-  if (!f) return "(missing)";
-  char buf[4096];
-  std::size_t n;
-  while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) s.append(buf, n);
-  std::fclose(f);
-  return s;
-}
-
 // The files a post writes: name -> contents ("(failed)" when the post failed).
 std::map<std::string, std::string> post_files(const std::string& cl, const machine& m, const std::string& tag,
                                               diagnostic_list* diags = nullptr,
@@ -76,9 +64,7 @@ std::map<std::string, std::string> post_files(const std::string& cl, const machi
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const std::string job = (dir / "job.cls").string();
-  std::FILE* f = std::fopen(job.c_str(), "wb");
-  std::fwrite(cl.data(), 1, cl.size(), f);
-  std::fclose(f);
+  REQUIRE(test::write_file(job, cl));
   post_options o;
   o.cl_path = job;
   o.out_dir = (dir / "out").string();
@@ -89,7 +75,7 @@ std::map<std::string, std::string> post_files(const std::string& cl, const machi
   if (!s.ok) files["(failed)"] = "";
   if (std::filesystem::exists(dir / "out"))
     for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
-      files[e.path().filename().string()] = read_file(e.path());
+      files[e.path().filename().string()] = test::read_file(e.path().string());
   std::filesystem::remove_all(dir);
   return files;
 }
