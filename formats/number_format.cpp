@@ -118,9 +118,6 @@ std::uint64_t eight_digits(std::uint32_t v) {
   return x | 0x3030303030303030ULL;
 }
 
-// The last `n` (1..8) bytes of the word, moved to its start.
-std::uint64_t last_bytes(std::uint64_t w, int n) { return w >> (8 * (8 - n)); }
-
 void store8(char* p, std::uint64_t w) {
   if constexpr (std::endian::native == std::endian::big) w = __builtin_bswap64(w);
   std::memcpy(p, &w, 8);
@@ -137,56 +134,37 @@ int digit_count(std::uint32_t v) {
 // mispredict and no digit stored twice. Anything else goes the general way.
 template <int D>
 char* write_fixed_d(char* p, std::int64_t n, const number_style& style) {
-  constexpr std::uint64_t scale = ipow10[D];
   const bool negative = n < 0;
   const std::uint64_t mag = negative ? 0 - static_cast<std::uint64_t>(n) : static_cast<std::uint64_t>(n);
+  // Eight digits in all cover every coordinate a machine has at its decimals (12.345 at
+  // three decimals is 12345); longer numbers go the general way.
+  if (mag >= 100000000) return write_fixed_general(p, n, style);
   *p = '-';
   p += negative;
-  if (mag < 100000000) {
-    // The common case (12.345 at three decimals is 12345): all digits from one conversion,
-    // the whole part the bytes before the last D, the fraction the last D.
-    const auto m = static_cast<std::uint32_t>(mag);
-    const std::uint64_t all = eight_digits(m);
-    if constexpr (D < 8) {
-      // The whole part is the first 8 - D characters, i.e. the low bytes of the word.
-      constexpr std::uint64_t whole_bytes = D == 0 ? ~0ULL : (1ULL << (8 * (8 - D))) - 1;
-      const int whole = digit_count(m) > D ? digit_count(m) - D : 1;  // at least "0"
-      store8(p, (all & whole_bytes) >> (8 * (8 - D - whole)));
-      p += whole;
-    } else {
-      *p++ = '0';
-    }
-    if constexpr (D > 0) {
-      const std::uint64_t fraction = D < 8 ? all >> (8 * (8 - D)) : all;  // D bytes, then zeros
-      const std::uint64_t significant = fraction ^ (0x3030303030303030ULL >> (8 * (8 - D)));  // '0' -> 0
-      if (significant != 0) {
-        // Trailing zeros dropped: up to the last non-zero digit.
-        const int kept = (63 - std::countl_zero(significant)) / 8 + 1;
-        *p = '.';
-        store8(p + 1, fraction);
-        p += 1 + kept;
-      } else if (style.trailing_point) {
-        *p++ = '.';
-      }
-    }
+  // All digits from one conversion: the whole part the bytes before the last D, the
+  // fraction the last D.
+  const auto m = static_cast<std::uint32_t>(mag);
+  const std::uint64_t all = eight_digits(m);
+  if constexpr (D < 8) {
+    // The whole part is the first 8 - D characters, i.e. the low bytes of the word.
+    constexpr std::uint64_t whole_bytes = D == 0 ? ~0ULL : (1ULL << (8 * (8 - D))) - 1;
+    const int whole = digit_count(m) > D ? digit_count(m) - D : 1;  // at least "0"
+    store8(p, (all & whole_bytes) >> (8 * (8 - D - whole)));
+    p += whole;
   } else {
-    const std::uint64_t whole = mag / scale;
-    if (whole >= 100000000) return write_fixed_general(p - negative, n, style);
-    const auto fraction = static_cast<std::uint32_t>(mag - whole * scale);
-    const int count = digit_count(static_cast<std::uint32_t>(whole));
-    store8(p, last_bytes(eight_digits(static_cast<std::uint32_t>(whole)), count));
-    p += count;
-    if constexpr (D > 0) {
-      if (fraction != 0) {
-        std::uint64_t digits = last_bytes(eight_digits(fraction), D);
-        std::uint64_t significant = digits ^ (0x3030303030303030ULL >> (8 * (8 - D)));
-        int kept = (63 - std::countl_zero(significant)) / 8 + 1;
-        *p = '.';
-        store8(p + 1, digits);
-        p += 1 + kept;
-      } else if (style.trailing_point) {
-        *p++ = '.';
-      }
+    *p++ = '0';
+  }
+  if constexpr (D > 0) {
+    const std::uint64_t fraction = D < 8 ? all >> (8 * (8 - D)) : all;  // D bytes, then zeros
+    const std::uint64_t significant = fraction ^ (0x3030303030303030ULL >> (8 * (8 - D)));  // '0' -> 0
+    if (significant != 0) {
+      // Trailing zeros dropped: up to the last non-zero digit.
+      const int kept = (63 - std::countl_zero(significant)) / 8 + 1;
+      *p = '.';
+      store8(p + 1, fraction);
+      p += 1 + kept;
+    } else if (style.trailing_point) {
+      *p++ = '.';
     }
   }
   return p;
