@@ -13,7 +13,7 @@
 #include "channels/sync_report_format.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
-#include "machines/machine_loader.hpp"
+#include "cli/machine_dirs.hpp"
 
 namespace twinpost::cli {
 
@@ -63,7 +63,7 @@ int run_check(const args& a) {
   }
 
   // A bad machine throws config_error, which main turns into its message and exit 2.
-  const machine m = load_machine(vm["machine"].as<std::string>());
+  const machine m = locate_machine(vm["machine"].as<std::string>()).def;
 
   std::vector<nc_source> sources;
   for (const std::string& path : vm["file"].as<std::vector<std::string>>()) {

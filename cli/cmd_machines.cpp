@@ -1,4 +1,5 @@
-// twinpost machines: lists the built-in machine definitions, one per line.
+// twinpost machines [--show NAME]: lists the built-in machine definitions, one per line, or
+// prints the definition --machine NAME would use, to copy and edit.
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -6,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "cli/machine_dirs.hpp"
 #include "machines/machine_loader.hpp"
 
 namespace twinpost::cli {
@@ -13,10 +15,14 @@ namespace twinpost::cli {
 namespace {
 
 const char* const machines_usage =
-    "usage: twinpost machines\n"
+    "usage: twinpost machines [--show NAME]\n"
     "\n"
     "Lists the built-in machine definitions: name, then description.\n"
-    "Pass a name to --machine, or a path to your own TOML file (see docs/machines.md).\n";
+    "--show NAME prints the definition that --machine NAME uses (TOML), to copy and edit.\n"
+    "Pass a name to --machine, or a path to your own TOML file (see docs/machines.md).\n"
+    "A name is looked up as NAME.toml in $XDG_CONFIG_HOME/twinpost/machines (default\n"
+    "~/.config/twinpost/machines), then /etc/twinpost/machines, then the installation's\n"
+    "share/twinpost/machines, then among the built-ins.\n";
 
 }  // namespace
 
@@ -26,6 +32,11 @@ int run_machines(const args& a) {
       std::fputs(machines_usage, stdout);
       return 0;
     }
+  }
+  if (a.size() == 2 && a[0] == "--show") {
+    const located_machine found = locate_machine(a[1]);  // an invalid file throws: exit 2
+    std::fwrite(found.text.data(), 1, found.text.size(), stdout);
+    return 0;
   }
   if (!a.empty()) {
     const std::string& arg = a.front();

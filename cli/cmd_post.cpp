@@ -8,7 +8,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "formats/post_job.hpp"
-#include "machines/machine_loader.hpp"
+#include "cli/machine_dirs.hpp"
 
 namespace twinpost::cli {
 
@@ -63,7 +63,8 @@ int run_post(const args& a) {
       return 2;
     }
   }
-  machine m = load_machine(vm["machine"].as<std::string>());
+  const located_machine found = locate_machine(vm["machine"].as<std::string>());
+  const machine& m = found.def;
   if (o.layout == layout_kind::merged_appended && m.program.section_marker.empty()) {
     fmt::print(stderr, "twinpost post: machine '{}' has no section marker for merged-appended\n", m.name);
     return 2;
@@ -95,6 +96,7 @@ int run_post(const args& a) {
                                           s.policy == sync_policy::explicit_marks ? "explicit" : "sequential");
   fmt::print("post: {} records, {} channel{}, {} blocks, {}, {} warning{}\n", s.records, s.channels,
              s.channels == 1 ? "" : "s", s.blocks, waits, sink.warnings(), sink.warnings() == 1 ? "" : "s");
+  fmt::print("  machine {} ({})\n", m.name, found.origin);
   for (const std::string& f : s.files) fmt::print("  wrote {}\n", f);
   return 0;
 }

@@ -1,0 +1,97 @@
+#include "cli/command_table.hpp"
+
+#include <array>
+#include <fmt/format.h>
+
+#include "cli/version.hpp"
+
+namespace twinpost::cli {
+
+namespace {
+
+const std::array<command_entry, 4> table{{
+    {"parse", "FILE [--json] [--dialect D]", "print the CL event stream",
+     "Reads a CL file (APT-style cutter location data of Creo, NX, CATIA, SolidWorks CAM, "
+     "Makino or generic ISO 4343) and prints one line per event, or with --json one JSON "
+     "object per event. --dialect forces a dialect instead of detecting it.",
+     &run_parse},
+    {"post", "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D]", "post a CL job to NC programs",
+     "Posts a CL job for machine M into the folder DIR (made if missing): one program per "
+     "channel, or one merged program, as the machine's control expects (--layout split, "
+     "merged-appended or merged-sections overrides it). --sync explicit|sequential|auto says "
+     "where the channels wait for each other (auto: at the job's SYNC records if it has any, "
+     "else at every head switch). The programs are written to temporary names, checked as "
+     "'twinpost check' would, and committed as a set only when everything is sound: a failed "
+     "run writes nothing and changes nothing in DIR.",
+     &run_post},
+    {"check", "FILE... --machine M [--json]", "check wait synchronisation of NC programs",
+     "Checks that the waits of NC programs pair up, in order, and that no channel can "
+     "deadlock. Give one file per channel in channel order, or one file with the machine's "
+     "section markers. --json prints the report as one JSON object.",
+     &run_check},
+    {"machines", "[--show NAME]", "list the built-in machines, or print one",
+     "Lists the built-in machine definitions. --show NAME prints the definition that "
+     "--machine NAME would use, as TOML, to copy and edit.",
+     &run_machines},
+}};
+
+// Roff needs a backslash before a hyphen that must print as one, and an escape before a
+// leading dot or quote.
+std::string roff(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '-' || c == '\\') out += '\\';
+    out += c;
+  }
+  if (!out.empty() && (out[0] == '.' || out[0] == '\'')) out.insert(0, "\\&");
+  return out;
+}
+
+}  // namespace
+
+std::span<const command_entry> command_table() { return table; }
+
+std::string usage_text() {
+  std::string s = "usage: twinpost <command> [options]\n\ncommands:\n";
+  for (const command_entry& c : table) s += fmt::format("  {} {}\n      {}\n", c.name, c.synopsis, c.summary);
+  s += "\nRun 'twinpost <command> --help' for the options of a command;\n"
+       "'twinpost --version' prints the version and the commit it was built from.\n";
+  return s;
+}
+
+std::string man_page() {
+  std::string s = fmt::format(".TH TWINPOST 1 \"\" \"twinpost {}\" \"User Commands\"\n", version());
+  s += ".SH NAME\ntwinpost \\- postprocessor for multi\\-channel mill/turn machines\n";
+  s += ".SH SYNOPSIS\n";
+  for (const command_entry& c : table)
+    s += fmt::format(".B twinpost {}\n{}\n.br\n", c.name, roff(c.synopsis));
+  s += ".B twinpost \\-\\-version\n.br\n.B twinpost \\-\\-help\n";
+  s += ".SH DESCRIPTION\n"
+       "twinpost reads the CL (cutter location) data that CAM systems write and turns it into the "
+       "NC programs of twin\\-turret and multi\\-path machines \\(em one program per turret, meeting "
+       "at wait codes \\(em and proves that every wait pairs before it writes a file.\n";
+  s += ".SH COMMANDS\n";
+  for (const command_entry& c : table)
+    s += fmt::format(".TP\n.B {} {}\n{}\n", c.name, roff(c.synopsis), roff(c.details));
+  s += ".SH MACHINES\n"
+       "\\fB\\-\\-machine\\fR takes a path to a TOML machine file (it holds a '/' or ends in .toml) or a "
+       "name. A name is looked up as NAME.toml in, in order: "
+       "\\fI$XDG_CONFIG_HOME/twinpost/machines\\fR (default \\fI~/.config/twinpost/machines\\fR), "
+       "\\fI/etc/twinpost/machines\\fR, the installation's \\fIshare/twinpost/machines\\fR, and last "
+       "among the definitions built into the binary. The post summary names the file used.\n";
+  s += ".SH DIAGNOSTICS\n"
+       "Problems are reported as a compiler reports them: \\fIfile\\fR:\\fIline\\fR:\\fIcol\\fR: "
+       "error: message, then the source line and a caret.\n";
+  s += ".SH EXIT STATUS\n"
+       ".TP\n.B 0\nsound: the programs were written, or the check found nothing wrong\n"
+       ".TP\n.B 1\nerrors in the input (CL job or NC programs); nothing was written\n"
+       ".TP\n.B 2\nusage or configuration error (options, machine file, files that cannot be read "
+       "or written)\n";
+  s += ".SH ENVIRONMENT\n.TP\n.B XDG_CONFIG_HOME\nwhere the user's machine files live "
+       "(\\fI$XDG_CONFIG_HOME/twinpost/machines\\fR)\n";
+  s += ".SH SEE ALSO\nThe documents in \\fI/usr/share/doc/twinpost\\fR: machines.md (the machine file "
+       "schema), checker.md, samples.md, design.md.\n";
+  return s;
+}
+
+}  // namespace twinpost::cli
