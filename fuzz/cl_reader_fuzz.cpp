@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "fuzz/fuzz_support.hpp"
 #include "parser/cl_reader.hpp"
 #include "parser/detail/fast_record.hpp"
 #include "parser/event_text.hpp"

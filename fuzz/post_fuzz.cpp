@@ -1,0 +1,119 @@
+// libFuzzer target: mutated CL through the whole post — reader, router, wait allocation,
+// channel writers, framing, the self-check and the commit of the output set — in a scratch
+// folder, on every built-in machine and layout (the first byte picks them). Properties:
+// - post_job returns or throws config_error (exit 0, 1 or 2 in the tool), nothing else;
+// - a failed post leaves the output folder as it was (here: absent or empty);
+// - every error has a file and a line;
+// - a post that succeeds wrote the files it names, and `check` finds them sound;
+// - no word of a posted program is unreadable: no inf or nan, no number of more than ten
+//   digits outside comments (the machine's word formats are tighter still);
+// - the same input posted again gives the same bytes.
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "channels/sync_check.hpp"
+#include "formats/post_job.hpp"
+#include "fuzz/fuzz_support.hpp"
+#include "machines/builtin_machines.hpp"
+#include "machines/machine_loader.hpp"
+
+namespace fs = std::filesystem;
+using namespace twinpost;
+
+namespace {
+
+const std::vector<machine>& machines() {
+  static const std::vector<machine> all = [] {
+    std::vector<machine> v;
+    for (const builtin_machine_file& f : builtin_machine_files()) v.push_back(load_machine(f.name));
+    return v;
+  }();
+  return all;
+}
+
+struct outcome {
+  bool ok = false;
+  bool config = false;
+  std::vector<std::string> files;
+  std::vector<std::string> contents;
+};
+
+// True when every number outside comments has at most ten digits and nothing reads "inf"/"nan".
+bool words_readable(const std::string& text) {
+  int digits = 0;
+  bool comment = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '(') comment = true;
+    if (c == ')' || c == '\n') comment = false;
+    if (comment) continue;
+    digits = (c >= '0' && c <= '9') ? digits + 1 : (c == '.' ? digits : 0);
+    if (digits > 10) return false;
+    if ((c == 'i' || c == 'I') && (text.compare(i, 3, "inf") == 0 || text.compare(i, 3, "INF") == 0)) return false;
+    if ((c == 'n' || c == 'N') && (text.compare(i, 3, "nan") == 0 || text.compare(i, 3, "NAN") == 0)) return false;
+  }
+  return true;
+}
+
+outcome post_once(const std::string& job, const std::string& out, const machine& m, layout_kind layout) {
+  std::error_code ec;
+  fs::remove_all(out, ec);
+  post_options o;
+  o.cl_path = job;
+  o.out_dir = out;
+  o.layout = layout;
+  diagnostic_list diags;
+  outcome r;
+  try {
+    post_summary s = post_job(o, m, diags);
+    r.ok = s.ok;
+    r.files = s.files;
+  } catch (const config_error&) {
+    r.config = true;  // the tool's exit 2
+  }
+  for (const diagnostic& d : diags.all())
+    if (d.level == severity::error) fuzz::require(!d.file.empty() && d.line > 0, "an error without a position: " + d.message);
+  if (!r.ok) {
+    fuzz::require(!fs::exists(out, ec) || fs::is_empty(out, ec), "a failed post left files behind");
+    return r;
+  }
+  fuzz::require(!r.files.empty(), "a post that succeeded wrote no file");
+  std::vector<std::string> sorted = r.files;
+  std::sort(sorted.begin(), sorted.end());
+  fuzz::require(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(), "two programs written to one path");
+  std::size_t entries = 0;
+  for (auto it = fs::directory_iterator(out, ec); !ec && it != fs::directory_iterator(); ++it) ++entries;
+  fuzz::require(entries == r.files.size(), "the output folder holds other files than the ones reported");
+  std::vector<nc_source> sources;
+  for (const std::string& f : r.files) {
+    fuzz::require(fs::is_regular_file(f, ec), "a reported file is missing");
+    r.contents.push_back(fuzz::read_all(f));
+    fuzz::require(words_readable(r.contents.back()), "an unreadable number in " + f);
+    sources.push_back({f, {}, f});
+  }
+  const sync_result check = check_nc_files(sources, m);
+  fuzz::require(check.ok, "a posted program set fails `check`");
+  return r;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return 0;
+  const std::vector<machine>& all = machines();
+  const machine& m = all[data[0] % all.size()];
+  static constexpr layout_kind layouts[] = {layout_kind::split, layout_kind::merged_appended,
+                                            layout_kind::merged_sections};
+  layout_kind layout = layouts[(data[0] / all.size()) % 3];
+  if (layout == layout_kind::merged_appended && m.program.section_marker.empty()) layout = layout_kind::merged_sections;
+  const std::string dir = fuzz::scratch_dir();
+  const std::string job = dir + "/job.cls";
+  fuzz::write_all(job, std::string_view(reinterpret_cast<const char*>(data) + 1, size - 1));
+  const outcome first = post_once(job, dir + "/out", m, layout);
+  if (!first.ok) return 0;
+  const outcome second = post_once(job, dir + "/again", m, layout);
+  fuzz::require(second.ok && second.contents == first.contents, "the same job posted twice gave different bytes");
+  return 0;
+}
