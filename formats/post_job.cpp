@@ -11,6 +11,7 @@
 #include "formats/channel_writer.hpp"
 #include "formats/job_scan.hpp"
 #include "formats/program_frame.hpp"
+#include "formats/sync_at_cl.hpp"
 #include "parser/cl_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -174,7 +175,12 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   std::vector<nc_source> sources;
   for (const framed_file& f : files) sources.push_back({(out / f.name).string(), {}, f.tmp_path});
   sync_result check = check_nc_files(sources, m);
-  for (const diagnostic& d : check.diagnostics) sink.report(d);
+  if (!check.diagnostics.empty()) {
+    std::vector<std::vector<int>> wait_lines;
+    for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
+    for (diagnostic& d : sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines))
+      sink.report(std::move(d));
+  }
   if (!check.ok) return sum;
 
   for (const framed_file& f : files) {
