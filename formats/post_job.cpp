@@ -10,6 +10,7 @@
 #include "channels/sync_check.hpp"
 #include "formats/channel_writer.hpp"
 #include "formats/job_scan.hpp"
+#include "formats/output_names.hpp"
 #include "formats/program_frame.hpp"
 #include "formats/sync_at_cl.hpp"
 #include "parser/cl_reader.hpp"
@@ -170,6 +171,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   std::vector<std::string> heads;
   for (auto& w : ws.writers) heads.push_back(w->head_written());
   std::vector<framed_file> files = finish_frames(req, heads);
+  check_output_names(req, files);
 
   // The same check as `twinpost check`, on the files exactly as they will be written.
   std::vector<nc_source> sources;

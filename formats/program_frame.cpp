@@ -131,7 +131,7 @@ std::vector<framed_file> finish_frames(const frame_request& r, const std::vector
       if (std::rename(renamed.c_str(), path.c_str()) != 0)
         throw config_error(fmt::format("twinpost: error: cannot write '{}'", path));
     }
-    out.push_back({merged(r) ? stem + m.program.extension : stem + ch.file_suffix + m.program.extension, path});
+    out.push_back({merged(r) ? stem + m.program.extension : stem + ch.file_suffix + m.program.extension, path, ch.number});
   }
   if (!merged(r)) return out;
   // Merged: the other channels, each after its section marker, then the closing '%'.

@@ -30,6 +30,7 @@ struct channel_target {
 struct framed_file {
   std::string name;      ///< final file name (no directory)
   std::string tmp_path;  ///< where it was written
+  int channel = 0;       ///< the channel that opens the file
 };
 
 channel_target frame_target(const frame_request& r, const channel_def& ch);
