@@ -133,6 +133,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   req.machine_def = &m;
   req.layout = o.layout.value_or(m.layout);
   req.tmp_dir = stage.dir();
+  req.out_dir = o.out_dir;
   auto request_now = [&req, &ws] {
     frame_request r = req;
     r.name = safe_file_stem(ws.partno);
@@ -145,6 +146,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
       frame.head = [&request_now, &ch] { return frame_head(request_now(), ch); };
       frame.tail = [&request_now, &ch] { return frame_tail(request_now(), ch); };
     }
+    frame.name = [&request_now, &ch, &o] { return (fs::path(o.out_dir) / frame_file_name(request_now(), ch)).string(); };
     ws.writers.push_back(std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
   }
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));

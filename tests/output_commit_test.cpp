@@ -5,6 +5,7 @@
 #include <csignal>
 #include <functional>
 #include <string>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
@@ -200,5 +201,36 @@ TEST_CASE("the job must be a regular file with records", "[post]") {
     CHECK(d.all().back().level == severity::error);
   }
   CHECK(test::list_dir(dir) == "empty.cls fifo.cls folder.cls");  // out/ was made and removed again
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a write that fails names the program, not the stage, and the reason", "[post][commit]") {
+  // A full disk, as a file size limit in a child process: writes past it fail (EFBIG).
+  const std::string dir = test::fresh_temp_dir("commit-full");
+  const machine m = load_machine("fanuc-0itd-twin");
+  REQUIRE(test::write_file(dir + "/big.cls", test::race_job('B', 70000)));
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);
+    struct rlimit limit {};
+    limit.rlim_cur = limit.rlim_max = 100000;
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    post_options o;
+    o.cl_path = dir + "/big.cls";
+    o.out_dir = dir + "/out";
+    diagnostic_list d;
+    std::string message = "(no error)";
+    try {
+      post_job(o, m, d);
+    } catch (const config_error& e) {
+      message = e.what();
+    }
+    test::write_file(dir + "/message.txt", message);
+    ::_exit(0);
+  }
+  REQUIRE(::waitpid(child, nullptr, 0) == child);
+  CHECK(test::read_file(dir + "/message.txt") == "twinpost: error: cannot write '" + dir + "/out/RACE_1.nc': File too large");
+  CHECK(test::list_dir(dir) == "big.cls message.txt");
   fs::remove_all(dir);
 }
