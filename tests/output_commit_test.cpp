@@ -104,6 +104,49 @@ TEST_CASE("concurrent posts of two versions into one folder leave one complete s
   fs::remove_all(dir);
 }
 
+TEST_CASE("racing processes: one complete set, and a failing post keeps the folder another fills", "[post][commit]") {
+  // Each round: three processes post into a folder that does not exist yet: versions A and
+  // B of the part, and a job that fails (it made the folder perhaps, and must not remove it
+  // from under the others). Exit code 0 means the post reported success.
+  const std::string dir = test::fresh_temp_dir("commit-race-processes");
+  const machine m = load_machine("fanuc-0itd-twin");
+  std::string bad = test::race_job('C');
+  bad.replace(bad.find("HEAD/2"), 6, "HEAD/7");
+  REQUIRE(test::write_file(dir + "/a.cls", test::race_job('A')));
+  REQUIRE(test::write_file(dir + "/b.cls", test::race_job('B')));
+  REQUIRE(test::write_file(dir + "/c.cls", bad));
+  for (int round = 0; round < 20; ++round) {
+    const std::string out = dir + "/round" + std::to_string(round) + "/out";
+    pid_t kids[3];
+    for (int i = 0; i < 3; ++i) {
+      kids[i] = ::fork();
+      REQUIRE(kids[i] >= 0);
+      if (kids[i] == 0) {
+        post_options o;
+        o.cl_path = dir + "/" + static_cast<char>('a' + i) + ".cls";
+        o.out_dir = out;
+        diagnostic_list d;
+        bool ok = false;
+        try {
+          ok = post_job(o, m, d).ok;
+        } catch (...) {
+        }
+        ::_exit(ok ? 0 : 1);
+      }
+    }
+    int status[3];
+    for (int i = 0; i < 3; ++i) REQUIRE(::waitpid(kids[i], &status[i], 0) == kids[i]);
+    INFO("round " << round);
+    CHECK((WIFEXITED(status[0]) && WEXITSTATUS(status[0]) == 0));
+    CHECK((WIFEXITED(status[1]) && WEXITSTATUS(status[1]) == 0));
+    CHECK((WIFEXITED(status[2]) && WEXITSTATUS(status[2]) == 1));
+    CHECK(test::list_dir(out) == "RACE_1.nc RACE_2.nc");
+    const std::string v = version_in(out);
+    CHECK((v == "A" || v == "B"));
+  }
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a failed post leaves no folder it made, and no stage", "[post][commit]") {
   const std::string dir = test::fresh_temp_dir("commit-failed");
   const machine m = load_machine("fanuc-0itd-twin");
