@@ -81,6 +81,17 @@ void remove_dead_stages(const std::string& out) {
 
 output_stage::output_stage(std::string out_dir) : out_(std::move(out_dir)) {
   signals_held held;
+  try {
+    make_stage();
+  } catch (...) {
+    // No destructor runs for a constructor that throws: the folders made so far go here.
+    std::sort(made_.begin(), made_.end(), [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
+    for (auto it = made_.rbegin(); it != made_.rend(); ++it) ::rmdir(it->c_str());
+    throw;
+  }
+}
+
+void output_stage::make_stage() {
   for (int attempt = 0; attempt < make_attempts; ++attempt) {
     if (!make_folders(out_, made_)) continue;
     folder_lock lock(out_);
@@ -91,7 +102,10 @@ output_stage::output_stage(std::string out_dir) : out_(std::move(out_dir)) {
     if (!lock.still_named(out_)) continue;
     remove_dead_stages(out_);
     stage_ = join(out_, fmt::format("{}{}-{}", stage_prefix, ::getpid(), stage_counter++));
-    if (::mkdir(stage_.c_str(), 0700) != 0) fail("cannot write in", out_, errno);
+    if (::mkdir(stage_.c_str(), 0700) != 0) {
+      if (errno == ENOENT) continue;  // removed by an interrupted run, which takes no lock
+      fail("cannot write in", out_, errno);
+    }
     std::sort(made_.begin(), made_.end(), [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
     slot_ = register_temp_dirs(stage_, made_);
     return;

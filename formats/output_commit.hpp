@@ -40,6 +40,9 @@ class output_stage {
   std::vector<std::string> commit(const std::vector<staged_file>& files);
 
  private:
+  /// The constructor's work: the folders, the stage, its registration.
+  void make_stage();
+
   std::string out_;
   std::string stage_;
   std::vector<std::string> made_;  ///< folders this run made, outermost first

@@ -155,6 +155,11 @@ TEST_CASE("a failed post leaves no folder it made, and no stage", "[post][commit
   bad.replace(bad.find("HEAD/2"), 6, "HEAD/7");
   CHECK_FALSE(test::post_text(dir, "bad.cls", bad, m, dir + "/new/a/b/c", d).ok);
   CHECK(test::list_dir(dir) == "bad.cls");
+  // A folder that cannot be made (its name is too long) after two that were: both go again.
+  const std::string long_name = dir + "/new/a/" + std::string(300, 'x');
+  CHECK(config_error_of([&] { test::post_text(dir, "bad.cls", bad, m, long_name, d); }) ==
+        "twinpost: error: cannot create '" + long_name + "': File name too long");
+  CHECK(test::list_dir(dir) == "bad.cls");
   fs::create_directories(dir + "/kept");
   REQUIRE(test::write_file(dir + "/kept/other.nc", "x\n"));
   CHECK_FALSE(test::post_text(dir, "bad.cls", bad, m, dir + "/kept", d).ok);
