@@ -7,6 +7,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/interrupt.hpp"
 #include "formats/post_job.hpp"
 #include "cli/machine_dirs.hpp"
 
@@ -84,6 +85,7 @@ int run_post(const args& a) {
     };
   }
   printing_sink sink;
+  install_interrupt_cleanup();
   post_summary s = post_job(o, m, sink);
   if (shown) fmt::print(stderr, "\r{:30}\r", "");
   if (!s.ok) {

@@ -32,7 +32,7 @@ void block_writer::start() {
 void block_writer::flush_if_full() {
   if (buf_.size() >= flush_at) {
     if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size())
-      throw config_error(fmt::format("twinpost: error: cannot write '{}'", path_));
+      write_failed(errno);
     buf_.clear();
   }
 }
@@ -87,10 +87,19 @@ void block_writer::close() {
   if (!started_) start();
   if (frame_.tail) buf_.append(frame_.tail());
   bool ok = std::fwrite(buf_.data(), 1, buf_.size(), f_) == buf_.size();
+  int err = ok ? 0 : errno;
   buf_.clear();
-  ok = std::fclose(f_) == 0 && ok;
+  if (std::fclose(f_) != 0 && ok) {
+    ok = false;
+    err = errno;
+  }
   f_ = nullptr;
-  if (!ok) throw config_error(fmt::format("twinpost: error: cannot write '{}'", path_));
+  if (!ok) write_failed(err);
+}
+
+void block_writer::write_failed(int err) const {
+  const std::string shown = frame_.name ? frame_.name() : path_;
+  throw config_error(fmt::format("twinpost: error: cannot write '{}': {}", shown, std::strerror(err)));
 }
 
 std::string safe_comment_text(std::string_view text, const program_format& fmt) {

@@ -17,6 +17,8 @@ class block_writer {
   /// is written (or at close, when there is none), `tail` at close. Empty: nothing.
   struct framing {
     std::function<std::string()> head, tail;
+    /// The file's name in messages (the program it becomes); empty: the path written.
+    std::function<std::string()> name;
   };
 
   /// Opens `path` for writing; throws config_error when it cannot.
@@ -47,6 +49,8 @@ class block_writer {
   void put(std::string_view s);
   void start();
   void flush_if_full();
+  /// Throws config_error naming the file and the reason (errno of the failed call).
+  [[noreturn]] void write_failed(int err) const;
   framing frame_;
   std::string head_;
   bool started_ = false;

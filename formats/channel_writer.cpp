@@ -84,6 +84,7 @@ void channel_writer::on_wait(const wait_mark& w) {
   if (!w.partner_text.empty()) b += fmt::format(" {}{}", m_.waits.partner_address, w.partner_text);
   out_.block(b);
   ++waits_;
+  wait_cl_lines_.push_back(w.cl_line);
   if (w.both == wait_mark::section::opens_both && !m_.codes.balance_on.empty())
     out_.block(m_.codes.balance_on);
 }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "channels/router.hpp"
 #include "formats/block_writer.hpp"
@@ -31,6 +32,8 @@ class channel_writer {
   long blocks() const { return out_.blocks(); }
   const std::string& head_written() const { return out_.head_written(); }
   int waits() const { return waits_; }
+  /// The CL line of each wait block written, in order (to report the checker's findings).
+  const std::vector<int>& wait_cl_lines() const { return wait_cl_lines_; }
 
  private:
   void motion(const motion_event& m, int line);
@@ -95,6 +98,7 @@ class channel_writer {
   vec3 axis_{0, 0, 1};        // tool axis, from GOTO i,j,k or TLAXIS
   int tool_ = -1;
   int waits_ = 0;
+  std::vector<int> wait_cl_lines_;
   bool warned_side_ = false;
 };
 

@@ -1,7 +1,11 @@
 #include "formats/post_job.hpp"
 
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
@@ -10,7 +14,10 @@
 #include "channels/sync_check.hpp"
 #include "formats/channel_writer.hpp"
 #include "formats/job_scan.hpp"
+#include "formats/output_commit.hpp"
+#include "formats/output_names.hpp"
 #include "formats/program_frame.hpp"
+#include "formats/sync_at_cl.hpp"
 #include "parser/cl_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -54,17 +61,28 @@ class writers_sink : public channel_sink {
   void on_wait(int ch, const wait_mark& w) override { writers[static_cast<std::size_t>(ch - 1)]->on_wait(w); }
 };
 
-// Removes the temporary folder (and the output folder if this run made it) unless released.
-struct cleanup {
-  fs::path tmp;
-  fs::path made_dir;
-  bool armed = true;
-  ~cleanup() {
-    std::error_code ec;
-    if (!tmp.empty()) fs::remove_all(tmp, ec);
-    if (armed && !made_dir.empty()) fs::remove(made_dir, ec);  // only if still empty
+using file_ptr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
+
+// The job is read twice (the scan, then the reader): it must be a regular file, which a
+// pipe, a FIFO, a folder or /dev/null is not.
+file_ptr open_job(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);  // a FIFO must not block
+  if (fd < 0) throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", path, std::strerror(errno)));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw config_error(fmt::format(
+        "twinpost: error: '{}' is not a regular file (a pipe, FIFO, folder or device): post reads the job "
+        "twice, give it a file",
+        path));
   }
-};
+  std::FILE* f = ::fdopen(fd, "rb");
+  if (!f) {
+    ::close(fd);
+    throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
+  }
+  return {f, &std::fclose};
+}
 
 }  // namespace
 
@@ -85,21 +103,9 @@ std::string safe_file_stem(std::string_view partno) {
 post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& diags) {
   post_summary sum;
   counting_sink sink(diags);
-  cleanup clean;
-  fs::path out(o.out_dir);
-  std::error_code ec;
-  if (!fs::exists(out, ec)) {
-    fs::create_directories(out, ec);
-    if (ec) throw config_error(fmt::format("twinpost: error: cannot create '{}': {}", o.out_dir, ec.message()));
-    clean.made_dir = out;
-  }
-  std::FILE* in = std::fopen(o.cl_path.c_str(), "rb");
-  if (!in) throw config_error(fmt::format("twinpost: error: cannot read '{}'", o.cl_path));
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> in_guard(in, &std::fclose);
-
-  clean.tmp = out / fmt::format(".twinpost-{}", ::getpid());
-  fs::create_directories(clean.tmp, ec);
-  if (ec) throw config_error(fmt::format("twinpost: error: cannot write in '{}': {}", o.out_dir, ec.message()));
+  file_ptr in = open_job(o.cl_path);
+  // Everything is written into a stage inside the output folder and committed as a set.
+  output_stage stage(o.out_dir);
 
   // One quick pass over the text before posting: does the job carry sync records, and which
   // channels does it use (a sync naming no channels means those)? A one-channel machine has
@@ -126,7 +132,8 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   frame_request req;
   req.machine_def = &m;
   req.layout = o.layout.value_or(m.layout);
-  req.tmp_dir = clean.tmp.string();
+  req.tmp_dir = stage.dir();
+  req.out_dir = o.out_dir;
   auto request_now = [&req, &ws] {
     frame_request r = req;
     r.name = safe_file_stem(ws.partno);
@@ -139,18 +146,21 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
       frame.head = [&request_now, &ch] { return frame_head(request_now(), ch); };
       frame.tail = [&request_now, &ch] { return frame_tail(request_now(), ch); };
     }
+    frame.name = [&request_now, &ch, &o] { return (fs::path(o.out_dir) / frame_file_name(request_now(), ch)).string(); };
     ws.writers.push_back(std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
   }
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
   cl_reader_options ro;
   ro.file_name = o.cl_path;
   ro.forced = o.forced_dialect;
-  file_source src(in);
+  file_source src(in.get());
   cl_reader reader(src, ro, sink);
   int last_line = 0;
   std::size_t until_progress = progress_every;
+  long statements = 0;  // records other than comments
   while (const event* e = reader.next()) {
     last_line = e->line;
+    if (!std::holds_alternative<comment_event>(e->data)) ++statements;
     router.route(*e);
     if (--until_progress == 0) {
       until_progress = progress_every;
@@ -163,27 +173,35 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   sum.channels = static_cast<int>(m.channels.size());
   sum.waits = router.rendezvous();
   for (auto& w : ws.writers) sum.blocks += w->blocks();
+  if (statements == 0) {
+    diagnostic d;
+    d.file = o.cl_path;
+    d.message = "the job has no CL records (only comments or nothing)";
+    sink.report(std::move(d));
+  }
   if (sink.errors > 0) return sum;
 
   req.name = safe_file_stem(ws.partno);
   std::vector<std::string> heads;
   for (auto& w : ws.writers) heads.push_back(w->head_written());
   std::vector<framed_file> files = finish_frames(req, heads);
+  check_output_names(req, files);
 
   // The same check as `twinpost check`, on the files exactly as they will be written.
   std::vector<nc_source> sources;
-  for (const framed_file& f : files) sources.push_back({(out / f.name).string(), {}, f.tmp_path});
+  for (const framed_file& f : files) sources.push_back({(fs::path(o.out_dir) / f.name).string(), {}, f.tmp_path});
   sync_result check = check_nc_files(sources, m);
-  for (const diagnostic& d : check.diagnostics) sink.report(d);
+  if (!check.diagnostics.empty()) {
+    std::vector<std::vector<int>> wait_lines;
+    for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
+    for (diagnostic& d : sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines))
+      sink.report(std::move(d));
+  }
   if (!check.ok) return sum;
 
-  for (const framed_file& f : files) {
-    fs::path target = out / f.name;
-    fs::rename(f.tmp_path, target, ec);
-    if (ec) throw config_error(fmt::format("twinpost: error: cannot write '{}': {}", target.string(), ec.message()));
-    sum.files.push_back(target.string());
-  }
-  clean.armed = false;
+  std::vector<staged_file> staged;
+  for (const framed_file& f : files) staged.push_back({f.tmp_path, f.name});
+  sum.files = stage.commit(staged);
   sum.ok = true;
   return sum;
 }

@@ -3,7 +3,8 @@
 // writes to its own temporary file on disk while posting: its program file where its blocks
 // open one, a body file otherwise (the auxiliary streams of a merged layout, appended when
 // all is read); the programs are checked by the same synchronisation checker as
-// `twinpost check`, and only then renamed into place. A failed run leaves no file behind.
+// `twinpost check`, and only then committed into the output folder as a set
+// (formats/output_commit.hpp). A failed run leaves no file behind.
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -37,8 +38,10 @@ struct post_summary {
   long records = 0;
 };
 
-/// Posts `o.cl_path` for machine `m`. Problems go to `diags`; the summary says whether
-/// files were written. Throws config_error for I/O failures (nothing is left behind).
+/// Posts `o.cl_path` (a regular file: it is read twice) for machine `m`. Problems go to
+/// `diags`; the summary says whether files were written. Throws config_error for I/O
+/// failures, a job that is not a regular file, and file names a machine file makes unsafe
+/// or shared (nothing is left behind).
 post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& diags);
 
 /// A PARTNO made safe as a file name: letters, digits, '_' and '-' only, at most 32

@@ -1,6 +1,9 @@
 #include "formats/program_frame.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
 #include <memory>
 
@@ -14,7 +17,7 @@ using file_ptr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
 
 file_ptr open_or_throw(const std::string& path, const char* mode) {
   std::FILE* f = std::fopen(path.c_str(), mode);
-  if (!f) throw config_error(fmt::format("twinpost: error: cannot open '{}'", path));
+  if (!f) throw config_error(fmt::format("twinpost: error: cannot open '{}': {}", path, std::strerror(errno)));
   return {f, &std::fclose};
 }
 
@@ -25,8 +28,15 @@ void add_line(std::string& out, std::string_view s) {
 
 void put(std::FILE* f, std::string_view s) { std::fwrite(s.data(), 1, s.size(), f); }
 
-// Copies `from` (from byte `skip` on) in large pieces: it may be far bigger than memory should hold.
-void copy_file(std::FILE* to, const std::string& from_path, long skip = 0) {
+[[noreturn]] void write_failed(const frame_request& r, const std::string& name, int err) {
+  throw config_error(fmt::format("twinpost: error: cannot write '{}': {}",
+                                 (std::filesystem::path(r.out_dir) / name).string(), std::strerror(err)));
+}
+
+// Copies `from` (from byte `skip` on) into the program `name` in large pieces: it may be far
+// bigger than memory should hold.
+void copy_file(const frame_request& r, const std::string& name, std::FILE* to, const std::string& from_path,
+               long skip = 0) {
   file_ptr from = open_or_throw(from_path, "rb");
   if (skip > 0 && std::fseek(from.get(), skip, SEEK_SET) != 0)
     throw config_error(fmt::format("twinpost: error: cannot read '{}'", from_path));
@@ -34,12 +44,15 @@ void copy_file(std::FILE* to, const std::string& from_path, long skip = 0) {
   auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);  // no zeroing: it is overwritten
   std::size_t n;
   while ((n = std::fread(buf.get(), 1, chunk_bytes, from.get())) > 0)
-    if (std::fwrite(buf.get(), 1, n, to) != n) throw config_error("twinpost: error: cannot write the program");
+    if (std::fwrite(buf.get(), 1, n, to) != n) write_failed(r, name, errno);
 }
 
-void close_or_throw(file_ptr& f, const std::string& path) {
+void close_or_throw(const frame_request& r, const std::string& name, file_ptr& f) {
   std::FILE* raw = f.release();
-  if (std::ferror(raw) || std::fclose(raw) != 0) throw config_error(fmt::format("twinpost: error: cannot write '{}'", path));
+  const bool failed = std::ferror(raw) != 0;
+  const int err = errno;
+  if (std::fclose(raw) != 0) write_failed(r, name, errno);
+  if (failed) write_failed(r, name, err);
 }
 
 int program_number(const machine& m, const std::string& name) {
@@ -102,6 +115,12 @@ channel_target frame_target(const frame_request& r, const channel_def& ch) {
   return {fmt::format("{}/body{}", r.tmp_dir, ch.number), false};
 }
 
+std::string frame_file_name(const frame_request& r, const channel_def& ch) {
+  const machine& m = *r.machine_def;
+  const std::string stem = format_template(m.program.file_name, args_for(r, nullptr));
+  return merged(r) ? stem + m.program.extension : stem + ch.file_suffix + m.program.extension;
+}
+
 std::string frame_head(const frame_request& r, const channel_def& ch) {
   return file_opening(r) + channel_opening(r, ch);
 }
@@ -114,24 +133,24 @@ std::string frame_tail(const frame_request& r, const channel_def& ch) {
 
 std::vector<framed_file> finish_frames(const frame_request& r, const std::vector<std::string>& heads) {
   const machine& m = *r.machine_def;
-  std::string stem = format_template(m.program.file_name, args_for(r, nullptr));
   std::vector<framed_file> out;
   for (const channel_def& ch : m.channels) {
     if (!opens_file(r, ch)) continue;
     const std::string path = frame_target(r, ch).path;
     const std::string& written = heads[static_cast<std::size_t>(ch.number - 1)];
     const std::string head = frame_head(r, ch);
+    const std::string name = frame_file_name(r, ch);
     if (written != head) {
       // Begun under another name: the same blocks under the right head, in a new file.
       const std::string renamed = path + ".head";
       file_ptr f = open_or_throw(renamed, "wb");
       put(f.get(), head);
-      copy_file(f.get(), path, static_cast<long>(written.size()));
-      close_or_throw(f, renamed);
+      copy_file(r, name, f.get(), path, static_cast<long>(written.size()));
+      close_or_throw(r, name, f);
       if (std::rename(renamed.c_str(), path.c_str()) != 0)
-        throw config_error(fmt::format("twinpost: error: cannot write '{}'", path));
+        write_failed(r, name, errno);
     }
-    out.push_back({merged(r) ? stem + m.program.extension : stem + ch.file_suffix + m.program.extension, path});
+    out.push_back({name, path, ch.number});
   }
   if (!merged(r)) return out;
   // Merged: the other channels, each after its section marker, then the closing '%'.
@@ -139,11 +158,11 @@ std::vector<framed_file> finish_frames(const frame_request& r, const std::vector
   for (const channel_def& ch : m.channels) {
     if (opens_file(r, ch)) continue;
     put(f.get(), channel_opening(r, ch));
-    copy_file(f.get(), frame_target(r, ch).path);
+    copy_file(r, out.front().name, f.get(), frame_target(r, ch).path);
     put(f.get(), channel_closing(r, ch));
   }
   put(f.get(), file_closing(r));
-  close_or_throw(f, out.front().tmp_path);
+  close_or_throw(r, out.front().name, f);
   return out;
 }
 

@@ -19,6 +19,7 @@ struct frame_request {
   layout_kind layout = layout_kind::split;
   std::string name;     ///< safe program name (from PARTNO), as far as it is known
   std::string tmp_dir;  ///< the program files and spilled bodies are written here
+  std::string out_dir;  ///< the folder the files go to (named in messages)
 };
 
 /// Where a channel's blocks go.
@@ -30,9 +31,13 @@ struct channel_target {
 struct framed_file {
   std::string name;      ///< final file name (no directory)
   std::string tmp_path;  ///< where it was written
+  int channel = 0;       ///< the channel that opens the file
 };
 
 channel_target frame_target(const frame_request& r, const channel_def& ch);
+
+/// The name (no folder) of the program file that channel `ch`'s blocks end up in.
+std::string frame_file_name(const frame_request& r, const channel_def& ch);
 
 /// The lines before a direct channel's blocks: '%', the program line, its section marker
 /// (merged layouts) and the channel header; each line ends in '\n'.

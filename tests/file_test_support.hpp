@@ -1,7 +1,11 @@
 #pragma once
 // Test support for tests that write files and read them back.
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <string>
+#include <vector>
+#include <unistd.h>
 
 namespace twinpost::test {
 
@@ -23,6 +27,27 @@ inline bool write_file(const std::string& path, const std::string& text) {
   if (!f) return false;
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
   return std::fclose(f) == 0 && ok;
+}
+
+/// A fresh, empty folder under the system's temp folder, unique to this process (ctest -j
+/// runs test cases as separate processes) and `tag`.
+inline std::string fresh_temp_dir(const std::string& tag) {
+  const auto dir = std::filesystem::temp_directory_path() / ("twinpost-" + tag + "-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+/// The names in a folder, sorted, joined by spaces ("(missing)" when there is no folder).
+inline std::string list_dir(const std::string& dir) {
+  std::error_code ec;
+  if (!std::filesystem::exists(dir, ec)) return "(missing)";
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  std::string s;
+  for (const std::string& n : names) s += (s.empty() ? "" : " ") + n;
+  return s;
 }
 
 }  // namespace twinpost::test

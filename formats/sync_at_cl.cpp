@@ -1,0 +1,98 @@
+#include "formats/sync_at_cl.hpp"
+
+#include <cstdio>
+#include <fmt/format.h>
+#include <map>
+#include <memory>
+
+namespace twinpost {
+
+namespace {
+
+std::string place(const std::string& file, int line) { return fmt::format("{}:{}", file, line); }
+
+// The CL lines in `wanted` (line number -> text without its line ending), read in one pass.
+void read_lines(const std::string& path, std::map<int, std::string>& wanted) {
+  if (wanted.empty()) return;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!f) return;
+  const int last = wanted.rbegin()->first;
+  std::string text;
+  int line = 1;
+  for (int c; line <= last && (c = std::fgetc(f.get())) != EOF;) {
+    if (c != '\n') {
+      if (text.size() < 4096) text += static_cast<char>(c);  // a caret line, not a copy of a huge record
+      continue;
+    }
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    if (auto it = wanted.find(line); it != wanted.end()) it->second = text;
+    text.clear();
+    ++line;
+  }
+  if (auto it = wanted.find(line); it != wanted.end() && !text.empty()) it->second = text;  // no final newline
+}
+
+// `message` with every "file:line" of a known wait (not followed by another digit) replaced.
+std::string rewrite(const std::string& message, const std::map<std::string, std::string>& places) {
+  std::string out = message;
+  for (const auto& [nc, cl] : places) {
+    for (std::size_t at = out.find(nc); at != std::string::npos; at = out.find(nc, at)) {
+      const std::size_t end = at + nc.size();
+      if (end < out.size() && out[end] >= '0' && out[end] <= '9') {
+        at = end;
+        continue;
+      }
+      out.replace(at, nc.size(), cl);
+      at += cl.size();
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& found,
+                                               const std::vector<nc_source>& files, const machine& m,
+                                               const std::string& cl_path,
+                                               const std::vector<std::vector<int>>& wait_cl_lines) {
+  // The programs are read again only here, when something was found.
+  diagnostic_list ignored;
+  const nc_programs programs = read_nc_programs(files, m, ignored);
+  std::map<std::string, int> cl_line_of;  // NC "file:line" -> CL line
+  for (const nc_channel_program& p : programs.channels) {
+    const auto c = static_cast<std::size_t>(p.channel - 1);
+    if (c >= wait_cl_lines.size()) continue;
+    for (std::size_t k = 0; k < p.waits.size() && k < wait_cl_lines[c].size(); ++k)
+      if (wait_cl_lines[c][k] > 0) cl_line_of[place(p.waits[k].where.file, p.waits[k].where.line)] = wait_cl_lines[c][k];
+  }
+  std::map<std::string, std::string> places;
+  std::map<int, std::string> sources;
+  for (const auto& [nc, line] : cl_line_of) {
+    places[nc] = place(cl_path, line);
+    sources[line];
+  }
+  read_lines(cl_path, sources);
+  std::vector<diagnostic> out;
+  for (const diagnostic& d : found) {
+    const auto it = cl_line_of.find(place(d.file, d.line));
+    diagnostic moved = d;
+    moved.message = rewrite(d.message, places);
+    if (it == cl_line_of.end()) {
+      out.push_back(std::move(moved));
+      continue;
+    }
+    moved.file = cl_path;
+    moved.line = it->second;
+    moved.source_line = sources[it->second];
+    const std::size_t first = moved.source_line.find_first_not_of(" \t");
+    moved.column = first == std::string::npos ? 1 : static_cast<int>(first) + 1;
+    out.push_back(std::move(moved));
+    diagnostic note = d;
+    note.level = severity::note;
+    note.message = "the wait in the program as it would have been written (no file is written)";
+    out.push_back(std::move(note));
+  }
+  return out;
+}
+
+}  // namespace twinpost

@@ -1,0 +1,24 @@
+#pragma once
+// The post checks its own programs before it writes them; what the checker finds is at
+// lines of programs that are then never written. This moves each finding at a wait block
+// to the CL record that made the wait (the SYNC record, or the HEAD record of a sequential
+// job): file:line:col of the CL with its source line, and the places of waits in the
+// message become CL places. A note keeps the wait's line in the program as it would have
+// been written.
+#include <string>
+#include <vector>
+
+#include "channels/nc_program.hpp"
+#include "machines/machine.hpp"
+#include "parser/diagnostics.hpp"
+
+namespace twinpost {
+
+/// `found` (the checker's diagnostics on `files`) moved to the CL file `cl_path`.
+/// `wait_cl_lines[c]`: the CL line of each wait block channel c+1 wrote, in order.
+std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& found,
+                                               const std::vector<nc_source>& files, const machine& m,
+                                               const std::string& cl_path,
+                                               const std::vector<std::vector<int>>& wait_cl_lines);
+
+}  // namespace twinpost

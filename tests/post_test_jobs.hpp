@@ -1,0 +1,38 @@
+#pragma once
+// Small CL jobs and a post runner for the tests of the post's output handling.
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "file_test_support.hpp"
+#include "formats/post_job.hpp"
+
+namespace twinpost::test {
+
+/// A two-head job named RACE whose every channel carries `PPRINT VERSION <v>`, with
+/// `extra_moves` more moves on head 1 (65,536 events give one progress call).
+inline std::string race_job(char v, int extra_moves = 0) {
+  std::string s = "PARTNO RACE\nHEAD/1\nPPRINT VERSION ";
+  s += v;
+  s += "\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,5\nGOTO/20,0,-10\n";
+  for (int i = 0; i < extra_moves; ++i) s += i % 2 ? "GOTO/20,0,-10\n" : "GOTO/21,0,-10\n";
+  s += "HEAD/2\nPPRINT VERSION ";
+  s += v;
+  s += "\nTURRET/4,4\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\nGOTO/-10,0,5\nGOTO/-10,0,-3\nFINI\n";
+  return s;
+}
+
+/// Posts `job_text` (written to `dir`/`job_name`) for `m` into `out`.
+inline post_summary post_text(const std::string& dir, const std::string& job_name, const std::string& job_text,
+                              const machine& m, const std::string& out, diagnostic_sink& diags,
+                              std::optional<layout_kind> layout = {}) {
+  const std::string job = dir + "/" + job_name;
+  if (!write_file(job, job_text)) throw std::runtime_error("cannot write " + job);
+  post_options o;
+  o.cl_path = job;
+  o.out_dir = out;
+  o.layout = layout;
+  return post_job(o, m, diags);
+}
+
+}  // namespace twinpost::test
