@@ -2,6 +2,8 @@
 
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "parser/event_builder.hpp"
 #include "parser/record_parser.hpp"
 
@@ -10,7 +12,9 @@ namespace twinpost {
 struct cl_reader::impl {
   impl(byte_source& src, cl_reader_options o, diagnostic_sink& s)
       : lines(src, o.chunk_size), options(std::move(o)), sink(s),
-        d(options.forced ? *options.forced : detect_dialect(lines.peek(64 * 1024))), builder(d) {}
+        d(options.forced ? *options.forced : detect_dialect(lines.peek(64 * 1024))), builder(d) {
+    builder.set_posting(options.posting);
+  }
 
   void report(const build_issue& i) {
     diagnostic d_;
@@ -28,6 +32,59 @@ struct cl_reader::impl {
     sink.report(std::move(d_));
   }
 
+  // Remembers the last record read (not a comment): whether it ends the job, and where it is.
+  void note_record(int line) {
+    ended = ends_job(rec);
+    last_line = line;
+    last_column = lines.locate(rec.kind == record_kind::coordinates && !rec.args.empty() ? rec.args.front().offset
+                                                                                        : rec.major_offset)
+                      .column;
+    if (rec.kind == record_kind::coordinates) last_major.assign("coordinate line");
+    else last_major.assign(rec.major.data(), rec.major.size());
+  }
+
+  static bool ends_job(const cl_record& r) {
+    if (r.kind == record_kind::statement)
+      return word_is(r.major, "FINI") || word_is(r.major, "END") || word_is(r.major, "END-OF-PATH");
+    // Makino-style CL closes with its process section instead of FINI.
+    return r.kind == record_kind::text && word_is(r.major, "PPRINT") &&
+           r.text.starts_with("END-SECTION,PROCESS-END-PATH");
+  }
+
+  void report_missing_end() {
+    diagnostic d;
+    d.level = severity::warning;
+    d.file = options.file_name;
+    if (last_line == 0) {
+      d.message = "the job has no records";
+    } else {
+      d.line = last_line;
+      d.column = last_column;
+      d.message = fmt::format("the job ends without FINI or END after this {} record: is the file cut off?",
+                              upper_ascii(last_major));
+    }
+    sink.report(std::move(d));
+  }
+
+  void report_line_problem(const logical_record& lr) {
+    diagnostic d;
+    d.file = options.file_name;
+    d.line = lr.problem_line;
+    d.column = lr.problem_column;
+    d.source_line = std::string(lr.problem_source);
+    d.message = lr.problem == record_problem::dangling
+                    ? std::string("the file ends in a continued record ('$' at the end of the last line): the job is cut off")
+                    : fmt::format("record longer than {} bytes: not CL data (a line without a newline?); skipped",
+                                  max_record_bytes);
+    sink.report(std::move(d));
+  }
+
+  static std::string upper_ascii(std::string s) {
+    for (char& c : s)
+      if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+    return s;
+  }
+
   // Reads records until one yields events (or the input ends).
   bool refill() {
     queue.clear();
@@ -40,19 +97,35 @@ struct cl_reader::impl {
           issues.clear();
           builder.finish(issues);
           for (const build_issue& i : issues) report(i);
+          if (options.posting && !ended) report_missing_end();
         }
         return false;
       }
       ++record_count;
+      if (lr.problem != record_problem::none) [[unlikely]] {
+        report_line_problem(lr);
+        builder.skip_record(record_kind::statement);
+        ended = false;
+        continue;
+      }
       record_error err;
       if (!parse_record(lr.text, rec, err)) {
         report(build_issue{severity::error, err.offset, err.message});
         builder.skip_record(rec.kind);
+        ended = false;
         continue;
       }
+      if (rec.kind != record_kind::comment) note_record(lr.line);
       issues.clear();
+      const std::size_t before = queue.size();
       builder.build(rec, lr.line, queue, issues);
       for (const build_issue& i : issues) report(i);
+      if (queue.size() > before) {
+        // Later stages (router, writers) report at the record's major word.
+        const int column = rec.kind == record_kind::comment ? 0 : last_column;
+        for (std::size_t k = before; k < queue.size(); ++k)
+          queue[k].column = queue[k].line == lr.line ? column : 0;
+      }
     }
     return true;
   }
@@ -68,6 +141,9 @@ struct cl_reader::impl {
   std::size_t head = 0;
   std::size_t record_count = 0;
   bool finished = false;
+  bool ended = false;       // the last record read was FINI/END (or a dialect's end)
+  int last_line = 0, last_column = 0;
+  std::string last_major;   // of the last record read, for the missing-end warning
 };
 
 cl_reader::cl_reader(byte_source& src, cl_reader_options options, diagnostic_sink& sink)

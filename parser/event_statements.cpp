@@ -108,9 +108,15 @@ void event_builder::statement(const cl_record& r, int line, event_queue& out, bu
   if (word_is(m, "FINI") || word_is(m, "END") || word_is(m, "END-OF-PATH"))
     return out.push_back({line, end_event{upper(m)}});
   bool known = known_passthrough(m);
+  if (!known && posting_) {
+    // Nothing silent in a post: a record twinpost cannot carry out stops it.
+    issues.push_back({severity::error, r.major_offset,
+                      fmt::format("unknown major word '{}': twinpost cannot post this record", upper(m))});
+    return;
+  }
   if (!known)
     issues.push_back({severity::warning, r.major_offset,
-                      fmt::format("unknown major word '{}' passed through", upper(m))});
+                      fmt::format("unknown major word '{}' (a post stops here with an error)", upper(m))});
   out.push_back({line, passthrough_event{upper(m), detail::args_text(r), known}});
 }
 
@@ -159,6 +165,7 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
     a.radius = circle_->radius.value_or(planar_radius(pos_, a.center, a.normal));
     a.ccw = circle_->ccw.value_or(circle_is_ccw(dialect_));
     a.continued = continued;
+    a.turns = circle_->turns;
     circle_used_ = true;
     pos_ = p;
     out.push_back({line, a});
@@ -179,14 +186,29 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
 }
 
 void event_builder::circle(const cl_record& r, int line, build_issues& issues) {
-  std::vector<double> n = numbers_of(r);
+  std::vector<double> n;
   pending_circle c;
   c.line = line;
-  for (const cl_arg& a : r.args) {
+  for (std::size_t i = 0; i < r.args.size(); ++i) {
+    const cl_arg& a = r.args[i];
+    if (a.kind == arg_kind::number) n.push_back(a.number);
     if (a.kind != arg_kind::word) continue;
     if (word_is(a.word, "CLOCKWISE") || word_is(a.word, "CLW")) c.ccw = false;
     else if (word_is(a.word, "COUNTERCLOCKWISE") || word_is(a.word, "CCLW")) c.ccw = true;
-    else issues.push_back({severity::warning, a.offset, fmt::format("word '{}' ignored in CIRCLE", a.word)});
+    else if (word_is(a.word, "TIMES")) {
+      // NX: CIRCLE/...,TIMES,n: the GOTO after it goes n full turns round the circle.
+      const bool count = i + 1 < r.args.size() && r.args[i + 1].kind == arg_kind::number;
+      const double t = count ? r.args[i + 1].number : 0;
+      if (!count || t != std::floor(t) || t < 1 || t > max_circle_turns) {
+        issues.push_back({severity::error, count ? r.args[i + 1].offset : a.offset,
+                          count ? fmt::format("CIRCLE TIMES {} is not a whole number of turns from 1 to {}",
+                                              format_number(t), max_circle_turns)
+                                : std::string("CIRCLE TIMES needs a number of turns")});
+        return;
+      }
+      c.turns = static_cast<int>(t);
+      ++i;
+    } else issues.push_back({severity::warning, a.offset, fmt::format("word '{}' ignored in CIRCLE", a.word)});
   }
   // 4: xc,yc,zc,r   6: xc,yc,zc,i,j,k (SolidWorks, no radius)   7: + r (Creo)   11: NX
   if (n.size() != 4 && n.size() != 6 && n.size() != 7 && n.size() != 11) {

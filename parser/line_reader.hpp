@@ -39,10 +39,26 @@ class string_source : public byte_source {
   std::string_view text_;
 };
 
+/// Why a logical record cannot be read as it stands; the reader reports it and drops it.
+enum class record_problem : unsigned char {
+  none,
+  too_long,  ///< longer than max_record_bytes: only its start is kept, for the message
+  dangling,  ///< ends in a continuation `$` at the end of the input: the job is cut off
+};
+
+/// The longest logical record (a physical line, or lines joined by `$`), in bytes. Real CL
+/// records are a few hundred bytes; anything longer is not CL, and reading it whole would
+/// let one line without a newline take all memory.
+inline constexpr std::size_t max_record_bytes = 64 * 1024;
+
 /// A logical record: the data text of one or more physical lines.
 struct logical_record {
   std::string_view text;  ///< valid until the next call of line_reader::next
   int line = 0;           ///< first physical line (1-based)
+  record_problem problem = record_problem::none;
+  int problem_line = 0;    ///< the physical line the problem is at
+  int problem_column = 0;  ///< and its column (1-based)
+  std::string_view problem_source;  ///< that physical line (its start, when too long)
 };
 
 /// A physical position of an offset in the current logical record.
@@ -76,6 +92,8 @@ class line_reader {
   };
   bool fill();
   bool next_physical(std::string_view& line);
+  /// Drops the rest of an over-long physical line, up to and including its newline.
+  void skip_rest_of_line();
 
   byte_source& src_;
   std::vector<char> buf_;
@@ -86,6 +104,8 @@ class line_reader {
   std::string joined_;                 // logical text of a continued record
   std::vector<std::string> physical_;  // owned copies of a continued record's lines
   std::vector<segment> segments_;
+  bool overlong_ = false;     // the physical line just read was cut at max_record_bytes
+  std::string overlong_head_; // its first bytes, kept for the diagnostic
 };
 
 }  // namespace twinpost

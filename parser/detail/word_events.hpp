@@ -28,6 +28,9 @@ std::optional<sync_event> read_synctr(const cl_record& r, int& last_marker, buil
 /// MANUSpost `$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=n`, if it is one.
 std::optional<sync_event> read_manus_sync(std::string_view comment_text);
 
+/// Reports the first argument that was meant as a number but is none (`1e999`: number out
+/// of range, `1e`: malformed number, `nan`, `inf`: not a number); true when there was one.
+bool report_bad_number(const cl_record& r, build_issues& issues);
 /// The record's numbers, in order.
 std::vector<double> numbers_of(const cl_record& r);
 /// The record's arguments as written, joined with ','.
