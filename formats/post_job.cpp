@@ -11,6 +11,7 @@
 #include "formats/channel_writer.hpp"
 #include "formats/job_scan.hpp"
 #include "formats/program_frame.hpp"
+#include "formats/program_number.hpp"
 #include "parser/cl_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -40,10 +41,16 @@ class writers_sink : public channel_sink {
  public:
   std::vector<std::unique_ptr<channel_writer>> writers;  // index = channel - 1
   std::string partno;
+  const machine* m = nullptr;
+  diagnostic_sink* diags = nullptr;
+  std::string file;
   void on_event(int ch, const event& e, bool both) override {
     if (ch == 0) {
       if (const auto* t = std::get_if<text_event>(&e.data)) {
-        if (partno.empty()) partno = t->text;
+        if (partno.empty()) {
+          partno = t->text;
+          if (m && diags) warn_program_number(*m, *diags, file, e, safe_file_stem(partno));
+        }
       }
       if (const auto* u = std::get_if<units_event>(&e.data))
         for (auto& w : writers) w->set_units(u->units);
@@ -123,6 +130,9 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   // Each channel writes straight into its program file where its blocks open one (the
   // name from PARTNO as known by then); the others of a merged program spill to a body file.
   writers_sink ws;
+  ws.m = &m;
+  ws.diags = &sink;
+  ws.file = o.cl_path;
   frame_request req;
   req.machine_def = &m;
   req.layout = o.layout.value_or(m.layout);
@@ -145,6 +155,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   cl_reader_options ro;
   ro.file_name = o.cl_path;
   ro.forced = o.forced_dialect;
+  ro.posting = true;
   file_source src(in);
   cl_reader reader(src, ro, sink);
   int last_line = 0;
