@@ -28,9 +28,14 @@ class counting_sink : public diagnostic_sink {
   explicit counting_sink(diagnostic_sink& next) : next_(next) {}
   void report(diagnostic d) override {
     if (d.level == severity::error) ++errors;
+    // Router and writer diagnostics come while their record is the reader's current one.
+    if (reader && d.column > 0 && d.source_line.empty() && d.file == file)
+      d.source_line = std::string(reader->source_line(d.line));
     next_.report(std::move(d));
   }
   int errors = 0;
+  const cl_reader* reader = nullptr;
+  std::string file;
 
  private:
   diagnostic_sink& next_;
@@ -158,6 +163,8 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   ro.posting = true;
   file_source src(in);
   cl_reader reader(src, ro, sink);
+  sink.reader = &reader;
+  sink.file = o.cl_path;
   int last_line = 0;
   std::size_t until_progress = progress_every;
   while (const event* e = reader.next()) {

@@ -164,6 +164,7 @@ bool cl_reader::next(event& out) {
 }
 
 dialect cl_reader::current_dialect() const { return impl_->d; }
+std::string_view cl_reader::source_line(int line) const { return impl_->lines.physical_line(line); }
 std::size_t cl_reader::records() const { return impl_->record_count; }
 std::size_t cl_reader::bytes() const { return impl_->lines.bytes_read(); }
 

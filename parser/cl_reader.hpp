@@ -38,6 +38,9 @@ class cl_reader {
   bool next(event& out);
   /// The dialect in use.
   dialect current_dialect() const;
+  /// Source line `line` when it belongs to the record read last (the one whose events are
+  /// being handled), else empty: later stages give their diagnostics a source line with it.
+  std::string_view source_line(int line) const;
   /// Logical records read so far.
   std::size_t records() const;
   /// Bytes read so far.

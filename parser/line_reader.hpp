@@ -80,6 +80,12 @@ class line_reader {
   std::string_view peek(std::size_t n);
   /// Maps an offset of the current logical record to its physical line and column.
   source_position locate(std::size_t offset) const;
+  /// Physical line `line` when it belongs to the current logical record, else empty.
+  std::string_view physical_line(int line) const {
+    for (const segment& s : segments_)
+      if (s.line == line) return s.physical;
+    return {};
+  }
   /// Bytes consumed so far.
   std::size_t bytes_read() const { return consumed_; }
 

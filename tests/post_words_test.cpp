@@ -57,11 +57,13 @@ TEST_CASE("an axis word past the control's format stops the post at its record",
   CHECK_FALSE(z.ok);
   CHECK(z.files.empty());
   CHECK(z.diagnostics ==
-        "job.cls:6:1: error: channel 1: Z word 1e+308 does not fit the control's format (5.3: at most 99999.999)\n");
+        "job.cls:6:1: error: channel 1: Z word 1e+308 does not fit the control's format (5.3: at most 99999.999)\n"
+        "GOTO/29,0,1e308\n^\n");
   // One past the largest word the control reads; the largest itself is fine.
   posted over = post_text(head + "GOTO/29,0,100000\nFINI\n", "fanuc-0itd-twin", "over");
   CHECK(over.diagnostics ==
-        "job.cls:6:1: error: channel 1: Z word 100000 does not fit the control's format (5.3: at most 99999.999)\n");
+        "job.cls:6:1: error: channel 1: Z word 100000 does not fit the control's format (5.3: at most 99999.999)\n"
+        "GOTO/29,0,100000\n^\n");
   posted edge = post_text(head + "GOTO/29,0,-99999.999\nFINI\n", "fanuc-0itd-twin", "edge");
   CHECK(edge.ok);
   CHECK(edge.diagnostics == "");
@@ -69,25 +71,30 @@ TEST_CASE("an axis word past the control's format stops the post at its record",
   posted x = post_text(head + "GOTO/1e308,0,1\nGOTO/-1e308,0,1\nFINI\n", "fanuc-0itd-twin", "x");
   CHECK(x.diagnostics ==
         "job.cls:6:1: error: channel 1: X word inf does not fit the control's format (5.3: at most 99999.999)\n"
-        "job.cls:7:1: error: channel 1: X word -inf does not fit the control's format (5.3: at most 99999.999)\n");
+        "GOTO/1e308,0,1\n^\n"
+        "job.cls:7:1: error: channel 1: X word -inf does not fit the control's format (5.3: at most 99999.999)\n"
+        "GOTO/-1e308,0,1\n^\n");
 }
 
 TEST_CASE("F, S, T and dwell words are held to the control's format", "[post][words]") {
   posted f = post_text("PARTNO W\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/1e308\nFINI\n", "fanuc-0itd-twin", "f");
   CHECK(f.diagnostics ==
-        "job.cls:4:1: error: channel 1: F word 1e+308 does not fit the control's format (6.4: at most 999999.9999)\n");
+        "job.cls:4:1: error: channel 1: F word 1e+308 does not fit the control's format (6.4: at most 999999.9999)\nFEDRAT/1e308\n^\n");
   posted s = post_text("PARTNO W\nTURRET/1,1\nSPINDL/SMM,123456,MAXRPM,3000,CLW\nFINI\n", "fanuc-0itd-twin", "s");
   CHECK(s.diagnostics ==
-        "job.cls:3:1: error: channel 1: S word 123456 does not fit the control's format (5: at most 99999)\n");
+        "job.cls:3:1: error: channel 1: S word 123456 does not fit the control's format (5: at most 99999)\n"
+        "SPINDL/SMM,123456,MAXRPM,3000,CLW\n^\n");
   posted t = post_text("PARTNO W\nTURRET/100,1\nFINI\n", "fanuc-0itd-twin", "t");
   CHECK(t.diagnostics ==
-        "job.cls:2:1: error: channel 1: T word 10001 does not fit the control's format (4: at most 9999)\n");
+        "job.cls:2:1: error: channel 1: T word 10001 does not fit the control's format (4: at most 9999)\n"
+        "TURRET/100,1\n^\n");
   posted d = post_text(head + "DELAY/1e9\nFINI\n", "fanuc-0itd-twin", "d");
   CHECK(d.diagnostics ==
-        "job.cls:6:1: error: channel 1: U word 1000000000 does not fit the control's format (5.3: at most 99999.999)\n");
+        "job.cls:6:1: error: channel 1: U word 1000000000 does not fit the control's format (5.3: at most 99999.999)\n"
+        "DELAY/1e9\n^\n");
   posted ms = post_text("PARTNO W\nTURRET/1,1\nDELAY/1e6\nFINI\n", "integrex-i200st", "ms");
   CHECK(ms.diagnostics ==
-        "job.cls:3:1: error: channel 1: P word 1000000000 does not fit the control's format (8: at most 99999999)\n");
+        "job.cls:3:1: error: channel 1: P word 1000000000 does not fit the control's format (8: at most 99999999)\nDELAY/1e6\n^\n");
 }
 
 TEST_CASE("a tool number is a whole number, or an error at its argument", "[post][words]") {
@@ -107,7 +114,7 @@ TEST_CASE("PARTNO gives the program number only when it fits the O format", "[po
   CHECK(p.ok);
   CHECK(p.diagnostics ==
         "job.cls:1:1: warning: PARTNO 99999999 is not a program number of this control (format.O 4: 1 to 9999); "
-        "the program takes the machine's program_number 1000\n");
+        "the program takes the machine's program_number 1000\nPARTNO 99999999\n^\n");
   REQUIRE(p.files.count("99999999_1.nc") == 1);
   CHECK(p.files.at("99999999_1.nc").starts_with("%\nO1000 (99999999)\n"));
   posted fits = post_text("PARTNO 1234\nTURRET/1,1\nFINI\n", "fanuc-0itd-twin", "fits");
@@ -133,7 +140,7 @@ TEST_CASE("NX CIRCLE TIMES,n is posted as n full circles", "[post][words]") {
   CHECK_FALSE(off.ok);
   CHECK(off.diagnostics ==
         "job.cls:8:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts to be repeated as "
-        "full circles (it ends 20 mm away)\n");
+        "full circles (it ends 20 mm away)\nGOTO/0,0,10\n^\n");
 }
 
 TEST_CASE("a post stops at a record it cannot carry out, and warns at a job cut off", "[post][words]") {
@@ -144,7 +151,8 @@ TEST_CASE("a post stops at a record it cannot carry out, and warns at a job cut 
   posted cut = post_text(head + "GOTO/20,0,0\nGOTO/20,0,-5\n", "fanuc-0itd-twin", "cut");
   CHECK(cut.ok);
   CHECK(cut.diagnostics ==
-        "job.cls:7:1: warning: the job ends without FINI or END after this GOTO record: is the file cut off?\n");
+        "job.cls:7:1: warning: the job ends without FINI or END after this GOTO record: is the file cut off?\n"
+        "GOTO/20,0,-5\n^\n");
   posted dangling = post_text(head + "GOTO/20,0,0\nGOTO/20,$\n", "fanuc-0itd-twin", "dangling");
   CHECK_FALSE(dangling.ok);
   CHECK(dangling.diagnostics ==
