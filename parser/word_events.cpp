@@ -1,5 +1,7 @@
 #include "parser/detail/word_events.hpp"
 
+#include "parser/detail/bad_number.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
@@ -62,22 +64,10 @@ struct arg_use {
 bool report_bad_number(const cl_record& r, build_issues& issues) {
   for (const cl_arg& a : r.args) {
     if (a.kind != arg_kind::word) continue;
-    const std::string_view w = a.word;
-    if (word_is(w, "NAN") || word_is(w, "INF") || word_is(w, "INFINITY")) {
-      issues.push_back({severity::error, a.offset, fmt::format("not a number: '{}'", w)});
+    if (auto message = bad_number_message(a.word)) {
+      issues.push_back({severity::error, a.offset, std::move(*message)});
       return true;
     }
-    // Words that start like a number and hold nothing but number characters: 1e999, 1e, 1.2.3.
-    const char c0 = w.front();
-    if (!((c0 >= '0' && c0 <= '9') || c0 == '.')) continue;
-    if (w.find_first_not_of("0123456789.eE+-") != std::string_view::npos) continue;
-    double v = 0;
-    const auto res = std::from_chars(w.data(), w.data() + w.size(), v);
-    if (res.ec == std::errc::result_out_of_range && res.ptr == w.data() + w.size())
-      issues.push_back({severity::error, a.offset, fmt::format("number out of range: '{}'", w)});
-    else
-      issues.push_back({severity::error, a.offset, fmt::format("malformed number '{}'", w)});
-    return true;
   }
   return false;
 }

@@ -45,7 +45,12 @@ TEST_CASE("a number that is none is named at its column", "[parser][limits]") {
         "t.cl:1:11: error: malformed number '1e'\nGOTO/29.0,1e,2.0\n          ^\n");
   // In a multi-point GOTO's coordinate line too; the record is dropped, reading goes on.
   auto r = read_cl("GOTO/1,2,3\n4,5,1e999\nGOTO/7,8,9\n", dialect::generic);
-  CHECK(r.diagnostics == "t.cl:2:5: error: expected a number in a coordinate line, found '1e999'\n4,5,1e999\n    ^\n");
+  CHECK(r.diagnostics == "t.cl:2:5: error: number out of range: '1e999'\n4,5,1e999\n    ^\n");
+  // A sign is no word character: the grammar stops there, and the token is named alike.
+  CHECK(read_cl("GOTO/-1e999,0,0\n", dialect::generic).diagnostics ==
+        "t.cl:1:6: error: number out of range: '-1e999'\nGOTO/-1e999,0,0\n     ^\n");
+  CHECK(read_cl("GOTO/1,-inf,0\n", dialect::generic).diagnostics ==
+        "t.cl:1:8: error: not a number: '-inf'\nGOTO/1,-inf,0\n       ^\n");
   CHECK(r.events == lines{"1\tgoto x=1 y=2 z=3", "3\tgoto x=7 y=8 z=9"});
 }
 
