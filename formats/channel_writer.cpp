@@ -22,9 +22,9 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
     for (const char* g : {"G17", "G18", "G19"})
       if (block.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
   spindle_ = m.spindle(ch.spindle);
-  max_x_ = m.formats['X'].max_count(axis_style_.decimals);
-  max_y_ = m.formats['Y'].max_count(axis_style_.decimals);
-  max_z_ = m.formats['Z'].max_count(axis_style_.decimals);
+  last_x_.max = m.formats['X'].max_count(axis_style_.decimals);
+  last_y_.max = m.formats['Y'].max_count(axis_style_.decimals);
+  last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
 }
 
 void channel_writer::error(int line, std::string message) {
@@ -61,8 +61,7 @@ bool channel_writer::axis_word(text_buffer& out, char address, double value, axi
   // The same value as last time prints the same word: no need to round it to know.
   if (!always && last.known && value == last.value) return false;
   std::int64_t n;
-  const std::int64_t max = address == 'X' ? max_x_ : address == 'Z' ? max_z_ : max_y_;
-  if (!round_fixed(value, axis_style_.decimals, n) || n > max || n < -max) [[unlikely]] {
+  if (!round_fixed(value, axis_style_.decimals, n) || n > last.max || n < -last.max) [[unlikely]] {
     // Past what the control reads: the post stops here, nothing is written.
     misfit(address, value);
     last.known = false;

@@ -56,6 +56,7 @@ class channel_writer {
     bool known = false;   ///< false after a tool change or home: the next word is written
     std::int64_t n = 0;   ///< the word's value in the last decimal place (12.346 -> 12346)
     double value = 0;     ///< the value it was rounded from
+    std::int64_t max = 0; ///< the largest count the control's format reads for this axis
   };
   /// Appends " X12.5" to `out` unless `last` already holds that word (modal suppression)
   /// and `always` is off; returns whether it wrote the word.
@@ -105,7 +106,6 @@ class channel_writer {
   int waits_ = 0;
   bool warned_side_ = false;
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
-  std::int64_t max_x_ = 0, max_y_ = 0, max_z_ = 0;  // largest axis word counts (format)
 };
 
 }  // namespace twinpost

@@ -1,5 +1,7 @@
 #include "parser/cl_reader.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <vector>
 
 #include <fmt/format.h>
@@ -34,13 +36,15 @@ struct cl_reader::impl {
 
   // Remembers the last record read (not a comment): whether it ends the job, and where it is.
   void note_record(int line) {
-    ended = ends_job(rec);
+    // Only FINI, END..., and PPRINT can end a job: one look at the first letter for the rest.
+    const char c = rec.major.empty() ? '\0' : static_cast<char>(rec.major.front() & ~0x20);
+    ended = (c == 'F' || c == 'E' || c == 'P') && ends_job(rec);
     last_line = line;
-    last_column = lines.locate(rec.kind == record_kind::coordinates && !rec.args.empty() ? rec.args.front().offset
-                                                                                        : rec.major_offset)
-                      .column;
-    if (rec.kind == record_kind::coordinates) last_major.assign("coordinate line");
-    else last_major.assign(rec.major.data(), rec.major.size());
+    last_column = lines.column_of(rec.kind == record_kind::coordinates && !rec.args.empty() ? rec.args.front().offset
+                                                                                           : rec.major_offset);
+    // Kept in a fixed buffer: a string assignment per record shows in the benchmark.
+    last_major_size = rec.kind == record_kind::coordinates ? 0 : std::min(rec.major.size(), sizeof last_major);
+    std::memcpy(last_major, rec.major.data(), last_major_size);
   }
 
   static bool ends_job(const cl_record& r) {
@@ -60,8 +64,9 @@ struct cl_reader::impl {
     } else {
       d.line = last_line;
       d.column = last_column;
-      d.message = fmt::format("the job ends without FINI or END after this {} record: is the file cut off?",
-                              upper_ascii(last_major));
+      const std::string major = last_major_size == 0 ? std::string("coordinate line")
+                                                     : upper_ascii(std::string(last_major, last_major_size));
+      d.message = fmt::format("the job ends without FINI or END after this {} record: is the file cut off?", major);
     }
     sink.report(std::move(d));
   }
@@ -143,7 +148,8 @@ struct cl_reader::impl {
   bool finished = false;
   bool ended = false;       // the last record read was FINI/END (or a dialect's end)
   int last_line = 0, last_column = 0;
-  std::string last_major;   // of the last record read, for the missing-end warning
+  char last_major[32];      // of the last record read, for the missing-end warning
+  std::size_t last_major_size = 0;
 };
 
 cl_reader::cl_reader(byte_source& src, cl_reader_options options, diagnostic_sink& sink)

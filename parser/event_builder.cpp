@@ -44,7 +44,7 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
       return;
     case record_kind::coordinates: {
       if (after_bad_record_) return;  // points of a GOTO that did not parse: reported already
-      if (detail::report_bad_number(r, issues)) return;
+      if (detail::has_bad_number(r, issues)) return;
       if (!in_goto_) {
         issues.push_back({severity::error, r.args.empty() ? 0 : r.args.front().offset,
                           "coordinate line without a preceding GOTO"});
@@ -76,7 +76,7 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
       return;
     }
     case record_kind::statement:
-      if (detail::report_bad_number(r, issues)) return skip_record(r.kind);
+      if (detail::has_bad_number(r, issues)) return skip_record(r.kind);
       statement(r, line, out, issues);
       return;
   }

@@ -80,6 +80,12 @@ class line_reader {
   std::string_view peek(std::size_t n);
   /// Maps an offset of the current logical record to its physical line and column.
   source_position locate(std::size_t offset) const;
+  /// The column of `offset` in its physical line (locate's, without the search when the
+  /// record is one line, as nearly all are).
+  int column_of(std::size_t offset) const {
+    if (segments_.size() == 1) return static_cast<int>(offset) + 1;
+    return locate(offset).column;
+  }
   /// Physical line `line` when it belongs to the current logical record, else empty.
   std::string_view physical_line(int line) const {
     for (const segment& s : segments_)
