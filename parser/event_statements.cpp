@@ -14,6 +14,7 @@ using detail::upper;
 namespace {
 
 bool known_passthrough(std::string_view m);
+bool ignorable_in_post(const cl_record& r);
 
 double planar_radius(vec3 p, vec3 c, vec3 n) {
   double dx = p.x - c.x, dy = p.y - c.y, dz = p.z - c.z;
@@ -112,6 +113,13 @@ void event_builder::statement(const cl_record& r, int line, event_queue& out, bu
     // Nothing silent in a post: a record twinpost cannot carry out stops it.
     issues.push_back({severity::error, r.major_offset,
                       fmt::format("unknown major word '{}': twinpost cannot post this record", upper(m))});
+    return;
+  }
+  if (known && posting_ && !ignorable_in_post(r)) {
+    // Known, but a post cannot do what it asks (STOP, THREAD, NURBS, ORIGIN, ...): dropping
+    // it would write a program that differs from the CL without a word.
+    issues.push_back({severity::error, r.major_offset,
+                      fmt::format("{} is not supported by the post: twinpost cannot carry out this record", upper(m))});
     return;
   }
   if (!known)
@@ -225,6 +233,20 @@ void event_builder::circle(const cl_record& r, int line, build_issues& issues) {
 }
 
 namespace {
+// Records that only inform (display, tolerances, feature and tool labels): a post may pass
+// over them, since the program does the same with or without them.
+bool ignorable_in_post(const cl_record& r) {
+  static constexpr std::string_view words[] = {
+      "PAINT", "BOX", "MOVE_ATTRIB", "TRNTYP", "TOOLNO", "CSI_SET_FLUTE_LENGTH",
+      "CSI_SET_EXTENSION_LENGTH", "INTOL", "OUTTOL", "LINTOL", "FEATNO", "MFGNO",
+      "CUTCOM_GEOMETRY_TYPE", "REWIND", "DMIS"};
+  for (std::string_view w : words)
+    if (word_is(r.major, w)) return true;
+  // SET/MODE,ABSOL (Makino) says what twinpost does anyway: absolute coordinates.
+  return word_is(r.major, "SET") && r.args.size() == 2 && r.args[0].kind == arg_kind::word &&
+         word_is(r.args[0].word, "MODE") && r.args[1].kind == arg_kind::word && word_is(r.args[1].word, "ABSOL");
+}
+
 bool known_passthrough(std::string_view m) {
   static constexpr std::string_view words[] = {
       "PAINT", "BOX", "MOVE_ATTRIB", "TRNTYP", "SET", "REWIND", "TOOLNO", "SWITCH",

@@ -160,3 +160,17 @@ TEST_CASE("a post stops at a record it cannot carry out, and warns at a job cut 
         "off\nGOTO/20,$\n        ^\n"
         "job.cls:6:1: warning: the job ends without FINI or END after this GOTO record: is the file cut off?\n");
 }
+
+TEST_CASE("a known record the post cannot carry out stops it; one that only informs does not", "[post][words]") {
+  posted stop = post_text(head + "GOTO/20,0,0\nSTOP\nFINI\n", "fanuc-0itd-twin", "stop");
+  CHECK_FALSE(stop.ok);
+  CHECK(stop.diagnostics ==
+        "job.cls:7:1: error: STOP is not supported by the post: twinpost cannot carry out this record\nSTOP\n^\n");
+  posted paint = post_text(head + "PAINT/COLOR,186\nGOTO/20,0,0\nSET/MODE,ABSOL\nFINI\n", "fanuc-0itd-twin", "paint");
+  CHECK(paint.ok);
+  CHECK(paint.diagnostics == "");
+  posted incr = post_text(head + "SET/MODE,INCR\nFINI\n", "fanuc-0itd-twin", "incr");
+  CHECK(incr.diagnostics ==
+        "job.cls:6:1: error: SET is not supported by the post: twinpost cannot carry out this record\n"
+        "SET/MODE,INCR\n^\n");
+}
