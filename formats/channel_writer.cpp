@@ -175,7 +175,10 @@ bool channel_writer::dwell_fits(double seconds) {
     const bool ms = key == "{ms";
     return fits(address, ms ? seconds * 1000 : seconds, ms ? 0 : m_.formats[address].decimals);
   }
-  return std::isfinite(seconds) && std::abs(seconds) < 1e9;
+  // A template whose dwell word has no address letter: at least keep {ms} within an int.
+  if (std::isfinite(seconds) && std::abs(seconds) < 2.0e6) return true;
+  error(line_, fmt::format("DELAY/{} is longer than any dwell the control takes", seconds));
+  return false;
 }
 
 void channel_writer::finish() { out_.close(); }

@@ -104,7 +104,10 @@ std::string check_block_words(std::string_view block, const word_formats& f, cha
       continue;
     }
     const bool starts_word = upper_letter(c) && (i == 0 || !upper_letter(block[i - 1]));
-    if (!starts_word || i + 1 >= block.size() || upper_letter(block[i + 1]) || block[i + 1] == ' ') {
+    // A word is a letter and a number (or what a number printed wrong looks like: "inf").
+    const char next = i + 1 < block.size() ? block[i + 1] : ' ';
+    const bool numberish = digit(next) || next == '-' || next == '+' || next == '.' || (next >= 'a' && next <= 'z');
+    if (!starts_word || !numberish) {
       ++i;
       continue;
     }

@@ -21,7 +21,7 @@ struct posted {
   std::map<std::string, std::string> files;
 };
 
-posted post_text(const std::string& cl, const std::string& machine_name, const std::string& tag) {
+posted post_text(const std::string& cl, const machine& m, const std::string& tag) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("twinpost-words-" + tag + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
@@ -32,7 +32,6 @@ posted post_text(const std::string& cl, const std::string& machine_name, const s
   o.cl_path = job;
   o.out_dir = (dir / "out").string();
   diagnostic_list diags;
-  const machine m = load_machine(machine_name);
   posted p;
   p.ok = post_job(o, m, diags).ok;
   for (const diagnostic& d : diags.all()) {
@@ -46,6 +45,10 @@ posted post_text(const std::string& cl, const std::string& machine_name, const s
       p.files[e.path().filename().string()] = test::read_file(e.path().string());
   std::filesystem::remove_all(dir);
   return p;
+}
+
+posted post_text(const std::string& cl, const std::string& machine_name, const std::string& tag) {
+  return post_text(cl, load_machine(machine_name), tag);
 }
 
 const std::string head = "PARTNO W\nUNITS/MM\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\n";
@@ -173,4 +176,15 @@ TEST_CASE("a known record the post cannot carry out stops it; one that only info
   CHECK(incr.diagnostics ==
         "job.cls:6:1: error: SET is not supported by the post: twinpost cannot carry out this record\n"
         "SET/MODE,INCR\n^\n");
+}
+
+TEST_CASE("a dwell template without an address letter still keeps its milliseconds in range", "[post][words]") {
+  machine m = load_machine("fanuc-0itd-twin");
+  m.codes.dwell = "G4 P=#{ms}";
+  posted ok = post_text(head + "DELAY/1.5\nFINI\n", m, "dwell-ok");
+  CHECK(ok.diagnostics == "");
+  CHECK(ok.files.at("W_1.nc").find("\nG4 P=#1500\n") != std::string::npos);
+  posted big = post_text(head + "DELAY/1e7\nFINI\n", m, "dwell-big");
+  CHECK(big.diagnostics ==
+        "job.cls:6:1: error: channel 1: DELAY/10000000 is longer than any dwell the control takes\nDELAY/1e7\n^\n");
 }

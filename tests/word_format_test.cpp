@@ -64,6 +64,9 @@ TEST_CASE("word formats: the words of a formatted block", "[machines][format]") 
         "U word 1e+308 does not fit the control's format (5.3: at most 99999.999)");
   CHECK(check_block_words("G50 S4000", f, '(', ')') == "");
   CHECK(check_block_words("T01 M6", f, '(', ')') == "");
+  CHECK(check_block_words("G4 P=#1500", f, '(', ')') == "");  // no word: P is not followed by a number
+  CHECK(check_block_words("G4 Uinf", f, '(', ')') ==
+        "U word inf does not fit the control's format (5.3: at most 99999.999)");
 }
 
 TEST_CASE("word formats: defaults per control, and the [format] table", "[machines][format]") {
