@@ -25,6 +25,7 @@ struct cl_reader::impl {
     d_.message = i.message;
     if (i.line > 0) {
       d_.line = i.line;
+      d_.column = i.column;
     } else {
       source_position p = lines.locate(i.offset);
       d_.line = p.line;
@@ -121,6 +122,7 @@ struct cl_reader::impl {
         continue;
       }
       if (rec.kind != record_kind::comment) note_record(lr.line);
+      builder.set_column(last_column);
       issues.clear();
       const std::size_t before = queue.size();
       builder.build(rec, lr.line, queue, issues);

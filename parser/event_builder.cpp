@@ -148,7 +148,7 @@ void event_builder::comment(const cl_record& r, int line, event_queue& out) {
 
 void event_builder::finish(build_issues& issues) {
   if (circle_ && !circle_used_)
-    issues.push_back({severity::error, 0, "CIRCLE has no end point", circle_->line});
+    issues.push_back({severity::error, 0, "CIRCLE has no end point", circle_->line, circle_->column});
 }
 
 }  // namespace twinpost

@@ -197,6 +197,7 @@ void event_builder::circle(const cl_record& r, int line, build_issues& issues) {
   std::vector<double> n;
   pending_circle c;
   c.line = line;
+  c.column = column_;
   for (std::size_t i = 0; i < r.args.size(); ++i) {
     const cl_arg& a = r.args[i];
     if (a.kind == arg_kind::number) n.push_back(a.number);
