@@ -167,12 +167,16 @@ bool line_reader::next(logical_record& out) {
   }
   // A continued record: copy its lines, since refilling the buffer moves them.
   joined_.clear();
+  physical_.clear();
+  spans_.clear();
   std::size_t used = 0;
   std::size_t kept = 0;  // bytes of the physical lines kept: bounded by max_record_bytes
   auto keep = [&](std::string_view physical, std::size_t data_end) {
-    if (physical_.size() <= used) physical_.emplace_back();
-    physical_[used].assign(physical);
-    segments_.push_back({joined_.size(), line_no_, 0, physical_[used]});
+    // One buffer for all the lines: memory follows the record's size, whatever the lines
+    // of earlier records were.
+    spans_.emplace_back(physical_.size(), physical.size());
+    physical_.append(physical);
+    segments_.push_back({joined_.size(), line_no_, 0, {}});
     joined_.append(physical.substr(0, data_end));
     kept += physical.size() + 1;
     ++used;
@@ -207,9 +211,10 @@ bool line_reader::next(logical_record& out) {
     dollar = shape.data_end;
     keep(line, shape.data_end);
   }
-  // Views into physical_ strings stay valid: those strings are not touched until next().
-  for (std::size_t i = 0; i < used; ++i) segments_[i].physical = physical_[i];
-  if (out.problem != record_problem::none) out.problem_source = physical_[problem_at];
+  // Views into physical_ stay valid: it is not touched until next().
+  const std::string_view all = physical_;
+  for (std::size_t i = 0; i < used; ++i) segments_[i].physical = all.substr(spans_[i].first, spans_[i].second);
+  if (out.problem != record_problem::none) out.problem_source = segments_[problem_at].physical;
   out.text = joined_;
   return true;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 #include <vector>
+#include <utility>
 
 namespace twinpost {
 
@@ -114,7 +115,8 @@ class line_reader {
   int line_no_ = 0;
   std::size_t consumed_ = 0;
   std::string joined_;                 // logical text of a continued record
-  std::vector<std::string> physical_;  // owned copies of a continued record's lines
+  std::string physical_;  // owned copies of a continued record's lines, one after another
+  std::vector<std::pair<std::size_t, std::size_t>> spans_;  // where each line is in physical_
   std::vector<segment> segments_;
   bool overlong_ = false;     // the physical line just read was cut at max_record_bytes
   std::string overlong_head_; // its first bytes, kept for the diagnostic
