@@ -17,6 +17,7 @@ void channel_router::error(int line, std::string message) {
   diagnostic d;
   d.file = file_;
   d.line = line;
+  d.column = line == column_line_ ? column_ : 0;
   d.message = std::move(message);
   diags_.report(std::move(d));
 }
@@ -32,6 +33,8 @@ const channel_def* channel_router::head_channel(const head_event& h) const {
 }
 
 void channel_router::route(const event& e) {
+  column_line_ = e.line;
+  column_ = e.column;
   if (const auto* h = std::get_if<head_event>(&e.data)) {
     if (h->which == head_select::both) {
       const channel_def* a = m_.channel_for_head(1);
@@ -118,6 +121,7 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
       d.level = severity::warning;
       d.file = file_;
       d.line = line;
+      d.column = line == column_line_ ? column_ : 0;
       d.message = "sync records ignored under --sync sequential";
       diags_.report(std::move(d));
       warned_ignored_ = true;

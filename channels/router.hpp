@@ -68,6 +68,7 @@ class channel_router {
                   bool force = false, wait_mark::section both = wait_mark::section::none);
   void explicit_sync(const sync_event& s, int line);
   void error(int line, std::string message);
+  int column_line_ = 0, column_ = 0;  // the event being routed: where its errors point
   std::optional<int> next_code(int line, const std::string& what);
   const channel_def* head_channel(const head_event& h) const;
 

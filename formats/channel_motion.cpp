@@ -1,4 +1,5 @@
 // channel_writer: straight moves, arcs in the XZ plane, drilling cycles expanded to moves.
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 
@@ -86,6 +87,7 @@ void channel_writer::arc(const arc_event& a, int line) {
     error(line, std::move(message));
     pos_ = a.end;
   };
+  auto fail_quietly = [&] { pos_ = a.end; };
   if (plane == 0)
     return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane", a.normal.x,
                             a.normal.y, a.normal.z));
@@ -93,6 +95,14 @@ void channel_writer::arc(const arc_event& a, int line) {
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
   if (!has_y_ && std::abs(a.end.y * scale_) > y_tolerance)
     return fail(fmt::format("Y {} on a channel without a Y axis", a.end.y));
+  if (a.turns > 0) {
+    // TIMES,n repeats a full circle: the move must end where it starts.
+    const double gap = std::max({std::abs(a.end.x - a.start.x), std::abs(a.end.y - a.start.y),
+                                 std::abs(a.end.z - a.start.z)}) * scale_;
+    if (gap > y_tolerance)
+      return fail(fmt::format("CIRCLE TIMES {}: the move must end where it starts to be repeated as full "
+                              "circles (it ends {} mm away)", a.turns, gap));
+  }
   check_side(nc_x(a.end.x), a.end.x, line);
   double axis_sign = plane == 17 ? a.normal.z : plane == 18 ? a.normal.y : a.normal.x;
   bool ccw = a.ccw == (axis_sign > 0);
@@ -101,17 +111,17 @@ void channel_writer::arc(const arc_event& a, int line) {
   if (mirror < 0 && plane != 19) ccw = !ccw;
   int g = ccw ? 3 : 2;
 
-  line_.clear();
-  if (!pending_g_.empty()) line_ += ' ', line_ += pending_g_;
+  arc_.clear();
+  if (!pending_g_.empty()) arc_ += ' ', arc_ += pending_g_;
   if (plane != plane_) {
-    line_ += fmt::format(" G{}", plane);
+    arc_ += fmt::format(" G{}", plane);
     plane_ = plane;
   }
-  line_ += g == 3 ? " G3" : " G2";
+  arc_ += g == 3 ? " G3" : " G2";
   // Both axes of the plane always; the third only when it moves (a helix).
-  axis_word(line_, 'X', nc_x(a.end.x), last_x_, plane != 19);
-  if (plane != 18 || has_y_) axis_word(line_, 'Y', a.end.y * scale_, last_y_, plane != 18);
-  axis_word(line_, 'Z', a.end.z * scale_, last_z_, plane != 17);
+  axis_word(arc_, 'X', nc_x(a.end.x), last_x_, plane != 19);
+  if (plane != 18 || has_y_) axis_word(arc_, 'Y', a.end.y * scale_, last_y_, plane != 18);
+  axis_word(arc_, 'Z', a.end.z * scale_, last_z_, plane != 17);
 
   // In-plane coordinates of start and end about the centre, (u, v) with the normal = u x v.
   auto uv = [&](const vec3& p) -> std::pair<double, double> {
@@ -123,9 +133,10 @@ void channel_writer::arc(const arc_event& a, int line) {
   if (m_.program.arcs_ijk) {
     // I, J, K run from the start point to the centre; I is a radius value in the channel's X sense.
     auto offset = [&](char address, double v) {
-      line_ += ' ';
-      line_ += address;
-      append_number(line_, v * scale_, axis_style_);
+      if (!fits(address, v * scale_, axis_style_.decimals)) return;
+      arc_ += ' ';
+      arc_ += address;
+      append_number(arc_, v * scale_, axis_style_);
     };
     if (plane != 19) offset('I', (a.center.x - a.start.x) * mirror);
     if (plane != 18) offset('J', a.center.y - a.start.y);
@@ -138,14 +149,17 @@ void channel_writer::arc(const arc_event& a, int line) {
     // The long way round (over 180 degrees) takes a negative R.
     bool short_way_ccw = su * ev - sv * eu > 0;
     bool over_half = short_way_ccw != (a.ccw == (axis_sign > 0));
-    line_ += " R";
-    append_number(line_, (over_half ? -1 : 1) * a.radius * scale_, axis_style_);
+    const double r = (over_half ? -1 : 1) * a.radius * scale_;
+    if (!fits('R', r, axis_style_.decimals)) return fail_quietly();
+    arc_ += " R";
+    append_number(arc_, r, axis_style_);
   }
-  if (feed_value_ > 0) append_feed(line_);
+  if (feed_value_ > 0) append_feed(arc_);
   else error(line, "arc with no feed rate (FEDRAT) in force");
   pending_g_.clear();
   motion_g_ = g;
-  out_.block(line_.view().substr(1));
+  // A full circle TIMES n: the same block n times, one turn each.
+  for (int turn = 0; turn < std::max(1, a.turns); ++turn) out_.block(arc_.view().substr(1));
   pos_ = a.end;
 }
 
@@ -166,8 +180,11 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   if (!bottom) return error(line, fmt::format("CYCLE/{} needs FEDTO or DEPTH", c.type));
   for (const char* unit : {"MMPR", "IPR", "MMPM", "IPM"}) {
     if (auto f = param(unit)) {
-      feed_value_ = *f * ((unit[0] == 'I') ? 25.4 : 1.0);
-      feed_mode(std::string_view(unit).back() == 'R');
+      const bool per_rev = std::string_view(unit).back() == 'R';
+      const double value = *f * ((unit[0] == 'I') ? 25.4 : 1.0);
+      if (!fits('F', value, per_rev ? 4 : 1)) return;
+      feed_value_ = value;
+      feed_mode(per_rev);
     }
   }
   double step = param("STEP").value_or(0);

@@ -40,18 +40,27 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     a.max = clamp;
     a.rpm = clamp;
     a.channel = ch_.number;
-    if (!sp.clamp.empty()) out_.block(format_template(sp.clamp, a));
+    if (!fits('S', smm, 0)) return;
+    if (!sp.clamp.empty()) {
+      std::string b = format_template(sp.clamp, a);
+      if (!block_fits(b)) return;
+      out_.block(b);
+    }
     out_.block(join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
     return;
   }
   if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
     return error(line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
+  if (!fits('S', s.speed, 0)) return;
   out_.block(join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m)));
 }
 
 void channel_writer::feed(const feed_event& f, int line) {
   if (f.mode == feed_mode::inverse_time) return error(line, "inverse-time feed is not supported on a lathe channel");
-  feed_value_ = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
+  const double value = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
+  // F is written with 4 decimals per revolution, 1 per minute (append_feed).
+  if (!fits('F', value, f.mode == feed_mode::per_rev ? 4 : 1)) return;
+  feed_value_ = value;
   feed_mode(f.mode == feed_mode::per_rev);
 }
 
@@ -69,14 +78,16 @@ void channel_writer::tool(const tool_event& t, int line) {
   if (t.preselect) return;
   (void)line;
   if (t.tool == tool_) return;
-  out_.block(m_.codes.home);  // index the turret away from the part
-  forget_axes();
-  motion_g_ = -1;
   template_args a = sample_template_args();
   a.tool = t.tool;
   a.offset = t.offset.value_or(t.tool);
   a.channel = ch_.number;
-  out_.block(format_template(ch_.tool_call, a));
+  const std::string call = format_template(ch_.tool_call, a);
+  if (!block_fits(call)) return;  // T12345 on a four-digit T: the tool does not exist
+  out_.block(m_.codes.home);  // index the turret away from the part
+  forget_axes();
+  motion_g_ = -1;
+  out_.block(call);
   tool_ = t.tool;
 }
 

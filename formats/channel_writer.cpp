@@ -22,14 +22,38 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
     for (const char* g : {"G17", "G18", "G19"})
       if (block.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
   spindle_ = m.spindle(ch.spindle);
+  last_x_.max = m.formats['X'].max_count(axis_style_.decimals);
+  last_y_.max = m.formats['Y'].max_count(axis_style_.decimals);
+  last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
 }
 
 void channel_writer::error(int line, std::string message) {
   diagnostic d;
   d.file = cl_file_;
   d.line = line;
+  d.column = line == line_ ? column_ : 0;
   d.message = fmt::format("channel {}: {}", ch_.number, message);
   diags_.report(std::move(d));
+}
+
+void channel_writer::misfit(char address, double value) {
+  error(line_, word_misfit_message(address, fmt::format("{}", value), m_.formats[address]));
+}
+
+bool channel_writer::fits(char address, double v, int decimals) {
+  const word_format& f = m_.formats[address];
+  std::int64_t n;
+  if (round_fixed(v, decimals, n) && (f.whole == 0 || (n <= f.max_count(decimals) && -n <= f.max_count(decimals))))
+    return true;
+  misfit(address, v);
+  return false;
+}
+
+bool channel_writer::block_fits(const std::string& block) {
+  std::string why = check_block_words(block, m_.formats, m_.program.comment_open, m_.program.comment_close);
+  if (why.empty()) return true;
+  error(line_, why);
+  return false;
 }
 
 bool channel_writer::axis_word(text_buffer& out, char address, double value, axis_memory& last,
@@ -37,13 +61,11 @@ bool channel_writer::axis_word(text_buffer& out, char address, double value, axi
   // The same value as last time prints the same word: no need to round it to know.
   if (!always && last.known && value == last.value) return false;
   std::int64_t n;
-  if (!round_fixed(value, axis_style_.decimals, n)) {
-    // Out of any machine's travel; written as it is, and never taken as modal.
-    separate(out);
-    out += address;
-    append_number(out, value, axis_style_);
+  if (!round_fixed(value, axis_style_.decimals, n) || n > last.max || n < -last.max) [[unlikely]] {
+    // Past what the control reads: the post stops here, nothing is written.
+    misfit(address, value);
     last.known = false;
-    return true;
+    return false;
   }
   bool same = last.known && n == last.n;
   last.known = true;
@@ -61,12 +83,13 @@ void channel_writer::check_side(double x_nc, double x_cl, int line) {
   // side of the spindle. On a mirrored (lower) turret that means the CL gave this head
   // positive x, i.e. the upper side: its own frame, or a head mix-up. Say so, once.
   constexpr double past_centre = -5.0;
-  if (warned_side_ || !x_diameter_ || x_nc >= past_centre) return;
+  if (warned_side_ || !x_diameter_ || x_nc >= past_centre || !std::isfinite(x_nc)) return;
   warned_side_ = true;
   diagnostic d;
   d.level = severity::warning;
   d.file = cl_file_;
   d.line = line;
+  d.column = line == line_ ? column_ : 0;
   d.message = fmt::format(
       "channel {}: X{} is past the spindle centre line (CL x = {}){}", ch_.number,
       format_nc_number(x_nc, axis_style_), x_cl,
@@ -92,6 +115,8 @@ void channel_writer::on_wait(const wait_mark& w) {
 void channel_writer::on_event(const event& e, bool both) {
   // A HEAD/BOTH copy on a mirrored channel runs on the opposite side of the spindle centre.
   side_ = (both && x_mirror_) ? -1.0 : 1.0;
+  line_ = e.line;
+  column_ = e.column;
   std::visit(
       [&](const auto& d) {
         using T = std::decay_t<decltype(d)>;
@@ -116,12 +141,15 @@ void channel_writer::on_event(const event& e, bool both) {
           else if (d.type != "ON" && d.type != "INIT") cycle_ = d;
         } else if constexpr (std::is_same_v<T, delay_event>) {
           template_args a = sample_template_args();
+          if (d.revolutions) return error(e.line, "DELAY in revolutions is not supported; give seconds");
+          if (!dwell_fits(d.value)) return;
           a.seconds = d.value;
           a.ms = static_cast<int>(std::lround(d.value * 1000));
-          if (d.revolutions) error(e.line, "DELAY in revolutions is not supported; give seconds");
-          else out_.block(format_template(m_.codes.dwell, a));
+          std::string b = format_template(m_.codes.dwell, a);
+          if (block_fits(b)) out_.block(b);
         } else if constexpr (std::is_same_v<T, aux_event>) {
-          out_.block(fmt::format("{}{}", d.prefun ? 'G' : 'M', d.code));
+          std::string b = fmt::format("{}{}", d.prefun ? 'G' : 'M', d.code);
+          if (block_fits(b)) out_.block(b);
         } else if constexpr (std::is_same_v<T, text_event>) {
           if (d.kind == text_kind::insert) out_.raw(d.text);
           else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint || d.kind == text_kind::op_start ||
@@ -135,6 +163,23 @@ void channel_writer::on_event(const event& e, bool both) {
         // FROM-only state, tool data, coordinate systems, comments, ends: no block.
       },
       e.data);
+}
+
+bool channel_writer::dwell_fits(double seconds) {
+  // The dwell's address is the letter before {seconds} or {ms} in the machine's template.
+  const std::string& t = m_.codes.dwell;
+  for (std::string_view key : {"{seconds", "{ms"}) {
+    const std::size_t at = t.find(key);
+    if (at == std::string::npos || at == 0) continue;
+    const char address = t[at - 1];
+    if (address < 'A' || address > 'Z') continue;
+    const bool ms = key == "{ms";
+    return fits(address, ms ? seconds * 1000 : seconds, ms ? 0 : m_.formats[address].decimals);
+  }
+  // A template whose dwell word has no address letter: at least keep {ms} within an int.
+  if (std::isfinite(seconds) && std::abs(seconds) < 2.0e6) return true;
+  error(line_, fmt::format("DELAY/{} is longer than any dwell the control takes", seconds));
+  return false;
 }
 
 void channel_writer::finish() { out_.close(); }

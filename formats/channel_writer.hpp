@@ -44,6 +44,14 @@ class channel_writer {
   void cycle_point(const vec3& p, int line);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
   void error(int line, std::string message);
+  /// The error for a word that does not fit the control's format (see machine::formats).
+  void misfit(char address, double value);
+  /// True when `v` written with `decimals` places fits the format of `address`; else reports.
+  bool fits(char address, double v, int decimals);
+  /// Checks the words of a block formatted from a template; reports the first misfit.
+  bool block_fits(const std::string& block);
+  /// Checks a DELAY's seconds against the format of the dwell template's address.
+  bool dwell_fits(double seconds);
   /// Warns once per channel when a turret goes well past the spindle centre line.
   void check_side(double x_nc, double x_cl, int line);
   /// The last word written on one axis, for modal suppression.
@@ -51,6 +59,7 @@ class channel_writer {
     bool known = false;   ///< false after a tool change or home: the next word is written
     std::int64_t n = 0;   ///< the word's value in the last decimal place (12.346 -> 12346)
     double value = 0;     ///< the value it was rounded from
+    std::int64_t max = 0; ///< the largest count the control's format reads for this axis
   };
   /// Appends " X12.5" to `out` unless `last` already holds that word (modal suppression)
   /// and `always` is off; returns whether it wrote the word.
@@ -85,7 +94,7 @@ class channel_writer {
   axis_memory last_x_, last_y_, last_z_;  // axis words written last
   std::string feed_g_;        // G99/G98 (G95/G94) in force
   std::string last_f_;
-  text_buffer line_;          // the block being built, reused (arcs; moves are built in place)
+  text_buffer arc_;           // the block being built, reused (arcs; moves are built in place)
   std::size_t word_start_ = std::string::npos;  // where a block built in place begins
   std::string feed_text_;     // feed_value_ formatted, for the mode in feed_text_per_rev_
   double feed_text_value_ = -1;
@@ -100,6 +109,7 @@ class channel_writer {
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
   bool warned_side_ = false;
+  int line_ = 0, column_ = 0;  // the event being written: where its errors point
 };
 
 }  // namespace twinpost

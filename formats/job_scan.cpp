@@ -1,5 +1,7 @@
 #include "formats/job_scan.hpp"
 
+#include "parser/line_reader.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -93,6 +95,11 @@ job_scan scan_job(const std::string& path) {
   constexpr std::size_t chunk_bytes = 1 << 20;
   auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes + 1);  // + a NUL for strcspn
   std::string carry;  // a line begun in the previous chunk
+  // Only a line's first words matter, and the reader refuses lines past max_record_bytes:
+  // a line without a newline must not grow the carry without bound.
+  auto keep = [&carry](std::string_view part) {
+    if (carry.size() < max_record_bytes) carry.append(part.substr(0, max_record_bytes - carry.size()));
+  };
   std::size_t n;
   while ((n = std::fread(buf.get(), 1, chunk_bytes, f.get())) > 0) {
     buf[n] = '\0';
@@ -101,11 +108,11 @@ job_scan scan_job(const std::string& path) {
     if (!carry.empty()) {
       const void* nl = std::memchr(chunk.data(), '\n', chunk.size());
       if (!nl) {
-        carry.append(chunk);
+        keep(chunk);
         continue;
       }
       std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - chunk.data());
-      carry.append(chunk.substr(0, end));
+      keep(chunk.substr(0, end));
       scan_line(carry, s);
       carry.clear();
       start = end + 1;
@@ -113,14 +120,14 @@ job_scan scan_job(const std::string& path) {
     // Whole lines here; what follows the last '\n' waits for the next chunk.
     std::size_t last = chunk.rfind('\n');
     if (last == std::string_view::npos || last < start) {
-      carry.append(chunk.substr(start));
+      keep(chunk.substr(start));
       continue;
     }
     char saved = buf[last + 1];
     buf[last + 1] = '\0';
     scan_lines(chunk.substr(start, last + 1 - start), s);
     buf[last + 1] = saved;
-    carry.append(chunk.substr(last + 1));
+    keep(chunk.substr(last + 1));
   }
   scan_line(carry, s);
   return s;

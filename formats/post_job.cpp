@@ -18,6 +18,7 @@
 #include "formats/output_names.hpp"
 #include "formats/program_frame.hpp"
 #include "formats/sync_at_cl.hpp"
+#include "formats/program_number.hpp"
 #include "parser/cl_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -34,9 +35,14 @@ class counting_sink : public diagnostic_sink {
   explicit counting_sink(diagnostic_sink& next) : next_(next) {}
   void report(diagnostic d) override {
     if (d.level == severity::error) ++errors;
+    // Router and writer diagnostics come while their record is the reader's current one.
+    if (reader && d.column > 0 && d.source_line.empty() && d.file == file)
+      d.source_line = std::string(reader->source_line(d.line));
     next_.report(std::move(d));
   }
   int errors = 0;
+  const cl_reader* reader = nullptr;
+  std::string file;
 
  private:
   diagnostic_sink& next_;
@@ -47,10 +53,16 @@ class writers_sink : public channel_sink {
  public:
   std::vector<std::unique_ptr<channel_writer>> writers;  // index = channel - 1
   std::string partno;
+  const machine* m = nullptr;
+  diagnostic_sink* diags = nullptr;
+  std::string file;
   void on_event(int ch, const event& e, bool both) override {
     if (ch == 0) {
       if (const auto* t = std::get_if<text_event>(&e.data)) {
-        if (partno.empty()) partno = t->text;
+        if (partno.empty()) {
+          partno = t->text;
+          if (m && diags) warn_program_number(*m, *diags, file, e, safe_file_stem(partno));
+        }
       }
       if (const auto* u = std::get_if<units_event>(&e.data))
         for (auto& w : writers) w->set_units(u->units);
@@ -129,6 +141,9 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   // Each channel writes straight into its program file where its blocks open one (the
   // name from PARTNO as known by then); the others of a merged program spill to a body file.
   writers_sink ws;
+  ws.m = &m;
+  ws.diags = &sink;
+  ws.file = o.cl_path;
   frame_request req;
   req.machine_def = &m;
   req.layout = o.layout.value_or(m.layout);
@@ -153,8 +168,11 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   cl_reader_options ro;
   ro.file_name = o.cl_path;
   ro.forced = o.forced_dialect;
+  ro.posting = true;
   file_source src(in.get());
   cl_reader reader(src, ro, sink);
+  sink.reader = &reader;
+  sink.file = o.cl_path;
   int last_line = 0;
   std::size_t until_progress = progress_every;
   long statements = 0;  // records other than comments

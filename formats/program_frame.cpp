@@ -56,9 +56,7 @@ void close_or_throw(const frame_request& r, const std::string& name, file_ptr& f
 }
 
 int program_number(const machine& m, const std::string& name) {
-  if (!name.empty() && name.size() <= 8 && name.find_first_not_of("0123456789") == std::string::npos)
-    return std::stoi(name);
-  return m.program.program_number;
+  return m.program_number_of(name).value_or(m.program.program_number);
 }
 
 template_args args_for(const frame_request& r, const channel_def* ch) {

@@ -48,4 +48,13 @@ const spindle_def* machine::spindle(std::string_view name) const {
   return nullptr;
 }
 
+std::optional<int> machine::program_number_of(std::string_view name) const {
+  if (name.empty() || name.size() > 9 || name.find_first_not_of("0123456789") != std::string_view::npos)
+    return std::nullopt;
+  int n = 0;
+  for (char c : name) n = n * 10 + (c - '0');
+  if (n < 1 || n > formats['O'].max_count(0)) return std::nullopt;
+  return n;
+}
+
 }  // namespace twinpost

@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "machines/word_format.hpp"
+
 namespace twinpost {
 
 /// The one exception type for fatal configuration errors (bad machine file, bad format).
@@ -130,6 +132,7 @@ struct machine {
   wait_rules waits;
   layout_kind layout = layout_kind::split;
   program_format program;
+  word_formats formats;              ///< digits per address ([format]; defaults per control)
   control_codes codes;
   motion_limits limits;
 
@@ -137,6 +140,9 @@ struct machine {
   const channel_def* channel_for_head(int head) const;
   /// The channel that serves CL head word `word` (MAIN, SIDE), or nullptr.
   const channel_def* channel_for_head(std::string_view word) const;
+  /// The program number a PARTNO gives: `name` when it is all digits and fits the O format
+  /// (1..9999 on a four-digit control; O0000 is no program), else nullopt.
+  std::optional<int> program_number_of(std::string_view name) const;
   /// The spindle named `name`, or nullptr.
   const spindle_def* spindle(std::string_view name) const;
 };

@@ -28,6 +28,8 @@ struct anchors {
   const toml::table* program = nullptr;   // [program], when given
   const toml::table* waits = nullptr;     // [waits]
   const toml::node* partners = nullptr;   // waits.partners, when given
+  const toml::node* program_number = nullptr;  // program.program_number, when given
+  const toml::table* format = nullptr;    // [format], when given
 };
 
 // Reads `key` as one of three names; anything else fails with "T.key must be a, b or c".
@@ -121,7 +123,7 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
                   "arcs_ijk"});
   if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
   r.read_template("file_name", p.file_name);
-  if (r.read("program_number", p.program_number)) check_min(r, "program_number", p.program_number, 0);
+  if (r.read("program_number", p.program_number)) at.program_number = r.find("program_number");
   r.read_template("program_line", p.program_line);
   r.read_templates("header", p.header);
   r.read_templates("footer", p.footer);
@@ -143,6 +145,34 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   }
   r.read("trailing_point", p.trailing_point);
   r.read("arcs_ijk", p.arcs_ijk);
+}
+
+// [format]: one key per address letter, "5.3" (digits before and after the point) or 4.
+void read_formats(const table_reader& root, word_formats& f, anchors& at) {
+  const toml::table* t = root.sub_table("format");
+  if (!t) return;
+  at.format = t;
+  table_reader r(*t, "format", root.source(),
+                 {"A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "N", "O", "P", "Q",
+                  "R", "S", "T", "U", "V", "W", "X", "Y", "Z"});
+  for (char a = 'A'; a <= 'Z'; ++a) {
+    const std::string key(1, a);
+    const toml::node* n = r.find(key);
+    if (!n) continue;
+    std::string text;
+    if (n->is_integer()) {
+      int digits = 0;
+      r.read(key, digits);
+      text = std::to_string(digits);
+    } else if (!n->is_string()) {
+      r.fail(*n, fmt::format("format.{} must be a string such as \"5.3\" or an integer, not {}", a,
+                             detail::type_phrase(n->type())));
+    } else {
+      r.read(key, text);
+    }
+    std::string why;
+    if (!parse_word_format(text, f[a], why)) r.fail(*n, fmt::format("format.{} \"{}\" {}", a, text, why));
+  }
 }
 
 void read_codes(const table_reader& root, control_codes& c) {
@@ -216,6 +246,27 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
     if (at.program) root.fail(*at.program, message);
     root.fail(*at.layout, message);
   }
+  // Axes are written with decimals_metric places: the control must read them all.
+  for (char a : std::string_view("XYZIJKR")) {
+    const word_format& f = m.formats[a];
+    if (f.decimals < m.program.decimals_metric) {
+      const std::string message =
+          fmt::format("format.{} ({}) has fewer decimals than program.decimals_metric ({})", a, f.text(),
+                      m.program.decimals_metric);
+      if (at.format && at.format->get(std::string(1, a))) root.fail(*at.format->get(std::string(1, a)), message);
+      if (at.format) root.fail(*at.format, message);
+      root.fail(*at.program, message);
+    }
+  }
+  // O0000 is not a program number; the default must fit the O format.
+  const word_format& o = m.formats['O'];
+  if (m.program.program_number < 1 || m.program.program_number > o.max_count(0)) {
+    const std::string message = fmt::format("program.program_number must be in 1..{} (format.O {}), not {}",
+                                            o.max_text(), o.text(), m.program.program_number);
+    if (at.program_number) root.fail(*at.program_number, message);
+    if (at.format) root.fail(*at.format, message);
+    root.fail_here(message);
+  }
   if (m.channels.size() >= 3 && m.waits.partners == partner_style::none) {
     const std::string message = fmt::format(
         "waits.partners must be path_numbers or binary on a machine with {} channels",
@@ -235,13 +286,15 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
     detail::fail_at(source, e.source(), e.description());
   }
   table_reader root(doc, "", source,
-                    {"machine", "channel", "spindle", "waits", "program", "codes", "limits"});
+                    {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits"});
   machine m;
   m.source = std::string(source);
   anchors at;
   read_machine_table(root, m, at);
   read_waits(root, m.waits, at);
   read_program(root, m.program, at);
+  m.formats = default_word_formats(m.control);
+  read_formats(root, m.formats, at);
   read_codes(root, m.codes);
   read_limits(root, m.limits);
   read_spindles(root, m.waits, m.spindles);

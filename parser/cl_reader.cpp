@@ -1,6 +1,10 @@
 #include "parser/cl_reader.hpp"
 
+#include <algorithm>
+#include <cstring>
 #include <vector>
+
+#include <fmt/format.h>
 
 #include "parser/event_builder.hpp"
 #include "parser/record_parser.hpp"
@@ -10,7 +14,9 @@ namespace twinpost {
 struct cl_reader::impl {
   impl(byte_source& src, cl_reader_options o, diagnostic_sink& s)
       : lines(src, o.chunk_size), options(std::move(o)), sink(s),
-        d(options.forced ? *options.forced : detect_dialect(lines.peek(64 * 1024))), builder(d) {}
+        d(options.forced ? *options.forced : detect_dialect(lines.peek(64 * 1024))), builder(d) {
+    builder.set_posting(options.posting);
+  }
 
   void report(const build_issue& i) {
     diagnostic d_;
@@ -19,6 +25,7 @@ struct cl_reader::impl {
     d_.message = i.message;
     if (i.line > 0) {
       d_.line = i.line;
+      d_.column = i.column;
     } else {
       source_position p = lines.locate(i.offset);
       d_.line = p.line;
@@ -26,6 +33,62 @@ struct cl_reader::impl {
       d_.source_line = std::string(p.source_line);
     }
     sink.report(std::move(d_));
+  }
+
+  // Remembers the last record read (not a comment): whether it ends the job, and where it is.
+  void note_record(int line) {
+    // Only FINI, END..., and PPRINT can end a job: one look at the first letter for the rest.
+    const char c = rec.major.empty() ? '\0' : static_cast<char>(rec.major.front() & ~0x20);
+    ended = (c == 'F' || c == 'E' || c == 'P') && ends_job(rec);
+    last_line = line;
+    last_column = lines.column_of(rec.kind == record_kind::coordinates && !rec.args.empty() ? rec.args.front().offset
+                                                                                           : rec.major_offset);
+    // Kept in a fixed buffer: a string assignment per record shows in the benchmark.
+    last_major_size = rec.kind == record_kind::coordinates ? 0 : std::min(rec.major.size(), sizeof last_major);
+    std::memcpy(last_major, rec.major.data(), last_major_size);
+  }
+
+  static bool ends_job(const cl_record& r) {
+    if (r.kind == record_kind::statement)
+      return word_is(r.major, "FINI") || word_is(r.major, "END") || word_is(r.major, "END-OF-PATH");
+    // Makino-style CL closes with its process section instead of FINI.
+    return r.kind == record_kind::text && word_is(r.major, "PPRINT") &&
+           r.text.starts_with("END-SECTION,PROCESS-END-PATH");
+  }
+
+  void report_missing_end() {
+    diagnostic d;
+    d.level = severity::warning;
+    d.file = options.file_name;
+    if (last_line == 0) {
+      d.message = "the job has no records";
+    } else {
+      d.line = last_line;
+      d.column = last_column;
+      const std::string major = last_major_size == 0 ? std::string("coordinate line")
+                                                     : upper_ascii(std::string(last_major, last_major_size));
+      d.message = fmt::format("the job ends without FINI or END after this {} record: is the file cut off?", major);
+    }
+    sink.report(std::move(d));
+  }
+
+  void report_line_problem(const logical_record& lr) {
+    diagnostic d;
+    d.file = options.file_name;
+    d.line = lr.problem_line;
+    d.column = lr.problem_column;
+    d.source_line = std::string(lr.problem_source);
+    d.message = lr.problem == record_problem::dangling
+                    ? std::string("the file ends in a continued record ('$' at the end of the last line): the job is cut off")
+                    : fmt::format("record longer than {} bytes: not CL data (a line without a newline?); skipped",
+                                  max_record_bytes);
+    sink.report(std::move(d));
+  }
+
+  static std::string upper_ascii(std::string s) {
+    for (char& c : s)
+      if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+    return s;
   }
 
   // Reads records until one yields events (or the input ends).
@@ -40,19 +103,36 @@ struct cl_reader::impl {
           issues.clear();
           builder.finish(issues);
           for (const build_issue& i : issues) report(i);
+          if (options.posting && !ended) report_missing_end();
         }
         return false;
       }
       ++record_count;
+      if (lr.problem != record_problem::none) [[unlikely]] {
+        report_line_problem(lr);
+        builder.skip_record(record_kind::statement);
+        ended = false;
+        continue;
+      }
       record_error err;
       if (!parse_record(lr.text, rec, err)) {
         report(build_issue{severity::error, err.offset, err.message});
         builder.skip_record(rec.kind);
+        ended = false;
         continue;
       }
+      if (rec.kind != record_kind::comment) note_record(lr.line);
+      builder.set_column(last_column);
       issues.clear();
+      const std::size_t before = queue.size();
       builder.build(rec, lr.line, queue, issues);
       for (const build_issue& i : issues) report(i);
+      if (queue.size() > before) {
+        // Later stages (router, writers) report at the record's major word.
+        const int column = rec.kind == record_kind::comment ? 0 : last_column;
+        for (std::size_t k = before; k < queue.size(); ++k)
+          queue[k].column = queue[k].line == lr.line ? column : 0;
+      }
     }
     return true;
   }
@@ -68,6 +148,10 @@ struct cl_reader::impl {
   std::size_t head = 0;
   std::size_t record_count = 0;
   bool finished = false;
+  bool ended = false;       // the last record read was FINI/END (or a dialect's end)
+  int last_line = 0, last_column = 0;
+  char last_major[32];      // of the last record read, for the missing-end warning
+  std::size_t last_major_size = 0;
 };
 
 cl_reader::cl_reader(byte_source& src, cl_reader_options options, diagnostic_sink& sink)
@@ -88,6 +172,7 @@ bool cl_reader::next(event& out) {
 }
 
 dialect cl_reader::current_dialect() const { return impl_->d; }
+std::string_view cl_reader::source_line(int line) const { return impl_->lines.physical_line(line); }
 std::size_t cl_reader::records() const { return impl_->record_count; }
 std::size_t cl_reader::bytes() const { return impl_->lines.bytes_read(); }
 

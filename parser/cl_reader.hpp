@@ -17,6 +17,11 @@ struct cl_reader_options {
   std::string file_name = "<input>";  ///< used in diagnostics
   std::optional<dialect> forced;       ///< --dialect; detected from the file otherwise
   std::size_t chunk_size = 1 << 20;    ///< bytes read at a time (tests and the fuzzer use small ones)
+  /// Reading for a post (`post` sets it): warn when the job does not end with FINI or END
+  /// (NX END-OF-PATH, Makino's closing PPRINT), since a job cut off at a line end reads as a
+  /// sound one otherwise; and a record the post cannot carry out (an unknown major word) is
+  /// an error instead of a passthrough event with a warning.
+  bool posting = false;
 };
 
 class cl_reader {
@@ -33,6 +38,9 @@ class cl_reader {
   bool next(event& out);
   /// The dialect in use.
   dialect current_dialect() const;
+  /// Source line `line` when it belongs to the record read last (the one whose events are
+  /// being handled), else empty: later stages give their diagnostics a source line with it.
+  std::string_view source_line(int line) const;
   /// Logical records read so far.
   std::size_t records() const;
   /// Bytes read so far.

@@ -1,10 +1,13 @@
 #include "parser/diagnostics.hpp"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 namespace twinpost {
 
 namespace {
+constexpr std::size_t source_window = 200;  // columns of a source line shown at most
+
 const char* severity_word(severity s) {
   switch (s) {
     case severity::note: return "note";
@@ -21,15 +24,30 @@ std::string format_diagnostic(const diagnostic& d) {
   if (d.line > 0 && d.column > 0) out += fmt::format(":{}", d.column);
   out += fmt::format(": {}: {}\n", severity_word(d.level), d.message);
   if (!d.source_line.empty()) {
-    out += d.source_line;
-    out += '\n';
-    if (d.column > 0) {
-      // Keep tabs in the caret line so the caret lines up under the source column.
-      std::string pad;
-      for (int i = 0; i + 1 < d.column && i < static_cast<int>(d.source_line.size()); ++i)
-        pad += d.source_line[static_cast<std::size_t>(i)] == '\t' ? '\t' : ' ';
-      out += pad + "^\n";
+    // The line as a terminal shows it safely: control and non-ASCII bytes as \xHH, and at
+    // most source_window columns around the caret (a 16 MB line echoes 200 columns).
+    const std::string_view src = d.source_line;
+    const std::size_t caret = d.column > 0 ? std::min(static_cast<std::size_t>(d.column - 1), src.size()) : 0;
+    std::size_t from = 0, to = src.size();
+    if (src.size() > source_window) {
+      from = caret > source_window / 2 ? caret - source_window / 2 : 0;
+      to = std::min(src.size(), from + source_window);
+      from = to - source_window;
     }
+    std::string shown, pad;
+    if (from > 0) shown += "...", pad += "   ";
+    for (std::size_t i = from; i < to; ++i) {
+      const auto c = static_cast<unsigned char>(src[i]);
+      const std::size_t at = shown.size();
+      if (c == '\t' || (c >= 0x20 && c < 0x7f)) shown += static_cast<char>(c);
+      else shown += fmt::format("\\x{:02X}", c);
+      if (i < caret) pad += c == '\t' ? std::string("\t") : std::string(shown.size() - at, ' ');
+    }
+    if (to < src.size()) shown += "...";
+    out += shown;
+    out += '\n';
+    // Tabs are kept in the caret line so the caret lines up under the source column.
+    if (d.column > 0) out += pad + "^\n";
   }
   return out;
 }

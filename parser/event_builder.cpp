@@ -44,6 +44,7 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
       return;
     case record_kind::coordinates: {
       if (after_bad_record_) return;  // points of a GOTO that did not parse: reported already
+      if (detail::has_bad_number(r, issues)) return;
       if (!in_goto_) {
         issues.push_back({severity::error, r.args.empty() ? 0 : r.args.front().offset,
                           "coordinate line without a preceding GOTO"});
@@ -75,6 +76,7 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
       return;
     }
     case record_kind::statement:
+      if (detail::has_bad_number(r, issues)) return skip_record(r.kind);
       statement(r, line, out, issues);
       return;
   }
@@ -146,7 +148,7 @@ void event_builder::comment(const cl_record& r, int line, event_queue& out) {
 
 void event_builder::finish(build_issues& issues) {
   if (circle_ && !circle_used_)
-    issues.push_back({severity::error, 0, "CIRCLE has no end point", circle_->line});
+    issues.push_back({severity::error, 0, "CIRCLE has no end point", circle_->line, circle_->column});
 }
 
 }  // namespace twinpost

@@ -16,6 +16,11 @@ namespace twinpost {
 class event_builder {
  public:
   explicit event_builder(dialect d) : dialect_(d) {}
+  /// Reading for a post: a record that cannot be posted (an unknown major word) is an error
+  /// and makes no event; otherwise it is a passthrough event with a warning.
+  void set_posting(bool on) { posting_ = on; }
+  /// The column of the next record's major word, for messages about it that come later.
+  void set_column(int column) { column_ = column; }
 
   /// Appends the events of record `r` (from physical line `line`) to `out`.
   void build(const cl_record& r, int line, event_queue& out, build_issues& issues);
@@ -32,7 +37,9 @@ class event_builder {
     vec3 normal{0, 0, 1};
     std::optional<double> radius;
     std::optional<bool> ccw;  // explicit CLOCKWISE / COUNTERCLOCKWISE word
+    int turns = 0;            // NX TIMES,n: full turns
     int line = 0;
+    int column = 0;  // of the CIRCLE word, for a message after its record is gone
   };
 
   void statement(const cl_record& r, int line, event_queue& out, build_issues& issues);
@@ -51,6 +58,8 @@ class event_builder {
   std::optional<vec3> axis_;
   bool rapid_ = false;        // RAPID seen, waiting for its move
   bool rapid_record_ = false; // the current GOTO record is rapid (its coordinate lines too)
+  bool posting_ = false;
+  int column_ = 0;
   bool in_goto_ = false;      // the last statement was a GOTO: coordinate lines continue it
   bool after_bad_record_ = false;  // the last record (comments aside) did not parse
   std::vector<double> numbers_;    // scratch for numbers()

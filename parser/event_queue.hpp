@@ -15,6 +15,7 @@ class event_queue {
   bool empty() const { return used_ == 0; }
   std::size_t size() const { return used_; }
   const event& operator[](std::size_t i) const { return slots_[i]; }
+  event& operator[](std::size_t i) { return slots_[i]; }
   const event* begin() const { return slots_.data(); }
   const event* end() const { return slots_.data() + used_; }
 

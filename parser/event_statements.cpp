@@ -14,6 +14,7 @@ using detail::upper;
 namespace {
 
 bool known_passthrough(std::string_view m);
+bool ignorable_in_post(const cl_record& r);
 
 double planar_radius(vec3 p, vec3 c, vec3 n) {
   double dx = p.x - c.x, dy = p.y - c.y, dz = p.z - c.z;
@@ -108,9 +109,22 @@ void event_builder::statement(const cl_record& r, int line, event_queue& out, bu
   if (word_is(m, "FINI") || word_is(m, "END") || word_is(m, "END-OF-PATH"))
     return out.push_back({line, end_event{upper(m)}});
   bool known = known_passthrough(m);
+  if (!known && posting_) {
+    // Nothing silent in a post: a record twinpost cannot carry out stops it.
+    issues.push_back({severity::error, r.major_offset,
+                      fmt::format("unknown major word '{}': twinpost cannot post this record", upper(m))});
+    return;
+  }
+  if (known && posting_ && !ignorable_in_post(r)) {
+    // Known, but a post cannot do what it asks (STOP, THREAD, NURBS, ORIGIN, ...): dropping
+    // it would write a program that differs from the CL without a word.
+    issues.push_back({severity::error, r.major_offset,
+                      fmt::format("{} is not supported by the post: twinpost cannot carry out this record", upper(m))});
+    return;
+  }
   if (!known)
     issues.push_back({severity::warning, r.major_offset,
-                      fmt::format("unknown major word '{}' passed through", upper(m))});
+                      fmt::format("unknown major word '{}' (a post stops here with an error)", upper(m))});
   out.push_back({line, passthrough_event{upper(m), detail::args_text(r), known}});
 }
 
@@ -159,6 +173,7 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
     a.radius = circle_->radius.value_or(planar_radius(pos_, a.center, a.normal));
     a.ccw = circle_->ccw.value_or(circle_is_ccw(dialect_));
     a.continued = continued;
+    a.turns = circle_->turns;
     circle_used_ = true;
     pos_ = p;
     out.push_back({line, a});
@@ -179,14 +194,30 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
 }
 
 void event_builder::circle(const cl_record& r, int line, build_issues& issues) {
-  std::vector<double> n = numbers_of(r);
+  std::vector<double> n;
   pending_circle c;
   c.line = line;
-  for (const cl_arg& a : r.args) {
+  c.column = column_;
+  for (std::size_t i = 0; i < r.args.size(); ++i) {
+    const cl_arg& a = r.args[i];
+    if (a.kind == arg_kind::number) n.push_back(a.number);
     if (a.kind != arg_kind::word) continue;
     if (word_is(a.word, "CLOCKWISE") || word_is(a.word, "CLW")) c.ccw = false;
     else if (word_is(a.word, "COUNTERCLOCKWISE") || word_is(a.word, "CCLW")) c.ccw = true;
-    else issues.push_back({severity::warning, a.offset, fmt::format("word '{}' ignored in CIRCLE", a.word)});
+    else if (word_is(a.word, "TIMES")) {
+      // NX: CIRCLE/...,TIMES,n: the GOTO after it goes n full turns round the circle.
+      const bool count = i + 1 < r.args.size() && r.args[i + 1].kind == arg_kind::number;
+      const double t = count ? r.args[i + 1].number : 0;
+      if (!count || t != std::floor(t) || t < 1 || t > max_circle_turns) {
+        issues.push_back({severity::error, count ? r.args[i + 1].offset : a.offset,
+                          count ? fmt::format("CIRCLE TIMES {} is not a whole number of turns from 1 to {}",
+                                              format_number(t), max_circle_turns)
+                                : std::string("CIRCLE TIMES needs a number of turns")});
+        return;
+      }
+      c.turns = static_cast<int>(t);
+      ++i;
+    } else issues.push_back({severity::warning, a.offset, fmt::format("word '{}' ignored in CIRCLE", a.word)});
   }
   // 4: xc,yc,zc,r   6: xc,yc,zc,i,j,k (SolidWorks, no radius)   7: + r (Creo)   11: NX
   if (n.size() != 4 && n.size() != 6 && n.size() != 7 && n.size() != 11) {
@@ -203,6 +234,20 @@ void event_builder::circle(const cl_record& r, int line, build_issues& issues) {
 }
 
 namespace {
+// Records that only inform (display, tolerances, feature and tool labels): a post may pass
+// over them, since the program does the same with or without them.
+bool ignorable_in_post(const cl_record& r) {
+  static constexpr std::string_view words[] = {
+      "PAINT", "BOX", "MOVE_ATTRIB", "TRNTYP", "TOOLNO", "CSI_SET_FLUTE_LENGTH",
+      "CSI_SET_EXTENSION_LENGTH", "INTOL", "OUTTOL", "LINTOL", "FEATNO", "MFGNO",
+      "CUTCOM_GEOMETRY_TYPE", "REWIND", "DMIS"};
+  for (std::string_view w : words)
+    if (word_is(r.major, w)) return true;
+  // SET/MODE,ABSOL (Makino) says what twinpost does anyway: absolute coordinates.
+  return word_is(r.major, "SET") && r.args.size() == 2 && r.args[0].kind == arg_kind::word &&
+         word_is(r.args[0].word, "MODE") && r.args[1].kind == arg_kind::word && word_is(r.args[1].word, "ABSOL");
+}
+
 bool known_passthrough(std::string_view m) {
   static constexpr std::string_view words[] = {
       "PAINT", "BOX", "MOVE_ATTRIB", "TRNTYP", "SET", "REWIND", "TOOLNO", "SWITCH",

@@ -61,6 +61,7 @@ struct describe {
     out.xyz(e.normal, "i", "j", "k");
     out.num("r", e.radius);
     out.str("dir", e.ccw ? "ccw" : "cw");
+    if (e.turns > 0) out.num("turns", e.turns);
     out.flag("continued", e.continued);
   }
   void operator()(const tool_event& e) {

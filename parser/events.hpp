@@ -33,7 +33,11 @@ struct arc_event {
   double radius = 0;     ///< as written, or computed from the start point
   bool ccw = true;       ///< counter-clockwise about `normal` (dialect convention applied)
   bool continued = false;
+  int turns = 0;         ///< NX `CIRCLE/...,TIMES,n`: n full turns (the end is the start); 0: an arc
 };
+
+/// The most full turns one CIRCLE/...,TIMES,n may ask for.
+inline constexpr int max_circle_turns = 9999;
 
 enum class tool_source : unsigned char { loadtl, load_tool, select_tool, turret };
 
@@ -185,6 +189,7 @@ using event_data =
 struct event {
   int line = 0;
   event_data data;
+  int column = 0;  ///< column of the record's major word (or first number) in `line`; 0: none
 };
 
 }  // namespace twinpost

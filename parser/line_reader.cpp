@@ -38,6 +38,7 @@ std::string_view line_reader::peek(std::size_t n) {
 
 bool line_reader::next_physical(std::string_view& line) {
   std::size_t scanned = begin_;
+  overlong_ = false;
   for (;;) {
     const char* base = buf_.data();
     const void* nl = std::memchr(base + scanned, '\n', end_ - scanned);
@@ -46,9 +47,25 @@ bool line_reader::next_physical(std::string_view& line) {
       line = {base + begin_, pos - begin_};
       consumed_ += pos + 1 - begin_;
       begin_ = pos + 1;
+      if (line.size() > max_record_bytes) [[unlikely]] {
+        overlong_head_.assign(line.substr(0, 256));
+        overlong_ = true;
+        line = overlong_head_;
+      }
       break;
     }
     std::size_t had = end_ - begin_;
+    if (had > max_record_bytes) [[unlikely]] {
+      // No newline in sight: keep the start for the message, drop the rest unread.
+      overlong_head_.assign(buf_.data() + begin_, 256);
+      consumed_ += had;
+      begin_ = end_;
+      skip_rest_of_line();
+      overlong_ = true;
+      line = overlong_head_;
+      ++line_no_;
+      return true;
+    }
     if (!fill()) {
       if (end_ == begin_) return false;
       line = {buf_.data() + begin_, end_ - begin_};  // last line without a newline
@@ -61,6 +78,21 @@ bool line_reader::next_physical(std::string_view& line) {
   ++line_no_;
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   return true;
+}
+
+void line_reader::skip_rest_of_line() {
+  for (;;) {
+    const void* nl = std::memchr(buf_.data() + begin_, '\n', end_ - begin_);
+    if (nl) {
+      std::size_t pos = static_cast<std::size_t>(static_cast<const char*>(nl) - buf_.data());
+      consumed_ += pos + 1 - begin_;
+      begin_ = pos + 1;
+      return;
+    }
+    consumed_ += end_ - begin_;
+    begin_ = end_;
+    if (!fill()) return;
+  }
 }
 
 namespace {
@@ -114,10 +146,20 @@ bool line_reader::next(logical_record& out) {
   do {
     if (!next_physical(line)) return false;
     shape = shape_of(line);
-  } while (all_blank(line.substr(0, shape.data_end)) && !shape.continues);
+  } while (!overlong_ && all_blank(line.substr(0, shape.data_end)) && !shape.continues);
 
   segments_.clear();
   out.line = line_no_;
+  out.problem = record_problem::none;
+  if (overlong_) [[unlikely]] {
+    segments_.push_back({0, line_no_, 0, line});
+    out.text = line;
+    out.problem = record_problem::too_long;
+    out.problem_line = line_no_;
+    out.problem_column = 1;
+    out.problem_source = line;
+    return true;
+  }
   if (!shape.continues) {  // the common case: no copy at all
     segments_.push_back({0, line_no_, 0, line});
     out.text = line.substr(0, shape.data_end);
@@ -125,21 +167,54 @@ bool line_reader::next(logical_record& out) {
   }
   // A continued record: copy its lines, since refilling the buffer moves them.
   joined_.clear();
+  physical_.clear();
+  spans_.clear();
   std::size_t used = 0;
+  std::size_t kept = 0;  // bytes of the physical lines kept: bounded by max_record_bytes
   auto keep = [&](std::string_view physical, std::size_t data_end) {
-    if (physical_.size() <= used) physical_.emplace_back();
-    physical_[used].assign(physical);
-    segments_.push_back({joined_.size(), line_no_, 0, physical_[used]});
+    // One buffer for all the lines: memory follows the record's size, whatever the lines
+    // of earlier records were.
+    spans_.emplace_back(physical_.size(), physical.size());
+    physical_.append(physical);
+    segments_.push_back({joined_.size(), line_no_, 0, {}});
     joined_.append(physical.substr(0, data_end));
+    kept += physical.size() + 1;
     ++used;
   };
   keep(line, shape.data_end);
-  while (shape.continues && next_physical(line)) {
+  std::size_t dollar = shape.data_end;  // where the last kept line's continuation `$` is
+  std::size_t problem_at = 0;           // the kept line the problem is on
+  while (shape.continues) {
+    if (!next_physical(line)) {
+      // The input ends where the record says it goes on: the job is cut off.
+      if (out.problem == record_problem::none) {
+        out.problem = record_problem::dangling;
+        out.problem_line = line_no_;
+        out.problem_column = static_cast<int>(dollar) + 1;
+        problem_at = used - 1;
+      }
+      break;
+    }
     shape = shape_of(line);
+    if (out.problem == record_problem::too_long || overlong_ || kept + line.size() + 1 > max_record_bytes) [[unlikely]] {
+      // Too long as a whole: read on to its end, keep nothing more.
+      if (out.problem == record_problem::none) {
+        out.problem = record_problem::too_long;
+        out.problem_line = line_no_;
+        out.problem_column = 1;
+        keep(line.substr(0, std::min<std::size_t>(line.size(), 256)), 0);
+        problem_at = used - 1;
+      }
+      if (overlong_) break;  // its end went with the rest of the line
+      continue;
+    }
+    dollar = shape.data_end;
     keep(line, shape.data_end);
   }
-  // Views into physical_ strings stay valid: those strings are not touched until next().
-  for (std::size_t i = 0; i < used; ++i) segments_[i].physical = physical_[i];
+  // Views into physical_ stay valid: it is not touched until next().
+  const std::string_view all = physical_;
+  for (std::size_t i = 0; i < used; ++i) segments_[i].physical = all.substr(spans_[i].first, spans_[i].second);
+  if (out.problem != record_problem::none) out.problem_source = segments_[problem_at].physical;
   out.text = joined_;
   return true;
 }

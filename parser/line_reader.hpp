@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 #include <vector>
+#include <utility>
 
 namespace twinpost {
 
@@ -39,10 +40,26 @@ class string_source : public byte_source {
   std::string_view text_;
 };
 
+/// Why a logical record cannot be read as it stands; the reader reports it and drops it.
+enum class record_problem : unsigned char {
+  none,
+  too_long,  ///< longer than max_record_bytes: only its start is kept, for the message
+  dangling,  ///< ends in a continuation `$` at the end of the input: the job is cut off
+};
+
+/// The longest logical record (a physical line, or lines joined by `$`), in bytes. Real CL
+/// records are a few hundred bytes; anything longer is not CL, and reading it whole would
+/// let one line without a newline take all memory.
+inline constexpr std::size_t max_record_bytes = 64 * 1024;
+
 /// A logical record: the data text of one or more physical lines.
 struct logical_record {
   std::string_view text;  ///< valid until the next call of line_reader::next
   int line = 0;           ///< first physical line (1-based)
+  record_problem problem = record_problem::none;
+  int problem_line = 0;    ///< the physical line the problem is at
+  int problem_column = 0;  ///< and its column (1-based)
+  std::string_view problem_source;  ///< that physical line (its start, when too long)
 };
 
 /// A physical position of an offset in the current logical record.
@@ -64,6 +81,18 @@ class line_reader {
   std::string_view peek(std::size_t n);
   /// Maps an offset of the current logical record to its physical line and column.
   source_position locate(std::size_t offset) const;
+  /// The column of `offset` in its physical line (locate's, without the search when the
+  /// record is one line, as nearly all are).
+  int column_of(std::size_t offset) const {
+    if (segments_.size() == 1) return static_cast<int>(offset) + 1;
+    return locate(offset).column;
+  }
+  /// Physical line `line` when it belongs to the current logical record, else empty.
+  std::string_view physical_line(int line) const {
+    for (const segment& s : segments_)
+      if (s.line == line) return s.physical;
+    return {};
+  }
   /// Bytes consumed so far.
   std::size_t bytes_read() const { return consumed_; }
 
@@ -76,6 +105,8 @@ class line_reader {
   };
   bool fill();
   bool next_physical(std::string_view& line);
+  /// Drops the rest of an over-long physical line, up to and including its newline.
+  void skip_rest_of_line();
 
   byte_source& src_;
   std::vector<char> buf_;
@@ -84,8 +115,11 @@ class line_reader {
   int line_no_ = 0;
   std::size_t consumed_ = 0;
   std::string joined_;                 // logical text of a continued record
-  std::vector<std::string> physical_;  // owned copies of a continued record's lines
+  std::string physical_;  // owned copies of a continued record's lines, one after another
+  std::vector<std::pair<std::size_t, std::size_t>> spans_;  // where each line is in physical_
   std::vector<segment> segments_;
+  bool overlong_ = false;     // the physical line just read was cut at max_record_bytes
+  std::string overlong_head_; // its first bytes, kept for the diagnostic
 };
 
 }  // namespace twinpost

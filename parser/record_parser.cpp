@@ -3,6 +3,7 @@
 #include <cctype>
 #include <fmt/format.h>
 
+#include "parser/detail/bad_number.hpp"
 #include "parser/detail/fast_record.hpp"
 #include "parser/detail/grammar.hpp"
 
@@ -17,9 +18,14 @@ bool is_blank(char c) { return c == ' ' || c == '\t'; }
 // The token at `p` for a message: a run up to the next blank, comma or slash. Control and
 // non-ASCII bytes are written as \xHH so that a message is always plain ASCII.
 // With `one_byte` only the byte at `p` (an unexpected character is shown alone).
-std::string token_at(std::string_view text, std::size_t p, bool one_byte = false) {
+std::size_t token_end(std::string_view text, std::size_t p) {
   std::size_t e = p;
-  while (!one_byte && e < text.size() && !is_blank(text[e]) && text[e] != ',' && text[e] != '/') ++e;
+  while (e < text.size() && !is_blank(text[e]) && text[e] != ',' && text[e] != '/') ++e;
+  return e;
+}
+
+std::string token_at(std::string_view text, std::size_t p, bool one_byte = false) {
+  std::size_t e = one_byte ? p : token_end(text, p);
   if (e == p) e = p + 1;
   std::string out;
   for (unsigned char c : text.substr(p, e - p)) {
@@ -54,6 +60,8 @@ record_error describe_stop(std::string_view text, const cl_record& rec, std::siz
                           text.find_first_of("/,", major_end) >= p;
   if (after_major_only)
     return {p, fmt::format("expected '/' after '{}', found '{}'", rec.major, tok)};
+  if (auto message = detail::bad_number_message(text.substr(p, token_end(text, p) - p)))
+    return {p, std::move(*message)};
   char c = text[p];
   if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-' || c == '+')
     return {p, fmt::format("expected ',' between arguments, found '{}'", tok)};
@@ -87,7 +95,8 @@ bool parse_record_with_grammar(std::string_view text, cl_record& out, record_err
   if (ok && out.kind == record_kind::coordinates) {
     for (const cl_arg& a : out.args) {
       if (a.kind == arg_kind::word) {
-        err = {a.offset, fmt::format("expected a number in a coordinate line, found '{}'", a.word)};
+        if (auto message = detail::bad_number_message(a.word)) err = {a.offset, std::move(*message)};
+        else err = {a.offset, fmt::format("expected a number in a coordinate line, found '{}'", a.word)};
         return false;
       }
     }

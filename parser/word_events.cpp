@@ -1,5 +1,8 @@
 #include "parser/detail/word_events.hpp"
 
+#include "parser/detail/bad_number.hpp"
+
+#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -35,8 +38,10 @@ struct arg_use {
   }
   double take(std::size_t i) {
     used[i] = true;
+    taken = i;
     return r.args[i].number;
   }
+  std::size_t taken = 0;  // the argument taken last
   // The first free number, if any.
   std::optional<double> first_free_number() {
     for (std::size_t i = 0; i < r.args.size(); ++i)
@@ -55,6 +60,17 @@ struct arg_use {
 };
 
 }  // namespace
+
+bool report_bad_number(const cl_record& r, build_issues& issues) {
+  for (const cl_arg& a : r.args) {
+    if (a.kind != arg_kind::word) continue;
+    if (auto message = bad_number_message(a.word)) {
+      issues.push_back({severity::error, a.offset, std::move(*message)});
+      return true;
+    }
+  }
+  return false;
+}
 
 int as_int(double v) {
   constexpr double lo = std::numeric_limits<int>::min();
@@ -251,6 +267,26 @@ std::optional<aux_event> read_aux(const cl_record& r, bool prefun, build_issues&
   return e;
 }
 
+namespace {
+
+// A tool or offset number: a whole number that fits an int, else an error at its argument
+// (a silent cast would call a tool nobody asked for).
+bool whole_number(const cl_record& r, std::size_t arg, std::string_view what, int& out, build_issues& issues) {
+  const double v = r.args[arg].number;
+  std::string problem;
+  if (v != std::floor(v)) problem = "is not a whole number";
+  else if (v < 0 || v > std::numeric_limits<int>::max()) problem = "is out of range";
+  if (problem.empty()) {
+    out = static_cast<int>(v);
+    return true;
+  }
+  issues.push_back({severity::error, r.args[arg].offset,
+                    fmt::format("{} {} {} {}", upper(r.major), what, format_number(v), problem)});
+  return false;
+}
+
+}  // namespace
+
 std::optional<tool_event> read_tool(const cl_record& r, tool_source source, build_issues& issues) {
   tool_event e;
   e.source = source;
@@ -262,7 +298,11 @@ std::optional<tool_event> read_tool(const cl_record& r, tool_source source, buil
     if (word_is(w, "TOOL")) use.used[i] = true;  // LOAD/TOOL, SELECT/TOOL
     else if (word_is(w, "ADJUST") || word_is(w, "OSETNO") || word_is(w, "OFFSET")) {
       use.used[i] = true;
-      if (auto v = use.value_after(i)) e.offset = as_int(*v);
+      if (use.value_after(i)) {
+        int n = 0;
+        if (!whole_number(r, use.taken, "offset number", n, issues)) return std::nullopt;
+        e.offset = n;
+      }
     }
   }
   auto tool = use.first_free_number();
@@ -271,9 +311,13 @@ std::optional<tool_event> read_tool(const cl_record& r, tool_source source, buil
     issues.push_back({severity::error, at, fmt::format("{} needs a tool number", upper(r.major))});
     return std::nullopt;
   }
-  e.tool = as_int(*tool);
+  if (!whole_number(r, use.taken, "tool number", e.tool, issues)) return std::nullopt;
   if (!e.offset) {
-    if (auto v = use.first_free_number()) e.offset = as_int(*v);
+    if (use.first_free_number()) {
+      int n = 0;
+      if (!whole_number(r, use.taken, "offset number", n, issues)) return std::nullopt;
+      e.offset = n;
+    }
   }
   // TURRET/tool,offset,xshift,yshift: the shifts are tool data, not errors.
   if (source == tool_source::turret)

@@ -131,9 +131,9 @@ TEST_CASE("the arc ends with its GOTO record; the next GOTO is straight", "[pars
 }
 
 TEST_CASE("a CIRCLE with no end point is an error at the end of input", "[parser][motion]") {
-  auto r = read_cl("GOTO/10,0,0\nCIRCLE/0,0,0,10\nFINI\n", dialect::generic);
+  auto r = read_cl("GOTO/10,0,0\n  CIRCLE/0,0,0,10\nFINI\n", dialect::generic);
   CHECK(r.events == lines{"1\tgoto x=10 y=0 z=0", "3\tend word=FINI"});
-  CHECK(r.diagnostics == "t.cl:2: error: CIRCLE has no end point\n");
+  CHECK(r.diagnostics == "t.cl:2:3: error: CIRCLE has no end point\n");
 }
 
 TEST_CASE("CIRCLE with a wrong number of values", "[parser][motion]") {

@@ -227,7 +227,7 @@ TEST_CASE("an unknown major word is passed through with a warning", "[parser][wo
   CHECK(r.events == lines{"1\tpassthrough major=FOO args=1,BAR unknown",
                           "2\tpassthrough major=PAINT args=COLOR,186"});
   CHECK(r.diagnostics ==
-        "t.cl:1:1: warning: unknown major word 'FOO' passed through\n"
+        "t.cl:1:1: warning: unknown major word 'FOO' (a post stops here with an error)\n"
         "FOO/1,BAR\n"
         "^\n");
   CHECK(r.warnings == 1);

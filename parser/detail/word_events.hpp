@@ -28,6 +28,15 @@ std::optional<sync_event> read_synctr(const cl_record& r, int& last_marker, buil
 /// MANUSpost `$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=n`, if it is one.
 std::optional<sync_event> read_manus_sync(std::string_view comment_text);
 
+/// Reports the first argument that was meant as a number but is none (`1e999`: number out
+/// of range, `1e`: malformed number, `nan`, `inf`: not a number); true when there was one.
+bool report_bad_number(const cl_record& r, build_issues& issues);
+/// report_bad_number, without a call for the common record that has no word at all.
+inline bool has_bad_number(const cl_record& r, build_issues& issues) {
+  for (const cl_arg& a : r.args)
+    if (a.kind == arg_kind::word) return report_bad_number(r, issues);
+  return false;
+}
 /// The record's numbers, in order.
 std::vector<double> numbers_of(const cl_record& r);
 /// The record's arguments as written, joined with ','.
