@@ -6,6 +6,8 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <mutex>
+#include <set>
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -24,6 +26,22 @@ constexpr std::string_view stage_prefix = ".twinpost-";
 constexpr int make_attempts = 8;  // another run may remove a folder we are about to use
 
 std::atomic<unsigned> stage_counter{0};  // several posts may run in one process
+
+// The stages of this process's posts in progress: a stage with this process's pid that is
+// not among them was left by a dead process that had the same pid.
+std::mutex live_mutex;
+std::set<std::string> live_stages;
+
+bool is_live_stage(const std::string& path) {
+  std::lock_guard<std::mutex> hold(live_mutex);
+  return live_stages.count(path) > 0;
+}
+
+void set_live(const std::string& path, bool live) {
+  std::lock_guard<std::mutex> hold(live_mutex);
+  if (live) live_stages.insert(path);
+  else live_stages.erase(path);
+}
 
 std::string join(const std::string& dir, const std::string& name) { return (fs::path(dir) / name).string(); }
 
@@ -70,7 +88,7 @@ void remove_dead_stages(const std::string& out) {
     const std::string name = it->path().filename().string();
     const pid_t pid = stage_pid(name);
     if (pid <= 0) continue;
-    const bool dead = pid == ::getpid() ? !is_registered_stage(it->path().string())
+    const bool dead = pid == ::getpid() ? !is_live_stage(it->path().string())
                                         : ::kill(pid, 0) != 0 && errno == ESRCH;
     std::error_code rm;
     if (dead) fs::remove_all(it->path(), rm);
@@ -107,6 +125,7 @@ void output_stage::make_stage() {
       fail("cannot write in", out_, errno);
     }
     std::sort(made_.begin(), made_.end(), [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
+    set_live(stage_, true);
     slot_ = register_temp_dirs(stage_, made_);
     return;
   }
@@ -122,6 +141,7 @@ output_stage::~output_stage() {
     for (auto it = made_.rbegin(); it != made_.rend(); ++it) ::rmdir(it->c_str());  // only if empty
   }
   unregister_temp_dirs(slot_);
+  set_live(stage_, false);
 }
 
 std::vector<std::string> output_stage::commit(const std::vector<staged_file>& files) {

@@ -212,7 +212,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   if (!check.diagnostics.empty()) {
     std::vector<std::vector<int>> wait_lines;
     for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
-    for (diagnostic& d : sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines))
+    for (diagnostic& d : sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line))
       sink.report(std::move(d));
   }
   if (!check.ok) return sum;

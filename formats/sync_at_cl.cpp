@@ -54,7 +54,8 @@ std::string rewrite(const std::string& message, const std::map<std::string, std:
 std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& found,
                                                const std::vector<nc_source>& files, const machine& m,
                                                const std::string& cl_path,
-                                               const std::vector<std::vector<int>>& wait_cl_lines) {
+                                               const std::vector<std::vector<int>>& wait_cl_lines,
+                                               int cl_last_line) {
   // The programs are read again only here, when something was found.
   diagnostic_list ignored;
   const nc_programs programs = read_nc_programs(files, m, ignored);
@@ -71,6 +72,10 @@ std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& fo
     places[nc] = place(cl_path, line);
     sources[line];
   }
+  // "channel 2 ends at ..." names the end of a program: the end of the job.
+  if (cl_last_line > 0)
+    for (const nc_channel_program& p : programs.channels)
+      if (p.end.line > 0) places.emplace(place(p.end.file, p.end.line), place(cl_path, cl_last_line));
   read_lines(cl_path, sources);
   std::vector<diagnostic> out;
   for (const diagnostic& d : found) {

@@ -15,10 +15,12 @@
 namespace twinpost {
 
 /// `found` (the checker's diagnostics on `files`) moved to the CL file `cl_path`.
-/// `wait_cl_lines[c]`: the CL line of each wait block channel c+1 wrote, in order.
+/// `wait_cl_lines[c]`: the CL line of each wait block channel c+1 wrote, in order;
+/// `cl_last_line`: the job's last record, where every channel's program ends.
 std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& found,
                                                const std::vector<nc_source>& files, const machine& m,
                                                const std::string& cl_path,
-                                               const std::vector<std::vector<int>>& wait_cl_lines);
+                                               const std::vector<std::vector<int>>& wait_cl_lines,
+                                               int cl_last_line);
 
 }  // namespace twinpost

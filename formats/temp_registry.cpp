@@ -78,12 +78,6 @@ void unregister_temp_dirs(int slot_index) {
   if (slot_index >= 0 && slot_index < slot_count) slots[slot_index].state.store(free_slot);
 }
 
-bool is_registered_stage(const std::string& path) {
-  for (const slot& s : slots)
-    if (s.state.load() == ready && path == s.text) return true;
-  return false;
-}
-
 void remove_registered_temp_dirs() noexcept {
   for (slot& s : slots) {
     if (s.state.load() != ready) continue;

@@ -17,9 +17,6 @@ int register_temp_dirs(const std::string& stage, const std::vector<std::string>&
 /// Forgets a slot (the run committed or cleaned up itself).
 void unregister_temp_dirs(int slot);
 
-/// True when `path` is the staging folder of a registered (live) run of this process.
-bool is_registered_stage(const std::string& path);
-
 /// Async-signal-safe: removes every registered staging folder with its files, then the
 /// registered made folders that are empty, deepest first. Safe to call from a signal handler.
 void remove_registered_temp_dirs() noexcept;

@@ -185,14 +185,16 @@ TEST_CASE("stages of dead runs are removed by the next post, those of live runs 
   fs::remove_all(dir);
 }
 
-TEST_CASE("a post interrupted by SIGTERM leaves the folder as it was and dies of the signal", "[post][commit]") {
+TEST_CASE("a post interrupted by SIGTERM, SIGINT or SIGHUP leaves the folder as it was and dies of the signal", "[post][commit]") {
   const std::string dir = test::fresh_temp_dir("commit-sigterm");
   const machine m = load_machine("fanuc-0itd-twin");
   REQUIRE(test::write_file(dir + "/big.cls", test::race_job('B', 70000)));
   diagnostic_list d;
   REQUIRE(test::post_text(dir, "a.cls", test::race_job('A'), m, dir + "/out", d).ok);
   const std::string old_one = test::read_file(dir + "/out/RACE_1.nc");
-  for (const std::string& out : {dir + "/out", dir + "/new/a/b"}) {
+  const std::pair<std::string, int> runs[] = {
+      {dir + "/out", SIGTERM}, {dir + "/new/a/b", SIGTERM}, {dir + "/out", SIGINT}, {dir + "/new/a/b", SIGHUP}};
+  for (const auto& [out, sig] : runs) {
     const pid_t child = ::fork();
     REQUIRE(child >= 0);
     if (child == 0) {
@@ -201,7 +203,7 @@ TEST_CASE("a post interrupted by SIGTERM leaves the folder as it was and dies of
       post_options o;
       o.cl_path = dir + "/big.cls";
       o.out_dir = out;
-      o.progress = [](std::size_t) { ::raise(SIGTERM); };
+      o.progress = [sig = sig](std::size_t) { ::raise(sig); };
       diagnostic_list own;
       try {
         post_job(o, m, own);
@@ -211,8 +213,9 @@ TEST_CASE("a post interrupted by SIGTERM leaves the folder as it was and dies of
     }
     int status = 0;
     REQUIRE(::waitpid(child, &status, 0) == child);
+    INFO("signal " << sig << " into " << out);
     CHECK(WIFSIGNALED(status));
-    CHECK(WTERMSIG(status) == SIGTERM);
+    CHECK(WTERMSIG(status) == sig);
   }
   CHECK(test::list_dir(dir + "/out") == "RACE_1.nc RACE_2.nc");
   CHECK(test::read_file(dir + "/out/RACE_1.nc") == old_one);
