@@ -374,7 +374,10 @@ class reader {
       }
       settle();  // the buffer is read over next
     }
-    if (!carry.empty()) on_line(++no, carry, false);
+    if (!carry.empty()) {  // a last line without a line end
+      on_line(++no, carry, false);
+      settle();  // before `carry` goes
+    }
   }
 
   void report(severity level, nc_place at, std::string message) {

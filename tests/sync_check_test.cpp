@@ -2,8 +2,12 @@
 // channels/sync_report_format.hpp). Messages are asserted to the letter.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
+#include <filesystem>
+
 #include "channels/sync_check.hpp"
 #include "channels/sync_report_format.hpp"
+#include "file_test_support.hpp"
 
 using namespace twinpost;
 
@@ -337,4 +341,29 @@ TEST_CASE("the compact check says what the full reading says", "[check]") {
     CHECK(format_sync_text(compact) == format_sync_text(full));
     CHECK(format_sync_json(compact) == format_sync_json(full));
   }
+}
+
+TEST_CASE("a streamed file whose last line has no line end", "[check]") {
+  // The last line is read into the reader's carry-over buffer; the channel's end must be
+  // copied out of it before the buffer goes (ASan: use after scope). Short and long lines:
+  // one fits in the string itself, the other lives on the heap.
+  std::string dir = (std::filesystem::temp_directory_path() / "twinpost-noeol-XXXXXX").string();
+  REQUIRE(::mkdtemp(dir.data()) != nullptr);
+  REQUIRE(test::write_file(dir + "/a.nc", "M100\nG1 X10."));
+  REQUIRE(test::write_file(dir + "/b.nc", "M100\nG1 X10. Z-5. F0.2 S1200 T0101"));
+  REQUIRE(test::write_file(dir + "/c.nc", "M100\nM101\n"));
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs(
+      {{"a.nc", {}, dir + "/a.nc"}, {"b.nc", {}, dir + "/b.nc"}}, fanuc2(), d);
+  CHECK(p.channels[0].end.source_line == "G1 X10.");
+  CHECK(p.channels[0].end.line == 2);
+  CHECK(p.channels[1].end.source_line == "G1 X10. Z-5. F0.2 S1200 T0101");
+  CHECK(p.channels[1].end.line == 2);
+  CHECK(format_sync_text(check_nc_files(
+            {{"a.nc", {}, dir + "/a.nc"}, {"c.nc", {}, dir + "/c.nc"}}, fanuc2())) ==
+        "c.nc:2:1: error: wait M101 of channel 2 is never met: channel 1 ends at a.nc:2 without "
+        "a matching wait\n"
+        "M101\n^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
+  std::filesystem::remove_all(dir);
 }
