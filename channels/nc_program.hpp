@@ -13,7 +13,9 @@
 // A wait is a word of address machine.waits.address whose code satisfies
 // machine.waits.is_wait_code(). The reader judges syntax and layout only; the rules
 // (partner lists, pairing, deadlocks) are the checker's.
+#include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,6 +31,9 @@ struct nc_source {
   std::string name;
   std::string text;
   std::string path = {};  ///< when set, the file is streamed from here and `text` is ignored
+  /// When set, the file is streamed from this copy (from its start, each time it is read)
+  /// instead of `path`: see channels/nc_input.hpp, for inputs that can be read only once.
+  std::shared_ptr<std::FILE> copy = {};
 };
 
 /// A place in an NC file.
