@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
 
@@ -321,4 +322,29 @@ TEST_CASE("streamed and in-memory reading agree, runs of plain blocks included",
   REQUIRE(memory.channels[0].waits.size() > 1000);
   CHECK(memory.channels[0].end.source_line == "G1 X1. Z1.");
   CHECK(summary(disk, from_disk) == summary(memory, from_memory));
+}
+
+TEST_CASE("a line past 1 MiB ends the reading of its file, from disk and from memory", "[check]") {
+  // A line without a line end (a file of NULs) would otherwise be held whole in memory.
+  std::string dir = (std::filesystem::temp_directory_path() / "twinpost-longline-XXXXXX").string();
+  REQUIRE(::mkdtemp(dir.data()) != nullptr);
+  const std::string too_long = "M100\n" + std::string(2u << 20, '\0') + "\nM101\n";
+  const std::string longest = "M100\n" + std::string(1u << 20, 'X') + "\nM101\n";
+  REQUIRE(test::write_file(dir + "/long.nc", too_long));
+  REQUIRE(test::write_file(dir + "/ok.nc", longest));
+  const machine m = two_channels(100, 103, "");
+  const std::string error =
+      "a.nc:2:1048577: error: line 2 is longer than 1048576 bytes: no NC block is that long; "
+      "the rest of the file is not read\n";
+  diagnostic_list disk, memory, fits;
+  const nc_programs p = read_nc_programs({{"a.nc", {}, dir + "/long.nc"}, {"b.nc", "M100\n"}}, m, disk);
+  const nc_programs q = read_nc_programs({{"a.nc", too_long}, {"b.nc", "M100\n"}}, m, memory);
+  const nc_programs r = read_nc_programs({{"a.nc", {}, dir + "/ok.nc"}, {"b.nc", "M100\n"}}, m, fits);
+  std::filesystem::remove_all(dir);
+  CHECK(messages(disk) == error);
+  CHECK(messages(memory) == error);
+  CHECK(p.channels[0].waits.size() == 1);
+  CHECK(q.channels[0].waits.size() == 1);
+  CHECK(messages(fits) == "");
+  CHECK(r.channels[0].waits.size() == 2);
 }
