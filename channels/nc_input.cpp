@@ -26,11 +26,22 @@ std::shared_ptr<std::FILE> copy_once(const std::string& path) {
     cannot_read(path, fmt::format("no temporary file to copy it into ({})", std::strerror(errno)));
   constexpr std::size_t chunk_bytes = 1 << 16;
   auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);
-  std::size_t n;
-  while ((n = std::fread(buf.get(), 1, chunk_bytes, in.get())) > 0)
+  std::size_t n, line = 0;  // bytes since the last line end
+  bool too_long = false;
+  while (!too_long && (n = std::fread(buf.get(), 1, chunk_bytes, in.get())) > 0) {
+    // The reader stops at a line past its limit: so does the copy (/dev/zero ends here).
+    for (std::size_t i = 0; i < n; ++i) {
+      line = buf[i] == '\n' || buf[i] == '\r' ? 0 : line + 1;
+      if (line > nc_max_line_bytes) {
+        n = i + 1;
+        too_long = true;
+        break;
+      }
+    }
     if (std::fwrite(buf.get(), 1, n, out.get()) != n)
       cannot_read(path, fmt::format("cannot copy it to a temporary file ({})", std::strerror(errno)));
-  if (std::ferror(in.get())) cannot_read(path, std::strerror(errno));
+  }
+  if (!too_long && std::ferror(in.get())) cannot_read(path, std::strerror(errno));
   if (std::fflush(out.get()) != 0)
     cannot_read(path, fmt::format("cannot copy it to a temporary file ({})", std::strerror(errno)));
   return out;

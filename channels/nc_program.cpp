@@ -16,10 +16,6 @@ namespace twinpost {
 
 namespace {
 
-// No control reads a block anywhere near this long: a longer line is not NC text (a
-// binary file, a line of NULs), and reading it whole would hold it all in memory.
-constexpr std::size_t max_line_bytes = 1 << 20;
-
 bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
@@ -292,7 +288,7 @@ class reader {
     while (pos < text.size()) {
       // Lines end in LF, CR LF or a lone CR (old controls' tapes).
       const std::size_t eol = std::min(line_end(text, pos), text.size());
-      if (eol - pos > max_line_bytes) return too_long(f, no + 1);
+      if (eol - pos > nc_max_line_bytes) return too_long(f, no + 1);
       const std::string_view line = text.substr(pos, eol - pos);
       pos = eol + 1;
       if (eol < text.size() && text[eol] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
@@ -301,13 +297,13 @@ class reader {
     settle();
   }
 
-  // A line past max_line_bytes ends the reading of its file (memory stays bounded).
+  // A line past nc_max_line_bytes ends the reading of its file (memory stays bounded).
   void too_long(const nc_source& f, int no) {
     settle();  // the views noted so far still point into live text
-    report(severity::error, {f.name, no, static_cast<int>(max_line_bytes) + 1, {}},
+    report(severity::error, {f.name, no, static_cast<int>(nc_max_line_bytes) + 1, {}},
            fmt::format("line {} is longer than {} bytes: no NC block is that long; the rest of "
                        "the file is not read",
-                       no, max_line_bytes));
+                       no, nc_max_line_bytes));
   }
 
   // The first CR or LF at or after `pos` (memchr twice beats find_first_of on long text).
@@ -395,7 +391,7 @@ class reader {
         }
         std::size_t eol = line_end(chunk, pos);
         const std::size_t len = (eol == std::string_view::npos ? chunk.size() : eol) - pos;
-        if (carry.size() + len > max_line_bytes) return too_long(f, no + 1);
+        if (carry.size() + len > nc_max_line_bytes) return too_long(f, no + 1);
         if (eol == std::string_view::npos) {
           carry.append(chunk.substr(pos));
           break;

@@ -125,3 +125,15 @@ TEST_CASE("inputs that cannot be read are named", "[check]") {
   CHECK(error_of({{"x", {}, dir.path + "/none.nc"}}) ==
         "twinpost: error: cannot read '" + dir.path + "/none.nc': No such file or directory");
 }
+
+TEST_CASE("an endless input without line ends is copied only up to the reader's limit", "[check]") {
+  // /dev/zero is a device: copied once, and only until its first line passes 1 MiB, where
+  // the reader stops too. Without that the copy would fill the disk.
+  CHECK(format_sync_text(check_nc_files({{"zero", {}, "/dev/zero"}, {"b.nc", "M100\n"}}, fanuc2())) ==
+        "zero:1:1048577: error: line 1 is longer than 1048576 bytes: no NC block is that long; "
+        "the rest of the file is not read\n"
+        "zero: error: no NC block in this file: channel 1 has no program\n"
+        "b.nc:1:1: error: wait M100 of channel 2 is never met: channel 1 has no program\n"
+        "M100\n^\n"
+        "check: 2 channels, 0 waits paired, 3 errors\n");
+}
