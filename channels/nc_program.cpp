@@ -189,14 +189,18 @@ class reader {
       any_marker = true;
       current = c;
       if (c > static_cast<int>(out_.channels.size())) {
-        report(severity::error, {f.name, no, 1, std::string(line)},
-               fmt::format("section for channel {}, which this machine does not have", c));
+        std::string written = by_dollar ? "${channel}" : m_.program.section_marker;
+        written.replace(written.find("{channel}"), 9, std::to_string(c));
+        report(severity::error, {f.name, no, marker_column(line, mk), std::string(line)},
+               fmt::format("section marker {} opens a section for channel {}, which this "
+                           "machine does not have",
+                           written, c));
         current = -1;
         return;
       }
       if (c > 0) {
         channel_state& st = state_[static_cast<std::size_t>(c - 1)];
-        if (!st.has_section) st.marker = {f.name, no, 1, std::string(line)};
+        if (!st.has_section) st.marker = {f.name, no, marker_column(line, mk), std::string(line)};
         st.has_section = true;
       }
       // The marker block may carry more words (T0101): only those make it a block.
@@ -415,7 +419,7 @@ class reader {
     }
     // A read error (EIO, a directory) must not pass for the end of the program.
     if (std::ferror(file))
-      throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", f.name,
+      throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", f.path,
                                      std::strerror(errno)));
     if (!carry.empty()) {  // a last line without a line end
       on_line(++no, carry, false);
@@ -560,6 +564,18 @@ class reader {
     int words = 0;
     for (const nc_word& w : split_nc_words(line)) words += marker_words < 0 || w.address != 'N';
     st.has_block = words > std::max(marker_words, 0);
+  }
+
+  // The column where a marker starts in its line: after blanks and a sequence number.
+  static int marker_column(std::string_view line, const marker_pattern& mk) {
+    std::size_t i = line.find_first_not_of(" \t");
+    if (i == std::string_view::npos) return 1;
+    if ((line[i] == 'N' || line[i] == 'n') && !(mk.active && mk.prefix[0] == 'N') &&
+        i + 1 < line.size() && is_digit(line[i + 1])) {
+      for (++i; i < line.size() && is_digit(line[i]);) ++i;
+      i = std::min(line.find_first_not_of(" \t", i), line.size() - 1);
+    }
+    return static_cast<int>(i) + 1;
   }
 
   // How many words a section marker template has of its own ("G109 L{channel}": 2).

@@ -190,7 +190,8 @@ TEST_CASE("layout problems are reported", "[check]") {
   diagnostic_list missing;
   read_nc_programs({{"m.eia", "G109 L1\nM950\nG109 L3\nM950\n"}}, mazak(), missing);
   CHECK(messages(missing) ==
-        "m.eia:3:1: error: section for channel 3, which this machine does not have\n"
+        "m.eia:3:1: error: section marker G109 L3 opens a section for channel 3, which this "
+        "machine does not have\n"
         "G109 L3\n^\n"
         "m.eia: error: no section for channel 2 (G109 L2) in this file\n");
 
@@ -199,6 +200,18 @@ TEST_CASE("layout problems are reported", "[check]") {
   CHECK(messages(unmarked) ==
         "u.nc: error: this machine has 2 channels but one file was given, and its programs "
         "have no section markers: give one file per channel\n");
+}
+
+TEST_CASE("a marker of an unknown channel is named, and pointed at past its N number", "[check]") {
+  diagnostic_list d;
+  read_nc_programs({{"m.eia", "G109 L1\nM950\nG109 L2\nM950\n  N20 G109 L3\n$4\n"}}, mazak(), d);
+  CHECK(messages(d) ==
+        "m.eia:5:7: error: section marker G109 L3 opens a section for channel 3, which this "
+        "machine does not have\n"
+        "  N20 G109 L3\n      ^\n"
+        "m.eia:6:1: error: section marker $4 opens a section for channel 4, which this machine "
+        "does not have\n"
+        "$4\n^\n");
 }
 
 TEST_CASE("waits after the end, two waits in a block, expressions", "[check]") {
