@@ -331,6 +331,8 @@ TEST_CASE("the compact check says what the full reading says", "[check]") {
       {"no partner list on 3 paths", fanuc3(), {{"1", "M100\nM30\n"}, {"2", "M100\nM30\n"}, {"3", "M30\n"}}},
       {"reading problem", fanuc2(), {{"a", "M100 M101\nM30\n"}, {"b", "M100\nM30\n"}}},
       {"no markers", mazak(), {{"p", "M950\nM30\n"}}},
+      {"empty program", fanuc2(), {{"a", "M100\nM30\n"}, {"b", "%\n(NONE)\n%\n"}}},
+      {"empty section", mazak(), {{"p", "G109 L1\nM950\nM30\nG109 L2\n"}}},
   };
   for (const job& j : jobs) {
     INFO(j.what);
