@@ -1,6 +1,7 @@
 #include "channels/nc_program.hpp"
 
 #include <array>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -156,9 +157,14 @@ class reader {
   /// Reads a whole file as the program of `channel` (split layout).
   void read_split(const nc_source& f, int channel) {
     out_.channels[static_cast<std::size_t>(channel - 1)].file = f.name;
-    // Runs of plain blocks may be skipped: only the last of a run matters here.
+    channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
+    // Runs of plain blocks may be skipped: only the last of a run matters here, once the
+    // channel is known to have a block at all (until then every line is looked at).
     for_each_line(f, [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); },
-                  true);
+                  &st.has_block);
+    if (!st.has_block)
+      report(severity::error, {f.name, 0, 0, {}},
+             fmt::format("no NC block in this file: channel {} has no program", channel));
   }
 
   /// Reads a file with section markers (merged layouts).
@@ -171,23 +177,34 @@ class reader {
     // Without any marker every wait would be "outside the sections": say the one thing.
     // One pass: the warnings about waits outside the sections wait until a marker is seen.
     bool any_marker = false, dollar_seen = false;
+    const int mk_words = mk.active ? marker_words(m_.program.section_marker) : 0;
     deferred_.clear();
     deferring_ = true;
     int current = 0;  // 0: common blocks or a data section; -1: an unknown channel's section
     for_each_line(f, [&](int no, std::string_view line, bool plain) {
       int c = mk.active ? marker_channel(mk, line) : -1;
-      if (c < 0 && (c = marker_channel(dollar, line)) >= 0) dollar_seen = true;
+      const bool by_dollar = c < 0 && (c = marker_channel(dollar, line)) >= 0;
+      dollar_seen = dollar_seen || by_dollar;
       if (c < 0) return read_line(f, no, line, current, plain);
       any_marker = true;
       current = c;
       if (c > static_cast<int>(out_.channels.size())) {
-        report(severity::error, {f.name, no, 1, std::string(line)},
-               fmt::format("section for channel {}, which this machine does not have", c));
+        std::string written = by_dollar ? "${channel}" : m_.program.section_marker;
+        written.replace(written.find("{channel}"), 9, std::to_string(c));
+        report(severity::error, {f.name, no, marker_column(line, mk), std::string(line)},
+               fmt::format("section marker {} opens a section for channel {}, which this "
+                           "machine does not have",
+                           written, c));
         current = -1;
         return;
       }
-      if (c > 0) state_[static_cast<std::size_t>(c - 1)].has_section = true;
-      read_line(f, no, line, current, false);  // the marker block may carry more words (T0101)
+      if (c > 0) {
+        channel_state& st = state_[static_cast<std::size_t>(c - 1)];
+        if (!st.has_section) st.marker = {f.name, no, marker_column(line, mk), std::string(line)};
+        st.has_section = true;
+      }
+      // The marker block may carry more words (T0101): only those make it a block.
+      read_line(f, no, line, current, false, by_dollar ? 0 : mk_words);
     });
     deferring_ = false;
     if (!any_marker) {
@@ -207,6 +224,11 @@ class reader {
     for (diagnostic& d : deferred_) sink_.report(std::move(d));
     deferred_.clear();
     for (std::size_t i = 0; i < state_.size(); ++i) {
+      if (state_[i].has_section && !state_[i].has_block)
+        report(severity::error, state_[i].marker,
+               fmt::format("no NC block in the section for channel {}: channel {} has no "
+                           "program",
+                           i + 1, i + 1));
       if (state_[i].has_section) continue;
       // Name the marker in the form the file uses: the machine's, or `$n`.
       std::string marker = mk.active && !dollar_seen ? m_.program.section_marker : "${channel}";
@@ -229,6 +251,8 @@ class reader {
  private:
   struct channel_state {
     bool has_section = false;
+    nc_place marker;         // the first marker line of the channel's sections
+    bool has_block = false;  // a block with a word (not a marker, comment or '%')
     bool ended = false;
     // The last block read. A plain block is only noted as a view into the line buffer
     // (`pending`), and copied when the buffer moves on: most blocks are plain.
@@ -253,13 +277,12 @@ class reader {
 
   // Calls on_line for every line; lines are views that stay valid until settle() is called
   // (at the end of each chunk read from disk, and at the end).
-  // `runs`: a run of plain blocks may be handed on as its last block alone (line numbers
-  // still count them all); for callers that look only at the last one.
+  // `runs`: while *runs is true, a run of plain blocks may be handed on as its last block
+  // alone (line numbers still count them all); for callers that look only at the last one.
   template <class F>
-  void for_each_line(const nc_source& f, F&& on_line, bool runs = false) {
-    if (!f.path.empty()) {
-      stream_lines(f.path, on_line, runs);
-      settle();
+  void for_each_line(const nc_source& f, F&& on_line, const bool* runs = nullptr) {
+    if (f.copy || !f.path.empty()) {
+      stream_lines(f, on_line, runs);
       return;
     }
     std::string_view text = f.text;
@@ -269,12 +292,22 @@ class reader {
     while (pos < text.size()) {
       // Lines end in LF, CR LF or a lone CR (old controls' tapes).
       const std::size_t eol = std::min(line_end(text, pos), text.size());
+      if (eol - pos > nc_max_line_bytes) return too_long(f, no + 1);
       const std::string_view line = text.substr(pos, eol - pos);
       pos = eol + 1;
       if (eol < text.size() && text[eol] == '\r' && pos < text.size() && text[pos] == '\n') ++pos;
       on_line(++no, line, false);
     }
     settle();
+  }
+
+  // A line past nc_max_line_bytes ends the reading of its file (memory stays bounded).
+  void too_long(const nc_source& f, int no) {
+    settle();  // the views noted so far still point into live text
+    report(severity::error, {f.name, no, static_cast<int>(nc_max_line_bytes) + 1, {}},
+           fmt::format("line {} is longer than {} bytes: no NC block is that long; the rest of "
+                       "the file is not read",
+                       no, nc_max_line_bytes));
   }
 
   // The first CR or LF at or after `pos` (memchr twice beats find_first_of on long text).
@@ -322,17 +355,25 @@ class reader {
   // The same lines as above, read from a file a megabyte at a time. Most lines are plain
   // blocks: one strcspn over the stop characters (the special ones, CR and LF; SSE4.2 in
   // glibc) finds the end of such a line and says it is plain in the same pass.
+  // Every line is settled before it returns: the last one may live in `carry`.
   template <class F>
-  void stream_lines(const std::string& path, F&& on_line, bool runs) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
+  void stream_lines(const nc_source& f, F&& on_line, const bool* runs) {
+    std::unique_ptr<std::FILE, int (*)(std::FILE*)> own(nullptr, &std::fclose);
+    std::FILE* file = f.copy.get();
+    if (file) {
+      std::rewind(file);
+    } else {
+      own.reset(std::fopen(f.path.c_str(), "rb"));
+      file = own.get();
+    }
+    if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", f.path));
     constexpr std::size_t chunk_bytes = 1 << 20;
     auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes + 1);  // + the NUL strcspn stops at
     std::string carry;
     int no = 0;
     bool first = true, skip_lf = false;
     std::size_t n;
-    while ((n = std::fread(buf.get(), 1, chunk_bytes, file.get())) > 0) {
+    while ((n = std::fread(buf.get(), 1, chunk_bytes, file)) > 0) {
       buf[n] = '\0';
       std::string_view chunk(buf.get(), n);
       if (first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
@@ -341,7 +382,7 @@ class reader {
       if (skip_lf && !chunk.empty() && chunk[0] == '\n') pos = 1;  // CR LF split by the chunk
       skip_lf = false;
       while (pos < chunk.size()) {
-        if (runs && carry.empty() && consume_run(chunk, pos, no, on_line)) continue;
+        if (runs && *runs && carry.empty() && consume_run(chunk, pos, no, on_line)) continue;
         if (carry.empty() && !is_blank(chunk[pos])) {
           // A line that reaches its LF with no stop character on the way, and does not start
           // blank, is a plain block (an embedded NUL stops strcspn too: the slow way then).
@@ -353,6 +394,8 @@ class reader {
           }
         }
         std::size_t eol = line_end(chunk, pos);
+        const std::size_t len = (eol == std::string_view::npos ? chunk.size() : eol) - pos;
+        if (carry.size() + len > nc_max_line_bytes) return too_long(f, no + 1);
         if (eol == std::string_view::npos) {
           carry.append(chunk.substr(pos));
           break;
@@ -374,7 +417,14 @@ class reader {
       }
       settle();  // the buffer is read over next
     }
-    if (!carry.empty()) on_line(++no, carry, false);
+    // A read error (EIO, a directory) must not pass for the end of the program.
+    if (std::ferror(file))
+      throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", f.path,
+                                     std::strerror(errno)));
+    if (!carry.empty()) {  // a last line without a line end
+      on_line(++no, carry, false);
+      settle();  // before `carry` goes
+    }
   }
 
   void report(severity level, nc_place at, std::string message) {
@@ -416,7 +466,11 @@ class reader {
 
   // `channel`: 1..n a channel, 0 common blocks or data, -1 an unknown channel's section.
   // `plain`: the caller knows the line is a plain block (see plain_block).
-  void read_line(const nc_source& f, int no, std::string_view line, int channel, bool plain) {
+  // `marker_words`: -1 for a line that is no section marker, else the number of words of
+  // the marker itself (G109 L1: 2; $1: 0), which do not make the line a block.
+  void read_line(const nc_source& f, int no, std::string_view line, int channel, bool plain,
+                 int marker_words = -1) {
+    if (channel > 0) note_block(state_[static_cast<std::size_t>(channel - 1)], line, marker_words);
     if (channel > 0 && (plain || plain_block(line))) {
       // A block with no M-word, comment or special character holds no wait and no end:
       // only remember it as the channel's last block. Most of a program is such blocks.
@@ -501,6 +555,36 @@ class reader {
       st.ended = true;
       prog.end = at(end->column);
     }
+  }
+
+  // Until a channel has a block, each of its lines is looked at for a word (a line of only
+  // comments, '%' or blanks is none; nor are a section marker's own words, or N numbers).
+  static void note_block(channel_state& st, std::string_view line, int marker_words) {
+    if (st.has_block) return;
+    int words = 0;
+    for (const nc_word& w : split_nc_words(line)) words += marker_words < 0 || w.address != 'N';
+    st.has_block = words > std::max(marker_words, 0);
+  }
+
+  // The column where a marker starts in its line: after blanks and a sequence number.
+  static int marker_column(std::string_view line, const marker_pattern& mk) {
+    std::size_t i = line.find_first_not_of(" \t");
+    if (i == std::string_view::npos) return 1;
+    if ((line[i] == 'N' || line[i] == 'n') && !(mk.active && mk.prefix[0] == 'N') &&
+        i + 1 < line.size() && is_digit(line[i + 1])) {
+      for (++i; i < line.size() && is_digit(line[i]);) ++i;
+      i = std::min(line.find_first_not_of(" \t", i), line.size() - 1);
+    }
+    return static_cast<int>(i) + 1;
+  }
+
+  // How many words a section marker template has of its own ("G109 L{channel}": 2).
+  static int marker_words(std::string marker) {
+    const std::size_t hole = marker.find("{channel}");
+    if (hole != std::string::npos) marker.replace(hole, 9, "1");
+    int words = 0;
+    for (const nc_word& w : split_nc_words(marker)) words += w.address != 'N';
+    return words;
   }
 
   // True for a non-blank line that can hold neither a wait nor an end code nor anything

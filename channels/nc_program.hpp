@@ -13,7 +13,10 @@
 // A wait is a word of address machine.waits.address whose code satisfies
 // machine.waits.is_wait_code(). The reader judges syntax and layout only; the rules
 // (partner lists, pairing, deadlocks) are the checker's.
+#include <cstddef>
+#include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,12 +26,20 @@
 
 namespace twinpost {
 
+/// The longest line the reader takes. No control reads a block anywhere near this long: a
+/// longer line is not NC text (a binary file, a line of NULs), and reading it whole would
+/// hold it all in memory. It is an error, and the rest of its file is not read.
+constexpr std::size_t nc_max_line_bytes = 1 << 20;
+
 /// One NC file: its name (used in messages) and its full text, or the path to read it
 /// from piece by piece (memory stays flat however long the program is).
 struct nc_source {
   std::string name;
   std::string text;
   std::string path = {};  ///< when set, the file is streamed from here and `text` is ignored
+  /// When set, the file is streamed from this copy (from its start, each time it is read)
+  /// instead of `path`: see channels/nc_input.hpp, for inputs that can be read only once.
+  std::shared_ptr<std::FILE> copy = {};
 };
 
 /// A place in an NC file.

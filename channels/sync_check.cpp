@@ -1,5 +1,7 @@
 #include "channels/sync_check.hpp"
 
+#include "channels/nc_input.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -69,8 +71,14 @@ class checker {
 
   sync_result run() {
     if (n_ > max_channels) {
-      report(severity::error, {}, 0,
-             fmt::format("{} channels: the checker handles at most {}", n_, max_channels));
+      // A machine file refuses this at load; a machine made in code is named by its source.
+      nc_place at;
+      at.file = !m_.source.empty()             ? m_.source
+                : !progs_.channels.empty()     ? progs_.channels[0].file
+                                               : m_.name;
+      report(severity::error, at, 0,
+             fmt::format("machine '{}' has {} channels: the checker handles at most {}",
+                         m_.name, n_, max_channels));
     } else {
       for (const nc_channel_program& c : progs_.channels) {
         sims_.emplace_back();
@@ -329,7 +337,9 @@ sync_result full_check(const std::vector<nc_source>& files, const machine& m) {
 
 }  // namespace
 
-sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m) {
+sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m) {
+  // Read twice below: a pipe or FIFO is copied once first (channels/nc_input.hpp).
+  const std::vector<nc_source> files = rereadable(given);
   // First the compact way: each wait is kept only as its 32-byte simulation entry, so a
   // sound program of any length is checked in memory that does not grow with its waits.
   // Anything at all to say (a reading problem, a wait that looks wrong, a channel that does

@@ -1,13 +1,15 @@
 #include "channels/wait_allocator.hpp"
 
+#include <cstdint>
 #include <string>
 
 namespace twinpost {
 
 std::optional<int> wait_allocator::next() {
+  if (rules_.step < 1) return std::nullopt;  // no grid: the loader refuses it
   for (int guard = 0; guard < 2; ++guard) {
     while (next_ <= rules_.last) {
-      int code = next_;
+      const int code = static_cast<int>(next_);
       next_ += rules_.step;
       if (rules_.is_wait_code(code)) {
         ++count_;
@@ -29,8 +31,8 @@ std::string partner_list(const std::vector<int>& channels, partner_style style) 
       return s;
     }
     case partner_style::binary: {
-      long mask = 0;
-      for (int c : channels) mask |= 1L << (c - 1);
+      std::uint64_t mask = 0;  // channel 64 is the top bit: a signed mask would go negative
+      for (int c : channels) mask |= std::uint64_t{1} << (c - 1);
       return std::to_string(mask);
     }
   }

@@ -19,7 +19,7 @@ class wait_allocator {
 
  private:
   const wait_rules& rules_;
-  int next_;
+  long long next_;  ///< may pass the end of an int: a range can end near INT_MAX
   int count_ = 0;
 };
 

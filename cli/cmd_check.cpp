@@ -27,10 +27,16 @@ const char* const check_usage =
     "Exit status: 0 sound, 1 problems found, 2 usage or configuration error.\n"
     "\n";
 
-/// True when `path` is a regular file that opens for reading.
+/// True when `path` is a regular file that opens for reading, or a pipe, FIFO or device:
+/// those are not opened here, since opening a FIFO to look at it takes its writer's data
+/// away. The checker reads each of them exactly once (channels/nc_input.hpp) and says so
+/// when it cannot.
 bool readable(const std::string& path) {
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) return false;  // opens, but reads nothing
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (ec || st.type() == std::filesystem::file_type::not_found) return false;
+  if (st.type() == std::filesystem::file_type::directory) return false;  // opens, reads nothing
+  if (st.type() != std::filesystem::file_type::regular) return true;
   open_file probe(path);
   return static_cast<bool>(probe);
 }

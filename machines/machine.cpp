@@ -19,7 +19,7 @@ bool same_word(std::string_view a, std::string_view b) {
 
 bool wait_rules::is_wait_code(int code) const {
   if (code < first || code > last || step < 1) return false;
-  if ((code - first) % step != 0) return false;
+  if ((static_cast<long long>(code) - first) % step != 0) return false;  // first may be < 0 in code
   return std::find(excluded.begin(), excluded.end(), code) == excluded.end();
 }
 

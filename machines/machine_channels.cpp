@@ -11,6 +11,8 @@ namespace twinpost::detail {
 
 namespace {
 
+constexpr std::size_t max_channels = 64;
+
 char ascii_upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
 
 // Head words are matched without case (machine::channel_for_head), so clashes are too.
@@ -129,6 +131,11 @@ void check_numbers_and_heads(const std::vector<read_channel>& all) {
 void read_channels(const table_reader& root, machine& m) {
   const std::vector<const toml::table*> tables = root.tables("channel");
   if (tables.empty()) root.fail_here("at least one [[channel]] is required");
+  // The checker and binary partner lists hold a set of channels in 64 bits.
+  if (tables.size() > max_channels)
+    root.fail(*tables[max_channels],
+              fmt::format("[[channel]] {} of {}: a machine has at most {} channels",
+                          max_channels + 1, tables.size(), max_channels));
   // Readers are kept alive for the checks across channels, which report at their nodes.
   std::vector<table_reader> readers;
   readers.reserve(tables.size());

@@ -66,6 +66,8 @@ void read_machine_table(const table_reader& root, machine& m, anchors& at) {
                                      m.layout);
 }
 
+constexpr int max_wait_code = 99'999'999;
+
 void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
   const toml::table* t = root.sub_table("waits");
   if (!t) root.fail_here("waits.first is required");
@@ -79,11 +81,22 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
   r.read("first", w.first);
   r.read("last", w.last);
   if (w.first < 0) r.fail(*r.find("first"), fmt::format("waits.first must be >= 0, not {}", w.first));
+  // A control reads at most eight digits of an M code; the bound also keeps every sum of a
+  // code and a step (the allocator's, the checker's) far from the end of an int.
+  for (std::string_view key : {"first", "last"})
+    if ((key == "first" ? w.first : w.last) > max_wait_code)
+      r.fail(*r.find(key), fmt::format("waits.{} must be <= {} (a code has at most 8 digits), "
+                                       "not {}",
+                                       key, max_wait_code, key == "first" ? w.first : w.last));
   if (w.first > w.last)
     r.fail(*r.find("first"), fmt::format("waits.first ({}) must be <= waits.last ({})",
                                          w.first, w.last));
   if (r.read("step", w.step) && w.step < 1)
     r.fail(*r.find("step"), fmt::format("waits.step must be >= 1, not {}", w.step));
+  if (w.step > max_wait_code)
+    r.fail(*r.find("step"), fmt::format("waits.step must be <= {} (a code has at most 8 "
+                                        "digits), not {}",
+                                        max_wait_code, w.step));
   if (r.read("excluded", w.excluded)) {
     const toml::array& codes = *r.find("excluded")->as_array();
     for (std::size_t i = 0; i < w.excluded.size(); ++i)
@@ -267,6 +280,12 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
     if (at.format) root.fail(*at.format, message);
     root.fail_here(message);
   }
+  // Path numbers are single digits (P12, P123): channel 10 cannot be named.
+  if (m.channels.size() >= 10 && m.waits.partners == partner_style::path_numbers)
+    root.fail(*at.partners,
+              fmt::format("waits.partners = path_numbers names channels by one digit each "
+                          "(P12): a machine with {} channels needs binary",
+                          m.channels.size()));
   if (m.channels.size() >= 3 && m.waits.partners == partner_style::none) {
     const std::string message = fmt::format(
         "waits.partners must be path_numbers or binary on a machine with {} channels",

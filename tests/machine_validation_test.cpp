@@ -194,3 +194,41 @@ TEST_CASE("a spindle code inside the wait range is refused", "[machines]") {
   CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\ncw = 103\n" + two_channels) ==
         "m.toml:8:6: error: spindle.cw M103 is a wait code of this machine (waits M100-M103)");
 }
+
+TEST_CASE("validation: wait codes and steps stay within eight digits", "[machines]") {
+  // 2147483640 + 5 would pass the end of an int in the allocator.
+  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 2147483640\nlast = 2147483647\n"
+                 "step = 5\n") ==
+        "m.toml:4:9: error: waits.first must be <= 99999999 (a code has at most 8 digits), "
+        "not 2147483640");
+  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 100\nlast = 100000000\n") ==
+        "m.toml:5:8: error: waits.last must be <= 99999999 (a code has at most 8 digits), "
+        "not 100000000");
+  CHECK(error_of(head + "step = 2147483647\n") ==
+        "m.toml:6:8: error: waits.step must be <= 99999999 (a code has at most 8 digits), "
+        "not 2147483647");
+  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 99999990\nlast = 99999999\n"
+                 "step = 99999999\n" + two_channels) == "(no error)");
+}
+
+namespace {
+// `n` valid channels, three lines each.
+std::string channels(int n) {
+  std::string out;
+  for (int c = 1; c <= n; ++c) out += "[[channel]]\nnumber = " + std::to_string(c) + "\n" + xz;
+  return out;
+}
+}  // namespace
+
+TEST_CASE("validation: machines the post cannot serve", "[machines]") {
+  // Path numbers are one digit per channel: channel 10 cannot be named.
+  CHECK(error_of(head + "partners = \"path_numbers\"\n" + channels(10)) ==
+        "m.toml:6:12: error: waits.partners = path_numbers names channels by one digit each "
+        "(P12): a machine with 10 channels needs binary");
+  CHECK(error_of(head + "partners = \"path_numbers\"\n" + channels(9)) == "(no error)");
+  CHECK(error_of(head + "partners = \"binary\"\n" + channels(10)) == "(no error)");
+  // Sets of channels are 64-bit masks: the 65th [[channel]] table is refused (line 199).
+  CHECK(error_of(head + "partners = \"binary\"\n" + channels(65)) ==
+        "m.toml:199:1: error: [[channel]] 65 of 65: a machine has at most 64 channels");
+  CHECK(error_of(head + "partners = \"binary\"\n" + channels(64)) == "(no error)");
+}

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <unistd.h>
 
@@ -189,7 +190,8 @@ TEST_CASE("layout problems are reported", "[check]") {
   diagnostic_list missing;
   read_nc_programs({{"m.eia", "G109 L1\nM950\nG109 L3\nM950\n"}}, mazak(), missing);
   CHECK(messages(missing) ==
-        "m.eia:3:1: error: section for channel 3, which this machine does not have\n"
+        "m.eia:3:1: error: section marker G109 L3 opens a section for channel 3, which this "
+        "machine does not have\n"
         "G109 L3\n^\n"
         "m.eia: error: no section for channel 2 (G109 L2) in this file\n");
 
@@ -198,6 +200,18 @@ TEST_CASE("layout problems are reported", "[check]") {
   CHECK(messages(unmarked) ==
         "u.nc: error: this machine has 2 channels but one file was given, and its programs "
         "have no section markers: give one file per channel\n");
+}
+
+TEST_CASE("a marker of an unknown channel is named, and pointed at past its N number", "[check]") {
+  diagnostic_list d;
+  read_nc_programs({{"m.eia", "G109 L1\nM950\nG109 L2\nM950\n  N20 G109 L3\n$4\n"}}, mazak(), d);
+  CHECK(messages(d) ==
+        "m.eia:5:7: error: section marker G109 L3 opens a section for channel 3, which this "
+        "machine does not have\n"
+        "  N20 G109 L3\n      ^\n"
+        "m.eia:6:1: error: section marker $4 opens a section for channel 4, which this machine "
+        "does not have\n"
+        "$4\n^\n");
 }
 
 TEST_CASE("waits after the end, two waits in a block, expressions", "[check]") {
@@ -321,4 +335,29 @@ TEST_CASE("streamed and in-memory reading agree, runs of plain blocks included",
   REQUIRE(memory.channels[0].waits.size() > 1000);
   CHECK(memory.channels[0].end.source_line == "G1 X1. Z1.");
   CHECK(summary(disk, from_disk) == summary(memory, from_memory));
+}
+
+TEST_CASE("a line past 1 MiB ends the reading of its file, from disk and from memory", "[check]") {
+  // A line without a line end (a file of NULs) would otherwise be held whole in memory.
+  std::string dir = (std::filesystem::temp_directory_path() / "twinpost-longline-XXXXXX").string();
+  REQUIRE(::mkdtemp(dir.data()) != nullptr);
+  const std::string too_long = "M100\n" + std::string(2u << 20, '\0') + "\nM101\n";
+  const std::string longest = "M100\n" + std::string(1u << 20, 'X') + "\nM101\n";
+  REQUIRE(test::write_file(dir + "/long.nc", too_long));
+  REQUIRE(test::write_file(dir + "/ok.nc", longest));
+  const machine m = two_channels(100, 103, "");
+  const std::string error =
+      "a.nc:2:1048577: error: line 2 is longer than 1048576 bytes: no NC block is that long; "
+      "the rest of the file is not read\n";
+  diagnostic_list disk, memory, fits;
+  const nc_programs p = read_nc_programs({{"a.nc", {}, dir + "/long.nc"}, {"b.nc", "M100\n"}}, m, disk);
+  const nc_programs q = read_nc_programs({{"a.nc", too_long}, {"b.nc", "M100\n"}}, m, memory);
+  const nc_programs r = read_nc_programs({{"a.nc", {}, dir + "/ok.nc"}, {"b.nc", "M100\n"}}, m, fits);
+  std::filesystem::remove_all(dir);
+  CHECK(messages(disk) == error);
+  CHECK(messages(memory) == error);
+  CHECK(p.channels[0].waits.size() == 1);
+  CHECK(q.channels[0].waits.size() == 1);
+  CHECK(messages(fits) == "");
+  CHECK(r.channels[0].waits.size() == 2);
 }

@@ -2,8 +2,12 @@
 // channels/sync_report_format.hpp). Messages are asserted to the letter.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
+#include <filesystem>
+
 #include "channels/sync_check.hpp"
 #include "channels/sync_report_format.hpp"
+#include "file_test_support.hpp"
 
 using namespace twinpost;
 
@@ -120,10 +124,11 @@ TEST_CASE("unpaired wait in Fanuc syntax", "[check]") {
         "^\n"
         "check: 2 channels, 2 waits paired, 1 error\n");
   CHECK(check_text({{"a.nc", "M100\n"}, {"b.nc", "(nothing)\n"}}, fanuc2()) ==
+        "b.nc: error: no NC block in this file: channel 2 has no program\n"
         "a.nc:1:1: error: wait M100 of channel 1 is never met: channel 2 has no program\n"
         "M100\n"
         "^\n"
-        "check: 2 channels, 0 waits paired, 1 error\n");
+        "check: 2 channels, 0 waits paired, 2 errors\n");
 }
 
 TEST_CASE("comments holding wait codes are not waits", "[check]") {
@@ -150,6 +155,8 @@ TEST_CASE("3 paths: partner list problems (PS0161)", "[check]") {
                   {"3.nc", ""}},
                  fanuc3());
   CHECK(text ==
+        "2.nc: error: no NC block in this file: channel 2 has no program\n"
+        "3.nc: error: no NC block in this file: channel 3 has no program\n"
         "1.nc:1:1: error: wait M100 has no partner list: with 3 channels every wait must name "
         "its partners (Fanuc PS0161)\nM100\n^\n"
         "1.nc:2:6: error: partner list P23 of wait M101 in channel 1 does not name channel 1 "
@@ -164,7 +171,7 @@ TEST_CASE("3 paths: partner list problems (PS0161)", "[check]") {
         "(Fanuc PS0161)\nM105 P1.5\n     ^\n"
         "1.nc:1:1: error: wait M100 of channel 1 is never met: channel 2 has no program; "
         "channel 3 has no program\nM100\n^\n"
-        "check: 3 channels, 0 waits paired, 7 errors\n");
+        "check: 3 channels, 0 waits paired, 9 errors\n");
 }
 
 TEST_CASE("3 paths: partners whose lists disagree (PS0160)", "[check]") {
@@ -200,12 +207,14 @@ TEST_CASE("binary partner masks", "[check]") {
   CHECK(check_text({{"1", "M100 P3\nM101 P7\n"}, {"2", "M100 P3\nM101 P7\n"}, {"3", "M101P7\n"}},
                    fanuc3_binary()) == "check: 3 channels, 5 waits paired, 0 errors\n");
   CHECK(check_text({{"1", ""}, {"2", "M100 P5\n"}, {"3", ""}}, fanuc3_binary()) ==
+        "1: error: no NC block in this file: channel 1 has no program\n"
+        "3: error: no NC block in this file: channel 3 has no program\n"
         "2:1:6: error: partner list P5 of wait M100 in channel 2 does not name channel 2 "
         "(Fanuc PS0161)\nM100 P5\n     ^\n"
         "2:1:1: error: wait M100 P5 of channel 2 is never met: channel 1 has no program; "
         "channel 3 has no program\n"
         "M100 P5\n^\n"
-        "check: 3 channels, 0 waits paired, 2 errors\n");
+        "check: 3 channels, 0 waits paired, 4 errors\n");
 }
 
 TEST_CASE("2 channels: a partner list where the machine takes none", "[check]") {
@@ -228,11 +237,13 @@ TEST_CASE("M-codes that look like waits outside the range", "[check]") {
   machine m = fanuc3();
   m.waits.step = 2;
   CHECK(check_text({{"1", "M250 P12\nM101\nM98 P12\n"}, {"2", ""}, {"3", ""}}, m) ==
+        "2: error: no NC block in this file: channel 2 has no program\n"
+        "3: error: no NC block in this file: channel 3 has no program\n"
         "1:1:1: error: M250 P12 looks like a wait, but M250 is not a wait code of this machine "
         "(M100-M197)\nM250 P12\n^\n"
         "1:2:1: warning: M101 lies in the wait range M100-M197 but off its step of 2: it is "
         "not checked as a wait\nM101\n^\n"
-        "check: 3 channels, 0 waits paired, 1 error, 1 warning\n");
+        "check: 3 channels, 0 waits paired, 3 errors, 1 warning\n");
 }
 
 TEST_CASE("Mazak sections interleaved and repeated", "[check]") {
@@ -320,6 +331,8 @@ TEST_CASE("the compact check says what the full reading says", "[check]") {
       {"no partner list on 3 paths", fanuc3(), {{"1", "M100\nM30\n"}, {"2", "M100\nM30\n"}, {"3", "M30\n"}}},
       {"reading problem", fanuc2(), {{"a", "M100 M101\nM30\n"}, {"b", "M100\nM30\n"}}},
       {"no markers", mazak(), {{"p", "M950\nM30\n"}}},
+      {"empty program", fanuc2(), {{"a", "M100\nM30\n"}, {"b", "%\n(NONE)\n%\n"}}},
+      {"empty section", mazak(), {{"p", "G109 L1\nM950\nM30\nG109 L2\n"}}},
   };
   for (const job& j : jobs) {
     INFO(j.what);
@@ -337,4 +350,77 @@ TEST_CASE("the compact check says what the full reading says", "[check]") {
     CHECK(format_sync_text(compact) == format_sync_text(full));
     CHECK(format_sync_json(compact) == format_sync_json(full));
   }
+}
+
+TEST_CASE("a streamed file whose last line has no line end", "[check]") {
+  // The last line is read into the reader's carry-over buffer; the channel's end must be
+  // copied out of it before the buffer goes (ASan: use after scope). Short and long lines:
+  // one fits in the string itself, the other lives on the heap.
+  std::string dir = (std::filesystem::temp_directory_path() / "twinpost-noeol-XXXXXX").string();
+  REQUIRE(::mkdtemp(dir.data()) != nullptr);
+  REQUIRE(test::write_file(dir + "/a.nc", "M100\nG1 X10."));
+  REQUIRE(test::write_file(dir + "/b.nc", "M100\nG1 X10. Z-5. F0.2 S1200 T0101"));
+  REQUIRE(test::write_file(dir + "/c.nc", "M100\nM101\n"));
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs(
+      {{"a.nc", {}, dir + "/a.nc"}, {"b.nc", {}, dir + "/b.nc"}}, fanuc2(), d);
+  CHECK(p.channels[0].end.source_line == "G1 X10.");
+  CHECK(p.channels[0].end.line == 2);
+  CHECK(p.channels[1].end.source_line == "G1 X10. Z-5. F0.2 S1200 T0101");
+  CHECK(p.channels[1].end.line == 2);
+  CHECK(format_sync_text(check_nc_files(
+            {{"a.nc", {}, dir + "/a.nc"}, {"c.nc", {}, dir + "/c.nc"}}, fanuc2())) ==
+        "c.nc:2:1: error: wait M101 of channel 2 is never met: channel 1 ends at a.nc:2 without "
+        "a matching wait\n"
+        "M101\n^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("an empty program is an error that names its file", "[check]") {
+  // No block at all, or only comments, '%' lines and blanks: the channel has no program.
+  CHECK(check_text({{"a.nc", "M100\nM30\n"}, {"b.nc", "%\n(NOTHING M100)\n\n%\n"}}, fanuc2()) ==
+        "b.nc: error: no NC block in this file: channel 2 has no program\n"
+        "a.nc:1:1: error: wait M100 of channel 1 is never met: channel 2 has no program\n"
+        "M100\n^\n"
+        "check: 2 channels, 0 waits paired, 2 errors\n");
+  // Nothing recognised in any file: each is named.
+  CHECK(check_text({{"a.nc", ""}, {"b.nc", "hello world\n"}}, fanuc2()) ==
+        "a.nc: error: no NC block in this file: channel 1 has no program\n"
+        "b.nc: error: no NC block in this file: channel 2 has no program\n"
+        "check: 2 channels, 0 waits paired, 2 errors\n");
+  // A section that holds only its marker.
+  CHECK(check_text({{"p.eia", "G109 L1\nM950\nG109 L2\n(EMPTY)\n"}}, mazak()) ==
+        "p.eia:3:1: error: no NC block in the section for channel 2: channel 2 has no program\n"
+        "G109 L2\n^\n"
+        "p.eia:2:1: error: wait M950 of channel 1 is never met: channel 2 ends at p.eia:3 "
+        "without a matching wait\n"
+        "M950\n^\n"
+        "check: 2 channels, 0 waits paired, 2 errors\n");
+  // A long program is still looked at block by block until its first block.
+  std::string dir = (std::filesystem::temp_directory_path() / "twinpost-empty-XXXXXX").string();
+  REQUIRE(::mkdtemp(dir.data()) != nullptr);
+  std::string text = "%\n";
+  for (int i = 0; i < 100000; ++i) text += "hello world\n";
+  REQUIRE(test::write_file(dir + "/a.nc", text + "G1 X1.\nhello\n"));
+  REQUIRE(test::write_file(dir + "/b.nc", text));
+  CHECK(check_text({{"a.nc", {}, dir + "/a.nc"}, {"b.nc", {}, dir + "/b.nc"}}, fanuc2()) ==
+        "b.nc: error: no NC block in this file: channel 2 has no program\n"
+        "check: 2 channels, 0 waits paired, 1 error\n");
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a machine with more channels than the checker holds is named", "[check]") {
+  // A machine file refuses a 65th channel; one made in code is reported at its source.
+  machine m = make_machine(65, 100, 197, partner_style::binary);
+  std::vector<nc_source> files;
+  for (int c = 1; c <= 65; ++c) files.push_back({std::to_string(c) + ".nc", "G0 X1.\nM30\n"});
+  m.source = "big.toml";
+  CHECK(check_text(files, m) ==
+        "big.toml: error: machine 'test' has 65 channels: the checker handles at most 64\n"
+        "check: 65 channels, 0 waits paired, 1 error\n");
+  m.source.clear();
+  CHECK(check_text(files, m) ==
+        "1.nc: error: machine 'test' has 65 channels: the checker handles at most 64\n"
+        "check: 65 channels, 0 waits paired, 1 error\n");
 }

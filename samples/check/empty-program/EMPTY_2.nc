@@ -1,0 +1,4 @@
+%
+(PATH 2: NOTHING TO DO M100)
+
+%
