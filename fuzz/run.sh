@@ -37,15 +37,17 @@ if [ "$target" = check ]; then
 else
   for f in "$root"/samples/*/job.cls; do seed "$(basename "$(dirname "$f")")" "$f"; done
   samples="$root/../shared/cl-samples"
+  pieces=$(mktemp -d)  # of this run alone: two targets may be seeded at once
+  trap 'rm -rf "$pieces"' EXIT
   if [ -d "$samples" ]; then
     # Pieces of at most 3500 bytes, cut at line ends, so that -max_len=4096 keeps them whole.
     for f in "$samples"/*/*; do
       case "$f" in */README.md) continue ;; esac
-      split -C 3500 -d -a 3 "$f" "$bin/piece-"
-      for p in "$bin"/piece-*; do seed "$(basename "$f").${p##*-}" "$p"; rm "$p"; done
+      split -C 3500 -d -a 3 "$f" "$pieces/piece-"
+      for p in "$pieces"/piece-*; do seed "$(basename "$f").${p##*-}" "$p"; rm "$p"; done
     done
   fi
 fi
 cd "$here"
 if [ "$#" -eq 0 ]; then set -- -runs=1000000; fi
-exec "$bin/${target}_fuzz" -max_len=4096 -artifact_prefix="$bin/artifacts/$target/" -print_final_stats=1 "$@" "$corpus"
+"$bin/${target}_fuzz" -max_len=4096 -artifact_prefix="$bin/artifacts/$target/" -print_final_stats=1 "$@" "$corpus"
