@@ -3,7 +3,7 @@
 // folder, on every built-in machine and layout (the first byte picks them). Properties:
 // - post_job returns or throws config_error (exit 0, 1 or 2 in the tool), nothing else;
 // - a failed post leaves the output folder as it was (here: absent or empty);
-// - every error has a file and a line;
+// - every error has a file, and a line unless it is about the whole job;
 // - a post that succeeds wrote the files it names, and `check` finds them sound;
 // - no word of a posted program is unreadable: no inf or nan, no number of more than ten
 //   digits outside comments (the machine's word formats are tighter still);
@@ -74,7 +74,11 @@ outcome post_once(const std::string& job, const std::string& out, const machine&
     r.config = true;  // the tool's exit 2
   }
   for (const diagnostic& d : diags.all())
-    if (d.level == severity::error) fuzz::require(!d.file.empty() && d.line > 0, "an error without a position: " + d.message);
+    // An error about the job as a whole (no records at all) names the file alone; any other
+    // has its line (and, with a line, its source line's column).
+    if (d.level == severity::error)
+      fuzz::require(!d.file.empty() && (d.line > 0 || (d.column == 0 && d.source_line.empty())),
+                    "an error without a position: " + d.message);
   if (!r.ok) {
     fuzz::require(!fs::exists(out, ec) || fs::is_empty(out, ec), "a failed post left files behind");
     return r;

@@ -45,7 +45,7 @@ struct cl_reader::impl {
                                                                                            : rec.major_offset);
     // Kept in a fixed buffer: a string assignment per record shows in the benchmark.
     last_major_size = rec.kind == record_kind::coordinates ? 0 : std::min(rec.major.size(), sizeof last_major);
-    if (last_major_size > 0) std::memcpy(last_major, rec.major.data(), last_major_size);
+    std::copy_n(rec.major.data(), last_major_size, last_major);  // not memcpy: major may be null when empty
   }
 
   static bool ends_job(const cl_record& r) {
