@@ -12,21 +12,10 @@
 #include "channels/sync_check.hpp"
 #include "channels/sync_report_format.hpp"
 #include "fuzz/fuzz_support.hpp"
-#include "machines/builtin_machines.hpp"
-#include "machines/machine_loader.hpp"
 
 using namespace twinpost;
 
 namespace {
-
-const std::vector<machine>& machines() {
-  static const std::vector<machine> all = [] {
-    std::vector<machine> v;
-    for (const builtin_machine_file& f : builtin_machine_files()) v.push_back(load_machine(f.name));
-    return v;
-  }();
-  return all;
-}
 
 // The input cut at form feeds into at most `n` texts (the last takes the rest).
 std::vector<std::string> cut(std::string_view text, std::size_t n) {
@@ -45,7 +34,7 @@ std::vector<std::string> cut(std::string_view text, std::size_t n) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const std::vector<machine>& all = machines();
+  const std::vector<machine>& all = fuzz::builtin_machine_defs();
   machine m = all[data[0] % all.size()];
   const int form = (data[0] / static_cast<int>(all.size())) % 3;  // 0 split, 1 merged, 2 sections
   if (form == 2) m.program.section_marker = "${channel}";

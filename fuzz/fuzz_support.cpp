@@ -7,6 +7,9 @@
 #include <iterator>
 #include <unistd.h>
 
+#include "machines/builtin_machines.hpp"
+#include "machines/machine_loader.hpp"
+
 namespace twinpost::fuzz {
 
 namespace {
@@ -33,6 +36,15 @@ struct scratch {
 const std::string& scratch_dir() {
   static scratch s;
   return s.path;
+}
+
+const std::vector<machine>& builtin_machine_defs() {
+  static const std::vector<machine> all = [] {
+    std::vector<machine> v;
+    for (const builtin_machine_file& f : builtin_machine_files()) v.push_back(load_machine(f.name));
+    return v;
+  }();
+  return all;
 }
 
 void require(bool ok, std::string_view what) {

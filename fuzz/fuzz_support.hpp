@@ -6,6 +6,9 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "machines/machine.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
 
@@ -13,6 +16,9 @@ namespace twinpost::fuzz {
 
 /// A folder of this process's own under $TMPDIR (made once, removed at exit).
 const std::string& scratch_dir();
+
+/// Every built-in machine, loaded once, in name order.
+const std::vector<machine>& builtin_machine_defs();
 
 /// Aborts with "fuzz property failed: what" on stderr when `ok` is false.
 void require(bool ok, std::string_view what);

@@ -16,22 +16,11 @@
 #include "channels/sync_check.hpp"
 #include "formats/post_job.hpp"
 #include "fuzz/fuzz_support.hpp"
-#include "machines/builtin_machines.hpp"
-#include "machines/machine_loader.hpp"
 
 namespace fs = std::filesystem;
 using namespace twinpost;
 
 namespace {
-
-const std::vector<machine>& machines() {
-  static const std::vector<machine> all = [] {
-    std::vector<machine> v;
-    for (const builtin_machine_file& f : builtin_machine_files()) v.push_back(load_machine(f.name));
-    return v;
-  }();
-  return all;
-}
 
 struct outcome {
   bool ok = false;
@@ -106,7 +95,7 @@ outcome post_once(const std::string& job, const std::string& out, const machine&
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  const std::vector<machine>& all = machines();
+  const std::vector<machine>& all = fuzz::builtin_machine_defs();
   const machine& m = all[data[0] % all.size()];
   static constexpr layout_kind layouts[] = {layout_kind::split, layout_kind::merged_appended,
                                             layout_kind::merged_sections};

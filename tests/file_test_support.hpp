@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 #include <unistd.h>
@@ -36,6 +37,16 @@ inline std::string fresh_temp_dir(const std::string& tag) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
+}
+
+/// Every file of a folder: name -> contents (empty when there is no folder).
+inline std::map<std::string, std::string> read_dir_files(const std::string& dir) {
+  std::map<std::string, std::string> files;
+  std::error_code ec;
+  if (!std::filesystem::exists(dir, ec)) return files;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    files[e.path().filename().string()] = read_file(e.path().string());
+  return files;
 }
 
 /// The names in a folder, sorted, joined by spaces ("(missing)" when there is no folder).

@@ -6,20 +6,13 @@
 
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
+#include "machine_test_support.hpp"
 
 using namespace twinpost;
 
 namespace {
 
-// The message of the config_error that parsing `text` throws, or "(no error)".
-std::string error_of(const std::string& text) {
-  try {
-    (void)parse_machine(text, "m.toml");
-  } catch (const config_error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+std::string error_of(const std::string& text) { return test::machine_error_of(text); }
 
 // Lines 1-5 of most documents below: a valid [machine] and [waits]. Line 6 is where a
 // test adds the key it is about.

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "file_test_support.hpp"
+#include "post_test_jobs.hpp"
 #include "formats/job_scan.hpp"
 #include "formats/post_job.hpp"
 #include "machines/machine_loader.hpp"
@@ -60,22 +61,11 @@ namespace {
 std::map<std::string, std::string> post_files(const std::string& cl, const machine& m, const std::string& tag,
                                               diagnostic_list* diags = nullptr,
                                               std::optional<layout_kind> layout = {}) {
-  const auto dir = std::filesystem::temp_directory_path() / ("twinpost-post-files-" + tag);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const std::string job = (dir / "job.cls").string();
-  REQUIRE(test::write_file(job, cl));
-  post_options o;
-  o.cl_path = job;
-  o.out_dir = (dir / "out").string();
-  o.layout = layout;
+  const std::string dir = test::fresh_temp_dir("post-files-" + tag);
   diagnostic_list own;
-  const post_summary s = post_job(o, m, diags ? *diags : own);
-  std::map<std::string, std::string> files;
+  const post_summary s = test::post_text(dir, "job.cls", cl, m, dir + "/out", diags ? *diags : own, layout);
+  std::map<std::string, std::string> files = test::read_dir_files(dir + "/out");
   if (!s.ok) files["(failed)"] = "";
-  if (std::filesystem::exists(dir / "out"))
-    for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
-      files[e.path().filename().string()] = test::read_file(e.path().string());
   std::filesystem::remove_all(dir);
   return files;
 }

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "file_test_support.hpp"
+#include "post_test_jobs.hpp"
 #include "formats/post_job.hpp"
 #include "machines/machine_loader.hpp"
 
@@ -22,27 +23,18 @@ struct posted {
 };
 
 posted post_text(const std::string& cl, const machine& m, const std::string& tag) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("twinpost-words-" + tag + "-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const std::string job = (dir / "job.cls").string();
-  REQUIRE(test::write_file(job, cl));
-  post_options o;
-  o.cl_path = job;
-  o.out_dir = (dir / "out").string();
+  const std::string dir = test::fresh_temp_dir("words-" + tag);
+  const std::string job = dir + "/job.cls";
   diagnostic_list diags;
   posted p;
-  p.ok = post_job(o, m, diags).ok;
+  p.ok = test::post_text(dir, "job.cls", cl, m, dir + "/out", diags).ok;
   for (const diagnostic& d : diags.all()) {
     if (d.message.starts_with("no sync records")) continue;  // the two-channel machines' note
     std::string text = format_diagnostic(d);
     for (std::size_t at; (at = text.find(job)) != std::string::npos;) text.replace(at, job.size(), "job.cls");
     p.diagnostics += text;
   }
-  if (std::filesystem::exists(dir / "out"))
-    for (const auto& e : std::filesystem::directory_iterator(dir / "out"))
-      p.files[e.path().filename().string()] = test::read_file(e.path().string());
+  p.files = test::read_dir_files(dir + "/out");
   std::filesystem::remove_all(dir);
   return p;
 }

@@ -6,20 +6,14 @@
 
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
+#include "machine_test_support.hpp"
 #include "machines/word_format.hpp"
 
 using namespace twinpost;
 
 namespace {
 
-std::string error_of(const std::string& text) {
-  try {
-    (void)parse_machine(text, "m.toml");
-  } catch (const config_error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+std::string error_of(const std::string& text) { return test::machine_error_of(text); }
 
 const std::string machine_head = "[machine]\nname = \"m\"\n[waits]\nfirst = 100\nlast = 103\n";
 const std::string channels =
