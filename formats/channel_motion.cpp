@@ -163,6 +163,34 @@ void channel_writer::arc(const arc_event& a, int line) {
   pos_ = a.end;
 }
 
+bool channel_writer::cycle_supported(const cycle_event& c, int line) {
+  // Drilling is written as plain moves (below): a tap, a bore, a ream or a thread cycle
+  // written that way would break the tool or mark the bore, so only what the moves really
+  // do is taken, and anything else stops the post at the CYCLE record.
+  if (c.type != "DRILL" && c.type != "DEEP") {
+    error(line, fmt::format("CYCLE/{} is not supported by the post: only DRILL and DEEP are written (as plain "
+                            "G0/G1 moves); a tapping, boring or threading cycle cannot be",
+                            c.type));
+    return false;
+  }
+  static constexpr std::string_view known[] = {"FEDTO", "DEPTH", "RAPTO", "CLEAR", "STEP", "MMPR", "IPR", "MMPM", "IPM"};
+  for (const auto& [name, value] : c.params) {
+    const bool pecks_ignored = name == "STEP" && c.type != "DEEP";  // only DEEP is written in pecks
+    if (!pecks_ignored && std::find(std::begin(known), std::end(known), name) != std::end(known)) continue;
+    error(line, fmt::format("CYCLE/{}: {} is not carried out by the post (it knows FEDTO, DEPTH, RAPTO, CLEAR, "
+                            "STEP and the feed)",
+                            c.type, name));
+    return false;
+  }
+  if (!c.words.empty() || !c.positional.empty()) {
+    error(line, fmt::format("CYCLE/{}: {} is not carried out by the post (it knows FEDTO, DEPTH, RAPTO, CLEAR, "
+                            "STEP and the feed, each with its value)",
+                            c.type, c.words.empty() ? fmt::format("the value {}", c.positional.front()) : c.words.front()));
+    return false;
+  }
+  return true;
+}
+
 void channel_writer::cycle_point(const vec3& p, int line) {
   // Drilling along the spindle axis, written as plain moves every control reads: rapid to
   // the clearance plane, feed to depth (in pecks with STEP), rapid back out. The tool axis
@@ -178,6 +206,13 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   std::optional<double> bottom = param("FEDTO");
   if (!bottom && param("DEPTH")) bottom = p.z + into * *param("DEPTH");
   if (!bottom) return error(line, fmt::format("CYCLE/{} needs FEDTO or DEPTH", c.type));
+  // FEDTO is a Z here; a dialect that writes it as a depth below the hole (SolidWorks CAM)
+  // puts it behind the clearance plane, and the drill would feed away from the part.
+  if ((*bottom - clear) * into <= 0)
+    return error(line, fmt::format("CYCLE/{}: the bottom Z {} is not beyond the clearance plane Z {} in the "
+                                   "drilling direction: the tool would feed away from the part (is FEDTO a depth "
+                                   "in this CL?)",
+                                   c.type, *bottom, clear));
   for (const char* unit : {"MMPR", "IPR", "MMPM", "IPM"}) {
     if (auto f = param(unit)) {
       const bool per_rev = std::string_view(unit).back() == 'R';

@@ -138,7 +138,7 @@ void channel_writer::on_event(const event& e, bool both) {
           pending_g_ = left ? "G41" : right ? "G42" : d.side == "OFF" ? "G40" : "";
         } else if constexpr (std::is_same_v<T, cycle_event>) {
           if (d.type == "OFF") cycle_.reset();
-          else if (d.type != "ON" && d.type != "INIT") cycle_ = d;
+          else if (d.type != "ON" && d.type != "INIT" && cycle_supported(d, e.line)) cycle_ = d;
         } else if constexpr (std::is_same_v<T, delay_event>) {
           template_args a = sample_template_args();
           if (d.revolutions) return error(e.line, "DELAY in revolutions is not supported; give seconds");

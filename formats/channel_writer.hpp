@@ -42,6 +42,9 @@ class channel_writer {
   void feed(const feed_event& f, int line);
   void tool(const tool_event& t, int line);
   void cycle_point(const vec3& p, int line);
+  /// True when the writer carries out every word of cycle `c`; else an error naming the first
+  /// word it would drop (a tap, a bore, a retract plane, a peck of another dialect...).
+  bool cycle_supported(const cycle_event& c, int line);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
