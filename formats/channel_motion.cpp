@@ -201,6 +201,12 @@ void channel_writer::cycle_point(const vec3& p, int line) {
       if (k == name) return v;
     return std::nullopt;
   };
+  // Only along the spindle axis: a radial or tilted tool (cross drilling with a live tool)
+  // would be fed along Z, through the side of the part.
+  if (std::abs(axis_.z) < 0.9999)
+    return error(line, fmt::format("CYCLE/{} with the tool axis ({}, {}, {}): only drilling along Z is written; "
+                                   "cross and tilted drilling is not supported yet",
+                                   c.type, axis_.x, axis_.y, axis_.z));
   double into = axis_.z < 0 ? 1.0 : -1.0;  // the direction of drilling along Z
   double clear = p.z - into * param("RAPTO").value_or(param("CLEAR").value_or(0));
   std::optional<double> bottom = param("FEDTO");

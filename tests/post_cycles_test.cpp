@@ -70,3 +70,11 @@ TEST_CASE("a drill bottom behind the clearance plane is an error, not a move awa
         "the drilling direction: the tool would feed away from the part (is FEDTO a depth in this CL?)\n"
         "GOTO/0,0,0\n^\n");
 }
+
+TEST_CASE("a drilling cycle with a radial tool axis stops the post", "[post][cycles]") {
+  // Cross drilling with a live tool: fed along Z it would go through the side of the part.
+  CHECK(errors_of("CYCLE/DRILL,FEDTO,10,RAPTO,3,MMPR,0.1\nGOTO/25,0,-20,1,0,0\nCYCLE/OFF\nFINI\n", "radial") ==
+        "job.cls:7:1: error: channel 1: CYCLE/DRILL with the tool axis (1, 0, 0): only drilling along Z is written; "
+        "cross and tilted drilling is not supported yet\n"
+        "GOTO/25,0,-20,1,0,0\n^\n");
+}
