@@ -77,18 +77,27 @@ void channel_writer::feed_mode(bool per_rev) {
 void channel_writer::tool(const tool_event& t, int line) {
   if (t.preselect) return;
   (void)line;
-  if (t.tool == tool_) return;
   template_args a = sample_template_args();
   a.tool = t.tool;
   a.offset = t.offset.value_or(t.tool);
   a.channel = ch_.number;
   const std::string call = format_template(ch_.tool_call, a);
+  if (t.tool == tool_) {
+    // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
+    // turret stays where it is and only the offset changes, so the call goes out alone.
+    if (call != tool_call_ && block_fits(call)) {
+      out_.block(call);
+      tool_call_ = call;
+    }
+    return;
+  }
   if (!block_fits(call)) return;  // T12345 on a four-digit T: the tool does not exist
   out_.block(m_.codes.home);  // index the turret away from the part
   forget_axes();
   motion_g_ = -1;
   out_.block(call);
   tool_ = t.tool;
+  tool_call_ = call;
 }
 
 }  // namespace twinpost

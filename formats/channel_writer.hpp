@@ -109,6 +109,7 @@ class channel_writer {
   vec3 pos_;                  // last CL point of this channel
   vec3 axis_{0, 0, 1};        // tool axis, from GOTO i,j,k or TLAXIS
   int tool_ = -1;
+  std::string tool_call_;  ///< the last tool call written (an offset change writes a new one)
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
   bool warned_side_ = false;

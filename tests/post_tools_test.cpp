@@ -1,0 +1,29 @@
+// Tool calls in a post: a change of offset on the same tool is written, never dropped.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+TEST_CASE("the same tool under another offset writes the new offset without indexing the turret",
+          "[post][tools]") {
+  // Roughing on offset 01, finishing with the same insert on offset 21 (wear compensated
+  // apart): the finish must run on T0121, not on the roughing offset.
+  const std::string dir = test::fresh_temp_dir("tools-offset");
+  diagnostic_list diags;
+  const post_summary s = test::post_text(dir, "job.cls",
+                                         "PARTNO TOOLS\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\n"
+                                         "GOTO/20,0,5\nGOTO/20,0,-10\nTURRET/1,21\nGOTO/19.5,0,5\nGOTO/19.5,0,-10\n"
+                                         "TURRET/1,21\nGOTO/19.5,0,5\nFINI\n",
+                                         load_machine("fanuc-0itd-twin"), dir + "/out", diags);
+  REQUIRE(s.ok);
+  const std::string program = test::read_file(dir + "/out/TOOLS_1.nc");
+  CHECK(program ==
+        "%\nO1000 (TOOLS)\nG40 G80 G99 G18\nG28 U0 W0\nT0101\nG97 S1000 M3\nG99\nG1 X40. Z5. F0.2\nZ-10.\n"
+        "T0121\nX39. Z5.\nZ-10.\nZ5.\nM100\nM9\nG28 U0 W0\nM5\nM30\n%\n");
+  std::filesystem::remove_all(dir);
+}
