@@ -9,6 +9,8 @@ packages=(
   libfmt-dev                    # formatting
   catch2                        # tests (v2, as Debian packages it)
   libtomlplusplus-dev           # machine definition files
+  dpkg-dev                      # the .deb's Depends (dpkg-shlibdeps, used by CPack)
+  file                          # CPack's test for which installed files are programs
 )
 missing=()
 for p in "${packages[@]}"; do
