@@ -25,7 +25,10 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   }
   if (!spindle_) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
   const spindle_def& sp = *spindle_;
-  if (s.mode == spindle_mode::off) return out_.block(fmt::format("M{}", sp.stop));
+  if (s.mode == spindle_mode::off) {
+    restart_blocks_.clear();
+    return out_.block(fmt::format("M{}", sp.stop));
+  }
   if (s.mode == spindle_mode::orient || s.mode == spindle_mode::lock)
     return error(line, "spindle ORIENT/LOCK is not supported on a lathe channel yet");
   int m = s.dir == rotation::ccw ? sp.ccw : sp.cw;
@@ -41,18 +44,27 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     a.rpm = clamp;
     a.channel = ch_.number;
     if (!fits('S', smm, 0)) return;
+    restart_blocks_.clear();
     if (!sp.clamp.empty()) {
       std::string b = format_template(sp.clamp, a);
       if (!block_fits(b)) return;
-      out_.block(b);
+      restart_blocks_.push_back(b);
     }
-    out_.block(join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
+    restart_blocks_.push_back(join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
+    for (const std::string& b : restart_blocks_) out_.block(b);
     return;
   }
   if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
     return error(line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
   if (!fits('S', s.speed, 0)) return;
-  out_.block(join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m)));
+  restart_blocks_ = {join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
+  out_.block(restart_blocks_.front());
+}
+
+void channel_writer::program_stop(bool optional) {
+  out_.block(optional ? m_.codes.optional_stop : m_.codes.program_stop);
+  for (const std::string& b : restart_blocks_) out_.block(b);
+  if (!coolant_block_.empty()) out_.block(coolant_block_);
 }
 
 void channel_writer::feed(const feed_event& f, int line) {

@@ -129,8 +129,15 @@ void channel_writer::on_event(const event& e, bool both) {
         else if constexpr (std::is_same_v<T, feed_event>) feed(d, e.line);
         else if constexpr (std::is_same_v<T, tool_event>) tool(d, e.line);
         else if constexpr (std::is_same_v<T, coolant_event>) {
-          if (d.mode == "OFF") out_.block(m_.codes.coolant_off);
-          else if (!m_.codes.coolant_on.empty()) out_.block(m_.codes.coolant_on.front());
+          if (d.mode == "OFF") {
+            out_.block(m_.codes.coolant_off);
+            coolant_block_.clear();
+          } else if (!m_.codes.coolant_on.empty()) {
+            out_.block(m_.codes.coolant_on.front());
+            coolant_block_ = m_.codes.coolant_on.front();
+          }
+        } else if constexpr (std::is_same_v<T, stop_event>) {
+          program_stop(d.optional);
         } else if constexpr (std::is_same_v<T, cutcom_event>) {
           // Mirroring X turns the tool's left into its right, as it turns G2 into G3.
           bool left = d.side == "LEFT", right = d.side == "RIGHT";

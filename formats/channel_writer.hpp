@@ -42,6 +42,9 @@ class channel_writer {
   void feed(const feed_event& f, int line);
   void tool(const tool_event& t, int line);
   void cycle_point(const vec3& p, int line);
+  /// M0/M1, then the spindle and coolant blocks in force again: the stop turns them off on
+  /// most lathes, and cycle start must not resume cutting with a still spindle.
+  void program_stop(bool optional);
   /// True when the writer carries out every word of cycle `c`; else an error naming the first
   /// word it would drop (a tap, a bore, a retract plane, a peck of another dialect...).
   bool cycle_supported(const cycle_event& c, int line);
@@ -108,6 +111,8 @@ class channel_writer {
   std::optional<cycle_event> cycle_;
   vec3 pos_;                  // last CL point of this channel
   vec3 axis_{0, 0, 1};        // tool axis, from GOTO i,j,k or TLAXIS
+  std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning
+  std::string coolant_block_;                ///< the coolant-on block in force, "" when off
   int tool_ = -1;
   std::string tool_call_;  ///< the last tool call written (an offset change writes a new one)
   int waits_ = 0;

@@ -105,6 +105,8 @@ struct control_codes {
   std::string feed_per_min = "G98";
   std::string home = "G28 U0 W0";
   std::string dwell = "G4 U{seconds}";   ///< dwell block
+  std::string program_stop = "M0";      ///< CL STOP
+  std::string optional_stop = "M1";     ///< CL OPSTOP
   std::vector<std::string> coolant_on = {"M8"};
   std::string coolant_off = "M9";
   /// Balance cutting (HEAD/BOTH): written in both channels right after the wait that opens

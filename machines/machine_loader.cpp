@@ -193,7 +193,7 @@ void read_codes(const table_reader& root, control_codes& c) {
   if (!t) return;
   table_reader r(*t, "codes", root.source(),
                  {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on",
-                  "coolant_off", "balance_on", "balance_off"});
+                  "coolant_off", "balance_on", "balance_off", "program_stop", "optional_stop"});
   r.read_template("css", c.css);
   r.read_template("rpm", c.rpm);
   r.read_template("feed_per_rev", c.feed_per_rev);
@@ -204,6 +204,8 @@ void read_codes(const table_reader& root, control_codes& c) {
   r.read_template("coolant_off", c.coolant_off);
   r.read_template("balance_on", c.balance_on);
   r.read_template("balance_off", c.balance_off);
+  r.read_template("program_stop", c.program_stop);
+  r.read_template("optional_stop", c.optional_stop);
 }
 
 void read_positive(const table_reader& r, std::string_view key, double& out, bool zero_ok) {

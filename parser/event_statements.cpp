@@ -106,6 +106,7 @@ void event_builder::statement(const cl_record& r, int line, event_queue& out, bu
   if (word_is(m, "CHANNEL") || word_is(m, "CHANNL")) return push(detail::read_channel(r, issues));
   if (word_is(m, "SYNC")) return push(detail::read_sync(r, issues));
   if (word_is(m, "SYNCTR")) return push(detail::read_synctr(r, icam_marker_, issues));
+  if (word_is(m, "STOP") || word_is(m, "OPSTOP")) return out.push_back({line, stop_event{word_is(m, "OPSTOP")}});
   if (word_is(m, "FINI") || word_is(m, "END") || word_is(m, "END-OF-PATH"))
     return out.push_back({line, end_event{upper(m)}});
   bool known = known_passthrough(m);
@@ -252,7 +253,7 @@ bool known_passthrough(std::string_view m) {
   static constexpr std::string_view words[] = {
       "PAINT", "BOX", "MOVE_ATTRIB", "TRNTYP", "SET", "REWIND", "TOOLNO", "SWITCH",
       "LOCAL_ORIGIN", "ROTABL", "NURBS", "KNOT", "CNTRL", "CSI_SET_FLUTE_LENGTH",
-      "CSI_SET_EXTENSION_LENGTH", "MODE", "STOP", "OPSTOP", "COUPLE", "CLAMP", "THREAD",
+      "CSI_SET_EXTENSION_LENGTH", "MODE", "COUPLE", "CLAMP", "THREAD",
       "ORIGIN", "INTOL", "OUTTOL", "LINTOL", "CALSUB", "DEFSUB", "ENDSUB", "DMIS", "FEATNO",
       "MFGNO", "SETSTART", "CUTCOM_GEOMETRY_TYPE", "OPSKIP", "PITCH"};
   for (std::string_view w : words)

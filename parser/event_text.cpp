@@ -117,6 +117,10 @@ struct describe {
     out.name = "delay";
     out.num(e.revolutions ? "revolutions" : "seconds", e.value);
   }
+  void operator()(const stop_event& e) {
+    out.name = "stop";
+    out.str("kind", e.optional ? "optional" : "program");
+  }
   void operator()(const aux_event& e) {
     out.name = e.prefun ? "prefun" : "auxfun";
     out.num("code", e.code);

@@ -96,6 +96,11 @@ struct cycle_event {
   std::vector<double> positional;
 };
 
+/// STOP (program stop) or OPSTOP (optional stop).
+struct stop_event {
+  bool optional = false;
+};
+
 struct delay_event {
   double value = 0;
   bool revolutions = false;
@@ -180,7 +185,7 @@ struct passthrough_event {
 
 using event_data =
     std::variant<motion_event, arc_event, tool_event, tool_data_event, spindle_event, feed_event,
-                 coolant_event, cutcom_event, cycle_event, delay_event, aux_event, text_event,
+                 coolant_event, cutcom_event, cycle_event, delay_event, stop_event, aux_event, text_event,
                  units_event, machin_event, multax_event, coordsys_event, head_event,
                  channel_event, sync_event, tool_axis_event, comment_event, end_event,
                  passthrough_event>;

@@ -157,10 +157,11 @@ TEST_CASE("a post stops at a record it cannot carry out, and warns at a job cut 
 }
 
 TEST_CASE("a known record the post cannot carry out stops it; one that only informs does not", "[post][words]") {
-  posted stop = post_text(head + "GOTO/20,0,0\nSTOP\nFINI\n", "fanuc-0itd-twin", "stop");
-  CHECK_FALSE(stop.ok);
-  CHECK(stop.diagnostics ==
-        "job.cls:7:1: error: STOP is not supported by the post: twinpost cannot carry out this record\nSTOP\n^\n");
+  posted origin = post_text(head + "GOTO/20,0,0\nORIGIN/0,0,100\nFINI\n", "fanuc-0itd-twin", "origin");
+  CHECK_FALSE(origin.ok);
+  CHECK(origin.diagnostics ==
+        "job.cls:7:1: error: ORIGIN is not supported by the post: twinpost cannot carry out this record\n"
+        "ORIGIN/0,0,100\n^\n");
   posted paint = post_text(head + "PAINT/COLOR,186\nGOTO/20,0,0\nSET/MODE,ABSOL\nFINI\n", "fanuc-0itd-twin", "paint");
   CHECK(paint.ok);
   CHECK(paint.diagnostics == "");
