@@ -88,12 +88,17 @@ void channel_writer::feed_mode(bool per_rev) {
 
 void channel_writer::tool(const tool_event& t, int line) {
   if (t.preselect) return;
-  (void)line;
   template_args a = sample_template_args();
   a.tool = t.tool;
   a.offset = t.offset.value_or(t.tool);
   a.channel = ch_.number;
   const std::string call = format_template(ch_.tool_call, a);
+  // Offset 0 in a lathe tool call (T0300) cancels the tool's offset: the tip would run
+  // where the turret's reference point is, not where the CL says.
+  if (a.offset == 0 && ch_.tool_call.find("{offset") != std::string::npos)
+    return error(line, fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
+                                   "give the offset number",
+                                   t.tool, call));
   if (t.tool == tool_) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
     // turret stays where it is and only the offset changes, so the call goes out alone.

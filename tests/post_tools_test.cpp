@@ -27,3 +27,18 @@ TEST_CASE("the same tool under another offset writes the new offset without inde
         "T0121\nX39. Z5.\nZ-10.\nZ5.\nM100\nM9\nG28 U0 W0\nM5\nM30\n%\n");
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("offset 0 in a lathe tool call is an error, not T0300", "[post][tools]") {
+  const std::string dir = test::fresh_temp_dir("tools-zero");
+  diagnostic_list diags;
+  const post_summary s = test::post_text(dir, "job.cls", "PARTNO TOOLS\nHEAD/1\nLOADTL/3,0\nRAPID\nGOTO/20,0,5\nFINI\n",
+                                         load_machine("fanuc-0itd-twin"), dir + "/out", diags);
+  CHECK_FALSE(s.ok);
+  std::string errors;
+  for (const diagnostic& d : diags.all())
+    if (d.level == severity::error) errors += d.message + "\n";
+  CHECK(errors == "channel 1: tool 3 with offset 0 would be called as T0300, which cancels the tool offset; give the "
+                  "offset number\n");
+  CHECK(test::list_dir(dir + "/out") == "(missing)");
+  std::filesystem::remove_all(dir);
+}
