@@ -229,6 +229,12 @@ void channel_writer::cycle_point(const vec3& p, int line) {
     }
   }
   double step = param("STEP").value_or(0);
+  // A peck count past any real hole (a depth of 1e300 or a STEP of 1e-9) would write moves
+  // without end: refuse it before the first move.
+  constexpr double max_pecks = 10000;
+  if (step > 0 && c.type == "DEEP" && !(std::abs(*bottom - clear) / step <= max_pecks))
+    return error(line, fmt::format("CYCLE/DEEP: a depth of {} in pecks of STEP {} makes more than {} pecks",
+                                   std::abs(*bottom - clear), step, max_pecks));
   linear(true, p.x, p.y, clear, line);
   double z = clear;
   if (step > 0 && c.type == "DEEP") {

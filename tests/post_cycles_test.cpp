@@ -78,3 +78,9 @@ TEST_CASE("a drilling cycle with a radial tool axis stops the post", "[post][cyc
         "cross and tilted drilling is not supported yet\n"
         "GOTO/25,0,-20,1,0,0\n^\n");
 }
+
+TEST_CASE("a peck count past any real hole stops the post instead of writing moves without end", "[post][cycles]") {
+  CHECK(errors_of("CYCLE/DEEP,FEDTO,-1e300,STEP,1,RAPTO,2,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "pecks") ==
+        "job.cls:7:1: error: channel 1: CYCLE/DEEP: a depth of 1e+300 in pecks of STEP 1 makes more than 10000 pecks\n"
+        "GOTO/0,0,0\n^\n");
+}
