@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "machines/builtin_machines.hpp"
+#include "machines/machine_search.hpp"
 #include "machines/toml_reader.hpp"
 
 namespace twinpost {
@@ -325,22 +326,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
 }
 
 machine load_machine(std::string_view name_or_path) {
-  for (const builtin_machine_file& f : builtin_machine_files())
-    if (f.name == name_or_path)
-      return parse_machine(f.toml, fmt::format("machines/builtin/{}.toml", f.name));
-  const std::string path(name_or_path);
-  std::error_code ec;
-  // A directory opens as a stream on Linux and reads as empty: refuse it here.
-  if (std::filesystem::is_regular_file(path, ec)) {
-    std::ifstream in(path, std::ios::binary);
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    if (in && !in.bad()) return parse_machine(text, path);
-  }
-  if (path.find_first_of("/\\.") == std::string::npos)
-    throw config_error(fmt::format(
-        "twinpost: error: unknown machine '{}': no built-in machine and no file of that name",
-        path));
-  throw config_error(fmt::format("twinpost: error: cannot read machine file '{}'", path));
+  return find_machine(name_or_path, {}).def;  // the one reader of machine files
 }
 
 std::vector<machine_summary> builtin_machines() {

@@ -12,7 +12,8 @@ namespace twinpost {
 /// Parses and validates a machine definition from TOML text; `source` names it in errors.
 machine parse_machine(std::string_view toml_text, std::string_view source);
 
-/// Loads `name_or_path`: a built-in machine name, or else a path to a TOML file.
+/// Loads `name_or_path`: a built-in machine name, or else a path to a TOML file
+/// (find_machine with no search folders).
 machine load_machine(std::string_view name_or_path);
 
 /// Names and one-line descriptions of the built-in machines, sorted by name.
