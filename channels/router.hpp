@@ -17,7 +17,7 @@
 
 #include "channels/wait_allocator.hpp"
 #include "machines/machine.hpp"
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 #include "parser/events.hpp"
 
 namespace twinpost {

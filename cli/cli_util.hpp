@@ -6,7 +6,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 
 namespace twinpost::cli {
 

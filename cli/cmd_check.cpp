@@ -9,11 +9,12 @@
 
 #include <fmt/format.h>
 
-#include "channels/sync_check.hpp"
-#include "channels/sync_report_format.hpp"
+#include "check/sync_check.hpp"
+#include "check/sync_report.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "cli/machine_dirs.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost::cli {
 
@@ -29,7 +30,7 @@ const char* const check_usage =
 
 /// True when `path` is a regular file that opens for reading, or a pipe, FIFO or device:
 /// those are not opened here, since opening a FIFO to look at it takes its writer's data
-/// away. The checker reads each of them exactly once (channels/nc_input.hpp) and says so
+/// away. The checker reads each of them exactly once (check/nc_input.hpp) and says so
 /// when it cannot.
 bool readable(const std::string& path) {
   std::error_code ec;

@@ -8,7 +8,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
-#include "formats/post_job.hpp"
+#include "post/post_job.hpp"
 #include "cli/machine_dirs.hpp"
 
 namespace twinpost::cli {

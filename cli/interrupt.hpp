@@ -5,7 +5,7 @@
 // Header-only so that the tests install exactly this handler in a child process.
 #include <csignal>
 
-#include "formats/temp_registry.hpp"
+#include "post/temp_registry.hpp"
 
 namespace twinpost::cli {
 

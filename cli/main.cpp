@@ -7,6 +7,7 @@
 #include "cli/command_table.hpp"
 #include "cli/version.hpp"
 #include "machines/machine.hpp"
+#include "support/errors.hpp"
 
 int main(int argc, char** argv) {
   const std::string usage = twinpost::cli::usage_text();

@@ -1,4 +1,5 @@
 #include "formats/block_writer.hpp"
+#include "support/errors.hpp"
 
 #include <cerrno>
 #include <cstring>

@@ -8,6 +8,7 @@
 
 #include "formats/text_buffer.hpp"
 #include "machines/machine.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "formats/channel_writer.hpp"
-#include "machines/machine_loader.hpp"
+#include "machines/name_template.hpp"
 
 namespace twinpost {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "machines/machine_loader.hpp"
+#include "machines/name_template.hpp"
 
 namespace twinpost {
 

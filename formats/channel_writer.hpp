@@ -12,7 +12,7 @@
 #include "formats/block_writer.hpp"
 #include "formats/number_format.hpp"
 #include "machines/machine.hpp"
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 #include "parser/events.hpp"
 
 namespace twinpost {

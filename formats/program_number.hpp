@@ -4,7 +4,7 @@
 #include <string>
 
 #include "machines/machine.hpp"
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 #include "parser/events.hpp"
 
 namespace twinpost {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "channels/sync_check.hpp"
-#include "channels/sync_report_format.hpp"
+#include "check/sync_check.hpp"
+#include "check/sync_report.hpp"
 #include "fuzz/fuzz_support.hpp"
 
 using namespace twinpost;

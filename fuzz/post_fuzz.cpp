@@ -14,9 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "channels/sync_check.hpp"
-#include "formats/post_job.hpp"
+#include "check/sync_check.hpp"
+#include "post/post_job.hpp"
 #include "fuzz/fuzz_support.hpp"
+#include "support/errors.hpp"
 
 namespace fs = std::filesystem;
 using namespace twinpost;

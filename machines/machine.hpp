@@ -12,12 +12,6 @@
 
 namespace twinpost {
 
-/// The one exception type for fatal configuration errors (bad machine file, bad format).
-/// The message is complete, e.g. "m.toml:12:3: error: waits.first must be <= waits.last".
-struct config_error : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
 /// How a wait names its partners when three or more channels exist.
 enum class partner_style {
   none,          ///< 2-channel controls: plain `M100` in both channels

@@ -7,6 +7,7 @@
 
 #include "machines/builtin_machines.hpp"
 #include "machines/machine_loader.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 

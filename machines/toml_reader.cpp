@@ -7,7 +7,8 @@
 #include <fmt/format.h>
 
 #include "machines/machine.hpp"
-#include "machines/machine_loader.hpp"
+#include "machines/name_template.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost::detail {
 

@@ -11,6 +11,8 @@
 
 #include <toml++/toml.h>
 
+#include "support/errors.hpp"
+
 namespace twinpost {
 struct machine;
 }

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 #include "parser/dialect.hpp"
 #include "parser/events.hpp"
 #include "parser/line_reader.hpp"

@@ -9,6 +9,7 @@
 
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
+#include "machines/name_template.hpp"
 
 using namespace twinpost;
 

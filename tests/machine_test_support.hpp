@@ -4,6 +4,7 @@
 
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost::test {
 

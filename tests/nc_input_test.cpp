@@ -1,4 +1,4 @@
-// Inputs read once (channels/nc_input.hpp): a pipe or a FIFO is checked as the program it
+// Inputs read once (check/nc_input.hpp): a pipe or a FIFO is checked as the program it
 // carries, though the checker reads its inputs twice when it has something to report.
 #include <catch2/catch.hpp>
 
@@ -11,10 +11,11 @@
 #include <string>
 #include <thread>
 
-#include "channels/nc_input.hpp"
-#include "channels/sync_check.hpp"
-#include "channels/sync_report_format.hpp"
+#include "check/nc_input.hpp"
+#include "check/sync_check.hpp"
+#include "check/sync_report.hpp"
 #include "file_test_support.hpp"
+#include "support/errors.hpp"
 
 using namespace twinpost;
 

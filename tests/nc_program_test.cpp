@@ -1,4 +1,4 @@
-// Reading NC programs into per-channel wait lists (channels/nc_program.hpp).
+// Reading NC programs into per-channel wait lists (check/nc_program.hpp).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "channels/nc_program.hpp"
+#include "check/nc_program.hpp"
 #include "file_test_support.hpp"
 
 using namespace twinpost;

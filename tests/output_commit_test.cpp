@@ -1,4 +1,4 @@
-// formats/output_commit: a post's files are committed as a set (all new or all old), under
+// post/output_commit: a post's files are committed as a set (all new or all old), under
 // a lock shared by concurrent posts; failed and interrupted posts leave nothing behind.
 #include <catch2/catch.hpp>
 
@@ -12,9 +12,10 @@
 #include <unistd.h>
 
 #include "cli/interrupt.hpp"
-#include "formats/output_commit.hpp"
+#include "post/output_commit.hpp"
 #include "machines/machine_loader.hpp"
 #include "post_test_jobs.hpp"
+#include "support/errors.hpp"
 
 using namespace twinpost;
 namespace fs = std::filesystem;

@@ -1,12 +1,13 @@
-// formats/output_names: the names a machine file gives the programs stay plain file names
+// post/output_names: the names a machine file gives the programs stay plain file names
 // in the output folder, and one post never writes two files of the same name.
 #include <catch2/catch.hpp>
 
 #include <string>
 
-#include "formats/output_names.hpp"
+#include "post/output_names.hpp"
 #include "machines/machine_loader.hpp"
 #include "post_test_jobs.hpp"
+#include "support/errors.hpp"
 
 using namespace twinpost;
 

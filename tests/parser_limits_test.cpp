@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 #include "parser_test_support.hpp"
 
 using namespace twinpost;

@@ -6,7 +6,7 @@
 
 #include "file_test_support.hpp"
 #include "machines/machine_loader.hpp"
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 #include "post_test_jobs.hpp"
 
 using namespace twinpost;

@@ -1,4 +1,4 @@
-// formats/post_job and formats/job_scan: file names from PARTNO, and the quick scan.
+// post/post_job and parser/job_scan: file names from PARTNO, and the quick scan.
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -9,8 +9,9 @@
 
 #include "file_test_support.hpp"
 #include "post_test_jobs.hpp"
-#include "formats/job_scan.hpp"
-#include "formats/post_job.hpp"
+#include "channels/job_channels.hpp"
+#include "parser/job_scan.hpp"
+#include "post/post_job.hpp"
 #include "machines/machine_loader.hpp"
 
 using namespace twinpost;

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "file_test_support.hpp"
-#include "formats/post_job.hpp"
+#include "post/post_job.hpp"
 
 namespace twinpost::test {
 

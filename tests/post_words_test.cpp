@@ -9,7 +9,7 @@
 
 #include "file_test_support.hpp"
 #include "post_test_jobs.hpp"
-#include "formats/post_job.hpp"
+#include "post/post_job.hpp"
 #include "machines/machine_loader.hpp"
 
 using namespace twinpost;

@@ -1,12 +1,12 @@
-// formats/sync_at_cl: the post's self-check findings moved from the programs it never
+// post/sync_at_cl: the post's self-check findings moved from the programs it never
 // writes to the CL records that made the waits.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 
-#include "channels/sync_check.hpp"
+#include "check/sync_check.hpp"
 #include "file_test_support.hpp"
-#include "formats/sync_at_cl.hpp"
+#include "post/sync_at_cl.hpp"
 #include "machines/machine_loader.hpp"
 
 using namespace twinpost;

@@ -1,12 +1,12 @@
-// The synchronisation checker and its report (channels/sync_check.hpp,
-// channels/sync_report_format.hpp). Messages are asserted to the letter.
+// The synchronisation checker and its report (check/sync_check.hpp,
+// check/sync_report.hpp). Messages are asserted to the letter.
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
 #include <filesystem>
 
-#include "channels/sync_check.hpp"
-#include "channels/sync_report_format.hpp"
+#include "check/sync_check.hpp"
+#include "check/sync_report.hpp"
 #include "file_test_support.hpp"
 
 using namespace twinpost;

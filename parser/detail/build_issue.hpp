@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 
 namespace twinpost {
 

@@ -1,4 +1,5 @@
-#include "formats/output_names.hpp"
+#include "post/output_names.hpp"
+#include "support/errors.hpp"
 
 #include <fmt/format.h>
 

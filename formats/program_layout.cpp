@@ -1,4 +1,4 @@
-#include "formats/program_frame.hpp"
+#include "formats/program_layout.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -7,7 +7,8 @@
 #include <fmt/format.h>
 #include <memory>
 
-#include "machines/machine_loader.hpp"
+#include "machines/name_template.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 

@@ -1,6 +1,6 @@
-#include "channels/sync_check.hpp"
+#include "check/sync_check.hpp"
 
-#include "channels/nc_input.hpp"
+#include "check/nc_input.hpp"
 
 #include <fmt/format.h>
 
@@ -338,7 +338,7 @@ sync_result full_check(const std::vector<nc_source>& files, const machine& m) {
 }  // namespace
 
 sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m) {
-  // Read twice below: a pipe or FIFO is copied once first (channels/nc_input.hpp).
+  // Read twice below: a pipe or FIFO is copied once first (check/nc_input.hpp).
   const std::vector<nc_source> files = rereadable(given);
   // First the compact way: each wait is kept only as its 32-byte simulation entry, so a
   // sound program of any length is checked in memory that does not grow with its waits.

@@ -1,4 +1,4 @@
-#include "formats/output_commit.hpp"
+#include "post/output_commit.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -12,9 +12,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "formats/folder_lock.hpp"
-#include "formats/temp_registry.hpp"
+#include "post/folder_lock.hpp"
+#include "post/temp_registry.hpp"
 #include "machines/machine.hpp"
+#include "support/errors.hpp"
 
 namespace fs = std::filesystem;
 

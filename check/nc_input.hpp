@@ -2,7 +2,7 @@
 // NC inputs that the checker may read more than once.
 //
 // check_nc_files reads compactly first and reads again, in full, when it has something to
-// say (channels/sync_check.hpp). A regular file is simply opened again: memory stays flat
+// say (check/sync_check.hpp). A regular file is simply opened again: memory stays flat
 // however long it is. A pipe, a FIFO, /dev/stdin or a terminal can be read only once: a
 // second reading would find nothing (or wait for ever on a FIFO), and a deadlock would pass
 // for sound. Such an input is read here exactly once, into an anonymous temporary file
@@ -10,7 +10,8 @@
 // ends, however it ends), which the reader then reads as often as it needs.
 #include <vector>
 
-#include "channels/nc_program.hpp"
+#include "check/nc_program.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 

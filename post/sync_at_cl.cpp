@@ -1,4 +1,4 @@
-#include "formats/sync_at_cl.hpp"
+#include "post/sync_at_cl.hpp"
 
 #include <cstdio>
 #include <fmt/format.h>

@@ -1,10 +1,10 @@
 #pragma once
-// Rendering a sync_result (channels/sync_check.hpp) as text or JSON. Pure functions: the
+// Rendering a sync_result (check/sync_check.hpp) as text or JSON. Pure functions: the
 // caller decides where the text goes.
 #include <string>
 #include <string_view>
 
-#include "channels/sync_check.hpp"
+#include "check/sync_check.hpp"
 
 namespace twinpost {
 

@@ -1,4 +1,4 @@
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 
 #include <algorithm>
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "formats/job_scan.hpp"
+#include "parser/job_scan.hpp"
 
 #include "parser/line_reader.hpp"
 
@@ -131,21 +131,6 @@ job_scan scan_job(const std::string& path) {
   }
   scan_line(carry, s);
   return s;
-}
-
-std::vector<int> used_channels(const job_scan& scan, const machine& m) {
-  std::vector<int> used;
-  auto add = [&](const channel_def* c) {
-    if (c) used.push_back(c->number);
-  };
-  add(m.channel_for_head(1));
-  for (int h : scan.heads) add(m.channel_for_head(h));
-  for (const std::string& w : scan.head_words) add(m.channel_for_head(std::string_view(w)));
-  for (int c : scan.channels)
-    if (c >= 1 && c <= static_cast<int>(m.channels.size())) used.push_back(c);
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  return used;
 }
 
 }  // namespace twinpost

@@ -1,4 +1,4 @@
-#include "formats/folder_lock.hpp"
+#include "post/folder_lock.hpp"
 
 #include <cerrno>
 #include <fcntl.h>

@@ -1,4 +1,5 @@
-#include "channels/nc_program.hpp"
+#include "check/nc_program.hpp"
+#include "support/errors.hpp"
 
 #include <array>
 #include <cerrno>

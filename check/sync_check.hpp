@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "channels/nc_program.hpp"
+#include "check/nc_program.hpp"
 #include "machines/machine.hpp"
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 
 namespace twinpost {
 

@@ -1,4 +1,4 @@
-#include "formats/temp_registry.hpp"
+#include "post/temp_registry.hpp"
 
 #include <atomic>
 #include <cstring>

@@ -5,7 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "formats/program_frame.hpp"
+#include "formats/program_layout.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 

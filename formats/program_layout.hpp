@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "machines/machine.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Reading NC programs (twinpost's own or anyone else's) into per-channel wait lists, the
-// input of the synchronisation checker (channels/sync_check.hpp).
+// input of the synchronisation checker (check/sync_check.hpp).
 //
 // Layouts, chosen from the number of files:
 // - one file per channel (split): file 1 is channel 1, file 2 channel 2, ...;
@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "machines/machine.hpp"
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 
 namespace twinpost {
 
@@ -38,7 +38,7 @@ struct nc_source {
   std::string text;
   std::string path = {};  ///< when set, the file is streamed from here and `text` is ignored
   /// When set, the file is streamed from this copy (from its start, each time it is read)
-  /// instead of `path`: see channels/nc_input.hpp, for inputs that can be read only once.
+  /// instead of `path`: see check/nc_input.hpp, for inputs that can be read only once.
   std::shared_ptr<std::FILE> copy = {};
 };
 

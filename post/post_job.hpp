@@ -4,7 +4,7 @@
 // open one, a body file otherwise (the auxiliary streams of a merged layout, appended when
 // all is read); the programs are checked by the same synchronisation checker as
 // `twinpost check`, and only then committed into the output folder as a set
-// (formats/output_commit.hpp). A failed run leaves no file behind.
+// (post/output_commit.hpp). A failed run leaves no file behind.
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -13,8 +13,9 @@
 
 #include "channels/router.hpp"
 #include "machines/machine.hpp"
-#include "parser/diagnostics.hpp"
+#include "support/diagnostics.hpp"
 #include "parser/dialect.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 

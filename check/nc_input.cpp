@@ -1,4 +1,5 @@
-#include "channels/nc_input.hpp"
+#include "check/nc_input.hpp"
+#include "support/errors.hpp"
 
 #include <sys/stat.h>
 

@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "machines/machine.hpp"
 
 namespace twinpost {
 
@@ -19,9 +18,5 @@ struct job_scan {
 
 /// Scans `path`; a file that cannot be read gives an empty scan (the post reports it).
 job_scan scan_job(const std::string& path);
-
-/// The machine channels the job uses, ascending: head 1's channel (work before any HEAD
-/// goes there) and those of every head and channel the scan found.
-std::vector<int> used_channels(const job_scan& scan, const machine& m);
 
 }  // namespace twinpost

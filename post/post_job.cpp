@@ -1,4 +1,4 @@
-#include "formats/post_job.hpp"
+#include "post/post_job.hpp"
 
 #include <cctype>
 #include <cerrno>
@@ -11,15 +11,17 @@
 #include <memory>
 #include <unistd.h>
 
-#include "channels/sync_check.hpp"
+#include "check/sync_check.hpp"
 #include "formats/channel_writer.hpp"
-#include "formats/job_scan.hpp"
-#include "formats/output_commit.hpp"
-#include "formats/output_names.hpp"
-#include "formats/program_frame.hpp"
-#include "formats/sync_at_cl.hpp"
+#include "channels/job_channels.hpp"
+#include "parser/job_scan.hpp"
+#include "post/output_commit.hpp"
+#include "post/output_names.hpp"
+#include "formats/program_layout.hpp"
+#include "post/sync_at_cl.hpp"
 #include "formats/program_number.hpp"
 #include "parser/cl_reader.hpp"
+#include "support/errors.hpp"
 
 namespace fs = std::filesystem;
 

@@ -1,4 +1,4 @@
-#include "channels/sync_report_format.hpp"
+#include "check/sync_report.hpp"
 
 #include <fmt/format.h>
 

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "support/errors.hpp"
+
 namespace twinpost {
 
 struct staged_file {
