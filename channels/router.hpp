@@ -15,14 +15,13 @@
 #include <utility>
 #include <vector>
 
+#include "channels/sync_policy.hpp"
 #include "channels/wait_allocator.hpp"
 #include "machines/machine.hpp"
 #include "support/diagnostics.hpp"
 #include "parser/events.hpp"
 
 namespace twinpost {
-
-enum class sync_policy { explicit_marks, sequential, automatic };
 
 /// A wait placed in a channel.
 struct wait_mark {

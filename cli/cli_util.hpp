@@ -4,6 +4,7 @@
 #include <boost/program_options.hpp>
 #include <cstdio>
 #include <string>
+#include <string_view>
 
 #include "cli/commands.hpp"
 #include "support/diagnostics.hpp"
@@ -17,6 +18,18 @@ bool parse_options(const args& a, const boost::program_options::options_descript
 
 /// The options' help text.
 std::string to_string(const boost::program_options::options_description& opts);
+
+/// The names of an enum's table joined for a message or a help text, in the table's order:
+/// "a|b|c" (sep "|", last_sep "|") or "a, b or c" (sep ", ", last_sep " or ").
+template <class Table, class Name>
+std::string names_joined(const Table& table, Name name, std::string_view sep, std::string_view last_sep) {
+  std::string s;
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    if (i > 0) s += i + 1 == table.size() ? last_sep : sep;
+    s += name(table[i]);
+  }
+  return s;
+}
 
 /// An open file, closed on destruction.
 class open_file {

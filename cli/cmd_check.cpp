@@ -1,4 +1,4 @@
-// twinpost check FILE... --machine M [--json]: proves the waits of NC programs.
+// twinpost check: proves the waits of NC programs.
 #include <boost/program_options.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +12,7 @@
 #include "check/sync_check.hpp"
 #include "check/sync_report.hpp"
 #include "cli/cli_util.hpp"
+#include "cli/command_table.hpp"
 #include "cli/commands.hpp"
 #include "cli/machine_dirs.hpp"
 #include "support/errors.hpp"
@@ -20,13 +21,14 @@ namespace twinpost::cli {
 
 namespace {
 
-const char* const check_usage =
-    "usage: twinpost check FILE... --machine M [--json]\n"
-    "\n"
-    "Checks that the waits of NC programs pair up and cannot deadlock. Give one file per\n"
-    "channel, in channel order, or one file with the machine's section markers.\n"
-    "Exit status: 0 sound, 1 problems found, 2 usage or configuration error.\n"
-    "\n";
+std::string check_usage() {
+  return "usage: " + command_usage("check") + "\n"
+         "\n"
+         "Checks that the waits of NC programs pair up and cannot deadlock. Give one file per\n"
+         "channel, in channel order, or one file with the machine's section markers.\n"
+         "Exit status: 0 sound, 1 problems found, 2 usage or configuration error.\n"
+         "\n";
+}
 
 /// True when `path` is a regular file that opens for reading, or a pipe, FIFO or device:
 /// those are not opened here, since opening a FIFO to look at it takes its writer's data
@@ -57,7 +59,7 @@ int run_check(const args& a) {
   po::variables_map vm;
   if (!parse_options(a, all, pos, vm, "check")) return 2;
   if (vm.count("help")) {
-    fmt::print("{}{}", check_usage, to_string(opts));
+    fmt::print("{}{}", check_usage(), to_string(opts));
     return 0;
   }
   if (!vm.count("file")) {

@@ -1,4 +1,4 @@
-// twinpost machines [--show NAME]: lists the built-in machine definitions, one per line, or
+// twinpost machines: lists the built-in machine definitions, one per line, or
 // prints the definition --machine NAME would use, to copy and edit.
 #include <algorithm>
 #include <cstdio>
@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "cli/command_table.hpp"
 #include "cli/commands.hpp"
 #include "cli/machine_dirs.hpp"
 #include "machines/machine_loader.hpp"
@@ -14,22 +15,23 @@ namespace twinpost::cli {
 
 namespace {
 
-const char* const machines_usage =
-    "usage: twinpost machines [--show NAME]\n"
-    "\n"
-    "Lists the built-in machine definitions: name, then description.\n"
-    "--show NAME prints the definition that --machine NAME uses (TOML), to copy and edit.\n"
-    "Pass a name to --machine, or a path to your own TOML file (see docs/machines.md).\n"
-    "A name is looked up as NAME.toml in $XDG_CONFIG_HOME/twinpost/machines (default\n"
-    "~/.config/twinpost/machines), then /etc/twinpost/machines, then the installation's\n"
-    "share/twinpost/machines, then among the built-ins.\n";
+std::string machines_usage() {
+  return "usage: " + command_usage("machines") + "\n"
+         "\n"
+         "Lists the built-in machine definitions: name, then description.\n"
+         "--show NAME prints the definition that --machine NAME uses (TOML), to copy and edit.\n"
+         "Pass a name to --machine, or a path to your own TOML file (see docs/machines.md).\n"
+         "A name is looked up as NAME.toml in $XDG_CONFIG_HOME/twinpost/machines (default\n"
+         "~/.config/twinpost/machines), then /etc/twinpost/machines, then the installation's\n"
+         "share/twinpost/machines, then among the built-ins.\n";
+}
 
 }  // namespace
 
 int run_machines(const args& a) {
   for (const std::string& arg : a) {
     if (arg == "--help" || arg == "-h") {
-      std::fputs(machines_usage, stdout);
+      std::fputs(machines_usage().c_str(), stdout);
       return 0;
     }
   }
@@ -42,7 +44,7 @@ int run_machines(const args& a) {
     const std::string& arg = a.front();
     fmt::print(stderr, "twinpost machines: {} '{}'\n\n{}",
                arg.starts_with('-') ? "unknown option" : "unexpected argument", arg,
-               machines_usage);
+               machines_usage());
     return 2;
   }
   const std::vector<machine_summary> all = builtin_machines();

@@ -1,11 +1,13 @@
-// twinpost parse FILE [--json] [--dialect D]: print the CL event stream.
+// twinpost parse: print the CL event stream.
 #include <boost/program_options.hpp>
 #include <cstdio>
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
 #include "cli/cli_util.hpp"
+#include "cli/command_table.hpp"
 #include "parser/cl_reader.hpp"
+#include "parser/dialect.hpp"
 #include "parser/event_text.hpp"
 
 namespace twinpost::cli {
@@ -13,9 +15,11 @@ namespace twinpost::cli {
 namespace po = boost::program_options;
 
 int run_parse(const args& a) {
-  po::options_description opts("twinpost parse FILE [options]");
+  po::options_description opts(command_usage("parse"));
+  static const std::string dialects =
+      names_joined(dialect_names, [](const dialect_name_entry& d) { return d.name; }, "|", "|") + " (default: detect)";
   opts.add_options()("help,h", "show this help")("json", "one JSON object per event (JSON Lines)")(
-      "dialect", po::value<std::string>(), "creo|nx|catia|solidworks|makino|generic (default: detect)")(
+      "dialect", po::value<std::string>(), dialects.c_str())(
       "file", po::value<std::string>(), "CL file");
   po::positional_options_description pos;
   pos.add("file", 1);

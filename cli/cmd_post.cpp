@@ -1,27 +1,110 @@
-// twinpost post JOB --machine M -o DIR [--layout L] [--sync P]: post a CL job.
+// twinpost post: post a CL job. The synopses of all commands: cli/command_table.cpp.
 #include <boost/program_options.hpp>
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <unistd.h>
 #include <fmt/format.h>
 
+#include "channels/sync_policy.hpp"
 #include "cli/cli_util.hpp"
+#include "cli/command_table.hpp"
 #include "cli/commands.hpp"
 #include "cli/interrupt.hpp"
-#include "post/post_job.hpp"
 #include "cli/machine_dirs.hpp"
+#include "machines/layout_names.hpp"
+#include "post/post_job.hpp"
 
 namespace twinpost::cli {
 
 namespace po = boost::program_options;
 
-int run_post(const args& a) {
-  po::options_description opts("twinpost post JOB --machine M -o DIR [options]");
+namespace {
+
+constexpr auto layout_option = [](const layout_name& n) { return n.option; };
+constexpr auto policy_name = [](const sync_policy_name& n) { return n.name; };
+
+po::options_description post_option_descriptions() {
+  static const std::string layouts =
+      names_joined(layout_names, layout_option, "|", "|") + " (default: the machine's)";
+  static const std::string policies = names_joined(sync_policy_names, policy_name, "|", "|");
+  po::options_description opts(command_usage("post"));
   opts.add_options()("help,h", "show this help")("machine,m", po::value<std::string>(), "machine name or TOML file")(
       "output,o", po::value<std::string>(), "output folder (made if missing)")(
-      "layout", po::value<std::string>(), "split|merged-appended|merged-sections (default: the machine's)")(
-      "sync", po::value<std::string>()->default_value("auto"), "explicit|sequential|auto")(
+      "layout", po::value<std::string>(), layouts.c_str())(
+      "sync", po::value<std::string>()->default_value("auto"), policies.c_str())(
       "dialect", po::value<std::string>(), "CL dialect (default: detect)")("job", po::value<std::string>(), "CL file");
+  return opts;
+}
+
+// The job, --machine and -o are required; false (said on stderr) when one is missing.
+bool has_required(const po::variables_map& vm) {
+  for (const char* need : {"job", "machine", "output"}) {
+    if (!vm.count(need)) {
+      fmt::print(stderr, "twinpost post: missing {}\n", std::string(need) == "job" ? "CL job file" : fmt::format("--{}", need));
+      return false;
+    }
+  }
+  return true;
+}
+
+// The options as the library takes them; nullopt (said on stderr) when one names nothing.
+std::optional<post_options> read_post_options(const po::variables_map& vm) {
+  post_options o;
+  o.cl_path = vm["job"].as<std::string>();
+  o.out_dir = vm["output"].as<std::string>();
+  const auto policy = sync_policy_from_name(vm["sync"].as<std::string>());
+  if (!policy) {
+    fmt::print(stderr, "twinpost post: --sync must be {}\n", names_joined(sync_policy_names, policy_name, ", ", " or "));
+    return std::nullopt;
+  }
+  o.policy = *policy;
+  if (vm.count("layout")) {
+    o.layout = layout_from_option(vm["layout"].as<std::string>());
+    if (!o.layout) {
+      fmt::print(stderr, "twinpost post: --layout must be {}\n", names_joined(layout_names, layout_option, ", ", " or "));
+      return std::nullopt;
+    }
+  }
+  if (vm.count("dialect")) {
+    o.forced_dialect = dialect_from_name(vm["dialect"].as<std::string>());
+    if (!o.forced_dialect) {
+      fmt::print(stderr, "twinpost post: unknown dialect '{}'\n", vm["dialect"].as<std::string>());
+      return std::nullopt;
+    }
+  }
+  return o;
+}
+
+// Progress on stderr only for a person watching a terminal: never in logs or pipes.
+// `shown` says whether a line was printed that needs clearing.
+void show_progress_on_terminal(post_options& o, bool& shown) {
+  std::error_code ec;
+  const auto total = std::filesystem::file_size(o.cl_path, ec);
+  if (ec || !::isatty(2)) return;
+  o.progress = [&shown, total, last = std::chrono::steady_clock::now()](std::size_t bytes) mutable {
+    auto now = std::chrono::steady_clock::now();
+    if (now - last < std::chrono::milliseconds(250)) return;
+    last = now;
+    shown = true;
+    fmt::print(stderr, "\rpost: {:3}% of {} MB", total ? bytes * 100 / total : 100, total >> 20);
+  };
+}
+
+void print_summary(const post_summary& s, const printing_sink& sink, const located_machine& found) {
+  // One channel waits for nobody: no policy to report.
+  const std::string waits = s.channels == 1 ? "no waits (one channel)"
+                                            : fmt::format("{} waits ({})", s.waits, sync_policy_to_name(s.policy));
+  fmt::print("post: {} records, {} channel{}, {} blocks, {}, {} warning{}\n", s.records, s.channels,
+             s.channels == 1 ? "" : "s", s.blocks, waits, sink.warnings(), sink.warnings() == 1 ? "" : "s");
+  fmt::print("  machine {} ({})\n", found.def.name, found.origin);
+  for (const std::string& f : s.files) fmt::print("  wrote {}\n", f);
+}
+
+}  // namespace
+
+int run_post(const args& a) {
+  const po::options_description opts = post_option_descriptions();
   po::positional_options_description pos;
   pos.add("job", 1);
   po::variables_map vm;
@@ -30,76 +113,27 @@ int run_post(const args& a) {
     fmt::print("{}", to_string(opts));
     return 0;
   }
-  for (const char* need : {"job", "machine", "output"}) {
-    if (!vm.count(need)) {
-      fmt::print(stderr, "twinpost post: missing {}\n", std::string(need) == "job" ? "CL job file" : fmt::format("--{}", need));
-      return 2;
-    }
-  }
-  post_options o;
-  o.cl_path = vm["job"].as<std::string>();
-  o.out_dir = vm["output"].as<std::string>();
-  std::string sync = vm["sync"].as<std::string>();
-  if (sync == "explicit") o.policy = sync_policy::explicit_marks;
-  else if (sync == "sequential") o.policy = sync_policy::sequential;
-  else if (sync == "auto") o.policy = sync_policy::automatic;
-  else {
-    fmt::print(stderr, "twinpost post: --sync must be explicit, sequential or auto\n");
-    return 2;
-  }
-  if (vm.count("layout")) {
-    std::string l = vm["layout"].as<std::string>();
-    if (l == "split") o.layout = layout_kind::split;
-    else if (l == "merged-appended") o.layout = layout_kind::merged_appended;
-    else if (l == "merged-sections") o.layout = layout_kind::merged_sections;
-    else {
-      fmt::print(stderr, "twinpost post: --layout must be split, merged-appended or merged-sections\n");
-      return 2;
-    }
-  }
-  if (vm.count("dialect")) {
-    o.forced_dialect = dialect_from_name(vm["dialect"].as<std::string>());
-    if (!o.forced_dialect) {
-      fmt::print(stderr, "twinpost post: unknown dialect '{}'\n", vm["dialect"].as<std::string>());
-      return 2;
-    }
-  }
+  if (!has_required(vm)) return 2;
+  std::optional<post_options> o = read_post_options(vm);
+  if (!o) return 2;
   const located_machine found = locate_machine(vm["machine"].as<std::string>());
   const machine& m = found.def;
-  if (o.layout == layout_kind::merged_appended && m.program.section_marker.empty()) {
-    fmt::print(stderr, "twinpost post: machine '{}' has no section marker for merged-appended\n", m.name);
+  if (o->layout == layout_kind::merged_appended && m.program.section_marker.empty()) {
+    fmt::print(stderr, "twinpost post: machine '{}' has no section marker for {}\n", m.name,
+               layout_option_name(layout_kind::merged_appended));
     return 2;
   }
-  // Progress on stderr only for a person watching a terminal: never in logs or pipes.
-  std::error_code ec;
-  const auto total = std::filesystem::file_size(o.cl_path, ec);
   bool shown = false;
-  if (!ec && ::isatty(2)) {
-    auto last = std::chrono::steady_clock::now();
-    o.progress = [&, total](std::size_t bytes) {
-      auto now = std::chrono::steady_clock::now();
-      if (now - last < std::chrono::milliseconds(250)) return;
-      last = now;
-      shown = true;
-      fmt::print(stderr, "\rpost: {:3}% of {} MB", total ? bytes * 100 / total : 100, total >> 20);
-    };
-  }
+  show_progress_on_terminal(*o, shown);
   printing_sink sink;
   install_interrupt_cleanup();
-  post_summary s = post_job(o, m, sink);
+  const post_summary s = post_job(*o, m, sink);
   if (shown) fmt::print(stderr, "\r{:30}\r", "");
   if (!s.ok) {
     fmt::print(stderr, "post: failed with {} error{}; no file written\n", sink.errors(), sink.errors() == 1 ? "" : "s");
     return 1;
   }
-  // One channel waits for nobody: no policy to report.
-  const std::string waits = s.channels == 1 ? "no waits (one channel)"
-                            : fmt::format("{} waits ({})", s.waits,
-                                          s.policy == sync_policy::explicit_marks ? "explicit" : "sequential");
-  fmt::print("post: {} records, {} channel{}, {} blocks, {}, {} warning{}\n", s.records, s.channels,
-             s.channels == 1 ? "" : "s", s.blocks, waits, sink.warnings(), sink.warnings() == 1 ? "" : "s");
-  fmt::print("  machine {} ({})\n", m.name, found.origin);
-  for (const std::string& f : s.files) fmt::print("  wrote {}\n", f);
+  print_summary(s, sink, found);
   return 0;
 }
 

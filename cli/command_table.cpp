@@ -51,6 +51,12 @@ std::string roff(std::string_view s) {
 
 std::span<const command_entry> command_table() { return table; }
 
+std::string command_usage(std::string_view name) {
+  for (const command_entry& c : table)
+    if (c.name == name) return fmt::format("twinpost {} {}", c.name, c.synopsis);
+  return fmt::format("twinpost {}", name);
+}
+
 std::string usage_text() {
   std::string s = "usage: twinpost <command> [options]\n\ncommands:\n";
   for (const command_entry& c : table) s += fmt::format("  {} {}\n      {}\n", c.name, c.synopsis, c.summary);

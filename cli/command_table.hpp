@@ -4,6 +4,7 @@
 // the build), so the three can never disagree.
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "cli/commands.hpp"
 
@@ -19,6 +20,10 @@ struct command_entry {
 
 /// Every command, in the order the usage text lists them.
 std::span<const command_entry> command_table();
+
+/// "twinpost NAME SYNOPSIS" of the command `name` (which must be in the table): the first
+/// line of the command's own --help.
+std::string command_usage(std::string_view name);
 
 /// The usage text of `twinpost --help`.
 std::string usage_text();

@@ -8,9 +8,10 @@ namespace twinpost::cli {
 
 using args = std::vector<std::string>;
 
-int run_parse(const args& a);     ///< twinpost parse FILE [--json] [--dialect D]
-int run_post(const args& a);      ///< twinpost post JOB --machine M -o DIR [--layout L]
-int run_check(const args& a);     ///< twinpost check FILE... --machine M [--json]
-int run_machines(const args& a);  ///< twinpost machines
+// Their synopses live in one place, the table of cli/command_table.cpp.
+int run_parse(const args& a);
+int run_post(const args& a);
+int run_check(const args& a);
+int run_machines(const args& a);
 
 }  // namespace twinpost::cli

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "machines/builtin_machines.hpp"
+#include "machines/layout_names.hpp"
 #include "machines/machine_search.hpp"
 #include "machines/toml_reader.hpp"
 
@@ -57,11 +58,7 @@ void read_machine_table(const table_reader& root, machine& m, anchors& at) {
   if (m.name.empty()) r.fail(*r.find("name"), "machine.name must not be empty");
   r.read("description", m.description);
   r.read("control", m.control);
-  at.layout = read_enum<layout_kind>(r, "layout",
-                                     {{{"split", layout_kind::split},
-                                       {"merged_appended", layout_kind::merged_appended},
-                                       {"merged_sections", layout_kind::merged_sections}}},
-                                     m.layout);
+  at.layout = read_enum<layout_kind>(r, "layout", layout_file_names(), m.layout);
 }
 
 constexpr int max_wait_code = 99'999'999;
@@ -254,8 +251,7 @@ void read_spindles(const table_reader& root, const wait_rules& waits, std::vecto
 void check_across_tables(const table_reader& root, const machine& m, const anchors& at) {
   if (m.layout != layout_kind::split && m.program.section_marker.empty()) {
     const std::string message = fmt::format(
-        "layout {} needs program.section_marker",
-        m.layout == layout_kind::merged_appended ? "merged_appended" : "merged_sections");
+        "layout {} needs program.section_marker", layout_file_name(m.layout));
     if (at.program) root.fail(*at.program, message);
     root.fail(*at.layout, message);
   }

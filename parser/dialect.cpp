@@ -1,20 +1,8 @@
 #include "parser/dialect.hpp"
 
-#include <array>
-#include <utility>
-
 namespace twinpost {
 
 namespace {
-constexpr std::array<std::pair<dialect, std::string_view>, 6> names{{
-    {dialect::generic, "generic"},
-    {dialect::creo, "creo"},
-    {dialect::nx, "nx"},
-    {dialect::catia, "catia"},
-    {dialect::solidworks, "solidworks"},
-    {dialect::makino, "makino"},
-}};
-
 bool has(std::string_view s, std::string_view what) { return s.find(what) != std::string_view::npos; }
 }  // namespace
 
@@ -28,13 +16,13 @@ dialect detect_dialect(std::string_view head) {
 }
 
 std::string_view dialect_name(dialect d) {
-  for (const auto& [v, n] : names)
+  for (const auto& [v, n] : dialect_names)
     if (v == d) return n;
   return "generic";
 }
 
 std::optional<dialect> dialect_from_name(std::string_view name) {
-  for (const auto& [v, n] : names)
+  for (const auto& [v, n] : dialect_names)
     if (n == name) return v;
   return std::nullopt;
 }

@@ -1,5 +1,6 @@
 #pragma once
 // CAM dialects of CL text and the conventions that differ between them.
+#include <array>
 #include <optional>
 #include <string_view>
 
@@ -11,6 +12,21 @@ enum class dialect : unsigned char { generic, creo, nx, catia, solidworks, makin
 /// `TOOL PATH/`, CATIA `$$*CATIA0`, Makino `APTCL-SPEC,MAKINO`, SolidWorks CAM `UNIT/MM`,
 /// `CSI_SET_` or `OPFEATSTART`; generic ISO 4343 APT otherwise.
 dialect detect_dialect(std::string_view head);
+
+struct dialect_name_entry {
+  dialect value;
+  std::string_view name;  ///< as --dialect spells it
+};
+
+/// The one table of dialect names, in the order messages and help texts list them.
+inline constexpr std::array<dialect_name_entry, 6> dialect_names{{
+    {dialect::creo, "creo"},
+    {dialect::nx, "nx"},
+    {dialect::catia, "catia"},
+    {dialect::solidworks, "solidworks"},
+    {dialect::makino, "makino"},
+    {dialect::generic, "generic"},
+}};
 
 /// The dialect's name as used by --dialect ("creo", "nx", ...).
 std::string_view dialect_name(dialect d);

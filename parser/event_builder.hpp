@@ -3,6 +3,7 @@
 // little state the records need: position, modal tool axis, one-shot RAPID, a pending
 // CIRCLE waiting for its end point, units, ICAM marker numbers.
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "parser/detail/build_issue.hpp"
@@ -43,13 +44,49 @@ class event_builder {
   };
 
   void statement(const cl_record& r, int line, event_queue& out, build_issues& issues);
+
+  // One handler per major word (parser/event_statements.cpp): statement() finds it in a
+  // sorted table, without allocating, and `other` takes every word the table lacks.
+  using statement_handler = void (event_builder::*)(const cl_record&, int, event_queue&, build_issues&);
+  static statement_handler handler_of(std::string_view major);
+  template <motion_kind K>
+  void on_motion(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+    motion(r, K, line, out, issues);
+  }
+  template <tool_source S>
+  void on_tool(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  template <bool Prefun>
+  void on_aux(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_rapid(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_spindl(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_fedrat(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_coolnt(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_cutcom(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_cycle(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_delay(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_load_or_select(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_tool_data(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_units(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_machin(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_multax(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_coordsys(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_tlaxis(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_head(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_channel(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_sync(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_synctr(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_stop(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_end(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  /// Any other word: a passthrough event, or the error of a word a post cannot carry out.
+  void other(const cl_record& r, int line, event_queue& out, build_issues& issues);
+
   void comment(const cl_record& r, int line, event_queue& out);
   void motion(const cl_record& r, motion_kind kind, int line, event_queue& out, build_issues& issues);
   /// The record's numbers in a vector reused from record to record (no allocation per GOTO).
   const std::vector<double>& numbers(const cl_record& r);
   void point(const std::vector<double>& n, bool continued, motion_kind kind, int line,
              event_queue& out);
-  void circle(const cl_record& r, int line, build_issues& issues);
+  void circle(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void end_of_motion_record();
 
   dialect dialect_;

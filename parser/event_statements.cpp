@@ -1,5 +1,6 @@
-// event_builder: statements (MAJOR/args) and motion.
-#include <cmath>
+// event_builder: statements (MAJOR/args) other than motion, found through one table of
+// handlers by major word.
+#include <array>
 #include <fmt/format.h>
 
 #include "parser/detail/word_events.hpp"
@@ -16,99 +17,210 @@ namespace {
 bool known_passthrough(std::string_view m);
 bool ignorable_in_post(const cl_record& r);
 
-double planar_radius(vec3 p, vec3 c, vec3 n) {
-  double dx = p.x - c.x, dy = p.y - c.y, dz = p.z - c.z;
-  double nl = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-  double a = nl > 0 ? (dx * n.x + dy * n.y + dz * n.z) / nl : 0;
-  double r2 = dx * dx + dy * dy + dz * dz - a * a;
-  return r2 > 0 ? std::sqrt(r2) : 0;
+template <class T>
+void push_some(event_queue& out, int line, std::optional<T> e) {
+  if (e) out.push_back({line, std::move(*e)});
 }
 
-std::size_t where(const cl_record& r) { return r.args.empty() ? r.major_offset : r.args.front().offset; }
+constexpr char upper_ascii(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
 
 }  // namespace
 
 void event_builder::statement(const cl_record& r, int line, event_queue& out, build_issues& issues) {
-  std::string_view m = r.major;
   end_of_motion_record();
-  if (word_is(m, "GOTO")) return motion(r, motion_kind::go_to, line, out, issues);
-  if (word_is(m, "FROM")) return motion(r, motion_kind::from, line, out, issues);
-  if (word_is(m, "GODLTA")) return motion(r, motion_kind::delta, line, out, issues);
-  if (word_is(m, "GOHOME")) return motion(r, motion_kind::home, line, out, issues);
-  if (word_is(m, "RAPID")) {
-    rapid_ = true;
-    return;
-  }
-  if (word_is(m, "CIRCLE")) return circle(r, line, issues);
-  if (word_is(m, "SPINDL")) return out.push_back({line, detail::read_spindl(r, issues)});
-  if (word_is(m, "FEDRAT")) return out.push_back({line, detail::read_fedrat(r, units_, issues)});
-  if (word_is(m, "COOLNT")) return out.push_back({line, detail::read_coolnt(r, issues)});
-  if (word_is(m, "CUTCOM")) return out.push_back({line, detail::read_cutcom(r, issues)});
-  if (word_is(m, "CYCLE")) return out.push_back({line, detail::read_cycle(r)});
-  auto push = [&](auto opt) {
-    if (opt) out.push_back({line, std::move(*opt)});
+  (this->*handler_of(r.major))(r, line, out, issues);
+}
+
+// This runs once per record: a table sorted by word, cut into one run per first letter, so a
+// lookup is an index and a few length compares (GOTO: two), with no allocation and no
+// indirect call beyond the handler itself.
+event_builder::statement_handler event_builder::handler_of(std::string_view major) {
+  struct entry {
+    std::string_view word;  // upper case
+    statement_handler handler;
   };
-  if (word_is(m, "DELAY")) return push(detail::read_delay(r, issues));
-  if (word_is(m, "AUXFUN")) return push(detail::read_aux(r, false, issues));
-  if (word_is(m, "PREFUN")) return push(detail::read_aux(r, true, issues));
-  if (word_is(m, "LOADTL")) return push(detail::read_tool(r, tool_source::loadtl, issues));
-  if (word_is(m, "TURRET")) return push(detail::read_tool(r, tool_source::turret, issues));
-  if (word_is(m, "LOAD") || word_is(m, "SELECT") || word_is(m, "SELCTL")) {
-    bool tool_word = !r.args.empty() && r.args[0].kind == arg_kind::word && word_is(r.args[0].word, "TOOL");
-    if (tool_word || word_is(m, "SELCTL")) {
-      tool_source s = word_is(m, "LOAD") ? tool_source::load_tool : tool_source::select_tool;
-      return push(detail::read_tool(r, s, issues));
+  using b = event_builder;
+  static constexpr entry table[] = {
+      {"AUXFUN", &b::on_aux<false>},
+      {"CHANNEL", &b::on_channel},
+      {"CHANNL", &b::on_channel},
+      {"CIRCLE", &b::circle},
+      {"COOLNT", &b::on_coolnt},
+      {"CSYS", &b::on_coordsys},
+      {"CUTCOM", &b::on_cutcom},
+      {"CUTTER", &b::on_tool_data},
+      {"CYCLE", &b::on_cycle},
+      {"DELAY", &b::on_delay},
+      {"END", &b::on_end},
+      {"END-OF-PATH", &b::on_end},
+      {"FEDRAT", &b::on_fedrat},
+      {"FINI", &b::on_end},
+      {"FROM", &b::on_motion<motion_kind::from>},
+      {"GODLTA", &b::on_motion<motion_kind::delta>},
+      {"GOHOME", &b::on_motion<motion_kind::home>},
+      {"GOTO", &b::on_motion<motion_kind::go_to>},
+      {"HEAD", &b::on_head},
+      {"LOAD", &b::on_load_or_select},
+      {"LOADTL", &b::on_tool<tool_source::loadtl>},
+      {"MACHIN", &b::on_machin},
+      {"MSYS", &b::on_coordsys},
+      {"MULTAX", &b::on_multax},
+      {"OPSTOP", &b::on_stop},
+      {"PREFUN", &b::on_aux<true>},
+      {"RAPID", &b::on_rapid},
+      {"SELCTL", &b::on_tool<tool_source::select_tool>},
+      {"SELECT", &b::on_load_or_select},
+      {"SPINDL", &b::on_spindl},
+      {"STOP", &b::on_stop},
+      {"SYNC", &b::on_sync},
+      {"SYNCTR", &b::on_synctr},
+      {"TLAXIS", &b::on_tlaxis},
+      {"TLDATA", &b::on_tool_data},
+      {"TURRET", &b::on_tool<tool_source::turret>},
+      {"UNIT", &b::on_units},
+      {"UNITS", &b::on_units},
+  };
+  constexpr std::size_t n = std::size(table);
+  // first[c]..first[c + 1]: the entries whose word starts with letter 'A' + c.
+  static constexpr auto first = [] {
+    for (std::size_t i = 1; i < n; ++i)
+      if (!(table[i - 1].word < table[i].word)) throw "the statement table must be sorted and unique";
+    std::array<unsigned char, 27> f{};
+    std::size_t i = 0;
+    for (int c = 0; c < 26; ++c) {
+      f[c] = static_cast<unsigned char>(i);
+      while (i < n && table[i].word[0] == 'A' + c) ++i;
     }
+    if (i != n) throw "every word of the statement table must start with a letter A-Z";
+    f[26] = static_cast<unsigned char>(n);
+    return f;
+  }();
+  if (major.empty()) return &b::other;
+  const char c = upper_ascii(major[0]);
+  if (c < 'A' || c > 'Z') return &b::other;
+  for (std::size_t i = first[c - 'A'], end = first[c - 'A' + 1]; i < end; ++i)
+    if (word_is(major, table[i].word)) return table[i].handler;
+  return &b::other;
+}
+
+template <tool_source S>
+void event_builder::on_tool(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  push_some(out, line, detail::read_tool(r, S, issues));
+}
+
+template <bool Prefun>
+void event_builder::on_aux(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  push_some(out, line, detail::read_aux(r, Prefun, issues));
+}
+
+void event_builder::on_rapid(const cl_record&, int, event_queue&, build_issues&) { rapid_ = true; }
+
+void event_builder::on_spindl(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  out.push_back({line, detail::read_spindl(r, issues)});
+}
+
+void event_builder::on_fedrat(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  out.push_back({line, detail::read_fedrat(r, units_, issues)});
+}
+
+void event_builder::on_coolnt(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  out.push_back({line, detail::read_coolnt(r, issues)});
+}
+
+void event_builder::on_cutcom(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  out.push_back({line, detail::read_cutcom(r, issues)});
+}
+
+void event_builder::on_cycle(const cl_record& r, int line, event_queue& out, build_issues&) {
+  out.push_back({line, detail::read_cycle(r)});
+}
+
+void event_builder::on_delay(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  push_some(out, line, detail::read_delay(r, issues));
+}
+
+// LOAD/TOOL and SELECT/TOOL call a tool; LOAD or SELECT of anything else is another record.
+void event_builder::on_load_or_select(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  const bool tool_word = !r.args.empty() && r.args[0].kind == arg_kind::word && word_is(r.args[0].word, "TOOL");
+  if (!tool_word) return other(r, line, out, issues);
+  const tool_source s = word_is(r.major, "LOAD") ? tool_source::load_tool : tool_source::select_tool;
+  push_some(out, line, detail::read_tool(r, s, issues));
+}
+
+void event_builder::on_tool_data(const cl_record& r, int line, event_queue& out, build_issues&) {
+  tool_data_event t;
+  t.major = upper(r.major);
+  for (const cl_arg& a : r.args) {
+    if (a.kind == arg_kind::word) t.words.push_back(upper(a.word));
+    if (a.kind == arg_kind::number) t.values.push_back(a.number);
   }
-  if (word_is(m, "TLDATA") || word_is(m, "CUTTER")) {
-    tool_data_event t;
-    t.major = upper(m);
-    for (const cl_arg& a : r.args) {
-      if (a.kind == arg_kind::word) t.words.push_back(upper(a.word));
-      if (a.kind == arg_kind::number) t.values.push_back(a.number);
-    }
-    return out.push_back({line, std::move(t)});
+  out.push_back({line, std::move(t)});
+}
+
+void event_builder::on_units(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  if (r.args.empty() || r.args[0].kind != arg_kind::word)
+    return issues.push_back({severity::error, detail::args_offset(r), "UNITS needs MM or INCHES"});
+  std::string_view w = r.args[0].word;
+  if (word_is(w, "MM")) units_ = unit_system::mm;
+  else if (word_is(w, "INCHES") || word_is(w, "INCH")) units_ = unit_system::inch;
+  else return issues.push_back({severity::error, r.args[0].offset, fmt::format("unknown units '{}'", w)});
+  out.push_back({line, units_event{units_}});
+}
+
+void event_builder::on_machin(const cl_record& r, int line, event_queue& out, build_issues&) {
+  machin_event e;
+  for (std::size_t i = 0; i < r.args.size(); ++i) {
+    const cl_arg& a = r.args[i];
+    std::string s = a.kind == arg_kind::word ? std::string(a.word)
+                    : a.kind == arg_kind::number ? format_number(a.number) : std::string();
+    if (i == 0) e.name = std::move(s);
+    else e.args.push_back(std::move(s));
   }
-  if (word_is(m, "UNITS") || word_is(m, "UNIT")) {
-    if (!r.args.empty() && r.args[0].kind == arg_kind::word) {
-      std::string_view w = r.args[0].word;
-      if (word_is(w, "MM")) units_ = unit_system::mm;
-      else if (word_is(w, "INCHES") || word_is(w, "INCH")) units_ = unit_system::inch;
-      else return issues.push_back({severity::error, r.args[0].offset, fmt::format("unknown units '{}'", w)});
-      return out.push_back({line, units_event{units_}});
-    }
-    return issues.push_back({severity::error, where(r), "UNITS needs MM or INCHES"});
-  }
-  if (word_is(m, "MACHIN")) {
-    machin_event e;
-    for (std::size_t i = 0; i < r.args.size(); ++i) {
-      const cl_arg& a = r.args[i];
-      std::string s = a.kind == arg_kind::word ? std::string(a.word)
-                      : a.kind == arg_kind::number ? format_number(a.number) : std::string();
-      if (i == 0) e.name = std::move(s);
-      else e.args.push_back(std::move(s));
-    }
-    return out.push_back({line, std::move(e)});
-  }
-  if (word_is(m, "MULTAX")) {
-    bool on = r.args.empty() || r.args[0].kind != arg_kind::word || !word_is(r.args[0].word, "OFF");
-    return out.push_back({line, multax_event{on}});
-  }
-  if (word_is(m, "MSYS") || word_is(m, "CSYS"))
-    return out.push_back({line, coordsys_event{upper(m), numbers_of(r)}});
-  if (word_is(m, "TLAXIS")) {
-    std::vector<double> n = numbers_of(r);
-    if (n.size() != 3) return issues.push_back({severity::error, where(r), "TLAXIS takes 3 numbers"});
-    axis_ = vec3{n[0], n[1], n[2]};
-    return out.push_back({line, tool_axis_event{*axis_}});
-  }
-  if (word_is(m, "HEAD")) return push(detail::read_head(r, issues));
-  if (word_is(m, "CHANNEL") || word_is(m, "CHANNL")) return push(detail::read_channel(r, issues));
-  if (word_is(m, "SYNC")) return push(detail::read_sync(r, issues));
-  if (word_is(m, "SYNCTR")) return push(detail::read_synctr(r, icam_marker_, issues));
-  if (word_is(m, "STOP") || word_is(m, "OPSTOP")) return out.push_back({line, stop_event{word_is(m, "OPSTOP")}});
-  if (word_is(m, "FINI") || word_is(m, "END") || word_is(m, "END-OF-PATH"))
-    return out.push_back({line, end_event{upper(m)}});
+  out.push_back({line, std::move(e)});
+}
+
+void event_builder::on_multax(const cl_record& r, int line, event_queue& out, build_issues&) {
+  const bool on = r.args.empty() || r.args[0].kind != arg_kind::word || !word_is(r.args[0].word, "OFF");
+  out.push_back({line, multax_event{on}});
+}
+
+void event_builder::on_coordsys(const cl_record& r, int line, event_queue& out, build_issues&) {
+  out.push_back({line, coordsys_event{upper(r.major), numbers_of(r)}});
+}
+
+void event_builder::on_tlaxis(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  std::vector<double> n = numbers_of(r);
+  if (n.size() != 3) return issues.push_back({severity::error, detail::args_offset(r), "TLAXIS takes 3 numbers"});
+  axis_ = vec3{n[0], n[1], n[2]};
+  out.push_back({line, tool_axis_event{*axis_}});
+}
+
+void event_builder::on_head(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  push_some(out, line, detail::read_head(r, issues));
+}
+
+void event_builder::on_channel(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  push_some(out, line, detail::read_channel(r, issues));
+}
+
+void event_builder::on_sync(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  push_some(out, line, detail::read_sync(r, issues));
+}
+
+void event_builder::on_synctr(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  push_some(out, line, detail::read_synctr(r, icam_marker_, issues));
+}
+
+void event_builder::on_stop(const cl_record& r, int line, event_queue& out, build_issues&) {
+  out.push_back({line, stop_event{word_is(r.major, "OPSTOP")}});
+}
+
+void event_builder::on_end(const cl_record& r, int line, event_queue& out, build_issues&) {
+  out.push_back({line, end_event{upper(r.major)}});
+}
+
+void event_builder::other(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  std::string_view m = r.major;
   bool known = known_passthrough(m);
   if (!known && posting_) {
     // Nothing silent in a post: a record twinpost cannot carry out stops it.
@@ -127,111 +239,6 @@ void event_builder::statement(const cl_record& r, int line, event_queue& out, bu
     issues.push_back({severity::warning, r.major_offset,
                       fmt::format("unknown major word '{}' (a post stops here with an error)", upper(m))});
   out.push_back({line, passthrough_event{upper(m), detail::args_text(r), known}});
-}
-
-void event_builder::motion(const cl_record& r, motion_kind kind, int line, event_queue& out,
-                           build_issues& issues) {
-  const std::vector<double>& n = numbers(r);
-  bool words = n.size() != r.args.size();
-  if (kind == motion_kind::home && r.args.empty()) {
-    point({pos_.x, pos_.y, pos_.z}, false, kind, line, out);
-    return;
-  }
-  if (kind == motion_kind::delta && n.size() == 1 && !words) {
-    // GODLTA/d: along the tool axis.
-    vec3 a = axis_.value_or(vec3{0, 0, 1});
-    point({a.x * n[0], a.y * n[0], a.z * n[0]}, false, kind, line, out);
-    return;
-  }
-  if ((n.size() != 3 && n.size() != 6) || words) {
-    const char* name = kind == motion_kind::go_to ? "GOTO" : kind == motion_kind::from ? "FROM"
-                       : kind == motion_kind::delta ? "GODLTA" : "GOHOME";
-    issues.push_back({severity::error, where(r),
-                      fmt::format("{} takes 3 or 6 numbers (x,y,z[,i,j,k]), found {} argument{}", name,
-                                  r.args.size(), r.args.size() == 1 ? "" : "s")});
-    end_of_motion_record();
-    return;
-  }
-  if (kind == motion_kind::go_to) {
-    in_goto_ = true;
-    rapid_record_ = rapid_;
-    rapid_ = false;
-  }
-  point(n, false, kind, line, out);
-}
-
-void event_builder::point(const std::vector<double>& n, bool continued, motion_kind kind, int line,
-                          event_queue& out) {
-  vec3 p{n[0], n[1], n[2]};
-  if (kind == motion_kind::delta) p = {pos_.x + p.x, pos_.y + p.y, pos_.z + p.z};
-  if (n.size() == 6) axis_ = vec3{n[3], n[4], n[5]};  // modal: NX repeats it only on change
-  if (kind == motion_kind::go_to && circle_) {
-    arc_event a;
-    a.start = pos_;
-    a.end = p;
-    a.center = circle_->center;
-    a.normal = circle_->normal;
-    a.radius = circle_->radius.value_or(planar_radius(pos_, a.center, a.normal));
-    a.ccw = circle_->ccw.value_or(circle_is_ccw(dialect_));
-    a.continued = continued;
-    a.turns = circle_->turns;
-    circle_used_ = true;
-    pos_ = p;
-    out.push_back({line, a});
-    return;
-  }
-  // Built in place in the queue: the event is read from where it was written.
-  motion_event& e = out.next_motion(line);  // every field set below
-  e.kind = kind;
-  e.pos = p;
-  e.axis = axis_;
-  e.rapid = kind == motion_kind::go_to ? rapid_record_ : false;
-  e.continued = continued;
-  if (kind != motion_kind::go_to && rapid_) {
-    e.rapid = true;
-    rapid_ = false;
-  }
-  pos_ = p;
-}
-
-void event_builder::circle(const cl_record& r, int line, build_issues& issues) {
-  std::vector<double> n;
-  pending_circle c;
-  c.line = line;
-  c.column = column_;
-  for (std::size_t i = 0; i < r.args.size(); ++i) {
-    const cl_arg& a = r.args[i];
-    if (a.kind == arg_kind::number) n.push_back(a.number);
-    if (a.kind != arg_kind::word) continue;
-    if (word_is(a.word, "CLOCKWISE") || word_is(a.word, "CLW")) c.ccw = false;
-    else if (word_is(a.word, "COUNTERCLOCKWISE") || word_is(a.word, "CCLW")) c.ccw = true;
-    else if (word_is(a.word, "TIMES")) {
-      // NX: CIRCLE/...,TIMES,n: the GOTO after it goes n full turns round the circle.
-      const bool count = i + 1 < r.args.size() && r.args[i + 1].kind == arg_kind::number;
-      const double t = count ? r.args[i + 1].number : 0;
-      if (!count || t != std::floor(t) || t < 1 || t > max_circle_turns) {
-        issues.push_back({severity::error, count ? r.args[i + 1].offset : a.offset,
-                          count ? fmt::format("CIRCLE TIMES {} is not a whole number of turns from 1 to {}",
-                                              format_number(t), max_circle_turns)
-                                : std::string("CIRCLE TIMES needs a number of turns")});
-        return;
-      }
-      c.turns = static_cast<int>(t);
-      ++i;
-    } else issues.push_back({severity::warning, a.offset, fmt::format("word '{}' ignored in CIRCLE", a.word)});
-  }
-  // 4: xc,yc,zc,r   6: xc,yc,zc,i,j,k (SolidWorks, no radius)   7: + r (Creo)   11: NX
-  if (n.size() != 4 && n.size() != 6 && n.size() != 7 && n.size() != 11) {
-    issues.push_back({severity::error, where(r),
-                      fmt::format("CIRCLE takes 4, 6, 7 or 11 numbers, found {}", n.size())});
-    return;
-  }
-  c.center = {n[0], n[1], n[2]};
-  if (n.size() == 4) c.radius = n[3];
-  if (n.size() >= 6) c.normal = {n[3], n[4], n[5]};
-  if (n.size() >= 7) c.radius = n[6];
-  circle_ = c;
-  circle_used_ = false;
 }
 
 namespace {

@@ -98,6 +98,133 @@ file_ptr open_job(const std::string& path) {
   return {f, &std::fclose};
 }
 
+
+// What a sync record that names no channels means, and whether the job has any: one quick
+// pass over the text before posting. A one-channel machine has nothing to wait for: no
+// pass (a long 5-axis job is read once), and a sync record in its job is an error under the
+// explicit policy (no partner channel).
+job_scan scan_for_sync(const post_options& o, const machine& m) {
+  return m.channels.size() == 1 ? job_scan{} : scan_job(o.cl_path);
+}
+
+// The policy `auto` stands for: the job's sync records if it has any, else a rendezvous at
+// every head switch (said in a warning, since the channels then never cut at once).
+sync_policy choose_policy(const post_options& o, const machine& m, const job_scan& scan, diagnostic_sink& sink) {
+  if (o.policy != sync_policy::automatic) return o.policy;
+  const bool one_channel = m.channels.size() == 1;
+  if (one_channel || scan.explicit_sync) return sync_policy::explicit_marks;
+  diagnostic d;
+  d.level = severity::warning;
+  d.file = o.cl_path;
+  d.message = "no sync records in the job: channels wait for each other at every head switch "
+              "(sequential); concurrent machining needs SYNC/SYNCTR records";
+  sink.report(std::move(d));
+  return sync_policy::sequential;
+}
+
+// The programs of this post: written into the stage, named for the output folder.
+frame_request staged_request(const post_options& o, const machine& m, const std::string& stage_dir) {
+  frame_request req;
+  req.machine_def = &m;
+  req.layout = o.layout.value_or(m.layout);
+  req.tmp_dir = stage_dir;
+  req.out_dir = o.out_dir;
+  return req;
+}
+
+cl_reader_options posting_reader(const post_options& o) {
+  cl_reader_options ro;
+  ro.file_name = o.cl_path;
+  ro.forced = o.forced_dialect;
+  ro.posting = true;
+  return ro;
+}
+
+// The frame request as far as the job has named the program (PARTNO, once it is read).
+frame_request named_request(const frame_request& req, const writers_sink& ws) {
+  frame_request r = req;
+  r.name = safe_file_stem(ws.partno);
+  return r;
+}
+
+// One writer per channel. Each writes straight into its program file where its blocks open
+// one (the name from PARTNO as known by then); the others of a merged program spill to a
+// body file. The frames read `req` and `ws` when they are written: both outlive the writers.
+void open_writers(const post_options& o, const machine& m, const frame_request& req, writers_sink& ws,
+                  diagnostic_sink& sink) {
+  for (const channel_def& ch : m.channels) {
+    const channel_target target = frame_target(req, ch);
+    block_writer::framing frame;
+    if (target.direct) {
+      frame.head = [&req, &ws, &ch] { return frame_head(named_request(req, ws), ch); };
+      frame.tail = [&req, &ws, &ch] { return frame_tail(named_request(req, ws), ch); };
+    }
+    frame.name = [&req, &ws, &ch, &o] {
+      return (fs::path(o.out_dir) / frame_file_name(named_request(req, ws), ch)).string();
+    };
+    ws.writers.push_back(std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
+  }
+}
+
+struct stream_totals {
+  int last_line = 0;    // of the last event
+  long statements = 0;  // records other than comments
+};
+
+// The one pass that posts: every event of the job through the router to the writers.
+stream_totals stream_job(const post_options& o, cl_reader& reader, channel_router& router) {
+  stream_totals t;
+  std::size_t until_progress = progress_every;
+  while (const event* e = reader.next()) {
+    t.last_line = e->line;
+    if (!std::holds_alternative<comment_event>(e->data)) ++t.statements;
+    router.route(*e);
+    if (--until_progress == 0) {
+      until_progress = progress_every;
+      if (o.progress) o.progress(reader.bytes());
+    }
+  }
+  return t;
+}
+
+void report_empty_job(const post_options& o, diagnostic_sink& sink) {
+  diagnostic d;
+  d.file = o.cl_path;
+  d.message = "the job has no CL records (only comments or nothing)";
+  sink.report(std::move(d));
+}
+
+// The staged programs framed under their final names, which must be safe and distinct.
+std::vector<framed_file> frame_files(const frame_request& named, const writers_sink& ws) {
+  std::vector<std::string> heads;
+  for (auto& w : ws.writers) heads.push_back(w->head_written());
+  std::vector<framed_file> files = finish_frames(named, heads);
+  check_output_names(named, files);
+  return files;
+}
+
+// The same check as `twinpost check`, on the files exactly as they will be written; what it
+// finds is reported at the CL record that made the wait. True when they are sound.
+bool self_check(const post_options& o, const machine& m, const std::vector<framed_file>& files,
+                const writers_sink& ws, int last_line, diagnostic_sink& sink) {
+  std::vector<nc_source> sources;
+  for (const framed_file& f : files) sources.push_back({(fs::path(o.out_dir) / f.name).string(), {}, f.tmp_path});
+  sync_result check = check_nc_files(sources, m);
+  if (!check.diagnostics.empty()) {
+    std::vector<std::vector<int>> wait_lines;
+    for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
+    for (diagnostic& d : sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line))
+      sink.report(std::move(d));
+  }
+  return check.ok;
+}
+
+std::vector<std::string> commit_files(output_stage& stage, const std::vector<framed_file>& files) {
+  std::vector<staged_file> staged;
+  for (const framed_file& f : files) staged.push_back({f.tmp_path, f.name});
+  return stage.commit(staged);
+}
+
 }  // namespace
 
 std::string safe_file_stem(std::string_view partno) {
@@ -120,108 +247,34 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   file_ptr in = open_job(o.cl_path);
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);
+  const job_scan scan = scan_for_sync(o, m);
+  sum.policy = choose_policy(o, m, scan, sink);
 
-  // One quick pass over the text before posting: does the job carry sync records, and which
-  // channels does it use (a sync naming no channels means those)? A one-channel machine has
-  // nothing to wait for: no pass (a long 5-axis job is read once), and a sync record in its
-  // job is an error under the explicit policy (no partner channel).
-  const bool one_channel = m.channels.size() == 1;
-  const job_scan scan = one_channel ? job_scan{} : scan_job(o.cl_path);
-  sum.policy = o.policy;
-  if (o.policy == sync_policy::automatic) {
-    sum.policy = one_channel || scan.explicit_sync ? sync_policy::explicit_marks : sync_policy::sequential;
-    if (sum.policy == sync_policy::sequential && m.channels.size() > 1) {
-      diagnostic d;
-      d.level = severity::warning;
-      d.file = o.cl_path;
-      d.message = "no sync records in the job: channels wait for each other at every head switch "
-                  "(sequential); concurrent machining needs SYNC/SYNCTR records";
-      sink.report(std::move(d));
-    }
-  }
-
-  // Each channel writes straight into its program file where its blocks open one (the
-  // name from PARTNO as known by then); the others of a merged program spill to a body file.
   writers_sink ws;
   ws.m = &m;
   ws.diags = &sink;
   ws.file = o.cl_path;
-  frame_request req;
-  req.machine_def = &m;
-  req.layout = o.layout.value_or(m.layout);
-  req.tmp_dir = stage.dir();
-  req.out_dir = o.out_dir;
-  auto request_now = [&req, &ws] {
-    frame_request r = req;
-    r.name = safe_file_stem(ws.partno);
-    return r;
-  };
-  for (const channel_def& ch : m.channels) {
-    const channel_target target = frame_target(req, ch);
-    block_writer::framing frame;
-    if (target.direct) {
-      frame.head = [&request_now, &ch] { return frame_head(request_now(), ch); };
-      frame.tail = [&request_now, &ch] { return frame_tail(request_now(), ch); };
-    }
-    frame.name = [&request_now, &ch, &o] { return (fs::path(o.out_dir) / frame_file_name(request_now(), ch)).string(); };
-    ws.writers.push_back(std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
-  }
+  const frame_request req = staged_request(o, m, stage.dir());
+  open_writers(o, m, req, ws, sink);
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
-  cl_reader_options ro;
-  ro.file_name = o.cl_path;
-  ro.forced = o.forced_dialect;
-  ro.posting = true;
+
   file_source src(in.get());
-  cl_reader reader(src, ro, sink);
+  cl_reader reader(src, posting_reader(o), sink);  // lives to the end: later messages quote its lines
   sink.reader = &reader;
   sink.file = o.cl_path;
-  int last_line = 0;
-  std::size_t until_progress = progress_every;
-  long statements = 0;  // records other than comments
-  while (const event* e = reader.next()) {
-    last_line = e->line;
-    if (!std::holds_alternative<comment_event>(e->data)) ++statements;
-    router.route(*e);
-    if (--until_progress == 0) {
-      until_progress = progress_every;
-      if (o.progress) o.progress(reader.bytes());
-    }
-  }
-  router.finish(last_line);
+  const stream_totals t = stream_job(o, reader, router);
+  router.finish(t.last_line);
   for (auto& w : ws.writers) w->finish();
   sum.records = static_cast<long>(reader.records());
   sum.channels = static_cast<int>(m.channels.size());
   sum.waits = router.rendezvous();
   for (auto& w : ws.writers) sum.blocks += w->blocks();
-  if (statements == 0) {
-    diagnostic d;
-    d.file = o.cl_path;
-    d.message = "the job has no CL records (only comments or nothing)";
-    sink.report(std::move(d));
-  }
+  if (t.statements == 0) report_empty_job(o, sink);
   if (sink.errors > 0) return sum;
 
-  req.name = safe_file_stem(ws.partno);
-  std::vector<std::string> heads;
-  for (auto& w : ws.writers) heads.push_back(w->head_written());
-  std::vector<framed_file> files = finish_frames(req, heads);
-  check_output_names(req, files);
-
-  // The same check as `twinpost check`, on the files exactly as they will be written.
-  std::vector<nc_source> sources;
-  for (const framed_file& f : files) sources.push_back({(fs::path(o.out_dir) / f.name).string(), {}, f.tmp_path});
-  sync_result check = check_nc_files(sources, m);
-  if (!check.diagnostics.empty()) {
-    std::vector<std::vector<int>> wait_lines;
-    for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
-    for (diagnostic& d : sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line))
-      sink.report(std::move(d));
-  }
-  if (!check.ok) return sum;
-
-  std::vector<staged_file> staged;
-  for (const framed_file& f : files) staged.push_back({f.tmp_path, f.name});
-  sum.files = stage.commit(staged);
+  const std::vector<framed_file> files = frame_files(named_request(req, ws), ws);
+  if (!self_check(o, m, files, ws, t.last_line, sink)) return sum;
+  sum.files = commit_files(stage, files);
   sum.ok = true;
   return sum;
 }

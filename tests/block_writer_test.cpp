@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
 
 #include "file_test_support.hpp"
 #include "formats/block_writer.hpp"
@@ -15,9 +14,8 @@
 using namespace twinpost;
 
 namespace {
-std::string temp_path(const char* name) {
-  return (std::filesystem::temp_directory_path() / (std::string(name) + "-" + std::to_string(::getpid()))).string();
-}
+// A file in a folder of its own (no other test or run writes there).
+std::string temp_path(const char* name) { return test::fresh_temp_dir(name) + "/program.nc"; }
 }  // namespace
 
 TEST_CASE("text_buffer: room, commit, insert, truncate, growth", "[formats]") {
@@ -48,7 +46,7 @@ TEST_CASE("block_writer: numbered blocks built in place, dropped blocks, framing
   program_format fmt;
   fmt.sequence_start = 10;
   fmt.sequence_step = 5;
-  const std::string path = temp_path("twinpost-block-writer");
+  const std::string path = temp_path("block-writer");
   {
     block_writer::framing frame;
     frame.head = [] { return std::string("%\nO1000 (T)\n"); };
@@ -72,12 +70,12 @@ TEST_CASE("block_writer: numbered blocks built in place, dropped blocks, framing
   }
   CHECK(test::read_file(path) ==
         "%\nO1000 (T)\nN10 G28 U0 W0\nN15 G0 X64.\n(ROUGH OD  FAST)\n(INSERT TEXT AS IT IS)\nN20 G1 Z-40.\nM30\n%\n");
-  std::filesystem::remove(path);
+  std::filesystem::remove_all(std::filesystem::path(path).parent_path());
 }
 
 TEST_CASE("block_writer: a file with no block still gets its head and tail", "[formats]") {
   program_format fmt;
-  const std::string path = temp_path("twinpost-block-writer-empty");
+  const std::string path = temp_path("block-writer-empty");
   {
     block_writer::framing frame;
     frame.head = [] { return std::string("%\n"); };
@@ -88,5 +86,5 @@ TEST_CASE("block_writer: a file with no block still gets its head and tail", "[f
     CHECK(w.head_written() == "%\n");
   }
   CHECK(test::read_file(path) == "%\nM30\n%\n");
-  std::filesystem::remove(path);
+  std::filesystem::remove_all(std::filesystem::path(path).parent_path());
 }

@@ -1,5 +1,6 @@
 // The real CL files in ../shared/cl-samples, read from disk through file_source. The files
-// are not part of the project: when the folder is absent every test here warns and passes.
+// are not part of the project: when the folder is absent every test here is skipped
+// (tests/shared_samples.hpp).
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -10,15 +11,14 @@
 
 #include "parser/cl_reader.hpp"
 #include "parser/event_text.hpp"
+#include "tests/shared_samples.hpp"
 
 using namespace twinpost;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path samples_dir = fs::path(TWINPOST_SHARED_DIR) / "cl-samples";
-
-bool have_samples() { return fs::is_directory(samples_dir); }
+const fs::path samples_dir = test::shared_samples_dir();
 
 struct sample_result {
   std::string path;
@@ -71,18 +71,11 @@ sample_result read_sample(const fs::path& p) {
 
 sample_result read_named(const std::string& relative) { return read_sample(samples_dir / relative); }
 
-#define SKIP_WITHOUT_SAMPLES()                                                   \
-  do {                                                                           \
-    if (!have_samples()) {                                                       \
-      WARN("no CL samples at " << samples_dir.string() << ": test skipped");   \
-      return;                                                                    \
-    }                                                                            \
-  } while (false)
 
 }  // namespace
 
 TEST_CASE("every sample file reads without an error", "[samples]") {
-  SKIP_WITHOUT_SAMPLES();
+  test::require_shared_samples();
   std::vector<fs::path> files;
   for (const auto& family : fs::directory_iterator(samples_dir)) {
     if (!family.is_directory()) continue;
@@ -100,7 +93,7 @@ TEST_CASE("every sample file reads without an error", "[samples]") {
 }
 
 TEST_CASE("the .clt sample has exactly one error: blanks instead of commas", "[samples]") {
-  SKIP_WITHOUT_SAMPLES();
+  test::require_shared_samples();
   sample_result r = read_named("solidworks-cam/aamorim_Interface-glue.clt");
   CHECK(r.errors == 1);
   CHECK(r.warnings == 0);
@@ -119,7 +112,7 @@ TEST_CASE("the .clt sample has exactly one error: blanks instead of commas", "[s
 }
 
 TEST_CASE("dialect detection on each sample family", "[samples]") {
-  SKIP_WITHOUT_SAMPLES();
+  test::require_shared_samples();
   const std::map<std::string, dialect> expected = {
       {"creo/nist_v18_gg.ncl", dialect::creo},
       {"creo/nist_v18_traj1.ncl", dialect::creo},
@@ -145,7 +138,7 @@ TEST_CASE("dialect detection on each sample family", "[samples]") {
 }
 
 TEST_CASE("Creo arcs are ccw, NX and Makino arcs are cw (pitfall 1)", "[samples]") {
-  SKIP_WITHOUT_SAMPLES();
+  test::require_shared_samples();
   sample_result creo = read_named("creo/creopost_profilfraesen_2.ncl.1");
   CHECK(creo.count("arc") == 20);
   CHECK(creo.count("arc", "dir=ccw") == 20);
@@ -162,7 +155,7 @@ TEST_CASE("Creo arcs are ccw, NX and Makino arcs are cw (pitfall 1)", "[samples]
 }
 
 TEST_CASE("Creo samples: multi-point GOTO on a circle, $$-> records, cycles", "[samples]") {
-  SKIP_WITHOUT_SAMPLES();
+  test::require_shared_samples();
   sample_result gg = read_named("creo/nist_v18_gg.ncl");
   CHECK(gg.count("arc") == 6);
   CHECK(gg.count("arc", "continued") == 4);
@@ -179,7 +172,7 @@ TEST_CASE("Creo samples: multi-point GOTO on a circle, $$-> records, cycles", "[
 }
 
 TEST_CASE("NX sample: modal tool axis, one FEDRAT, many RAPIDs, END-OF-PATH", "[samples]") {
-  SKIP_WITHOUT_SAMPLES();
+  test::require_shared_samples();
   sample_result nx = read_named("nx/stepnode_simple_block.cls");
   CHECK(nx.count("goto") == 71);
   CHECK(nx.count("goto", " rapid") == 30);
@@ -190,7 +183,7 @@ TEST_CASE("NX sample: modal tool axis, one FEDRAT, many RAPIDs, END-OF-PATH", "[
 }
 
 TEST_CASE("CATIA sample: matrix, ISO-8859-1 comments, positional cycles, END", "[samples]") {
-  SKIP_WITHOUT_SAMPLES();
+  test::require_shared_samples();
   sample_result catia = read_named("catia/trajcenter_PrepaFlans_Pointage.aptsource");
   CHECK(catia.has("7\tcoordsys from=$$*CATIA0 values=1,0,0,-220,0,1,0,-170,0,0,1,20"));
   CHECK(catia.has("2\tcomment text=\"G\\u00e9n\\u00e9r\\u00e9 le jeudi 30 novembre 2023 08:46:00\""));
@@ -201,7 +194,7 @@ TEST_CASE("CATIA sample: matrix, ISO-8859-1 comments, positional cycles, END", "
 }
 
 TEST_CASE("SolidWorks samples: 6-value CIRCLE radius, CRLF file", "[samples]") {
-  SKIP_WITHOUT_SAMPLES();
+  test::require_shared_samples();
   sample_result leg = read_named("solidworks-cam/aamorim_lateral-leg-holder.apt");
   CHECK(leg.count("arc", "dir=ccw") == 8);
   CHECK(leg.has("23\tarc x=224.316625 y=-4.336675 z=-6 cx=224.97995 cy=-5.336675 cz=-6 i=0 j=0 k=1 "

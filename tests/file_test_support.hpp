@@ -4,8 +4,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
+#include <stdlib.h>  // mkdtemp
 #include <unistd.h>
 
 namespace twinpost::test {
@@ -30,13 +32,13 @@ inline bool write_file(const std::string& path, const std::string& text) {
   return std::fclose(f) == 0 && ok;
 }
 
-/// A fresh, empty folder under the system's temp folder, unique to this process (ctest -j
-/// runs test cases as separate processes) and `tag`.
+/// A fresh, empty folder under the system's temp folder, made by mkdtemp: no other call,
+/// process or test run (ctest -j, two builds at once) ever gets the same one. `tag` names it
+/// for a person looking at the temp folder: "twinpost-TAG-XXXXXX".
 inline std::string fresh_temp_dir(const std::string& tag) {
-  const auto dir = std::filesystem::temp_directory_path() / ("twinpost-" + tag + "-" + std::to_string(::getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir.string();
+  std::string dir = (std::filesystem::temp_directory_path() / ("twinpost-" + tag + "-XXXXXX")).string();
+  if (::mkdtemp(dir.data()) == nullptr) throw std::runtime_error("mkdtemp " + dir + ": cannot make a temp folder");
+  return dir;
 }
 
 /// Every file of a folder: name -> contents (empty when there is no folder).

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "file_test_support.hpp"
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
 #include "machines/name_template.hpp"
@@ -179,8 +180,8 @@ TEST_CASE("builtin_machines lists every built-in, sorted, with its description",
 }
 
 TEST_CASE("load_machine reads a file, and names what it cannot read", "[machines]") {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path();
-  const std::string path = (dir / "twinpost_machine_loader_test.toml").string();
+  const std::filesystem::path dir = test::fresh_temp_dir("loader");
+  const std::string path = (dir / "machine.toml").string();
   {
     std::ofstream out(path);
     out << head << two_channels;
@@ -191,6 +192,7 @@ TEST_CASE("load_machine reads a file, and names what it cannot read", "[machines
                     "twinpost: error: cannot read machine file '" + path + "'");
   CHECK_THROWS_WITH(load_machine(dir.string()),
                     "twinpost: error: cannot read machine file '" + dir.string() + "'");
+  std::filesystem::remove_all(dir);
   CHECK_THROWS_WITH(load_machine("integrex"),
                     "twinpost: error: unknown machine 'integrex': no built-in machine and no "
                     "file of that name");

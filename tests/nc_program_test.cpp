@@ -249,10 +249,7 @@ TEST_CASE("streamed files: the last block survives the reader's buffer", "[check
   // disk, neither with an end code: each channel's end is its last block, named with its own
   // file and text, though the buffer it was read into has since been read over by the
   // blank lines that follow it.
-  const std::filesystem::path tmp = std::filesystem::temp_directory_path() /
-                                    ("twinpost-nc-stream-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(tmp);
-  const std::string dir = tmp.string();
+  const std::string dir = test::fresh_temp_dir("nc-stream");
   auto write = [&](const std::string& name, const std::string& last) {
     std::string text = "O1000\nM100\n";
     for (int i = 0; text.size() < (1u << 20) + 5000; ++i) text += "G1 X" + std::to_string(i) + ". Z-1.\n";
@@ -276,7 +273,7 @@ TEST_CASE("streamed files: the last block survives the reader's buffer", "[check
   CHECK(p.channels[1].end.line == b_lines);
   CHECK(p.channels[1].end.source_line == "G0 X200. Z9.");
   CHECK(p.channels[0].waits.size() == 1);
-  std::filesystem::remove_all(tmp);
+  std::filesystem::remove_all(dir);
 }
 
 namespace {
@@ -319,9 +316,7 @@ TEST_CASE("streamed and in-memory reading agree, runs of plain blocks included",
     return t + "G1 X1. Z1.\n\n  \n";  // no end code: the last block ends the program
   };
   const std::string a = program(100), b = program(100);
-  const std::filesystem::path tmp = std::filesystem::temp_directory_path() /
-                                    ("twinpost-nc-runs-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(tmp);
+  const std::filesystem::path tmp = test::fresh_temp_dir("nc-runs");
   auto put = [&](const std::string& name, const std::string& text) {
     const std::string path = (tmp / name).string();
     REQUIRE(test::write_file(path, text));

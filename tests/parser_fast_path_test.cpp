@@ -12,6 +12,7 @@
 #include "parser/detail/fast_record.hpp"
 #include "parser/line_reader.hpp"
 #include "parser/record_parser.hpp"
+#include "tests/shared_samples.hpp"
 
 using namespace twinpost;
 
@@ -92,11 +93,7 @@ TEST_CASE("fast path: random numeric records read as the grammar reads them", "[
 }
 
 TEST_CASE("fast path: the real CL files read alike", "[parser][fast][samples]") {
-  std::filesystem::path dir = TWINPOST_SHARED_DIR "/cl-samples";
-  if (!std::filesystem::exists(dir)) {
-    WARN("../shared/cl-samples not present: skipped");
-    return;
-  }
+  const std::filesystem::path dir = test::require_shared_samples();
   int records = 0, accepted = 0;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
     if (!entry.is_regular_file() || entry.path().filename() == "README.md") continue;

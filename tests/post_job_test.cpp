@@ -28,8 +28,11 @@ TEST_CASE("a PARTNO never leaves the output folder", "[post]") {
 }
 
 namespace {
+// In a folder of this process's own: a fixed name would be shared by tests run side by side.
 std::string write_temp(const std::string& text) {
-  std::string path = (std::filesystem::temp_directory_path() / "twinpost_scan_test.cls").string();
+  static const std::string dir = test::fresh_temp_dir("scan");
+  static int written = 0;
+  const std::string path = dir + "/job" + std::to_string(++written) + ".cls";
   REQUIRE(test::write_file(path, text));
   return path;
 }

@@ -308,21 +308,28 @@ TEST_CASE("many waits in three paths pair up", "[check]") {
   CHECK(r.channels[1].paired == 60000);
 }
 
-TEST_CASE("the compact check says what the full reading says", "[check]") {
-  // check_nc_files first keeps only simulation entries and reads again in full when there
-  // is anything to report. Held here to the full way (read_nc_programs + check_sync) on
-  // sound programs and on every kind of finding.
-  struct job {
-    const char* what;
-    machine m;
-    std::vector<nc_source> files;
-  };
-  const std::vector<job> jobs = {
+namespace {
+
+struct check_job {
+  const char* what;
+  machine m;
+  std::vector<nc_source> files;
+};
+
+// Sound programs: check_nc_files says all it has to say from its compact reading.
+std::vector<check_job> sound_jobs() {
+  return {
       {"sound, plain waits", fanuc2(), {{"a", "M100\nG0 X1.\nM101\nM30\n"}, {"b", "M100\nM101\nM30\n"}}},
       {"sound, partner lists", fanuc3(),
        {{"1", "M100 P12\nM102 P123\nM30\n"}, {"2", "M100 P12\nM101 P23\nM102 P123\nM30\n"},
         {"3", "M101 P23\nM102 P123\nM30\n"}}},
       {"sound, merged", mazak(), {{"p", "G109 L1\nM950\nM30\nG109 L2\nM950\nM30\n"}}},
+  };
+}
+
+// Every kind of finding: each must take check_nc_files from its compact reading to the full one.
+std::vector<check_job> finding_jobs() {
+  return {
       {"unpaired", fanuc2(), {{"a", "M100\nM101\nM30\n"}, {"b", "M100\nM30\n"}}},
       {"deadlock", fanuc2(), {{"a", "M100\nM101\nM30\n"}, {"b", "M101\nM100\nM30\n"}}},
       {"near wait", fanuc2(), {{"a", "M100\nM150 P12\nM30\n"}, {"b", "M100\nM30\n"}}},
@@ -334,21 +341,52 @@ TEST_CASE("the compact check says what the full reading says", "[check]") {
       {"empty program", fanuc2(), {{"a", "M100\nM30\n"}, {"b", "%\n(NONE)\n%\n"}}},
       {"empty section", mazak(), {{"p", "G109 L1\nM950\nM30\nG109 L2\n"}}},
   };
-  for (const job& j : jobs) {
+}
+
+// Diagnostics one after the other, as `twinpost check` prints them.
+std::string diagnostics_text(const std::vector<diagnostic>& ds) {
+  std::string s;
+  for (const diagnostic& d : ds) s += format_diagnostic(d) + "\n";
+  return s;
+}
+
+// Per channel: its file, its waits and how many of them paired.
+std::string channels_text(const sync_result& r) {
+  std::string s;
+  for (const channel_sync_summary& c : r.channels)
+    s += std::to_string(c.channel) + " " + c.file + " " + std::to_string(c.waits) + " " + std::to_string(c.paired) + "\n";
+  return s;
+}
+
+}  // namespace
+
+// Two public ways to check the same files: check_nc_files (compact first: only simulation
+// entries are kept) and check_sync over read_nc_programs (every wait kept). Neither is
+// rebuilt here: each result comes from the library as a user gets it.
+TEST_CASE("on sound programs the compact check says what the full reading says", "[check]") {
+  for (const check_job& j : sound_jobs()) {
     INFO(j.what);
     diagnostic_list read;
-    const nc_programs programs = read_nc_programs(j.files, j.m, read);
-    sync_result full = check_sync(programs, j.m);
-    full.diagnostics.insert(full.diagnostics.begin(), read.all().begin(), read.all().end());
-    full.errors = full.warnings = 0;
-    for (const diagnostic& d : full.diagnostics) {
-      full.errors += d.level == severity::error;
-      full.warnings += d.level == severity::warning;
-    }
-    full.ok = full.errors == 0;
+    const sync_result full = check_sync(read_nc_programs(j.files, j.m, read), j.m);
+    REQUIRE(read.all().empty());
+    REQUIRE(full.diagnostics.empty());
     const sync_result compact = check_nc_files(j.files, j.m);
     CHECK(format_sync_text(compact) == format_sync_text(full));
     CHECK(format_sync_json(compact) == format_sync_json(full));
+  }
+}
+
+TEST_CASE("with a finding the check reports what the full reading finds", "[check]") {
+  // check_nc_files reports reading problems first, then the findings (check/sync_check.hpp).
+  for (const check_job& j : finding_jobs()) {
+    INFO(j.what);
+    diagnostic_list read;
+    const sync_result full = check_sync(read_nc_programs(j.files, j.m, read), j.m);
+    REQUIRE(!(read.all().empty() && full.diagnostics.empty()));  // the case has a finding
+    const sync_result checked = check_nc_files(j.files, j.m);
+    CHECK(diagnostics_text(checked.diagnostics) == diagnostics_text(read.all()) + diagnostics_text(full.diagnostics));
+    CHECK(channels_text(checked) == channels_text(full));
+    CHECK(checked.paired == full.paired);
   }
 }
 

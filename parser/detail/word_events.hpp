@@ -41,6 +41,10 @@ inline bool has_bad_number(const cl_record& r, build_issues& issues) {
 std::vector<double> numbers_of(const cl_record& r);
 /// The record's arguments as written, joined with ','.
 std::string args_text(const cl_record& r);
+/// Where a message about the record's arguments points: the first one, else the major word.
+inline std::size_t args_offset(const cl_record& r) {
+  return r.args.empty() ? r.major_offset : r.args.front().offset;
+}
 /// An upper-case copy of a word.
 std::string upper(std::string_view w);
 /// `v` rounded to the nearest int, clamped to the int range (CL numbers can be anything).

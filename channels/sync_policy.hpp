@@ -1,0 +1,38 @@
+#pragma once
+// Where the channels of a post wait for each other, and the one table of its names
+// (`--sync explicit|sequential|auto`, the post summary's "waits (explicit)").
+#include <array>
+#include <optional>
+#include <string_view>
+
+namespace twinpost {
+
+/// explicit_marks: at the job's sync records; sequential: at every head switch;
+/// automatic: explicit when the job has sync records, else sequential.
+enum class sync_policy { explicit_marks, sequential, automatic };
+
+struct sync_policy_name {
+  sync_policy policy;
+  std::string_view name;
+};
+
+/// In the order messages list them.
+inline constexpr std::array<sync_policy_name, 3> sync_policy_names{{
+    {sync_policy::explicit_marks, "explicit"},
+    {sync_policy::sequential, "sequential"},
+    {sync_policy::automatic, "auto"},
+}};
+
+constexpr std::string_view sync_policy_to_name(sync_policy p) {
+  for (const sync_policy_name& n : sync_policy_names)
+    if (n.policy == p) return n.name;
+  return {};
+}
+
+constexpr std::optional<sync_policy> sync_policy_from_name(std::string_view name) {
+  for (const sync_policy_name& n : sync_policy_names)
+    if (n.name == name) return n.policy;
+  return std::nullopt;
+}
+
+}  // namespace twinpost
