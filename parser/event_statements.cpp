@@ -105,7 +105,7 @@ void event_builder::statement(const cl_record& r, int line, event_queue& out, bu
   if (word_is(m, "HEAD")) return push(detail::read_head(r, issues));
   if (word_is(m, "CHANNEL") || word_is(m, "CHANNL")) return push(detail::read_channel(r, issues));
   if (word_is(m, "SYNC")) return push(detail::read_sync(r, issues));
-  if (word_is(m, "SYNCTR")) return push(detail::read_synctr(r, icam_marker_, issues));
+  if (word_is(m, "SYNCTR")) return push(detail::read_synctr(r, issues));
   if (word_is(m, "STOP") || word_is(m, "OPSTOP")) return out.push_back({line, stop_event{word_is(m, "OPSTOP")}});
   if (word_is(m, "FINI") || word_is(m, "END") || word_is(m, "END-OF-PATH"))
     return out.push_back({line, end_event{upper(m)}});
