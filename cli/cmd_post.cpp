@@ -10,6 +10,7 @@
 #include "cli/interrupt.hpp"
 #include "post/post_job.hpp"
 #include "cli/machine_dirs.hpp"
+#include "machines/layout_rules.hpp"
 
 namespace twinpost::cli {
 
@@ -66,8 +67,8 @@ int run_post(const args& a) {
   }
   const located_machine found = locate_machine(vm["machine"].as<std::string>());
   const machine& m = found.def;
-  if (o.layout == layout_kind::merged_appended && m.program.section_marker.empty()) {
-    fmt::print(stderr, "twinpost post: machine '{}' has no section marker for merged-appended\n", m.name);
+  if (const std::string why = layout_problem(m, o.layout.value_or(m.layout)); !why.empty()) {
+    fmt::print(stderr, "twinpost post: --layout: machine '{}': {}\n", m.name, why);
     return 2;
   }
   // Progress on stderr only for a person watching a terminal: never in logs or pipes.

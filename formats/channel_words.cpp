@@ -39,7 +39,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     double clamp = s.max_rpm ? *s.max_rpm : sp.max_rpm;
     if (sp.max_rpm > 0 && clamp > sp.max_rpm)
       return error(line, fmt::format("MAXRPM {} exceeds the {} spindle's limit of {} rpm", clamp, sp.name, sp.max_rpm));
-    template_args a = sample_template_args();
+    template_args a;  // template_uses::clamp
     a.max = clamp;
     a.rpm = clamp;
     a.channel = ch_.number;
@@ -88,7 +88,7 @@ void channel_writer::feed_mode(bool per_rev) {
 
 void channel_writer::tool(const tool_event& t, int line) {
   if (t.preselect) return;
-  template_args a = sample_template_args();
+  template_args a;  // template_uses::tool_call
   a.tool = t.tool;
   a.offset = t.offset.value_or(t.tool);
   a.channel = ch_.number;

@@ -80,7 +80,7 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
     r.fail(*r.find("kind"), fmt::format("channel.kind must be turret or mill_head, not '{}'",
                                         c.kind));
   // A lathe turret calls tool and offset together (T0505); a mill head changes tools (M6).
-  if (!r.read_template("tool_call", c.tool_call))
+  if (!r.read_template("tool_call", c.tool_call, template_uses::tool_call))
     c.tool_call = c.kind == "turret" ? "T{tool:02}{offset:02}" : "T{tool:02} M6";
   const bool spindle_given = r.read("spindle", c.spindle);
   if (!m.spindles.empty() && !m.spindle(c.spindle)) {

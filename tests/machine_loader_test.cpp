@@ -74,7 +74,7 @@ TEST_CASE("built-in integrex-i200st", "[machines]") {
   CHECK(m.layout == layout_kind::merged_appended);
   CHECK(m.program.section_marker == "G109 L{channel}");
   CHECK(m.program.extension == ".EIA");
-  CHECK(format_template(m.program.program_line, sample_template_args()) == "O1000(PART)");
+  CHECK(format_template(m.program.program_line, {.program = 1000, .name = "PART"}) == "O1000(PART)");
   CHECK(m.program.end_code == "M30");
   CHECK(m.program.header.at(0) == "G21");
   CHECK(m.codes.feed_per_min == "G94");
