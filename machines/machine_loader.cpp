@@ -131,8 +131,7 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
                  {"extension", "file_name", "program_number", "program_line", "header",
                   "footer", "end_code", "percent_lines", "section_marker", "sequence_start",
                   "sequence_step", "comment_open", "comment_close", "comment_max",
-                  "block_max", "decimals_metric", "decimals_inch", "trailing_point",
-                  "arcs_ijk"});
+                  "decimals_metric", "trailing_point", "arcs_ijk"});
   if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
   r.read_template("file_name", p.file_name, template_uses::file);
   if (r.read("program_number", p.program_number)) at.program_number = r.find("program_number");
@@ -147,14 +146,10 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   r.read_char("comment_open", p.comment_open, false);
   r.read_char("comment_close", p.comment_close, false);
   if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
-  if (r.read("block_max", p.block_max)) check_min(r, "block_max", p.block_max, 0);
-  for (std::string_view key : {"decimals_metric", "decimals_inch"}) {
-    int d = 0;
-    if (!r.read(key, d)) continue;
-    if (d < 0 || d > 6)
-      r.fail(*r.find(key), fmt::format("{} must be in 0..6, not {}", r.key_path(key), d));
-    (key == "decimals_metric" ? p.decimals_metric : p.decimals_inch) = d;
-  }
+  if (r.read("decimals_metric", p.decimals_metric) &&
+      (p.decimals_metric < 0 || p.decimals_metric > 6))
+    r.fail(*r.find("decimals_metric"),
+           fmt::format("program.decimals_metric must be in 0..6, not {}", p.decimals_metric));
   r.read("trailing_point", p.trailing_point);
   r.read("arcs_ijk", p.arcs_ijk);
 }
@@ -216,10 +211,8 @@ void read_positive(const table_reader& r, std::string_view key, double& out, boo
 void read_limits(const table_reader& root, motion_limits& l) {
   const toml::table* t = root.sub_table("limits");
   if (!t) return;
-  table_reader r(*t, "limits", root.source(), {"rapid", "max_feed", "tool_change_seconds"});
-  read_positive(r, "rapid", l.rapid, false);
+  table_reader r(*t, "limits", root.source(), {"max_feed"});
   read_positive(r, "max_feed", l.max_feed, false);
-  read_positive(r, "tool_change_seconds", l.tool_change_seconds, true);
 }
 
 void read_spindles(const table_reader& root, const wait_rules& waits, std::vector<spindle_def>& out) {
