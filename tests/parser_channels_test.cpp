@@ -59,6 +59,9 @@ TEST_CASE("ICAM SYNCTR/NEXT leaves a marker left out to the router", "[parser][c
   CHECK(events_of("SYNCTR/NEXT\nSYNCTR/NEXT,5,1,2\nSYNCTR/NEXT\n") ==
         lines{"1\tsync from=icam index=next", "2\tsync from=icam index=5 channels=1,2",
               "3\tsync from=icam index=next"});
+  CHECK(read_cl("SYNCTR/NEXT\nSYNCTR/NEXT,5,1,2\n", dialect::generic).json ==
+        lines{"{\"line\":1,\"event\":\"sync\",\"from\":\"icam\",\"index\":\"next\"}",
+              "{\"line\":2,\"event\":\"sync\",\"from\":\"icam\",\"index\":5,\"channels\":[1,2]}"});
   auto r = read_cl("SYNCTR/WAIT\n", dialect::generic);
   CHECK(r.diagnostics ==
         "t.cl:1:8: error: SYNCTR needs NEXT[,marker[,channels]]\n"
