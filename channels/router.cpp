@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <limits>
+
+#include "machines/partner_list.hpp"
 
 namespace twinpost {
 
@@ -133,18 +136,15 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   for (int ch : active_) partners.push_back(ch);
   std::sort(partners.begin(), partners.end());
   partners.erase(std::unique(partners.begin(), partners.end()), partners.end());
+  // Messages name the mark as the first active channel numbers it.
+  const int shown = marker_of(s, active_.front());
   for (int p : partners)
     if (p < 1 || p > static_cast<int>(m_.channels.size()))
-      return error(line, fmt::format("sync {} names channel {}, machine '{}' has {} channels", s.index, p, m_.name, m_.channels.size()));
-  if (partners.size() < 2) return error(line, fmt::format("sync {} has no partner channel", s.index));
+      return error(line, fmt::format("sync {} names channel {}, machine '{}' has {} channels", shown, p, m_.name, m_.channels.size()));
+  if (partners.size() < 2) return error(line, fmt::format("sync {} has no partner channel", shown));
   for (int ch : active_) {
-    // ICAM: a SYNCTR/NEXT without a marker is the channel's previous marker plus one.
-    int index = s.index;
-    if (s.source == sync_source::icam) {
-      int& last = auto_marker_[ch];
-      if (s.automatic) index = last + 1;
-      last = index;
-    }
+    const int index = marker_of(s, ch);
+    if (s.source == sync_source::icam) auto_marker_[ch] = index;
     // The same sync record twice in a row in one channel is one wait.
     if (last_sync_line_ >= 0 && last_sync_index_ == index && last_sync_channel_ == ch &&
         !busy_[static_cast<std::size_t>(ch)])
@@ -170,6 +170,15 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   }
   last_sync_line_ = line;
   last_partners_ = partners;
+}
+
+int channel_router::marker_of(const sync_event& s, int ch) const {
+  if (s.index) return *s.index;
+  // ICAM: a SYNCTR/NEXT without a marker is the channel's previous marker plus one
+  // (saturating: no overflow after a marker of INT_MAX).
+  const auto it = auto_marker_.find(ch);
+  const int last = it == auto_marker_.end() ? 0 : it->second;
+  return last < std::numeric_limits<int>::max() ? last + 1 : last;
 }
 
 std::optional<int> channel_router::next_code(int line, const std::string& what) {

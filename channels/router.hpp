@@ -66,6 +66,9 @@ class channel_router {
   void rendezvous(const std::vector<int>& channels, int line, const std::string& what,
                   bool force = false, wait_mark::section both = wait_mark::section::none);
   void explicit_sync(const sync_event& s, int line);
+  /// The mark `s` in channel `ch`: its own number, or for an ICAM marker left out the
+  /// channel's last marker plus one. The router is the one owner of this numbering.
+  int marker_of(const sync_event& s, int ch) const;
   void error(int line, std::string message);
   int column_line_ = 0, column_ = 0;  // the event being routed: where its errors point
   std::optional<int> next_code(int line, const std::string& what);

@@ -23,8 +23,4 @@ class wait_allocator {
   int count_ = 0;
 };
 
-/// The partner list of a wait among `channels` (ascending) in the machine's style:
-/// "12" / "123" for path numbers, the mask ("3", "7") for binary, "" for none.
-std::string partner_list(const std::vector<int>& channels, partner_style style);
-
 }  // namespace twinpost

@@ -1,4 +1,5 @@
 #include "check/nc_program.hpp"
+#include "machines/partner_list.hpp"
 #include "support/errors.hpp"
 
 #include <array>
@@ -684,21 +685,6 @@ std::vector<nc_word> split_nc_words(std::string_view line) {
     }
   }
   return words;
-}
-
-bool decode_partner_list(std::string_view text, partner_style style, std::vector<int>& out) {
-  out.clear();
-  if (!all_digits(text)) return false;
-  if (style != partner_style::binary) {
-    for (char c : text) out.push_back(c - '0');
-    return true;
-  }
-  std::uint64_t mask = 0;
-  auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), mask);
-  if (ec != std::errc() || end != text.data() + text.size()) return false;
-  for (int bit = 0; bit < 64; ++bit)
-    if ((mask >> bit) & 1U) out.push_back(bit + 1);
-  return true;
 }
 
 nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m,

@@ -89,10 +89,6 @@ struct nc_programs {
   std::vector<nc_channel_program> channels;
 };
 
-/// Decodes a partner list value as written (`12` -> {1,2}; binary `3` -> {1,2}); false
-/// when `text` is not a list in that style (a sign, a point, an empty value).
-bool decode_partner_list(std::string_view text, partner_style style, std::vector<int>& out);
-
 /// How to read. With `on_wait` set, each wait is handed to it as it is read and not kept in
 /// the programs (their `waits` stay empty): a check of a long program then holds only what
 /// it simulates.

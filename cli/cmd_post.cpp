@@ -14,6 +14,7 @@
 #include "cli/machine_dirs.hpp"
 #include "machines/layout_names.hpp"
 #include "post/post_job.hpp"
+#include "machines/layout_rules.hpp"
 
 namespace twinpost::cli {
 
@@ -118,9 +119,8 @@ int run_post(const args& a) {
   if (!o) return 2;
   const located_machine found = locate_machine(vm["machine"].as<std::string>());
   const machine& m = found.def;
-  if (o->layout == layout_kind::merged_appended && m.program.section_marker.empty()) {
-    fmt::print(stderr, "twinpost post: machine '{}' has no section marker for {}\n", m.name,
-               layout_option_name(layout_kind::merged_appended));
+  if (const std::string why = layout_problem(m, o->layout.value_or(m.layout)); !why.empty()) {
+    fmt::print(stderr, "twinpost post: --layout: machine '{}': {}\n", m.name, why);
     return 2;
   }
   bool shown = false;

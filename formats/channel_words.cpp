@@ -39,7 +39,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     double clamp = s.max_rpm ? *s.max_rpm : sp.max_rpm;
     if (sp.max_rpm > 0 && clamp > sp.max_rpm)
       return error(line, fmt::format("MAXRPM {} exceeds the {} spindle's limit of {} rpm", clamp, sp.name, sp.max_rpm));
-    template_args a = sample_template_args();
+    template_args a;  // template_uses::clamp
     a.max = clamp;
     a.rpm = clamp;
     a.channel = ch_.number;
@@ -72,6 +72,12 @@ void channel_writer::feed(const feed_event& f, int line) {
   const double value = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
   // F is written with 4 decimals per revolution, 1 per minute (append_feed).
   if (!fits('F', value, f.mode == feed_mode::per_rev ? 4 : 1)) return;
+  // A feed per revolution depends on the spindle speed: only per-minute feeds are held to it.
+  const double max_feed = m_.limits.max_feed;
+  if (f.mode == feed_mode::per_minute && max_feed > 0 && value > max_feed)
+    return error(line, fmt::format("feed {} mm/min exceeds the machine's limit of {} mm/min "
+                                   "(limits.max_feed)",
+                                   value, max_feed));
   feed_value_ = value;
   feed_mode(f.mode == feed_mode::per_rev);
 }
@@ -88,7 +94,7 @@ void channel_writer::feed_mode(bool per_rev) {
 
 void channel_writer::tool(const tool_event& t, int line) {
   if (t.preselect) return;
-  template_args a = sample_template_args();
+  template_args a;  // template_uses::tool_call
   a.tool = t.tool;
   a.offset = t.offset.value_or(t.tool);
   a.channel = ch_.number;

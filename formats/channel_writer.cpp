@@ -147,9 +147,10 @@ void channel_writer::on_event(const event& e, bool both) {
           if (d.type == "OFF") cycle_.reset();
           else if (d.type != "ON" && d.type != "INIT" && cycle_supported(d, e.line)) cycle_ = d;
         } else if constexpr (std::is_same_v<T, delay_event>) {
-          template_args a = sample_template_args();
           if (d.revolutions) return error(e.line, "DELAY in revolutions is not supported; give seconds");
           if (!dwell_fits(d.value)) return;
+          template_args a;  // template_uses::dwell
+          a.channel = ch_.number;
           a.seconds = d.value;
           a.ms = static_cast<int>(std::lround(d.value * 1000));
           std::string b = format_template(m_.codes.dwell, a);

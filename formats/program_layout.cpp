@@ -60,8 +60,11 @@ int program_number(const machine& m, const std::string& name) {
   return m.program_number_of(name).value_or(m.program.program_number);
 }
 
+// The values of template_uses::file (no channel: the file is the channels' together) or,
+// with a channel, template_uses::section. Nothing else: the loader refuses a template that
+// names more, so no default can reach the output.
 template_args args_for(const frame_request& r, const channel_def* ch) {
-  template_args a = sample_template_args();
+  template_args a;
   a.name = r.name;
   a.program = program_number(*r.machine_def, r.name);
   if (ch) a.channel = ch->number;

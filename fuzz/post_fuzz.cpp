@@ -17,6 +17,7 @@
 #include "check/sync_check.hpp"
 #include "post/post_job.hpp"
 #include "fuzz/fuzz_support.hpp"
+#include "machines/layout_rules.hpp"
 #include "support/errors.hpp"
 
 namespace fs = std::filesystem;
@@ -116,7 +117,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static constexpr layout_kind layouts[] = {layout_kind::split, layout_kind::merged_appended,
                                             layout_kind::merged_sections};
   layout_kind layout = layouts[(data[0] / all.size()) % 3];
-  if (layout == layout_kind::merged_appended && m.program.section_marker.empty()) layout = layout_kind::merged_sections;
+  // A layout the machine cannot take is refused before posting (machines/layout_rules).
+  if (!layout_problem(m, layout).empty()) layout = layout_kind::merged_sections;
   const std::string dir = fuzz::scratch_dir();
   const std::string job = dir + "/job.cls";
   fuzz::write_all(job, std::string_view(reinterpret_cast<const char*>(data) + 1, size - 1));

@@ -47,17 +47,20 @@ struct axis_def {
   char address = 'X';
   bool diameter = false;   ///< X programmed as a diameter (lathe)
   bool mirror = false;     ///< sign inverted against the CL (a lower turret)
-  std::optional<double> min, max;  ///< travel limits in machine units, if known
+  /// Travel limits in the units the axis is programmed in, if known. The post does not
+  /// check them yet (they are machine coordinates, programs are in work coordinates); the
+  /// rs274 oracle (tests/oracle) holds every written X to the X travel.
+  std::optional<double> min, max;
 };
 
 /// A channel (Fanuc path, Mazak head, Citizen system): one program stream.
 struct channel_def {
   int number = 1;                  ///< 1-based channel number
-  std::string name;                ///< "upper", "lower", "path1", ...
   std::vector<int> heads;          ///< CL HEAD numbers served by this channel (HEAD/1 -> 1)
   std::vector<std::string> head_names;  ///< CL head words served (MAIN, SIDE)
-  std::string kind = "turret";     ///< "turret" (lathe tools, T0505) or "mill_head" (T05 M6)
-  std::string tool_call;           ///< tool call format, e.g. "T{tool:02}{offset:02}" or "T{tool} M6"
+  /// Tool call format, e.g. "T{tool:02}{offset:02}" or "T{tool} M6"; the file's channel
+  /// `kind` (turret or mill_head) only chooses its default.
+  std::string tool_call;
   std::string spindle = "main";    ///< the spindle this channel works on at start
   std::vector<axis_def> axes;      ///< at least X and Z
   std::string file_suffix;         ///< for split layout, e.g. "_1" or ".P-2"
@@ -84,9 +87,7 @@ struct program_format {
   char comment_open = '(';
   char comment_close = ')';
   int comment_max = 0;              ///< longest comment text; 0 = unlimited
-  int block_max = 0;                ///< longest block; 0 = unlimited
-  int decimals_metric = 3;          ///< decimals of linear axes in mm
-  int decimals_inch = 4;            ///< decimals of linear axes in inch
+  int decimals_metric = 3;          ///< decimals of linear axes (output is always metric)
   bool trailing_point = true;       ///< "X10." for whole numbers (false: "X10")
   bool arcs_ijk = true;             ///< G2/G3 with I/K (false: R)
 };
@@ -110,11 +111,9 @@ struct control_codes {
   std::string balance_off;
 };
 
-/// Rates used by the timeline.
+/// Limits the post holds the CL data to.
 struct motion_limits {
-  double rapid = 20000;           ///< mm/min
-  double max_feed = 10000;        ///< mm/min
-  double tool_change_seconds = 1; ///< time of one tool change
+  double max_feed = 0;  ///< highest feed per minute in mm/min; 0 = none
 };
 
 /// One machine and its control.

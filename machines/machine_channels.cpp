@@ -62,7 +62,6 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
   channel_def c;
   r.require("number");
   r.read("number", c.number);
-  r.read("name", c.name);
   if (r.read("heads", c.heads)) {
     const toml::array& nodes = *r.find("heads")->as_array();
     for (std::size_t i = 0; i < c.heads.size(); ++i)
@@ -76,12 +75,13 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
       if (c.head_names[i].empty())
         r.fail(*nodes.get(i), "channel.head_names must not hold an empty name");
   }
-  if (r.read("kind", c.kind) && c.kind != "turret" && c.kind != "mill_head")
+  std::string kind = "turret";
+  if (r.read("kind", kind) && kind != "turret" && kind != "mill_head")
     r.fail(*r.find("kind"), fmt::format("channel.kind must be turret or mill_head, not '{}'",
-                                        c.kind));
+                                        kind));
   // A lathe turret calls tool and offset together (T0505); a mill head changes tools (M6).
-  if (!r.read_template("tool_call", c.tool_call))
-    c.tool_call = c.kind == "turret" ? "T{tool:02}{offset:02}" : "T{tool:02} M6";
+  if (!r.read_template("tool_call", c.tool_call, template_uses::tool_call))
+    c.tool_call = kind == "turret" ? "T{tool:02}{offset:02}" : "T{tool:02} M6";
   const bool spindle_given = r.read("spindle", c.spindle);
   if (!m.spindles.empty() && !m.spindle(c.spindle)) {
     const std::string message =
@@ -143,7 +143,7 @@ void read_channels(const table_reader& root, machine& m) {
   for (const toml::table* t : tables) {
     readers.emplace_back(*t, "channel", root.source(),
                          std::initializer_list<std::string_view>{
-                             "number", "name", "heads", "head_names", "kind", "tool_call",
+                             "number", "heads", "head_names", "kind", "tool_call",
                              "spindle", "file_suffix", "axis"});
     all.push_back({read_channel_table(readers.back(), m), &readers.back()});
   }

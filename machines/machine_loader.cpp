@@ -12,6 +12,7 @@
 
 #include "machines/builtin_machines.hpp"
 #include "machines/layout_names.hpp"
+#include "machines/layout_rules.hpp"
 #include "machines/machine_search.hpp"
 #include "machines/toml_reader.hpp"
 
@@ -127,30 +128,25 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
                  {"extension", "file_name", "program_number", "program_line", "header",
                   "footer", "end_code", "percent_lines", "section_marker", "sequence_start",
                   "sequence_step", "comment_open", "comment_close", "comment_max",
-                  "block_max", "decimals_metric", "decimals_inch", "trailing_point",
-                  "arcs_ijk"});
+                  "decimals_metric", "trailing_point", "arcs_ijk"});
   if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
-  r.read_template("file_name", p.file_name);
+  r.read_template("file_name", p.file_name, template_uses::file);
   if (r.read("program_number", p.program_number)) at.program_number = r.find("program_number");
-  r.read_template("program_line", p.program_line);
-  r.read_templates("header", p.header);
-  r.read_templates("footer", p.footer);
-  r.read_template("end_code", p.end_code);
+  r.read_template("program_line", p.program_line, template_uses::file);
+  r.read_templates("header", p.header, template_uses::section);
+  r.read_templates("footer", p.footer, template_uses::section);
+  r.read_fixed("end_code", p.end_code);
   r.read("percent_lines", p.percent_lines);
-  r.read_template("section_marker", p.section_marker);
+  r.read_template("section_marker", p.section_marker, template_uses::section_marker);
   if (r.read("sequence_start", p.sequence_start)) check_min(r, "sequence_start", p.sequence_start, 0);
   if (r.read("sequence_step", p.sequence_step)) check_min(r, "sequence_step", p.sequence_step, 1);
   r.read_char("comment_open", p.comment_open, false);
   r.read_char("comment_close", p.comment_close, false);
   if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
-  if (r.read("block_max", p.block_max)) check_min(r, "block_max", p.block_max, 0);
-  for (std::string_view key : {"decimals_metric", "decimals_inch"}) {
-    int d = 0;
-    if (!r.read(key, d)) continue;
-    if (d < 0 || d > 6)
-      r.fail(*r.find(key), fmt::format("{} must be in 0..6, not {}", r.key_path(key), d));
-    (key == "decimals_metric" ? p.decimals_metric : p.decimals_inch) = d;
-  }
+  if (r.read("decimals_metric", p.decimals_metric) &&
+      (p.decimals_metric < 0 || p.decimals_metric > 6))
+    r.fail(*r.find("decimals_metric"),
+           fmt::format("program.decimals_metric must be in 0..6, not {}", p.decimals_metric));
   r.read("trailing_point", p.trailing_point);
   r.read("arcs_ijk", p.arcs_ijk);
 }
@@ -189,18 +185,18 @@ void read_codes(const table_reader& root, control_codes& c) {
   table_reader r(*t, "codes", root.source(),
                  {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on",
                   "coolant_off", "balance_on", "balance_off", "program_stop", "optional_stop"});
-  r.read_template("css", c.css);
-  r.read_template("rpm", c.rpm);
-  r.read_template("feed_per_rev", c.feed_per_rev);
-  r.read_template("feed_per_min", c.feed_per_min);
-  r.read_template("home", c.home);
-  r.read_template("dwell", c.dwell);
-  r.read_templates("coolant_on", c.coolant_on);
-  r.read_template("coolant_off", c.coolant_off);
-  r.read_template("balance_on", c.balance_on);
-  r.read_template("balance_off", c.balance_off);
-  r.read_template("program_stop", c.program_stop);
-  r.read_template("optional_stop", c.optional_stop);
+  r.read_fixed("css", c.css);
+  r.read_fixed("rpm", c.rpm);
+  r.read_fixed("feed_per_rev", c.feed_per_rev);
+  r.read_fixed("feed_per_min", c.feed_per_min);
+  r.read_fixed("home", c.home);
+  r.read_template("dwell", c.dwell, template_uses::dwell);
+  r.read_fixed("coolant_on", c.coolant_on);
+  r.read_fixed("coolant_off", c.coolant_off);
+  r.read_fixed("balance_on", c.balance_on);
+  r.read_fixed("balance_off", c.balance_off);
+  r.read_fixed("program_stop", c.program_stop);
+  r.read_fixed("optional_stop", c.optional_stop);
 }
 
 void read_positive(const table_reader& r, std::string_view key, double& out, bool zero_ok) {
@@ -212,10 +208,8 @@ void read_positive(const table_reader& r, std::string_view key, double& out, boo
 void read_limits(const table_reader& root, motion_limits& l) {
   const toml::table* t = root.sub_table("limits");
   if (!t) return;
-  table_reader r(*t, "limits", root.source(), {"rapid", "max_feed", "tool_change_seconds"});
-  read_positive(r, "rapid", l.rapid, false);
+  table_reader r(*t, "limits", root.source(), {"max_feed"});
   read_positive(r, "max_feed", l.max_feed, false);
-  read_positive(r, "tool_change_seconds", l.tool_change_seconds, true);
 }
 
 void read_spindles(const table_reader& root, const wait_rules& waits, std::vector<spindle_def>& out) {
@@ -242,18 +236,16 @@ void read_spindles(const table_reader& root, const wait_rules& waits, std::vecto
                                            r.key_path(key), code, waits.first, waits.last));
       }
     }
-    r.read_template("clamp", s.clamp);
+    r.read_template("clamp", s.clamp, template_uses::clamp);
     read_positive(r, "max_rpm", s.max_rpm, true);
     out.push_back(std::move(s));
   }
 }
 
 void check_across_tables(const table_reader& root, const machine& m, const anchors& at) {
-  if (m.layout != layout_kind::split && m.program.section_marker.empty()) {
-    const std::string message = fmt::format(
-        "layout {} needs program.section_marker", layout_file_name(m.layout));
-    if (at.program) root.fail(*at.program, message);
-    root.fail(*at.layout, message);
+  if (const std::string why = layout_problem(m, m.layout); !why.empty()) {
+    if (at.program) root.fail(*at.program, why);
+    root.fail(*at.layout, why);
   }
   // Axes are written with decimals_metric places: the control must read them all.
   for (char a : std::string_view("XYZIJKR")) {

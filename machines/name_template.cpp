@@ -2,6 +2,9 @@
 // with named values; see machines/name_template.hpp.
 #include "machines/name_template.hpp"
 
+#include <array>
+#include <utility>
+
 #include <fmt/format.h>
 
 namespace twinpost {
@@ -23,7 +26,51 @@ void reject_positional(std::string_view tpl) {
   }
 }
 
+// In the order of template_args.
+constexpr std::array<std::pair<std::string_view, placeholder>, 9> names{{
+    {"program", placeholder::program},
+    {"name", placeholder::name},
+    {"channel", placeholder::channel},
+    {"max", placeholder::max},
+    {"tool", placeholder::tool},
+    {"offset", placeholder::offset},
+    {"seconds", placeholder::seconds},
+    {"ms", placeholder::ms},
+    {"rpm", placeholder::rpm},
+}};
+
+bool name_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+}
+
 }  // namespace
+
+std::string placeholder_set::text() const {
+  std::string s;
+  for (const auto& [n, p] : names) {
+    if (!has(p)) continue;
+    if (!s.empty()) s += ", ";
+    s += fmt::format("{{{}}}", n);
+  }
+  return s.empty() ? "no placeholder" : s;
+}
+
+std::string unknown_placeholder(std::string_view tpl, placeholder_set known) {
+  for (std::size_t i = 0; i < tpl.size(); ++i) {
+    if (tpl[i] != '{') continue;
+    if (i + 1 < tpl.size() && tpl[i + 1] == '{') {  // "{{" is a literal brace
+      ++i;
+      continue;
+    }
+    // The name runs to ':' or '}'; a nested "{width}" in a spec is found as its own.
+    std::size_t end = i + 1;
+    while (end < tpl.size() && name_char(tpl[end])) ++end;
+    const std::string_view name = tpl.substr(i + 1, end - i - 1);
+    for (const auto& [n, p] : names)
+      if (n == name && !known.has(p)) return std::string(name);
+  }
+  return {};
+}
 
 std::string format_template(std::string_view tpl, const template_args& a) {
   reject_positional(tpl);
@@ -32,11 +79,6 @@ std::string format_template(std::string_view tpl, const template_args& a) {
                      fmt::arg("tool", a.tool), fmt::arg("offset", a.offset),
                      fmt::arg("seconds", a.seconds), fmt::arg("ms", a.ms),
                      fmt::arg("rpm", a.rpm));
-}
-
-template_args sample_template_args() {
-  return {.program = 1000, .name = "PART", .channel = 1, .max = 3000, .tool = 1, .offset = 1,
-          .seconds = 1.5, .ms = 1500, .rpm = 1000};
 }
 
 }  // namespace twinpost

@@ -178,24 +178,57 @@ bool table_reader::read_char(std::string_view key, char& out, bool letter) const
   return true;
 }
 
-void table_reader::check_template(std::string_view key, const toml::node& n) const {
+namespace {
+
+// Sample values that every template is formatted with once at load, so that a bad template
+// is an error there and not in the middle of a post. Load time only: real output is made
+// from real values (formats/), never from these.
+template_args sample_template_args() {
+  return {.program = 1000, .name = "PART", .channel = 1, .max = 3000, .tool = 1, .offset = 1,
+          .seconds = 1.5, .ms = 1500, .rpm = 1000};
+}
+
+}  // namespace
+
+void table_reader::check_template(std::string_view key, const toml::node& n,
+                                  placeholder_set known) const {
   const std::string& tpl = n.as_string()->get();
   try {
     (void)format_template(tpl, sample_template_args());
   } catch (const fmt::format_error& e) {
     fail(n, fmt::format("{}: bad template \"{}\": {}", key_path(key), tpl, e.what()));
   }
+  // A placeholder that is not given where the template is used would print a value that
+  // means nothing there.
+  if (const std::string name = unknown_placeholder(tpl, known); !name.empty())
+    fail(n, fmt::format("{}: template \"{}\" names {{{}}}, which is not known there (it is "
+                        "given {})",
+                        key_path(key), tpl, name, known.text()));
 }
 
-bool table_reader::read_template(std::string_view key, std::string& out) const {
+bool table_reader::read_template(std::string_view key, std::string& out,
+                                 placeholder_set known) const {
   if (!read(key, out)) return false;
-  check_template(key, *find(key));
+  check_template(key, *find(key), known);
   return true;
 }
 
-bool table_reader::read_templates(std::string_view key, std::vector<std::string>& out) const {
+bool table_reader::read_templates(std::string_view key, std::vector<std::string>& out,
+                                  placeholder_set known) const {
   if (!read(key, out)) return false;
-  for (const toml::node& e : *find(key)->as_array()) check_template(key, e);
+  for (const toml::node& e : *find(key)->as_array()) check_template(key, e, known);
+  return true;
+}
+
+bool table_reader::read_fixed(std::string_view key, std::string& out) const {
+  if (!read_template(key, out, template_uses::fixed)) return false;
+  out = format_template(out, {});
+  return true;
+}
+
+bool table_reader::read_fixed(std::string_view key, std::vector<std::string>& out) const {
+  if (!read_templates(key, out, template_uses::fixed)) return false;
+  for (std::string& s : out) s = format_template(s, {});
   return true;
 }
 

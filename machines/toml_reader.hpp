@@ -11,6 +11,7 @@
 
 #include <toml++/toml.h>
 
+#include "machines/name_template.hpp"
 #include "support/errors.hpp"
 
 namespace twinpost {
@@ -60,10 +61,16 @@ class table_reader {
   bool read(std::string_view key, std::vector<std::string>& out) const;
   /// A string of exactly one character; `letter` also demands an upper-case letter A-Z.
   bool read_char(std::string_view key, char& out, bool letter) const;
-  /// A string that is a format template, checked by formatting it with the sample values.
-  bool read_template(std::string_view key, std::string& out) const;
+  /// A string that is a format template, checked by formatting it with sample values and
+  /// against the placeholders `known` where it is used (machines/name_template.hpp).
+  bool read_template(std::string_view key, std::string& out, placeholder_set known) const;
   /// An array of format templates, each checked.
-  bool read_templates(std::string_view key, std::vector<std::string>& out) const;
+  bool read_templates(std::string_view key, std::vector<std::string>& out,
+                      placeholder_set known) const;
+  /// A template that is given no placeholder (a fixed block such as codes.home), checked
+  /// and stored formatted, so that `{{` is written as the `{` it means.
+  bool read_fixed(std::string_view key, std::string& out) const;
+  bool read_fixed(std::string_view key, std::vector<std::string>& out) const;
 
   /// The sub-table `key`, or nullptr when absent.
   const toml::table* sub_table(std::string_view key) const;
@@ -74,7 +81,7 @@ class table_reader {
   [[noreturn]] void wrong_type(std::string_view key, const toml::node& n,
                                std::string_view wanted) const;
   int to_int(std::string_view key, const toml::node& n) const;
-  void check_template(std::string_view key, const toml::node& n) const;
+  void check_template(std::string_view key, const toml::node& n, placeholder_set known) const;
 
   const toml::table& table_;
   std::string path_;

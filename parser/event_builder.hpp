@@ -102,7 +102,6 @@ class event_builder {
   std::vector<double> numbers_;    // scratch for numbers()
   std::optional<pending_circle> circle_;
   bool circle_used_ = false;  // the pending circle has had its GOTO
-  int icam_marker_ = 0;
   int catia_rows_ = -1;       // >= 0 while reading the `$$*CATIA0` matrix rows
   std::vector<double> catia_matrix_;
   int catia_line_ = 0;

@@ -208,7 +208,7 @@ void event_builder::on_sync(const cl_record& r, int line, event_queue& out, buil
 }
 
 void event_builder::on_synctr(const cl_record& r, int line, event_queue& out, build_issues& issues) {
-  push_some(out, line, detail::read_synctr(r, icam_marker_, issues));
+  push_some(out, line, detail::read_synctr(r, issues));
 }
 
 void event_builder::on_stop(const cl_record& r, int line, event_queue& out, build_issues&) {

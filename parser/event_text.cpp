@@ -163,7 +163,9 @@ struct describe {
     static const char* src[] = {"catia", "icam", "manus"};
     out.name = "sync";
     out.str("from", src[static_cast<int>(e.source)]);
-    out.num("index", e.index);
+    // "next": an ICAM marker left out, numbered per channel by the router, not here.
+    if (e.index) out.num("index", *e.index);
+    else out.str("index", "next");
     if (!e.channels.empty()) out.nums("channels", std::vector<double>(e.channels.begin(), e.channels.end()));
     if (e.master) out.num("master", *e.master);
   }

@@ -155,10 +155,11 @@ enum class sync_source : unsigned char { catia, icam, manus };
 /// An explicit synchronisation mark.
 struct sync_event {
   sync_source source = sync_source::catia;
-  int index = 0;              ///< sync number / marker
+  /// Sync number / marker; unset for an ICAM `SYNCTR/NEXT` without a marker: each channel
+  /// counts its own, which only the router knows (channels/router), so the parser leaves it.
+  std::optional<int> index;
   std::vector<int> channels;  ///< partners as written; empty = all channels
   std::optional<int> master;
-  bool automatic = false;     ///< ICAM marker left out: each channel counts its own (router)
 };
 
 struct tool_axis_event {

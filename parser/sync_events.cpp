@@ -50,7 +50,7 @@ std::optional<sync_event> read_sync(const cl_record& r, build_issues& issues) {
   return e;
 }
 
-std::optional<sync_event> read_synctr(const cl_record& r, int& last_marker, build_issues& issues) {
+std::optional<sync_event> read_synctr(const cl_record& r, build_issues& issues) {
   if (r.args.empty() || r.args[0].kind != arg_kind::word || !word_is(r.args[0].word, "NEXT")) {
     issues.push_back({severity::error, where(r), "SYNCTR needs NEXT[,marker[,channels]]"});
     return std::nullopt;
@@ -58,15 +58,11 @@ std::optional<sync_event> read_synctr(const cl_record& r, int& last_marker, buil
   sync_event e;
   e.source = sync_source::icam;
   std::size_t i = 1;
+  // A marker left out is the channel's previous one plus one: the router counts per channel.
   if (i < r.args.size() && r.args[i].kind == arg_kind::number) {
     e.index = as_int(r.args[i].number);
     ++i;
-  } else {
-    e.automatic = true;
-    // ICAM: a marker left out is the previous one plus one (saturating: no overflow).
-    e.index = last_marker < std::numeric_limits<int>::max() ? last_marker + 1 : last_marker;
   }
-  last_marker = e.index;
   for (; i < r.args.size(); ++i)
     if (r.args[i].kind == arg_kind::number) e.channels.push_back(as_int(r.args[i].number));
   return e;

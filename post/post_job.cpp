@@ -18,6 +18,7 @@
 #include "post/output_commit.hpp"
 #include "post/output_names.hpp"
 #include "formats/program_layout.hpp"
+#include "machines/layout_rules.hpp"
 #include "post/sync_at_cl.hpp"
 #include "formats/program_number.hpp"
 #include "parser/cl_reader.hpp"
@@ -244,6 +245,11 @@ std::string safe_file_stem(std::string_view partno) {
 post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& diags) {
   post_summary sum;
   counting_sink sink(diags);
+  // A layout given in the options is held to the rule the loader holds the machine file to.
+  if (std::string why = layout_problem(m, o.layout.value_or(m.layout)); !why.empty()) {
+    sink.report({severity::error, m.source, 0, 0, std::move(why), {}});
+    return sum;
+  }
   file_ptr in = open_job(o.cl_path);
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);

@@ -46,13 +46,12 @@ TEST_CASE("a minimal machine loads with the documented defaults", "[machines]") 
   CHECK(m.waits.step == 1);
   CHECK(m.waits.partners == partner_style::none);
   REQUIRE(m.channels.size() == 2);
-  CHECK(m.channels[0].kind == "turret");
-  CHECK(m.channels[0].tool_call == "T{tool:02}{offset:02}");
+  CHECK(m.channels[0].tool_call == "T{tool:02}{offset:02}");  // kind turret
   CHECK(m.channels[0].spindle == "main");
   CHECK(m.program.extension == ".nc");
   CHECK(m.program.program_line == "O{program:04} ({name})");
   CHECK(m.codes.dwell == "G4 U{seconds}");
-  CHECK(m.limits.rapid == 20000);
+  CHECK(m.limits.max_feed == 0);  // no limit
 }
 
 TEST_CASE("channels are sorted by number and a mill head defaults to an M6 tool call",
@@ -75,7 +74,7 @@ TEST_CASE("built-in integrex-i200st", "[machines]") {
   CHECK(m.layout == layout_kind::merged_appended);
   CHECK(m.program.section_marker == "G109 L{channel}");
   CHECK(m.program.extension == ".EIA");
-  CHECK(format_template(m.program.program_line, sample_template_args()) == "O1000(PART)");
+  CHECK(format_template(m.program.program_line, {.program = 1000, .name = "PART"}) == "O1000(PART)");
   CHECK(m.program.end_code == "M30");
   CHECK(m.program.header.at(0) == "G21");
   CHECK(m.codes.feed_per_min == "G94");
@@ -86,18 +85,14 @@ TEST_CASE("built-in integrex-i200st", "[machines]") {
   CHECK(m.waits.last == 997);
   CHECK(m.waits.step == 1);
   CHECK(m.waits.reuse);
-  CHECK(m.limits.rapid == 40000);
+  CHECK(m.limits.max_feed == 20000);
 
   REQUIRE(m.channels.size() == 2);
   const channel_def& upper = m.channels[0];
-  CHECK(upper.name == "upper");
-  CHECK(upper.kind == "mill_head");
   CHECK(upper.tool_call == "T{tool:02} M6");
   CHECK(m.channel_for_head(1) == &upper);
   CHECK(m.channel_for_head("MAIN") == &upper);
   const channel_def& lower = m.channels[1];
-  CHECK(lower.name == "lower");
-  CHECK(lower.kind == "turret");
   CHECK(lower.tool_call == "T{tool:02}{offset:02}");
   CHECK(m.channel_for_head(2) == &lower);
   CHECK(m.channel_for_head("side") == &lower);
@@ -143,7 +138,6 @@ TEST_CASE("built-in fanuc-0itd-twin", "[machines]") {
   CHECK(m.waits.partners == partner_style::none);
   REQUIRE(m.channels.size() == 2);
   for (const channel_def& c : m.channels) {
-    CHECK(c.kind == "turret");
     CHECK(c.tool_call == "T{tool:02}{offset:02}");
     REQUIRE(c.axis('X'));
     CHECK(c.axis('X')->diameter);
@@ -161,7 +155,7 @@ TEST_CASE("built-in fanuc-31i-3path", "[machines]") {
   CHECK(m.name == "fanuc-31i-3path");
   CHECK(m.layout == layout_kind::split);
   REQUIRE(m.channels.size() == 3);
-  CHECK(m.channels[2].kind == "mill_head");
+  CHECK(m.channels[2].tool_call == "T{tool:02} M6");
   CHECK(m.channel_for_head(3) == &m.channels[2]);
   CHECK(m.waits.first == 200);
   CHECK(m.waits.last == 299);

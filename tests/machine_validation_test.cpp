@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "machines/layout_rules.hpp"
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
 #include "machine_test_support.hpp"
@@ -58,6 +59,24 @@ TEST_CASE("validation: unknown keys", "[machines]") {
         "m.toml:8:25: error: unknown key 'channel.axis.mirrorr'");
 }
 
+TEST_CASE("validation: keys that were read and never used are unknown now", "[machines]") {
+  // Deleted rather than kept as configuration nothing obeys: a file still naming one gets
+  // the normal unknown-key error.
+  CHECK(error_of(head + "[limits]\nmax_feed = 9000\nrapid = 24000\n") ==
+        "m.toml:8:1: error: unknown key 'limits.rapid'");
+  CHECK(error_of(head + "[limits]\ntool_change_seconds = 0.6\n") ==
+        "m.toml:7:1: error: unknown key 'limits.tool_change_seconds'");
+  CHECK(error_of(head + "[program]\nblock_max = 128\n") ==
+        "m.toml:7:1: error: unknown key 'program.block_max'");
+  CHECK(error_of(head + "[program]\ndecimals_inch = 4\n") ==
+        "m.toml:7:1: error: unknown key 'program.decimals_inch'");
+  CHECK(error_of(head + "[[channel]]\nnumber = 1\nname = \"upper\"\n" + xz) ==
+        "m.toml:8:1: error: unknown key 'channel.name'");
+  // max_feed is used (formats/channel_words.cpp): it must be a positive rate.
+  CHECK(error_of(head + "[limits]\nmax_feed = 0\n") ==
+        "m.toml:7:12: error: limits.max_feed must be > 0, not 0");
+}
+
 TEST_CASE("validation: wrong types", "[machines]") {
   CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = \"100\"\nlast = 103\n") ==
         "m.toml:4:9: error: waits.first must be an integer, not a string");
@@ -67,8 +86,8 @@ TEST_CASE("validation: wrong types", "[machines]") {
         "m.toml:6:9: error: waits.reuse must be a boolean, not an integer");
   CHECK(error_of(head + "excluded = [101, \"x\"]\n") ==
         "m.toml:6:18: error: waits.excluded must hold only integers, not a string");
-  CHECK(error_of(head + "[limits]\nrapid = \"fast\"\n") ==
-        "m.toml:7:9: error: limits.rapid must be a number, not a string");
+  CHECK(error_of(head + "[limits]\nmax_feed = \"fast\"\n") ==
+        "m.toml:7:12: error: limits.max_feed must be a number, not a string");
   CHECK(error_of("machine = \"m\"\n") ==
         "m.toml:1:11: error: machine must be a table, not a string");
   CHECK(error_of("channel = 1\n" + head) ==
@@ -89,7 +108,7 @@ TEST_CASE("validation: missing required keys are reported at the table lacking t
         "m.toml:3:1: error: waits.last is required");
   CHECK(error_of("[machine]\nname = \"m\"\n" + two_channels) ==
         "m.toml:1:1: error: waits.first is required");
-  CHECK(error_of(head + "[[channel]]\nname = \"upper\"\n" + xz) ==
+  CHECK(error_of(head + "[[channel]]\nheads = [1]\n" + xz) ==
         "m.toml:6:1: error: channel.number is required");
 }
 
@@ -141,16 +160,36 @@ TEST_CASE("validation: layouts", "[machines]") {
   CHECK(error_of("[machine]\nname = \"m\"\nlayout = \"merged\"\n") ==
         "m.toml:3:10: error: machine.layout must be split, merged_appended or "
         "merged_sections, not 'merged'");
-  // The [program] table lacks the key ...
-  CHECK(error_of("[machine]\nname = \"m\"\nlayout = \"merged_sections\"\n"
+  // merged_appended writes the marker before each channel: the [program] table lacks it ...
+  CHECK(error_of("[machine]\nname = \"m\"\nlayout = \"merged_appended\"\n"
                  "[waits]\nfirst = 100\nlast = 103\n[program]\nextension = \".nc\"\n" +
                  two_channels) ==
-        "m.toml:7:1: error: layout merged_sections needs program.section_marker");
+        "m.toml:7:1: error: layout merged_appended needs program.section_marker (the block "
+        "that opens each channel's section, such as \"G109 L{channel}\")");
   // ... or there is no [program] table, and the layout is what asks for it.
   CHECK(error_of("[machine]\nname = \"m\"\nlayout = \"merged_appended\"\n"
                  "[waits]\nfirst = 100\nlast = 103\n" +
                  two_channels) ==
-        "m.toml:3:10: error: layout merged_appended needs program.section_marker");
+        "m.toml:3:10: error: layout merged_appended needs program.section_marker (the block "
+        "that opens each channel's section, such as \"G109 L{channel}\")");
+  // merged_sections writes `$n` and never the marker, so it does not ask for one.
+  CHECK(error_of("[machine]\nname = \"m\"\nlayout = \"merged_sections\"\n"
+                 "[waits]\nfirst = 100\nlast = 103\n[program]\nextension = \".nc\"\n" +
+                 two_channels) == "(no error)");
+}
+
+TEST_CASE("layout_problem: one rule for the file, --layout and the post", "[machines]") {
+  machine m;
+  CHECK(layout_file_name(layout_kind::split) == "split");
+  CHECK(layout_file_name(layout_kind::merged_appended) == "merged_appended");
+  CHECK(layout_file_name(layout_kind::merged_sections) == "merged_sections");
+  CHECK(layout_problem(m, layout_kind::split) == "");
+  CHECK(layout_problem(m, layout_kind::merged_sections) == "");
+  CHECK(layout_problem(m, layout_kind::merged_appended) ==
+        "layout merged_appended needs program.section_marker (the block that opens each "
+        "channel's section, such as \"G109 L{channel}\")");
+  m.program.section_marker = "G109 L{channel}";
+  CHECK(layout_problem(m, layout_kind::merged_appended) == "");
 }
 
 TEST_CASE("validation: a wait on 3 or more channels must name its partners", "[machines]") {
@@ -181,6 +220,67 @@ TEST_CASE("validation: templates are formatted once at load", "[machines]") {
   CHECK(error_of(head + "[program]\nsection_marker = \"${chanel}\"\n") ==
         "m.toml:7:18: error: program.section_marker: bad template \"${chanel}\": argument "
         "not found");
+}
+
+TEST_CASE("validation: a template names only what is known where it is used", "[machines]") {
+  // A file name is made once for all channels: there is no channel to name.
+  CHECK(error_of(head + "[program]\nfile_name = \"{name}_{channel}\"\n") ==
+        "m.toml:7:13: error: program.file_name: template \"{name}_{channel}\" names {channel}, "
+        "which is not known there (it is given {program}, {name})");
+  CHECK(error_of(head + "[program]\nprogram_line = \"O{program:04} T{tool}\"\n") ==
+        "m.toml:7:16: error: program.program_line: template \"O{program:04} T{tool}\" names "
+        "{tool}, which is not known there (it is given {program}, {name})");
+  CHECK(error_of(head + "[program]\nfooter = [\"M9\", \"G50 S{max}\"]\n") ==
+        "m.toml:7:17: error: program.footer: template \"G50 S{max}\" names {max}, which is not "
+        "known there (it is given {program}, {name}, {channel})");
+  // A tool call is not given the program's name: it would print the sample PART.
+  CHECK(error_of(head + "[[channel]]\nnumber = 1\ntool_call = \"T{tool:02} ({name})\"\n" + xz) ==
+        "m.toml:8:13: error: channel.tool_call: template \"T{tool:02} ({name})\" names {name}, "
+        "which is not known there (it is given {channel}, {tool}, {offset})");
+  CHECK(error_of(head + "[[spindle]]\nname = \"main\"\nclamp = \"G50 S{max} T{tool}\"\n") ==
+        "m.toml:8:9: error: spindle.clamp: template \"G50 S{max} T{tool}\" names {tool}, which "
+        "is not known there (it is given {channel}, {max}, {rpm})");
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 U{seconds} ({program})\"\n") ==
+        "m.toml:7:9: error: codes.dwell: template \"G4 U{seconds} ({program})\" names {program}, "
+        "which is not known there (it is given {channel}, {seconds}, {ms})");
+  // The checker finds sections by the marker: it knows the channel and nothing else.
+  CHECK(error_of(head + "[program]\nsection_marker = \"G109 L{channel} ({name})\"\n") ==
+        "m.toml:7:18: error: program.section_marker: template \"G109 L{channel} ({name})\" "
+        "names {name}, which is not known there (it is given {channel})");
+  // Fixed blocks are given nothing.
+  CHECK(error_of(head + "[codes]\nhome = \"G28 U0 W0 (T{tool})\"\n") ==
+        "m.toml:7:8: error: codes.home: template \"G28 U0 W0 (T{tool})\" names {tool}, which "
+        "is not known there (it is given no placeholder)");
+  CHECK(error_of(head + "[codes]\ncoolant_on = [\"M8\", \"M{channel}\"]\n") ==
+        "m.toml:7:21: error: codes.coolant_on: template \"M{channel}\" names {channel}, which is "
+        "not known there (it is given no placeholder)");
+  CHECK(error_of(head + "[program]\nend_code = \"M30 ({name})\"\n") ==
+        "m.toml:7:12: error: program.end_code: template \"M30 ({name})\" names {name}, which "
+        "is not known there (it is given no placeholder)");
+  // A width taken from a placeholder is held to the same sets.
+  CHECK(error_of(head + "[program]\nprogram_line = \"O{program:0{channel}}\"\n") ==
+        "m.toml:7:16: error: program.program_line: template \"O{program:0{channel}}\" names "
+        "{channel}, which is not known there (it is given {program}, {name})");
+  // Where they are known, all are fine, and a literal brace is not a placeholder.
+  CHECK(error_of(head + "[program]\nfile_name = \"{name}-{program}\"\n"
+                 "header = [\"({name} {program} {channel})\", \"{{tool}}\"]\n"
+                 "section_marker = \"G109 L{channel}\"\n"
+                 "[codes]\ndwell = \"G4 P{ms} (C{channel} {seconds})\"\n"
+                 "[[spindle]]\nname = \"main\"\nclamp = \"G50 S{max} (S{rpm} C{channel})\"\n"
+                 "[[channel]]\nnumber = 1\ntool_call = \"T{tool:02}{offset:02} (C{channel})\"\n" +
+                 xz) == "(no error)");
+}
+
+TEST_CASE("fixed blocks are stored as the control reads them", "[machines]") {
+  // A fixed block is formatted once at load: `{{` stands for a brace, in the file as on the
+  // control.
+  const machine m = parse_machine(head + "[program]\nend_code = \"M30 ({{END}})\"\n"
+                                         "[codes]\nhome = \"G28 U0 ({{HOME}})\"\n"
+                                         "coolant_on = [\"M8 ({{A}})\"]\n" + two_channels,
+                                  "m.toml");
+  CHECK(m.program.end_code == "M30 ({END})");
+  CHECK(m.codes.home == "G28 U0 ({HOME})");
+  CHECK(m.codes.coolant_on == std::vector<std::string>{"M8 ({A})"});
 }
 
 TEST_CASE("a spindle code inside the wait range is refused", "[machines]") {

@@ -63,19 +63,6 @@ TEST_CASE("split_nc_words reads words the way controls do", "[check]") {
   CHECK(words_of("#100=5 M101") == "M101@8");
 }
 
-TEST_CASE("decode_partner_list reads path digits and binary masks", "[check]") {
-  std::vector<int> p;
-  CHECK(decode_partner_list("12", partner_style::path_numbers, p));
-  CHECK(p == std::vector<int>{1, 2});
-  CHECK(decode_partner_list("7", partner_style::binary, p));
-  CHECK(p == std::vector<int>{1, 2, 3});
-  CHECK(decode_partner_list("5", partner_style::binary, p));
-  CHECK(p == std::vector<int>{1, 3});
-  CHECK_FALSE(decode_partner_list("-12", partner_style::path_numbers, p));
-  CHECK_FALSE(decode_partner_list("1.5", partner_style::path_numbers, p));
-  CHECK_FALSE(decode_partner_list("", partner_style::binary, p));
-}
-
 TEST_CASE("split files: file n is channel n; comments hold no waits", "[check]") {
   const machine m = two_channels(100, 103, "");
   diagnostic_list d;

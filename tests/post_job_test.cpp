@@ -100,6 +100,25 @@ TEST_CASE("a PARTNO after the first blocks still names the program and its head"
   }
 }
 
+TEST_CASE("a layout the machine cannot take fails the post before anything is written", "[post]") {
+  // The same rule as the loader's and --layout's (machines/layout_rules): the Fanuc twin
+  // has no section marker, so its channels cannot be appended into one program.
+  const machine m = load_machine("fanuc-0itd-twin");
+  diagnostic_list d;
+  const auto files = post_files("PARTNO/X\nHEAD/1\nGOTO/1,0,1\nFINI\n", m, "no-marker", &d,
+                                layout_kind::merged_appended);
+  CHECK(files == std::map<std::string, std::string>{{"(failed)", ""}});
+  REQUIRE(d.all().size() == 1);
+  CHECK(format_diagnostic(d.all()[0]) ==
+        m.source + ": error: layout merged_appended needs program.section_marker (the block "
+                   "that opens each channel's section, such as \"G109 L{channel}\")\n");
+  // merged_sections writes `$n` and needs no marker.
+  diagnostic_list ok;
+  CHECK(post_files("PARTNO/X\nHEAD/1\nRAPID\nGOTO/1,0,1\nFINI\n", m, "sections", &ok,
+                   layout_kind::merged_sections)
+            .count("X.nc") == 1);
+}
+
 TEST_CASE("the job scan looks only at first words, across read chunks", "[post]") {
   // Letters it looks for inside a line do not count; the reader takes a megabyte at a
   // time, so a HEAD record may straddle two reads, and the last line needs no newline.

@@ -92,6 +92,28 @@ TEST_CASE("F, S, T and dwell words are held to the control's format", "[post][wo
         "job.cls:3:1: error: channel 1: P word 1000000000 does not fit the control's format (8: at most 99999999)\nDELAY/1e6\n^\n");
 }
 
+TEST_CASE("a feed per minute above limits.max_feed stops the post at its record", "[post][words]") {
+  // fanuc-0itd-twin: max_feed = 10000 mm/min. The limit itself is fine.
+  const std::string start = "PARTNO W\nTURRET/1,1\nSPINDL/RPM,1000,CLW\n";
+  posted at = post_text(start + "FEDRAT/MMPM,10000\nGOTO/10,0,1\nFINI\n", "fanuc-0itd-twin", "feed-at");
+  CHECK(at.ok);
+  CHECK(at.diagnostics == "");
+  posted over = post_text(start + "FEDRAT/MMPM,12000\nFINI\n", "fanuc-0itd-twin", "feed-over");
+  CHECK_FALSE(over.ok);
+  CHECK(over.files.empty());
+  CHECK(over.diagnostics ==
+        "job.cls:4:1: error: channel 1: feed 12000 mm/min exceeds the machine's limit of 10000 mm/min "
+        "(limits.max_feed)\nFEDRAT/MMPM,12000\n^\n");
+  // Inch feeds are held to it after conversion: 500 in/min is 12700 mm/min.
+  posted inch = post_text(start + "FEDRAT/500,IPM\nFINI\n", "fanuc-0itd-twin", "feed-inch");
+  CHECK(inch.diagnostics ==
+        "job.cls:4:1: error: channel 1: feed 12700 mm/min exceeds the machine's limit of 10000 mm/min "
+        "(limits.max_feed)\nFEDRAT/500,IPM\n^\n");
+  // A feed per revolution depends on the speed and is not compared with it.
+  posted rev = post_text(start + "FEDRAT/20000,MMPR\nGOTO/10,0,1\nFINI\n", "fanuc-0itd-twin", "feed-rev");
+  CHECK(rev.diagnostics == "");
+}
+
 TEST_CASE("a tool number is a whole number, or an error at its argument", "[post][words]") {
   posted big = post_text("PARTNO W\nTURRET/1e308\nFINI\n", "fanuc-0itd-twin", "big");
   CHECK(big.diagnostics ==

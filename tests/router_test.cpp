@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <fmt/format.h>
+
+#include <climits>
 #include <string>
 
 #include "channels/router.hpp"
@@ -46,8 +48,7 @@ event head_both() { return {0, head_event{head_select::both, 0}}; }
 event icam(std::optional<int> marker, std::vector<int> channels = {}) {
   sync_event s;
   s.source = sync_source::icam;
-  s.index = marker.value_or(0);
-  s.automatic = !marker;
+  s.index = marker;
   s.channels = std::move(channels);
   return {0, s};
 }
@@ -90,6 +91,28 @@ TEST_CASE("ICAM SYNCTR/NEXT without a marker counts per channel", "[router]") {
             {go(1), icam({}), go(2), icam({}), head(2), go(3), icam({}), go(4), icam({})}, d) ==
         "c1:goto\nc1:M100\nc1:goto\nc1:M101\n"
         "c2:goto\nc2:M100\nc2:goto\nc2:M101\n");
+  CHECK(d.errors() == 0);
+}
+
+TEST_CASE("an ICAM marker left out is named by the router's number in messages", "[router]") {
+  diagnostic_list d;
+  // Head 1 has marks 1 and 2; head 2's first mark without a number is its mark 1 (the
+  // parser no longer numbers it: `twinpost parse` prints index=next).
+  run(twin(), sync_policy::explicit_marks,
+      {go(1), icam({}), go(2), icam({}), head(2), go(3), icam({}, {2, 5})}, d);
+  REQUIRE(d.errors() == 1);
+  CHECK(format_diagnostic(d.all().front()) ==
+        "job.cls: error: sync 1 names channel 5, machine 'twin' has 2 channels\n");
+}
+
+TEST_CASE("an ICAM marker left out after marker INT_MAX stays INT_MAX", "[router]") {
+  // Regression (moved from the parser): INT_MAX + 1 was a signed overflow. The mark after
+  // it is the second occurrence of INT_MAX in both channels: the same code in both.
+  diagnostic_list d;
+  CHECK(run(twin(), sync_policy::explicit_marks,
+            {go(1), icam(INT_MAX), go(2), icam({}), head(2), go(3), icam(INT_MAX), go(4), icam({})},
+            d) == "c1:goto\nc1:M100\nc1:goto\nc1:M101\n"
+                  "c2:goto\nc2:M100\nc2:goto\nc2:M101\n");
   CHECK(d.errors() == 0);
 }
 

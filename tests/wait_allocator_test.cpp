@@ -52,9 +52,53 @@ TEST_CASE("a range at the end of an int does not overflow the allocator", "[chan
   CHECK(codes(none, 1) == "none");
 }
 
-TEST_CASE("partner lists in the machine's style, up to channel 64", "[channels]") {
-  CHECK(partner_list({1, 2, 3}, partner_style::path_numbers) == "123");
-  CHECK(partner_list({1, 2}, partner_style::binary) == "3");
-  CHECK(partner_list({1, 64}, partner_style::binary) == "9223372036854775809");
-  CHECK(partner_list({1, 2}, partner_style::none) == "");
+TEST_CASE("a range used up without reuse gives nothing from then on", "[channels]") {
+  wait_rules r;
+  r.first = 100;
+  r.last = 103;
+  wait_allocator a(r);
+  CHECK(codes(a, 6) == "100 101 102 103 none none");
+  CHECK(a.handed_out() == 4);
+}
+
+TEST_CASE("the step is counted from first; a last off the grid is never handed out", "[channels]") {
+  wait_rules r;
+  r.first = 950;
+  r.last = 967;
+  r.step = 5;
+  wait_allocator a(r);
+  CHECK(codes(a, 5) == "950 955 960 965 none");
+  r.reuse = true;
+  wait_allocator again(r);
+  CHECK(codes(again, 6) == "950 955 960 965 950 955");
+}
+
+TEST_CASE("excluded codes at both ends of the range are skipped, also after reuse", "[channels]") {
+  wait_rules r;
+  r.first = 100;
+  r.last = 104;
+  r.excluded = {100, 104};
+  wait_allocator once(r);
+  CHECK(codes(once, 4) == "101 102 103 none");
+  r.reuse = true;
+  wait_allocator again(r);
+  CHECK(codes(again, 7) == "101 102 103 101 102 103 101");
+  CHECK(again.handed_out() == 7);
+}
+
+TEST_CASE("reuse starts again at first, in the same order", "[channels]") {
+  wait_rules r;
+  r.first = 200;
+  r.last = 202;
+  r.reuse = true;
+  wait_allocator a(r);
+  CHECK(codes(a, 8) == "200 201 202 200 201 202 200 201");
+  r.last = 200;  // a range of one code: every wait has it
+  wait_allocator one(r);
+  CHECK(codes(one, 3) == "200 200 200");
+  r.last = 201;  // every code excluded: nothing, even with reuse, and no endless loop
+  r.excluded = {200, 201};
+  wait_allocator none(r);
+  CHECK(codes(none, 2) == "none none");
+  CHECK(none.handed_out() == 0);
 }

@@ -23,8 +23,9 @@ std::optional<head_event> read_head(const cl_record& r, build_issues& issues);
 std::optional<channel_event> read_channel(const cl_record& r, build_issues& issues);
 /// CATIA SYNC/k,c1,c2[,master].
 std::optional<sync_event> read_sync(const cl_record& r, build_issues& issues);
-/// ICAM SYNCTR/NEXT[,marker[,channels...]]; `last_marker` numbers markers left out.
-std::optional<sync_event> read_synctr(const cl_record& r, int& last_marker, build_issues& issues);
+/// ICAM SYNCTR/NEXT[,marker[,channels...]]; a marker left out stays unset (the router
+/// numbers it per channel).
+std::optional<sync_event> read_synctr(const cl_record& r, build_issues& issues);
 /// MANUSpost `$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=n`, if it is one.
 std::optional<sync_event> read_manus_sync(std::string_view comment_text);
 
