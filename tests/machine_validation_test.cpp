@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "machines/layout_names.hpp"
 #include "machines/layout_rules.hpp"
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
