@@ -11,6 +11,7 @@ packages=(
   libtomlplusplus-dev           # machine definition files
   dpkg-dev                      # the .deb's Depends (dpkg-shlibdeps, used by CPack)
   file                          # CPack's test for which installed files are programs
+  clang-format-14               # the style check (ctest format, scripts/format.sh)
 )
 missing=()
 for p in "${packages[@]}"; do
