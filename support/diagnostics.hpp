@@ -8,6 +8,9 @@ namespace twinpost {
 
 enum class severity { note, warning, error };
 
+/// "note", "warning" or "error": the word in a diagnostic's text and in the JSON report.
+const char* severity_name(severity s);
+
 /// One diagnostic. line and column are 1-based; column 0 means "no column".
 struct diagnostic {
   severity level = severity::error;
