@@ -1,5 +1,6 @@
 #include "check/nc_program.hpp"
 #include "support/errors.hpp"
+#include "support/file_reader.hpp"
 
 #include <array>
 #include <cerrno>
@@ -359,24 +360,20 @@ class reader {
   // Every line is settled before it returns: the last one may live in `carry`.
   template <class F>
   void stream_lines(const nc_source& f, F&& on_line, const bool* runs) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> own(nullptr, &std::fclose);
+    file_ptr own(nullptr, &std::fclose);
     std::FILE* file = f.copy.get();
     if (file) {
       std::rewind(file);
     } else {
-      own.reset(std::fopen(f.path.c_str(), "rb"));
+      own = open_file_ptr(f.path.c_str(), "rb");
       file = own.get();
     }
-    if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", f.path));
-    constexpr std::size_t chunk_bytes = 1 << 20;
-    auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes + 1);  // + the NUL strcspn stops at
+    if (!file) throw config_error(fmt::format("cannot read '{}'", f.path));
+    chunk_reader reader(file);  // each chunk ends in the NUL strcspn stops at
     std::string carry;
     int no = 0;
     bool first = true, skip_lf = false;
-    std::size_t n;
-    while ((n = std::fread(buf.get(), 1, chunk_bytes, file)) > 0) {
-      buf[n] = '\0';
-      std::string_view chunk(buf.get(), n);
+    for (std::string_view chunk; !(chunk = reader.next()).empty();) {
       if (first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
       first = false;
       std::size_t pos = 0;
@@ -419,8 +416,8 @@ class reader {
       settle();  // the buffer is read over next
     }
     // A read error (EIO, a directory) must not pass for the end of the program.
-    if (std::ferror(file))
-      throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", f.path,
+    if (reader.failed())
+      throw config_error(fmt::format("cannot read '{}': {}", f.path,
                                      std::strerror(errno)));
     if (!carry.empty()) {  // a last line without a line end
       on_line(++no, carry, false);
@@ -708,7 +705,7 @@ nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine&
     out.channels.push_back({static_cast<int>(i) + 1, {}, {}, {}, {}});
   reader r(m, sink, out, options);
   if (files.empty()) {
-    sink.report({severity::error, "twinpost", 0, 0, "no NC files given", {}});
+    sink.report({severity::error, {}, 0, 0, "no NC files given", {}});  // no place: the run's
   } else if (files.size() == out.channels.size()) {
     for (std::size_t i = 0; i < files.size(); ++i)
       r.read_split(files[i], static_cast<int>(i) + 1);

@@ -14,8 +14,7 @@ namespace twinpost::detail {
 
 void fail_at(std::string_view source, const toml::source_region& where,
              std::string_view message) {
-  throw config_error(fmt::format("{}:{}:{}: error: {}", source, where.begin.line,
-                                 where.begin.column, message));
+  throw config_error::at(source, where.begin.line, where.begin.column, message);
 }
 
 std::string_view type_phrase(toml::node_type t) {

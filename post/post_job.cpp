@@ -22,6 +22,7 @@
 #include "formats/program_number.hpp"
 #include "parser/cl_reader.hpp"
 #include "support/errors.hpp"
+#include "support/file_reader.hpp"
 
 namespace fs = std::filesystem;
 
@@ -36,13 +37,13 @@ class counting_sink : public diagnostic_sink {
  public:
   explicit counting_sink(diagnostic_sink& next) : next_(next) {}
   void report(diagnostic d) override {
-    if (d.level == severity::error) ++errors;
+    counts.add(d);
     // Router and writer diagnostics come while their record is the reader's current one.
     if (reader && d.column > 0 && d.source_line.empty() && d.file == file)
       d.source_line = std::string(reader->source_line(d.line));
     next_.report(std::move(d));
   }
-  int errors = 0;
+  diagnostic_counts counts;
   const cl_reader* reader = nullptr;
   std::string file;
 
@@ -75,25 +76,23 @@ class writers_sink : public channel_sink {
   void on_wait(int ch, const wait_mark& w) override { writers[static_cast<std::size_t>(ch - 1)]->on_wait(w); }
 };
 
-using file_ptr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
 // The job is read twice (the scan, then the reader): it must be a regular file, which a
 // pipe, a FIFO, a folder or /dev/null is not.
 file_ptr open_job(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);  // a FIFO must not block
-  if (fd < 0) throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", path, std::strerror(errno)));
+  if (fd < 0) throw config_error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
     throw config_error(fmt::format(
-        "twinpost: error: '{}' is not a regular file (a pipe, FIFO, folder or device): post reads the job "
+        "'{}' is not a regular file (a pipe, FIFO, folder or device): post reads the job "
         "twice, give it a file",
         path));
   }
   std::FILE* f = ::fdopen(fd, "rb");
   if (!f) {
     ::close(fd);
-    throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
+    throw config_error(fmt::format("cannot read '{}'", path));
   }
   return {f, &std::fclose};
 }
@@ -199,7 +198,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     d.message = "the job has no CL records (only comments or nothing)";
     sink.report(std::move(d));
   }
-  if (sink.errors > 0) return sum;
+  if (sink.counts.errors > 0) return sum;
 
   req.name = safe_file_stem(ws.partno);
   std::vector<std::string> heads;

@@ -54,8 +54,7 @@ std::string format_diagnostic(const diagnostic& d) {
 }
 
 void diagnostic_list::report(diagnostic d) {
-  if (d.level == severity::error) ++errors_;
-  if (d.level == severity::warning) ++warnings_;
+  counts_.add(d);
   items_.push_back(std::move(d));
 }
 

@@ -188,11 +188,11 @@ TEST_CASE("load_machine reads a file, and names what it cannot read", "[machines
   CHECK(load_machine(path).source == path);
   std::filesystem::remove(path);
   CHECK_THROWS_WITH(load_machine(path),
-                    "twinpost: error: cannot read machine file '" + path + "'");
+                    "cannot read machine file '" + path + "'");
   CHECK_THROWS_WITH(load_machine(dir.string()),
-                    "twinpost: error: cannot read machine file '" + dir.string() + "'");
+                    "cannot read machine file '" + dir.string() + "'");
   CHECK_THROWS_WITH(load_machine("integrex"),
-                    "twinpost: error: unknown machine 'integrex': no built-in machine and no "
+                    "unknown machine 'integrex': no built-in machine and no "
                     "file of that name");
 }
 

@@ -1,9 +1,11 @@
-// The support layer's small pieces: JSON string literals, severity names.
+// The support layer's small pieces: JSON string literals, the two kinds of config_error,
+// severity names and counts.
 #include <catch2/catch.hpp>
 
 #include <string>
 
 #include "support/diagnostics.hpp"
+#include "support/errors.hpp"
 #include "support/json.hpp"
 
 using namespace twinpost;
@@ -47,4 +49,34 @@ TEST_CASE("severity names and a diagnostic without a place", "[support]") {
   CHECK(format_diagnostic({severity::error, "", 0, 0, "no NC files given", {}}) ==
         "error: no NC files given\n");
   CHECK(format_diagnostic({severity::warning, "a.nc", 0, 0, "empty", {}}) == "a.nc: warning: empty\n");
+}
+
+TEST_CASE("config_error: with a place or without", "[support]") {
+  const config_error plain("cannot read 'a.cls': No such file or directory");
+  CHECK(std::string(plain.what()) == "cannot read 'a.cls': No such file or directory");
+  CHECK_FALSE(plain.located());
+  const config_error placed = config_error::at("m.toml", 12, 3, "waits.first must be <= waits.last");
+  CHECK(std::string(placed.what()) == "m.toml:12:3: error: waits.first must be <= waits.last");
+  CHECK(placed.located());
+  try {
+    throw placed;
+  } catch (const config_error& e) {
+    CHECK(e.located());  // survives a copy
+  }
+}
+
+TEST_CASE("diagnostic_counts counts errors and warnings, not notes", "[support]") {
+  diagnostic_counts n;
+  n.add({severity::error, "a", 1, 1, "e", {}});
+  n.add({severity::warning, "a", 2, 1, "w", {}});
+  n.add({severity::note, "a", 3, 1, "n", {}});
+  n.add({severity::error, "a", 4, 1, "e", {}});
+  CHECK(n.errors == 2);
+  CHECK(n.warnings == 1);
+  diagnostic_list list;
+  list.report({severity::warning, "a", 2, 1, "w", {}});
+  list.report({severity::note, "a", 3, 1, "n", {}});
+  CHECK(list.errors() == 0);
+  CHECK(list.warnings() == 1);
+  CHECK(list.all().size() == 2);
 }
