@@ -1,4 +1,5 @@
 #include "check/nc_program.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
 #include "support/file_reader.hpp"
 
@@ -18,10 +19,10 @@ namespace twinpost {
 
 namespace {
 
-bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
+using ascii::is_digit;
+using ascii::is_letter;
+using ascii::upper;
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
-char upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
 
 // Line ends in a run of text: a plain loop that the compiler turns into vector code.
 int count_newlines(const char* p, std::size_t n) {

@@ -1,4 +1,5 @@
 #include "formats/block_writer.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
 
 #include <cerrno>
@@ -106,7 +107,7 @@ void block_writer::write_failed(int err) const {
 std::string safe_comment_text(std::string_view text, const program_format& fmt) {
   std::string s;
   for (unsigned char c : text) {
-    if (c >= 'a' && c <= 'z') c = static_cast<unsigned char>(c - 'a' + 'A');
+    c = static_cast<unsigned char>(ascii::upper(static_cast<char>(c)));
     if (c == static_cast<unsigned char>(fmt.comment_open) || c == static_cast<unsigned char>(fmt.comment_close) ||
         c == '(' || c == ')' || c == ';' || c == '%')
       c = ' ';

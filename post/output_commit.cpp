@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -74,10 +75,10 @@ bool make_folders(const std::string& dir, std::vector<std::string>& made) {
 pid_t stage_pid(std::string_view name) {
   if (!name.starts_with(stage_prefix)) return 0;
   name.remove_prefix(stage_prefix.size());
+  const std::size_t digits = std::min(name.find_first_not_of("0123456789"), name.size());
+  if (digits == 0 || digits > 9 || (digits < name.size() && name[digits] != '-')) return 0;
   long pid = 0;
-  std::size_t i = 0;
-  for (; i < name.size() && name[i] >= '0' && name[i] <= '9' && i < 9; ++i) pid = pid * 10 + (name[i] - '0');
-  if (i == 0 || (i < name.size() && name[i] != '-')) return 0;
+  std::from_chars(name.data(), name.data() + digits, pid);  // at most 9 digits: it fits
   return static_cast<pid_t>(pid);
 }
 

@@ -1,6 +1,5 @@
 #include "post/post_job.hpp"
 
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -21,6 +20,7 @@
 #include "post/sync_at_cl.hpp"
 #include "formats/program_number.hpp"
 #include "parser/cl_reader.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
 #include "support/file_reader.hpp"
 
@@ -102,7 +102,7 @@ file_ptr open_job(const std::string& path) {
 std::string safe_file_stem(std::string_view partno) {
   std::string s;
   for (char c : partno) {
-    bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+    bool ok = ascii::is_alnum(c) || c == '_' || c == '-';
     s += ok ? c : '_';
     if (s.size() == 32) break;
   }

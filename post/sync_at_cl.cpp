@@ -5,6 +5,8 @@
 #include <map>
 #include <memory>
 
+#include "support/ascii.hpp"
+
 namespace twinpost {
 
 namespace {
@@ -38,7 +40,7 @@ std::string rewrite(const std::string& message, const std::map<std::string, std:
   for (const auto& [nc, cl] : places) {
     for (std::size_t at = out.find(nc); at != std::string::npos; at = out.find(nc, at)) {
       const std::size_t end = at + nc.size();
-      if (end < out.size() && out[end] >= '0' && out[end] <= '9') {
+      if (end < out.size() && ascii::is_digit(out[end])) {
         at = end;
         continue;
       }

@@ -1,14 +1,58 @@
-// The support layer's small pieces: JSON string literals, the two kinds of config_error,
-// severity names and counts.
+// The support layer's small pieces: ASCII classes and case, JSON string literals, the two
+// kinds of config_error, severity names.
 #include <catch2/catch.hpp>
 
 #include <string>
 
+#include "support/ascii.hpp"
 #include "support/diagnostics.hpp"
 #include "support/errors.hpp"
 #include "support/json.hpp"
 
 using namespace twinpost;
+
+TEST_CASE("ascii classes: ASCII only, whatever the locale", "[support]") {
+  CHECK(ascii::is_letter('a'));
+  CHECK(ascii::is_letter('Z'));
+  CHECK_FALSE(ascii::is_letter('@'));  // one before 'A'
+  CHECK_FALSE(ascii::is_letter('['));  // one after 'Z'
+  CHECK_FALSE(ascii::is_letter('`'));  // one before 'a'
+  CHECK_FALSE(ascii::is_letter('{'));  // one after 'z'
+  CHECK_FALSE(ascii::is_letter('\xE9'));  // e-acute in ISO-8859-1: never a letter
+  CHECK_FALSE(ascii::is_letter('\xC9'));
+  CHECK(ascii::is_digit('0'));
+  CHECK(ascii::is_digit('9'));
+  CHECK_FALSE(ascii::is_digit('/'));
+  CHECK_FALSE(ascii::is_digit(':'));
+  CHECK_FALSE(ascii::is_digit('\xB2'));  // superscript two
+  CHECK(ascii::is_alnum('q'));
+  CHECK(ascii::is_alnum('7'));
+  CHECK_FALSE(ascii::is_alnum('_'));
+  CHECK(ascii::is_upper('G'));
+  CHECK_FALSE(ascii::is_upper('g'));
+  CHECK(ascii::is_lower('g'));
+  CHECK_FALSE(ascii::is_lower('G'));
+}
+
+TEST_CASE("ascii case: letters only", "[support]") {
+  CHECK(ascii::upper('a') == 'A');
+  CHECK(ascii::upper('z') == 'Z');
+  CHECK(ascii::upper('A') == 'A');
+  CHECK(ascii::upper('{') == '{');
+  CHECK(ascii::upper('\xE9') == '\xE9');  // not 0xC9
+  CHECK(ascii::upper_copy("goto/1.5,x_y,\xE9t\xE9") == "GOTO/1.5,X_Y,\xE9T\xE9");
+  std::string s = "Head/Both";
+  ascii::upper_in_place(s);
+  CHECK(s == "HEAD/BOTH");
+  CHECK(ascii::iequals("Main", "MAIN"));
+  CHECK(ascii::iequals("", ""));
+  CHECK_FALSE(ascii::iequals("MAIN", "MAINS"));
+  CHECK_FALSE(ascii::iequals("\xE9", "\xC9"));
+  CHECK_FALSE(ascii::iequals("[", "{"));  // 0x5B and 0x7B differ by the case bit, not letters
+  CHECK(ascii::istarts_with("synctr/1", "SYNC"));
+  CHECK_FALSE(ascii::istarts_with("SYN", "SYNC"));
+  static_assert(ascii::iequals("partno", "PARTNO"));  // usable in constant expressions
+}
 
 TEST_CASE("json_quote: short escapes, controls, ASCII kept", "[support][json]") {
   CHECK(json_quote("") == "\"\"");
@@ -42,15 +86,6 @@ TEST_CASE("append_json_string appends", "[support][json]") {
   CHECK(out == "{\"text\":\"a\\\"b\"");
 }
 
-TEST_CASE("severity names and a diagnostic without a place", "[support]") {
-  CHECK(std::string(severity_name(severity::note)) == "note");
-  CHECK(std::string(severity_name(severity::warning)) == "warning");
-  CHECK(std::string(severity_name(severity::error)) == "error");
-  CHECK(format_diagnostic({severity::error, "", 0, 0, "no NC files given", {}}) ==
-        "error: no NC files given\n");
-  CHECK(format_diagnostic({severity::warning, "a.nc", 0, 0, "empty", {}}) == "a.nc: warning: empty\n");
-}
-
 TEST_CASE("config_error: with a place or without", "[support]") {
   const config_error plain("cannot read 'a.cls': No such file or directory");
   CHECK(std::string(plain.what()) == "cannot read 'a.cls': No such file or directory");
@@ -63,6 +98,15 @@ TEST_CASE("config_error: with a place or without", "[support]") {
   } catch (const config_error& e) {
     CHECK(e.located());  // survives a copy
   }
+}
+
+TEST_CASE("severity names and a diagnostic without a place", "[support]") {
+  CHECK(std::string(severity_name(severity::note)) == "note");
+  CHECK(std::string(severity_name(severity::warning)) == "warning");
+  CHECK(std::string(severity_name(severity::error)) == "error");
+  CHECK(format_diagnostic({severity::error, "", 0, 0, "no NC files given", {}}) ==
+        "error: no NC files given\n");
+  CHECK(format_diagnostic({severity::warning, "a.nc", 0, 0, "empty", {}}) == "a.nc: warning: empty\n");
 }
 
 TEST_CASE("diagnostic_counts counts errors and warnings, not notes", "[support]") {

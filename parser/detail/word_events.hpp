@@ -7,6 +7,7 @@
 #include "parser/detail/build_issue.hpp"
 #include "parser/events.hpp"
 #include "parser/record.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost::detail {
 
@@ -41,8 +42,8 @@ inline bool has_bad_number(const cl_record& r, build_issues& issues) {
 std::vector<double> numbers_of(const cl_record& r);
 /// The record's arguments as written, joined with ','.
 std::string args_text(const cl_record& r);
-/// An upper-case copy of a word.
-std::string upper(std::string_view w);
+/// An upper-case copy of a word. (ascii::upper_copy under the name the event builders use.)
+inline std::string upper(std::string_view w) { return ascii::upper_copy(w); }
 /// `v` rounded to the nearest int, clamped to the int range (CL numbers can be anything).
 int as_int(double v);
 
