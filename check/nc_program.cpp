@@ -470,32 +470,59 @@ class reader {
   void read_line(const nc_source& f, int no, std::string_view line, int channel, bool plain,
                  int marker_words = -1) {
     if (channel > 0) note_block(state_[static_cast<std::size_t>(channel - 1)], line, marker_words);
-    if (channel > 0 && (plain || plain_block(line))) {
-      // A block with no M-word, comment or special character holds no wait and no end:
-      // only remember it as the channel's last block. Most of a program is such blocks.
-      channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
-      if (!st.ended) {
-        st.last_line = no;
-        st.pending_source = &f;
-        st.pending_text = line;
-      }
-      return;
-    }
+    if (channel > 0 && (plain || plain_block(line))) return note_plain_block(f, no, line, channel);
     const std::vector<nc_word> words = split_nc_words(line);
     if (words.empty()) return;
-    const wait_rules& wr = m_.waits;
-    const nc_word* partner = nullptr;
-    bool has_g = false;
-    for (const nc_word& w : words) {
-      if (w.address == wr.partner_address && !partner) partner = &w;
-      has_g = has_g || w.address == 'G';
+    const line_place at{f, no, line};
+    const block_words b = classify_words(words, channel, at);
+    if (channel < 0) return;
+    if (channel == 0) {
+      if (b.wait)
+        report(severity::warning, at(b.wait->column),
+               fmt::format("wait {} lies outside every channel's section and is not checked",
+                           name(*b.wait)));
+      return;
     }
-    auto at = [&](int column) { return nc_place{f.name, no, column, std::string(line)}; };
+    record_block(b, channel, at);
+  }
 
-    const nc_word* wait = nullptr;
+  // Where a line is, for the places of what it holds.
+  struct line_place {
+    const nc_source& f;
+    int no;
+    std::string_view line;
+    nc_place operator()(int column) const { return {f.name, no, column, std::string(line)}; }
+  };
+
+  // The words of one block that matter to the checker.
+  struct block_words {
+    const nc_word* partner = nullptr;  // the first partner-list word (P on Fanuc)
+    bool has_g = false;
+    const nc_word* wait = nullptr;     // the first wait code, and its number
     int wait_code = 0;
-    const nc_word* end = nullptr;
-    std::vector<std::pair<const nc_word*, int>> near;
+    const nc_word* end = nullptr;      // the first end-of-program M-code
+    std::vector<std::pair<const nc_word*, int>> near;  // codes that may be meant as waits
+  };
+
+  // A block with no M-word, comment or special character holds no wait and no end: only
+  // remember it as the channel's last block. Most of a program is such blocks.
+  void note_plain_block(const nc_source& f, int no, std::string_view line, int channel) {
+    channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
+    if (st.ended) return;
+    st.last_line = no;
+    st.pending_source = &f;
+    st.pending_text = line;
+  }
+
+  // Sorts the words of a block into wait, end and near-waits; a wait given as an expression
+  // and a second wait in the block are reported here (not in an unknown channel's section).
+  block_words classify_words(const std::vector<nc_word>& words, int channel, const line_place& at) {
+    const wait_rules& wr = m_.waits;
+    block_words b;
+    for (const nc_word& w : words) {
+      if (w.address == wr.partner_address && !b.partner) b.partner = &w;
+      b.has_g = b.has_g || w.address == 'G';
+    }
     for (const nc_word& w : words) {
       if (w.address == wr.address && w.expression && channel >= 0) {
         report(severity::warning, at(w.column),
@@ -506,53 +533,51 @@ class reader {
       int code = 0;
       if (!to_int(w.value, code)) continue;
       if (w.address == wr.address && wr.is_wait_code(code)) {
-        if (!wait) {
-          wait = &w;
-          wait_code = code;
+        if (!b.wait) {
+          b.wait = &w;
+          b.wait_code = code;
         } else if (channel >= 0) {
           report(severity::error, at(w.column),
                  fmt::format("two waits in one block ({} and {}): a wait needs a block of its "
-                             "own", name(*wait), name(w)));
+                             "own", name(*b.wait), name(w)));
         }
       } else if (w.address == 'M' && std::find(end_codes_.begin(), end_codes_.end(), code) !=
                                          end_codes_.end()) {
-        if (!end) end = &w;
-      } else if (w.address == wr.address && looks_like_wait(code, partner, has_g)) {
-        near.emplace_back(&w, code);
+        if (!b.end) b.end = &w;
+      } else if (w.address == wr.address && looks_like_wait(code, b.partner, b.has_g)) {
+        b.near.emplace_back(&w, code);
       }
     }
-    if (channel < 0) return;
-    if (channel == 0) {
-      if (wait)
-        report(severity::warning, at(wait->column),
-               fmt::format("wait {} lies outside every channel's section and is not checked",
-                           name(*wait)));
-      return;
-    }
+    return b;
+  }
+
+  // A block of channel `channel` (1..n) with words: the channel's last block, and its wait,
+  // near-waits and end, unless the channel's program has already ended.
+  void record_block(const block_words& b, int channel, const line_place& at) {
     channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
     nc_channel_program& prog = out_.channels[static_cast<std::size_t>(channel - 1)];
     if (st.ended) {
-      if (wait)
-        report(severity::warning, at(wait->column),
+      if (b.wait)
+        report(severity::warning, at(b.wait->column),
                fmt::format("wait {} comes after the end of channel {}'s program at {}:{} and "
                            "is not checked",
-                           name(*wait), channel, prog.end.file, prog.end.line));
+                           name(*b.wait), channel, prog.end.file, prog.end.line));
       return;
     }
     st.pending_source = nullptr;
-    if (st.last_file != f.name) st.last_file = f.name;
-    st.last_line = no;
-    st.last_text.assign(line);
-    if (wait) {
-      nc_wait w = make_wait(channel, wait_code, partner, at(wait->column));
+    if (st.last_file != at.f.name) st.last_file = at.f.name;
+    st.last_line = at.no;
+    st.last_text.assign(at.line);
+    if (b.wait) {
+      nc_wait w = make_wait(channel, b.wait_code, b.partner, at(b.wait->column));
       if (options_.on_wait) options_.on_wait(w);
       else prog.waits.push_back(std::move(w));
     }
-    for (const auto& [w, code] : near)
-      prog.near_waits.push_back(make_wait(channel, code, partner, at(w->column)));
-    if (end) {
+    for (const auto& [w, code] : b.near)
+      prog.near_waits.push_back(make_wait(channel, code, b.partner, at(w->column)));
+    if (b.end) {
       st.ended = true;
-      prog.end = at(end->column);
+      prog.end = at(b.end->column);
     }
   }
 
