@@ -35,7 +35,7 @@ struct outcome {
 // True when the job holds the word INSERT in any case (a record of raw NC text).
 bool contains_insert(std::string_view cl) {
   for (std::size_t i = 0; i < cl.size(); ++i)
-    if (ascii::istarts_with(cl.substr(i), "INSERT")) return true;
+    if (ascii::starts_with_keyword(cl.substr(i), "INSERT")) return true;
   return false;
 }
 

@@ -43,9 +43,9 @@ void scan_line(std::string_view l, job_scan& s) {
   if (l.empty()) return;
   char c = ascii::upper(l.front());
   if (c != 'S' && c != 'H' && c != 'C' && c != '$') return;
-  if (ascii::istarts_with(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
-  if (ascii::istarts_with(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos) s.explicit_sync = true;
-  if (ascii::istarts_with(l, "HEAD")) {
+  if (ascii::starts_with_keyword(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
+  if (ascii::starts_with_keyword(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos) s.explicit_sync = true;
+  if (ascii::starts_with_keyword(l, "HEAD")) {
     std::string a = first_arg(l.substr(4));
     if (a == "BOTH") {
       s.heads.push_back(1);
@@ -56,7 +56,7 @@ void scan_line(std::string_view l, job_scan& s) {
       s.head_words.push_back(a);
     }
   }
-  std::size_t n = ascii::istarts_with(l, "CHANNEL") ? 7 : ascii::istarts_with(l, "CHANNL") ? 6 : 0;
+  std::size_t n = ascii::starts_with_keyword(l, "CHANNEL") ? 7 : ascii::starts_with_keyword(l, "CHANNL") ? 6 : 0;
   if (n > 0) {
     std::string a = first_arg(l.substr(n));
     if (const std::optional<int> ch = leading_number(a)) s.channels.push_back(*ch);

@@ -53,7 +53,7 @@ struct cl_record {
 
 /// Case-insensitive ASCII comparison of a CL word with an upper-case keyword.
 inline bool word_is(std::string_view word, std::string_view upper_keyword) {
-  return ascii::iequals(word, upper_keyword);
+  return ascii::equals_keyword(word, upper_keyword);
 }
 
 }  // namespace twinpost

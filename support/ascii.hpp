@@ -43,9 +43,18 @@ constexpr bool iequals(std::string_view a, std::string_view b) {
   return true;
 }
 
-/// True when `s` begins with `prefix`, ignoring the case of ASCII letters.
-constexpr bool istarts_with(std::string_view s, std::string_view prefix) {
-  return s.size() >= prefix.size() && iequals(s.substr(0, prefix.size()), prefix);
+/// True when `word` upper-cased is `keyword`, which is upper-case already ("GOTO"): only the
+/// input is upper-cased, the form for matching records against keywords on per-record paths.
+constexpr bool equals_keyword(std::string_view word, std::string_view keyword) {
+  if (word.size() != keyword.size()) return false;
+  for (std::size_t i = 0; i < word.size(); ++i)
+    if (upper(word[i]) != keyword[i]) return false;
+  return true;
+}
+
+/// True when `s` begins with the upper-case `keyword`, ignoring the case of `s`.
+constexpr bool starts_with_keyword(std::string_view s, std::string_view keyword) {
+  return s.size() >= keyword.size() && equals_keyword(s.substr(0, keyword.size()), keyword);
 }
 
 }  // namespace twinpost::ascii

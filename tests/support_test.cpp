@@ -49,9 +49,13 @@ TEST_CASE("ascii case: letters only", "[support]") {
   CHECK_FALSE(ascii::iequals("MAIN", "MAINS"));
   CHECK_FALSE(ascii::iequals("\xE9", "\xC9"));
   CHECK_FALSE(ascii::iequals("[", "{"));  // 0x5B and 0x7B differ by the case bit, not letters
-  CHECK(ascii::istarts_with("synctr/1", "SYNC"));
-  CHECK_FALSE(ascii::istarts_with("SYN", "SYNC"));
   static_assert(ascii::iequals("partno", "PARTNO"));  // usable in constant expressions
+  CHECK(ascii::equals_keyword("goto", "GOTO"));
+  CHECK(ascii::equals_keyword("GoTo", "GOTO"));
+  CHECK_FALSE(ascii::equals_keyword("GOTO", "goto"));  // the keyword side is taken as written
+  CHECK_FALSE(ascii::equals_keyword("GOT", "GOTO"));
+  CHECK(ascii::starts_with_keyword("partno/x", "PARTNO"));
+  CHECK_FALSE(ascii::starts_with_keyword("part", "PARTNO"));
 }
 
 TEST_CASE("json_quote: short escapes, controls, ASCII kept", "[support][json]") {

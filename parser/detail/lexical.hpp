@@ -59,7 +59,7 @@ inline std::size_t text_major_length(std::string_view s) {
   if (first != 'P' && first != 'I' && first != 'T' && first != 'O' && first != 'R') return 0;
   for (std::string_view w : text_majors) {
     if (w[0] != first) continue;
-    if (!ascii::istarts_with(s, w)) continue;
+    if (!ascii::starts_with_keyword(s, w)) continue;
     if (s.size() > w.size() && is_word_char(s[w.size()])) continue;  // PARTNOX is a statement
     return w.size();
   }
