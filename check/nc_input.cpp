@@ -1,5 +1,6 @@
 #include "check/nc_input.hpp"
 #include "support/errors.hpp"
+#include "support/file_reader.hpp"
 
 #include <sys/stat.h>
 
@@ -15,34 +16,33 @@ namespace twinpost {
 namespace {
 
 [[noreturn]] void cannot_read(const std::string& path, std::string_view why) {
-  throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", path, why));
+  throw config_error(fmt::format("cannot read '{}': {}", path, why));
 }
 
 /// Reads `path` to its end once, into a temporary file that is gone when closed.
 std::shared_ptr<std::FILE> copy_once(const std::string& path) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> in(std::fopen(path.c_str(), "rb"), &std::fclose);
+  const file_ptr in = open_file_ptr(path.c_str(), "rb");
   if (!in) cannot_read(path, std::strerror(errno));
   std::shared_ptr<std::FILE> out(std::tmpfile(), &std::fclose);
   if (!out)
     cannot_read(path, fmt::format("no temporary file to copy it into ({})", std::strerror(errno)));
-  constexpr std::size_t chunk_bytes = 1 << 16;
-  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);
-  std::size_t n, line = 0;  // bytes since the last line end
+  chunk_reader reader(in.get(), std::size_t{1} << 16);  // a pipe gives a few KiB a read anyway
+  std::size_t line = 0;  // bytes since the last line end
   bool too_long = false;
-  while (!too_long && (n = std::fread(buf.get(), 1, chunk_bytes, in.get())) > 0) {
+  for (std::string_view chunk; !too_long && !(chunk = reader.next()).empty();) {
     // The reader stops at a line past its limit: so does the copy (/dev/zero ends here).
-    for (std::size_t i = 0; i < n; ++i) {
-      line = buf[i] == '\n' || buf[i] == '\r' ? 0 : line + 1;
+    for (std::size_t i = 0; i < chunk.size(); ++i) {
+      line = chunk[i] == '\n' || chunk[i] == '\r' ? 0 : line + 1;
       if (line > nc_max_line_bytes) {
-        n = i + 1;
+        chunk = chunk.substr(0, i + 1);
         too_long = true;
         break;
       }
     }
-    if (std::fwrite(buf.get(), 1, n, out.get()) != n)
+    if (std::fwrite(chunk.data(), 1, chunk.size(), out.get()) != chunk.size())
       cannot_read(path, fmt::format("cannot copy it to a temporary file ({})", std::strerror(errno)));
   }
-  if (!too_long && std::ferror(in.get())) cannot_read(path, std::strerror(errno));
+  if (!too_long && reader.failed()) cannot_read(path, std::strerror(errno));
   if (std::fflush(out.get()) != 0)
     cannot_read(path, fmt::format("cannot copy it to a temporary file ({})", std::strerror(errno)));
   return out;

@@ -17,7 +17,7 @@ namespace twinpost {
 
 /// `files` with every source whose path is not a regular file copied once into a private
 /// temporary file (nc_source::copy); the same pipe named twice is copied once. Throws
-/// config_error "twinpost: error: cannot read 'F'..." for a path that does not exist, is a
+/// config_error "cannot read 'F'..." for a path that does not exist, is a
 /// directory, cannot be opened or read, or cannot be copied (a full disk).
 std::vector<nc_source> rereadable(const std::vector<nc_source>& files);
 

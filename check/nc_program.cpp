@@ -1,6 +1,8 @@
 #include "check/nc_program.hpp"
 #include "machines/partner_list.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
+#include "support/file_reader.hpp"
 
 #include <array>
 #include <cerrno>
@@ -18,10 +20,10 @@ namespace twinpost {
 
 namespace {
 
-bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
+using ascii::is_digit;
+using ascii::is_letter;
+using ascii::upper;
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
-char upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
 
 // Line ends in a run of text: a plain loop that the compiler turns into vector code.
 int count_newlines(const char* p, std::size_t n) {
@@ -360,24 +362,20 @@ class reader {
   // Every line is settled before it returns: the last one may live in `carry`.
   template <class F>
   void stream_lines(const nc_source& f, F&& on_line, const bool* runs) {
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> own(nullptr, &std::fclose);
+    file_ptr own(nullptr, &std::fclose);
     std::FILE* file = f.copy.get();
     if (file) {
       std::rewind(file);
     } else {
-      own.reset(std::fopen(f.path.c_str(), "rb"));
+      own = open_file_ptr(f.path.c_str(), "rb");
       file = own.get();
     }
-    if (!file) throw config_error(fmt::format("twinpost: error: cannot read '{}'", f.path));
-    constexpr std::size_t chunk_bytes = 1 << 20;
-    auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes + 1);  // + the NUL strcspn stops at
+    if (!file) throw config_error(fmt::format("cannot read '{}'", f.path));
+    chunk_reader reader(file);  // each chunk ends in the NUL strcspn stops at
     std::string carry;
     int no = 0;
     bool first = true, skip_lf = false;
-    std::size_t n;
-    while ((n = std::fread(buf.get(), 1, chunk_bytes, file)) > 0) {
-      buf[n] = '\0';
-      std::string_view chunk(buf.get(), n);
+    for (std::string_view chunk; !(chunk = reader.next()).empty();) {
       if (first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
       first = false;
       std::size_t pos = 0;
@@ -420,8 +418,8 @@ class reader {
       settle();  // the buffer is read over next
     }
     // A read error (EIO, a directory) must not pass for the end of the program.
-    if (std::ferror(file))
-      throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", f.path,
+    if (reader.failed())
+      throw config_error(fmt::format("cannot read '{}': {}", f.path,
                                      std::strerror(errno)));
     if (!carry.empty()) {  // a last line without a line end
       on_line(++no, carry, false);
@@ -473,32 +471,59 @@ class reader {
   void read_line(const nc_source& f, int no, std::string_view line, int channel, bool plain,
                  int marker_words = -1) {
     if (channel > 0) note_block(state_[static_cast<std::size_t>(channel - 1)], line, marker_words);
-    if (channel > 0 && (plain || plain_block(line))) {
-      // A block with no M-word, comment or special character holds no wait and no end:
-      // only remember it as the channel's last block. Most of a program is such blocks.
-      channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
-      if (!st.ended) {
-        st.last_line = no;
-        st.pending_source = &f;
-        st.pending_text = line;
-      }
-      return;
-    }
+    if (channel > 0 && (plain || plain_block(line))) return note_plain_block(f, no, line, channel);
     const std::vector<nc_word> words = split_nc_words(line);
     if (words.empty()) return;
-    const wait_rules& wr = m_.waits;
-    const nc_word* partner = nullptr;
-    bool has_g = false;
-    for (const nc_word& w : words) {
-      if (w.address == wr.partner_address && !partner) partner = &w;
-      has_g = has_g || w.address == 'G';
+    const line_place at{f, no, line};
+    const block_words b = classify_words(words, channel, at);
+    if (channel < 0) return;
+    if (channel == 0) {
+      if (b.wait)
+        report(severity::warning, at(b.wait->column),
+               fmt::format("wait {} lies outside every channel's section and is not checked",
+                           name(*b.wait)));
+      return;
     }
-    auto at = [&](int column) { return nc_place{f.name, no, column, std::string(line)}; };
+    record_block(b, channel, at);
+  }
 
-    const nc_word* wait = nullptr;
+  // Where a line is, for the places of what it holds.
+  struct line_place {
+    const nc_source& f;
+    int no;
+    std::string_view line;
+    nc_place operator()(int column) const { return {f.name, no, column, std::string(line)}; }
+  };
+
+  // The words of one block that matter to the checker.
+  struct block_words {
+    const nc_word* partner = nullptr;  // the first partner-list word (P on Fanuc)
+    bool has_g = false;
+    const nc_word* wait = nullptr;     // the first wait code, and its number
     int wait_code = 0;
-    const nc_word* end = nullptr;
-    std::vector<std::pair<const nc_word*, int>> near;
+    const nc_word* end = nullptr;      // the first end-of-program M-code
+    std::vector<std::pair<const nc_word*, int>> near;  // codes that may be meant as waits
+  };
+
+  // A block with no M-word, comment or special character holds no wait and no end: only
+  // remember it as the channel's last block. Most of a program is such blocks.
+  void note_plain_block(const nc_source& f, int no, std::string_view line, int channel) {
+    channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
+    if (st.ended) return;
+    st.last_line = no;
+    st.pending_source = &f;
+    st.pending_text = line;
+  }
+
+  // Sorts the words of a block into wait, end and near-waits; a wait given as an expression
+  // and a second wait in the block are reported here (not in an unknown channel's section).
+  block_words classify_words(const std::vector<nc_word>& words, int channel, const line_place& at) {
+    const wait_rules& wr = m_.waits;
+    block_words b;
+    for (const nc_word& w : words) {
+      if (w.address == wr.partner_address && !b.partner) b.partner = &w;
+      b.has_g = b.has_g || w.address == 'G';
+    }
     for (const nc_word& w : words) {
       if (w.address == wr.address && w.expression && channel >= 0) {
         report(severity::warning, at(w.column),
@@ -509,53 +534,51 @@ class reader {
       int code = 0;
       if (!to_int(w.value, code)) continue;
       if (w.address == wr.address && wr.is_wait_code(code)) {
-        if (!wait) {
-          wait = &w;
-          wait_code = code;
+        if (!b.wait) {
+          b.wait = &w;
+          b.wait_code = code;
         } else if (channel >= 0) {
           report(severity::error, at(w.column),
                  fmt::format("two waits in one block ({} and {}): a wait needs a block of its "
-                             "own", name(*wait), name(w)));
+                             "own", name(*b.wait), name(w)));
         }
       } else if (w.address == 'M' && std::find(end_codes_.begin(), end_codes_.end(), code) !=
                                          end_codes_.end()) {
-        if (!end) end = &w;
-      } else if (w.address == wr.address && looks_like_wait(code, partner, has_g)) {
-        near.emplace_back(&w, code);
+        if (!b.end) b.end = &w;
+      } else if (w.address == wr.address && looks_like_wait(code, b.partner, b.has_g)) {
+        b.near.emplace_back(&w, code);
       }
     }
-    if (channel < 0) return;
-    if (channel == 0) {
-      if (wait)
-        report(severity::warning, at(wait->column),
-               fmt::format("wait {} lies outside every channel's section and is not checked",
-                           name(*wait)));
-      return;
-    }
+    return b;
+  }
+
+  // A block of channel `channel` (1..n) with words: the channel's last block, and its wait,
+  // near-waits and end, unless the channel's program has already ended.
+  void record_block(const block_words& b, int channel, const line_place& at) {
     channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
     nc_channel_program& prog = out_.channels[static_cast<std::size_t>(channel - 1)];
     if (st.ended) {
-      if (wait)
-        report(severity::warning, at(wait->column),
+      if (b.wait)
+        report(severity::warning, at(b.wait->column),
                fmt::format("wait {} comes after the end of channel {}'s program at {}:{} and "
                            "is not checked",
-                           name(*wait), channel, prog.end.file, prog.end.line));
+                           name(*b.wait), channel, prog.end.file, prog.end.line));
       return;
     }
     st.pending_source = nullptr;
-    if (st.last_file != f.name) st.last_file = f.name;
-    st.last_line = no;
-    st.last_text.assign(line);
-    if (wait) {
-      nc_wait w = make_wait(channel, wait_code, partner, at(wait->column));
+    if (st.last_file != at.f.name) st.last_file = at.f.name;
+    st.last_line = at.no;
+    st.last_text.assign(at.line);
+    if (b.wait) {
+      nc_wait w = make_wait(channel, b.wait_code, b.partner, at(b.wait->column));
       if (options_.on_wait) options_.on_wait(w);
       else prog.waits.push_back(std::move(w));
     }
-    for (const auto& [w, code] : near)
-      prog.near_waits.push_back(make_wait(channel, code, partner, at(w->column)));
-    if (end) {
+    for (const auto& [w, code] : b.near)
+      prog.near_waits.push_back(make_wait(channel, code, b.partner, at(w->column)));
+    if (b.end) {
       st.ended = true;
-      prog.end = at(end->column);
+      prog.end = at(b.end->column);
     }
   }
 
@@ -694,7 +717,7 @@ nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine&
     out.channels.push_back({static_cast<int>(i) + 1, {}, {}, {}, {}});
   reader r(m, sink, out, options);
   if (files.empty()) {
-    sink.report({severity::error, "twinpost", 0, 0, "no NC files given", {}});
+    sink.report({severity::error, {}, 0, 0, "no NC files given", {}});  // no place: the run's
   } else if (files.size() == out.channels.size()) {
     for (std::size_t i = 0; i < files.size(); ++i)
       r.read_split(files[i], static_cast<int>(i) + 1);

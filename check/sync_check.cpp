@@ -307,11 +307,10 @@ class checker {
 };
 
 void count(sync_result& r) {
-  r.errors = r.warnings = 0;
-  for (const diagnostic& d : r.diagnostics) {
-    r.errors += d.level == severity::error;
-    r.warnings += d.level == severity::warning;
-  }
+  diagnostic_counts n;
+  for (const diagnostic& d : r.diagnostics) n.add(d);
+  r.errors = n.errors;
+  r.warnings = n.warnings;
   r.ok = r.errors == 0;
 }
 

@@ -18,7 +18,4 @@ std::string format_sync_text(const sync_result& r);
 /// warnings, problems [{file, line, column, severity, message}]; ends with a newline.
 std::string format_sync_json(const sync_result& r);
 
-/// `s` as a JSON string literal with its quotes; invalid UTF-8 becomes U+FFFD.
-std::string json_quote(std::string_view s);
-
 }  // namespace twinpost

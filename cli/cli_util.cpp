@@ -20,6 +20,13 @@ bool parse_options(const args& a, const po::options_description& opts,
   }
 }
 
+void print_error(std::string_view message) { fmt::print(stderr, "twinpost: error: {}\n", message); }
+
+void print_error(const config_error& e) {
+  if (e.located()) fmt::print(stderr, "{}\n", e.what());
+  else print_error(e.what());
+}
+
 std::string to_string(const po::options_description& opts) {
   std::ostringstream s;
   s << opts;
@@ -32,9 +39,8 @@ open_file::~open_file() {
 }
 
 void printing_sink::report(diagnostic d) {
-  if (d.level == severity::error) ++errors_;
-  if (d.level == severity::warning) ++warnings_;
-  std::string text = format_diagnostic(d);
+  counts_.add(d);
+  std::string text = d.file.empty() ? "twinpost: " + format_diagnostic(d) : format_diagnostic(d);
   std::fwrite(text.data(), 1, text.size(), stderr);
 }
 

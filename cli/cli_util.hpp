@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "support/diagnostics.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost::cli {
 
@@ -15,6 +16,14 @@ namespace twinpost::cli {
 bool parse_options(const args& a, const boost::program_options::options_description& opts,
                    const boost::program_options::positional_options_description& pos,
                    boost::program_options::variables_map& vm, const char* command);
+
+/// Prints "twinpost: error: MESSAGE" and a newline to stderr. The library never names the
+/// program: this is the one place that puts its name before an error without a place.
+void print_error(std::string_view message);
+
+/// Prints `e` to stderr: as it is when it carries its own place ("m.toml:3:1: error: ..."),
+/// else through print_error.
+void print_error(const config_error& e);
 
 /// The options' help text.
 std::string to_string(const boost::program_options::options_description& opts);
@@ -45,16 +54,16 @@ class open_file {
   std::FILE* f_;
 };
 
-/// Prints each diagnostic to stderr at once and counts them.
+/// Prints each diagnostic to stderr at once and counts them; one without a file (about the
+/// run as a whole) gets the program name as its place.
 class printing_sink : public diagnostic_sink {
  public:
   void report(diagnostic d) override;
-  int errors() const { return errors_; }
-  int warnings() const { return warnings_; }
+  int errors() const { return counts_.errors; }
+  int warnings() const { return counts_.warnings; }
 
  private:
-  int errors_ = 0;
-  int warnings_ = 0;
+  diagnostic_counts counts_;
 };
 
 }  // namespace twinpost::cli

@@ -78,7 +78,7 @@ int run_check(const args& a) {
   for (const std::string& path : vm["file"].as<std::vector<std::string>>()) {
     // Streamed by the checker: an NC program may be far larger than memory should hold.
     if (!readable(path)) {
-      fmt::print(stderr, "twinpost: error: cannot read '{}'\n", path);
+      print_error(fmt::format("cannot read '{}'", path));
       return 2;
     }
     sources.push_back({path, {}, path});

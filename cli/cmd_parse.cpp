@@ -46,7 +46,7 @@ int run_parse(const args& a) {
   }
   open_file in(path);
   if (!in) {
-    fmt::print(stderr, "twinpost: error: cannot read '{}'\n", path);
+    print_error(fmt::format("cannot read '{}'", path));
     return 2;
   }
   bool json = vm.count("json") > 0;

@@ -4,6 +4,7 @@
 #include <string>
 #include <string_view>
 
+#include "cli/cli_util.hpp"
 #include "cli/command_table.hpp"
 #include "cli/version.hpp"
 #include "machines/machine.hpp"
@@ -35,10 +36,10 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "twinpost: unknown command '%s'\n\n%s", argv[1], usage.c_str());
     return 2;
   } catch (const twinpost::config_error& e) {
-    std::fprintf(stderr, "%s\n", e.what());
+    twinpost::cli::print_error(e);
     return 2;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "twinpost: error: %s\n", e.what());
+    twinpost::cli::print_error(e.what());
     return 2;
   }
 }

@@ -1,4 +1,5 @@
 #include "formats/block_writer.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
 
 #include <cerrno>
@@ -14,7 +15,7 @@ constexpr std::size_t flush_at = 1 << 18;
 block_writer::block_writer(const std::string& path, const program_format& fmt, framing frame)
     : frame_(std::move(frame)), path_(path), fmt_(fmt), seq_(fmt.sequence_start) {
   f_ = std::fopen(path.c_str(), "wb");
-  if (!f_) throw config_error(fmt::format("twinpost: error: cannot write '{}': {}", path, std::strerror(errno)));
+  if (!f_) throw config_error(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
   buf_.reserve(flush_at + 4096);
 }
 
@@ -100,13 +101,13 @@ void block_writer::close() {
 
 void block_writer::write_failed(int err) const {
   const std::string shown = frame_.name ? frame_.name() : path_;
-  throw config_error(fmt::format("twinpost: error: cannot write '{}': {}", shown, std::strerror(err)));
+  throw config_error(fmt::format("cannot write '{}': {}", shown, std::strerror(err)));
 }
 
 std::string safe_comment_text(std::string_view text, const program_format& fmt) {
   std::string s;
   for (unsigned char c : text) {
-    if (c >= 'a' && c <= 'z') c = static_cast<unsigned char>(c - 'a' + 'A');
+    c = static_cast<unsigned char>(ascii::upper(static_cast<char>(c)));
     if (c == static_cast<unsigned char>(fmt.comment_open) || c == static_cast<unsigned char>(fmt.comment_close) ||
         c == '(' || c == ')' || c == ';' || c == '%')
       c = ' ';

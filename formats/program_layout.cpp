@@ -9,17 +9,16 @@
 
 #include "machines/name_template.hpp"
 #include "support/errors.hpp"
+#include "support/file_reader.hpp"
 
 namespace twinpost {
 
 namespace {
 
-using file_ptr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
 file_ptr open_or_throw(const std::string& path, const char* mode) {
-  std::FILE* f = std::fopen(path.c_str(), mode);
-  if (!f) throw config_error(fmt::format("twinpost: error: cannot open '{}': {}", path, std::strerror(errno)));
-  return {f, &std::fclose};
+  file_ptr f = open_file_ptr(path.c_str(), mode);
+  if (!f) throw config_error(fmt::format("cannot open '{}': {}", path, std::strerror(errno)));
+  return f;
 }
 
 void add_line(std::string& out, std::string_view s) {
@@ -30,7 +29,7 @@ void add_line(std::string& out, std::string_view s) {
 void put(std::FILE* f, std::string_view s) { std::fwrite(s.data(), 1, s.size(), f); }
 
 [[noreturn]] void write_failed(const frame_request& r, const std::string& name, int err) {
-  throw config_error(fmt::format("twinpost: error: cannot write '{}': {}",
+  throw config_error(fmt::format("cannot write '{}': {}",
                                  (std::filesystem::path(r.out_dir) / name).string(), std::strerror(err)));
 }
 
@@ -40,12 +39,12 @@ void copy_file(const frame_request& r, const std::string& name, std::FILE* to, c
                long skip = 0) {
   file_ptr from = open_or_throw(from_path, "rb");
   if (skip > 0 && std::fseek(from.get(), skip, SEEK_SET) != 0)
-    throw config_error(fmt::format("twinpost: error: cannot read '{}'", from_path));
-  constexpr std::size_t chunk_bytes = 1 << 20;
-  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes);  // no zeroing: it is overwritten
-  std::size_t n;
-  while ((n = std::fread(buf.get(), 1, chunk_bytes, from.get())) > 0)
-    if (std::fwrite(buf.get(), 1, n, to) != n) write_failed(r, name, errno);
+    throw config_error(fmt::format("cannot read '{}'", from_path));
+  chunk_reader reader(from.get());
+  for (std::string_view chunk; !(chunk = reader.next()).empty();)
+    if (std::fwrite(chunk.data(), 1, chunk.size(), to) != chunk.size()) write_failed(r, name, errno);
+  if (reader.failed())  // a short program must not pass for the whole one
+    throw config_error(fmt::format("cannot read '{}': {}", from_path, std::strerror(errno)));
 }
 
 void close_or_throw(const frame_request& r, const std::string& name, file_ptr& f) {

@@ -7,13 +7,11 @@
 #include <string_view>
 
 #include <cstdlib>
-#include <cstring>
 
+#include "fuzz/fast_path_check.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "parser/cl_reader.hpp"
-#include "parser/detail/fast_record.hpp"
 #include "parser/event_text.hpp"
-#include "parser/record_parser.hpp"
 
 namespace {
 
@@ -33,16 +31,7 @@ void check_fast_path(std::string_view text) {
     std::size_t nl = text.find('\n');
     std::string_view line = text.substr(0, nl);
     text = nl == std::string_view::npos ? std::string_view() : text.substr(nl + 1);
-    twinpost::cl_record fast, slow;
-    if (!twinpost::parser_detail::parse_numeric_statement(line, fast)) continue;
-    twinpost::record_error err;
-    bool same = twinpost::parse_record_with_grammar(line, slow, err) && fast.kind == slow.kind &&
-                fast.major == slow.major && fast.major_offset == slow.major_offset &&
-                fast.args.size() == slow.args.size();
-    for (std::size_t i = 0; same && i < fast.args.size(); ++i)
-      same = fast.args[i].kind == slow.args[i].kind && fast.args[i].offset == slow.args[i].offset &&
-             std::memcmp(&fast.args[i].number, &slow.args[i].number, sizeof(double)) == 0;
-    if (!same) std::abort();
+    if (!twinpost::fuzz::fast_path_difference(line).empty()) std::abort();
   }
 }
 

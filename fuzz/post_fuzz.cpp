@@ -18,6 +18,7 @@
 #include "post/post_job.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "machines/layout_rules.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
 
 namespace fs = std::filesystem;
@@ -34,12 +35,8 @@ struct outcome {
 
 // True when the job holds the word INSERT in any case (a record of raw NC text).
 bool contains_insert(std::string_view cl) {
-  static constexpr std::string_view word = "INSERT";
-  for (std::size_t i = 0; i + word.size() <= cl.size(); ++i) {
-    std::size_t k = 0;
-    while (k < word.size() && (cl[i + k] & ~0x20) == word[k]) ++k;
-    if (k == word.size()) return true;
-  }
+  for (std::size_t i = 0; i < cl.size(); ++i)
+    if (ascii::starts_with_keyword(cl.substr(i), "INSERT")) return true;
   return false;
 }
 
@@ -52,7 +49,7 @@ bool words_readable(const std::string& text) {
     if (c == '(') comment = true;
     if (c == ')' || c == '\n') comment = false;
     if (comment) continue;
-    digits = (c >= '0' && c <= '9') ? digits + 1 : (c == '.' ? digits : 0);
+    digits = ascii::is_digit(c) ? digits + 1 : (c == '.' ? digits : 0);
     if (digits > 10) return false;
     if ((c == 'i' || c == 'I') && (text.compare(i, 3, "inf") == 0 || text.compare(i, 3, "INF") == 0)) return false;
     if ((c == 'n' || c == 'N') && (text.compare(i, 3, "nan") == 0 || text.compare(i, 3, "NAN") == 0)) return false;

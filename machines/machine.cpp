@@ -1,21 +1,11 @@
 #include "machines/machine.hpp"
 
 #include <algorithm>
+#include <charconv>
+
+#include "support/ascii.hpp"
 
 namespace twinpost {
-
-namespace {
-
-char ascii_upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
-
-// CL dialects disagree on case (HEAD/MAIN, head/main), so head words match without it.
-bool same_word(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return ascii_upper(x) == ascii_upper(y);
-         });
-}
-
-}  // namespace
 
 bool wait_rules::is_wait_code(int code) const {
   if (code < first || code > last || step < 1) return false;
@@ -38,7 +28,7 @@ const channel_def* machine::channel_for_head(int head) const {
 const channel_def* machine::channel_for_head(std::string_view word) const {
   for (const channel_def& c : channels)
     for (const std::string& h : c.head_names)
-      if (same_word(h, word)) return &c;
+      if (ascii::iequals(h, word)) return &c;  // dialects disagree on case: HEAD/MAIN, head/main
   return nullptr;
 }
 
@@ -49,10 +39,11 @@ const spindle_def* machine::spindle(std::string_view name) const {
 }
 
 std::optional<int> machine::program_number_of(std::string_view name) const {
-  if (name.empty() || name.size() > 9 || name.find_first_not_of("0123456789") != std::string_view::npos)
+  // Digits only (from_chars would take a sign), at most 9: they fit an int.
+  if (name.empty() || name.size() > 9 || !std::all_of(name.begin(), name.end(), ascii::is_digit))
     return std::nullopt;
   int n = 0;
-  for (char c : name) n = n * 10 + (c - '0');
+  std::from_chars(name.data(), name.data() + name.size(), n);
   if (n < 1 || n > formats['O'].max_count(0)) return std::nullopt;
   return n;
 }

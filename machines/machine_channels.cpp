@@ -6,21 +6,13 @@
 
 #include "machines/machine.hpp"
 #include "machines/toml_reader.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost::detail {
 
 namespace {
 
 constexpr std::size_t max_channels = 64;
-
-char ascii_upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
-
-// Head words are matched without case (machine::channel_for_head), so clashes are too.
-bool same_word(std::string_view a, std::string_view b) {
-  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-           return ascii_upper(x) == ascii_upper(y);
-         });
-}
 
 // One channel as read, with the table it came from for later messages.
 struct read_channel {
@@ -117,8 +109,8 @@ void check_numbers_and_heads(const std::vector<read_channel>& all) {
                  fmt::format("head {} is served by channels {} and {}", c.heads[h],
                              earlier.number, c.number));
       for (std::size_t h = 0; h < c.head_names.size(); ++h)
-        for (const std::string& word : earlier.head_names)
-          if (same_word(word, c.head_names[h]))
+        for (const std::string& word : earlier.head_names)  // matched without case, as heads are
+          if (ascii::iequals(word, c.head_names[h]))
             r.fail(*r.find("head_names")->as_array()->get(h),
                    fmt::format("head {} is served by channels {} and {}", c.head_names[h],
                                earlier.number, c.number));

@@ -45,7 +45,7 @@ located_machine find_machine(std::string_view name_or_path, const std::vector<st
   const std::string arg(name_or_path);
   if (is_path(arg)) {
     std::optional<std::string> text = read_regular_file(arg);
-    if (!text) throw config_error(fmt::format("twinpost: error: cannot read machine file '{}'", arg));
+    if (!text) throw config_error(fmt::format("cannot read machine file '{}'", arg));
     return from_file(arg, std::move(*text));
   }
   std::string looked;
@@ -60,7 +60,7 @@ located_machine find_machine(std::string_view name_or_path, const std::vector<st
     return {std::move(m), "built-in", std::string(*text)};
   }
   if (std::optional<std::string> text = read_regular_file(arg)) return from_file(arg, std::move(*text));
-  throw config_error(fmt::format("twinpost: error: unknown machine '{}': {}no built-in machine and no file of that name",
+  throw config_error(fmt::format("unknown machine '{}': {}no built-in machine and no file of that name",
                                  arg, looked.empty() ? "" : fmt::format("not in {}; ", looked)));
 }
 

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "support/ascii.hpp"
+
 namespace twinpost {
 
 namespace {
@@ -21,7 +23,7 @@ void reject_positional(std::string_view tpl) {
       ++i;
       continue;
     }
-    if (c == '}' || c == ':' || (c >= '0' && c <= '9'))
+    if (c == '}' || c == ':' || ascii::is_digit(c))
       throw fmt::format_error("positional placeholder; use a name such as {tool}");
   }
 }

@@ -8,14 +8,14 @@
 
 #include "machines/machine.hpp"
 #include "machines/name_template.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
 
 namespace twinpost::detail {
 
 void fail_at(std::string_view source, const toml::source_region& where,
              std::string_view message) {
-  throw config_error(fmt::format("{}:{}:{}: error: {}", source, where.begin.line,
-                                 where.begin.column, message));
+  throw config_error::at(source, where.begin.line, where.begin.column, message);
 }
 
 std::string_view type_phrase(toml::node_type t) {
@@ -170,7 +170,7 @@ bool table_reader::read(std::string_view key, std::vector<std::string>& out) con
 bool table_reader::read_char(std::string_view key, char& out, bool letter) const {
   std::string s;
   if (!read(key, s)) return false;
-  const bool ok = s.size() == 1 && (!letter || (s[0] >= 'A' && s[0] <= 'Z'));
+  const bool ok = s.size() == 1 && (!letter || ascii::is_upper(s[0]));
   if (!ok)
     fail(*find(key), fmt::format("{} must be {}, not '{}'", key_path(key),
                                  letter ? "one upper-case letter" : "one character", s));

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "support/ascii.hpp"
+
 namespace twinpost {
 
 namespace {
@@ -14,8 +16,6 @@ std::int64_t pow10(int n) {
   return p;
 }
 
-bool upper_letter(char c) { return c >= 'A' && c <= 'Z'; }
-bool digit(char c) { return c >= '0' && c <= '9'; }
 
 }  // namespace
 
@@ -66,7 +66,7 @@ bool parse_word_format(std::string_view text, word_format& out, std::string& why
   }
   p = r.ptr;
   if (p != end) {
-    if (*p != '.' || p + 1 == end || !digit(p[1])) {
+    if (*p != '.' || p + 1 == end || !ascii::is_digit(p[1])) {
       why = "must be digits before and after the point, such as \"5.3\" or \"4\"";
       return false;
     }
@@ -103,10 +103,10 @@ std::string check_block_words(std::string_view block, const word_formats& f, cha
       i = e + 1;
       continue;
     }
-    const bool starts_word = upper_letter(c) && (i == 0 || !upper_letter(block[i - 1]));
+    const bool starts_word = ascii::is_upper(c) && (i == 0 || !ascii::is_upper(block[i - 1]));
     // A word is a letter and a number (or what a number printed wrong looks like: "inf").
     const char next = i + 1 < block.size() ? block[i + 1] : ' ';
-    const bool numberish = digit(next) || next == '-' || next == '+' || next == '.' || (next >= 'a' && next <= 'z');
+    const bool numberish = ascii::is_digit(next) || next == '-' || next == '+' || next == '.' || ascii::is_lower(next);
     if (!starts_word || !numberish) {
       ++i;
       continue;
@@ -115,13 +115,13 @@ std::string check_block_words(std::string_view block, const word_formats& f, cha
     std::size_t j = i + 1;
     if (block[j] == '-' || block[j] == '+') ++j;
     int whole = 0, decimals = 0;
-    while (j < block.size() && digit(block[j])) ++j, ++whole;
+    while (j < block.size() && ascii::is_digit(block[j])) ++j, ++whole;
     if (j < block.size() && block[j] == '.') {
       ++j;
-      while (j < block.size() && digit(block[j])) ++j, ++decimals;
+      while (j < block.size() && ascii::is_digit(block[j])) ++j, ++decimals;
     }
     // Whatever follows a number must start the next word or end the block.
-    bool ends = j == block.size() || block[j] == ' ' || upper_letter(block[j]) || block[j] == open;
+    bool ends = j == block.size() || block[j] == ' ' || ascii::is_upper(block[j]) || block[j] == open;
     std::size_t word_end = j;
     while (word_end < block.size() && block[word_end] != ' ' && block[word_end] != open) ++word_end;
     std::string_view value = block.substr(i + 1, (ends ? j : word_end) - i - 1);

@@ -8,6 +8,7 @@
 
 #include "parser/event_builder.hpp"
 #include "parser/record_parser.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost {
 
@@ -38,7 +39,7 @@ struct cl_reader::impl {
   // Remembers the last record read (not a comment): whether it ends the job, and where it is.
   void note_record(int line) {
     // Only FINI, END..., and PPRINT can end a job: one look at the first letter for the rest.
-    const char c = rec.major.empty() ? '\0' : static_cast<char>(rec.major.front() & ~0x20);
+    const char c = rec.major.empty() ? '\0' : ascii::upper(rec.major.front());
     ended = (c == 'F' || c == 'E' || c == 'P') && ends_job(rec);
     last_line = line;
     last_column = lines.column_of(rec.kind == record_kind::coordinates && !rec.args.empty() ? rec.args.front().offset
@@ -66,7 +67,7 @@ struct cl_reader::impl {
       d.line = last_line;
       d.column = last_column;
       const std::string major = last_major_size == 0 ? std::string("coordinate line")
-                                                     : upper_ascii(std::string(last_major, last_major_size));
+                                                     : ascii::upper_copy(std::string_view(last_major, last_major_size));
       d.message = fmt::format("the job ends without FINI or END after this {} record: is the file cut off?", major);
     }
     sink.report(std::move(d));
@@ -83,12 +84,6 @@ struct cl_reader::impl {
                     : fmt::format("record longer than {} bytes: not CL data (a line without a newline?); skipped",
                                   max_record_bytes);
     sink.report(std::move(d));
-  }
-
-  static std::string upper_ascii(std::string s) {
-    for (char& c : s)
-      if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-    return s;
   }
 
   // Reads records until one yields events (or the input ends).

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "support/json.hpp"
+
 namespace twinpost {
 
 namespace {
@@ -202,7 +204,7 @@ std::string text_value(const std::string& s) {
   bool plain = !s.empty();
   for (unsigned char c : s)
     if (c <= ' ' || c == '"' || c >= 0x7f) plain = false;
-  return plain ? s : json_string(s);
+  return plain ? s : json_quote(s);
 }
 
 }  // namespace
@@ -227,24 +229,6 @@ std::string format_number(double v) {
   return std::string(buf, r.ptr);
 }
 
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20 || c == 0x7f) out += fmt::format("\\u{:04x}", c);
-        else if (c >= 0x80) out += fmt::format("\\u{:04x}", c);  // CL comments may be ISO-8859-1
-        else out += static_cast<char>(c);
-    }
-  }
-  return out + "\"";
-}
-
 std::string event_to_text(const event& e) {
   fields f = describe_event(e);
   std::string out = fmt::format("{}\t{}", e.line, f.name);
@@ -264,12 +248,12 @@ std::string event_to_text(const event& e) {
 
 std::string event_to_json(const event& e) {
   fields f = describe_event(e);
-  std::string out = fmt::format("{{\"line\":{},\"event\":{}", e.line, json_string(f.name));
+  std::string out = fmt::format("{{\"line\":{},\"event\":{}", e.line, json_quote(f.name));
   for (const field& x : f.f) {
-    out += fmt::format(",{}:", json_string(x.key));
+    out += fmt::format(",{}:", json_quote(x.key));
     switch (x.t) {
       case field::type::number: out += json_number(x.number); break;
-      case field::type::text: out += json_string(x.text); break;
+      case field::type::text: out += json_quote(x.text); break;
       case field::type::flag: out += "true"; break;
       case field::type::numbers: {
         out += fmt::format("[{}]", number_list(x.numbers, true));

@@ -15,7 +15,4 @@ std::string event_to_json(const event& e);
 /// A number in its shortest exact form, with -0 printed as 0.
 std::string format_number(double v);
 
-/// `s` as a JSON string literal, quotes included.
-std::string json_string(std::string_view s);
-
 }  // namespace twinpost

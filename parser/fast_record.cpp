@@ -1,12 +1,12 @@
 #include "parser/detail/fast_record.hpp"
 
 #include "parser/detail/lexical.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost::parser_detail {
 
 namespace {
 bool blank(char c) { return c == ' ' || c == '\t'; }
-bool letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 }  // namespace
 
 bool parse_numeric_statement(std::string_view text, cl_record& out) {
@@ -14,7 +14,7 @@ bool parse_numeric_statement(std::string_view text, cl_record& out) {
   const char* const end = begin + text.size();
   const char* p = begin;
   while (p != end && blank(*p)) ++p;
-  if (p == end || !letter(*p)) return false;
+  if (p == end || !ascii::is_letter(*p)) return false;
   if (text_major_length(std::string_view(p, static_cast<std::size_t>(end - p))) != 0) return false;
   const char* major = p;
   while (p != end && (is_word_char(*p) || *p == '-')) ++p;
@@ -35,7 +35,7 @@ bool parse_numeric_statement(std::string_view text, cl_record& out) {
     const char* start = p;
     bool negative = false;
     if (*p == '+' || *p == '-') negative = *p++ == '-';
-    if (p == end || !((*p >= '0' && *p <= '9') || *p == '.')) return false;
+    if (p == end || !(ascii::is_digit(*p) || *p == '.')) return false;
     double value = 0;
     p = fast_decimal(p, end, value);
     if (!p || (p != end && is_word_char(*p))) return false;

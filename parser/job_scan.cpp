@@ -1,27 +1,28 @@
 #include "parser/job_scan.hpp"
 
 #include "parser/line_reader.hpp"
+#include "support/ascii.hpp"
+#include "support/file_reader.hpp"
 
 #include <algorithm>
-#include <cctype>
+#include <charconv>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string_view>
 
 namespace twinpost {
 
 namespace {
 
-// ASCII only, inline: std::toupper is a library call per character and locale-bound.
-char upper(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
-
-bool starts_word(std::string_view line, std::string_view word) {
-  if (line.size() < word.size()) return false;
-  for (std::size_t i = 0; i < word.size(); ++i)
-    if (upper(line[i]) != word[i]) return false;
-  return true;
+// The number an argument starts with ("2" -> 2, "12AB" -> 12), when it starts with a digit
+// and fits an int.
+std::optional<int> leading_number(const std::string& a) {
+  int n = 0;
+  if (a.empty() || !ascii::is_digit(a[0])) return std::nullopt;
+  if (std::from_chars(a.data(), a.data() + a.size(), n).ec != std::errc{}) return std::nullopt;
+  return n;
 }
 
 // The first argument after the major word: "HEAD / 2" -> "2", "CHANNEL,1" -> "1".
@@ -31,8 +32,8 @@ std::string first_arg(std::string_view rest) {
   if (p < rest.size() && (rest[p] == '/' || rest[p] == ',')) ++p;
   while (p < rest.size() && (rest[p] == ' ' || rest[p] == '\t')) ++p;
   std::string a;
-  while (p < rest.size() && std::isalnum(static_cast<unsigned char>(rest[p])))
-    a += upper(rest[p++]);
+  while (p < rest.size() && ascii::is_alnum(rest[p]))
+    a += ascii::upper(rest[p++]);
   return a;
 }
 
@@ -40,25 +41,25 @@ void scan_line(std::string_view l, job_scan& s) {
   while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
   // Most lines are motion (GOTO, coordinates): one look at the first letter settles them.
   if (l.empty()) return;
-  char c = upper(l.front());
+  char c = ascii::upper(l.front());
   if (c != 'S' && c != 'H' && c != 'C' && c != '$') return;
-  if (starts_word(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
-  if (starts_word(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos) s.explicit_sync = true;
-  if (starts_word(l, "HEAD")) {
+  if (ascii::starts_with_keyword(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
+  if (ascii::starts_with_keyword(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos) s.explicit_sync = true;
+  if (ascii::starts_with_keyword(l, "HEAD")) {
     std::string a = first_arg(l.substr(4));
     if (a == "BOTH") {
       s.heads.push_back(1);
       s.heads.push_back(2);
-    } else if (!a.empty() && std::isdigit(static_cast<unsigned char>(a[0]))) {
-      s.heads.push_back(std::atoi(a.c_str()));
-    } else if (!a.empty()) {
+    } else if (const std::optional<int> h = leading_number(a)) {
+      s.heads.push_back(*h);
+    } else if (!a.empty() && !ascii::is_digit(a[0])) {
       s.head_words.push_back(a);
     }
   }
-  std::size_t n = starts_word(l, "CHANNEL") ? 7 : starts_word(l, "CHANNL") ? 6 : 0;
+  std::size_t n = ascii::starts_with_keyword(l, "CHANNEL") ? 7 : ascii::starts_with_keyword(l, "CHANNL") ? 6 : 0;
   if (n > 0) {
     std::string a = first_arg(l.substr(n));
-    if (!a.empty() && std::isdigit(static_cast<unsigned char>(a[0]))) s.channels.push_back(std::atoi(a.c_str()));
+    if (const std::optional<int> ch = leading_number(a)) s.channels.push_back(*ch);
   }
 }
 
@@ -90,20 +91,17 @@ void scan_lines(std::string_view text, job_scan& s) {
 
 job_scan scan_job(const std::string& path) {
   job_scan s;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  const file_ptr f = open_file_ptr(path.c_str(), "rb");
   if (!f) return s;
-  constexpr std::size_t chunk_bytes = 1 << 20;
-  auto buf = std::make_unique_for_overwrite<char[]>(chunk_bytes + 1);  // + a NUL for strcspn
+  chunk_reader reader(f.get());
+  char* const buf = reader.data();
   std::string carry;  // a line begun in the previous chunk
   // Only a line's first words matter, and the reader refuses lines past max_record_bytes:
   // a line without a newline must not grow the carry without bound.
   auto keep = [&carry](std::string_view part) {
     if (carry.size() < max_record_bytes) carry.append(part.substr(0, max_record_bytes - carry.size()));
   };
-  std::size_t n;
-  while ((n = std::fread(buf.get(), 1, chunk_bytes, f.get())) > 0) {
-    buf[n] = '\0';
-    std::string_view chunk(buf.get(), n);
+  for (std::string_view chunk; !(chunk = reader.next()).empty();) {
     std::size_t start = 0;
     if (!carry.empty()) {
       const void* nl = std::memchr(chunk.data(), '\n', chunk.size());

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "support/ascii.hpp"
+
 namespace twinpost {
 
 enum class arg_kind : unsigned char { number, word, empty };
@@ -51,13 +53,7 @@ struct cl_record {
 
 /// Case-insensitive ASCII comparison of a CL word with an upper-case keyword.
 inline bool word_is(std::string_view word, std::string_view upper_keyword) {
-  if (word.size() != upper_keyword.size()) return false;
-  for (std::size_t i = 0; i < word.size(); ++i) {
-    char c = word[i];
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-    if (c != upper_keyword[i]) return false;
-  }
-  return true;
+  return ascii::equals_keyword(word, upper_keyword);
 }
 
 }  // namespace twinpost

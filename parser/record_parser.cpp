@@ -1,11 +1,11 @@
 #include "parser/record_parser.hpp"
 
-#include <cctype>
 #include <fmt/format.h>
 
 #include "parser/detail/bad_number.hpp"
 #include "parser/detail/fast_record.hpp"
 #include "parser/detail/grammar.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost {
 
@@ -63,7 +63,7 @@ record_error describe_stop(std::string_view text, const cl_record& rec, std::siz
   if (auto message = detail::bad_number_message(text.substr(p, token_end(text, p) - p)))
     return {p, std::move(*message)};
   char c = text[p];
-  if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-' || c == '+')
+  if (ascii::is_alnum(c) || c == '_' || c == '.' || c == '-' || c == '+')
     return {p, fmt::format("expected ',' between arguments, found '{}'", tok)};
   return {p, fmt::format("unexpected '{}' in argument list", token_at(text, p, true))};
 }

@@ -1,10 +1,11 @@
 // Records that select heads and channels and mark synchronisation points.
-#include <cctype>
+#include <charconv>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
 
 #include "parser/detail/word_events.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost::detail {
 
@@ -76,16 +77,10 @@ std::optional<sync_event> read_manus_sync(std::string_view text) {
   if (eq == std::string::npos) return std::nullopt;
   std::size_t p = eq + 7;
   while (p < u.size() && u[p] == ' ') ++p;
+  // Digits only (from_chars would take a sign); one too big for an int is not a sync.
   int n = 0;
-  bool any = false;
-  while (p < u.size() && std::isdigit(static_cast<unsigned char>(u[p]))) {
-    int digit = u[p] - '0';
-    if (n > (std::numeric_limits<int>::max() - digit) / 10) return std::nullopt;  // too big: not a sync
-    n = n * 10 + digit;
-    any = true;
-    ++p;
-  }
-  if (!any) return std::nullopt;
+  if (p == u.size() || !ascii::is_digit(u[p])) return std::nullopt;
+  if (std::from_chars(u.data() + p, u.data() + u.size(), n).ec != std::errc{}) return std::nullopt;
   sync_event e;
   e.source = sync_source::manus;
   e.index = n;

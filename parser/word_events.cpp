@@ -80,13 +80,6 @@ int as_int(double v) {
   return static_cast<int>(std::lround(v));
 }
 
-std::string upper(std::string_view w) {
-  std::string s(w);
-  for (char& c : s)
-    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-  return s;
-}
-
 std::vector<double> numbers_of(const cl_record& r) {
   std::vector<double> v;
   for (const cl_arg& a : r.args)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -47,7 +48,7 @@ void set_live(const std::string& path, bool live) {
 std::string join(const std::string& dir, const std::string& name) { return (fs::path(dir) / name).string(); }
 
 [[noreturn]] void fail(const std::string& what, const std::string& path, int err) {
-  throw config_error(fmt::format("twinpost: error: {} '{}': {}", what, path, std::strerror(err)));
+  throw config_error(fmt::format("{} '{}': {}", what, path, std::strerror(err)));
 }
 
 // Makes every missing folder of `dir`, outermost first, adding those it made to `made`.
@@ -74,10 +75,10 @@ bool make_folders(const std::string& dir, std::vector<std::string>& made) {
 pid_t stage_pid(std::string_view name) {
   if (!name.starts_with(stage_prefix)) return 0;
   name.remove_prefix(stage_prefix.size());
+  const std::size_t digits = std::min(name.find_first_not_of("0123456789"), name.size());
+  if (digits == 0 || digits > 9 || (digits < name.size() && name[digits] != '-')) return 0;
   long pid = 0;
-  std::size_t i = 0;
-  for (; i < name.size() && name[i] >= '0' && name[i] <= '9' && i < 9; ++i) pid = pid * 10 + (name[i] - '0');
-  if (i == 0 || (i < name.size() && name[i] != '-')) return 0;
+  std::from_chars(name.data(), name.data() + digits, pid);  // at most 9 digits: it fits
   return static_cast<pid_t>(pid);
 }
 
@@ -130,7 +131,7 @@ void output_stage::make_stage() {
     slot_ = register_temp_dirs(stage_, made_);
     return;
   }
-  throw config_error(fmt::format("twinpost: error: cannot create '{}': it is removed as often as it is made", out_));
+  throw config_error(fmt::format("cannot create '{}': it is removed as often as it is made", out_));
 }
 
 output_stage::~output_stage() {
@@ -155,9 +156,9 @@ std::vector<std::string> output_stage::commit(const std::vector<staged_file>& fi
     struct stat st {};
     if (::lstat(target.c_str(), &st) != 0) continue;
     if (S_ISDIR(st.st_mode))
-      throw config_error(fmt::format("twinpost: error: cannot replace '{}': it is a folder", target));
+      throw config_error(fmt::format("cannot replace '{}': it is a folder", target));
     if (!S_ISREG(st.st_mode) && !S_ISLNK(st.st_mode))
-      throw config_error(fmt::format("twinpost: error: cannot replace '{}': it is not a regular file", target));
+      throw config_error(fmt::format("cannot replace '{}': it is not a regular file", target));
   }
   if (::access(out_.c_str(), W_OK | X_OK) != 0) fail("cannot write in", out_, errno);
   detail::replace_all(out_, stage_, files);
@@ -185,7 +186,7 @@ void replace_all(const std::string& out_dir, const std::string& stage_dir, const
       else if (it->placed) ok = ::unlink(it->target.c_str()) == 0;
       if (!ok) lost += fmt::format(" '{}'", it->target);
     }
-    std::string msg = fmt::format("twinpost: error: {} '{}': {}", what, path, std::strerror(err));
+    std::string msg = fmt::format("{} '{}': {}", what, path, std::strerror(err));
     if (!lost.empty()) msg += "; could not put back:" + lost;
     throw config_error(msg);
   };

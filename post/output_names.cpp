@@ -27,7 +27,7 @@ void check_output_names(const frame_request& r, const std::vector<framed_file>& 
     const channel_def& ch = m.channels.at(static_cast<std::size_t>(f.channel - 1));
     const std::string suffix = r.layout == layout_kind::split ? ch.file_suffix : "";
     throw config_error(fmt::format(
-        "twinpost: error: machine file '{}': file_name \"{}\"{} and extension \"{}\" give the file name '{}' "
+        "machine file '{}': file_name \"{}\"{} and extension \"{}\" give the file name '{}' "
         "for channel {}: not a plain file name in the output folder ({})",
         m.source, m.program.file_name, suffix.empty() ? "" : fmt::format(", file_suffix \"{}\"", suffix),
         m.program.extension, f.name, f.channel, why));
@@ -36,7 +36,7 @@ void check_output_names(const frame_request& r, const std::vector<framed_file>& 
     for (std::size_t j = i + 1; j < files.size(); ++j)
       if (files[i].name == files[j].name)
         throw config_error(fmt::format(
-            "twinpost: error: machine file '{}': channels {} and {} would both be written to '{}' "
+            "machine file '{}': channels {} and {} would both be written to '{}' "
             "(file_name \"{}\", split layout): give the channels distinct file_suffix values",
             m.source, files[i].channel, files[j].channel, files[i].name, m.program.file_name));
 }

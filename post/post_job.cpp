@@ -1,6 +1,5 @@
 #include "post/post_job.hpp"
 
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -22,7 +21,9 @@
 #include "post/sync_at_cl.hpp"
 #include "formats/program_number.hpp"
 #include "parser/cl_reader.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
+#include "support/file_reader.hpp"
 
 namespace fs = std::filesystem;
 
@@ -37,13 +38,13 @@ class counting_sink : public diagnostic_sink {
  public:
   explicit counting_sink(diagnostic_sink& next) : next_(next) {}
   void report(diagnostic d) override {
-    if (d.level == severity::error) ++errors;
+    counts.add(d);
     // Router and writer diagnostics come while their record is the reader's current one.
     if (reader && d.column > 0 && d.source_line.empty() && d.file == file)
       d.source_line = std::string(reader->source_line(d.line));
     next_.report(std::move(d));
   }
-  int errors = 0;
+  diagnostic_counts counts;
   const cl_reader* reader = nullptr;
   std::string file;
 
@@ -76,25 +77,23 @@ class writers_sink : public channel_sink {
   void on_wait(int ch, const wait_mark& w) override { writers[static_cast<std::size_t>(ch - 1)]->on_wait(w); }
 };
 
-using file_ptr = std::unique_ptr<std::FILE, int (*)(std::FILE*)>;
-
 // The job is read twice (the scan, then the reader): it must be a regular file, which a
 // pipe, a FIFO, a folder or /dev/null is not.
 file_ptr open_job(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);  // a FIFO must not block
-  if (fd < 0) throw config_error(fmt::format("twinpost: error: cannot read '{}': {}", path, std::strerror(errno)));
+  if (fd < 0) throw config_error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
     throw config_error(fmt::format(
-        "twinpost: error: '{}' is not a regular file (a pipe, FIFO, folder or device): post reads the job "
+        "'{}' is not a regular file (a pipe, FIFO, folder or device): post reads the job "
         "twice, give it a file",
         path));
   }
   std::FILE* f = ::fdopen(fd, "rb");
   if (!f) {
     ::close(fd);
-    throw config_error(fmt::format("twinpost: error: cannot read '{}'", path));
+    throw config_error(fmt::format("cannot read '{}'", path));
   }
   return {f, &std::fclose};
 }
@@ -231,7 +230,7 @@ std::vector<std::string> commit_files(output_stage& stage, const std::vector<fra
 std::string safe_file_stem(std::string_view partno) {
   std::string s;
   for (char c : partno) {
-    bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+    bool ok = ascii::is_alnum(c) || c == '_' || c == '-';
     s += ok ? c : '_';
     if (s.size() == 32) break;
   }
@@ -276,7 +275,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   sum.waits = router.rendezvous();
   for (auto& w : ws.writers) sum.blocks += w->blocks();
   if (t.statements == 0) report_empty_job(o, sink);
-  if (sink.errors > 0) return sum;
+  if (sink.counts.errors > 0) return sum;
 
   const std::vector<framed_file> files = frame_files(named_request(req, ws), ws);
   if (!self_check(o, m, files, ws, t.last_line, sink)) return sum;

@@ -5,6 +5,9 @@
 #include <map>
 #include <memory>
 
+#include "support/ascii.hpp"
+#include "support/file_reader.hpp"
+
 namespace twinpost {
 
 namespace {
@@ -14,20 +17,23 @@ std::string place(const std::string& file, int line) { return fmt::format("{}:{}
 // The CL lines in `wanted` (line number -> text without its line ending), read in one pass.
 void read_lines(const std::string& path, std::map<int, std::string>& wanted) {
   if (wanted.empty()) return;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+  const file_ptr f = open_file_ptr(path.c_str(), "rb");
   if (!f) return;
   const int last = wanted.rbegin()->first;
   std::string text;
   int line = 1;
-  for (int c; line <= last && (c = std::fgetc(f.get())) != EOF;) {
-    if (c != '\n') {
-      if (text.size() < 4096) text += static_cast<char>(c);  // a caret line, not a copy of a huge record
-      continue;
+  chunk_reader reader(f.get());
+  for (std::string_view chunk; line <= last && !(chunk = reader.next()).empty();) {
+    for (std::size_t i = 0; i < chunk.size() && line <= last; ++i) {
+      if (chunk[i] != '\n') {
+        if (text.size() < 4096) text += chunk[i];  // a caret line, not a copy of a huge record
+        continue;
+      }
+      if (!text.empty() && text.back() == '\r') text.pop_back();
+      if (auto it = wanted.find(line); it != wanted.end()) it->second = text;
+      text.clear();
+      ++line;
     }
-    if (!text.empty() && text.back() == '\r') text.pop_back();
-    if (auto it = wanted.find(line); it != wanted.end()) it->second = text;
-    text.clear();
-    ++line;
   }
   if (auto it = wanted.find(line); it != wanted.end() && !text.empty()) it->second = text;  // no final newline
 }
@@ -38,7 +44,7 @@ std::string rewrite(const std::string& message, const std::map<std::string, std:
   for (const auto& [nc, cl] : places) {
     for (std::size_t at = out.find(nc); at != std::string::npos; at = out.find(nc, at)) {
       const std::size_t end = at + nc.size();
-      if (end < out.size() && out[end] >= '0' && out[end] <= '9') {
+      if (end < out.size() && ascii::is_digit(out[end])) {
         at = end;
         continue;
       }

@@ -7,8 +7,9 @@ namespace twinpost {
 
 namespace {
 constexpr std::size_t source_window = 200;  // columns of a source line shown at most
+}  // namespace
 
-const char* severity_word(severity s) {
+const char* severity_name(severity s) {
   switch (s) {
     case severity::note: return "note";
     case severity::warning: return "warning";
@@ -16,13 +17,13 @@ const char* severity_word(severity s) {
   }
   return "error";
 }
-}  // namespace
 
 std::string format_diagnostic(const diagnostic& d) {
   std::string out = d.file;
   if (d.line > 0) out += fmt::format(":{}", d.line);
   if (d.line > 0 && d.column > 0) out += fmt::format(":{}", d.column);
-  out += fmt::format(": {}: {}\n", severity_word(d.level), d.message);
+  if (!out.empty()) out += ": ";  // a diagnostic about the run as a whole has no place
+  out += fmt::format("{}: {}\n", severity_name(d.level), d.message);
   if (!d.source_line.empty()) {
     // The line as a terminal shows it safely: control and non-ASCII bytes as \xHH, and at
     // most source_window columns around the caret (a 16 MB line echoes 200 columns).
@@ -53,8 +54,7 @@ std::string format_diagnostic(const diagnostic& d) {
 }
 
 void diagnostic_list::report(diagnostic d) {
-  if (d.level == severity::error) ++errors_;
-  if (d.level == severity::warning) ++warnings_;
+  counts_.add(d);
   items_.push_back(std::move(d));
 }
 

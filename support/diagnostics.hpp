@@ -8,6 +8,9 @@ namespace twinpost {
 
 enum class severity { note, warning, error };
 
+/// "note", "warning" or "error": the word in a diagnostic's text and in the JSON report.
+const char* severity_name(severity s);
+
 /// One diagnostic. line and column are 1-based; column 0 means "no column".
 struct diagnostic {
   severity level = severity::error;
@@ -16,6 +19,17 @@ struct diagnostic {
   int column = 0;
   std::string message;
   std::string source_line;  ///< the physical source line, without its line ending
+};
+
+/// Errors and warnings counted as diagnostics pass by: whether a run failed is decided from
+/// this one count (a note counts as neither).
+struct diagnostic_counts {
+  int errors = 0;
+  int warnings = 0;
+  void add(const diagnostic& d) {
+    errors += d.level == severity::error;
+    warnings += d.level == severity::warning;
+  }
 };
 
 /// Formats `d` as `file:line:col: error: message`, then the source line and a caret line
@@ -34,13 +48,12 @@ class diagnostic_list : public diagnostic_sink {
  public:
   void report(diagnostic d) override;
   const std::vector<diagnostic>& all() const { return items_; }
-  int errors() const { return errors_; }
-  int warnings() const { return warnings_; }
+  int errors() const { return counts_.errors; }
+  int warnings() const { return counts_.warnings; }
 
  private:
   std::vector<diagnostic> items_;
-  int errors_ = 0;
-  int warnings_ = 0;
+  diagnostic_counts counts_;
 };
 
 }  // namespace twinpost

@@ -12,6 +12,7 @@
 #include "parser/cl_reader.hpp"
 #include "parser/event_text.hpp"
 #include "tests/shared_samples.hpp"
+#include "parser_test_support.hpp"
 
 using namespace twinpost;
 namespace fs = std::filesystem;
@@ -20,13 +21,8 @@ namespace {
 
 const fs::path samples_dir = test::shared_samples_dir();
 
-struct sample_result {
+struct sample_result : test::read_result {
   std::string path;
-  dialect used = dialect::generic;
-  std::vector<std::string> events;  // event_to_text lines
-  std::string diagnostics;
-  int errors = 0;
-  int warnings = 0;
 
   // How many events have this name ("arc", "goto", ...), optionally with a word in them.
   int count(const std::string& name, const std::string& with = "") const {
@@ -48,24 +44,14 @@ struct sample_result {
 };
 
 sample_result read_sample(const fs::path& p) {
-  sample_result r;
-  r.path = p.string();
-  std::FILE* f = std::fopen(r.path.c_str(), "rb");
+  const std::string path = p.string();
+  std::FILE* f = std::fopen(path.c_str(), "rb");
   REQUIRE(f != nullptr);
   file_source src(f);
-  diagnostic_list sink;
   cl_reader_options options;
-  options.file_name = r.path;
-  {
-    cl_reader reader(src, options, sink);
-    r.used = reader.current_dialect();
-    event e;
-    while (reader.next(e)) r.events.push_back(event_to_text(e));
-  }
+  options.file_name = path;
+  sample_result r{test::read_source(src, options, false), path};
   std::fclose(f);
-  for (const diagnostic& d : sink.all()) r.diagnostics += format_diagnostic(d);
-  r.errors = sink.errors();
-  r.warnings = sink.warnings();
   return r;
 }
 

@@ -11,29 +11,15 @@
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
 #include "machines/name_template.hpp"
+#include "machine_test_support.hpp"
 
 using namespace twinpost;
 
 namespace {
 
-// Lines 1-5 of most documents below: a valid [machine] and [waits].
-const std::string head =
-    "[machine]\n"
-    "name = \"m\"\n"
-    "[waits]\n"
-    "first = 100\n"
-    "last = 103\n";
-
-// Two valid channels, appended after the line that a test is about.
-const std::string two_channels =
-    "[[channel]]\n"
-    "number = 1\n"
-    "axis = [{address = \"X\"}, {address = \"Z\"}]\n"
-    "[[channel]]\n"
-    "number = 2\n"
-    "axis = [{address = \"X\"}, {address = \"Z\"}]\n";
-
-const std::string xz = "axis = [{address = \"X\"}, {address = \"Z\"}]\n";
+const std::string& head = test::machine_head;
+using test::two_channels;
+const std::string& xz = test::xz_axes;
 
 }  // namespace
 
@@ -183,12 +169,12 @@ TEST_CASE("load_machine reads a file, and names what it cannot read", "[machines
   CHECK(load_machine(path).source == path);
   std::filesystem::remove(path);
   CHECK_THROWS_WITH(load_machine(path),
-                    "twinpost: error: cannot read machine file '" + path + "'");
+                    "cannot read machine file '" + path + "'");
   CHECK_THROWS_WITH(load_machine(dir.string()),
-                    "twinpost: error: cannot read machine file '" + dir.string() + "'");
+                    "cannot read machine file '" + dir.string() + "'");
   std::filesystem::remove_all(dir);
   CHECK_THROWS_WITH(load_machine("integrex"),
-                    "twinpost: error: unknown machine 'integrex': no built-in machine and no "
+                    "unknown machine 'integrex': no built-in machine and no "
                     "file of that name");
 }
 

@@ -16,21 +16,9 @@ namespace {
 
 std::string error_of(const std::string& text) { return test::machine_error_of(text); }
 
-// Lines 1-5 of most documents below: a valid [machine] and [waits]. Line 6 is where a
-// test adds the key it is about.
-const std::string head =
-    "[machine]\n"
-    "name = \"m\"\n"
-    "[waits]\n"
-    "first = 100\n"
-    "last = 103\n";
-
-// The X and Z axes every channel needs, as one line.
-const std::string xz = "axis = [{address = \"X\"}, {address = \"Z\"}]\n";
-
-// Two valid channels, appended after the line that a test is about.
-const std::string two_channels =
-    "[[channel]]\nnumber = 1\n" + xz + "[[channel]]\nnumber = 2\n" + xz;
+const std::string& head = test::machine_head;
+const std::string& xz = test::xz_axes;
+using test::two_channels;
 
 }  // namespace
 

@@ -122,9 +122,9 @@ TEST_CASE("regular files are read from their path, pipes once into a private cop
 TEST_CASE("inputs that cannot be read are named", "[check]") {
   temp_dir dir;
   CHECK(error_of({{"d", {}, dir.path}}) ==
-        "twinpost: error: cannot read '" + dir.path + "': it is a directory");
+        "cannot read '" + dir.path + "': it is a directory");
   CHECK(error_of({{"x", {}, dir.path + "/none.nc"}}) ==
-        "twinpost: error: cannot read '" + dir.path + "/none.nc': No such file or directory");
+        "cannot read '" + dir.path + "/none.nc': No such file or directory");
 }
 
 TEST_CASE("an endless input without line ends is copied only up to the reader's limit", "[check]") {

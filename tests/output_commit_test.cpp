@@ -53,7 +53,7 @@ TEST_CASE("a folder in the way of the second file: the old set stays, untouched"
   fs::remove(dir + "/out/RACE_2.nc");
   fs::create_directories(dir + "/out/RACE_2.nc/inside");
   CHECK(config_error_of([&] { test::post_text(dir, "b.cls", test::race_job('B'), m, dir + "/out", d); }) ==
-        "twinpost: error: cannot replace '" + dir + "/out/RACE_2.nc': it is a folder");
+        "cannot replace '" + dir + "/out/RACE_2.nc': it is a folder");
   CHECK(test::list_dir(dir + "/out") == "RACE_1.nc RACE_2.nc");
   CHECK(test::read_file(dir + "/out/RACE_1.nc") == old_one);
   CHECK(test::list_dir(dir + "/out/RACE_2.nc") == "inside");
@@ -71,7 +71,7 @@ TEST_CASE("a rename that fails half-way puts every old file back", "[post][commi
   REQUIRE(test::write_file(dir + "/stage/c", "new c\n"));
   const std::vector<staged_file> files{{dir + "/stage/a", "a.nc"}, {dir + "/stage/c", "c.nc"}, {dir + "/stage/b", "b.nc"}};
   CHECK(config_error_of([&] { detail::replace_all(dir + "/out", dir + "/stage", files); }) ==
-        "twinpost: error: cannot replace '" + dir + "/out/b.nc': Is a directory");
+        "cannot replace '" + dir + "/out/b.nc': Is a directory");
   CHECK(test::list_dir(dir + "/out") == "a.nc b.nc");
   CHECK(test::read_file(dir + "/out/a.nc") == "old a\n");
   fs::remove_all(dir);
@@ -159,7 +159,7 @@ TEST_CASE("a failed post leaves no folder it made, and no stage", "[post][commit
   // A folder that cannot be made (its name is too long) after two that were: both go again.
   const std::string long_name = dir + "/new/a/" + std::string(300, 'x');
   CHECK(config_error_of([&] { test::post_text(dir, "bad.cls", bad, m, long_name, d); }) ==
-        "twinpost: error: cannot create '" + long_name + "': File name too long");
+        "cannot create '" + long_name + "': File name too long");
   CHECK(test::list_dir(dir) == "bad.cls");
   fs::create_directories(dir + "/kept");
   REQUIRE(test::write_file(dir + "/kept/other.nc", "x\n"));
@@ -235,7 +235,7 @@ TEST_CASE("the job must be a regular file with records", "[post]") {
     o.out_dir = dir + "/out";
     diagnostic_list d;
     CHECK(config_error_of([&] { post_job(o, m, d); }) ==
-          "twinpost: error: '" + job +
+          "'" + job +
               "' is not a regular file (a pipe, FIFO, folder or device): post reads the job twice, give it a file");
   }
   CHECK(config_error_of([&] {
@@ -244,7 +244,7 @@ TEST_CASE("the job must be a regular file with records", "[post]") {
           o.out_dir = dir + "/out";
           diagnostic_list d;
           post_job(o, m, d);
-        }) == "twinpost: error: cannot read '" + dir + "/missing.cls': No such file or directory");
+        }) == "cannot read '" + dir + "/missing.cls': No such file or directory");
   for (const std::string& text : {std::string(""), std::string("$$ only a comment\n")}) {
     diagnostic_list d;
     CHECK_FALSE(test::post_text(dir, "empty.cls", text, m, dir + "/out", d).ok);
@@ -282,7 +282,7 @@ TEST_CASE("a write that fails names the program, not the stage, and the reason",
     ::_exit(0);
   }
   REQUIRE(::waitpid(child, nullptr, 0) == child);
-  CHECK(test::read_file(dir + "/message.txt") == "twinpost: error: cannot write '" + dir + "/out/RACE_1.nc': File too large");
+  CHECK(test::read_file(dir + "/message.txt") == "cannot write '" + dir + "/out/RACE_1.nc': File too large");
   CHECK(test::list_dir(dir) == "big.cls message.txt");
   fs::remove_all(dir);
 }

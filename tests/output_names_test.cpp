@@ -55,13 +55,13 @@ TEST_CASE("what a plain file name is", "[post][names]") {
 TEST_CASE("a machine file's file name may not leave the output folder", "[post][names]") {
   const auto up = failed_post(edited("fanuc-0itd-twin", "file_name = \"{name}\"", "file_name = \"../{name}\""), "names-up");
   CHECK(up.first ==
-        "twinpost: error: machine file 'm.toml': file_name \"../{name}\", file_suffix \"_1\" and extension \".nc\" "
+        "machine file 'm.toml': file_name \"../{name}\", file_suffix \"_1\" and extension \".nc\" "
         "give the file name '../RACE_1.nc' for channel 1: not a plain file name in the output folder (it has a '/')");
   CHECK(up.second == "job.cls");  // nothing beside the job, nothing left in out/
   const auto fill = failed_post(edited("integrex-i200st", "file_name = \"{name}\"", "file_name = \"{name:/>40}\""),
                                 "names-fill");
   CHECK(fill.first ==
-        "twinpost: error: machine file 'm.toml': file_name \"{name:/>40}\" and extension \".EIA\" give the file name "
+        "machine file 'm.toml': file_name \"{name:/>40}\" and extension \".EIA\" give the file name "
         "'////////////////////////////////////RACE.EIA' for channel 1: not a plain file name in the output folder "
         "(it has a '/')");
   CHECK(fill.second == "job.cls");
@@ -70,7 +70,7 @@ TEST_CASE("a machine file's file name may not leave the output folder", "[post][
 TEST_CASE("two channels may not be written to one file", "[post][names]") {
   const auto twice = failed_post(edited("fanuc-0itd-twin", "file_suffix = \"_2\"", "file_suffix = \"_1\""), "names-twice");
   CHECK(twice.first ==
-        "twinpost: error: machine file 'm.toml': channels 1 and 2 would both be written to 'RACE_1.nc' "
+        "machine file 'm.toml': channels 1 and 2 would both be written to 'RACE_1.nc' "
         "(file_name \"{name}\", split layout): give the channels distinct file_suffix values");
   CHECK(twice.second == "job.cls");
 }

@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "fuzz/fast_path_check.hpp"
 #include "parser/detail/fast_record.hpp"
 #include "parser/line_reader.hpp"
 #include "parser/record_parser.hpp"
@@ -18,23 +19,7 @@ using namespace twinpost;
 
 namespace {
 
-// "" when both agree (or the fast path declines), else what differs.
-std::string compare(std::string_view text) {
-  cl_record fast, slow;
-  if (!parser_detail::parse_numeric_statement(text, fast)) return {};
-  record_error err;
-  if (!parse_record_with_grammar(text, slow, err)) return "grammar rejects: " + err.message;
-  if (fast.kind != slow.kind) return "kind";
-  if (fast.major != slow.major || fast.major_offset != slow.major_offset) return "major";
-  if (fast.args.size() != slow.args.size()) return "argument count";
-  for (std::size_t i = 0; i < fast.args.size(); ++i) {
-    const cl_arg& a = fast.args[i];
-    const cl_arg& b = slow.args[i];
-    if (a.kind != b.kind || a.offset != b.offset || std::memcmp(&a.number, &b.number, sizeof(double)) != 0)
-      return "argument " + std::to_string(i);
-  }
-  return {};
-}
+using fuzz::fast_path_difference;
 
 bool fast_accepts(std::string_view text) {
   cl_record r;
@@ -49,7 +34,7 @@ TEST_CASE("fast path: takes the common numeric records", "[parser][fast]") {
                         "GOTO/1,2,3,", "LOADTL/2,1", "END-OF-PATH"}) {
     INFO(t);
     CHECK(fast_accepts(t));
-    CHECK(compare(t).empty());
+    CHECK(fast_path_difference(t).empty());
   }
 }
 
@@ -87,7 +72,7 @@ TEST_CASE("fast path: random numeric records read as the grammar reads them", "[
     if (rng() % 5 == 0) t += ',';
     if (fast_accepts(t)) ++accepted;
     INFO(t);
-    REQUIRE(compare(t).empty());
+    REQUIRE(fast_path_difference(t).empty());
   }
   CHECK(accepted > 10000);  // the fast path is really taken
 }
@@ -106,7 +91,7 @@ TEST_CASE("fast path: the real CL files read alike", "[parser][fast][samples]") 
       ++records;
       if (fast_accepts(lr.text)) ++accepted;
       INFO(entry.path().filename().string() << ":" << lr.line << ": " << lr.text);
-      REQUIRE(compare(lr.text).empty());
+      REQUIRE(fast_path_difference(lr.text).empty());
     }
     std::fclose(f);
   }

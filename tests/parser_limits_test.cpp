@@ -16,20 +16,12 @@ namespace {
 // Reads as `post` does (posting on), with a small chunk to cross buffer refills.
 test::read_result read_posting(std::string_view text, std::size_t chunk = 1 << 20) {
   string_source src(text);
-  diagnostic_list sink;
   cl_reader_options options;
   options.file_name = "t.cl";
   options.forced = dialect::generic;
   options.chunk_size = chunk;
   options.posting = true;
-  cl_reader reader(src, options, sink);
-  test::read_result r;
-  event e;
-  while (reader.next(e)) r.events.push_back(event_to_text(e));
-  for (const diagnostic& d : sink.all()) r.diagnostics += format_diagnostic(d);
-  r.errors = sink.errors();
-  r.warnings = sink.warnings();
-  return r;
+  return test::read_source(src, options);
 }
 
 }  // namespace

@@ -24,27 +24,33 @@ struct read_result {
   dialect used = dialect::generic;
 };
 
-/// Reads `text` (named "t.cl" in diagnostics) with an optional forced dialect and chunk size.
-inline read_result read_cl(std::string_view text, std::optional<dialect> forced = std::nullopt,
-                           std::size_t chunk_size = 1 << 20) {
-  string_source src(text);
+/// Everything a reader with `options` makes of `src`, read to its end; the JSON form too
+/// unless `with_json` is false (long real files).
+inline read_result read_source(byte_source& src, const cl_reader_options& options, bool with_json = true) {
   diagnostic_list sink;
-  cl_reader_options options;
-  options.file_name = "t.cl";
-  options.forced = forced;
-  options.chunk_size = chunk_size;
   cl_reader reader(src, options, sink);
   read_result r;
   r.used = reader.current_dialect();
   event e;
   while (reader.next(e)) {
     r.events.push_back(event_to_text(e));
-    r.json.push_back(event_to_json(e));
+    if (with_json) r.json.push_back(event_to_json(e));
   }
   for (const diagnostic& d : sink.all()) r.diagnostics += format_diagnostic(d);
   r.errors = sink.errors();
   r.warnings = sink.warnings();
   return r;
+}
+
+/// Reads `text` (named "t.cl" in diagnostics) with an optional forced dialect and chunk size.
+inline read_result read_cl(std::string_view text, std::optional<dialect> forced = std::nullopt,
+                           std::size_t chunk_size = 1 << 20) {
+  string_source src(text);
+  cl_reader_options options;
+  options.file_name = "t.cl";
+  options.forced = forced;
+  options.chunk_size = chunk_size;
+  return read_source(src, options);
 }
 
 using lines = std::vector<std::string>;

@@ -18,20 +18,9 @@ const std::string head = "PARTNO CYC\nUNITS/MM\nTURRET/1,1\nSPINDL/RPM,1000,CLW\
 // The errors of posting `body` (after `head`) on the Fanuc 2-path lathe, the job's path
 // written "job.cls"; "(posted)" when the post succeeds.
 std::string errors_of(const std::string& body, const std::string& tag) {
-  const std::string dir = test::fresh_temp_dir("cycles-" + tag);
-  diagnostic_list diags;
-  const post_summary s =
-      test::post_text(dir, "job.cls", head + body, load_machine("fanuc-0itd-twin"), dir + "/out", diags);
-  std::string text;
-  for (const diagnostic& d : diags.all()) {
-    if (d.level != severity::error) continue;
-    std::string one = format_diagnostic(d);
-    const std::string job = dir + "/job.cls";
-    for (std::size_t at; (at = one.find(job)) != std::string::npos;) one.replace(at, job.size(), "job.cls");
-    text += one;
-  }
-  std::filesystem::remove_all(dir);
-  return s.ok ? "(posted)" : text;
+  const test::posted p = test::post_in_fresh_dir(head + body, load_machine("fanuc-0itd-twin"), "cycles-" + tag,
+                                                 [](const diagnostic& d) { return d.level == severity::error; });
+  return p.ok ? "(posted)" : p.diagnostics;
 }
 
 }  // namespace

@@ -65,13 +65,10 @@ namespace {
 std::map<std::string, std::string> post_files(const std::string& cl, const machine& m, const std::string& tag,
                                               diagnostic_list* diags = nullptr,
                                               std::optional<layout_kind> layout = {}) {
-  const std::string dir = test::fresh_temp_dir("post-files-" + tag);
-  diagnostic_list own;
-  const post_summary s = test::post_text(dir, "job.cls", cl, m, dir + "/out", diags ? *diags : own, layout);
-  std::map<std::string, std::string> files = test::read_dir_files(dir + "/out");
-  if (!s.ok) files["(failed)"] = "";
-  std::filesystem::remove_all(dir);
-  return files;
+  test::posted p = test::post_in_fresh_dir(cl, m, "post-files-" + tag, {}, layout);
+  if (diags) *diags = p.diags;
+  if (!p.ok) p.files["(failed)"] = "";
+  return p.files;
 }
 }  // namespace
 

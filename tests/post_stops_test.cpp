@@ -15,12 +15,10 @@ using namespace twinpost;
 namespace {
 
 std::string program_of(const std::string& cl, const std::string& tag) {
-  const std::string dir = test::fresh_temp_dir("stops-" + tag);
-  diagnostic_list diags;
-  const post_summary s = test::post_text(dir, "job.cls", cl, load_machine("fanuc-0itd-twin"), dir + "/out", diags);
-  const std::string program = s.ok ? test::read_file(dir + "/out/STOPS_1.nc") : "(failed)";
-  std::filesystem::remove_all(dir);
-  return program;
+  const test::posted p = test::post_in_fresh_dir(cl, load_machine("fanuc-0itd-twin"), "stops-" + tag);
+  if (!p.ok) return "(failed)";
+  const auto program = p.files.find("STOPS_1.nc");
+  return program == p.files.end() ? "(missing)" : program->second;
 }
 
 }  // namespace

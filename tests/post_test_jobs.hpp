@@ -1,11 +1,15 @@
 #pragma once
 // Small CL jobs and a post runner for the tests of the post's output handling.
+#include <filesystem>
+#include <functional>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "file_test_support.hpp"
 #include "post/post_job.hpp"
+#include "support/diagnostics.hpp"
 
 namespace twinpost::test {
 
@@ -33,6 +37,34 @@ inline post_summary post_text(const std::string& dir, const std::string& job_nam
   o.out_dir = out;
   o.layout = layout;
   return post_job(o, m, diags);
+}
+
+/// What a post left behind (post_in_fresh_dir).
+struct posted {
+  bool ok = false;
+  diagnostic_list diags;                     ///< every diagnostic, as reported
+  std::string diagnostics;                   ///< those kept, formatted, the job's path written "job.cls"
+  std::map<std::string, std::string> files;  ///< the output folder: name -> contents
+};
+
+/// Posts `cl` (as job.cls) for `m` in a fresh folder named for `tag`, removed afterwards.
+/// `keep` chooses the diagnostics that go into `diagnostics` (all when empty).
+inline posted post_in_fresh_dir(const std::string& cl, const machine& m, const std::string& tag,
+                                const std::function<bool(const diagnostic&)>& keep = {},
+                                std::optional<layout_kind> layout = {}) {
+  const std::string dir = fresh_temp_dir(tag);
+  const std::string job = dir + "/job.cls";
+  posted p;
+  p.ok = post_text(dir, "job.cls", cl, m, dir + "/out", p.diags, layout).ok;
+  for (const diagnostic& d : p.diags.all()) {
+    if (keep && !keep(d)) continue;
+    std::string text = format_diagnostic(d);
+    for (std::size_t at; (at = text.find(job)) != std::string::npos;) text.replace(at, job.size(), "job.cls");
+    p.diagnostics += text;
+  }
+  p.files = read_dir_files(dir + "/out");
+  std::filesystem::remove_all(dir);
+  return p;
 }
 
 }  // namespace twinpost::test

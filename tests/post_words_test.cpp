@@ -16,27 +16,13 @@ using namespace twinpost;
 
 namespace {
 
-struct posted {
-  bool ok = false;
-  std::string diagnostics;               // formatted, the job's path written "job.cls"
-  std::map<std::string, std::string> files;
-};
+using test::posted;
 
 posted post_text(const std::string& cl, const machine& m, const std::string& tag) {
-  const std::string dir = test::fresh_temp_dir("words-" + tag);
-  const std::string job = dir + "/job.cls";
-  diagnostic_list diags;
-  posted p;
-  p.ok = test::post_text(dir, "job.cls", cl, m, dir + "/out", diags).ok;
-  for (const diagnostic& d : diags.all()) {
-    if (d.message.starts_with("no sync records")) continue;  // the two-channel machines' note
-    std::string text = format_diagnostic(d);
-    for (std::size_t at; (at = text.find(job)) != std::string::npos;) text.replace(at, job.size(), "job.cls");
-    p.diagnostics += text;
-  }
-  p.files = test::read_dir_files(dir + "/out");
-  std::filesystem::remove_all(dir);
-  return p;
+  // Without the two-channel machines' "no sync records" note.
+  return test::post_in_fresh_dir(cl, m, "words-" + tag, [](const diagnostic& d) {
+    return !d.message.starts_with("no sync records");
+  });
 }
 
 posted post_text(const std::string& cl, const std::string& machine_name, const std::string& tag) {

@@ -285,12 +285,6 @@ TEST_CASE("the JSON report", "[check]") {
         "  ],\n  \"paired\": 2,\n  \"errors\": 0,\n  \"warnings\": 0,\n  \"problems\": []\n}\n");
 }
 
-TEST_CASE("json_quote escapes and keeps JSON valid", "[check]") {
-  CHECK(json_quote("a\\b\"c\n\t\x01") == "\"a\\\\b\\\"c\\n\\t\\u0001\"");
-  CHECK(json_quote("\xC3\xA9") == "\"\xC3\xA9\"");  // valid UTF-8 stays
-  CHECK(json_quote("\xE9t\xC3") == "\"\\ufffdt\\ufffd\"");  // Latin-1 and a cut sequence
-}
-
 TEST_CASE("many waits in three paths pair up", "[check]") {
   // 3 paths, 40000-60000 waits each, pairs 1-2 then 2-3 then all. (Its speed is the
   // benchmark's business, not a test's: see bench/.)

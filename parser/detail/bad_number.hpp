@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "parser/record.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost::detail {
 
@@ -22,7 +23,7 @@ inline std::optional<std::string> bad_number_message(std::string_view token) {
   if (word_is(body, "NAN") || word_is(body, "INF") || word_is(body, "INFINITY"))
     return fmt::format("not a number: '{}'", token);
   const char c0 = body.front();
-  if (!((c0 >= '0' && c0 <= '9') || c0 == '.')) return std::nullopt;
+  if (!(ascii::is_digit(c0) || c0 == '.')) return std::nullopt;
   if (body.find_first_not_of("0123456789.eE+-") != std::string_view::npos) return std::nullopt;
   double v = 0;
   const auto r = std::from_chars(body.data(), body.data() + body.size(), v);

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <string_view>
 
+#include "support/ascii.hpp"
+
 namespace twinpost::parser_detail {
 
 // Letters, digits and '_' (ASCII only), one table look-up: it is asked after every number.
@@ -13,7 +15,7 @@ inline constexpr auto word_chars = [] {
     bool in[256] = {};
   } t;
   for (int c = 0; c < 256; ++c)
-    t.in[c] = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+    t.in[c] = ascii::is_alnum(static_cast<char>(c)) || c == '_';
   return t;
 }();
 
@@ -53,18 +55,11 @@ inline constexpr std::string_view text_majors[] = {"PARTNO",    "PPRINT",      "
 /// The length of the text major that `s` starts with as a whole word, or 0.
 inline std::size_t text_major_length(std::string_view s) {
   if (s.empty()) return 0;
-  char first = s[0] >= 'a' && s[0] <= 'z' ? static_cast<char>(s[0] - 'a' + 'A') : s[0];
+  const char first = ascii::upper(s[0]);
   if (first != 'P' && first != 'I' && first != 'T' && first != 'O' && first != 'R') return 0;
   for (std::string_view w : text_majors) {
     if (w[0] != first) continue;
-    if (s.size() < w.size()) continue;
-    bool same = true;
-    for (std::size_t i = 0; i < w.size() && same; ++i) {
-      char c = s[i];
-      if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
-      same = c == w[i];
-    }
-    if (!same) continue;
+    if (!ascii::starts_with_keyword(s, w)) continue;
     if (s.size() > w.size() && is_word_char(s[w.size()])) continue;  // PARTNOX is a statement
     return w.size();
   }

@@ -7,6 +7,7 @@
 
 #include "parser/detail/config.hpp"
 #include "parser/detail/lexical.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost::parser_detail {
 
@@ -24,7 +25,7 @@ struct cl_number_parser : x3::parser<cl_number_parser> {
       ++p;
     }
     // from_chars would take "inf" and "nan": insist on a digit or a point first.
-    if (p == last || !((*p >= '0' && *p <= '9') || *p == '.')) return false;
+    if (p == last || !(ascii::is_digit(*p) || *p == '.')) return false;
     double value = 0;
     const char* end = fast_decimal(p, last, value);
     if (!end) {

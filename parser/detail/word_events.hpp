@@ -7,6 +7,7 @@
 #include "parser/detail/build_issue.hpp"
 #include "parser/events.hpp"
 #include "parser/record.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost::detail {
 
@@ -46,8 +47,8 @@ std::string args_text(const cl_record& r);
 inline std::size_t args_offset(const cl_record& r) {
   return r.args.empty() ? r.major_offset : r.args.front().offset;
 }
-/// An upper-case copy of a word.
-std::string upper(std::string_view w);
+/// An upper-case copy of a word. (ascii::upper_copy under the name the event builders use.)
+inline std::string upper(std::string_view w) { return ascii::upper_copy(w); }
 /// `v` rounded to the nearest int, clamped to the int range (CL numbers can be anything).
 int as_int(double v);
 
