@@ -225,14 +225,14 @@ void event_builder::other(const cl_record& r, int line, event_queue& out, build_
   if (!known && posting_) {
     // Nothing silent in a post: a record twinpost cannot carry out stops it.
     issues.push_back({severity::error, r.major_offset,
-                      fmt::format("unknown major word '{}': twinpost cannot post this record", upper(m))});
+                      fmt::format("unknown major word '{}': this record cannot be posted", upper(m))});
     return;
   }
   if (known && posting_ && !ignorable_in_post(r)) {
     // Known, but a post cannot do what it asks (STOP, THREAD, NURBS, ORIGIN, ...): dropping
     // it would write a program that differs from the CL without a word.
     issues.push_back({severity::error, r.major_offset,
-                      fmt::format("{} is not supported by the post: twinpost cannot carry out this record", upper(m))});
+                      fmt::format("{} is not supported by the post: this record cannot be carried out", upper(m))});
     return;
   }
   if (!known)

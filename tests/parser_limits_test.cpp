@@ -99,7 +99,7 @@ TEST_CASE("a record longer than the limit is an error, and memory stays bounded"
 
 TEST_CASE("an unknown major word: a warning when parsing, an error when posting", "[parser][limits]") {
   auto p = read_posting("FOO/1\nFINI\n");
-  CHECK(p.diagnostics == "t.cl:1:1: error: unknown major word 'FOO': twinpost cannot post this record\nFOO/1\n^\n");
+  CHECK(p.diagnostics == "t.cl:1:1: error: unknown major word 'FOO': this record cannot be posted\nFOO/1\n^\n");
   CHECK(p.events == lines{"2\tend word=FINI"});
 }
 

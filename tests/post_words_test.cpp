@@ -150,7 +150,7 @@ TEST_CASE("a post stops at a record it cannot carry out, and warns at a job cut 
   posted foo = post_text(head + "FOO/1\nFINI\n", "fanuc-0itd-twin", "foo");
   CHECK_FALSE(foo.ok);
   CHECK(foo.files.empty());
-  CHECK(foo.diagnostics == "job.cls:6:1: error: unknown major word 'FOO': twinpost cannot post this record\nFOO/1\n^\n");
+  CHECK(foo.diagnostics == "job.cls:6:1: error: unknown major word 'FOO': this record cannot be posted\nFOO/1\n^\n");
   posted cut = post_text(head + "GOTO/20,0,0\nGOTO/20,0,-5\n", "fanuc-0itd-twin", "cut");
   CHECK(cut.ok);
   CHECK(cut.diagnostics ==
@@ -168,14 +168,14 @@ TEST_CASE("a known record the post cannot carry out stops it; one that only info
   posted origin = post_text(head + "GOTO/20,0,0\nORIGIN/0,0,100\nFINI\n", "fanuc-0itd-twin", "origin");
   CHECK_FALSE(origin.ok);
   CHECK(origin.diagnostics ==
-        "job.cls:7:1: error: ORIGIN is not supported by the post: twinpost cannot carry out this record\n"
+        "job.cls:7:1: error: ORIGIN is not supported by the post: this record cannot be carried out\n"
         "ORIGIN/0,0,100\n^\n");
   posted paint = post_text(head + "PAINT/COLOR,186\nGOTO/20,0,0\nSET/MODE,ABSOL\nFINI\n", "fanuc-0itd-twin", "paint");
   CHECK(paint.ok);
   CHECK(paint.diagnostics == "");
   posted incr = post_text(head + "SET/MODE,INCR\nFINI\n", "fanuc-0itd-twin", "incr");
   CHECK(incr.diagnostics ==
-        "job.cls:6:1: error: SET is not supported by the post: twinpost cannot carry out this record\n"
+        "job.cls:6:1: error: SET is not supported by the post: this record cannot be carried out\n"
         "SET/MODE,INCR\n^\n");
 }
 
