@@ -71,8 +71,10 @@ int main(int argc, char** argv) {
     std::fputs(usage, stderr);
     return 2;
   }
-  std::uint64_t minimum = kind == "lathe2" ? bench::lathe_job::minimum_records : bench::mill_job::minimum_records;
-  if (records < minimum) return fail("--records must be at least " + std::to_string(minimum) + " for " + kind);
+  std::uint64_t minimum =
+      kind == "lathe2" ? bench::lathe_job::minimum_records : bench::mill_job::minimum_records;
+  if (records < minimum)
+    return fail("--records must be at least " + std::to_string(minimum) + " for " + kind);
 
   std::string part = output + ".part";
   std::FILE* out = stdout;

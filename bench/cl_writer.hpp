@@ -154,10 +154,17 @@ inline void rotate_about(const double n[3], const double v[3], exact_angle a, do
 
 /// Angles between about 16 and 180 degrees, all exact.
 inline exact_angle pick_angle(random_source& rng) {
-  static constexpr exact_angle table[] = {
-      {24.0 / 25, 7.0 / 25},  {12.0 / 13, 5.0 / 13}, {4.0 / 5, 3.0 / 5},   {15.0 / 17, 8.0 / 17},
-      {3.0 / 5, 4.0 / 5},     {5.0 / 13, 12.0 / 13}, {7.0 / 25, 24.0 / 25}, {0.0, 1.0},
-      {-3.0 / 5, 4.0 / 5},    {-4.0 / 5, 3.0 / 5},   {-1.0, 0.0}};
+  static constexpr exact_angle table[] = {{24.0 / 25, 7.0 / 25},
+                                          {12.0 / 13, 5.0 / 13},
+                                          {4.0 / 5, 3.0 / 5},
+                                          {15.0 / 17, 8.0 / 17},
+                                          {3.0 / 5, 4.0 / 5},
+                                          {5.0 / 13, 12.0 / 13},
+                                          {7.0 / 25, 24.0 / 25},
+                                          {0.0, 1.0},
+                                          {-3.0 / 5, 4.0 / 5},
+                                          {-4.0 / 5, 3.0 / 5},
+                                          {-1.0, 0.0}};
   return table[rng.between(0, sizeof table / sizeof table[0] - 1)];
 }
 

@@ -42,7 +42,9 @@ void channel_router::route(const event& e) {
     if (h->which == head_select::both) {
       const channel_def* a = m_.channel_for_head(1);
       const channel_def* b = m_.channel_for_head(2);
-      if (!a || !b || a == b) return error(e.line, fmt::format("HEAD/BOTH: machine '{}' has no two channels for heads 1 and 2", m_.name));
+      if (!a || !b || a == b)
+        return error(e.line,
+                     fmt::format("HEAD/BOTH: machine '{}' has no two channels for heads 1 and 2", m_.name));
       std::vector<int> both{a->number, b->number};
       std::sort(both.begin(), both.end());
       return select(both, e.line, true);
@@ -50,14 +52,16 @@ void channel_router::route(const event& e) {
     const channel_def* c = head_channel(*h);
     if (!c) {
       std::string what = h->which == head_select::number ? std::to_string(h->number)
-                         : h->which == head_select::main ? "MAIN" : "SIDE";
+                         : h->which == head_select::main ? "MAIN"
+                                                         : "SIDE";
       return error(e.line, fmt::format("HEAD/{}: machine '{}' has no channel for this head", what, m_.name));
     }
     return select({c->number}, e.line, false);
   }
   if (const auto* c = std::get_if<channel_event>(&e.data)) {
     if (c->channel < 1 || c->channel > static_cast<int>(m_.channels.size()))
-      return error(e.line, fmt::format("CHANNEL {}: machine '{}' has {} channels", c->channel, m_.name, m_.channels.size()));
+      return error(e.line, fmt::format("CHANNEL {}: machine '{}' has {} channels", c->channel, m_.name,
+                                       m_.channels.size()));
     return select({c->channel}, e.line, false);
   }
   if (const auto* s = std::get_if<sync_event>(&e.data)) return explicit_sync(*s, e.line);
@@ -68,9 +72,10 @@ void channel_router::route(const event& e) {
   if (job_level) return sink_.on_event(0, e, false);
   // Records that write no block (ends, comments, tool geometry, ...) do not make a channel
   // busy: a mark after them still collapses with the one before.
-  bool writes = !(std::holds_alternative<end_event>(e.data) || std::holds_alternative<comment_event>(e.data) ||
-                  std::holds_alternative<passthrough_event>(e.data) || std::holds_alternative<tool_data_event>(e.data) ||
-                  std::holds_alternative<coordsys_event>(e.data) || std::holds_alternative<multax_event>(e.data));
+  bool writes = !(
+      std::holds_alternative<end_event>(e.data) || std::holds_alternative<comment_event>(e.data) ||
+      std::holds_alternative<passthrough_event>(e.data) || std::holds_alternative<tool_data_event>(e.data) ||
+      std::holds_alternative<coordsys_event>(e.data) || std::holds_alternative<multax_event>(e.data));
   for (int ch : active_) {
     if (writes) busy_[static_cast<std::size_t>(ch)] = true;
     sink_.on_event(ch, e, both_);
@@ -88,7 +93,8 @@ void channel_router::select(std::vector<int> channels, int line, bool both) {
   if (both || both_)
     rendezvous(all, line, both ? "HEAD/BOTH" : "the end of HEAD/BOTH", true,
                both ? wait_mark::section::opens_both : wait_mark::section::closes_both);
-  else if (policy_ == sync_policy::sequential && all.size() > 1) rendezvous(all, line, "a head switch");
+  else if (policy_ == sync_policy::sequential && all.size() > 1)
+    rendezvous(all, line, "a head switch");
   active_ = std::move(channels);
   both_ = both;
 }
@@ -140,7 +146,8 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   const int shown = marker_of(s, active_.front());
   for (int p : partners)
     if (p < 1 || p > static_cast<int>(m_.channels.size()))
-      return error(line, fmt::format("sync {} names channel {}, machine '{}' has {} channels", shown, p, m_.name, m_.channels.size()));
+      return error(line, fmt::format("sync {} names channel {}, machine '{}' has {} channels", shown, p,
+                                     m_.name, m_.channels.size()));
   if (partners.size() < 2) return error(line, fmt::format("sync {} has no partner channel", shown));
   for (int ch : active_) {
     const int index = marker_of(s, ch);
@@ -185,8 +192,9 @@ std::optional<int> channel_router::next_code(int line, const std::string& what) 
   auto code = codes_.next();
   if (!code && !exhausted_) {
     // Said once: every later mark would repeat it.
-    error(line, fmt::format("no wait code left for {}: {}{}-{}{} is used up and machine '{}' does not reuse codes",
-                            what, m_.waits.address, m_.waits.first, m_.waits.address, m_.waits.last, m_.name));
+    error(line,
+          fmt::format("no wait code left for {}: {}{}-{}{} is used up and machine '{}' does not reuse codes",
+                      what, m_.waits.address, m_.waits.first, m_.waits.address, m_.waits.last, m_.name));
     exhausted_ = true;
   }
   return code;

@@ -18,8 +18,8 @@
 #include "channels/sync_policy.hpp"
 #include "channels/wait_allocator.hpp"
 #include "machines/machine.hpp"
-#include "support/diagnostics.hpp"
 #include "parser/events.hpp"
+#include "support/diagnostics.hpp"
 
 namespace twinpost {
 
@@ -63,8 +63,8 @@ class channel_router {
   void select(std::vector<int> channels, int line, bool both);
   /// A wait in every channel of `channels`, unless none has worked since its last wait
   /// (consecutive marks collapse) and `force` is off.
-  void rendezvous(const std::vector<int>& channels, int line, const std::string& what,
-                  bool force = false, wait_mark::section both = wait_mark::section::none);
+  void rendezvous(const std::vector<int>& channels, int line, const std::string& what, bool force = false,
+                  wait_mark::section both = wait_mark::section::none);
   void explicit_sync(const sync_event& s, int line);
   /// The mark `s` in channel `ch`: its own number, or for an ICAM marker left out the
   /// channel's last marker plus one. The router is the one owner of this numbering.
@@ -80,12 +80,12 @@ class channel_router {
   diagnostic_sink& diags_;
   std::string file_;
   wait_allocator codes_;
-  std::vector<int> active_;          // channels receiving events now
-  bool both_ = false;                // inside HEAD/BOTH
-  std::vector<bool> busy_;           // per channel: events since its last wait
-  std::vector<int> last_partners_;   // the channels of the last mark
-  std::vector<int> job_channels_;    // the channels the job uses
-  std::map<int, int> auto_marker_;   // per channel: the last ICAM marker number
+  std::vector<int> active_;                        // channels receiving events now
+  bool both_ = false;                              // inside HEAD/BOTH
+  std::vector<bool> busy_;                         // per channel: events since its last wait
+  std::vector<int> last_partners_;                 // the channels of the last mark
+  std::vector<int> job_channels_;                  // the channels the job uses
+  std::map<int, int> auto_marker_;                 // per channel: the last ICAM marker number
   std::map<std::pair<int, int>, int> sync_codes_;  // (sync number, occurrence) -> code
   std::map<std::pair<int, int>, int> seen_;        // (channel, sync number) -> occurrences
   int last_sync_line_ = -1, last_sync_index_ = -1, last_sync_channel_ = -1;

@@ -24,10 +24,9 @@ std::shared_ptr<std::FILE> copy_once(const std::string& path) {
   const file_ptr in = open_file_ptr(path.c_str(), "rb");
   if (!in) cannot_read(path, std::strerror(errno));
   std::shared_ptr<std::FILE> out(std::tmpfile(), &std::fclose);
-  if (!out)
-    cannot_read(path, fmt::format("no temporary file to copy it into ({})", std::strerror(errno)));
+  if (!out) cannot_read(path, fmt::format("no temporary file to copy it into ({})", std::strerror(errno)));
   chunk_reader reader(in.get(), std::size_t{1} << 16);  // a pipe gives a few KiB a read anyway
-  std::size_t line = 0;  // bytes since the last line end
+  std::size_t line = 0;                                 // bytes since the last line end
   bool too_long = false;
   for (std::string_view chunk; !too_long && !(chunk = reader.next()).empty();) {
     // The reader stops at a line past its limit: so does the copy (/dev/zero ends here).

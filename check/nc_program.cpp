@@ -32,9 +32,7 @@ int count_newlines(const char* p, std::size_t n) {
   return lines;
 }
 
-bool all_digits(std::string_view s) {
-  return !s.empty() && std::all_of(s.begin(), s.end(), is_digit);
-}
+bool all_digits(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), is_digit); }
 
 /// Index just past the `[...]` group that opens at `i` (groups nest).
 std::size_t skip_brackets(std::string_view s, std::size_t i) {
@@ -164,8 +162,9 @@ class reader {
     channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
     // Runs of plain blocks may be skipped: only the last of a run matters here, once the
     // channel is known to have a block at all (until then every line is looked at).
-    for_each_line(f, [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); },
-                  &st.has_block);
+    for_each_line(
+        f, [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); },
+        &st.has_block);
     if (!st.has_block)
       report(severity::error, {f.name, 0, 0, {}},
              fmt::format("no NC block in this file: channel {} has no program", channel));
@@ -341,7 +340,8 @@ class reader {
     int after = 0;  // lines of the run after the one handed on
     for (;;) {
       const void* before = line_end > pos ? memrchr(base + pos, '\n', line_end - pos) : nullptr;
-      const std::size_t start = before ? static_cast<std::size_t>(static_cast<const char*>(before) - base) + 1 : pos;
+      const std::size_t start =
+          before ? static_cast<std::size_t>(static_cast<const char*>(before) - base) + 1 : pos;
       const std::string_view line = chunk.substr(start, line_end - start);
       if (line.find_first_not_of(" \t") != std::string_view::npos) {
         on_line(no + total - after, line, true);
@@ -411,16 +411,17 @@ class reader {
         carry.clear();
         pos = eol + 1;
         if (chunk[eol] == '\r') {
-          if (pos < chunk.size() && chunk[pos] == '\n') ++pos;
-          else if (pos == chunk.size()) skip_lf = true;
+          if (pos < chunk.size() && chunk[pos] == '\n')
+            ++pos;
+          else if (pos == chunk.size())
+            skip_lf = true;
         }
       }
       settle();  // the buffer is read over next
     }
     // A read error (EIO, a directory) must not pass for the end of the program.
     if (reader.failed())
-      throw config_error(fmt::format("cannot read '{}': {}", f.path,
-                                     std::strerror(errno)));
+      throw config_error(fmt::format("cannot read '{}': {}", f.path, std::strerror(errno)));
     if (!carry.empty()) {  // a last line without a line end
       on_line(++no, carry, false);
       settle();  // before `carry` goes
@@ -429,12 +430,12 @@ class reader {
 
   void report(severity level, nc_place at, std::string message) {
     if (deferring_ && level == severity::warning) {
-      deferred_.push_back({level, std::move(at.file), at.line, at.column, std::move(message),
-                           std::move(at.source_line)});
+      deferred_.push_back(
+          {level, std::move(at.file), at.line, at.column, std::move(message), std::move(at.source_line)});
       return;
     }
-    sink_.report({level, std::move(at.file), at.line, at.column, std::move(message),
-                  std::move(at.source_line)});
+    sink_.report(
+        {level, std::move(at.file), at.line, at.column, std::move(message), std::move(at.source_line)});
   }
 
   std::string name(const nc_word& w) const { return fmt::format("{}{}", w.address, w.value); }
@@ -442,8 +443,7 @@ class reader {
   /// An M-code that is no wait but may have been meant as one (the checker judges).
   bool looks_like_wait(int code, const nc_word* partner, bool has_g) const {
     const wait_rules& wr = m_.waits;
-    if (std::find(wr.excluded.begin(), wr.excluded.end(), code) != wr.excluded.end())
-      return false;
+    if (std::find(wr.excluded.begin(), wr.excluded.end(), code) != wr.excluded.end()) return false;
     if (code >= wr.first && code <= wr.last) return true;  // in the range, off its step
     // M98/M198 P calls a subprogram, and with a G-code the P is the G-code's (G04 P).
     return partner && !has_g && code != 98 && code != 198;
@@ -456,8 +456,8 @@ class reader {
     if (partner) {
       w.has_partner_list = true;
       w.partner_text = partner->value;
-      w.partners_readable = !partner->expression &&
-                            decode_partner_list(partner->value, m_.waits.partners, w.partners);
+      w.partners_readable =
+          !partner->expression && decode_partner_list(partner->value, m_.waits.partners, w.partners);
       w.partner_column = partner->column;
     }
     w.where = std::move(at);
@@ -480,8 +480,7 @@ class reader {
     if (channel == 0) {
       if (b.wait)
         report(severity::warning, at(b.wait->column),
-               fmt::format("wait {} lies outside every channel's section and is not checked",
-                           name(*b.wait)));
+               fmt::format("wait {} lies outside every channel's section and is not checked", name(*b.wait)));
       return;
     }
     record_block(b, channel, at);
@@ -499,9 +498,9 @@ class reader {
   struct block_words {
     const nc_word* partner = nullptr;  // the first partner-list word (P on Fanuc)
     bool has_g = false;
-    const nc_word* wait = nullptr;     // the first wait code, and its number
+    const nc_word* wait = nullptr;  // the first wait code, and its number
     int wait_code = 0;
-    const nc_word* end = nullptr;      // the first end-of-program M-code
+    const nc_word* end = nullptr;                      // the first end-of-program M-code
     std::vector<std::pair<const nc_word*, int>> near;  // codes that may be meant as waits
   };
 
@@ -527,8 +526,7 @@ class reader {
     for (const nc_word& w : words) {
       if (w.address == wr.address && w.expression && channel >= 0) {
         report(severity::warning, at(w.column),
-               fmt::format("{} is a variable or expression: a wait given so cannot be checked",
-                           name(w)));
+               fmt::format("{} is a variable or expression: a wait given so cannot be checked", name(w)));
         continue;
       }
       int code = 0;
@@ -540,10 +538,11 @@ class reader {
         } else if (channel >= 0) {
           report(severity::error, at(w.column),
                  fmt::format("two waits in one block ({} and {}): a wait needs a block of its "
-                             "own", name(*b.wait), name(w)));
+                             "own",
+                             name(*b.wait), name(w)));
         }
-      } else if (w.address == 'M' && std::find(end_codes_.begin(), end_codes_.end(), code) !=
-                                         end_codes_.end()) {
+      } else if (w.address == 'M' &&
+                 std::find(end_codes_.begin(), end_codes_.end(), code) != end_codes_.end()) {
         if (!b.end) b.end = &w;
       } else if (w.address == wr.address && looks_like_wait(code, b.partner, b.has_g)) {
         b.near.emplace_back(&w, code);
@@ -571,8 +570,10 @@ class reader {
     st.last_text.assign(at.line);
     if (b.wait) {
       nc_wait w = make_wait(channel, b.wait_code, b.partner, at(b.wait->column));
-      if (options_.on_wait) options_.on_wait(w);
-      else prog.waits.push_back(std::move(w));
+      if (options_.on_wait)
+        options_.on_wait(w);
+      else
+        prog.waits.push_back(std::move(w));
     }
     for (const auto& [w, code] : b.near)
       prog.near_waits.push_back(make_wait(channel, code, b.partner, at(w->column)));
@@ -595,8 +596,8 @@ class reader {
   static int marker_column(std::string_view line, const marker_pattern& mk) {
     std::size_t i = line.find_first_not_of(" \t");
     if (i == std::string_view::npos) return 1;
-    if ((line[i] == 'N' || line[i] == 'n') && !(mk.active && mk.prefix[0] == 'N') &&
-        i + 1 < line.size() && is_digit(line[i + 1])) {
+    if ((line[i] == 'N' || line[i] == 'n') && !(mk.active && mk.prefix[0] == 'N') && i + 1 < line.size() &&
+        is_digit(line[i + 1])) {
       for (++i; i < line.size() && is_digit(line[i]);) ++i;
       i = std::min(line.find_first_not_of(" \t", i), line.size() - 1);
     }
@@ -692,9 +693,12 @@ std::vector<nc_word> split_nc_words(std::string_view line) {
         w.value = std::string(line.substr(k, d - k));
       } else if (k < n && (line[k] == '#' || line[k] == '[')) {
         d = k + 1;
-        if (line[k] == '[') d = skip_brackets(line, k);
-        else if (d < n && line[d] == '[') d = skip_brackets(line, d);
-        else while (d < n && is_digit(line[d])) ++d;
+        if (line[k] == '[')
+          d = skip_brackets(line, k);
+        else if (d < n && line[d] == '[')
+          d = skip_brackets(line, d);
+        else
+          while (d < n && is_digit(line[d])) ++d;
         w.value = std::string(line.substr(k, d - k));
         w.expression = true;
       } else {
@@ -710,8 +714,8 @@ std::vector<nc_word> split_nc_words(std::string_view line) {
   return words;
 }
 
-nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m,
-                             diagnostic_sink& sink, const nc_read_options& options) {
+nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m, diagnostic_sink& sink,
+                             const nc_read_options& options) {
   nc_programs out;
   for (std::size_t i = 0; i < m.channels.size(); ++i)
     out.channels.push_back({static_cast<int>(i) + 1, {}, {}, {}, {}});
@@ -719,12 +723,14 @@ nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine&
   if (files.empty()) {
     sink.report({severity::error, {}, 0, 0, "no NC files given", {}});  // no place: the run's
   } else if (files.size() == out.channels.size()) {
-    for (std::size_t i = 0; i < files.size(); ++i)
-      r.read_split(files[i], static_cast<int>(i) + 1);
+    for (std::size_t i = 0; i < files.size(); ++i) r.read_split(files[i], static_cast<int>(i) + 1);
   } else if (files.size() == 1) {
     r.read_sections(files[0]);
   } else {
-    sink.report({severity::error, files[0].name, 0, 0,
+    sink.report({severity::error,
+                 files[0].name,
+                 0,
+                 0,
                  fmt::format("this machine has {} channels but {} files were given: give one "
                              "file per channel, or one file with sections",
                              m.channels.size(), files.size()),

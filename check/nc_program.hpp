@@ -65,23 +65,23 @@ std::vector<nc_word> split_nc_words(std::string_view line);
 
 /// One wait as written in a channel's program (or an M-code that looks like one).
 struct nc_wait {
-  int channel = 0;                ///< 1-based channel number
-  int code = 0;                   ///< the wait code, e.g. 100 for M100
-  bool has_partner_list = false;  ///< the block carries a partner list (P word)
-  std::string partner_text;       ///< the partner list's value as written ("12")
-  bool partners_readable = false; ///< partner_text could be decoded
-  std::vector<int> partners;      ///< decoded channels as written (path digits or mask bits)
-  int partner_column = 0;         ///< column of the P word
-  nc_place where;                 ///< the wait's M-word
+  int channel = 0;                 ///< 1-based channel number
+  int code = 0;                    ///< the wait code, e.g. 100 for M100
+  bool has_partner_list = false;   ///< the block carries a partner list (P word)
+  std::string partner_text;        ///< the partner list's value as written ("12")
+  bool partners_readable = false;  ///< partner_text could be decoded
+  std::vector<int> partners;       ///< decoded channels as written (path digits or mask bits)
+  int partner_column = 0;          ///< column of the P word
+  nc_place where;                  ///< the wait's M-word
 };
 
 /// The waits of one channel's program, in program order.
 struct nc_channel_program {
-  int channel = 0;               ///< 1-based channel number
-  std::string file;              ///< the file the program was read from
-  std::vector<nc_wait> waits;    ///< codes that are waits of the machine
+  int channel = 0;                  ///< 1-based channel number
+  std::string file;                 ///< the file the program was read from
+  std::vector<nc_wait> waits;       ///< codes that are waits of the machine
   std::vector<nc_wait> near_waits;  ///< other codes that look like waits (the checker judges)
-  nc_place end;                  ///< the end code (M30, M02, M99) or the last block
+  nc_place end;                     ///< the end code (M30, M02, M99) or the last block
 };
 
 /// All channels' programs: channel n at index n-1, one entry per machine channel.
@@ -97,7 +97,7 @@ struct nc_read_options {
 };
 
 /// Reads `files` as the programs of machine `m`; layout and syntax problems go to `sink`.
-nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m,
-                             diagnostic_sink& sink, const nc_read_options& options = {});
+nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m, diagnostic_sink& sink,
+                             const nc_read_options& options = {});
 
 }  // namespace twinpost

@@ -73,12 +73,10 @@ class checker {
     if (n_ > max_channels) {
       // A machine file refuses this at load; a machine made in code is named by its source.
       nc_place at;
-      at.file = !m_.source.empty()             ? m_.source
-                : !progs_.channels.empty()     ? progs_.channels[0].file
-                                               : m_.name;
+      at.file = !m_.source.empty() ? m_.source : !progs_.channels.empty() ? progs_.channels[0].file : m_.name;
       report(severity::error, at, 0,
-             fmt::format("machine '{}' has {} channels: the checker handles at most {}",
-                         m_.name, n_, max_channels));
+             fmt::format("machine '{}' has {} channels: the checker handles at most {}", m_.name, n_,
+                         max_channels));
     } else {
       for (const nc_channel_program& c : progs_.channels) {
         sims_.emplace_back();
@@ -101,8 +99,7 @@ class checker {
 
  private:
   void report(severity level, const nc_place& at, int column, std::string message) {
-    result_.diagnostics.push_back(
-        {level, at.file, at.line, column, std::move(message), at.source_line});
+    result_.diagnostics.push_back({level, at.file, at.line, column, std::move(message), at.source_line});
   }
 
   std::string code_text(int code) const { return fmt::format("{}{}", m_.waits.address, code); }
@@ -113,8 +110,8 @@ class checker {
   }
 
   std::string partner_text(const nc_wait& w) const {
-    return fmt::format("partner list {}{} of wait {}", m_.waits.partner_address,
-                       w.partner_text, code_text(w.code));
+    return fmt::format("partner list {}{} of wait {}", m_.waits.partner_address, w.partner_text,
+                       code_text(w.code));
   }
 
   /// Checks a wait's partner list (PS0161) and turns it into the set partners agree on.
@@ -124,8 +121,7 @@ class checker {
     if (m_.waits.partners == partner_style::none) {
       if (w.has_partner_list)
         report(severity::error, at, w.partner_column,
-               fmt::format("wait {} has a partner list, but this machine's waits take none",
-                           wait_text(w)));
+               fmt::format("wait {} has a partner list, but this machine's waits take none", wait_text(w)));
     } else if (!w.has_partner_list) {
       if (n_ >= 3)
         report(severity::error, at, at.column,
@@ -137,9 +133,8 @@ class checker {
     } else if (!w.partners_readable) {
       report(severity::error, at, w.partner_column,
              fmt::format("{} is not {} (Fanuc PS0161)", partner_text(w),
-                         m_.waits.partners == partner_style::binary
-                             ? "a channel mask"
-                             : "a list of channel numbers"));
+                         m_.waits.partners == partner_style::binary ? "a channel mask"
+                                                                    : "a list of channel numbers"));
     } else {
       s.partners = partner_mask(w);
     }
@@ -151,8 +146,7 @@ class checker {
     std::string problem;
     for (int p : w.partners) {
       if (p < 1 || p > n_) {
-        if (problem.empty())
-          problem = fmt::format("names channel {}, which this machine does not have", p);
+        if (problem.empty()) problem = fmt::format("names channel {}, which this machine does not have", p);
       } else if (mask & bit_of(p)) {
         if (problem.empty()) problem = fmt::format("names channel {} twice", p);
       } else {
@@ -188,8 +182,8 @@ class checker {
       seen |= bit_of(p);
     }
     report(severity::error, w.where, w.where.column,
-           fmt::format("{} looks like a wait, but {} is not a wait code of this machine ({})",
-                       wait_text(w), code_text(w.code), range));
+           fmt::format("{} looks like a wait, but {} is not a wait code of this machine ({})", wait_text(w),
+                       code_text(w.code), range));
   }
 
   /// Static problems in file order, as a compiler lists them.
@@ -198,8 +192,7 @@ class checker {
     for (const nc_channel_program& c : progs_.channels) file_order.emplace(c.file, file_order.size());
     auto key = [&](const diagnostic& d) {
       auto it = file_order.find(d.file);
-      return std::tuple(it == file_order.end() ? file_order.size() : it->second, d.line,
-                        d.column);
+      return std::tuple(it == file_order.end() ? file_order.size() : it->second, d.line, d.column);
     };
     std::stable_sort(result_.diagnostics.begin(), result_.diagnostics.end(),
                      [&](const diagnostic& a, const diagnostic& b) { return key(a) < key(b); });
@@ -224,9 +217,8 @@ class checker {
       if (finished(c)) continue;
       const sim_wait& w = current(c);
       bool ready = true;
-      for_each_channel(w.partners, [&](int p) {
-        ready = ready && (p == c || (!finished(p) && current(p).matches(w)));
-      });
+      for_each_channel(w.partners,
+                       [&](int p) { ready = ready && (p == c || (!finished(p) && current(p).matches(w))); });
       if (!ready) continue;
       for_each_channel(w.partners, [&](int p) {
         ++pos_[p - 1];
@@ -275,13 +267,11 @@ class checker {
     for (int c : ended) {
       const nc_place& end = progs_.channels[static_cast<std::size_t>(c - 1)].end;
       how += how.empty() ? "" : "; ";
-      how += end.line > 0 ? fmt::format("channel {} ends at {} without a matching wait", c,
-                                        place(end))
+      how += end.line > 0 ? fmt::format("channel {} ends at {} without a matching wait", c, place(end))
                           : fmt::format("channel {} has no program", c);
     }
     report(severity::error, w.src->where, w.src->where.column,
-           fmt::format("wait {} of channel {} is never met: {}", wait_text(*w.src),
-                       w.src->channel, how));
+           fmt::format("wait {} of channel {} is never met: {}", wait_text(*w.src), w.src->channel, how));
   }
 
   void report_mismatch(const sim_wait& a, const sim_wait& b) {

@@ -31,10 +31,10 @@ struct channel_sync_summary {
 
 /// The outcome of a check.
 struct sync_result {
-  bool ok = true;                          ///< no errors
-  std::vector<diagnostic> diagnostics;     ///< problems in report order
+  bool ok = true;                       ///< no errors
+  std::vector<diagnostic> diagnostics;  ///< problems in report order
   std::vector<channel_sync_summary> channels;
-  int paired = 0;                          ///< waits of all channels that met their partners
+  int paired = 0;  ///< waits of all channels that met their partners
   int errors = 0;
   int warnings = 0;
 };

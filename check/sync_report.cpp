@@ -17,8 +17,7 @@ std::string counted(int n, std::string_view one, std::string_view many) {
 std::string format_sync_summary(const sync_result& r) {
   std::string line = fmt::format("check: {}, {} paired, {}",
                                  counted(static_cast<int>(r.channels.size()), "channel", "channels"),
-                                 counted(r.paired, "wait", "waits"),
-                                 counted(r.errors, "error", "errors"));
+                                 counted(r.paired, "wait", "waits"), counted(r.errors, "error", "errors"));
   if (r.warnings > 0) line += ", " + counted(r.warnings, "warning", "warnings");
   return line;
 }
@@ -36,15 +35,16 @@ std::string format_sync_json(const sync_result& r) {
     out += fmt::format("{}\n    {{\"channel\": {}, \"file\": {}, \"waits\": {}, \"paired\": {}}}",
                        i ? "," : "", c.channel, json_quote(c.file), c.waits, c.paired);
   }
-  out += fmt::format("{}],\n  \"paired\": {},\n  \"errors\": {},\n  \"warnings\": {},\n"
-                     "  \"problems\": [",
-                     r.channels.empty() ? "" : "\n  ", r.paired, r.errors, r.warnings);
+  out += fmt::format(
+      "{}],\n  \"paired\": {},\n  \"errors\": {},\n  \"warnings\": {},\n"
+      "  \"problems\": [",
+      r.channels.empty() ? "" : "\n  ", r.paired, r.errors, r.warnings);
   for (std::size_t i = 0; i < r.diagnostics.size(); ++i) {
     const diagnostic& d = r.diagnostics[i];
-    out += fmt::format("{}\n    {{\"file\": {}, \"line\": {}, \"column\": {}, \"severity\": "
-                       "\"{}\", \"message\": {}}}",
-                       i ? "," : "", json_quote(d.file), d.line, d.column,
-                       severity_name(d.level), json_quote(d.message));
+    out += fmt::format(
+        "{}\n    {{\"file\": {}, \"line\": {}, \"column\": {}, \"severity\": "
+        "\"{}\", \"message\": {}}}",
+        i ? "," : "", json_quote(d.file), d.line, d.column, severity_name(d.level), json_quote(d.message));
   }
   return out + (r.diagnostics.empty() ? "]\n}\n" : "\n  ]\n}\n");
 }

@@ -23,8 +23,10 @@ bool parse_options(const args& a, const po::options_description& opts,
 void print_error(std::string_view message) { fmt::print(stderr, "twinpost: error: {}\n", message); }
 
 void print_error(const config_error& e) {
-  if (e.located()) fmt::print(stderr, "{}\n", e.what());
-  else print_error(e.what());
+  if (e.located())
+    fmt::print(stderr, "{}\n", e.what());
+  else
+    print_error(e.what());
 }
 
 std::string to_string(const po::options_description& opts) {

@@ -22,7 +22,8 @@ namespace twinpost::cli {
 namespace {
 
 std::string check_usage() {
-  return "usage: " + command_usage("check") + "\n"
+  return "usage: " + command_usage("check") +
+         "\n"
          "\n"
          "Checks that the waits of NC programs pair up and cannot deadlock. Give one file per\n"
          "channel, in channel order, or one file with the machine's section markers.\n"
@@ -49,8 +50,8 @@ bool readable(const std::string& path) {
 int run_check(const args& a) {
   namespace po = boost::program_options;
   po::options_description opts("options");
-  opts.add_options()("help,h", "show this help")(
-      "machine,m", po::value<std::string>(), "built-in machine name or machine file (required)")(
+  opts.add_options()("help,h", "show this help")("machine,m", po::value<std::string>(),
+                                                 "built-in machine name or machine file (required)")(
       "json", "print the report as one JSON object");
   po::options_description all;
   all.add(opts).add_options()("file", po::value<std::vector<std::string>>(), "NC files");

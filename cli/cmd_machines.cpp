@@ -16,7 +16,8 @@ namespace twinpost::cli {
 namespace {
 
 std::string machines_usage() {
-  return "usage: " + command_usage("machines") + "\n"
+  return "usage: " + command_usage("machines") +
+         "\n"
          "\n"
          "Lists the built-in machine definitions: name, then description.\n"
          "--show NAME prints the definition that --machine NAME uses (TOML), to copy and edit.\n"
@@ -43,8 +44,7 @@ int run_machines(const args& a) {
   if (!a.empty()) {
     const std::string& arg = a.front();
     fmt::print(stderr, "twinpost machines: {} '{}'\n\n{}",
-               arg.starts_with('-') ? "unknown option" : "unexpected argument", arg,
-               machines_usage());
+               arg.starts_with('-') ? "unknown option" : "unexpected argument", arg, machines_usage());
     return 2;
   }
   const std::vector<machine_summary> all = builtin_machines();

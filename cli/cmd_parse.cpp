@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <fmt/format.h>
 
-#include "cli/commands.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/command_table.hpp"
+#include "cli/commands.hpp"
 #include "parser/cl_reader.hpp"
 #include "parser/dialect.hpp"
 #include "parser/event_text.hpp"
@@ -17,10 +17,11 @@ namespace po = boost::program_options;
 int run_parse(const args& a) {
   po::options_description opts(command_usage("parse"));
   static const std::string dialects =
-      names_joined(dialect_names, [](const dialect_name_entry& d) { return d.name; }, "|", "|") + " (default: detect)";
+      names_joined(
+          dialect_names, [](const dialect_name_entry& d) { return d.name; }, "|", "|") +
+      " (default: detect)";
   opts.add_options()("help,h", "show this help")("json", "one JSON object per event (JSON Lines)")(
-      "dialect", po::value<std::string>(), dialects.c_str())(
-      "file", po::value<std::string>(), "CL file");
+      "dialect", po::value<std::string>(), dialects.c_str())("file", po::value<std::string>(), "CL file");
   po::positional_options_description pos;
   pos.add("file", 1);
   po::variables_map vm;

@@ -2,9 +2,9 @@
 #include <boost/program_options.hpp>
 #include <chrono>
 #include <filesystem>
+#include <fmt/format.h>
 #include <optional>
 #include <unistd.h>
-#include <fmt/format.h>
 
 #include "channels/sync_policy.hpp"
 #include "cli/cli_util.hpp"
@@ -13,8 +13,8 @@
 #include "cli/interrupt.hpp"
 #include "cli/machine_dirs.hpp"
 #include "machines/layout_names.hpp"
-#include "post/post_job.hpp"
 #include "machines/layout_rules.hpp"
+#include "post/post_job.hpp"
 
 namespace twinpost::cli {
 
@@ -30,11 +30,13 @@ po::options_description post_option_descriptions() {
       names_joined(layout_names, layout_option, "|", "|") + " (default: the machine's)";
   static const std::string policies = names_joined(sync_policy_names, policy_name, "|", "|");
   po::options_description opts(command_usage("post"));
-  opts.add_options()("help,h", "show this help")("machine,m", po::value<std::string>(), "machine name or TOML file")(
+  opts.add_options()("help,h", "show this help")("machine,m", po::value<std::string>(),
+                                                 "machine name or TOML file")(
       "output,o", po::value<std::string>(), "output folder (made if missing)")(
       "layout", po::value<std::string>(), layouts.c_str())(
       "sync", po::value<std::string>()->default_value("auto"), policies.c_str())(
-      "dialect", po::value<std::string>(), "CL dialect (default: detect)")("job", po::value<std::string>(), "CL file");
+      "dialect", po::value<std::string>(), "CL dialect (default: detect)")("job", po::value<std::string>(),
+                                                                           "CL file");
   return opts;
 }
 
@@ -42,7 +44,8 @@ po::options_description post_option_descriptions() {
 bool has_required(const po::variables_map& vm) {
   for (const char* need : {"job", "machine", "output"}) {
     if (!vm.count(need)) {
-      fmt::print(stderr, "twinpost post: missing {}\n", std::string(need) == "job" ? "CL job file" : fmt::format("--{}", need));
+      fmt::print(stderr, "twinpost post: missing {}\n",
+                 std::string(need) == "job" ? "CL job file" : fmt::format("--{}", need));
       return false;
     }
   }
@@ -56,14 +59,16 @@ std::optional<post_options> read_post_options(const po::variables_map& vm) {
   o.out_dir = vm["output"].as<std::string>();
   const auto policy = sync_policy_from_name(vm["sync"].as<std::string>());
   if (!policy) {
-    fmt::print(stderr, "twinpost post: --sync must be {}\n", names_joined(sync_policy_names, policy_name, ", ", " or "));
+    fmt::print(stderr, "twinpost post: --sync must be {}\n",
+               names_joined(sync_policy_names, policy_name, ", ", " or "));
     return std::nullopt;
   }
   o.policy = *policy;
   if (vm.count("layout")) {
     o.layout = layout_from_option(vm["layout"].as<std::string>());
     if (!o.layout) {
-      fmt::print(stderr, "twinpost post: --layout must be {}\n", names_joined(layout_names, layout_option, ", ", " or "));
+      fmt::print(stderr, "twinpost post: --layout must be {}\n",
+                 names_joined(layout_names, layout_option, ", ", " or "));
       return std::nullopt;
     }
   }
@@ -94,8 +99,9 @@ void show_progress_on_terminal(post_options& o, bool& shown) {
 
 void print_summary(const post_summary& s, const printing_sink& sink, const located_machine& found) {
   // One channel waits for nobody: no policy to report.
-  const std::string waits = s.channels == 1 ? "no waits (one channel)"
-                                            : fmt::format("{} waits ({})", s.waits, sync_policy_to_name(s.policy));
+  const std::string waits = s.channels == 1
+                                ? "no waits (one channel)"
+                                : fmt::format("{} waits ({})", s.waits, sync_policy_to_name(s.policy));
   fmt::print("post: {} records, {} channel{}, {} blocks, {}, {} warning{}\n", s.records, s.channels,
              s.channels == 1 ? "" : "s", s.blocks, waits, sink.warnings(), sink.warnings() == 1 ? "" : "s");
   fmt::print("  machine {} ({})\n", found.def.name, found.origin);
@@ -130,7 +136,8 @@ int run_post(const args& a) {
   const post_summary s = post_job(*o, m, sink);
   if (shown) fmt::print(stderr, "\r{:30}\r", "");
   if (!s.ok) {
-    fmt::print(stderr, "post: failed with {} error{}; no file written\n", sink.errors(), sink.errors() == 1 ? "" : "s");
+    fmt::print(stderr, "post: failed with {} error{}; no file written\n", sink.errors(),
+               sink.errors() == 1 ? "" : "s");
     return 1;
   }
   print_summary(s, sink, found);

@@ -37,6 +37,8 @@ std::vector<std::string> machine_dirs() {
   return dirs;
 }
 
-located_machine locate_machine(const std::string& name_or_path) { return find_machine(name_or_path, machine_dirs()); }
+located_machine locate_machine(const std::string& name_or_path) {
+  return find_machine(name_or_path, machine_dirs());
+}
 
 }  // namespace twinpost::cli

@@ -33,21 +33,22 @@ void block_writer::start() {
 
 void block_writer::flush_if_full() {
   if (buf_.size() >= flush_at) {
-    if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size())
-      write_failed(errno);
+    if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size()) write_failed(errno);
     buf_.clear();
   }
 }
 
 void block_writer::put(std::string_view s) {
-  if (!started_) [[unlikely]] start();
+  if (!started_) [[unlikely]]
+    start();
   buf_.append(s);
   buf_ += '\n';
   flush_if_full();
 }
 
 text_buffer& block_writer::open_block() {
-  if (!started_) [[unlikely]] start();
+  if (!started_) [[unlikely]]
+    start();
   open_at_ = buf_.size();
   return buf_;
 }
@@ -108,8 +109,8 @@ std::string safe_comment_text(std::string_view text, const program_format& fmt) 
   std::string s;
   for (unsigned char c : text) {
     c = static_cast<unsigned char>(ascii::upper(static_cast<char>(c)));
-    if (c == static_cast<unsigned char>(fmt.comment_open) || c == static_cast<unsigned char>(fmt.comment_close) ||
-        c == '(' || c == ')' || c == ';' || c == '%')
+    if (c == static_cast<unsigned char>(fmt.comment_open) ||
+        c == static_cast<unsigned char>(fmt.comment_close) || c == '(' || c == ')' || c == ';' || c == '%')
       c = ' ';
     if (c < 0x20 || c >= 0x7f) c = ' ';  // control bytes and ISO-8859-1 letters
     s += static_cast<char>(c);

@@ -45,8 +45,10 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   if (moved) {
     pending_g_.clear();
     motion_g_ = g;
-    if (!rapid && feed_value_ > 0) append_feed(b);
-    else if (!rapid) error(line, "feed move with no feed rate (FEDRAT) in force");
+    if (!rapid && feed_value_ > 0)
+      append_feed(b);
+    else if (!rapid)
+      error(line, "feed move with no feed rate (FEDRAT) in force");
     out_.end_block();
   } else {
     out_.drop_block();  // already there: nothing to write, the modal codes wait for a move
@@ -56,9 +58,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
 
 void channel_writer::motion(const motion_event& mv, int line) {
   switch (mv.kind) {
-    case motion_kind::from:
-      pos_ = mv.pos;
-      return;
+    case motion_kind::from: pos_ = mv.pos; return;
     case motion_kind::home:
       out_.block(m_.codes.home);
       forget_axes();
@@ -89,8 +89,8 @@ void channel_writer::arc(const arc_event& a, int line) {
   };
   auto fail_quietly = [&] { pos_ = a.end; };
   if (plane == 0)
-    return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane", a.normal.x,
-                            a.normal.y, a.normal.z));
+    return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane", a.normal.x, a.normal.y,
+                            a.normal.z));
   if (plane != 18 && !has_y_)
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
   if (!has_y_ && std::abs(a.end.y * scale_) > y_tolerance)
@@ -98,10 +98,13 @@ void channel_writer::arc(const arc_event& a, int line) {
   if (a.turns > 0) {
     // TIMES,n repeats a full circle: the move must end where it starts.
     const double gap = std::max({std::abs(a.end.x - a.start.x), std::abs(a.end.y - a.start.y),
-                                 std::abs(a.end.z - a.start.z)}) * scale_;
+                                 std::abs(a.end.z - a.start.z)}) *
+                       scale_;
     if (gap > y_tolerance)
-      return fail(fmt::format("CIRCLE TIMES {}: the move must end where it starts to be repeated as full "
-                              "circles (it ends {} mm away)", a.turns, gap));
+      return fail(
+          fmt::format("CIRCLE TIMES {}: the move must end where it starts to be repeated as full "
+                      "circles (it ends {} mm away)",
+                      a.turns, gap));
   }
   check_side(nc_x(a.end.x), a.end.x, line);
   double axis_sign = plane == 17 ? a.normal.z : plane == 18 ? a.normal.y : a.normal.x;
@@ -154,8 +157,10 @@ void channel_writer::arc(const arc_event& a, int line) {
     arc_ += " R";
     append_number(arc_, r, axis_style_);
   }
-  if (feed_value_ > 0) append_feed(arc_);
-  else error(line, "arc with no feed rate (FEDRAT) in force");
+  if (feed_value_ > 0)
+    append_feed(arc_);
+  else
+    error(line, "arc with no feed rate (FEDRAT) in force");
   pending_g_.clear();
   motion_g_ = g;
   // A full circle TIMES n: the same block n times, one turn each.
@@ -168,24 +173,29 @@ bool channel_writer::cycle_supported(const cycle_event& c, int line) {
   // written that way would break the tool or mark the bore, so only what the moves really
   // do is taken, and anything else stops the post at the CYCLE record.
   if (c.type != "DRILL" && c.type != "DEEP") {
-    error(line, fmt::format("CYCLE/{} is not supported by the post: only DRILL and DEEP are written (as plain "
-                            "G0/G1 moves); a tapping, boring or threading cycle cannot be",
-                            c.type));
+    error(line,
+          fmt::format("CYCLE/{} is not supported by the post: only DRILL and DEEP are written (as plain "
+                      "G0/G1 moves); a tapping, boring or threading cycle cannot be",
+                      c.type));
     return false;
   }
-  static constexpr std::string_view known[] = {"FEDTO", "DEPTH", "RAPTO", "CLEAR", "STEP", "MMPR", "IPR", "MMPM", "IPM"};
+  static constexpr std::string_view known[] = {"FEDTO", "DEPTH", "RAPTO", "CLEAR", "STEP",
+                                               "MMPR",  "IPR",   "MMPM",  "IPM"};
   for (const auto& [name, value] : c.params) {
     const bool pecks_ignored = name == "STEP" && c.type != "DEEP";  // only DEEP is written in pecks
     if (!pecks_ignored && std::find(std::begin(known), std::end(known), name) != std::end(known)) continue;
-    error(line, fmt::format("CYCLE/{}: {} is not carried out by the post (it knows FEDTO, DEPTH, RAPTO, CLEAR, "
-                            "STEP and the feed)",
-                            c.type, name));
+    error(line,
+          fmt::format("CYCLE/{}: {} is not carried out by the post (it knows FEDTO, DEPTH, RAPTO, CLEAR, "
+                      "STEP and the feed)",
+                      c.type, name));
     return false;
   }
   if (!c.words.empty() || !c.positional.empty()) {
-    error(line, fmt::format("CYCLE/{}: {} is not carried out by the post (it knows FEDTO, DEPTH, RAPTO, CLEAR, "
-                            "STEP and the feed, each with its value)",
-                            c.type, c.words.empty() ? fmt::format("the value {}", c.positional.front()) : c.words.front()));
+    error(line,
+          fmt::format("CYCLE/{}: {} is not carried out by the post (it knows FEDTO, DEPTH, RAPTO, CLEAR, "
+                      "STEP and the feed, each with its value)",
+                      c.type,
+                      c.words.empty() ? fmt::format("the value {}", c.positional.front()) : c.words.front()));
     return false;
   }
   return true;
@@ -204,9 +214,10 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   // Only along the spindle axis: a radial or tilted tool (cross drilling with a live tool)
   // would be fed along Z, through the side of the part.
   if (std::abs(axis_.z) < 0.9999)
-    return error(line, fmt::format("CYCLE/{} with the tool axis ({}, {}, {}): only drilling along Z is written; "
-                                   "cross and tilted drilling is not supported yet",
-                                   c.type, axis_.x, axis_.y, axis_.z));
+    return error(line,
+                 fmt::format("CYCLE/{} with the tool axis ({}, {}, {}): only drilling along Z is written; "
+                             "cross and tilted drilling is not supported yet",
+                             c.type, axis_.x, axis_.y, axis_.z));
   double into = axis_.z < 0 ? 1.0 : -1.0;  // the direction of drilling along Z
   double clear = p.z - into * param("RAPTO").value_or(param("CLEAR").value_or(0));
   std::optional<double> bottom = param("FEDTO");
@@ -215,10 +226,11 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   // FEDTO is a Z here; a dialect that writes it as a depth below the hole (SolidWorks CAM)
   // puts it behind the clearance plane, and the drill would feed away from the part.
   if ((*bottom - clear) * into <= 0)
-    return error(line, fmt::format("CYCLE/{}: the bottom Z {} is not beyond the clearance plane Z {} in the "
-                                   "drilling direction: the tool would feed away from the part (is FEDTO a depth "
-                                   "in this CL?)",
-                                   c.type, *bottom, clear));
+    return error(line,
+                 fmt::format("CYCLE/{}: the bottom Z {} is not beyond the clearance plane Z {} in the "
+                             "drilling direction: the tool would feed away from the part (is FEDTO a depth "
+                             "in this CL?)",
+                             c.type, *bottom, clear));
   for (const char* unit : {"MMPR", "IPR", "MMPM", "IPM"}) {
     if (auto f = param(unit)) {
       const bool per_rev = std::string_view(unit).back() == 'R';

@@ -38,7 +38,8 @@ void channel_writer::spindle(const spindle_event& s, int line) {
       return error(line, "constant surface speed needs MAXRPM (or a spindle limit in the machine)");
     double clamp = s.max_rpm ? *s.max_rpm : sp.max_rpm;
     if (sp.max_rpm > 0 && clamp > sp.max_rpm)
-      return error(line, fmt::format("MAXRPM {} exceeds the {} spindle's limit of {} rpm", clamp, sp.name, sp.max_rpm));
+      return error(line, fmt::format("MAXRPM {} exceeds the {} spindle's limit of {} rpm", clamp, sp.name,
+                                     sp.max_rpm));
     template_args a;  // template_uses::clamp
     a.max = clamp;
     a.rpm = clamp;
@@ -50,14 +51,17 @@ void channel_writer::spindle(const spindle_event& s, int line) {
       if (!block_fits(b)) return;
       restart_blocks_.push_back(b);
     }
-    restart_blocks_.push_back(join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
+    restart_blocks_.push_back(
+        join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
     for (const std::string& b : restart_blocks_) out_.block(b);
     return;
   }
   if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
-    return error(line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
+    return error(
+        line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
   if (!fits('S', s.speed, 0)) return;
-  restart_blocks_ = {join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
+  restart_blocks_ = {
+      join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
   out_.block(restart_blocks_.front());
 }
 
@@ -68,7 +72,8 @@ void channel_writer::program_stop(bool optional) {
 }
 
 void channel_writer::feed(const feed_event& f, int line) {
-  if (f.mode == feed_mode::inverse_time) return error(line, "inverse-time feed is not supported on a lathe channel");
+  if (f.mode == feed_mode::inverse_time)
+    return error(line, "inverse-time feed is not supported on a lathe channel");
   const double value = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
   // F is written with 4 decimals per revolution, 1 per minute (append_feed).
   if (!fits('F', value, f.mode == feed_mode::per_rev ? 4 : 1)) return;
@@ -102,9 +107,10 @@ void channel_writer::tool(const tool_event& t, int line) {
   // Offset 0 in a lathe tool call (T0300) cancels the tool's offset: the tip would run
   // where the turret's reference point is, not where the CL says.
   if (a.offset == 0 && ch_.tool_call.find("{offset") != std::string::npos)
-    return error(line, fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
-                                   "give the offset number",
-                                   t.tool, call));
+    return error(line,
+                 fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
+                             "give the offset number",
+                             t.tool, call));
   if (t.tool == tool_) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
     // turret stays where it is and only the offset changes, so the call goes out alone.
@@ -115,7 +121,7 @@ void channel_writer::tool(const tool_event& t, int line) {
     return;
   }
   if (!block_fits(call)) return;  // T12345 on a four-digit T: the tool does not exist
-  out_.block(m_.codes.home);  // index the turret away from the part
+  out_.block(m_.codes.home);      // index the turret away from the part
   forget_axes();
   motion_g_ = -1;
   out_.block(call);

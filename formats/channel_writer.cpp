@@ -43,7 +43,8 @@ void channel_writer::misfit(char address, double value) {
 bool channel_writer::fits(char address, double v, int decimals) {
   const word_format& f = m_.formats[address];
   std::int64_t n;
-  if (round_fixed(v, decimals, n) && (f.whole == 0 || (n <= f.max_count(decimals) && -n <= f.max_count(decimals))))
+  if (round_fixed(v, decimals, n) &&
+      (f.whole == 0 || (n <= f.max_count(decimals) && -n <= f.max_count(decimals))))
     return true;
   misfit(address, v);
   return false;
@@ -56,8 +57,7 @@ bool channel_writer::block_fits(const std::string& block) {
   return false;
 }
 
-bool channel_writer::axis_word(text_buffer& out, char address, double value, axis_memory& last,
-                               bool always) {
+bool channel_writer::axis_word(text_buffer& out, char address, double value, axis_memory& last, bool always) {
   // The same value as last time prints the same word: no need to round it to know.
   if (!always && last.known && value == last.value) return false;
   std::int64_t n;
@@ -123,11 +123,14 @@ void channel_writer::on_event(const event& e, bool both) {
         if constexpr (std::is_same_v<T, motion_event>) {
           if (d.axis) axis_ = *d.axis;
           motion(d, e.line);
-        }
-        else if constexpr (std::is_same_v<T, arc_event>) arc(d, e.line);
-        else if constexpr (std::is_same_v<T, spindle_event>) spindle(d, e.line);
-        else if constexpr (std::is_same_v<T, feed_event>) feed(d, e.line);
-        else if constexpr (std::is_same_v<T, tool_event>) tool(d, e.line);
+        } else if constexpr (std::is_same_v<T, arc_event>)
+          arc(d, e.line);
+        else if constexpr (std::is_same_v<T, spindle_event>)
+          spindle(d, e.line);
+        else if constexpr (std::is_same_v<T, feed_event>)
+          feed(d, e.line);
+        else if constexpr (std::is_same_v<T, tool_event>)
+          tool(d, e.line);
         else if constexpr (std::is_same_v<T, coolant_event>) {
           if (d.mode == "OFF") {
             out_.block(m_.codes.coolant_off);
@@ -144,8 +147,10 @@ void channel_writer::on_event(const event& e, bool both) {
           if (mirrored()) std::swap(left, right);
           pending_g_ = left ? "G41" : right ? "G42" : d.side == "OFF" ? "G40" : "";
         } else if constexpr (std::is_same_v<T, cycle_event>) {
-          if (d.type == "OFF") cycle_.reset();
-          else if (d.type != "ON" && d.type != "INIT" && cycle_supported(d, e.line)) cycle_ = d;
+          if (d.type == "OFF")
+            cycle_.reset();
+          else if (d.type != "ON" && d.type != "INIT" && cycle_supported(d, e.line))
+            cycle_ = d;
         } else if constexpr (std::is_same_v<T, delay_event>) {
           if (d.revolutions) return error(e.line, "DELAY in revolutions is not supported; give seconds");
           if (!dwell_fits(d.value)) return;
@@ -159,9 +164,10 @@ void channel_writer::on_event(const event& e, bool both) {
           std::string b = fmt::format("{}{}", d.prefun ? 'G' : 'M', d.code);
           if (block_fits(b)) out_.block(b);
         } else if constexpr (std::is_same_v<T, text_event>) {
-          if (d.kind == text_kind::insert) out_.raw(d.text);
-          else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint || d.kind == text_kind::op_start ||
-                   d.kind == text_kind::toolpath)
+          if (d.kind == text_kind::insert)
+            out_.raw(d.text);
+          else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint ||
+                   d.kind == text_kind::op_start || d.kind == text_kind::toolpath)
             out_.comment(d.text);
         } else if constexpr (std::is_same_v<T, tool_axis_event>) {
           axis_ = d.axis;

@@ -12,16 +12,16 @@
 #include "formats/block_writer.hpp"
 #include "formats/number_format.hpp"
 #include "machines/machine.hpp"
-#include "support/diagnostics.hpp"
 #include "parser/events.hpp"
+#include "support/diagnostics.hpp"
 
 namespace twinpost {
 
 class channel_writer {
  public:
   /// Writes the channel's blocks to `path`, framed by `frame` (see block_writer).
-  channel_writer(const machine& m, const channel_def& ch, const std::string& path,
-                 diagnostic_sink& diags, std::string cl_file, block_writer::framing frame = {});
+  channel_writer(const machine& m, const channel_def& ch, const std::string& path, diagnostic_sink& diags,
+                 std::string cl_file, block_writer::framing frame = {});
 
   /// The job's units (UNITS record); inch values are converted to mm.
   void set_units(unit_system u) { scale_ = u == unit_system::inch ? 25.4 : 1.0; }
@@ -62,10 +62,10 @@ class channel_writer {
   void check_side(double x_nc, double x_cl, int line);
   /// The last word written on one axis, for modal suppression.
   struct axis_memory {
-    bool known = false;   ///< false after a tool change or home: the next word is written
-    std::int64_t n = 0;   ///< the word's value in the last decimal place (12.346 -> 12346)
-    double value = 0;     ///< the value it was rounded from
-    std::int64_t max = 0; ///< the largest count the control's format reads for this axis
+    bool known = false;    ///< false after a tool change or home: the next word is written
+    std::int64_t n = 0;    ///< the word's value in the last decimal place (12.346 -> 12346)
+    double value = 0;      ///< the value it was rounded from
+    std::int64_t max = 0;  ///< the largest count the control's format reads for this axis
   };
   /// Appends " X12.5" to `out` unless `last` already holds that word (modal suppression)
   /// and `always` is off; returns whether it wrote the word.
@@ -88,29 +88,29 @@ class channel_writer {
   std::string cl_file_;
   block_writer out_;
   number_style axis_style_;
-  double scale_ = 1.0;        // CL units -> mm
-  double x_factor_ = 2.0;     // diameter (2) or radius (1), negative when mirrored
-  double side_ = 1.0;         // -1 while a HEAD/BOTH copy runs on the opposite side
-  bool x_mirror_ = false;     // the channel's X axis is mirrored (a lower turret)
-  bool x_diameter_ = false;   // and programmed in diameter (a lathe's)
+  double scale_ = 1.0;       // CL units -> mm
+  double x_factor_ = 2.0;    // diameter (2) or radius (1), negative when mirrored
+  double side_ = 1.0;        // -1 while a HEAD/BOTH copy runs on the opposite side
+  bool x_mirror_ = false;    // the channel's X axis is mirrored (a lower turret)
+  bool x_diameter_ = false;  // and programmed in diameter (a lathe's)
   bool has_y_ = false;
   const spindle_def* spindle_ = nullptr;
-  int motion_g_ = -1;         // last G0/G1/G2/G3
-  int plane_ = 18;            // G17/G18/G19 in force (lathe headers set G18)
+  int motion_g_ = -1;                     // last G0/G1/G2/G3
+  int plane_ = 18;                        // G17/G18/G19 in force (lathe headers set G18)
   axis_memory last_x_, last_y_, last_z_;  // axis words written last
-  std::string feed_g_;        // G99/G98 (G95/G94) in force
+  std::string feed_g_;                    // G99/G98 (G95/G94) in force
   std::string last_f_;
-  text_buffer arc_;           // the block being built, reused (arcs; moves are built in place)
+  text_buffer arc_;  // the block being built, reused (arcs; moves are built in place)
   std::size_t word_start_ = std::string::npos;  // where a block built in place begins
-  std::string feed_text_;     // feed_value_ formatted, for the mode in feed_text_per_rev_
+  std::string feed_text_;                       // feed_value_ formatted, for the mode in feed_text_per_rev_
   double feed_text_value_ = -1;
   bool feed_text_per_rev_ = false;
-  bool per_rev_ = false;      // feed mode of the last FEDRAT
+  bool per_rev_ = false;  // feed mode of the last FEDRAT
   double feed_value_ = 0;
-  std::string pending_g_;     // G40/G41/G42 waiting for the next move
+  std::string pending_g_;  // G40/G41/G42 waiting for the next move
   std::optional<cycle_event> cycle_;
-  vec3 pos_;                  // last CL point of this channel
-  vec3 axis_{0, 0, 1};        // tool axis, from GOTO i,j,k or TLAXIS
+  vec3 pos_;                                 // last CL point of this channel
+  vec3 axis_{0, 0, 1};                       // tool axis, from GOTO i,j,k or TLAXIS
   std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning
   std::string coolant_block_;                ///< the coolant-on block in force, "" when off
   int tool_ = -1;

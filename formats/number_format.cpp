@@ -10,8 +10,7 @@ namespace twinpost {
 namespace {
 
 constexpr double pow10[] = {1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
-constexpr std::int64_t ipow10[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000,
-                                   100000000, 1000000000};
+constexpr std::int64_t ipow10[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
 
 // "00" .. "99": two digits per division.
 constexpr char two_digits[] =
@@ -111,10 +110,10 @@ char* write_fixed_general(char* out, std::int64_t n, const number_style& style) 
 // digit in the low byte), computed in registers: splitting 4-4, 2-2, 1-1 lane by lane.
 std::uint64_t eight_digits(std::uint32_t v) {
   std::uint64_t x = (v / 10000) | (static_cast<std::uint64_t>(v % 10000) << 32);  // 4 + 4
-  std::uint64_t hundreds = ((x * 5243) >> 19) & 0x0000007F0000007FULL;              // y / 100, y < 10^4
-  x = hundreds | ((x - hundreds * 100) << 16);                                      // 2 + 2 per half
-  std::uint64_t tens = ((x * 103) >> 10) & 0x000F000F000F000FULL;                   // y / 10, y < 100
-  x = tens | ((x - tens * 10) << 8);                                                // 1 + 1
+  std::uint64_t hundreds = ((x * 5243) >> 19) & 0x0000007F0000007FULL;            // y / 100, y < 10^4
+  x = hundreds | ((x - hundreds * 100) << 16);                                    // 2 + 2 per half
+  std::uint64_t tens = ((x * 103) >> 10) & 0x000F000F000F000FULL;                 // y / 10, y < 100
+  x = tens | ((x - tens * 10) << 8);                                              // 1 + 1
   return x | 0x3030303030303030ULL;
 }
 
@@ -125,8 +124,8 @@ void store8(char* p, std::uint64_t w) {
 
 // Decimal digits of 0 < v < 10^8 (1 for 0), without a branch.
 int digit_count(std::uint32_t v) {
-  return 1 + (v >= 10) + (v >= 100) + (v >= 1000) + (v >= 10000) + (v >= 100000) +
-         (v >= 1000000) + (v >= 10000000);
+  return 1 + (v >= 10) + (v >= 100) + (v >= 1000) + (v >= 10000) + (v >= 100000) + (v >= 1000000) +
+         (v >= 10000000);
 }
 
 // D decimals, whole part below 10^8 (every coordinate a machine has), written straight into

@@ -29,8 +29,8 @@ void add_line(std::string& out, std::string_view s) {
 void put(std::FILE* f, std::string_view s) { std::fwrite(s.data(), 1, s.size(), f); }
 
 [[noreturn]] void write_failed(const frame_request& r, const std::string& name, int err) {
-  throw config_error(fmt::format("cannot write '{}': {}",
-                                 (std::filesystem::path(r.out_dir) / name).string(), std::strerror(err)));
+  throw config_error(fmt::format("cannot write '{}': {}", (std::filesystem::path(r.out_dir) / name).string(),
+                                 std::strerror(err)));
 }
 
 // Copies `from` (from byte `skip` on) into the program `name` in large pieces: it may be far
@@ -84,7 +84,8 @@ std::string channel_opening(const frame_request& r, const channel_def& ch) {
   std::string s;
   // Appended programs follow the machine's own marker (Mazak G109 L1); sections are `$n`.
   if (merged(r))
-    add_line(s, format_template(r.layout == layout_kind::merged_sections ? "${channel}" : m.program.section_marker, a));
+    add_line(s, format_template(
+                    r.layout == layout_kind::merged_sections ? "${channel}" : m.program.section_marker, a));
   for (const std::string& h : m.program.header) add_line(s, format_template(h, a));
   return s;
 }
@@ -148,8 +149,7 @@ std::vector<framed_file> finish_frames(const frame_request& r, const std::vector
       put(f.get(), head);
       copy_file(r, name, f.get(), path, static_cast<long>(written.size()));
       close_or_throw(r, name, f);
-      if (std::rename(renamed.c_str(), path.c_str()) != 0)
-        write_failed(r, name, errno);
+      if (std::rename(renamed.c_str(), path.c_str()) != 0) write_failed(r, name, errno);
     }
     out.push_back({name, path, ch.number});
   }

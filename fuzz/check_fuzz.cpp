@@ -39,7 +39,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int form = (data[0] / static_cast<int>(all.size())) % 3;  // 0 split, 1 merged, 2 sections
   if (form == 2) m.program.section_marker = "${channel}";
   const std::string_view text(reinterpret_cast<const char*>(data) + 1, size - 1);
-  const std::vector<std::string> texts = form == 0 ? cut(text, m.channels.size()) : std::vector<std::string>{std::string(text)};
+  const std::vector<std::string> texts =
+      form == 0 ? cut(text, m.channels.size()) : std::vector<std::string>{std::string(text)};
   const std::string dir = fuzz::scratch_dir();
   std::vector<nc_source> in_memory, on_disk;
   for (std::size_t i = 0; i < texts.size(); ++i) {
@@ -59,7 +60,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fuzz::require(known, "an error names no input file: " + d.message);
     // A finding about a whole file (no block in it, no section markers) names the file
     // alone; any other has its line (docs/checker.md).
-    fuzz::require(d.line > 0 || (d.column == 0 && d.source_line.empty()), "an error without a line: " + d.message);
+    fuzz::require(d.line > 0 || (d.column == 0 && d.source_line.empty()),
+                  "an error without a line: " + d.message);
   }
   return 0;
 }

@@ -15,9 +15,9 @@
 #include <vector>
 
 #include "check/sync_check.hpp"
-#include "post/post_job.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "machines/layout_rules.hpp"
+#include "post/post_job.hpp"
 #include "support/ascii.hpp"
 #include "support/errors.hpp"
 
@@ -51,8 +51,10 @@ bool words_readable(const std::string& text) {
     if (comment) continue;
     digits = ascii::is_digit(c) ? digits + 1 : (c == '.' ? digits : 0);
     if (digits > 10) return false;
-    if ((c == 'i' || c == 'I') && (text.compare(i, 3, "inf") == 0 || text.compare(i, 3, "INF") == 0)) return false;
-    if ((c == 'n' || c == 'N') && (text.compare(i, 3, "nan") == 0 || text.compare(i, 3, "NAN") == 0)) return false;
+    if ((c == 'i' || c == 'I') && (text.compare(i, 3, "inf") == 0 || text.compare(i, 3, "INF") == 0))
+      return false;
+    if ((c == 'n' || c == 'N') && (text.compare(i, 3, "nan") == 0 || text.compare(i, 3, "NAN") == 0))
+      return false;
   }
   return true;
 }
@@ -87,7 +89,8 @@ outcome post_once(const std::string& job, const std::string& out, const machine&
   fuzz::require(!r.files.empty(), "a post that succeeded wrote no file");
   std::vector<std::string> sorted = r.files;
   std::sort(sorted.begin(), sorted.end());
-  fuzz::require(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(), "two programs written to one path");
+  fuzz::require(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end(),
+                "two programs written to one path");
   std::size_t entries = 0;
   for (auto it = fs::directory_iterator(out, ec); !ec && it != fs::directory_iterator(); ++it) ++entries;
   fuzz::require(entries == r.files.size(), "the output folder holds other files than the ones reported");
@@ -124,6 +127,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const outcome first = post_once(job, dir + "/out", m, layout, has_insert);
   if (!first.ok) return 0;
   const outcome second = post_once(job, dir + "/again", m, layout, has_insert);
-  fuzz::require(second.ok && second.contents == first.contents, "the same job posted twice gave different bytes");
+  fuzz::require(second.ok && second.contents == first.contents,
+                "the same job posted twice gave different bytes");
   return 0;
 }

@@ -21,32 +21,32 @@ enum class partner_style {
 
 /// Rules for wait codes (Fanuc waiting M-codes, Mazak M950-M997, ...).
 struct wait_rules {
-  char address = 'M';            ///< the address letter of the wait code
-  int first = 0;                 ///< lowest code of the range
-  int last = 0;                  ///< highest code of the range
-  int step = 1;                  ///< distance between allocated codes
-  std::vector<int> excluded;     ///< codes inside the range that mean something else
-  bool reuse = false;            ///< when the range is used up, start again at `first`
+  char address = 'M';         ///< the address letter of the wait code
+  int first = 0;              ///< lowest code of the range
+  int last = 0;               ///< highest code of the range
+  int step = 1;               ///< distance between allocated codes
+  std::vector<int> excluded;  ///< codes inside the range that mean something else
+  bool reuse = false;         ///< when the range is used up, start again at `first`
   partner_style partners = partner_style::none;
-  char partner_address = 'P';    ///< address of the partner list
+  char partner_address = 'P';  ///< address of the partner list
   /// True when `code` lies in the range, on the step grid, and is not excluded.
   bool is_wait_code(int code) const;
 };
 
 /// A spindle of the machine (main, sub, live tool).
 struct spindle_def {
-  std::string name;                ///< "main", "sub", "live"
-  int cw = 3, ccw = 4, stop = 5;   ///< M-codes
-  std::optional<int> select;       ///< M-code that selects this spindle (Mazak M901/M902)
-  std::string clamp;               ///< max-speed clamp block, e.g. "G50 S{max}" or "G92 S{max} R1"
-  double max_rpm = 0;              ///< machine limit; 0 = none
+  std::string name;               ///< "main", "sub", "live"
+  int cw = 3, ccw = 4, stop = 5;  ///< M-codes
+  std::optional<int> select;      ///< M-code that selects this spindle (Mazak M901/M902)
+  std::string clamp;              ///< max-speed clamp block, e.g. "G50 S{max}" or "G92 S{max} R1"
+  double max_rpm = 0;             ///< machine limit; 0 = none
 };
 
 /// An axis of a channel.
 struct axis_def {
   char address = 'X';
-  bool diameter = false;   ///< X programmed as a diameter (lathe)
-  bool mirror = false;     ///< sign inverted against the CL (a lower turret)
+  bool diameter = false;  ///< X programmed as a diameter (lathe)
+  bool mirror = false;    ///< sign inverted against the CL (a lower turret)
   /// Travel limits in the units the axis is programmed in, if known. The post does not
   /// check them yet (they are machine coordinates, programs are in work coordinates); the
   /// rs274 oracle (tests/oracle) holds every written X to the X travel.
@@ -55,15 +55,15 @@ struct axis_def {
 
 /// A channel (Fanuc path, Mazak head, Citizen system): one program stream.
 struct channel_def {
-  int number = 1;                  ///< 1-based channel number
-  std::vector<int> heads;          ///< CL HEAD numbers served by this channel (HEAD/1 -> 1)
+  int number = 1;                       ///< 1-based channel number
+  std::vector<int> heads;               ///< CL HEAD numbers served by this channel (HEAD/1 -> 1)
   std::vector<std::string> head_names;  ///< CL head words served (MAIN, SIDE)
   /// Tool call format, e.g. "T{tool:02}{offset:02}" or "T{tool} M6"; the file's channel
   /// `kind` (turret or mill_head) only chooses its default.
   std::string tool_call;
-  std::string spindle = "main";    ///< the spindle this channel works on at start
-  std::vector<axis_def> axes;      ///< at least X and Z
-  std::string file_suffix;         ///< for split layout, e.g. "_1" or ".P-2"
+  std::string spindle = "main";  ///< the spindle this channel works on at start
+  std::vector<axis_def> axes;    ///< at least X and Z
+  std::string file_suffix;       ///< for split layout, e.g. "_1" or ".P-2"
   /// The axis with this address, or nullptr.
   const axis_def* axis(char address) const;
 };
@@ -73,23 +73,23 @@ enum class layout_kind { split, merged_appended, merged_sections };
 
 /// Output program format: numbers, blocks, comments, program frame.
 struct program_format {
-  std::string extension = ".nc";    ///< output file extension
-  std::string file_name = "{name}"; ///< base name; {name} = sanitized PARTNO, {program} = number
-  int program_number = 1000;        ///< O-number used when the job gives none
+  std::string extension = ".nc";     ///< output file extension
+  std::string file_name = "{name}";  ///< base name; {name} = sanitized PARTNO, {program} = number
+  int program_number = 1000;         ///< O-number used when the job gives none
   std::string program_line = "O{program:04} ({name})";  ///< first block of a program
-  std::vector<std::string> header;  ///< blocks after the program line
-  std::vector<std::string> footer;  ///< blocks before the end code
-  std::string end_code = "M30";     ///< last block of each channel's program
-  bool percent_lines = true;        ///< '%' at the start and end of a file
-  std::string section_marker;       ///< merged layouts: "G109 L{channel}" or "${channel}"
-  int sequence_start = 0;           ///< 0 = no N numbers
+  std::vector<std::string> header;                      ///< blocks after the program line
+  std::vector<std::string> footer;                      ///< blocks before the end code
+  std::string end_code = "M30";                         ///< last block of each channel's program
+  bool percent_lines = true;                            ///< '%' at the start and end of a file
+  std::string section_marker;                           ///< merged layouts: "G109 L{channel}" or "${channel}"
+  int sequence_start = 0;                               ///< 0 = no N numbers
   int sequence_step = 10;
   char comment_open = '(';
   char comment_close = ')';
-  int comment_max = 0;              ///< longest comment text; 0 = unlimited
-  int decimals_metric = 3;          ///< decimals of linear axes (output is always metric)
-  bool trailing_point = true;       ///< "X10." for whole numbers (false: "X10")
-  bool arcs_ijk = true;             ///< G2/G3 with I/K (false: R)
+  int comment_max = 0;         ///< longest comment text; 0 = unlimited
+  int decimals_metric = 3;     ///< decimals of linear axes (output is always metric)
+  bool trailing_point = true;  ///< "X10." for whole numbers (false: "X10")
+  bool arcs_ijk = true;        ///< G2/G3 with I/K (false: R)
 };
 
 /// The control's codes for lathe output.
@@ -99,7 +99,7 @@ struct control_codes {
   std::string feed_per_rev = "G99";
   std::string feed_per_min = "G98";
   std::string home = "G28 U0 W0";
-  std::string dwell = "G4 U{seconds}";   ///< dwell block
+  std::string dwell = "G4 U{seconds}";  ///< dwell block
   std::string program_stop = "M0";      ///< CL STOP
   std::string optional_stop = "M1";     ///< CL OPSTOP
   std::vector<std::string> coolant_on = {"M8"};
@@ -118,16 +118,16 @@ struct motion_limits {
 
 /// One machine and its control.
 struct machine {
-  std::string name;                  ///< "integrex-i200st"
+  std::string name;  ///< "integrex-i200st"
   std::string description;
-  std::string control;               ///< "mazak-smoothx", "fanuc-0i-td", ...
-  std::string source;                ///< file the definition came from (for messages)
-  std::vector<channel_def> channels; ///< ordered by number
+  std::string control;                ///< "mazak-smoothx", "fanuc-0i-td", ...
+  std::string source;                 ///< file the definition came from (for messages)
+  std::vector<channel_def> channels;  ///< ordered by number
   std::vector<spindle_def> spindles;
   wait_rules waits;
   layout_kind layout = layout_kind::split;
   program_format program;
-  word_formats formats;              ///< digits per address ([format]; defaults per control)
+  word_formats formats;  ///< digits per address ([format]; defaults per control)
   control_codes codes;
   motion_limits limits;
 

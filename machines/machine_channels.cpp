@@ -29,25 +29,22 @@ axis_def read_axis(const table_reader& r) {
   r.read("min", a.min);
   r.read("max", a.max);
   if (a.min && a.max && *a.min > *a.max)
-    r.fail(*r.find("min"), fmt::format("channel.axis.min ({}) must be <= channel.axis.max ({})",
-                                       *a.min, *a.max));
+    r.fail(*r.find("min"),
+           fmt::format("channel.axis.min ({}) must be <= channel.axis.max ({})", *a.min, *a.max));
   return a;
 }
 
 void read_axes(const table_reader& r, channel_def& c) {
   for (const toml::table* t : r.tables("axis")) {
-    table_reader ar(*t, "channel.axis", r.source(),
-                    {"address", "diameter", "mirror", "min", "max"});
+    table_reader ar(*t, "channel.axis", r.source(), {"address", "diameter", "mirror", "min", "max"});
     axis_def a = read_axis(ar);
     if (c.axis(a.address))
-      ar.fail(*ar.find("address"),
-              fmt::format("channel {} has axis {} twice", c.number, a.address));
+      ar.fail(*ar.find("address"), fmt::format("channel {} has axis {} twice", c.number, a.address));
     c.axes.push_back(a);
   }
   for (char required : {'X', 'Z'})
     if (!c.axis(required))
-      r.fail_here(fmt::format("channel {} has no axis {} (X and Z are required)", c.number,
-                              required));
+      r.fail_here(fmt::format("channel {} has no axis {} (X and Z are required)", c.number, required));
 }
 
 channel_def read_channel_table(const table_reader& r, const machine& m) {
@@ -58,31 +55,26 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
     const toml::array& nodes = *r.find("heads")->as_array();
     for (std::size_t i = 0; i < c.heads.size(); ++i)
       if (c.heads[i] < 1)
-        r.fail(*nodes.get(i), fmt::format("channel.heads must hold numbers >= 1, not {}",
-                                          c.heads[i]));
+        r.fail(*nodes.get(i), fmt::format("channel.heads must hold numbers >= 1, not {}", c.heads[i]));
   }
   if (r.read("head_names", c.head_names)) {
     const toml::array& nodes = *r.find("head_names")->as_array();
     for (std::size_t i = 0; i < c.head_names.size(); ++i)
-      if (c.head_names[i].empty())
-        r.fail(*nodes.get(i), "channel.head_names must not hold an empty name");
+      if (c.head_names[i].empty()) r.fail(*nodes.get(i), "channel.head_names must not hold an empty name");
   }
   std::string kind = "turret";
   if (r.read("kind", kind) && kind != "turret" && kind != "mill_head")
-    r.fail(*r.find("kind"), fmt::format("channel.kind must be turret or mill_head, not '{}'",
-                                        kind));
+    r.fail(*r.find("kind"), fmt::format("channel.kind must be turret or mill_head, not '{}'", kind));
   // A lathe turret calls tool and offset together (T0505); a mill head changes tools (M6).
   if (!r.read_template("tool_call", c.tool_call, template_uses::tool_call))
     c.tool_call = kind == "turret" ? "T{tool:02}{offset:02}" : "T{tool:02} M6";
   const bool spindle_given = r.read("spindle", c.spindle);
   if (!m.spindles.empty() && !m.spindle(c.spindle)) {
-    const std::string message =
-        fmt::format("channel.spindle '{}' names no [[spindle]]", c.spindle);
+    const std::string message = fmt::format("channel.spindle '{}' names no [[spindle]]", c.spindle);
     if (spindle_given) r.fail(*r.find("spindle"), message);
     r.fail_here(message);
   }
-  if (r.read("file_suffix", c.file_suffix) &&
-      c.file_suffix.find_first_of("/\\") != std::string::npos)
+  if (r.read("file_suffix", c.file_suffix) && c.file_suffix.find_first_of("/\\") != std::string::npos)
     r.fail(*r.find("file_suffix"), "channel.file_suffix must not contain a path separator");
   read_axes(r, c);
   return c;
@@ -96,24 +88,21 @@ void check_numbers_and_heads(const std::vector<read_channel>& all) {
     const table_reader& r = *all[i].reader;
     if (c.number < 1 || c.number > n)
       r.fail(*r.find("number"),
-             fmt::format("channel number {} is outside 1..{} (the number of channels)",
-                         c.number, n));
+             fmt::format("channel number {} is outside 1..{} (the number of channels)", c.number, n));
     for (std::size_t j = 0; j < i; ++j) {
       const channel_def& earlier = all[j].def;
       if (earlier.number == c.number)
         r.fail(*r.find("number"), fmt::format("duplicate channel number {}", c.number));
       for (std::size_t h = 0; h < c.heads.size(); ++h)
-        if (std::find(earlier.heads.begin(), earlier.heads.end(), c.heads[h]) !=
-            earlier.heads.end())
-          r.fail(*r.find("heads")->as_array()->get(h),
-                 fmt::format("head {} is served by channels {} and {}", c.heads[h],
-                             earlier.number, c.number));
+        if (std::find(earlier.heads.begin(), earlier.heads.end(), c.heads[h]) != earlier.heads.end())
+          r.fail(*r.find("heads")->as_array()->get(h), fmt::format("head {} is served by channels {} and {}",
+                                                                   c.heads[h], earlier.number, c.number));
       for (std::size_t h = 0; h < c.head_names.size(); ++h)
         for (const std::string& word : earlier.head_names)  // matched without case, as heads are
           if (ascii::iequals(word, c.head_names[h]))
             r.fail(*r.find("head_names")->as_array()->get(h),
-                   fmt::format("head {} is served by channels {} and {}", c.head_names[h],
-                               earlier.number, c.number));
+                   fmt::format("head {} is served by channels {} and {}", c.head_names[h], earlier.number,
+                               c.number));
     }
   }
 }
@@ -125,18 +114,17 @@ void read_channels(const table_reader& root, machine& m) {
   if (tables.empty()) root.fail_here("at least one [[channel]] is required");
   // The checker and binary partner lists hold a set of channels in 64 bits.
   if (tables.size() > max_channels)
-    root.fail(*tables[max_channels],
-              fmt::format("[[channel]] {} of {}: a machine has at most {} channels",
-                          max_channels + 1, tables.size(), max_channels));
+    root.fail(*tables[max_channels], fmt::format("[[channel]] {} of {}: a machine has at most {} channels",
+                                                 max_channels + 1, tables.size(), max_channels));
   // Readers are kept alive for the checks across channels, which report at their nodes.
   std::vector<table_reader> readers;
   readers.reserve(tables.size());
   std::vector<read_channel> all;
   for (const toml::table* t : tables) {
-    readers.emplace_back(*t, "channel", root.source(),
-                         std::initializer_list<std::string_view>{
-                             "number", "heads", "head_names", "kind", "tool_call",
-                             "spindle", "file_suffix", "axis"});
+    readers.emplace_back(
+        *t, "channel", root.source(),
+        std::initializer_list<std::string_view>{"number", "heads", "head_names", "kind", "tool_call",
+                                                "spindle", "file_suffix", "axis"});
     all.push_back({read_channel_table(readers.back(), m), &readers.back()});
   }
   check_numbers_and_heads(all);

@@ -24,12 +24,12 @@ using detail::table_reader;
 
 // Nodes that the checks across tables report at.
 struct anchors {
-  const toml::node* layout = nullptr;     // machine.layout, when given
-  const toml::table* program = nullptr;   // [program], when given
-  const toml::table* waits = nullptr;     // [waits]
-  const toml::node* partners = nullptr;   // waits.partners, when given
+  const toml::node* layout = nullptr;          // machine.layout, when given
+  const toml::table* program = nullptr;        // [program], when given
+  const toml::table* waits = nullptr;          // [waits]
+  const toml::node* partners = nullptr;        // waits.partners, when given
   const toml::node* program_number = nullptr;  // program.program_number, when given
-  const toml::table* format = nullptr;    // [format], when given
+  const toml::table* format = nullptr;         // [format], when given
 };
 
 // Reads `key` as one of three names; anything else fails with "T.key must be a, b or c".
@@ -69,8 +69,7 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
   if (!t) root.fail_here("waits.first is required");
   at.waits = t;
   table_reader r(*t, "waits", root.source(),
-                 {"address", "first", "last", "step", "excluded", "reuse", "partners",
-                  "partner_address"});
+                 {"address", "first", "last", "step", "excluded", "reuse", "partners", "partner_address"});
   r.read_char("address", w.address, true);
   r.require("first");
   r.require("last");
@@ -85,8 +84,7 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
                                        "not {}",
                                        key, max_wait_code, key == "first" ? w.first : w.last));
   if (w.first > w.last)
-    r.fail(*r.find("first"), fmt::format("waits.first ({}) must be <= waits.last ({})",
-                                         w.first, w.last));
+    r.fail(*r.find("first"), fmt::format("waits.first ({}) must be <= waits.last ({})", w.first, w.last));
   if (r.read("step", w.step) && w.step < 1)
     r.fail(*r.find("step"), fmt::format("waits.step must be >= 1, not {}", w.step));
   if (w.step > max_wait_code)
@@ -116,8 +114,7 @@ void check_file_part(const table_reader& r, std::string_view key, const std::str
 }
 
 void check_min(const table_reader& r, std::string_view key, int value, int min) {
-  if (value < min)
-    r.fail(*r.find(key), fmt::format("{} must be >= {}, not {}", r.key_path(key), min, value));
+  if (value < min) r.fail(*r.find(key), fmt::format("{} must be >= {}, not {}", r.key_path(key), min, value));
 }
 
 void read_program(const table_reader& root, program_format& p, anchors& at) {
@@ -125,10 +122,9 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   if (!t) return;
   at.program = t;
   table_reader r(*t, "program", root.source(),
-                 {"extension", "file_name", "program_number", "program_line", "header",
-                  "footer", "end_code", "percent_lines", "section_marker", "sequence_start",
-                  "sequence_step", "comment_open", "comment_close", "comment_max",
-                  "decimals_metric", "trailing_point", "arcs_ijk"});
+                 {"extension", "file_name", "program_number", "program_line", "header", "footer", "end_code",
+                  "percent_lines", "section_marker", "sequence_start", "sequence_step", "comment_open",
+                  "comment_close", "comment_max", "decimals_metric", "trailing_point", "arcs_ijk"});
   if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
   r.read_template("file_name", p.file_name, template_uses::file);
   if (r.read("program_number", p.program_number)) at.program_number = r.find("program_number");
@@ -143,8 +139,7 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   r.read_char("comment_open", p.comment_open, false);
   r.read_char("comment_close", p.comment_close, false);
   if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
-  if (r.read("decimals_metric", p.decimals_metric) &&
-      (p.decimals_metric < 0 || p.decimals_metric > 6))
+  if (r.read("decimals_metric", p.decimals_metric) && (p.decimals_metric < 0 || p.decimals_metric > 6))
     r.fail(*r.find("decimals_metric"),
            fmt::format("program.decimals_metric must be in 0..6, not {}", p.decimals_metric));
   r.read("trailing_point", p.trailing_point);
@@ -157,8 +152,8 @@ void read_formats(const table_reader& root, word_formats& f, anchors& at) {
   if (!t) return;
   at.format = t;
   table_reader r(*t, "format", root.source(),
-                 {"A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M", "N", "O", "P", "Q",
-                  "R", "S", "T", "U", "V", "W", "X", "Y", "Z"});
+                 {"A", "B", "C", "D", "E", "F", "G", "H", "I", "J", "K", "L", "M",
+                  "N", "O", "P", "Q", "R", "S", "T", "U", "V", "W", "X", "Y", "Z"});
   for (char a = 'A'; a <= 'Z'; ++a) {
     const std::string key(1, a);
     const toml::node* n = r.find(key);
@@ -183,8 +178,8 @@ void read_codes(const table_reader& root, control_codes& c) {
   const toml::table* t = root.sub_table("codes");
   if (!t) return;
   table_reader r(*t, "codes", root.source(),
-                 {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on",
-                  "coolant_off", "balance_on", "balance_off", "program_stop", "optional_stop"});
+                 {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on", "coolant_off",
+                  "balance_on", "balance_off", "program_stop", "optional_stop"});
   r.read_fixed("css", c.css);
   r.read_fixed("rpm", c.rpm);
   r.read_fixed("feed_per_rev", c.feed_per_rev);
@@ -201,8 +196,7 @@ void read_codes(const table_reader& root, control_codes& c) {
 
 void read_positive(const table_reader& r, std::string_view key, double& out, bool zero_ok) {
   if (r.read(key, out) && (out < 0 || (!zero_ok && out == 0)))
-    r.fail(*r.find(key), fmt::format("{} must be {} 0, not {}", r.key_path(key),
-                                     zero_ok ? ">=" : ">", out));
+    r.fail(*r.find(key), fmt::format("{} must be {} 0, not {}", r.key_path(key), zero_ok ? ">=" : ">", out));
 }
 
 void read_limits(const table_reader& root, motion_limits& l) {
@@ -214,14 +208,12 @@ void read_limits(const table_reader& root, motion_limits& l) {
 
 void read_spindles(const table_reader& root, const wait_rules& waits, std::vector<spindle_def>& out) {
   for (const toml::table* t : root.tables("spindle")) {
-    table_reader r(*t, "spindle", root.source(),
-                   {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm"});
+    table_reader r(*t, "spindle", root.source(), {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm"});
     spindle_def s;
     r.require("name");
     r.read("name", s.name);
     for (const spindle_def& earlier : out)
-      if (earlier.name == s.name)
-        r.fail(*r.find("name"), fmt::format("duplicate spindle name '{}'", s.name));
+      if (earlier.name == s.name) r.fail(*r.find("name"), fmt::format("duplicate spindle name '{}'", s.name));
     r.read("cw", s.cw);
     r.read("ccw", s.ccw);
     r.read("stop", s.stop);
@@ -229,8 +221,10 @@ void read_spindles(const table_reader& root, const wait_rules& waits, std::vecto
     // A spindle M-code inside the wait range would be read as a wait by the control.
     if (waits.address == 'M') {
       for (const char* key : {"cw", "ccw", "stop", "select"}) {
-        int code = std::string_view(key) == "cw" ? s.cw : std::string_view(key) == "ccw" ? s.ccw
-                   : std::string_view(key) == "stop" ? s.stop : s.select.value_or(-1);
+        int code = std::string_view(key) == "cw"     ? s.cw
+                   : std::string_view(key) == "ccw"  ? s.ccw
+                   : std::string_view(key) == "stop" ? s.stop
+                                                     : s.select.value_or(-1);
         if (code >= 0 && waits.is_wait_code(code) && r.find(key))
           r.fail(*r.find(key), fmt::format("{} M{} is a wait code of this machine (waits M{}-M{})",
                                            r.key_path(key), code, waits.first, waits.last));
@@ -254,7 +248,8 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
       const std::string message =
           fmt::format("format.{} ({}) has fewer decimals than program.decimals_metric ({})", a, f.text(),
                       m.program.decimals_metric);
-      if (at.format && at.format->get(std::string(1, a))) root.fail(*at.format->get(std::string(1, a)), message);
+      if (at.format && at.format->get(std::string(1, a)))
+        root.fail(*at.format->get(std::string(1, a)), message);
       if (at.format) root.fail(*at.format, message);
       root.fail(*at.program, message);
     }
@@ -270,14 +265,12 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
   }
   // Path numbers are single digits (P12, P123): channel 10 cannot be named.
   if (m.channels.size() >= 10 && m.waits.partners == partner_style::path_numbers)
-    root.fail(*at.partners,
-              fmt::format("waits.partners = path_numbers names channels by one digit each "
-                          "(P12): a machine with {} channels needs binary",
-                          m.channels.size()));
+    root.fail(*at.partners, fmt::format("waits.partners = path_numbers names channels by one digit each "
+                                        "(P12): a machine with {} channels needs binary",
+                                        m.channels.size()));
   if (m.channels.size() >= 3 && m.waits.partners == partner_style::none) {
     const std::string message = fmt::format(
-        "waits.partners must be path_numbers or binary on a machine with {} channels",
-        m.channels.size());
+        "waits.partners must be path_numbers or binary on a machine with {} channels", m.channels.size());
     if (at.partners) root.fail(*at.partners, message);
     root.fail(*at.waits, message);
   }

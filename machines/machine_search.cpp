@@ -13,9 +13,7 @@ namespace twinpost {
 
 namespace {
 
-bool is_path(std::string_view s) {
-  return s.find('/') != std::string_view::npos || s.ends_with(".toml");
-}
+bool is_path(std::string_view s) { return s.find('/') != std::string_view::npos || s.ends_with(".toml"); }
 
 // The text of a regular file, or nothing (a directory opens as a stream on Linux and reads
 // as empty: it is no machine file).
@@ -60,8 +58,8 @@ located_machine find_machine(std::string_view name_or_path, const std::vector<st
     return {std::move(m), "built-in", std::string(*text)};
   }
   if (std::optional<std::string> text = read_regular_file(arg)) return from_file(arg, std::move(*text));
-  throw config_error(fmt::format("unknown machine '{}': {}no built-in machine and no file of that name",
-                                 arg, looked.empty() ? "" : fmt::format("not in {}; ", looked)));
+  throw config_error(fmt::format("unknown machine '{}': {}no built-in machine and no file of that name", arg,
+                                 looked.empty() ? "" : fmt::format("not in {}; ", looked)));
 }
 
 }  // namespace twinpost

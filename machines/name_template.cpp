@@ -77,9 +77,8 @@ std::string unknown_placeholder(std::string_view tpl, placeholder_set known) {
 std::string format_template(std::string_view tpl, const template_args& a) {
   reject_positional(tpl);
   return fmt::format(fmt::runtime(tpl), fmt::arg("program", a.program), fmt::arg("name", a.name),
-                     fmt::arg("channel", a.channel), fmt::arg("max", a.max),
-                     fmt::arg("tool", a.tool), fmt::arg("offset", a.offset),
-                     fmt::arg("seconds", a.seconds), fmt::arg("ms", a.ms),
+                     fmt::arg("channel", a.channel), fmt::arg("max", a.max), fmt::arg("tool", a.tool),
+                     fmt::arg("offset", a.offset), fmt::arg("seconds", a.seconds), fmt::arg("ms", a.ms),
                      fmt::arg("rpm", a.rpm));
 }
 

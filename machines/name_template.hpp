@@ -14,15 +14,15 @@ namespace twinpost {
 /// exactly the members of the template's placeholder set (template_uses below) from real
 /// values; the others keep these defaults, which no valid template can reach.
 struct template_args {
-  int program = 0;       ///< program (O) number
-  std::string name;      ///< program name (sanitized PARTNO)
-  int channel = 0;       ///< channel number
-  double max = 0;        ///< spindle speed clamp
-  int tool = 0;          ///< tool number
-  int offset = 0;        ///< tool offset number
-  double seconds = 0;    ///< dwell time in seconds
-  int ms = 0;            ///< dwell time in milliseconds
-  double rpm = 0;        ///< spindle speed
+  int program = 0;     ///< program (O) number
+  std::string name;    ///< program name (sanitized PARTNO)
+  int channel = 0;     ///< channel number
+  double max = 0;      ///< spindle speed clamp
+  int tool = 0;        ///< tool number
+  int offset = 0;      ///< tool offset number
+  double seconds = 0;  ///< dwell time in seconds
+  int ms = 0;          ///< dwell time in milliseconds
+  double rpm = 0;      ///< spindle speed
 };
 
 /// One placeholder of template_args.

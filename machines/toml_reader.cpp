@@ -13,8 +13,7 @@
 
 namespace twinpost::detail {
 
-void fail_at(std::string_view source, const toml::source_region& where,
-             std::string_view message) {
+void fail_at(std::string_view source, const toml::source_region& where, std::string_view message) {
   throw config_error::at(source, where.begin.line, where.begin.column, message);
 }
 
@@ -44,8 +43,7 @@ table_reader::table_reader(const toml::table& t, std::string path, std::string_v
     if (std::find(known.begin(), known.end(), k.str()) != known.end()) continue;
     const auto& b = k.source().begin;
     if (!first_unknown || b.line < first_unknown->source().begin.line ||
-        (b.line == first_unknown->source().begin.line &&
-         b.column < first_unknown->source().begin.column))
+        (b.line == first_unknown->source().begin.line && b.column < first_unknown->source().begin.column))
       first_unknown = &k;
   }
   if (first_unknown)
@@ -63,16 +61,13 @@ void table_reader::fail(const toml::node& n, std::string_view message) const {
   fail_at(source_, n.source(), message);
 }
 
-void table_reader::fail_here(std::string_view message) const {
-  fail_at(source_, table_.source(), message);
-}
+void table_reader::fail_here(std::string_view message) const { fail_at(source_, table_.source(), message); }
 
 void table_reader::require(std::string_view key) const {
   if (!find(key)) fail_here(fmt::format("{} is required", key_path(key)));
 }
 
-void table_reader::wrong_type(std::string_view key, const toml::node& n,
-                              std::string_view wanted) const {
+void table_reader::wrong_type(std::string_view key, const toml::node& n, std::string_view wanted) const {
   fail(n, fmt::format("{} must be {}, not {}", key_path(key), wanted, type_phrase(n.type())));
 }
 
@@ -144,8 +139,7 @@ bool table_reader::read(std::string_view key, std::vector<int>& out) const {
   out.clear();
   for (const toml::node& e : *a) {
     if (!e.is_integer())
-      fail(e, fmt::format("{} must hold only integers, not {}", key_path(key),
-                          type_phrase(e.type())));
+      fail(e, fmt::format("{} must hold only integers, not {}", key_path(key), type_phrase(e.type())));
     out.push_back(to_int(key, e));
   }
   return true;
@@ -159,9 +153,7 @@ bool table_reader::read(std::string_view key, std::vector<std::string>& out) con
   out.clear();
   for (const toml::node& e : *a) {
     const auto* s = e.as_string();
-    if (!s)
-      fail(e, fmt::format("{} must hold only strings, not {}", key_path(key),
-                          type_phrase(e.type())));
+    if (!s) fail(e, fmt::format("{} must hold only strings, not {}", key_path(key), type_phrase(e.type())));
     out.push_back(s->get());
   }
   return true;
@@ -184,14 +176,20 @@ namespace {
 // is an error there and not in the middle of a post. Load time only: real output is made
 // from real values (formats/), never from these.
 template_args sample_template_args() {
-  return {.program = 1000, .name = "PART", .channel = 1, .max = 3000, .tool = 1, .offset = 1,
-          .seconds = 1.5, .ms = 1500, .rpm = 1000};
+  return {.program = 1000,
+          .name = "PART",
+          .channel = 1,
+          .max = 3000,
+          .tool = 1,
+          .offset = 1,
+          .seconds = 1.5,
+          .ms = 1500,
+          .rpm = 1000};
 }
 
 }  // namespace
 
-void table_reader::check_template(std::string_view key, const toml::node& n,
-                                  placeholder_set known) const {
+void table_reader::check_template(std::string_view key, const toml::node& n, placeholder_set known) const {
   const std::string& tpl = n.as_string()->get();
   try {
     (void)format_template(tpl, sample_template_args());
@@ -206,8 +204,7 @@ void table_reader::check_template(std::string_view key, const toml::node& n,
                         key_path(key), tpl, name, known.text()));
 }
 
-bool table_reader::read_template(std::string_view key, std::string& out,
-                                 placeholder_set known) const {
+bool table_reader::read_template(std::string_view key, std::string& out, placeholder_set known) const {
   if (!read(key, out)) return false;
   check_template(key, *find(key), known);
   return true;
@@ -248,9 +245,7 @@ std::vector<const toml::table*> table_reader::tables(std::string_view key) const
   if (!a) wrong_type(key, *n, fmt::format("an array of tables ([[{}]])", key_path(key)));
   for (const toml::node& e : *a) {
     const auto* t = e.as_table();
-    if (!t)
-      fail(e, fmt::format("{} must hold only tables, not {}", key_path(key),
-                          type_phrase(e.type())));
+    if (!t) fail(e, fmt::format("{} must hold only tables, not {}", key_path(key), type_phrase(e.type())));
     out.push_back(t);
   }
   return out;

@@ -65,8 +65,7 @@ class table_reader {
   /// against the placeholders `known` where it is used (machines/name_template.hpp).
   bool read_template(std::string_view key, std::string& out, placeholder_set known) const;
   /// An array of format templates, each checked.
-  bool read_templates(std::string_view key, std::vector<std::string>& out,
-                      placeholder_set known) const;
+  bool read_templates(std::string_view key, std::vector<std::string>& out, placeholder_set known) const;
   /// A template that is given no placeholder (a fixed block such as codes.home), checked
   /// and stored formatted, so that `{{` is written as the `{` it means.
   bool read_fixed(std::string_view key, std::string& out) const;
@@ -78,8 +77,7 @@ class table_reader {
   std::vector<const toml::table*> tables(std::string_view key) const;
 
  private:
-  [[noreturn]] void wrong_type(std::string_view key, const toml::node& n,
-                               std::string_view wanted) const;
+  [[noreturn]] void wrong_type(std::string_view key, const toml::node& n, std::string_view wanted) const;
   int to_int(std::string_view key, const toml::node& n) const;
   void check_template(std::string_view key, const toml::node& n, placeholder_set known) const;
 

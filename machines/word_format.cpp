@@ -16,7 +16,6 @@ std::int64_t pow10(int n) {
   return p;
 }
 
-
 }  // namespace
 
 std::string word_format::text() const {
@@ -106,7 +105,8 @@ std::string check_block_words(std::string_view block, const word_formats& f, cha
     const bool starts_word = ascii::is_upper(c) && (i == 0 || !ascii::is_upper(block[i - 1]));
     // A word is a letter and a number (or what a number printed wrong looks like: "inf").
     const char next = i + 1 < block.size() ? block[i + 1] : ' ';
-    const bool numberish = ascii::is_digit(next) || next == '-' || next == '+' || next == '.' || ascii::is_lower(next);
+    const bool numberish =
+        ascii::is_digit(next) || next == '-' || next == '+' || next == '.' || ascii::is_lower(next);
     if (!starts_word || !numberish) {
       ++i;
       continue;

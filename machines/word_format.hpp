@@ -25,7 +25,9 @@ struct word_format {
 /// The formats of the addresses A..Z.
 struct word_formats {
   std::array<word_format, 26> by_address{};
-  const word_format& operator[](char address) const { return by_address[static_cast<std::size_t>(address - 'A')]; }
+  const word_format& operator[](char address) const {
+    return by_address[static_cast<std::size_t>(address - 'A')];
+  }
   word_format& operator[](char address) { return by_address[static_cast<std::size_t>(address - 'A')]; }
 };
 

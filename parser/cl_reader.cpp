@@ -42,10 +42,12 @@ struct cl_reader::impl {
     const char c = rec.major.empty() ? '\0' : ascii::upper(rec.major.front());
     ended = (c == 'F' || c == 'E' || c == 'P') && ends_job(rec);
     last_line = line;
-    last_column = lines.column_of(rec.kind == record_kind::coordinates && !rec.args.empty() ? rec.args.front().offset
-                                                                                           : rec.major_offset);
+    last_column =
+        lines.column_of(rec.kind == record_kind::coordinates && !rec.args.empty() ? rec.args.front().offset
+                                                                                  : rec.major_offset);
     // Kept in a fixed buffer: a string assignment per record shows in the benchmark.
-    last_major_size = rec.kind == record_kind::coordinates ? 0 : std::min(rec.major.size(), sizeof last_major);
+    last_major_size =
+        rec.kind == record_kind::coordinates ? 0 : std::min(rec.major.size(), sizeof last_major);
     std::copy_n(rec.major.data(), last_major_size, last_major);  // not memcpy: major may be null when empty
   }
 
@@ -66,9 +68,11 @@ struct cl_reader::impl {
     } else {
       d.line = last_line;
       d.column = last_column;
-      const std::string major = last_major_size == 0 ? std::string("coordinate line")
-                                                     : ascii::upper_copy(std::string_view(last_major, last_major_size));
-      d.message = fmt::format("the job ends without FINI or END after this {} record: is the file cut off?", major);
+      const std::string major = last_major_size == 0
+                                    ? std::string("coordinate line")
+                                    : ascii::upper_copy(std::string_view(last_major, last_major_size));
+      d.message =
+          fmt::format("the job ends without FINI or END after this {} record: is the file cut off?", major);
     }
     sink.report(std::move(d));
   }
@@ -79,10 +83,12 @@ struct cl_reader::impl {
     d.line = lr.problem_line;
     d.column = lr.problem_column;
     d.source_line = std::string(lr.problem_source);
-    d.message = lr.problem == record_problem::dangling
-                    ? std::string("the file ends in a continued record ('$' at the end of the last line): the job is cut off")
-                    : fmt::format("record longer than {} bytes: not CL data (a line without a newline?); skipped",
-                                  max_record_bytes);
+    d.message =
+        lr.problem == record_problem::dangling
+            ? std::string(
+                  "the file ends in a continued record ('$' at the end of the last line): the job is cut off")
+            : fmt::format("record longer than {} bytes: not CL data (a line without a newline?); skipped",
+                          max_record_bytes);
     sink.report(std::move(d));
   }
 
@@ -143,9 +149,9 @@ struct cl_reader::impl {
   std::size_t head = 0;
   std::size_t record_count = 0;
   bool finished = false;
-  bool ended = false;       // the last record read was FINI/END (or a dialect's end)
+  bool ended = false;  // the last record read was FINI/END (or a dialect's end)
   int last_line = 0, last_column = 0;
-  char last_major[32];      // of the last record read, for the missing-end warning
+  char last_major[32];  // of the last record read, for the missing-end warning
   std::size_t last_major_size = 0;
 };
 

@@ -6,17 +6,17 @@
 #include <optional>
 #include <string>
 
-#include "support/diagnostics.hpp"
 #include "parser/dialect.hpp"
 #include "parser/events.hpp"
 #include "parser/line_reader.hpp"
+#include "support/diagnostics.hpp"
 
 namespace twinpost {
 
 struct cl_reader_options {
   std::string file_name = "<input>";  ///< used in diagnostics
-  std::optional<dialect> forced;       ///< --dialect; detected from the file otherwise
-  std::size_t chunk_size = 1 << 20;    ///< bytes read at a time (tests and the fuzzer use small ones)
+  std::optional<dialect> forced;      ///< --dialect; detected from the file otherwise
+  std::size_t chunk_size = 1 << 20;   ///< bytes read at a time (tests and the fuzzer use small ones)
   /// Reading for a post (`post` sets it): warn when the job does not end with FINI or END
   /// (NX END-OF-PATH, Makino's closing PPRINT), since a job cut off at a line end reads as a
   /// sound one otherwise; and a record the post cannot carry out (an unknown major word) is

@@ -39,9 +39,7 @@ bool matrix_row(std::string_view text, std::vector<double>& out) {
 void event_builder::build(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   if (r.kind != record_kind::comment && r.kind != record_kind::coordinates) after_bad_record_ = false;
   switch (r.kind) {
-    case record_kind::comment:
-      comment(r, line, out);
-      return;
+    case record_kind::comment: comment(r, line, out); return;
     case record_kind::coordinates: {
       if (after_bad_record_) return;  // points of a GOTO that did not parse: reported already
       if (detail::has_bad_number(r, issues)) return;
@@ -64,14 +62,22 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
       text_event t;
       t.major = upper(r.major);
       t.text = std::string(r.text);
-      if (t.major == "PARTNO") t.kind = text_kind::partno;
-      else if (t.major == "PPRINT") t.kind = text_kind::pprint;
-      else if (t.major == "INSERT") t.kind = text_kind::insert;
-      else if (t.major == "TPRINT") t.kind = text_kind::tprint;
-      else if (t.major == "OPFEATSTART") t.kind = text_kind::op_start;
-      else if (t.major == "OPFEATEND") t.kind = text_kind::op_end;
-      else if (t.major == "TOOL PATH") t.kind = text_kind::toolpath;
-      else t.kind = text_kind::other;
+      if (t.major == "PARTNO")
+        t.kind = text_kind::partno;
+      else if (t.major == "PPRINT")
+        t.kind = text_kind::pprint;
+      else if (t.major == "INSERT")
+        t.kind = text_kind::insert;
+      else if (t.major == "TPRINT")
+        t.kind = text_kind::tprint;
+      else if (t.major == "OPFEATSTART")
+        t.kind = text_kind::op_start;
+      else if (t.major == "OPFEATEND")
+        t.kind = text_kind::op_end;
+      else if (t.major == "TOOL PATH")
+        t.kind = text_kind::toolpath;
+      else
+        t.kind = text_kind::other;
       out.push_back({line, std::move(t)});
       return;
     }

@@ -84,8 +84,7 @@ class event_builder {
   void motion(const cl_record& r, motion_kind kind, int line, event_queue& out, build_issues& issues);
   /// The record's numbers in a vector reused from record to record (no allocation per GOTO).
   const std::vector<double>& numbers(const cl_record& r);
-  void point(const std::vector<double>& n, bool continued, motion_kind kind, int line,
-             event_queue& out);
+  void point(const std::vector<double>& n, bool continued, motion_kind kind, int line, event_queue& out);
   void circle(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void end_of_motion_record();
 
@@ -93,11 +92,11 @@ class event_builder {
   unit_system units_ = unit_system::mm;
   vec3 pos_;
   std::optional<vec3> axis_;
-  bool rapid_ = false;        // RAPID seen, waiting for its move
-  bool rapid_record_ = false; // the current GOTO record is rapid (its coordinate lines too)
+  bool rapid_ = false;         // RAPID seen, waiting for its move
+  bool rapid_record_ = false;  // the current GOTO record is rapid (its coordinate lines too)
   bool posting_ = false;
   int column_ = 0;
-  bool in_goto_ = false;      // the last statement was a GOTO: coordinate lines continue it
+  bool in_goto_ = false;           // the last statement was a GOTO: coordinate lines continue it
   bool after_bad_record_ = false;  // the last record (comments aside) did not parse
   std::vector<double> numbers_;    // scratch for numbers()
   std::optional<pending_circle> circle_;

@@ -35,8 +35,10 @@ void event_builder::motion(const cl_record& r, motion_kind kind, int line, event
     return;
   }
   if ((n.size() != 3 && n.size() != 6) || words) {
-    const char* name = kind == motion_kind::go_to ? "GOTO" : kind == motion_kind::from ? "FROM"
-                       : kind == motion_kind::delta ? "GODLTA" : "GOHOME";
+    const char* name = kind == motion_kind::go_to   ? "GOTO"
+                       : kind == motion_kind::from  ? "FROM"
+                       : kind == motion_kind::delta ? "GODLTA"
+                                                    : "GOHOME";
     issues.push_back({severity::error, detail::args_offset(r),
                       fmt::format("{} takes 3 or 6 numbers (x,y,z[,i,j,k]), found {} argument{}", name,
                                   r.args.size(), r.args.size() == 1 ? "" : "s")});
@@ -94,8 +96,10 @@ void event_builder::circle(const cl_record& r, int line, event_queue&, build_iss
     const cl_arg& a = r.args[i];
     if (a.kind == arg_kind::number) n.push_back(a.number);
     if (a.kind != arg_kind::word) continue;
-    if (word_is(a.word, "CLOCKWISE") || word_is(a.word, "CLW")) c.ccw = false;
-    else if (word_is(a.word, "COUNTERCLOCKWISE") || word_is(a.word, "CCLW")) c.ccw = true;
+    if (word_is(a.word, "CLOCKWISE") || word_is(a.word, "CLW"))
+      c.ccw = false;
+    else if (word_is(a.word, "COUNTERCLOCKWISE") || word_is(a.word, "CCLW"))
+      c.ccw = true;
     else if (word_is(a.word, "TIMES")) {
       // NX: CIRCLE/...,TIMES,n: the GOTO after it goes n full turns round the circle.
       const bool count = i + 1 < r.args.size() && r.args[i + 1].kind == arg_kind::number;
@@ -109,7 +113,8 @@ void event_builder::circle(const cl_record& r, int line, event_queue&, build_iss
       }
       c.turns = static_cast<int>(t);
       ++i;
-    } else issues.push_back({severity::warning, a.offset, fmt::format("word '{}' ignored in CIRCLE", a.word)});
+    } else
+      issues.push_back({severity::warning, a.offset, fmt::format("word '{}' ignored in CIRCLE", a.word)});
   }
   // 4: xc,yc,zc,r   6: xc,yc,zc,i,j,k (SolidWorks, no radius)   7: + r (Creo)   11: NX
   if (n.size() != 4 && n.size() != 6 && n.size() != 7 && n.size() != 11) {

@@ -141,7 +141,8 @@ void event_builder::on_delay(const cl_record& r, int line, event_queue& out, bui
 
 // LOAD/TOOL and SELECT/TOOL call a tool; LOAD or SELECT of anything else is another record.
 void event_builder::on_load_or_select(const cl_record& r, int line, event_queue& out, build_issues& issues) {
-  const bool tool_word = !r.args.empty() && r.args[0].kind == arg_kind::word && word_is(r.args[0].word, "TOOL");
+  const bool tool_word =
+      !r.args.empty() && r.args[0].kind == arg_kind::word && word_is(r.args[0].word, "TOOL");
   if (!tool_word) return other(r, line, out, issues);
   const tool_source s = word_is(r.major, "LOAD") ? tool_source::load_tool : tool_source::select_tool;
   push_some(out, line, detail::read_tool(r, s, issues));
@@ -161,9 +162,12 @@ void event_builder::on_units(const cl_record& r, int line, event_queue& out, bui
   if (r.args.empty() || r.args[0].kind != arg_kind::word)
     return issues.push_back({severity::error, detail::args_offset(r), "UNITS needs MM or INCHES"});
   std::string_view w = r.args[0].word;
-  if (word_is(w, "MM")) units_ = unit_system::mm;
-  else if (word_is(w, "INCHES") || word_is(w, "INCH")) units_ = unit_system::inch;
-  else return issues.push_back({severity::error, r.args[0].offset, fmt::format("unknown units '{}'", w)});
+  if (word_is(w, "MM"))
+    units_ = unit_system::mm;
+  else if (word_is(w, "INCHES") || word_is(w, "INCH"))
+    units_ = unit_system::inch;
+  else
+    return issues.push_back({severity::error, r.args[0].offset, fmt::format("unknown units '{}'", w)});
   out.push_back({line, units_event{units_}});
 }
 
@@ -171,10 +175,13 @@ void event_builder::on_machin(const cl_record& r, int line, event_queue& out, bu
   machin_event e;
   for (std::size_t i = 0; i < r.args.size(); ++i) {
     const cl_arg& a = r.args[i];
-    std::string s = a.kind == arg_kind::word ? std::string(a.word)
-                    : a.kind == arg_kind::number ? format_number(a.number) : std::string();
-    if (i == 0) e.name = std::move(s);
-    else e.args.push_back(std::move(s));
+    std::string s = a.kind == arg_kind::word     ? std::string(a.word)
+                    : a.kind == arg_kind::number ? format_number(a.number)
+                                                 : std::string();
+    if (i == 0)
+      e.name = std::move(s);
+    else
+      e.args.push_back(std::move(s));
   }
   out.push_back({line, std::move(e)});
 }
@@ -190,7 +197,8 @@ void event_builder::on_coordsys(const cl_record& r, int line, event_queue& out, 
 
 void event_builder::on_tlaxis(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   std::vector<double> n = numbers_of(r);
-  if (n.size() != 3) return issues.push_back({severity::error, detail::args_offset(r), "TLAXIS takes 3 numbers"});
+  if (n.size() != 3)
+    return issues.push_back({severity::error, detail::args_offset(r), "TLAXIS takes 3 numbers"});
   axis_ = vec3{n[0], n[1], n[2]};
   out.push_back({line, tool_axis_event{*axis_}});
 }
@@ -231,8 +239,9 @@ void event_builder::other(const cl_record& r, int line, event_queue& out, build_
   if (known && posting_ && !ignorable_in_post(r)) {
     // Known, but a post cannot do what it asks (STOP, THREAD, NURBS, ORIGIN, ...): dropping
     // it would write a program that differs from the CL without a word.
-    issues.push_back({severity::error, r.major_offset,
-                      fmt::format("{} is not supported by the post: this record cannot be carried out", upper(m))});
+    issues.push_back(
+        {severity::error, r.major_offset,
+         fmt::format("{} is not supported by the post: this record cannot be carried out", upper(m))});
     return;
   }
   if (!known)
@@ -245,24 +254,63 @@ namespace {
 // Records that only inform (display, tolerances, feature and tool labels): a post may pass
 // over them, since the program does the same with or without them.
 bool ignorable_in_post(const cl_record& r) {
-  static constexpr std::string_view words[] = {
-      "PAINT", "BOX", "MOVE_ATTRIB", "TRNTYP", "TOOLNO", "CSI_SET_FLUTE_LENGTH",
-      "CSI_SET_EXTENSION_LENGTH", "INTOL", "OUTTOL", "LINTOL", "FEATNO", "MFGNO",
-      "CUTCOM_GEOMETRY_TYPE", "REWIND", "DMIS"};
+  static constexpr std::string_view words[] = {"PAINT",
+                                               "BOX",
+                                               "MOVE_ATTRIB",
+                                               "TRNTYP",
+                                               "TOOLNO",
+                                               "CSI_SET_FLUTE_LENGTH",
+                                               "CSI_SET_EXTENSION_LENGTH",
+                                               "INTOL",
+                                               "OUTTOL",
+                                               "LINTOL",
+                                               "FEATNO",
+                                               "MFGNO",
+                                               "CUTCOM_GEOMETRY_TYPE",
+                                               "REWIND",
+                                               "DMIS"};
   for (std::string_view w : words)
     if (word_is(r.major, w)) return true;
   // SET/MODE,ABSOL (Makino) says what twinpost does anyway: absolute coordinates.
   return word_is(r.major, "SET") && r.args.size() == 2 && r.args[0].kind == arg_kind::word &&
-         word_is(r.args[0].word, "MODE") && r.args[1].kind == arg_kind::word && word_is(r.args[1].word, "ABSOL");
+         word_is(r.args[0].word, "MODE") && r.args[1].kind == arg_kind::word &&
+         word_is(r.args[1].word, "ABSOL");
 }
 
 bool known_passthrough(std::string_view m) {
-  static constexpr std::string_view words[] = {
-      "PAINT", "BOX", "MOVE_ATTRIB", "TRNTYP", "SET", "REWIND", "TOOLNO", "SWITCH",
-      "LOCAL_ORIGIN", "ROTABL", "NURBS", "KNOT", "CNTRL", "CSI_SET_FLUTE_LENGTH",
-      "CSI_SET_EXTENSION_LENGTH", "MODE", "COUPLE", "CLAMP", "THREAD",
-      "ORIGIN", "INTOL", "OUTTOL", "LINTOL", "CALSUB", "DEFSUB", "ENDSUB", "DMIS", "FEATNO",
-      "MFGNO", "SETSTART", "CUTCOM_GEOMETRY_TYPE", "OPSKIP", "PITCH"};
+  static constexpr std::string_view words[] = {"PAINT",
+                                               "BOX",
+                                               "MOVE_ATTRIB",
+                                               "TRNTYP",
+                                               "SET",
+                                               "REWIND",
+                                               "TOOLNO",
+                                               "SWITCH",
+                                               "LOCAL_ORIGIN",
+                                               "ROTABL",
+                                               "NURBS",
+                                               "KNOT",
+                                               "CNTRL",
+                                               "CSI_SET_FLUTE_LENGTH",
+                                               "CSI_SET_EXTENSION_LENGTH",
+                                               "MODE",
+                                               "COUPLE",
+                                               "CLAMP",
+                                               "THREAD",
+                                               "ORIGIN",
+                                               "INTOL",
+                                               "OUTTOL",
+                                               "LINTOL",
+                                               "CALSUB",
+                                               "DEFSUB",
+                                               "ENDSUB",
+                                               "DMIS",
+                                               "FEATNO",
+                                               "MFGNO",
+                                               "SETSTART",
+                                               "CUTCOM_GEOMETRY_TYPE",
+                                               "OPSKIP",
+                                               "PITCH"};
   for (std::string_view w : words)
     if (word_is(m, w)) return true;
   return false;

@@ -154,8 +154,10 @@ struct describe {
   void operator()(const head_event& e) {
     out.name = "head";
     static const char* words[] = {"", "MAIN", "SIDE", "BOTH"};
-    if (e.which == head_select::number) out.num("head", e.number);
-    else out.str("head", words[static_cast<int>(e.which)]);
+    if (e.which == head_select::number)
+      out.num("head", e.number);
+    else
+      out.str("head", words[static_cast<int>(e.which)]);
   }
   void operator()(const channel_event& e) {
     out.name = "channel";
@@ -166,8 +168,10 @@ struct describe {
     out.name = "sync";
     out.str("from", src[static_cast<int>(e.source)]);
     // "next": an ICAM marker left out, numbered per channel by the router, not here.
-    if (e.index) out.num("index", *e.index);
-    else out.str("index", "next");
+    if (e.index)
+      out.num("index", *e.index);
+    else
+      out.str("index", "next");
     if (!e.channels.empty()) out.nums("channels", std::vector<double>(e.channels.begin(), e.channels.end()));
     if (e.master) out.num("master", *e.master);
   }

@@ -33,7 +33,7 @@ struct arc_event {
   double radius = 0;     ///< as written, or computed from the start point
   bool ccw = true;       ///< counter-clockwise about `normal` (dialect convention applied)
   bool continued = false;
-  int turns = 0;         ///< NX `CIRCLE/...,TIMES,n`: n full turns (the end is the start); 0: an arc
+  int turns = 0;  ///< NX `CIRCLE/...,TIMES,n`: n full turns (the end is the start); 0: an arc
 };
 
 /// The most full turns one CIRCLE/...,TIMES,n may ask for.
@@ -187,9 +187,8 @@ struct passthrough_event {
 using event_data =
     std::variant<motion_event, arc_event, tool_event, tool_data_event, spindle_event, feed_event,
                  coolant_event, cutcom_event, cycle_event, delay_event, stop_event, aux_event, text_event,
-                 units_event, machin_event, multax_event, coordsys_event, head_event,
-                 channel_event, sync_event, tool_axis_event, comment_event, end_event,
-                 passthrough_event>;
+                 units_event, machin_event, multax_event, coordsys_event, head_event, channel_event,
+                 sync_event, tool_axis_event, comment_event, end_event, passthrough_event>;
 
 /// One event with the physical line of the record it came from.
 struct event {

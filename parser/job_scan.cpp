@@ -32,8 +32,7 @@ std::string first_arg(std::string_view rest) {
   if (p < rest.size() && (rest[p] == '/' || rest[p] == ',')) ++p;
   while (p < rest.size() && (rest[p] == ' ' || rest[p] == '\t')) ++p;
   std::string a;
-  while (p < rest.size() && ascii::is_alnum(rest[p]))
-    a += ascii::upper(rest[p++]);
+  while (p < rest.size() && ascii::is_alnum(rest[p])) a += ascii::upper(rest[p++]);
   return a;
 }
 
@@ -44,7 +43,8 @@ void scan_line(std::string_view l, job_scan& s) {
   char c = ascii::upper(l.front());
   if (c != 'S' && c != 'H' && c != 'C' && c != '$') return;
   if (ascii::starts_with_keyword(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
-  if (ascii::starts_with_keyword(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos) s.explicit_sync = true;
+  if (ascii::starts_with_keyword(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos)
+    s.explicit_sync = true;
   if (ascii::starts_with_keyword(l, "HEAD")) {
     std::string a = first_arg(l.substr(4));
     if (a == "BOTH") {
@@ -56,7 +56,9 @@ void scan_line(std::string_view l, job_scan& s) {
       s.head_words.push_back(a);
     }
   }
-  std::size_t n = ascii::starts_with_keyword(l, "CHANNEL") ? 7 : ascii::starts_with_keyword(l, "CHANNL") ? 6 : 0;
+  std::size_t n = ascii::starts_with_keyword(l, "CHANNEL")  ? 7
+                  : ascii::starts_with_keyword(l, "CHANNL") ? 6
+                                                            : 0;
   if (n > 0) {
     std::string a = first_arg(l.substr(n));
     if (const std::optional<int> ch = leading_number(a)) s.channels.push_back(*ch);
@@ -82,7 +84,8 @@ void scan_lines(std::string_view text, job_scan& s) {
     while (line > begin && (line[-1] == ' ' || line[-1] == '\t')) --line;
     const char* eol = static_cast<const char*>(std::memchr(hit, '\n', static_cast<std::size_t>(end - hit)));
     if (!eol) eol = end;
-    if (line == begin || line[-1] == '\n' || line[-1] == '\r') scan_line(std::string_view(line, static_cast<std::size_t>(eol - line)), s);
+    if (line == begin || line[-1] == '\n' || line[-1] == '\r')
+      scan_line(std::string_view(line, static_cast<std::size_t>(eol - line)), s);
     p = eol + 1;
   }
 }

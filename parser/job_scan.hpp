@@ -6,14 +6,13 @@
 #include <string>
 #include <vector>
 
-
 namespace twinpost {
 
 struct job_scan {
-  bool explicit_sync = false;          ///< a SYNC/, SYNCTR/ record or a MANUSpost sync UDE
-  std::vector<int> heads;              ///< HEAD/n numbers, and 1 and 2 for HEAD/BOTH
-  std::vector<std::string> head_words; ///< HEAD/MAIN, HEAD/SIDE (upper case)
-  std::vector<int> channels;           ///< CHANNEL,n / CHANNL/n
+  bool explicit_sync = false;           ///< a SYNC/, SYNCTR/ record or a MANUSpost sync UDE
+  std::vector<int> heads;               ///< HEAD/n numbers, and 1 and 2 for HEAD/BOTH
+  std::vector<std::string> head_words;  ///< HEAD/MAIN, HEAD/SIDE (upper case)
+  std::vector<int> channels;            ///< CHANNEL,n / CHANNL/n
 };
 
 /// Scans `path`; a file that cannot be read gives an empty scan (the post reports it).

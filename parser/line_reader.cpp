@@ -128,8 +128,7 @@ line_shape shape_of(std::string_view line) {
   }
   std::size_t last = end;
   while (last > first && blank(line[last - 1])) --last;
-  if (last > first + 1 && line[last - 1] == '$' && line[last - 2] != '$')
-    return {last - 1, true};
+  if (last > first + 1 && line[last - 1] == '$' && line[last - 2] != '$') return {last - 1, true};
   if (last == first + 1 && line[first] == '$') return {first, true};
   return {end, false};
 }
@@ -196,7 +195,8 @@ bool line_reader::next(logical_record& out) {
       break;
     }
     shape = shape_of(line);
-    if (out.problem == record_problem::too_long || overlong_ || kept + line.size() + 1 > max_record_bytes) [[unlikely]] {
+    if (out.problem == record_problem::too_long || overlong_ || kept + line.size() + 1 > max_record_bytes)
+        [[unlikely]] {
       // Too long as a whole: read on to its end, keep nothing more.
       if (out.problem == record_problem::none) {
         out.problem = record_problem::too_long;
@@ -213,7 +213,8 @@ bool line_reader::next(logical_record& out) {
   }
   // Views into physical_ stay valid: it is not touched until next().
   const std::string_view all = physical_;
-  for (std::size_t i = 0; i < used; ++i) segments_[i].physical = all.substr(spans_[i].first, spans_[i].second);
+  for (std::size_t i = 0; i < used; ++i)
+    segments_[i].physical = all.substr(spans_[i].first, spans_[i].second);
   if (out.problem != record_problem::none) out.problem_source = segments_[problem_at].physical;
   out.text = joined_;
   return true;

@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <string>
 #include <string_view>
-#include <vector>
 #include <utility>
+#include <vector>
 
 namespace twinpost {
 
@@ -57,8 +57,8 @@ struct logical_record {
   std::string_view text;  ///< valid until the next call of line_reader::next
   int line = 0;           ///< first physical line (1-based)
   record_problem problem = record_problem::none;
-  int problem_line = 0;    ///< the physical line the problem is at
-  int problem_column = 0;  ///< and its column (1-based)
+  int problem_line = 0;             ///< the physical line the problem is at
+  int problem_column = 0;           ///< and its column (1-based)
   std::string_view problem_source;  ///< that physical line (its start, when too long)
 };
 
@@ -114,12 +114,12 @@ class line_reader {
   bool eof_ = false;
   int line_no_ = 0;
   std::size_t consumed_ = 0;
-  std::string joined_;                 // logical text of a continued record
+  std::string joined_;    // logical text of a continued record
   std::string physical_;  // owned copies of a continued record's lines, one after another
   std::vector<std::pair<std::size_t, std::size_t>> spans_;  // where each line is in physical_
   std::vector<segment> segments_;
-  bool overlong_ = false;     // the physical line just read was cut at max_record_bytes
-  std::string overlong_head_; // its first bytes, kept for the diagnostic
+  bool overlong_ = false;      // the physical line just read was cut at max_record_bytes
+  std::string overlong_head_;  // its first bytes, kept for the diagnostic
 };
 
 }  // namespace twinpost

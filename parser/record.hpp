@@ -32,7 +32,7 @@ enum class record_kind : unsigned char {
 /// One logical CL record.
 struct cl_record {
   record_kind kind = record_kind::statement;
-  std::string_view major;     ///< major word, e.g. "GOTO", "TOOL PATH" (empty for comments)
+  std::string_view major;  ///< major word, e.g. "GOTO", "TOOL PATH" (empty for comments)
   std::size_t major_offset = 0;
   std::vector<cl_arg> args;   ///< arguments in order; a trailing empty argument is dropped
   std::string_view text;      ///< text records and comments: the free text, blanks trimmed

@@ -29,8 +29,10 @@ std::string token_at(std::string_view text, std::size_t p, bool one_byte = false
   if (e == p) e = p + 1;
   std::string out;
   for (unsigned char c : text.substr(p, e - p)) {
-    if (c < 0x20 || c >= 0x7f) out += fmt::format("\\x{:02X}", c);
-    else out += static_cast<char>(c);
+    if (c < 0x20 || c >= 0x7f)
+      out += fmt::format("\\x{:02X}", c);
+    else
+      out += static_cast<char>(c);
   }
   return out;
 }
@@ -56,10 +58,9 @@ record_error describe_stop(std::string_view text, const cl_record& rec, std::siz
   if (rec.major.empty() && rec.kind == record_kind::statement)
     return {p, fmt::format("expected a major word, found '{}'", tok)};
   std::size_t major_end = rec.major_offset + rec.major.size();
-  bool after_major_only = rec.kind == record_kind::statement && rec.args.empty() &&
-                          text.find_first_of("/,", major_end) >= p;
-  if (after_major_only)
-    return {p, fmt::format("expected '/' after '{}', found '{}'", rec.major, tok)};
+  bool after_major_only =
+      rec.kind == record_kind::statement && rec.args.empty() && text.find_first_of("/,", major_end) >= p;
+  if (after_major_only) return {p, fmt::format("expected '/' after '{}', found '{}'", rec.major, tok)};
   if (auto message = detail::bad_number_message(text.substr(p, token_end(text, p) - p)))
     return {p, std::move(*message)};
   char c = text[p];
@@ -95,8 +96,10 @@ bool parse_record_with_grammar(std::string_view text, cl_record& out, record_err
   if (ok && out.kind == record_kind::coordinates) {
     for (const cl_arg& a : out.args) {
       if (a.kind == arg_kind::word) {
-        if (auto message = detail::bad_number_message(a.word)) err = {a.offset, std::move(*message)};
-        else err = {a.offset, fmt::format("expected a number in a coordinate line, found '{}'", a.word)};
+        if (auto message = detail::bad_number_message(a.word))
+          err = {a.offset, std::move(*message)};
+        else
+          err = {a.offset, fmt::format("expected a number in a coordinate line, found '{}'", a.word)};
         return false;
       }
     }

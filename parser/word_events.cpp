@@ -104,7 +104,8 @@ spindle_event read_spindl(const cl_record& r, build_issues& issues) {
   for (std::size_t i = 0; i < r.args.size(); ++i) {  // words that own the number after them
     if (!is_word(r, i)) continue;
     std::string_view w = r.args[i].word;
-    if (word_is(w, "MAXRPM")) use.used[i] = true, e.max_rpm = use.value_after(i);
+    if (word_is(w, "MAXRPM"))
+      use.used[i] = true, e.max_rpm = use.value_after(i);
     else if (word_is(w, "RANGE")) {
       use.used[i] = true;
       if (auto v = use.value_after(i)) e.range = as_int(*v);
@@ -120,20 +121,31 @@ spindle_event read_spindl(const cl_record& r, build_issues& issues) {
     std::string_view w = r.args[i].word;
     bool known = true;
     if (word_is(w, "RPM") || word_is(w, "SFM") || word_is(w, "SMM")) {
-      e.mode = word_is(w, "RPM") ? spindle_mode::rpm : word_is(w, "SFM") ? spindle_mode::sfm : spindle_mode::smm;
+      e.mode = word_is(w, "RPM")   ? spindle_mode::rpm
+               : word_is(w, "SFM") ? spindle_mode::sfm
+                                   : spindle_mode::smm;
       unit_given = true;
       use.used[i] = true;
       if (auto v = use.value_near(i)) e.speed = *v;
-    } else if (word_is(w, "CLW")) e.dir = rotation::cw;
-    else if (word_is(w, "CCLW")) e.dir = rotation::ccw;
-    else if (word_is(w, "OFF")) e.mode = spindle_mode::off;
-    else if (word_is(w, "ON")) e.mode = spindle_mode::on;
-    else if (word_is(w, "LOCK")) e.mode = spindle_mode::lock;
-    else if (word_is(w, "AUTO")) {}
-    else if (word_is(w, "MAIN")) e.spindle = "main";
-    else if (word_is(w, "SUB") || word_is(w, "SIDE") || word_is(w, "OPPOS")) e.spindle = "sub";
-    else if (word_is(w, "LIVE") || word_is(w, "MILL")) e.spindle = "live";
-    else known = false;
+    } else if (word_is(w, "CLW"))
+      e.dir = rotation::cw;
+    else if (word_is(w, "CCLW"))
+      e.dir = rotation::ccw;
+    else if (word_is(w, "OFF"))
+      e.mode = spindle_mode::off;
+    else if (word_is(w, "ON"))
+      e.mode = spindle_mode::on;
+    else if (word_is(w, "LOCK"))
+      e.mode = spindle_mode::lock;
+    else if (word_is(w, "AUTO")) {
+    } else if (word_is(w, "MAIN"))
+      e.spindle = "main";
+    else if (word_is(w, "SUB") || word_is(w, "SIDE") || word_is(w, "OPPOS"))
+      e.spindle = "sub";
+    else if (word_is(w, "LIVE") || word_is(w, "MILL"))
+      e.spindle = "live";
+    else
+      known = false;
     if (known) use.used[i] = true;
   }
   if (!unit_given && e.mode == spindle_mode::rpm) {
@@ -151,12 +163,16 @@ feed_event read_fedrat(const cl_record& r, unit_system units, build_issues& issu
   for (std::size_t i = 0; i < r.args.size(); ++i) {
     if (!is_word(r, i)) continue;
     std::string_view w = r.args[i].word;
-    struct unit_word { std::string_view word; feed_mode mode; int units; };  // units: 0 mm, 1 inch, 2 job
+    struct unit_word {
+      std::string_view word;
+      feed_mode mode;
+      int units;
+    };  // units: 0 mm, 1 inch, 2 job
     static constexpr unit_word table[] = {
-        {"MMPM", feed_mode::per_minute, 0}, {"IPM", feed_mode::per_minute, 1},
-        {"MMPR", feed_mode::per_rev, 0},    {"IPR", feed_mode::per_rev, 1},
-        {"PERMIN", feed_mode::per_minute, 2}, {"PERREV", feed_mode::per_rev, 2},
-        {"FPM", feed_mode::per_minute, 2},  {"FPR", feed_mode::per_rev, 2},
+        {"MMPM", feed_mode::per_minute, 0},     {"IPM", feed_mode::per_minute, 1},
+        {"MMPR", feed_mode::per_rev, 0},        {"IPR", feed_mode::per_rev, 1},
+        {"PERMIN", feed_mode::per_minute, 2},   {"PERREV", feed_mode::per_rev, 2},
+        {"FPM", feed_mode::per_minute, 2},      {"FPR", feed_mode::per_rev, 2},
         {"INVERS", feed_mode::inverse_time, 2}, {"INVERSE", feed_mode::inverse_time, 2},
     };
     for (const unit_word& u : table) {
@@ -183,8 +199,8 @@ coolant_event read_coolnt(const cl_record& r, build_issues& issues) {
   for (std::size_t i = 0; i < r.args.size(); ++i) {
     if (!is_word(r, i)) continue;
     std::string w = upper(r.args[i].word);
-    if (w == "ON" || w == "OFF" || w == "FLOOD" || w == "MIST" || w == "TAP" || w == "THRU" ||
-        w == "AIR" || w == "THRUTOOL") {
+    if (w == "ON" || w == "OFF" || w == "FLOOD" || w == "MIST" || w == "TAP" || w == "THRU" || w == "AIR" ||
+        w == "THRUTOOL") {
       if (e.mode.empty()) e.mode = w, use.used[i] = true;
     } else if (w == "LOW" || w == "MEDIUM" || w == "HIGH") {
       e.level = w, use.used[i] = true;
@@ -205,8 +221,10 @@ cutcom_event read_cutcom(const cl_record& r, build_issues& issues) {
     }
     if (!is_word(r, i)) continue;
     std::string w = upper(r.args[i].word);
-    if (w == "LEFT" || w == "RIGHT" || w == "OFF" || w == "ON") e.side = w, use.used[i] = true;
-    else if (w == "XYPLAN" || w == "YZPLAN" || w == "ZXPLAN") e.plane = w, use.used[i] = true;
+    if (w == "LEFT" || w == "RIGHT" || w == "OFF" || w == "ON")
+      e.side = w, use.used[i] = true;
+    else if (w == "XYPLAN" || w == "YZPLAN" || w == "ZXPLAN")
+      e.plane = w, use.used[i] = true;
   }
   use.report_leftovers("CUTCOM", issues);
   return e;
@@ -264,11 +282,14 @@ namespace {
 
 // A tool or offset number: a whole number that fits an int, else an error at its argument
 // (a silent cast would call a tool nobody asked for).
-bool whole_number(const cl_record& r, std::size_t arg, std::string_view what, int& out, build_issues& issues) {
+bool whole_number(const cl_record& r, std::size_t arg, std::string_view what, int& out,
+                  build_issues& issues) {
   const double v = r.args[arg].number;
   std::string problem;
-  if (v != std::floor(v)) problem = "is not a whole number";
-  else if (v < 0 || v > std::numeric_limits<int>::max()) problem = "is out of range";
+  if (v != std::floor(v))
+    problem = "is not a whole number";
+  else if (v < 0 || v > std::numeric_limits<int>::max())
+    problem = "is out of range";
   if (problem.empty()) {
     out = static_cast<int>(v);
     return true;
@@ -288,7 +309,8 @@ std::optional<tool_event> read_tool(const cl_record& r, tool_source source, buil
   for (std::size_t i = 0; i < r.args.size(); ++i) {
     if (!is_word(r, i)) continue;
     std::string_view w = r.args[i].word;
-    if (word_is(w, "TOOL")) use.used[i] = true;  // LOAD/TOOL, SELECT/TOOL
+    if (word_is(w, "TOOL"))
+      use.used[i] = true;  // LOAD/TOOL, SELECT/TOOL
     else if (word_is(w, "ADJUST") || word_is(w, "OSETNO") || word_is(w, "OFFSET")) {
       use.used[i] = true;
       if (use.value_after(i)) {

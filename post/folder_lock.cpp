@@ -24,7 +24,8 @@ folder_lock::~folder_lock() {
 }
 
 bool folder_lock::still_named(const std::string& path) const {
-  struct stat held {}, named {};
+  struct stat held {
+  }, named{};
   if (fd_ < 0 || ::fstat(fd_, &held) != 0 || ::stat(path.c_str(), &named) != 0) return false;
   return held.st_dev == named.st_dev && held.st_ino == named.st_ino;
 }

@@ -7,15 +7,15 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <fmt/format.h>
 #include <mutex>
 #include <set>
-#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "machines/machine.hpp"
 #include "post/folder_lock.hpp"
 #include "post/temp_registry.hpp"
-#include "machines/machine.hpp"
 #include "support/errors.hpp"
 
 namespace fs = std::filesystem;
@@ -41,8 +41,10 @@ bool is_live_stage(const std::string& path) {
 
 void set_live(const std::string& path, bool live) {
   std::lock_guard<std::mutex> hold(live_mutex);
-  if (live) live_stages.insert(path);
-  else live_stages.erase(path);
+  if (live)
+    live_stages.insert(path);
+  else
+    live_stages.erase(path);
 }
 
 std::string join(const std::string& dir, const std::string& name) { return (fs::path(dir) / name).string(); }
@@ -90,8 +92,8 @@ void remove_dead_stages(const std::string& out) {
     const std::string name = it->path().filename().string();
     const pid_t pid = stage_pid(name);
     if (pid <= 0) continue;
-    const bool dead = pid == ::getpid() ? !is_live_stage(it->path().string())
-                                        : ::kill(pid, 0) != 0 && errno == ESRCH;
+    const bool dead =
+        pid == ::getpid() ? !is_live_stage(it->path().string()) : ::kill(pid, 0) != 0 && errno == ESRCH;
     std::error_code rm;
     if (dead) fs::remove_all(it->path(), rm);
   }
@@ -105,7 +107,8 @@ output_stage::output_stage(std::string out_dir) : out_(std::move(out_dir)) {
     make_stage();
   } catch (...) {
     // No destructor runs for a constructor that throws: the folders made so far go here.
-    std::sort(made_.begin(), made_.end(), [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
+    std::sort(made_.begin(), made_.end(),
+              [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
     for (auto it = made_.rbegin(); it != made_.rend(); ++it) ::rmdir(it->c_str());
     throw;
   }
@@ -126,7 +129,8 @@ void output_stage::make_stage() {
       if (errno == ENOENT) continue;  // removed by an interrupted run, which takes no lock
       fail("cannot write in", out_, errno);
     }
-    std::sort(made_.begin(), made_.end(), [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
+    std::sort(made_.begin(), made_.end(),
+              [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
     set_live(stage_, true);
     slot_ = register_temp_dirs(stage_, made_);
     return;
@@ -155,8 +159,7 @@ std::vector<std::string> output_stage::commit(const std::vector<staged_file>& fi
     const std::string target = join(out_, f.name);
     struct stat st {};
     if (::lstat(target.c_str(), &st) != 0) continue;
-    if (S_ISDIR(st.st_mode))
-      throw config_error(fmt::format("cannot replace '{}': it is a folder", target));
+    if (S_ISDIR(st.st_mode)) throw config_error(fmt::format("cannot replace '{}': it is a folder", target));
     if (!S_ISREG(st.st_mode) && !S_ISLNK(st.st_mode))
       throw config_error(fmt::format("cannot replace '{}': it is not a regular file", target));
   }
@@ -172,7 +175,8 @@ std::vector<std::string> output_stage::commit(const std::vector<staged_file>& fi
 
 namespace detail {
 
-void replace_all(const std::string& out_dir, const std::string& stage_dir, const std::vector<staged_file>& files) {
+void replace_all(const std::string& out_dir, const std::string& stage_dir,
+                 const std::vector<staged_file>& files) {
   struct step {
     std::string target, backup;
     bool had_old = false, placed = false;
@@ -182,8 +186,10 @@ void replace_all(const std::string& out_dir, const std::string& stage_dir, const
     std::string lost;
     for (auto it = done.rbegin(); it != done.rend(); ++it) {
       bool ok = true;
-      if (it->had_old) ok = ::rename(it->backup.c_str(), it->target.c_str()) == 0;
-      else if (it->placed) ok = ::unlink(it->target.c_str()) == 0;
+      if (it->had_old)
+        ok = ::rename(it->backup.c_str(), it->target.c_str()) == 0;
+      else if (it->placed)
+        ok = ::unlink(it->target.c_str()) == 0;
       if (!ok) lost += fmt::format(" '{}'", it->target);
     }
     std::string msg = fmt::format("{} '{}': {}", what, path, std::strerror(err));
@@ -199,12 +205,14 @@ void replace_all(const std::string& out_dir, const std::string& stage_dir, const
       if (S_ISDIR(st.st_mode)) undo_and_fail("cannot replace", s.target, EISDIR);
       // A hard link keeps the old file in place until the new one replaces it atomically;
       // where links are refused (some file systems) the old file moves aside instead.
-      if (::link(s.target.c_str(), s.backup.c_str()) != 0 && ::rename(s.target.c_str(), s.backup.c_str()) != 0)
+      if (::link(s.target.c_str(), s.backup.c_str()) != 0 &&
+          ::rename(s.target.c_str(), s.backup.c_str()) != 0)
         undo_and_fail("cannot replace", s.target, errno);
       s.had_old = true;
     }
     done.push_back(s);
-    if (::rename(files[i].tmp_path.c_str(), s.target.c_str()) != 0) undo_and_fail("cannot write", s.target, errno);
+    if (::rename(files[i].tmp_path.c_str(), s.target.c_str()) != 0)
+      undo_and_fail("cannot write", s.target, errno);
     done.back().placed = true;
   }
 }

@@ -56,7 +56,8 @@ namespace detail {
 /// The renames of a commit without its checks and lock: each old file is kept in
 /// `stage_dir` (a hard link, or moved there where linking fails) before the new one takes
 /// its name; on a failure every step is undone in reverse. Throws config_error.
-void replace_all(const std::string& out_dir, const std::string& stage_dir, const std::vector<staged_file>& files);
+void replace_all(const std::string& out_dir, const std::string& stage_dir,
+                 const std::vector<staged_file>& files);
 }  // namespace detail
 
 }  // namespace twinpost

@@ -35,10 +35,10 @@ void check_output_names(const frame_request& r, const std::vector<framed_file>& 
   for (std::size_t i = 0; i < files.size(); ++i)
     for (std::size_t j = i + 1; j < files.size(); ++j)
       if (files[i].name == files[j].name)
-        throw config_error(fmt::format(
-            "machine file '{}': channels {} and {} would both be written to '{}' "
-            "(file_name \"{}\", split layout): give the channels distinct file_suffix values",
-            m.source, files[i].channel, files[j].channel, files[i].name, m.program.file_name));
+        throw config_error(
+            fmt::format("machine file '{}': channels {} and {} would both be written to '{}' "
+                        "(file_name \"{}\", split layout): give the channels distinct file_suffix values",
+                        m.source, files[i].channel, files[j].channel, files[i].name, m.program.file_name));
 }
 
 }  // namespace twinpost

@@ -4,23 +4,23 @@
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <filesystem>
 #include <fmt/format.h>
 #include <memory>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include "channels/job_channels.hpp"
 #include "check/sync_check.hpp"
 #include "formats/channel_writer.hpp"
-#include "channels/job_channels.hpp"
+#include "formats/program_layout.hpp"
+#include "formats/program_number.hpp"
+#include "machines/layout_rules.hpp"
+#include "parser/cl_reader.hpp"
 #include "parser/job_scan.hpp"
 #include "post/output_commit.hpp"
 #include "post/output_names.hpp"
-#include "formats/program_layout.hpp"
-#include "machines/layout_rules.hpp"
 #include "post/sync_at_cl.hpp"
-#include "formats/program_number.hpp"
-#include "parser/cl_reader.hpp"
 #include "support/ascii.hpp"
 #include "support/errors.hpp"
 #include "support/file_reader.hpp"
@@ -85,10 +85,10 @@ file_ptr open_job(const std::string& path) {
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw config_error(fmt::format(
-        "'{}' is not a regular file (a pipe, FIFO, folder or device): post reads the job "
-        "twice, give it a file",
-        path));
+    throw config_error(
+        fmt::format("'{}' is not a regular file (a pipe, FIFO, folder or device): post reads the job "
+                    "twice, give it a file",
+                    path));
   }
   std::FILE* f = ::fdopen(fd, "rb");
   if (!f) {
@@ -97,7 +97,6 @@ file_ptr open_job(const std::string& path) {
   }
   return {f, &std::fclose};
 }
-
 
 // What a sync record that names no channels means, and whether the job has any: one quick
 // pass over the text before posting. A one-channel machine has nothing to wait for: no
@@ -109,15 +108,17 @@ job_scan scan_for_sync(const post_options& o, const machine& m) {
 
 // The policy `auto` stands for: the job's sync records if it has any, else a rendezvous at
 // every head switch (said in a warning, since the channels then never cut at once).
-sync_policy choose_policy(const post_options& o, const machine& m, const job_scan& scan, diagnostic_sink& sink) {
+sync_policy choose_policy(const post_options& o, const machine& m, const job_scan& scan,
+                          diagnostic_sink& sink) {
   if (o.policy != sync_policy::automatic) return o.policy;
   const bool one_channel = m.channels.size() == 1;
   if (one_channel || scan.explicit_sync) return sync_policy::explicit_marks;
   diagnostic d;
   d.level = severity::warning;
   d.file = o.cl_path;
-  d.message = "no sync records in the job: channels wait for each other at every head switch "
-              "(sequential); concurrent machining needs SYNC/SYNCTR records";
+  d.message =
+      "no sync records in the job: channels wait for each other at every head switch "
+      "(sequential); concurrent machining needs SYNC/SYNCTR records";
   sink.report(std::move(d));
   return sync_policy::sequential;
 }
@@ -162,7 +163,8 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     frame.name = [&req, &ws, &ch, &o] {
       return (fs::path(o.out_dir) / frame_file_name(named_request(req, ws), ch)).string();
     };
-    ws.writers.push_back(std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
+    ws.writers.push_back(
+        std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
   }
 }
 
@@ -208,12 +210,14 @@ std::vector<framed_file> frame_files(const frame_request& named, const writers_s
 bool self_check(const post_options& o, const machine& m, const std::vector<framed_file>& files,
                 const writers_sink& ws, int last_line, diagnostic_sink& sink) {
   std::vector<nc_source> sources;
-  for (const framed_file& f : files) sources.push_back({(fs::path(o.out_dir) / f.name).string(), {}, f.tmp_path});
+  for (const framed_file& f : files)
+    sources.push_back({(fs::path(o.out_dir) / f.name).string(), {}, f.tmp_path});
   sync_result check = check_nc_files(sources, m);
   if (!check.diagnostics.empty()) {
     std::vector<std::vector<int>> wait_lines;
     for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
-    for (diagnostic& d : sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line))
+    for (diagnostic& d :
+         sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line))
       sink.report(std::move(d));
   }
   return check.ok;
@@ -285,4 +289,3 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
 }
 
 }  // namespace twinpost
-

@@ -13,8 +13,8 @@
 
 #include "channels/router.hpp"
 #include "machines/machine.hpp"
-#include "support/diagnostics.hpp"
 #include "parser/dialect.hpp"
+#include "support/diagnostics.hpp"
 #include "support/errors.hpp"
 
 namespace twinpost {
@@ -22,7 +22,7 @@ namespace twinpost {
 struct post_options {
   std::string cl_path;
   std::string out_dir;
-  std::optional<layout_kind> layout;   ///< the machine's layout unless given
+  std::optional<layout_kind> layout;  ///< the machine's layout unless given
   sync_policy policy = sync_policy::automatic;
   std::optional<dialect> forced_dialect;
   /// Called now and then (every 64k records) with the CL bytes read so far; may be empty.
@@ -34,7 +34,7 @@ struct post_summary {
   std::vector<std::string> files;  ///< written, in channel order
   int channels = 0;
   long blocks = 0;
-  int waits = 0;                   ///< rendezvous placed
+  int waits = 0;                                 ///< rendezvous placed
   sync_policy policy = sync_policy::sequential;  ///< the policy actually used
   long records = 0;
 };

@@ -35,7 +35,8 @@ void read_lines(const std::string& path, std::map<int, std::string>& wanted) {
       ++line;
     }
   }
-  if (auto it = wanted.find(line); it != wanted.end() && !text.empty()) it->second = text;  // no final newline
+  if (auto it = wanted.find(line); it != wanted.end() && !text.empty())
+    it->second = text;  // no final newline
 }
 
 // `message` with every "file:line" of a known wait (not followed by another digit) replaced.
@@ -70,7 +71,8 @@ std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& fo
     const auto c = static_cast<std::size_t>(p.channel - 1);
     if (c >= wait_cl_lines.size()) continue;
     for (std::size_t k = 0; k < p.waits.size() && k < wait_cl_lines[c].size(); ++k)
-      if (wait_cl_lines[c][k] > 0) cl_line_of[place(p.waits[k].where.file, p.waits[k].where.line)] = wait_cl_lines[c][k];
+      if (wait_cl_lines[c][k] > 0)
+        cl_line_of[place(p.waits[k].where.file, p.waits[k].where.line)] = wait_cl_lines[c][k];
   }
   std::map<std::string, std::string> places;
   std::map<int, std::string> sources;

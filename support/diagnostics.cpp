@@ -40,8 +40,10 @@ std::string format_diagnostic(const diagnostic& d) {
     for (std::size_t i = from; i < to; ++i) {
       const auto c = static_cast<unsigned char>(src[i]);
       const std::size_t at = shown.size();
-      if (c == '\t' || (c >= 0x20 && c < 0x7f)) shown += static_cast<char>(c);
-      else shown += fmt::format("\\x{:02X}", c);
+      if (c == '\t' || (c >= 0x20 && c < 0x7f))
+        shown += static_cast<char>(c);
+      else
+        shown += fmt::format("\\x{:02X}", c);
       if (i < caret) pad += c == '\t' ? std::string("\t") : std::string(shown.size() - at, ' ');
     }
     if (to < src.size()) shown += "...";

@@ -23,8 +23,7 @@ class chunk_reader {
   static constexpr std::size_t default_chunk_bytes = std::size_t{1} << 20;
 
   explicit chunk_reader(std::FILE* file, std::size_t chunk_bytes = default_chunk_bytes)
-      : file_(file),
-        chunk_bytes_(chunk_bytes),
+      : file_(file), chunk_bytes_(chunk_bytes),
         buf_(std::make_unique_for_overwrite<char[]>(chunk_bytes + 1)) {}
 
   /// The next chunk, at most chunk_bytes long and followed by a NUL (for strcspn). Valid until

@@ -39,7 +39,9 @@ TEST_CASE("text_buffer: room, commit, insert, truncate, growth", "[formats]") {
   text_buffer n;
   append_fixed(n, -12346, {3, true});
   append_number(n, 1e20, {3, true});  // out of the fixed range: the exact way, same buffer
-  CHECK(n.view() == "-12.346" "100000000000000000000.");  // 1e20: a one and twenty zeros
+  CHECK(n.view() ==
+        "-12.346"
+        "100000000000000000000.");  // 1e20: a one and twenty zeros
 }
 
 TEST_CASE("block_writer: numbered blocks built in place, dropped blocks, framing", "[formats]") {
@@ -69,7 +71,8 @@ TEST_CASE("block_writer: numbered blocks built in place, dropped blocks, framing
     w.close();
   }
   CHECK(test::read_file(path) ==
-        "%\nO1000 (T)\nN10 G28 U0 W0\nN15 G0 X64.\n(ROUGH OD  FAST)\n(INSERT TEXT AS IT IS)\nN20 G1 Z-40.\nM30\n%\n");
+        "%\nO1000 (T)\nN10 G28 U0 W0\nN15 G0 X64.\n(ROUGH OD  FAST)\n(INSERT TEXT AS IT IS)\nN20 G1 "
+        "Z-40.\nM30\n%\n");
   std::filesystem::remove_all(std::filesystem::path(path).parent_path());
 }
 

@@ -11,8 +11,8 @@
 
 #include "parser/cl_reader.hpp"
 #include "parser/event_text.hpp"
-#include "tests/shared_samples.hpp"
 #include "parser_test_support.hpp"
+#include "tests/shared_samples.hpp"
 
 using namespace twinpost;
 namespace fs = std::filesystem;
@@ -57,7 +57,6 @@ sample_result read_sample(const fs::path& p) {
 
 sample_result read_named(const std::string& relative) { return read_sample(samples_dir / relative); }
 
-
 }  // namespace
 
 TEST_CASE("every sample file reads without an error", "[samples]") {
@@ -84,10 +83,11 @@ TEST_CASE("the .clt sample has exactly one error: blanks instead of commas", "[s
   CHECK(r.errors == 1);
   CHECK(r.warnings == 0);
   CHECK(r.diagnostics ==
-        r.path + ":12:89: error: expected ',' between arguments, found '46.927686'\n"
-        "CYCLE/ DRILL,G98,12.373300,PECKING,5.000000,2.000000,MMPM,187.165839,3.000000,"
-        "46.927686 46.927686 DWELL,0.000000 \n"
-        "                                                                                        ^\n");
+        r.path +
+            ":12:89: error: expected ',' between arguments, found '46.927686'\n"
+            "CYCLE/ DRILL,G98,12.373300,PECKING,5.000000,2.000000,MMPM,187.165839,3.000000,"
+            "46.927686 46.927686 DWELL,0.000000 \n"
+            "                                                                                        ^\n");
   // Reading went on: the rest of the file is there, explicit arc directions included.
   CHECK(r.count("arc") == 30);
   CHECK(r.count("arc", "dir=cw") == 9);
@@ -183,8 +183,9 @@ TEST_CASE("SolidWorks samples: 6-value CIRCLE radius, CRLF file", "[samples]") {
   test::require_shared_samples();
   sample_result leg = read_named("solidworks-cam/aamorim_lateral-leg-holder.apt");
   CHECK(leg.count("arc", "dir=ccw") == 8);
-  CHECK(leg.has("23\tarc x=224.316625 y=-4.336675 z=-6 cx=224.97995 cy=-5.336675 cz=-6 i=0 j=0 k=1 "
-                "r=1.1999996092203538 dir=ccw"));
+  CHECK(
+      leg.has("23\tarc x=224.316625 y=-4.336675 z=-6 cx=224.97995 cy=-5.336675 cz=-6 i=0 j=0 k=1 "
+              "r=1.1999996092203538 dir=ccw"));
   sample_result crlf = read_named("solidworks-cam/aamorim_Teste-Metrologia.apt");
   CHECK(crlf.count("arc") == 65);
   CHECK(crlf.has("780\tend word=FINI"));

@@ -5,10 +5,10 @@
 #include <filesystem>
 #include <map>
 #include <stdexcept>
-#include <string>
-#include <vector>
 #include <stdlib.h>  // mkdtemp
+#include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace twinpost::test {
 
@@ -37,7 +37,8 @@ inline bool write_file(const std::string& path, const std::string& text) {
 /// for a person looking at the temp folder: "twinpost-TAG-XXXXXX".
 inline std::string fresh_temp_dir(const std::string& tag) {
   std::string dir = (std::filesystem::temp_directory_path() / ("twinpost-" + tag + "-XXXXXX")).string();
-  if (::mkdtemp(dir.data()) == nullptr) throw std::runtime_error("mkdtemp " + dir + ": cannot make a temp folder");
+  if (::mkdtemp(dir.data()) == nullptr)
+    throw std::runtime_error("mkdtemp " + dir + ": cannot make a temp folder");
   return dir;
 }
 
@@ -56,7 +57,8 @@ inline std::string list_dir(const std::string& dir) {
   std::error_code ec;
   if (!std::filesystem::exists(dir, ec)) return "(missing)";
   std::vector<std::string> names;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   std::string s;
   for (const std::string& n : names) s += (s.empty() ? "" : " ") + n;

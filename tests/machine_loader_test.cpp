@@ -8,10 +8,10 @@
 #include <string>
 
 #include "file_test_support.hpp"
+#include "machine_test_support.hpp"
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
 #include "machines/name_template.hpp"
-#include "machine_test_support.hpp"
 
 using namespace twinpost;
 
@@ -40,12 +40,10 @@ TEST_CASE("a minimal machine loads with the documented defaults", "[machines]") 
   CHECK(m.limits.max_feed == 0);  // no limit
 }
 
-TEST_CASE("channels are sorted by number and a mill head defaults to an M6 tool call",
-          "[machines]") {
-  const machine m = parse_machine(head +
-                                      "[[channel]]\nnumber = 2\nkind = \"mill_head\"\n" + xz +
-                                      "[[channel]]\nnumber = 1\n" + xz,
-                                  "m.toml");
+TEST_CASE("channels are sorted by number and a mill head defaults to an M6 tool call", "[machines]") {
+  const machine m = parse_machine(
+      head + "[[channel]]\nnumber = 2\nkind = \"mill_head\"\n" + xz + "[[channel]]\nnumber = 1\n" + xz,
+      "m.toml");
   REQUIRE(m.channels.size() == 2);
   CHECK(m.channels[0].number == 1);
   CHECK(m.channels[1].number == 2);
@@ -149,8 +147,7 @@ TEST_CASE("built-in fanuc-31i-3path", "[machines]") {
   CHECK(m.waits.partner_address == 'P');
 }
 
-TEST_CASE("builtin_machines lists every built-in, sorted, with its description",
-          "[machines]") {
+TEST_CASE("builtin_machines lists every built-in, sorted, with its description", "[machines]") {
   const std::vector<machine_summary> all = builtin_machines();
   REQUIRE(all.size() == 3);
   CHECK(all[0].name == "fanuc-0itd-twin");
@@ -168,10 +165,8 @@ TEST_CASE("load_machine reads a file, and names what it cannot read", "[machines
   }
   CHECK(load_machine(path).source == path);
   std::filesystem::remove(path);
-  CHECK_THROWS_WITH(load_machine(path),
-                    "cannot read machine file '" + path + "'");
-  CHECK_THROWS_WITH(load_machine(dir.string()),
-                    "cannot read machine file '" + dir.string() + "'");
+  CHECK_THROWS_WITH(load_machine(path), "cannot read machine file '" + path + "'");
+  CHECK_THROWS_WITH(load_machine(dir.string()), "cannot read machine file '" + dir.string() + "'");
   std::filesystem::remove_all(dir);
   CHECK_THROWS_WITH(load_machine("integrex"),
                     "unknown machine 'integrex': no built-in machine and no "

@@ -4,11 +4,11 @@
 
 #include <string>
 
+#include "machine_test_support.hpp"
 #include "machines/layout_names.hpp"
 #include "machines/layout_rules.hpp"
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
-#include "machine_test_support.hpp"
 
 using namespace twinpost;
 
@@ -26,8 +26,7 @@ TEST_CASE("validation: the test documents are valid as they stand", "[machines]"
   CHECK(error_of(head + two_channels) == "(no error)");
 }
 
-TEST_CASE("validation: TOML syntax errors keep toml++'s message and position",
-          "[machines]") {
+TEST_CASE("validation: TOML syntax errors keep toml++'s message and position", "[machines]") {
   CHECK(error_of("[machine]\nname \"m\"\n") ==
         "m.toml:2:6: error: Error while parsing key-value pair: expected '=', saw '\"'");
   CHECK(error_of(head + "last = 104\n") ==
@@ -36,8 +35,7 @@ TEST_CASE("validation: TOML syntax errors keep toml++'s message and position",
 }
 
 TEST_CASE("validation: unknown keys", "[machines]") {
-  CHECK(error_of(head + "stpe = 2\n" + two_channels) ==
-        "m.toml:6:1: error: unknown key 'waits.stpe'");
+  CHECK(error_of(head + "stpe = 2\n" + two_channels) == "m.toml:6:1: error: unknown key 'waits.stpe'");
   CHECK(error_of("[machine]\nname = \"m\"\n[wait]\nfirst = 100\n") ==
         "m.toml:3:2: error: unknown key 'wait'");
   // The first unknown key in the file, not the first in sorted order.
@@ -71,14 +69,12 @@ TEST_CASE("validation: wrong types", "[machines]") {
         "m.toml:4:9: error: waits.first must be an integer, not a string");
   CHECK(error_of(head + "step = 1.5\n") ==
         "m.toml:6:8: error: waits.step must be an integer, not a floating-point number");
-  CHECK(error_of(head + "reuse = 1\n") ==
-        "m.toml:6:9: error: waits.reuse must be a boolean, not an integer");
+  CHECK(error_of(head + "reuse = 1\n") == "m.toml:6:9: error: waits.reuse must be a boolean, not an integer");
   CHECK(error_of(head + "excluded = [101, \"x\"]\n") ==
         "m.toml:6:18: error: waits.excluded must hold only integers, not a string");
   CHECK(error_of(head + "[limits]\nmax_feed = \"fast\"\n") ==
         "m.toml:7:12: error: limits.max_feed must be a number, not a string");
-  CHECK(error_of("machine = \"m\"\n") ==
-        "m.toml:1:11: error: machine must be a table, not a string");
+  CHECK(error_of("machine = \"m\"\n") == "m.toml:1:11: error: machine must be a table, not a string");
   CHECK(error_of("channel = 1\n" + head) ==
         "m.toml:1:11: error: channel must be an array of tables ([[channel]]), not an "
         "integer");
@@ -86,17 +82,14 @@ TEST_CASE("validation: wrong types", "[machines]") {
         "m.toml:6:11: error: waits.address must be one upper-case letter, not 'MM'");
 }
 
-TEST_CASE("validation: missing required keys are reported at the table lacking them",
-          "[machines]") {
-  CHECK(error_of("[machine]\ndescription = \"d\"\n") ==
-        "m.toml:1:1: error: machine.name is required");
+TEST_CASE("validation: missing required keys are reported at the table lacking them", "[machines]") {
+  CHECK(error_of("[machine]\ndescription = \"d\"\n") == "m.toml:1:1: error: machine.name is required");
   CHECK(error_of("# no [machine] table\n[waits]\nfirst = 100\nlast = 103\n") ==
         "m.toml:1:1: error: machine.name is required");
   CHECK(error_of(head) == "m.toml:1:1: error: at least one [[channel]] is required");
   CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 100\n" + two_channels) ==
         "m.toml:3:1: error: waits.last is required");
-  CHECK(error_of("[machine]\nname = \"m\"\n" + two_channels) ==
-        "m.toml:1:1: error: waits.first is required");
+  CHECK(error_of("[machine]\nname = \"m\"\n" + two_channels) == "m.toml:1:1: error: waits.first is required");
   CHECK(error_of(head + "[[channel]]\nheads = [1]\n" + xz) ==
         "m.toml:6:1: error: channel.number is required");
 }
@@ -136,9 +129,10 @@ TEST_CASE("validation: channel contents", "[machines]") {
   CHECK(error_of(head + "[[channel]]\nnumber = 1\n"
                         "axis = [{address = \"X\", min = 5, max = 1}, {address = \"Z\"}]\n") ==
         "m.toml:8:31: error: channel.axis.min (5) must be <= channel.axis.max (1)");
-  CHECK(error_of(head + "[[spindle]]\nname = \"main\"\n[[channel]]\nnumber = 1\n"
-                        "spindle = \"sub\"\n" + xz) ==
-        "m.toml:10:11: error: channel.spindle 'sub' names no [[spindle]]");
+  CHECK(error_of(head +
+                 "[[spindle]]\nname = \"main\"\n[[channel]]\nnumber = 1\n"
+                 "spindle = \"sub\"\n" +
+                 xz) == "m.toml:10:11: error: channel.spindle 'sub' names no [[spindle]]");
   CHECK(error_of(head + "[[spindle]]\nname = \"main\"\n[[spindle]]\nname = \"main\"\n") ==
         "m.toml:9:8: error: duplicate spindle name 'main'");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nfile_suffix = \"/../x\"\n" + xz) ==
@@ -193,8 +187,7 @@ TEST_CASE("validation: a wait on 3 or more channels must name its partners", "[m
 }
 
 TEST_CASE("validation: templates are formatted once at load", "[machines]") {
-  CHECK(error_of(head + "[[channel]]\nnumber = 1\ntool_call = \"T{tool:02}{offst:02}\"\n" +
-                 xz) ==
+  CHECK(error_of(head + "[[channel]]\nnumber = 1\ntool_call = \"T{tool:02}{offst:02}\"\n" + xz) ==
         "m.toml:8:13: error: channel.tool_call: bad template \"T{tool:02}{offst:02}\": "
         "argument not found");
   CHECK(error_of(head + "[program]\nheader = [\"G21\", \"G50 S{max\"]\n") ==
@@ -251,7 +244,8 @@ TEST_CASE("validation: a template names only what is known where it is used", "[
         "m.toml:7:16: error: program.program_line: template \"O{program:0{channel}}\" names "
         "{channel}, which is not known there (it is given {program}, {name})");
   // Where they are known, all are fine, and a literal brace is not a placeholder.
-  CHECK(error_of(head + "[program]\nfile_name = \"{name}-{program}\"\n"
+  CHECK(error_of(head +
+                 "[program]\nfile_name = \"{name}-{program}\"\n"
                  "header = [\"({name} {program} {channel})\", \"{{tool}}\"]\n"
                  "section_marker = \"G109 L{channel}\"\n"
                  "[codes]\ndwell = \"G4 P{ms} (C{channel} {seconds})\"\n"
@@ -263,9 +257,11 @@ TEST_CASE("validation: a template names only what is known where it is used", "[
 TEST_CASE("fixed blocks are stored as the control reads them", "[machines]") {
   // A fixed block is formatted once at load: `{{` stands for a brace, in the file as on the
   // control.
-  const machine m = parse_machine(head + "[program]\nend_code = \"M30 ({{END}})\"\n"
-                                         "[codes]\nhome = \"G28 U0 ({{HOME}})\"\n"
-                                         "coolant_on = [\"M8 ({{A}})\"]\n" + two_channels,
+  const machine m = parse_machine(head +
+                                      "[program]\nend_code = \"M30 ({{END}})\"\n"
+                                      "[codes]\nhome = \"G28 U0 ({{HOME}})\"\n"
+                                      "coolant_on = [\"M8 ({{A}})\"]\n" +
+                                      two_channels,
                                   "m.toml");
   CHECK(m.program.end_code == "M30 ({END})");
   CHECK(m.codes.home == "G28 U0 ({HOME})");
@@ -290,7 +286,8 @@ TEST_CASE("validation: wait codes and steps stay within eight digits", "[machine
         "m.toml:6:8: error: waits.step must be <= 99999999 (a code has at most 8 digits), "
         "not 2147483647");
   CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 99999990\nlast = 99999999\n"
-                 "step = 99999999\n" + two_channels) == "(no error)");
+                 "step = 99999999\n" +
+                 two_channels) == "(no error)");
 }
 
 namespace {

@@ -107,9 +107,8 @@ TEST_CASE("regular files are read from their path, pipes once into a private cop
   const std::string file = dir.path + "/a.nc";
   REQUIRE(test::write_file(file, "M100\n"));
   filled_pipe pipe("M100\n");
-  const std::vector<nc_source> r =
-      rereadable({{"a.nc", {}, file}, {"p.nc", {}, pipe.path()}, {"p2.nc", {}, pipe.path()},
-                  {"t.nc", "M100\n"}});
+  const std::vector<nc_source> r = rereadable(
+      {{"a.nc", {}, file}, {"p.nc", {}, pipe.path()}, {"p2.nc", {}, pipe.path()}, {"t.nc", "M100\n"}});
   REQUIRE(r.size() == 4);
   CHECK(r[0].copy == nullptr);
   CHECK(r[0].path == file);
@@ -121,8 +120,7 @@ TEST_CASE("regular files are read from their path, pipes once into a private cop
 
 TEST_CASE("inputs that cannot be read are named", "[check]") {
   temp_dir dir;
-  CHECK(error_of({{"d", {}, dir.path}}) ==
-        "cannot read '" + dir.path + "': it is a directory");
+  CHECK(error_of({{"d", {}, dir.path}}) == "cannot read '" + dir.path + "': it is a directory");
   CHECK(error_of({{"x", {}, dir.path + "/none.nc"}}) ==
         "cannot read '" + dir.path + "/none.nc': No such file or directory");
 }

@@ -66,10 +66,10 @@ TEST_CASE("split_nc_words reads words the way controls do", "[check]") {
 TEST_CASE("split files: file n is channel n; comments hold no waits", "[check]") {
   const machine m = two_channels(100, 103, "");
   diagnostic_list d;
-  const nc_programs p = read_nc_programs(
-      {{"a.nc", "%\nO1000 (PART M100)\nG0 X10.\nn20 m100 (wait)\nM101;\nM30\n%\n"},
-       {"b.nc", "%\r\nO1000\r\nM100\r\nG1 X1. F.2 (M101 IS NEXT)\r\nM101\r\n"}},
-      m, d);
+  const nc_programs p =
+      read_nc_programs({{"a.nc", "%\nO1000 (PART M100)\nG0 X10.\nn20 m100 (wait)\nM101;\nM30\n%\n"},
+                        {"b.nc", "%\r\nO1000\r\nM100\r\nG1 X1. F.2 (M101 IS NEXT)\r\nM101\r\n"}},
+                       m, d);
   CHECK(messages(d) == "");
   REQUIRE(p.channels.size() == 2);
   const nc_channel_program& a = p.channels[0];
@@ -86,7 +86,7 @@ TEST_CASE("split files: file n is channel n; comments hold no waits", "[check]")
   const nc_channel_program& b = p.channels[1];
   REQUIRE(b.waits.size() == 2);
   CHECK(b.waits[1].where.source_line == "M101");  // no CR left over
-  CHECK(b.end.line == 5);  // no end code: the last block
+  CHECK(b.end.line == 5);                         // no end code: the last block
 }
 
 TEST_CASE("partner lists are recorded as written", "[check]") {
@@ -112,7 +112,7 @@ TEST_CASE("Mazak merged file: common blocks, interleaved sections", "[check]") {
   diagnostic_list d;
   const nc_programs p = read_nc_programs({{"part.eia",
                                            "%\n"
-                                           "O1306(PART)\n"       // 2: common
+                                           "O1306(PART)\n"      // 2: common
                                            "G109 L1 (UPPER)\n"  // 3
                                            "M950\n"             // 4
                                            "g109l2\n"           // 5
@@ -137,8 +137,7 @@ TEST_CASE("Mazak merged file: common blocks, interleaved sections", "[check]") {
 
 TEST_CASE("a marker block may carry more words", "[check]") {
   diagnostic_list d;
-  const nc_programs p =
-      read_nc_programs({{"p.eia", "G109 L1 M950\nG109 L2\nM950\n"}}, mazak(), d);
+  const nc_programs p = read_nc_programs({{"p.eia", "G109 L1 M950\nG109 L2\nM950\n"}}, mazak(), d);
   CHECK(messages(d) == "");
   REQUIRE(p.channels[0].waits.size() == 1);
   CHECK(p.channels[0].waits[0].where.column == 9);
@@ -204,8 +203,7 @@ TEST_CASE("a marker of an unknown channel is named, and pointed at past its N nu
 TEST_CASE("waits after the end, two waits in a block, expressions", "[check]") {
   const machine m = two_channels(100, 103, "");
   diagnostic_list d;
-  const nc_programs p =
-      read_nc_programs({{"a.nc", "M100 M101\nM#1\nM30\nM102\n"}, {"b.nc", "M100\n"}}, m, d);
+  const nc_programs p = read_nc_programs({{"a.nc", "M100 M101\nM#1\nM30\nM102\n"}, {"b.nc", "M100\n"}}, m, d);
   CHECK(messages(d) ==
         "a.nc:1:6: error: two waits in one block (M100 and M101): a wait needs a block of its "
         "own\nM100 M101\n     ^\n"
@@ -222,8 +220,7 @@ TEST_CASE("near waits: off-step codes and M-codes with partner lists", "[check]"
   m.waits.excluded = {198};
   diagnostic_list d;
   const nc_programs p = read_nc_programs(
-      {{"a.nc", "M101\nM250 P12\nM98 P1000\nG4 P12 M250\nM198 P12\nM100\n"}, {"b.nc", ""}}, m,
-      d);
+      {{"a.nc", "M101\nM250 P12\nM98 P1000\nG4 P12 M250\nM198 P12\nM100\n"}, {"b.nc", ""}}, m, d);
   REQUIRE(p.channels[0].waits.size() == 1);
   REQUIRE(p.channels[0].near_waits.size() == 2);
   CHECK(p.channels[0].near_waits[0].code == 101);
@@ -251,8 +248,8 @@ TEST_CASE("streamed files: the last block survives the reader's buffer", "[check
   auto [a_path, a_lines] = write("stream_a.nc", "G0 X100. Z5.");
   auto [b_path, b_lines] = write("stream_b.nc", "G0 X200. Z9.");
   diagnostic_list d;
-  const nc_programs p = read_nc_programs({{"a.nc", {}, a_path}, {"b.nc", {}, b_path}},
-                                         two_channels(100, 103, ""), d);
+  const nc_programs p =
+      read_nc_programs({{"a.nc", {}, a_path}, {"b.nc", {}, b_path}}, two_channels(100, 103, ""), d);
   CHECK(p.channels[0].end.file == "a.nc");
   CHECK(p.channels[0].end.line == a_lines);
   CHECK(p.channels[0].end.source_line == "G0 X100. Z5.");
@@ -271,9 +268,11 @@ std::string summary(const nc_programs& p, const diagnostic_list& d) {
     s += "channel " + std::to_string(c.channel) + " end " + std::to_string(c.end.line) + ":" +
          std::to_string(c.end.column) + " [" + c.end.source_line + "]\n";
     for (const nc_wait& w : c.waits)
-      s += " wait M" + std::to_string(w.code) + " P" + w.partner_text + " at " + std::to_string(w.where.line) +
-           ":" + std::to_string(w.where.column) + " [" + w.where.source_line + "]\n";
-    for (const nc_wait& w : c.near_waits) s += " near M" + std::to_string(w.code) + " at " + std::to_string(w.where.line) + "\n";
+      s += " wait M" + std::to_string(w.code) + " P" + w.partner_text + " at " +
+           std::to_string(w.where.line) + ":" + std::to_string(w.where.column) + " [" + w.where.source_line +
+           "]\n";
+    for (const nc_wait& w : c.near_waits)
+      s += " near M" + std::to_string(w.code) + " at " + std::to_string(w.where.line) + "\n";
   }
   return s + messages(d);
 }
@@ -311,7 +310,8 @@ TEST_CASE("streamed and in-memory reading agree, runs of plain blocks included",
   };
   const machine m = two_channels(100, 199, "");
   diagnostic_list from_disk, from_memory;
-  const nc_programs disk = read_nc_programs({{"a.nc", {}, put("a.nc", a)}, {"b.nc", {}, put("b.nc", b)}}, m, from_disk);
+  const nc_programs disk =
+      read_nc_programs({{"a.nc", {}, put("a.nc", a)}, {"b.nc", {}, put("b.nc", b)}}, m, from_disk);
   const nc_programs memory = read_nc_programs({{"a.nc", a}, {"b.nc", b}}, m, from_memory);
   std::filesystem::remove_all(tmp);
   REQUIRE(memory.channels[0].waits.size() > 1000);

@@ -64,7 +64,7 @@ TEST_CASE("NC numbers: the fast path agrees with to_chars", "[formats]") {
       number_style s{decimals, point};
       for (int i = 0; i < 50000; ++i) {
         double v = wide(rng);
-        double on_grid = std::round(grid(rng)) / 10000.0;             // CL-like 4-decimal values
+        double on_grid = std::round(grid(rng)) / 10000.0;                     // CL-like 4-decimal values
         double tie = (std::round(grid(rng)) + 0.5) / std::pow(10, decimals);  // near halves
         // Exact binary halves: odd / 2^(d+1) is k + 0.5 in units of 10^-d (0.0625 at 3).
         double exact_tie = (2 * std::round(grid(rng) / 2) + 1) / std::pow(2, decimals + 1);

@@ -12,8 +12,8 @@
 #include <unistd.h>
 
 #include "cli/interrupt.hpp"
-#include "post/output_commit.hpp"
 #include "machines/machine_loader.hpp"
+#include "post/output_commit.hpp"
 #include "post_test_jobs.hpp"
 #include "support/errors.hpp"
 
@@ -69,7 +69,8 @@ TEST_CASE("a rename that fails half-way puts every old file back", "[post][commi
   REQUIRE(test::write_file(dir + "/stage/a", "new a\n"));
   REQUIRE(test::write_file(dir + "/stage/b", "new b\n"));
   REQUIRE(test::write_file(dir + "/stage/c", "new c\n"));
-  const std::vector<staged_file> files{{dir + "/stage/a", "a.nc"}, {dir + "/stage/c", "c.nc"}, {dir + "/stage/b", "b.nc"}};
+  const std::vector<staged_file> files{
+      {dir + "/stage/a", "a.nc"}, {dir + "/stage/c", "c.nc"}, {dir + "/stage/b", "b.nc"}};
   CHECK(config_error_of([&] { detail::replace_all(dir + "/out", dir + "/stage", files); }) ==
         "cannot replace '" + dir + "/out/b.nc': Is a directory");
   CHECK(test::list_dir(dir + "/out") == "a.nc b.nc");
@@ -105,7 +106,8 @@ TEST_CASE("concurrent posts of two versions into one folder leave one complete s
   fs::remove_all(dir);
 }
 
-TEST_CASE("racing processes: one complete set, and a failing post keeps the folder another fills", "[post][commit]") {
+TEST_CASE("racing processes: one complete set, and a failing post keeps the folder another fills",
+          "[post][commit]") {
   // Each round: three processes post into a folder that does not exist yet: versions A and
   // B of the part, and a job that fails (it made the folder perhaps, and must not remove it
   // from under the others). Exit code 0 means the post reported success.
@@ -175,8 +177,9 @@ TEST_CASE("stages of dead runs are removed by the next post, those of live runs 
   REQUIRE(dead > 0);
   REQUIRE(::waitpid(dead, nullptr, 0) == dead);
   const std::string out = dir + "/out";
-  for (const std::string& stage : {".twinpost-" + std::to_string(dead), ".twinpost-" + std::to_string(dead) + "-3",
-                                   std::string(".twinpost-1-0")}) {
+  for (const std::string& stage :
+       {".twinpost-" + std::to_string(dead), ".twinpost-" + std::to_string(dead) + "-3",
+        std::string(".twinpost-1-0")}) {
     fs::create_directories(out + "/" + stage);
     REQUIRE(test::write_file(out + "/" + stage + "/framed1", "partial\n"));
   }
@@ -186,15 +189,19 @@ TEST_CASE("stages of dead runs are removed by the next post, those of live runs 
   fs::remove_all(dir);
 }
 
-TEST_CASE("a post interrupted by SIGTERM, SIGINT or SIGHUP leaves the folder as it was and dies of the signal", "[post][commit]") {
+TEST_CASE(
+    "a post interrupted by SIGTERM, SIGINT or SIGHUP leaves the folder as it was and dies of the signal",
+    "[post][commit]") {
   const std::string dir = test::fresh_temp_dir("commit-sigterm");
   const machine m = load_machine("fanuc-0itd-twin");
   REQUIRE(test::write_file(dir + "/big.cls", test::race_job('B', 70000)));
   diagnostic_list d;
   REQUIRE(test::post_text(dir, "a.cls", test::race_job('A'), m, dir + "/out", d).ok);
   const std::string old_one = test::read_file(dir + "/out/RACE_1.nc");
-  const std::pair<std::string, int> runs[] = {
-      {dir + "/out", SIGTERM}, {dir + "/new/a/b", SIGTERM}, {dir + "/out", SIGINT}, {dir + "/new/a/b", SIGHUP}};
+  const std::pair<std::string, int> runs[] = {{dir + "/out", SIGTERM},
+                                              {dir + "/new/a/b", SIGTERM},
+                                              {dir + "/out", SIGINT},
+                                              {dir + "/new/a/b", SIGHUP}};
   for (const auto& [out, sig] : runs) {
     const pid_t child = ::fork();
     REQUIRE(child >= 0);
@@ -236,7 +243,8 @@ TEST_CASE("the job must be a regular file with records", "[post]") {
     diagnostic_list d;
     CHECK(config_error_of([&] { post_job(o, m, d); }) ==
           "'" + job +
-              "' is not a regular file (a pipe, FIFO, folder or device): post reads the job twice, give it a file");
+              "' is not a regular file (a pipe, FIFO, folder or device): post reads the job twice, give it a "
+              "file");
   }
   CHECK(config_error_of([&] {
           post_options o;

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "post/output_names.hpp"
 #include "machines/machine_loader.hpp"
+#include "post/output_names.hpp"
 #include "post_test_jobs.hpp"
 #include "support/errors.hpp"
 
@@ -15,7 +15,8 @@ namespace {
 
 // A built-in machine's TOML with `from` replaced by `to`, loaded as "m.toml".
 machine edited(const std::string& builtin, const std::string& from, const std::string& to) {
-  std::string text = test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/" + builtin + ".toml");
+  std::string text =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/" + builtin + ".toml");
   const auto at = text.find(from);
   REQUIRE(at != std::string::npos);
   text.replace(at, from.size(), to);
@@ -53,22 +54,26 @@ TEST_CASE("what a plain file name is", "[post][names]") {
 }
 
 TEST_CASE("a machine file's file name may not leave the output folder", "[post][names]") {
-  const auto up = failed_post(edited("fanuc-0itd-twin", "file_name = \"{name}\"", "file_name = \"../{name}\""), "names-up");
+  const auto up = failed_post(
+      edited("fanuc-0itd-twin", "file_name = \"{name}\"", "file_name = \"../{name}\""), "names-up");
   CHECK(up.first ==
         "machine file 'm.toml': file_name \"../{name}\", file_suffix \"_1\" and extension \".nc\" "
-        "give the file name '../RACE_1.nc' for channel 1: not a plain file name in the output folder (it has a '/')");
+        "give the file name '../RACE_1.nc' for channel 1: not a plain file name in the output folder (it has "
+        "a '/')");
   CHECK(up.second == "job.cls");  // nothing beside the job, nothing left in out/
-  const auto fill = failed_post(edited("integrex-i200st", "file_name = \"{name}\"", "file_name = \"{name:/>40}\""),
-                                "names-fill");
+  const auto fill = failed_post(
+      edited("integrex-i200st", "file_name = \"{name}\"", "file_name = \"{name:/>40}\""), "names-fill");
   CHECK(fill.first ==
         "machine file 'm.toml': file_name \"{name:/>40}\" and extension \".EIA\" give the file name "
-        "'////////////////////////////////////RACE.EIA' for channel 1: not a plain file name in the output folder "
+        "'////////////////////////////////////RACE.EIA' for channel 1: not a plain file name in the output "
+        "folder "
         "(it has a '/')");
   CHECK(fill.second == "job.cls");
 }
 
 TEST_CASE("two channels may not be written to one file", "[post][names]") {
-  const auto twice = failed_post(edited("fanuc-0itd-twin", "file_suffix = \"_2\"", "file_suffix = \"_1\""), "names-twice");
+  const auto twice =
+      failed_post(edited("fanuc-0itd-twin", "file_suffix = \"_2\"", "file_suffix = \"_1\""), "names-twice");
   CHECK(twice.first ==
         "machine file 'm.toml': channels 1 and 2 would both be written to 'RACE_1.nc' "
         "(file_name \"{name}\", split layout): give the channels distinct file_suffix values");

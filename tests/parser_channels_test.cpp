@@ -11,12 +11,8 @@ using twinpost::test::read_cl;
 
 TEST_CASE("HEAD by number and by name", "[parser][channels]") {
   CHECK(events_of("HEAD/1\nHEAD/2\nHEAD/MAIN\nHEAD/SIDE\nHEAD/BOTH\nhead/main\n") ==
-        lines{"1\thead head=1",
-              "2\thead head=2",
-              "3\thead head=MAIN",
-              "4\thead head=SIDE",
-              "5\thead head=BOTH",
-              "6\thead head=MAIN"});
+        lines{"1\thead head=1", "2\thead head=2", "3\thead head=MAIN", "4\thead head=SIDE",
+              "5\thead head=BOTH", "6\thead head=MAIN"});
 }
 
 TEST_CASE("HEAD without a head is an error", "[parser][channels]") {
@@ -43,8 +39,7 @@ TEST_CASE("CHANNEL,n (no slash) and CHANNL/n", "[parser][channels]") {
 
 TEST_CASE("CATIA SYNC/k,c1,c2[,master] with its trailing comma", "[parser][channels]") {
   CHECK(events_of("SYNC/1,1,2,\nSYNC/1,2,1,\nSYNC/3,1,2,1\n", dialect::catia) ==
-        lines{"1\tsync from=catia index=1 channels=1,2",
-              "2\tsync from=catia index=1 channels=2,1",
+        lines{"1\tsync from=catia index=1 channels=1,2", "2\tsync from=catia index=1 channels=2,1",
               "3\tsync from=catia index=3 channels=1,2 master=1"});
   auto r = read_cl("SYNC/1,2\n", dialect::catia);
   CHECK(r.diagnostics ==
@@ -95,14 +90,8 @@ TEST_CASE("a two-channel CATIA program", "[parser][channels]") {
                   "GOTO/20,0,5\n"
                   "END\n",
                   dialect::catia) ==
-        lines{"1\tchannel channel=1",
-              "2\ttool tool=1 from=LOADTL",
-              "3\tgoto x=10 y=0 z=5",
-              "4\tsync from=catia index=1 channels=1,2",
-              "5\tend word=END",
-              "6\tchannel channel=2",
-              "7\ttool tool=11 from=LOADTL",
-              "8\tsync from=catia index=1 channels=2,1",
-              "9\tgoto x=20 y=0 z=5",
-              "10\tend word=END"});
+        lines{"1\tchannel channel=1", "2\ttool tool=1 from=LOADTL", "3\tgoto x=10 y=0 z=5",
+              "4\tsync from=catia index=1 channels=1,2", "5\tend word=END", "6\tchannel channel=2",
+              "7\ttool tool=11 from=LOADTL", "8\tsync from=catia index=1 channels=2,1",
+              "9\tgoto x=20 y=0 z=5", "10\tend word=END"});
 }

@@ -23,8 +23,8 @@ TEST_CASE("each CAM family is told apart by its first bytes", "[parser][dialect]
 }
 
 TEST_CASE("dialect names round-trip", "[parser][dialect]") {
-  for (dialect d : {dialect::generic, dialect::creo, dialect::nx, dialect::catia, dialect::solidworks,
-                    dialect::makino})
+  for (dialect d :
+       {dialect::generic, dialect::creo, dialect::nx, dialect::catia, dialect::solidworks, dialect::makino})
     CHECK(dialect_from_name(dialect_name(d)) == d);
   CHECK(dialect_name(dialect::solidworks) == "solidworks");
   CHECK_FALSE(dialect_from_name("mastercam").has_value());

@@ -113,13 +113,14 @@ TEST_CASE("a record cut short by the end of input", "[parser][errors]") {
 }
 
 TEST_CASE("reading goes on after errors", "[parser][errors]") {
-  auto r = read_cl("LOADTL/1\n"
-                   "GOTO 1,2,3\n"
-                   "GOTO/1,2\n"
-                   "FEDRAT/1 2\n"
-                   "GOTO/4,5,6\n"
-                   "FINI\n",
-                   dialect::generic);
+  auto r = read_cl(
+      "LOADTL/1\n"
+      "GOTO 1,2,3\n"
+      "GOTO/1,2\n"
+      "FEDRAT/1 2\n"
+      "GOTO/4,5,6\n"
+      "FINI\n",
+      dialect::generic);
   CHECK(r.events == lines{"1\ttool tool=1 from=LOADTL", "5\tgoto x=4 y=5 z=6", "6\tend word=FINI"});
   CHECK(r.errors == 3);
 }
@@ -128,13 +129,14 @@ TEST_CASE("coordinate lines after a malformed record are dropped, not joined to 
           "[parser][errors]") {
   // Regression: a record that did not parse left the previous GOTO open, so the points of a
   // malformed GOTO were silently added to the one before it.
-  auto r = read_cl("GOTO/1,2,3\n"
-                   "GOTO/4 5 6\n"
-                   "     7,8,9\n"
-                   "FEDRAT/1 2\n"
-                   "     7,8,9\n"
-                   "GOTO/1,1,1\n",
-                   dialect::generic);
+  auto r = read_cl(
+      "GOTO/1,2,3\n"
+      "GOTO/4 5 6\n"
+      "     7,8,9\n"
+      "FEDRAT/1 2\n"
+      "     7,8,9\n"
+      "GOTO/1,1,1\n",
+      dialect::generic);
   CHECK(r.events == lines{"1\tgoto x=1 y=2 z=3", "6\tgoto x=1 y=1 z=1"});
   CHECK(r.diagnostics ==
         "t.cl:2:8: error: expected ',' between arguments, found '5'\n"

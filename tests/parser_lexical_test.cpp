@@ -13,8 +13,7 @@ TEST_CASE("$$ starts a comment, on its own line or after data", "[parser][lexica
   CHECK(events_of("$$ centerline data\n"
                   "GOTO/1,2,3 $$ trailing note\n"
                   "  $$OPERATION NAME : Pointage.1\n") ==
-        lines{"1\tcomment text=\"centerline data\"",
-              "2\tgoto x=1 y=2 z=3",
+        lines{"1\tcomment text=\"centerline data\"", "2\tgoto x=1 y=2 z=3",
               "3\tcomment text=\"OPERATION NAME : Pointage.1\""});
 }
 
@@ -23,10 +22,8 @@ TEST_CASE("$$-> data comments carry a major and arguments", "[parser][lexical]")
                   "$$-> CUTTER / 3.000000\n"
                   "$$-> FEATNO / 32\n"
                   "$$-> END / \n") ==
-        lines{"1\tdata-comment text=\"MFGNO / MFG0004\"",
-              "2\ttool-data from=\"$$-> CUTTER\" values=3",
-              "3\tdata-comment text=\"FEATNO / 32\"",
-              "4\tdata-comment text=END"});
+        lines{"1\tdata-comment text=\"MFGNO / MFG0004\"", "2\ttool-data from=\"$$-> CUTTER\" values=3",
+              "3\tdata-comment text=\"FEATNO / 32\"", "4\tdata-comment text=END"});
 }
 
 TEST_CASE("$$-> lines continue with $ onto lines that do not start with $$", "[parser][lexical]") {
@@ -35,8 +32,7 @@ TEST_CASE("$$-> lines continue with $ onto lines that do not start with $$", "[p
                   "          0.0000000000, 20.0000000000, 0.0000000000,  $\n"
                   "          0.0000000000, 1.0000000000, 30.0000000000\n"
                   "GOTO / 1, 2, 3\n") ==
-        lines{"1\tcoordsys from=\"$$-> CSYS\" values=1,0,0,10,0,1,0,20,0,0,1,30",
-              "5\tgoto x=1 y=2 z=3"});
+        lines{"1\tcoordsys from=\"$$-> CSYS\" values=1,0,0,10,0,1,0,20,0,0,1,30", "5\tgoto x=1 y=2 z=3"});
 }
 
 TEST_CASE("a $$-> body that is not a record stays a plain comment", "[parser][lexical]") {
@@ -56,8 +52,7 @@ TEST_CASE("$$*CATIA0 and its three matrix rows make a coordinate system", "[pars
                   "$$     0.00000     1.00000     0.00000  -170.00000\n"
                   "$$     0.00000     0.00000     1.00000    20.00000\n"
                   "PARTNO PART TO BE MACHINED\n") ==
-        lines{"1\theader text=CATIA0",
-              "2\tcomment text=\"Programme de fabrication.1\"",
+        lines{"1\theader text=CATIA0", "2\tcomment text=\"Programme de fabrication.1\"",
               "3\tcomment text=\"1.00000     0.00000     0.00000  -220.00000\"",
               "4\tcomment text=\"0.00000     1.00000     0.00000  -170.00000\"",
               "1\tcoordsys from=$$*CATIA0 values=1,0,0,-220,0,1,0,-170,0,0,1,20",
@@ -73,22 +68,16 @@ TEST_CASE("$$*CATIA0 rows must hold four finite numbers", "[parser][lexical]") {
                   "$$ 0 1 0 0 0\n"
                   "$$ 0 1 0 0\n"
                   "$$ 0 0 1 5\n") ==
-        lines{"1\theader text=CATIA0",
-              "2\tcomment text=\"nan nan nan nan\"",
-              "3\tcomment text=\"1 0 0 0\"",
-              "4\tcomment text=\"0 1 0 0 0\"",
-              "5\tcomment text=\"0 1 0 0\"",
-              "1\tcoordsys from=$$*CATIA0 values=1,0,0,0,0,1,0,0,0,0,1,5",
-              "6\tcomment text=\"0 0 1 5\""});
+        lines{"1\theader text=CATIA0", "2\tcomment text=\"nan nan nan nan\"", "3\tcomment text=\"1 0 0 0\"",
+              "4\tcomment text=\"0 1 0 0 0\"", "5\tcomment text=\"0 1 0 0\"",
+              "1\tcoordsys from=$$*CATIA0 values=1,0,0,0,0,1,0,0,0,0,1,5", "6\tcomment text=\"0 0 1 5\""});
 }
 
-TEST_CASE("$$UDE: MANUSPOST synchronisation is a sync mark; other UDEs stay comments",
-          "[parser][lexical]") {
+TEST_CASE("$$UDE: MANUSPOST synchronisation is a sync mark; other UDEs stay comments", "[parser][lexical]") {
   CHECK(events_of("$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=1\n"
                   "$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER= 12\n"
                   "$$UDE: MANUSPOST - COOLANT/MODE=FLOOD\n") ==
-        lines{"1\tsync from=manus index=1",
-              "2\tsync from=manus index=12",
+        lines{"1\tsync from=manus index=1", "2\tsync from=manus index=12",
               "3\tude text=\"UDE: MANUSPOST - COOLANT/MODE=FLOOD\""});
 }
 
@@ -97,16 +86,14 @@ TEST_CASE("$ continues a record after a comma, with and without a blank", "[pars
                   " 1.000000\n"
                   "GOTO / 4, 5,  $\n"
                   "6\n") ==
-        lines{"1\tcycle type=DEEP DEPTH=3.5 STEP=1 MMPM=50 CLEAR=1",
-              "3\tgoto x=4 y=5 z=6"});
+        lines{"1\tcycle type=DEEP DEPTH=3.5 STEP=1 MMPM=50 CLEAR=1", "3\tgoto x=4 y=5 z=6"});
 }
 
 TEST_CASE("CATIA continues with ,$ and the next line goes on with numbers", "[parser][lexical]") {
   CHECK(events_of("CUTTER/ 10.000000,  0.000000,  5.000000,  5.000000, 45.000000,$\n"
                   "         0.000000, 50.000000\n"
                   "TOOLNO/2,   10.000000\n") ==
-        lines{"1\ttool-data from=CUTTER values=10,0,5,5,45,0,50",
-              "3\tpassthrough major=TOOLNO args=2,10"});
+        lines{"1\ttool-data from=CUTTER values=10,0,5,5,45,0,50", "3\tpassthrough major=TOOLNO args=2,10"});
 }
 
 TEST_CASE("Creo puts i,j,k of a 5-axis GOTO on a continuation line", "[parser][lexical]") {
@@ -129,15 +116,10 @@ TEST_CASE("records without a slash", "[parser][lexical]") {
                   "END\n"
                   "FINI\n") ==
         lines{"1\ttext major=PARTNO text=CORE_WORK",
-              "2\ttext major=PPRINT text=\"NC_LATHE_MO_START_COMMENT BEGIN\"",
-              "4\tgoto x=1 y=2 z=3 rapid",
-              "5\tmultax state=on",
-              "6\tchannel channel=1",
-              "7\tpassthrough major=LOCAL_ORIGIN args=10,20,30",
-              "8\ttext major=\"TOOL PATH\" text=ZLEVEL_FOLLOW_CORE,TOOL,MILL-20MM",
-              "9\tend word=END-OF-PATH",
-              "10\tend word=END",
-              "11\tend word=FINI"});
+              "2\ttext major=PPRINT text=\"NC_LATHE_MO_START_COMMENT BEGIN\"", "4\tgoto x=1 y=2 z=3 rapid",
+              "5\tmultax state=on", "6\tchannel channel=1", "7\tpassthrough major=LOCAL_ORIGIN args=10,20,30",
+              "8\ttext major=\"TOOL PATH\" text=ZLEVEL_FOLLOW_CORE,TOOL,MILL-20MM", "9\tend word=END-OF-PATH",
+              "10\tend word=END", "11\tend word=FINI"});
 }
 
 TEST_CASE("free-text records keep , / [ ] : and blanks", "[parser][lexical]") {
@@ -149,8 +131,7 @@ TEST_CASE("free-text records keep , / [ ] : and blanks", "[parser][lexical]") {
                   "PPRINT/BEGIN-SECTION,DEFINE\n"
                   "PPRINT OPERATION : ROUGH, PASS 1/2 \n"
                   "OPFEATEND/Drill1-Hole Group1 [Drill] [Sub2]\n") ==
-        lines{"1\ttext major=PARTNO text=\"PART TO BE MACHINED\"",
-              "2\ttext major=PARTNO text=MFG0004",
+        lines{"1\ttext major=PARTNO text=\"PART TO BE MACHINED\"", "2\ttext major=PARTNO text=MFG0004",
               "3\ttext major=INSERT text=\"[HOLDER=C40-M06EM2] 6MM CRB 2FL 19 LOC\"",
               "4\ttext major=TPRINT text=\"T1 PointeurD10\"",
               "5\ttext major=OPFEATSTART text=\"Drill1-Hole Group1 [Drill] [Sub2]\"",
@@ -172,9 +153,7 @@ TEST_CASE("numbers: trailing point, leading point, -0, exponent, plus sign", "[p
   CHECK(events_of("GOTO/95.,.9625,-0.000000\n"
                   "GOTO/1.5E-3,+2,2.0000000000\n"
                   "GOTO/-.5,1.E2,-12000\n") ==
-        lines{"1\tgoto x=95 y=0.9625 z=0",
-              "2\tgoto x=0.0015 y=2 z=2",
-              "3\tgoto x=-0.5 y=100 z=-12000"});
+        lines{"1\tgoto x=95 y=0.9625 z=0", "2\tgoto x=0.0015 y=2 z=2", "3\tgoto x=-0.5 y=100 z=-12000"});
 }
 
 TEST_CASE("numbers read exactly, on the fast path and past it", "[parser][lexical]") {
@@ -192,8 +171,7 @@ TEST_CASE("minus zero never prints as -0, in passthrough arguments either", "[pa
   // Regression: passthrough and MACHIN arguments were printed with fmt's "{}" ("-0").
   CHECK(events_of("ROTABL/ -0.000000,BAXIS,TABLE,CCLW \n"
                   "MACHIN / MILL, -0.0\n") ==
-        lines{"1\tpassthrough major=ROTABL args=0,BAXIS,TABLE,CCLW",
-              "2\tmachin name=MILL args=0"});
+        lines{"1\tpassthrough major=ROTABL args=0,BAXIS,TABLE,CCLW", "2\tmachin name=MILL args=0"});
 }
 
 TEST_CASE("words may start with digits and hold - . #", "[parser][lexical]") {
@@ -201,8 +179,7 @@ TEST_CASE("words may start with digits and hold - . #", "[parser][lexical]") {
                   "TOOL PATH/DRILL,TOOL,MILL-20MM\n"
                   "CYCLE/DRILL,G98,AUTO\n") ==
         lines{"1\tcycle type=DEEP2 FEDTO=24.6205 1STPECK=5 SUBPECK=2 MMPM=670.56",
-              "2\ttext major=\"TOOL PATH\" text=DRILL,TOOL,MILL-20MM",
-              "3\tcycle type=DRILL words=G98,AUTO"});
+              "2\ttext major=\"TOOL PATH\" text=DRILL,TOOL,MILL-20MM", "3\tcycle type=DRILL words=G98,AUTO"});
 }
 
 TEST_CASE("trailing blanks and trailing commas are ignored", "[parser][lexical]") {
@@ -211,12 +188,9 @@ TEST_CASE("trailing blanks and trailing commas are ignored", "[parser][lexical]"
                   "SPINDL/RPM,1000,CLW \n"
                   "CUTTER/ 6.000000,0.000000,3.000000,1.802582,31.000000,0.000000,102.000000,\n"
                   "SYNC/1,1,2,\n"
-                  "FINI \n") ==
-        lines{"2\tgoto x=1 y=2 z=3 rapid",
-              "3\tspindle mode=rpm speed=1000 dir=cw",
-              "4\ttool-data from=CUTTER values=6,0,3,1.802582,31,0,102",
-              "5\tsync from=catia index=1 channels=1,2",
-              "6\tend word=FINI"});
+                  "FINI \n") == lines{"2\tgoto x=1 y=2 z=3 rapid", "3\tspindle mode=rpm speed=1000 dir=cw",
+                                      "4\ttool-data from=CUTTER values=6,0,3,1.802582,31,0,102",
+                                      "5\tsync from=catia index=1 channels=1,2", "6\tend word=FINI"});
 }
 
 TEST_CASE("empty arguments keep their place", "[parser][lexical]") {
@@ -243,10 +217,13 @@ TEST_CASE("CRLF line endings", "[parser][lexical]") {
 }
 
 TEST_CASE("ISO-8859-1 bytes in comments: opaque, escaped in text and JSON", "[parser][lexical]") {
-  auto r = read_cl("$$     G\xe9n\xe9r\xe9 le jeudi\n$$ D\xe9" "but\n", dialect::catia);
+  auto r = read_cl(
+      "$$     G\xe9n\xe9r\xe9 le jeudi\n$$ D\xe9"
+      "but\n",
+      dialect::catia);
   CHECK(r.diagnostics == "");
-  CHECK(r.events == lines{"1\tcomment text=\"G\\u00e9n\\u00e9r\\u00e9 le jeudi\"",
-                          "2\tcomment text=\"D\\u00e9but\""});
+  CHECK(r.events ==
+        lines{"1\tcomment text=\"G\\u00e9n\\u00e9r\\u00e9 le jeudi\"", "2\tcomment text=\"D\\u00e9but\""});
   CHECK(r.json == lines{"{\"line\":1,\"event\":\"comment\",\"text\":\"G\\u00e9n\\u00e9r\\u00e9 le jeudi\"}",
                         "{\"line\":2,\"event\":\"comment\",\"text\":\"D\\u00e9but\"}"});
 }
@@ -289,8 +266,7 @@ TEST_CASE("small chunks: every line crosses a refill", "[parser][lexical]") {
       "GOTO/1 2 3\n";
   auto r = read_cl(text, dialect::creo, 16);
   CHECK(r.events == lines{"1\tcoordsys from=\"$$-> CSYS\" values=1,0,0,10,0,1,0,20,0,0,1,30",
-                          "5\tgoto x=7.4675 y=5.8283 z=1.8",
-                          "6\tgoto x=7.4675 y=5.8717 z=1.8 continued"});
+                          "5\tgoto x=7.4675 y=5.8283 z=1.8", "6\tgoto x=7.4675 y=5.8717 z=1.8 continued"});
   CHECK(r.diagnostics ==
         "t.cl:7:8: error: expected ',' between arguments, found '2'\n"
         "GOTO/1 2 3\n"
@@ -303,10 +279,8 @@ TEST_CASE("Pro/E multi-point GOTO: coordinate-only lines are further points", "[
                   "       7.4675, 5.8717, 1.8000\n"
                   "       7.4300, 5.8500, 1.9000\n"
                   "GOTO / 1, 1, 1\n") ==
-        lines{"2\tgoto x=7.43 y=5.85 z=1.8 rapid",
-              "3\tgoto x=7.4675 y=5.8717 z=1.8 rapid continued",
-              "4\tgoto x=7.43 y=5.85 z=1.9 rapid continued",
-              "5\tgoto x=1 y=1 z=1"});
+        lines{"2\tgoto x=7.43 y=5.85 z=1.8 rapid", "3\tgoto x=7.4675 y=5.8717 z=1.8 rapid continued",
+              "4\tgoto x=7.43 y=5.85 z=1.9 rapid continued", "5\tgoto x=1 y=1 z=1"});
 }
 
 TEST_CASE("Pro/E multi-point GOTO after CIRCLE: every point is on the arc", "[parser][lexical]") {
@@ -340,21 +314,16 @@ TEST_CASE("words are case-insensitive", "[parser][lexical]") {
                   "Circle/0,0,0,0,0,1,5,clockwise\n"
                   "goto/5,0,0\n"
                   "fini\n") ==
-        lines{"1\tgoto x=1 y=2 z=3",
-              "2\tspindle mode=rpm speed=1000 dir=cw",
-              "3\tfeed mode=per-minute value=250 units=mm",
-              "4\ttext major=PARTNO text=\"lower case\"",
-              "6\tarc x=5 y=0 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=5 dir=cw",
-              "7\tend word=FINI"});
+        lines{"1\tgoto x=1 y=2 z=3", "2\tspindle mode=rpm speed=1000 dir=cw",
+              "3\tfeed mode=per-minute value=250 units=mm", "4\ttext major=PARTNO text=\"lower case\"",
+              "6\tarc x=5 y=0 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=5 dir=cw", "7\tend word=FINI"});
 }
 
 TEST_CASE("blanks anywhere in a record, tabs included", "[parser][lexical]") {
   CHECK(events_of("  GOTO  /   98.0,  100.0 ,\t120.0\n"
                   "\tFEDRAT / 5.000000,  IPM\n"
                   " CYCLE / OFF \n") ==
-        lines{"1\tgoto x=98 y=100 z=120",
-              "2\tfeed mode=per-minute value=5 units=inch",
-              "3\tcycle type=OFF"});
+        lines{"1\tgoto x=98 y=100 z=120", "2\tfeed mode=per-minute value=5 units=inch", "3\tcycle type=OFF"});
 }
 
 TEST_CASE("blank lines and blank-only lines are skipped", "[parser][lexical]") {

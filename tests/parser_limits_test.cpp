@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "support/diagnostics.hpp"
 #include "parser_test_support.hpp"
+#include "support/diagnostics.hpp"
 
 using namespace twinpost;
 using twinpost::test::lines;
@@ -62,10 +62,11 @@ TEST_CASE("a job that does not end with FINI or END is reported when posting", "
 TEST_CASE("a continuation at the end of the file is an error at that line", "[parser][limits]") {
   for (std::size_t chunk : {16, 1 << 20}) {
     auto r = read_posting("GOTO/1,2,3\nGOTO/4,$\n  5,$", chunk);
-    CHECK(r.diagnostics ==
-          "t.cl:3:5: error: the file ends in a continued record ('$' at the end of the last line): "
-          "the job is cut off\n  5,$\n    ^\n"
-          "t.cl:1:1: warning: the job ends without FINI or END after this GOTO record: is the file cut off?\n");
+    CHECK(
+        r.diagnostics ==
+        "t.cl:3:5: error: the file ends in a continued record ('$' at the end of the last line): "
+        "the job is cut off\n  5,$\n    ^\n"
+        "t.cl:1:1: warning: the job ends without FINI or END after this GOTO record: is the file cut off?\n");
     CHECK(r.events == lines{"1\tgoto x=1 y=2 z=3"});
   }
 }
@@ -99,15 +100,16 @@ TEST_CASE("a record longer than the limit is an error, and memory stays bounded"
 
 TEST_CASE("an unknown major word: a warning when parsing, an error when posting", "[parser][limits]") {
   auto p = read_posting("FOO/1\nFINI\n");
-  CHECK(p.diagnostics == "t.cl:1:1: error: unknown major word 'FOO': this record cannot be posted\nFOO/1\n^\n");
+  CHECK(p.diagnostics ==
+        "t.cl:1:1: error: unknown major word 'FOO': this record cannot be posted\nFOO/1\n^\n");
   CHECK(p.events == lines{"2\tend word=FINI"});
 }
 
 TEST_CASE("NX CIRCLE ... TIMES,n carries its turns", "[parser][limits]") {
   auto r = read_cl("FROM/10,0,0\nCIRCLE/0,0,0,0,0,1,10,0.06,0.5,4,0,TIMES,3\nGOTO/10,0,0\n", dialect::nx);
   CHECK(r.diagnostics == "");
-  CHECK(r.events == lines{"1\tfrom x=10 y=0 z=0",
-                          "3\tarc x=10 y=0 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=cw turns=3"});
+  CHECK(r.events ==
+        lines{"1\tfrom x=10 y=0 z=0", "3\tarc x=10 y=0 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=cw turns=3"});
   CHECK(read_cl("CIRCLE/0,0,0,0,0,1,10,0.06,0.5,4,0,TIMES,2.5\n", dialect::nx).diagnostics ==
         "t.cl:1:42: error: CIRCLE TIMES 2.5 is not a whole number of turns from 1 to 9999\n"
         "CIRCLE/0,0,0,0,0,1,10,0.06,0.5,4,0,TIMES,2.5\n"

@@ -40,8 +40,7 @@ TEST_CASE("line_reader continues $$-> lines but not plain $$ lines", "[parser][l
 }
 
 TEST_CASE("line_reader strips CR and handles a missing last newline", "[parser][line_reader]") {
-  CHECK(records_of("A\r\nB,$\r\nC\r\nD") ==
-        std::vector<logical>{{"A", 1}, {"B,C", 2}, {"D", 4}});
+  CHECK(records_of("A\r\nB,$\r\nC\r\nD") == std::vector<logical>{{"A", 1}, {"B,C", 2}, {"D", 4}});
 }
 
 TEST_CASE("line_reader maps offsets of a joined record to physical lines", "[parser][line_reader]") {
@@ -66,8 +65,7 @@ TEST_CASE("line_reader maps offsets of a joined record to physical lines", "[par
 
 TEST_CASE("line_reader grows its buffer for a line longer than a chunk", "[parser][line_reader]") {
   std::string big(60000, 'x');  // under max_record_bytes
-  CHECK(records_of("A\n" + big + "\nB\n", 16) ==
-        std::vector<logical>{{"A", 1}, {big, 2}, {"B", 3}});
+  CHECK(records_of("A\n" + big + "\nB\n", 16) == std::vector<logical>{{"A", 1}, {big, 2}, {"B", 3}});
 }
 
 TEST_CASE("line_reader peek sees the head without consuming it", "[parser][line_reader]") {

@@ -21,11 +21,10 @@ TEST_CASE("NX tool axis is modal: written only when it changes", "[parser][motio
                   "GOTO/76.6078,112.6997,28.0000\n"
                   "GOTO/1,2,3,0.7071068,0,0.7071068\n"
                   "GOTO/4,5,6\n",
-                  dialect::nx) ==
-        lines{"1\tfrom x=0 y=0 z=40 i=0 j=0 k=1",
-              "2\tgoto x=76.6078 y=112.6997 z=28 i=0 j=0 k=1",
-              "3\tgoto x=1 y=2 z=3 i=0.7071068 j=0 k=0.7071068",
-              "4\tgoto x=4 y=5 z=6 i=0.7071068 j=0 k=0.7071068"});
+                  dialect::nx) == lines{"1\tfrom x=0 y=0 z=40 i=0 j=0 k=1",
+                                        "2\tgoto x=76.6078 y=112.6997 z=28 i=0 j=0 k=1",
+                                        "3\tgoto x=1 y=2 z=3 i=0.7071068 j=0 k=0.7071068",
+                                        "4\tgoto x=4 y=5 z=6 i=0.7071068 j=0 k=0.7071068"});
 }
 
 TEST_CASE("TLAXIS sets the modal tool axis", "[parser][motion]") {
@@ -38,12 +37,9 @@ TEST_CASE("GODLTA moves by a delta, or along the tool axis by one distance", "[p
                   "GODLTA/1,2,-3\n"
                   "GODLTA/5\n"
                   "TLAXIS/1,0,0\n"
-                  "GODLTA/-2\n") ==
-        lines{"1\tgoto x=10 y=10 z=10",
-              "2\tgodlta x=11 y=12 z=7",
-              "3\tgodlta x=11 y=12 z=12",
-              "4\ttool-axis i=1 j=0 k=0",
-              "5\tgodlta x=9 y=12 z=12 i=1 j=0 k=0"});
+                  "GODLTA/-2\n") == lines{"1\tgoto x=10 y=10 z=10", "2\tgodlta x=11 y=12 z=7",
+                                          "3\tgodlta x=11 y=12 z=12", "4\ttool-axis i=1 j=0 k=0",
+                                          "5\tgodlta x=9 y=12 z=12 i=1 j=0 k=0"});
 }
 
 TEST_CASE("GOHOME with and without a point", "[parser][motion]") {
@@ -59,25 +55,20 @@ TEST_CASE("RAPID applies to the next move only", "[parser][motion]") {
                   "RAPID/\n"
                   "FEDRAT/MMPM,250\n"
                   "GOTO/3,3,3\n"
-                  "GOTO/4,4,4\n") ==
-        lines{"2\tgoto x=1 y=1 z=1 rapid",
-              "3\tgoto x=2 y=2 z=2",
-              "5\tfeed mode=per-minute value=250 units=mm",
-              "6\tgoto x=3 y=3 z=3 rapid",
-              "7\tgoto x=4 y=4 z=4"});
+                  "GOTO/4,4,4\n") == lines{"2\tgoto x=1 y=1 z=1 rapid", "3\tgoto x=2 y=2 z=2",
+                                           "5\tfeed mode=per-minute value=250 units=mm",
+                                           "6\tgoto x=3 y=3 z=3 rapid", "7\tgoto x=4 y=4 z=4"});
 }
 
 TEST_CASE("CIRCLE with 4 values: centre and radius", "[parser][motion]") {
   CHECK(events_of("GOTO/10,0,0\nCIRCLE/0,0,0,10\nGOTO/0,10,0\n") ==
-        lines{"1\tgoto x=10 y=0 z=0",
-              "3\tarc x=0 y=10 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw"});
+        lines{"1\tgoto x=10 y=0 z=0", "3\tarc x=0 y=10 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw"});
 }
 
 TEST_CASE("SolidWorks CIRCLE with 6 values: radius from the start point", "[parser][motion]") {
   // Start (3,4,7) over a circle about (0,0,0) with axis k: planar radius 5.
   CHECK(events_of("GOTO/3,4,7\nCIRCLE/0,0,0,0,0,1\nGOTO/-4,3,7\n", dialect::solidworks) ==
-        lines{"1\tgoto x=3 y=4 z=7",
-              "3\tarc x=-4 y=3 z=7 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=5 dir=ccw"});
+        lines{"1\tgoto x=3 y=4 z=7", "3\tarc x=-4 y=3 z=7 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=5 dir=ccw"});
 }
 
 TEST_CASE("CIRCLE with 7 values (Creo) and 11 values (NX)", "[parser][motion]") {
@@ -85,10 +76,9 @@ TEST_CASE("CIRCLE with 7 values (Creo) and 11 values (NX)", "[parser][motion]") 
                   "CIRCLE/0,0,0,0,0,1,10\n"
                   "GOTO/0,10,0\n"
                   "CIRCLE/0,0,0,0,0,1,10,0.0600,0.5000,20.0000,0.0000\n"
-                  "GOTO/-10,0,0\n") ==
-        lines{"1\tgoto x=10 y=0 z=0",
-              "3\tarc x=0 y=10 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw",
-              "5\tarc x=-10 y=0 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw"});
+                  "GOTO/-10,0,0\n") == lines{"1\tgoto x=10 y=0 z=0",
+                                             "3\tarc x=0 y=10 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw",
+                                             "5\tarc x=-10 y=0 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw"});
 }
 
 TEST_CASE("CIRCLE direction per dialect: the same numbers, Creo ccw, NX cw", "[parser][motion]") {
@@ -96,7 +86,8 @@ TEST_CASE("CIRCLE direction per dialect: the same numbers, Creo ccw, NX cw", "[p
       "GOTO/93.5102,109.6997,20.0000\n"
       "CIRCLE/90.0336,90.1120,20.0000,0.0000000,0.0000000,1.0000000,19.8938,0.0600,0.5000,20.0000,0.0000\n"
       "GOTO/102.0069,105.9992,20.0000\n";
-  const std::string arc = "3\tarc x=102.0069 y=105.9992 z=20 cx=90.0336 cy=90.112 cz=20 i=0 j=0 k=1 r=19.8938";
+  const std::string arc =
+      "3\tarc x=102.0069 y=105.9992 z=20 cx=90.0336 cy=90.112 cz=20 i=0 j=0 k=1 r=19.8938";
   CHECK(events_of(text, dialect::creo).at(1) == arc + " dir=ccw");
   CHECK(events_of(text, dialect::solidworks).at(1) == arc + " dir=ccw");
   CHECK(events_of(text, dialect::catia).at(1) == arc + " dir=ccw");
@@ -124,10 +115,8 @@ TEST_CASE("the arc ends with its GOTO record; the next GOTO is straight", "[pars
                   "FEDRAT/100,MMPM\n"
                   "GOTO/0,10,0\n"
                   "GOTO/0,20,0\n") ==
-        lines{"1\tgoto x=10 y=0 z=0",
-              "3\tfeed mode=per-minute value=100 units=mm",
-              "4\tarc x=0 y=10 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw",
-              "5\tgoto x=0 y=20 z=0"});
+        lines{"1\tgoto x=10 y=0 z=0", "3\tfeed mode=per-minute value=100 units=mm",
+              "4\tarc x=0 y=10 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw", "5\tgoto x=0 y=20 z=0"});
 }
 
 TEST_CASE("a CIRCLE with no end point is an error at the end of input", "[parser][motion]") {

@@ -18,12 +18,9 @@ TEST_CASE("tool calls: LOADTL, LOAD/TOOL, SELECT/TOOL, TURRET", "[parser][words]
                   "SELECT/TOOL,2\n"
                   "TURRET/5,6\n"
                   "TURRET/5,6,1.5,2.5\n") ==
-        lines{"1\ttool tool=8 from=LOADTL",
-              "2\ttool tool=2 offset=1 from=LOADTL",
-              "3\ttool tool=1 offset=1 from=LOAD/TOOL",
-              "4\ttool tool=14 from=LOAD/TOOL",
-              "5\ttool-select tool=2 from=SELECT/TOOL",
-              "6\ttool tool=5 offset=6 from=TURRET",
+        lines{"1\ttool tool=8 from=LOADTL", "2\ttool tool=2 offset=1 from=LOADTL",
+              "3\ttool tool=1 offset=1 from=LOAD/TOOL", "4\ttool tool=14 from=LOAD/TOOL",
+              "5\ttool-select tool=2 from=SELECT/TOOL", "6\ttool tool=5 offset=6 from=TURRET",
               "7\ttool tool=5 offset=6 from=TURRET"});
 }
 
@@ -41,12 +38,9 @@ TEST_CASE("SPINDL in both orders", "[parser][words]") {
                   "SPINDL/ 2546.4790,RPM,CCLW\n"
                   "SPINDL/ 70.0000,RPM\n"
                   "SPINDL/1200\n") ==
-        lines{"1\tspindle mode=rpm speed=1000 dir=cw",
-              "2\tspindle mode=rpm speed=12000 dir=cw",
-              "3\tspindle mode=rpm speed=9000 dir=ccw",
-              "4\tspindle mode=rpm speed=2546.479 dir=ccw",
-              "5\tspindle mode=rpm speed=70",
-              "6\tspindle mode=rpm speed=1200"});
+        lines{"1\tspindle mode=rpm speed=1000 dir=cw", "2\tspindle mode=rpm speed=12000 dir=cw",
+              "3\tspindle mode=rpm speed=9000 dir=ccw", "4\tspindle mode=rpm speed=2546.479 dir=ccw",
+              "5\tspindle mode=rpm speed=70", "6\tspindle mode=rpm speed=1200"});
 }
 
 TEST_CASE("SPINDL constant surface speed with MAXRPM, in either place", "[parser][words]") {
@@ -65,11 +59,8 @@ TEST_CASE("SPINDL OFF, ON, ORIENT, LOCK, RANGE", "[parser][words]") {
                   "SPINDL/ORIENT,90\n"
                   "SPINDL/LOCK\n"
                   "SPINDL/RPM,800,CLW,RANGE,2\n") ==
-        lines{"1\tspindle mode=off",
-              "2\tspindle mode=on",
-              "3\tspindle mode=orient speed=0",
-              "4\tspindle mode=orient speed=90",
-              "5\tspindle mode=lock",
+        lines{"1\tspindle mode=off", "2\tspindle mode=on", "3\tspindle mode=orient speed=0",
+              "4\tspindle mode=orient speed=90", "5\tspindle mode=lock",
               "6\tspindle mode=rpm speed=800 dir=cw range=2"});
 }
 
@@ -99,10 +90,8 @@ TEST_CASE("FEDRAT in both orders, per minute and per rev", "[parser][words]") {
                   "FEDRAT/ 0.4000,MMPR\n"
                   "FEDRAT/IPM,30\n"
                   "FEDRAT/0.01,IPR\n") ==
-        lines{"1\tfeed mode=per-minute value=250 units=mm",
-              "2\tfeed mode=per-minute value=400 units=mm",
-              "3\tfeed mode=per-rev value=0.4 units=mm",
-              "4\tfeed mode=per-minute value=30 units=inch",
+        lines{"1\tfeed mode=per-minute value=250 units=mm", "2\tfeed mode=per-minute value=400 units=mm",
+              "3\tfeed mode=per-rev value=0.4 units=mm", "4\tfeed mode=per-minute value=30 units=inch",
               "5\tfeed mode=per-rev value=0.01 units=inch"});
 }
 
@@ -113,39 +102,29 @@ TEST_CASE("FEDRAT PERMIN, PERREV and bare values follow UNITS", "[parser][words]
                   "FEDRAT/PERREV,0.005\n"
                   "FEDRAT/30\n"
                   "UNITS/MM\n"
-                  "FEDRAT/30\n") ==
-        lines{"1\tfeed mode=per-minute value=141 units=mm",
-              "2\tunits units=inch",
-              "3\tfeed mode=per-minute value=10 units=inch",
-              "4\tfeed mode=per-rev value=0.005 units=inch",
-              "5\tfeed mode=per-minute value=30 units=inch",
-              "6\tunits units=mm",
-              "7\tfeed mode=per-minute value=30 units=mm"});
+                  "FEDRAT/30\n") == lines{"1\tfeed mode=per-minute value=141 units=mm", "2\tunits units=inch",
+                                          "3\tfeed mode=per-minute value=10 units=inch",
+                                          "4\tfeed mode=per-rev value=0.005 units=inch",
+                                          "5\tfeed mode=per-minute value=30 units=inch", "6\tunits units=mm",
+                                          "7\tfeed mode=per-minute value=30 units=mm"});
 }
 
 TEST_CASE("FEDRAT INVERS: inverse time", "[parser][words]") {
-  CHECK(events_of("FEDRAT/INVERS,2.5\nFEDRAT/12.5,INVERS\n") ==
-        lines{"1\tfeed mode=inverse-time value=2.5 units=mm",
-              "2\tfeed mode=inverse-time value=12.5 units=mm"});
+  CHECK(
+      events_of("FEDRAT/INVERS,2.5\nFEDRAT/12.5,INVERS\n") ==
+      lines{"1\tfeed mode=inverse-time value=2.5 units=mm", "2\tfeed mode=inverse-time value=12.5 units=mm"});
 }
 
 TEST_CASE("COOLNT modes and levels", "[parser][words]") {
   CHECK(events_of("COOLNT/ON\nCOOLNT/FLOOD\nCOOLNT/MIST,HIGH\nCOOLNT/THRU\nCOOLNT/OFF\nCOOLNT\n") ==
-        lines{"1\tcoolant mode=ON",
-              "2\tcoolant mode=FLOOD",
-              "3\tcoolant mode=MIST level=HIGH",
-              "4\tcoolant mode=THRU",
-              "5\tcoolant mode=OFF",
-              "6\tcoolant mode=ON"});
+        lines{"1\tcoolant mode=ON", "2\tcoolant mode=FLOOD", "3\tcoolant mode=MIST level=HIGH",
+              "4\tcoolant mode=THRU", "5\tcoolant mode=OFF", "6\tcoolant mode=ON"});
 }
 
 TEST_CASE("CUTCOM side, register and plane", "[parser][words]") {
   CHECK(events_of("CUTCOM/LEFT,XYPLAN\nCUTCOM/RIGHT,3\nCUTCOM/ ON \nCUTCOM/ LEFT \nCUTCOM/OFF\n") ==
-        lines{"1\tcutcom side=LEFT plane=XYPLAN",
-              "2\tcutcom side=RIGHT register=3",
-              "3\tcutcom side=ON",
-              "4\tcutcom side=LEFT",
-              "5\tcutcom side=OFF"});
+        lines{"1\tcutcom side=LEFT plane=XYPLAN", "2\tcutcom side=RIGHT register=3", "3\tcutcom side=ON",
+              "4\tcutcom side=LEFT", "5\tcutcom side=OFF"});
 }
 
 TEST_CASE("CYCLE keyword pairs, positional values and OFF", "[parser][words]") {
@@ -155,15 +134,12 @@ TEST_CASE("CYCLE keyword pairs, positional values and OFF", "[parser][words]") {
                   "CYCLE/INIT\n"
                   "CYCLE/OFF\n") ==
         lines{"1\tcycle type=DRILL RAPTO=3 FEDTO=-33.0043 RTRCTO=4 IPR=250 words=MANUAL",
-              "2\tcycle type=DEEP DEPTH=3.5 STEP=1 MMPM=50 CLEAR=1",
-              "3\tcycle type=DRILL values=3,5",
-              "4\tcycle type=INIT",
-              "5\tcycle type=OFF"});
+              "2\tcycle type=DEEP DEPTH=3.5 STEP=1 MMPM=50 CLEAR=1", "3\tcycle type=DRILL values=3,5",
+              "4\tcycle type=INIT", "5\tcycle type=OFF"});
 }
 
 TEST_CASE("DELAY in seconds and revolutions", "[parser][words]") {
-  CHECK(events_of("DELAY/2.5\nDELAY/3,REV\n") ==
-        lines{"1\tdelay seconds=2.5", "2\tdelay revolutions=3"});
+  CHECK(events_of("DELAY/2.5\nDELAY/3,REV\n") == lines{"1\tdelay seconds=2.5", "2\tdelay revolutions=3"});
   auto r = read_cl("DELAY\n", dialect::generic);
   CHECK(r.events.empty());
   CHECK(r.diagnostics ==
@@ -178,17 +154,18 @@ TEST_CASE("AUXFUN and PREFUN", "[parser][words]") {
 }
 
 TEST_CASE("text records: PARTNO, PPRINT, INSERT", "[parser][words]") {
-  CHECK(events_of("PARTNO/1\nPPRINT/APTCL-SPEC,MAKINO-FF,1\nINSERT/M01\nINSERT/Stock Size X220. Y220. Z24.\n") ==
-        lines{"1\ttext major=PARTNO text=1",
-              "2\ttext major=PPRINT text=APTCL-SPEC,MAKINO-FF,1",
-              "3\ttext major=INSERT text=M01",
-              "4\ttext major=INSERT text=\"Stock Size X220. Y220. Z24.\""});
+  CHECK(events_of(
+            "PARTNO/1\nPPRINT/APTCL-SPEC,MAKINO-FF,1\nINSERT/M01\nINSERT/Stock Size X220. Y220. Z24.\n") ==
+        lines{"1\ttext major=PARTNO text=1", "2\ttext major=PPRINT text=APTCL-SPEC,MAKINO-FF,1",
+              "3\ttext major=INSERT text=M01", "4\ttext major=INSERT text=\"Stock Size X220. Y220. Z24.\""});
 }
 
 TEST_CASE("the JSON form of a text record", "[parser][words]") {
   auto r = read_cl("INSERT/[HOLDER=C40] \"6MM\" CRB\n", dialect::generic);
-  CHECK(r.json ==
-        lines{"{\"line\":1,\"event\":\"text\",\"major\":\"INSERT\",\"text\":\"[HOLDER=C40] \\\"6MM\\\" CRB\"}"});
+  CHECK(
+      r.json ==
+      lines{
+          "{\"line\":1,\"event\":\"text\",\"major\":\"INSERT\",\"text\":\"[HOLDER=C40] \\\"6MM\\\" CRB\"}"});
 }
 
 TEST_CASE("UNITS and UNIT", "[parser][words]") {
@@ -209,11 +186,8 @@ TEST_CASE("MACHIN, MULTAX, MSYS, CSYS", "[parser][words]") {
                   "MULTAX\n"
                   "MSYS/0.0,0.0,0.0,1.0,0.0,0.0,0.0,1.0,0.0\n"
                   "CSYS/1.,0,0,0,0,1.,0,0,0,0,1.,0\n") ==
-        lines{"1\tmachin name=UNCX01 args=1",
-              "2\tmultax state=on",
-              "3\tmultax state=off",
-              "4\tmultax state=on",
-              "5\tcoordsys from=MSYS values=0,0,0,1,0,0,0,1,0",
+        lines{"1\tmachin name=UNCX01 args=1", "2\tmultax state=on", "3\tmultax state=off",
+              "4\tmultax state=on", "5\tcoordsys from=MSYS values=0,0,0,1,0,0,0,1,0",
               "6\tcoordsys from=CSYS values=1,0,0,0,0,1,0,0,0,0,1,0"});
 }
 
@@ -224,8 +198,8 @@ TEST_CASE("program end: FINI, END, END-OF-PATH", "[parser][words]") {
 
 TEST_CASE("an unknown major word is passed through with a warning", "[parser][words]") {
   auto r = read_cl("FOO/1,BAR\nPAINT/COLOR,186\n", dialect::generic);
-  CHECK(r.events == lines{"1\tpassthrough major=FOO args=1,BAR unknown",
-                          "2\tpassthrough major=PAINT args=COLOR,186"});
+  CHECK(r.events ==
+        lines{"1\tpassthrough major=FOO args=1,BAR unknown", "2\tpassthrough major=PAINT args=COLOR,186"});
   CHECK(r.diagnostics ==
         "t.cl:1:1: warning: unknown major word 'FOO' (a post stops here with an error)\n"
         "FOO/1,BAR\n"
@@ -236,8 +210,10 @@ TEST_CASE("an unknown major word is passed through with a warning", "[parser][wo
 
 TEST_CASE("the JSON form of motion and passthrough events", "[parser][words]") {
   auto r = read_cl("RAPID\nGOTO/1,-0.0,2.5\nFOO/1,BAR\n", dialect::generic);
-  CHECK(r.json == lines{"{\"line\":2,\"event\":\"goto\",\"x\":1,\"y\":0,\"z\":2.5,\"rapid\":true}",
-                        "{\"line\":3,\"event\":\"passthrough\",\"major\":\"FOO\",\"args\":\"1,BAR\",\"unknown\":true}"});
+  CHECK(
+      r.json ==
+      lines{"{\"line\":2,\"event\":\"goto\",\"x\":1,\"y\":0,\"z\":2.5,\"rapid\":true}",
+            "{\"line\":3,\"event\":\"passthrough\",\"major\":\"FOO\",\"args\":\"1,BAR\",\"unknown\":true}"});
 }
 
 TEST_CASE("JSON has no inf: an overflowing move writes null", "[parser][words]") {

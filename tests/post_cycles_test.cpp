@@ -6,8 +6,8 @@
 
 #include "file_test_support.hpp"
 #include "machines/machine_loader.hpp"
-#include "support/diagnostics.hpp"
 #include "post_test_jobs.hpp"
+#include "support/diagnostics.hpp"
 
 using namespace twinpost;
 
@@ -18,58 +18,71 @@ const std::string head = "PARTNO CYC\nUNITS/MM\nTURRET/1,1\nSPINDL/RPM,1000,CLW\
 // The errors of posting `body` (after `head`) on the Fanuc 2-path lathe, the job's path
 // written "job.cls"; "(posted)" when the post succeeds.
 std::string errors_of(const std::string& body, const std::string& tag) {
-  const test::posted p = test::post_in_fresh_dir(head + body, load_machine("fanuc-0itd-twin"), "cycles-" + tag,
-                                                 [](const diagnostic& d) { return d.level == severity::error; });
+  const test::posted p =
+      test::post_in_fresh_dir(head + body, load_machine("fanuc-0itd-twin"), "cycles-" + tag,
+                              [](const diagnostic& d) { return d.level == severity::error; });
   return p.ok ? "(posted)" : p.diagnostics;
 }
 
 }  // namespace
 
 TEST_CASE("a drilling cycle the writer carries out is posted", "[post][cycles]") {
-  CHECK(errors_of("CYCLE/DEEP,FEDTO,-25.0,STEP,8.0,RAPTO,2.0,MMPR,0.12\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "deep") ==
+  CHECK(errors_of("CYCLE/DEEP,FEDTO,-25.0,STEP,8.0,RAPTO,2.0,MMPR,0.12\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n",
+                  "deep") == "(posted)");
+  CHECK(errors_of("CYCLE/DRILL,DEPTH,10,CLEAR,2,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "drill") ==
         "(posted)");
-  CHECK(errors_of("CYCLE/DRILL,DEPTH,10,CLEAR,2,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "drill") == "(posted)");
 }
 
 TEST_CASE("tap, bore and thread cycles stop the post at the CYCLE record", "[post][cycles]") {
   CHECK(errors_of("CYCLE/TAP,FEDTO,-12,RAPTO,3,MMPR,1.25\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "tap") ==
-        "job.cls:6:1: error: channel 1: CYCLE/TAP is not supported by the post: only DRILL and DEEP are written (as "
+        "job.cls:6:1: error: channel 1: CYCLE/TAP is not supported by the post: only DRILL and DEEP are "
+        "written (as "
         "plain G0/G1 moves); a tapping, boring or threading cycle cannot be\n"
         "CYCLE/TAP,FEDTO,-12,RAPTO,3,MMPR,1.25\n^\n");
-  CHECK(errors_of("CYCLE/BORE,FEDTO,-12,RAPTO,3,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "bore").starts_with(
-      "job.cls:6:1: error: channel 1: CYCLE/BORE is not supported by the post"));
+  CHECK(errors_of("CYCLE/BORE,FEDTO,-12,RAPTO,3,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "bore")
+            .starts_with("job.cls:6:1: error: channel 1: CYCLE/BORE is not supported by the post"));
 }
 
 TEST_CASE("a cycle word the writer would drop stops the post", "[post][cycles]") {
   // A retract plane, pecks on a cycle written without them, a G98 word, a positional value.
   CHECK(errors_of("CYCLE/DRILL,FEDTO,-10,RAPTO,3,RTRCTO,25,MMPR,0.1\nGOTO/0,0,0\nFINI\n", "rtrcto") ==
-        "job.cls:6:1: error: channel 1: CYCLE/DRILL: RTRCTO is not carried out by the post (it knows FEDTO, DEPTH, "
+        "job.cls:6:1: error: channel 1: CYCLE/DRILL: RTRCTO is not carried out by the post (it knows FEDTO, "
+        "DEPTH, "
         "RAPTO, CLEAR, STEP and the feed)\n"
         "CYCLE/DRILL,FEDTO,-10,RAPTO,3,RTRCTO,25,MMPR,0.1\n^\n");
-  CHECK(errors_of("CYCLE/DRILL,FEDTO,-10,STEP,2,RAPTO,3,MMPR,0.1\nGOTO/0,0,0\nFINI\n", "step").starts_with(
-      "job.cls:6:1: error: channel 1: CYCLE/DRILL: STEP is not carried out by the post"));
-  CHECK(errors_of("CYCLE/DRILL,3.0,5.0\nGOTO/0,0,0\nFINI\n", "positional").starts_with(
-      "job.cls:6:1: error: channel 1: CYCLE/DRILL: the value 3 is not carried out by the post"));
+  CHECK(errors_of("CYCLE/DRILL,FEDTO,-10,STEP,2,RAPTO,3,MMPR,0.1\nGOTO/0,0,0\nFINI\n", "step")
+            .starts_with("job.cls:6:1: error: channel 1: CYCLE/DRILL: STEP is not carried out by the post"));
+  CHECK(errors_of("CYCLE/DRILL,3.0,5.0\nGOTO/0,0,0\nFINI\n", "positional")
+            .starts_with(
+                "job.cls:6:1: error: channel 1: CYCLE/DRILL: the value 3 is not carried out by the post"));
 }
 
-TEST_CASE("a drill bottom behind the clearance plane is an error, not a move away from the part", "[post][cycles]") {
+TEST_CASE("a drill bottom behind the clearance plane is an error, not a move away from the part",
+          "[post][cycles]") {
   // SolidWorks CAM writes FEDTO as a depth below the hole's top: read as a Z it lies above.
-  CHECK(errors_of("CYCLE/DRILL,FEDTO,7.85788,MMPM,326.77,RAPTO,3.\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "upward") ==
-        "job.cls:7:1: error: channel 1: CYCLE/DRILL: the bottom Z 7.85788 is not beyond the clearance plane Z 3 in "
-        "the drilling direction: the tool would feed away from the part (is FEDTO a depth in this CL?)\n"
-        "GOTO/0,0,0\n^\n");
+  CHECK(
+      errors_of("CYCLE/DRILL,FEDTO,7.85788,MMPM,326.77,RAPTO,3.\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "upward") ==
+      "job.cls:7:1: error: channel 1: CYCLE/DRILL: the bottom Z 7.85788 is not beyond the clearance plane Z "
+      "3 in "
+      "the drilling direction: the tool would feed away from the part (is FEDTO a depth in this CL?)\n"
+      "GOTO/0,0,0\n^\n");
 }
 
 TEST_CASE("a drilling cycle with a radial tool axis stops the post", "[post][cycles]") {
   // Cross drilling with a live tool: fed along Z it would go through the side of the part.
-  CHECK(errors_of("CYCLE/DRILL,FEDTO,10,RAPTO,3,MMPR,0.1\nGOTO/25,0,-20,1,0,0\nCYCLE/OFF\nFINI\n", "radial") ==
-        "job.cls:7:1: error: channel 1: CYCLE/DRILL with the tool axis (1, 0, 0): only drilling along Z is written; "
-        "cross and tilted drilling is not supported yet\n"
-        "GOTO/25,0,-20,1,0,0\n^\n");
+  CHECK(
+      errors_of("CYCLE/DRILL,FEDTO,10,RAPTO,3,MMPR,0.1\nGOTO/25,0,-20,1,0,0\nCYCLE/OFF\nFINI\n", "radial") ==
+      "job.cls:7:1: error: channel 1: CYCLE/DRILL with the tool axis (1, 0, 0): only drilling along Z is "
+      "written; "
+      "cross and tilted drilling is not supported yet\n"
+      "GOTO/25,0,-20,1,0,0\n^\n");
 }
 
-TEST_CASE("a peck count past any real hole stops the post instead of writing moves without end", "[post][cycles]") {
-  CHECK(errors_of("CYCLE/DEEP,FEDTO,-1e300,STEP,1,RAPTO,2,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "pecks") ==
-        "job.cls:7:1: error: channel 1: CYCLE/DEEP: a depth of 1e+300 in pecks of STEP 1 makes more than 10000 pecks\n"
-        "GOTO/0,0,0\n^\n");
+TEST_CASE("a peck count past any real hole stops the post instead of writing moves without end",
+          "[post][cycles]") {
+  CHECK(
+      errors_of("CYCLE/DEEP,FEDTO,-1e300,STEP,1,RAPTO,2,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "pecks") ==
+      "job.cls:7:1: error: channel 1: CYCLE/DEEP: a depth of 1e+300 in pecks of STEP 1 makes more than 10000 "
+      "pecks\n"
+      "GOTO/0,0,0\n^\n");
 }

@@ -7,12 +7,12 @@
 #include <optional>
 #include <string>
 
-#include "file_test_support.hpp"
-#include "post_test_jobs.hpp"
 #include "channels/job_channels.hpp"
+#include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
 #include "parser/job_scan.hpp"
 #include "post/post_job.hpp"
-#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
 
 using namespace twinpost;
 
@@ -39,8 +39,9 @@ std::string write_temp(const std::string& text) {
 }  // namespace
 
 TEST_CASE("the job scan finds sync records and the heads in use", "[post]") {
-  job_scan s = scan_job(write_temp("HEAD / 2\n$$ SYNC/1,1,2 in a comment does not count\n"
-                                   "  head/both\nCHANNEL,3\ngoto/1,2,3"));
+  job_scan s =
+      scan_job(write_temp("HEAD / 2\n$$ SYNC/1,1,2 in a comment does not count\n"
+                          "  head/both\nCHANNEL,3\ngoto/1,2,3"));
   CHECK_FALSE(s.explicit_sync);
   CHECK(s.heads == std::vector<int>{2, 1, 2});
   CHECK(s.channels == std::vector<int>{3});
@@ -85,9 +86,9 @@ TEST_CASE("a PARTNO after the first blocks still names the program and its head"
     std::optional<layout_kind> layout;
     const char* file;
   };
-  for (const run& r : {run{"fanuc-0itd-twin", {}, "LATE_NAME_7_1.nc"},
-                       run{"integrex-i200st", {}, "LATE_NAME_7.EIA"},
-                       run{"fanuc-31i-3path", layout_kind::merged_sections, "LATE_NAME_7.nc"}}) {
+  for (const run& r :
+       {run{"fanuc-0itd-twin", {}, "LATE_NAME_7_1.nc"}, run{"integrex-i200st", {}, "LATE_NAME_7.EIA"},
+        run{"fanuc-31i-3path", layout_kind::merged_sections, "LATE_NAME_7.nc"}}) {
     INFO(r.machine);
     const auto a = post_files(early, load_machine(r.machine), "early", nullptr, r.layout);
     const auto b = post_files(late, load_machine(r.machine), "late", nullptr, r.layout);
@@ -102,13 +103,14 @@ TEST_CASE("a layout the machine cannot take fails the post before anything is wr
   // has no section marker, so its channels cannot be appended into one program.
   const machine m = load_machine("fanuc-0itd-twin");
   diagnostic_list d;
-  const auto files = post_files("PARTNO/X\nHEAD/1\nGOTO/1,0,1\nFINI\n", m, "no-marker", &d,
-                                layout_kind::merged_appended);
+  const auto files =
+      post_files("PARTNO/X\nHEAD/1\nGOTO/1,0,1\nFINI\n", m, "no-marker", &d, layout_kind::merged_appended);
   CHECK(files == std::map<std::string, std::string>{{"(failed)", ""}});
   REQUIRE(d.all().size() == 1);
   CHECK(format_diagnostic(d.all()[0]) ==
-        m.source + ": error: layout merged_appended needs program.section_marker (the block "
-                   "that opens each channel's section, such as \"G109 L{channel}\")\n");
+        m.source +
+            ": error: layout merged_appended needs program.section_marker (the block "
+            "that opens each channel's section, such as \"G109 L{channel}\")\n");
   // merged_sections writes `$n` and needs no marker.
   diagnostic_list ok;
   CHECK(post_files("PARTNO/X\nHEAD/1\nRAPID\nGOTO/1,0,1\nFINI\n", m, "sections", &ok,
@@ -135,8 +137,9 @@ TEST_CASE("a one-channel machine: no pre-pass, and a sync record is an error", "
   // Nothing to wait for on one channel: the job is read once, and a SYNC in it (a job made
   // for a twin-turret machine) fails the post with the reason instead of being ignored.
   const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml");
-  const std::string job = "PARTNO ONE\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,500\n"
-                          "GOTO/0,0,5\nGOTO/10,0,0\n";
+  const std::string job =
+      "PARTNO ONE\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,500\n"
+      "GOTO/0,0,5\nGOTO/10,0,0\n";
   const auto ok = post_files(job + "FINI\n", m, "one-ok");
   REQUIRE(ok.count("ONE.nc") == 1);
   CHECK(ok.at("ONE.nc") ==

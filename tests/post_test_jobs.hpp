@@ -27,9 +27,9 @@ inline std::string race_job(char v, int extra_moves = 0) {
 }
 
 /// Posts `job_text` (written to `dir`/`job_name`) for `m` into `out`.
-inline post_summary post_text(const std::string& dir, const std::string& job_name, const std::string& job_text,
-                              const machine& m, const std::string& out, diagnostic_sink& diags,
-                              std::optional<layout_kind> layout = {}) {
+inline post_summary post_text(const std::string& dir, const std::string& job_name,
+                              const std::string& job_text, const machine& m, const std::string& out,
+                              diagnostic_sink& diags, std::optional<layout_kind> layout = {}) {
   const std::string job = dir + "/" + job_name;
   if (!write_file(job, job_text)) throw std::runtime_error("cannot write " + job);
   post_options o;

@@ -15,11 +15,12 @@ TEST_CASE("the same tool under another offset writes the new offset without inde
   // apart): the finish must run on T0121, not on the roughing offset.
   const std::string dir = test::fresh_temp_dir("tools-offset");
   diagnostic_list diags;
-  const post_summary s = test::post_text(dir, "job.cls",
-                                         "PARTNO TOOLS\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\n"
-                                         "GOTO/20,0,5\nGOTO/20,0,-10\nTURRET/1,21\nGOTO/19.5,0,5\nGOTO/19.5,0,-10\n"
-                                         "TURRET/1,21\nGOTO/19.5,0,5\nFINI\n",
-                                         load_machine("fanuc-0itd-twin"), dir + "/out", diags);
+  const post_summary s =
+      test::post_text(dir, "job.cls",
+                      "PARTNO TOOLS\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\n"
+                      "GOTO/20,0,5\nGOTO/20,0,-10\nTURRET/1,21\nGOTO/19.5,0,5\nGOTO/19.5,0,-10\n"
+                      "TURRET/1,21\nGOTO/19.5,0,5\nFINI\n",
+                      load_machine("fanuc-0itd-twin"), dir + "/out", diags);
   REQUIRE(s.ok);
   const std::string program = test::read_file(dir + "/out/TOOLS_1.nc");
   CHECK(program ==
@@ -31,14 +32,16 @@ TEST_CASE("the same tool under another offset writes the new offset without inde
 TEST_CASE("offset 0 in a lathe tool call is an error, not T0300", "[post][tools]") {
   const std::string dir = test::fresh_temp_dir("tools-zero");
   diagnostic_list diags;
-  const post_summary s = test::post_text(dir, "job.cls", "PARTNO TOOLS\nHEAD/1\nLOADTL/3,0\nRAPID\nGOTO/20,0,5\nFINI\n",
-                                         load_machine("fanuc-0itd-twin"), dir + "/out", diags);
+  const post_summary s =
+      test::post_text(dir, "job.cls", "PARTNO TOOLS\nHEAD/1\nLOADTL/3,0\nRAPID\nGOTO/20,0,5\nFINI\n",
+                      load_machine("fanuc-0itd-twin"), dir + "/out", diags);
   CHECK_FALSE(s.ok);
   std::string errors;
   for (const diagnostic& d : diags.all())
     if (d.level == severity::error) errors += d.message + "\n";
-  CHECK(errors == "channel 1: tool 3 with offset 0 would be called as T0300, which cancels the tool offset; give the "
-                  "offset number\n");
+  CHECK(errors ==
+        "channel 1: tool 3 with offset 0 would be called as T0300, which cancels the tool offset; give the "
+        "offset number\n");
   CHECK(test::list_dir(dir + "/out") == "(missing)");
   std::filesystem::remove_all(dir);
 }

@@ -8,9 +8,9 @@
 #include <unistd.h>
 
 #include "file_test_support.hpp"
-#include "post_test_jobs.hpp"
-#include "post/post_job.hpp"
 #include "machines/machine_loader.hpp"
+#include "post/post_job.hpp"
+#include "post_test_jobs.hpp"
 
 using namespace twinpost;
 
@@ -20,9 +20,8 @@ using test::posted;
 
 posted post_text(const std::string& cl, const machine& m, const std::string& tag) {
   // Without the two-channel machines' "no sync records" note.
-  return test::post_in_fresh_dir(cl, m, "words-" + tag, [](const diagnostic& d) {
-    return !d.message.starts_with("no sync records");
-  });
+  return test::post_in_fresh_dir(
+      cl, m, "words-" + tag, [](const diagnostic& d) { return !d.message.starts_with("no sync records"); });
 }
 
 posted post_text(const std::string& cl, const std::string& machine_name, const std::string& tag) {
@@ -38,30 +37,37 @@ TEST_CASE("an axis word past the control's format stops the post at its record",
   CHECK_FALSE(z.ok);
   CHECK(z.files.empty());
   CHECK(z.diagnostics ==
-        "job.cls:6:1: error: channel 1: Z word 1e+308 does not fit the control's format (5.3: at most 99999.999)\n"
+        "job.cls:6:1: error: channel 1: Z word 1e+308 does not fit the control's format (5.3: at most "
+        "99999.999)\n"
         "GOTO/29,0,1e308\n^\n");
   // One past the largest word the control reads; the largest itself is fine.
   posted over = post_text(head + "GOTO/29,0,100000\nFINI\n", "fanuc-0itd-twin", "over");
   CHECK(over.diagnostics ==
-        "job.cls:6:1: error: channel 1: Z word 100000 does not fit the control's format (5.3: at most 99999.999)\n"
+        "job.cls:6:1: error: channel 1: Z word 100000 does not fit the control's format (5.3: at most "
+        "99999.999)\n"
         "GOTO/29,0,100000\n^\n");
   posted edge = post_text(head + "GOTO/29,0,-99999.999\nFINI\n", "fanuc-0itd-twin", "edge");
   CHECK(edge.ok);
   CHECK(edge.diagnostics == "");
   // X is a diameter: CL x = 1e308 is an infinite diameter, -1e308 keeps its sign.
   posted x = post_text(head + "GOTO/1e308,0,1\nGOTO/-1e308,0,1\nFINI\n", "fanuc-0itd-twin", "x");
-  CHECK(x.diagnostics ==
-        "job.cls:6:1: error: channel 1: X word inf does not fit the control's format (5.3: at most 99999.999)\n"
-        "GOTO/1e308,0,1\n^\n"
-        "job.cls:7:1: error: channel 1: X word -inf does not fit the control's format (5.3: at most 99999.999)\n"
-        "GOTO/-1e308,0,1\n^\n");
+  CHECK(
+      x.diagnostics ==
+      "job.cls:6:1: error: channel 1: X word inf does not fit the control's format (5.3: at most 99999.999)\n"
+      "GOTO/1e308,0,1\n^\n"
+      "job.cls:7:1: error: channel 1: X word -inf does not fit the control's format (5.3: at most "
+      "99999.999)\n"
+      "GOTO/-1e308,0,1\n^\n");
 }
 
 TEST_CASE("F, S, T and dwell words are held to the control's format", "[post][words]") {
-  posted f = post_text("PARTNO W\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/1e308\nFINI\n", "fanuc-0itd-twin", "f");
+  posted f =
+      post_text("PARTNO W\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/1e308\nFINI\n", "fanuc-0itd-twin", "f");
   CHECK(f.diagnostics ==
-        "job.cls:4:1: error: channel 1: F word 1e+308 does not fit the control's format (6.4: at most 999999.9999)\nFEDRAT/1e308\n^\n");
-  posted s = post_text("PARTNO W\nTURRET/1,1\nSPINDL/SMM,123456,MAXRPM,3000,CLW\nFINI\n", "fanuc-0itd-twin", "s");
+        "job.cls:4:1: error: channel 1: F word 1e+308 does not fit the control's format (6.4: at most "
+        "999999.9999)\nFEDRAT/1e308\n^\n");
+  posted s =
+      post_text("PARTNO W\nTURRET/1,1\nSPINDL/SMM,123456,MAXRPM,3000,CLW\nFINI\n", "fanuc-0itd-twin", "s");
   CHECK(s.diagnostics ==
         "job.cls:3:1: error: channel 1: S word 123456 does not fit the control's format (5: at most 99999)\n"
         "SPINDL/SMM,123456,MAXRPM,3000,CLW\n^\n");
@@ -71,11 +77,13 @@ TEST_CASE("F, S, T and dwell words are held to the control's format", "[post][wo
         "TURRET/100,1\n^\n");
   posted d = post_text(head + "DELAY/1e9\nFINI\n", "fanuc-0itd-twin", "d");
   CHECK(d.diagnostics ==
-        "job.cls:6:1: error: channel 1: U word 1000000000 does not fit the control's format (5.3: at most 99999.999)\n"
+        "job.cls:6:1: error: channel 1: U word 1000000000 does not fit the control's format (5.3: at most "
+        "99999.999)\n"
         "DELAY/1e9\n^\n");
   posted ms = post_text("PARTNO W\nTURRET/1,1\nDELAY/1e6\nFINI\n", "integrex-i200st", "ms");
   CHECK(ms.diagnostics ==
-        "job.cls:3:1: error: channel 1: P word 1000000000 does not fit the control's format (8: at most 99999999)\nDELAY/1e6\n^\n");
+        "job.cls:3:1: error: channel 1: P word 1000000000 does not fit the control's format (8: at most "
+        "99999999)\nDELAY/1e6\n^\n");
 }
 
 TEST_CASE("a feed per minute above limits.max_feed stops the post at its record", "[post][words]") {
@@ -116,7 +124,8 @@ TEST_CASE("PARTNO gives the program number only when it fits the O format", "[po
   posted p = post_text("PARTNO 99999999\nTURRET/1,1\nFINI\n", "fanuc-0itd-twin", "partno");
   CHECK(p.ok);
   CHECK(p.diagnostics ==
-        "job.cls:1:1: warning: PARTNO 99999999 is not a program number of this control (format.O 4: 1 to 9999); "
+        "job.cls:1:1: warning: PARTNO 99999999 is not a program number of this control (format.O 4: 1 to "
+        "9999); "
         "the program takes the machine's program_number 1000\nPARTNO 99999999\n^\n");
   REQUIRE(p.files.count("99999999_1.nc") == 1);
   CHECK(p.files.at("99999999_1.nc").starts_with("%\nO1000 (99999999)\n"));
@@ -138,8 +147,9 @@ TEST_CASE("NX CIRCLE TIMES,n is posted as n full circles", "[post][words]") {
         "%\nO1000 (W)\nG40 G80 G99 G18\nG28 U0 W0\nT0101\nG97 S1000 M3\nG99\nG1 X40. Z0. F0.2\n"
         "G3 X40. Z0. I-10. K0.\nG3 X40. Z0. I-10. K0.\nG1 Z5.\nM100\nM9\nG28 U0 W0\nM5\nM30\n%\n");
   // Turns of a move that does not come back to its start cannot be cut as full circles.
-  posted off = post_text(head + "GOTO/20,0,0\nCIRCLE/10,0,0,0,1,0,10,0.06,0.5,4,0,TIMES,2\nGOTO/0,0,10\nFINI\n",
-                         "fanuc-0itd-twin", "times-off");
+  posted off =
+      post_text(head + "GOTO/20,0,0\nCIRCLE/10,0,0,0,1,0,10,0.06,0.5,4,0,TIMES,2\nGOTO/0,0,10\nFINI\n",
+                "fanuc-0itd-twin", "times-off");
   CHECK_FALSE(off.ok);
   CHECK(off.diagnostics ==
         "job.cls:8:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts to be repeated as "
@@ -150,27 +160,33 @@ TEST_CASE("a post stops at a record it cannot carry out, and warns at a job cut 
   posted foo = post_text(head + "FOO/1\nFINI\n", "fanuc-0itd-twin", "foo");
   CHECK_FALSE(foo.ok);
   CHECK(foo.files.empty());
-  CHECK(foo.diagnostics == "job.cls:6:1: error: unknown major word 'FOO': this record cannot be posted\nFOO/1\n^\n");
+  CHECK(foo.diagnostics ==
+        "job.cls:6:1: error: unknown major word 'FOO': this record cannot be posted\nFOO/1\n^\n");
   posted cut = post_text(head + "GOTO/20,0,0\nGOTO/20,0,-5\n", "fanuc-0itd-twin", "cut");
   CHECK(cut.ok);
-  CHECK(cut.diagnostics ==
-        "job.cls:7:1: warning: the job ends without FINI or END after this GOTO record: is the file cut off?\n"
-        "GOTO/20,0,-5\n^\n");
+  CHECK(
+      cut.diagnostics ==
+      "job.cls:7:1: warning: the job ends without FINI or END after this GOTO record: is the file cut off?\n"
+      "GOTO/20,0,-5\n^\n");
   posted dangling = post_text(head + "GOTO/20,0,0\nGOTO/20,$\n", "fanuc-0itd-twin", "dangling");
   CHECK_FALSE(dangling.ok);
   CHECK(dangling.diagnostics ==
-        "job.cls:7:9: error: the file ends in a continued record ('$' at the end of the last line): the job is cut "
+        "job.cls:7:9: error: the file ends in a continued record ('$' at the end of the last line): the job "
+        "is cut "
         "off\nGOTO/20,$\n        ^\n"
-        "job.cls:6:1: warning: the job ends without FINI or END after this GOTO record: is the file cut off?\n");
+        "job.cls:6:1: warning: the job ends without FINI or END after this GOTO record: is the file cut "
+        "off?\n");
 }
 
-TEST_CASE("a known record the post cannot carry out stops it; one that only informs does not", "[post][words]") {
+TEST_CASE("a known record the post cannot carry out stops it; one that only informs does not",
+          "[post][words]") {
   posted origin = post_text(head + "GOTO/20,0,0\nORIGIN/0,0,100\nFINI\n", "fanuc-0itd-twin", "origin");
   CHECK_FALSE(origin.ok);
   CHECK(origin.diagnostics ==
         "job.cls:7:1: error: ORIGIN is not supported by the post: this record cannot be carried out\n"
         "ORIGIN/0,0,100\n^\n");
-  posted paint = post_text(head + "PAINT/COLOR,186\nGOTO/20,0,0\nSET/MODE,ABSOL\nFINI\n", "fanuc-0itd-twin", "paint");
+  posted paint =
+      post_text(head + "PAINT/COLOR,186\nGOTO/20,0,0\nSET/MODE,ABSOL\nFINI\n", "fanuc-0itd-twin", "paint");
   CHECK(paint.ok);
   CHECK(paint.diagnostics == "");
   posted incr = post_text(head + "SET/MODE,INCR\nFINI\n", "fanuc-0itd-twin", "incr");
@@ -179,7 +195,8 @@ TEST_CASE("a known record the post cannot carry out stops it; one that only info
         "SET/MODE,INCR\n^\n");
 }
 
-TEST_CASE("a dwell template without an address letter still keeps its milliseconds in range", "[post][words]") {
+TEST_CASE("a dwell template without an address letter still keeps its milliseconds in range",
+          "[post][words]") {
   machine m = load_machine("fanuc-0itd-twin");
   m.codes.dwell = "G4 P=#{ms}";
   posted ok = post_text(head + "DELAY/1.5\nFINI\n", m, "dwell-ok");
@@ -187,5 +204,6 @@ TEST_CASE("a dwell template without an address letter still keeps its millisecon
   CHECK(ok.files.at("W_1.nc").find("\nG4 P=#1500\n") != std::string::npos);
   posted big = post_text(head + "DELAY/1e7\nFINI\n", m, "dwell-big");
   CHECK(big.diagnostics ==
-        "job.cls:6:1: error: channel 1: DELAY/10000000 is longer than any dwell the control takes\nDELAY/1e7\n^\n");
+        "job.cls:6:1: error: channel 1: DELAY/10000000 is longer than any dwell the control "
+        "takes\nDELAY/1e7\n^\n");
 }

@@ -53,8 +53,8 @@ event icam(std::optional<int> marker, std::vector<int> channels = {}) {
   return {0, s};
 }
 
-std::string run(const machine& m, sync_policy p, const std::vector<event>& events,
-                diagnostic_list& diags, std::vector<int> used = {1, 2}) {
+std::string run(const machine& m, sync_policy p, const std::vector<event>& events, diagnostic_list& diags,
+                std::vector<int> used = {1, 2}) {
   trace_sink sink;
   channel_router r(m, p, sink, diags, "job.cls", std::move(used));
   for (const event& e : events) r.route(e);
@@ -110,9 +110,9 @@ TEST_CASE("an ICAM marker left out after marker INT_MAX stays INT_MAX", "[router
   // it is the second occurrence of INT_MAX in both channels: the same code in both.
   diagnostic_list d;
   CHECK(run(twin(), sync_policy::explicit_marks,
-            {go(1), icam(INT_MAX), go(2), icam({}), head(2), go(3), icam(INT_MAX), go(4), icam({})},
-            d) == "c1:goto\nc1:M100\nc1:goto\nc1:M101\n"
-                  "c2:goto\nc2:M100\nc2:goto\nc2:M101\n");
+            {go(1), icam(INT_MAX), go(2), icam({}), head(2), go(3), icam(INT_MAX), go(4), icam({})}, d) ==
+        "c1:goto\nc1:M100\nc1:goto\nc1:M101\n"
+        "c2:goto\nc2:M100\nc2:goto\nc2:M101\n");
   CHECK(d.errors() == 0);
 }
 

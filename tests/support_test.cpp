@@ -14,10 +14,10 @@ using namespace twinpost;
 TEST_CASE("ascii classes: ASCII only, whatever the locale", "[support]") {
   CHECK(ascii::is_letter('a'));
   CHECK(ascii::is_letter('Z'));
-  CHECK_FALSE(ascii::is_letter('@'));  // one before 'A'
-  CHECK_FALSE(ascii::is_letter('['));  // one after 'Z'
-  CHECK_FALSE(ascii::is_letter('`'));  // one before 'a'
-  CHECK_FALSE(ascii::is_letter('{'));  // one after 'z'
+  CHECK_FALSE(ascii::is_letter('@'));     // one before 'A'
+  CHECK_FALSE(ascii::is_letter('['));     // one after 'Z'
+  CHECK_FALSE(ascii::is_letter('`'));     // one before 'a'
+  CHECK_FALSE(ascii::is_letter('{'));     // one after 'z'
   CHECK_FALSE(ascii::is_letter('\xE9'));  // e-acute in ISO-8859-1: never a letter
   CHECK_FALSE(ascii::is_letter('\xC9'));
   CHECK(ascii::is_digit('0'));
@@ -48,7 +48,7 @@ TEST_CASE("ascii case: letters only", "[support]") {
   CHECK(ascii::iequals("", ""));
   CHECK_FALSE(ascii::iequals("MAIN", "MAINS"));
   CHECK_FALSE(ascii::iequals("\xE9", "\xC9"));
-  CHECK_FALSE(ascii::iequals("[", "{"));  // 0x5B and 0x7B differ by the case bit, not letters
+  CHECK_FALSE(ascii::iequals("[", "{"));              // 0x5B and 0x7B differ by the case bit, not letters
   static_assert(ascii::iequals("partno", "PARTNO"));  // usable in constant expressions
   CHECK(ascii::equals_keyword("goto", "GOTO"));
   CHECK(ascii::equals_keyword("GoTo", "GOTO"));
@@ -75,11 +75,11 @@ TEST_CASE("json_quote: any bytes give ASCII JSON; UTF-8 as its characters", "[su
 TEST_CASE("json_quote: bytes that are not UTF-8 are ISO-8859-1", "[support][json]") {
   // CL files are often ISO-8859-1: each byte is its own character, none is lost.
   CHECK(json_quote("G\xE9n\xE9r\xE9") == "\"G\\u00e9n\\u00e9r\\u00e9\"");
-  CHECK(json_quote("\xE9t\xC3") == "\"\\u00e9t\\u00c3\"");          // a cut sequence at the end
-  CHECK(json_quote("\xC3(") == "\"\\u00c3(\"");                      // lead byte, no continuation
-  CHECK(json_quote("\x80\xBF") == "\"\\u0080\\u00bf\"");             // stray continuation bytes
-  CHECK(json_quote("\xC0\xAF") == "\"\\u00c0\\u00af\"");             // overlong '/'
-  CHECK(json_quote("\xED\xA0\x80") == "\"\\u00ed\\u00a0\\u0080\"");  // a surrogate, U+D800
+  CHECK(json_quote("\xE9t\xC3") == "\"\\u00e9t\\u00c3\"");                      // a cut sequence at the end
+  CHECK(json_quote("\xC3(") == "\"\\u00c3(\"");                                 // lead byte, no continuation
+  CHECK(json_quote("\x80\xBF") == "\"\\u0080\\u00bf\"");                        // stray continuation bytes
+  CHECK(json_quote("\xC0\xAF") == "\"\\u00c0\\u00af\"");                        // overlong '/'
+  CHECK(json_quote("\xED\xA0\x80") == "\"\\u00ed\\u00a0\\u0080\"");             // a surrogate, U+D800
   CHECK(json_quote("\xF4\x90\x80\x80") == "\"\\u00f4\\u0090\\u0080\\u0080\"");  // past U+10FFFF
   CHECK(json_quote("\xFF") == "\"\\u00ff\"");
 }

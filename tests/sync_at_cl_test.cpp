@@ -6,8 +6,8 @@
 
 #include "check/sync_check.hpp"
 #include "file_test_support.hpp"
-#include "post/sync_at_cl.hpp"
 #include "machines/machine_loader.hpp"
+#include "post/sync_at_cl.hpp"
 
 using namespace twinpost;
 
@@ -26,6 +26,7 @@ TEST_CASE("an unpaired wait is reported at its SYNC record, the program's end at
         cl + ":3:3: error: wait M100 of channel 1 is never met: channel 2 ends at " + cl +
             ":5 without a matching wait\n  SYNC/1,1,2\n  ^\n");
   CHECK(format_diagnostic(moved[1]) ==
-        "out/P_1.nc:4:1: note: the wait in the program as it would have been written (no file is written)\nM100\n^\n");
+        "out/P_1.nc:4:1: note: the wait in the program as it would have been written (no file is "
+        "written)\nM100\n^\n");
   std::filesystem::remove_all(dir);
 }

@@ -13,8 +13,8 @@ using namespace twinpost;
 
 namespace {
 
-machine make_machine(int channels, int first, int last, partner_style partners,
-                     std::string marker = "", std::string control = "fanuc-test") {
+machine make_machine(int channels, int first, int last, partner_style partners, std::string marker = "",
+                     std::string control = "fanuc-test") {
   machine m;
   m.name = "test";
   m.control = std::move(control);
@@ -30,9 +30,7 @@ machine make_machine(int channels, int first, int last, partner_style partners,
 }
 
 /// Mazak-like twin head: M950-M997, one merged file with G109 L1 / G109 L2 sections.
-machine mazak() {
-  return make_machine(2, 950, 997, partner_style::none, "G109 L{channel}", "mazak-smoothx");
-}
+machine mazak() { return make_machine(2, 950, 997, partner_style::none, "G109 L{channel}", "mazak-smoothx"); }
 /// Fanuc 2-path: M100-M103, plain waits in both paths.
 machine fanuc2() { return make_machine(2, 100, 103, partner_style::none); }
 /// Fanuc 3-path: M100-M197, partners as path numbers (P12, P123).
@@ -61,8 +59,7 @@ TEST_CASE("sound 2-path programs pass with the exact summary", "[check]") {
 
 TEST_CASE("codes may be reused: pairing is by order", "[check]") {
   const std::string one = "M100\nM101\nM100\nM101\nM100\nM30\n";
-  CHECK(check_text({{"a", one}, {"b", one}}, fanuc2()) ==
-        "check: 2 channels, 10 waits paired, 0 errors\n");
+  CHECK(check_text({{"a", one}, {"b", one}}, fanuc2()) == "check: 2 channels, 10 waits paired, 0 errors\n");
 }
 
 TEST_CASE("deadlock in Mazak syntax, one merged file", "[check]") {
@@ -89,9 +86,9 @@ TEST_CASE("deadlock in Mazak syntax, one merged file", "[check]") {
 }
 
 TEST_CASE("deadlock in Fanuc syntax, split files", "[check]") {
-  const std::string text = check_text({{"O1000.nc", "O1000\nN10 M101\nN20 M100\nM30\n"},
-                                       {"O1000.P-2", "O1000\nN10 M100\nN20 M101\nM30\n"}},
-                                      fanuc2());
+  const std::string text = check_text(
+      {{"O1000.nc", "O1000\nN10 M101\nN20 M100\nM30\n"}, {"O1000.P-2", "O1000\nN10 M100\nN20 M101\nM30\n"}},
+      fanuc2());
   CHECK(text ==
         "O1000.nc:2:5: error: deadlock: channel 1 waits on M101 at O1000.nc:2 while channel 2 "
         "waits on M100 at O1000.P-2:2 (different codes, Fanuc PS0160)\n"
@@ -132,28 +129,25 @@ TEST_CASE("unpaired wait in Fanuc syntax", "[check]") {
 }
 
 TEST_CASE("comments holding wait codes are not waits", "[check]") {
-  CHECK(check_text({{"a", "(M100 ON BOTH)\nM100\n; M101\n"},
-                    {"b", "M100 (THEN M101)\n/ (M102)\n"}},
+  CHECK(check_text({{"a", "(M100 ON BOTH)\nM100\n; M101\n"}, {"b", "M100 (THEN M101)\n/ (M102)\n"}},
                    fanuc2()) == "check: 2 channels, 2 waits paired, 0 errors\n");
 }
 
 TEST_CASE("3 paths: glued and spaced partner lists pair", "[check]") {
   // The ncplot7py example: 1-2 meet at M250, 2-3 at M260, all three at M500.
   const machine m = make_machine(3, 200, 998, partner_style::path_numbers);
-  const sync_result r = check_nc_files(
-      {{"1", "M250P12\nM500 P123\nM30\n"}, {"2", "m250p12\nM260 P23\nM500P123\n"},
-       {"3", "M260 P23\nM500 P123\n"}},
-      m);
+  const sync_result r = check_nc_files({{"1", "M250P12\nM500 P123\nM30\n"},
+                                        {"2", "m250p12\nM260 P23\nM500P123\n"},
+                                        {"3", "M260 P23\nM500 P123\n"}},
+                                       m);
   CHECK(format_sync_text(r) == "check: 3 channels, 7 waits paired, 0 errors\n");
   CHECK(r.channels[1].paired == 3);
 }
 
 TEST_CASE("3 paths: partner list problems (PS0161)", "[check]") {
-  const std::string text =
-      check_text({{"1.nc", "M100\nM101 P23\nM102 P14\nM103 P1\nM104 P112\nM105 P1.5\n"},
-                  {"2.nc", ""},
-                  {"3.nc", ""}},
-                 fanuc3());
+  const std::string text = check_text(
+      {{"1.nc", "M100\nM101 P23\nM102 P14\nM103 P1\nM104 P112\nM105 P1.5\n"}, {"2.nc", ""}, {"3.nc", ""}},
+      fanuc3());
   CHECK(text ==
         "2.nc: error: no NC block in this file: channel 2 has no program\n"
         "3.nc: error: no NC block in this file: channel 3 has no program\n"
@@ -175,8 +169,7 @@ TEST_CASE("3 paths: partner list problems (PS0161)", "[check]") {
 }
 
 TEST_CASE("3 paths: partners whose lists disagree (PS0160)", "[check]") {
-  CHECK(check_text({{"1.nc", "M100 P123\n"}, {"2.nc", "M100 P123\n"}, {"3.nc", "M100 P13\n"}},
-                   fanuc3()) ==
+  CHECK(check_text({{"1.nc", "M100 P123\n"}, {"2.nc", "M100 P123\n"}, {"3.nc", "M100 P13\n"}}, fanuc3()) ==
         "1.nc:1:1: error: deadlock: channel 1 waits on M100 P123 at 1.nc:1 while channel 3 "
         "waits on M100 P13 at 3.nc:1 (different partner lists, Fanuc PS0160)\n"
         "M100 P123\n^\n"
@@ -199,8 +192,8 @@ TEST_CASE("3 paths: a cyclic deadlock names every stuck channel", "[check]") {
 
 TEST_CASE("3 paths: a channel may wait while others meet", "[check]") {
   // Channel 1 waits for 2 at M100 while 2 first meets 3 at M101.
-  CHECK(check_text({{"1", "M100 P12\n"}, {"2", "M101 P23\nM100 P12\n"}, {"3", "M101 P23\n"}},
-                   fanuc3()) == "check: 3 channels, 4 waits paired, 0 errors\n");
+  CHECK(check_text({{"1", "M100 P12\n"}, {"2", "M101 P23\nM100 P12\n"}, {"3", "M101 P23\n"}}, fanuc3()) ==
+        "check: 3 channels, 4 waits paired, 0 errors\n");
 }
 
 TEST_CASE("binary partner masks", "[check]") {
@@ -259,8 +252,7 @@ TEST_CASE("Mazak sections interleaved and repeated", "[check]") {
 }
 
 TEST_CASE("the JSON report", "[check]") {
-  const sync_result r =
-      check_nc_files({{"a \"1\".nc", "M100\nM101\n"}, {"b.nc", "M100\n"}}, fanuc2());
+  const sync_result r = check_nc_files({{"a \"1\".nc", "M100\nM101\n"}, {"b.nc", "M100\n"}}, fanuc2());
   CHECK(format_sync_json(r) ==
         "{\n"
         "  \"ok\": false,\n"
@@ -314,8 +306,10 @@ struct check_job {
 std::vector<check_job> sound_jobs() {
   return {
       {"sound, plain waits", fanuc2(), {{"a", "M100\nG0 X1.\nM101\nM30\n"}, {"b", "M100\nM101\nM30\n"}}},
-      {"sound, partner lists", fanuc3(),
-       {{"1", "M100 P12\nM102 P123\nM30\n"}, {"2", "M100 P12\nM101 P23\nM102 P123\nM30\n"},
+      {"sound, partner lists",
+       fanuc3(),
+       {{"1", "M100 P12\nM102 P123\nM30\n"},
+        {"2", "M100 P12\nM101 P23\nM102 P123\nM30\n"},
         {"3", "M101 P23\nM102 P123\nM30\n"}}},
       {"sound, merged", mazak(), {{"p", "G109 L1\nM950\nM30\nG109 L2\nM950\nM30\n"}}},
   };
@@ -327,8 +321,7 @@ std::vector<check_job> finding_jobs() {
       {"unpaired", fanuc2(), {{"a", "M100\nM101\nM30\n"}, {"b", "M100\nM30\n"}}},
       {"deadlock", fanuc2(), {{"a", "M100\nM101\nM30\n"}, {"b", "M101\nM100\nM30\n"}}},
       {"near wait", fanuc2(), {{"a", "M100\nM150 P12\nM30\n"}, {"b", "M100\nM30\n"}}},
-      {"bad partner list", fanuc3(),
-       {{"1", "M100 P14\nM30\n"}, {"2", "M100 P12\nM30\n"}, {"3", "M30\n"}}},
+      {"bad partner list", fanuc3(), {{"1", "M100 P14\nM30\n"}, {"2", "M100 P12\nM30\n"}, {"3", "M30\n"}}},
       {"no partner list on 3 paths", fanuc3(), {{"1", "M100\nM30\n"}, {"2", "M100\nM30\n"}, {"3", "M30\n"}}},
       {"reading problem", fanuc2(), {{"a", "M100 M101\nM30\n"}, {"b", "M100\nM30\n"}}},
       {"no markers", mazak(), {{"p", "M950\nM30\n"}}},
@@ -348,7 +341,8 @@ std::string diagnostics_text(const std::vector<diagnostic>& ds) {
 std::string channels_text(const sync_result& r) {
   std::string s;
   for (const channel_sync_summary& c : r.channels)
-    s += std::to_string(c.channel) + " " + c.file + " " + std::to_string(c.waits) + " " + std::to_string(c.paired) + "\n";
+    s += std::to_string(c.channel) + " " + c.file + " " + std::to_string(c.waits) + " " +
+         std::to_string(c.paired) + "\n";
   return s;
 }
 
@@ -378,7 +372,8 @@ TEST_CASE("with a finding the check reports what the full reading finds", "[chec
     const sync_result full = check_sync(read_nc_programs(j.files, j.m, read), j.m);
     REQUIRE(!(read.all().empty() && full.diagnostics.empty()));  // the case has a finding
     const sync_result checked = check_nc_files(j.files, j.m);
-    CHECK(diagnostics_text(checked.diagnostics) == diagnostics_text(read.all()) + diagnostics_text(full.diagnostics));
+    CHECK(diagnostics_text(checked.diagnostics) ==
+          diagnostics_text(read.all()) + diagnostics_text(full.diagnostics));
     CHECK(channels_text(checked) == channels_text(full));
     CHECK(checked.paired == full.paired);
   }
@@ -394,14 +389,14 @@ TEST_CASE("a streamed file whose last line has no line end", "[check]") {
   REQUIRE(test::write_file(dir + "/b.nc", "M100\nG1 X10. Z-5. F0.2 S1200 T0101"));
   REQUIRE(test::write_file(dir + "/c.nc", "M100\nM101\n"));
   diagnostic_list d;
-  const nc_programs p = read_nc_programs(
-      {{"a.nc", {}, dir + "/a.nc"}, {"b.nc", {}, dir + "/b.nc"}}, fanuc2(), d);
+  const nc_programs p =
+      read_nc_programs({{"a.nc", {}, dir + "/a.nc"}, {"b.nc", {}, dir + "/b.nc"}}, fanuc2(), d);
   CHECK(p.channels[0].end.source_line == "G1 X10.");
   CHECK(p.channels[0].end.line == 2);
   CHECK(p.channels[1].end.source_line == "G1 X10. Z-5. F0.2 S1200 T0101");
   CHECK(p.channels[1].end.line == 2);
-  CHECK(format_sync_text(check_nc_files(
-            {{"a.nc", {}, dir + "/a.nc"}, {"c.nc", {}, dir + "/c.nc"}}, fanuc2())) ==
+  CHECK(format_sync_text(
+            check_nc_files({{"a.nc", {}, dir + "/a.nc"}, {"c.nc", {}, dir + "/c.nc"}}, fanuc2())) ==
         "c.nc:2:1: error: wait M101 of channel 2 is never met: channel 1 ends at a.nc:2 without "
         "a matching wait\n"
         "M101\n^\n"

@@ -4,9 +4,9 @@
 
 #include <string>
 
+#include "machine_test_support.hpp"
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
-#include "machine_test_support.hpp"
 #include "machines/word_format.hpp"
 
 using namespace twinpost;
@@ -31,8 +31,8 @@ TEST_CASE("word formats: reading, limits and texts", "[machines][format]") {
   CHECK(f.text() == "5.3");
   CHECK(f.max_text() == "99999.999");
   CHECK(f.max_count(3) == 99999999);
-  CHECK(f.max_count(1) == 999999);      // F per minute, one decimal written
-  CHECK(f.max_count(4) == 999999990);   // more decimals written than the control reads
+  CHECK(f.max_count(1) == 999999);     // F per minute, one decimal written
+  CHECK(f.max_count(4) == 999999990);  // more decimals written than the control reads
   REQUIRE(parse_word_format("4", f, why));
   CHECK(f.text() == "4");
   CHECK(f.max_count(0) == 9999);
@@ -74,10 +74,13 @@ TEST_CASE("word formats: defaults per control, and the [format] table", "[machin
   CHECK(m.formats['T'].text() == "6");
   CHECK(m.formats['Z'].text() == "5.3");  // the default where none is given
   CHECK(error_of(machine_head + "[format]\nX = \"5.x\"\n" + channels) ==
-        "m.toml:7:5: error: format.X \"5.x\" must be digits before and after the point, such as \"5.3\" or \"4\"");
+        "m.toml:7:5: error: format.X \"5.x\" must be digits before and after the point, such as \"5.3\" or "
+        "\"4\"");
   CHECK(error_of(machine_head + "[format]\nX = 5.3\n" + channels) ==
-        "m.toml:7:5: error: format.X must be a string such as \"5.3\" or an integer, not a floating-point number");
-  CHECK(error_of(machine_head + "[format]\nXX = \"5.3\"\n" + channels).starts_with("m.toml:7:1: error: unknown key"));
+        "m.toml:7:5: error: format.X must be a string such as \"5.3\" or an integer, not a floating-point "
+        "number");
+  CHECK(error_of(machine_head + "[format]\nXX = \"5.3\"\n" + channels)
+            .starts_with("m.toml:7:1: error: unknown key"));
   CHECK(error_of(machine_head + "[format]\nZ = \"5.2\"\n" + channels) ==
         "m.toml:7:5: error: format.Z (5.2) has fewer decimals than program.decimals_metric (3)");
   CHECK(error_of(machine_head + "[program]\nprogram_number = 12345\n" + channels) ==

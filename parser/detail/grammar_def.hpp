@@ -31,7 +31,6 @@ inline std::string_view trimmed(std::string_view s) {
   return s;
 }
 
-
 // Offsets count from the start of the record text (r.source); _where is the matched range.
 template <class Ctx>
 std::size_t here(Ctx& ctx, const cl_record& r) {
@@ -71,9 +70,7 @@ const auto set_major = [](auto& ctx) {
   r.major_offset = static_cast<std::size_t>(r.major.data() - r.source.data());
 };
 const auto set_text_kind = [](auto& ctx) { x3::get<record_tag>(ctx).kind = record_kind::text; };
-const auto set_coordinates_kind = [](auto& ctx) {
-  x3::get<record_tag>(ctx).kind = record_kind::coordinates;
-};
+const auto set_coordinates_kind = [](auto& ctx) { x3::get<record_tag>(ctx).kind = record_kind::coordinates; };
 const auto set_comment = [](auto& ctx) {
   cl_record& r = x3::get<record_tag>(ctx);
   r.kind = record_kind::comment;
@@ -81,9 +78,7 @@ const auto set_comment = [](auto& ctx) {
   r.args.clear();
   r.text = trimmed(view_of(x3::_attr(ctx)));
 };
-const auto set_text = [](auto& ctx) {
-  x3::get<record_tag>(ctx).text = trimmed(view_of(x3::_attr(ctx)));
-};
+const auto set_text = [](auto& ctx) { x3::get<record_tag>(ctx).text = trimmed(view_of(x3::_attr(ctx))); };
 
 }  // namespace actions
 
@@ -98,24 +93,21 @@ const auto word_char = x3::char_("A-Za-z0-9_");
 // MILL-20MM, 1STPECK, G98). A number is tried first, so "12.5" never becomes a word.
 const auto word = x3::raw[word_char >> *(word_char | x3::char_("-.#"))];
 
-const auto major_word =
-    x3::raw[letter >> *(word_char | x3::char_('-'))];
+const auto major_word = x3::raw[letter >> *(word_char | x3::char_('-'))];
 
-const auto arg = blanks >> x3::eps[actions::mark_arg] >>
-                 (cl_number[actions::push_number] | word[actions::push_word] |
-                  x3::eps[actions::push_empty]) >>
-                 blanks;
+const auto arg =
+    blanks >> x3::eps[actions::mark_arg] >>
+    (cl_number[actions::push_number] | word[actions::push_word] | x3::eps[actions::push_empty]) >> blanks;
 const auto arg_list = arg % ',';
 
 const auto comment = blanks >> x3::lit("$$") >> x3::raw[*x3::char_][actions::set_comment];
 
-const auto coordinates = blanks >> &(digit | x3::char_(".+-")) >>
-                         x3::eps[actions::set_coordinates_kind] >> arg_list;
+const auto coordinates = blanks >>
+                         &(digit | x3::char_(".+-")) >> x3::eps[actions::set_coordinates_kind] >> arg_list;
 
-const auto text_record =
-    blanks >> x3::raw[text_major][actions::set_major] >>
-    x3::eps[actions::set_text_kind] >> blanks >> -x3::lit('/') >>
-    x3::raw[*x3::char_][actions::set_text];
+const auto text_record = blanks >> x3::raw[text_major][actions::set_major] >>
+                         x3::eps[actions::set_text_kind] >> blanks >>
+                         -x3::lit('/') >> x3::raw[*x3::char_][actions::set_text];
 
 const auto statement = blanks >> major_word[actions::set_major] >> blanks >>
                        -((x3::lit('/') | x3::lit(',')) >> arg_list);

@@ -14,8 +14,7 @@ inline constexpr auto word_chars = [] {
   struct table {
     bool in[256] = {};
   } t;
-  for (int c = 0; c < 256; ++c)
-    t.in[c] = ascii::is_alnum(static_cast<char>(c)) || c == '_';
+  for (int c = 0; c < 256; ++c) t.in[c] = ascii::is_alnum(static_cast<char>(c)) || c == '_';
   return t;
 }();
 
@@ -26,17 +25,19 @@ inline bool is_word_char(char c) { return word_chars.in[static_cast<unsigned cha
 // IEEE division (Clinger's fast path), so the value equals from_chars'. Returns the end of
 // the number, or nullptr to hand the text to from_chars (exponents, long numbers, "." alone).
 inline const char* fast_decimal(const char* p, const char* last, double& value) {
-  static constexpr double pow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8,
-                                     1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  static constexpr double pow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                     1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
   // Digits first, counted afterwards: more than 15 go to from_chars, so the unsigned
   // arithmetic here may wrap on a long number without harm.
   unsigned long long mantissa = 0;
   const char* int_begin = p;
-  while (p != last && static_cast<unsigned>(*p - '0') < 10) mantissa = mantissa * 10 + static_cast<unsigned>(*p++ - '0');
+  while (p != last && static_cast<unsigned>(*p - '0') < 10)
+    mantissa = mantissa * 10 + static_cast<unsigned>(*p++ - '0');
   int digits = static_cast<int>(p - int_begin), fraction = 0;
   if (p != last && *p == '.') {
     const char* frac_begin = ++p;
-    while (p != last && static_cast<unsigned>(*p - '0') < 10) mantissa = mantissa * 10 + static_cast<unsigned>(*p++ - '0');
+    while (p != last && static_cast<unsigned>(*p - '0') < 10)
+      mantissa = mantissa * 10 + static_cast<unsigned>(*p++ - '0');
     fraction = static_cast<int>(p - frac_begin);
     digits += fraction;
   }
@@ -48,9 +49,8 @@ inline const char* fast_decimal(const char* p, const char* last, double& value) 
 }
 
 /// The majors of free-text records (PARTNO, PPRINT, ...), matched case-insensitively.
-inline constexpr std::string_view text_majors[] = {"PARTNO",    "PPRINT",      "INSERT",
-                                                   "TPRINT",    "OPFEATSTART", "OPFEATEND",
-                                                   "TOOL PATH", "TITLES",      "REMARK"};
+inline constexpr std::string_view text_majors[] = {
+    "PARTNO", "PPRINT", "INSERT", "TPRINT", "OPFEATSTART", "OPFEATEND", "TOOL PATH", "TITLES", "REMARK"};
 
 /// The length of the text major that `s` starts with as a whole word, or 0.
 inline std::size_t text_major_length(std::string_view s) {

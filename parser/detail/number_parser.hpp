@@ -11,7 +11,6 @@
 
 namespace twinpost::parser_detail {
 
-
 struct cl_number_parser : x3::parser<cl_number_parser> {
   using attribute_type = double;
   static bool const has_attribute = true;
