@@ -1,6 +1,8 @@
 // event_builder: statements (MAJOR/args) other than motion, found through one table of
 // handlers by major word.
 #include <array>
+#include <cstring>
+
 #include <fmt/format.h>
 
 #include "parser/detail/word_events.hpp"
@@ -28,7 +30,18 @@ constexpr char upper_ascii(char c) { return c >= 'a' && c <= 'z' ? static_cast<c
 
 void event_builder::statement(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   end_of_motion_record();
-  (this->*handler_of(r.major))(r, line, out, issues);
+  const std::string_view m = r.major;
+  handler_cache& c = last_handler_;
+  statement_handler h = c.handler;
+  if (h == nullptr || m.size() != c.size || std::memcmp(m.data(), c.word.data(), m.size()) != 0) {
+    h = handler_of(m);
+    if (m.size() <= c.word.size()) {  // a longer word is looked up each time
+      c.size = m.size();
+      std::memcpy(c.word.data(), m.data(), m.size());
+      c.handler = h;
+    }
+  }
+  (this->*h)(r, line, out, issues);
 }
 
 // This runs once per record: a table sorted by word, cut into one run per first letter, so a
