@@ -7,17 +7,21 @@ namespace twinpost::cli {
 
 namespace po = boost::program_options;
 
-bool parse_options(const args& a, const po::options_description& opts,
-                   const po::positional_options_description& pos, po::variables_map& vm,
-                   const char* command) {
+std::optional<int> parse_command(const args& a, const po::options_description& opts,
+                                 const po::positional_options_description& pos, po::variables_map& vm,
+                                 const char* command, const std::string& help) {
   try {
     po::store(po::command_line_parser(a).options(opts).positional(pos).run(), vm);
     po::notify(vm);
-    return true;
   } catch (const po::error& e) {
     fmt::print(stderr, "twinpost {}: {}\n", command, e.what());
-    return false;
+    return 2;
   }
+  if (vm.count("help")) {
+    fmt::print("{}", help);
+    return 0;
+  }
+  return std::nullopt;
 }
 
 void print_error(std::string_view message) { fmt::print(stderr, "twinpost: error: {}\n", message); }

@@ -3,6 +3,7 @@
 // and a diagnostic sink that prints to stderr as diagnostics arrive.
 #include <boost/program_options.hpp>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -12,10 +13,13 @@
 
 namespace twinpost::cli {
 
-/// Parses `a`; on a bad option prints "twinpost COMMAND: ..." to stderr and returns false.
-bool parse_options(const args& a, const boost::program_options::options_description& opts,
-                   const boost::program_options::positional_options_description& pos,
-                   boost::program_options::variables_map& vm, const char* command);
+/// Parses `a` into `vm`. Returns the exit status when the command is done already: 2 after
+/// printing "twinpost COMMAND: ..." for a bad option, 0 after printing `help` for --help;
+/// nothing when the command should go on.
+std::optional<int> parse_command(const args& a, const boost::program_options::options_description& opts,
+                                 const boost::program_options::positional_options_description& pos,
+                                 boost::program_options::variables_map& vm, const char* command,
+                                 const std::string& help);
 
 /// Prints "twinpost: error: MESSAGE" and a newline to stderr. The library never names the
 /// program: this is the one place that puts its name before an error without a place.

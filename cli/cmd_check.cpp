@@ -58,11 +58,9 @@ int run_check(const args& a) {
   po::positional_options_description pos;
   pos.add("file", -1);
   po::variables_map vm;
-  if (!parse_options(a, all, pos, vm, "check")) return 2;
-  if (vm.count("help")) {
-    fmt::print("{}{}", check_usage(), to_string(opts));
-    return 0;
-  }
+  if (const std::optional<int> done =
+          parse_command(a, all, pos, vm, "check", check_usage() + to_string(opts)))
+    return *done;
   if (!vm.count("file")) {
     fmt::print(stderr, "twinpost check: missing NC files\n");
     return 2;

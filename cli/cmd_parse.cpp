@@ -25,11 +25,7 @@ int run_parse(const args& a) {
   po::positional_options_description pos;
   pos.add("file", 1);
   po::variables_map vm;
-  if (!parse_options(a, opts, pos, vm, "parse")) return 2;
-  if (vm.count("help")) {
-    fmt::print("{}", to_string(opts));
-    return 0;
-  }
+  if (const std::optional<int> done = parse_command(a, opts, pos, vm, "parse", to_string(opts))) return *done;
   if (!vm.count("file")) {
     fmt::print(stderr, "twinpost parse: missing CL file\n");
     return 2;

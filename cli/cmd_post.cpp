@@ -115,11 +115,7 @@ int run_post(const args& a) {
   po::positional_options_description pos;
   pos.add("job", 1);
   po::variables_map vm;
-  if (!parse_options(a, opts, pos, vm, "post")) return 2;
-  if (vm.count("help")) {
-    fmt::print("{}", to_string(opts));
-    return 0;
-  }
+  if (const std::optional<int> done = parse_command(a, opts, pos, vm, "post", to_string(opts))) return *done;
   if (!has_required(vm)) return 2;
   std::optional<post_options> o = read_post_options(vm);
   if (!o) return 2;
