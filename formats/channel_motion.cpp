@@ -60,13 +60,14 @@ void channel_writer::motion(const motion_event& mv, int line) {
   switch (mv.kind) {
     case motion_kind::from: pos_ = mv.pos; return;
     case motion_kind::home:
-      out_.block(m_.codes.home);
+      go_home();
       forget_axes();
       motion_g_ = -1;
       pos_ = mv.pos;
       return;
     case motion_kind::go_to:
     case motion_kind::delta:
+      if (spindle_held_) resume_spindle();
       if (cycle_) {
         cycle_point(mv.pos, line);
       } else {
@@ -78,6 +79,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
 }
 
 void channel_writer::arc(const arc_event& a, int line) {
+  if (spindle_held_) resume_spindle();
   // The plane comes from the arc's axis: +-Z G17 (XY), +-Y G18 (ZX, the lathe's), +-X G19 (YZ).
   // In each, counter-clockwise about the positive axis is G3 (Z = X x Y, Y = Z x X, X = Y x Z).
   double nlen = std::sqrt(a.normal.x * a.normal.x + a.normal.y * a.normal.y + a.normal.z * a.normal.z);

@@ -24,6 +24,18 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     }
   }
   if (!spindle_) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
+  spindle_held_ = false;  // this record says what the spindle does now
+  if (s.mode == spindle_mode::on) {
+    // APT: ON turns the spindle on again at the last speed, mode and direction, never S0.
+    if (!last_speed_)
+      return error(line,
+                   "SPINDL/ON with no spindle speed given before in this channel: give "
+                   "SPINDL/RPM,n or SPINDL/SMM,n");
+    spindle_event again = *last_speed_;
+    if (s.dir != rotation::none) again.dir = s.dir;
+    again.spindle.clear();  // the spindle selected now
+    return spindle(again, line);
+  }
   const spindle_def& sp = *spindle_;
   if (s.mode == spindle_mode::off) {
     restart_blocks_.clear();
@@ -54,6 +66,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     restart_blocks_.push_back(
         join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
     for (const std::string& b : restart_blocks_) out_.block(b);
+    last_speed_ = s;
     return;
   }
   if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
@@ -63,6 +76,35 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   restart_blocks_ = {
       join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
   out_.block(restart_blocks_.front());
+  last_speed_ = s;
+}
+
+void channel_writer::coolant(const coolant_event& c, int line) {
+  if (c.mode == "OFF") {
+    out_.block(m_.codes.coolant_off);
+    coolant_block_.clear();
+    return;
+  }
+  if (c.mode != "ON" && c.mode != "FLOOD")
+    return error(line, fmt::format("COOLNT/{}: machine '{}' gives no code for this kind of coolant (only "
+                                   "flood: {}); writing flood instead could burn the tool or flood a "
+                                   "dry cut",
+                                   c.mode, m_.name,
+                                   m_.codes.coolant_on.empty() ? "none" : m_.codes.coolant_on.front()));
+  if (m_.codes.coolant_on.empty())
+    return error(line, fmt::format("COOLNT/{}: machine '{}' has no coolant-on code", c.mode, m_.name));
+  if (coolant_block_ == m_.codes.coolant_on.front()) return;  // already on
+  out_.block(m_.codes.coolant_on.front());
+  coolant_block_ = m_.codes.coolant_on.front();
+}
+
+void channel_writer::resume_spindle() {
+  for (const std::string& b : restart_blocks_) out_.block(b);
+  spindle_held_ = false;
+}
+
+void channel_writer::go_home() {
+  for (const std::string& b : m_.codes.home) out_.block(b);
 }
 
 void channel_writer::program_stop(bool optional) {
@@ -121,10 +163,20 @@ void channel_writer::tool(const tool_event& t, int line) {
     return;
   }
   if (!block_fits(call)) return;  // T12345 on a four-digit T: the tool does not exist
-  out_.block(m_.codes.home);      // index the turret away from the part
+  // Coolant off before the turret leaves the part and indexes, home X then Z, the call, and
+  // the coolant the CL left on back on for the new tool (public Fanuc posts: M9, G28 U0.,
+  // G28 W0., T0202, then coolant once the tool is there; docs/machines.md).
+  const std::string coolant_was = coolant_block_;
+  if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_) {
+    out_.block(fmt::format("M{}", spindle_->stop));
+    spindle_held_ = true;
+  }
+  if (!coolant_was.empty()) out_.block(m_.codes.coolant_off);
+  go_home();
   forget_axes();
   motion_g_ = -1;
   out_.block(call);
+  if (!coolant_was.empty()) out_.block(coolant_was);
   tool_ = t.tool;
   tool_call_ = call;
 }

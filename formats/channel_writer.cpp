@@ -131,15 +131,9 @@ void channel_writer::on_event(const event& e, bool both) {
           feed(d, e.line);
         else if constexpr (std::is_same_v<T, tool_event>)
           tool(d, e.line);
-        else if constexpr (std::is_same_v<T, coolant_event>) {
-          if (d.mode == "OFF") {
-            out_.block(m_.codes.coolant_off);
-            coolant_block_.clear();
-          } else if (!m_.codes.coolant_on.empty()) {
-            out_.block(m_.codes.coolant_on.front());
-            coolant_block_ = m_.codes.coolant_on.front();
-          }
-        } else if constexpr (std::is_same_v<T, stop_event>) {
+        else if constexpr (std::is_same_v<T, coolant_event>)
+          coolant(d, e.line);
+        else if constexpr (std::is_same_v<T, stop_event>) {
           program_stop(d.optional);
         } else if constexpr (std::is_same_v<T, cutcom_event>) {
           // Mirroring X turns the tool's left into its right, as it turns G2 into G3.

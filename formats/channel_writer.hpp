@@ -45,6 +45,13 @@ class channel_writer {
   /// M0/M1, then the spindle and coolant blocks in force again: the stop turns them off on
   /// most lathes, and cycle start must not resume cutting with a still spindle.
   void program_stop(bool optional);
+  /// The machine's home blocks (X, then Z).
+  void go_home();
+  /// The spindle stopped for a tool change turns again (before the first move after it).
+  void resume_spindle();
+  /// COOLNT: flood (ON, FLOOD) writes the machine's coolant-on block; a kind the machine file
+  /// gives no code for (MIST, THRU, AIR, TAP) is an error, never plain flood.
+  void coolant(const coolant_event& c, int line);
   /// True when the writer carries out every word of cycle `c`; else an error naming the first
   /// word it would drop (a tap, a bore, a retract plane, a peck of another dialect...).
   bool cycle_supported(const cycle_event& c, int line);
@@ -112,7 +119,13 @@ class channel_writer {
   vec3 pos_;                                 // last CL point of this channel
   vec3 axis_{0, 0, 1};                       // tool axis, from GOTO i,j,k or TLAXIS
   std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning
-  std::string coolant_block_;                ///< the coolant-on block in force, "" when off
+  /// The last SPINDL that set a speed: SPINDL/ON turns the spindle on again with it (APT: the
+  /// last speed, mode and direction), also after SPINDL/OFF.
+  std::optional<spindle_event> last_speed_;
+  /// The spindle was stopped for a tool change: restart_blocks_ go out again before the next
+  /// move unless a SPINDL comes first.
+  bool spindle_held_ = false;
+  std::string coolant_block_;  ///< the coolant-on block in force, "" when off
   int tool_ = -1;
   std::string tool_call_;  ///< the last tool call written (an offset change writes a new one)
   int waits_ = 0;

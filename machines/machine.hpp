@@ -62,8 +62,12 @@ struct channel_def {
   /// `kind` (turret or mill_head) only chooses its default.
   std::string tool_call;
   std::string spindle = "main";  ///< the spindle this channel works on at start
-  std::vector<axis_def> axes;    ///< at least X and Z
-  std::string file_suffix;       ///< for split layout, e.g. "_1" or ".P-2"
+  /// The spindle in force stops before a tool change and turns again before the next move
+  /// (a mill head's tool changer: the Fusion Integrex post stops it before every T.. M6).
+  /// Default: true for kind mill_head, false for a turret.
+  bool tool_change_stops_spindle = false;
+  std::vector<axis_def> axes;  ///< at least X and Z
+  std::string file_suffix;     ///< for split layout, e.g. "_1" or ".P-2"
   /// The axis with this address, or nullptr.
   const axis_def* axis(char address) const;
 };
@@ -98,7 +102,10 @@ struct control_codes {
   std::string rpm = "G97";
   std::string feed_per_rev = "G99";
   std::string feed_per_min = "G98";
-  std::string home = "G28 U0 W0";
+  /// The blocks that take the tool home, in order: X (away from the part) first, then Z, as
+  /// public Fanuc lathe posts do (`G28 U0.` then `G28 W0.`, docs/machines.md). Written before
+  /// every tool change and for GOHOME.
+  std::vector<std::string> home = {"G28 U0.", "G28 W0."};
   std::string dwell = "G4 U{seconds}";  ///< dwell block
   std::string program_stop = "M0";      ///< CL STOP
   std::string optional_stop = "M1";     ///< CL OPSTOP

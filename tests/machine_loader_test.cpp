@@ -110,9 +110,9 @@ TEST_CASE("built-in fanuc-0itd-twin", "[machines]") {
   CHECK(m.name == "fanuc-0itd-twin");
   CHECK(m.layout == layout_kind::split);
   CHECK(m.program.extension == ".nc");
-  CHECK(m.program.header == std::vector<std::string>{"G40 G80 G99 G18"});
+  CHECK(m.program.header == std::vector<std::string>{"G0 G18 G21 G40 G54 G80 G99"});
   CHECK(m.program.end_code == "M30");
-  CHECK(m.codes.home == "G28 U0 W0");
+  CHECK(m.codes.home == std::vector<std::string>{"G28 U0.", "G28 W0."});
   CHECK(m.codes.dwell == "G4 U{seconds}");
   CHECK(m.codes.feed_per_rev == "G99");
   CHECK(m.codes.feed_per_min == "G98");

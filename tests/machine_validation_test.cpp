@@ -230,8 +230,8 @@ TEST_CASE("validation: a template names only what is known where it is used", "[
         "m.toml:7:18: error: program.section_marker: template \"G109 L{channel} ({name})\" "
         "names {name}, which is not known there (it is given {channel})");
   // Fixed blocks are given nothing.
-  CHECK(error_of(head + "[codes]\nhome = \"G28 U0 W0 (T{tool})\"\n") ==
-        "m.toml:7:8: error: codes.home: template \"G28 U0 W0 (T{tool})\" names {tool}, which "
+  CHECK(error_of(head + "[codes]\nhome = [\"G28 U0 (T{tool})\"]\n") ==
+        "m.toml:7:9: error: codes.home: template \"G28 U0 (T{tool})\" names {tool}, which "
         "is not known there (it is given no placeholder)");
   CHECK(error_of(head + "[codes]\ncoolant_on = [\"M8\", \"M{channel}\"]\n") ==
         "m.toml:7:21: error: codes.coolant_on: template \"M{channel}\" names {channel}, which is "
@@ -259,12 +259,12 @@ TEST_CASE("fixed blocks are stored as the control reads them", "[machines]") {
   // control.
   const machine m = parse_machine(head +
                                       "[program]\nend_code = \"M30 ({{END}})\"\n"
-                                      "[codes]\nhome = \"G28 U0 ({{HOME}})\"\n"
+                                      "[codes]\nhome = [\"G28 U0 ({{HOME}})\", \"G28 W0\"]\n"
                                       "coolant_on = [\"M8 ({{A}})\"]\n" +
                                       two_channels,
                                   "m.toml");
   CHECK(m.program.end_code == "M30 ({END})");
-  CHECK(m.codes.home == "G28 U0 ({HOME})");
+  CHECK(m.codes.home == std::vector<std::string>{"G28 U0 ({HOME})", "G28 W0"});
   CHECK(m.codes.coolant_on == std::vector<std::string>{"M8 ({A})"});
 }
 

@@ -1,0 +1,95 @@
+// A tool change as public posts make it (Fusion "FANUC Turning", "Doosan Mill/Turn" and
+// "Mazak Integrex i"): coolant off, home X then Z, the call, the coolant the CL left on back
+// on; a mill head also stops its spindle and turns it again before the next move.
+// SPINDL/ON restores the last speed, never S0. COOLNT kinds without a code are refused.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+test::posted post_on(const std::string& cl, const std::string& machine_name, const std::string& tag) {
+  return test::post_in_fresh_dir(cl, load_machine(machine_name), "tool-change-" + tag,
+                                 [](const diagnostic& d) { return d.level == severity::error; });
+}
+
+std::string file_of(const test::posted& p, const std::string& name) {
+  if (!p.ok) return "(failed)\n" + p.diagnostics;
+  const auto f = p.files.find(name);
+  return f == p.files.end() ? "(missing)" : f->second;
+}
+
+}  // namespace
+
+TEST_CASE("a turret's tool change turns the coolant off, homes X then Z, and turns it on again",
+          "[post][tools]") {
+  const test::posted p = post_on(
+      "PARTNO TC\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nCOOLNT/ON\nFEDRAT/0.2,MMPR\n"
+      "GOTO/20,0,2\nGOTO/20,0,-10\nTURRET/3,3\nGOTO/15,0,2\nFINI\n",
+      "fanuc-0itd-twin", "turret");
+  CHECK(file_of(p, "TC_1.nc") ==
+        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\nG99\n"
+        "G1 X40. Z2. F0.2\nZ-10.\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG1 X30. Z2.\nM100\nM9\nG28 U0.\n"
+        "G28 W0.\nM5\nM30\n%\n");
+}
+
+TEST_CASE("COOLNT/ON after the tool change writes no second M8", "[post][tools]") {
+  const test::posted p = post_on(
+      "PARTNO TC\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nCOOLNT/ON\nFEDRAT/0.2,MMPR\n"
+      "GOTO/20,0,2\nTURRET/3,3\nCOOLNT/ON\nGOTO/15,0,2\nFINI\n",
+      "fanuc-0itd-twin", "again");
+  CHECK(file_of(p, "TC_1.nc") ==
+        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\nG99\n"
+        "G1 X40. Z2. F0.2\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG1 X30. Z2.\nM100\nM9\nG28 U0.\nG28 W0.\n"
+        "M5\nM30\n%\n");
+}
+
+TEST_CASE("the mill head stops its spindle for the tool change and starts it before the next move",
+          "[post][tools]") {
+  // No SPINDL after the second tool: the spindle in force turns again before the first move.
+  const test::posted p = post_on(
+      "PARTNO TC\nHEAD/1\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n"
+      "LOADTL/2\nGOTO/15,0,2\nFINI\n",
+      "integrex-i200st", "mill-head");
+  const std::string program = file_of(p, "TC.EIA");
+  CHECK(program.find("G97 S1000 M203\nG95\nG1 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+                     "T02 M6\nG97 S1000 M203\nG1 X30. Y0. Z2.\n") != std::string::npos);
+  INFO(program);
+}
+
+TEST_CASE("SPINDL/ON turns the spindle on again at the last speed and direction", "[post][tools]") {
+  const test::posted p = post_on(
+      "PARTNO TC\nHEAD/1\nTURRET/1,1\nSPINDL/SMM,200,MAXRPM,3000,CCLW\nFEDRAT/0.2,MMPR\n"
+      "GOTO/20,0,2\nSPINDL/OFF\nSPINDL/ON\nGOTO/20,0,-5\nFINI\n",
+      "fanuc-0itd-twin", "on");
+  CHECK(file_of(p, "TC_1.nc") ==
+        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S3000\nG96 S200 M4\n"
+        "G99\nG1 X40. Z2. F0.2\nM5\nG50 S3000\nG96 S200 M4\nZ-5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\n"
+        "M30\n%\n");
+}
+
+TEST_CASE("SPINDL/ON with no speed before it is an error, never S0", "[post][tools]") {
+  const test::posted p = post_on("PARTNO TC\nHEAD/1\nTURRET/1,1\nSPINDL/ON\nRAPID\nGOTO/20,0,2\nFINI\n",
+                                 "fanuc-0itd-twin", "on-none");
+  CHECK_FALSE(p.ok);
+  CHECK(p.files.empty());
+  CHECK(p.diagnostics ==
+        "job.cls:4:1: error: channel 1: SPINDL/ON with no spindle speed given before in this channel: "
+        "give SPINDL/RPM,n or SPINDL/SMM,n\nSPINDL/ON\n^\n");
+}
+
+TEST_CASE("a coolant kind the machine gives no code for is an error, never flood", "[post][tools]") {
+  const test::posted p = post_on("PARTNO TC\nHEAD/1\nTURRET/1,1\nCOOLNT/MIST\nRAPID\nGOTO/20,0,2\nFINI\n",
+                                 "fanuc-0itd-twin", "mist");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:4:1: error: channel 1: COOLNT/MIST: machine 'fanuc-0itd-twin' gives no code for this kind "
+        "of coolant (only flood: M8); writing flood instead could burn the tool or flood a dry cut\n"
+        "COOLNT/MIST\n^\n");
+}
