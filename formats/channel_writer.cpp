@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
 
 namespace twinpost {
@@ -155,7 +156,14 @@ void channel_writer::on_event(const event& e, bool both) {
           std::string b = format_template(m_.codes.dwell, a);
           if (block_fits(b)) out_.block(b);
         } else if constexpr (std::is_same_v<T, aux_event>) {
-          std::string b = fmt::format("{}{}", d.prefun ? 'G' : 'M', d.code);
+          // The control would take a wait code for a wait, and so would the checker.
+          const char address = d.prefun ? 'G' : 'M';
+          if (is_wait_word(m_.waits, address, d.code))
+            return error(e.line, fmt::format("{}/{} gives {}{}, a wait code of this machine (waits {}): the "
+                                             "control would take it for a wait",
+                                             d.prefun ? "PREFUN" : "AUXFUN", d.code, address, d.code,
+                                             wait_range_text(m_.waits)));
+          std::string b = fmt::format("{}{}", address, d.code);
           if (block_fits(b)) out_.block(b);
         } else if constexpr (std::is_same_v<T, text_event>) {
           if (d.kind == text_kind::insert)

@@ -206,7 +206,7 @@ void read_limits(const table_reader& root, motion_limits& l) {
   read_positive(r, "max_feed", l.max_feed, false);
 }
 
-void read_spindles(const table_reader& root, const wait_rules& waits, std::vector<spindle_def>& out) {
+void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   for (const toml::table* t : root.tables("spindle")) {
     table_reader r(*t, "spindle", root.source(), {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm"});
     spindle_def s;
@@ -218,18 +218,6 @@ void read_spindles(const table_reader& root, const wait_rules& waits, std::vecto
     r.read("ccw", s.ccw);
     r.read("stop", s.stop);
     r.read("select", s.select);
-    // A spindle M-code inside the wait range would be read as a wait by the control.
-    if (waits.address == 'M') {
-      for (const char* key : {"cw", "ccw", "stop", "select"}) {
-        int code = std::string_view(key) == "cw"     ? s.cw
-                   : std::string_view(key) == "ccw"  ? s.ccw
-                   : std::string_view(key) == "stop" ? s.stop
-                                                     : s.select.value_or(-1);
-        if (code >= 0 && waits.is_wait_code(code) && r.find(key))
-          r.fail(*r.find(key), fmt::format("{} M{} is a wait code of this machine (waits M{}-M{})",
-                                           r.key_path(key), code, waits.first, waits.last));
-      }
-    }
     r.read_template("clamp", s.clamp, template_uses::clamp);
     read_positive(r, "max_rpm", s.max_rpm, true);
     out.push_back(std::move(s));
@@ -297,9 +285,10 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_formats(root, m.formats, at);
   read_codes(root, m.codes);
   read_limits(root, m.limits);
-  read_spindles(root, m.waits, m.spindles);
+  read_spindles(root, m.spindles);
   detail::read_channels(root, m);
   check_across_tables(root, m, at);
+  detail::check_code_overlaps(root, m);
   return m;
 }
 

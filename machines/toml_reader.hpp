@@ -91,4 +91,10 @@ class table_reader {
 /// Lives in machine_channels.cpp.
 void read_channels(const table_reader& root, machine& m);
 
+/// Throws at the first value of the file (in file order) that names a wait code of `m`
+/// outside [waits]: spindle codes, [codes], program blocks, tool calls; a default the file
+/// leaves in place is reported at the table that omits it (machines/code_overlap.hpp).
+/// Lives in code_overlap.cpp.
+void check_code_overlaps(const table_reader& root, const machine& m);
+
 }  // namespace twinpost::detail

@@ -117,7 +117,7 @@ TEST_CASE("built-in fanuc-0itd-twin", "[machines]") {
   CHECK(m.codes.feed_per_rev == "G99");
   CHECK(m.codes.feed_per_min == "G98");
   CHECK(m.waits.first == 100);
-  CHECK(m.waits.last == 103);
+  CHECK(m.waits.last == 102);  // M103 is the Doosan sub spindle's CW
   CHECK(m.waits.reuse);
   CHECK(m.waits.partners == partner_style::none);
   REQUIRE(m.channels.size() == 2);
@@ -132,6 +132,9 @@ TEST_CASE("built-in fanuc-0itd-twin", "[machines]") {
   CHECK(m.channels[1].file_suffix == "_2");
   REQUIRE(m.spindle("main"));
   CHECK(m.spindle("main")->clamp == "G50 S{max}");
+  // The Doosan sub-spindle codes; M203/M205 are spindle synchronisation there.
+  REQUIRE(m.spindle("sub"));
+  CHECK((m.spindle("sub")->cw == 103 && m.spindle("sub")->ccw == 104 && m.spindle("sub")->stop == 105));
 }
 
 TEST_CASE("built-in fanuc-31i-3path", "[machines]") {
@@ -143,6 +146,11 @@ TEST_CASE("built-in fanuc-31i-3path", "[machines]") {
   CHECK(m.channel_for_head(3) == &m.channels[2]);
   CHECK(m.waits.first == 200);
   CHECK(m.waits.last == 299);
+  // The Doosan codes of the range are never waits: synchronisation M203/M205/M213 and the
+  // Y-axis interlock release M272/M273.
+  CHECK(m.waits.excluded == std::vector<int>{203, 205, 213, 272, 273});
+  CHECK_FALSE(m.waits.is_wait_code(203));
+  CHECK(m.waits.is_wait_code(204));
   CHECK(m.waits.partners == partner_style::path_numbers);
   CHECK(m.waits.partner_address == 'P');
 }

@@ -268,9 +268,101 @@ TEST_CASE("fixed blocks are stored as the control reads them", "[machines]") {
   CHECK(m.codes.coolant_on == std::vector<std::string>{"M8 ({A})"});
 }
 
-TEST_CASE("a spindle code inside the wait range is refused", "[machines]") {
-  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\ncw = 103\n" + two_channels) ==
-        "m.toml:8:6: error: spindle.cw M103 is a wait code of this machine (waits M100-M103)");
+// Every code the file names is held to the wait range (machines/code_overlap.hpp): the
+// control would take it for a wait. The message names the key and the range, at the value.
+namespace {
+// Channels work on spindle "main": a file naming spindles must have it.
+const std::string main_spindle = "[[spindle]]\nname = \"main\"\n";
+const std::string lies =
+    " lies in the wait range M100-M103 ([waits]); a program could not tell it from a wait";
+}  // namespace
+
+TEST_CASE("overlap: every spindle code inside the wait range is refused", "[machines][overlap]") {
+  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\ncw = 103\n" + main_spindle + two_channels) ==
+        "m.toml:8:6: error: spindle 'sub': cw M103" + lies);
+  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\nccw = 102\n" + main_spindle + two_channels) ==
+        "m.toml:8:7: error: spindle 'sub': ccw M102" + lies);
+  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\nstop = 101\n" + main_spindle + two_channels) ==
+        "m.toml:8:8: error: spindle 'sub': stop M101" + lies);
+  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\nselect = 100\n" + main_spindle + two_channels) ==
+        "m.toml:8:10: error: spindle 'sub': select M100" + lies);
+  CHECK(error_of(head + "[[spindle]]\nname = \"main\"\nclamp = \"G50 S{max} M103\"\n" + two_channels) ==
+        "m.toml:8:9: error: spindle 'main': clamp M103" + lies);
+  // Codes outside the range, and the same codes in another address, are fine.
+  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\ncw = 203\nccw = 99\nstop = 104\nselect = 902\n" +
+                 main_spindle + two_channels) == "(no error)");
+}
+
+TEST_CASE("overlap: [codes] and the program's blocks", "[machines][overlap]") {
+  CHECK(error_of(head + "[codes]\nprogram_stop = \"M101\"\n" + two_channels) ==
+        "m.toml:7:16: error: codes.program_stop M101" + lies);
+  CHECK(error_of(head + "[codes]\noptional_stop = \"M100\"\n" + two_channels) ==
+        "m.toml:7:17: error: codes.optional_stop M100" + lies);
+  CHECK(error_of(head + "[codes]\ncoolant_on = [\"M8\", \"M102\"]\n" + two_channels) ==
+        "m.toml:7:21: error: codes.coolant_on M102" + lies);
+  CHECK(error_of(head + "[codes]\ncoolant_off = \"M9 M103\"\n" + two_channels) ==
+        "m.toml:7:15: error: codes.coolant_off M103" + lies);
+  CHECK(error_of(head + "[codes]\nbalance_on = \"M100\"\n" + two_channels) ==
+        "m.toml:7:14: error: codes.balance_on M100" + lies);
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 U{seconds} M101\"\n" + two_channels) ==
+        "m.toml:7:9: error: codes.dwell M101" + lies);
+  CHECK(error_of(head + "[program]\nend_code = \"M102\"\n" + two_channels) ==
+        "m.toml:7:12: error: program.end_code M102" + lies);
+  CHECK(error_of(head + "[program]\nheader = [\"G40\", \"G18 M101\"]\n" + two_channels) ==
+        "m.toml:7:18: error: program.header M101" + lies);
+  CHECK(error_of(head + "[program]\nfooter = [\"M9\", \"M5M100\"]\n" + two_channels) ==
+        "m.toml:7:17: error: program.footer M100" + lies);
+  CHECK(error_of(head + "[[channel]]\nnumber = 1\ntool_call = \"T{tool:02} M100\"\n" + xz) ==
+        "m.toml:8:13: error: channel 1: tool_call M100" + lies);
+}
+
+TEST_CASE("overlap: what is not a wait word is not refused", "[machines][overlap]") {
+  // Comments, placeholders, decimal codes, and wait numbers under another address.
+  CHECK(error_of(head +
+                 "[program]\nfooter = [\"M9 (M101)\", \"M98.1\", \"G4 P101\", \"DM100\"]\n"
+                 "header = [\"({name} M{channel}01)\"]\n" +
+                 two_channels) == "(no error)");
+}
+
+TEST_CASE("overlap: the step and the excluded codes decide what a wait code is", "[machines][overlap]") {
+  const std::string stepped = "[machine]\nname = \"m\"\n[waits]\nfirst = 100\nlast = 110\nstep = 2\n";
+  CHECK(error_of(stepped + "[[spindle]]\nname = \"sub\"\ncw = 101\n" + main_spindle + two_channels) ==
+        "(no error)");
+  CHECK(error_of(stepped + "[[spindle]]\nname = \"sub\"\ncw = 102\n" + main_spindle + two_channels) ==
+        "m.toml:9:6: error: spindle 'sub': cw M102 lies in the wait range M100-M110 step 2 ([waits]); a "
+        "program could not tell it from a wait");
+  CHECK(error_of(stepped + "excluded = [102]\n[[spindle]]\nname = \"sub\"\ncw = 102\n" + main_spindle +
+                 two_channels) == "(no error)");
+  // A wait address other than M: M codes are never its words.
+  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\naddress = \"P\"\nfirst = 100\nlast = 103\n"
+                 "[[spindle]]\nname = \"sub\"\ncw = 103\n" +
+                 main_spindle + two_channels) == "(no error)");
+}
+
+TEST_CASE("overlap: a default code the range swallows is reported where it is left out",
+          "[machines][overlap]") {
+  // No [codes]: the default M9 is reported at [waits] (the first of the defaults found).
+  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 1\nlast = 9\n" + two_channels) ==
+        "m.toml:3:1: error: codes.coolant_off M9 (the default) lies in the wait range M1-M9 ([waits]); a "
+        "program could not tell it from a wait");
+  // A spindle without codes: its default cw M3, at its table.
+  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 2\nlast = 7\n[[spindle]]\nname = \"main\"\n" +
+                 two_channels) ==
+        "m.toml:6:1: error: spindle 'main': cw M3 (the default) lies in the wait range M2-M7 ([waits]); a "
+        "program could not tell it from a wait");
+  // A mill head's default tool call T.. M6, at its channel.
+  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 6\nlast = 7\n[[channel]]\nnumber = 1\n"
+                 "kind = \"mill_head\"\n" +
+                 xz) ==
+        "m.toml:6:1: error: channel 1: tool_call M6 (the default) lies in the wait range M6-M7 ([waits]); a "
+        "program could not tell it from a wait");
+}
+
+TEST_CASE("overlap: the first offending value in the file is reported", "[machines][overlap]") {
+  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\ncw = 103\n[codes]\nprogram_stop = \"M101\"\n" +
+                 main_spindle + two_channels) == "m.toml:8:6: error: spindle 'sub': cw M103" + lies);
+  CHECK(error_of(head + "[codes]\nprogram_stop = \"M101\"\n[[spindle]]\nname = \"sub\"\ncw = 103\n" +
+                 main_spindle + two_channels) == "m.toml:7:16: error: codes.program_stop M101" + lies);
 }
 
 TEST_CASE("validation: wait codes and steps stay within eight digits", "[machines]") {

@@ -208,3 +208,25 @@ TEST_CASE("a dwell template without an address letter still keeps its millisecon
         "job.cls:6:1: error: channel 1: DELAY/10000000 is longer than any dwell the control "
         "takes\nDELAY/1e7\n^\n");
 }
+
+TEST_CASE("an AUXFUN whose code is a wait code stops the post at its record", "[post][words]") {
+  // The control would take M200 for a wait of the 31i's range and stop the path there.
+  posted wait = post_text(head + "GOTO/20,0,0\nAUXFUN/200\nFINI\n", "fanuc-31i-3path", "aux-wait");
+  CHECK_FALSE(wait.ok);
+  CHECK(wait.files.empty());
+  CHECK(wait.diagnostics ==
+        "job.cls:7:1: error: channel 1: AUXFUN/200 gives M200, a wait code of this machine (waits "
+        "M200-M299): the control would take it for a wait\n"
+        "AUXFUN/200\n^\n");
+  // M203 is excluded from the range (Doosan spindle synchronisation), PREFUN/200 is a G code.
+  posted sync =
+      post_text(head + "GOTO/20,0,0\nAUXFUN/203\nPREFUN/200\nFINI\n", "fanuc-31i-3path", "aux-sync");
+  CHECK(sync.ok);
+  CHECK(sync.diagnostics == "");
+  CHECK(sync.files.at("W_1.nc").find("\nM203\nG200\n") != std::string::npos);
+  posted twin = post_text(head + "AUXFUN/102\nAUXFUN/103\nFINI\n", "fanuc-0itd-twin", "aux-twin");
+  CHECK(twin.diagnostics ==
+        "job.cls:6:1: error: channel 1: AUXFUN/102 gives M102, a wait code of this machine (waits "
+        "M100-M102): the control would take it for a wait\n"
+        "AUXFUN/102\n^\n");
+}

@@ -1,0 +1,175 @@
+// The wait-code overlap rule (machines/code_overlap.hpp) and its load-time check of every
+// code a machine file names.
+#include "machines/code_overlap.hpp"
+
+#include <charconv>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "machines/toml_reader.hpp"
+#include "support/ascii.hpp"
+
+namespace twinpost {
+
+bool is_wait_word(const wait_rules& w, char address, long long code) {
+  if (address != w.address || code < w.first || code > w.last) return false;
+  return w.is_wait_code(static_cast<int>(code));  // within first..last, so within int
+}
+
+std::string wait_range_text(const wait_rules& w) {
+  std::string out = fmt::format("{}{}-{}{}", w.address, w.first, w.address, w.last);
+  if (w.step != 1) out += fmt::format(" step {}", w.step);
+  return out;
+}
+
+long long first_wait_word(std::string_view block, const wait_rules& w, char open, char close) {
+  std::size_t i = 0;
+  while (i < block.size()) {
+    const char c = block[i];
+    if (c == open || c == '{') {
+      const std::size_t e = block.find(c == open ? close : '}', i + 1);
+      if (e == std::string_view::npos) return -1;
+      i = e + 1;
+      continue;
+    }
+    const bool starts_word = c == w.address && (i == 0 || !ascii::is_upper(block[i - 1]));
+    std::size_t j = i + 1;
+    while (j < block.size() && ascii::is_digit(block[j])) ++j;
+    if (!starts_word || j == i + 1 || (j < block.size() && block[j] == '.')) {
+      i = j;
+      continue;
+    }
+    long long code = 0;
+    const auto r = std::from_chars(block.data() + i + 1, block.data() + j, code);
+    if (r.ec == std::errc() && is_wait_word(w, c, code)) return code;
+    i = j;
+  }
+  return -1;
+}
+
+namespace detail {
+
+namespace {
+
+// One code of the file that is a wait code: where to report it and what to say.
+struct finding {
+  const toml::node* at;
+  std::string message;
+};
+
+class overlap_finder {
+ public:
+  overlap_finder(const machine& m, const toml::node& waits) : m_(m), waits_(waits) {}
+
+  // A block (fixed or a template) stored as `text`; `node` is its value in the file, or
+  // null when the key is absent and `text` is the default, reported at `table`.
+  void block(std::string_view what, std::string_view text, const toml::node* node, const toml::node* table) {
+    const long long code = first_wait_word(text, m_.waits, m_.program.comment_open, m_.program.comment_close);
+    if (code >= 0) add(what, code, node, table);
+  }
+
+  // The array of blocks `key` of `table`, stored as `texts`.
+  void blocks(std::string_view what, const std::vector<std::string>& texts, const toml::table* table,
+              std::string_view key) {
+    const toml::array* values = table && table->get(key) ? table->get(key)->as_array() : nullptr;
+    for (std::size_t i = 0; i < texts.size(); ++i)
+      block(what, texts[i], values ? values->get(i) : nullptr, table);
+  }
+
+  // An M code given as a number (spindle codes).
+  void m_code(std::string_view what, int code, const toml::node* node, const toml::node* table) {
+    if (is_wait_word(m_.waits, 'M', code)) add(what, code, node, table);
+  }
+
+  std::vector<finding> found;
+
+ private:
+  void add(std::string_view what, long long code, const toml::node* node, const toml::node* table) {
+    found.push_back(
+        {node    ? node
+         : table ? table
+                 : &waits_,
+         fmt::format("{} {}{}{} lies in the wait range {} ([waits]); a program could not tell "
+                     "it from a wait",
+                     what, m_.waits.address, code, node ? "" : " (the default)", wait_range_text(m_.waits))});
+  }
+
+  const machine& m_;
+  const toml::node& waits_;
+};
+
+const toml::node* key_of(const toml::table* t, std::string_view key) { return t ? t->get(key) : nullptr; }
+
+void program_codes(overlap_finder& f, const program_format& p, const toml::table* t) {
+  f.block("program.program_line", p.program_line, key_of(t, "program_line"), t);
+  f.blocks("program.header", p.header, t, "header");
+  f.blocks("program.footer", p.footer, t, "footer");
+  f.block("program.end_code", p.end_code, key_of(t, "end_code"), t);
+  f.block("program.section_marker", p.section_marker, key_of(t, "section_marker"), t);
+}
+
+void control_codes_of(overlap_finder& f, const control_codes& c, const toml::table* t) {
+  const std::pair<std::string_view, const std::string*> fixed[] = {
+      {"css", &c.css},
+      {"rpm", &c.rpm},
+      {"feed_per_rev", &c.feed_per_rev},
+      {"feed_per_min", &c.feed_per_min},
+      {"dwell", &c.dwell},
+      {"coolant_off", &c.coolant_off},
+      {"balance_on", &c.balance_on},
+      {"balance_off", &c.balance_off},
+      {"program_stop", &c.program_stop},
+      {"optional_stop", &c.optional_stop},
+  };
+  for (const auto& [key, text] : fixed) f.block(fmt::format("codes.{}", key), *text, key_of(t, key), t);
+  f.blocks("codes.coolant_on", c.coolant_on, t, "coolant_on");
+  f.blocks("codes.home", c.home, t, "home");
+}
+
+void spindle_codes(overlap_finder& f, const spindle_def& s, const toml::table& t) {
+  const std::string what = fmt::format("spindle '{}':", s.name);
+  f.m_code(what + " cw", s.cw, t.get("cw"), &t);
+  f.m_code(what + " ccw", s.ccw, t.get("ccw"), &t);
+  f.m_code(what + " stop", s.stop, t.get("stop"), &t);
+  if (s.select) f.m_code(what + " select", *s.select, t.get("select"), &t);
+  f.block(what + " clamp", s.clamp, t.get("clamp"), &t);
+}
+
+// The file's [[channel]] table of channel `number` (channels are sorted by number).
+const toml::table* channel_table(const table_reader& root, int number) {
+  for (const toml::table* t : root.tables("channel"))
+    if (const toml::node* n = t->get("number"); n && n->as_integer() && n->as_integer()->get() == number)
+      return t;
+  return nullptr;
+}
+
+bool before(const toml::node& a, const toml::node& b) {
+  const toml::source_position pa = a.source().begin, pb = b.source().begin;
+  return pa.line != pb.line ? pa.line < pb.line : pa.column < pb.column;
+}
+
+}  // namespace
+
+void check_code_overlaps(const table_reader& root, const machine& m) {
+  const toml::table* waits = root.sub_table("waits");
+  overlap_finder f(m, waits ? static_cast<const toml::node&>(*waits) : root.table());
+  program_codes(f, m.program, root.sub_table("program"));
+  control_codes_of(f, m.codes, root.sub_table("codes"));
+  const std::vector<const toml::table*> spindles = root.tables("spindle");
+  for (std::size_t i = 0; i < m.spindles.size() && i < spindles.size(); ++i)
+    spindle_codes(f, m.spindles[i], *spindles[i]);
+  for (const channel_def& c : m.channels) {
+    const toml::table* t = channel_table(root, c.number);
+    f.block(fmt::format("channel {}: tool_call", c.number), c.tool_call, key_of(t, "tool_call"), t);
+  }
+  // The first in the file, as a reader goes through it.
+  const finding* first = nullptr;
+  for (const finding& x : f.found)
+    if (!first || before(*x.at, *first->at)) first = &x;
+  if (first) fail_at(root.source(), first->at->source(), first->message);
+}
+
+}  // namespace detail
+
+}  // namespace twinpost

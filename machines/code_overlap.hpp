@@ -1,0 +1,27 @@
+#pragma once
+// One rule: no code a program may carry for another purpose is a wait code of the machine.
+// A control takes every word of its waiting range for a wait (Fanuc parameters 8110/8111),
+// so a spindle, coolant, stop or end code inside the range would stop the path until its
+// partner reaches the same code, and the checker could not tell it from a wait either.
+// The loader holds every code a machine file names to it (docs/machines.md, "Codes that
+// cannot collide"); the post holds AUXFUN/PREFUN codes to it at their record.
+#include <string>
+#include <string_view>
+
+#include "machines/machine.hpp"
+
+namespace twinpost {
+
+/// True when the word `address``code` is a wait code of `w` (wait_rules::is_wait_code, on
+/// the wait address only).
+bool is_wait_word(const wait_rules& w, char address, long long code);
+
+/// "M200-M299", or "M200-M298 step 2": the range as messages name it.
+std::string wait_range_text(const wait_rules& w);
+
+/// The first word of `block` that is a wait code of `w`, or -1. `block` is a fixed block or
+/// a template: text in comments (between `open` and `close`) and placeholders (`{...}`)
+/// are skipped, and so is a word whose number has a decimal point (M98.1 is not M98).
+long long first_wait_word(std::string_view block, const wait_rules& w, char open, char close);
+
+}  // namespace twinpost
