@@ -9,6 +9,7 @@
 #include "parser/cl_reader.hpp"
 #include "parser/dialect.hpp"
 #include "parser/event_text.hpp"
+#include "parser/record_policy.hpp"
 
 namespace twinpost::cli {
 
@@ -21,11 +22,21 @@ int run_parse(const args& a) {
           dialect_names, [](const dialect_name_entry& d) { return d.name; }, "|", "|") +
       " (default: detect)";
   opts.add_options()("help,h", "show this help")("json", "one JSON object per event (JSON Lines)")(
-      "dialect", po::value<std::string>(), dialects.c_str())("file", po::value<std::string>(), "CL file");
+      "dialect", po::value<std::string>(), dialects.c_str())(
+      "records", "print the record policy (docs/records.md) instead of reading a file")(
+      "file", po::value<std::string>(), "CL file");
   po::positional_options_description pos;
   pos.add("file", 1);
   po::variables_map vm;
   if (const std::optional<int> done = parse_command(a, opts, pos, vm, "parse", to_string(opts))) return *done;
+  if (vm.count("records")) {
+    if (vm.count("file") || vm.count("json") || vm.count("dialect")) {
+      fmt::print(stderr, "twinpost parse: --records takes no file and no other option\n");
+      return 2;
+    }
+    fmt::print("{}", record_policy_markdown());
+    return 0;
+  }
   if (!vm.count("file")) {
     fmt::print(stderr, "twinpost parse: missing CL file\n");
     return 2;

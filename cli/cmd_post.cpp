@@ -35,8 +35,9 @@ po::options_description post_option_descriptions() {
       "output,o", po::value<std::string>(), "output folder (made if missing)")(
       "layout", po::value<std::string>(), layouts.c_str())(
       "sync", po::value<std::string>()->default_value("auto"), policies.c_str())(
-      "dialect", po::value<std::string>(), "CL dialect (default: detect)")("job", po::value<std::string>(),
-                                                                           "CL file");
+      "dialect", po::value<std::string>(), "CL dialect (default: detect)")(
+      "permissive", "an unknown major word is a warning, not an error")("job", po::value<std::string>(),
+                                                                        "CL file");
   return opts;
 }
 
@@ -64,6 +65,7 @@ std::optional<post_options> read_post_options(const po::variables_map& vm) {
     return std::nullopt;
   }
   o.policy = *policy;
+  o.permissive = vm.count("permissive") > 0;
   if (vm.count("layout")) {
     o.layout = layout_from_option(vm["layout"].as<std::string>());
     if (!o.layout) {

@@ -10,19 +10,25 @@ namespace twinpost::cli {
 namespace {
 
 const std::array<command_entry, 4> table{{
-    {"parse", "FILE [--json] [--dialect D]", "print the CL event stream",
+    {"parse", "FILE [--json] [--dialect D] | --records", "print the CL event stream, or the record policy",
      "Reads a CL file (APT-style cutter location data of Creo, NX, CATIA, SolidWorks CAM, "
      "Makino or generic ISO 4343) and prints one line per event, or with --json one JSON "
-     "object per event. --dialect forces a dialect instead of detecting it.",
+     "object per event. --dialect forces a dialect instead of detecting it. --records prints "
+     "the record policy instead: every major word twinpost knows and what a post does with it "
+     "(posted, ignored, or an error), with the reason, as a Markdown table.",
      &run_parse},
-    {"post", "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D]", "post a CL job to NC programs",
+    {"post", "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--permissive]",
+     "post a CL job to NC programs",
      "Posts a CL job for machine M into the folder DIR (made if missing): one program per "
      "channel, or one merged program, as the machine's control expects (--layout split, "
      "merged-appended or merged-sections overrides it). --sync explicit|sequential|auto says "
      "where the channels wait for each other (auto: at the job's SYNC records if it has any, "
      "else at every head switch). The programs are written to temporary names, checked as "
      "'twinpost check' would, and committed as a set only when everything is sound: a failed "
-     "run writes nothing and changes nothing in DIR.",
+     "run writes nothing and changes nothing in DIR. A major word twinpost does not know stops "
+     "the post with an error; --permissive makes it a warning and passes over the record. A "
+     "known record the post cannot carry out (STOP is posted, THREAD is not: see 'twinpost "
+     "parse --records') stays an error.",
      &run_post},
     {"check", "FILE... --machine M [--json]", "check wait synchronisation of NC programs",
      "Checks that the waits of NC programs pair up, in order, and that no channel can "

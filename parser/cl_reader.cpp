@@ -17,6 +17,7 @@ struct cl_reader::impl {
       : lines(src, o.chunk_size), options(std::move(o)), sink(s),
         d(options.forced ? *options.forced : detect_dialect(lines.peek(64 * 1024))), builder(d) {
     builder.set_posting(options.posting);
+    builder.set_permissive(options.permissive);
   }
 
   void report(const build_issue& i) {

@@ -22,6 +22,9 @@ struct cl_reader_options {
   /// sound one otherwise; and a record the post cannot carry out (an unknown major word) is
   /// an error instead of a passthrough event with a warning.
   bool posting = false;
+  /// With `posting`: an unknown major word is a warning, not an error (`post --permissive`).
+  /// A known word the post refuses (docs/records.md) stays an error.
+  bool permissive = false;
 };
 
 class cl_reader {

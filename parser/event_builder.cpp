@@ -59,26 +59,8 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
     }
     case record_kind::text: {
       end_of_motion_record();
-      text_event t;
-      t.major = upper(r.major);
-      t.text = std::string(r.text);
-      if (t.major == "PARTNO")
-        t.kind = text_kind::partno;
-      else if (t.major == "PPRINT")
-        t.kind = text_kind::pprint;
-      else if (t.major == "INSERT")
-        t.kind = text_kind::insert;
-      else if (t.major == "TPRINT")
-        t.kind = text_kind::tprint;
-      else if (t.major == "OPFEATSTART")
-        t.kind = text_kind::op_start;
-      else if (t.major == "OPFEATEND")
-        t.kind = text_kind::op_end;
-      else if (t.major == "TOOL PATH")
-        t.kind = text_kind::toolpath;
-      else
-        t.kind = text_kind::other;
-      out.push_back({line, std::move(t)});
+      // PARTNO, PPRINT, INSERT, ...: each has its row in the record table.
+      (this->*handler_of(r.major))(r, line, out, issues);
       return;
     }
     case record_kind::statement:

@@ -12,6 +12,7 @@
 #include "parser/event_queue.hpp"
 #include "parser/events.hpp"
 #include "parser/record.hpp"
+#include "parser/record_policy.hpp"
 
 namespace twinpost {
 
@@ -21,6 +22,9 @@ class event_builder {
   /// Reading for a post: a record that cannot be posted (an unknown major word) is an error
   /// and makes no event; otherwise it is a passthrough event with a warning.
   void set_posting(bool on) { posting_ = on; }
+  /// A permissive post: an unknown major word is a warning, not an error. A known word the
+  /// post refuses (parser/record_table.cpp) stays an error.
+  void set_permissive(bool on) { permissive_ = on; }
   /// The column of the next record's major word, for messages about it that come later.
   void set_column(int column) { column_ = column; }
 
@@ -46,10 +50,21 @@ class event_builder {
 
   void statement(const cl_record& r, int line, event_queue& out, build_issues& issues);
 
-  // One handler per major word (parser/event_statements.cpp): statement() finds it in a
-  // sorted table, without allocating, and `other` takes every word the table lacks.
+  friend std::span<const record_rule> record_rules();
+
+  // One handler per major word, in the record policy's table (parser/record_table.cpp):
+  // statement() finds it in the sorted table, without allocating, and `other` takes every
+  // word the table lacks. Text records (PARTNO, INSERT, ...) are found in it too.
   using statement_handler = void (event_builder::*)(const cl_record&, int, event_queue&, build_issues&);
+  struct rule_row {
+    record_rule rule;
+    statement_handler handler;
+  };
+  struct rule_index;
+  static const rule_index& rules();
   static statement_handler handler_of(std::string_view major);
+  /// The row of the table that `r` falls under; nullptr for a word not in it.
+  static const rule_row* rule_of(const cl_record& r);
   /// The handler of the last major word as written (a long job repeats GOTO): a hit costs a
   /// length test and one compare of at most 8 bytes instead of the table's case-blind search.
   struct handler_cache {
@@ -73,7 +88,7 @@ class event_builder {
   void on_cutcom(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_cycle(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_delay(const cl_record& r, int line, event_queue& out, build_issues& issues);
-  void on_load_or_select(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_load_tool(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_tool_data(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_units(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_machin(const cl_record& r, int line, event_queue& out, build_issues& issues);
@@ -86,7 +101,18 @@ class event_builder {
   void on_synctr(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_stop(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_end(const cl_record& r, int line, event_queue& out, build_issues& issues);
-  /// Any other word: a passthrough event, or the error of a word a post cannot carry out.
+  template <text_kind K>
+  void on_text(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_insert(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  /// A word with rows for given minor words (SET/MODE,ABSOL): the handler of the row that
+  /// matches.
+  void by_args(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  /// A word the policy ignores: a passthrough event, no block.
+  void on_ignored(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  /// A word the policy refuses: an error naming it in a post, a passthrough event otherwise.
+  void on_refused(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  /// A word not in the table: an error in a post (a warning in a permissive one), a
+  /// passthrough event with a warning otherwise.
   void other(const cl_record& r, int line, event_queue& out, build_issues& issues);
 
   void comment(const cl_record& r, int line, event_queue& out);
@@ -104,6 +130,7 @@ class event_builder {
   bool rapid_ = false;         // RAPID seen, waiting for its move
   bool rapid_record_ = false;  // the current GOTO record is rapid (its coordinate lines too)
   bool posting_ = false;
+  bool permissive_ = false;
   int column_ = 0;
   bool in_goto_ = false;           // the last statement was a GOTO: coordinate lines continue it
   bool after_bad_record_ = false;  // the last record (comments aside) did not parse

@@ -16,15 +16,10 @@ using detail::upper;
 
 namespace {
 
-bool known_passthrough(std::string_view m);
-bool ignorable_in_post(const cl_record& r);
-
 template <class T>
 void push_some(event_queue& out, int line, std::optional<T> e) {
   if (e) out.push_back({line, std::move(*e)});
 }
-
-constexpr char upper_ascii(char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; }
 
 }  // namespace
 
@@ -42,78 +37,6 @@ void event_builder::statement(const cl_record& r, int line, event_queue& out, bu
     }
   }
   (this->*h)(r, line, out, issues);
-}
-
-// This runs once per record: a table sorted by word, cut into one run per first letter, so a
-// lookup is an index and a few length compares (GOTO: two), with no allocation and no
-// indirect call beyond the handler itself.
-event_builder::statement_handler event_builder::handler_of(std::string_view major) {
-  struct entry {
-    std::string_view word;  // upper case
-    statement_handler handler;
-  };
-  using b = event_builder;
-  static constexpr entry table[] = {
-      {"AUXFUN", &b::on_aux<false>},
-      {"CHANNEL", &b::on_channel},
-      {"CHANNL", &b::on_channel},
-      {"CIRCLE", &b::circle},
-      {"COOLNT", &b::on_coolnt},
-      {"CSYS", &b::on_coordsys},
-      {"CUTCOM", &b::on_cutcom},
-      {"CUTTER", &b::on_tool_data},
-      {"CYCLE", &b::on_cycle},
-      {"DELAY", &b::on_delay},
-      {"END", &b::on_end},
-      {"END-OF-PATH", &b::on_end},
-      {"FEDRAT", &b::on_fedrat},
-      {"FINI", &b::on_end},
-      {"FROM", &b::on_motion<motion_kind::from>},
-      {"GODLTA", &b::on_motion<motion_kind::delta>},
-      {"GOHOME", &b::on_motion<motion_kind::home>},
-      {"GOTO", &b::on_motion<motion_kind::go_to>},
-      {"HEAD", &b::on_head},
-      {"LOAD", &b::on_load_or_select},
-      {"LOADTL", &b::on_tool<tool_source::loadtl>},
-      {"MACHIN", &b::on_machin},
-      {"MSYS", &b::on_coordsys},
-      {"MULTAX", &b::on_multax},
-      {"OPSTOP", &b::on_stop},
-      {"PREFUN", &b::on_aux<true>},
-      {"RAPID", &b::on_rapid},
-      {"SELCTL", &b::on_tool<tool_source::select_tool>},
-      {"SELECT", &b::on_load_or_select},
-      {"SPINDL", &b::on_spindl},
-      {"STOP", &b::on_stop},
-      {"SYNC", &b::on_sync},
-      {"SYNCTR", &b::on_synctr},
-      {"TLAXIS", &b::on_tlaxis},
-      {"TLDATA", &b::on_tool_data},
-      {"TURRET", &b::on_tool<tool_source::turret>},
-      {"UNIT", &b::on_units},
-      {"UNITS", &b::on_units},
-  };
-  constexpr std::size_t n = std::size(table);
-  // first[c]..first[c + 1]: the entries whose word starts with letter 'A' + c.
-  static constexpr auto first = [] {
-    for (std::size_t i = 1; i < n; ++i)
-      if (!(table[i - 1].word < table[i].word)) throw "the statement table must be sorted and unique";
-    std::array<unsigned char, 27> f{};
-    std::size_t i = 0;
-    for (int c = 0; c < 26; ++c) {
-      f[c] = static_cast<unsigned char>(i);
-      while (i < n && table[i].word[0] == 'A' + c) ++i;
-    }
-    if (i != n) throw "every word of the statement table must start with a letter A-Z";
-    f[26] = static_cast<unsigned char>(n);
-    return f;
-  }();
-  if (major.empty()) return &b::other;
-  const char c = upper_ascii(major[0]);
-  if (c < 'A' || c > 'Z') return &b::other;
-  for (std::size_t i = first[c - 'A'], end = first[c - 'A' + 1]; i < end; ++i)
-    if (word_is(major, table[i].word)) return table[i].handler;
-  return &b::other;
 }
 
 template <tool_source S>
@@ -152,11 +75,8 @@ void event_builder::on_delay(const cl_record& r, int line, event_queue& out, bui
   push_some(out, line, detail::read_delay(r, issues));
 }
 
-// LOAD/TOOL and SELECT/TOOL call a tool; LOAD or SELECT of anything else is another record.
-void event_builder::on_load_or_select(const cl_record& r, int line, event_queue& out, build_issues& issues) {
-  const bool tool_word =
-      !r.args.empty() && r.args[0].kind == arg_kind::word && word_is(r.args[0].word, "TOOL");
-  if (!tool_word) return other(r, line, out, issues);
+// LOAD/TOOL and SELECT/TOOL (the table sends any other LOAD or SELECT elsewhere).
+void event_builder::on_load_tool(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   const tool_source s = word_is(r.major, "LOAD") ? tool_source::load_tool : tool_source::select_tool;
   push_some(out, line, detail::read_tool(r, s, issues));
 }
@@ -240,94 +160,72 @@ void event_builder::on_end(const cl_record& r, int line, event_queue& out, build
   out.push_back({line, end_event{upper(r.major)}});
 }
 
+template <text_kind K>
+void event_builder::on_text(const cl_record& r, int line, event_queue& out, build_issues&) {
+  out.push_back({line, text_event{K, upper(r.major), std::string(r.text)}});
+}
+
+// APT's INSERT is a raw NC block; SolidWorks CAM writes information text with it
+// (`INSERT/Stock Size X144. ...`), which must never reach the control as a block.
+void event_builder::on_insert(const cl_record& r, int line, event_queue& out, build_issues&) {
+  const text_kind k = dialect_ == dialect::solidworks ? text_kind::pprint : text_kind::insert;
+  out.push_back({line, text_event{k, upper(r.major), std::string(r.text)}});
+}
+
+void event_builder::by_args(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  const rule_row* row = rule_of(r);  // the word's last row takes any arguments
+  (this->*(row ? row->handler : &event_builder::other))(r, line, out, issues);
+}
+
+void event_builder::on_ignored(const cl_record& r, int line, event_queue& out, build_issues&) {
+  out.push_back({line, passthrough_event{upper(r.major), detail::args_text(r), true}});
+}
+
+void event_builder::on_refused(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  if (!posting_) {
+    out.push_back({line, passthrough_event{upper(r.major), detail::args_text(r), true}});
+    return;
+  }
+  // A record the post cannot carry out stops it: dropping it would write a program that
+  // differs from the CL without a word. A word with rows for given minor words is named
+  // with its arguments (SET/MODE,INCR).
+  const rule_row* row = rule_of(r);
+  std::string name = upper(r.major);
+  if (handler_of(r.major) == &event_builder::by_args && !r.args.empty())
+    name = fmt::format("{}/{}", name, detail::args_text(r));
+  issues.push_back({severity::error, r.major_offset,
+                    fmt::format("{} is not supported by the post: {}", name, row ? row->rule.note : "")});
+}
+
 void event_builder::other(const cl_record& r, int line, event_queue& out, build_issues& issues) {
-  std::string_view m = r.major;
-  bool known = known_passthrough(m);
-  if (!known && posting_) {
-    // Nothing silent in a post: a record twinpost cannot carry out stops it.
+  const std::string m = upper(r.major);
+  if (posting_ && !permissive_) {
+    // Nothing silent in a post: a word twinpost does not know stops it.
     issues.push_back({severity::error, r.major_offset,
-                      fmt::format("unknown major word '{}': this record cannot be posted", upper(m))});
+                      fmt::format("unknown major word '{}': this record cannot be posted", m)});
     return;
   }
-  if (known && posting_ && !ignorable_in_post(r)) {
-    // Known, but a post cannot do what it asks (STOP, THREAD, NURBS, ORIGIN, ...): dropping
-    // it would write a program that differs from the CL without a word.
-    issues.push_back(
-        {severity::error, r.major_offset,
-         fmt::format("{} is not supported by the post: this record cannot be carried out", upper(m))});
-    return;
-  }
-  if (!known)
-    issues.push_back({severity::warning, r.major_offset,
-                      fmt::format("unknown major word '{}' (a post stops here with an error)", upper(m))});
-  out.push_back({line, passthrough_event{upper(m), detail::args_text(r), known}});
+  issues.push_back({severity::warning, r.major_offset,
+                    posting_ ? fmt::format("unknown major word '{}': passed over in a permissive post, "
+                                           "nothing is written for it",
+                                           m)
+                             : fmt::format("unknown major word '{}' (a post stops here with an error)", m)});
+  out.push_back({line, passthrough_event{m, detail::args_text(r), false}});
 }
 
-namespace {
-// Records that only inform (display, tolerances, feature and tool labels): a post may pass
-// over them, since the program does the same with or without them.
-bool ignorable_in_post(const cl_record& r) {
-  static constexpr std::string_view words[] = {"PAINT",
-                                               "BOX",
-                                               "MOVE_ATTRIB",
-                                               "TRNTYP",
-                                               "TOOLNO",
-                                               "CSI_SET_FLUTE_LENGTH",
-                                               "CSI_SET_EXTENSION_LENGTH",
-                                               "INTOL",
-                                               "OUTTOL",
-                                               "LINTOL",
-                                               "FEATNO",
-                                               "MFGNO",
-                                               "CUTCOM_GEOMETRY_TYPE",
-                                               "REWIND",
-                                               "DMIS"};
-  for (std::string_view w : words)
-    if (word_is(r.major, w)) return true;
-  // SET/MODE,ABSOL (Makino) says what twinpost does anyway: absolute coordinates.
-  return word_is(r.major, "SET") && r.args.size() == 2 && r.args[0].kind == arg_kind::word &&
-         word_is(r.args[0].word, "MODE") && r.args[1].kind == arg_kind::word &&
-         word_is(r.args[1].word, "ABSOL");
-}
-
-bool known_passthrough(std::string_view m) {
-  static constexpr std::string_view words[] = {"PAINT",
-                                               "BOX",
-                                               "MOVE_ATTRIB",
-                                               "TRNTYP",
-                                               "SET",
-                                               "REWIND",
-                                               "TOOLNO",
-                                               "SWITCH",
-                                               "LOCAL_ORIGIN",
-                                               "ROTABL",
-                                               "NURBS",
-                                               "KNOT",
-                                               "CNTRL",
-                                               "CSI_SET_FLUTE_LENGTH",
-                                               "CSI_SET_EXTENSION_LENGTH",
-                                               "MODE",
-                                               "COUPLE",
-                                               "CLAMP",
-                                               "THREAD",
-                                               "ORIGIN",
-                                               "INTOL",
-                                               "OUTTOL",
-                                               "LINTOL",
-                                               "CALSUB",
-                                               "DEFSUB",
-                                               "ENDSUB",
-                                               "DMIS",
-                                               "FEATNO",
-                                               "MFGNO",
-                                               "SETSTART",
-                                               "CUTCOM_GEOMETRY_TYPE",
-                                               "OPSKIP",
-                                               "PITCH"};
-  for (std::string_view w : words)
-    if (word_is(m, w)) return true;
-  return false;
-}
-}  // namespace
+// The record table (parser/record_table.cpp) takes the addresses of these.
+template void event_builder::on_tool<tool_source::loadtl>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_tool<tool_source::select_tool>(const cl_record&, int, event_queue&,
+                                                               build_issues&);
+template void event_builder::on_tool<tool_source::turret>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_aux<false>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_aux<true>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_text<text_kind::partno>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_text<text_kind::pprint>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_text<text_kind::tprint>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_text<text_kind::op_start>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_text<text_kind::op_end>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_text<text_kind::toolpath>(const cl_record&, int, event_queue&, build_issues&);
+template void event_builder::on_text<text_kind::other>(const cl_record&, int, event_queue&, build_issues&);
 
 }  // namespace twinpost

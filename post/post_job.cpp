@@ -138,6 +138,7 @@ cl_reader_options posting_reader(const post_options& o) {
   ro.file_name = o.cl_path;
   ro.forced = o.forced_dialect;
   ro.posting = true;
+  ro.permissive = o.permissive;
   return ro;
 }
 

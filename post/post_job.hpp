@@ -25,6 +25,8 @@ struct post_options {
   std::optional<layout_kind> layout;  ///< the machine's layout unless given
   sync_policy policy = sync_policy::automatic;
   std::optional<dialect> forced_dialect;
+  /// An unknown major word is a warning, not an error (a refused known word stays an error).
+  bool permissive = false;
   /// Called now and then (every 64k records) with the CL bytes read so far; may be empty.
   std::function<void(std::size_t bytes)> progress;
 };

@@ -29,13 +29,15 @@ inline std::string race_job(char v, int extra_moves = 0) {
 /// Posts `job_text` (written to `dir`/`job_name`) for `m` into `out`.
 inline post_summary post_text(const std::string& dir, const std::string& job_name,
                               const std::string& job_text, const machine& m, const std::string& out,
-                              diagnostic_sink& diags, std::optional<layout_kind> layout = {}) {
+                              diagnostic_sink& diags, std::optional<layout_kind> layout = {},
+                              const std::function<void(post_options&)>& adjust = {}) {
   const std::string job = dir + "/" + job_name;
   if (!write_file(job, job_text)) throw std::runtime_error("cannot write " + job);
   post_options o;
   o.cl_path = job;
   o.out_dir = out;
   o.layout = layout;
+  if (adjust) adjust(o);
   return post_job(o, m, diags);
 }
 
@@ -48,14 +50,16 @@ struct posted {
 };
 
 /// Posts `cl` (as job.cls) for `m` in a fresh folder named for `tag`, removed afterwards.
-/// `keep` chooses the diagnostics that go into `diagnostics` (all when empty).
+/// `keep` chooses the diagnostics that go into `diagnostics` (all when empty); `adjust` may
+/// change the options (--permissive, --dialect).
 inline posted post_in_fresh_dir(const std::string& cl, const machine& m, const std::string& tag,
                                 const std::function<bool(const diagnostic&)>& keep = {},
-                                std::optional<layout_kind> layout = {}) {
+                                std::optional<layout_kind> layout = {},
+                                const std::function<void(post_options&)>& adjust = {}) {
   const std::string dir = fresh_temp_dir(tag);
   const std::string job = dir + "/job.cls";
   posted p;
-  p.ok = post_text(dir, "job.cls", cl, m, dir + "/out", p.diags, layout).ok;
+  p.ok = post_text(dir, "job.cls", cl, m, dir + "/out", p.diags, layout, adjust).ok;
   for (const diagnostic& d : p.diags.all()) {
     if (keep && !keep(d)) continue;
     std::string text = format_diagnostic(d);

@@ -179,23 +179,6 @@ TEST_CASE("a post stops at a record it cannot carry out, and warns at a job cut 
         "off?\n");
 }
 
-TEST_CASE("a known record the post cannot carry out stops it; one that only informs does not",
-          "[post][words]") {
-  posted origin = post_text(head + "GOTO/20,0,0\nORIGIN/0,0,100\nFINI\n", "fanuc-0itd-twin", "origin");
-  CHECK_FALSE(origin.ok);
-  CHECK(origin.diagnostics ==
-        "job.cls:7:1: error: ORIGIN is not supported by the post: this record cannot be carried out\n"
-        "ORIGIN/0,0,100\n^\n");
-  posted paint =
-      post_text(head + "PAINT/COLOR,186\nGOTO/20,0,0\nSET/MODE,ABSOL\nFINI\n", "fanuc-0itd-twin", "paint");
-  CHECK(paint.ok);
-  CHECK(paint.diagnostics == "");
-  posted incr = post_text(head + "SET/MODE,INCR\nFINI\n", "fanuc-0itd-twin", "incr");
-  CHECK(incr.diagnostics ==
-        "job.cls:6:1: error: SET is not supported by the post: this record cannot be carried out\n"
-        "SET/MODE,INCR\n^\n");
-}
-
 TEST_CASE("a dwell template without an address letter still keeps its milliseconds in range",
           "[post][words]") {
   machine m = load_machine("fanuc-0itd-twin");

@@ -1,0 +1,156 @@
+// The record policy (parser/record_table.cpp, docs/records.md) through the whole post: a
+// posted record's blocks, an ignored record that changes nothing, a refused record's error,
+// an unknown word (an error, a warning with --permissive), INSERT per dialect.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "machines/machine_loader.hpp"
+#include "parser/record_policy.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+using test::posted;
+
+posted post_text(const std::string& cl, const std::string& tag, bool permissive = false) {
+  // Without the two-channel machine's "no sync records" note.
+  return test::post_in_fresh_dir(
+      cl, load_machine("fanuc-0itd-twin"), "records-" + tag,
+      [](const diagnostic& d) { return !d.message.starts_with("no sync records"); }, {},
+      [permissive](post_options& o) { o.permissive = permissive; });
+}
+
+const std::string head = "PARTNO W\nUNITS/MM\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\n";
+const std::string cut = "GOTO/20,0,0\nGOTO/20,0,-5\n";
+
+// The program of head + cut + FINI: what every ignored record must leave as it is.
+const std::string plain_program =
+    "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG99\n"
+    "G1 X40. Z0. F0.2\nZ-5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n";
+
+std::string note_of(std::string_view word) {
+  for (const record_rule& r : record_rules())
+    if (r.word == word && r.args.empty()) return std::string(r.note);
+  return "(no row)";
+}
+
+}  // namespace
+
+TEST_CASE("the record table is sorted, and every row says how or why", "[post][records]") {
+  std::string_view last;
+  for (const record_rule& r : record_rules()) {
+    CHECK(last <= r.word);
+    CHECK(r.note.size() > 10);
+    last = r.word;
+  }
+  CHECK(record_policy_markdown().starts_with(
+      "| record | in a post | how, or why |\n|---|---|---|\n| `AUXFUN` | "
+      "posted | `Mn` in a block of its own |\n"));
+}
+
+TEST_CASE("STOP and OPSTOP are posted as M0 and M1", "[post][records]") {
+  posted p = post_text(head + "GOTO/20,0,0\nSTOP\nGOTO/20,0,-5\nOPSTOP\nFINI\n", "stop");
+  CHECK(p.diagnostics == "");
+  REQUIRE(p.files.count("W_1.nc") == 1);
+  // Each stop in a block of its own, then the spindle again (no coolant was on).
+  CHECK(p.files.at("W_1.nc") ==
+        "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG99\n"
+        "G1 X40. Z0. F0.2\nM0\nG97 S1000 M3\nZ-5.\nM1\nG97 S1000 M3\nM100\nM9\n"
+        "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
+
+TEST_CASE("records the policy ignores change nothing in the programs", "[post][records]") {
+  posted plain = post_text(head + cut + "FINI\n", "plain");
+  REQUIRE(plain.files.count("W_1.nc") == 1);
+  CHECK(plain.files.at("W_1.nc") == plain_program);
+  posted p =
+      post_text(head + "INTOL/0.01\nOUTTOL/0.01\nPAINT/COLOR,186\nSET/MODE,ABSOL\nMODE/LATHE\nmode/turn\n" +
+                    cut + "REWIND/0\nFINI\n",
+                "ignored");
+  CHECK(p.ok);
+  CHECK(p.diagnostics == "");
+  CHECK(p.files == plain.files);
+}
+
+TEST_CASE("a record the post cannot carry out stops it with the reason", "[post][records]") {
+  posted origin = post_text(head + "GOTO/20,0,0\nORIGIN/0,0,100\nFINI\n", "origin");
+  CHECK_FALSE(origin.ok);
+  CHECK(origin.files.empty());
+  CHECK(origin.diagnostics ==
+        "job.cls:7:1: error: ORIGIN is not supported by the post: it shifts the later points; twinpost does "
+        "not post a work-offset shift yet\nORIGIN/0,0,100\n^\n");
+  // Any other SET or MODE is named with its arguments.
+  posted incr = post_text(head + "SET/MODE,INCR\nMODE/MILL\nFINI\n", "incr");
+  CHECK(
+      incr.diagnostics ==
+      "job.cls:6:1: error: SET/MODE,INCR is not supported by the post: any other SET changes how later "
+      "records are read (SET/MODE,INCR: incremental points); the post reads absolute points only\n"
+      "SET/MODE,INCR\n^\n"
+      "job.cls:7:1: error: MODE/MILL is not supported by the post: any other MODE changes how later records "
+      "are read or cut (MODE/INCR: incremental points; MODE/MILL: milling); twinpost posts absolute turning "
+      "moves only\nMODE/MILL\n^\n");
+  // CATIA writes LOCAL_ORIGIN without a slash.
+  posted local = post_text(head + "LOCAL_ORIGIN, 10, 20, 30\nFINI\n", "local");
+  CHECK(local.diagnostics ==
+        "job.cls:6:1: error: LOCAL_ORIGIN is not supported by the post: it shifts the origin of the later "
+        "points (CATIA turning); twinpost does not post a work-offset shift yet\nLOCAL_ORIGIN, 10, 20, "
+        "30\n^\n");
+  // Every word the research found dropped without a word, each with its own reason.
+  for (std::string word : {"CALSUB", "ROTABL", "COUPLE", "CLAMP", "NURBS", "KNOT", "CNTRL", "PITCH", "SWITCH",
+                           "THREAD", "DEFSUB", "ENDSUB", "OPSKIP", "SETSTART"}) {
+    INFO(word);
+    posted p = post_text(head + word + "/1\nFINI\n", "refused-" + word);
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics == "job.cls:6:1: error: " + word + " is not supported by the post: " + note_of(word) +
+                               "\n" + word + "/1\n^\n");
+  }
+}
+
+TEST_CASE("an unknown word stops a post; a permissive post warns and goes on", "[post][records]") {
+  posted strict = post_text(head + "GOTO/20,0,0\nFOO/1\nGOTO/20,0,-5\nFINI\n", "strict");
+  CHECK_FALSE(strict.ok);
+  CHECK(strict.files.empty());
+  CHECK(strict.diagnostics ==
+        "job.cls:7:1: error: unknown major word 'FOO': this record cannot be posted\n"
+        "FOO/1\n^\n");
+  posted loose = post_text(head + "GOTO/20,0,0\nFOO/1\nGOTO/20,0,-5\nFINI\n", "loose", true);
+  CHECK(loose.ok);
+  CHECK(loose.diagnostics ==
+        "job.cls:7:1: warning: unknown major word 'FOO': passed over in a permissive "
+        "post, nothing is written for it\nFOO/1\n^\n");
+  REQUIRE(loose.files.count("W_1.nc") == 1);
+  CHECK(loose.files.at("W_1.nc") == plain_program);
+  // --permissive never makes a known record the post refuses a warning.
+  posted thread = post_text(head + "THREAD/TURN,1.5\nFINI\n", "thread", true);
+  CHECK_FALSE(thread.ok);
+  CHECK(thread.diagnostics ==
+        "job.cls:6:1: error: THREAD is not supported by the post: a threading pass; "
+        "twinpost posts no threading cycle yet, and a plain feed move would cut without "
+        "spindle synchronisation\nTHREAD/TURN,1.5\n^\n");
+}
+
+TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "[post][records]") {
+  const std::string body =
+      "GOTO/20,0,0\nINSERT/Stock Size X144. Y25. Z30.\nINSERT/M98 P9101\n" + cut + "FINI\n";
+  posted apt = post_text(head + body, "insert-apt");
+  CHECK(apt.diagnostics == "");
+  REQUIRE(apt.files.count("W_1.nc") == 1);
+  // APT: the text goes out as it stands, information text included (the CAM user's business).
+  CHECK(apt.files.at("W_1.nc") ==
+        "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG99\n"
+        "G1 X40. Z0. F0.2\nStock Size X144. Y25. Z30.\nM98 P9101\nZ-5.\nM100\nM9\n"
+        "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  // UNIT/MM marks a SolidWorks CAM file (parser/dialect.cpp).
+  posted sw =
+      post_text("PARTNO W\nUNIT/MM\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\n" + body, "insert-sw");
+  CHECK(sw.diagnostics == "");
+  REQUIRE(sw.files.count("W_1.nc") == 1);
+  // SolidWorks CAM: comments, never blocks.
+  CHECK(sw.files.at("W_1.nc") ==
+        "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG99\n"
+        "G1 X40. Z0. F0.2\n(STOCK SIZE X144. Y25. Z30.)\n(M98 P9101)\nZ-5.\nM100\n"
+        "M9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
