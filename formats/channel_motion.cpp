@@ -30,6 +30,11 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   if (!has_y_ && std::abs(y_cl * scale_) > y_tolerance)
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
+  if (rapid && !m_.codes.cutcom_on_rapid && (pending_g_ == "G41" || pending_g_ == "G42"))
+    return error(line, fmt::format("tool nose radius compensation ({}) would start on a rapid move; machine "
+                                   "'{}' starts it only on a feed move (codes.cutcom_on_rapid = false): make "
+                                   "the first move after CUTCOM a feed move",
+                                   pending_g_, m_.name));
   check_side(nc_x(x_cl), x_cl, line);
   // Built in place, in the writer's buffer: the most common block goes out without a copy.
   text_buffer& b = out_.open_block();

@@ -111,6 +111,9 @@ struct control_codes {
   std::string optional_stop = "M1";     ///< CL OPSTOP
   std::vector<std::string> coolant_on = {"M8"};
   std::string coolant_off = "M9";
+  /// Whether G41/G42 may start on a rapid move. Fanuc accepts G41/G42 with G0 or G1; the Mazak
+  /// control starts tool nose radius compensation only with a feed move.
+  bool cutcom_on_rapid = true;
   /// Balance cutting (HEAD/BOTH): written in both channels right after the wait that opens
   /// the section and right before the wait that closes it (Fanuc G68/G69, Mazak M562/M563).
   /// Empty: the machine has none and the two heads simply cut together.

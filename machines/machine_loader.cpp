@@ -179,7 +179,7 @@ void read_codes(const table_reader& root, control_codes& c) {
   if (!t) return;
   table_reader r(*t, "codes", root.source(),
                  {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on", "coolant_off",
-                  "balance_on", "balance_off", "program_stop", "optional_stop"});
+                  "balance_on", "balance_off", "program_stop", "optional_stop", "cutcom_on_rapid"});
   r.read_fixed("css", c.css);
   r.read_fixed("rpm", c.rpm);
   r.read_fixed("feed_per_rev", c.feed_per_rev);
@@ -192,6 +192,7 @@ void read_codes(const table_reader& root, control_codes& c) {
   r.read_fixed("balance_off", c.balance_off);
   r.read_fixed("program_stop", c.program_stop);
   r.read_fixed("optional_stop", c.optional_stop);
+  r.read("cutcom_on_rapid", c.cutcom_on_rapid);
 }
 
 void read_positive(const table_reader& r, std::string_view key, double& out, bool zero_ok) {

@@ -93,3 +93,19 @@ TEST_CASE("a coolant kind the machine gives no code for is an error, never flood
         "of coolant (only flood: M8); writing flood instead could burn the tool or flood a dry cut\n"
         "COOLNT/MIST\n^\n");
 }
+
+TEST_CASE("G41/G42 on a rapid stops the post where the machine takes them only on a feed move",
+          "[post][tools]") {
+  const std::string cl =
+      "PARTNO TC\nHEAD/1\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nCUTCOM/RIGHT\nRAPID\n"
+      "GOTO/20,0,2\nGOTO/20,0,-5\nFINI\n";
+  const test::posted mazak = post_on(cl, "integrex-i200st", "cutcom-rapid");
+  CHECK_FALSE(mazak.ok);
+  CHECK(mazak.diagnostics ==
+        "job.cls:8:1: error: channel 1: tool nose radius compensation (G42) would start on a rapid move; "
+        "machine 'integrex-i200st' starts it only on a feed move (codes.cutcom_on_rapid = false): make "
+        "the first move after CUTCOM a feed move\nGOTO/20,0,2\n^\n");
+  // A Fanuc takes G42 with G0.
+  const test::posted fanuc = post_on(cl, "fanuc-0itd-twin", "cutcom-rapid-fanuc");
+  CHECK(fanuc.ok);
+}
