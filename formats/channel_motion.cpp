@@ -61,6 +61,12 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   word_start_ = std::string::npos;
 }
 
+void channel_writer::no_tool(int line) {
+  // The turret's tool and offset would be whatever the last program left: a move with no tool
+  // call (HEAD/BOTH's second channel, a job that starts moving before LOADTL) is refused.
+  error(line, "a move with no tool called in this channel: give LOADTL or TURRET before the first move");
+}
+
 void channel_writer::motion(const motion_event& mv, int line) {
   switch (mv.kind) {
     case motion_kind::from: pos_ = mv.pos; return;
@@ -72,6 +78,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
       return;
     case motion_kind::go_to:
     case motion_kind::delta:
+      if (tool_ < 0) return no_tool(line);
       if (spindle_held_) resume_spindle();
       if (cycle_) {
         cycle_point(mv.pos, line);
@@ -84,6 +91,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
 }
 
 void channel_writer::arc(const arc_event& a, int line) {
+  if (tool_ < 0) return no_tool(line);
   if (spindle_held_) resume_spindle();
   // The plane comes from the arc's axis: +-Z G17 (XY), +-Y G18 (ZX, the lathe's), +-X G19 (YZ).
   // In each, counter-clockwise about the positive axis is G3 (Z = X x Y, Y = Z x X, X = Y x Z).

@@ -148,11 +148,13 @@ void channel_writer::tool(const tool_event& t, int line) {
   const std::string call = format_template(ch_.tool_call, a);
   // Offset 0 in a lathe tool call (T0300) cancels the tool's offset: the tip would run
   // where the turret's reference point is, not where the CL says.
-  if (a.offset == 0 && ch_.tool_call.find("{offset") != std::string::npos)
+  if (a.offset == 0 && ch_.tool_call.find("{offset") != std::string::npos) {
+    tool_ = t.tool;  // the post has failed: its moves need no second error for a missing tool
     return error(line,
                  fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
                              "give the offset number",
                              t.tool, call));
+  }
   if (t.tool == tool_) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
     // turret stays where it is and only the offset changes, so the call goes out alone.
@@ -162,7 +164,10 @@ void channel_writer::tool(const tool_event& t, int line) {
     }
     return;
   }
-  if (!block_fits(call)) return;  // T12345 on a four-digit T: the tool does not exist
+  if (!block_fits(call)) {  // T12345 on a four-digit T: the tool does not exist
+    tool_ = t.tool;         // (the post has failed; no second error at its moves)
+    return;
+  }
   // Coolant off before the turret leaves the part and indexes, home X then Z, the call, and
   // the coolant the CL left on back on for the new tool (public Fanuc posts: M9, G28 U0.,
   // G28 W0., T0202, then coolant once the tool is there; docs/machines.md).

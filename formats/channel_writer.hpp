@@ -49,6 +49,8 @@ class channel_writer {
   void go_home();
   /// The spindle stopped for a tool change turns again (before the first move after it).
   void resume_spindle();
+  /// The error for a move before any tool call in this channel.
+  void no_tool(int line);
   /// COOLNT: flood (ON, FLOOD) writes the machine's coolant-on block; a kind the machine file
   /// gives no code for (MIST, THRU, AIR, TAP) is an error, never plain flood.
   void coolant(const coolant_event& c, int line);

@@ -113,7 +113,7 @@ TEST_CASE("a layout the machine cannot take fails the post before anything is wr
             "that opens each channel's section, such as \"G109 L{channel}\")\n");
   // merged_sections writes `$n` and needs no marker.
   diagnostic_list ok;
-  CHECK(post_files("PARTNO/X\nHEAD/1\nRAPID\nGOTO/1,0,1\nFINI\n", m, "sections", &ok,
+  CHECK(post_files("PARTNO/X\nHEAD/1\nTURRET/1,1\nRAPID\nGOTO/1,0,1\nFINI\n", m, "sections", &ok,
                    layout_kind::merged_sections)
             .count("X.nc") == 1);
 }

@@ -109,3 +109,12 @@ TEST_CASE("G41/G42 on a rapid stops the post where the machine takes them only o
   const test::posted fanuc = post_on(cl, "fanuc-0itd-twin", "cutcom-rapid-fanuc");
   CHECK(fanuc.ok);
 }
+
+TEST_CASE("a move before any tool call is an error", "[post][tools]") {
+  const test::posted p = post_on("PARTNO TC\nHEAD/1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/20,0,2\nFINI\n",
+                                 "fanuc-0itd-twin", "no-tool");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:5:1: error: channel 1: a move with no tool called in this channel: give LOADTL or TURRET "
+        "before the first move\nGOTO/20,0,2\n^\n");
+}
