@@ -4,7 +4,7 @@
 
 namespace twinpost::cli {
 
-const char* version();  ///< "0.2.0"
+const char* version();  ///< "0.3.0"
 const char* commit();   ///< "e9f2573c1d2a" or "e9f2573c1d2a-dirty"
 
 }  // namespace twinpost::cli
