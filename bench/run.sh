@@ -20,6 +20,9 @@ usage: bench/run.sh [options]
   --cache DIR          where generated jobs are kept (default: /tmp/twinpost-bench)
   --baseline BIN       also time another twinpost binary (an older build) on every row,
                        runs interleaved with the tool's, and give the speed-up in the note
+  --baseline-mill F    the machine file the baseline reads for the mill jobs in --mode post
+                       (default: bench/bench-mill.toml; an older build may need the file
+                       as it was then)
   --startup            only measure the start-up time (~1 KB job, best of 20)
   --no-startup         skip the start-up measurement
 EOF
@@ -32,6 +35,7 @@ mode=parse
 machine=fanuc-0itd-twin
 layout=""
 baseline=""
+baseline_mill=""
 build="$repo/build-bench"
 rebuild=0
 repeat=3
@@ -49,6 +53,7 @@ while [[ $# -gt 0 ]]; do
     --machine) machine=$2; shift 2 ;;
     --layout) layout=$2; shift 2 ;;
     --baseline) baseline=$2; shift 2 ;;
+    --baseline-mill) baseline_mill=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
     --rebuild) rebuild=1; shift ;;
     --repeat) repeat=$2; shift 2 ;;
@@ -205,6 +210,12 @@ if [[ $do_sizes == 1 ]]; then
         # Interleaved with the baseline binary, run for run: a slow spell of this shared
         # machine hits both alike, so their ratio holds where absolute times do not.
         base_cmd=("$baseline" "${cmd[@]:1}")
+        if [[ -n $baseline_mill && $mode == post && $kind != lathe2 ]]; then
+          for ((a = 1; a < ${#base_cmd[@]}; a++)); do
+            if [[ ${base_cmd[a - 1]} == --machine ]]; then base_cmd[a]=$baseline_mill; fi
+          done
+        fi
+        base_rc=0
         tool_s="" tool_kb=0 base_s=""
         for ((i = 0; i < repeat; i++)); do
           run_timed one "${cmd[@]}"
@@ -213,9 +224,12 @@ if [[ $do_sizes == 1 ]]; then
           if [[ -z $tool_s ]] || awk -v a="$one_s" -v b="$tool_s" 'BEGIN { exit !(a < b) }'; then tool_s=$one_s; fi
           if ((one_kb > tool_kb)); then tool_kb=$one_kb; fi
           run_timed one "${base_cmd[@]}"
+          if [[ $one_rc != 0 ]]; then base_rc=$one_rc; fi
           if [[ -z $base_s ]] || awk -v a="$one_s" -v b="$base_s" 'BEGIN { exit !(a < b) }'; then base_s=$one_s; fi
         done
-        if [[ $tool_rc == 0 ]]; then
+        if [[ $base_rc != 0 ]]; then
+          note="baseline failed (exit $base_rc): no ratio"
+        elif [[ $tool_rc == 0 ]]; then
           note=$(awk -v a="$base_s" -v b="$tool_s" 'BEGIN { printf "baseline %.3f s, x%.2f", a, a / b }')
         fi
         run_timed check "${cmd[@]}"  # for the diagnostics count below: the tool's own stderr
