@@ -63,7 +63,7 @@ TEST_CASE("split_nc_words reads words the way controls do", "[check]") {
   CHECK(words_of("#100=5 M101") == "M101@8");
 }
 
-TEST_CASE("split files: file n is channel n; comments hold no waits", "[check]") {
+TEST_CASE("split files: file n is channel n, and comments hold no waits", "[check]") {
   const machine m = two_channels(100, 103, "");
   diagnostic_list d;
   const nc_programs p =

@@ -73,7 +73,8 @@ TEST_CASE("$$*CATIA0 rows must hold four finite numbers", "[parser][lexical]") {
               "1\tcoordsys from=$$*CATIA0 values=1,0,0,0,0,1,0,0,0,0,1,5", "6\tcomment text=\"0 0 1 5\""});
 }
 
-TEST_CASE("$$UDE: MANUSPOST synchronisation is a sync mark; other UDEs stay comments", "[parser][lexical]") {
+TEST_CASE("$$UDE: MANUSPOST synchronisation is a sync mark, and other UDEs stay comments",
+          "[parser][lexical]") {
   CHECK(events_of("$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=1\n"
                   "$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER= 12\n"
                   "$$UDE: MANUSPOST - COOLANT/MODE=FLOOD\n") ==

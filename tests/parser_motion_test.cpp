@@ -109,7 +109,7 @@ TEST_CASE("an explicit CLOCKWISE / COUNTERCLOCKWISE word wins over the dialect",
         lines{"1\tgoto x=10 y=0 z=0", "3\tarc x=0 y=10 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=ccw"});
 }
 
-TEST_CASE("the arc ends with its GOTO record; the next GOTO is straight", "[parser][motion]") {
+TEST_CASE("the arc ends with its GOTO record, and the next GOTO is straight", "[parser][motion]") {
   CHECK(events_of("GOTO/10,0,0\n"
                   "CIRCLE/0,0,0,10\n"
                   "FEDRAT/100,MMPM\n"

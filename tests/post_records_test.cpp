@@ -109,7 +109,7 @@ TEST_CASE("a record the post cannot carry out stops it with the reason", "[post]
   }
 }
 
-TEST_CASE("an unknown word stops a post; a permissive post warns and goes on", "[post][records]") {
+TEST_CASE("an unknown word stops a post, and a permissive post warns and goes on", "[post][records]") {
   posted strict = post_text(head + "GOTO/20,0,0\nFOO/1\nGOTO/20,0,-5\nFINI\n", "strict");
   CHECK_FALSE(strict.ok);
   CHECK(strict.files.empty());

@@ -65,7 +65,7 @@ TEST_CASE("json_quote: short escapes, controls, ASCII kept", "[support][json]") 
   CHECK(json_quote(std::string("\x01\x1f\x7f\0", 4)) == "\"\\u0001\\u001f\\u007f\\u0000\"");
 }
 
-TEST_CASE("json_quote: any bytes give ASCII JSON; UTF-8 as its characters", "[support][json]") {
+TEST_CASE("json_quote: any bytes give ASCII JSON, and UTF-8 as its characters", "[support][json]") {
   CHECK(json_quote("\xC3\xA9t\xC3\xA9") == "\"\\u00e9t\\u00e9\"");  // UTF-8 e-acute
   CHECK(json_quote("\xE2\x82\xAC") == "\"\\u20ac\"");               // euro sign, 3 bytes
   CHECK(json_quote("\xF0\x9F\x98\x80") == "\"\\ud83d\\ude00\"");    // past U+FFFF: a pair

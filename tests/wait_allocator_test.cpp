@@ -61,7 +61,7 @@ TEST_CASE("a range used up without reuse gives nothing from then on", "[channels
   CHECK(a.handed_out() == 4);
 }
 
-TEST_CASE("the step is counted from first; a last off the grid is never handed out", "[channels]") {
+TEST_CASE("the step is counted from first, and a last off the grid is never handed out", "[channels]") {
   wait_rules r;
   r.first = 950;
   r.last = 967;
