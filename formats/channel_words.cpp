@@ -81,21 +81,35 @@ void channel_writer::spindle(const spindle_event& s, int line) {
 
 void channel_writer::coolant(const coolant_event& c, int line) {
   if (c.mode == "OFF") {
-    out_.block(m_.codes.coolant_off);
+    out_.block(coolant_off_block_.empty() ? m_.codes.coolant_off : coolant_off_block_);
     coolant_block_.clear();
+    coolant_off_block_.clear();
     return;
   }
-  if (c.mode != "ON" && c.mode != "FLOOD")
-    return error(line, fmt::format("COOLNT/{}: machine '{}' gives no code for this kind of coolant (only "
-                                   "flood: {}); writing flood instead could burn the tool or flood a "
-                                   "dry cut",
-                                   c.mode, m_.name,
-                                   m_.codes.coolant_on.empty() ? "none" : m_.codes.coolant_on.front()));
-  if (m_.codes.coolant_on.empty())
+  // The kind's [on, off]: flood from coolant_on/coolant_off, the others from their pairs.
+  const control_codes& k = m_.codes;
+  const std::vector<std::string>* pair = nullptr;
+  std::string_view key;
+  if (c.mode == "MIST")
+    pair = &k.coolant_mist, key = "coolant_mist";
+  else if (c.mode == "THRU")
+    pair = &k.coolant_through, key = "coolant_through";
+  else if (c.mode == "AIR")
+    pair = &k.coolant_air, key = "coolant_air";
+  if ((pair == nullptr && c.mode != "ON" && c.mode != "FLOOD") || (pair != nullptr && pair->size() != 2))
+    return error(line,
+                 fmt::format("COOLNT/{}: machine '{}' gives no code for this kind of coolant{}; writing "
+                             "flood instead could burn the tool or flood a dry cut",
+                             c.mode, m_.name, key.empty() ? "" : fmt::format(" (codes.{})", key)));
+  if (pair == nullptr && k.coolant_on.empty())
     return error(line, fmt::format("COOLNT/{}: machine '{}' has no coolant-on code", c.mode, m_.name));
-  if (coolant_block_ == m_.codes.coolant_on.front()) return;  // already on
-  out_.block(m_.codes.coolant_on.front());
-  coolant_block_ = m_.codes.coolant_on.front();
+  const std::string& on = pair ? (*pair)[0] : k.coolant_on.front();
+  const std::string& off = pair ? (*pair)[1] : k.coolant_off;
+  if (coolant_block_ == on) return;                             // already on
+  if (!coolant_block_.empty()) out_.block(coolant_off_block_);  // another kind: off first
+  out_.block(on);
+  coolant_block_ = on;
+  coolant_off_block_ = off;
 }
 
 void channel_writer::resume_spindle() {
@@ -172,11 +186,12 @@ void channel_writer::tool(const tool_event& t, int line) {
   // the coolant the CL left on back on for the new tool (public Fanuc posts: M9, G28 U0.,
   // G28 W0., T0202, then coolant once the tool is there; docs/machines.md).
   const std::string coolant_was = coolant_block_;
+  const std::string coolant_off_was = coolant_off_block_;
   if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_) {
     out_.block(fmt::format("M{}", spindle_->stop));
     spindle_held_ = true;
   }
-  if (!coolant_was.empty()) out_.block(m_.codes.coolant_off);
+  if (!coolant_was.empty()) out_.block(coolant_off_was);
   go_home();
   forget_axes();
   motion_g_ = -1;

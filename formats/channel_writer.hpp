@@ -51,8 +51,9 @@ class channel_writer {
   void resume_spindle();
   /// The error for a move before any tool call in this channel.
   void no_tool(int line);
-  /// COOLNT: flood (ON, FLOOD) writes the machine's coolant-on block; a kind the machine file
-  /// gives no code for (MIST, THRU, AIR, TAP) is an error, never plain flood.
+  /// COOLNT: flood (ON, FLOOD) writes the machine's coolant-on block, MIST, THRU and AIR their
+  /// pairs (codes.coolant_mist ...); a kind the machine file gives no code for (and TAP) is
+  /// an error, never plain flood. OFF writes the off block of the kind in force.
   void coolant(const coolant_event& c, int line);
   /// True when the writer carries out every word of cycle `c`; else an error naming the first
   /// word it would drop (a tap, a bore, a retract plane, a peck of another dialect...).
@@ -127,7 +128,8 @@ class channel_writer {
   /// The spindle was stopped for a tool change: restart_blocks_ go out again before the next
   /// move unless a SPINDL comes first.
   bool spindle_held_ = false;
-  std::string coolant_block_;  ///< the coolant-on block in force, "" when off
+  std::string coolant_block_;      ///< the coolant-on block in force, "" when off
+  std::string coolant_off_block_;  ///< the off block of the coolant kind in force
   int tool_ = -1;
   std::string tool_call_;  ///< the last tool call written (an offset change writes a new one)
   int waits_ = 0;

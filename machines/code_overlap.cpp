@@ -125,6 +125,9 @@ void control_codes_of(overlap_finder& f, const control_codes& c, const toml::tab
   for (const auto& [key, text] : fixed) f.block(fmt::format("codes.{}", key), *text, key_of(t, key), t);
   f.blocks("codes.coolant_on", c.coolant_on, t, "coolant_on");
   f.blocks("codes.home", c.home, t, "home");
+  f.blocks("codes.coolant_mist", c.coolant_mist, t, "coolant_mist");
+  f.blocks("codes.coolant_through", c.coolant_through, t, "coolant_through");
+  f.blocks("codes.coolant_air", c.coolant_air, t, "coolant_air");
 }
 
 void spindle_codes(overlap_finder& f, const spindle_def& s, const toml::table& t) {

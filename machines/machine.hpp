@@ -111,6 +111,10 @@ struct control_codes {
   std::string optional_stop = "M1";     ///< CL OPSTOP
   std::vector<std::string> coolant_on = {"M8"};
   std::string coolant_off = "M9";
+  /// The other kinds of coolant, each [on, off] (the off code differs by kind: Mazak turns
+  /// through-tool coolant off with M163, not M9); empty: the machine has none, and a CL that
+  /// asks for it stops the post.
+  std::vector<std::string> coolant_mist, coolant_through, coolant_air;
   /// Whether G41/G42 may start on a rapid move. Fanuc accepts G41/G42 with G0 or G1; the Mazak
   /// control starts tool nose radius compensation only with a feed move.
   bool cutcom_on_rapid = true;

@@ -179,7 +179,8 @@ void read_codes(const table_reader& root, control_codes& c) {
   if (!t) return;
   table_reader r(*t, "codes", root.source(),
                  {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on", "coolant_off",
-                  "balance_on", "balance_off", "program_stop", "optional_stop", "cutcom_on_rapid"});
+                  "balance_on", "balance_off", "program_stop", "optional_stop", "cutcom_on_rapid",
+                  "coolant_mist", "coolant_through", "coolant_air"});
   r.read_fixed("css", c.css);
   r.read_fixed("rpm", c.rpm);
   r.read_fixed("feed_per_rev", c.feed_per_rev);
@@ -193,6 +194,13 @@ void read_codes(const table_reader& root, control_codes& c) {
   r.read_fixed("program_stop", c.program_stop);
   r.read_fixed("optional_stop", c.optional_stop);
   r.read("cutcom_on_rapid", c.cutcom_on_rapid);
+  for (auto [key, codes] :
+       {std::pair<std::string_view, std::vector<std::string>*>{"coolant_mist", &c.coolant_mist},
+        {"coolant_through", &c.coolant_through},
+        {"coolant_air", &c.coolant_air}})
+    if (r.read_fixed(key, *codes) && codes->size() != 2)
+      r.fail(*r.find(key),
+             fmt::format("{} must be [on, off], two blocks, not {}", r.key_path(key), codes->size()));
 }
 
 void read_positive(const table_reader& r, std::string_view key, double& out, bool zero_ok) {

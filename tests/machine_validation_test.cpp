@@ -403,3 +403,10 @@ TEST_CASE("validation: machines the post cannot serve", "[machines]") {
         "m.toml:199:1: error: [[channel]] 65 of 65: a machine has at most 64 channels");
   CHECK(error_of(head + "partners = \"binary\"\n" + channels(64)) == "(no error)");
 }
+
+TEST_CASE("a coolant kind is two blocks, on and off", "[machines]") {
+  CHECK(error_of(head + "[codes]\ncoolant_mist = [\"M7\"]\n") ==
+        "m.toml:7:16: error: codes.coolant_mist must be [on, off], two blocks, not 1");
+  CHECK(error_of(head + "[codes]\ncoolant_through = \"M51\"\n") ==
+        "m.toml:7:19: error: codes.coolant_through must be an array of strings, not a string");
+}

@@ -85,13 +85,27 @@ TEST_CASE("SPINDL/ON with no speed before it is an error, never S0", "[post][too
 }
 
 TEST_CASE("a coolant kind the machine gives no code for is an error, never flood", "[post][tools]") {
-  const test::posted p = post_on("PARTNO TC\nHEAD/1\nTURRET/1,1\nCOOLNT/MIST\nRAPID\nGOTO/20,0,2\nFINI\n",
-                                 "fanuc-0itd-twin", "mist");
+  const test::posted p = post_on("PARTNO TC\nHEAD/1\nLOADTL/1\nCOOLNT/MIST\nRAPID\nGOTO/20,0,2\nFINI\n",
+                                 "integrex-i200st", "mist");
   CHECK_FALSE(p.ok);
   CHECK(p.diagnostics ==
-        "job.cls:4:1: error: channel 1: COOLNT/MIST: machine 'fanuc-0itd-twin' gives no code for this kind "
-        "of coolant (only flood: M8); writing flood instead could burn the tool or flood a dry cut\n"
+        "job.cls:4:1: error: channel 1: COOLNT/MIST: machine 'integrex-i200st' gives no code for this kind "
+        "of coolant (codes.coolant_mist); writing flood instead could burn the tool or flood a dry cut\n"
         "COOLNT/MIST\n^\n");
+}
+
+TEST_CASE("each coolant kind is turned on and off with its own codes", "[post][tools]") {
+  // Mazak: through-tool coolant is M51 and goes off with M163, not M9; a change of kind turns
+  // the one in force off first; a tool change turns off the kind in force.
+  const test::posted p = post_on(
+      "PARTNO TC\nHEAD/1\nLOADTL/1\nSPINDL/RPM,1000,CLW\nCOOLNT/ON\nCOOLNT/THRU\nRAPID\nGOTO/20,0,2\n"
+      "LOADTL/2\nRAPID\nGOTO/20,0,3\nCOOLNT/OFF\nFINI\n",
+      "integrex-i200st", "kinds");
+  const std::string program = file_of(p, "TC.EIA");
+  CHECK(program.find("G97 S1000 M203\nM8\nM9\nM51\nG0 X40. Y0. Z2.\nM205\nM163\nG0 G90 G53 X0.\n"
+                     "G0 G90 G53 Z0.\nT02 M6\nM51\nG97 S1000 M203\nG0 X40. Y0. Z3.\nM163\n") !=
+        std::string::npos);
+  INFO(program);
 }
 
 TEST_CASE("G41/G42 on a rapid stops the post where the machine takes them only on a feed move",
