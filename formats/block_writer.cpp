@@ -12,8 +12,9 @@ namespace {
 constexpr std::size_t flush_at = 1 << 18;
 }
 
-block_writer::block_writer(const std::string& path, const program_format& fmt, framing frame)
-    : frame_(std::move(frame)), path_(path), fmt_(fmt), seq_(fmt.sequence_start) {
+block_writer::block_writer(const std::string& path, const program_format& fmt, framing frame,
+                           const word_format& n)
+    : frame_(std::move(frame)), path_(path), fmt_(fmt), seq_(fmt, n) {
   f_ = std::fopen(path.c_str(), "wb");
   if (!f_) throw config_error(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
   buf_.reserve(flush_at + 4096);
@@ -26,7 +27,7 @@ block_writer::~block_writer() {
 void block_writer::start() {
   started_ = true;
   if (frame_.head) {
-    head_ = frame_.head();
+    head_ = frame_.head(seq_);
     buf_.append(head_);
   }
 }
@@ -56,21 +57,24 @@ text_buffer& block_writer::open_block() {
 void block_writer::end_block() {
   ++blocks_;
   if (fmt_.sequence_start > 0) {
-    buf_.insert(open_at_, fmt::format("N{} ", seq_));
-    seq_ += fmt_.sequence_step;
+    const std::string n = seq_.next();
+    if (!n.empty()) buf_.insert(open_at_, n);
   }
   buf_ += '\n';
   flush_if_full();
 }
 
-void block_writer::block(std::string_view words) {
+void block_writer::block(std::string_view words, bool restart) {
+  if (!started_) [[unlikely]]
+    start();  // the head's blocks take the first numbers
   ++blocks_;
   if (fmt_.sequence_start > 0) {
-    std::string line = fmt::format("N{} ", seq_);
-    seq_ += fmt_.sequence_step;
-    line.append(words);
-    put(line);
-    return;
+    std::string line = seq_.next(restart);
+    if (!line.empty()) {
+      line.append(words);
+      put(line);
+      return;
+    }
   }
   put(words);
 }
@@ -88,7 +92,7 @@ void block_writer::raw(std::string_view line) { put(line); }
 void block_writer::close() {
   if (!f_) return;
   if (!started_) start();
-  if (frame_.tail) buf_.append(frame_.tail());
+  if (frame_.tail) buf_.append(frame_.tail(seq_));
   bool ok = std::fwrite(buf_.data(), 1, buf_.size(), f_) == buf_.size();
   int err = ok ? 0 : errno;
   buf_.clear();

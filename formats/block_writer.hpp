@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "formats/sequence_numbers.hpp"
 #include "formats/text_buffer.hpp"
 #include "machines/machine.hpp"
 #include "support/errors.hpp"
@@ -15,21 +16,25 @@ namespace twinpost {
 class block_writer {
  public:
   /// Text around the blocks, as whole lines: `head` is asked for just before the first line
-  /// is written (or at close, when there is none), `tail` at close. Empty: nothing.
+  /// is written (or at close, when there is none), `tail` at close. Empty: nothing. Both
+  /// number their blocks from the writer's count (header blocks before the body's, footer
+  /// blocks after).
   struct framing {
-    std::function<std::string()> head, tail;
+    std::function<std::string(sequence_numbers&)> head, tail;
     /// The file's name in messages (the program it becomes); empty: the path written.
     std::function<std::string()> name;
   };
 
-  /// Opens `path` for writing; throws config_error when it cannot.
-  block_writer(const std::string& path, const program_format& fmt, framing frame = {});
+  /// Opens `path` for writing; throws config_error when it cannot. `n`: the N word's format.
+  block_writer(const std::string& path, const program_format& fmt, framing frame = {},
+               const word_format& n = {5, 0});
   ~block_writer();
   block_writer(const block_writer&) = delete;
   block_writer& operator=(const block_writer&) = delete;
 
-  /// Writes one block (words separated by blanks), numbered when the format says so.
-  void block(std::string_view words);
+  /// Writes one block (words separated by blanks), numbered when the format says so;
+  /// `restart`: a restart point (a tool call), numbered also when only those are.
+  void block(std::string_view words, bool restart = false);
   /// Starts a block built in place: words appended to the returned buffer (from its current
   /// end, no separator before the first) go straight to the output. end_block() writes it,
   /// drop_block() takes it back. Nothing else may be written in between.
@@ -60,7 +65,7 @@ class block_writer {
   std::string path_;
   const program_format& fmt_;
   text_buffer buf_;
-  long seq_;
+  sequence_numbers seq_;
   long blocks_ = 0;
 };
 

@@ -173,7 +173,7 @@ void channel_writer::tool(const tool_event& t, int line) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
     // turret stays where it is and only the offset changes, so the call goes out alone.
     if (call != tool_call_ && block_fits(call)) {
-      out_.block(call);
+      out_.block(call, true);
       tool_call_ = call;
     }
     return;
@@ -195,7 +195,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   go_home();
   forget_axes();
   motion_g_ = -1;
-  out_.block(call);
+  out_.block(call, true);
   if (!coolant_was.empty()) out_.block(coolant_was);
   tool_ = t.tool;
   tool_call_ = call;

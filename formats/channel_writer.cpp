@@ -10,7 +10,8 @@ namespace twinpost {
 
 channel_writer::channel_writer(const machine& m, const channel_def& ch, const std::string& path,
                                diagnostic_sink& diags, std::string cl_file, block_writer::framing frame)
-    : m_(m), ch_(ch), diags_(diags), cl_file_(std::move(cl_file)), out_(path, m.program, std::move(frame)) {
+    : m_(m), ch_(ch), diags_(diags), cl_file_(std::move(cl_file)),
+      out_(path, m.program, std::move(frame), m.formats['N']) {
   axis_style_ = {m.program.decimals_metric, m.program.trailing_point};
   const axis_def* x = ch.axis('X');
   x_factor_ = (x && !x->diameter) ? 1.0 : 2.0;

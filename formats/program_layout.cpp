@@ -26,6 +26,12 @@ void add_line(std::string& out, std::string_view s) {
   out += '\n';
 }
 
+// A header or footer block, numbered in the section's count; a comment line is not a block.
+void add_block(std::string& out, const program_format& p, sequence_numbers& seq, std::string_view s) {
+  if (s.empty() || s.front() != p.comment_open) out += seq.next();
+  add_line(out, s);
+}
+
 void put(std::FILE* f, std::string_view s) { std::fwrite(s.data(), 1, s.size(), f); }
 
 [[noreturn]] void write_failed(const frame_request& r, const std::string& name, int err) {
@@ -78,7 +84,7 @@ bool opens_file(const frame_request& r, const channel_def& ch) {
 }
 
 // A channel's section: marker (merged layouts) and header lines.
-std::string channel_opening(const frame_request& r, const channel_def& ch) {
+std::string section_head(const frame_request& r, const channel_def& ch, sequence_numbers& seq) {
   const machine& m = *r.machine_def;
   const template_args a = args_for(r, &ch);
   std::string s;
@@ -86,16 +92,16 @@ std::string channel_opening(const frame_request& r, const channel_def& ch) {
   if (merged(r))
     add_line(s, format_template(
                     r.layout == layout_kind::merged_sections ? "${channel}" : m.program.section_marker, a));
-  for (const std::string& h : m.program.header) add_line(s, format_template(h, a));
+  for (const std::string& h : m.program.header) add_block(s, m.program, seq, format_template(h, a));
   return s;
 }
 
-std::string channel_closing(const frame_request& r, const channel_def& ch) {
+std::string section_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq) {
   const machine& m = *r.machine_def;
   const template_args a = args_for(r, &ch);
   std::string s;
-  for (const std::string& f : m.program.footer) add_line(s, format_template(f, a));
-  add_line(s, m.program.end_code);
+  for (const std::string& f : m.program.footer) add_block(s, m.program, seq, format_template(f, a));
+  add_block(s, m.program, seq, m.program.end_code);
   return s;
 }
 
@@ -109,12 +115,19 @@ std::string file_opening(const frame_request& r) {
 
 std::string file_closing(const frame_request& r) { return r.machine_def->program.percent_lines ? "%\n" : ""; }
 
+// The head a channel's writer begins with: its header blocks are the first of its count, so
+// the same head comes out again under a new name.
+std::string first_head(const frame_request& r, const channel_def& ch) {
+  sequence_numbers seq(r.machine_def->program, r.machine_def->formats['N']);
+  return frame_head(r, ch, seq);
+}
+
 }  // namespace
 
 channel_target frame_target(const frame_request& r, const channel_def& ch) {
-  if (!merged(r)) return {fmt::format("{}/framed{}", r.tmp_dir, ch.number), true};
-  if (opens_file(r, ch)) return {fmt::format("{}/framed", r.tmp_dir), true};
-  return {fmt::format("{}/body{}", r.tmp_dir, ch.number), false};
+  if (!merged(r)) return {fmt::format("{}/framed{}", r.tmp_dir, ch.number)};
+  if (opens_file(r, ch)) return {fmt::format("{}/framed", r.tmp_dir)};
+  return {fmt::format("{}/body{}", r.tmp_dir, ch.number)};
 }
 
 std::string frame_file_name(const frame_request& r, const channel_def& ch) {
@@ -123,12 +136,13 @@ std::string frame_file_name(const frame_request& r, const channel_def& ch) {
   return merged(r) ? stem + m.program.extension : stem + ch.file_suffix + m.program.extension;
 }
 
-std::string frame_head(const frame_request& r, const channel_def& ch) {
-  return file_opening(r) + channel_opening(r, ch);
+std::string frame_head(const frame_request& r, const channel_def& ch, sequence_numbers& seq) {
+  if (!opens_file(r, ch)) return section_head(r, ch, seq);
+  return file_opening(r) + section_head(r, ch, seq);
 }
 
-std::string frame_tail(const frame_request& r, const channel_def& ch) {
-  std::string s = channel_closing(r, ch);
+std::string frame_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq) {
+  std::string s = section_tail(r, ch, seq);
   if (!merged(r)) s += file_closing(r);  // a merged program closes after its last channel
   return s;
 }
@@ -140,7 +154,7 @@ std::vector<framed_file> finish_frames(const frame_request& r, const std::vector
     if (!opens_file(r, ch)) continue;
     const std::string path = frame_target(r, ch).path;
     const std::string& written = heads[static_cast<std::size_t>(ch.number - 1)];
-    const std::string head = frame_head(r, ch);
+    const std::string head = first_head(r, ch);
     const std::string name = frame_file_name(r, ch);
     if (written != head) {
       // Begun under another name: the same blocks under the right head, in a new file.
@@ -154,13 +168,15 @@ std::vector<framed_file> finish_frames(const frame_request& r, const std::vector
     out.push_back({name, path, ch.number});
   }
   if (!merged(r)) return out;
-  // Merged: the other channels, each after its section marker, then the closing '%'.
+  // Merged: the other channels' sections (each written whole, marker to end code, into its
+  // body file) after the first one's, under the right head, then the closing '%'.
   file_ptr f = open_or_throw(out.front().tmp_path, "ab");
   for (const channel_def& ch : m.channels) {
     if (opens_file(r, ch)) continue;
-    put(f.get(), channel_opening(r, ch));
-    copy_file(r, out.front().name, f.get(), frame_target(r, ch).path);
-    put(f.get(), channel_closing(r, ch));
+    const std::string& written = heads[static_cast<std::size_t>(ch.number - 1)];
+    const std::string head = first_head(r, ch);
+    put(f.get(), head);
+    copy_file(r, out.front().name, f.get(), frame_target(r, ch).path, static_cast<long>(written.size()));
   }
   put(f.get(), file_closing(r));
   close_or_throw(r, out.front().name, f);

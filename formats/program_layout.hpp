@@ -5,11 +5,14 @@
 //
 // Posting streams: a channel whose blocks open a program file (every channel of a split
 // layout, the first channel of a merged one) writes them straight into that file, between
-// the head and tail given here. The other channels of a merged program spill their blocks
-// to a body file on disk, and finish_frames appends them after the first one's.
+// the head and tail given here. The other channels of a merged program spill their
+// sections (marker, header, blocks, footer) to a body file on disk, and finish_frames
+// appends them after the first one's. Header and footer blocks are numbered in the count
+// of the channel's blocks (formats/sequence_numbers).
 #include <string>
 #include <vector>
 
+#include "formats/sequence_numbers.hpp"
 #include "machines/machine.hpp"
 #include "support/errors.hpp"
 
@@ -25,8 +28,7 @@ struct frame_request {
 
 /// Where a channel's blocks go.
 struct channel_target {
-  std::string path;     ///< the program file's temporary path, or a body file
-  bool direct = false;  ///< true: the program file itself (frame_head before, frame_tail after)
+  std::string path;  ///< the program file's temporary path, or a body file
 };
 
 struct framed_file {
@@ -40,18 +42,19 @@ channel_target frame_target(const frame_request& r, const channel_def& ch);
 /// The name (no folder) of the program file that channel `ch`'s blocks end up in.
 std::string frame_file_name(const frame_request& r, const channel_def& ch);
 
-/// The lines before a direct channel's blocks: '%', the program line, its section marker
-/// (merged layouts) and the channel header; each line ends in '\n'.
-std::string frame_head(const frame_request& r, const channel_def& ch);
+/// The lines before a channel's blocks: '%' and the program line when the channel opens
+/// its file, its section marker (merged layouts) and the channel header, the header blocks
+/// numbered from `seq`; each line ends in '\n'.
+std::string frame_head(const frame_request& r, const channel_def& ch, sequence_numbers& seq);
 
-/// The lines after a direct channel's blocks: footer, end code, and the closing '%' when the
-/// channel ends its file.
-std::string frame_tail(const frame_request& r, const channel_def& ch);
+/// The lines after a channel's blocks: footer and end code (numbered on from `seq`), and the
+/// closing '%' when the channel ends its file.
+std::string frame_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq);
 
 /// Completes the program files once every channel has finished: appends the spilled
-/// channels of a merged program, and gives a file a new head when the name it was begun
-/// under (`heads`: per channel, the head written, "" for spilled channels) is not `r.name`
-/// (a PARTNO after the first block). Throws config_error on I/O errors.
+/// channels' sections to a merged program, and gives a file or section a new head when the
+/// name it was begun under (`heads`: per channel, the head written) is not `r.name` (a
+/// PARTNO after the first block). Throws config_error on I/O errors.
 std::vector<framed_file> finish_frames(const frame_request& r, const std::vector<std::string>& heads);
 
 }  // namespace twinpost

@@ -75,6 +75,9 @@ struct channel_def {
 /// How the channels' programs are laid out in files.
 enum class layout_kind { split, merged_appended, merged_sections };
 
+/// Which blocks get an N number (when program.sequence_start > 0).
+enum class sequence_mode { all, tool_change };
+
 /// Output program format: numbers, blocks, comments, program frame.
 struct program_format {
   std::string extension = ".nc";     ///< output file extension
@@ -88,6 +91,9 @@ struct program_format {
   std::string section_marker;                           ///< merged layouts: "G109 L{channel}" or "${channel}"
   int sequence_start = 0;                               ///< 0 = no N numbers
   int sequence_step = 10;
+  /// All blocks (header and footer too; not '%', the program line, comments or section
+  /// markers), or only the tool calls: the restart points.
+  sequence_mode sequence_numbers = sequence_mode::all;
   char comment_open = '(';
   char comment_close = ')';
   int comment_max = 0;         ///< longest comment text; 0 = unlimited

@@ -32,21 +32,23 @@ struct anchors {
   const toml::table* format = nullptr;         // [format], when given
 };
 
-// Reads `key` as one of three names; anything else fails with "T.key must be a, b or c".
+// Reads `key` as one of the names; anything else fails with "T.key must be a, b or c".
 // Returns the key's node (for later messages), or nullptr when the key is absent.
-template <class E>
+template <class E, std::size_t N>
 const toml::node* read_enum(const table_reader& r, std::string_view key,
-                            const std::array<std::pair<std::string_view, E>, 3>& names, E& out) {
+                            const std::array<std::pair<std::string_view, E>, N>& names, E& out) {
   std::string text;
   if (!r.read(key, text)) return nullptr;
-  for (const auto& [name, value] : names) {
-    if (text == name) {
-      out = value;
+  std::string choices;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (text == names[i].first) {
+      out = names[i].second;
       return r.find(key);
     }
+    choices += i == 0 ? "" : (i + 1 == N ? " or " : ", ");
+    choices += names[i].first;
   }
-  r.fail(*r.find(key), fmt::format("{} must be {}, {} or {}, not '{}'", r.key_path(key), names[0].first,
-                                   names[1].first, names[2].first, text));
+  r.fail(*r.find(key), fmt::format("{} must be {}, not '{}'", r.key_path(key), choices, text));
   return nullptr;
 }
 
@@ -59,7 +61,7 @@ void read_machine_table(const table_reader& root, machine& m, anchors& at) {
   if (m.name.empty()) r.fail(*r.find("name"), "machine.name must not be empty");
   r.read("description", m.description);
   r.read("control", m.control);
-  at.layout = read_enum<layout_kind>(r, "layout", layout_file_names(), m.layout);
+  at.layout = read_enum(r, "layout", layout_file_names(), m.layout);
 }
 
 constexpr int max_wait_code = 99'999'999;
@@ -99,11 +101,12 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
                                           w.excluded[i], w.first, w.last));
   }
   r.read("reuse", w.reuse);
-  at.partners = read_enum<partner_style>(r, "partners",
-                                         {{{"none", partner_style::none},
-                                           {"path_numbers", partner_style::path_numbers},
-                                           {"binary", partner_style::binary}}},
-                                         w.partners);
+  using partner_name = std::pair<std::string_view, partner_style>;
+  at.partners = read_enum(r, "partners",
+                          std::array<partner_name, 3>{{{"none", partner_style::none},
+                                                       {"path_numbers", partner_style::path_numbers},
+                                                       {"binary", partner_style::binary}}},
+                          w.partners);
   r.read_char("partner_address", w.partner_address, true);
 }
 
@@ -121,10 +124,11 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   const toml::table* t = root.sub_table("program");
   if (!t) return;
   at.program = t;
-  table_reader r(*t, "program", root.source(),
-                 {"extension", "file_name", "program_number", "program_line", "header", "footer", "end_code",
-                  "percent_lines", "section_marker", "sequence_start", "sequence_step", "comment_open",
-                  "comment_close", "comment_max", "decimals_metric", "trailing_point", "arcs_ijk"});
+  table_reader r(
+      *t, "program", root.source(),
+      {"extension", "file_name", "program_number", "program_line", "header", "footer", "end_code",
+       "percent_lines", "section_marker", "sequence_start", "sequence_step", "sequence_numbers",
+       "comment_open", "comment_close", "comment_max", "decimals_metric", "trailing_point", "arcs_ijk"});
   if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
   r.read_template("file_name", p.file_name, template_uses::file);
   if (r.read("program_number", p.program_number)) at.program_number = r.find("program_number");
@@ -136,6 +140,11 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   r.read_template("section_marker", p.section_marker, template_uses::section_marker);
   if (r.read("sequence_start", p.sequence_start)) check_min(r, "sequence_start", p.sequence_start, 0);
   if (r.read("sequence_step", p.sequence_step)) check_min(r, "sequence_step", p.sequence_step, 1);
+  using sequence_name = std::pair<std::string_view, sequence_mode>;
+  read_enum(r, "sequence_numbers",
+            std::array<sequence_name, 2>{
+                {{"all", sequence_mode::all}, {"tool_change", sequence_mode::tool_change}}},
+            p.sequence_numbers);
   r.read_char("comment_open", p.comment_open, false);
   r.read_char("comment_close", p.comment_close, false);
   if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
@@ -257,6 +266,16 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
     const std::string message = fmt::format("program.program_number must be in 1..{} (format.O {}), not {}",
                                             o.max_text(), o.text(), m.program.program_number);
     if (at.program_number) root.fail(*at.program_number, message);
+    if (at.format) root.fail(*at.format, message);
+    root.fail_here(message);
+  }
+  // The first N number must be one the control reads (N5: up to 99999).
+  const word_format& n = m.formats['N'];
+  if (n.whole > 0 && m.program.sequence_start > n.max_count(0)) {
+    const std::string message = fmt::format("program.sequence_start must be at most {} (format.N {}), not {}",
+                                            n.max_text(), n.text(), m.program.sequence_start);
+    if (at.program && at.program->get("sequence_start"))
+      root.fail(*at.program->get("sequence_start"), message);
     if (at.format) root.fail(*at.format, message);
     root.fail_here(message);
   }

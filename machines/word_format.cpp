@@ -48,6 +48,7 @@ word_formats default_word_formats(std::string_view control) {
   f['T'] = {4, 0};
   f['M'] = {8, 0};
   f['G'] = {3, 0};
+  f['N'] = {5, 0};
   f['P'] = {8, 0};
   // O: four digits on Fanuc 0i/31i (O0001-O9999); Mazak EIA programs take up to eight.
   f['O'] = {control.starts_with("mazak") ? 8 : 4, 0};

@@ -150,17 +150,19 @@ frame_request named_request(const frame_request& req, const writers_sink& ws) {
 }
 
 // One writer per channel. Each writes straight into its program file where its blocks open
-// one (the name from PARTNO as known by then); the others of a merged program spill to a
-// body file. The frames read `req` and `ws` when they are written: both outlive the writers.
+// one (the name from PARTNO as known by then); the others of a merged program spill their
+// sections to a body file. The frames read `req` and `ws` when they are written: both outlive the writers.
 void open_writers(const post_options& o, const machine& m, const frame_request& req, writers_sink& ws,
                   diagnostic_sink& sink) {
   for (const channel_def& ch : m.channels) {
     const channel_target target = frame_target(req, ch);
     block_writer::framing frame;
-    if (target.direct) {
-      frame.head = [&req, &ws, &ch] { return frame_head(named_request(req, ws), ch); };
-      frame.tail = [&req, &ws, &ch] { return frame_tail(named_request(req, ws), ch); };
-    }
+    frame.head = [&req, &ws, &ch](sequence_numbers& seq) {
+      return frame_head(named_request(req, ws), ch, seq);
+    };
+    frame.tail = [&req, &ws, &ch](sequence_numbers& seq) {
+      return frame_tail(named_request(req, ws), ch, seq);
+    };
     frame.name = [&req, &ws, &ch, &o] {
       return (fs::path(o.out_dir) / frame_file_name(named_request(req, ws), ch)).string();
     };

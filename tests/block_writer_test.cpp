@@ -51,8 +51,8 @@ TEST_CASE("block_writer: numbered blocks built in place, dropped blocks, framing
   const std::string path = temp_path("block-writer");
   {
     block_writer::framing frame;
-    frame.head = [] { return std::string("%\nO1000 (T)\n"); };
-    frame.tail = [] { return std::string("M30\n%\n"); };
+    frame.head = [](sequence_numbers&) { return std::string("%\nO1000 (T)\n"); };
+    frame.tail = [](sequence_numbers&) { return std::string("M30\n%\n"); };
     block_writer w(path, fmt, frame);
     w.block("G28 U0 W0");
     text_buffer& b = w.open_block();
@@ -81,8 +81,8 @@ TEST_CASE("block_writer: a file with no block still gets its head and tail", "[f
   const std::string path = temp_path("block-writer-empty");
   {
     block_writer::framing frame;
-    frame.head = [] { return std::string("%\n"); };
-    frame.tail = [] { return std::string("M30\n%\n"); };
+    frame.head = [](sequence_numbers&) { return std::string("%\n"); };
+    frame.tail = [](sequence_numbers&) { return std::string("M30\n%\n"); };
     block_writer w(path, fmt, frame);
     CHECK(w.head_written().empty());  // nothing written yet
     w.close();

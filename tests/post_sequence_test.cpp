@@ -1,0 +1,87 @@
+// N numbers: every block of a channel's section in one count (header, body, footer, end
+// code; never '%', the program line or the section marker), or only the tool calls, the
+// restart points; past the N format's largest number the count starts again.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "file_test_support.hpp"
+#include "machine_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+// Tool 1, then its offset 21, then PARTNO after the first blocks: the head is written again
+// under the late name, with the same numbers.
+const std::string one_head_job =
+    "HEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,5\nGOTO/20,0,-10\n"
+    "TURRET/1,21\nGOTO/18,0,-10\nPARTNO LATE\nFINI\n";
+
+const std::string two_head_job =
+    "HEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,5\nGOTO/20,0,-10\n"
+    "HEAD/2\nTURRET/4,4\nSPINDL/RPM,800,CLW\nFEDRAT/0.1,MMPR\nRAPID\nGOTO/-10,0,5\nGOTO/-10,0,-3\n"
+    "PARTNO LATE\nFINI\n";
+
+std::string file_of(const std::string& cl, const machine& m, const std::string& name, const std::string& tag) {
+  const test::posted p = test::post_in_fresh_dir(cl, m, "sequence-" + tag,
+                                                 [](const diagnostic& d) { return d.level == severity::error; });
+  if (!p.ok) return "(failed)\n" + p.diagnostics;
+  const auto f = p.files.find(name);
+  return f == p.files.end() ? "(missing)" : f->second;
+}
+
+machine numbered(const std::string& name, sequence_mode mode, int n_digits = 5) {
+  machine m = load_machine(name);
+  m.program.sequence_start = 10;
+  m.program.sequence_step = 10;
+  m.program.sequence_numbers = mode;
+  m.formats['N'] = {n_digits, 0};
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("header, blocks, footer and end code are numbered in one count", "[post][sequence]") {
+  CHECK(file_of(one_head_job, numbered("fanuc-0itd-twin", sequence_mode::all), "LATE_1.nc", "all") ==
+        "%\nO1000 (LATE)\nN10 G0 G18 G21 G40 G54 G80 G99\nN20 G28 U0.\nN30 G28 W0.\nN40 T0101\n"
+        "N50 G97 S1000 M3\nN60 G99\nN70 G0 X40. Z5.\nN80 G1 Z-10. F0.2\nN90 T0121\nN100 X36.\nN110 M100\n"
+        "N120 M9\nN130 G28 U0.\nN140 G28 W0.\nN150 M5\nN160 M30\n%\n");
+}
+
+TEST_CASE("past the largest number of the N format the count starts again", "[post][sequence]") {
+  // N2: N10 ... N90, then N10 again (the Fusion posts restart past 99999 the same way).
+  CHECK(file_of(one_head_job, numbered("fanuc-0itd-twin", sequence_mode::all, 2), "LATE_1.nc", "wrap") ==
+        "%\nO1000 (LATE)\nN10 G0 G18 G21 G40 G54 G80 G99\nN20 G28 U0.\nN30 G28 W0.\nN40 T0101\n"
+        "N50 G97 S1000 M3\nN60 G99\nN70 G0 X40. Z5.\nN80 G1 Z-10. F0.2\nN90 T0121\nN10 X36.\nN20 M100\n"
+        "N30 M9\nN40 G28 U0.\nN50 G28 W0.\nN60 M5\nN70 M30\n%\n");
+}
+
+TEST_CASE("tool_change numbers only the tool calls, offset changes included", "[post][sequence]") {
+  CHECK(file_of(one_head_job, numbered("fanuc-0itd-twin", sequence_mode::tool_change), "LATE_1.nc", "tools") ==
+        "%\nO1000 (LATE)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nN10 T0101\nG97 S1000 M3\nG99\n"
+        "G0 X40. Z5.\nG1 Z-10. F0.2\nN20 T0121\nX36.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
+
+TEST_CASE("each section of a merged program counts from the start, also under a late PARTNO",
+          "[post][sequence]") {
+  CHECK(file_of(two_head_job, numbered("integrex-i200st", sequence_mode::all), "LATE.EIA", "merged") ==
+        "%\nO1000(LATE)\nG109 L1\nN10 G21\nN20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\n"
+        "N40 G0 G90 G53 X0.\nN50 G0 G90 G53 Z0.\nN60 T01 M6\nN70 G97 S1000 M203\nN80 G95\n"
+        "N90 G0 X40. Y0. Z5.\nN100 G1 Z-10. F0.2\nN110 M950\nN120 M951\nN130 M9\nN140 M5\nN150 M205\n"
+        "N160 M305\nN170 G0 G90 G53 X0.\nN180 G0 G90 G53 Z0.\nN190 M30\n"
+        "G109 L2\nN10 G21\nN20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\nN40 M950\n"
+        "N50 G0 G90 G53 X0.\nN60 G0 G90 G53 Z0.\nN70 T0404\nN80 G97 S800 M203\nN90 G95\nN100 G0 X20. Z5.\n"
+        "N110 G1 Z-3. F0.1\nN120 M951\nN130 M9\nN140 M5\nN150 M205\nN160 M305\nN170 G0 G90 G53 X0.\n"
+        "N180 G0 G90 G53 Z0.\nN190 M30\n%\n");
+}
+
+TEST_CASE("the machine file's numbering is checked at load", "[machines][sequence]") {
+  CHECK(test::machine_error_of(test::machine_head + "[program]\nsequence_start = 100000\n" + test::two_channels) ==
+        "m.toml:7:18: error: program.sequence_start must be at most 99999 (format.N 5), not 100000");
+  CHECK(test::machine_error_of(test::machine_head + "[program]\nsequence_numbers = \"some\"\n" +
+                               test::two_channels) ==
+        "m.toml:7:20: error: program.sequence_numbers must be all or tool_change, not 'some'");
+}
