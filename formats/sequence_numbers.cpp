@@ -6,11 +6,8 @@
 namespace twinpost {
 
 sequence_numbers::sequence_numbers(const program_format& p, const word_format& n)
-    : start_(p.sequence_start),
-      step_(p.sequence_step),
-      max_(std::numeric_limits<long>::max()),
-      next_(p.sequence_start),
-      on_(p.sequence_start > 0),
+    : start_(p.sequence_start), step_(p.sequence_step), max_(std::numeric_limits<long>::max()),
+      next_(p.sequence_start), on_(p.sequence_start > 0),
       every_block_(p.sequence_numbers == sequence_mode::all) {
   if (n.whole > 0 && n.whole < 18) {
     max_ = 1;

@@ -22,7 +22,7 @@ class sequence_numbers {
 
  private:
   long start_, step_, max_, next_;
-  bool on_ = false;         // numbering at all
+  bool on_ = false;           // numbering at all
   bool every_block_ = false;  // all blocks, not only restart points
 };
 

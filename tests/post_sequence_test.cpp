@@ -25,9 +25,10 @@ const std::string two_head_job =
     "HEAD/2\nTURRET/4,4\nSPINDL/RPM,800,CLW\nFEDRAT/0.1,MMPR\nRAPID\nGOTO/-10,0,5\nGOTO/-10,0,-3\n"
     "PARTNO LATE\nFINI\n";
 
-std::string file_of(const std::string& cl, const machine& m, const std::string& name, const std::string& tag) {
-  const test::posted p = test::post_in_fresh_dir(cl, m, "sequence-" + tag,
-                                                 [](const diagnostic& d) { return d.level == severity::error; });
+std::string file_of(const std::string& cl, const machine& m, const std::string& name,
+                    const std::string& tag) {
+  const test::posted p = test::post_in_fresh_dir(
+      cl, m, "sequence-" + tag, [](const diagnostic& d) { return d.level == severity::error; });
   if (!p.ok) return "(failed)\n" + p.diagnostics;
   const auto f = p.files.find(name);
   return f == p.files.end() ? "(missing)" : f->second;
@@ -60,9 +61,10 @@ TEST_CASE("past the largest number of the N format the count starts again", "[po
 }
 
 TEST_CASE("tool_change numbers only the tool calls, offset changes included", "[post][sequence]") {
-  CHECK(file_of(one_head_job, numbered("fanuc-0itd-twin", sequence_mode::tool_change), "LATE_1.nc", "tools") ==
-        "%\nO1000 (LATE)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nN10 T0101\nG97 S1000 M3\nG99\n"
-        "G0 X40. Z5.\nG1 Z-10. F0.2\nN20 T0121\nX36.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  CHECK(
+      file_of(one_head_job, numbered("fanuc-0itd-twin", sequence_mode::tool_change), "LATE_1.nc", "tools") ==
+      "%\nO1000 (LATE)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nN10 T0101\nG97 S1000 M3\nG99\n"
+      "G0 X40. Z5.\nG1 Z-10. F0.2\nN20 T0121\nX36.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
 TEST_CASE("each section of a merged program counts from the start, also under a late PARTNO",
@@ -79,7 +81,8 @@ TEST_CASE("each section of a merged program counts from the start, also under a 
 }
 
 TEST_CASE("the machine file's numbering is checked at load", "[machines][sequence]") {
-  CHECK(test::machine_error_of(test::machine_head + "[program]\nsequence_start = 100000\n" + test::two_channels) ==
+  CHECK(test::machine_error_of(test::machine_head + "[program]\nsequence_start = 100000\n" +
+                               test::two_channels) ==
         "m.toml:7:18: error: program.sequence_start must be at most 99999 (format.N 5), not 100000");
   CHECK(test::machine_error_of(test::machine_head + "[program]\nsequence_numbers = \"some\"\n" +
                                test::two_channels) ==
