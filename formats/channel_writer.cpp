@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
@@ -114,6 +115,26 @@ void channel_writer::on_wait(const wait_mark& w) {
     out_.block(m_.codes.balance_on);
 }
 
+void channel_writer::frame(const coordsys_event& c, int line) {
+  // SolidWorks CAM writes CSYS/ the 3x4 matrix of the setup's frame (rotation rows, each with
+  // its origin value) with TRNTYP/WORLD: points in the world frame. Posted as given, they are
+  // right only when that frame is the world's; any other would move every point. NX MSYS,
+  // Creo `$$-> CSYS` and CATIA's matrix describe the frame the points are already in.
+  if (c.source != "CSYS") return;
+  const std::size_t n = c.values.size();
+  bool identity = n == 12 || n == 9;
+  const std::size_t row = n == 12 ? 4 : 3;
+  for (std::size_t i = 0; identity && i < n; ++i) {
+    const std::size_t r = i / row, col = i % row;
+    const double want = col == r ? 1.0 : 0.0;  // col 3: the origin, 0
+    identity = std::abs(c.values[i] - want) <= (col == 3 ? 1e-4 : 1e-9);
+  }
+  if (!identity)
+    error(line, fmt::format("CSYS/{}: a frame moved or turned from the world frame, which twinpost does not "
+                            "apply: every point would be posted off by it (only the identity CSYS is posted)",
+                            fmt::join(c.values, ",")));
+}
+
 void channel_writer::on_event(const event& e, bool both) {
   // A HEAD/BOTH copy on a mirrored channel runs on the opposite side of the spindle centre.
   side_ = (both && x_mirror_) ? -1.0 : 1.0;
@@ -176,6 +197,8 @@ void channel_writer::on_event(const event& e, bool both) {
           axis_ = d.axis;
         } else if constexpr (std::is_same_v<T, units_event>) {
           set_units(d.units);
+        } else if constexpr (std::is_same_v<T, coordsys_event>) {
+          frame(d, e.line);
         }
         // FROM-only state, tool data, coordinate systems, comments, ends: no block.
       },

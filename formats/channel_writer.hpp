@@ -42,6 +42,8 @@ class channel_writer {
   void feed(const feed_event& f, int line);
   void tool(const tool_event& t, int line);
   void cycle_point(const vec3& p, int line);
+  /// CSYS (SolidWorks CAM): only the identity frame is posted; any other is an error.
+  void frame(const coordsys_event& c, int line);
   /// M0/M1, then the spindle and coolant blocks in force again: the stop turns them off on
   /// most lathes, and cycle start must not resume cutting with a still spindle.
   void program_stop(bool optional);

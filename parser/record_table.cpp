@@ -82,7 +82,8 @@ const event_builder::rule_index& event_builder::rules() {
               "SolidWorks CAM's flute length, for its simulation; the control uses its own tool offsets"),
       ignored("CSYS",
               "the frame the CAM gives the points in (SolidWorks CAM; Creo's `$$-> CSYS`); the points are "
-              "posted as given, in the work offset of the machine file",
+              "posted as given, in the work offset of the machine file; a SolidWorks CSYS that is not the "
+              "identity stops the post (its points would be posted in the wrong frame)",
               &b::on_coordsys),
       posted("CUTCOM", &b::on_cutcom,
              "G41/G42/G40 on the next move (left and right swap on a mirrored turret)"),

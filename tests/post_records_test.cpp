@@ -68,7 +68,7 @@ TEST_CASE("records the policy ignores change nothing in the programs", "[post][r
   CHECK(plain.files.at("W_1.nc") == plain_program);
   posted p =
       post_text(head + "INTOL/0.01\nOUTTOL/0.01\nPAINT/COLOR,186\nSET/MODE,ABSOL\nMODE/LATHE\nmode/turn\n" +
-                    cut + "REWIND/0\nFINI\n",
+                    "TRNTYP/WORLD,0,0,0\nCSYS/1.,0,0,0,0,1.,0,0,0,0,1.,0\n" + cut + "REWIND/0\nFINI\n",
                 "ignored");
   CHECK(p.ok);
   CHECK(p.diagnostics == "");
@@ -107,6 +107,22 @@ TEST_CASE("a record the post cannot carry out stops it with the reason", "[post]
     CHECK(p.diagnostics == "job.cls:6:1: error: " + word + " is not supported by the post: " + note_of(word) +
                                "\n" + word + "/1\n^\n");
   }
+}
+
+TEST_CASE("a SolidWorks CSYS other than the identity stops the post", "[post][records]") {
+  // The origin 25 mm up Z: every point would be posted 25 mm off.
+  posted moved = post_text(head + "CSYS/1.,0,0,0,0,1.,0,0,0,0,1.,25.\n" + cut + "FINI\n", "csys-moved");
+  CHECK_FALSE(moved.ok);
+  CHECK(
+      moved.diagnostics ==
+      "job.cls:6:1: error: channel 1: CSYS/1,0,0,0,0,1,0,0,0,0,1,25: a frame moved or turned from the world "
+      "frame, which twinpost does not apply: every point would be posted off by it (only the identity CSYS "
+      "is posted)\nCSYS/1.,0,0,0,0,1.,0,0,0,0,1.,25.\n^\n");
+  // Turned 90 degrees about Z.
+  posted turned = post_text(head + "CSYS/0,-1.,0,0,1.,0,0,0,0,0,1.,0\n" + cut + "FINI\n", "csys-turned");
+  CHECK_FALSE(turned.ok);
+  CHECK(turned.diagnostics.starts_with(
+      "job.cls:6:1: error: channel 1: CSYS/0,-1,0,0,1,0,0,0,0,0,1,0: a frame"));
 }
 
 TEST_CASE("an unknown word stops a post, and a permissive post warns and goes on", "[post][records]") {
