@@ -15,7 +15,7 @@ void channel_writer::append_feed(text_buffer& out) {
   // The F word is modal: formatted once per feed value, written when it changes.
   if (feed_value_ != feed_text_value_ || per_rev_ != feed_text_per_rev_) {
     feed_text_.clear();
-    append_number(feed_text_, feed_value_, {per_rev_ ? 4 : 1, m_.program.trailing_point});
+    append_number(feed_text_, feed_value_, {feed_decimals(per_rev_), m_.program.trailing_point});
     feed_text_value_ = feed_value_;
     feed_text_per_rev_ = per_rev_;
   }
@@ -27,7 +27,7 @@ void channel_writer::append_feed(text_buffer& out) {
 }
 
 void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, int line) {
-  if (!has_y_ && std::abs(y_cl * scale_) > y_tolerance)
+  if (!has_y_ && std::abs(y_cl * cl_mm_) > y_tolerance)
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
   if (rapid && !m_.codes.cutcom_on_rapid && (pending_g_ == "G41" || pending_g_ == "G42"))
@@ -108,7 +108,7 @@ void channel_writer::arc(const arc_event& a, int line) {
                             a.normal.z));
   if (plane != 18 && !has_y_)
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
-  if (!has_y_ && std::abs(a.end.y * scale_) > y_tolerance)
+  if (!has_y_ && std::abs(a.end.y * cl_mm_) > y_tolerance)
     return fail(fmt::format("Y {} on a channel without a Y axis", a.end.y));
   if (a.turns > 0) {
     // TIMES,n repeats a full circle: the move must end where it starts.
@@ -249,8 +249,8 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   for (const char* unit : {"MMPR", "IPR", "MMPM", "IPM"}) {
     if (auto f = param(unit)) {
       const bool per_rev = std::string_view(unit).back() == 'R';
-      const double value = *f * ((unit[0] == 'I') ? 25.4 : 1.0);
-      if (!fits('F', value, per_rev ? 4 : 1)) return;
+      const double value = *f * ((unit[0] == 'I') ? 25.4 : 1.0) * out_per_mm_;
+      if (!fits('F', value, feed_decimals(per_rev))) return;
       feed_value_ = value;
       feed_mode(per_rev);
     }
@@ -269,7 +269,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
       z += into * step;
       linear(false, p.x, p.y, z, line);
       linear(true, p.x, p.y, clear, line);
-      linear(true, p.x, p.y, z - into * 0.5 / scale_, line);  // back down near the last depth
+      linear(true, p.x, p.y, z - into * 0.5 / cl_mm_, line);  // back down 0.5 mm above the last depth
     }
   }
   linear(false, p.x, p.y, *bottom, line);

@@ -45,7 +45,11 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     return error(line, "spindle ORIENT/LOCK is not supported on a lathe channel yet");
   int m = s.dir == rotation::ccw ? sp.ccw : sp.cw;
   if (s.mode == spindle_mode::sfm || s.mode == spindle_mode::smm) {
-    double smm = s.mode == spindle_mode::sfm ? s.speed * 0.3048 : s.speed;
+    // G96 S is in m/min with mm output, in ft/min with inch output.
+    const bool inch = out_per_mm_ < 1;
+    const double smm = s.mode == spindle_mode::sfm ? (inch ? s.speed : s.speed * 0.3048)
+                       : inch                      ? s.speed / 0.3048
+                                                   : s.speed;
     if (!s.max_rpm && sp.max_rpm <= 0)
       return error(line, "constant surface speed needs MAXRPM (or a spindle limit in the machine)");
     double clamp = s.max_rpm ? *s.max_rpm : sp.max_rpm;
@@ -130,15 +134,16 @@ void channel_writer::program_stop(bool optional) {
 void channel_writer::feed(const feed_event& f, int line) {
   if (f.mode == feed_mode::inverse_time)
     return error(line, "inverse-time feed is not supported on a lathe channel");
-  const double value = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
-  // F is written with 4 decimals per revolution, 1 per minute (append_feed).
-  if (!fits('F', value, f.mode == feed_mode::per_rev ? 4 : 1)) return;
+  const double mm = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
+  const double value = mm * out_per_mm_;  // in the output units
+  // F is written with 4 decimals per revolution, 1 per minute in mm (append_feed).
+  if (!fits('F', value, feed_decimals(f.mode == feed_mode::per_rev))) return;
   // A feed per revolution depends on the spindle speed: only per-minute feeds are held to it.
   const double max_feed = m_.limits.max_feed;
-  if (f.mode == feed_mode::per_minute && max_feed > 0 && value > max_feed)
+  if (f.mode == feed_mode::per_minute && max_feed > 0 && mm > max_feed)
     return error(line, fmt::format("feed {} mm/min exceeds the machine's limit of {} mm/min "
                                    "(limits.max_feed)",
-                                   value, max_feed));
+                                   mm, max_feed));
   feed_value_ = value;
   feed_mode(f.mode == feed_mode::per_rev);
 }

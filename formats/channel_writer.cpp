@@ -13,7 +13,9 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
                                diagnostic_sink& diags, std::string cl_file, block_writer::framing frame)
     : m_(m), ch_(ch), diags_(diags), cl_file_(std::move(cl_file)),
       out_(path, m.program, std::move(frame), m.formats['N']) {
-  axis_style_ = {m.program.decimals_metric, m.program.trailing_point};
+  axis_style_ = {m.program.axis_decimals(), m.program.trailing_point};
+  out_per_mm_ = m.program.output_units == output_unit::inch ? 1 / 25.4 : 1.0;
+  scale_ = cl_mm_ * out_per_mm_;
   const axis_def* x = ch.axis('X');
   x_factor_ = (x && !x->diameter) ? 1.0 : 2.0;
   if (x && x->mirror) x_factor_ = -x_factor_;

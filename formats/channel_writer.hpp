@@ -2,7 +2,8 @@
 // Turns one channel's routed events into lathe NC blocks (G18, X in diameter, Z), keeping
 // that channel's modal state: tool, spindle and its mode, feed mode, motion G-code, last
 // axis words (modal suppression), cutter compensation, an active drilling cycle.
-// Lengths are written in millimetres: an inch CL is converted on the way.
+// Lengths are written in the machine file's output units (mm or inch): the CL's are converted
+// on the way.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -23,8 +24,11 @@ class channel_writer {
   channel_writer(const machine& m, const channel_def& ch, const std::string& path, diagnostic_sink& diags,
                  std::string cl_file, block_writer::framing frame = {});
 
-  /// The job's units (UNITS record); inch values are converted to mm.
-  void set_units(unit_system u) { scale_ = u == unit_system::inch ? 25.4 : 1.0; }
+  /// The job's units (UNITS record); values are converted to the program's output units.
+  void set_units(unit_system u) {
+    cl_mm_ = u == unit_system::inch ? 25.4 : 1.0;
+    scale_ = cl_mm_ * out_per_mm_;
+  }
   void on_event(const event& e, bool both);
   void on_wait(const wait_mark& w);
   /// Ends the body: coolant and spindle off are the footer's job; closes the file.
@@ -100,7 +104,11 @@ class channel_writer {
   std::string cl_file_;
   block_writer out_;
   number_style axis_style_;
-  double scale_ = 1.0;       // CL units -> mm
+  double scale_ = 1.0;       // CL units -> output units (mm or inch)
+  double cl_mm_ = 1.0;       // CL units -> mm
+  double out_per_mm_ = 1.0;  // mm -> output units (1/25.4 in inch output)
+  /// Decimals of the F word: 4 per revolution and 1 per minute in mm, 5 and 2 in inch.
+  int feed_decimals(bool per_rev) const { return (per_rev ? 4 : 1) + (out_per_mm_ < 1 ? 1 : 0); }
   double x_factor_ = 2.0;    // diameter (2) or radius (1), negative when mirrored
   double side_ = 1.0;        // -1 while a HEAD/BOTH copy runs on the opposite side
   bool x_mirror_ = false;    // the channel's X axis is mirrored (a lower turret)

@@ -75,6 +75,9 @@ struct channel_def {
 /// How the channels' programs are laid out in files.
 enum class layout_kind { split, merged_appended, merged_sections };
 
+/// The units of the program's words: millimetres (G21) or inches (G20).
+enum class output_unit { mm, inch };
+
 /// Which blocks get an N number (when program.sequence_start > 0).
 enum class sequence_mode { all, tool_change };
 
@@ -96,8 +99,14 @@ struct program_format {
   sequence_mode sequence_numbers = sequence_mode::all;
   char comment_open = '(';
   char comment_close = ')';
-  int comment_max = 0;         ///< longest comment text; 0 = unlimited
-  int decimals_metric = 3;     ///< decimals of linear axes (output is always metric)
+  int comment_max = 0;  ///< longest comment text; 0 = unlimited
+  /// Lengths and feeds in millimetres or inches (a US shop programs in inch); the header
+  /// must say the same (G21 / G20: checked at load).
+  output_unit output_units = output_unit::mm;
+  int decimals_metric = 3;  ///< decimals of linear axes in mm output
+  int decimals_inch = 4;    ///< decimals of linear axes in inch output
+  /// Decimals of linear axis words in the output units.
+  int axis_decimals() const { return output_units == output_unit::inch ? decimals_inch : decimals_metric; }
   bool trailing_point = true;  ///< "X10." for whole numbers (false: "X10")
   bool arcs_ijk = true;        ///< G2/G3 with I/K (false: R)
 };

@@ -124,11 +124,11 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   const toml::table* t = root.sub_table("program");
   if (!t) return;
   at.program = t;
-  table_reader r(
-      *t, "program", root.source(),
-      {"extension", "file_name", "program_number", "program_line", "header", "footer", "end_code",
-       "percent_lines", "section_marker", "sequence_start", "sequence_step", "sequence_numbers",
-       "comment_open", "comment_close", "comment_max", "decimals_metric", "trailing_point", "arcs_ijk"});
+  table_reader r(*t, "program", root.source(),
+                 {"extension",     "file_name",        "program_number", "program_line",   "header",
+                  "footer",        "end_code",         "percent_lines",  "section_marker", "sequence_start",
+                  "sequence_step", "sequence_numbers", "comment_open",   "comment_close",  "comment_max",
+                  "output_units",  "decimals_metric",  "decimals_inch",  "trailing_point", "arcs_ijk"});
   if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
   r.read_template("file_name", p.file_name, template_uses::file);
   if (r.read("program_number", p.program_number)) at.program_number = r.find("program_number");
@@ -148,9 +148,13 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   r.read_char("comment_open", p.comment_open, false);
   r.read_char("comment_close", p.comment_close, false);
   if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
-  if (r.read("decimals_metric", p.decimals_metric) && (p.decimals_metric < 0 || p.decimals_metric > 6))
-    r.fail(*r.find("decimals_metric"),
-           fmt::format("program.decimals_metric must be in 0..6, not {}", p.decimals_metric));
+  using unit_name = std::pair<std::string_view, output_unit>;
+  read_enum(r, "output_units",
+            std::array<unit_name, 2>{{{"mm", output_unit::mm}, {"inch", output_unit::inch}}}, p.output_units);
+  for (auto [key, decimals] : {std::pair<std::string_view, int*>{"decimals_metric", &p.decimals_metric},
+                               {"decimals_inch", &p.decimals_inch}})
+    if (r.read(key, *decimals) && (*decimals < 0 || *decimals > 6))
+      r.fail(*r.find(key), fmt::format("program.{} must be in 0..6, not {}", key, *decimals));
   r.read("trailing_point", p.trailing_point);
   r.read("arcs_ijk", p.arcs_ijk);
 }
@@ -242,24 +246,54 @@ void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   }
 }
 
+// The header tells the control the units the words are in: G20 for inch output, and never
+// the other one (a control left in G21 would read every inch value as millimetres).
+void check_units_code(const table_reader& root, const machine& m, const anchors& at) {
+  const bool inch = m.program.output_units == output_unit::inch;
+  bool says_inch = false, says_mm = false;
+  for (const std::string& block : m.program.header) {
+    std::size_t i = 0;
+    while ((i = block.find('G', i)) != std::string::npos) {
+      const std::size_t end = block.find_first_not_of("0123456789", i + 1);
+      const std::string_view word =
+          std::string_view(block).substr(i, end == std::string::npos ? end : end - i);
+      says_inch = says_inch || word == "G20";
+      says_mm = says_mm || word == "G21";
+      i = i + 1;
+    }
+  }
+  std::string why;
+  if (inch && says_mm)
+    why = "program.header writes G21 (millimetres) but program.output_units is inch";
+  else if (inch && !says_inch)
+    why = "program.output_units = inch needs G20 in program.header";
+  else if (!inch && says_inch)
+    why = "program.header writes G20 (inches) but program.output_units is mm";
+  if (why.empty()) return;
+  if (at.program && at.program->get("header")) root.fail(*at.program->get("header"), why);
+  root.fail_here(why);
+}
+
 void check_across_tables(const table_reader& root, const machine& m, const anchors& at) {
   if (const std::string why = layout_problem(m, m.layout); !why.empty()) {
     if (at.program) root.fail(*at.program, why);
     root.fail(*at.layout, why);
   }
-  // Axes are written with decimals_metric places: the control must read them all.
+  // Axes are written with decimals_metric (decimals_inch) places: the control must read them all.
+  const bool inch = m.program.output_units == output_unit::inch;
   for (char a : std::string_view("XYZIJKR")) {
     const word_format& f = m.formats[a];
-    if (f.decimals < m.program.decimals_metric) {
+    if (f.decimals < m.program.axis_decimals()) {
       const std::string message =
-          fmt::format("format.{} ({}) has fewer decimals than program.decimals_metric ({})", a, f.text(),
-                      m.program.decimals_metric);
+          fmt::format("format.{} ({}) has fewer decimals than program.{} ({})", a, f.text(),
+                      inch ? "decimals_inch" : "decimals_metric", m.program.axis_decimals());
       if (at.format && at.format->get(std::string(1, a)))
         root.fail(*at.format->get(std::string(1, a)), message);
       if (at.format) root.fail(*at.format, message);
       root.fail(*at.program, message);
     }
   }
+  check_units_code(root, m, at);
   // O0000 is not a program number; the default must fit the O format.
   const word_format& o = m.formats['O'];
   if (m.program.program_number < 1 || m.program.program_number > o.max_count(0)) {
@@ -309,7 +343,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_machine_table(root, m, at);
   read_waits(root, m.waits, at);
   read_program(root, m.program, at);
-  m.formats = default_word_formats(m.control);
+  m.formats = default_word_formats(m.control, m.program.output_units == output_unit::inch);
   read_formats(root, m.formats, at);
   read_codes(root, m.codes);
   read_limits(root, m.limits);

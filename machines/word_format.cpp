@@ -35,7 +35,7 @@ std::int64_t word_format::max_count(int written) const {
   return pow10(whole + written) - pow10(extra);
 }
 
-word_formats default_word_formats(std::string_view control) {
+word_formats default_word_formats(std::string_view control, bool inch) {
   word_formats f;
   // Fanuc 0i-TD / 31i-B, metric, increment system IS-B: axis words (X Y Z U V W, and the
   // arc words I J K R) take 8 digits with 3 decimals, +-99999.999.
@@ -52,6 +52,12 @@ word_formats default_word_formats(std::string_view control) {
   f['P'] = {8, 0};
   // O: four digits on Fanuc 0i/31i (O0001-O9999); Mazak EIA programs take up to eight.
   f['O'] = {control.starts_with("mazak") ? 8 : 4, 0};
+  if (inch) {
+    // Inch output, IS-B: lengths 0.0001 in, +-9999.9999; feeds as the public Fusion posts
+    // write them in inch (2 decimals per minute, 5 per revolution), up to 9999 in/min.
+    for (char a : std::string_view("XYZUVWIJKR")) f[a] = {4, 4};
+    f['F'] = {4, 5};
+  }
   return f;
 }
 

@@ -31,8 +31,9 @@ struct word_formats {
   word_format& operator[](char address) { return by_address[static_cast<std::size_t>(address - 'A')]; }
 };
 
-/// The defaults for `control` (the machine's control name): see docs/machines.md.
-word_formats default_word_formats(std::string_view control);
+/// The defaults for `control` (the machine's control name), in mm or `inch` output: see
+/// docs/machines.md.
+word_formats default_word_formats(std::string_view control, bool inch = false);
 
 /// Reads "5.3" or "4" into `out`; false (with `why`) when it is not digits in range.
 bool parse_word_format(std::string_view text, word_format& out, std::string& why);
