@@ -55,8 +55,6 @@ TEST_CASE("validation: keys that were read and never used are unknown now", "[ma
         "m.toml:7:1: error: unknown key 'limits.tool_change_seconds'");
   CHECK(error_of(head + "[program]\nblock_max = 128\n") ==
         "m.toml:7:1: error: unknown key 'program.block_max'");
-  CHECK(error_of(head + "[program]\ndecimals_inch = 4\n") ==
-        "m.toml:7:1: error: unknown key 'program.decimals_inch'");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nname = \"upper\"\n" + xz) ==
         "m.toml:8:1: error: unknown key 'channel.name'");
   // max_feed is used (formats/channel_words.cpp): it must be a positive rate.
