@@ -34,8 +34,8 @@ const std::string inch_program =
     "G28 U0.\nG28 W0.\nM5\nM30\n%\n";
 
 std::string program_of(const std::string& cl, const machine& m, const std::string& tag) {
-  const test::posted p = test::post_in_fresh_dir(cl, m, "units-" + tag,
-                                                 [](const diagnostic& d) { return d.level == severity::error; });
+  const test::posted p = test::post_in_fresh_dir(
+      cl, m, "units-" + tag, [](const diagnostic& d) { return d.level == severity::error; });
   if (!p.ok) return "(failed)\n" + p.diagnostics;
   const auto f = p.files.find("INCH_1.nc");
   return f == p.files.end() ? "(missing)" : f->second;
@@ -57,23 +57,24 @@ TEST_CASE("an inch CL posted in inch gives the same program as its mm twin", "[p
 
 TEST_CASE("the header must tell the control the output units", "[machines][units]") {
   const std::string channels = test::two_channels;
-  CHECK(test::machine_error_of(test::machine_head + "[program]\noutput_units = \"inch\"\nheader = [\"G0 G21\"]\n" +
-                               channels) ==
+  CHECK(test::machine_error_of(test::machine_head +
+                               "[program]\noutput_units = \"inch\"\nheader = [\"G0 G21\"]\n" + channels) ==
         "m.toml:8:10: error: program.header writes G21 (millimetres) but program.output_units is inch");
-  CHECK(test::machine_error_of(test::machine_head + "[program]\noutput_units = \"inch\"\nheader = [\"G0 G18\"]\n" +
-                               channels) ==
+  CHECK(test::machine_error_of(test::machine_head +
+                               "[program]\noutput_units = \"inch\"\nheader = [\"G0 G18\"]\n" + channels) ==
         "m.toml:8:10: error: program.output_units = inch needs G20 in program.header");
   CHECK(test::machine_error_of(test::machine_head + "[program]\nheader = [\"G20 G0\"]\n" + channels) ==
         "m.toml:7:10: error: program.header writes G20 (inches) but program.output_units is mm");
   CHECK(test::machine_error_of(test::machine_head + "[program]\noutput_units = \"feet\"\n" + channels) ==
         "m.toml:7:16: error: program.output_units must be mm or inch, not 'feet'");
   // Inch output reads its axis words with four decimals: the defaults are 4.4.
-  const machine m =
-      parse_machine(test::machine_head + "[program]\noutput_units = \"inch\"\nheader = [\"G20\"]\n" + channels, "m.toml");
+  const machine m = parse_machine(
+      test::machine_head + "[program]\noutput_units = \"inch\"\nheader = [\"G20\"]\n" + channels, "m.toml");
   CHECK(m.formats['X'].text() == "4.4");
   CHECK(m.formats['F'].text() == "4.5");
-  CHECK(test::machine_error_of(test::machine_head +
-                               "[program]\noutput_units = \"inch\"\nheader = [\"G20\"]\n[format]\nZ = \"5.3\"\n" +
-                               channels) == "m.toml:10:5: error: format.Z (5.3) has fewer decimals than "
-                                            "program.decimals_inch (4)");
+  CHECK(test::machine_error_of(
+            test::machine_head +
+            "[program]\noutput_units = \"inch\"\nheader = [\"G20\"]\n[format]\nZ = \"5.3\"\n" + channels) ==
+        "m.toml:10:5: error: format.Z (5.3) has fewer decimals than "
+        "program.decimals_inch (4)");
 }
