@@ -35,7 +35,8 @@ bool is_two_block(std::string_view form) { return form == "g76" || form == "g276
 
 bool channel_writer::spindle_ready_for_thread(std::string_view what, int line) {
   if (restart_blocks_.empty() || !last_speed_) {
-    error(line, fmt::format("{} with the spindle stopped: threading needs the spindle turning (SPINDL/RPM)", what));
+    error(line,
+          fmt::format("{} with the spindle stopped: threading needs the spindle turning (SPINDL/RPM)", what));
     return false;
   }
   if (last_speed_->mode == spindle_mode::sfm || last_speed_->mode == spindle_mode::smm) {
@@ -61,14 +62,17 @@ bool channel_writer::lathe_cycle_supported(const cycle_event& c, int line) {
   const bool thread = c.type == "THREAD";
   const std::string& form = thread ? m_.cycles.thread : m_.cycles.groove;
   if (form.empty()) {
-    error(line, fmt::format("CYCLE/{} is not supported by the post: machine '{}' names no {} cycle "
-                            "([cycles] {} in its file)",
-                            c.type, m_.name, thread ? "threading" : "grooving", thread ? "thread" : "groove"));
+    error(line,
+          fmt::format("CYCLE/{} is not supported by the post: machine '{}' names no {} cycle "
+                      "([cycles] {} in its file)",
+                      c.type, m_.name, thread ? "threading" : "grooving", thread ? "thread" : "groove"));
     return false;
   }
-  static constexpr std::string_view thread_words[] = {"LEAD",   "PITCH",  "STARTS", "DEPTH", "FIRST", "PASSES",
-                                                      "MINCUT", "FINISH", "SPRING", "ANGLE", "TAPER", "CHAMFR"};
-  static constexpr std::string_view groove_words[] = {"DEPTH", "FEDTO", "WIDTH", "ZSTEP", "RAPTO", "MMPR", "IPR"};
+  static constexpr std::string_view thread_words[] = {"LEAD",   "PITCH",  "STARTS", "DEPTH",
+                                                      "FIRST",  "PASSES", "MINCUT", "FINISH",
+                                                      "SPRING", "ANGLE",  "TAPER",  "CHAMFR"};
+  static constexpr std::string_view groove_words[] = {"DEPTH", "FEDTO", "WIDTH", "ZSTEP",
+                                                      "RAPTO", "MMPR",  "IPR"};
   const std::span<const std::string_view> known = thread ? std::span<const std::string_view>(thread_words)
                                                          : std::span<const std::string_view>(groove_words);
   const char* known_text = thread ? "LEAD or PITCH, STARTS, DEPTH, FIRST or PASSES, MINCUT, FINISH, SPRING, "
@@ -88,10 +92,10 @@ bool channel_writer::lathe_cycle_supported(const cycle_event& c, int line) {
     }
   }
   if (!c.words.empty() || !c.positional.empty()) {
-    error(line, fmt::format("CYCLE/{}: {} is not carried out by the post (it knows {}, each with its value)",
-                            c.type,
-                            c.words.empty() ? fmt::format("the value {}", c.positional.front()) : c.words.front(),
-                            known_text));
+    error(line, fmt::format(
+                    "CYCLE/{}: {} is not carried out by the post (it knows {}, each with its value)", c.type,
+                    c.words.empty() ? fmt::format("the value {}", c.positional.front()) : c.words.front(),
+                    known_text));
     return false;
   }
   return true;
@@ -140,7 +144,8 @@ thread_plan plan_thread(const cycle_event& c, double scale) {
     return fail(fmt::format("SPRING {} is not a whole number of passes in 0..98", spring));
   t.spring = static_cast<int>(spring);
   if (!(t.angle >= 0 && t.angle < 60)) return fail(fmt::format("ANGLE {} must be in 0..60 degrees", t.angle));
-  if (!(t.chamfer >= 0 && t.chamfer <= 9.9)) return fail(fmt::format("CHAMFR {} must be in 0..9.9 leads", t.chamfer));
+  if (!(t.chamfer >= 0 && t.chamfer <= 9.9))
+    return fail(fmt::format("CHAMFR {} must be in 0..9.9 leads", t.chamfer));
   if (!std::isfinite(t.taper)) return fail("TAPER must be a number");
   if (t.taper != 0 && t.starts > 1)
     return fail("a tapered thread with more than one start: shifted starts would move the cone");
@@ -184,21 +189,26 @@ void channel_writer::thread_cycle_point(const vec3& p, int line) {
   // side the tool starts on (external thread: away from the axis).
   const double x0 = pos_.x * scale_, z0 = pos_.z * scale_;
   const double xr = p.x * scale_, ze = p.z * scale_;
-  const double out = x0 >= xr + t.taper ? 1.0 : -1.0;  // outward: from the root toward the start
+  // TAPER is a change of the distance from the axis (start minus end, as Fanuc's R): on the
+  // CL side of the thread (x < 0 for a lower turret) it runs the other way in x.
+  const double side = xr < 0 ? -1.0 : 1.0;
+  const double taper_x = side * t.taper;
+  const double out = x0 >= xr + taper_x ? 1.0 : -1.0;  // outward: from the root toward the start
   const double along = ze < z0 ? -1.0 : 1.0;           // the cutting direction along Z
   if (std::abs(ze - z0) < 1e-6)
     return error(line, "CYCLE/THREAD: the thread's end Z is its start Z: a thread runs along Z");
-  if ((x0 - (xr + t.taper + out * t.height)) * out < -1e-9)
+  if ((x0 - (xr + taper_x + out * t.height)) * out < -1e-9)
     return error(line,
                  fmt::format("CYCLE/THREAD: the start X {} lies inside the thread (crest X {}): start the "
                              "cycle clear of the thread",
-                             x0 / scale_, (xr + t.taper + out * t.height) / scale_));
+                             x0 / scale_, (xr + taper_x + out * t.height) / scale_));
   const double tan_a = std::tan(t.angle * pi / 180);
   const int tool_angle = static_cast<int>(std::lround(2 * t.angle));
   if (is_two_block(form) && (!valid_tool_angle(tool_angle) || std::abs(2 * t.angle - tool_angle) > 1e-6))
-    return error(line, fmt::format("CYCLE/THREAD: ANGLE {} gives a tool angle of {} degrees; the {} P word takes "
-                                   "0, 29, 30, 55, 60 or 80",
-                                   t.angle, 2 * t.angle, form == "g76" ? "G76" : "G276"));
+    return error(line,
+                 fmt::format("CYCLE/THREAD: ANGLE {} gives a tool angle of {} degrees; the {} P word takes "
+                             "0, 29, 30, 55, 60 or 80",
+                             t.angle, 2 * t.angle, form == "g76" ? "G76" : "G276"));
   const double inv = 1.0 / scale_;  // mm back to CL units for linear() and nc_x()
   const double mirror = mirrored() ? -1.0 : 1.0;
   const bool was_per_rev = per_rev_;
@@ -236,11 +246,11 @@ void channel_writer::thread_cycle_point(const vec3& p, int line) {
       const bool increments = form == "g76";
       const std::string p1 = fmt::format("{:02}{:02}{:02}", 1 + t.spring,
                                          static_cast<int>(std::lround(t.chamfer * 10)), tool_angle);
-      out_.block(fmt::format("{} P{} Q{} R{}", g, p1, increments ? fmt::format("{}", um(t.min_cut)) : mm(t.min_cut),
-                             mm(t.finish)));
+      out_.block(fmt::format("{} P{} Q{} R{}", g, p1,
+                             increments ? fmt::format("{}", um(t.min_cut)) : mm(t.min_cut), mm(t.finish)));
       const std::string tail = increments ? fmt::format(" P{} Q{}", um(t.height), um(t.first))
                                           : fmt::format(" P{} Q{}", mm(t.height), mm(t.first));
-      if (!cycle_block(g, xr, ze, t.taper * mirror, tail)) return;
+      if (!cycle_block(g, xr, ze, taper_x * mirror, tail)) return;
       motion_g_ = -1;
       forget_axes();  // the cycle ends at its start point
       continue;
@@ -249,7 +259,7 @@ void channel_writer::thread_cycle_point(const vec3& p, int line) {
     for (const double depth : t.depths) {
       const double zk = zs + along * (depth - t.depths.front()) * tan_a;  // flank infeed
       const double x_end = xr + out * (t.height - depth);
-      const double x_start = x_end + t.taper * (ze - zk) / (ze - z0);  // on the cone, at the pass's start
+      const double x_start = x_end + taper_x * (ze - zk) / (ze - z0);  // on the cone, at the pass's start
       if (form == "g32") {
         // Rapid to the pass's start, G32 to its end, rapid out in X, rapid back in Z.
         linear(true, x_start * inv, pos_.y, zk * inv, line);
@@ -294,8 +304,8 @@ void channel_writer::groove_cycle_point(const vec3& p, int line) {
   if (width != 0 && !(step > 0))
     return error(line, "CYCLE/GROOVE: a WIDTH needs ZSTEP above 0, the distance between plunges");
   if (width != 0 && !(std::abs(width) / step <= max_passes))
-    return error(line, fmt::format("CYCLE/GROOVE: WIDTH {} in steps of {} makes more than {} plunges", width, step,
-                                   max_passes));
+    return error(line, fmt::format("CYCLE/GROOVE: WIDTH {} in steps of {} makes more than {} plunges", width,
+                                   step, max_passes));
   for (const char* unit : {"MMPR", "IPR"})
     if (auto f = param_of(c, unit)) {
       const double value = *f * (unit[0] == 'I' ? 25.4 : 1.0);
@@ -344,9 +354,10 @@ void channel_writer::thread_mode(const thread_event& t, int line) {
     return;
   }
   if (m_.cycles.thread.empty())
-    return error(line, fmt::format("THREAD/TURN is not supported by the post: machine '{}' names no threading "
-                                   "cycle ([cycles] thread in its file)",
-                                   m_.name));
+    return error(line,
+                 fmt::format("THREAD/TURN is not supported by the post: machine '{}' names no threading "
+                             "cycle ([cycles] thread in its file)",
+                             m_.name));
   if (t.starts > 1)
     return error(line, fmt::format("THREAD/TURN with STARTS {}: the CL passes cut one helix; post each start "
                                    "with CYCLE/THREAD (shifted starts) instead",
@@ -360,7 +371,8 @@ void channel_writer::thread_pass(const vec3& p, int line) {
   if (!has_y_ && std::abs(p.y * scale_) > 1e-4)
     return error(line, fmt::format("Y {} on a channel without a Y axis", p.y));
   if (!pending_g_.empty())
-    return error(line, fmt::format("{} on a threading pass: compensation cannot start on a G32 move", pending_g_));
+    return error(line,
+                 fmt::format("{} on a threading pass: compensation cannot start on a G32 move", pending_g_));
   feed_mode(true);
   arc_.clear();
   arc_ += " G32";
