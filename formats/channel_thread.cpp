@@ -50,6 +50,14 @@ bool channel_writer::spindle_ready_for_thread(std::string_view what, int line) {
   return true;
 }
 
+void channel_writer::restore_feed_mode(bool had_mode, bool per_rev) {
+  // The mode the CL set before the thread comes back; one it never set is not written.
+  if (had_mode)
+    feed_mode(per_rev);
+  else
+    per_rev_ = per_rev;
+}
+
 bool channel_writer::append_lead(text_buffer& out, double lead_mm) {
   if (!fits('F', lead_mm, 4)) return false;
   out += " F";
@@ -212,6 +220,7 @@ void channel_writer::thread_cycle_point(const vec3& p, int line) {
   const double inv = 1.0 / scale_;  // mm back to CL units for linear() and nc_x()
   const double mirror = mirrored() ? -1.0 : 1.0;
   const bool was_per_rev = per_rev_;
+  const bool had_mode = !feed_g_.empty();
   feed_mode(true);
   // A cycle block: G-code, X (diameter, mirrored as the channel is) and Z always, R when
   // not zero, the rest, then the lead.
@@ -279,7 +288,7 @@ void channel_writer::thread_cycle_point(const vec3& p, int line) {
     if (std::abs(z_now - zs) > 1e-9) linear(true, x0 * inv, pos_.y, zs * inv, line);
   }
   if (t.starts > 1) linear(true, x0 * inv, pos_.y, z0 * inv, line);
-  feed_mode(was_per_rev);
+  restore_feed_mode(had_mode, was_per_rev);
 }
 
 void channel_writer::groove_cycle_point(const vec3& p, int line) {
@@ -349,7 +358,7 @@ void channel_writer::groove_cycle_point(const vec3& p, int line) {
 
 void channel_writer::thread_mode(const thread_event& t, int line) {
   if (!t.on) {
-    if (threading_) feed_mode(thread_saved_per_rev_);
+    if (threading_) restore_feed_mode(thread_saved_mode_, thread_saved_per_rev_);
     threading_.reset();
     return;
   }
@@ -362,7 +371,7 @@ void channel_writer::thread_mode(const thread_event& t, int line) {
     return error(line, fmt::format("THREAD/TURN with STARTS {}: the CL passes cut one helix; post each start "
                                    "with CYCLE/THREAD (shifted starts) instead",
                                    t.starts));
-  if (!threading_) thread_saved_per_rev_ = per_rev_;
+  if (!threading_) thread_saved_per_rev_ = per_rev_, thread_saved_mode_ = !feed_g_.empty();
   threading_ = t;
 }
 

@@ -74,6 +74,8 @@ class channel_writer {
   bool spindle_ready_for_thread(std::string_view what, int line);
   /// Appends " F<lead>" (mm per turn, four places) to `out` after checking the format.
   bool append_lead(text_buffer& out, double lead_mm);
+  /// After a thread: the feed mode in force before it again (written only if one was).
+  void restore_feed_mode(bool had_mode, bool per_rev);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
@@ -137,6 +139,7 @@ class channel_writer {
   std::optional<cycle_event> cycle_;
   std::optional<thread_event> threading_;    ///< THREAD/TURN in force
   bool thread_saved_per_rev_ = false;        ///< the feed mode to restore at THREAD/OFF
+  bool thread_saved_mode_ = false;           ///< whether a feed mode was written before THREAD/TURN
   vec3 pos_;                                 // last CL point of this channel
   vec3 axis_{0, 0, 1};                       // tool axis, from GOTO i,j,k or TLAXIS
   std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning
