@@ -135,7 +135,8 @@ TEST_CASE("G292 boxes on the Integrex", "[post][thread]") {
   CHECK(lines_starting(b, "G292").size() == 9);
 }
 
-TEST_CASE("G276 writes P and Q in mm; G32 passes; multi-start as shifted starts", "[post][thread]") {
+TEST_CASE("G276 writes P and Q in mm, G32 writes passes, multi-start is cut as shifted starts",
+          "[post][thread]") {
   const std::string two_starts =
       "RAPID\nGOTO/13,0,5\nCYCLE/THREAD,LEAD,3,STARTS,2,DEPTH,0.9,PASSES,3\n"
       "GOTO/9.1,0,-15\nCYCLE/OFF\n";
