@@ -80,8 +80,16 @@ void channel_writer::motion(const motion_event& mv, int line) {
     case motion_kind::delta:
       if (tool_ < 0) return no_tool(line);
       if (spindle_held_) resume_spindle();
-      if (cycle_) {
+      if (cycle_ && cycle_->type == "THREAD") {
+        thread_cycle_point(mv.pos, line);
+        return;  // the control ends the cycle where it started (pos_)
+      } else if (cycle_ && cycle_->type == "GROOVE") {
+        groove_cycle_point(mv.pos, line);
+        return;
+      } else if (cycle_) {
         cycle_point(mv.pos, line);
+      } else if (threading_ && !mv.rapid) {
+        thread_pass(mv.pos, line);
       } else {
         linear(mv.rapid, mv.pos.x, mv.pos.y, mv.pos.z, line);
       }
@@ -92,6 +100,10 @@ void channel_writer::motion(const motion_event& mv, int line) {
 
 void channel_writer::arc(const arc_event& a, int line) {
   if (tool_ < 0) return no_tool(line);
+  if (threading_) {
+    pos_ = a.end;
+    return error(line, "an arc while THREAD/TURN is on: a threading pass is a straight G32 move");
+  }
   if (spindle_held_) resume_spindle();
   // The plane comes from the arc's axis: +-Z G17 (XY), +-Y G18 (ZX, the lathe's), +-X G19 (YZ).
   // In each, counter-clockwise about the positive axis is G3 (Z = X x Y, Y = Z x X, X = Y x Z).

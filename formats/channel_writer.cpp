@@ -166,10 +166,15 @@ void channel_writer::on_event(const event& e, bool both) {
           if (mirrored()) std::swap(left, right);
           pending_g_ = left ? "G41" : right ? "G42" : d.side == "OFF" ? "G40" : "";
         } else if constexpr (std::is_same_v<T, cycle_event>) {
+          // Threading and grooving go to channel_thread.cpp, before the drilling check.
           if (d.type == "OFF")
             cycle_.reset();
-          else if (d.type != "ON" && d.type != "INIT" && cycle_supported(d, e.line))
+          else if (d.type == "THREAD" || d.type == "GROOVE") {
+            if (lathe_cycle_supported(d, e.line)) cycle_ = d;
+          } else if (d.type != "ON" && d.type != "INIT" && cycle_supported(d, e.line))
             cycle_ = d;
+        } else if constexpr (std::is_same_v<T, thread_event>) {
+          thread_mode(d, e.line);
         } else if constexpr (std::is_same_v<T, delay_event>) {
           if (d.revolutions) return error(e.line, "DELAY in revolutions is not supported; give seconds");
           if (!dwell_fits(d.value)) return;

@@ -64,6 +64,29 @@ class channel_writer {
   /// True when the writer carries out every word of cycle `c`; else an error naming the first
   /// word it would drop (a tap, a bore, a retract plane, a peck of another dialect...).
   bool cycle_supported(const cycle_event& c, int line);
+  // Threading and grooving (formats/channel_thread.cpp), as the machine's [cycles] say.
+  /// True when `c` is a lathe cycle (THREAD, GROOVE) this machine writes with every word the
+  /// record gives; else an error naming the record's first word it cannot carry out.
+  bool lathe_cycle_supported(const cycle_event& c, int line);
+  /// The GOTO of a CYCLE/THREAD (the thread's end at full depth) or CYCLE/GROOVE (the groove's
+  /// first plunge on the surface); the tool starts from pos_ and ends there again.
+  void thread_cycle_point(const vec3& p, int line);
+  void groove_cycle_point(const vec3& p, int line);
+  /// THREAD/TURN and THREAD/OFF: later feed moves are synchronised passes until OFF.
+  void thread_mode(const thread_event& t, int line);
+  /// One THREAD/TURN feed move: G32 to `p` at the lead in force.
+  void thread_pass(const vec3& p, int line);
+  /// True when the spindle turns at a constant speed (threading needs it); else an error.
+  bool spindle_ready_for_thread(std::string_view what, int line);
+  /// Appends " F<lead>" (mm per turn, four places) to `out` after checking the format.
+  /// True (with the error) when a thread would be written in inch output.
+  bool inch_thread_refused(std::string_view what, int line);
+  /// `v` (in the output units) in the control's least input increment, for words read
+  /// without a point (G76 P/Q, G75 P/Q).
+  long long increments(double v) const;
+  bool append_lead(text_buffer& out, double lead_mm);
+  /// After a thread: the feed mode in force before it again (written only if one was).
+  void restore_feed_mode(bool had_mode, bool per_rev);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
@@ -129,6 +152,9 @@ class channel_writer {
   double feed_value_ = 0;
   std::string pending_g_;  // G40/G41/G42 waiting for the next move
   std::optional<cycle_event> cycle_;
+  std::optional<thread_event> threading_;    ///< THREAD/TURN in force
+  bool thread_saved_per_rev_ = false;        ///< the feed mode to restore at THREAD/OFF
+  bool thread_saved_mode_ = false;           ///< whether a feed mode was written before THREAD/TURN
   vec3 pos_;                                 // last CL point of this channel
   vec3 axis_{0, 0, 1};                       // tool axis, from GOTO i,j,k or TLAXIS
   std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning

@@ -140,6 +140,17 @@ struct control_codes {
   std::string balance_off;
 };
 
+/// The control's own lathe cycles, chosen per machine ([cycles]). Empty: the machine file names
+/// none, and a CL record that needs one stops the post at the record.
+struct machine_cycles {
+  /// Threading (CYCLE/THREAD, THREAD/TURN): "g76" (Fanuc two-block, P/Q in the least
+  /// increment), "g276" (Mazak EIA two-block, P/Q in mm), "g92" (Fanuc box per pass),
+  /// "g292" (Mazak EIA box per pass), "g32" (each pass as G0/G32 moves).
+  std::string thread;
+  /// Radial grooving (CYCLE/GROOVE): "g75" (Fanuc two-block) or "expanded" (G0/G1 plunges).
+  std::string groove;
+};
+
 /// Limits the post holds the CL data to.
 struct motion_limits {
   double max_feed = 0;  ///< highest feed per minute in mm/min; 0 = none
@@ -159,6 +170,7 @@ struct machine {
   word_formats formats;  ///< digits per address ([format]; defaults per control)
   control_codes codes;
   motion_limits limits;
+  machine_cycles cycles;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

@@ -88,6 +88,7 @@ class event_builder {
   void on_cutcom(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_cycle(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_delay(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_thread(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_load_tool(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_tool_data(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_units(const cl_record& r, int line, event_queue& out, build_issues& issues);

@@ -71,6 +71,10 @@ void event_builder::on_cycle(const cl_record& r, int line, event_queue& out, bui
   out.push_back({line, detail::read_cycle(r)});
 }
 
+void event_builder::on_thread(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  push_some(out, line, detail::read_thread(r, issues));
+}
+
 void event_builder::on_delay(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   push_some(out, line, detail::read_delay(r, issues));
 }

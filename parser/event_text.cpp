@@ -115,6 +115,14 @@ struct describe {
     if (!e.words.empty()) out.str("words", fmt::format("{}", fmt::join(e.words, ",")));
     if (!e.positional.empty()) out.nums("values", e.positional);
   }
+  void operator()(const thread_event& e) {
+    out.name = "thread";
+    out.str("mode", e.on ? "TURN" : "OFF");
+    if (e.on) {
+      out.num("lead", e.lead);
+      out.num("starts", e.starts);
+    }
+  }
   void operator()(const delay_event& e) {
     out.name = "delay";
     out.num(e.revolutions ? "revolutions" : "seconds", e.value);

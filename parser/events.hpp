@@ -96,6 +96,14 @@ struct cycle_event {
   std::vector<double> positional;
 };
 
+/// THREAD/TURN (modal threading passes) or THREAD/OFF. While on, every feed move of the
+/// channel is a spindle-synchronised threading pass with this lead (docs/records.md).
+struct thread_event {
+  bool on = true;
+  double lead = 0;  ///< distance per spindle turn, in CL units (PITCH times STARTS)
+  int starts = 1;   ///< number of thread starts (STARTS, MULTRD)
+};
+
 /// STOP (program stop) or OPSTOP (optional stop).
 struct stop_event {
   bool optional = false;
@@ -186,9 +194,9 @@ struct passthrough_event {
 
 using event_data =
     std::variant<motion_event, arc_event, tool_event, tool_data_event, spindle_event, feed_event,
-                 coolant_event, cutcom_event, cycle_event, delay_event, stop_event, aux_event, text_event,
-                 units_event, machin_event, multax_event, coordsys_event, head_event, channel_event,
-                 sync_event, tool_axis_event, comment_event, end_event, passthrough_event>;
+                 coolant_event, cutcom_event, cycle_event, thread_event, delay_event, stop_event, aux_event,
+                 text_event, units_event, machin_event, multax_event, coordsys_event, head_event,
+                 channel_event, sync_event, tool_axis_event, comment_event, end_event, passthrough_event>;
 
 /// One event with the physical line of the record it came from.
 struct event {

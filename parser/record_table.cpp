@@ -94,8 +94,9 @@ const event_builder::rule_index& event_builder::rules() {
               "the tool's geometry, for the CAM's simulation; the control uses its own tool offsets",
               &b::on_tool_data),
       posted("CYCLE", &b::on_cycle,
-             "DRILL and DEEP as G0/G1 moves along Z; any other cycle, or a cycle word those moves would "
-             "drop, stops the post at the record"),
+             "DRILL and DEEP as G0/G1 moves along Z; THREAD and GROOVE as the machine's `[cycles]` say "
+             "(G76/G276, G92/G292 or G32 passes; G75 or G0/G1 plunges), an error where it names none; any "
+             "other cycle, or a cycle word the output would drop, stops the post at the record"),
       refused("DEFSUB",
               "it starts a subprogram definition; twinpost posts no subprograms yet, and posting "
               "the body where it is defined would run it there"),
@@ -176,7 +177,10 @@ const event_builder::rule_index& event_builder::rules() {
       ignored("PAINT", "colour and speed of the CAM's display; it moves nothing"),
       posted("PARTNO", &b::on_text<text_kind::partno>,
              "the first PARTNO names the programs and their files (the {name} of the machine's templates)"),
-      refused("PITCH", "no public definition found; it may set a thread pitch the program would then lack"),
+      refused("PITCH",
+              "ICAM: threads per CL unit (or a lead per turn, MULTRD starts) for the THREAD and COUPLE "
+              "records after it; twinpost reads the lead from THREAD/TURN itself, and dropping PITCH "
+              "would cut those with a lead it never saw"),
       posted("PPRINT", &b::on_text<text_kind::pprint>,
              "a comment block, cut to the machine's comment length"),
       posted("PREFUN", &b::on_aux<true>, "`Gn` in a block of its own"),
@@ -214,9 +218,10 @@ const event_builder::rule_index& event_builder::rules() {
               "that table"),
       posted("SYNC", &b::on_sync, "a wait of the channels it names (CATIA): one wait code for all of them"),
       posted("SYNCTR", &b::on_synctr, "a wait (ICAM), numbered per channel when it gives no marker"),
-      refused("THREAD",
-              "a threading pass; twinpost posts no threading cycle yet, and a plain feed move "
-              "would cut without spindle synchronisation"),
+      posted("THREAD", &b::on_thread,
+             "THREAD/TURN,LEAD,l (or PITCH,p, STARTS,n): the feed moves after it are spindle-synchronised "
+             "passes (G32 F<lead>) until THREAD/OFF, on a machine whose `[cycles]` name a thread form; "
+             "any other THREAD, or one on a machine without, stops the post"),
       ignored("TITLES", "headings for the CL listing (APT); nothing for the control",
               &b::on_text<text_kind::other>),
       posted("TLAXIS", &b::on_tlaxis, "the tool axis of later moves and drilling cycles: no block"),

@@ -248,6 +248,60 @@ cycle_event read_cycle(const cl_record& r) {
   return e;
 }
 
+std::optional<thread_event> read_thread(const cl_record& r, build_issues& issues) {
+  // THREAD/TURN,LEAD,l (or PITCH,p with STARTS,n / MULTRD,n) starts threading passes;
+  // THREAD/OFF ends them. Every other word or number is an error: a thread cut to a lead the
+  // post guessed is scrap, and THREAD/FACE (a scroll) is not carried out.
+  auto fail = [&](std::size_t at, std::string message) {
+    issues.push_back({severity::error, at, std::move(message)});
+    return std::nullopt;
+  };
+  if (!is_word(r, 0) || !(word_is(r.args[0].word, "TURN") || word_is(r.args[0].word, "OFF")))
+    return fail(args_offset(r), fmt::format("THREAD/{} is not supported by the post: it posts THREAD/TURN "
+                                            "(with LEAD or PITCH) and THREAD/OFF",
+                                            args_text(r)));
+  thread_event e;
+  if (word_is(r.args[0].word, "OFF")) {
+    e.on = false;
+    if (r.args.size() > 1) return fail(r.args[1].offset, "THREAD/OFF takes no more arguments");
+    return e;
+  }
+  std::optional<double> lead, pitch;
+  std::optional<double> starts;
+  for (std::size_t i = 1; i < r.args.size(); ++i) {
+    const cl_arg& a = r.args[i];
+    if (a.kind == arg_kind::empty) continue;
+    const bool known = a.kind == arg_kind::word && (word_is(a.word, "LEAD") || word_is(a.word, "PITCH") ||
+                                                    word_is(a.word, "STARTS") || word_is(a.word, "MULTRD"));
+    if (!known || !is_num(r, i + 1))
+      return fail(
+          a.offset,
+          fmt::format("THREAD/TURN: {} is not carried out by the post (it knows LEAD, PITCH "
+                      "and STARTS or MULTRD, each with its value)",
+                      a.kind == arg_kind::word ? upper(a.word)
+                                               : fmt::format("the value {}", format_number(a.number))));
+    const double v = r.args[i + 1].number;
+    if (word_is(a.word, "LEAD"))
+      lead = v;
+    else if (word_is(a.word, "PITCH"))
+      pitch = v;
+    else
+      starts = v;
+    ++i;
+  }
+  if (starts && !(*starts >= 1 && *starts <= 99 && *starts == std::floor(*starts)))
+    return fail(args_offset(r), fmt::format("THREAD/TURN: STARTS {} is not a whole number of starts in 1..99",
+                                            format_number(*starts)));
+  e.starts = starts ? static_cast<int>(*starts) : 1;
+  if (lead && pitch) return fail(args_offset(r), "THREAD/TURN gives both LEAD and PITCH: give one");
+  if (!lead && !pitch) return fail(args_offset(r), "THREAD/TURN needs the lead (LEAD,l or PITCH,p)");
+  e.lead = lead ? *lead : *pitch * e.starts;
+  if (!(e.lead > 0) || !std::isfinite(e.lead))
+    return fail(args_offset(r),
+                fmt::format("THREAD/TURN: the lead {} must be above 0", format_number(e.lead)));
+  return e;
+}
+
 std::optional<delay_event> read_delay(const cl_record& r, build_issues& issues) {
   arg_use use(r);
   delay_event e;

@@ -100,7 +100,7 @@ TEST_CASE("a record the post cannot carry out stops it with the reason", "[post]
         "30\n^\n");
   // Every word the research found dropped without a word, each with its own reason.
   for (std::string word : {"CALSUB", "ROTABL", "COUPLE", "CLAMP", "NURBS", "KNOT", "CNTRL", "PITCH", "SWITCH",
-                           "THREAD", "DEFSUB", "ENDSUB", "OPSKIP", "SETSTART"}) {
+                           "DEFSUB", "ENDSUB", "OPSKIP", "SETSTART"}) {
     INFO(word);
     posted p = post_text(head + word + "/1\nFINI\n", "refused-" + word);
     CHECK_FALSE(p.ok);
@@ -140,12 +140,17 @@ TEST_CASE("an unknown word stops a post, and a permissive post warns and goes on
   REQUIRE(loose.files.count("W_1.nc") == 1);
   CHECK(loose.files.at("W_1.nc") == plain_program);
   // --permissive never makes a known record the post refuses a warning.
+  posted pitch = post_text(head + "PITCH/1.5\nFINI\n", "pitch", true);
+  CHECK_FALSE(pitch.ok);
+  CHECK(pitch.diagnostics ==
+        "job.cls:6:1: error: PITCH is not supported by the post: " + note_of("PITCH") + "\nPITCH/1.5\n^\n");
+  // A THREAD the post does not read (a lead without its word) stays an error too.
   posted thread = post_text(head + "THREAD/TURN,1.5\nFINI\n", "thread", true);
   CHECK_FALSE(thread.ok);
   CHECK(thread.diagnostics ==
-        "job.cls:6:1: error: THREAD is not supported by the post: a threading pass; "
-        "twinpost posts no threading cycle yet, and a plain feed move would cut without "
-        "spindle synchronisation\nTHREAD/TURN,1.5\n^\n");
+        "job.cls:6:13: error: THREAD/TURN: the value 1.5 is not carried out by the post (it knows LEAD, "
+        "PITCH and "
+        "STARTS or MULTRD, each with its value)\nTHREAD/TURN,1.5\n            ^\n");
 }
 
 TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "[post][records]") {

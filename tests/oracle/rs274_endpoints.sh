@@ -17,7 +17,13 @@
 #    head-1 side), X mirrored where the machine mirrors the channel, drilling cycles expanded
 #    as the CL defines them (rapid to RAPTO above the hole, feed to FEDTO or DEPTH, pecks of
 #    STEP with a rapid out to the R plane and back to 0.5 mm above the last depth, rapid
-#    out). Points that round to the NC words of the previous one (X on the program's
+#    out), threading and grooving as docs/records.md defines them (CYCLE/THREAD passes at
+#    the G76 depths, CYCLE/GROOVE plunges, THREAD/TURN feed moves as synchronised passes).
+#    A machine whose [cycles] name a control cycle rs274 cannot read (G76, G92, G75, Mazak
+#    G276/G292) is posted with its thread form set to g32 and its groove form to expanded;
+#    the Catch tests (post_thread_test) hold the cycles to that expansion. G32 is read as
+#    LinuxCNC's G33 (K = the lead), and each synchronised move must carry the CL's lead.
+#    Points that round to the NC words of the previous one (X on the program's
 #    0.001 mm grid, in diameter where the channel has it; Z on 0.001 mm) are dropped on both
 #    sides (no block is written for them); GOHOME and tool changes write G28, which is stripped, so they are
 #    not moves here either.
@@ -88,8 +94,18 @@ if "--layout" in post_args:
         program["section_marker"] = "${channel}"
 
 # --- post and parse --------------------------------------------------------------------
+post_machine = machine
+cycles = mdef.get("cycles", {})
+if cycles.get("thread", "g32") != "g32" or cycles.get("groove", "expanded") != "expanded":
+    with open(toml_path, encoding="utf-8") as f:
+        text = f.read()
+    text = re.sub(r'(?m)^thread = "[^"]*"', 'thread = "g32"', text)
+    text = re.sub(r'(?m)^groove = "[^"]*"', 'groove = "expanded"', text)
+    post_machine = os.path.join(work, "expanded-cycles.toml")
+    with open(post_machine, "w", encoding="utf-8") as f:
+        f.write(text)
 out_dir = os.path.join(work, "out")
-r = subprocess.run([twinpost, "post", job, "--machine", machine, "-o", out_dir] + post_args,
+r = subprocess.run([twinpost, "post", job, "--machine", post_machine, "-o", out_dir] + post_args,
                    capture_output=True, text=True)
 if r.returncode != 0:
     die(2, f"post failed ({r.returncode}):\n{r.stdout}{r.stderr}")
@@ -130,7 +146,7 @@ else:
 
 # --- NC to rs274 -----------------------------------------------------------------------
 DROP_BLOCK_G = {4, 10, 28, 50, 53, 92, 109}
-KEEP_G = {0, 1, 2, 3, 18, 21, 90}
+KEEP_G = {0, 1, 2, 3, 18, 21, 33, 90}
 KEEP_WORDS = set("XYZIKRF")
 word_rx = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 
@@ -149,9 +165,14 @@ def clean(lines):
         # A motion G-code in a block without axis words (the header's `G0 G90 G54 ...`)
         # would make rs274 move to where it is; twinpost writes G0/G1 on every first move.
         has_axis = any(a in "XYZ" for a, _ in codes)
+        sync = any(a == "G" and v == 32 for a, v in codes)  # Fanuc G32 -> LinuxCNC G33 K
         kept = []
         for (a, v), (_, text) in zip(codes, words):
-            if a == "G":
+            if sync and a == "G" and v == 32:
+                kept.append("G33")
+            elif sync and a == "F":
+                kept.append("K" + text)
+            elif a == "G":
                 if not has_axis and v in (0, 1, 2, 3):
                     continue
                 if v == int(v) and int(v) in KEEP_G:
@@ -168,7 +189,7 @@ def nc_moves(number, lines, diameter):
     ngc = os.path.join(work, f"channel{number}.ngc")
     canon = os.path.join(work, f"channel{number}.canon")
     with open(ngc, "w") as f:
-        f.write("G18 G21 G90 " + ("G7" if diameter else "G8") + "\n")
+        f.write("G18 G21 G90 " + ("G7" if diameter else "G8") + "\nS100 M3\n")
         f.write("\n".join(clean(lines)) + "\nM2\n")
     # rs274 keeps its tool table in $HOME/.tool.mmap, truncated at start: oracles running
     # side by side (ctest -j) would share it, so each gets its work folder as HOME.
@@ -176,12 +197,19 @@ def nc_moves(number, lines, diameter):
     r = subprocess.run(["rs274", "-g", ngc, canon], capture_output=True, text=True, env=env)
     text = open(canon).read() if os.path.exists(canon) else ""
     moves, errors = [], []
+    lead = None
     for l in text.splitlines():
+        if "START_SPEED_FEED_SYNC(" in l:
+            lead = float(ARGS.search(l).group(1).split(",")[0])
+        if "STOP_SPEED_FEED_SYNCH(" in l:
+            lead = None
         for kind in ("STRAIGHT_TRAVERSE", "STRAIGHT_FEED", "ARC_FEED"):
             if kind + "(" in l:
                 v = [float(s) for s in ARGS.search(l).group(1).split(",")]
                 if kind == "ARC_FEED":  # XZ plane: first axis Z, second axis X
                     moves.append({"kind": "arc", "x": v[1], "z": v[0], "cx": v[3], "cz": v[2], "ccw": v[4] > 0})
+                elif kind == "STRAIGHT_FEED" and lead is not None:
+                    moves.append({"kind": f"sync lead {lead:.4f}", "x": v[0], "z": v[2]})
                 else:
                     moves.append({"kind": "rapid" if kind == "STRAIGHT_TRAVERSE" else "feed", "x": v[0], "z": v[2]})
     out = (r.stdout + r.stderr).strip().splitlines()
@@ -235,6 +263,66 @@ def expand_cycle(c, x, z, line):
     emit({"kind": "feed", "x": x, "z": bottom, "line": line})
     emit({"kind": "rapid", "x": x, "z": clear, "line": line})
 
+def expand_thread(c, x0, z0, xr, ze, line):
+    # docs/records.md, CYCLE/THREAD: passes at first * sqrt(k) (at least MINCUT more), up to
+    # DEPTH - FINISH, then 1 + SPRING passes at DEPTH; each from (x0, z0), flank-shifted.
+    p = dict(c)
+    starts = int(p.get("STARTS", 1))
+    lead = (p["LEAD"] if "LEAD" in p else p["PITCH"] * starts) * scale
+    h, fin = p["DEPTH"] * scale, p.get("FINISH", 0.0) * scale
+    mincut, angle = p.get("MINCUT", 0.0) * scale, p.get("ANGLE", 0.0)
+    taper = p.get("TAPER", 0.0) * scale * (-1.0 if xr < 0 else 1.0)
+    rough = h - fin
+    first = p["FIRST"] * scale if "FIRST" in p else rough / math.sqrt(p["PASSES"])
+    depths, d, k = [], 0.0, 1
+    while d < rough - 1e-9:
+        d = min(max(first * math.sqrt(k), d + mincut), rough)
+        depths.append(d)
+        k += 1
+    depths += [h] * (1 + int(p.get("SPRING", 0)))
+    out = 1.0 if x0 >= xr + taper else -1.0
+    along = -1.0 if ze < z0 else 1.0
+    tan_a = math.tan(math.radians(angle))
+    for s in range(starts):
+        zs = z0 - along * s * lead / starts
+        if s:
+            emit({"kind": "rapid", "x": x0, "z": zs, "line": line})
+        for dep in depths:
+            zk = zs + along * (dep - depths[0]) * tan_a
+            xe = xr + out * (h - dep)
+            xs = xe + taper * (ze - zk) / (ze - z0)
+            emit({"kind": "rapid", "x": xs, "z": zk, "line": line})
+            emit({"kind": f"sync lead {lead:.4f}", "x": xe, "z": ze, "line": line})
+            emit({"kind": "rapid", "x": x0, "z": ze, "line": line})
+            emit({"kind": "rapid", "x": x0, "z": zs, "line": line})
+    if starts > 1:
+        emit({"kind": "rapid", "x": x0, "z": z0, "line": line})
+
+def expand_groove(c, x, z, line):
+    p = dict(c)
+    bottom = p["FEDTO"] * scale if "FEDTO" in p else x - (-1.0 if x < 0 else 1.0) * p["DEPTH"] * scale
+    into = -1.0 if bottom < x else 1.0
+    clear = x - into * p["RAPTO"] * scale
+    width, step = p.get("WIDTH", 0.0) * scale, p.get("ZSTEP", 0.0) * scale
+    sign = -1.0 if width < 0 else 1.0
+    zend = z - sign * abs(width)
+    zi = z
+    emit({"kind": "rapid", "x": clear, "z": z, "line": line})
+    while True:
+        last = (zi - zend) * sign <= 1e-9
+        if last:
+            zi = zend
+        emit({"kind": "rapid", "x": clear, "z": zi, "line": line})
+        emit({"kind": "feed", "x": bottom, "z": zi, "line": line})
+        emit({"kind": "rapid", "x": clear, "z": zi, "line": line})
+        if last:
+            break
+        zi -= sign * step
+    emit({"kind": "rapid", "x": clear, "z": z, "line": line})
+    return clear, z
+
+pos = (0.0, 0.0)
+thread_lead = None
 for e in events:
     kind, line = e.get("event"), e.get("line")
     if kind == "units":
@@ -254,12 +342,23 @@ for e in events:
         active = [(n, -1.0 if by_number[n]["mirror"] else 1.0)]
     elif kind == "cycle":
         cycle = None if e.get("type") in ("OFF", "ON", "INIT") else e
+    elif kind == "thread":
+        thread_lead = e.get("lead") * scale if e.get("mode") == "TURN" else None
     elif kind in ("goto", "godlta"):
         x, z = e["x"] * scale, e["z"] * scale
-        if cycle:
+        if cycle and cycle["type"] == "THREAD":
+            expand_thread(cycle, pos[0], pos[1], x, z, line)
+            continue  # the cycle ends where it started
+        elif cycle and cycle["type"] == "GROOVE":
+            pos = expand_groove(cycle, x, z, line)
+            continue
+        elif cycle:
             expand_cycle(cycle, x, z, line)
+        elif thread_lead and not e.get("rapid"):
+            emit({"kind": f"sync lead {thread_lead:.4f}", "x": x, "z": z, "line": line})
         else:
             emit({"kind": "rapid" if e.get("rapid") else "feed", "x": x, "z": z, "line": line})
+        pos = (x, z)
     elif kind == "arc":
         ccw_about_y = (e["dir"] == "ccw") == (e["j"] > 0)
         emit({"kind": "arc", "x": e["x"] * scale, "z": e["z"] * scale, "cx": e["cx"] * scale,
