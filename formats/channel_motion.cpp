@@ -80,7 +80,9 @@ void channel_writer::motion(const motion_event& mv, int line) {
     case motion_kind::delta:
       if (tool_ < 0) return no_tool(line);
       if (spindle_held_) resume_spindle();
-      if (cycle_) {
+      if (cycle_refused_) {
+        // the post has already failed at the CYCLE record
+      } else if (cycle_) {
         cycle_point(mv.pos, line);
       } else {
         linear(mv.rapid, mv.pos.x, mv.pos.y, mv.pos.z, line);

@@ -130,6 +130,26 @@ struct motion_limits {
   double max_feed = 0;  ///< highest feed per minute in mm/min; 0 = none
 };
 
+/// [cycles]: the drilling and tapping cycles the control runs itself, with their codes
+/// (docs/machines.md, "[cycles]"). Plain moves (the expanded form) are the fallback.
+struct cycle_rules {
+  std::string drill = "expanded";  ///< "canned" | "expanded"
+  std::string tap = "none";        ///< "rigid" | "floating" | "expanded" | "none" (a tap is an error)
+  std::string plane;            ///< written before a canned cycle, the header's plane after (G17); "": none
+  std::string drill_code;       ///< one feed to depth (G81; Fanuc lathe: G83 without Q)
+  std::string dwell_code;       ///< the same with a dwell P (ms) at the bottom (G82); "": expanded
+  std::string peck_code;        ///< pecks of Q with a full retract (G83); "": expanded
+  std::string chip_break_code;  ///< pecks of Q with a short retract (G73); "": expanded
+  std::string tap_code;         ///< right-hand tapping (G84, G84.2)
+  std::string tap_left_code;    ///< left-hand tapping (G84.3); "": a left-hand tap is refused
+  std::string rigid_code;       ///< before a rigid tap, with the speed (M29 S..); "": none
+  std::string cancel = "G80";
+  std::string return_initial;   ///< the return to the initial level, in the cycle block (G98); "": none
+  bool r_from_initial = false;  ///< R is the distance from the initial level (Fanuc lathe), else a Z
+  bool q_increments = false;    ///< Q in least increments without a point (Q5000 = 5 mm)
+  std::string sync_feed;        ///< expanded tapping's synchronised feed (G32); "": none
+};
+
 /// One machine and its control.
 struct machine {
   std::string name;  ///< "integrex-i200st"
@@ -144,6 +164,7 @@ struct machine {
   word_formats formats;  ///< digits per address ([format]; defaults per control)
   control_codes codes;
   motion_limits limits;
+  cycle_rules cycles;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

@@ -282,8 +282,9 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   } catch (const toml::parse_error& e) {
     detail::fail_at(source, e.source(), e.description());
   }
-  table_reader root(doc, "", source,
-                    {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits"});
+  table_reader root(
+      doc, "", source,
+      {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits", "cycles"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -294,6 +295,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_formats(root, m.formats, at);
   read_codes(root, m.codes);
   read_limits(root, m.limits);
+  detail::read_cycles(root, m.cycles);
   read_spindles(root, m.spindles);
   detail::read_channels(root, m);
   check_across_tables(root, m, at);
