@@ -28,9 +28,9 @@ void read_cycles(const table_reader& root, cycle_rules& c) {
   const toml::table* t = root.sub_table("cycles");
   if (!t) return;
   table_reader r(*t, "cycles", root.source(),
-                 {"drill", "tap", "plane", "drill_code", "dwell_code", "peck_code", "chip_break_code", "tap_code",
-                  "tap_left_code", "rigid_code", "cancel", "return_initial", "r_from_initial", "q_increments",
-                  "sync_feed"});
+                 {"drill", "tap", "plane", "drill_code", "dwell_code", "peck_code", "chip_break_code",
+                  "tap_code", "tap_left_code", "rigid_code", "cancel", "return_initial", "r_from_initial",
+                  "q_increments", "sync_feed"});
   read_choice(r, "drill", c.drill, {"canned", "expanded"});
   read_choice(r, "tap", c.tap, {"rigid", "floating", "expanded", "none"});
   for (auto [key, code] : std::array<std::pair<std::string_view, std::string*>, 11>{{

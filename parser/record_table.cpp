@@ -92,9 +92,13 @@ const event_builder::rule_index& event_builder::rules() {
       ignored("CUTTER",
               "the tool's geometry, for the CAM's simulation; the control uses its own tool offsets",
               &b::on_tool_data),
-      posted("CYCLE", &b::on_cycle,
-             "DRILL and DEEP as G0/G1 moves along Z; any other cycle, or a cycle word those moves would "
-             "drop, stops the post at the record"),
+      posted(
+          "CYCLE", &b::on_cycle,
+          "DRILL, DEEP, DEEP2 and TAP along Z on the spindle centre line: the machine's canned cycle "
+          "([cycles]: Fanuc G83/M29 G84, Mazak G81-G83/G73/G84.2 with G98) or plain moves (a tap on G32 "
+          "with the spindle reversed at the bottom); the words read as the dialect defines them (SolidWorks "
+          "FEDTO is a depth). Any other cycle, a word the post does not carry out, or a tap on a machine "
+          "without one stops the post at the record"),
       refused("DEFSUB",
               "it starts a subprogram definition; twinpost posts no subprograms yet, and posting "
               "the body where it is defined would run it there"),

@@ -35,7 +35,8 @@ std::string cycle_blocks(const std::string& cl, const machine& m, const std::str
       on = line.find("S1000 M") != std::string::npos;
       continue;
     }
-    if (line == "M9" || line.starts_with("M100") || line.starts_with("M200") || line.starts_with("M950")) break;
+    if (line == "M9" || line.starts_with("M100") || line.starts_with("M200") || line.starts_with("M950"))
+      break;
     out += line + "\n";
   }
   return out;
@@ -48,13 +49,15 @@ machine with(const std::string& name, const std::function<void(cycle_rules&)>& c
 }
 
 std::string errors_of(const std::string& cl, const machine& m, const std::string& tag) {
-  const test::posted p = test::post_in_fresh_dir(cl, m, "drill-err-" + tag,
-                                                 [](const diagnostic& d) { return d.level == severity::error; });
+  const test::posted p = test::post_in_fresh_dir(
+      cl, m, "drill-err-" + tag, [](const diagnostic& d) { return d.level == severity::error; });
   return p.ok ? "(posted)" : p.diagnostics;
 }
 
-const std::string drill = "CYCLE/DRILL,FEDTO,7.5,MMPM,120.,RAPTO,3.,RTRCTO,25.,DWELL,0\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
-const std::string dwell = "CYCLE/DRILL,FEDTO,4.,MMPM,120.,RAPTO,3.,RTRCTO,25.,DWELL,0.5\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
+const std::string drill =
+    "CYCLE/DRILL,FEDTO,7.5,MMPM,120.,RAPTO,3.,RTRCTO,25.,DWELL,0\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
+const std::string dwell =
+    "CYCLE/DRILL,FEDTO,4.,MMPM,120.,RAPTO,3.,RTRCTO,25.,DWELL,0.5\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
 const std::string deep = "CYCLE/DEEP,FEDTO,-12.,STEP,5.,RAPTO,2.,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
 const std::string deep2 =
     "CYCLE/DEEP2,FEDTO,12.,1STPECK,5.,SUBPECK,5.,MMPM,110.,RAPTO,3.,RTRCTO,25.\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
@@ -108,8 +111,7 @@ TEST_CASE("Integrex canned cycles: G81/G82/G83/G73 and G84.2 with G98 in G17", "
         "G97 S1000 M204\nG94\n");
 }
 
-TEST_CASE("a first peck other than the later ones, or no canned code, is written as moves",
-          "[post][drill]") {
+TEST_CASE("a first peck other than the later ones, or no canned code, is written as moves", "[post][drill]") {
   // One Q cannot say 6 then 2: the Integrex writes the pecks as moves too.
   CHECK(cycle_blocks(sw_head + deep2_uneven, load_machine("integrex-i200st"), "uneven") ==
         "G0 X0. Y0. Z25.\nG94\nZ10.\nZ3.\nG1 Z-3. F110.\nG0 Z-2.5\nG1 Z-5.\nG0 Z-4.5\nG1 Z-7.\nG0 Z-6.5\n"
@@ -131,7 +133,8 @@ TEST_CASE("expanded cycles: plain moves, a dwell block, and a tap on synchronise
         "G0 X0. Z25.\nZ5.\nG32 Z-12. F1.25\nM4\nG32 Z5. F1.25\nM3\nG0 Z25.\n");
   // A left-hand tap turns the other way in, and back.
   const std::string left = "UNIT/MM\nPARTNO DRL\nLOADTL/1\nSPINDL/1000,RPM,CCLW\nRAPID\nGOTO/0,0,25.\n" + tap;
-  CHECK(cycle_blocks(left, m, "e-left") == "G0 X0. Z25.\nZ5.\nG32 Z-12. F1.25\nM3\nG32 Z5. F1.25\nM4\nG0 Z25.\n");
+  CHECK(cycle_blocks(left, m, "e-left") ==
+        "G0 X0. Z25.\nZ5.\nG32 Z-12. F1.25\nM3\nG32 Z5. F1.25\nM4\nG0 Z25.\n");
 }
 
 TEST_CASE("tapping that cannot be done safely stops the post at the record", "[post][drill]") {
@@ -149,14 +152,16 @@ TEST_CASE("tapping that cannot be done safely stops the post at the record", "[p
         "job.cls:7:1: error: channel 1: CYCLE/TAP needs the pitch: PITCH or a feed per revolution (MMPR, "
         "IPR); a feed per minute would tap in step with the spindle only at one speed\n"
         "CYCLE/TAP,FEDTO,12.,MMPM,1250.,RAPTO,5.\n^\n");
-  const std::string css = "UNIT/MM\nPARTNO DRL\nLOADTL/1\nSPINDL/SMM,100,MAXRPM,2000,CLW\nRAPID\nGOTO/0,0,25.\n";
+  const std::string css =
+      "UNIT/MM\nPARTNO DRL\nLOADTL/1\nSPINDL/SMM,100,MAXRPM,2000,CLW\nRAPID\nGOTO/0,0,25.\n";
   CHECK(errors_of(css + tap, fanuc, "css") ==
         "job.cls:8:1: error: channel 1: CYCLE/TAP needs a set spindle speed (SPINDL/RPM), not constant "
         "surface speed: the tap's feed follows the spindle\nGOTO/0,0,0\n^\n");
-  CHECK(errors_of(sw_head + "CYCLE/TAP,FEDTO,12.,MMPR,1.25,RAPTO,5.,DWELL,1.\nGOTO/0,0,0\nEND\n", fanuc,
-                  "tapdwell") ==
-        "job.cls:7:1: error: channel 1: CYCLE/TAP: DWELL is not carried out by the post (it knows FEDTO, "
-        "DEPTH, RAPTO, CLEAR, PITCH, LEFT and the feed)\nCYCLE/TAP,FEDTO,12.,MMPR,1.25,RAPTO,5.,DWELL,1.\n^\n");
+  CHECK(
+      errors_of(sw_head + "CYCLE/TAP,FEDTO,12.,MMPR,1.25,RAPTO,5.,DWELL,1.\nGOTO/0,0,0\nEND\n", fanuc,
+                "tapdwell") ==
+      "job.cls:7:1: error: channel 1: CYCLE/TAP: DWELL is not carried out by the post (it knows FEDTO, "
+      "DEPTH, RAPTO, CLEAR, PITCH, LEFT and the feed)\nCYCLE/TAP,FEDTO,12.,MMPR,1.25,RAPTO,5.,DWELL,1.\n^\n");
 }
 
 TEST_CASE("dialect words: RTRCTO below RAPTO, DEEP2 without SUBPECK, RTRCTO outside SolidWorks",
@@ -172,8 +177,9 @@ TEST_CASE("dialect words: RTRCTO below RAPTO, DEEP2 without SUBPECK, RTRCTO outs
   // The same record read as generic APT: RTRCTO's meaning there is not known.
   CHECK(errors_of(sw_head + drill, fanuc, "generic-rtrcto").find("(posted)") == 0);
   const test::posted p = test::post_in_fresh_dir(
-      sw_head + drill, fanuc, "drill-forced-generic", [](const diagnostic& d) { return d.level == severity::error; },
-      {}, [](post_options& o) { o.forced_dialect = dialect::generic; });
+      sw_head + drill, fanuc, "drill-forced-generic",
+      [](const diagnostic& d) { return d.level == severity::error; }, {},
+      [](post_options& o) { o.forced_dialect = dialect::generic; });
   CHECK(p.diagnostics ==
         "job.cls:7:1: error: channel 1: CYCLE/DRILL: RTRCTO is not carried out by the post (it knows FEDTO, "
         "DEPTH, RAPTO, CLEAR, STEP and the feed; the meaning of this word is known only in the SolidWorks "
@@ -186,9 +192,13 @@ TEST_CASE("[cycles] in a machine file: the choices and the codes each needs", "[
   CHECK(m.cycles.drill == "canned");
   CHECK(m.cycles.tap == "none");
   CHECK(m.cycles.cancel == "G80");
-  auto fails = [&](const std::string& cycles) { return test::machine_error_of(base + "[cycles]\n" + cycles); };
+  auto fails = [&](const std::string& cycles) {
+    return test::machine_error_of(base + "[cycles]\n" + cycles);
+  };
   CHECK(fails("drill = \"fast\"\n") ==
         "m.toml:13:9: error: cycles.drill must be one of \"canned\", \"expanded\", not \"fast\"");
-  CHECK(fails("drill = \"canned\"\n") == "m.toml:13:9: error: cycles.drill = \"canned\" needs cycles.drill_code");
-  CHECK(fails("tap = \"expanded\"\n") == "m.toml:13:7: error: cycles.tap = \"expanded\" needs cycles.sync_feed");
+  CHECK(fails("drill = \"canned\"\n") ==
+        "m.toml:13:9: error: cycles.drill = \"canned\" needs cycles.drill_code");
+  CHECK(fails("tap = \"expanded\"\n") ==
+        "m.toml:13:7: error: cycles.tap = \"expanded\" needs cycles.sync_feed");
 }
