@@ -120,6 +120,12 @@ void channel_writer::cycle_point(const vec3& p, int line) {
                  fmt::format("CYCLE/{} with the tool axis ({}, {}, {}): only drilling along Z is written; "
                              "cross and tilted drilling is not supported yet",
                              c.type, axis_.x, axis_.y, axis_.z));
+  // On the centre line only: an axial hole off centre needs a live tool and the C axis; with
+  // the workpiece turning, the drill would cut a ring.
+  if (std::hypot(p.x, p.y) * scale_ > 1e-3)
+    return error(line, fmt::format("CYCLE/{} at X {} Y {}: off the spindle centre line; an axial hole off "
+                                   "centre needs a live tool and the C axis, which are not posted yet",
+                                   c.type, p.x, p.y));
   hole h;
   h.x = p.x;
   h.y = p.y;

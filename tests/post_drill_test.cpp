@@ -202,3 +202,20 @@ TEST_CASE("[cycles] in a machine file: the choices and the codes each needs", "[
   CHECK(fails("tap = \"expanded\"\n") ==
         "m.toml:13:7: error: cycles.tap = \"expanded\" needs cycles.sync_feed");
 }
+
+TEST_CASE("an inch tap with PITCH, an off-centre hole, a cycle code in the wait range", "[post][drill]") {
+  // Generic APT in inches: DEPTH 0.5 below the point, R plane 0.2 above, a lead of 0.05 in.
+  const std::string inch =
+      "PARTNO DRL\nUNITS/INCHES\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,1.\n"
+      "CYCLE/TAP,DEPTH,0.5,PITCH,0.05,RAPTO,0.2\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
+  CHECK(cycle_blocks(inch, load_machine("fanuc-0itd-twin"), "inch") ==
+        "G0 X0. Z25.4\nZ5.08\nG99\nM29 S1000\nG84 X0. Z-12.7 R0. F1.27\nG80\nG0 Z5.08\nG97 S1000 M3\nG98\n");
+  CHECK(errors_of(sw_head + "CYCLE/DRILL,FEDTO,5.,MMPM,100.,RAPTO,3.\nGOTO/10,0,0\nEND\n",
+                  load_machine("fanuc-0itd-twin"), "offcentre") ==
+        "job.cls:8:1: error: channel 1: CYCLE/DRILL at X 10 Y 0: off the spindle centre line; an axial hole "
+        "off centre needs a live tool and the C axis, which are not posted yet\nGOTO/10,0,0\n^\n");
+  CHECK(test::machine_error_of(test::machine_head + test::two_channels +
+                               "[cycles]\ntap = \"rigid\"\ntap_code = \"G84\"\nrigid_code = \"M101\"\n") ==
+        "m.toml:15:14: error: cycles.rigid_code M101 lies in the wait range M100-M103 ([waits]); a program "
+        "could not tell it from a wait");
+}
