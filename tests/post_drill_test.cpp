@@ -137,6 +137,12 @@ TEST_CASE("expanded cycles: plain moves, a dwell block, and a tap on synchronise
         "G0 X0. Z25.\nZ5.\nG32 Z-12. F1.25\nM3\nG32 Z5. F1.25\nM4\nG0 Z25.\n");
 }
 
+TEST_CASE("a floating tap: the canned cycle without the rigid code", "[post][drill]") {
+  const machine m = with("fanuc-0itd-twin", [](cycle_rules& c) { c.tap = "floating"; });
+  CHECK(cycle_blocks(sw_head + tap, m, "floating") ==
+        "G0 X0. Z25.\nG99\nG84 X0. Z-12. R-20. F1.25\nG80\nG0 Z25.\nG98\n");
+}
+
 TEST_CASE("tapping that cannot be done safely stops the post at the record", "[post][drill]") {
   const machine fanuc = load_machine("fanuc-0itd-twin");
   const std::string left = "UNIT/MM\nPARTNO DRL\nLOADTL/1\nSPINDL/1000,RPM,CCLW\nRAPID\nGOTO/0,0,25.\n" + tap;
