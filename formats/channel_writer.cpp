@@ -166,24 +166,25 @@ void channel_writer::on_event(const event& e, bool both) {
           if (mirrored()) std::swap(left, right);
           pending_g_ = left ? "G41" : right ? "G42" : d.side == "OFF" ? "G40" : "";
         } else if constexpr (std::is_same_v<T, cycle_event>) {
-          // Threading and grooving go to channel_thread.cpp, before the drilling check.
-          if (d.type == "OFF")
+          // Threading and grooving go to channel_thread.cpp, drilling and tapping to
+          // channel_cycles.cpp. A refused cycle has stopped the post: its points are passed
+          // over, not fed as moves.
+          if (d.type == "OFF") {
             cycle_.reset();
-          else if (d.type == "THREAD" || d.type == "GROOVE") {
-            if (lathe_cycle_supported(d, e.line)) cycle_ = d;
-          } else if (d.type != "ON" && d.type != "INIT" && cycle_supported(d, e.line))
-            cycle_ = d;
+            cycle_refused_ = false;
+          } else if (d.type != "ON" && d.type != "INIT") {
+            const bool lathe = d.type == "THREAD" || d.type == "GROOVE";
+            cycle_refused_ = !(lathe ? lathe_cycle_supported(d, e.line) : cycle_supported(d, e.line));
+            if (cycle_refused_)
+              cycle_.reset();
+            else
+              cycle_ = d;
+          }
         } else if constexpr (std::is_same_v<T, thread_event>) {
           thread_mode(d, e.line);
         } else if constexpr (std::is_same_v<T, delay_event>) {
           if (d.revolutions) return error(e.line, "DELAY in revolutions is not supported; give seconds");
-          if (!dwell_fits(d.value)) return;
-          template_args a;  // template_uses::dwell
-          a.channel = ch_.number;
-          a.seconds = d.value;
-          a.ms = static_cast<int>(std::lround(d.value * 1000));
-          std::string b = format_template(m_.codes.dwell, a);
-          if (block_fits(b)) out_.block(b);
+          write_dwell(d.value);
         } else if constexpr (std::is_same_v<T, aux_event>) {
           // The control would take a wait code for a wait, and so would the checker.
           const char address = d.prefun ? 'G' : 'M';
@@ -227,6 +228,16 @@ bool channel_writer::dwell_fits(double seconds) {
   if (std::isfinite(seconds) && std::abs(seconds) < 2.0e6) return true;
   error(line_, fmt::format("DELAY/{} is longer than any dwell the control takes", seconds));
   return false;
+}
+
+void channel_writer::write_dwell(double seconds) {
+  if (!dwell_fits(seconds)) return;
+  template_args a;  // template_uses::dwell
+  a.channel = ch_.number;
+  a.seconds = seconds;
+  a.ms = static_cast<int>(std::lround(seconds * 1000));
+  std::string b = format_template(m_.codes.dwell, a);
+  if (block_fits(b)) out_.block(b);
 }
 
 void channel_writer::finish() { out_.close(); }

@@ -45,9 +45,21 @@ class channel_writer {
   void spindle(const spindle_event& s, int line);
   void feed(const feed_event& f, int line);
   void tool(const tool_event& t, int line);
+  /// One hole of the cycle in force at CL point `p` (channel_cycles.cpp).
   void cycle_point(const vec3& p, int line);
   /// CSYS (SolidWorks CAM): only the identity frame is posted; any other is an error.
   void frame(const coordsys_event& c, int line);
+  struct hole;
+  /// Plain moves: rapid to the retract and R planes, feed (in pecks), dwell, rapid out.
+  void expanded_hole(const hole& h, int line);
+  /// The machine's canned cycle `code` ([cycles]) for a drilled hole.
+  void canned_hole(const hole& h, const std::string& code, int line);
+  /// A tap: the canned rigid or floating cycle, or synchronised feeds with the spindle reversed.
+  void tap_hole(const hole& h, int line);
+  /// The cycle block, the cancel code and the move back to the retract plane.
+  void cycle_block(const hole& h, const std::string& code, double q, double pitch, int line);
+  /// A dwell block from the machine's dwell template, if the time fits its word.
+  void write_dwell(double seconds);
   /// M0/M1, then the spindle and coolant blocks in force again: the stop turns them off on
   /// most lathes, and cycle start must not resume cutting with a still spindle.
   void program_stop(bool optional);
@@ -152,11 +164,12 @@ class channel_writer {
   double feed_value_ = 0;
   std::string pending_g_;  // G40/G41/G42 waiting for the next move
   std::optional<cycle_event> cycle_;
-  std::optional<thread_event> threading_;    ///< THREAD/TURN in force
-  bool thread_saved_per_rev_ = false;        ///< the feed mode to restore at THREAD/OFF
-  bool thread_saved_mode_ = false;           ///< whether a feed mode was written before THREAD/TURN
-  vec3 pos_;                                 // last CL point of this channel
-  vec3 axis_{0, 0, 1};                       // tool axis, from GOTO i,j,k or TLAXIS
+  std::optional<thread_event> threading_;  ///< THREAD/TURN in force
+  bool thread_saved_per_rev_ = false;      ///< the feed mode to restore at THREAD/OFF
+  bool thread_saved_mode_ = false;         ///< whether a feed mode was written before THREAD/TURN
+  bool cycle_refused_ = false;  ///< the cycle in force was refused (an error): its points write nothing
+  vec3 pos_;                    // last CL point of this channel
+  vec3 axis_{0, 0, 1};          // tool axis, from GOTO i,j,k or TLAXIS
   std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning
   /// The last SPINDL that set a speed: SPINDL/ON turns the spindle on again with it (APT: the
   /// last speed, mode and direction), also after SPINDL/OFF.

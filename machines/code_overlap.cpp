@@ -130,6 +130,23 @@ void control_codes_of(overlap_finder& f, const control_codes& c, const toml::tab
   f.blocks("codes.coolant_air", c.coolant_air, t, "coolant_air");
 }
 
+void cycle_codes(overlap_finder& f, const cycle_rules& c, const toml::table* t) {
+  const std::pair<std::string_view, const std::string*> fixed[] = {
+      {"plane", &c.plane},
+      {"drill_code", &c.drill_code},
+      {"dwell_code", &c.dwell_code},
+      {"peck_code", &c.peck_code},
+      {"chip_break_code", &c.chip_break_code},
+      {"tap_code", &c.tap_code},
+      {"tap_left_code", &c.tap_left_code},
+      {"rigid_code", &c.rigid_code},
+      {"cancel", &c.cancel},
+      {"return_initial", &c.return_initial},
+      {"sync_feed", &c.sync_feed},
+  };
+  for (const auto& [key, text] : fixed) f.block(fmt::format("cycles.{}", key), *text, key_of(t, key), t);
+}
+
 void spindle_codes(overlap_finder& f, const spindle_def& s, const toml::table& t) {
   const std::string what = fmt::format("spindle '{}':", s.name);
   f.m_code(what + " cw", s.cw, t.get("cw"), &t);
@@ -159,6 +176,7 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
   overlap_finder f(m, waits ? static_cast<const toml::node&>(*waits) : root.table());
   program_codes(f, m.program, root.sub_table("program"));
   control_codes_of(f, m.codes, root.sub_table("codes"));
+  cycle_codes(f, m.cycles, root.sub_table("cycles"));
   const std::vector<const toml::table*> spindles = root.tables("spindle");
   for (std::size_t i = 0; i < m.spindles.size() && i < spindles.size(); ++i)
     spindle_codes(f, m.spindles[i], *spindles[i]);

@@ -140,20 +140,37 @@ struct control_codes {
   std::string balance_off;
 };
 
-/// The control's own lathe cycles, chosen per machine ([cycles]). Empty: the machine file names
-/// none, and a CL record that needs one stops the post at the record.
-struct machine_cycles {
-  /// Threading (CYCLE/THREAD, THREAD/TURN): "g76" (Fanuc two-block, P/Q in the least
-  /// increment), "g276" (Mazak EIA two-block, P/Q in mm), "g92" (Fanuc box per pass),
-  /// "g292" (Mazak EIA box per pass), "g32" (each pass as G0/G32 moves).
-  std::string thread;
-  /// Radial grooving (CYCLE/GROOVE): "g75" (Fanuc two-block) or "expanded" (G0/G1 plunges).
-  std::string groove;
-};
-
 /// Limits the post holds the CL data to.
 struct motion_limits {
   double max_feed = 0;  ///< highest feed per minute in mm/min; 0 = none
+};
+
+/// [cycles]: the drilling and tapping cycles the control runs itself, with their codes
+/// (docs/machines.md, "[cycles]"). Plain moves (the expanded form) are the fallback.
+struct cycle_rules {
+  std::string drill = "expanded";  ///< "canned" | "expanded"
+  std::string tap = "none";        ///< "rigid" | "floating" | "expanded" | "none" (a tap is an error)
+  std::string plane;            ///< written before a canned cycle, the header's plane after (G17); "": none
+  std::string drill_code;       ///< one feed to depth (G81; Fanuc lathe: G83 without Q)
+  std::string dwell_code;       ///< the same with a dwell P (ms) at the bottom (G82); "": expanded
+  std::string peck_code;        ///< pecks of Q with a full retract (G83); "": expanded
+  std::string chip_break_code;  ///< pecks of Q with a short retract (G73); "": expanded
+  std::string tap_code;         ///< right-hand tapping (G84, G84.2)
+  std::string tap_left_code;    ///< left-hand tapping (G84.3); "": a left-hand tap is refused
+  std::string rigid_code;       ///< before a rigid tap, with the speed (M29 S..); "": none
+  std::string cancel = "G80";
+  std::string return_initial;   ///< the return to the initial level, in the cycle block (G98); "": none
+  bool r_from_initial = false;  ///< R is the distance from the initial level (Fanuc lathe), else a Z
+  bool q_increments = false;    ///< Q in least increments without a point (Q5000 = 5 mm)
+  std::string sync_feed;        ///< expanded tapping's synchronised feed (G32); "": none
+  /// Threading (CYCLE/THREAD, THREAD/TURN): "g76" (Fanuc two-block, P/Q in the least
+  /// increment), "g276" (Mazak EIA two-block, P/Q in mm), "g92" (Fanuc box per pass),
+  /// "g292" (Mazak EIA box per pass), "g32" (each pass as G0/G32 moves); "": a thread is
+  /// an error at its record.
+  std::string thread;
+  /// Radial grooving (CYCLE/GROOVE): "g75" (Fanuc two-block) or "expanded" (G0/G1 plunges);
+  /// "": a groove is an error at its record.
+  std::string groove;
 };
 
 /// One machine and its control.
@@ -170,7 +187,7 @@ struct machine {
   word_formats formats;  ///< digits per address ([format]; defaults per control)
   control_codes codes;
   motion_limits limits;
-  machine_cycles cycles;
+  cycle_rules cycles;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

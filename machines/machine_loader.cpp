@@ -231,22 +231,6 @@ void read_limits(const table_reader& root, motion_limits& l) {
 }
 
 // [cycles]: which of the control's own cycles the post writes (docs/machines.md).
-void read_cycles(const table_reader& root, machine_cycles& c) {
-  const toml::table* t = root.sub_table("cycles");
-  if (!t) return;
-  table_reader r(*t, "cycles", root.source(), {"thread", "groove"});
-  static constexpr std::string_view thread_forms[] = {"g76", "g276", "g92", "g292", "g32"};
-  static constexpr std::string_view groove_forms[] = {"g75", "expanded"};
-  auto read_form = [&](std::string_view key, std::string& out, std::span<const std::string_view> forms) {
-    if (!r.read(key, out)) return;
-    if (std::find(forms.begin(), forms.end(), out) != forms.end()) return;
-    r.fail(*r.find(key),
-           fmt::format("{} must be one of {}, not '{}'", r.key_path(key), fmt::join(forms, ", "), out));
-  };
-  read_form("thread", c.thread, thread_forms);
-  read_form("groove", c.groove, groove_forms);
-}
-
 void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   for (const toml::table* t : root.tables("spindle")) {
     table_reader r(*t, "spindle", root.source(), {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm"});
@@ -367,7 +351,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_formats(root, m.formats, at);
   read_codes(root, m.codes);
   read_limits(root, m.limits);
-  read_cycles(root, m.cycles);
+  detail::read_cycles(root, m.cycles);
   read_spindles(root, m.spindles);
   detail::read_channels(root, m);
   check_across_tables(root, m, at);

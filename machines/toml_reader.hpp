@@ -16,7 +16,8 @@
 
 namespace twinpost {
 struct machine;
-}
+struct cycle_rules;
+}  // namespace twinpost
 
 namespace twinpost::detail {
 
@@ -90,6 +91,9 @@ class table_reader {
 /// channels name), checks numbers and heads across channels, and sorts them by number.
 /// Lives in machine_channels.cpp.
 void read_channels(const table_reader& root, machine& m);
+
+/// Reads [cycles] (machine_cycles.cpp): the kinds and codes of drilling and tapping cycles.
+void read_cycles(const table_reader& root, cycle_rules& c);
 
 /// Throws at the first value of the file (in file order) that names a wait code of `m`
 /// outside [waits]: spindle codes, [codes], program blocks, tool calls; a default the file

@@ -29,4 +29,13 @@ std::optional<dialect> dialect_from_name(std::string_view name) {
 
 bool circle_is_ccw(dialect d) { return d != dialect::nx && d != dialect::makino; }
 
+cycle_word_meaning cycle_meaning(dialect d) {
+  // SolidWorks CAM: holes at z = 0 drilled with `CYCLE/DRILL,FEDTO,7.85788,...,RAPTO,3.,
+  // RTRCTO,25.,DWELL,0` after a rapid to z = 25 (the shared SolidWorks CL files): FEDTO is a
+  // depth, RAPTO and RTRCTO heights above the hole's top. The other dialects keep FEDTO as a
+  // Z, and their RTRCTO, DWELL and pecks stay errors until a source says what they mean.
+  if (d == dialect::solidworks) return {true, true, true, true};
+  return {};
+}
+
 }  // namespace twinpost

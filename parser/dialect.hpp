@@ -38,4 +38,22 @@ std::optional<dialect> dialect_from_name(std::string_view name);
 /// SolidWorks CAM, CATIA and generic APT; NX and Makino-style files move clockwise.
 bool circle_is_ccw(dialect d);
 
+/// What a dialect's CYCLE words mean, where they differ between CAM systems (docs/records.md,
+/// "Cycle words", with the source of each). A word whose meaning is not known for the dialect
+/// stops the post at the CYCLE record.
+struct cycle_word_meaning {
+  /// FEDTO,d: a positive depth below the hole's top (the GOTO point), not an absolute Z.
+  bool fedto_is_depth = false;
+  /// RTRCTO,h: the retract (initial) plane h above the hole's top, where the tool waits
+  /// before and returns after each hole; false: RTRCTO is not known in this dialect.
+  bool rtrcto_above_top = false;
+  /// DWELL,t: seconds at the bottom of the hole (0: none).
+  bool dwell_seconds = false;
+  /// DEEP2 with 1STPECK,a,SUBPECK,b: chip-breaking pecks, a first, then b.
+  bool first_and_later_pecks = false;
+};
+
+/// The meaning of the cycle words in dialect `d`.
+cycle_word_meaning cycle_meaning(dialect d);
+
 }  // namespace twinpost

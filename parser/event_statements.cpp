@@ -68,7 +68,9 @@ void event_builder::on_cutcom(const cl_record& r, int line, event_queue& out, bu
 }
 
 void event_builder::on_cycle(const cl_record& r, int line, event_queue& out, build_issues&) {
-  out.push_back({line, detail::read_cycle(r)});
+  cycle_event c = detail::read_cycle(r);
+  c.meaning = cycle_meaning(dialect_);
+  out.push_back({line, std::move(c)});
 }
 
 void event_builder::on_thread(const cl_record& r, int line, event_queue& out, build_issues& issues) {

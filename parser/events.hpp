@@ -9,6 +9,8 @@
 #include <variant>
 #include <vector>
 
+#include "parser/dialect.hpp"
+
 namespace twinpost {
 
 struct vec3 {
@@ -94,6 +96,7 @@ struct cycle_event {
   std::vector<std::pair<std::string, double>> params;
   std::vector<std::string> words;  ///< words without a value (G98, AUTO, units)
   std::vector<double> positional;
+  cycle_word_meaning meaning;  ///< what the words mean in the job's dialect
 };
 
 /// THREAD/TURN (modal threading passes) or THREAD/OFF. While on, every feed move of the

@@ -94,9 +94,12 @@ const event_builder::rule_index& event_builder::rules() {
               "the tool's geometry, for the CAM's simulation; the control uses its own tool offsets",
               &b::on_tool_data),
       posted("CYCLE", &b::on_cycle,
-             "DRILL and DEEP as G0/G1 moves along Z; THREAD and GROOVE as the machine's `[cycles]` say "
-             "(G76/G276, G92/G292 or G32 passes; G75 or G0/G1 plunges), an error where it names none; any "
-             "other cycle, or a cycle word the output would drop, stops the post at the record"),
+             "DRILL, DEEP, DEEP2 and TAP along Z on the spindle centre line: the machine's canned cycle "
+             "([cycles]: Fanuc G83/M29 G84, Mazak G81-G83/G73/G84.2 with G98) or plain moves (a tap on G32 "
+             "with the spindle reversed at the bottom); THREAD and GROOVE as [cycles] say (G76/G276, "
+             "G92/G292 or G32 passes; G75 or G0/G1 plunges); the words read as the dialect defines them "
+             "(SolidWorks FEDTO is a depth). Any other cycle, a word the post does not carry out, or a "
+             "cycle the machine file names no form for stops the post at the record"),
       refused("DEFSUB",
               "it starts a subprogram definition; twinpost posts no subprograms yet, and posting "
               "the body where it is defined would run it there"),

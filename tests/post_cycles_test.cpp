@@ -1,5 +1,6 @@
 // Drilling cycles in a post: what the writer carries out, and every other cycle or cycle
-// word stopped at its record (nothing silent: a tap posted as a drill breaks the tap).
+// word stopped at its record (nothing silent: a bore posted as a drill marks the bore).
+// Each cycle form on each built-in: post_drill_test.cpp.
 #include <catch2/catch.hpp>
 
 #include <string>
@@ -33,22 +34,25 @@ TEST_CASE("a drilling cycle the writer carries out is posted", "[post][cycles]")
         "(posted)");
 }
 
-TEST_CASE("tap, bore and thread cycles stop the post at the CYCLE record", "[post][cycles]") {
-  CHECK(errors_of("CYCLE/TAP,FEDTO,-12,RAPTO,3,MMPR,1.25\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "tap") ==
-        "job.cls:6:1: error: channel 1: CYCLE/TAP is not supported by the post: only DRILL and DEEP are "
-        "written (as "
-        "plain G0/G1 moves); a tapping, boring or threading cycle cannot be\n"
-        "CYCLE/TAP,FEDTO,-12,RAPTO,3,MMPR,1.25\n^\n");
-  CHECK(errors_of("CYCLE/BORE,FEDTO,-12,RAPTO,3,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "bore")
-            .starts_with("job.cls:6:1: error: channel 1: CYCLE/BORE is not supported by the post"));
+TEST_CASE("bore and ream cycles, and drill words on a thread, stop the post at the CYCLE record",
+          "[post][cycles]") {
+  // A tap is posted (post_drill_test.cpp); a bore fed and rapided like a drill marks the bore.
+  CHECK(errors_of("CYCLE/BORE,FEDTO,-12,RAPTO,3,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "bore") ==
+        "job.cls:6:1: error: channel 1: CYCLE/BORE is not supported by the post: only DRILL, DEEP, DEEP2 and "
+        "TAP are written; a boring or reaming cycle cannot be (THREAD and GROOVE go by [cycles])\n"
+        "CYCLE/BORE,FEDTO,-12,RAPTO,3,MMPR,0.1\n^\n");
+  // A thread is posted by [cycles] (post_thread_test.cpp); a drill's words on it are refused.
+  CHECK(
+      errors_of("CYCLE/THREAD,FEDTO,-12,RAPTO,3,MMPR,1.5\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "thread")
+          .starts_with("job.cls:6:1: error: channel 1: CYCLE/THREAD: FEDTO is not carried out by the post"));
 }
 
 TEST_CASE("a cycle word the writer would drop stops the post", "[post][cycles]") {
-  // A retract plane, pecks on a cycle written without them, a G98 word, a positional value.
+  // A retract plane outside SolidWorks, pecks on a cycle written without them, a positional value.
   CHECK(errors_of("CYCLE/DRILL,FEDTO,-10,RAPTO,3,RTRCTO,25,MMPR,0.1\nGOTO/0,0,0\nFINI\n", "rtrcto") ==
         "job.cls:6:1: error: channel 1: CYCLE/DRILL: RTRCTO is not carried out by the post (it knows FEDTO, "
-        "DEPTH, "
-        "RAPTO, CLEAR, STEP and the feed)\n"
+        "DEPTH, RAPTO, CLEAR, STEP and the feed; the meaning of this word is known only in the SolidWorks "
+        "dialect)\n"
         "CYCLE/DRILL,FEDTO,-10,RAPTO,3,RTRCTO,25,MMPR,0.1\n^\n");
   CHECK(errors_of("CYCLE/DRILL,FEDTO,-10,STEP,2,RAPTO,3,MMPR,0.1\nGOTO/0,0,0\nFINI\n", "step")
             .starts_with("job.cls:6:1: error: channel 1: CYCLE/DRILL: STEP is not carried out by the post"));
@@ -82,7 +86,7 @@ TEST_CASE("a peck count past any real hole stops the post instead of writing mov
           "[post][cycles]") {
   CHECK(
       errors_of("CYCLE/DEEP,FEDTO,-1e300,STEP,1,RAPTO,2,MMPR,0.1\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "pecks") ==
-      "job.cls:7:1: error: channel 1: CYCLE/DEEP: a depth of 1e+300 in pecks of STEP 1 makes more than 10000 "
+      "job.cls:7:1: error: channel 1: CYCLE/DEEP: a depth of 1e+300 in pecks of 1 makes more than 10000 "
       "pecks\n"
       "GOTO/0,0,0\n^\n");
 }

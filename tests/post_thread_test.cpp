@@ -322,7 +322,8 @@ TEST_CASE("a [cycles] form the loader does not know is an error at its key", "[p
     parse_machine(text, "m.toml");
     FAIL("loaded");
   } catch (const std::exception& e) {
-    CHECK(std::string(e.what()).find("cycles.thread must be one of g76, g276, g92, g292, g32, not 'g33'") !=
+    CHECK(std::string(e.what()).find(
+              "cycles.thread must be one of \"g76\", \"g276\", \"g92\", \"g292\", \"g32\", not \"g33\"") !=
           std::string::npos);
   }
 }

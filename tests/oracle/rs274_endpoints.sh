@@ -14,16 +14,25 @@
 #    radius, Z, and for arcs the centre and the sense) and compares them, within 0.001 mm,
 #    with the CL moves of the heads that channel serves, from `twinpost parse --json JOB`:
 #    GOTO and arc events between HEAD records (HEAD/BOTH copies go to both channels on the
-#    head-1 side), X mirrored where the machine mirrors the channel, drilling cycles expanded
-#    as the CL defines them (rapid to RAPTO above the hole, feed to FEDTO or DEPTH, pecks of
-#    STEP with a rapid out to the R plane and back to 0.5 mm above the last depth, rapid
-#    out), threading and grooving as docs/records.md defines them (CYCLE/THREAD passes at
-#    the G76 depths, CYCLE/GROOVE plunges, THREAD/TURN feed moves as synchronised passes).
-#    A machine whose [cycles] name a control cycle rs274 cannot read (G76, G92, G75, Mazak
-#    G276/G292) is posted with its thread form set to g32 and its groove form to expanded;
-#    the Catch tests (post_thread_test) hold the cycles to that expansion. G32 is read as
-#    LinuxCNC's G33 (K = the lead), and each synchronised move must carry the CL's lead.
-#    Points that round to the NC words of the previous one (X on the program's
+#    head-1 side), X mirrored where the machine mirrors the channel, drilling and tapping
+#    cycles expanded as the CL's dialect defines them (the oracle's own reading, not the
+#    post's: SolidWorks CAM, detected as the post detects it or from --dialect, gives FEDTO as
+#    a depth below the hole's top and RTRCTO as the retract plane above it; the others FEDTO
+#    as a Z): rapid to the retract plane and to RAPTO above the hole, feed to FEDTO or DEPTH,
+#    pecks of STEP (DEEP) with a rapid out to the R plane and back to 0.5 mm above the last
+#    depth, or of 1STPECK then SUBPECK (DEEP2) backing off 0.5 mm, rapid out to the retract
+#    plane; a tap feeds in and back out to the R plane. Canned cycles in the program (the
+#    codes of the machine's [cycles]) are turned into moves here by the oracle's own model of
+#    the control before rs274 reads the program: R from the initial level where
+#    r_from_initial, else a Z; Q in increments where q_increments; the same 0.5 mm peck
+#    clearances (the control's parameters); the return to the initial level; G32 is read as
+#    a feed (or as G33, below). Threading and grooving as docs/records.md defines them
+#    (CYCLE/THREAD passes at the G76 depths, CYCLE/GROOVE plunges, THREAD/TURN feed moves as
+#    synchronised passes). A machine whose [cycles] name a thread or groove cycle rs274 cannot
+#    read (G76, G92, G75, Mazak G276/G292) is posted with its thread form set to g32 and its
+#    groove form to expanded; the Catch tests (post_thread_test) hold the cycles to that
+#    expansion. G32 is read as LinuxCNC's G33 (K = the lead), and each synchronised move must
+#    carry the CL's lead. Points that round to the NC words of the previous one (X on the program's
 #    0.001 mm grid, in diameter where the channel has it; Z on 0.001 mm) are dropped on both
 #    sides (no block is written for them); GOHOME and tool changes write G28, which is stripped, so they are
 #    not moves here either.
@@ -85,6 +94,7 @@ for ch in mdef.get("channel", []):
         "x_max": x.get("max") if x else None,
     })
 by_number = {c["number"]: c for c in channels}
+cycles = mdef.get("cycles", {})
 layout = mdef.get("machine", {}).get("layout", "split")
 program = dict(mdef.get("program", {}))
 # --layout in the sample's post.args wins over the machine's; merged-sections uses `$n`.
@@ -150,8 +160,51 @@ KEEP_G = {0, 1, 2, 3, 18, 21, 33, 90}
 KEEP_WORDS = set("XYZIKRF")
 word_rx = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
 
+PECK_CLEARANCE = 0.5  # mm: the peck return and chip-break amounts the control is set to
+
+def num(text):
+    return float(text)
+
+def canned(codes, words, z_now, out):
+    # One canned drilling or tapping block of the machine's [cycles], as moves: the control's
+    # behaviour as the oracle models it (docs/machines.md, "[cycles]").
+    gs = [v for a, v in codes if a == "G"]
+    names = {k: cycles.get(k, "") for k in ("drill_code", "dwell_code", "peck_code", "chip_break_code",
+                                           "tap_code", "tap_left_code")}
+    mine = [k for k, code in names.items() if code and any(abs(g - float(code[1:])) < 1e-9 for g in gs)]
+    if not mine:
+        return False
+    w = {a: t for a, t in words}
+    has = lambda a: a in w
+    tap = any(k.startswith("tap") for k in mine)
+    x = w.get("X")
+    bottom = num(w["Z"])
+    r = num(w["R"])
+    r_z = z_now + r if cycles.get("r_from_initial", False) else r
+    q = num(w["Q"]) / (1000.0 if cycles.get("q_increments", False) else 1.0) if has("Q") else 0.0
+    chip = "chip_break_code" in mine and names["chip_break_code"] != names["peck_code"]
+    f = w.get("F")
+    into = -1.0 if bottom < r_z else 1.0
+    if x is not None:
+        out.append(f"G0 X{x}")
+    out.append(f"G0 Z{r_z:.4f}")
+    if q > 0 and not tap:
+        depth = r_z + into * q
+        while (bottom - depth) * into > 0:
+            out.append(f"G1 Z{depth:.4f} F{f}")
+            if not chip:
+                out.append(f"G0 Z{r_z:.4f}")
+            out.append(f"G0 Z{depth - into * PECK_CLEARANCE:.4f}")
+            depth += into * q
+    out.append(f"G1 Z{bottom:.4f} F{f}")
+    if tap:
+        out.append(f"G1 Z{r_z:.4f} F{f}")
+    out.append(f"G0 Z{z_now:.4f}")  # the return to the initial level
+    return True
+
 def clean(lines):
     out = []
+    z_now = 0.0
     for raw in lines:
         line = re.sub(r"\([^)]*\)", "", raw.upper()).split(";")[0].strip()
         if not line or line.startswith("%") or re.match(r"^O\d", line):
@@ -162,6 +215,11 @@ def clean(lines):
             break  # the channel's program ends here
         if any(a == "G" and int(round(v)) in DROP_BLOCK_G for a, v in codes):
             continue
+        if cycles and canned(codes, words, z_now, out):
+            continue
+        for a, v in codes:
+            if a == "Z":
+                z_now = v
         # A motion G-code in a block without axis words (the header's `G0 G90 G54 ...`)
         # would make rs274 move to where it is; twinpost writes G0/G1 on every first move.
         has_axis = any(a in "XYZ" for a, _ in codes)
@@ -242,26 +300,59 @@ def emit(move):
             m["ccw"] = move["ccw"] if sign > 0 else not move["ccw"]
         cl[ch].append(m)
 
+# The CL's dialect, as the post detects it (parser/dialect.cpp), or --dialect.
+if "--dialect" in post_args:
+    dialect = post_args[post_args.index("--dialect") + 1]
+else:
+    with open(job, "rb") as f:
+        head = f.read(64 * 1024).decode("latin-1")
+    if "Pro/CLfile" in head:
+        dialect = "creo"
+    elif "$$*CATIA0" in head or "CATIA APT" in head:
+        dialect = "catia"
+    elif "APTCL-SPEC,MAKINO" in head:
+        dialect = "makino"
+    elif "TOOL PATH/" in head:
+        dialect = "nx"
+    elif "CSI_SET_" in head or "UNIT/MM" in head or "OPFEATSTART" in head:
+        dialect = "solidworks"
+    else:
+        dialect = "generic"
+SOLIDWORKS = dialect == "solidworks"
+
 def expand_cycle(c, x, z, line):
+    # Drilling towards -Z (the tool looking down +Z), as the job's dialect defines the words.
     p = dict(c)
     clear = z + p.get("RAPTO", p.get("CLEAR", 0.0)) * scale
     if "FEDTO" in p:
-        bottom = p["FEDTO"] * scale
+        bottom = z - p["FEDTO"] * scale if SOLIDWORKS else p["FEDTO"] * scale
     elif "DEPTH" in p:
         bottom = z - p["DEPTH"] * scale
     else:
         die(1, f"CL line {line}: cycle without FEDTO or DEPTH")
+    initial = z + p["RTRCTO"] * scale if (SOLIDWORKS and "RTRCTO" in p) else clear
+    emit({"kind": "rapid", "x": x, "z": initial, "line": line})
     emit({"kind": "rapid", "x": x, "z": clear, "line": line})
-    step = p.get("STEP", 0.0) * scale
-    depth = clear
-    if step > 0 and c["type"] == "DEEP":
-        while depth - step > bottom:
-            depth -= step
-            emit({"kind": "feed", "x": x, "z": depth, "line": line})
+    first = later = 0.0
+    if c["type"] == "DEEP":
+        first = later = p.get("STEP", 0.0) * scale
+    elif c["type"] == "DEEP2":
+        later = p.get("SUBPECK", 0.0) * scale
+        first = p.get("1STPECK", later / scale) * scale
+    if c["type"] == "TAP":
+        emit({"kind": "feed", "x": x, "z": bottom, "line": line})
+        emit({"kind": "feed", "x": x, "z": clear, "line": line})
+        emit({"kind": "rapid", "x": x, "z": initial, "line": line})
+        return
+    depth = clear - first
+    while first > 0 and depth > bottom:
+        emit({"kind": "feed", "x": x, "z": depth, "line": line})
+        if c["type"] == "DEEP":
             emit({"kind": "rapid", "x": x, "z": clear, "line": line})
-            emit({"kind": "rapid", "x": x, "z": depth + 0.5, "line": line})
+        emit({"kind": "rapid", "x": x, "z": depth + 0.5, "line": line})
+        depth -= later
     emit({"kind": "feed", "x": x, "z": bottom, "line": line})
-    emit({"kind": "rapid", "x": x, "z": clear, "line": line})
+    emit({"kind": "rapid", "x": x, "z": initial, "line": line})
 
 def expand_thread(c, x0, z0, xr, ze, line):
     # docs/records.md, CYCLE/THREAD: passes at first * sqrt(k) (at least MINCUT more), up to

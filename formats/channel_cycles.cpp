@@ -1,0 +1,327 @@
+// channel_writer: drilling and tapping cycles along Z on the spindle centre line: the
+// control's canned cycle where the machine's [cycles] gives one, plain moves otherwise.
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "formats/channel_writer.hpp"
+
+namespace twinpost {
+
+namespace {
+
+std::optional<double> param(const cycle_event& c, std::string_view name) {
+  for (const auto& [k, v] : c.params)
+    if (k == name) return v;
+  return std::nullopt;
+}
+
+bool has_word(const cycle_event& c, std::string_view word) {
+  return std::find(c.words.begin(), c.words.end(), word) != c.words.end();
+}
+
+// A peck count past any real hole (a depth of 1e300 or a STEP of 1e-9) would write moves
+// without end: refused before the first move.
+constexpr double max_pecks = 10000;
+// How far above the last depth an expanded peck comes back in, and how far a chip-breaking
+// peck backs off (mm): what the canned cycles' parameters usually hold (Fanuc 5114/5115).
+constexpr double peck_clearance = 0.5;
+
+}  // namespace
+
+/// One hole of a cycle, with the dialect's meaning of the words applied: Z values in CL
+/// units along the spindle axis, `into` the direction of drilling.
+struct channel_writer::hole {
+  double x = 0, y = 0;
+  double into = -1;         // -1: drilling towards -Z
+  double clear = 0;         // the R plane (RAPTO, CLEAR above the top)
+  double initial = 0;       // the retract plane (RTRCTO above the top; else the R plane)
+  double bottom = 0;        // FEDTO or DEPTH
+  double first = 0;         // the first peck, 0 for none
+  double later = 0;         // the pecks after it
+  bool chip_break = false;  // short retracts (DEEP2) rather than out to the R plane (DEEP)
+  double dwell = 0;         // seconds at the bottom
+  double pitch = 0;         // a tap's lead (mm)
+  bool left = false;        // a left-hand tap
+};
+
+bool channel_writer::cycle_supported(const cycle_event& c, int line) {
+  // Only what the writer really does is taken; a bore, a ream or a thread written as a drill
+  // would mark the bore or break the tool, so anything else stops the post at the record.
+  const bool tap = c.type == "TAP";
+  if (c.type != "DRILL" && c.type != "DEEP" && c.type != "DEEP2" && !tap) {
+    error(line, fmt::format("CYCLE/{} is not supported by the post: only DRILL, DEEP, DEEP2 and TAP are "
+                            "written; a boring or reaming cycle cannot be (THREAD and GROOVE go by [cycles])",
+                            c.type));
+    return false;
+  }
+  const cycle_word_meaning& mean = c.meaning;
+  auto known = [&](std::string_view name) {
+    if (name == "FEDTO" || name == "DEPTH" || name == "RAPTO" || name == "CLEAR") return true;
+    if (name == "MMPR" || name == "IPR" || name == "MMPM" || name == "IPM") return true;
+    if (name == "STEP") return c.type == "DEEP";  // only DEEP is written in pecks of STEP
+    if (name == "RTRCTO") return mean.rtrcto_above_top;
+    if (name == "DWELL") return mean.dwell_seconds && (!tap || *param(c, "DWELL") == 0);
+    if (name == "1STPECK" || name == "SUBPECK") return mean.first_and_later_pecks && c.type == "DEEP2";
+    if (name == "PITCH") return tap;
+    return false;
+  };
+  const std::string_view knows = tap ? "it knows FEDTO, DEPTH, RAPTO, CLEAR, PITCH, LEFT and the feed"
+                                     : "it knows FEDTO, DEPTH, RAPTO, CLEAR, STEP and the feed";
+  for (const auto& [name, value] : c.params) {
+    if (known(name)) continue;
+    const bool dialect_word = (name == "RTRCTO" && !mean.rtrcto_above_top) ||
+                              (name == "DWELL" && !mean.dwell_seconds) ||
+                              ((name == "1STPECK" || name == "SUBPECK") && !mean.first_and_later_pecks);
+    error(line,
+          fmt::format(
+              "CYCLE/{}: {} is not carried out by the post ({}{})", c.type, name, knows,
+              dialect_word ? "; the meaning of this word is known only in the SolidWorks dialect" : ""));
+    return false;
+  }
+  for (const std::string& w : c.words) {
+    if (tap && w == "LEFT") continue;
+    error(line, fmt::format("CYCLE/{}: {} is not carried out by the post ({}, each with its value)", c.type,
+                            w, knows));
+    return false;
+  }
+  if (!c.positional.empty()) {
+    error(line, fmt::format("CYCLE/{}: the value {} is not carried out by the post ({}, each with its value)",
+                            c.type, c.positional.front(), knows));
+    return false;
+  }
+  if (c.type == "DEEP2" && !(param(c, "SUBPECK").value_or(0) > 0)) {
+    error(line, "CYCLE/DEEP2 needs SUBPECK, the depth of each peck after the first");
+    return false;
+  }
+  if (tap) {
+    if (m_.cycles.tap == "none") {
+      error(line, fmt::format("CYCLE/TAP: machine '{}' has no tapping cycle ([cycles] tap = \"none\"); a "
+                              "tap fed as a drill would break",
+                              m_.name));
+      return false;
+    }
+    if (!param(c, "PITCH") && !param(c, "MMPR") && !param(c, "IPR")) {
+      error(line,
+            "CYCLE/TAP needs the pitch: PITCH or a feed per revolution (MMPR, IPR); a feed per minute "
+            "would tap in step with the spindle only at one speed");
+      return false;
+    }
+  }
+  return true;
+}
+
+void channel_writer::cycle_point(const vec3& p, int line) {
+  const cycle_event& c = *cycle_;
+  // Only along the spindle axis: a radial or tilted tool (cross drilling with a live tool)
+  // would be fed along Z, through the side of the part.
+  if (std::abs(axis_.z) < 0.9999)
+    return error(line,
+                 fmt::format("CYCLE/{} with the tool axis ({}, {}, {}): only drilling along Z is written; "
+                             "cross and tilted drilling is not supported yet",
+                             c.type, axis_.x, axis_.y, axis_.z));
+  // On the centre line only: an axial hole off centre needs a live tool and the C axis; with
+  // the workpiece turning, the drill would cut a ring.
+  if (std::hypot(p.x, p.y) * cl_mm_ > 1e-3)
+    return error(line, fmt::format("CYCLE/{} at X {} Y {}: off the spindle centre line; an axial hole off "
+                                   "centre needs a live tool and the C axis, which are not posted yet",
+                                   c.type, p.x, p.y));
+  hole h;
+  h.x = p.x;
+  h.y = p.y;
+  h.into = axis_.z < 0 ? 1.0 : -1.0;  // the tool looks down -Z (axis +Z): it drills towards -Z
+  const double top = p.z;
+  h.clear = top - h.into * param(c, "RAPTO").value_or(param(c, "CLEAR").value_or(0));
+  const std::optional<double> fedto = param(c, "FEDTO");
+  std::optional<double> bottom;
+  if (fedto) bottom = c.meaning.fedto_is_depth ? top + h.into * *fedto : *fedto;
+  if (!bottom && param(c, "DEPTH")) bottom = top + h.into * *param(c, "DEPTH");
+  if (!bottom) return error(line, fmt::format("CYCLE/{} needs FEDTO or DEPTH", c.type));
+  h.bottom = *bottom;
+  if ((h.bottom - h.clear) * h.into <= 0)
+    return error(line,
+                 fmt::format("CYCLE/{}: the bottom Z {} is not beyond the clearance plane Z {} in the "
+                             "drilling direction: the tool would feed away from the part{}",
+                             c.type, h.bottom, h.clear,
+                             c.meaning.fedto_is_depth || !fedto ? "" : " (is FEDTO a depth in this CL?)"));
+  h.initial = h.clear;
+  if (auto r = param(c, "RTRCTO")) {
+    h.initial = top - h.into * *r;
+    if ((h.initial - h.clear) * h.into > 0)
+      return error(line, fmt::format("CYCLE/{}: RTRCTO {} lies below RAPTO: the tool would return to a plane "
+                                     "nearer the part than the one it started from",
+                                     c.type, *r));
+  }
+  h.dwell = param(c, "DWELL").value_or(0);
+  if (h.dwell < 0) return error(line, fmt::format("CYCLE/{}: DWELL {} is negative", c.type, h.dwell));
+  if (c.type == "TAP") {
+    if (inch_thread_refused("CYCLE/TAP", line)) return;
+    // The lead: PITCH, or the feed per revolution, which for a tap is the lead (mm output).
+    double pitch = param(c, "PITCH").value_or(0) * cl_mm_;
+    if (auto f = param(c, "MMPR"); f && pitch == 0) pitch = *f;
+    if (auto f = param(c, "IPR"); f && pitch == 0) pitch = *f * 25.4;
+    if (!(pitch > 0)) return error(line, fmt::format("CYCLE/TAP: the pitch {} is not a lead", pitch));
+    if (!fits('F', pitch, 4)) return;
+    h.pitch = pitch;
+    h.left = has_word(c, "LEFT") || (last_speed_ && last_speed_->dir == rotation::ccw);
+    return tap_hole(h, line);
+  }
+  for (const char* unit : {"MMPR", "IPR", "MMPM", "IPM"}) {
+    if (auto f = param(c, unit)) {
+      const bool per_rev = std::string_view(unit).back() == 'R';
+      const double value = *f * ((unit[0] == 'I') ? 25.4 : 1.0) * out_per_mm_;
+      if (!fits('F', value, feed_decimals(per_rev))) return;
+      feed_value_ = value;
+      feed_mode(per_rev);
+    }
+  }
+  if (c.type == "DEEP") {
+    h.first = h.later = param(c, "STEP").value_or(0);
+  } else if (c.type == "DEEP2") {
+    h.later = *param(c, "SUBPECK");
+    h.first = param(c, "1STPECK").value_or(h.later);
+    h.chip_break = true;
+  }
+  if (h.first < 0 || h.later < 0)
+    return error(line, fmt::format("CYCLE/{}: a peck depth is negative", c.type));
+  const double depth = std::abs(h.bottom - h.clear);
+  if (h.first > 0 && !((depth - h.first) / h.later <= max_pecks))
+    return error(line, fmt::format("CYCLE/{}: a depth of {} in pecks of {} makes more than {} pecks", c.type,
+                                   depth, h.later, max_pecks));
+  if (h.first >= depth) h.first = h.later = 0;  // one peck reaches the bottom: a plain drill
+  const cycle_rules& k = m_.cycles;
+  if (k.drill == "canned") {
+    const bool pecks = h.first > 0;
+    const std::string& code = pecks         ? (h.chip_break ? k.chip_break_code : k.peck_code)
+                              : h.dwell > 0 ? k.dwell_code
+                                            : k.drill_code;
+    // One Q for every peck and no dwell with pecks: what the control cannot do is written
+    // as moves, never approximated.
+    const bool fits_canned =
+        !code.empty() && (!pecks || (std::abs(h.first - h.later) < 1e-9 && h.dwell == 0));
+    if (fits_canned) return canned_hole(h, code, line);
+  }
+  expanded_hole(h, line);
+}
+
+void channel_writer::expanded_hole(const hole& h, int line) {
+  // Rapid to the retract plane and the R plane, feed to depth (in pecks), rapid back out to
+  // the retract plane: moves every control reads.
+  linear(true, h.x, h.y, h.initial, line);
+  if (h.initial != h.clear) linear(true, h.x, h.y, h.clear, line);
+  const double back = peck_clearance / cl_mm_;
+  if (h.first > 0) {
+    for (double z = h.clear + h.into * h.first; (h.bottom - z) * h.into > 0; z += h.into * h.later) {
+      linear(false, h.x, h.y, z, line);
+      if (!h.chip_break) linear(true, h.x, h.y, h.clear, line);
+      linear(true, h.x, h.y, z - h.into * back, line);
+    }
+  }
+  linear(false, h.x, h.y, h.bottom, line);
+  if (h.dwell > 0) write_dwell(h.dwell);
+  linear(true, h.x, h.y, h.initial, line);
+}
+
+void channel_writer::cycle_block(const hole& h, const std::string& code, double q, double pitch, int line) {
+  // [G98] G8x X.. Z<bottom> R.. [Q..] [P..] F.., then the cancel code, then the tool is
+  // written back to the retract plane: where it is whatever the control's return level.
+  const cycle_rules& k = m_.cycles;
+  const double r = k.r_from_initial ? (h.clear - h.initial) * scale_ : h.clear * scale_;
+  if (!fits('R', r, axis_style_.decimals)) return;
+  if (!k.plane.empty()) out_.block(k.plane);
+  text_buffer& b = out_.open_block();
+  word_start_ = b.size();
+  if (!k.return_initial.empty()) b += k.return_initial, b += ' ';
+  b += code;
+  axis_word(b, 'X', nc_x(h.x), last_x_, true);
+  if (has_y_) axis_word(b, 'Y', h.y * scale_, last_y_, true);
+  axis_word(b, 'Z', h.bottom * scale_, last_z_, true);
+  b += " R";
+  append_number(b, r, axis_style_);
+  if (q > 0) {
+    b += " Q";
+    if (k.q_increments)
+      append_number(b, std::round(q * scale_ * std::pow(10, axis_style_.decimals)), {0, false});
+    else
+      append_number(b, q * scale_, axis_style_);
+  }
+  if (h.dwell > 0) {
+    b += " P";
+    append_number(b, std::round(h.dwell * 1000), {0, false});
+  }
+  last_f_.clear();
+  if (pitch > 0) {
+    b += " F";
+    append_number(b, pitch, {4, m_.program.trailing_point});
+  } else {
+    append_feed(b);
+  }
+  out_.end_block();
+  word_start_ = std::string::npos;
+  out_.block(k.cancel);
+  if (!k.plane.empty()) out_.block(fmt::format("G{}", plane_));
+  motion_g_ = -1;
+  last_z_.known = false;
+  linear(true, h.x, h.y, h.initial, line);
+}
+
+void channel_writer::canned_hole(const hole& h, const std::string& code, int line) {
+  if (h.dwell > 0 && !fits('P', std::round(h.dwell * 1000), 0)) return;
+  if (h.first > 0 && !fits('Q', h.first * scale_, axis_style_.decimals)) return;
+  linear(true, h.x, h.y, h.initial, line);  // the cycle starts on the initial level
+  cycle_block(h, code, h.first, 0, line);
+}
+
+void channel_writer::tap_hole(const hole& h, int line) {
+  // A tap turns in step with the spindle all the way in and all the way out: never a rapid in
+  // the hole, never an unsynchronised feed. The spindle must turn at a set speed.
+  const cycle_rules& k = m_.cycles;
+  if (!spindle_ || !last_speed_ || restart_blocks_.empty())
+    return error(line, "CYCLE/TAP with the spindle stopped: give SPINDL/RPM,n before the tap");
+  if (last_speed_->mode != spindle_mode::rpm)
+    return error(line,
+                 "CYCLE/TAP needs a set spindle speed (SPINDL/RPM), not constant surface speed: the "
+                 "tap's feed follows the spindle");
+  if (k.tap == "expanded") {
+    // G32 in, the spindle reversed at the bottom, G32 out, the spindle forward again.
+    const bool ccw = last_speed_->dir == rotation::ccw;
+    const int forward = ccw ? spindle_->ccw : spindle_->cw;
+    const int reverse = ccw ? spindle_->cw : spindle_->ccw;
+    linear(true, h.x, h.y, h.initial, line);
+    if (h.initial != h.clear) linear(true, h.x, h.y, h.clear, line);
+    for (const auto& [z, m] : {std::pair{h.bottom, reverse}, std::pair{h.clear, forward}}) {
+      text_buffer& b = out_.open_block();
+      word_start_ = b.size();
+      b += k.sync_feed;
+      axis_word(b, 'Z', z * scale_, last_z_, true);
+      b += " F";
+      append_number(b, h.pitch, {4, m_.program.trailing_point});
+      out_.end_block();
+      word_start_ = std::string::npos;
+      out_.block(fmt::format("M{}", m));
+    }
+    motion_g_ = -1;
+    last_f_.clear();
+    if (h.initial != h.clear) linear(true, h.x, h.y, h.initial, line);
+    return;
+  }
+  const std::string& code = h.left ? k.tap_left_code : k.tap_code;
+  if (code.empty())
+    return error(line, fmt::format("CYCLE/TAP: a left-hand tap (LEFT, or the spindle turning CCLW), and "
+                                   "machine '{}' gives no left-hand tapping cycle (cycles.tap_left_code)",
+                                   m_.name));
+  const bool was_per_rev = per_rev_;
+  linear(true, h.x, h.y, h.initial, line);
+  feed_mode(true);
+  if (k.tap == "rigid" && !k.rigid_code.empty())
+    out_.block(fmt::format("{} S{}", k.rigid_code, format_nc_number(last_speed_->speed, {0, false})));
+  hole at_speed = h;
+  at_speed.dwell = 0;
+  cycle_block(at_speed, code, 0, h.pitch, line);
+  // Rigid tapping leaves the spindle in position mode: the CL's spindle again, then its feed mode.
+  if (k.tap == "rigid")
+    for (const std::string& b : restart_blocks_) out_.block(b);
+  feed_mode(was_per_rev);
+}
+
+}  // namespace twinpost
