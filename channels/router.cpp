@@ -65,6 +65,7 @@ void channel_router::route(const event& e) {
     return select({c->channel}, e.line, false);
   }
   if (const auto* s = std::get_if<sync_event>(&e.data)) return explicit_sync(*s, e.line);
+  if (const auto* t = std::get_if<transfer_event>(&e.data)) return transfer(e, *t);
   bool job_level = false;
   if (const auto* t = std::get_if<text_event>(&e.data)) job_level = t->kind == text_kind::partno;
   if (std::holds_alternative<units_event>(e.data) || std::holds_alternative<machin_event>(e.data))
@@ -177,6 +178,31 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   }
   last_sync_line_ = line;
   last_partners_ = partners;
+}
+
+void channel_router::transfer(const event& e, const transfer_event& t) {
+  const char* word = t.release ? "TRANSFER/RELEASE" : "TRANSFER/GRIP";
+  if (!m_.spindle("sub"))
+    return error(e.line, fmt::format("{}: machine '{}' has no sub spindle to take the part", word, m_.name));
+  if (m_.transfer.channel == 0)
+    return error(e.line, fmt::format("{}: machine '{}' gives no part transfer ([transfer] in its file)", word,
+                                     m_.name));
+  if (both_) select({active_.front()}, e.line, false);
+  // Every channel: both turrets (and an idle third path) leave the space between the spindles.
+  std::vector<int> all;
+  for (const channel_def& c : m_.channels) all.push_back(c.number);
+  auto send = [&](int ch, transfer_event::phase step) {
+    event copy = e;
+    copy.data = transfer_event{step, t.release};
+    sink_.on_event(ch, copy, false);
+  };
+  for (int ch : all) send(ch, transfer_event::phase::retract);
+  const std::string what = fmt::format("{} at line {}", word, e.line);
+  rendezvous(all, e.line, what, true);
+  send(m_.transfer.channel, transfer_event::phase::blocks);
+  rendezvous(all, e.line, what, true);
+  if (t.release)
+    for (int ch : all) send(ch, transfer_event::phase::on_sub);
 }
 
 int channel_router::marker_of(const sync_event& s, int ch) const {

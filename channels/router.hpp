@@ -66,6 +66,10 @@ class channel_router {
   void rendezvous(const std::vector<int>& channels, int line, const std::string& what, bool force = false,
                   wait_mark::section both = wait_mark::section::none);
   void explicit_sync(const sync_event& s, int line);
+  /// TRANSFER/GRIP or RELEASE: every channel retracts, a rendezvous of all, the machine's
+  /// transfer channel writes its blocks, a rendezvous of all; after a release every channel
+  /// works on the sub spindle.
+  void transfer(const event& e, const transfer_event& t);
   /// The mark `s` in channel `ch`: its own number, or for an ICAM marker left out the
   /// channel's last marker plus one. The router is the one owner of this numbering.
   int marker_of(const sync_event& s, int ch) const;

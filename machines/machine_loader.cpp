@@ -217,7 +217,8 @@ void read_limits(const table_reader& root, motion_limits& l) {
 
 void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   for (const toml::table* t : root.tables("spindle")) {
-    table_reader r(*t, "spindle", root.source(), {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm"});
+    table_reader r(*t, "spindle", root.source(),
+                   {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset", "reverse_z"});
     spindle_def s;
     r.require("name");
     r.read("name", s.name);
@@ -229,8 +230,25 @@ void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
     r.read("select", s.select);
     r.read_template("clamp", s.clamp, template_uses::clamp);
     read_positive(r, "max_rpm", s.max_rpm, true);
+    r.read_fixed("work_offset", s.work_offset);
+    r.read("reverse_z", s.reverse_z);
     out.push_back(std::move(s));
   }
+}
+
+void read_transfer(const table_reader& root, machine& m) {
+  const toml::table* t = root.sub_table("transfer");
+  if (!t) return;
+  table_reader r(*t, "transfer", root.source(), {"channel", "grip", "release"});
+  r.require("channel");
+  r.read("channel", m.transfer.channel);
+  if (m.transfer.channel < 1 || m.transfer.channel > static_cast<int>(m.channels.size()))
+    r.fail(*r.find("channel"), fmt::format("transfer.channel {} names no channel (the machine has {})",
+                                           m.transfer.channel, m.channels.size()));
+  if (!m.spindle("sub"))
+    r.fail(*r.find("channel"), "[transfer] needs a [[spindle]] named 'sub' to take the part");
+  r.read_fixed("grip", m.transfer.grip);
+  r.read_fixed("release", m.transfer.release);
 }
 
 void check_across_tables(const table_reader& root, const machine& m, const anchors& at) {
@@ -282,8 +300,9 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   } catch (const toml::parse_error& e) {
     detail::fail_at(source, e.source(), e.description());
   }
-  table_reader root(doc, "", source,
-                    {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits"});
+  table_reader root(
+      doc, "", source,
+      {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits", "transfer"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -296,6 +315,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_limits(root, m.limits);
   read_spindles(root, m.spindles);
   detail::read_channels(root, m);
+  read_transfer(root, m);
   check_across_tables(root, m, at);
   detail::check_code_overlaps(root, m);
   return m;
