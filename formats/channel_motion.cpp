@@ -49,6 +49,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   if (has_y_) moved = axis_word(b, 'Y', nc_y(y_cl), last_y_) || moved;
   moved = axis_word(b, 'Z', nc_z(z_cl), last_z_) || moved;
   if (moved) {
+    homed_ = false;
     pending_g_.clear();
     motion_g_ = g;
     if (!rapid && feed_value_ > 0)
@@ -182,6 +183,7 @@ void channel_writer::arc(const arc_event& a, int line) {
     error(line, "arc with no feed rate (FEDRAT) in force");
   pending_g_.clear();
   motion_g_ = g;
+  homed_ = false;
   // A full circle TIMES n: the same block n times, one turn each.
   for (int turn = 0; turn < std::max(1, a.turns); ++turn) out_.block(arc_.view().substr(1));
   pos_ = a.end;

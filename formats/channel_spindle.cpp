@@ -39,7 +39,8 @@ void channel_writer::work_on(const spindle_def& s) {
 void channel_writer::tool_data(const tool_data_event& t) {
   if (t.major != "TLDATA" || t.words.empty()) return;
   const std::string& w = t.words.front();
-  const tool_kind k = w == "MILL" ? tool_kind::mill : w == "DRILL" ? tool_kind::drill
+  const tool_kind k = w == "MILL"                                       ? tool_kind::mill
+                      : w == "DRILL"                                    ? tool_kind::drill
                       : (w == "TURN" || w == "GROOVE" || w == "THREAD") ? tool_kind::turn
                                                                         : tool_kind::unknown;
   // NX writes TLDATA before the tool call; one right after a call describes that tool.
@@ -93,8 +94,8 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   if (s.spindle == "main" || s.spindle == "sub") {
     const spindle_def* sel = m_.spindle(s.spindle);
     if (!sel)
-      return error(line, fmt::format("SPINDL/...,{}: machine '{}' has no {} spindle", upper(s.spindle), m_.name,
-                                     s.spindle));
+      return error(line, fmt::format("SPINDL/...,{}: machine '{}' has no {} spindle", upper(s.spindle),
+                                     m_.name, s.spindle));
     work_on(*sel);
     target = sel;
   } else if (s.spindle == "live") {
@@ -172,10 +173,12 @@ void channel_writer::transfer(const transfer_event& t, int line) {
   (void)line;
   switch (t.step) {
     case transfer_event::phase::retract:
-      // Out of the space between the spindles: coolant off, home X then Z.
+      // Out of the space between the spindles: coolant off, home X then Z (once: a channel
+      // already home stays there).
       if (!coolant_block_.empty()) out_.block(coolant_off_block_);
       coolant_block_.clear();
       coolant_off_block_.clear();
+      if (homed_) return;
       go_home();
       forget_axes();
       motion_g_ = -1;

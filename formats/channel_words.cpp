@@ -66,6 +66,7 @@ void channel_writer::resume_spindle(int line) {
 
 void channel_writer::go_home() {
   for (const std::string& b : m_.codes.home) out_.block(b);
+  homed_ = true;
 }
 
 void channel_writer::program_stop(bool optional) {

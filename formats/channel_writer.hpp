@@ -129,6 +129,7 @@ class channel_writer {
   enum class tool_kind : unsigned char { unknown, turn, mill, drill };
   tool_kind kind_ = tool_kind::unknown;       // of the tool in the spindle
   tool_kind next_kind_ = tool_kind::unknown;  // a TLDATA before the next tool call
+  bool homed_ = false;                        // at home: no move since the home blocks
   bool after_call_ = false;                   // the last record that wrote anything was a tool call
   int tool_line_ = 0;                         // the CL line of the last tool call
   std::string tool_word_;                     // its major word (LOADTL, TURRET ...)
