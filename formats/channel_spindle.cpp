@@ -96,8 +96,11 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     if (!sel)
       return error(line, fmt::format("SPINDL/...,{}: machine '{}' has no {} spindle", upper(s.spindle),
                                      m_.name, s.spindle));
+    // The word says where the part is; a milling tool (or a drill off the axis) still turns
+    // the live spindle, never the part against a still cutter.
     work_on(*sel);
-    target = sel;
+    target = kind_ == tool_kind::mill || kind_ == tool_kind::drill ? spindle_for_tool(s, line) : sel;
+    if (!target) return;
   } else if (s.spindle == "live") {
     if (ch_.live_spindle.empty())
       return error(line, fmt::format("SPINDL/...,LIVE: channel {} of machine '{}' has no live spindle "

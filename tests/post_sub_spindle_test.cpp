@@ -83,10 +83,10 @@ TEST_CASE("sub-spindle work on the 31i: the lower turret starts on the main spin
 TEST_CASE("an arc on the sub spindle swaps G2/G3 and negates K", "[post][sub]") {
   // The upper turret (not mirrored): the same arc on the main spindle and on the sub.
   const std::string arc = "FEDRAT/0.2,MMPR\nGOTO/20,0,-5\nCIRCLE/20,0,-8,0,1,0,3\nGOTO/23,0,-8\nFINI\n";
-  const test::posted main = post_on("PARTNO A\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,500,CLW\n" + arc,
-                                    "fanuc-0itd-twin", "arc-main");
-  const test::posted sub = post_on("PARTNO A\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,500,CLW,SUB\n" + arc,
-                                   "fanuc-0itd-twin", "arc-sub");
+  const test::posted main =
+      post_on("PARTNO A\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,500,CLW\n" + arc, "fanuc-0itd-twin", "arc-main");
+  const test::posted sub =
+      post_on("PARTNO A\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,500,CLW,SUB\n" + arc, "fanuc-0itd-twin", "arc-sub");
   CHECK(file_of(main, "A_1.nc") ==
         "%\nO1000 (A)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S500 M3\nG99\n"
         "G1 X40. Z-5. F0.2\nG3 X46. Z-8. I0. K-3.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
@@ -98,12 +98,14 @@ TEST_CASE("an arc on the sub spindle swaps G2/G3 and negates K", "[post][sub]") 
 TEST_CASE("a machine without a sub spindle refuses SPINDL/...,SUB and TRANSFER at their records",
           "[post][sub]") {
   const machine m = parse_machine(one_spindle, "one-spindle.toml");
-  const test::posted spindl = post_on("PARTNO E\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,500,CLW,SUB\nFINI\n", m, "no-sub");
+  const test::posted spindl =
+      post_on("PARTNO E\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,500,CLW,SUB\nFINI\n", m, "no-sub");
   CHECK_FALSE(spindl.ok);
   CHECK(spindl.diagnostics ==
         "job.cls:4:1: error: channel 1: SPINDL/...,SUB: machine 'one-spindle' has no sub spindle\n"
         "SPINDL/RPM,500,CLW,SUB\n^\n");
-  const test::posted transfer = post_on("PARTNO E\nHEAD/1\nTURRET/1,1\nTRANSFER/GRIP\nFINI\n", m, "no-sub-xfer");
+  const test::posted transfer =
+      post_on("PARTNO E\nHEAD/1\nTURRET/1,1\nTRANSFER/GRIP\nFINI\n", m, "no-sub-xfer");
   CHECK_FALSE(transfer.ok);
   CHECK(transfer.diagnostics ==
         "job.cls:4:1: error: TRANSFER/GRIP: machine 'one-spindle' has no sub spindle to take the part\n"
@@ -111,7 +113,8 @@ TEST_CASE("a machine without a sub spindle refuses SPINDL/...,SUB and TRANSFER a
 }
 
 TEST_CASE("TRANSFER takes GRIP or RELEASE", "[post][sub]") {
-  const test::posted p = post_on("PARTNO E\nHEAD/1\nTURRET/1,1\nTRANSFER/SUB\nFINI\n", "integrex-i200st", "bad");
+  const test::posted p =
+      post_on("PARTNO E\nHEAD/1\nTURRET/1,1\nTRANSFER/SUB\nFINI\n", "integrex-i200st", "bad");
   CHECK_FALSE(p.ok);
   CHECK(p.diagnostics == "job.cls:4:10: error: TRANSFER needs GRIP or RELEASE\nTRANSFER/SUB\n         ^\n");
 }
@@ -184,10 +187,12 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
   const test::posted p =
       post_on("PARTNO E\nHEAD/1\nLOADTL/1\nSPINDL/RPM,500,CLW\nFINI\n", "integrex-i200st", "unknown");
   CHECK_FALSE(p.ok);
-  CHECK(p.diagnostics ==
-        "job.cls:4:1: error: channel 1: SPINDL: the kind of tool 1 (LOADTL at line 3) is unknown, and channel 1 "
-        "has a workpiece spindle and a live one (live): give TLDATA/TURN, MILL or DRILL before the tool call, "
-        "or name the spindle (SPINDL/...,MAIN, SUB or LIVE)\nSPINDL/RPM,500,CLW\n^\n");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:4:1: error: channel 1: SPINDL: the kind of tool 1 (LOADTL at line 3) is unknown, and channel "
+      "1 "
+      "has a workpiece spindle and a live one (live): give TLDATA/TURN, MILL or DRILL before the tool call, "
+      "or name the spindle (SPINDL/...,MAIN, SUB or LIVE)\nSPINDL/RPM,500,CLW\n^\n");
   // A constant surface speed is a turning speed: the workpiece spindle.
   const test::posted css = post_on("PARTNO E\nHEAD/1\nLOADTL/1\nSPINDL/SMM,150,MAXRPM,2000,CLW\nFINI\n",
                                    "integrex-i200st", "unknown-css");
@@ -198,12 +203,13 @@ TEST_CASE("a milling tool on a turret without a live spindle is an error", "[pos
   const test::posted p = post_on("PARTNO E\nHEAD/1\nTLDATA/MILL,10\nTURRET/5,5\nSPINDL/RPM,3000,CLW\nFINI\n",
                                  "fanuc-0itd-twin", "mill-turret");
   CHECK_FALSE(p.ok);
-  CHECK(p.diagnostics ==
-        "job.cls:5:1: error: channel 1: SPINDL: tool 5 (TURRET at line 4) is a milling tool (TLDATA/MILL) and "
-        "channel 1 has no live spindle (channel.live_spindle): the part would turn against a still cutter\n"
-        "SPINDL/RPM,3000,CLW\n^\n");
-  const test::posted live =
-      post_on("PARTNO E\nHEAD/2\nTURRET/1,1\nSPINDL/RPM,500,CLW,LIVE\nFINI\n", "fanuc-31i-3path", "live-turret");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:5:1: error: channel 1: SPINDL: tool 5 (TURRET at line 4) is a milling tool (TLDATA/MILL) and "
+      "channel 1 has no live spindle (channel.live_spindle): the part would turn against a still cutter\n"
+      "SPINDL/RPM,3000,CLW\n^\n");
+  const test::posted live = post_on("PARTNO E\nHEAD/2\nTURRET/1,1\nSPINDL/RPM,500,CLW,LIVE\nFINI\n",
+                                    "fanuc-31i-3path", "live-turret");
   CHECK_FALSE(live.ok);
   CHECK(live.diagnostics ==
         "job.cls:4:1: error: channel 2: SPINDL/...,LIVE: channel 2 of machine 'fanuc-31i-3path' has no live "
@@ -217,7 +223,8 @@ TEST_CASE("a drill turning with the part may not feed off the centre line", "[po
       "fanuc-0itd-twin", "drill");
   CHECK_FALSE(p.ok);
   CHECK(p.diagnostics ==
-        "job.cls:8:1: error: channel 1: tool 1 is a drill (TLDATA/DRILL) and the part turns on the main spindle, "
+        "job.cls:8:1: error: channel 1: tool 1 is a drill (TLDATA/DRILL) and the part turns on the main "
+        "spindle, "
         "but this feed move leaves the centre line (x = 5): off-centre drilling needs the live spindle "
         "(SPINDL/...,LIVE)\nGOTO/5,0,-3\n^\n");
 }
@@ -230,7 +237,21 @@ TEST_CASE("a mill head does not turn the spindle of the last tool again for a to
       "integrex-i200st", "resume");
   CHECK_FALSE(p.ok);
   CHECK(p.diagnostics ==
-        "job.cls:10:1: error: channel 1: tool 2 (LOADTL at line 9) would start with the main spindle that turned "
+        "job.cls:10:1: error: channel 1: tool 2 (LOADTL at line 9) would start with the main spindle that "
+        "turned "
         "before the tool change, but it needs the live spindle: give SPINDL for this tool before its first "
         "move\nGOTO/20,0,2\n^\n");
+}
+
+TEST_CASE("SPINDL/...,SUB with a milling tool puts the head on the sub and turns the milling spindle",
+          "[post][spindles]") {
+  const test::posted p = post_on(
+      "PARTNO E\nHEAD/1\nTLDATA/MILL,10\nLOADTL/5\nSPINDL/RPM,3000,CLW,SUB\nFEDRAT/200,MMPM\nGOTO/20,5,2\n"
+      "FINI\n",
+      "integrex-i200st", "mill-sub");
+  const std::string f = file_of(p, "E.EIA");
+  // G55 and the second spindle's frame (Y and Z reversed), but M3: the cutter turns.
+  CHECK(f.substr(0, f.find("M950")) ==
+        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+        "T05 M6\nG55\nG97 S3000 M3\nG94\nG1 X40. Y-5. Z-2. F200.\n");
 }

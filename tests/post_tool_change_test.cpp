@@ -102,8 +102,8 @@ TEST_CASE("each coolant kind is turned on and off with its own codes", "[post][t
   // Mazak: through-tool coolant is M51 and goes off with M163, not M9; a change of kind turns
   // the one in force off first; a tool change turns off the kind in force.
   const test::posted p = post_on(
-      "PARTNO TC\nHEAD/1\nLOADTL/1\nSPINDL/RPM,1000,CLW,MAIN\nCOOLNT/ON\nCOOLNT/THRU\nRAPID\nGOTO/20,0,2\n"
-      "LOADTL/2\nRAPID\nGOTO/20,0,3\nCOOLNT/OFF\nFINI\n",
+      "PARTNO TC\nHEAD/1\nTLDATA/TURN\nLOADTL/1\nSPINDL/RPM,1000,CLW\nCOOLNT/ON\nCOOLNT/THRU\nRAPID\n"
+      "GOTO/20,0,2\nTLDATA/TURN\nLOADTL/2\nRAPID\nGOTO/20,0,3\nCOOLNT/OFF\nFINI\n",
       "integrex-i200st", "kinds");
   CHECK(
       file_of(p, "TC.EIA") ==
