@@ -44,10 +44,26 @@ void channel_writer::tool_data(const tool_data_event& t) {
                       : (w == "TURN" || w == "GROOVE" || w == "THREAD") ? tool_kind::turn
                                                                         : tool_kind::unknown;
   // NX writes TLDATA before the tool call; one right after a call describes that tool.
-  if (after_call_)
+  if (after_call_) {
     kind_ = k;
-  else
+    table_kind(tool_, line_);
+  } else
     next_kind_ = k;
+}
+
+void channel_writer::table_kind(int tool, int line) {
+  const std::string_view k = m_.tool_kind(ch_.number, tool);
+  if (k.empty()) return;
+  const tool_kind table = k == "mill" ? tool_kind::mill : k == "drill" ? tool_kind::drill : tool_kind::turn;
+  if (kind_ == tool_kind::unknown) {
+    kind_ = table;
+    return;
+  }
+  if (kind_ == table) return;
+  static constexpr const char* names[] = {"", "TURN", "MILL", "DRILL"};
+  error(line, fmt::format("tool {}: the CL's TLDATA says {}, machine '{}' lists it as {} ([[tool]]): which "
+                          "tool is in the turret?",
+                          tool, names[static_cast<int>(kind_)], m_.name, k));
 }
 
 const spindle_def* channel_writer::spindle_for_tool(const spindle_event& s, int line) {

@@ -158,6 +158,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   tool_word_ = word;
   kind_ = next_kind_;
   next_kind_ = tool_kind::unknown;
+  table_kind(t.tool, line);
   after_call_ = true;
 }
 

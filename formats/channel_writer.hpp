@@ -48,6 +48,9 @@ class channel_writer {
   /// False, after an error, when a drill turning with the part (on-centre axial drilling on
   /// the workpiece spindle) would feed off the centre line.
   bool drill_on_centre(double x_cl, int line);
+  /// The kind the machine's tool table gives `tool`, where the CL gave none; a TLDATA that
+  /// says otherwise is an error (one of the two is wrong about the tool in the turret).
+  void table_kind(int tool, int line);
   /// TLDATA/MILL, DRILL, TURN: the kind of the tool called next (or of the one just called).
   void tool_data(const tool_data_event& t);
   /// A step of a part transfer (channels/router sends each channel its steps).

@@ -135,6 +135,14 @@ struct control_codes {
   std::string balance_off;
 };
 
+/// A tool of the machine's tool table: what kind of tool a number calls, for CL data that
+/// gives no TLDATA. Which spindle turns follows from the kind (docs/machines.md).
+struct tool_def {
+  int number = 0;    ///< the tool number of the CL tool call
+  int channel = 0;   ///< the channel whose tool it is; 0: every channel
+  std::string kind;  ///< "turn", "drill" or "mill"
+};
+
 /// The part transfer from the main to the sub spindle (CL TRANSFER/GRIP, TRANSFER/RELEASE):
 /// every channel retracts (codes.home), all wait, `channel` writes the blocks, all wait.
 struct transfer_def {
@@ -163,6 +171,7 @@ struct machine {
   control_codes codes;
   motion_limits limits;
   transfer_def transfer;
+  std::vector<tool_def> tools;  ///< the tool table ([[tool]]); may be empty
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;
@@ -171,6 +180,9 @@ struct machine {
   /// The program number a PARTNO gives: `name` when it is all digits and fits the O format
   /// (1..9999 on a four-digit control; O0000 is no program), else nullopt.
   std::optional<int> program_number_of(std::string_view name) const;
+  /// The kind ("turn", "drill", "mill") the tool table gives tool `number` of channel
+  /// `channel`, or "" when it has no entry.
+  std::string_view tool_kind(int channel, int number) const;
   /// The spindle named `name`, or nullptr.
   const spindle_def* spindle(std::string_view name) const;
 };

@@ -251,6 +251,29 @@ void read_transfer(const table_reader& root, machine& m) {
   r.read_fixed("release", m.transfer.release);
 }
 
+void read_tools(const table_reader& root, machine& m) {
+  for (const toml::table* t : root.tables("tool")) {
+    table_reader r(*t, "tool", root.source(), {"number", "channel", "kind"});
+    tool_def d;
+    r.require("number");
+    r.read("number", d.number);
+    if (d.number < 0) r.fail(*r.find("number"), fmt::format("tool.number must be >= 0, not {}", d.number));
+    if (r.read("channel", d.channel) && (d.channel < 1 || d.channel > static_cast<int>(m.channels.size())))
+      r.fail(*r.find("channel"), fmt::format("tool.channel {} names no channel (the machine has {})",
+                                             d.channel, m.channels.size()));
+    r.require("kind");
+    r.read("kind", d.kind);
+    if (d.kind != "turn" && d.kind != "drill" && d.kind != "mill")
+      r.fail(*r.find("kind"), fmt::format("tool.kind must be turn, drill or mill, not '{}'", d.kind));
+    for (const tool_def& earlier : m.tools)
+      if (earlier.number == d.number && earlier.channel == d.channel)
+        r.fail(*r.find("number"),
+               d.channel ? fmt::format("tool {} of channel {} is listed twice", d.number, d.channel)
+                         : fmt::format("tool {} is listed twice", d.number));
+    m.tools.push_back(std::move(d));
+  }
+}
+
 void check_across_tables(const table_reader& root, const machine& m, const anchors& at) {
   if (const std::string why = layout_problem(m, m.layout); !why.empty()) {
     if (at.program) root.fail(*at.program, why);
@@ -302,7 +325,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   }
   table_reader root(
       doc, "", source,
-      {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits", "transfer"});
+      {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits", "transfer", "tool"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -316,6 +339,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_spindles(root, m.spindles);
   detail::read_channels(root, m);
   read_transfer(root, m);
+  read_tools(root, m);
   check_across_tables(root, m, at);
   detail::check_code_overlaps(root, m);
   return m;

@@ -427,3 +427,16 @@ TEST_CASE("validation: the part transfer", "[machines]") {
   CHECK(error_of(head + sub + two_channels + "[transfer]\nchannel = 1\nsync = true\n") ==
         "m.toml:18:1: error: unknown key 'transfer.sync'");
 }
+
+TEST_CASE("validation: the tool table", "[machines]") {
+  CHECK(error_of(head + two_channels + "[[tool]]\nnumber = 5\nkind = \"mill\"\n") == "(no error)");
+  CHECK(error_of(head + two_channels + "[[tool]]\nnumber = 5\nkind = \"bore\"\n") ==
+        "m.toml:14:8: error: tool.kind must be turn, drill or mill, not 'bore'");
+  CHECK(error_of(head + two_channels + "[[tool]]\nnumber = 5\nchannel = 3\nkind = \"mill\"\n") ==
+        "m.toml:14:11: error: tool.channel 3 names no channel (the machine has 2)");
+  CHECK(error_of(head + two_channels +
+                 "[[tool]]\nnumber = 5\nkind = \"mill\"\n[[tool]]\nnumber = 5\nkind = \"turn\"\n") ==
+        "m.toml:16:10: error: tool 5 is listed twice");
+  CHECK(error_of(head + two_channels + "[[tool]]\nkind = \"mill\"\n") ==
+        "m.toml:12:1: error: tool.number is required");
+}

@@ -255,3 +255,25 @@ TEST_CASE("SPINDL/...,SUB with a milling tool puts the head on the sub and turns
         "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
         "T05 M6\nG55\nG97 S3000 M3\nG94\nG1 X40. Y-5. Z-2. F200.\n");
 }
+
+TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[post][spindles]") {
+  machine m = load_machine("integrex-i200st");
+  m.tools.push_back({5, 1, "mill"});
+  m.tools.push_back({6, 0, "turn"});
+  const test::posted p = post_on(
+      "PARTNO E\nHEAD/1\nLOADTL/6\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\nLOADTL/5\n"
+      "SPINDL/RPM,3000,CLW\nGOTO/20,0,2\nFINI\n",
+      m, "table");
+  const std::string f = file_of(p, "E.EIA");
+  CHECK(f.substr(0, f.find("M950")) ==
+        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+        "T06 M6\nG97 S800 M203\nG95\nG1 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\n"
+        "G97 S3000 M3\nG1 X40. Y0. Z2.\n");
+  const test::posted clash =
+      post_on("PARTNO E\nHEAD/1\nTLDATA/TURN\nLOADTL/5\nSPINDL/RPM,800,CLW\nFINI\n", m, "table-clash");
+  CHECK_FALSE(clash.ok);
+  CHECK(
+      clash.diagnostics ==
+      "job.cls:4:1: error: channel 1: tool 5: the CL's TLDATA says TURN, machine 'integrex-i200st' lists it "
+      "as mill ([[tool]]): which tool is in the turret?\nLOADTL/5\n^\n");
+}
