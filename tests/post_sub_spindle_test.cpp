@@ -277,3 +277,15 @@ TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[p
       "job.cls:4:1: error: channel 1: tool 5: the CL's TLDATA says TURN, machine 'integrex-i200st' lists it "
       "as mill ([[tool]]): which tool is in the turret?\nLOADTL/5\n^\n");
 }
+
+TEST_CASE("a channel the machine file puts on the sub spindle starts in G55 with Z reversed", "[post][sub]") {
+  machine m = load_machine("fanuc-0itd-twin");
+  m.channels[1].spindle = "sub";
+  const test::posted p = post_on(
+      "PARTNO "
+      "S\nHEAD/2\nTURRET/3,3\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nGOTO/-20,0,2\nGOTO/-20,0,-5\nFINI\n",
+      m, "starts-on-sub");
+  CHECK(file_of(p, "S_2.nc") ==
+        "%\nO1000 (S)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0303\nG55\nG97 S800 M103\nG99\n"
+        "G1 X40. Z-2. F0.2\nZ5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
