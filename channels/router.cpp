@@ -187,6 +187,17 @@ void channel_router::transfer(const event& e, const transfer_event& t) {
   if (m_.transfer.channel == 0)
     return error(e.line, fmt::format("{}: machine '{}' gives no part transfer ([transfer] in its file)", word,
                                      m_.name));
+  // GRIP and RELEASE come in pairs: a release with nothing gripped opens the main chuck under
+  // a part the sub does not hold; a second grip would advance the sub into a held part.
+  if (t.release && grip_line_ == 0)
+    return error(e.line,
+                 "TRANSFER/RELEASE with no TRANSFER/GRIP before it: the main chuck would open with "
+                 "the sub spindle holding nothing");
+  if (!t.release && grip_line_ != 0)
+    return error(e.line, fmt::format("TRANSFER/GRIP while the TRANSFER/GRIP at line {} has not been released",
+                                     grip_line_));
+  grip_line_ = t.release ? 0 : e.line;
+  grip_column_ = e.column;
   if (both_) select({active_.front()}, e.line, false);
   // Every channel: both turrets (and an idle third path) leave the space between the spindles.
   std::vector<int> all;
@@ -227,6 +238,13 @@ std::optional<int> channel_router::next_code(int line, const std::string& what) 
 }
 
 void channel_router::finish(int last_line) {
+  if (grip_line_ != 0) {
+    column_line_ = grip_line_;
+    column_ = grip_column_;
+    error(grip_line_,
+          "TRANSFER/GRIP with no TRANSFER/RELEASE after it: the programs would end with the part "
+          "held by both spindles");
+  }
   if (both_) select({active_.front()}, last_line, false);
   // A last rendezvous of every channel before the programs' footers: a channel that ends
   // first must not stop the spindle or the coolant another channel is still cutting with.

@@ -84,8 +84,10 @@ class channel_router {
   diagnostic_sink& diags_;
   std::string file_;
   wait_allocator codes_;
-  std::vector<int> active_;                        // channels receiving events now
-  bool both_ = false;                              // inside HEAD/BOTH
+  std::vector<int> active_;  // channels receiving events now
+  bool both_ = false;        // inside HEAD/BOTH
+  int grip_line_ = 0;        // the TRANSFER/GRIP not yet released; 0: none
+  int grip_column_ = 0;
   std::vector<bool> busy_;                         // per channel: events since its last wait
   std::vector<int> last_partners_;                 // the channels of the last mark
   std::vector<int> job_channels_;                  // the channels the job uses

@@ -289,3 +289,29 @@ TEST_CASE("a channel the machine file puts on the sub spindle starts in G55 with
         "%\nO1000 (S)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0303\nG55\nG97 S800 M103\nG99\n"
         "G1 X40. Z-2. F0.2\nZ5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
+
+TEST_CASE("TRANSFER/GRIP and TRANSFER/RELEASE come in pairs", "[post][sub]") {
+  const test::posted release =
+      post_on("PARTNO E\nHEAD/1\nTURRET/1,1\nTRANSFER/RELEASE\nFINI\n", "fanuc-0itd-twin", "release-alone");
+  CHECK_FALSE(release.ok);
+  CHECK(release.diagnostics ==
+        "job.cls:4:1: error: TRANSFER/RELEASE with no TRANSFER/GRIP before it: the main chuck would open "
+        "with the "
+        "sub spindle holding nothing\nTRANSFER/RELEASE\n^\n");
+  const test::posted twice = post_on(
+      "PARTNO E\nHEAD/1\nTURRET/1,1\nTRANSFER/GRIP\nTRANSFER/GRIP\n"
+      "TRANSFER/RELEASE\nFINI\n",
+      "fanuc-0itd-twin", "grip-twice");
+  CHECK_FALSE(twice.ok);
+  CHECK(twice.diagnostics ==
+        "job.cls:5:1: error: TRANSFER/GRIP while the TRANSFER/GRIP at line 4 has not been released\n"
+        "TRANSFER/GRIP\n^\n");
+  const test::posted open =
+      post_on("PARTNO E\nHEAD/1\nTURRET/1,1\nTRANSFER/GRIP\nFINI\n", "fanuc-0itd-twin", "grip-alone");
+  CHECK_FALSE(open.ok);
+  // Said at the end of the job, where the reader no longer holds the record's text.
+  CHECK(open.diagnostics ==
+        "job.cls:4:1: error: TRANSFER/GRIP with no TRANSFER/RELEASE after it: the programs would end with "
+        "the part "
+        "held by both spindles\n");
+}
