@@ -65,6 +65,7 @@ void channel_router::route(const event& e) {
     return select({c->channel}, e.line, false);
   }
   if (const auto* s = std::get_if<sync_event>(&e.data)) return explicit_sync(*s, e.line);
+  if (const auto* t = std::get_if<transfer_event>(&e.data)) return transfer(e, *t);
   bool job_level = false;
   if (const auto* t = std::get_if<text_event>(&e.data)) job_level = t->kind == text_kind::partno;
   if (std::holds_alternative<units_event>(e.data) || std::holds_alternative<machin_event>(e.data))
@@ -179,6 +180,42 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   last_partners_ = partners;
 }
 
+void channel_router::transfer(const event& e, const transfer_event& t) {
+  const char* word = t.release ? "TRANSFER/RELEASE" : "TRANSFER/GRIP";
+  if (!m_.spindle("sub"))
+    return error(e.line, fmt::format("{}: machine '{}' has no sub spindle to take the part", word, m_.name));
+  if (m_.transfer.channel == 0)
+    return error(e.line, fmt::format("{}: machine '{}' gives no part transfer ([transfer] in its file)", word,
+                                     m_.name));
+  // GRIP and RELEASE come in pairs: a release with nothing gripped opens the main chuck under
+  // a part the sub does not hold; a second grip would advance the sub into a held part.
+  if (t.release && grip_line_ == 0)
+    return error(e.line,
+                 "TRANSFER/RELEASE with no TRANSFER/GRIP before it: the main chuck would open with "
+                 "the sub spindle holding nothing");
+  if (!t.release && grip_line_ != 0)
+    return error(e.line, fmt::format("TRANSFER/GRIP while the TRANSFER/GRIP at line {} has not been released",
+                                     grip_line_));
+  grip_line_ = t.release ? 0 : e.line;
+  grip_column_ = e.column;
+  if (both_) select({active_.front()}, e.line, false);
+  // Every channel: both turrets (and an idle third path) leave the space between the spindles.
+  std::vector<int> all;
+  for (const channel_def& c : m_.channels) all.push_back(c.number);
+  auto send = [&](int ch, transfer_event::phase step) {
+    event copy = e;
+    copy.data = transfer_event{step, t.release};
+    sink_.on_event(ch, copy, false);
+  };
+  for (int ch : all) send(ch, transfer_event::phase::retract);
+  const std::string what = fmt::format("{} at line {}", word, e.line);
+  rendezvous(all, e.line, what, true);
+  send(m_.transfer.channel, transfer_event::phase::blocks);
+  rendezvous(all, e.line, what, true);
+  if (t.release)
+    for (int ch : all) send(ch, transfer_event::phase::on_sub);
+}
+
 int channel_router::marker_of(const sync_event& s, int ch) const {
   if (s.index) return *s.index;
   // ICAM: a SYNCTR/NEXT without a marker is the channel's previous marker plus one
@@ -201,6 +238,13 @@ std::optional<int> channel_router::next_code(int line, const std::string& what) 
 }
 
 void channel_router::finish(int last_line) {
+  if (grip_line_ != 0) {
+    column_line_ = grip_line_;
+    column_ = grip_column_;
+    error(grip_line_,
+          "TRANSFER/GRIP with no TRANSFER/RELEASE after it: the programs would end with the part "
+          "held by both spindles");
+  }
   if (both_) select({active_.front()}, last_line, false);
   // A last rendezvous of every channel before the programs' footers: a channel that ends
   // first must not stop the spindle or the coolant another channel is still cutting with.

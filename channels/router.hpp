@@ -66,6 +66,10 @@ class channel_router {
   void rendezvous(const std::vector<int>& channels, int line, const std::string& what, bool force = false,
                   wait_mark::section both = wait_mark::section::none);
   void explicit_sync(const sync_event& s, int line);
+  /// TRANSFER/GRIP or RELEASE: every channel retracts, a rendezvous of all, the machine's
+  /// transfer channel writes its blocks, a rendezvous of all; after a release every channel
+  /// works on the sub spindle.
+  void transfer(const event& e, const transfer_event& t);
   /// The mark `s` in channel `ch`: its own number, or for an ICAM marker left out the
   /// channel's last marker plus one. The router is the one owner of this numbering.
   int marker_of(const sync_event& s, int ch) const;
@@ -80,8 +84,10 @@ class channel_router {
   diagnostic_sink& diags_;
   std::string file_;
   wait_allocator codes_;
-  std::vector<int> active_;                        // channels receiving events now
-  bool both_ = false;                              // inside HEAD/BOTH
+  std::vector<int> active_;  // channels receiving events now
+  bool both_ = false;        // inside HEAD/BOTH
+  int grip_line_ = 0;        // the TRANSFER/GRIP not yet released; 0: none
+  int grip_column_ = 0;
   std::vector<bool> busy_;                         // per channel: events since its last wait
   std::vector<int> last_partners_;                 // the channels of the last mark
   std::vector<int> job_channels_;                  // the channels the job uses

@@ -226,7 +226,8 @@ void channel_writer::cycle_block(const hole& h, const std::string& code, double 
   // [G98] G8x X.. Z<bottom> R.. [Q..] [P..] F.., then the cancel code, then the tool is
   // written back to the retract plane: where it is whatever the control's return level.
   const cycle_rules& k = m_.cycles;
-  const double r = k.r_from_initial ? (h.clear - h.initial) * scale_ : h.clear * scale_;
+  // Z words through nc_z: a hole on a reversed (sub) spindle is drilled in the machine's Z.
+  const double r = k.r_from_initial ? (h.clear - h.initial) * scale_ * z_sign_ : nc_z(h.clear);
   if (!fits('R', r, axis_style_.decimals)) return;
   if (!k.plane.empty()) out_.block(k.plane);
   text_buffer& b = out_.open_block();
@@ -234,8 +235,8 @@ void channel_writer::cycle_block(const hole& h, const std::string& code, double 
   if (!k.return_initial.empty()) b += k.return_initial, b += ' ';
   b += code;
   axis_word(b, 'X', nc_x(h.x), last_x_, true);
-  if (has_y_) axis_word(b, 'Y', h.y * scale_, last_y_, true);
-  axis_word(b, 'Z', h.bottom * scale_, last_z_, true);
+  if (has_y_) axis_word(b, 'Y', nc_y(h.y), last_y_, true);
+  axis_word(b, 'Z', nc_z(h.bottom), last_z_, true);
   b += " R";
   append_number(b, r, axis_style_);
   if (q > 0) {
@@ -293,7 +294,7 @@ void channel_writer::tap_hole(const hole& h, int line) {
       text_buffer& b = out_.open_block();
       word_start_ = b.size();
       b += k.sync_feed;
-      axis_word(b, 'Z', z * scale_, last_z_, true);
+      axis_word(b, 'Z', nc_z(z), last_z_, true);
       b += " F";
       append_number(b, h.pitch, {4, m_.program.trailing_point});
       out_.end_block();

@@ -36,6 +36,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
                                    "the first move after CUTCOM a feed move",
                                    pending_g_, m_.name));
   check_side(nc_x(x_cl), x_cl, line);
+  if (!rapid && !drill_on_centre(x_cl, line)) return;
   // Built in place, in the writer's buffer: the most common block goes out without a copy.
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
@@ -45,9 +46,10 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
     b += rapid ? "G0" : "G1";
   }
   bool moved = axis_word(b, 'X', nc_x(x_cl), last_x_);
-  if (has_y_) moved = axis_word(b, 'Y', y_cl * scale_, last_y_) || moved;
-  moved = axis_word(b, 'Z', z_cl * scale_, last_z_) || moved;
+  if (has_y_) moved = axis_word(b, 'Y', nc_y(y_cl), last_y_) || moved;
+  moved = axis_word(b, 'Z', nc_z(z_cl), last_z_) || moved;
   if (moved) {
+    homed_ = false;
     pending_g_.clear();
     motion_g_ = g;
     if (!rapid && feed_value_ > 0)
@@ -79,7 +81,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
     case motion_kind::go_to:
     case motion_kind::delta:
       if (tool_ < 0) return no_tool(line);
-      if (spindle_held_) resume_spindle();
+      if (spindle_held_) resume_spindle(line);
       if (cycle_refused_) {
         // the post has already failed at the CYCLE record
       } else if (cycle_ && cycle_->type == "THREAD") {
@@ -106,7 +108,7 @@ void channel_writer::arc(const arc_event& a, int line) {
     pos_ = a.end;
     return error(line, "an arc while THREAD/TURN is on: a threading pass is a straight G32 move");
   }
-  if (spindle_held_) resume_spindle();
+  if (spindle_held_) resume_spindle(line);
   // The plane comes from the arc's axis: +-Z G17 (XY), +-Y G18 (ZX, the lathe's), +-X G19 (YZ).
   // In each, counter-clockwise about the positive axis is G3 (Z = X x Y, Y = Z x X, X = Y x Z).
   double nlen = std::sqrt(a.normal.x * a.normal.x + a.normal.y * a.normal.y + a.normal.z * a.normal.z);
@@ -141,6 +143,9 @@ void channel_writer::arc(const arc_event& a, int line) {
   // Mirroring X reflects the XY and ZX planes, which reverses their sense; YZ has no X.
   double mirror = mirrored() ? -1.0 : 1.0;
   if (mirror < 0 && plane != 19) ccw = !ccw;
+  // A reversed spindle's half turn about X turns the XY and ZX planes over (G2/G3 swap, J and
+  // K negated); the YZ plane keeps its sense.
+  if (z_sign_ < 0 && plane != 19) ccw = !ccw;
   int g = ccw ? 3 : 2;
 
   arc_.clear();
@@ -152,8 +157,8 @@ void channel_writer::arc(const arc_event& a, int line) {
   arc_ += g == 3 ? " G3" : " G2";
   // Both axes of the plane always; the third only when it moves (a helix).
   axis_word(arc_, 'X', nc_x(a.end.x), last_x_, plane != 19);
-  if (plane != 18 || has_y_) axis_word(arc_, 'Y', a.end.y * scale_, last_y_, plane != 18);
-  axis_word(arc_, 'Z', a.end.z * scale_, last_z_, plane != 17);
+  if (plane != 18 || has_y_) axis_word(arc_, 'Y', nc_y(a.end.y), last_y_, plane != 18);
+  axis_word(arc_, 'Z', nc_z(a.end.z), last_z_, plane != 17);
 
   // In-plane coordinates of start and end about the centre, (u, v) with the normal = u x v.
   auto uv = [&](const vec3& p) -> std::pair<double, double> {
@@ -171,8 +176,8 @@ void channel_writer::arc(const arc_event& a, int line) {
       append_number(arc_, v * scale_, axis_style_);
     };
     if (plane != 19) offset('I', (a.center.x - a.start.x) * mirror);
-    if (plane != 18) offset('J', a.center.y - a.start.y);
-    if (plane != 17) offset('K', a.center.z - a.start.z);
+    if (plane != 18) offset('J', (a.center.y - a.start.y) * z_sign_);
+    if (plane != 17) offset('K', (a.center.z - a.start.z) * z_sign_);
   } else {
     auto [su, sv] = uv(a.start);
     auto [eu, ev] = uv(a.end);
@@ -192,6 +197,7 @@ void channel_writer::arc(const arc_event& a, int line) {
     error(line, "arc with no feed rate (FEDRAT) in force");
   pending_g_.clear();
   motion_g_ = g;
+  homed_ = false;
   // A full circle TIMES n: the same block n times, one turn each.
   for (int turn = 0; turn < std::max(1, a.turns); ++turn) out_.block(arc_.view().substr(1));
   pos_ = a.end;

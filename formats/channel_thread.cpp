@@ -244,7 +244,7 @@ void channel_writer::thread_cycle_point(const vec3& p, int line) {
     arc_ += ' ';
     arc_ += g;
     axis_word(arc_, 'X', nc_x(x_mm * inv), last_x_, true);
-    axis_word(arc_, 'Z', z_mm, last_z_, true);
+    axis_word(arc_, 'Z', z_mm * z_sign_, last_z_, true);  // reversed on a sub spindle
     if (std::abs(r) >= 0.0005) {
       if (!fits('R', r, axis_style_.decimals)) return false;
       arc_ += " R";
@@ -350,7 +350,7 @@ void channel_writer::groove_cycle_point(const vec3& p, int line) {
     arc_.clear();
     arc_ += " G75";
     axis_word(arc_, 'X', nc_x(bottom * inv), last_x_, true);
-    axis_word(arc_, 'Z', z_end, last_z_, true);
+    axis_word(arc_, 'Z', z_end * z_sign_, last_z_, true);
     arc_ += fmt::format(" P{}", um(std::abs(bottom - clear)));
     if (width != 0) arc_ += fmt::format(" Q{}", um(step));
     append_feed(arc_);
@@ -403,7 +403,7 @@ void channel_writer::thread_pass(const vec3& p, int line) {
   arc_.clear();
   arc_ += " G32";
   bool moved = axis_word(arc_, 'X', nc_x(p.x), last_x_);
-  moved = axis_word(arc_, 'Z', p.z * scale_, last_z_) || moved;
+  moved = axis_word(arc_, 'Z', nc_z(p.z), last_z_) || moved;
   if (!moved) return;
   if (!append_lead(arc_, threading_->lead * scale_)) return;
   out_.block(arc_.view().substr(1));

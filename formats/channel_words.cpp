@@ -1,4 +1,4 @@
-// channel_writer: spindle, feed and tool blocks.
+// channel_writer: coolant, feed and tool blocks (the spindle: formats/channel_spindle.cpp).
 #include <cmath>
 #include <fmt/format.h>
 
@@ -6,82 +6,6 @@
 #include "machines/name_template.hpp"
 
 namespace twinpost {
-
-namespace {
-// `code words`, or just `words` when the machine has no such code (a mill has no G97).
-std::string join_words(const std::string& code, std::string words) {
-  return code.empty() ? words : code + " " + words;
-}
-}  // namespace
-
-void channel_writer::spindle(const spindle_event& s, int line) {
-  if (!s.spindle.empty()) {
-    const spindle_def* sel = m_.spindle(s.spindle);
-    if (!sel) return error(line, fmt::format("machine '{}' has no {} spindle", m_.name, s.spindle));
-    if (sel != spindle_) {
-      spindle_ = sel;
-      if (sel->select) out_.block(fmt::format("M{}", *sel->select));
-    }
-  }
-  if (!spindle_) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
-  spindle_held_ = false;  // this record says what the spindle does now
-  if (s.mode == spindle_mode::on) {
-    // APT: ON turns the spindle on again at the last speed, mode and direction, never S0.
-    if (!last_speed_)
-      return error(line,
-                   "SPINDL/ON with no spindle speed given before in this channel: give "
-                   "SPINDL/RPM,n or SPINDL/SMM,n");
-    spindle_event again = *last_speed_;
-    if (s.dir != rotation::none) again.dir = s.dir;
-    again.spindle.clear();  // the spindle selected now
-    return spindle(again, line);
-  }
-  const spindle_def& sp = *spindle_;
-  if (s.mode == spindle_mode::off) {
-    restart_blocks_.clear();
-    return out_.block(fmt::format("M{}", sp.stop));
-  }
-  if (s.mode == spindle_mode::orient || s.mode == spindle_mode::lock)
-    return error(line, "spindle ORIENT/LOCK is not supported on a lathe channel yet");
-  int m = s.dir == rotation::ccw ? sp.ccw : sp.cw;
-  if (s.mode == spindle_mode::sfm || s.mode == spindle_mode::smm) {
-    // G96 S is in m/min with mm output, in ft/min with inch output.
-    const bool inch = out_per_mm_ < 1;
-    const double smm = s.mode == spindle_mode::sfm ? (inch ? s.speed : s.speed * 0.3048)
-                       : inch                      ? s.speed / 0.3048
-                                                   : s.speed;
-    if (!s.max_rpm && sp.max_rpm <= 0)
-      return error(line, "constant surface speed needs MAXRPM (or a spindle limit in the machine)");
-    double clamp = s.max_rpm ? *s.max_rpm : sp.max_rpm;
-    if (sp.max_rpm > 0 && clamp > sp.max_rpm)
-      return error(line, fmt::format("MAXRPM {} exceeds the {} spindle's limit of {} rpm", clamp, sp.name,
-                                     sp.max_rpm));
-    template_args a;  // template_uses::clamp
-    a.max = clamp;
-    a.rpm = clamp;
-    a.channel = ch_.number;
-    if (!fits('S', smm, 0)) return;
-    restart_blocks_.clear();
-    if (!sp.clamp.empty()) {
-      std::string b = format_template(sp.clamp, a);
-      if (!block_fits(b)) return;
-      restart_blocks_.push_back(b);
-    }
-    restart_blocks_.push_back(
-        join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
-    for (const std::string& b : restart_blocks_) out_.block(b);
-    last_speed_ = s;
-    return;
-  }
-  if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
-    return error(
-        line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
-  if (!fits('S', s.speed, 0)) return;
-  restart_blocks_ = {
-      join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
-  out_.block(restart_blocks_.front());
-  last_speed_ = s;
-}
 
 void channel_writer::coolant(const coolant_event& c, int line) {
   if (c.mode == "OFF") {
@@ -116,13 +40,33 @@ void channel_writer::coolant(const coolant_event& c, int line) {
   coolant_off_block_ = off;
 }
 
-void channel_writer::resume_spindle() {
-  for (const std::string& b : restart_blocks_) out_.block(b);
+void channel_writer::resume_spindle(int line) {
   spindle_held_ = false;
+  // On a head with a workpiece and a live spindle, the spindle stopped for the tool change
+  // turns again only for a tool of the same kind: a milling cutter after a turning tool
+  // needs the other spindle.
+  if (!ch_.live_spindle.empty()) {
+    const spindle_def* live = m_.spindle(ch_.live_spindle);
+    const spindle_def* wanted = kind_ == tool_kind::turn    ? work_
+                                : kind_ == tool_kind::mill  ? live
+                                : kind_ == tool_kind::drill ? (std::abs(axis_.z) >= 0.9999 ? work_ : live)
+                                                            : nullptr;
+    if (wanted != spindle_) {
+      restart_blocks_.clear();
+      return error(line, fmt::format("tool {} ({} at line {}) would start with the {} spindle that turned "
+                                     "before the tool change{}: give SPINDL for this tool before its first "
+                                     "move",
+                                     tool_, tool_word_, tool_line_, spindle_->name,
+                                     wanted ? fmt::format(", but it needs the {} spindle", wanted->name)
+                                            : " and its kind is unknown (no TLDATA)"));
+    }
+  }
+  for (const std::string& b : restart_blocks_) out_.block(b);
 }
 
 void channel_writer::go_home() {
   for (const std::string& b : m_.codes.home) out_.block(b);
+  homed_ = true;
 }
 
 void channel_writer::program_stop(bool optional) {
@@ -174,6 +118,8 @@ void channel_writer::tool(const tool_event& t, int line) {
                              "give the offset number",
                              t.tool, call));
   }
+  static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL", "SELECT/TOOL", "TURRET"};
+  const char* word = words[static_cast<int>(t.source)];
   if (t.tool == tool_) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
     // turret stays where it is and only the offset changes, so the call goes out alone.
@@ -201,9 +147,20 @@ void channel_writer::tool(const tool_event& t, int line) {
   forget_axes();
   motion_g_ = -1;
   out_.block(call, true);
+  // A channel that starts on the sub spindle: its work offset once the tool is there.
+  if (offset_due_) {
+    out_.block(work_->work_offset);
+    offset_due_ = false;
+  }
   if (!coolant_was.empty()) out_.block(coolant_was);
   tool_ = t.tool;
   tool_call_ = call;
+  tool_line_ = line;
+  tool_word_ = word;
+  kind_ = next_kind_;
+  next_kind_ = tool_kind::unknown;
+  table_kind(t.tool, line);
+  after_call_ = true;
 }
 
 }  // namespace twinpost

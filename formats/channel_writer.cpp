@@ -26,7 +26,15 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   for (const std::string& block : m.program.header)
     for (const char* g : {"G17", "G18", "G19"})
       if (block.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
-  spindle_ = m.spindle(ch.spindle);
+  spindle_ = work_ = m.spindle(ch.spindle);
+  if (work_) {
+    z_sign_ = work_->reverse_z ? -1.0 : 1.0;
+    // A channel that starts on a spindle whose offset the safe start does not give (the
+    // sub's G55) writes it after its first tool call.
+    offset_due_ = !work_->work_offset.empty();
+    for (const std::string& block : m.program.header)
+      if (block.find(work_->work_offset) != std::string::npos) offset_due_ = false;
+  }
   last_x_.max = m.formats['X'].max_count(axis_style_.decimals);
   last_y_.max = m.formats['Y'].max_count(axis_style_.decimals);
   last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
@@ -142,6 +150,11 @@ void channel_writer::on_event(const event& e, bool both) {
   side_ = (both && x_mirror_) ? -1.0 : 1.0;
   line_ = e.line;
   column_ = e.column;
+  // A TLDATA right after a tool call (comments between) describes that tool.
+  const bool after_call = after_call_;
+  after_call_ = after_call && (std::holds_alternative<text_event>(e.data) ||
+                               std::holds_alternative<comment_event>(e.data) ||
+                               std::holds_alternative<passthrough_event>(e.data));
   std::visit(
       [&](const auto& d) {
         using T = std::decay_t<decltype(d)>;
@@ -156,6 +169,11 @@ void channel_writer::on_event(const event& e, bool both) {
           feed(d, e.line);
         else if constexpr (std::is_same_v<T, tool_event>)
           tool(d, e.line);
+        else if constexpr (std::is_same_v<T, tool_data_event>) {
+          after_call_ = after_call;
+          tool_data(d);
+        } else if constexpr (std::is_same_v<T, transfer_event>)
+          transfer(d, e.line);
         else if constexpr (std::is_same_v<T, coolant_event>)
           coolant(d, e.line);
         else if constexpr (std::is_same_v<T, stop_event>) {

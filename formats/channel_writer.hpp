@@ -43,6 +43,22 @@ class channel_writer {
   void motion(const motion_event& m, int line);
   void arc(const arc_event& a, int line);
   void spindle(const spindle_event& s, int line);
+  /// The spindle a SPINDL without a spindle word turns: the workpiece spindle, or the live one
+  /// for a milling tool or an off-centre drill (formats/channel_spindle.cpp); nullptr after an
+  /// error.
+  const spindle_def* spindle_for_tool(const spindle_event& s, int line);
+  /// The channel works on workpiece spindle `s` from now on: its work offset, its Z sense.
+  void work_on(const spindle_def& s);
+  /// False, after an error, when a drill turning with the part (on-centre axial drilling on
+  /// the workpiece spindle) would feed off the centre line.
+  bool drill_on_centre(double x_cl, int line);
+  /// The kind the machine's tool table gives `tool`, where the CL gave none; a TLDATA that
+  /// says otherwise is an error (one of the two is wrong about the tool in the turret).
+  void table_kind(int tool, int line);
+  /// TLDATA/MILL, DRILL, TURN: the kind of the tool called next (or of the one just called).
+  void tool_data(const tool_data_event& t);
+  /// A step of a part transfer (channels/router sends each channel its steps).
+  void transfer(const transfer_event& t, int line);
   void feed(const feed_event& f, int line);
   void tool(const tool_event& t, int line);
   /// One hole of the cycle in force at CL point `p` (channel_cycles.cpp).
@@ -66,7 +82,7 @@ class channel_writer {
   /// The machine's home blocks (X, then Z).
   void go_home();
   /// The spindle stopped for a tool change turns again (before the first move after it).
-  void resume_spindle();
+  void resume_spindle(int line);
   /// The error for a move before any tool call in this channel.
   void no_tool(int line);
   /// COOLNT: flood (ON, FLOOD) writes the machine's coolant-on block, MIST, THRU and AIR their
@@ -128,6 +144,10 @@ class channel_writer {
     if (out.size() != word_start_) out += ' ';
   }
   double nc_x(double x_cl) const { return x_cl * scale_ * x_factor_ * side_; }
+  /// Z (and Y) on a spindle whose CL Z runs against the machine's (spindle_def::reverse_z):
+  /// a half turn about X, so the frame stays right-handed.
+  double nc_y(double y_cl) const { return y_cl * scale_ * z_sign_; }
+  double nc_z(double z_cl) const { return z_cl * scale_ * z_sign_; }
   /// True when this channel's X runs against the CL (a mirrored turret, not a BOTH copy).
   bool mirrored() const { return x_factor_ * side_ < 0; }
   /// Writes the feed-mode code (G99/G98 or G95/G94) when it changes.
@@ -149,11 +169,22 @@ class channel_writer {
   bool x_mirror_ = false;    // the channel's X axis is mirrored (a lower turret)
   bool x_diameter_ = false;  // and programmed in diameter (a lathe's)
   bool has_y_ = false;
-  const spindle_def* spindle_ = nullptr;
-  int motion_g_ = -1;                     // last G0/G1/G2/G3
-  int plane_ = 18;                        // G17/G18/G19 in force (lathe headers set G18)
-  axis_memory last_x_, last_y_, last_z_;  // axis words written last
-  std::string feed_g_;                    // G99/G98 (G95/G94) in force
+  const spindle_def* spindle_ = nullptr;  // the spindle SPINDL codes go to (workpiece or live)
+  const spindle_def* work_ = nullptr;     // the workpiece spindle the channel works on (main, sub)
+  double z_sign_ = 1.0;                   // -1 on a spindle with reverse_z
+  bool offset_due_ = false;               // the work spindle's offset goes out after the first tool call
+  /// The tool's kind from TLDATA: what the workpiece spindle or the live one is for.
+  enum class tool_kind : unsigned char { unknown, turn, mill, drill };
+  tool_kind kind_ = tool_kind::unknown;       // of the tool in the spindle
+  tool_kind next_kind_ = tool_kind::unknown;  // a TLDATA before the next tool call
+  bool homed_ = false;                        // at home: no move since the home blocks
+  bool after_call_ = false;                   // the last record that wrote anything was a tool call
+  int tool_line_ = 0;                         // the CL line of the last tool call
+  std::string tool_word_;                     // its major word (LOADTL, TURRET ...)
+  int motion_g_ = -1;                         // last G0/G1/G2/G3
+  int plane_ = 18;                            // G17/G18/G19 in force (lathe headers set G18)
+  axis_memory last_x_, last_y_, last_z_;      // axis words written last
+  std::string feed_g_;                        // G99/G98 (G95/G94) in force
   std::string last_f_;
   text_buffer arc_;  // the block being built, reused (arcs; moves are built in place)
   std::size_t word_start_ = std::string::npos;  // where a block built in place begins

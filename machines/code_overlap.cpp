@@ -154,6 +154,7 @@ void spindle_codes(overlap_finder& f, const spindle_def& s, const toml::table& t
   f.m_code(what + " stop", s.stop, t.get("stop"), &t);
   if (s.select) f.m_code(what + " select", *s.select, t.get("select"), &t);
   f.block(what + " clamp", s.clamp, t.get("clamp"), &t);
+  f.block(what + " work_offset", s.work_offset, t.get("work_offset"), &t);
 }
 
 // The file's [[channel]] table of channel `number` (channels are sorted by number).
@@ -180,6 +181,8 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
   const std::vector<const toml::table*> spindles = root.tables("spindle");
   for (std::size_t i = 0; i < m.spindles.size() && i < spindles.size(); ++i)
     spindle_codes(f, m.spindles[i], *spindles[i]);
+  f.blocks("transfer.grip", m.transfer.grip, root.sub_table("transfer"), "grip");
+  f.blocks("transfer.release", m.transfer.release, root.sub_table("transfer"), "release");
   for (const channel_def& c : m.channels) {
     const toml::table* t = channel_table(root, c.number);
     f.block(fmt::format("channel {}: tool_call", c.number), c.tool_call, key_of(t, "tool_call"), t);

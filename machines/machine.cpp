@@ -32,6 +32,16 @@ const channel_def* machine::channel_for_head(std::string_view word) const {
   return nullptr;
 }
 
+std::string_view machine::tool_kind(int channel, int number) const {
+  std::string_view any;
+  for (const tool_def& t : tools)
+    if (t.number == number) {
+      if (t.channel == channel) return t.kind;
+      if (t.channel == 0) any = t.kind;
+    }
+  return any;
+}
+
 const spindle_def* machine::spindle(std::string_view name) const {
   for (const spindle_def& s : spindles)
     if (s.name == name) return &s;

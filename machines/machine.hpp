@@ -40,6 +40,13 @@ struct spindle_def {
   std::optional<int> select;      ///< M-code that selects this spindle (Mazak M901/M902)
   std::string clamp;              ///< max-speed clamp block, e.g. "G50 S{max}" or "G92 S{max} R1"
   double max_rpm = 0;             ///< machine limit; 0 = none
+  /// The work offset of a workpiece spindle ("G54", "G55"), written when a channel starts
+  /// working on this spindle; empty: none.
+  std::string work_offset;
+  /// CAM writes this spindle's work with Z+ away from its chuck, against the machine's Z
+  /// (a sub spindle facing the main one): Z and Y are written reversed, G2/G3 swapped in
+  /// G17/G18, J and K negated (a half turn about X, as the Fusion Integrex and Doosan posts do).
+  bool reverse_z = false;
 };
 
 /// An axis of a channel.
@@ -62,6 +69,9 @@ struct channel_def {
   /// `kind` (turret or mill_head) only chooses its default.
   std::string tool_call;
   std::string spindle = "main";  ///< the spindle this channel works on at start
+  /// The channel's tool-driving spindle (a mill head's milling spindle): milling tools, and
+  /// drills off the centre line, turn it; empty: the channel has none.
+  std::string live_spindle;
   /// The spindle in force stops before a tool change and turns again before the next move
   /// (a mill head's tool changer: the Fusion Integrex post stops it before every T.. M6).
   /// Default: true for kind mill_head, false for a turret.
@@ -140,6 +150,22 @@ struct control_codes {
   std::string balance_off;
 };
 
+/// A tool of the machine's tool table: what kind of tool a number calls, for CL data that
+/// gives no TLDATA. Which spindle turns follows from the kind (docs/machines.md).
+struct tool_def {
+  int number = 0;    ///< the tool number of the CL tool call
+  int channel = 0;   ///< the channel whose tool it is; 0: every channel
+  std::string kind;  ///< "turn", "drill" or "mill"
+};
+
+/// The part transfer from the main to the sub spindle (CL TRANSFER/GRIP, TRANSFER/RELEASE):
+/// every channel retracts (codes.home), all wait, `channel` writes the blocks, all wait.
+struct transfer_def {
+  int channel = 0;                   ///< the channel that writes the blocks; 0: no transfer
+  std::vector<std::string> grip;     ///< sync on, sub spindle advance, sub chuck close
+  std::vector<std::string> release;  ///< main chuck open, sub spindle return, sync off
+};
+
 /// Limits the post holds the CL data to.
 struct motion_limits {
   double max_feed = 0;  ///< highest feed per minute in mm/min; 0 = none
@@ -188,6 +214,8 @@ struct machine {
   control_codes codes;
   motion_limits limits;
   cycle_rules cycles;
+  transfer_def transfer;
+  std::vector<tool_def> tools;  ///< the tool table ([[tool]]); may be empty
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;
@@ -196,6 +224,9 @@ struct machine {
   /// The program number a PARTNO gives: `name` when it is all digits and fits the O format
   /// (1..9999 on a four-digit control; O0000 is no program), else nullopt.
   std::optional<int> program_number_of(std::string_view name) const;
+  /// The kind ("turn", "drill", "mill") the tool table gives tool `number` of channel
+  /// `channel`, or "" when it has no entry.
+  std::string_view tool_kind(int channel, int number) const;
   /// The spindle named `name`, or nullptr.
   const spindle_def* spindle(std::string_view name) const;
 };

@@ -76,6 +76,9 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
     if (spindle_given) r.fail(*r.find("spindle"), message);
     r.fail_here(message);
   }
+  if (r.read("live_spindle", c.live_spindle) && !m.spindle(c.live_spindle))
+    r.fail(*r.find("live_spindle"),
+           fmt::format("channel.live_spindle '{}' names no [[spindle]]", c.live_spindle));
   if (r.read("file_suffix", c.file_suffix) && c.file_suffix.find_first_of("/\\") != std::string::npos)
     r.fail(*r.find("file_suffix"), "channel.file_suffix must not contain a path separator");
   read_axes(r, c);
@@ -124,9 +127,9 @@ void read_channels(const table_reader& root, machine& m) {
   std::vector<read_channel> all;
   for (const toml::table* t : tables) {
     readers.emplace_back(*t, "channel", root.source(),
-                         std::initializer_list<std::string_view>{"number", "heads", "head_names", "kind",
-                                                                 "tool_call", "spindle", "file_suffix",
-                                                                 "axis", "tool_change_stops_spindle"});
+                         std::initializer_list<std::string_view>{
+                             "number", "heads", "head_names", "kind", "tool_call", "spindle", "file_suffix",
+                             "axis", "tool_change_stops_spindle", "live_spindle"});
     all.push_back({read_channel_table(readers.back(), m), &readers.back()});
   }
   check_numbers_and_heads(all);

@@ -233,7 +233,8 @@ void read_limits(const table_reader& root, motion_limits& l) {
 // [cycles]: which of the control's own cycles the post writes (docs/machines.md).
 void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   for (const toml::table* t : root.tables("spindle")) {
-    table_reader r(*t, "spindle", root.source(), {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm"});
+    table_reader r(*t, "spindle", root.source(),
+                   {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset", "reverse_z"});
     spindle_def s;
     r.require("name");
     r.read("name", s.name);
@@ -245,6 +246,8 @@ void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
     r.read("select", s.select);
     r.read_template("clamp", s.clamp, template_uses::clamp);
     read_positive(r, "max_rpm", s.max_rpm, true);
+    r.read_fixed("work_offset", s.work_offset);
+    r.read("reverse_z", s.reverse_z);
     out.push_back(std::move(s));
   }
 }
@@ -275,6 +278,44 @@ void check_units_code(const table_reader& root, const machine& m, const anchors&
   if (why.empty()) return;
   if (at.program && at.program->get("header")) root.fail(*at.program->get("header"), why);
   root.fail_here(why);
+}
+
+void read_transfer(const table_reader& root, machine& m) {
+  const toml::table* t = root.sub_table("transfer");
+  if (!t) return;
+  table_reader r(*t, "transfer", root.source(), {"channel", "grip", "release"});
+  r.require("channel");
+  r.read("channel", m.transfer.channel);
+  if (m.transfer.channel < 1 || m.transfer.channel > static_cast<int>(m.channels.size()))
+    r.fail(*r.find("channel"), fmt::format("transfer.channel {} names no channel (the machine has {})",
+                                           m.transfer.channel, m.channels.size()));
+  if (!m.spindle("sub"))
+    r.fail(*r.find("channel"), "[transfer] needs a [[spindle]] named 'sub' to take the part");
+  r.read_fixed("grip", m.transfer.grip);
+  r.read_fixed("release", m.transfer.release);
+}
+
+void read_tools(const table_reader& root, machine& m) {
+  for (const toml::table* t : root.tables("tool")) {
+    table_reader r(*t, "tool", root.source(), {"number", "channel", "kind"});
+    tool_def d;
+    r.require("number");
+    r.read("number", d.number);
+    if (d.number < 0) r.fail(*r.find("number"), fmt::format("tool.number must be >= 0, not {}", d.number));
+    if (r.read("channel", d.channel) && (d.channel < 1 || d.channel > static_cast<int>(m.channels.size())))
+      r.fail(*r.find("channel"), fmt::format("tool.channel {} names no channel (the machine has {})",
+                                             d.channel, m.channels.size()));
+    r.require("kind");
+    r.read("kind", d.kind);
+    if (d.kind != "turn" && d.kind != "drill" && d.kind != "mill")
+      r.fail(*r.find("kind"), fmt::format("tool.kind must be turn, drill or mill, not '{}'", d.kind));
+    for (const tool_def& earlier : m.tools)
+      if (earlier.number == d.number && earlier.channel == d.channel)
+        r.fail(*r.find("number"),
+               d.channel ? fmt::format("tool {} of channel {} is listed twice", d.number, d.channel)
+                         : fmt::format("tool {} is listed twice", d.number));
+    m.tools.push_back(std::move(d));
+  }
 }
 
 void check_across_tables(const table_reader& root, const machine& m, const anchors& at) {
@@ -338,9 +379,9 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   } catch (const toml::parse_error& e) {
     detail::fail_at(source, e.source(), e.description());
   }
-  table_reader root(
-      doc, "", source,
-      {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits", "cycles"});
+  table_reader root(doc, "", source,
+                    {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits",
+                     "cycles", "transfer", "tool"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -354,6 +395,8 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   detail::read_cycles(root, m.cycles);
   read_spindles(root, m.spindles);
   detail::read_channels(root, m);
+  read_transfer(root, m);
+  read_tools(root, m);
   check_across_tables(root, m, at);
   detail::check_code_overlaps(root, m);
   return m;

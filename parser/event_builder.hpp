@@ -101,6 +101,7 @@ class event_builder {
   void on_sync(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_synctr(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_stop(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  void on_transfer(const cl_record& r, int line, event_queue& out, build_issues& issues);
   void on_end(const cl_record& r, int line, event_queue& out, build_issues& issues);
   template <text_kind K>
   void on_text(const cl_record& r, int line, event_queue& out, build_issues& issues);

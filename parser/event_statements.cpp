@@ -162,6 +162,19 @@ void event_builder::on_stop(const cl_record& r, int line, event_queue& out, buil
   out.push_back({line, stop_event{word_is(r.major, "OPSTOP")}});
 }
 
+void event_builder::on_transfer(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  // TRANSFER/GRIP or TRANSFER/RELEASE, nothing else (docs/records.md).
+  const bool one_word = r.args.size() == 1 && r.args[0].kind == arg_kind::word;
+  const bool grip = one_word && word_is(r.args[0].word, "GRIP");
+  const bool release = one_word && word_is(r.args[0].word, "RELEASE");
+  if (!grip && !release)
+    return issues.push_back({severity::error, detail::args_offset(r), "TRANSFER needs GRIP or RELEASE"});
+  transfer_event t;
+  t.step = grip ? transfer_event::phase::grip : transfer_event::phase::release;
+  t.release = release;
+  out.push_back({line, t});
+}
+
 void event_builder::on_end(const cl_record& r, int line, event_queue& out, build_issues&) {
   out.push_back({line, end_event{upper(r.major)}});
 }

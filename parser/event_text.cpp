@@ -131,6 +131,11 @@ struct describe {
     out.name = "stop";
     out.str("kind", e.optional ? "optional" : "program");
   }
+  void operator()(const transfer_event& e) {
+    out.name = "transfer";
+    static const char* steps[] = {"grip", "release", "retract", "blocks", "on_sub"};
+    out.str("step", steps[static_cast<int>(e.step)]);
+  }
   void operator()(const aux_event& e) {
     out.name = e.prefun ? "prefun" : "auxfun";
     out.num("code", e.code);

@@ -112,6 +112,21 @@ struct stop_event {
   bool optional = false;
 };
 
+/// A part transfer from the main to the sub spindle (TRANSFER/GRIP, TRANSFER/RELEASE): the
+/// router frames it with waits of every channel (channels/router), the writers retract and the
+/// machine's transfer channel writes its blocks (machine::transfer).
+struct transfer_event {
+  enum class phase : unsigned char {
+    grip,     ///< the CL record: sync on, sub spindle advance, sub chuck close
+    release,  ///< the CL record: main chuck open, sub spindle return; the part is then on the sub
+    retract,  ///< (router to every channel) coolant off and home before the first wait
+    blocks,   ///< (router to the transfer channel) the machine's blocks of the grip or release
+    on_sub,   ///< (router to every channel, after a release) the channel now works on the sub
+  };
+  phase step = phase::grip;
+  bool release = false;  ///< for retract and blocks: whether it is the release
+};
+
 struct delay_event {
   double value = 0;
   bool revolutions = false;
@@ -195,11 +210,11 @@ struct passthrough_event {
   bool known = false;
 };
 
-using event_data =
-    std::variant<motion_event, arc_event, tool_event, tool_data_event, spindle_event, feed_event,
-                 coolant_event, cutcom_event, cycle_event, thread_event, delay_event, stop_event, aux_event,
-                 text_event, units_event, machin_event, multax_event, coordsys_event, head_event,
-                 channel_event, sync_event, tool_axis_event, comment_event, end_event, passthrough_event>;
+using event_data = std::variant<motion_event, arc_event, tool_event, tool_data_event, spindle_event,
+                                feed_event, coolant_event, cutcom_event, cycle_event, thread_event,
+                                delay_event, stop_event, aux_event, text_event, transfer_event, units_event,
+                                machin_event, multax_event, coordsys_event, head_event, channel_event,
+                                sync_event, tool_axis_event, comment_event, end_event, passthrough_event>;
 
 /// One event with the physical line of the record it came from.
 struct event {

@@ -41,8 +41,10 @@ void scan_line(std::string_view l, job_scan& s) {
   // Most lines are motion (GOTO, coordinates): one look at the first letter settles them.
   if (l.empty()) return;
   char c = ascii::upper(l.front());
-  if (c != 'S' && c != 'H' && c != 'C' && c != '$') return;
-  if (ascii::starts_with_keyword(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
+  if (c != 'S' && c != 'H' && c != 'C' && c != '$' && c != 'T') return;  // T: TRANSFER
+  if (ascii::starts_with_keyword(l, "SYNC")) s.explicit_sync = true;     // SYNC/ and SYNCTR/
+  // A part transfer is a synchronisation the job gives: its waits are the job's own.
+  if (ascii::starts_with_keyword(l, "TRANSFER")) s.explicit_sync = true;
   if (ascii::starts_with_keyword(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos)
     s.explicit_sync = true;
   if (ascii::starts_with_keyword(l, "HEAD")) {
@@ -79,8 +81,12 @@ void scan_lines(std::string_view text, job_scan& s) {
       p = hit + 1;
       continue;
     }
-    // The line the hit is on; it counts only if nothing but blanks comes before it.
+    // The line the hit is on; it counts only if nothing but blanks comes before it. TRANSFER
+    // (a part transfer, a synchronisation of its own) is found by its S.
     const char* line = hit;
+    if (hit - begin >= 4 && (*hit == 'S' || *hit == 's') && ascii::upper(hit[-4]) == 'T' &&
+        ascii::upper(hit[-3]) == 'R' && ascii::upper(hit[-2]) == 'A' && ascii::upper(hit[-1]) == 'N')
+      line = hit - 4;
     while (line > begin && (line[-1] == ' ' || line[-1] == '\t')) --line;
     const char* eol = static_cast<const char*>(std::memchr(hit, '\n', static_cast<std::size_t>(end - hit)));
     if (!eol) eol = end;

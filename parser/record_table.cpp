@@ -228,15 +228,19 @@ const event_builder::rule_index& event_builder::rules() {
       ignored("TITLES", "headings for the CL listing (APT); nothing for the control",
               &b::on_text<text_kind::other>),
       posted("TLAXIS", &b::on_tlaxis, "the tool axis of later moves and drilling cycles: no block"),
-      ignored("TLDATA",
-              "the tool's geometry (NX), for the CAM's simulation; the control uses its own tool "
-              "offsets",
-              &b::on_tool_data),
+      posted("TLDATA", &b::on_tool_data,
+             "the tool's kind (NX: TLDATA/MILL, DRILL, TURN) chooses the spindle on a channel with a live "
+             "spindle (milling and off-centre drilling: the live one); no block. The geometry is for the "
+             "CAM's simulation"),
       posted("TOOL PATH", &b::on_text<text_kind::toolpath>, "a comment naming the NX operation and its tool"),
       ignored("TOOLNO",
               "CATIA's tool number and kind, repeated by the LOADTL that calls the tool, which is "
               "posted"),
       posted("TPRINT", &b::on_text<text_kind::tprint>, "a comment block, as PPRINT"),
+      posted("TRANSFER", &b::on_transfer,
+             "the part transfer to the sub spindle (twinpost's record, from an NX UDE or a CAM's "
+             "user command): GRIP (sync, sub advance, chuck close) and RELEASE (main chuck open, sub "
+             "return), every channel home and waiting, the blocks from the machine's [transfer]"),
       ignored("TRNTYP",
               "SolidWorks CAM's transformation type (TRNTYP/WORLD,0,0,0: points in the world "
               "frame); the points are posted as given"),

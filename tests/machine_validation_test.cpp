@@ -131,6 +131,8 @@ TEST_CASE("validation: channel contents", "[machines]") {
                  "[[spindle]]\nname = \"main\"\n[[channel]]\nnumber = 1\n"
                  "spindle = \"sub\"\n" +
                  xz) == "m.toml:10:11: error: channel.spindle 'sub' names no [[spindle]]");
+  CHECK(error_of(head + "[[spindle]]\nname = \"main\"\n[[channel]]\nnumber = 1\nlive_spindle = \"live\"\n" +
+                 xz) == "m.toml:10:16: error: channel.live_spindle 'live' names no [[spindle]]");
   CHECK(error_of(head + "[[spindle]]\nname = \"main\"\n[[spindle]]\nname = \"main\"\n") ==
         "m.toml:9:8: error: duplicate spindle name 'main'");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nfile_suffix = \"/../x\"\n" + xz) ==
@@ -407,4 +409,32 @@ TEST_CASE("a coolant kind is two blocks, on and off", "[machines]") {
         "m.toml:7:16: error: codes.coolant_mist must be [on, off], two blocks, not 1");
   CHECK(error_of(head + "[codes]\ncoolant_through = \"M51\"\n") ==
         "m.toml:7:19: error: codes.coolant_through must be an array of strings, not a string");
+}
+
+TEST_CASE("validation: the part transfer", "[machines]") {
+  const std::string sub = "[[spindle]]\nname = \"main\"\n[[spindle]]\nname = \"sub\"\n";
+  CHECK(error_of(head + sub + two_channels + "[transfer]\nchannel = 3\n") ==
+        "m.toml:17:11: error: transfer.channel 3 names no channel (the machine has 2)");
+  CHECK(error_of(head + two_channels + "[transfer]\nchannel = 1\n") ==
+        "m.toml:13:11: error: [transfer] needs a [[spindle]] named 'sub' to take the part");
+  CHECK(error_of(head + sub + two_channels + "[transfer]\ngrip = [\"M68\"]\n") ==
+        "m.toml:16:1: error: transfer.channel is required");
+  CHECK(error_of(head + sub + two_channels + "[transfer]\nchannel = 1\ngrip = [\"M68\", \"M101\"]\n") ==
+        "m.toml:18:16: error: transfer.grip M101 lies in the wait range M100-M103 ([waits]); a program could "
+        "not tell it from a wait");
+  CHECK(error_of(head + sub + two_channels + "[transfer]\nchannel = 1\nsync = true\n") ==
+        "m.toml:18:1: error: unknown key 'transfer.sync'");
+}
+
+TEST_CASE("validation: the tool table", "[machines]") {
+  CHECK(error_of(head + two_channels + "[[tool]]\nnumber = 5\nkind = \"mill\"\n") == "(no error)");
+  CHECK(error_of(head + two_channels + "[[tool]]\nnumber = 5\nkind = \"bore\"\n") ==
+        "m.toml:14:8: error: tool.kind must be turn, drill or mill, not 'bore'");
+  CHECK(error_of(head + two_channels + "[[tool]]\nnumber = 5\nchannel = 3\nkind = \"mill\"\n") ==
+        "m.toml:14:11: error: tool.channel 3 names no channel (the machine has 2)");
+  CHECK(error_of(head + two_channels +
+                 "[[tool]]\nnumber = 5\nkind = \"mill\"\n[[tool]]\nnumber = 5\nkind = \"turn\"\n") ==
+        "m.toml:16:10: error: tool 5 is listed twice");
+  CHECK(error_of(head + two_channels + "[[tool]]\nkind = \"mill\"\n") ==
+        "m.toml:12:1: error: tool.number is required");
 }

@@ -65,6 +65,14 @@ const std::string deep2_uneven =
     "CYCLE/DEEP2,FEDTO,9.,1STPECK,6.,SUBPECK,2.,MMPM,110.,RAPTO,3.,RTRCTO,10.\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
 const std::string tap = "CYCLE/TAP,FEDTO,12.,MMPR,1.25,RAPTO,5.,RTRCTO,25.\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
 // Generic APT: FEDTO a Z, no retract plane.
+// The Integrex head has a turning and a milling spindle: its tool table says tool 1 is a
+// drill (on the centre line: the turning spindle turns the part).
+machine integrex_with_drill() {
+  machine m = load_machine("integrex-i200st");
+  m.tools.push_back({1, 1, "drill"});
+  return m;
+}
+
 const std::string apt_head = "PARTNO DRL\nUNITS/MM\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,25.\n";
 
 }  // namespace
@@ -92,7 +100,7 @@ TEST_CASE("Fanuc lathe canned cycles: G83 face drilling, R from the initial leve
 }
 
 TEST_CASE("Integrex canned cycles: G81/G82/G83/G73 and G84.2 with G98 in G17", "[post][drill]") {
-  const machine m = load_machine("integrex-i200st");
+  const machine m = integrex_with_drill();
   CHECK(cycle_blocks(sw_head + drill, m, "i-drill") ==
         "G0 X0. Y0. Z25.\nG94\nG17\nG98 G81 X0. Y0. Z-7.5 R3. F120.\nG80\nG18\nG0 Z25.\n");
   CHECK(cycle_blocks(sw_head + dwell, m, "i-dwell") ==
@@ -113,7 +121,7 @@ TEST_CASE("Integrex canned cycles: G81/G82/G83/G73 and G84.2 with G98 in G17", "
 
 TEST_CASE("a first peck other than the later ones, or no canned code, is written as moves", "[post][drill]") {
   // One Q cannot say 6 then 2: the Integrex writes the pecks as moves too.
-  CHECK(cycle_blocks(sw_head + deep2_uneven, load_machine("integrex-i200st"), "uneven") ==
+  CHECK(cycle_blocks(sw_head + deep2_uneven, integrex_with_drill(), "uneven") ==
         "G0 X0. Y0. Z25.\nG94\nZ10.\nZ3.\nG1 Z-3. F110.\nG0 Z-2.5\nG1 Z-5.\nG0 Z-4.5\nG1 Z-7.\nG0 Z-6.5\n"
         "G1 Z-9.\nG0 Z10.\n");
 }

@@ -77,7 +77,7 @@ TEST_CASE("a PARTNO after the first blocks still names the program and its head"
   // Channels write straight into their program files, head first; a name that comes late
   // gives the file a new head. Either way the files are those of the PARTNO-first job.
   const std::string body =
-      "HEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,5\nGOTO/20,0,-10\n"
+      "HEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW,MAIN\nFEDRAT/0.2,MMPR\nGOTO/20,0,5\nGOTO/20,0,-10\n"
       "HEAD/2\nTURRET/4,4\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\nGOTO/-10,0,5\nGOTO/-10,0,-3\n";
   const std::string early = "PARTNO/LATE NAME 7\n" + body + "FINI\n";
   const std::string late = body + "PARTNO/LATE NAME 7\nFINI\n";

@@ -40,6 +40,7 @@ machine numbered(const std::string& name, sequence_mode mode, int n_digits = 5) 
   m.program.sequence_step = 10;
   m.program.sequence_numbers = mode;
   m.formats['N'] = {n_digits, 0};
+  m.tools.push_back({1, 0, "turn"});  // the Integrex head has two spindles: tool 1 turns
   return m;
 }
 

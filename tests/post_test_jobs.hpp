@@ -18,7 +18,9 @@ namespace twinpost::test {
 inline std::string race_job(char v, int extra_moves = 0) {
   std::string s = "PARTNO RACE\nHEAD/1\nPPRINT VERSION ";
   s += v;
-  s += "\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,5\nGOTO/20,0,-10\n";
+  // MAIN: the Integrex head also has a milling spindle, and a speed in rpm for a tool of
+  // unknown kind names no spindle there.
+  s += "\nTURRET/1,1\nSPINDL/RPM,1000,CLW,MAIN\nFEDRAT/0.2,MMPR\nGOTO/20,0,5\nGOTO/20,0,-10\n";
   for (int i = 0; i < extra_moves; ++i) s += i % 2 ? "GOTO/20,0,-10\n" : "GOTO/21,0,-10\n";
   s += "HEAD/2\nPPRINT VERSION ";
   s += v;

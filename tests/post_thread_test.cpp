@@ -128,7 +128,9 @@ TEST_CASE("G92 boxes and expanded grooving on the Fanuc 31i", "[post][thread]") 
 }
 
 TEST_CASE("G292 boxes on the Integrex", "[post][thread]") {
-  const std::string b = body(load_machine("integrex-i200st"), thread_job, "mazak");
+  machine integrex = load_machine("integrex-i200st");
+  integrex.tools.push_back({1, 1, "turn"});  // the head's tool table: a turning tool
+  const std::string b = body(integrex, thread_job, "mazak");
   CHECK(b.starts_with(
       "G95\nG0 X26. Y0. Z5.\nG292 X19.3 Z-20. F1.5\nG0 X26. Y0. Z4.916\nG292 X19.01 Z-20. F1.5\n"));
   CHECK(b.ends_with("G292 X18.16 Z-20. F1.5\nG292 X18.16 Z-20. F1.5\nG0 X26. Y0. Z5.\n"));

@@ -52,10 +52,11 @@ TEST_CASE("COOLNT/ON after the tool change writes no second M8", "[post][tools]"
 
 TEST_CASE("the mill head stops its spindle for the tool change and starts it before the next move",
           "[post][tools]") {
-  // No SPINDL after the second tool: the spindle in force turns again before the first move.
+  // No SPINDL after the second tool: the spindle in force turns again before the first move
+  // (both are turning tools: the head's milling spindle is not theirs).
   const test::posted p = post_on(
-      "PARTNO TC\nHEAD/1\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n"
-      "LOADTL/2\nGOTO/15,0,2\nFINI\n",
+      "PARTNO TC\nHEAD/1\nTLDATA/TURN\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n"
+      "TLDATA/TURN\nLOADTL/2\nGOTO/15,0,2\nFINI\n",
       "integrex-i200st", "mill-head");
   CHECK(file_of(p, "TC.EIA") ==
         "%\nO1000(TC)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 "
@@ -101,8 +102,8 @@ TEST_CASE("each coolant kind is turned on and off with its own codes", "[post][t
   // Mazak: through-tool coolant is M51 and goes off with M163, not M9; a change of kind turns
   // the one in force off first; a tool change turns off the kind in force.
   const test::posted p = post_on(
-      "PARTNO TC\nHEAD/1\nLOADTL/1\nSPINDL/RPM,1000,CLW\nCOOLNT/ON\nCOOLNT/THRU\nRAPID\nGOTO/20,0,2\n"
-      "LOADTL/2\nRAPID\nGOTO/20,0,3\nCOOLNT/OFF\nFINI\n",
+      "PARTNO TC\nHEAD/1\nTLDATA/TURN\nLOADTL/1\nSPINDL/RPM,1000,CLW\nCOOLNT/ON\nCOOLNT/THRU\nRAPID\n"
+      "GOTO/20,0,2\nTLDATA/TURN\nLOADTL/2\nRAPID\nGOTO/20,0,3\nCOOLNT/OFF\nFINI\n",
       "integrex-i200st", "kinds");
   CHECK(
       file_of(p, "TC.EIA") ==
@@ -117,7 +118,7 @@ TEST_CASE("each coolant kind is turned on and off with its own codes", "[post][t
 TEST_CASE("G41/G42 on a rapid stops the post where the machine takes them only on a feed move",
           "[post][tools]") {
   const std::string cl =
-      "PARTNO TC\nHEAD/1\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nCUTCOM/RIGHT\nRAPID\n"
+      "PARTNO TC\nHEAD/1\nLOADTL/1\nSPINDL/RPM,1000,CLW,MAIN\nFEDRAT/0.2,MMPR\nCUTCOM/RIGHT\nRAPID\n"
       "GOTO/20,0,2\nGOTO/20,0,-5\nFINI\n";
   const test::posted mazak = post_on(cl, "integrex-i200st", "cutcom-rapid");
   CHECK_FALSE(mazak.ok);

@@ -14,7 +14,9 @@
 #    radius, Z, and for arcs the centre and the sense) and compares them, within 0.001 mm,
 #    with the CL moves of the heads that channel serves, from `twinpost parse --json JOB`:
 #    GOTO and arc events between HEAD records (HEAD/BOTH copies go to both channels on the
-#    head-1 side), X mirrored where the machine mirrors the channel, drilling and tapping
+#    head-1 side), X mirrored where the machine mirrors the channel, Z (arc centres and
+#    senses with it) reversed while the channel works on a spindle with reverse_z (from its
+#    channel.spindle, SPINDL/...,MAIN|SUB, and every channel after TRANSFER/RELEASE), drilling and tapping
 #    cycles expanded as the CL's dialect defines them (the oracle's own reading, not the
 #    post's: SolidWorks CAM, detected as the post detects it or from --dialect, gives FEDTO as
 #    a depth below the hole's top and RTRCTO as the retract plane above it; the others FEDTO
@@ -79,6 +81,8 @@ if not os.path.exists(toml_path):
     die(2, f"no machine file {toml_path}")
 with open(toml_path, "rb") as f:
     mdef = tomllib.load(f)
+# Spindles whose CL Z runs against the machine's (the sub): the channel's Z sign there.
+zsign_of = {sp["name"]: (-1.0 if sp.get("reverse_z", False) else 1.0) for sp in mdef.get("spindle", [])}
 channels = []
 for ch in mdef.get("channel", []):
     axes = {a["address"]: a for a in ch.get("axis", [])}
@@ -92,6 +96,7 @@ for ch in mdef.get("channel", []):
         "mirror": bool(x and x.get("mirror", False)),
         "x_min": x.get("min") if x else None,
         "x_max": x.get("max") if x else None,
+        "zsign": zsign_of.get(ch.get("spindle", "main"), 1.0),
     })
 by_number = {c["number"]: c for c in channels}
 cycles = mdef.get("cycles", {})
@@ -291,13 +296,19 @@ active = [(first, -1.0 if by_number[first]["mirror"] else 1.0)]
 scale = 1.0
 cycle = None
 
+zsign = {c["number"]: c["zsign"] for c in channels}
+
 def emit(move):
     for ch, sign in active:
         m = dict(move)
+        zs = zsign[ch]
         m["x"] = sign * move["x"]
+        m["z"] = zs * move["z"]
         if "cx" in m:
             m["cx"] = sign * move["cx"]
-            m["ccw"] = move["ccw"] if sign > 0 else not move["ccw"]
+            m["cz"] = zs * move["cz"]
+            # Mirroring X and reversing Z each turn the ZX plane over.
+            m["ccw"] = move["ccw"] if sign * zs > 0 else not move["ccw"]
         cl[ch].append(m)
 
 # The CL's dialect, as the post detects it (parser/dialect.cpp), or --dialect.
@@ -431,6 +442,12 @@ for e in events:
     elif kind == "channel":
         n = int(e["channel"])
         active = [(n, -1.0 if by_number[n]["mirror"] else 1.0)]
+    elif kind == "spindle" and e.get("spindle") in ("main", "sub"):
+        for ch, _ in active:
+            zsign[ch] = zsign_of.get(e["spindle"], 1.0)
+    elif kind == "transfer" and e.get("step") == "release":
+        for ch in zsign:
+            zsign[ch] = zsign_of.get("sub", 1.0)
     elif kind == "cycle":
         cycle = None if e.get("type") in ("OFF", "ON", "INIT") else e
     elif kind == "thread":

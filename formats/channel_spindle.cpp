@@ -1,0 +1,221 @@
+// channel_writer: which spindle turns and where the part is. A channel works on one
+// workpiece spindle (main or sub: its work offset, its Z sense) and may have a live spindle
+// (a mill head's milling spindle); SPINDL names one, or the tool's kind (TLDATA) chooses.
+// Part transfers (TRANSFER/GRIP, RELEASE) move the channel's work to the sub spindle.
+#include <cmath>
+#include <fmt/format.h>
+
+#include "formats/channel_writer.hpp"
+#include "machines/name_template.hpp"
+
+namespace twinpost {
+
+namespace {
+// `code words`, or just `words` when the machine has no such code (a mill has no G97).
+std::string join_words(const std::string& code, std::string words) {
+  return code.empty() ? words : code + " " + words;
+}
+
+std::string upper(std::string s) {
+  for (char& c : s)
+    if (c >= 'a' && c <= 'z') c = static_cast<char>(c - 'a' + 'A');
+  return s;
+}
+}  // namespace
+
+void channel_writer::work_on(const spindle_def& s) {
+  offset_due_ = false;
+  if (&s == work_) return;
+  work_ = &s;
+  z_sign_ = s.reverse_z ? -1.0 : 1.0;
+  // Another frame: every axis word goes out again, and the old spindle's restart is void.
+  forget_axes();
+  motion_g_ = -1;
+  restart_blocks_.clear();
+  spindle_held_ = false;
+  if (!s.work_offset.empty()) out_.block(s.work_offset);
+}
+
+void channel_writer::tool_data(const tool_data_event& t) {
+  if (t.major != "TLDATA" || t.words.empty()) return;
+  const std::string& w = t.words.front();
+  const tool_kind k = w == "MILL"                                       ? tool_kind::mill
+                      : w == "DRILL"                                    ? tool_kind::drill
+                      : (w == "TURN" || w == "GROOVE" || w == "THREAD") ? tool_kind::turn
+                                                                        : tool_kind::unknown;
+  // NX writes TLDATA before the tool call; one right after a call describes that tool.
+  if (after_call_) {
+    kind_ = k;
+    table_kind(tool_, line_);
+  } else
+    next_kind_ = k;
+}
+
+void channel_writer::table_kind(int tool, int line) {
+  const std::string_view k = m_.tool_kind(ch_.number, tool);
+  if (k.empty()) return;
+  const tool_kind table = k == "mill" ? tool_kind::mill : k == "drill" ? tool_kind::drill : tool_kind::turn;
+  if (kind_ == tool_kind::unknown) {
+    kind_ = table;
+    return;
+  }
+  if (kind_ == table) return;
+  static constexpr const char* names[] = {"", "TURN", "MILL", "DRILL"};
+  error(line, fmt::format("tool {}: the CL's TLDATA says {}, machine '{}' lists it as {} ([[tool]]): which "
+                          "tool is in the turret?",
+                          tool, names[static_cast<int>(kind_)], m_.name, k));
+}
+
+const spindle_def* channel_writer::spindle_for_tool(const spindle_event& s, int line) {
+  const std::string tool = fmt::format("tool {} ({} at line {})", tool_, tool_word_, tool_line_);
+  if (ch_.live_spindle.empty()) {
+    if (kind_ != tool_kind::mill) return work_;
+    error(line, fmt::format("SPINDL: {} is a milling tool (TLDATA/MILL) and channel {} has no live spindle "
+                            "(channel.live_spindle): the part would turn against a still cutter",
+                            tool, ch_.number));
+    return nullptr;
+  }
+  const spindle_def* live = m_.spindle(ch_.live_spindle);
+  switch (kind_) {
+    case tool_kind::turn: return work_;
+    case tool_kind::mill: return live;
+    // On-centre axial drilling turns the part (the moves are held to the centre line);
+    // a drill along another axis needs the live spindle.
+    case tool_kind::drill: return std::abs(axis_.z) >= 0.9999 ? work_ : live;
+    case tool_kind::unknown: break;
+  }
+  // Constant surface speed is a turning speed: it means the workpiece spindle.
+  if (s.mode == spindle_mode::smm || s.mode == spindle_mode::sfm) return work_;
+  error(line, fmt::format("SPINDL: the kind of {} is unknown, and channel {} has a workpiece spindle and a "
+                          "live one ({}): give TLDATA/TURN, MILL or DRILL before the tool call, or name the "
+                          "spindle (SPINDL/...,MAIN, SUB or LIVE)",
+                          tool_ < 0 ? std::string("the tool (no tool called yet)") : tool, ch_.number,
+                          ch_.live_spindle));
+  return nullptr;
+}
+
+bool channel_writer::drill_on_centre(double x_cl, int line) {
+  if (kind_ != tool_kind::drill || spindle_ != work_ || restart_blocks_.empty() || spindle_held_) return true;
+  if (std::abs(x_cl * scale_) <= 1e-3) return true;
+  error(line, fmt::format("tool {} is a drill (TLDATA/DRILL) and the part turns on the {} spindle, but this "
+                          "feed move leaves the centre line (x = {}): off-centre drilling needs the live "
+                          "spindle (SPINDL/...,LIVE)",
+                          tool_, work_->name, x_cl));
+  return false;
+}
+
+void channel_writer::spindle(const spindle_event& s, int line) {
+  spindle_held_ = false;  // this record says what the spindle does now (or the post has failed)
+  const spindle_def* target = spindle_;
+  if (s.spindle == "main" || s.spindle == "sub") {
+    const spindle_def* sel = m_.spindle(s.spindle);
+    if (!sel)
+      return error(line, fmt::format("SPINDL/...,{}: machine '{}' has no {} spindle", upper(s.spindle),
+                                     m_.name, s.spindle));
+    // The word says where the part is; a milling tool (or a drill off the axis) still turns
+    // the live spindle, never the part against a still cutter.
+    work_on(*sel);
+    target = kind_ == tool_kind::mill || kind_ == tool_kind::drill ? spindle_for_tool(s, line) : sel;
+    if (!target) return;
+  } else if (s.spindle == "live") {
+    if (ch_.live_spindle.empty())
+      return error(line, fmt::format("SPINDL/...,LIVE: channel {} of machine '{}' has no live spindle "
+                                     "(channel.live_spindle)",
+                                     ch_.number, m_.name));
+    target = m_.spindle(ch_.live_spindle);
+  } else if (!s.spindle.empty()) {
+    return error(line, fmt::format("machine '{}' has no {} spindle", m_.name, s.spindle));
+  } else if (s.mode != spindle_mode::off && s.mode != spindle_mode::on && work_) {
+    target = spindle_for_tool(s, line);
+    if (!target) return;
+  }
+  if (!target) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
+  if (target != spindle_) {
+    spindle_ = target;
+    if (target->select) out_.block(fmt::format("M{}", *target->select));
+  }
+  if (s.mode == spindle_mode::on) {
+    // APT: ON turns the spindle on again at the last speed, mode and direction, never S0.
+    if (!last_speed_)
+      return error(line,
+                   "SPINDL/ON with no spindle speed given before in this channel: give "
+                   "SPINDL/RPM,n or SPINDL/SMM,n");
+    spindle_event again = *last_speed_;
+    if (s.dir != rotation::none) again.dir = s.dir;
+    again.spindle.clear();  // the spindle selected now
+    return spindle(again, line);
+  }
+  const spindle_def& sp = *spindle_;
+  if (s.mode == spindle_mode::off) {
+    restart_blocks_.clear();
+    return out_.block(fmt::format("M{}", sp.stop));
+  }
+  if (s.mode == spindle_mode::orient || s.mode == spindle_mode::lock)
+    return error(line, "spindle ORIENT/LOCK is not supported on a lathe channel yet");
+  int m = s.dir == rotation::ccw ? sp.ccw : sp.cw;
+  if (s.mode == spindle_mode::sfm || s.mode == spindle_mode::smm) {
+    // G96 S is in m/min with mm output, in ft/min with inch output.
+    const bool inch = out_per_mm_ < 1;
+    const double smm = s.mode == spindle_mode::sfm ? (inch ? s.speed : s.speed * 0.3048)
+                       : inch                      ? s.speed / 0.3048
+                                                   : s.speed;
+    if (!s.max_rpm && sp.max_rpm <= 0)
+      return error(line, "constant surface speed needs MAXRPM (or a spindle limit in the machine)");
+    double clamp = s.max_rpm ? *s.max_rpm : sp.max_rpm;
+    if (sp.max_rpm > 0 && clamp > sp.max_rpm)
+      return error(line, fmt::format("MAXRPM {} exceeds the {} spindle's limit of {} rpm", clamp, sp.name,
+                                     sp.max_rpm));
+    template_args a;  // template_uses::clamp
+    a.max = clamp;
+    a.rpm = clamp;
+    a.channel = ch_.number;
+    if (!fits('S', smm, 0)) return;
+    restart_blocks_.clear();
+    if (!sp.clamp.empty()) {
+      std::string b = format_template(sp.clamp, a);
+      if (!block_fits(b)) return;
+      restart_blocks_.push_back(b);
+    }
+    restart_blocks_.push_back(
+        join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
+    for (const std::string& b : restart_blocks_) out_.block(b);
+    last_speed_ = s;
+    return;
+  }
+  if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
+    return error(
+        line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
+  if (!fits('S', s.speed, 0)) return;
+  restart_blocks_ = {
+      join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
+  out_.block(restart_blocks_.front());
+  last_speed_ = s;
+}
+
+void channel_writer::transfer(const transfer_event& t, int line) {
+  (void)line;
+  switch (t.step) {
+    case transfer_event::phase::retract:
+      // Out of the space between the spindles: coolant off, home X then Z (once: a channel
+      // already home stays there).
+      if (!coolant_block_.empty()) out_.block(coolant_off_block_);
+      coolant_block_.clear();
+      coolant_off_block_.clear();
+      if (homed_) return;
+      go_home();
+      forget_axes();
+      motion_g_ = -1;
+      return;
+    case transfer_event::phase::blocks:
+      for (const std::string& b : t.release ? m_.transfer.release : m_.transfer.grip) out_.block(b);
+      return;
+    case transfer_event::phase::on_sub:
+      // The next SPINDL selects the sub (M902 on the Integrex) and starts it.
+      if (const spindle_def* sub = m_.spindle("sub")) work_on(*sub);
+      return;
+    case transfer_event::phase::grip:
+    case transfer_event::phase::release: return;  // the router sends the steps
+  }
+}
+
+}  // namespace twinpost
