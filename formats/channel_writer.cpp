@@ -1,5 +1,6 @@
 #include "formats/channel_writer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -258,6 +259,17 @@ void channel_writer::write_dwell(double seconds) {
   if (block_fits(b)) out_.block(b);
 }
 
-void channel_writer::finish() { out_.close(); }
+void channel_writer::finish() {
+  // The footer stops the spindles its file names (M5; the Integrex M5 M205 M305). A spindle
+  // still turning whose stop code the footer lacks (the sub spindle's M105 on the 0i-TD, the
+  // main spindle on a file without M5) is stopped first, as the Fusion Doosan post does
+  // (M5 before M9 and the retract).
+  if (spindle_ && !restart_blocks_.empty() && !spindle_held_) {
+    const std::string stop = fmt::format("M{}", spindle_->stop);
+    const auto& footer = m_.program.footer;
+    if (std::find(footer.begin(), footer.end(), stop) == footer.end()) out_.block(stop);
+  }
+  out_.close();
+}
 
 }  // namespace twinpost

@@ -92,7 +92,7 @@ TEST_CASE("an arc on the sub spindle swaps G2/G3 and negates K", "[post][sub]") 
         "G1 X40. Z-5. F0.2\nG3 X46. Z-8. I0. K-3.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   CHECK(file_of(sub, "A_1.nc") ==
         "%\nO1000 (A)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG55\nG97 S500 M103\nG99\n"
-        "G1 X40. Z5. F0.2\nG2 X46. Z8. I0. K3.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+        "G1 X40. Z5. F0.2\nG2 X46. Z8. I0. K3.\nM100\nM105\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
 TEST_CASE("a machine without a sub spindle refuses SPINDL/...,SUB and TRANSFER at their records",
@@ -179,7 +179,7 @@ TEST_CASE("the 31i mill head turns its live spindle for a milling tool", "[post]
       "fanuc-31i-3path", "31i-mill");
   CHECK(file_of(p, "E_3.nc") ==
         "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT07 M6\nG97 S3000 M33\nG98\n"
-        "G1 X40. Y0. Z2. F200.\nM200 P123\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+        "G1 X40. Y0. Z2. F200.\nM200 P123\nM35\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
 }
 
 TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles is an error",
@@ -287,7 +287,7 @@ TEST_CASE("a channel the machine file puts on the sub spindle starts in G55 with
       m, "starts-on-sub");
   CHECK(file_of(p, "S_2.nc") ==
         "%\nO1000 (S)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0303\nG55\nG97 S800 M103\nG99\n"
-        "G1 X40. Z-2. F0.2\nZ5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+        "G1 X40. Z-2. F0.2\nZ5.\nM100\nM105\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
 TEST_CASE("TRANSFER/GRIP and TRANSFER/RELEASE come in pairs", "[post][sub]") {
