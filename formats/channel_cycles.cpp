@@ -5,16 +5,11 @@
 #include <fmt/format.h>
 
 #include "formats/channel_writer.hpp"
+#include "formats/cycle_words.hpp"
 
 namespace twinpost {
 
 namespace {
-
-std::optional<double> param(const cycle_event& c, std::string_view name) {
-  for (const auto& [k, v] : c.params)
-    if (k == name) return v;
-  return std::nullopt;
-}
 
 bool has_word(const cycle_event& c, std::string_view word) {
   return std::find(c.words.begin(), c.words.end(), word) != c.words.end();
@@ -61,7 +56,7 @@ bool channel_writer::cycle_supported(const cycle_event& c, int line) {
     if (name == "MMPR" || name == "IPR" || name == "MMPM" || name == "IPM") return true;
     if (name == "STEP") return c.type == "DEEP";  // only DEEP is written in pecks of STEP
     if (name == "RTRCTO") return mean.rtrcto_above_top;
-    if (name == "DWELL") return mean.dwell_seconds && (!tap || *param(c, "DWELL") == 0);
+    if (name == "DWELL") return mean.dwell_seconds && (!tap || *cycle_param(c, "DWELL") == 0);
     if (name == "1STPECK" || name == "SUBPECK") return mean.first_and_later_pecks && c.type == "DEEP2";
     if (name == "PITCH") return tap;
     return false;
@@ -90,7 +85,7 @@ bool channel_writer::cycle_supported(const cycle_event& c, int line) {
                             c.type, c.positional.front(), knows));
     return false;
   }
-  if (c.type == "DEEP2" && !(param(c, "SUBPECK").value_or(0) > 0)) {
+  if (c.type == "DEEP2" && !(cycle_param(c, "SUBPECK").value_or(0) > 0)) {
     error(line, "CYCLE/DEEP2 needs SUBPECK, the depth of each peck after the first");
     return false;
   }
@@ -101,7 +96,7 @@ bool channel_writer::cycle_supported(const cycle_event& c, int line) {
                               m_.name));
       return false;
     }
-    if (!param(c, "PITCH") && !param(c, "MMPR") && !param(c, "IPR")) {
+    if (!cycle_param(c, "PITCH") && !cycle_param(c, "MMPR") && !cycle_param(c, "IPR")) {
       error(line,
             "CYCLE/TAP needs the pitch: PITCH or a feed per revolution (MMPR, IPR); a feed per minute "
             "would tap in step with the spindle only at one speed");
@@ -131,11 +126,11 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   h.y = p.y;
   h.into = axis_.z < 0 ? 1.0 : -1.0;  // the tool looks down -Z (axis +Z): it drills towards -Z
   const double top = p.z;
-  h.clear = top - h.into * param(c, "RAPTO").value_or(param(c, "CLEAR").value_or(0));
-  const std::optional<double> fedto = param(c, "FEDTO");
+  h.clear = top - h.into * cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
+  const std::optional<double> fedto = cycle_param(c, "FEDTO");
   std::optional<double> bottom;
   if (fedto) bottom = c.meaning.fedto_is_depth ? top + h.into * *fedto : *fedto;
-  if (!bottom && param(c, "DEPTH")) bottom = top + h.into * *param(c, "DEPTH");
+  if (!bottom && cycle_param(c, "DEPTH")) bottom = top + h.into * *cycle_param(c, "DEPTH");
   if (!bottom) return error(line, fmt::format("CYCLE/{} needs FEDTO or DEPTH", c.type));
   h.bottom = *bottom;
   if ((h.bottom - h.clear) * h.into <= 0)
@@ -145,21 +140,21 @@ void channel_writer::cycle_point(const vec3& p, int line) {
                              c.type, h.bottom, h.clear,
                              c.meaning.fedto_is_depth || !fedto ? "" : " (is FEDTO a depth in this CL?)"));
   h.initial = h.clear;
-  if (auto r = param(c, "RTRCTO")) {
+  if (auto r = cycle_param(c, "RTRCTO")) {
     h.initial = top - h.into * *r;
     if ((h.initial - h.clear) * h.into > 0)
       return error(line, fmt::format("CYCLE/{}: RTRCTO {} lies below RAPTO: the tool would return to a plane "
                                      "nearer the part than the one it started from",
                                      c.type, *r));
   }
-  h.dwell = param(c, "DWELL").value_or(0);
+  h.dwell = cycle_param(c, "DWELL").value_or(0);
   if (h.dwell < 0) return error(line, fmt::format("CYCLE/{}: DWELL {} is negative", c.type, h.dwell));
   if (c.type == "TAP") {
     if (inch_thread_refused("CYCLE/TAP", line)) return;
     // The lead: PITCH, or the feed per revolution, which for a tap is the lead (mm output).
-    double pitch = param(c, "PITCH").value_or(0) * cl_mm_;
-    if (auto f = param(c, "MMPR"); f && pitch == 0) pitch = *f;
-    if (auto f = param(c, "IPR"); f && pitch == 0) pitch = *f * 25.4;
+    double pitch = cycle_param(c, "PITCH").value_or(0) * cl_mm_;
+    if (auto f = cycle_param(c, "MMPR"); f && pitch == 0) pitch = *f;
+    if (auto f = cycle_param(c, "IPR"); f && pitch == 0) pitch = *f * 25.4;
     if (!(pitch > 0)) return error(line, fmt::format("CYCLE/TAP: the pitch {} is not a lead", pitch));
     if (!fits('F', pitch, 4)) return;
     h.pitch = pitch;
@@ -167,7 +162,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
     return tap_hole(h, line);
   }
   for (const char* unit : {"MMPR", "IPR", "MMPM", "IPM"}) {
-    if (auto f = param(c, unit)) {
+    if (auto f = cycle_param(c, unit)) {
       const bool per_rev = std::string_view(unit).back() == 'R';
       const double value = *f * ((unit[0] == 'I') ? 25.4 : 1.0) * out_per_mm_;
       if (!fits('F', value, feed_decimals(per_rev))) return;
@@ -176,10 +171,10 @@ void channel_writer::cycle_point(const vec3& p, int line) {
     }
   }
   if (c.type == "DEEP") {
-    h.first = h.later = param(c, "STEP").value_or(0);
+    h.first = h.later = cycle_param(c, "STEP").value_or(0);
   } else if (c.type == "DEEP2") {
-    h.later = *param(c, "SUBPECK");
-    h.first = param(c, "1STPECK").value_or(h.later);
+    h.later = *cycle_param(c, "SUBPECK");
+    h.first = cycle_param(c, "1STPECK").value_or(h.later);
     h.chip_break = true;
   }
   if (h.first < 0 || h.later < 0)

@@ -12,16 +12,11 @@
 #include <span>
 
 #include "formats/channel_writer.hpp"
+#include "formats/cycle_words.hpp"
 
 namespace twinpost {
 
 namespace {
-
-std::optional<double> param_of(const cycle_event& c, std::string_view name) {
-  for (const auto& [k, v] : c.params)
-    if (k == name) return v;
-  return std::nullopt;
-}
 
 constexpr double pi = 3.14159265358979323846;
 constexpr int max_passes = 999;
@@ -142,23 +137,23 @@ thread_plan plan_thread(const cycle_event& c, double scale) {
     t.problem = std::move(why);
     return t;
   };
-  const auto lead = param_of(c, "LEAD"), pitch = param_of(c, "PITCH");
-  const double starts = param_of(c, "STARTS").value_or(1);
+  const auto lead = cycle_param(c, "LEAD"), pitch = cycle_param(c, "PITCH");
+  const double starts = cycle_param(c, "STARTS").value_or(1);
   if (!(starts >= 1 && starts <= 99 && starts == std::floor(starts)))
     return fail(fmt::format("STARTS {} is not a whole number of starts in 1..99", starts));
   t.starts = static_cast<int>(starts);
   if (lead && pitch) return fail("it gives both LEAD and PITCH: give one");
   if (!lead && !pitch) return fail("it needs the lead (LEAD,l or PITCH,p)");
   t.lead = (lead ? *lead : *pitch * t.starts) * scale;
-  const auto depth = param_of(c, "DEPTH");
+  const auto depth = cycle_param(c, "DEPTH");
   if (!depth) return fail("it needs the thread height (DEPTH)");
   t.height = *depth * scale;
-  t.finish = param_of(c, "FINISH").value_or(0) * scale;
-  t.min_cut = param_of(c, "MINCUT").value_or(0) * scale;
-  t.angle = param_of(c, "ANGLE").value_or(0);
-  t.taper = param_of(c, "TAPER").value_or(0) * scale;
-  t.chamfer = param_of(c, "CHAMFR").value_or(0);
-  const double spring = param_of(c, "SPRING").value_or(0);
+  t.finish = cycle_param(c, "FINISH").value_or(0) * scale;
+  t.min_cut = cycle_param(c, "MINCUT").value_or(0) * scale;
+  t.angle = cycle_param(c, "ANGLE").value_or(0);
+  t.taper = cycle_param(c, "TAPER").value_or(0) * scale;
+  t.chamfer = cycle_param(c, "CHAMFR").value_or(0);
+  const double spring = cycle_param(c, "SPRING").value_or(0);
   if (!(t.lead > 0 && std::isfinite(t.lead))) return fail(fmt::format("the lead {} must be above 0", t.lead));
   if (!(t.height > 0 && t.height < 1000)) return fail(fmt::format("DEPTH {} must be above 0", *depth));
   if (!(t.finish >= 0 && t.finish < t.height)) return fail("FINISH must be at least 0 and below DEPTH");
@@ -172,7 +167,7 @@ thread_plan plan_thread(const cycle_event& c, double scale) {
   if (!std::isfinite(t.taper)) return fail("TAPER must be a number");
   if (t.taper != 0 && t.starts > 1)
     return fail("a tapered thread with more than one start: shifted starts would move the cone");
-  const auto first = param_of(c, "FIRST"), passes = param_of(c, "PASSES");
+  const auto first = cycle_param(c, "FIRST"), passes = cycle_param(c, "PASSES");
   const double rough = t.height - t.finish;
   if (first && passes) return fail("it gives both FIRST and PASSES: give one");
   if (first)
@@ -313,7 +308,8 @@ void channel_writer::groove_cycle_point(const vec3& p, int line) {
   // far toward the axis) and go back out to RAPTO above the surface; WIDTH more plunges step
   // ZSTEP apart toward -Z (a negative WIDTH: toward +Z). The control ends where it started.
   const double x = p.x * scale_, z = p.z * scale_;
-  const auto fedto = param_of(c, "FEDTO"), depth = param_of(c, "DEPTH"), rapto = param_of(c, "RAPTO");
+  const auto fedto = cycle_param(c, "FEDTO"), depth = cycle_param(c, "DEPTH"),
+             rapto = cycle_param(c, "RAPTO");
   if (fedto && depth) return error(line, "CYCLE/GROOVE gives both FEDTO and DEPTH: give one");
   if (!fedto && !depth) return error(line, "CYCLE/GROOVE needs the groove's bottom (FEDTO or DEPTH)");
   if (!rapto || !(*rapto > 0))
@@ -323,15 +319,15 @@ void channel_writer::groove_cycle_point(const vec3& p, int line) {
   if (std::abs(bottom - x) < 1e-6 || (depth && !(*depth > 0)))
     return error(line, "CYCLE/GROOVE: the groove's bottom is at its surface: nothing to cut");
   const double clear = x - into * *rapto * scale_;
-  const double width = param_of(c, "WIDTH").value_or(0) * scale_;
-  const double step = param_of(c, "ZSTEP").value_or(0) * scale_;
+  const double width = cycle_param(c, "WIDTH").value_or(0) * scale_;
+  const double step = cycle_param(c, "ZSTEP").value_or(0) * scale_;
   if (width != 0 && !(step > 0))
     return error(line, "CYCLE/GROOVE: a WIDTH needs ZSTEP above 0, the distance between plunges");
   if (width != 0 && !(std::abs(width) / step <= max_passes))
     return error(line, fmt::format("CYCLE/GROOVE: WIDTH {} in steps of {} makes more than {} plunges", width,
                                    step, max_passes));
   for (const char* unit : {"MMPR", "IPR"})
-    if (auto f = param_of(c, unit)) {
+    if (auto f = cycle_param(c, unit)) {
       const double value = *f * (unit[0] == 'I' ? 25.4 : 1.0) * out_per_mm_;
       if (!fits('F', value, feed_decimals(true))) return;
       feed_value_ = value;

@@ -131,20 +131,8 @@ void control_codes_of(overlap_finder& f, const control_codes& c, const toml::tab
 }
 
 void cycle_codes(overlap_finder& f, const cycle_rules& c, const toml::table* t) {
-  const std::pair<std::string_view, const std::string*> fixed[] = {
-      {"plane", &c.plane},
-      {"drill_code", &c.drill_code},
-      {"dwell_code", &c.dwell_code},
-      {"peck_code", &c.peck_code},
-      {"chip_break_code", &c.chip_break_code},
-      {"tap_code", &c.tap_code},
-      {"tap_left_code", &c.tap_left_code},
-      {"rigid_code", &c.rigid_code},
-      {"cancel", &c.cancel},
-      {"return_initial", &c.return_initial},
-      {"sync_feed", &c.sync_feed},
-  };
-  for (const auto& [key, text] : fixed) f.block(fmt::format("cycles.{}", key), *text, key_of(t, key), t);
+  for (const auto& [key, field] : cycle_rules::code_keys)
+    f.block(fmt::format("cycles.{}", key), c.*field, key_of(t, key), t);
 }
 
 void spindle_codes(overlap_finder& f, const spindle_def& s, const toml::table& t) {

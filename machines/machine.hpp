@@ -2,6 +2,7 @@
 // A machine definition: everything twinpost knows about one machine and its control.
 // Loaded from TOML (machines/machine_loader.hpp); the built-in ones live in
 // machines/builtin/*.toml. Plain data: no behaviour beyond small look-ups.
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -197,6 +198,23 @@ struct cycle_rules {
   /// Radial grooving (CYCLE/GROOVE): "g75" (Fanuc two-block) or "expanded" (G0/G1 plunges);
   /// "": a groove is an error at its record.
   std::string groove;
+
+  /// The keys of the blocks above and their fields (the loader reads them, the overlap check
+  /// holds them to the wait range).
+  using code_field = std::pair<std::string_view, std::string cycle_rules::*>;
+  static constexpr std::array<code_field, 11> code_keys{{
+      {"plane", &cycle_rules::plane},
+      {"drill_code", &cycle_rules::drill_code},
+      {"dwell_code", &cycle_rules::dwell_code},
+      {"peck_code", &cycle_rules::peck_code},
+      {"chip_break_code", &cycle_rules::chip_break_code},
+      {"tap_code", &cycle_rules::tap_code},
+      {"tap_left_code", &cycle_rules::tap_left_code},
+      {"rigid_code", &cycle_rules::rigid_code},
+      {"cancel", &cycle_rules::cancel},
+      {"return_initial", &cycle_rules::return_initial},
+      {"sync_feed", &cycle_rules::sync_feed},
+  }};
 };
 
 /// One machine and its control.

@@ -35,20 +35,7 @@ void read_cycles(const table_reader& root, cycle_rules& c) {
   read_choice(r, "tap", c.tap, {"rigid", "floating", "expanded", "none"});
   read_choice(r, "thread", c.thread, {"g76", "g276", "g92", "g292", "g32"});
   read_choice(r, "groove", c.groove, {"g75", "expanded"});
-  for (auto [key, code] : std::array<std::pair<std::string_view, std::string*>, 11>{{
-           {"plane", &c.plane},
-           {"drill_code", &c.drill_code},
-           {"dwell_code", &c.dwell_code},
-           {"peck_code", &c.peck_code},
-           {"chip_break_code", &c.chip_break_code},
-           {"tap_code", &c.tap_code},
-           {"tap_left_code", &c.tap_left_code},
-           {"rigid_code", &c.rigid_code},
-           {"cancel", &c.cancel},
-           {"return_initial", &c.return_initial},
-           {"sync_feed", &c.sync_feed},
-       }})
-    r.read_fixed(key, *code);
+  for (const auto& [key, field] : cycle_rules::code_keys) r.read_fixed(key, c.*field);
   r.read("r_from_initial", c.r_from_initial);
   r.read("q_increments", c.q_increments);
   // A kind that needs codes the file does not give would fail at the first hole: say so here.
