@@ -111,11 +111,12 @@ void channel_writer::tool(const tool_event& t, int line) {
   const std::string call = format_template(ch_.tool_call, a);
   // Offset 0 in a lathe tool call (T0300) cancels the tool's offset: the tip would run
   // where the turret's reference point is, not where the CL says.
-  if (a.offset == 0 && ch_.tool_call.find("{offset") != std::string::npos) {
+  if (a.offset == 0 && !ch_.offset_zero && ch_.tool_call.find("{offset") != std::string::npos) {
     tool_ = t.tool;  // the post has failed: its moves need no second error for a missing tool
     return error(line,
                  fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
-                             "give the offset number",
+                             "give the offset number (or set channel.offset_zero where the control's tool "
+                             "table applies it)",
                              t.tool, call));
   }
   static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL", "SELECT/TOOL", "TURRET"};

@@ -77,6 +77,10 @@ struct channel_def {
   /// (a mill head's tool changer: the Fusion Integrex post stops it before every T.. M6).
   /// Default: true for kind mill_head, false for a turret.
   bool tool_change_stops_spindle = false;
+  /// Whether a tool call may cancel the offset (T0300): false, the default, stops the post at
+  /// such a call (the tip would run at the turret's reference point); true for a control
+  /// whose tool table applies the geometry by tool number.
+  bool offset_zero = false;
   std::vector<axis_def> axes;  ///< at least X and Z
   std::string file_suffix;     ///< for split layout, e.g. "_1" or ".P-2"
   /// The axis with this address, or nullptr.

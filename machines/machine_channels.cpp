@@ -70,6 +70,7 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
     c.tool_call = kind == "turret" ? "T{tool:02}{offset:02}" : "T{tool:02} M6";
   c.tool_change_stops_spindle = kind == "mill_head";
   r.read("tool_change_stops_spindle", c.tool_change_stops_spindle);
+  r.read("offset_zero", c.offset_zero);
   const bool spindle_given = r.read("spindle", c.spindle);
   if (!m.spindles.empty() && !m.spindle(c.spindle)) {
     const std::string message = fmt::format("channel.spindle '{}' names no [[spindle]]", c.spindle);
@@ -129,7 +130,7 @@ void read_channels(const table_reader& root, machine& m) {
     readers.emplace_back(*t, "channel", root.source(),
                          std::initializer_list<std::string_view>{
                              "number", "heads", "head_names", "kind", "tool_call", "spindle", "file_suffix",
-                             "axis", "tool_change_stops_spindle", "live_spindle"});
+                             "axis", "tool_change_stops_spindle", "live_spindle", "offset_zero"});
     all.push_back({read_channel_table(readers.back(), m), &readers.back()});
   }
   check_numbers_and_heads(all);

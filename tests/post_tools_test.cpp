@@ -42,7 +42,15 @@ TEST_CASE("offset 0 in a lathe tool call is an error, not T0300", "[post][tools]
     if (d.level == severity::error) errors += d.message + "\n";
   CHECK(errors ==
         "channel 1: tool 3 with offset 0 would be called as T0300, which cancels the tool offset; give the "
-        "offset number\n");
+        "offset number (or set channel.offset_zero where the control's tool table applies it)\n");
   CHECK(test::list_dir(dir + "/out") == "(missing)");
+  // A channel whose control applies the geometry by tool number may say so.
+  machine m = load_machine("fanuc-0itd-twin");
+  m.channels[0].offset_zero = true;
+  diagnostic_list allowed;
+  CHECK(test::post_text(dir, "job.cls", "PARTNO TOOLS\nHEAD/1\nLOADTL/3,0\nRAPID\nGOTO/20,0,5\nFINI\n", m,
+                        dir + "/out", allowed)
+            .ok);
+  CHECK(test::read_file(dir + "/out/TOOLS_1.nc").find("\nT0300\n") != std::string::npos);
   std::filesystem::remove_all(dir);
 }
