@@ -121,6 +121,16 @@ void channel_writer::tool(const tool_event& t, int line) {
   }
   static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL", "SELECT/TOOL", "TURRET"};
   const char* word = words[static_cast<int>(t.source)];
+  // A call template without {offset} (the Integrex mill head's T01 M6) cannot select another
+  // offset: TURRET/1,21 for the finish would run on the roughing offset without a word.
+  if (t.offset && *t.offset != t.tool && ch_.tool_call.find("{offset") == std::string::npos) {
+    tool_ = t.tool;  // the post has failed: its moves need no second error for a missing tool
+    return error(line,
+                 fmt::format("{} asks for tool {} on offset {}, but the channel's tool call {} writes no "
+                             "offset (channel.tool_call has no {{offset}}): the tool would cut on "
+                             "whatever offset is active",
+                             word, t.tool, *t.offset, call));
+  }
   if (t.tool == tool_) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
     // turret stays where it is and only the offset changes, so the call goes out alone.

@@ -11,7 +11,11 @@ dialect detect_dialect(std::string_view head) {
   if (has(head, "$$*CATIA0") || has(head, "CATIA APT")) return dialect::catia;
   if (has(head, "APTCL-SPEC,MAKINO")) return dialect::makino;
   if (has(head, "TOOL PATH/")) return dialect::nx;
-  if (has(head, "CSI_SET_") || has(head, "UNIT/MM") || has(head, "OPFEATSTART")) return dialect::solidworks;
+  // UNIT/ (not UNITS/) is SolidWorks CAM's own spelling, in mm and in inch: an inch job with
+  // no CSI_SET_ in its head would otherwise read FEDTO as a Z (a depth of .5 below a top at
+  // Z2 drilled to Z.5).
+  if (has(head, "CSI_SET_") || has(head, "UNIT/MM") || has(head, "UNIT/IN") || has(head, "OPFEATSTART"))
+    return dialect::solidworks;
   return dialect::generic;
 }
 

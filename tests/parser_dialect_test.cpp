@@ -15,6 +15,8 @@ TEST_CASE("each CAM family is told apart by its first bytes", "[parser][dialect]
   CHECK(detect_dialect("$$ ----\n$$     CATIA APT VERSION 1.0\n") == dialect::catia);
   CHECK(detect_dialect("$$ Programme\n$$*CATIA0\n") == dialect::catia);
   CHECK(detect_dialect("PARTNO/1\nUNIT/MM\nINSERT/x\n") == dialect::solidworks);
+  CHECK(detect_dialect("PARTNO/1\nUNIT/INCH\nLOAD/TOOL,2\n") == dialect::solidworks);
+  CHECK(detect_dialect("PARTNO/1\nUNITS/INCHES\nLOADTL/2\n") == dialect::generic);
   CHECK(detect_dialect("UNITS/ MM \nBOX/ 0,0,0,1,1,1 \nOPFEATSTART/Drill1\n") == dialect::solidworks);
   CHECK(detect_dialect("LOAD/TOOL,14\nCSI_SET_FLUTE_LENGTH/16.\n") == dialect::solidworks);
   CHECK(detect_dialect("PPRINT/APTCL-SPEC,MAKINO-FF,1\n") == dialect::makino);

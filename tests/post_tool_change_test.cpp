@@ -139,3 +139,26 @@ TEST_CASE("a move before any tool call is an error", "[post][tools]") {
         "job.cls:5:1: error: channel 1: a move with no tool called in this channel: give LOADTL or TURRET "
         "before the first move\nGOTO/20,0,2\n^\n");
 }
+
+TEST_CASE("an offset the channel's tool call cannot write is an error, never the last offset",
+          "[post][tools]") {
+  // The Integrex mill head calls T01 M6: TURRET/1,21 for the finish would run on offset 1.
+  const test::posted p = post_on(
+      "PARTNO TC\nHEAD/1\nTLDATA/TURN\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n"
+      "TURRET/1,21\nGOTO/19.5,0,2\nFINI\n",
+      "integrex-i200st", "offset-lost");
+  CHECK_FALSE(p.ok);
+  CHECK(p.files.empty());
+  CHECK(p.diagnostics ==
+        "job.cls:8:1: error: channel 1: TURRET asks for tool 1 on offset 21, but the channel's tool call T01 "
+        "M6 "
+        "writes no offset (channel.tool_call has no {offset}): the tool would cut on whatever offset is "
+        "active\nTURRET/1,21\n^\n");
+  // The lower turret's T{tool:02}{offset:02} writes the change.
+  const test::posted q = post_on(
+      "PARTNO TC\nHEAD/2\nTLDATA/TURN\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/-20,0,2\n"
+      "TURRET/1,21\nGOTO/-19.5,0,2\nFINI\n",
+      "integrex-i200st", "offset-turret");
+  CHECK(q.ok);
+  CHECK(q.diagnostics.empty());
+}
