@@ -56,11 +56,24 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
       append_feed(b);
     else if (!rapid)
       error(line, "feed move with no feed rate (FEDRAT) in force");
+    if (!rapid) spindle_turning(line);
     out_.end_block();
   } else {
     out_.drop_block();  // already there: nothing to write, the modal codes wait for a move
   }
   word_start_ = std::string::npos;
+}
+
+bool channel_writer::spindle_turning(int line) {
+  // A feed after this channel's own SPINDL/OFF of the spindle it cuts on drives a turning tool
+  // into a still part (or a still cutter into the work). A channel that never started the
+  // spindle may cut on one another channel drives (a shared main spindle): that is the
+  // job-wide check of shared spindles, not this channel's.
+  if (!stopped_by_cl_ || stopped_by_cl_ != spindle_) return true;
+  error(line, fmt::format("feed move with the {} spindle stopped by SPINDL/OFF: give SPINDL with a speed "
+                          "before cutting (the tool would be driven into a part that does not turn)",
+                          spindle_->name));
+  return false;
 }
 
 void channel_writer::no_tool(int line) {
@@ -119,6 +132,7 @@ void channel_writer::arc(const arc_event& a, int line) {
     pos_ = a.end;
   };
   auto fail_quietly = [&] { pos_ = a.end; };
+  if (!spindle_turning(line)) return fail_quietly();
   if (plane == 0)
     return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane", a.normal.x, a.normal.y,
                             a.normal.z));

@@ -148,6 +148,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   const spindle_def& sp = *spindle_;
   if (s.mode == spindle_mode::off) {
     restart_blocks_.clear();
+    stopped_by_cl_ = spindle_;
     return out_.block(fmt::format("M{}", sp.stop));
   }
   if (s.mode == spindle_mode::orient || s.mode == spindle_mode::lock)
@@ -180,6 +181,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
         join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
     for (const std::string& b : restart_blocks_) out_.block(b);
     last_speed_ = s;
+    stopped_by_cl_ = nullptr;
     return;
   }
   if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
@@ -190,6 +192,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
       join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
   out_.block(restart_blocks_.front());
   last_speed_ = s;
+  stopped_by_cl_ = nullptr;
 }
 
 void channel_writer::transfer(const transfer_event& t, int line) {

@@ -269,6 +269,13 @@ void channel_writer::finish() {
     const auto& footer = m_.program.footer;
     if (std::find(footer.begin(), footer.end(), stop) == footer.end()) out_.block(stop);
   }
+  // Likewise the coolant: the footer's M9 does not turn off through-tool (M109, Mazak M163)
+  // or air coolant, which would blow through the final retract.
+  if (!coolant_block_.empty()) {
+    const auto& footer = m_.program.footer;
+    if (std::find(footer.begin(), footer.end(), coolant_off_block_) == footer.end())
+      out_.block(coolant_off_block_);
+  }
   out_.close();
 }
 

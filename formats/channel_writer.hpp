@@ -83,6 +83,8 @@ class channel_writer {
   void go_home();
   /// The spindle stopped for a tool change turns again (before the first move after it).
   void resume_spindle(int line);
+  /// False (with the error) when this channel's SPINDL/OFF stopped the spindle it feeds on.
+  bool spindle_turning(int line);
   /// The error for a move before any tool call in this channel.
   void no_tool(int line);
   /// COOLNT: flood (ON, FLOOD) writes the machine's coolant-on block, MIST, THRU and AIR their
@@ -208,6 +210,8 @@ class channel_writer {
   /// The spindle was stopped for a tool change: restart_blocks_ go out again before the next
   /// move unless a SPINDL comes first.
   bool spindle_held_ = false;
+  /// The spindle this channel's SPINDL/OFF stopped, until a speed is given again.
+  const spindle_def* stopped_by_cl_ = nullptr;
   std::string coolant_block_;      ///< the coolant-on block in force, "" when off
   std::string coolant_off_block_;  ///< the off block of the coolant kind in force
   int tool_ = -1;

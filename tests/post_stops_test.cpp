@@ -40,3 +40,23 @@ TEST_CASE("a stop with the spindle and coolant off writes the stop alone", "[pos
       "%\nO1000 (STOPS)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S800 M3\nM5\nM0\nM100\nM9\n"
       "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
+
+TEST_CASE("a feed move after the channel's own SPINDL/OFF is an error at the move", "[post][stops]") {
+  // A turning tool fed into a part that does not turn; a rapid is still allowed, and a new
+  // speed lifts the stop.
+  for (const char* name : {"fanuc-0itd-twin", "integrex-i200st"}) {
+    INFO(name);
+    const test::posted p = test::post_in_fresh_dir(
+        "PARTNO STOPS\nHEAD/1\nTLDATA/TURN\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/150,MMPM\nRAPID\n"
+        "GOTO/20,0,5\nSPINDL/OFF\nRAPID\nGOTO/20,0,2\nGOTO/20,0,-10\nSPINDL/RPM,800,CLW\nGOTO/"
+        "20,0,-12\nFINI\n",
+        load_machine(name), std::string("spindle-off-") + name,
+        [](const diagnostic& d) { return d.level == severity::error; });
+    CHECK_FALSE(p.ok);
+    CHECK(
+        p.diagnostics ==
+        "job.cls:12:1: error: channel 1: feed move with the main spindle stopped by SPINDL/OFF: give SPINDL "
+        "with a speed before cutting (the tool would be driven into a part that does not turn)\n"
+        "GOTO/20,0,-10\n^\n");
+  }
+}

@@ -162,3 +162,15 @@ TEST_CASE("an offset the channel's tool call cannot write is an error, never the
   CHECK(q.ok);
   CHECK(q.diagnostics.empty());
 }
+
+TEST_CASE("a coolant kind still on at the end is turned off with its own code before the footer",
+          "[post][tools]") {
+  // The footer's M9 is flood's; through-tool coolant (Doosan M108) goes off with M109.
+  const test::posted p =
+      post_on("PARTNO TC\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nCOOLNT/THRU\nRAPID\nGOTO/20,0,2\nFINI\n",
+              "fanuc-0itd-twin", "kind-at-end");
+  CHECK(
+      file_of(p, "TC_1.nc") ==
+      "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM108\nG0 X40. Z2.\n"
+      "M100\nM109\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
