@@ -1,5 +1,7 @@
 #include "post/post_job.hpp"
 
+#include <algorithm>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -113,6 +115,11 @@ sync_policy choose_policy(const post_options& o, const machine& m, const job_sca
   if (o.policy != sync_policy::automatic) return o.policy;
   const bool one_channel = m.channels.size() == 1;
   if (one_channel || scan.explicit_sync) return sync_policy::explicit_marks;
+  // A job that never leaves one head has no head switch to wait at: nothing to warn about.
+  std::vector<int> heads = scan.heads;
+  std::sort(heads.begin(), heads.end());
+  heads.erase(std::unique(heads.begin(), heads.end()), heads.end());
+  if (heads.size() + scan.head_words.size() + scan.channels.size() <= 1) return sync_policy::sequential;
   diagnostic d;
   d.level = severity::warning;
   d.file = o.cl_path;

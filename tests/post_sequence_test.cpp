@@ -89,3 +89,13 @@ TEST_CASE("the machine file's numbering is checked at load", "[machines][sequenc
                                test::two_channels) ==
         "m.toml:7:20: error: program.sequence_numbers must be all or tool_change, not 'some'");
 }
+
+TEST_CASE("the sequential-policy warning is given only to a job that switches heads", "[post][sync]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  const std::string one = "PARTNO ONE\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/20,0,5\nFINI\n";
+  CHECK(test::post_in_fresh_dir(one, m, "one-head").diagnostics == "");
+  CHECK(test::post_in_fresh_dir(one_head_job, m, "one-head-late").diagnostics == "");
+  CHECK(test::post_in_fresh_dir(two_head_job, m, "two-heads").diagnostics ==
+        "job.cls: warning: no sync records in the job: channels wait for each other at every head switch "
+        "(sequential); concurrent machining needs SYNC/SYNCTR records\n");
+}
