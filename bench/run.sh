@@ -15,7 +15,8 @@ usage: bench/run.sh [options]
   --layout L           output layout for the lathe2 job (split, merged-appended,
                        merged-sections; default: the machine's own)
   --build DIR          build directory (default: <repo>/build-bench, Release)
-  --rebuild            run the build even when the binaries exist
+  --no-build           time the binaries in --build as they are (default: build them first,
+                       which is quick when they are up to date: a stale binary is never timed)
   --repeat R           timed runs per row, best one reported (default: 3)
   --cache DIR          where generated jobs are kept (default: /tmp/twinpost-bench)
   --baseline BIN       also time another twinpost binary (an older build) on every row,
@@ -37,7 +38,7 @@ layout=""
 baseline=""
 baseline_mill=""
 build="$repo/build-bench"
-rebuild=0
+build_first=1
 repeat=3
 cache=${TWINPOST_BENCH_CACHE:-/tmp/twinpost-bench}
 do_sizes=1
@@ -55,7 +56,7 @@ while [[ $# -gt 0 ]]; do
     --baseline) baseline=$2; shift 2 ;;
     --baseline-mill) baseline_mill=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
-    --rebuild) rebuild=1; shift ;;
+    --no-build) build_first=0; shift ;;
     --repeat) repeat=$2; shift 2 ;;
     --cache) cache=$2; shift 2 ;;
     --startup) do_sizes=0; shift ;;
@@ -73,7 +74,7 @@ trap 'rm -rf "$work"' EXIT  # the cache directory is kept on purpose
 # --- build ------------------------------------------------------------------------------
 twinpost="$build/twinpost"
 generate="$build/cl_generate"
-if [[ $rebuild == 1 || ! -x $twinpost || ! -x $generate ]]; then
+if [[ $build_first == 1 || ! -x $twinpost || ! -x $generate ]]; then
   echo "building into $build (Release) ..." >&2
   cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DTWINPOST_TESTS=OFF >"$work/cmake.log" 2>&1 ||
     { cat "$work/cmake.log" >&2; exit 1; }
