@@ -37,6 +37,11 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
       if (block.find(work_->work_offset) != std::string::npos) offset_due_ = false;
   }
   last_x_.max = m.formats['X'].max_count(axis_style_.decimals);
+  if (x && x->min && x->max) {
+    const double scale = std::pow(10.0, axis_style_.decimals);
+    last_x_.lo = static_cast<std::int64_t>(std::llround(*x->min * scale));
+    last_x_.hi = static_cast<std::int64_t>(std::llround(*x->max * scale));
+  }
   last_y_.max = m.formats['Y'].max_count(axis_style_.decimals);
   last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
 }
@@ -78,6 +83,14 @@ bool channel_writer::axis_word(text_buffer& out, char address, double value, axi
   if (!round_fixed(value, axis_style_.decimals, n) || n > last.max || n < -last.max) [[unlikely]] {
     // Past what the control reads: the post stops here, nothing is written.
     misfit(address, value);
+    last.known = false;
+    return false;
+  }
+  if (n < last.lo || n > last.hi) [[unlikely]] {
+    // Past the axis's travel: an overtravel alarm at best, a crash into the guard at worst.
+    const axis_def* a = ch_.axis(address);
+    error(line_, fmt::format("{}{} is outside channel {}'s {} travel {}..{} (channel.axis min/max)", address,
+                             format_nc_number(value, axis_style_), ch_.number, address, *a->min, *a->max));
     last.known = false;
     return false;
   }

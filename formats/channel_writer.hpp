@@ -135,6 +135,9 @@ class channel_writer {
     std::int64_t n = 0;    ///< the word's value in the last decimal place (12.346 -> 12346)
     double value = 0;      ///< the value it was rounded from
     std::int64_t max = 0;  ///< the largest count the control's format reads for this axis
+    /// The axis's travel in counts (channel.axis min/max), for X only: a lathe's X is
+    /// measured from the spindle centre in the program and on the machine alike.
+    std::int64_t lo = INT64_MIN, hi = INT64_MAX;
   };
   /// Appends " X12.5" to `out` unless `last` already holds that word (modal suppression)
   /// and `always` is off; returns whether it wrote the word.

@@ -55,9 +55,9 @@ struct axis_def {
   char address = 'X';
   bool diameter = false;  ///< X programmed as a diameter (lathe)
   bool mirror = false;    ///< sign inverted against the CL (a lower turret)
-  /// Travel limits in the units the axis is programmed in, if known. The post does not
-  /// check them yet (they are machine coordinates, programs are in work coordinates); the
-  /// rs274 oracle (tests/oracle) holds every written X to the X travel.
+  /// Travel limits in the units the axis is programmed in, if known. The post holds every X
+  /// word to them (a lathe's X is measured from the spindle centre in the program and on the
+  /// machine); Y and Z are machine coordinates against work coordinates, not checked yet.
   std::optional<double> min, max;
 };
 

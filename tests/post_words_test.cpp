@@ -213,3 +213,17 @@ TEST_CASE("an AUXFUN whose code is a wait code stops the post at its record", "[
         "M100-M102): the control would take it for a wait\n"
         "AUXFUN/102\n^\n");
 }
+
+TEST_CASE("an X word past the channel's X travel stops the post at its record", "[post][words]") {
+  // The Integrex lower turret's X runs 0..260 (diameter): facing 0.8 mm past the centre would
+  // drive it into its stop. The Fanuc turret's -10..460 takes the same cut.
+  const std::string job =
+      "PARTNO W\nUNITS/MM\nHEAD/2\nTURRET/1,1\nSPINDL/SMM,200,MAXRPM,2000,CLW\n"
+      "FEDRAT/0.2,MMPR\nRAPID\nGOTO/-30,0,0\nGOTO/0.8,0,0\nFINI\n";
+  const posted lower = post_text(job, "integrex-i200st", "travel-integrex");
+  CHECK_FALSE(lower.ok);
+  CHECK(lower.diagnostics ==
+        "job.cls:9:1: error: channel 2: X-1.6 is outside channel 2's X travel 0..260 (channel.axis min/max)\n"
+        "GOTO/0.8,0,0\n^\n");
+  CHECK(post_text(job, "fanuc-0itd-twin", "travel-fanuc").ok);
+}
