@@ -1,6 +1,7 @@
 #include "check/sync_check.hpp"
 
 #include "check/nc_input.hpp"
+#include "machines/code_overlap.hpp"
 
 #include <fmt/format.h>
 
@@ -306,6 +307,27 @@ void count(sync_result& r) {
 
 }  // namespace
 
+namespace {
+
+// A program of several channels in which no wait of the machine was found: nothing was
+// checked, and the channels would run with no synchronisation at all; most likely the
+// programs are for another machine (another wait syntax). Never a silent "sound".
+void no_waits_found(sync_result& r, const machine& m) {
+  if (r.channels.size() < 2 || r.errors > 0) return;
+  for (const channel_sync_summary& c : r.channels)
+    if (c.waits > 0) return;
+  diagnostic d;
+  d.file = r.channels.front().file;
+  d.message = fmt::format(
+      "no wait code of machine '{}' ({}) in any of the {} channels: nothing to check, and the channels would "
+      "run with no synchronisation; is this the right machine?",
+      m.name, wait_range_text(m.waits), r.channels.size());
+  r.diagnostics.push_back(std::move(d));
+  count(r);
+}
+
+}  // namespace
+
 sync_result check_sync(const nc_programs& programs, const machine& m) {
   sync_result r = checker(programs, m).run();
   count(r);
@@ -357,10 +379,13 @@ sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m
         r.paired += waits[i];
       }
       count(r);
+      no_waits_found(r, m);
       return r;
     }
   }
-  return full_check(files, m);
+  sync_result r = full_check(files, m);
+  no_waits_found(r, m);
+  return r;
 }
 
 }  // namespace twinpost

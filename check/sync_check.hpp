@@ -43,7 +43,9 @@ struct sync_result {
 /// channels together; reports unpaired waits, mismatches and deadlocks.
 sync_result check_sync(const nc_programs& programs, const machine& m);
 
-/// Reads `files` as NC programs of machine `m` and checks them: reading problems first.
+/// Reads `files` as NC programs of machine `m` and checks them: reading problems first. A
+/// program of two or more channels in which no wait of the machine is found is an error
+/// ("is this the right machine?"): a check that checked nothing never says sound.
 sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m);
 
 }  // namespace twinpost
