@@ -99,7 +99,7 @@ TEST_CASE("validation: wait ranges", "[machines]") {
   CHECK(error_of(head + "excluded = [101, 99]\n") ==
         "m.toml:6:18: error: waits.excluded: 99 is outside the wait range 100..103");
   CHECK(error_of(head + "partners = \"bits\"\n") ==
-        "m.toml:6:12: error: waits.partners must be none, path_numbers or binary, not "
+        "m.toml:6:12: error: waits.partners must be none, path_numbers, binary or others, not "
         "'bits'");
 }
 
