@@ -226,6 +226,16 @@ int channel_router::marker_of(const sync_event& s, int ch) const {
 }
 
 std::optional<int> channel_router::next_code(int line, const std::string& what) {
+  if (m_.waits.syntax == wait_syntax::bang) {
+    // Said once, at the first wait: the checker reads !2L1 waits, the post does not write them.
+    if (!exhausted_)
+      error(line,
+            fmt::format("machine '{}' writes its waits as {}<partners>{}<number> (waits.syntax = bang), "
+                        "which post cannot write yet: this machine is for check only",
+                        m_.name, m_.waits.marker, m_.waits.address));
+    exhausted_ = true;
+    return std::nullopt;
+  }
   auto code = codes_.next();
   if (!code && !exhausted_) {
     // Said once: every later mark would repeat it.

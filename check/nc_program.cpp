@@ -149,6 +149,10 @@ class reader {
  public:
   reader(const machine& m, diagnostic_sink& sink, nc_programs& out, const nc_read_options& options)
       : m_(m), sink_(sink), out_(out), options_(options), state_(out.channels.size()) {
+    if (bang_) {
+      wait_addr_ = m.waits.marker;
+      partner_addr_ = bang_partner_address;
+    }
     end_codes_ = {2, 30, 99};  // M02, M30, M99 end a program on every control
     for (const nc_word& w : split_nc_words(m.program.end_code)) {
       int code = 0;
@@ -438,7 +442,81 @@ class reader {
         {level, std::move(at.file), at.line, at.column, std::move(message), std::move(at.source_line)});
   }
 
-  std::string name(const nc_word& w) const { return fmt::format("{}{}", w.address, w.value); }
+  // Where a line is, for the places of what it holds.
+  struct line_place {
+    const nc_source& f;
+    int no;
+    std::string_view line;
+    nc_place operator()(int column) const { return {f.name, no, column, std::string(line)}; }
+  };
+
+  std::string name(const nc_word& w) const {
+    if (bang_ && w.address == wait_addr_) {
+      for (const auto& [column, text] : bang_text_)
+        if (column == w.column) return text;
+    }
+    return fmt::format("{}{}", w.address, w.value);
+  }
+
+  // The address given to the partners of a bang wait (`2` of `!2L1`): no letter, so that
+  // no word of the program can be taken for it.
+  static constexpr char bang_partner_address = '\x01';
+
+  // Bang syntax (Citizen/Mitsubishi `!2L1`, `!23L5`, `!2!3L5`): each wait in `line` becomes
+  // two words, the wait (address waits.marker, value the number, column of the marker) and
+  // its partners (as written between the marker and the number's address), in place of the
+  // number's word that split_nc_words made of `L1`. A marker without a number is an error.
+  void read_bang_waits(std::string_view line, std::vector<nc_word>& words, int channel,
+                       const line_place& at) {
+    bang_text_.clear();
+    const char marker = m_.waits.marker;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (c == '(') {
+        const std::size_t close = line.find(')', i);
+        if (close == std::string_view::npos) return;
+        i = close;
+        continue;
+      }
+      if (c == ';') return;
+      if (c != marker) continue;
+      const std::size_t start = i;
+      std::string partners;
+      std::size_t j = i + 1;
+      for (;;) {
+        while (j < line.size() && is_digit(line[j])) partners += line[j++];
+        if (j < line.size() && line[j] == marker && j + 1 < line.size() && is_digit(line[j + 1])) {
+          partners += line[j++];
+          continue;
+        }
+        break;
+      }
+      std::size_t k = j;
+      while (k < line.size() && is_blank(line[k])) ++k;
+      const int start_column = static_cast<int>(start) + 1;
+      auto number = std::find_if(words.begin(), words.end(),
+                                 [&](const nc_word& w) { return w.column == static_cast<int>(k) + 1; });
+      if (k >= line.size() || upper(line[k]) != m_.waits.address || number == words.end()) {
+        if (channel >= 0)
+          report(
+              severity::error, at(start_column),
+              fmt::format("'{}' is no wait: a wait is {}<partners>{}<number>, e.g. {}2{}1",
+                          line.substr(start, j - start), marker, m_.waits.address, marker, m_.waits.address));
+        i = j - 1;
+        continue;
+      }
+      nc_word wait = *number;
+      wait.address = marker;
+      wait.column = start_column;
+      std::size_t end = k + 1;  // past the number, as split_nc_words read it
+      while (end < line.size() && is_blank(line[end])) ++end;
+      end = std::min(end + number->value.size(), line.size());
+      bang_text_.emplace_back(start_column, std::string(line.substr(start, end - start)));
+      *number = wait;
+      words.push_back({partner_addr_, partners, false, start_column + 1});
+      i = end - 1;
+    }
+  }
 
   /// An M-code that is no wait but may have been meant as one (the checker judges).
   bool looks_like_wait(int code, const nc_word* partner, bool has_g) const {
@@ -456,8 +534,10 @@ class reader {
     if (partner) {
       w.has_partner_list = true;
       w.partner_text = partner->value;
+      std::string digits = partner->value;  // bang: `2!3` lists channels 2 and 3
+      if (bang_) std::erase(digits, m_.waits.marker);
       w.partners_readable =
-          !partner->expression && decode_partner_list(partner->value, m_.waits.partners, w.partners);
+          !partner->expression && decode_partner_list(digits, m_.waits.partners, w.partners);
       w.partner_column = partner->column;
     }
     w.where = std::move(at);
@@ -472,9 +552,10 @@ class reader {
                  int marker_words = -1) {
     if (channel > 0) note_block(state_[static_cast<std::size_t>(channel - 1)], line, marker_words);
     if (channel > 0 && (plain || plain_block(line))) return note_plain_block(f, no, line, channel);
-    const std::vector<nc_word> words = split_nc_words(line);
-    if (words.empty()) return;
+    std::vector<nc_word> words = split_nc_words(line);
     const line_place at{f, no, line};
+    if (bang_) read_bang_waits(line, words, channel, at);
+    if (words.empty()) return;
     const block_words b = classify_words(words, channel, at);
     if (channel < 0) return;
     if (channel == 0) {
@@ -485,14 +566,6 @@ class reader {
     }
     record_block(b, channel, at);
   }
-
-  // Where a line is, for the places of what it holds.
-  struct line_place {
-    const nc_source& f;
-    int no;
-    std::string_view line;
-    nc_place operator()(int column) const { return {f.name, no, column, std::string(line)}; }
-  };
 
   // The words of one block that matter to the checker.
   struct block_words {
@@ -520,18 +593,18 @@ class reader {
     const wait_rules& wr = m_.waits;
     block_words b;
     for (const nc_word& w : words) {
-      if (w.address == wr.partner_address && !b.partner) b.partner = &w;
+      if (w.address == partner_addr_ && !b.partner) b.partner = &w;
       b.has_g = b.has_g || w.address == 'G';
     }
     for (const nc_word& w : words) {
-      if (w.address == wr.address && w.expression && channel >= 0) {
+      if (w.address == wait_addr_ && w.expression && channel >= 0) {
         report(severity::warning, at(w.column),
                fmt::format("{} is a variable or expression: a wait given so cannot be checked", name(w)));
         continue;
       }
       int code = 0;
       if (!to_int(w.value, code)) continue;
-      if (w.address == wr.address && wr.is_wait_code(code)) {
+      if (w.address == wait_addr_ && wr.is_wait_code(code)) {
         if (!b.wait) {
           b.wait = &w;
           b.wait_code = code;
@@ -544,7 +617,7 @@ class reader {
       } else if (w.address == 'M' &&
                  std::find(end_codes_.begin(), end_codes_.end(), code) != end_codes_.end()) {
         if (!b.end) b.end = &w;
-      } else if (w.address == wr.address && looks_like_wait(code, b.partner, b.has_g)) {
+      } else if (w.address == wait_addr_ && looks_like_wait(code, b.partner, b.has_g)) {
         b.near.emplace_back(&w, code);
       }
     }
@@ -625,8 +698,9 @@ class reader {
   }
 
   // The characters that make a block worth a full look (see plain_block).
-  static std::array<bool, 256> special_chars(char wait_address) {
+  static std::array<bool, 256> special_chars(char wait_address, const wait_rules& wr) {
     std::array<bool, 256> t{};
+    if (wr.syntax == wait_syntax::bang) t[static_cast<unsigned char>(wr.marker)] = true;
     const char wa = upper(wait_address);
     for (char c : {'M', 'm', wa, static_cast<char>(wa - 'A' + 'a'), '(', ';', '/', '#', '[', '%', '$'})
       t[static_cast<unsigned char>(c)] = true;
@@ -645,7 +719,11 @@ class reader {
   diagnostic_sink& sink_;
   nc_programs& out_;
   const nc_read_options& options_;
-  std::array<bool, 256> special_ = special_chars(m_.waits.address);
+  const bool bang_ = m_.waits.syntax == wait_syntax::bang;
+  char wait_addr_ = m_.waits.address;                   // the address of a wait's word (bang: the marker)
+  char partner_addr_ = m_.waits.partner_address;        // the address of its partners
+  std::vector<std::pair<int, std::string>> bang_text_;  // bang waits of the line: column, as written
+  std::array<bool, 256> special_ = special_chars(m_.waits.address, m_.waits);
   std::string stops_ = stop_chars(special_);
   std::string run_stops_ = "\r" + stops_.substr(2);  // no LF: a run of lines ends at CR or a special
   std::vector<channel_state> state_;

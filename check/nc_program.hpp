@@ -11,7 +11,9 @@
 //   channel's sections may appear more than once: they are joined in file order.
 //
 // A wait is a word of address machine.waits.address whose code satisfies
-// machine.waits.is_wait_code(). The reader judges syntax and layout only; the rules
+// machine.waits.is_wait_code(); with waits.syntax = bang (Citizen/Mitsubishi) it is
+// `<marker><partners><address><number>`, `!2L1`, its partners the other channels (`!23L5`,
+// `!2!3L5`), kept as written in nc_wait::partner_text. The reader judges syntax and layout only; the rules
 // (partner lists, pairing, deadlocks) are the checker's.
 #include <cstddef>
 #include <cstdio>

@@ -105,12 +105,20 @@ class checker {
 
   std::string code_text(int code) const { return fmt::format("{}{}", m_.waits.address, code); }
 
+  bool bang() const { return m_.waits.syntax == wait_syntax::bang; }
+
+  // The alarm a partner list problem raises, where it is the control's own.
+  const char* ps0161() const { return bang() ? "" : " (Fanuc PS0161)"; }
+
   std::string wait_text(const nc_wait& w) const {
+    // Bang waits as written: !2L1, !2!3L5.
+    if (bang()) return fmt::format("{}{}{}", m_.waits.marker, w.partner_text, code_text(w.code));
     if (!w.has_partner_list) return code_text(w.code);
     return fmt::format("{} {}{}", code_text(w.code), m_.waits.partner_address, w.partner_text);
   }
 
   std::string partner_text(const nc_wait& w) const {
+    if (bang()) return fmt::format("partner list {} of wait {}", w.partner_text, wait_text(w));
     return fmt::format("partner list {}{} of wait {}", m_.waits.partner_address, w.partner_text,
                        code_text(w.code));
   }
@@ -131,11 +139,17 @@ class checker {
                            code_text(w.code), n_));
       else
         s.plain = true;
+    } else if (bang() && w.partner_text.empty()) {
+      report(severity::error, at, at.column,
+             fmt::format("wait {} names no partner: write the channels it meets after {}, e.g. {}{}{}{}",
+                         wait_text(w), m_.waits.marker, m_.waits.marker, w.channel == 1 ? 2 : 1,
+                         m_.waits.address, w.code));
     } else if (!w.partners_readable) {
       report(severity::error, at, w.partner_column,
-             fmt::format("{} is not {} (Fanuc PS0161)", partner_text(w),
-                         m_.waits.partners == partner_style::binary ? "a channel mask"
-                                                                    : "a list of channel numbers"));
+             fmt::format(
+                 "{} is not {}{}", partner_text(w),
+                 m_.waits.partners == partner_style::binary ? "a channel mask" : "a list of channel numbers",
+                 ps0161()));
     } else {
       s.partners = partner_mask(w);
     }
@@ -155,13 +169,18 @@ class checker {
       }
     }
     const channel_mask own = bit_of(w.channel);
-    if (problem.empty() && !(mask & own))
+    if (m_.waits.partners == partner_style::others) {
+      // The list names the other channels: the own one is implied, and wrong there.
+      if (problem.empty() && (mask & own))
+        problem = fmt::format("in channel {} names channel {}, its own: a wait names the channels it meets",
+                              w.channel, w.channel);
+    } else if (problem.empty() && !(mask & own))
       problem = fmt::format("in channel {} does not name channel {}", w.channel, w.channel);
     else if (problem.empty() && mask == own)
       problem = "names no channel but its own";
     if (!problem.empty())
       report(severity::error, w.where, w.partner_column,
-             fmt::format("{} {} (Fanuc PS0161)", partner_text(w), problem));
+             fmt::format("{} {}{}", partner_text(w), problem, ps0161()));
     return mask | own;
   }
 
@@ -174,6 +193,12 @@ class checker {
              fmt::format("{} lies in the wait range {} but off its step of {}: it is not "
                          "checked as a wait",
                          code_text(w.code), range, wr.step));
+      return;
+    }
+    if (bang()) {  // written as a wait, with a number the control does not take
+      report(severity::error, w.where, w.where.column,
+             fmt::format("{} looks like a wait, but {} is not a wait number of this machine ({})",
+                         wait_text(w), code_text(w.code), range));
       return;
     }
     if (!w.has_partner_list || !w.partners_readable || w.partners.size() < 2) return;
@@ -276,7 +301,7 @@ class checker {
   }
 
   void report_mismatch(const sim_wait& a, const sim_wait& b) {
-    const char* why = a.code != b.code     ? "different codes"
+    const char* why = a.code != b.code     ? (bang() ? "different wait numbers" : "different codes")
                       : a.plain != b.plain ? "one with a partner list, one without"
                                            : "different partner lists";
     report(severity::error, a.src->where, a.src->where.column,

@@ -13,12 +13,17 @@
 namespace twinpost {
 
 bool is_wait_word(const wait_rules& w, char address, long long code) {
+  // A bang wait (!2L1) is its marker and partners first: no plain word is one.
+  if (w.syntax == wait_syntax::bang) return false;
   if (address != w.address || code < w.first || code > w.last) return false;
   return w.is_wait_code(static_cast<int>(code));  // within first..last, so within int
 }
 
 std::string wait_range_text(const wait_rules& w) {
-  std::string out = fmt::format("{}{}-{}{}", w.address, w.first, w.address, w.last);
+  std::string out =
+      w.syntax == wait_syntax::bang
+          ? fmt::format("{0}<partners>{1}{2}-{0}<partners>{1}{3}", w.marker, w.address, w.first, w.last)
+          : fmt::format("{}{}-{}{}", w.address, w.first, w.address, w.last);
   if (w.step != 1) out += fmt::format(" step {}", w.step);
   return out;
 }

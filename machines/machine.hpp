@@ -18,11 +18,22 @@ enum class partner_style {
   none,          ///< 2-channel controls: plain `M100` in both channels
   path_numbers,  ///< Fanuc `M100 P12`, `P123` (digits of the channel numbers, ascending)
   binary,        ///< Fanuc with parameter 8103#1: P = sum of 2^(channel-1)
+  /// Citizen/Mitsubishi `!2L1`: the digits of the other channels, the wait's own channel
+  /// left out (`!23L5`, also written `!2!3L5`); only with wait_syntax::bang.
+  others,
+};
+
+/// How a wait is written.
+enum class wait_syntax {
+  m_code,  ///< a code word `<address><code>` with an optional partner list (M100 P12, M950)
+  bang,    ///< `<marker><partners><address><number>`: Citizen/Mitsubishi `!2L1`
 };
 
 /// Rules for wait codes (Fanuc waiting M-codes, Mazak M950-M997, ...).
 struct wait_rules {
-  char address = 'M';         ///< the address letter of the wait code
+  wait_syntax syntax = wait_syntax::m_code;
+  char marker = '!';          ///< bang: the character that opens a wait and each partner
+  char address = 'M';         ///< the address letter of the wait code (bang: of the number)
   int first = 0;              ///< lowest code of the range
   int last = 0;               ///< highest code of the range
   int step = 1;               ///< distance between allocated codes

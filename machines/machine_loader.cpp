@@ -17,6 +17,7 @@
 #include "machines/layout_rules.hpp"
 #include "machines/machine_search.hpp"
 #include "machines/toml_reader.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost {
 
@@ -73,7 +74,25 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
   if (!t) root.fail_here("waits.first is required");
   at.waits = t;
   table_reader r(*t, "waits", root.source(),
-                 {"address", "first", "last", "step", "excluded", "reuse", "partners", "partner_address"});
+                 {"syntax", "marker", "address", "first", "last", "step", "excluded", "reuse", "partners",
+                  "partner_address"});
+  using syntax_name = std::pair<std::string_view, wait_syntax>;
+  const toml::node* syntax = read_enum(
+      r, "syntax", std::array<syntax_name, 2>{{{"m_code", wait_syntax::m_code}, {"bang", wait_syntax::bang}}},
+      w.syntax);
+  if (w.syntax == wait_syntax::bang) {
+    w.address = 'L';  // Mitsubishi's label address; the marker defaults to '!'
+    w.partners = partner_style::others;
+  }
+  if (r.read_char("marker", w.marker, false)) {
+    if (w.syntax != wait_syntax::bang)
+      r.fail(*r.find("marker"), "waits.marker is read only with waits.syntax = \"bang\"");
+    if (ascii::is_letter(w.marker) || ascii::is_digit(w.marker) || w.marker == '(' || w.marker == ';' ||
+        w.marker == ' ')
+      r.fail(*r.find("marker"),
+             fmt::format("waits.marker must be a sign that is no address, digit or comment, not '{}'",
+                         w.marker));
+  }
   r.read_char("address", w.address, true);
   r.require("first");
   r.require("last");
@@ -105,10 +124,20 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
   r.read("reuse", w.reuse);
   using partner_name = std::pair<std::string_view, partner_style>;
   at.partners = read_enum(r, "partners",
-                          std::array<partner_name, 3>{{{"none", partner_style::none},
+                          std::array<partner_name, 4>{{{"none", partner_style::none},
                                                        {"path_numbers", partner_style::path_numbers},
-                                                       {"binary", partner_style::binary}}},
+                                                       {"binary", partner_style::binary},
+                                                       {"others", partner_style::others}}},
                           w.partners);
+  // A bang wait always names the other channels (!2L1); an M-code wait never does so.
+  if ((w.syntax == wait_syntax::bang) != (w.partners == partner_style::others))
+    r.fail(at.partners ? *at.partners : *syntax,
+           w.syntax == wait_syntax::bang ? "waits.partners must be others with waits.syntax = \"bang\""
+                                         : "waits.partners = others needs waits.syntax = \"bang\"");
+  if (w.syntax == wait_syntax::bang && r.find("partner_address"))
+    r.fail(*r.find("partner_address"),
+           "waits.partner_address is not read with waits.syntax = \"bang\": the "
+           "partners follow waits.marker");
   r.read_char("partner_address", w.partner_address, true);
 }
 
@@ -358,7 +387,8 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
     root.fail_here(message);
   }
   // Path numbers are single digits (P12, P123): channel 10 cannot be named.
-  if (m.channels.size() >= 10 && m.waits.partners == partner_style::path_numbers)
+  if (m.channels.size() >= 10 &&
+      (m.waits.partners == partner_style::path_numbers || m.waits.partners == partner_style::others))
     root.fail(*at.partners, fmt::format("waits.partners = path_numbers names channels by one digit each "
                                         "(P12): a machine with {} channels needs binary",
                                         m.channels.size()));

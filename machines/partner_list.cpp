@@ -20,7 +20,8 @@ bool all_digits(std::string_view s) {
 std::string partner_list(const std::vector<int>& channels, partner_style style) {
   switch (style) {
     case partner_style::none: return {};
-    case partner_style::path_numbers: {
+    case partner_style::path_numbers:
+    case partner_style::others: {  // the caller leaves the own channel out
       std::string s;
       for (int c : channels) s += std::to_string(c);
       return s;

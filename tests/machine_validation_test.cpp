@@ -99,7 +99,7 @@ TEST_CASE("validation: wait ranges", "[machines]") {
   CHECK(error_of(head + "excluded = [101, 99]\n") ==
         "m.toml:6:18: error: waits.excluded: 99 is outside the wait range 100..103");
   CHECK(error_of(head + "partners = \"bits\"\n") ==
-        "m.toml:6:12: error: waits.partners must be none, path_numbers or binary, not "
+        "m.toml:6:12: error: waits.partners must be none, path_numbers, binary or others, not "
         "'bits'");
 }
 
@@ -437,4 +437,18 @@ TEST_CASE("validation: the tool table", "[machines]") {
         "m.toml:16:10: error: tool 5 is listed twice");
   CHECK(error_of(head + two_channels + "[[tool]]\nkind = \"mill\"\n") ==
         "m.toml:12:1: error: tool.number is required");
+}
+
+TEST_CASE("validation: bang waits", "[machines]") {
+  const std::string bang = "[machine]\nname = \"m\"\n[waits]\nsyntax = \"bang\"\nfirst = 1\nlast = 99\n";
+  CHECK(error_of(bang + two_channels) == "(no error)");
+  CHECK(error_of(bang + "partners = \"path_numbers\"\n" + two_channels) ==
+        "m.toml:7:12: error: waits.partners must be others with waits.syntax = \"bang\"");
+  CHECK(error_of(head + "partners = \"others\"\n" + two_channels) ==
+        "m.toml:6:12: error: waits.partners = others needs waits.syntax = \"bang\"");
+  CHECK(error_of(head + "marker = \"!\"\n" + two_channels) ==
+        "m.toml:6:10: error: waits.marker is read only with waits.syntax = \"bang\"");
+  CHECK(error_of(bang + "marker = \"Q\"\n" + two_channels) ==
+        "m.toml:7:10: error: waits.marker must be a sign that is no address, digit or comment, not 'Q'");
+  CHECK(error_of(bang + "syntax = \"m\"\n") != "(no error)");
 }

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include "check/nc_program.hpp"
 #include "file_test_support.hpp"
 
@@ -342,4 +344,84 @@ TEST_CASE("a line past 1 MiB ends the reading of its file, from disk and from me
   CHECK(q.channels[0].waits.size() == 1);
   CHECK(messages(fits) == "");
   CHECK(r.channels[0].waits.size() == 2);
+}
+
+namespace {
+
+/// Citizen/Mitsubishi waits `!<partners>L<n>` (waits.syntax = bang), `$n` sections.
+machine bang_machine(int channels) {
+  machine m;
+  m.name = "bang";
+  for (int c = 1; c <= channels; ++c) {
+    m.channels.emplace_back();
+    m.channels.back().number = c;
+  }
+  m.waits.syntax = wait_syntax::bang;
+  m.waits.marker = '!';
+  m.waits.address = 'L';
+  m.waits.partners = partner_style::others;
+  m.waits.first = 1;
+  m.waits.last = 9999;
+  m.program.section_marker = "${channel}";
+  return m;
+}
+
+std::string waits_of(const nc_channel_program& p) {
+  std::string out;
+  for (const nc_wait& w : p.waits) {
+    out += out.empty() ? "" : " ";
+    out += fmt::format("L{}[{}]", w.code, w.partner_text);
+    for (int c : w.partners) out += std::to_string(c);
+    out += fmt::format("@{}:{}", w.where.line, w.where.column);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("bang waits: !2L1 in $1 and !1L1 in $2, $0 is data", "[check]") {
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs({{"p.CNC",
+                                           "%\nO1(X)\n$1\nG50 Z0\n!2L1\nN10 !2 L2 (WAIT !2L3)\nM02\nM99\n"
+                                           "$2\nT3131\n!1L1\n  !1L2;\nM02\n$0\nD\n#100=0000000012\n%\n"}},
+                                         bang_machine(2), d);
+  CHECK(messages(d) == "");
+  REQUIRE(p.channels.size() == 2);
+  CHECK(waits_of(p.channels[0]) == "L1[2]2@5:1 L2[2]2@6:5");
+  CHECK(waits_of(p.channels[1]) == "L1[1]1@11:1 L2[1]1@12:3");
+  CHECK(p.channels[0].end.line == 7);
+  CHECK(p.channels[1].end.line == 13);
+}
+
+TEST_CASE("bang waits: three systems, partners together or each after its marker", "[check]") {
+  diagnostic_list d;
+  const nc_programs p =
+      read_nc_programs({{"p.CNC", "$1\n!23L5\n$2\n!1!3L5\n$3\nG0 X1. !12L5\n"}}, bang_machine(3), d);
+  CHECK(messages(d) == "");
+  CHECK(waits_of(p.channels[0]) == "L5[23]23@2:1");
+  CHECK(waits_of(p.channels[1]) == "L5[1!3]13@4:1");
+  CHECK(waits_of(p.channels[2]) == "L5[12]12@6:8");
+}
+
+TEST_CASE("bang waits: a marker without a number, two waits in a block, L words", "[check]") {
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs({{"p.CNC", "$1\n!2\nM98 P100 L2\n!2L1 !2L2\n!2L#100\n$2\n!1L1\n"}},
+                                         bang_machine(2), d);
+  CHECK(messages(d) ==
+        "p.CNC:2:1: error: '!2' is no wait: a wait is !<partners>L<number>, e.g. !2L1\n!2\n^\n"
+        "p.CNC:4:6: error: two waits in one block (!2L1 and !2L2): a wait needs a block of its own\n"
+        "!2L1 !2L2\n     ^\n"
+        "p.CNC:5:1: warning: !2L#100 is a variable or expression: a wait given so cannot be checked\n"
+        "!2L#100\n^\n");
+  // The repeat count L2 of M98 is no wait: only an L after the marker is.
+  CHECK(waits_of(p.channels[0]) == "L1[2]2@4:1");
+}
+
+TEST_CASE("bang waits are not read on an M-code machine", "[check]") {
+  diagnostic_list d;
+  const nc_programs p = read_nc_programs({{"p.CNC", "$1\n!2L1\nM100\n$2\n!1L1\nM100\n"}},
+                                         two_channels(100, 103, "${channel}"), d);
+  CHECK(messages(d) == "");
+  CHECK(p.channels[0].waits.size() == 1);
+  CHECK(p.channels[0].waits[0].code == 100);
 }

@@ -8,6 +8,7 @@
 #include "check/sync_check.hpp"
 #include "check/sync_report.hpp"
 #include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
 
 using namespace twinpost;
 
@@ -450,4 +451,38 @@ TEST_CASE("a machine with more channels than the checker holds is named", "[chec
   CHECK(check_text(files, m) ==
         "1.nc: error: machine 'test' has 65 channels: the checker handles at most 64\n"
         "check: 65 channels, 0 waits paired, 1 error\n");
+}
+
+TEST_CASE("citizen-2system: Citizen waits are paired with their partners", "[check]") {
+  const machine m = load_machine("citizen-2system");
+  const std::string sound =
+      "%\nO1(P)\n$1\nT0101\n!2L1\nG1 X1. F.02\n!2L2\nM02\n$2\nT3131\n!1L1\n!1L2\nM02\n$0\nD\n%\n";
+  CHECK(check_text({{"p.CNC", sound}}, m) == "check: 2 channels, 4 waits paired, 0 errors\n");
+  // A wrong number: both lines named.
+  std::string wrong = sound;
+  wrong.replace(wrong.find("!1L2"), 4, "!1L3");
+  CHECK(check_text({{"p.CNC", wrong}}, m) ==
+        "p.CNC:7:1: error: deadlock: channel 1 waits on !2L2 at p.CNC:7 while channel 2 waits on !1L3 at "
+        "p.CNC:12 (different wait numbers)\n!2L2\n^\ncheck: 2 channels, 2 waits paired, 1 error\n");
+  // A partner the machine does not have.
+  std::string absent = sound;
+  absent.replace(absent.find("!2L1"), 4, "!3L1");
+  CHECK(check_text({{"p.CNC", absent}}, m)
+            .starts_with("p.CNC:5:2: error: partner list 3 of wait !3L1 names channel 3, which this machine "
+                         "does not have\n"));
+  // A number outside the machine's range.
+  std::string zero = sound;
+  zero.replace(zero.find("!2L1"), 4, "!2L0");
+  CHECK(check_text({{"p.CNC", zero}}, m)
+            .starts_with(
+                "p.CNC:5:1: error: !2L0 looks like a wait, but L0 is not a wait number of this machine "
+                "(L1-L9999)\n"));
+}
+
+TEST_CASE("citizen-2system: a program without any !nLm wait is an error", "[check]") {
+  const machine m = load_machine("citizen-2system");
+  CHECK(check_text({{"p.CNC", "$1\nM100\nM02\n$2\nM100\nM02\n"}}, m) ==
+        "p.CNC: error: no wait code of machine 'citizen-2system' (!<partners>L1-!<partners>L9999) in any of "
+        "the 2 channels: nothing to check, and the channels would run with no synchronisation; is this the "
+        "right machine?\ncheck: 2 channels, 0 waits paired, 1 error\n");
 }
