@@ -42,9 +42,10 @@ TEST_CASE("bore and ream cycles, and drill words on a thread, stop the post at t
         "TAP are written; a boring or reaming cycle cannot be (THREAD and GROOVE go by [cycles])\n"
         "CYCLE/BORE,FEDTO,-12,RAPTO,3,MMPR,0.1\n^\n");
   // A thread is posted by [cycles] (post_thread_test.cpp); a drill's words on it are refused.
-  CHECK(
-      errors_of("CYCLE/THREAD,FEDTO,-12,RAPTO,3,MMPR,1.5\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "thread")
-          .starts_with("job.cls:6:1: error: channel 1: CYCLE/THREAD: FEDTO is not carried out by the post"));
+  CHECK(errors_of("CYCLE/THREAD,FEDTO,-12,RAPTO,3,MMPR,1.5\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n", "thread") ==
+        "job.cls:6:1: error: channel 1: CYCLE/THREAD: FEDTO is not carried out by the post (it knows LEAD "
+        "or PITCH, STARTS, DEPTH, FIRST or PASSES, MINCUT, FINISH, SPRING, ANGLE, TAPER and CHAMFR)\n"
+        "CYCLE/THREAD,FEDTO,-12,RAPTO,3,MMPR,1.5\n^\n");
 }
 
 TEST_CASE("a cycle word the writer would drop stops the post", "[post][cycles]") {

@@ -196,7 +196,11 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
   // A constant surface speed is a turning speed: the workpiece spindle.
   const test::posted css = post_on("PARTNO E\nHEAD/1\nLOADTL/1\nSPINDL/SMM,150,MAXRPM,2000,CLW\nFINI\n",
                                    "integrex-i200st", "unknown-css");
-  CHECK(file_of(css, "E.EIA").find("G92 S2000 R1\nG96 S150 M203\n") != std::string::npos);
+  CHECK(file_of(css, "E.EIA") ==
+        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+        "T01 M6\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n"
+        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nM30\n%\n");
 }
 
 TEST_CASE("a milling tool on a turret without a live spindle is an error", "[post][spindles]") {
