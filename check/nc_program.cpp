@@ -551,7 +551,9 @@ class reader {
   void read_line(const nc_source& f, int no, std::string_view line, int channel, bool plain,
                  int marker_words = -1) {
     if (channel > 0) note_block(state_[static_cast<std::size_t>(channel - 1)], line, marker_words);
-    if (channel > 0 && (plain || plain_block(line))) return note_plain_block(f, no, line, channel);
+    if (channel > 0 && (plain || plain_block(line)))
+      return note_plain_block(f, no, line, channel,
+                              marker_words < 0 || block_beyond_marker(split_nc_words(line), marker_words));
     std::vector<nc_word> words = split_nc_words(line);
     const line_place at{f, no, line};
     if (bang_) read_bang_waits(line, words, channel, at);
@@ -564,7 +566,14 @@ class reader {
                fmt::format("wait {} lies outside every channel's section and is not checked", name(*b.wait)));
       return;
     }
-    record_block(b, channel, at);
+    record_block(b, channel, at, marker_words < 0 || block_beyond_marker(words, marker_words));
+  }
+
+  // A marker line that carries more than the marker's own words (and an N number).
+  static bool block_beyond_marker(const std::vector<nc_word>& words, int marker_words) {
+    int n = 0;
+    for (const nc_word& w : words) n += w.address != 'N';
+    return n > marker_words;
   }
 
   // The words of one block that matter to the checker.
@@ -579,12 +588,13 @@ class reader {
 
   // A block with no M-word, comment or special character holds no wait and no end: only
   // remember it as the channel's last block. Most of a program is such blocks.
-  void note_plain_block(const nc_source& f, int no, std::string_view line, int channel) {
+  void note_plain_block(const nc_source& f, int no, std::string_view line, int channel, bool is_block = true) {
     channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
     if (st.ended) return;
     st.last_line = no;
     st.pending_source = &f;
     st.pending_text = line;
+    if (options_.on_block && is_block) options_.on_block(channel, f.name, no, line);
   }
 
   // Sorts the words of a block into wait, end and near-waits; a wait given as an expression
@@ -626,7 +636,8 @@ class reader {
 
   // A block of channel `channel` (1..n) with words: the channel's last block, and its wait,
   // near-waits and end, unless the channel's program has already ended.
-  void record_block(const block_words& b, int channel, const line_place& at) {
+  // `is_block`: false for a section marker line with nothing else (not handed to on_block).
+  void record_block(const block_words& b, int channel, const line_place& at, bool is_block) {
     channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
     nc_channel_program& prog = out_.channels[static_cast<std::size_t>(channel - 1)];
     if (st.ended) {
@@ -641,6 +652,7 @@ class reader {
     if (st.last_file != at.f.name) st.last_file = at.f.name;
     st.last_line = at.no;
     st.last_text.assign(at.line);
+    if (options_.on_block && is_block) options_.on_block(channel, at.f.name, at.no, at.line);
     if (b.wait) {
       nc_wait w = make_wait(channel, b.wait_code, b.partner, at(b.wait->column));
       if (options_.on_wait)

@@ -96,6 +96,11 @@ struct nc_programs {
 /// it simulates.
 struct nc_read_options {
   std::function<void(const nc_wait&)> on_wait;
+  /// When set, every block of a channel's program (a line with words, in its section, up to
+  /// and including the end code) is handed to it, in program order and before the block's
+  /// wait goes to `on_wait`: the input of the analyses that need more than the waits (cycle
+  /// time, shared spindles). `text` is the physical line; split it with split_nc_words.
+  std::function<void(int channel, const std::string& file, int line, std::string_view text)> on_block;
 };
 
 /// Reads `files` as the programs of machine `m`; layout and syntax problems go to `sink`.

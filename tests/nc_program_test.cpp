@@ -425,3 +425,34 @@ TEST_CASE("bang waits are not read on an M-code machine", "[check]") {
   CHECK(p.channels[0].waits.size() == 1);
   CHECK(p.channels[0].waits[0].code == 100);
 }
+
+TEST_CASE("on_block hands over every block of a channel in program order", "[check]") {
+  diagnostic_list d;
+  std::string got;
+  nc_read_options o;
+  o.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
+    got += fmt::format("{}:{}:{}:{}\n", channel, file, line, text);
+  };
+  o.on_wait = [&](const nc_wait& w) { got += fmt::format("wait {} at {}\n", w.code, w.where.line); };
+  read_nc_programs({{"part.eia",
+                     "%\n"
+                     "O1306(PART)\n"
+                     "G109 L1 (UPPER)\n"
+                     "G0 X10.\n"
+                     "M950\n"
+                     "(comment only)\n"
+                     "G109 L2\n"
+                     "M950\n"
+                     "M30\n"
+                     "X1.\n"
+                     "%\n"}},
+                   mazak(), d, o);
+  CHECK(messages(d) == "");
+  CHECK(got ==
+        "1:part.eia:4:G0 X10.\n"
+        "1:part.eia:5:M950\n"
+        "wait 950 at 5\n"
+        "2:part.eia:8:M950\n"
+        "wait 950 at 8\n"
+        "2:part.eia:9:M30\n");
+}
