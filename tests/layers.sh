@@ -11,8 +11,9 @@ declare -A allowed=(
   [channels]="channels parser machines support"
   [formats]="formats channels parser machines support"
   [check]="check machines support"
-  [post]="post formats check channels parser machines support"
-  [cli]="cli post formats check channels parser machines support"
+  [analysis]="analysis check machines support"
+  [post]="post analysis formats check channels parser machines support"
+  [cli]="cli post analysis formats check channels parser machines support"
 )
 bad=0
 for layer in "${!allowed[@]}"; do

@@ -1,0 +1,192 @@
+#include "analysis/spindle_state.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+namespace twinpost {
+
+namespace {
+
+bool number(const std::string& s, double& out) {
+  if (s.empty()) return false;
+  const char* b = s.data();
+  if (*b == '+') ++b;
+  const auto [p, ec] = std::from_chars(b, s.data() + s.size(), out);
+  return ec == std::errc{} && p == s.data() + s.size();
+}
+
+// Two words name the same code: same address, same number (G96 = G96. = G096).
+bool same_word(const nc_word& a, const nc_word& b) {
+  double x = 0, y = 0;
+  return a.address == b.address && !a.expression && !b.expression && number(a.value, x) && number(b.value, y) &&
+         x == y;
+}
+
+bool has_word(const std::vector<nc_word>& words, const nc_word& w, int& column) {
+  for (const nc_word& v : words)
+    if (same_word(v, w)) {
+      column = v.column;
+      return true;
+    }
+  return false;
+}
+
+}  // namespace
+
+channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), settings_(m.spindles.size()) {
+  for (const spindle_def& s : m.spindles) {
+    clamp_block c;
+    if (!s.clamp.empty()) {
+      const std::string_view c_tpl = s.clamp;
+      const std::size_t hole = c_tpl.find("{max}");
+      const std::string tpl = hole == std::string_view::npos
+                                  ? std::string(c_tpl)
+                                  : std::string(c_tpl.substr(0, hole)) + "0" + std::string(c_tpl.substr(hole + 5));
+      for (nc_word& w : split_nc_words(tpl))
+        if (w.address != 'S') c.fixed.push_back(std::move(w));
+    }
+    clamps_.push_back(std::move(c));
+  }
+  const channel_def* ch = nullptr;
+  for (const channel_def& c : m.channels)
+    if (c.number == channel) ch = &c;
+  const std::string start = ch ? ch->spindle : std::string("main");
+  for (std::size_t i = 0; i < m.spindles.size(); ++i)
+    if (m.spindles[i].name == start) current_ = static_cast<int>(i);
+  if (current_ < 0 && !m.spindles.empty()) current_ = 0;
+}
+
+bool channel_spindles::is_code(const std::vector<nc_word>& words, std::string_view code, int& column) const {
+  const std::vector<nc_word> c = split_nc_words(code);
+  return c.size() == 1 && has_word(words, c[0], column);
+}
+
+bool channel_spindles::is_clamp(const std::vector<nc_word>& words, int spindle) const {
+  const clamp_block& c = clamps_[static_cast<std::size_t>(spindle)];
+  if (c.fixed.empty()) return false;
+  int column = 0;
+  for (const nc_word& w : c.fixed)
+    if (!has_word(words, w, column)) return false;
+  return true;
+}
+
+void channel_spindles::set(int spindle, const spindle_setting& to, int column) {
+  spindle_setting& s = settings_[static_cast<std::size_t>(spindle)];
+  if (s == to) return;
+  for (spindle_change& c : changes_)
+    if (c.spindle == spindle) {
+      c.after = to;
+      s = to;
+      return;
+    }
+  changes_.push_back({spindle, s, to, column});
+  s = to;
+}
+
+const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_word>& words) {
+  changes_.clear();
+  if (current_ < 0) return changes_;
+  // The spindle M-codes of the block: a code several spindles share goes to the current one.
+  int turned = -1, turned_column = 0;
+  spindle_turn turn = spindle_turn::unknown;
+  std::vector<std::pair<int, int>> stops;  // spindle, column
+  for (const nc_word& w : words) {
+    double v = 0;
+    if (w.address != 'M' || w.expression || !number(w.value, v) || v != std::floor(v)) continue;
+    const int code = static_cast<int>(v);
+    int hit = -1;
+    spindle_turn what = spindle_turn::unknown;
+    bool select = false;
+    for (std::size_t i = 0; i < m_.spindles.size(); ++i) {
+      const spindle_def& s = m_.spindles[i];
+      spindle_turn t = code == s.cw ? spindle_turn::cw : code == s.ccw ? spindle_turn::ccw
+                       : code == s.stop ? spindle_turn::stopped : spindle_turn::unknown;
+      const bool sel = s.select && *s.select == code;
+      if (t == spindle_turn::unknown && !sel) continue;
+      if (hit < 0 || static_cast<int>(i) == current_) {
+        hit = static_cast<int>(i);
+        what = t;
+        select = sel;
+      }
+    }
+    if (hit < 0) continue;
+    if (select) {
+      current_ = hit;
+    } else if (what == spindle_turn::stopped) {
+      stops.emplace_back(hit, w.column);
+    } else {
+      turned = hit;
+      turn = what;
+      turned_column = w.column;
+    }
+  }
+  // The mode codes (modal per channel).
+  int mode_column = 0;
+  const speed_mode before_mode = mode_;
+  if (is_code(words, m_.codes.css, mode_column))
+    mode_ = speed_mode::css;
+  else if (is_code(words, m_.codes.rpm, mode_column))
+    mode_ = speed_mode::rpm;
+  const nc_word* s_word = nullptr;
+  for (const nc_word& w : words)
+    if (w.address == 'S' && !w.expression) s_word = &w;
+  double s_value = 0;
+  const bool has_s = s_word && number(s_word->value, s_value);
+  const int target = turned >= 0 ? turned : current_;
+  // A clamp block (G50 S.., G92 S.. R1): S is the highest rpm, not a speed.
+  if (has_s) {
+    int clamp_of = -1;
+    for (std::size_t i = 0; i < m_.spindles.size(); ++i)
+      if (is_clamp(words, static_cast<int>(i)) && (clamp_of < 0 || static_cast<int>(i) == target))
+        clamp_of = static_cast<int>(i);
+    if (clamp_of >= 0) {
+      spindle_setting to = setting(clamp_of);
+      to.clamp = s_value;
+      set(clamp_of, to, s_word->column);
+      return changes_;
+    }
+  }
+  if (turned >= 0) current_ = turned;
+  spindle_setting to = setting(target);
+  int column = 0;
+  if (has_s) {
+    to.speed = s_value;
+    to.mode = mode_;
+    column = s_word->column;
+  } else if (mode_ != before_mode && to.mode != speed_mode::unknown) {
+    to.mode = mode_;
+    to.speed = 0;  // G97 after G96 without S keeps the rpm of the moment: not known here
+    column = mode_column;
+  }
+  if (turned >= 0) {
+    to.turn = turn;
+    if (to.mode == speed_mode::unknown) to.mode = mode_;
+    column = column ? std::min(column, turned_column) : turned_column;
+  }
+  if (column) set(target, to, column);
+  for (const auto& [spindle, col] : stops) {
+    spindle_setting off = setting(spindle);
+    off.turn = spindle_turn::stopped;
+    set(spindle, off, col);
+  }
+  return changes_;
+}
+
+double channel_spindles::rpm(double diameter, bool inch) const {
+  if (current_ < 0) return 0;
+  const spindle_setting& s = setting(current_);
+  if (!s.started() || s.speed <= 0) return 0;
+  const double max = m_.spindles[static_cast<std::size_t>(current_)].max_rpm;
+  double cap = s.clamp > 0 ? s.clamp : max;
+  if (max > 0) cap = std::min(cap, max);
+  if (s.mode != speed_mode::css) return cap > 0 ? std::min(s.speed, cap) : s.speed;
+  const double d = std::abs(diameter);
+  const double per_rev = std::numbers::pi * d / (inch ? 12.0 : 1000.0);  // m (ft) per revolution
+  if (per_rev <= 0) return cap;
+  const double r = s.speed / per_rev;
+  return cap > 0 ? std::min(r, cap) : r;
+}
+
+}  // namespace twinpost

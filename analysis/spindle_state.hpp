@@ -1,0 +1,73 @@
+#pragma once
+// What one channel's blocks have commanded of the machine's spindles, block by block: which
+// spindle an S word goes to, each spindle's direction, speed mode (CSS or rpm), speed and
+// clamp. Read from NC words with the machine's own codes ([[spindle]] cw/ccw/stop/select and
+// clamp, [codes] css/rpm), so it reads any program of the machine, not only twinpost's.
+// The input of the shared-spindle rules (analysis/shared_resources) and the cycle time
+// (feeds per revolution need the speed in rpm).
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "check/nc_program.hpp"
+#include "machines/machine.hpp"
+
+namespace twinpost {
+
+enum class spindle_turn : unsigned char { unknown, stopped, cw, ccw };
+enum class speed_mode : unsigned char { unknown, css, rpm };
+
+/// One spindle as a channel's blocks have set it so far.
+struct spindle_setting {
+  spindle_turn turn = spindle_turn::unknown;  ///< unknown: not commanded by this channel yet
+  speed_mode mode = speed_mode::unknown;      ///< the mode its speed was given in
+  double speed = 0;                           ///< last S: rpm, or m/min (ft/min in G20) under CSS
+  double clamp = 0;                           ///< highest rpm from the clamp block; 0: none given
+  bool started() const { return turn == spindle_turn::cw || turn == spindle_turn::ccw; }
+  bool operator==(const spindle_setting&) const = default;
+};
+
+/// What one block changed of one spindle.
+struct spindle_change {
+  int spindle = 0;  ///< index into machine::spindles
+  spindle_setting before, after;
+  int column = 0;  ///< column of the word that made the change (S, M or the mode G code)
+};
+
+/// One channel's spindles, fed one block at a time.
+class channel_spindles {
+ public:
+  channel_spindles(const machine& m, int channel);
+
+  /// Applies one block's words; returns what it changed (empty for most blocks). The block
+  /// order within a channel is program order.
+  const std::vector<spindle_change>& apply(const std::vector<nc_word>& words);
+
+  /// The spindle (index into machine::spindles) an S word without a spindle M-code goes to,
+  /// and whose speed a feed per revolution follows: the last one this channel selected or
+  /// turned, at first the channel's `spindle`. -1 when the machine has no spindles.
+  int current() const { return current_; }
+  const spindle_setting& setting(int spindle) const { return settings_[static_cast<std::size_t>(spindle)]; }
+  /// The channel's speed mode (G96/G97 are modal per channel).
+  speed_mode mode() const { return mode_; }
+  /// The rpm of the current spindle with the tool at `diameter` (in the program's unit; `inch`:
+  /// G20, CSS in ft/min). CSS is turned into rpm at that diameter and held to the clamp and
+  /// the spindle's max_rpm; 0 when the spindle is not turning or its speed is unknown.
+  double rpm(double diameter, bool inch) const;
+
+ private:
+  struct clamp_block {
+    std::vector<nc_word> fixed;  // the words of the clamp template besides S{max}
+  };
+  const machine& m_;
+  std::vector<spindle_setting> settings_;
+  std::vector<clamp_block> clamps_;
+  std::vector<spindle_change> changes_;
+  int current_ = -1;
+  speed_mode mode_ = speed_mode::unknown;
+  bool is_code(const std::vector<nc_word>& words, std::string_view code, int& column) const;
+  bool is_clamp(const std::vector<nc_word>& words, int spindle) const;
+  void set(int spindle, const spindle_setting& to, int column);
+};
+
+}  // namespace twinpost
