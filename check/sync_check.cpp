@@ -127,18 +127,31 @@ class checker {
   sim_wait normalise(const nc_wait& w) {
     sim_wait s{w.code, all_, false, &w};
     const nc_place& at = w.where;
+    if (const wait_rules::fixed_wait* f = m_.waits.fixed_wait_of(w.code)) {
+      s.partners = 0;
+      for (int c : f->channels) s.partners |= bit_of(c);
+      if (w.has_partner_list)
+        report(severity::error, at, w.partner_column,
+               fmt::format("wait {} is a wait of {} by its code and takes no partner list", wait_text(w),
+                           channel_list(f->channels)));
+      else if (!(s.partners & bit_of(w.channel)))
+        report(severity::error, at, at.column,
+               fmt::format("wait {} is a wait of {}: channel {} may not write it", wait_text(w),
+                           channel_list(f->channels), w.channel));
+      return s;
+    }
     if (m_.waits.partners == partner_style::none) {
       if (w.has_partner_list)
         report(severity::error, at, w.partner_column,
                fmt::format("wait {} has a partner list, but this machine's waits take none", wait_text(w)));
     } else if (!w.has_partner_list) {
-      if (n_ >= 3)
+      if (n_ >= 3 && !m_.waits.partners_optional)
         report(severity::error, at, at.column,
                fmt::format("wait {} has no partner list: with {} channels every wait must "
                            "name its partners (Fanuc PS0161)",
                            code_text(w.code), n_));
       else
-        s.plain = true;
+        s.plain = !m_.waits.partners_optional;  // optional: the same wait as one naming every channel
     } else if (bang() && w.partner_text.empty()) {
       report(severity::error, at, at.column,
              fmt::format("wait {} names no partner: write the channels it meets after {}, e.g. {}{}{}{}",

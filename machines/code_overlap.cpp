@@ -3,6 +3,7 @@
 #include "machines/code_overlap.hpp"
 
 #include <charconv>
+#include <limits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -15,8 +16,8 @@ namespace twinpost {
 bool is_wait_word(const wait_rules& w, char address, long long code) {
   // A bang wait (!2L1) is its marker and partners first: no plain word is one.
   if (w.syntax == wait_syntax::bang) return false;
-  if (address != w.address || code < w.first || code > w.last) return false;
-  return w.is_wait_code(static_cast<int>(code));  // within first..last, so within int
+  if (address != w.address || code < 0 || code > std::numeric_limits<int>::max()) return false;
+  return w.is_any_wait(static_cast<int>(code));
 }
 
 std::string wait_range_text(const wait_rules& w) {
@@ -25,6 +26,7 @@ std::string wait_range_text(const wait_rules& w) {
           ? fmt::format("{0}<partners>{1}{2}-{0}<partners>{1}{3}", w.marker, w.address, w.first, w.last)
           : fmt::format("{}{}-{}{}", w.address, w.first, w.address, w.last);
   if (w.step != 1) out += fmt::format(" step {}", w.step);
+  for (const wait_rules::fixed_wait& f : w.fixed) out += fmt::format(", {}{}", w.address, f.code);
   return out;
 }
 
@@ -95,9 +97,11 @@ class overlap_finder {
         {node    ? node
          : table ? table
                  : &waits_,
-         fmt::format("{} {}{}{} lies in the wait range {} ([waits]); a program could not tell "
-                     "it from a wait",
-                     what, m_.waits.address, code, node ? "" : " (the default)", wait_range_text(m_.waits))});
+         fmt::format("{} {}{}{} {}; a program could not tell it from a wait", what, m_.waits.address, code,
+                     node ? "" : " (the default)",
+                     m_.waits.fixed_wait_of(static_cast<int>(code))
+                         ? std::string("is a fixed wait ([[waits.fixed]])")
+                         : fmt::format("lies in the wait range {} ([waits])", wait_range_text(m_.waits)))});
   }
 
   const machine& m_;

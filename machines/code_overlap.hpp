@@ -12,11 +12,11 @@
 
 namespace twinpost {
 
-/// True when the word `address``code` is a wait code of `w` (wait_rules::is_wait_code, on
-/// the wait address only).
+/// True when the word `address``code` is a wait code of `w` (wait_rules::is_any_wait: the
+/// range and the fixed waits, on the wait address only).
 bool is_wait_word(const wait_rules& w, char address, long long code);
 
-/// "M200-M299", or "M200-M298 step 2": the range as messages name it.
+/// "M200-M299", "M200-M298 step 2", "M200-M998, M82, M83": the wait codes as messages name them.
 std::string wait_range_text(const wait_rules& w);
 
 /// The first word of `block` that is a wait code of `w`, or -1. `block` is a fixed block or

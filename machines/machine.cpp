@@ -13,6 +13,12 @@ bool wait_rules::is_wait_code(int code) const {
   return std::find(excluded.begin(), excluded.end(), code) == excluded.end();
 }
 
+const wait_rules::fixed_wait* wait_rules::fixed_wait_of(int code) const {
+  for (const fixed_wait& f : fixed)
+    if (f.code == code) return &f;
+  return nullptr;
+}
+
 const axis_def* channel_def::axis(char address) const {
   for (const axis_def& a : axes)
     if (a.address == address) return &a;

@@ -41,8 +41,23 @@ struct wait_rules {
   bool reuse = false;         ///< when the range is used up, start again at `first`
   partner_style partners = partner_style::none;
   char partner_address = 'P';  ///< address of the partner list
-  /// True when `code` lies in the range, on the step grid, and is not excluded.
+  /// A wait without a partner list meets every channel (Star style: `M200` is `M200 P123`);
+  /// false: with three or more channels every wait names its partners (Fanuc PS0161).
+  bool partners_optional = false;
+  /// A code outside the range that is a wait of fixed channels, written in each of them and
+  /// with no partner list (Star style: M82/M83 spindle synchronisation in channels 1 and 2).
+  struct fixed_wait {
+    int code = 0;
+    std::vector<int> channels;  ///< ascending, at least two
+  };
+  std::vector<fixed_wait> fixed;
+  /// True when `code` lies in the range, on the step grid, and is not excluded: a code the
+  /// post may allocate.
   bool is_wait_code(int code) const;
+  /// The fixed wait with this code, or nullptr.
+  const fixed_wait* fixed_wait_of(int code) const;
+  /// A wait of either kind: the checker's question.
+  bool is_any_wait(int code) const { return is_wait_code(code) || fixed_wait_of(code); }
 };
 
 /// A spindle of the machine (main, sub, live tool).
@@ -238,6 +253,9 @@ struct machine {
   std::string description;
   std::string control;                ///< "mazak-smoothx", "fanuc-0i-td", ...
   std::string source;                 ///< file the definition came from (for messages)
+  /// A definition for `twinpost check` (and its readers) only: its waits and sections are
+  /// what the checker needs; the rest is not verified for posting, so `post` refuses it.
+  bool check_only = false;
   std::vector<channel_def> channels;  ///< ordered by number
   std::vector<spindle_def> spindles;
   wait_rules waits;

@@ -58,16 +58,47 @@ const toml::node* read_enum(const table_reader& r, std::string_view key,
 void read_machine_table(const table_reader& root, machine& m, anchors& at) {
   const toml::table* t = root.sub_table("machine");
   if (!t) root.fail_here("machine.name is required");
-  table_reader r(*t, "machine", root.source(), {"name", "description", "control", "layout"});
+  table_reader r(*t, "machine", root.source(), {"name", "description", "control", "layout", "check_only"});
   r.require("name");
   r.read("name", m.name);
   if (m.name.empty()) r.fail(*r.find("name"), "machine.name must not be empty");
   r.read("description", m.description);
   r.read("control", m.control);
+  r.read("check_only", m.check_only);
   at.layout = read_enum(r, "layout", layout_file_names(), m.layout);
 }
 
 constexpr int max_wait_code = 99'999'999;
+
+// [[waits.fixed]]: codes outside the range that are waits of fixed channels (Star M82/M83).
+// Their channels are checked against the machine's in check_fixed_waits, once channels are read.
+void read_fixed_waits(const table_reader& r, wait_rules& w) {
+  const toml::node* node = r.find("fixed");
+  if (!node) return;
+  const toml::array* list = node->as_array();
+  if (!list || !list->is_array_of_tables()) r.fail(*node, "waits.fixed must be an array of tables ([[waits.fixed]])");
+  if (w.syntax != wait_syntax::m_code) r.fail(*node, "waits.fixed is read only with waits.syntax = \"m_code\"");
+  for (const toml::node& item : *list) {
+    table_reader f(*item.as_table(), "waits.fixed", r.source(), {"code", "channels"});
+    wait_rules::fixed_wait fw;
+    f.require("code");
+    f.require("channels");
+    f.read("code", fw.code);
+    f.read("channels", fw.channels);
+    if (fw.code < 0 || fw.code > max_wait_code)
+      f.fail(*f.find("code"), fmt::format("waits.fixed code must be 0..{}, not {}", max_wait_code, fw.code));
+    if (fw.code >= w.first && fw.code <= w.last)
+      f.fail(*f.find("code"), fmt::format("waits.fixed code {} lies in the wait range {}..{}: a fixed wait is "
+                                          "a code outside it",
+                                          fw.code, w.first, w.last));
+    if (w.fixed_wait_of(fw.code))
+      f.fail(*f.find("code"), fmt::format("waits.fixed code {} is given twice", fw.code));
+    std::sort(fw.channels.begin(), fw.channels.end());
+    if (fw.channels.size() < 2 || std::adjacent_find(fw.channels.begin(), fw.channels.end()) != fw.channels.end())
+      f.fail(*f.find("channels"), "waits.fixed channels must name at least two different channels");
+    w.fixed.push_back(std::move(fw));
+  }
+}
 
 void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
   const toml::table* t = root.sub_table("waits");
@@ -75,7 +106,7 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
   at.waits = t;
   table_reader r(*t, "waits", root.source(),
                  {"syntax", "marker", "address", "first", "last", "step", "excluded", "reuse", "partners",
-                  "partner_address"});
+                  "partner_address", "partner_list", "fixed"});
   using syntax_name = std::pair<std::string_view, wait_syntax>;
   const toml::node* syntax = read_enum(
       r, "syntax", std::array<syntax_name, 2>{{{"m_code", wait_syntax::m_code}, {"bang", wait_syntax::bang}}},
@@ -139,6 +170,12 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
            "waits.partner_address is not read with waits.syntax = \"bang\": the "
            "partners follow waits.marker");
   r.read_char("partner_address", w.partner_address, true);
+  using list_name = std::pair<std::string_view, bool>;
+  read_enum(r, "partner_list", std::array<list_name, 2>{{{"required", false}, {"optional", true}}},
+            w.partners_optional);
+  if (w.partners_optional && w.partners != partner_style::path_numbers && w.partners != partner_style::binary)
+    r.fail(*r.find("partner_list"), "waits.partner_list = \"optional\" needs waits.partners = path_numbers or binary");
+  read_fixed_waits(r, w);
 }
 
 // File names are built from these, so a separator could write outside the output directory.
@@ -398,6 +435,10 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
     if (at.partners) root.fail(*at.partners, message);
     root.fail(*at.waits, message);
   }
+  for (const wait_rules::fixed_wait& f : m.waits.fixed)
+    if (f.channels.front() < 1 || f.channels.back() > static_cast<int>(m.channels.size()))
+      root.fail(*at.waits, fmt::format("waits.fixed code {} names channel {}, which this machine does not have",
+                                       f.code, f.channels.front() < 1 ? f.channels.front() : f.channels.back()));
 }
 
 }  // namespace

@@ -258,6 +258,14 @@ std::string safe_file_stem(std::string_view partno) {
 post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& diags) {
   post_summary sum;
   counting_sink sink(diags);
+  if (m.check_only) {
+    sink.report({severity::error, m.source, 0, 0,
+                 fmt::format("machine '{}' is a definition for check only (machine.check_only = true): its "
+                             "codes beyond the waits are not verified for posting",
+                             m.name),
+                 {}});
+    return sum;
+  }
   // A layout given in the options is held to the rule the loader holds the machine file to.
   if (std::string why = layout_problem(m, o.layout.value_or(m.layout)); !why.empty()) {
     sink.report({severity::error, m.source, 0, 0, std::move(why), {}});

@@ -456,3 +456,22 @@ TEST_CASE("on_block hands over every block of a channel in program order", "[che
         "wait 950 at 8\n"
         "2:part.eia:9:M30\n");
 }
+
+TEST_CASE("on_block sees every plain block of a streamed file, runs of them included", "[check]") {
+  const std::string dir = test::fresh_temp_dir("on_block");
+  const std::string p1 = dir + "/A_1.nc", p2 = dir + "/A_2.nc";
+  REQUIRE(test::write_file(p1, "%\nO1000\nG0 X10.\nG1 X5. F0.1\n\nG1 Z-3.\nM100\nG0 X20.\nM30\n%\n"));
+  REQUIRE(test::write_file(p2, "%\nO1000\nG0 X30.\nM100\nM30\n%\n"));
+  machine m = two_channels(100, 102, "");
+  diagnostic_list d;
+  std::string got;
+  nc_read_options o;
+  o.on_block = [&](int channel, const std::string&, int line, std::string_view text) {
+    got += fmt::format("{}:{}:{}\n", channel, line, text);
+  };
+  read_nc_programs({{"A_1.nc", {}, p1}, {"A_2.nc", {}, p2}}, m, d, o);
+  CHECK(messages(d) == "");
+  CHECK(got ==
+        "1:2:O1000\n1:3:G0 X10.\n1:4:G1 X5. F0.1\n1:6:G1 Z-3.\n1:7:M100\n1:8:G0 X20.\n1:9:M30\n"
+        "2:2:O1000\n2:3:G0 X30.\n2:4:M100\n2:5:M30\n");
+}
