@@ -45,6 +45,12 @@ std::size_t skip_brackets(std::string_view s, std::size_t i) {
 }
 
 /// An unsigned integer value ("100", "03"); false for signs, points and expressions.
+bool to_double(std::string_view s, double& out) {
+  if (s.starts_with('+')) s.remove_prefix(1);
+  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return !s.empty() && ec == std::errc{} && p == s.data() + s.size();
+}
+
 bool to_int(std::string_view s, int& out) {
   if (!all_digits(s)) return false;
   auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
@@ -558,6 +564,8 @@ class reader {
     std::vector<nc_word> words = split_nc_words(line);
     const line_place at{f, no, line};
     if (bang_) read_bang_waits(line, words, channel, at);
+    if (channel >= 0 && !(channel > 0 && state_[static_cast<std::size_t>(channel - 1)].ended))
+      report_jumps(line, words, at);
     if (words.empty()) return;
     const block_words b = classify_words(words, channel, at);
     if (channel < 0) return;
@@ -568,6 +576,54 @@ class reader {
       return;
     }
     record_block(b, channel, at, marker_words < 0 || block_beyond_marker(words, marker_words));
+  }
+
+  // Jumps, loops and calls the checker does not follow: it reads each program once, top to
+  // bottom, so a wait behind one may run more often, or not at all, or live in a program it
+  // never reads. Said as a warning at the word, never passed over.
+  void report_jumps(std::string_view line, const std::vector<nc_word>& words, const line_place& at) {
+    for (std::size_t i = 0; i < line.size();) {
+      const char c = line[i];
+      if (c == '(') {
+        const std::size_t close = line.find(')', i);
+        if (close == std::string_view::npos) break;
+        i = close + 1;
+        continue;
+      }
+      if (c == ';') break;
+      if (!is_letter(c)) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      std::string key;
+      while (j < line.size() && is_letter(line[j])) key += upper(line[j++]);
+      const int column = static_cast<int>(i) + 1;
+      if (key == "GOTO")
+        report(severity::warning, at(column),
+               "GOTO: the checker does not follow jumps; the waits are checked in the order they are written");
+      else if (key == "WHILE")
+        report(severity::warning, at(column),
+               "WHILE loop: the checker reads its blocks once; waits in it are checked as if it ran once");
+      i = j;
+    }
+    for (const nc_word& w : words) {
+      double v = 0;
+      if (w.expression || !to_double(w.value, v)) continue;
+      const std::string code = fmt::format("{}{}", w.address, w.value);
+      const nc_word* program = nullptr;
+      for (const nc_word& p : words)
+        if (p.address == 'P' && !program) program = &p;
+      const std::string called = program ? fmt::format(" P{}", program->value) : std::string();
+      if (w.address == 'M' && (v == 98 || v == 198))
+        report(severity::warning, at(w.column),
+               fmt::format("{}{} calls a subprogram the checker does not read: waits in it are not checked",
+                           code, called));
+      else if (w.address == 'G' && (v == 65 || v == 66 || v == 66.1))
+        report(severity::warning, at(w.column),
+               fmt::format("{}{} calls a macro the checker does not read: waits in it are not checked", code,
+                           called));
+    }
   }
 
   // A marker line that carries more than the marker's own words (and an N number).
@@ -715,7 +771,9 @@ class reader {
     std::array<bool, 256> t{};
     if (wr.syntax == wait_syntax::bang) t[static_cast<unsigned char>(wr.marker)] = true;
     const char wa = upper(wait_address);
-    for (char c : {'M', 'm', wa, static_cast<char>(wa - 'A' + 'a'), '(', ';', '/', '#', '[', '%', '$'})
+    // O and E (GOTO, DO, END) and P (M98 P, G65 P) bring the lines of jumps and calls.
+    for (char c : {'M', 'm', wa, static_cast<char>(wa - 'A' + 'a'), '(', ';', '/', '#', '[', '%', '$', 'O', 'o',
+                   'E', 'e', 'P', 'p'})
       t[static_cast<unsigned char>(c)] = true;
     return t;
   }
