@@ -600,8 +600,9 @@ class reader {
       while (j < line.size() && is_letter(line[j])) key += upper(line[j++]);
       const int column = static_cast<int>(i) + 1;
       if (key == "GOTO")
-        report(severity::warning, at(column),
-               "GOTO: the checker does not follow jumps; the waits are checked in the order they are written");
+        report(
+            severity::warning, at(column),
+            "GOTO: the checker does not follow jumps; the waits are checked in the order they are written");
       else if (key == "WHILE")
         report(severity::warning, at(column),
                "WHILE loop: the checker reads its blocks once; waits in it are checked as if it ran once");
@@ -645,7 +646,8 @@ class reader {
 
   // A block with no M-word, comment or special character holds no wait and no end: only
   // remember it as the channel's last block. Most of a program is such blocks.
-  void note_plain_block(const nc_source& f, int no, std::string_view line, int channel, bool is_block = true) {
+  void note_plain_block(const nc_source& f, int no, std::string_view line, int channel,
+                        bool is_block = true) {
     channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
     if (st.ended) return;
     st.last_line = no;
@@ -772,8 +774,8 @@ class reader {
     if (wr.syntax == wait_syntax::bang) t[static_cast<unsigned char>(wr.marker)] = true;
     const char wa = upper(wait_address);
     // O and E (GOTO, DO, END) and P (M98 P, G65 P) bring the lines of jumps and calls.
-    for (char c : {'M', 'm', wa, static_cast<char>(wa - 'A' + 'a'), '(', ';', '/', '#', '[', '%', '$', 'O', 'o',
-                   'E', 'e', 'P', 'p'})
+    for (char c : {'M', 'm', wa, static_cast<char>(wa - 'A' + 'a'), '(', ';', '/', '#', '[', '%', '$', 'O',
+                   'o', 'E', 'e', 'P', 'p'})
       t[static_cast<unsigned char>(c)] = true;
     return t;
   }

@@ -26,7 +26,21 @@ void channel_writer::append_feed(text_buffer& out) {
   last_f_ = feed_text_;
 }
 
+bool channel_writer::tool_along_z(int line) {
+  if (std::abs(axis_.z) >= 0.9999) return true;  // the drilling cycles' rule too
+  if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y &&
+      refused_axis_->z == axis_.z)
+    return false;
+  refused_axis_ = axis_;
+  error(line,
+        fmt::format("tool axis ({:g},{:g},{:g}) is not along Z: twinpost writes no rotary axis yet (B head, "
+                    "C axis, tool-tip control), so a tilted or radial tool cannot be posted",
+                    axis_.x, axis_.y, axis_.z));
+  return false;
+}
+
 void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, int line) {
+  if (!tool_along_z(line)) return;
   if (!has_y_ && std::abs(y_cl * cl_mm_) > y_tolerance)
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
@@ -117,6 +131,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
 
 void channel_writer::arc(const arc_event& a, int line) {
   if (tool_ < 0) return no_tool(line);
+  if (!tool_along_z(line)) return;
   if (threading_) {
     pos_ = a.end;
     return error(line, "an arc while THREAD/TURN is on: a threading pass is a straight G32 move");

@@ -52,6 +52,9 @@ class channel_writer {
   /// False, after an error, when a drill turning with the part (on-centre axial drilling on
   /// the workpiece spindle) would feed off the centre line.
   bool drill_on_centre(double x_cl, int line);
+  /// False, after an error (once per tool axis), when the tool axis in force is not along Z:
+  /// twinpost writes no rotary axes yet, so a tilted or radial tool cannot be posted.
+  bool tool_along_z(int line);
   /// The kind the machine's tool table gives `tool`, where the CL gave none; a TLDATA that
   /// says otherwise is an error (one of the two is wrong about the tool in the turret).
   void table_kind(int tool, int line);
@@ -203,9 +206,10 @@ class channel_writer {
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force
   bool thread_saved_per_rev_ = false;      ///< the feed mode to restore at THREAD/OFF
   bool thread_saved_mode_ = false;         ///< whether a feed mode was written before THREAD/TURN
-  bool cycle_refused_ = false;  ///< the cycle in force was refused (an error): its points write nothing
-  vec3 pos_;                    // last CL point of this channel
-  vec3 axis_{0, 0, 1};          // tool axis, from GOTO i,j,k or TLAXIS
+  bool cycle_refused_ = false;        ///< the cycle in force was refused (an error): its points write nothing
+  vec3 pos_;                          // last CL point of this channel
+  vec3 axis_{0, 0, 1};                // tool axis, from GOTO i,j,k or TLAXIS
+  std::optional<vec3> refused_axis_;  // the tool axis tool_along_z last refused
   std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning
   /// The last SPINDL that set a speed: SPINDL/ON turns the spindle on again with it (APT: the
   /// last speed, mode and direction), also after SPINDL/OFF.

@@ -251,8 +251,8 @@ struct cycle_rules {
 struct machine {
   std::string name;  ///< "integrex-i200st"
   std::string description;
-  std::string control;                ///< "mazak-smoothx", "fanuc-0i-td", ...
-  std::string source;                 ///< file the definition came from (for messages)
+  std::string control;  ///< "mazak-smoothx", "fanuc-0i-td", ...
+  std::string source;   ///< file the definition came from (for messages)
   /// A definition for `twinpost check` (and its readers) only: its waits and sections are
   /// what the checker needs; the rest is not verified for posting, so `post` refuses it.
   bool check_only = false;

@@ -76,8 +76,10 @@ void read_fixed_waits(const table_reader& r, wait_rules& w) {
   const toml::node* node = r.find("fixed");
   if (!node) return;
   const toml::array* list = node->as_array();
-  if (!list || !list->is_array_of_tables()) r.fail(*node, "waits.fixed must be an array of tables ([[waits.fixed]])");
-  if (w.syntax != wait_syntax::m_code) r.fail(*node, "waits.fixed is read only with waits.syntax = \"m_code\"");
+  if (!list || !list->is_array_of_tables())
+    r.fail(*node, "waits.fixed must be an array of tables ([[waits.fixed]])");
+  if (w.syntax != wait_syntax::m_code)
+    r.fail(*node, "waits.fixed is read only with waits.syntax = \"m_code\"");
   for (const toml::node& item : *list) {
     table_reader f(*item.as_table(), "waits.fixed", r.source(), {"code", "channels"});
     wait_rules::fixed_wait fw;
@@ -88,13 +90,15 @@ void read_fixed_waits(const table_reader& r, wait_rules& w) {
     if (fw.code < 0 || fw.code > max_wait_code)
       f.fail(*f.find("code"), fmt::format("waits.fixed code must be 0..{}, not {}", max_wait_code, fw.code));
     if (fw.code >= w.first && fw.code <= w.last)
-      f.fail(*f.find("code"), fmt::format("waits.fixed code {} lies in the wait range {}..{}: a fixed wait is "
-                                          "a code outside it",
-                                          fw.code, w.first, w.last));
+      f.fail(*f.find("code"),
+             fmt::format("waits.fixed code {} lies in the wait range {}..{}: a fixed wait is "
+                         "a code outside it",
+                         fw.code, w.first, w.last));
     if (w.fixed_wait_of(fw.code))
       f.fail(*f.find("code"), fmt::format("waits.fixed code {} is given twice", fw.code));
     std::sort(fw.channels.begin(), fw.channels.end());
-    if (fw.channels.size() < 2 || std::adjacent_find(fw.channels.begin(), fw.channels.end()) != fw.channels.end())
+    if (fw.channels.size() < 2 ||
+        std::adjacent_find(fw.channels.begin(), fw.channels.end()) != fw.channels.end())
       f.fail(*f.find("channels"), "waits.fixed channels must name at least two different channels");
     w.fixed.push_back(std::move(fw));
   }
@@ -174,7 +178,8 @@ void read_waits(const table_reader& root, wait_rules& w, anchors& at) {
   read_enum(r, "partner_list", std::array<list_name, 2>{{{"required", false}, {"optional", true}}},
             w.partners_optional);
   if (w.partners_optional && w.partners != partner_style::path_numbers && w.partners != partner_style::binary)
-    r.fail(*r.find("partner_list"), "waits.partner_list = \"optional\" needs waits.partners = path_numbers or binary");
+    r.fail(*r.find("partner_list"),
+           "waits.partner_list = \"optional\" needs waits.partners = path_numbers or binary");
   read_fixed_waits(r, w);
 }
 
@@ -437,8 +442,9 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
   }
   for (const wait_rules::fixed_wait& f : m.waits.fixed)
     if (f.channels.front() < 1 || f.channels.back() > static_cast<int>(m.channels.size()))
-      root.fail(*at.waits, fmt::format("waits.fixed code {} names channel {}, which this machine does not have",
-                                       f.code, f.channels.front() < 1 ? f.channels.front() : f.channels.back()));
+      root.fail(*at.waits,
+                fmt::format("waits.fixed code {} names channel {}, which this machine does not have", f.code,
+                            f.channels.front() < 1 ? f.channels.front() : f.channels.back()));
 }
 
 }  // namespace

@@ -259,7 +259,10 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   post_summary sum;
   counting_sink sink(diags);
   if (m.check_only) {
-    sink.report({severity::error, m.source, 0, 0,
+    sink.report({severity::error,
+                 m.source,
+                 0,
+                 0,
                  fmt::format("machine '{}' is a definition for check only (machine.check_only = true): its "
                              "codes beyond the waits are not verified for posting",
                              m.name),

@@ -457,29 +457,33 @@ TEST_CASE("waits.fixed and waits.partner_list: Star-style waits", "[machines]") 
   using test::machine_head;
   using test::two_channels;
   const std::string p12 = "partners = \"path_numbers\"\n";
-  CHECK(error_of(machine_head + p12 + "partner_list = \"optional\"\n[[waits.fixed]]\ncode = 82\nchannels = [2, 1]\n" +
+  CHECK(error_of(machine_head + p12 +
+                 "partner_list = \"optional\"\n[[waits.fixed]]\ncode = 82\nchannels = [2, 1]\n" +
                  two_channels) == "(no error)");
-  const machine m =
-      parse_machine(machine_head + p12 + "partner_list = \"optional\"\n[[waits.fixed]]\ncode = 82\nchannels = [2, 1]\n" +
-                        two_channels,
-                    "m.toml");
+  const machine m = parse_machine(
+      machine_head + p12 + "partner_list = \"optional\"\n[[waits.fixed]]\ncode = 82\nchannels = [2, 1]\n" +
+          two_channels,
+      "m.toml");
   CHECK(m.waits.partners_optional);
   REQUIRE(m.waits.fixed.size() == 1);
   CHECK(m.waits.fixed[0].channels == std::vector<int>{1, 2});
   CHECK(m.waits.is_any_wait(82));
   CHECK_FALSE(m.waits.is_wait_code(82));  // never allocated by the post
-  CHECK(error_of(machine_head + "partner_list = \"optional\"\n" + two_channels) ==
-        "m.toml:6:16: error: waits.partner_list = \"optional\" needs waits.partners = path_numbers or binary");
+  CHECK(
+      error_of(machine_head + "partner_list = \"optional\"\n" + two_channels) ==
+      "m.toml:6:16: error: waits.partner_list = \"optional\" needs waits.partners = path_numbers or binary");
   CHECK(error_of(machine_head + "partner_list = \"maybe\"\n" + two_channels) ==
         "m.toml:6:16: error: waits.partner_list must be required or optional, not 'maybe'");
   CHECK(error_of(machine_head + "[[waits.fixed]]\ncode = 101\nchannels = [1, 2]\n" + two_channels) ==
-        "m.toml:7:8: error: waits.fixed code 101 lies in the wait range 100..103: a fixed wait is a code outside it");
+        "m.toml:7:8: error: waits.fixed code 101 lies in the wait range 100..103: a fixed wait is a code "
+        "outside it");
   CHECK(error_of(machine_head + "[[waits.fixed]]\ncode = 82\nchannels = [1, 1]\n" + two_channels) ==
         "m.toml:8:12: error: waits.fixed channels must name at least two different channels");
   CHECK(error_of(machine_head + "[[waits.fixed]]\ncode = 82\nchannels = [1, 3]\n" + two_channels) ==
         "m.toml:3:1: error: waits.fixed code 82 names channel 3, which this machine does not have");
   // A fixed wait is a wait code like the range: no other code of the machine may be one.
   CHECK(error_of(machine_head + "[[waits.fixed]]\ncode = 8\nchannels = [1, 2]\n" + two_channels) ==
-        "m.toml:3:1: error: codes.coolant_on M8 (the default) is a fixed wait ([[waits.fixed]]); a program could "
+        "m.toml:3:1: error: codes.coolant_on M8 (the default) is a fixed wait ([[waits.fixed]]); a program "
+        "could "
         "not tell it from a wait");
 }

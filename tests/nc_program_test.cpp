@@ -411,7 +411,8 @@ TEST_CASE("bang waits: a marker without a number, two waits in a block, L words"
         "p.CNC:2:1: error: '!2' is no wait: a wait is !<partners>L<number>, e.g. !2L1\n!2\n^\n"
         "p.CNC:4:6: error: two waits in one block (!2L1 and !2L2): a wait needs a block of its own\n"
         "!2L1 !2L2\n     ^\n"
-        "p.CNC:3:1: warning: M98 P100 calls a subprogram the checker does not read: waits in it are not checked\n"
+        "p.CNC:3:1: warning: M98 P100 calls a subprogram the checker does not read: waits in it are not "
+        "checked\n"
         "M98 P100 L2\n^\n"
         "p.CNC:5:1: warning: !2L#100 is a variable or expression: a wait given so cannot be checked\n"
         "!2L#100\n^\n");
@@ -496,15 +497,19 @@ TEST_CASE("jumps, loops and calls the checker does not follow are reported, not 
                      "M98 P7\n"},
                     {"J_2.nc", "M100\nM30\n"}},
                    two_channels(100, 102, ""), d);
-  CHECK(messages(d) ==
-        "J_1.nc:4:1: warning: GOTO: the checker does not follow jumps; the waits are checked in the order they are "
-        "written\nGOTO 10\n^\n"
-        "J_1.nc:5:14: warning: GOTO: the checker does not follow jumps; the waits are checked in the order they are "
-        "written\nIF [#1 GT 2] GOTO20 (RETRY)\n             ^\n"
-        "J_1.nc:6:1: warning: WHILE loop: the checker reads its blocks once; waits in it are checked as if it ran "
-        "once\nWHILE [#2 LT 3] DO1\n^\n"
-        "J_1.nc:9:1: warning: G65 P9010 calls a macro the checker does not read: waits in it are not checked\n"
-        "G65 P9010 A1.\n^\n"
-        "J_1.nc:10:1: warning: M98 P1234 calls a subprogram the checker does not read: waits in it are not "
-        "checked\nm98p1234\n^\n");
+  CHECK(
+      messages(d) ==
+      "J_1.nc:4:1: warning: GOTO: the checker does not follow jumps; the waits are checked in the order they "
+      "are "
+      "written\nGOTO 10\n^\n"
+      "J_1.nc:5:14: warning: GOTO: the checker does not follow jumps; the waits are checked in the order "
+      "they are "
+      "written\nIF [#1 GT 2] GOTO20 (RETRY)\n             ^\n"
+      "J_1.nc:6:1: warning: WHILE loop: the checker reads its blocks once; waits in it are checked as if it "
+      "ran "
+      "once\nWHILE [#2 LT 3] DO1\n^\n"
+      "J_1.nc:9:1: warning: G65 P9010 calls a macro the checker does not read: waits in it are not checked\n"
+      "G65 P9010 A1.\n^\n"
+      "J_1.nc:10:1: warning: M98 P1234 calls a subprogram the checker does not read: waits in it are not "
+      "checked\nm98p1234\n^\n");
 }

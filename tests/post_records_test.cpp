@@ -3,6 +3,8 @@
 // an unknown word (an error, a warning with --permissive), INSERT per dialect.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+
 #include <string>
 
 #include "machines/machine_loader.hpp"
@@ -160,7 +162,13 @@ TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "
   const std::string body =
       "GOTO/20,0,0\nINSERT/Stock Size X144. Y25. Z30.\nINSERT/M98 P9101\n" + cut + "FINI\n";
   posted apt = post_text(head + body, "insert-apt");
-  CHECK(apt.diagnostics == "");
+  // The inserted M98 goes out; the self-check says it cannot look inside the subprogram.
+  REQUIRE(apt.diags.all().size() == 1);
+  const diagnostic& d = apt.diags.all()[0];
+  CHECK(d.level == severity::warning);
+  CHECK(std::filesystem::path(d.file).filename() == "W_1.nc");
+  CHECK(d.line == 11);
+  CHECK(d.message == "M98 P9101 calls a subprogram the checker does not read: waits in it are not checked");
   REQUIRE(apt.files.count("W_1.nc") == 1);
   // APT: the text goes out as it stands, information text included (the CAM user's business).
   CHECK(apt.files.at("W_1.nc") ==
