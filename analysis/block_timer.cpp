@@ -41,9 +41,10 @@ bool among(const std::vector<std::string>& set, const std::string& c) {
 // G codes that set a mode or an offset and take no time of their own.
 const std::vector<std::string>& plain_g_codes() {
   static const std::vector<std::string> codes = {
-      "10.1", "12.1", "13.1", "15", "16", "17", "18", "19", "20", "21", "40", "41", "42", "43", "44", "49",
-      "54", "55", "56", "57", "58", "59", "54.1", "61", "64", "67", "68", "69", "69.1", "80", "90", "91",
-      "94", "95", "96", "97", "98", "99", "112", "113", "0", "1", "2", "3", "4", "32", "33"};
+      "10.1", "12.1", "13.1", "15",  "16",   "17", "18", "19", "20", "21", "40",   "41",
+      "42",   "43",   "44",   "49",  "54",   "55", "56", "57", "58", "59", "54.1", "61",
+      "64",   "67",   "68",   "69",  "69.1", "80", "90", "91", "94", "95", "96",   "97",
+      "98",   "99",   "112",  "113", "0",    "1",  "2",  "3",  "4",  "32", "33"};
   return codes;
 }
 
@@ -55,8 +56,8 @@ bool modal_drill_cycle(const std::string& g, bool lathe_a) {
 }
 
 bool one_shot_cycle(const std::string& g, bool lathe_a) {
-  if (lathe_a && (g == "70" || g == "71" || g == "72" || g == "73" || g == "74" || g == "75" || g == "76" ||
-                  g == "78"))
+  if (lathe_a &&
+      (g == "70" || g == "71" || g == "72" || g == "73" || g == "74" || g == "75" || g == "76" || g == "78"))
     return true;
   return g == "276" || g == "290" || g == "292" || g == "294" || g == "270" || g == "271" || g == "272";
 }
@@ -121,7 +122,6 @@ block_timing block_timer::time(std::string_view text) {
 
   bool dwell = false, reference = false, setting = false;
   std::string one_shot;
-  std::vector<std::string> extra_g;
   for (const nc_word& w : words) {
     if (w.address != 'G') continue;
     if (w.expression) {
@@ -129,26 +129,42 @@ block_timing block_timer::time(std::string_view text) {
       continue;
     }
     const std::string g = code_of(w);
-    if (g == "20") inch_ = true;
-    else if (g == "21") inch_ = false;
-    else if (g == "17" || g == "18" || g == "19") plane_ = std::stoi(g);
-    if (among(feed_rev_, g)) per_rev_ = true;
-    else if (among(feed_min_, g)) per_rev_ = false;
+    if (g == "20")
+      inch_ = true;
+    else if (g == "21")
+      inch_ = false;
+    else if (g == "17" || g == "18" || g == "19")
+      plane_ = std::stoi(g);
+    if (among(feed_rev_, g))
+      per_rev_ = true;
+    else if (among(feed_min_, g))
+      per_rev_ = false;
     if (lathe_a_ && (g == "90" || g == "92" || g == "94")) {
       cycle_ = g;  // box cycles: modal until another motion code
       continue;
     }
-    if (g == "90") incremental_ = false;
-    else if (g == "91") incremental_ = true;
-    else if (g == "0" || g == "1" || g == "2" || g == "3") motion_ = g, cycle_.clear();
-    else if (g == "32" || g == "33") motion_ = "32", cycle_.clear();
-    else if (g == "80") cycle_.clear();
-    else if (g == "4") dwell = true;
-    else if (g == "28" || g == "30" || g == "53") reference = true, untimed("G" + g);
-    else if (g == "50" || g == "92") setting = true;  // speed clamp or coordinate setting
-    else if (modal_drill_cycle(g, lathe_a_)) cycle_ = g;
-    else if (one_shot_cycle(g, lathe_a_)) one_shot = g;
-    else if (!among(plain_g_codes(), g)) untimed("G" + g);
+    if (g == "90")
+      incremental_ = false;
+    else if (g == "91")
+      incremental_ = true;
+    else if (g == "0" || g == "1" || g == "2" || g == "3")
+      motion_ = g, cycle_.clear();
+    else if (g == "32" || g == "33")
+      motion_ = "32", cycle_.clear();
+    else if (g == "80")
+      cycle_.clear();
+    else if (g == "4")
+      dwell = true;
+    else if (g == "28" || g == "30" || g == "53")
+      reference = true, untimed("G" + g);
+    else if (g == "50" || g == "92")
+      setting = true;  // speed clamp or coordinate setting
+    else if (modal_drill_cycle(g, lathe_a_))
+      cycle_ = g;
+    else if (one_shot_cycle(g, lathe_a_))
+      one_shot = g;
+    else if (!among(plain_g_codes(), g))
+      untimed("G" + g);
   }
 
   // Tool calls, M codes, the feed.
@@ -211,10 +227,13 @@ block_timing block_timer::time(std::string_view text) {
     }
     const std::size_t i = static_cast<std::size_t>(p - axes_.data());
     moves = true;
-    if (inc) target[i] = p->value ? std::optional<double>(*p->value + v) : std::nullopt;
-    else target[i] = v;
+    if (inc)
+      target[i] = p->value ? std::optional<double>(*p->value + v) : std::nullopt;
+    else
+      target[i] = v;
     if (inc && !p->value) target[i].reset();
-    if (inc && !p->value && !setting) untimed(fmt::format("{} from an unknown position", motion_.empty() ? "move" : "G" + motion_));
+    if (inc && !p->value && !setting)
+      untimed(fmt::format("{} from an unknown position", motion_.empty() ? "move" : "G" + motion_));
   }
   const bool arc_words = std::any_of(words.begin(), words.end(), [](const nc_word& w) {
     return w.address == 'I' || w.address == 'J' || w.address == 'K' || w.address == 'R';
@@ -227,7 +246,8 @@ block_timing block_timer::time(std::string_view text) {
   if (reference) {
     // G28/G30/G53: to a machine position this program does not know.
     for (const nc_word& w : words)
-      if (axis_pos* p = axis(w.address == 'U' && lathe ? 'X' : w.address == 'W' && lathe ? 'Z' : w.address)) p->value.reset();
+      if (axis_pos* p = axis(w.address == 'U' && lathe ? 'X' : w.address == 'W' && lathe ? 'Z' : w.address))
+        p->value.reset();
     return t;
   }
   if (!one_shot.empty() || (!cycle_.empty() && moves)) {
@@ -274,8 +294,10 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
     }
     double d = std::abs(*target[i] - *p.value);
     if (p.diameter) d /= 2;  // the slide moves the radius
-    if (p.rotary) rotary = std::max(rotary, d);
-    else linear2 += d * d;
+    if (p.rotary)
+      rotary = std::max(rotary, d);
+    else
+      linear2 += d * d;
     // Rapid: each axis at its own rate; the block lasts as long as the slowest axis.
     const double travel = p.rotary ? d : to_mm(d);
     if (p.rate > 0) slowest = std::max(slowest, travel / p.rate * 60);
@@ -285,7 +307,9 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
   std::size_t xi = 0;
   for (std::size_t i = 0; i < axes_.size(); ++i)
     if (axes_[i].address == 'X') x = &axes_[i], xi = i;
-  auto dia = [&](std::optional<double> v) { return !v ? -1.0 : x && x->diameter ? std::abs(*v) : 2 * std::abs(*v); };
+  auto dia = [&](std::optional<double> v) {
+    return !v ? -1.0 : x && x->diameter ? std::abs(*v) : 2 * std::abs(*v);
+  };
   const double x0 = x ? dia(x->value) : -1, x1 = x ? dia(target[xi]) : -1;
   double length = std::sqrt(linear2);
   if (code == "G2" || code == "G3") {
@@ -322,8 +346,8 @@ double block_timer::feed_time(double length, double x0, double x1, block_timing&
     if (!(rpm > 0)) {
       // A spindle this channel never commanded turns at another channel's speed, which this
       // channel's blocks do not tell (docs/timeline.md).
-      const bool others = spindles_.current() >= 0 &&
-                          spindles_.setting(spindles_.current()).turn == spindle_turn::unknown;
+      const bool others =
+          spindles_.current() >= 0 && spindles_.setting(spindles_.current()).turn == spindle_turn::unknown;
       t.untimed = code + (thread ? "" : " per revolution") +
                   (others ? " on a spindle only another channel commands" : " on a stopped spindle");
       return 0;
@@ -333,8 +357,8 @@ double block_timer::feed_time(double length, double x0, double x1, block_timing&
   return seconds;
 }
 
-double block_timer::arc_length(const std::vector<std::optional<double>>& target, const std::vector<nc_word>& words,
-                               bool cw) const {
+double block_timer::arc_length(const std::vector<std::optional<double>>& target,
+                               const std::vector<nc_word>& words, bool cw) const {
   // The plane's two axes (first, second) with CCW = G3 about the third: G17 XY, G18 ZX, G19 YZ.
   const char a1 = plane_ == 17 ? 'X' : plane_ == 18 ? 'Z' : 'Y';
   const char a2 = plane_ == 17 ? 'Y' : plane_ == 18 ? 'X' : 'Z';

@@ -22,10 +22,10 @@ namespace twinpost {
 
 /// What one block costs.
 struct block_timing {
-  double seconds = 0;    ///< time of the block (0 when untimed)
-  double motion = 0;     ///< of which moving (rapid, feed, thread)
-  bool rapid = false;    ///< the motion was a rapid
-  std::string untimed;   ///< why the block (or its motion) is not timed: "G83", "G28", ...; empty: timed
+  double seconds = 0;      ///< time of the block (0 when untimed)
+  double motion = 0;       ///< of which moving (rapid, feed, thread)
+  bool rapid = false;      ///< the motion was a rapid
+  std::string untimed;     ///< why the block (or its motion) is not timed: "G83", "G28", ...; empty: timed
   bool tool_call = false;  ///< the block calls a new tool
 };
 
@@ -46,27 +46,27 @@ class block_timer {
     char address = 0;
     bool diameter = false;
     bool rotary = false;
-    double rate = 0;  // rapid, axis unit per minute (mm/min, deg/min)
+    double rate = 0;              // rapid, axis unit per minute (mm/min, deg/min)
     std::optional<double> value;  // as programmed (diameter for a diameter X), in program units
   };
   const machine& m_;
   const channel_def* ch_ = nullptr;
   channel_spindles spindles_;
   std::vector<axis_pos> axes_;
-  bool lathe_a_ = false;     // Fanuc-style lathe: G90/G92/G94 are cycles, U/W incremental
+  bool lathe_a_ = false;  // Fanuc-style lathe: G90/G92/G94 are cycles, U/W incremental
   bool incremental_ = false;
   bool inch_ = false;
   bool per_rev_ = false;
-  int plane_ = 18;           // 17, 18, 19
-  std::string motion_;       // modal motion: "0", "1", "2", "3", "32"; "": none yet
-  std::string cycle_;        // a modal cycle in force (G83, or G90 on a Fanuc lathe); "": none
+  int plane_ = 18;      // 17, 18, 19
+  std::string motion_;  // modal motion: "0", "1", "2", "3", "32"; "": none yet
+  std::string cycle_;   // a modal cycle in force (G83, or G90 on a Fanuc lathe); "": none
   double feed_ = 0;
   std::string tool_;
   int tool_number_ = -1;
   char tool_address_ = 'T';
-  long tool_divisor_ = 1;    // T0303 with {tool:02}{offset:02}: the tool is T / 100
+  long tool_divisor_ = 1;  // T0303 with {tool:02}{offset:02}: the tool is T / 100
   char dwell_address_ = 0;
-  double dwell_unit_ = 1;    // seconds per unit of the dwell word
+  double dwell_unit_ = 1;  // seconds per unit of the dwell word
   std::vector<std::string> feed_rev_, feed_min_;
 
   axis_pos* axis(char a);

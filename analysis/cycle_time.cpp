@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <map>
 
 #include <fmt/format.h>
 
@@ -37,7 +36,6 @@ struct channel_run {
   channel_times times;
   std::vector<run_wait> waits;
   int segment = 0;
-  std::vector<int> op_segment_start;  // unused
   channel_run(const machine& m, int ch) : timer(m, ch) {}
 };
 
@@ -190,8 +188,12 @@ class timeline_builder {
     for (int c = 1; c <= n_; ++c)
       if (!finished(c)) {
         // The checker proved the waits sound; a run that stops here would be a bug.
-        tl.diagnostics.push_back({severity::error, runs_[c - 1].times.file, 0, 0,
-                                  fmt::format("channel {} does not reach its end in the timed run", c), {}});
+        tl.diagnostics.push_back({severity::error,
+                                  runs_[c - 1].times.file,
+                                  0,
+                                  0,
+                                  fmt::format("channel {} does not reach its end in the timed run", c),
+                                  {}});
         return false;
       }
     for (int c = 1; c <= n_; ++c) {
@@ -269,8 +271,8 @@ class timeline_builder {
 }  // namespace
 
 bool has_timing(const machine& m) {
-  return !m.channels.empty() &&
-         std::all_of(m.channels.begin(), m.channels.end(), [](const channel_def& c) { return c.timing.given; });
+  return !m.channels.empty() && std::all_of(m.channels.begin(), m.channels.end(),
+                                            [](const channel_def& c) { return c.timing.given; });
 }
 
 timeline make_timeline(const std::vector<nc_source>& given, const machine& m, const timeline_options& o) {
@@ -278,15 +280,20 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
   tl.machine = m.name;
   if (!has_timing(m)) {
     tl.diagnostics.push_back(
-        {severity::error, m.source, 0, 0,
-         fmt::format("machine '{}' has no [timing] table: the cycle time needs its rapid rates and tool-change "
-                     "time (docs/machines.md, \"[timing]\")",
-                     m.name),
+        {severity::error,
+         m.source,
+         0,
+         0,
+         fmt::format(
+             "machine '{}' has no [timing] table: the cycle time needs its rapid rates and tool-change "
+             "time (docs/machines.md, \"[timing]\")",
+             m.name),
          {}});
     return tl;
   }
   if (m.channels.size() > 64) {
-    tl.diagnostics.push_back({severity::error, m.source, 0, 0, "the timeline handles at most 64 channels", {}});
+    tl.diagnostics.push_back(
+        {severity::error, m.source, 0, 0, "the timeline handles at most 64 channels", {}});
     return tl;
   }
   const std::vector<nc_source> files = rereadable(given);

@@ -26,10 +26,10 @@ struct timeline_options {
 /// One block, kept for the page.
 struct timed_block {
   int line = 0;
-  double start = 0;    ///< seconds from the start of the cycle
-  double seconds = 0;  ///< its own time
-  std::string text;    ///< the physical line
-  std::string untimed; ///< why it is not timed; empty: timed
+  double start = 0;     ///< seconds from the start of the cycle
+  double seconds = 0;   ///< its own time
+  std::string text;     ///< the physical line
+  std::string untimed;  ///< why it is not timed; empty: timed
   bool wait = false;
 };
 
@@ -47,11 +47,11 @@ struct tool_operation {
 
 /// A channel at one of its waits.
 struct wait_stop {
-  std::string code;    ///< as written: "M101", "M100 P12", "!2L1"
+  std::string code;  ///< as written: "M101", "M100 P12", "!2L1"
   nc_place where;
-  double arrive = 0;   ///< seconds from the start of the cycle
-  double release = 0;  ///< when the last partner arrived
-  int waited_for = 0;  ///< the partner that arrived last; 0: this channel was the last
+  double arrive = 0;        ///< seconds from the start of the cycle
+  double release = 0;       ///< when the last partner arrived
+  int waited_for = 0;       ///< the partner that arrived last; 0: this channel was the last
   int waited_for_wait = 0;  ///< that partner's wait (0-based index in its waits)
   double idle() const { return release - arrive; }
 };
@@ -97,12 +97,12 @@ struct timeline {
   std::vector<diagnostic> diagnostics;  ///< why there is no timeline (the check's findings)
   std::string machine;
   std::vector<channel_times> channels;
-  double cycle = 0;          ///< the end of the last channel
-  int last_channel = 0;      ///< the channel that ends last (the critical path's end)
-  std::vector<critical_stretch> critical;  ///< in time order
-  long untimed = 0;          ///< blocks of all channels not timed
+  double cycle = 0;                          ///< the end of the last channel
+  int last_channel = 0;                      ///< the channel that ends last (the critical path's end)
+  std::vector<critical_stretch> critical;    ///< in time order
+  long untimed = 0;                          ///< blocks of all channels not timed
   std::vector<untimed_group> untimed_kinds;  ///< per kind, in channel then program order
-  std::vector<idle_note> advice;  ///< the longest idles, longest first (at most 3)
+  std::vector<idle_note> advice;             ///< the longest idles, longest first (at most 3)
 };
 
 /// Checks `files` (check_nc_files) and, when they are sound, times them for machine `m`.

@@ -93,12 +93,15 @@ class page {
 
   void lane(std::string& s, const channel_times& c, double y) {
     s += fmt::format("<g class=\"lane\" data-channel=\"{}\">\n", c.channel);
-    s += fmt::format("<text x=\"8\" y=\"{:.1f}\" font-weight=\"bold\">channel {}</text>\n", y + 18, c.channel);
+    s +=
+        fmt::format("<text x=\"8\" y=\"{:.1f}\" font-weight=\"bold\">channel {}</text>\n", y + 18, c.channel);
     s += fmt::format("<text x=\"8\" y=\"{:.1f}\" fill=\"#555\">{:.3f} s</text>\n", y + 34, c.end);
     s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{}\" fill=\"#f7f7f7\"/>\n",
                      x(0), y, x(c.end) - x(0), lane_height);
-    if (!c.kept.empty() && c.kept.size() <= max_drawn_blocks) blocks(s, c, y);
-    else operations(s, c, y);
+    if (!c.kept.empty() && c.kept.size() <= max_drawn_blocks)
+      blocks(s, c, y);
+    else
+      operations(s, c, y);
     for (const wait_stop& w : c.waits) {
       if (w.idle() > 0)
         s += fmt::format(
@@ -106,18 +109,19 @@ class page {
             "data-tip=\"{}\"><title>{}</title></rect>\n",
             x(w.arrive), y, x(w.release) - x(w.arrive), lane_height, idle_tip(c, w), idle_tip(c, w));
       s += fmt::format(
-          "<path class=\"wait\" d=\"M{0:.2f},{1:.1f} l-5,-8 h10 z\" fill=\"#222\" data-tip=\"{2}\"><title>{2}</title>"
+          "<path class=\"wait\" d=\"M{0:.2f},{1:.1f} l-5,-8 h10 z\" fill=\"#222\" "
+          "data-tip=\"{2}\"><title>{2}</title>"
           "</path>\n",
-          x(w.release), y, escape(fmt::format("{} at {}:{}, released at {:.3f} s", w.code, c.file, w.where.line,
-                                              w.release)));
+          x(w.release), y,
+          escape(fmt::format("{} at {}:{}, released at {:.3f} s", w.code, c.file, w.where.line, w.release)));
     }
     s += "</g>\n";
   }
 
   std::string idle_tip(const channel_times& c, const wait_stop& w) const {
     std::string who = w.waited_for > 0 ? fmt::format(" waiting for channel {}", w.waited_for) : "";
-    return escape(fmt::format("channel {} idles {:.3f} s at {} ({}:{}){}", c.channel, w.idle(), w.code, c.file,
-                              w.where.line, who));
+    return escape(fmt::format("channel {} idles {:.3f} s at {} ({}:{}){}", c.channel, w.idle(), w.code,
+                              c.file, w.where.line, who));
   }
 
   void operations(std::string& s, const channel_times& c, double y) {
@@ -163,9 +167,11 @@ class page {
       for (const wait_stop& w : t_.channels[i].waits) {
         if (w.waited_for == 0) continue;
         const std::size_t j = static_cast<std::size_t>(w.waited_for - 1);
-        const double top = std::min(lane_y(i), lane_y(j)), bottom = std::max(lane_y(i), lane_y(j)) + lane_height;
+        const double top = std::min(lane_y(i), lane_y(j)),
+                     bottom = std::max(lane_y(i), lane_y(j)) + lane_height;
         s += fmt::format(
-            "<line class=\"link\" x1=\"{0:.2f}\" y1=\"{1:.1f}\" x2=\"{0:.2f}\" y2=\"{2:.1f}\" stroke=\"#222\" "
+            "<line class=\"link\" x1=\"{0:.2f}\" y1=\"{1:.1f}\" x2=\"{0:.2f}\" y2=\"{2:.1f}\" "
+            "stroke=\"#222\" "
             "stroke-dasharray=\"3,3\"/>\n",
             x(w.release), top, bottom);
       }
@@ -175,7 +181,8 @@ class page {
     for (const critical_stretch& c : t_.critical) {
       const double y = lane_y(static_cast<std::size_t>(c.channel - 1)) + lane_height + 4;
       s += fmt::format(
-          "<rect class=\"critical\" data-channel=\"{}\" x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"4\" "
+          "<rect class=\"critical\" data-channel=\"{}\" x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" "
+          "height=\"4\" "
           "fill=\"#d62728\"><title>critical path: channel {} from {:.3f} s to {:.3f} s</title></rect>\n",
           c.channel, x(c.start), y, std::max((c.end - c.start) * scale_, 0.5), c.channel, c.start, c.end);
     }
@@ -243,8 +250,8 @@ std::string timeline_page(const timeline& t, std::string_view title) {
        "font-family:monospace;font-size:12px;white-space:pre;pointer-events:none}\n"
        "</style>\n</head>\n<body>\n";
   h += fmt::format("<h1>{}</h1>\n", escape(title));
-  h += fmt::format("<p>machine {}: cycle time <b id=\"cycle\">{:.3f} s</b>, channel {} ends last.", escape(t.machine),
-                   t.cycle, t.last_channel);
+  h += fmt::format("<p>machine {}: cycle time <b id=\"cycle\">{:.3f} s</b>, channel {} ends last.",
+                   escape(t.machine), t.cycle, t.last_channel);
   if (t.untimed > 0) {
     h += fmt::format(" <b>{} block{} not timed</b>:", t.untimed, t.untimed == 1 ? "" : "s");
     for (const untimed_group& g : t.untimed_kinds)
@@ -258,7 +265,8 @@ std::string timeline_page(const timeline& t, std::string_view title) {
   h += p.legend();
   h += p.svg();
   h += "<table id=\"totals\"><thead><tr><th>channel</th><th>program</th><th>working</th><th>idle</th>"
-       "<th>waits</th><th>ends at</th><th>not timed</th></tr></thead><tbody id=\"totals-body\"></tbody></table>\n";
+       "<th>waits</th><th>ends at</th><th>not timed</th></tr></thead><tbody "
+       "id=\"totals-body\"></tbody></table>\n";
   h += "<div id=\"tip\"></div>\n";
   h += "<script type=\"application/json\" id=\"timeline-data\">" + data + "</script>\n";
   h += fmt::format("<script>{}</script>\n</body>\n</html>\n", script);

@@ -15,13 +15,15 @@ std::string num(double v) { return fmt::format("{:.3f}", v); }
 }  // namespace
 
 std::string advice_text(const idle_note& n) {
-  std::string s = fmt::format("channel {} idles {} at {} ({})", n.channel, seconds(n.seconds), n.code, place(n.where));
+  std::string s =
+      fmt::format("channel {} idles {} at {} ({})", n.channel, seconds(n.seconds), n.code, place(n.where));
   if (n.waited_for > 0) s += fmt::format(" waiting for channel {}", n.waited_for);
   return s;
 }
 
 std::string format_timeline_text(const timeline& t, std::string_view indent) {
-  std::string out = fmt::format("{}cycle time {} (channel {} ends last)\n", indent, seconds(t.cycle), t.last_channel);
+  std::string out =
+      fmt::format("{}cycle time {} (channel {} ends last)\n", indent, seconds(t.cycle), t.last_channel);
   for (const channel_times& c : t.channels)
     out += fmt::format("{}  channel {}: {} working + {} idle at {} wait{} = {}\n", indent, c.channel,
                        seconds(c.busy), seconds(c.idle), c.waits.size(), c.waits.size() == 1 ? "" : "s",
@@ -29,7 +31,8 @@ std::string format_timeline_text(const timeline& t, std::string_view indent) {
   if (t.untimed > 0) {
     std::string kinds;
     for (const untimed_group& g : t.untimed_kinds)
-      kinds += fmt::format("{}{} ({}, first at {})", kinds.empty() ? "" : "; ", g.why, g.count, place(g.first));
+      kinds +=
+          fmt::format("{}{} ({}, first at {})", kinds.empty() ? "" : "; ", g.why, g.count, place(g.first));
     out += fmt::format("{}  {} block{} not timed: {}\n", indent, t.untimed, t.untimed == 1 ? "" : "s", kinds);
   }
   if (t.advice.empty()) {
@@ -44,27 +47,30 @@ std::string format_timeline_text(const timeline& t, std::string_view indent) {
 
 std::string format_timeline_json(const timeline& t) {
   std::string o = "{\"machine\":" + json_quote(t.machine);
-  o += fmt::format(",\"cycle\":{},\"last_channel\":{},\"untimed\":{},\"channels\":[", num(t.cycle), t.last_channel,
-                   t.untimed);
+  o += fmt::format(",\"cycle\":{},\"last_channel\":{},\"untimed\":{},\"channels\":[", num(t.cycle),
+                   t.last_channel, t.untimed);
   for (std::size_t i = 0; i < t.channels.size(); ++i) {
     const channel_times& c = t.channels[i];
     o += i ? "," : "";
-    o += fmt::format("{{\"channel\":{},\"file\":{},\"busy\":{},\"idle\":{},\"end\":{},\"blocks\":{},\"untimed\":{}",
-                     c.channel, json_quote(c.file), num(c.busy), num(c.idle), num(c.end), c.blocks, c.untimed);
+    o += fmt::format(
+        "{{\"channel\":{},\"file\":{},\"busy\":{},\"idle\":{},\"end\":{},\"blocks\":{},\"untimed\":{}",
+        c.channel, json_quote(c.file), num(c.busy), num(c.idle), num(c.end), c.blocks, c.untimed);
     o += ",\"operations\":[";
     for (std::size_t k = 0; k < c.operations.size(); ++k) {
       const tool_operation& op = c.operations[k];
-      o += fmt::format("{}{{\"tool\":{},\"start\":{},\"seconds\":{},\"blocks\":{},\"segment\":{},\"line\":{},"
-                       "\"text\":{},\"critical\":{}}}",
-                       k ? "," : "", json_quote(op.tool), num(op.start), num(op.seconds), op.blocks, op.segment,
-                       op.first_line, json_quote(op.first_text), op.critical ? "true" : "false");
+      o += fmt::format(
+          "{}{{\"tool\":{},\"start\":{},\"seconds\":{},\"blocks\":{},\"segment\":{},\"line\":{},"
+          "\"text\":{},\"critical\":{}}}",
+          k ? "," : "", json_quote(op.tool), num(op.start), num(op.seconds), op.blocks, op.segment,
+          op.first_line, json_quote(op.first_text), op.critical ? "true" : "false");
     }
     o += "],\"waits\":[";
     for (std::size_t k = 0; k < c.waits.size(); ++k) {
       const wait_stop& w = c.waits[k];
-      o += fmt::format("{}{{\"code\":{},\"line\":{},\"arrive\":{},\"release\":{},\"idle\":{},\"waiting_for\":{}}}",
-                       k ? "," : "", json_quote(w.code), w.where.line, num(w.arrive), num(w.release),
-                       num(w.idle()), w.waited_for);
+      o += fmt::format(
+          "{}{{\"code\":{},\"line\":{},\"arrive\":{},\"release\":{},\"idle\":{},\"waiting_for\":{}}}",
+          k ? "," : "", json_quote(w.code), w.where.line, num(w.arrive), num(w.release), num(w.idle()),
+          w.waited_for);
     }
     o += "]";
     if (!c.kept.empty()) {
@@ -94,10 +100,11 @@ std::string format_timeline_json(const timeline& t) {
   o += "],\"advice\":[";
   for (std::size_t k = 0; k < t.advice.size(); ++k) {
     const idle_note& n = t.advice[k];
-    o += fmt::format("{}{{\"channel\":{},\"idle\":{},\"code\":{},\"file\":{},\"line\":{},\"waiting_for\":{},"
-                     "\"text\":{}}}",
-                     k ? "," : "", n.channel, num(n.seconds), json_quote(n.code), json_quote(n.where.file),
-                     n.where.line, n.waited_for, json_quote(advice_text(n)));
+    o += fmt::format(
+        "{}{{\"channel\":{},\"idle\":{},\"code\":{},\"file\":{},\"line\":{},\"waiting_for\":{},"
+        "\"text\":{}}}",
+        k ? "," : "", n.channel, num(n.seconds), json_quote(n.code), json_quote(n.where.file), n.where.line,
+        n.waited_for, json_quote(advice_text(n)));
   }
   o += "]}\n";
   return o;

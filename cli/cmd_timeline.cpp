@@ -64,9 +64,10 @@ int run_timeline(const args& a) {
   }
   const machine m = locate_machine(vm["machine"].as<std::string>()).def;
   if (!has_timing(m)) {
-    print_error(fmt::format("machine '{}' has no [timing] table: give its rapid rates and tool-change time "
-                            "(docs/machines.md, \"[timing]\")",
-                            m.name));
+    print_error(
+        fmt::format("machine '{}' has no [timing] table: give its rapid rates and tool-change time "
+                    "(docs/machines.md, \"[timing]\")",
+                    m.name));
     return 2;
   }
   std::vector<nc_source> sources;

@@ -21,8 +21,9 @@ void read_rapid(const table_reader& r, std::vector<std::pair<char, double>>& int
   const toml::node* n = r.find("rapid");
   if (!n) return;
   const toml::table* t = n->as_table();
-  if (!t) r.fail(*n, fmt::format("{} must be a table of rates per axis, e.g. {{ X = 30000, Z = 30000 }}",
-                                 r.key_path("rapid")));
+  if (!t)
+    r.fail(*n, fmt::format("{} must be a table of rates per axis, e.g. {{ X = 30000, Z = 30000 }}",
+                           r.key_path("rapid")));
   for (auto&& [key, value] : *t) {
     const std::string_view name = key.str();
     const std::string path = fmt::format("{}.{}", r.key_path("rapid"), name);
@@ -32,7 +33,8 @@ void read_rapid(const table_reader& r, std::vector<std::pair<char, double>>& int
     if (!rate || !(value.is_integer() || value.is_floating_point()))
       r.fail(value, fmt::format("{} must be a number (the axis's unit per minute)", path));
     if (!(*rate > 0)) r.fail(value, fmt::format("{} must be > 0, not {}", path, *rate));
-    if (const std::string why = allowed(name[0]); !why.empty()) r.fail(value, fmt::format("{}: {}", path, why));
+    if (const std::string why = allowed(name[0]); !why.empty())
+      r.fail(value, fmt::format("{}: {}", path, why));
     bool replaced = false;
     for (auto& [a, v] : into)
       if (a == name[0]) v = *rate, replaced = true;
@@ -83,9 +85,10 @@ void read_timing(const table_reader& root, machine& m) {
   for (const channel_def& c : m.channels)
     for (const axis_def& a : c.axes)
       if (!c.timing.rapid_of(a.address))
-        r.fail_here(fmt::format("timing: no rapid rate for axis {} of channel {} (timing.rapid.{} or "
-                                "timing.channel.{}.rapid.{})",
-                                a.address, c.number, a.address, c.number, a.address));
+        r.fail_here(
+            fmt::format("timing: no rapid rate for axis {} of channel {} (timing.rapid.{} or "
+                        "timing.channel.{}.rapid.{})",
+                        a.address, c.number, a.address, c.number, a.address));
 }
 
 }  // namespace twinpost::detail

@@ -251,7 +251,8 @@ std::vector<std::string> commit_files(output_stage& stage, const std::vector<fra
 // --timeline: a plain name in the output folder that no program takes; "" when it is one.
 std::string timeline_name_problem(const post_options& o, const std::vector<framed_file>& files) {
   if (std::string why = file_name_problem(o.timeline_file); !why.empty())
-    return fmt::format("--timeline '{}': {} (the page is written into the output folder)", o.timeline_file, why);
+    return fmt::format("--timeline '{}': {} (the page is written into the output folder)", o.timeline_file,
+                       why);
   for (const framed_file& f : files)
     if (f.name == o.timeline_file)
       return fmt::format("--timeline '{}' is the name of a program of this post", o.timeline_file);
@@ -260,8 +261,9 @@ std::string timeline_name_problem(const post_options& o, const std::vector<frame
 
 // The cycle time of the staged programs (checked sound already) and, with --timeline, the
 // page staged beside them. Blocks are kept only for the page, and dropped once it is written.
-std::optional<staged_file> time_programs(const post_options& o, const machine& m, const std::string& stage_dir,
-                                         const std::vector<framed_file>& files, post_summary& sum) {
+std::optional<staged_file> time_programs(const post_options& o, const machine& m,
+                                         const std::string& stage_dir, const std::vector<framed_file>& files,
+                                         post_summary& sum) {
   timeline_options to;
   to.keep_blocks = !o.timeline_file.empty();
   to.checked = true;
@@ -307,9 +309,14 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     return sum;
   }
   if (!o.timeline_file.empty() && !has_timing(m)) {
-    sink.report({severity::error, m.source, 0, 0,
-                 fmt::format("--timeline: machine '{}' has no [timing] table (docs/machines.md, \"[timing]\")", m.name),
-                 {}});
+    sink.report(
+        {severity::error,
+         m.source,
+         0,
+         0,
+         fmt::format("--timeline: machine '{}' has no [timing] table (docs/machines.md, \"[timing]\")",
+                     m.name),
+         {}});
     return sum;
   }
   file_ptr in = open_job(o.cl_path);
