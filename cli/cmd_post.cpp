@@ -6,6 +6,7 @@
 #include <optional>
 #include <unistd.h>
 
+#include "analysis/timeline_report.hpp"
 #include "channels/sync_policy.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/command_table.hpp"
@@ -36,8 +37,9 @@ po::options_description post_option_descriptions() {
       "layout", po::value<std::string>(), layouts.c_str())(
       "sync", po::value<std::string>()->default_value("auto"), policies.c_str())(
       "dialect", po::value<std::string>(), "CL dialect (default: detect)")(
-      "permissive", "an unknown major word is a warning, not an error")("job", po::value<std::string>(),
-                                                                        "CL file");
+      "permissive", "an unknown major word is a warning, not an error")(
+      "timeline", po::value<std::string>(), "also write the timeline page (HTML) into DIR under this name")(
+      "job", po::value<std::string>(), "CL file");
   return opts;
 }
 
@@ -66,6 +68,7 @@ std::optional<post_options> read_post_options(const po::variables_map& vm) {
   }
   o.policy = *policy;
   o.permissive = vm.count("permissive") > 0;
+  if (vm.count("timeline")) o.timeline_file = vm["timeline"].as<std::string>();
   if (vm.count("layout")) {
     o.layout = layout_from_option(vm["layout"].as<std::string>());
     if (!o.layout) {
@@ -108,6 +111,10 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
              s.channels == 1 ? "" : "s", s.blocks, waits, sink.warnings(), sink.warnings() == 1 ? "" : "s");
   fmt::print("  machine {} ({})\n", found.def.name, found.origin);
   for (const std::string& f : s.files) fmt::print("  wrote {}\n", f);
+  if (s.timing)
+    fmt::print("{}", format_timeline_text(*s.timing, "  "));
+  else
+    fmt::print("  cycle time not known: machine {} has no [timing] table\n", found.def.name);
 }
 
 }  // namespace

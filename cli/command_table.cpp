@@ -9,7 +9,7 @@ namespace twinpost::cli {
 
 namespace {
 
-const std::array<command_entry, 4> table{{
+const std::array<command_entry, 5> table{{
     {"parse", "FILE [--json] [--dialect D] | --records", "print the CL event stream, or the record policy",
      "Reads a CL file (APT-style cutter location data of Creo, NX, CATIA, SolidWorks CAM, "
      "Makino or generic ISO 4343) and prints one line per event, or with --json one JSON "
@@ -17,7 +17,7 @@ const std::array<command_entry, 4> table{{
      "the record policy instead: every major word twinpost knows and what a post does with it "
      "(posted, ignored, or an error), with the reason, as a Markdown table.",
      &run_parse},
-    {"post", "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--permissive]",
+    {"post", "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--permissive] [--timeline FILE]",
      "post a CL job to NC programs",
      "Posts a CL job for machine M into the folder DIR (made if missing): one program per "
      "channel, or one merged program, as the machine's control expects (--layout split, "
@@ -28,13 +28,24 @@ const std::array<command_entry, 4> table{{
      "run writes nothing and changes nothing in DIR. A major word twinpost does not know stops "
      "the post with an error; --permissive makes it a warning and passes over the record. A "
      "known record the post cannot carry out (STOP is posted, THREAD is not: see 'twinpost "
-     "parse --records') stays an error.",
+     "parse --records') stays an error. The summary gives the cycle time and each channel's "
+     "idle at its waits when the machine file has [timing]; --timeline FILE writes the "
+     "timeline page of the programs into DIR with them.",
      &run_post},
     {"check", "FILE... --machine M [--json]", "check wait synchronisation of NC programs",
      "Checks that the waits of NC programs pair up, in order, and that no channel can "
      "deadlock. Give one file per channel in channel order, or one file with the machine's "
      "section markers. --json prints the report as one JSON object.",
      &run_check},
+    {"timeline", "FILE... --machine M [-o PAGE.html] [--json]", "cycle time and timeline of NC programs",
+     "Times every block of NC programs that check sound with the machine's [timing] (rapid "
+     "rates per axis, tool-change and wait times) and its codes (feeds per minute and per "
+     "revolution, CSS, dwell), runs the channels together and prints the cycle time, each "
+     "channel's working and idle time, the blocks it could not time and the longest idles "
+     "(where to balance). -o writes one self-contained HTML page: a lane per channel, "
+     "operations by tool, waits linked across lanes, the critical path; --json prints the "
+     "same data for tools. Files as for check.",
+     &run_timeline},
     {"machines", "[--show NAME]", "list the built-in machines, or print one",
      "Lists the built-in machine definitions. --show NAME prints the definition that "
      "--machine NAME would use, as TOML, to copy and edit.",

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "machines/machine_timing.hpp"
 #include "machines/word_format.hpp"
 
 namespace twinpost {
@@ -109,6 +110,7 @@ struct channel_def {
   bool offset_zero = false;
   std::vector<axis_def> axes;  ///< at least X and Z
   std::string file_suffix;     ///< for split layout, e.g. "_1" or ".P-2"
+  channel_timing timing;       ///< [timing] merged with [timing.channel.N] (machine_timing.hpp)
   /// The axis with this address, or nullptr.
   const axis_def* axis(char address) const;
 };

@@ -458,7 +458,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   }
   table_reader root(doc, "", source,
                     {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits",
-                     "cycles", "transfer", "tool"});
+                     "cycles", "transfer", "tool", "timing"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -472,6 +472,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   detail::read_cycles(root, m.cycles);
   read_spindles(root, m.spindles);
   detail::read_channels(root, m);
+  detail::read_timing(root, m);
   read_transfer(root, m);
   read_tools(root, m);
   check_across_tables(root, m, at);

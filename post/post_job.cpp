@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "analysis/timeline_report.hpp"
 #include "channels/job_channels.hpp"
 #include "check/sync_check.hpp"
 #include "formats/channel_writer.hpp"
@@ -215,13 +216,19 @@ std::vector<framed_file> frame_files(const frame_request& named, const writers_s
   return files;
 }
 
+// The staged programs as NC inputs, named as they will be written.
+std::vector<nc_source> staged_sources(const post_options& o, const std::vector<framed_file>& files) {
+  std::vector<nc_source> sources;
+  for (const framed_file& f : files)
+    sources.push_back({(fs::path(o.out_dir) / f.name).string(), {}, f.tmp_path});
+  return sources;
+}
+
 // The same check as `twinpost check`, on the files exactly as they will be written; what it
 // finds is reported at the CL record that made the wait. True when they are sound.
 bool self_check(const post_options& o, const machine& m, const std::vector<framed_file>& files,
                 const writers_sink& ws, int last_line, diagnostic_sink& sink) {
-  std::vector<nc_source> sources;
-  for (const framed_file& f : files)
-    sources.push_back({(fs::path(o.out_dir) / f.name).string(), {}, f.tmp_path});
+  const std::vector<nc_source> sources = staged_sources(o, files);
   sync_result check = check_nc_files(sources, m);
   if (!check.diagnostics.empty()) {
     std::vector<std::vector<int>> wait_lines;
@@ -233,10 +240,48 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
   return check.ok;
 }
 
-std::vector<std::string> commit_files(output_stage& stage, const std::vector<framed_file>& files) {
+std::vector<std::string> commit_files(output_stage& stage, const std::vector<framed_file>& files,
+                                      const std::optional<staged_file>& page) {
   std::vector<staged_file> staged;
   for (const framed_file& f : files) staged.push_back({f.tmp_path, f.name});
+  if (page) staged.push_back(*page);
   return stage.commit(staged);
+}
+
+// --timeline: a plain name in the output folder that no program takes; "" when it is one.
+std::string timeline_name_problem(const post_options& o, const std::vector<framed_file>& files) {
+  if (std::string why = file_name_problem(o.timeline_file); !why.empty())
+    return fmt::format("--timeline '{}': {} (the page is written into the output folder)", o.timeline_file,
+                       why);
+  for (const framed_file& f : files)
+    if (f.name == o.timeline_file)
+      return fmt::format("--timeline '{}' is the name of a program of this post", o.timeline_file);
+  return "";
+}
+
+// The cycle time of the staged programs (checked sound already) and, with --timeline, the
+// page staged beside them. Blocks are kept only for the page, and dropped once it is written.
+std::optional<staged_file> time_programs(const post_options& o, const machine& m,
+                                         const std::string& stage_dir, const std::vector<framed_file>& files,
+                                         post_summary& sum) {
+  timeline_options to;
+  to.keep_blocks = !o.timeline_file.empty();
+  to.checked = true;
+  timeline t = make_timeline(staged_sources(o, files), m, to);
+  if (!t.ok) return std::nullopt;
+  std::optional<staged_file> page;
+  if (!o.timeline_file.empty()) {
+    const std::string path = (fs::path(stage_dir) / "timeline-page.tmp").string();
+    const std::string html = timeline_page(t, fmt::format("{} on {}", o.cl_path, m.name));
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    const bool ok = f && std::fwrite(html.data(), 1, html.size(), f) == html.size();
+    if (!f || std::fclose(f) != 0 || !ok)
+      throw config_error(fmt::format("cannot write the timeline page '{}': {}", path, std::strerror(errno)));
+    page = staged_file{path, o.timeline_file};
+  }
+  for (channel_times& c : t.channels) std::vector<timed_block>().swap(c.kept);
+  sum.timing = std::move(t);
+  return page;
 }
 
 }  // namespace
@@ -274,6 +319,17 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     sink.report({severity::error, m.source, 0, 0, std::move(why), {}});
     return sum;
   }
+  if (!o.timeline_file.empty() && !has_timing(m)) {
+    sink.report(
+        {severity::error,
+         m.source,
+         0,
+         0,
+         fmt::format("--timeline: machine '{}' has no [timing] table (docs/machines.md, \"[timing]\")",
+                     m.name),
+         {}});
+    return sum;
+  }
   file_ptr in = open_job(o.cl_path);
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);
@@ -303,8 +359,15 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   if (sink.counts.errors > 0) return sum;
 
   const std::vector<framed_file> files = frame_files(named_request(req, ws), ws);
+  if (!o.timeline_file.empty())
+    if (std::string why = timeline_name_problem(o, files); !why.empty()) {
+      sink.report({severity::error, o.cl_path, 0, 0, std::move(why), {}});
+      return sum;
+    }
   if (!self_check(o, m, files, ws, t.last_line, sink)) return sum;
-  sum.files = commit_files(stage, files);
+  std::optional<staged_file> page;
+  if (has_timing(m)) page = time_programs(o, m, stage.dir(), files, sum);
+  sum.files = commit_files(stage, files, page);
   sum.ok = true;
   return sum;
 }

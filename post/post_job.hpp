@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/cycle_time.hpp"
 #include "channels/router.hpp"
 #include "machines/machine.hpp"
 #include "parser/dialect.hpp"
@@ -27,6 +28,9 @@ struct post_options {
   std::optional<dialect> forced_dialect;
   /// An unknown major word is a warning, not an error (a refused known word stays an error).
   bool permissive = false;
+  /// When set, the timeline page of the posted programs (analysis/timeline_report.hpp) is
+  /// written into the output folder under this plain file name, as one of the set.
+  std::string timeline_file;
   /// Called now and then (every 64k records) with the CL bytes read so far; may be empty.
   std::function<void(std::size_t bytes)> progress;
 };
@@ -39,6 +43,9 @@ struct post_summary {
   int waits = 0;                                 ///< rendezvous placed
   sync_policy policy = sync_policy::sequential;  ///< the policy actually used
   long records = 0;
+  /// The cycle time of the written programs (per operation and wait, no block kept); empty
+  /// when the machine file has no [timing].
+  std::optional<timeline> timing;
 };
 
 /// Posts `o.cl_path` (a regular file: it is read twice) for machine `m`. Problems go to

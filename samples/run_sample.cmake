@@ -11,6 +11,7 @@
 #              that file is missing), and out/ holding exactly the files of expected/MACHINE/.
 #   check      twinpost check <the words of CASE_DIR/args>, run beside copies of the case's
 #              NC files. Expected: expected.stdout, expected.stderr (or empty), expected.rc.
+#   timeline   twinpost timeline <the words of CASE_DIR/args>, as check (its summary or --json).
 #   post-fail  twinpost post job.cls -o out <the words of CASE_DIR/args>. Expected:
 #              expected.stdout, expected.stderr (or empty), expected.rc, and no file written.
 #
@@ -180,7 +181,7 @@ if(MODE STREQUAL "post")
   set(expected_stdout "${CASE_DIR}/expected/${MACHINE}.stdout")
   set(expected_stderr "${CASE_DIR}/expected/${MACHINE}.stderr")
   set(expected_rc 0)
-elseif(MODE STREQUAL "post-fail" OR MODE STREQUAL "check")
+elseif(MODE STREQUAL "post-fail" OR MODE STREQUAL "check" OR MODE STREQUAL "timeline")
   file(GLOB inputs LIST_DIRECTORIES false RELATIVE "${CASE_DIR}" "${CASE_DIR}/*")
   foreach(f IN LISTS inputs)
     if(NOT f MATCHES "^(expected\\..*|args)$")
@@ -188,8 +189,8 @@ elseif(MODE STREQUAL "post-fail" OR MODE STREQUAL "check")
     endif()
   endforeach()
   read_args("${CASE_DIR}/args" extra)
-  if(MODE STREQUAL "check")
-    set(command "${TWINPOST}" check ${extra})
+  if(MODE STREQUAL "check" OR MODE STREQUAL "timeline")
+    set(command "${TWINPOST}" ${MODE} ${extra})
   else()
     set(command "${TWINPOST}" post job.cls -o out ${extra})
   endif()
@@ -203,7 +204,7 @@ elseif(MODE STREQUAL "post-fail" OR MODE STREQUAL "check")
     fail("no golden file ${CASE_DIR}/expected.rc")
   endif()
 else()
-  message(FATAL_ERROR "run_sample.cmake: unknown MODE '${MODE}' (post, check or post-fail)")
+  message(FATAL_ERROR "run_sample.cmake: unknown MODE '${MODE}' (post, check, timeline or post-fail)")
 endif()
 
 execute_process(COMMAND ${command}

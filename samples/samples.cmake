@@ -3,6 +3,7 @@
 #   sample.<job>.<machine>   samples/<job>/job.cls posted for a built-in machine; stdout,
 #                            stderr and every written file must equal samples/<job>/expected/
 #   sample.check.<case>      `twinpost check` on hand-made NC programs in samples/check/<case>/
+#   sample.timeline.<case>   `twinpost timeline` on hand-made NC programs in samples/timeline/<case>/
 #   sample.post-fail.<case>  a post that must fail, with its exact message, writing nothing
 #   oracle.<job>.<machine>   tests/oracle/rs274_endpoints.sh: the posted motion read back by
 #                            LinuxCNC's rs274 against the CL end points (skipped, exit 77,
@@ -74,7 +75,7 @@ endforeach()
 # Hand-made NC programs for the checker, and posts that must fail: each case folder holds
 # its inputs, `args` (the command line after `check`, or after `post job.cls -o out`) and
 # expected.stdout / expected.stderr / expected.rc.
-foreach(_tp_mode check post-fail)
+foreach(_tp_mode check timeline post-fail)
   file(GLOB _tp_cases CONFIGURE_DEPENDS ${TWINPOST_SAMPLES_DIR}/${_tp_mode}/*/args)
   foreach(_tp_case_args IN LISTS _tp_cases)
     get_filename_component(_tp_dir ${_tp_case_args} DIRECTORY)

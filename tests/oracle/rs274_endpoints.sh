@@ -130,7 +130,8 @@ if r.returncode != 0:
 events = [json.loads(l) for l in r.stdout.splitlines() if l.strip()]
 
 # --- split the program per channel ------------------------------------------------------
-files = sorted(os.listdir(out_dir))
+# The programs only: a sample's post.args may ask for the timeline page beside them.
+files = sorted(f for f in os.listdir(out_dir) if not f.endswith(".html"))
 texts = {}
 if layout == "split":
     ext = program.get("extension", "")

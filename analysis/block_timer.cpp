@@ -1,0 +1,411 @@
+#include "analysis/block_timer.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+namespace twinpost {
+
+namespace {
+
+constexpr double two_pi = 2 * std::numbers::pi;
+constexpr int css_steps = 16;  // a feed per revolution under CSS: the rpm at the middle of 16 steps
+
+bool number(std::string_view s, double& out) {
+  if (s.empty()) return false;
+  if (s.front() == '+') s.remove_prefix(1);
+  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc{} && p == s.data() + s.size();
+}
+
+// A code as compared: "01" and "1." are "1", "84.2" stays.
+std::string code_of(const nc_word& w) {
+  double v = 0;
+  if (w.expression || !number(w.value, v)) return w.value;
+  return fmt::format("{:g}", v);
+}
+
+// The G (or M) codes of a fixed block of the machine file ("G99", "G68"), as code_of gives them.
+void add_codes(std::vector<std::string>& out, std::string_view block, char address) {
+  for (const nc_word& w : split_nc_words(block))
+    if (w.address == address) out.push_back(code_of(w));
+}
+
+bool among(const std::vector<std::string>& set, const std::string& c) {
+  return std::find(set.begin(), set.end(), c) != set.end();
+}
+
+// G codes that set a mode or an offset and take no time of their own.
+const std::vector<std::string>& plain_g_codes() {
+  static const std::vector<std::string> codes = {
+      "10.1", "12.1", "13.1", "15",  "16",   "17", "18", "19", "20", "21", "40",   "41",
+      "42",   "43",   "44",   "49",  "54",   "55", "56", "57", "58", "59", "54.1", "61",
+      "64",   "67",   "68",   "69",  "69.1", "80", "90", "91", "94", "95", "96",   "97",
+      "98",   "99",   "112",  "113", "0",    "1",  "2",  "3",  "4",  "32", "33"};
+  return codes;
+}
+
+bool modal_drill_cycle(const std::string& g, bool lathe_a) {
+  double v = 0;
+  if (!number(g, v)) return false;
+  if (v >= 81 && v < 90) return true;  // G81-G89 and G84.2/G84.3
+  return !lathe_a && (g == "73" || g == "74" || g == "76");
+}
+
+bool one_shot_cycle(const std::string& g, bool lathe_a) {
+  if (lathe_a &&
+      (g == "70" || g == "71" || g == "72" || g == "73" || g == "74" || g == "75" || g == "76" || g == "78"))
+    return true;
+  return g == "276" || g == "290" || g == "292" || g == "294" || g == "270" || g == "271" || g == "272";
+}
+
+}  // namespace
+
+block_timer::block_timer(const machine& m, int channel) : m_(m), spindles_(m, channel) {
+  for (const channel_def& c : m.channels)
+    if (c.number == channel) ch_ = &c;
+  if (!ch_) ch_ = &m.channels.front();
+  bool lathe = false;
+  for (const axis_def& a : ch_->axes) {
+    axis_pos p;
+    p.address = a.address;
+    p.diameter = a.diameter;
+    p.rotary = a.address == 'A' || a.address == 'B' || a.address == 'C';
+    p.rate = ch_->timing.rapid_of(a.address).value_or(0);
+    axes_.push_back(p);
+    if (a.address == 'X' && a.diameter) lathe = true;
+  }
+  // A Fanuc lathe in G-code system A: G90/G92/G94 are turning, thread and facing cycles.
+  lathe_a_ = lathe && m.control.find("fanuc") != std::string::npos;
+  add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
+  add_codes(feed_min_, m.codes.feed_per_min, 'G');
+  // The tool call's address and how a number splits into tool and offset (T0303: tool 3).
+  const std::string& call = ch_->tool_call;
+  if (const std::size_t at = call.find("{tool"); at != std::string::npos && at > 0) {
+    tool_address_ = call[at - 1];
+    const std::size_t end = call.find('}', at);
+    const std::size_t off = call.find("{offset", at);
+    if (end != std::string::npos && off == end + 1) {
+      const std::size_t close = call.find('}', off);
+      const std::size_t colon = call.find(':', off);
+      int width = 0;
+      if (colon != std::string::npos && colon < close)
+        std::from_chars(call.data() + colon + 1, call.data() + close, width);
+      for (int i = 0; i < width; ++i) tool_divisor_ *= 10;
+    }
+  }
+  // The dwell word: "G4 U{seconds}" (seconds) or "G4 P{ms}" (milliseconds).
+  const std::string& dwell = m.codes.dwell;
+  for (auto [hole, unit] : {std::pair<std::string_view, double>{"{seconds", 1.0}, {"{ms", 0.001}})
+    if (const std::size_t at = dwell.find(hole); at != std::string::npos && at > 0) {
+      dwell_address_ = dwell[at - 1];
+      dwell_unit_ = unit;
+    }
+}
+
+block_timer::axis_pos* block_timer::axis(char a) {
+  for (axis_pos& p : axes_)
+    if (p.address == a) return &p;
+  return nullptr;
+}
+
+block_timing block_timer::time(std::string_view text) {
+  const std::vector<nc_word> words = split_nc_words(text);
+  spindles_.apply(words);
+  block_timing t;
+  auto untimed = [&t](std::string why) {
+    if (t.untimed.empty()) t.untimed = std::move(why);
+  };
+
+  bool dwell = false, reference = false, setting = false;
+  std::string one_shot;
+  for (const nc_word& w : words) {
+    if (w.address != 'G') continue;
+    if (w.expression) {
+      untimed("G" + w.value);
+      continue;
+    }
+    const std::string g = code_of(w);
+    if (g == "20")
+      inch_ = true;
+    else if (g == "21")
+      inch_ = false;
+    else if (g == "17" || g == "18" || g == "19")
+      plane_ = std::stoi(g);
+    if (among(feed_rev_, g))
+      per_rev_ = true;
+    else if (among(feed_min_, g))
+      per_rev_ = false;
+    if (lathe_a_ && (g == "90" || g == "92" || g == "94")) {
+      cycle_ = g;  // box cycles: modal until another motion code
+      continue;
+    }
+    if (g == "90")
+      incremental_ = false;
+    else if (g == "91")
+      incremental_ = true;
+    else if (g == "0" || g == "1" || g == "2" || g == "3")
+      motion_ = g, cycle_.clear();
+    else if (g == "32" || g == "33")
+      motion_ = "32", cycle_.clear();
+    else if (g == "80")
+      cycle_.clear();
+    else if (g == "4")
+      dwell = true;
+    else if (g == "28" || g == "30" || g == "53")
+      reference = true, untimed("G" + g);
+    else if (g == "50" || g == "92")
+      setting = true;  // speed clamp or coordinate setting
+    else if (modal_drill_cycle(g, lathe_a_))
+      cycle_ = g;
+    else if (one_shot_cycle(g, lathe_a_))
+      one_shot = g;
+    else if (!among(plain_g_codes(), g))
+      untimed("G" + g);
+  }
+
+  // Tool calls, M codes, the feed.
+  for (const nc_word& w : words) {
+    double v = 0;
+    if (w.expression || !number(w.value, v)) continue;
+    if (w.address == tool_address_ && w.address == 'T') {
+      const long n = static_cast<long>(v) / tool_divisor_;
+      if (n != tool_number_ && n > 0) {
+        tool_number_ = static_cast<int>(n);
+        tool_ = fmt::format("T{:02}", n);
+        t.tool_call = true;
+        t.seconds += ch_->timing.tool_change;
+      }
+    } else if (w.address == 'M') {
+      const int code = static_cast<int>(v);
+      if (m_.waits.syntax == wait_syntax::m_code && m_.waits.address == 'M' && m_.waits.is_wait_code(code))
+        continue;  // the wait's own time is added by the caller
+      if (code == 98) untimed("M98");
+      if (code == 30 || code == 2 || code == 99) continue;
+      t.seconds += ch_->timing.m_code;
+    } else if (w.address == 'F') {
+      feed_ = v;
+    }
+  }
+
+  if (dwell) {
+    bool found = false;
+    for (const nc_word& w : words) {
+      double v = 0;
+      if (w.address == dwell_address_ && !w.expression && number(w.value, v)) {
+        t.seconds += v * dwell_unit_;
+        found = true;
+      }
+    }
+    if (!found) untimed("G4");
+    return t;  // the dwell's U or X word is no move
+  }
+
+  // Where the block sends each axis (program units; X as programmed).
+  std::vector<std::optional<double>> target(axes_.size());
+  bool moves = false;
+  for (std::size_t i = 0; i < axes_.size(); ++i) target[i] = axes_[i].value;
+  const bool has_u = axis('U') != nullptr, has_w = axis('W') != nullptr, has_v = axis('V') != nullptr;
+  const bool lathe = axis('X') && axis('X')->diameter;
+  for (const nc_word& w : words) {
+    char a = w.address;
+    bool inc = incremental_;
+    if (lathe && ((a == 'U' && !has_u) || (a == 'W' && !has_w) || (a == 'V' && !has_v))) {
+      a = a == 'U' ? 'X' : a == 'W' ? 'Z' : 'Y';
+      inc = true;
+    }
+    axis_pos* p = axis(a);
+    if (!p) continue;
+    if (w.address == 'B' && reference) continue;
+    double v = 0;
+    if (w.expression || !number(w.value, v)) {
+      untimed(fmt::format("{}{}", w.address, w.value));
+      continue;
+    }
+    const std::size_t i = static_cast<std::size_t>(p - axes_.data());
+    moves = true;
+    if (inc)
+      target[i] = p->value ? std::optional<double>(*p->value + v) : std::nullopt;
+    else
+      target[i] = v;
+    if (inc && !p->value) target[i].reset();
+    if (inc && !p->value && !setting)
+      untimed(fmt::format("{} from an unknown position", motion_.empty() ? "move" : "G" + motion_));
+  }
+  const bool arc_words = std::any_of(words.begin(), words.end(), [](const nc_word& w) {
+    return w.address == 'I' || w.address == 'J' || w.address == 'K' || w.address == 'R';
+  });
+
+  if (setting) {
+    for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
+    return t;
+  }
+  if (reference) {
+    // G28/G30/G53: to a machine position this program does not know.
+    for (const nc_word& w : words)
+      if (axis_pos* p = axis(w.address == 'U' && lathe ? 'X' : w.address == 'W' && lathe ? 'Z' : w.address))
+        p->value.reset();
+    return t;
+  }
+  if (!one_shot.empty() || (!cycle_.empty() && moves)) {
+    // A cycle the control expands itself: not timed. A drilling cycle leaves the tool over the
+    // hole at its initial level; a lathe cycle returns to its start point.
+    untimed("G" + (!one_shot.empty() ? one_shot : cycle_));
+    if (one_shot.empty() && modal_drill_cycle(cycle_, lathe_a_))
+      for (std::size_t i = 0; i < axes_.size(); ++i)
+        if (axes_[i].address != 'Z') axes_[i].value = target[i];
+    return t;
+  }
+  if (!moves && !(arc_words && (motion_ == "2" || motion_ == "3"))) return t;
+  if (!t.untimed.empty()) {
+    for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
+    t.seconds = 0;
+    return t;
+  }
+  if (motion_.empty()) {
+    untimed("move without G0/G1");
+    return t;
+  }
+  const double s = move_time(target, motion_ == "0", "G" + motion_, words, t);
+  for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
+  if (!t.untimed.empty()) {
+    t.seconds = 0;
+    return t;
+  }
+  t.motion = s;
+  t.rapid = motion_ == "0";
+  t.seconds += s;
+  return t;
+}
+
+double block_timer::move_time(const std::vector<std::optional<double>>& target, bool rapid,
+                              const std::string& code, const std::vector<nc_word>& words, block_timing& t) {
+  // Every axis that moves must start from a known place.
+  double linear2 = 0, rotary = 0, slowest = 0;
+  for (std::size_t i = 0; i < axes_.size(); ++i) {
+    const axis_pos& p = axes_[i];
+    if (!target[i] || (p.value && *p.value == *target[i])) continue;
+    if (!p.value) {
+      t.untimed = code + " from an unknown position";
+      return 0;
+    }
+    double d = std::abs(*target[i] - *p.value);
+    if (p.diameter) d /= 2;  // the slide moves the radius
+    if (p.rotary)
+      rotary = std::max(rotary, d);
+    else
+      linear2 += d * d;
+    // Rapid: each axis at its own rate; the block lasts as long as the slowest axis.
+    const double travel = p.rotary ? d : to_mm(d);
+    if (p.rate > 0) slowest = std::max(slowest, travel / p.rate * 60);
+  }
+  if (rapid) return slowest;
+  const axis_pos* x = nullptr;
+  std::size_t xi = 0;
+  for (std::size_t i = 0; i < axes_.size(); ++i)
+    if (axes_[i].address == 'X') x = &axes_[i], xi = i;
+  auto dia = [&](std::optional<double> v) {
+    return !v ? -1.0 : x && x->diameter ? std::abs(*v) : 2 * std::abs(*v);
+  };
+  const double x0 = x ? dia(x->value) : -1, x1 = x ? dia(target[xi]) : -1;
+  double length = std::sqrt(linear2);
+  if (code == "G2" || code == "G3") {
+    length = arc_length(target, words, code == "G2");
+    if (length < 0) {
+      t.untimed = code + " without I/J/K or R";
+      return 0;
+    }
+  }
+  if (length == 0) length = rotary;  // a rotary move alone: degrees at F degrees per minute
+  if (length == 0) return 0;
+  return feed_time(length, x0, x1, t, code);
+}
+
+double block_timer::feed_time(double length, double x0, double x1, block_timing& t, const std::string& code) {
+  if (!(feed_ > 0)) {
+    t.untimed = code + " without F";
+    return 0;
+  }
+  const bool thread = code == "G32";
+  if (!per_rev_ && !thread) return length / feed_ * 60;
+  // Per revolution: F units per turn at the spindle's rpm; under CSS the rpm follows the
+  // diameter, so the move is summed in steps at each step's middle diameter.
+  const bool css = spindles_.mode() == speed_mode::css;
+  if (css && (x0 < 0 || x1 < 0)) {
+    t.untimed = code + " under CSS at an unknown diameter";
+    return 0;
+  }
+  const int steps = css && x0 != x1 ? css_steps : 1;
+  double seconds = 0;
+  for (int k = 0; k < steps; ++k) {
+    const double d = x0 + (x1 - x0) * (k + 0.5) / steps;
+    const double rpm = spindles_.rpm(std::max(d, 0.0), inch_);
+    if (!(rpm > 0)) {
+      // A spindle this channel never commanded turns at another channel's speed, which this
+      // channel's blocks do not tell (docs/timeline.md).
+      const bool others =
+          spindles_.current() >= 0 && spindles_.setting(spindles_.current()).turn == spindle_turn::unknown;
+      t.untimed = code + (thread ? "" : " per revolution") +
+                  (others ? " on a spindle only another channel commands" : " on a stopped spindle");
+      return 0;
+    }
+    seconds += (length / steps) / (feed_ * rpm) * 60;
+  }
+  return seconds;
+}
+
+double block_timer::arc_length(const std::vector<std::optional<double>>& target,
+                               const std::vector<nc_word>& words, bool cw) const {
+  // The plane's two axes (first, second) with CCW = G3 about the third: G17 XY, G18 ZX, G19 YZ.
+  const char a1 = plane_ == 17 ? 'X' : plane_ == 18 ? 'Z' : 'Y';
+  const char a2 = plane_ == 17 ? 'Y' : plane_ == 18 ? 'X' : 'Z';
+  const char a3 = plane_ == 17 ? 'Z' : plane_ == 18 ? 'Y' : 'X';
+  auto centre_word = [](char a) { return a == 'X' ? 'I' : a == 'Y' ? 'J' : 'K'; };
+  auto get = [&](char a, bool end, double& out) {
+    for (std::size_t i = 0; i < axes_.size(); ++i)
+      if (axes_[i].address == a) {
+        const std::optional<double> v = end ? target[i] : axes_[i].value;
+        if (!v) return false;
+        out = axes_[i].diameter ? *v / 2 : *v;
+        return true;
+      }
+    out = 0;  // an axis the channel lacks stays at 0
+    return true;
+  };
+  double s1, s2, e1, e2, h0 = 0, h1 = 0;
+  if (!get(a1, false, s1) || !get(a2, false, s2) || !get(a1, true, e1) || !get(a2, true, e2)) return -1;
+  get(a3, false, h0);
+  get(a3, true, h1);
+  std::optional<double> r, c1, c2;
+  for (const nc_word& w : words) {
+    double v = 0;
+    if (w.expression || !number(w.value, v)) continue;
+    if (w.address == 'R') r = v;
+    if (w.address == centre_word(a1)) c1 = v;
+    if (w.address == centre_word(a2)) c2 = v;
+  }
+  double radius = 0, sweep = 0;
+  const double chord = std::hypot(e1 - s1, e2 - s2);
+  if (c1 || c2) {
+    const double k1 = s1 + c1.value_or(0), k2 = s2 + c2.value_or(0);
+    radius = std::hypot(s1 - k1, s2 - k2);
+    const double t0 = std::atan2(s2 - k2, s1 - k1), t1 = std::atan2(e2 - k2, e1 - k1);
+    sweep = cw ? t0 - t1 : t1 - t0;
+    while (sweep <= 1e-12) sweep += two_pi;
+    while (sweep > two_pi) sweep -= two_pi;
+    if (chord < 1e-9) sweep = two_pi;  // a full circle
+  } else if (r) {
+    radius = std::abs(*r);
+    const double half = std::min(1.0, chord / (2 * radius));
+    sweep = 2 * std::asin(half);
+    if (*r < 0) sweep = two_pi - sweep;
+  } else {
+    return -1;
+  }
+  return std::hypot(radius * sweep, h1 - h0);
+}
+
+}  // namespace twinpost

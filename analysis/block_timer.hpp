@@ -1,0 +1,81 @@
+#pragma once
+// The time of each block of one channel's program, read modally as the control reads it:
+// G0/G1/G2/G3 and G32 threads, absolute/incremental (G90/G91, and U/W on a Fanuc-style
+// lathe), X as a diameter where the channel's axis says so, G20/G21, feed per minute or per
+// revolution (the machine's codes; the rpm from analysis/spindle_state, CSS at the tool's
+// diameter), dwells (codes.dwell tells the address and unit), tool calls, M codes and waits
+// (machine [timing]). docs/timeline.md has the rules and what is not timed.
+//
+// A block it cannot time honestly (a canned cycle, a reference return, a move from an
+// unknown position, a feed per revolution on a stopped spindle ...) is timed 0 and named in
+// block_timing::untimed: the caller counts and reports it, never silently.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "analysis/spindle_state.hpp"
+#include "check/nc_program.hpp"
+#include "machines/machine.hpp"
+
+namespace twinpost {
+
+/// What one block costs.
+struct block_timing {
+  double seconds = 0;      ///< time of the block (0 when untimed)
+  double motion = 0;       ///< of which moving (rapid, feed, thread)
+  bool rapid = false;      ///< the motion was a rapid
+  std::string untimed;     ///< why the block (or its motion) is not timed: "G83", "G28", ...; empty: timed
+  bool tool_call = false;  ///< the block calls a new tool
+};
+
+/// One channel's blocks, fed in program order.
+class block_timer {
+ public:
+  block_timer(const machine& m, int channel);
+
+  /// Applies one block (the physical line) and returns its time.
+  block_timing time(std::string_view text);
+  /// The seconds a wait code costs (machine [timing] wait).
+  double wait_seconds() const { return ch_->timing.wait; }
+  /// The tool in force, as the program calls it ("T03"); empty before the first call.
+  const std::string& tool() const { return tool_; }
+
+ private:
+  struct axis_pos {
+    char address = 0;
+    bool diameter = false;
+    bool rotary = false;
+    double rate = 0;              // rapid, axis unit per minute (mm/min, deg/min)
+    std::optional<double> value;  // as programmed (diameter for a diameter X), in program units
+  };
+  const machine& m_;
+  const channel_def* ch_ = nullptr;
+  channel_spindles spindles_;
+  std::vector<axis_pos> axes_;
+  bool lathe_a_ = false;  // Fanuc-style lathe: G90/G92/G94 are cycles, U/W incremental
+  bool incremental_ = false;
+  bool inch_ = false;
+  bool per_rev_ = false;
+  int plane_ = 18;      // 17, 18, 19
+  std::string motion_;  // modal motion: "0", "1", "2", "3", "32"; "": none yet
+  std::string cycle_;   // a modal cycle in force (G83, or G90 on a Fanuc lathe); "": none
+  double feed_ = 0;
+  std::string tool_;
+  int tool_number_ = -1;
+  char tool_address_ = 'T';
+  long tool_divisor_ = 1;  // T0303 with {tool:02}{offset:02}: the tool is T / 100
+  char dwell_address_ = 0;
+  double dwell_unit_ = 1;  // seconds per unit of the dwell word
+  std::vector<std::string> feed_rev_, feed_min_;
+
+  axis_pos* axis(char a);
+  double to_mm(double v) const { return inch_ ? v * 25.4 : v; }
+  double move_time(const std::vector<std::optional<double>>& target, bool rapid, const std::string& code,
+                   const std::vector<nc_word>& words, block_timing& t);
+  double feed_time(double length, double x0, double x1, block_timing& t, const std::string& code);
+  double arc_length(const std::vector<std::optional<double>>& target, const std::vector<nc_word>& words,
+                    bool cw) const;
+};
+
+}  // namespace twinpost

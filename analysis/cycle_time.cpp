@@ -1,0 +1,319 @@
+#include "analysis/cycle_time.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include <fmt/format.h>
+
+#include "analysis/block_timer.hpp"
+#include "check/nc_input.hpp"
+#include "check/sync_check.hpp"
+
+namespace twinpost {
+
+namespace {
+
+using channel_mask = std::uint64_t;
+channel_mask bit_of(int channel) { return channel_mask{1} << (channel - 1); }
+
+// A wait as the run needs it: when the channel reached it (its own working time), whom it meets.
+struct run_wait {
+  double work = 0;  // busy seconds of the channel when it arrives
+  channel_mask partners = 0;
+};
+
+// The text of a wait as written, as the checker's messages give it.
+std::string wait_text(const machine& m, const nc_wait& w) {
+  if (m.waits.syntax == wait_syntax::bang)
+    return fmt::format("{}{}{}{}", m.waits.marker, w.partner_text, m.waits.address, w.code);
+  if (!w.has_partner_list) return fmt::format("{}{}", m.waits.address, w.code);
+  return fmt::format("{}{} {}{}", m.waits.address, w.code, m.waits.partner_address, w.partner_text);
+}
+
+// One channel as its blocks are read.
+struct channel_run {
+  block_timer timer;
+  channel_times times;
+  std::vector<run_wait> waits;
+  int segment = 0;
+  channel_run(const machine& m, int ch) : timer(m, ch) {}
+};
+
+class timeline_builder {
+ public:
+  timeline_builder(const machine& m, const timeline_options& o) : m_(m), o_(o) {
+    n_ = static_cast<int>(m.channels.size());
+    all_ = n_ >= 64 ? ~channel_mask{0} : bit_of(n_ + 1) - 1;
+    for (const channel_def& c : m.channels) runs_.emplace_back(m, c.number);
+    for (int i = 0; i < n_; ++i) runs_[static_cast<std::size_t>(i)].times.channel = i + 1;
+  }
+
+  void block(int channel, const std::string& file, int line, std::string_view text) {
+    channel_run& r = runs_[static_cast<std::size_t>(channel - 1)];
+    channel_times& c = r.times;
+    if (c.file.empty()) c.file = file;
+    const block_timing t = r.timer.time(text);
+    ++c.blocks;
+    if (!t.untimed.empty()) {
+      ++c.untimed;
+      note_untimed(t.untimed, file, line, text);
+    }
+    // A new operation at a tool call and after each wait.
+    if (c.operations.empty() || t.tool_call || c.operations.back().segment != r.segment) {
+      tool_operation op;
+      op.tool = r.timer.tool();
+      op.start = c.busy;
+      op.segment = r.segment;
+      op.first_line = line;
+      op.first_text = std::string(text);
+      c.operations.push_back(std::move(op));
+    }
+    tool_operation& op = c.operations.back();
+    op.seconds += t.seconds;
+    ++op.blocks;
+    if (o_.keep_blocks) {
+      timed_block b;
+      b.line = line;
+      b.start = c.busy;
+      b.seconds = t.seconds;
+      b.text = std::string(text);
+      b.untimed = t.untimed;
+      c.kept.push_back(std::move(b));
+      kept_segment_.resize(runs_.size());
+      kept_segment_[static_cast<std::size_t>(channel - 1)].push_back(r.segment);
+    }
+    c.busy += t.seconds;
+  }
+
+  void wait(const nc_wait& w) {
+    channel_run& r = runs_[static_cast<std::size_t>(w.channel - 1)];
+    channel_times& c = r.times;
+    const double s = r.timer.wait_seconds();
+    c.busy += s;
+    if (!c.operations.empty()) c.operations.back().seconds += s;
+    if (o_.keep_blocks && !c.kept.empty()) {
+      c.kept.back().seconds += s;
+      c.kept.back().wait = true;
+    }
+    run_wait rw;
+    rw.work = c.busy;
+    rw.partners = all_;
+    if (m_.waits.partners != partner_style::none && w.has_partner_list && w.partners_readable &&
+        !w.partners.empty()) {
+      rw.partners = bit_of(w.channel);
+      for (int p : w.partners)
+        if (p >= 1 && p <= n_) rw.partners |= bit_of(p);
+    }
+    r.waits.push_back(rw);
+    wait_stop ws;
+    ws.code = wait_text(m_, w);
+    ws.where = w.where;
+    c.waits.push_back(std::move(ws));
+    ++r.segment;
+  }
+
+  timeline finish() {
+    timeline tl;
+    tl.machine = m_.name;
+    if (!run_together(tl)) return tl;
+    place_in_time(tl);
+    find_critical_path(tl);
+    give_advice(tl);
+    tl.untimed_kinds = std::move(untimed_);
+    for (channel_run& r : runs_) tl.channels.push_back(std::move(r.times));
+    tl.ok = true;
+    return tl;
+  }
+
+ private:
+  void note_untimed(const std::string& why, const std::string& file, int line, std::string_view text) {
+    for (untimed_group& g : untimed_)
+      if (g.why == why) {
+        ++g.count;
+        return;
+      }
+    untimed_group g;
+    g.why = why;
+    g.count = 1;
+    g.first.file = file;
+    g.first.line = line;
+    g.first.source_line = std::string(text);
+    untimed_.push_back(std::move(g));
+  }
+
+  // The channels run together: a group of partners leaves a wait when the last one arrives.
+  // The same order as the checker's simulation (linear in the waits).
+  bool run_together(timeline& tl) {
+    std::vector<std::size_t> pos(runs_.size(), 0);
+    std::vector<double> idle(runs_.size(), 0);  // idle so far, per channel
+    auto finished = [&](int c) { return pos[c - 1] >= runs_[c - 1].waits.size(); };
+    auto arrival = [&](int c) { return runs_[c - 1].waits[pos[c - 1]].work + idle[c - 1]; };
+    std::vector<int> todo;
+    for (int c = n_; c >= 1; --c) todo.push_back(c);
+    while (!todo.empty()) {
+      const int c = todo.back();
+      todo.pop_back();
+      if (finished(c)) continue;
+      const channel_mask group = runs_[c - 1].waits[pos[c - 1]].partners;
+      bool ready = true;
+      for (int p = 1; p <= n_; ++p)
+        if ((group & bit_of(p)) && p != c &&
+            (finished(p) || runs_[p - 1].waits[pos[p - 1]].partners != group))
+          ready = false;
+      if (!ready) continue;
+      double release = 0;
+      int last = 0;
+      for (int p = 1; p <= n_; ++p)
+        if ((group & bit_of(p)) && arrival(p) > release + 1e-12) release = arrival(p), last = p;
+      if (last == 0)  // everyone at 0 s: the lowest channel counts as the last
+        for (int p = n_; p >= 1; --p)
+          if (group & bit_of(p)) last = p;
+      for (int p = 1; p <= n_; ++p) {
+        if (!(group & bit_of(p))) continue;
+        wait_stop& ws = runs_[p - 1].times.waits[pos[p - 1]];
+        ws.arrive = arrival(p);
+        ws.release = release;
+        if (p != last) {
+          ws.waited_for = last;
+          ws.waited_for_wait = static_cast<int>(pos[last - 1]);
+        }
+        idle[p - 1] += release - ws.arrive;
+      }
+      for (int p = 1; p <= n_; ++p)
+        if (group & bit_of(p)) {
+          ++pos[p - 1];
+          todo.push_back(p);
+        }
+    }
+    for (int c = 1; c <= n_; ++c)
+      if (!finished(c)) {
+        // The checker proved the waits sound; a run that stops here would be a bug.
+        tl.diagnostics.push_back({severity::error,
+                                  runs_[c - 1].times.file,
+                                  0,
+                                  0,
+                                  fmt::format("channel {} does not reach its end in the timed run", c),
+                                  {}});
+        return false;
+      }
+    for (int c = 1; c <= n_; ++c) {
+      channel_times& t = runs_[c - 1].times;
+      t.idle = idle[c - 1];
+      t.end = t.busy + t.idle;
+    }
+    return true;
+  }
+
+  // Working times become times from the start of the cycle: each segment is shifted by the
+  // idle of the waits before it.
+  void place_in_time(timeline& tl) {
+    for (std::size_t i = 0; i < runs_.size(); ++i) {
+      channel_times& t = runs_[i].times;
+      std::vector<double> shift(t.waits.size() + 1, 0);
+      for (std::size_t k = 0; k < t.waits.size(); ++k) shift[k + 1] = shift[k] + t.waits[k].idle();
+      for (tool_operation& op : t.operations) op.start += shift[static_cast<std::size_t>(op.segment)];
+      if (o_.keep_blocks && i < kept_segment_.size())
+        for (std::size_t b = 0; b < t.kept.size(); ++b)
+          t.kept[b].start += shift[static_cast<std::size_t>(kept_segment_[i][b])];
+      if (t.end > tl.cycle + 1e-12 || tl.last_channel == 0) {
+        tl.cycle = t.end;
+        tl.last_channel = t.channel;
+      }
+      tl.untimed += t.untimed;
+    }
+  }
+
+  // From the channel that ends last, back through each wait to the partner that arrived
+  // last: the blocks whose time is the cycle time.
+  void find_critical_path(timeline& tl) {
+    int c = tl.last_channel;
+    int segment = static_cast<int>(runs_[c - 1].times.waits.size());
+    double until = tl.cycle;
+    while (c > 0) {
+      channel_times& t = runs_[c - 1].times;
+      const double from = segment == 0 ? 0 : t.waits[static_cast<std::size_t>(segment - 1)].release;
+      for (tool_operation& op : t.operations)
+        if (op.segment == segment) op.critical = true;
+      tl.critical.push_back({c, from, until});
+      if (segment == 0) break;
+      const wait_stop& w = t.waits[static_cast<std::size_t>(segment - 1)];
+      until = w.release;
+      if (w.waited_for != 0) {
+        segment = w.waited_for_wait;  // the partner's segment before its wait
+        c = w.waited_for;
+      } else {
+        --segment;
+      }
+    }
+    std::reverse(tl.critical.begin(), tl.critical.end());
+  }
+
+  void give_advice(timeline& tl) {
+    std::vector<idle_note> all;
+    for (const channel_run& r : runs_)
+      for (const wait_stop& w : r.times.waits)
+        if (w.idle() >= 0.005) all.push_back({r.times.channel, w.idle(), w.code, w.where, w.waited_for});
+    std::stable_sort(all.begin(), all.end(),
+                     [](const idle_note& a, const idle_note& b) { return a.seconds > b.seconds; });
+    if (all.size() > 3) all.resize(3);
+    tl.advice = std::move(all);
+  }
+
+  const machine& m_;
+  const timeline_options& o_;
+  int n_ = 0;
+  channel_mask all_ = 0;
+  std::vector<channel_run> runs_;
+  std::vector<std::vector<int>> kept_segment_;
+  std::vector<untimed_group> untimed_;
+};
+
+}  // namespace
+
+bool has_timing(const machine& m) {
+  return !m.channels.empty() && std::all_of(m.channels.begin(), m.channels.end(),
+                                            [](const channel_def& c) { return c.timing.given; });
+}
+
+timeline make_timeline(const std::vector<nc_source>& given, const machine& m, const timeline_options& o) {
+  timeline tl;
+  tl.machine = m.name;
+  if (!has_timing(m)) {
+    tl.diagnostics.push_back(
+        {severity::error,
+         m.source,
+         0,
+         0,
+         fmt::format(
+             "machine '{}' has no [timing] table: the cycle time needs its rapid rates and tool-change "
+             "time (docs/machines.md, \"[timing]\")",
+             m.name),
+         {}});
+    return tl;
+  }
+  if (m.channels.size() > 64) {
+    tl.diagnostics.push_back(
+        {severity::error, m.source, 0, 0, "the timeline handles at most 64 channels", {}});
+    return tl;
+  }
+  const std::vector<nc_source> files = rereadable(given);
+  sync_result check;
+  if (!o.checked) check = check_nc_files(files, m);
+  if (!check.ok) {
+    tl.diagnostics = std::move(check.diagnostics);
+    return tl;
+  }
+  timeline_builder b(m, o);
+  nc_read_options read;
+  read.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
+    b.block(channel, file, line, text);
+  };
+  read.on_wait = [&](const nc_wait& w) { b.wait(w); };
+  diagnostic_list ignored;  // the check read the same files without a problem
+  read_nc_programs(files, m, ignored, read);
+  timeline out = b.finish();
+  out.diagnostics.insert(out.diagnostics.begin(), check.diagnostics.begin(), check.diagnostics.end());
+  return out;
+}
+
+}  // namespace twinpost

@@ -1,0 +1,235 @@
+// The time of blocks (analysis/block_timer.hpp) and of channels run together
+// (analysis/cycle_time.hpp), against figures worked out by hand from the built-in
+// fanuc-0itd-twin's [timing]: X 20000 and Z 24000 mm/min rapid, 0.5 s tool change,
+// 0.1 s a wait code and an M code.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "analysis/block_timer.hpp"
+#include "analysis/cycle_time.hpp"
+#include "analysis/timeline_report.hpp"
+#include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+// Each block as "seconds|untimed" with the seconds to 4 decimals.
+std::string times(const machine& m, int channel, std::initializer_list<std::string_view> blocks) {
+  block_timer t(m, channel);
+  std::string out;
+  for (std::string_view b : blocks) {
+    const block_timing bt = t.time(b);
+    out += fmt::format("{:.4f}{}\n", bt.seconds, bt.untimed.empty() ? "" : "|" + bt.untimed);
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("block timer: rapids axis by axis, feeds per minute, X as a diameter", "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  CHECK(times(m, 1,
+              {"G0 G18 G21 G40 G54 G80 G98", "G0 X100. Z5.", "G1 Z-95. F200.", "G0 X110.", "G0 Z5.",
+               "G0 X50. Z-7.", "U10. W-2.", "G1 X70. Z-17. F100."}) ==
+        "0.0000\n"
+        "0.0000|G0 from an unknown position\n"  // where the slide starts is not in the program
+        "30.0000\n"                             // 100 mm at 200 mm/min
+        "0.0150\n"                              // X 10 on the diameter: 5 mm at 20000 mm/min
+        "0.2500\n"                              // 100 mm at 24000 mm/min
+        "0.0900\n"                              // X 30 mm (0.09 s), Z 12 mm (0.03 s): the longer
+        "0.0150\n"                              // U/W incremental: X 5 mm (0.015 s), Z 2 mm
+        "5.6604\n");                            // X 5 mm and Z 8 mm: sqrt(89) mm at 100 mm/min
+}
+
+TEST_CASE("block timer: feed per revolution, CSS at the diameter, G32 at lead x rpm",
+          "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");  // main spindle max_rpm 4000
+  CHECK(times(m, 1,
+              {"G50 X100. Z10.", "G97 S800 M3", "G99", "G1 Z-10. F0.2", "G50 S3000", "G96 S200", "G1 Z-30.",
+               "G97 S500", "G0 Z5.", "G32 Z-25. F1.5", "G98 G4 U2.5", "M5", "G99 G1 X120. F0.2"}) ==
+        "0.0000\n"  // G50 X Z: the position is set, nothing moves
+        "0.1000\n"  // M3: one M code
+        "0.0000\n"
+        "7.5000\n"  // 20 mm at 0.2 mm/rev x 800 rpm = 160 mm/min
+        "0.0000\n"
+        "0.0000\n"
+        "9.4248\n"  // 200 m/min at 100 mm: 636.62 rpm; 20 mm at 127.32 mm/min
+        "0.0000\n"
+        "0.0875\n"  // Z 35 mm at 24000 mm/min
+        "2.4000\n"  // 30 mm at 1.5 mm/rev x 500 rpm
+        "2.5000\n"  // the dwell: U in seconds (codes.dwell = "G4 U{seconds}")
+        "0.1000\n"
+        "0.0000|G1 per revolution on a stopped spindle\n");
+}
+
+TEST_CASE("block timer: arcs by I/K and by R, tool calls, Mazak's dwell in ms", "[analysis][timeline]") {
+  const machine fanuc = load_machine("fanuc-0itd-twin");
+  CHECK(times(fanuc, 1,
+              {"G50 X0. Z0.", "G98 T0101", "T0102", "T0303", "G3 X20. Z-10. I0. K-10. F100.",
+               "G2 X40. Z-20. R10.", "G3 X60. Z-30. R-10.", "G1 X60. Z-30. F100.", "G2 X60. Z-30. K-10.",
+               "G2 X60. Z-30. I0. K-10."}) ==
+        "0.0000\n"
+        "0.5000\n"  // T0101: a tool call (0.5 s)
+        "0.0000\n"  // T0102: the same tool, another offset
+        "0.5000\n"
+        "9.4248\n"   // a quarter circle of radius 10 (X is a diameter: 10 mm radial), 15.708 mm:
+                     // counter-clockwise in the Z-X plane (Z right, X up as drawn), so G3
+        "9.4248\n"   // a quarter by R
+        "28.2743\n"  // R-10: the three-quarter arc, 47.124 mm
+        "0.0000\n"   // no move
+        "37.6991\n"  // the same start and end by K: a full circle of radius 10 at 100 mm/min
+        "37.6991\n");
+  const machine mazak = load_machine("integrex-i200st");  // dwell "G4 P{ms}"
+  CHECK(times(mazak, 2, {"G4 P1500", "G4 U3.", "T0202", "M8"}) == "1.5000\n0.0000|G4\n0.5000\n0.1000\n");
+}
+
+TEST_CASE("block timer: canned cycles and reference returns are not timed, and say so",
+          "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  CHECK(times(m, 1,
+              {"G50 X0. Z5.", "G98 G83 X0. Z-20. R-3. Q5000 F100.", "G80", "G0 Z10.", "G28 U0.", "G0 X50.",
+               "G76 P010060 Q100 R0.02", "G65 P9001", "G0 X60."}) ==
+        "0.0000\n"
+        "0.0000|G83\n"
+        "0.0000\n"
+        "0.0125\n"  // the drilling cycle returned to the initial level: Z 5 to 10
+        "0.0000|G28\n"
+        "0.0000|G0 from an unknown position\n"  // X went to the reference point
+        "0.0000|G76\n"
+        "0.0000|G65\n"
+        "0.0150\n");
+}
+
+namespace {
+
+std::vector<nc_source> hand_job() {
+  // docs/timeline.md works these out by hand.
+  return {{"PART_1.nc",
+           "%\nO1000 (HAND)\nG21 G98 G18\nT0101\nG97 S1000 M3\nG0 X100. Z5.\nG1 Z-95. F200.\nG0 X110.\n"
+           "G0 Z5.\nM100\nT0303\nG0 X60.\nG1 X40. F100.\nG4 U2.5\nG0 X110. Z5.\nM101\nM30\n%\n"},
+          {"PART_2.nc",
+           "%\nO1000 (HAND)\nG21 G98 G18\nT0202\nG97 S800 M4\nG0 X50. Z2.\nG1 Z-20. F300.\nG0 Z2.\n"
+           "M100\nG99\nG1 Z-10. F0.2\nG0 Z2.\nM101\nM30\n%\n"}};
+}
+
+}  // namespace
+
+TEST_CASE("timeline: two channels run together, idle at their waits, the critical path",
+          "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  timeline_options o;
+  o.keep_blocks = true;
+  const timeline t = make_timeline(hand_job(), m, o);
+  REQUIRE(t.ok);
+  REQUIRE(t.channels.size() == 2);
+  CHECK(format_timeline_text(t) ==
+        "cycle time 40.245 s (channel 1 ends last)\n"
+        "  channel 1: 40.245 s working + 0.000 s idle at 2 waits = 40.245 s\n"
+        "  channel 2: 9.785 s working + 30.460 s idle at 2 waits = 40.245 s\n"
+        "  2 blocks not timed: G0 from an unknown position (2, first at PART_1.nc:6)\n"
+        "  balance: channel 2 idles 25.810 s at M100 (PART_2.nc:9) waiting for channel 1; channel 2 idles "
+        "4.650 s at M101 (PART_2.nc:13) waiting for channel 1\n");
+  CHECK(t.channels[0].end == Approx(40.245).epsilon(1e-12));
+  CHECK(t.channels[1].busy == Approx(9.785).epsilon(1e-12));
+  CHECK(t.channels[1].waits[0].idle() == Approx(25.81).epsilon(1e-12));
+  CHECK(t.channels[1].waits[1].idle() == Approx(4.65).epsilon(1e-12));
+  // The critical path is channel 1 throughout; channel 2's operations are not on it.
+  REQUIRE(t.critical.size() == 3);
+  for (const critical_stretch& c : t.critical) CHECK(c.channel == 1);
+  for (const tool_operation& op : t.channels[1].operations) CHECK_FALSE(op.critical);
+  // Operations: per tool between waits.
+  std::string ops;
+  for (const tool_operation& op : t.channels[0].operations)
+    ops += fmt::format("{} {:.3f}+{:.3f} ({} blocks) seg {}\n", op.tool, op.start, op.seconds, op.blocks,
+                       op.segment);
+  CHECK(ops ==
+        " 0.000+0.000 (2 blocks) seg 0\n"
+        "T01 0.000+30.965 (7 blocks) seg 0\n"
+        "T03 30.965+9.280 (6 blocks) seg 1\n"
+        "T03 40.245+0.000 (1 blocks) seg 2\n");  // M30 after the last wait
+  REQUIRE(t.channels[1].kept.size() == 13);      // every line with words, O1000 to M30
+  CHECK(t.channels[1].kept[10].text == "G0 Z2.");
+  CHECK(t.channels[1].kept[10].start == Approx(35.465).epsilon(1e-12));  // released at 30.965, then 4.5 s
+}
+
+TEST_CASE("timeline: programs that do not check sound have no timeline, the check's errors say why",
+          "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  std::vector<nc_source> job = hand_job();
+  job[1].text = "%\nG0 X50. Z2.\nM100\nM30\n%\n";  // its M101 is missing
+  const timeline t = make_timeline(job, m);
+  CHECK_FALSE(t.ok);
+  REQUIRE_FALSE(t.diagnostics.empty());
+  CHECK(t.diagnostics[0].message ==
+        "wait M101 of channel 1 is never met: channel 2 ends at PART_2.nc:4 without a matching wait");
+}
+
+TEST_CASE("timeline: programs read from files have every block timed, not only the last of a run",
+          "[analysis][timeline]") {
+  // The reader skips runs of plain blocks when only the waits matter; the timeline needs each.
+  const machine m = load_machine("fanuc-0itd-twin");
+  const std::string dir = test::fresh_temp_dir("timeline");
+  std::vector<nc_source> job = hand_job();
+  for (nc_source& s : job) {
+    REQUIRE(test::write_file(dir + "/" + s.name, s.text));
+    s.path = dir + "/" + s.name;
+    s.text.clear();
+  }
+  const timeline t = make_timeline(job, m);
+  REQUIRE(t.ok);
+  CHECK(t.channels[0].blocks == 16);
+  CHECK(t.channels[1].blocks == 13);
+  CHECK(fmt::format("{:.3f} {:.3f}", t.channels[0].end, t.channels[1].busy) == "40.245 9.785");
+}
+
+TEST_CASE("machine [timing]: per-channel overrides and the rates every axis needs", "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-31i-3path");
+  CHECK(m.channels[0].timing.tool_change == 0.5);
+  CHECK(m.channels[2].timing.tool_change == 4.0);
+  CHECK(m.channels[2].timing.rapid_of('Y') == 10000);
+  CHECK(m.channels[2].timing.rapid_of('X') == 20000);
+  CHECK(m.channels[1].timing.wait == 0.1);
+  const std::string base = R"(
+[machine]
+name = "t"
+control = "fanuc-0i-td"
+[waits]
+first = 100
+last = 102
+[[channel]]
+number = 1
+heads = [1]
+  [[channel.axis]]
+  address = "X"
+  diameter = true
+  [[channel.axis]]
+  address = "Z"
+)";
+  try {
+    parse_machine(base + "[timing]\nrapid = { X = 20000 }\n", "t.toml");
+    FAIL("no error");
+  } catch (const config_error& e) {
+    CHECK(std::string(e.what()) ==
+          "t.toml:16:1: error: timing: no rapid rate for axis Z of channel 1 (timing.rapid.Z or "
+          "timing.channel.1.rapid.Z)");
+  }
+  try {
+    parse_machine(base + "[timing]\nrapid = { X = 20000, Z = 0 }\n", "t.toml");
+    FAIL("no error");
+  } catch (const config_error& e) {
+    CHECK(std::string(e.what()) == "t.toml:17:26: error: timing.rapid.Z must be > 0, not 0");
+  }
+  try {
+    parse_machine(base + "[timing]\nrapid = { X = 1, Z = 1 }\n[timing.channel.2]\ntool_change = 1\n",
+                  "t.toml");
+    FAIL("no error");
+  } catch (const config_error& e) {
+    CHECK(std::string(e.what()) == "t.toml:18:1: error: timing.channel.2: this machine has no channel 2");
+  }
+}
