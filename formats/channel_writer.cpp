@@ -162,6 +162,10 @@ void channel_writer::frame(const coordsys_event& c, int line) {
 void channel_writer::on_event(const event& e, bool both) {
   // A HEAD/BOTH copy on a mirrored channel runs on the opposite side of the spindle centre.
   side_ = (both && x_mirror_) ? -1.0 : 1.0;
+  // The copy of a balance cut cuts on the master's workpiece spindle and leaves the spindle
+  // to the master (set_balance_master).
+  balance_copy_ = both && balance_master_ && balance_master_ != this;
+  if (balance_copy_ && balance_master_->work_ && balance_master_->work_ != work_) work_on(*balance_master_->work_);
   line_ = e.line;
   column_ = e.column;
   // A TLDATA right after a tool call (comments between) describes that tool.

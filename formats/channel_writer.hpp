@@ -30,6 +30,13 @@ class channel_writer {
     scale_ = cl_mm_ * out_per_mm_;
   }
   void on_event(const event& e, bool both);
+  /// Balance cutting (HEAD/BOTH): `master` is the writer of the channel that serves head 1,
+  /// which alone commands the spindle; this channel's copy writes no spindle code (no S, M3,
+  /// M4, M5, G96, G97, select or clamp block of a workpiece spindle) and cuts on the master's
+  /// workpiece spindle. Fanuc B-63944EN-1 §7.1 (balance cut G68/G69: two tool posts on one
+  /// workpiece); the S code in path 1's program only as the issue reports the Fanuc manuals,
+  /// UNVERIFIED in the pages read.
+  void set_balance_master(const channel_writer* master) { balance_master_ = master; }
   void on_wait(const wait_mark& w);
   /// Ends the body: coolant and spindle off are the footer's job; closes the file.
   void finish();
@@ -210,6 +217,12 @@ class channel_writer {
   /// The last SPINDL that set a speed: SPINDL/ON turns the spindle on again with it (APT: the
   /// last speed, mode and direction), also after SPINDL/OFF.
   std::optional<spindle_event> last_speed_;
+  /// A block that commands the spindle: not written by a balance cut's copy (set_balance_master).
+  void spindle_block(const std::string& b) {
+    if (!balance_copy_) out_.block(b);
+  }
+  const channel_writer* balance_master_ = nullptr;
+  bool balance_copy_ = false;  ///< the event being written is the copy of a HEAD/BOTH section
   /// The spindle was stopped for a tool change: restart_blocks_ go out again before the next
   /// move unless a SPINDL comes first.
   bool spindle_held_ = false;

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "analysis/shared_resources.hpp"
 #include "channels/job_channels.hpp"
 #include "check/sync_check.hpp"
 #include "formats/channel_writer.hpp"
@@ -176,6 +177,9 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     ws.writers.push_back(
         std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
   }
+  // Under HEAD/BOTH the channel of head 1 commands the spindle; the other's copy follows it.
+  if (const channel_def* master = m.channel_for_head(1))
+    for (auto& w : ws.writers) w->set_balance_master(ws.writers[static_cast<std::size_t>(master->number - 1)].get());
 }
 
 struct stream_totals {
@@ -222,7 +226,7 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
   std::vector<nc_source> sources;
   for (const framed_file& f : files)
     sources.push_back({(fs::path(o.out_dir) / f.name).string(), {}, f.tmp_path});
-  sync_result check = check_nc_files(sources, m);
+  sync_result check = check_nc_resources(sources, m);
   if (!check.diagnostics.empty()) {
     std::vector<std::vector<int>> wait_lines;
     for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
