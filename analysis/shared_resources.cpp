@@ -152,7 +152,7 @@ struct shared_resources::impl {
     if (channel < 1 || static_cast<std::size_t>(channel) > channels.size()) return;
     channel_data& c = channels[static_cast<std::size_t>(channel - 1)];
     const std::vector<nc_word> words = split_nc_words(text);
-    bool cycle = false, thread = false;
+    bool cycle = false, thread = false, no_move = false;
     int axis_column = 0, cut_column = 0;
     for (const nc_word& w : words) {
       double v = 0;
@@ -171,6 +171,10 @@ struct shared_resources::impl {
         if (std::find(thread_codes.begin(), thread_codes.end(), v) != thread_codes.end()) {
           thread = true;
           cut_column = w.column;
+        } else if (v == 4 || v == 10 || v == 28 || v == 30 || v == 50 || v == 53 || v == 92) {
+          // Dwell, data setting, reference returns, clamps and machine coordinates: the axis
+          // words of these blocks are no cut.
+          no_move = true;
         }
       } else if (std::string_view("XYZUW").find(w.address) != std::string_view::npos && !axis_column) {
         axis_column = w.column;
@@ -198,7 +202,7 @@ struct shared_resources::impl {
       if ((cmd.turn || cmd.speed || cmd.mode) && m.shared_spindle(cmd.spindle))
         c.commands[s].push_back({c.seg, cmd, at});
     }
-    const bool feeding = c.motion >= 1 && c.motion <= 3 && axis_column > 0;
+    const bool feeding = c.motion >= 1 && c.motion <= 3 && axis_column > 0 && !no_move;
     if (!(thread || (c.per_rev && (cycle || feeding)))) return;
     const int s = c.spindles.current();
     if (s < 0) return;

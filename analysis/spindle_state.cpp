@@ -123,6 +123,15 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
       turned_column = w.column;
     }
   }
+  // A workpiece spindle's work offset (G54 main, G55 sub) says which part the channel works
+  // on from now: its S words and feeds per revolution go to that spindle (a HEAD/BOTH copy
+  // on the master's spindle selects it so, with no spindle code of its own).
+  for (std::size_t i = 0; i < m_.spindles.size(); ++i) {
+    int offset_column = 0;
+    if (!m_.spindles[i].work_offset.empty() && is_code(words, m_.spindles[i].work_offset, offset_column) &&
+        turned < 0)
+      current_ = static_cast<int>(i);
+  }
   // The mode codes (modal per channel).
   int mode_column = 0;
   const speed_mode before_mode = mode_;

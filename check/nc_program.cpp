@@ -165,10 +165,11 @@ class reader {
     out_.channels[static_cast<std::size_t>(channel - 1)].file = f.name;
     channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
     // Runs of plain blocks may be skipped: only the last of a run matters here, once the
-    // channel is known to have a block at all (until then every line is looked at).
+    // channel is known to have a block at all (until then every line is looked at); never
+    // when on_block wants every block.
     for_each_line(
         f, [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); },
-        &st.has_block);
+        options_.on_block ? nullptr : &st.has_block);
     if (!st.has_block)
       report(severity::error, {f.name, 0, 0, {}},
              fmt::format("no NC block in this file: channel {} has no program", channel));

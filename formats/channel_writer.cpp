@@ -165,7 +165,10 @@ void channel_writer::on_event(const event& e, bool both) {
   // The copy of a balance cut cuts on the master's workpiece spindle and leaves the spindle
   // to the master (set_balance_master).
   balance_copy_ = both && balance_master_ && balance_master_ != this;
-  if (balance_copy_ && balance_master_->work_ && balance_master_->work_ != work_) work_on(*balance_master_->work_);
+  if (balance_copy_ && balance_master_->work_ && balance_master_->work_ != work_) {
+    work_on(*balance_master_->work_);
+    spindle_ = work_;
+  }
   line_ = e.line;
   column_ = e.column;
   // A TLDATA right after a tool call (comments between) describes that tool.
