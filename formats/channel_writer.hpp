@@ -45,6 +45,15 @@ class channel_writer {
   int waits() const { return waits_; }
   /// The CL line of each wait block written, in order (to report the checker's findings).
   const std::vector<int>& wait_cl_lines() const { return wait_cl_lines_; }
+  /// A block that may carry a finding of the shared-resource rules: one with an S or M word
+  /// (spindle commands), or the first G1/G2/G3 after a wait or after such a block (a cut).
+  struct noted_block {
+    int segment = 0;   ///< waits written before it
+    std::string text;  ///< the line as written
+    int cl_line = 0;   ///< the CL record being written
+  };
+  /// Those blocks, in order (post/sync_at_cl moves findings at them to their CL records).
+  const std::vector<noted_block>& noted_blocks() const { return noted_; }
 
  private:
   void motion(const motion_event& m, int line);
@@ -234,6 +243,9 @@ class channel_writer {
   std::string tool_call_;  ///< the last tool call written (an offset change writes a new one)
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
+  std::vector<noted_block> noted_;
+  bool cut_due_ = true;  ///< the next G1/G2/G3 line is noted
+  void note_line(std::string_view line);
   bool warned_side_ = false;
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
 };

@@ -229,9 +229,23 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
   sync_result check = check_nc_resources(sources, m);
   if (!check.diagnostics.empty()) {
     std::vector<std::vector<int>> wait_lines;
-    for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
+    std::vector<std::vector<cl_block>> blocks;
+    for (auto& w : ws.writers) {
+      wait_lines.push_back(w->wait_cl_lines());
+      // The head's lines first (no CL record), so that a block of the same text there is
+      // counted as the checker reads it.
+      blocks.emplace_back();
+      const std::string& head = w->head_written();
+      for (std::size_t at = 0; at < head.size();) {
+        const std::size_t end = std::min(head.find('\n', at), head.size());
+        blocks.back().push_back({0, head.substr(at, end - at), 0});
+        at = end + 1;
+      }
+      for (const channel_writer::noted_block& b : w->noted_blocks())
+        blocks.back().push_back({b.segment, b.text, b.cl_line});
+    }
     for (diagnostic& d :
-         sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line))
+         sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line, blocks))
       sink.report(std::move(d));
   }
   return check.ok;
