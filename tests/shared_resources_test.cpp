@@ -9,6 +9,7 @@
 #include "analysis/shared_resources.hpp"
 #include "check/sync_report.hpp"
 #include "machines/machine_loader.hpp"
+#include "machine_test_support.hpp"
 #include "post_test_jobs.hpp"
 #include "support/errors.hpp"
 
@@ -129,8 +130,8 @@ TEST_CASE("shared spindles: a channel commands only the spindles the machine giv
 }
 
 TEST_CASE("validation: channel.spindles and spindle.per_channel", "[machines]") {
-  const std::string head = "[machine]\nname = \"m\"\n[[spindle]]\nname = \"main\"\nper_channel = false\n";
-  const std::string xz = "[[channel.axis]]\naddress = \"X\"\n[[channel.axis]]\naddress = \"Z\"\n";
+  const std::string head = test::machine_head + "[[spindle]]\nname = \"main\"\nper_channel = false\n";
+  const std::string& xz = test::xz_axes;
   auto error_of = [](const std::string& toml) {
     try {
       parse_machine(toml, "m.toml");
@@ -140,11 +141,11 @@ TEST_CASE("validation: channel.spindles and spindle.per_channel", "[machines]") 
     return std::string("no error");
   };
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nspindles = [\"main\", \"live\"]\n" + xz) ==
-        "m.toml:8:21: error: channel.spindles: 'live' names no [[spindle]]");
+        "m.toml:11:21: error: channel.spindles: 'live' names no [[spindle]]");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nspindles = [\"main\", \"main\"]\n" + xz) ==
-        "m.toml:8:21: error: channel.spindles names 'main' twice");
+        "m.toml:11:21: error: channel.spindles names 'main' twice");
   CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\n[[channel]]\nnumber = 1\nspindles = [\"sub\"]\n" + xz) ==
-        "m.toml:10:12: error: channel.spindles must name the channel's own spindle 'main' (channel.spindle)");
+        "m.toml:13:12: error: channel.spindles must name the channel's own spindle 'main' (channel.spindle)");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nspindles = [\"main\"]\n" + xz) == "no error");
 }
 
