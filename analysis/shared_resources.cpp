@@ -98,7 +98,7 @@ struct shared_resources::impl {
     per_min = g_number(m.codes.feed_per_min);
     const cycle_rules& cy = m.cycles;
     for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
-                                     &cy.tap_code, &cy.tap_left_code})
+                                    &cy.tap_code, &cy.tap_left_code})
       if (auto g = g_number(*code)) cycle_codes.push_back(*g);
     if (cy.groove == "g75") cycle_codes.push_back(75);
     // Threads follow the spindle whatever the feed mode.
@@ -188,17 +188,17 @@ struct shared_resources::impl {
       if (!m.may_command(channel, cmd.spindle)) {
         if (!c.refused[s]) {
           c.refused[s] = true;
-          refusals.push_back({severity::error, file, line, cmd.column,
-                              fmt::format("channel {} commands the {} spindle ({}), which machine '{}' does not "
-                                          "give it: channel {} may command {} (channel.spindles)",
-                                          channel, spindle(cmd.spindle).name, command_text(cmd), m.name, channel,
-                                          allowed(channel)),
-                              at.source});
+          refusals.push_back(
+              {severity::error, file, line, cmd.column,
+               fmt::format("channel {} commands the {} spindle ({}), which machine '{}' does not "
+                           "give it: channel {} may command {} (channel.spindles)",
+                           channel, spindle(cmd.spindle).name, command_text(cmd), m.name, channel,
+                           allowed(channel)),
+               at.source});
         }
         continue;
       }
-      if (cmd.turn)
-        c.turns[s].push_back({c.seg, cmd.setting.started(), spindle(cmd.spindle).stop, at});
+      if (cmd.turn) c.turns[s].push_back({c.seg, cmd.setting.started(), spindle(cmd.spindle).stop, at});
       if ((cmd.turn || cmd.speed || cmd.mode) && m.shared_spindle(cmd.spindle))
         c.commands[s].push_back({c.seg, cmd, at});
     }
@@ -248,7 +248,8 @@ struct shared_resources::impl {
   }
   /// How many segments of channel `of` are over before segment `seg` of `channel` begins.
   int over(int channel, int seg, int of) const {
-    return clocks[static_cast<std::size_t>(channel - 1)][static_cast<std::size_t>(seg)][static_cast<std::size_t>(of - 1)];
+    return clocks[static_cast<std::size_t>(channel - 1)][static_cast<std::size_t>(seg)]
+                 [static_cast<std::size_t>(of - 1)];
   }
   /// Segment `a_seg` of channel a ends before segment `b_seg` of channel b begins.
   bool before(int a, int a_seg, int b, int b_seg) const { return a_seg < over(b, b_seg, a); }
@@ -258,8 +259,8 @@ struct shared_resources::impl {
   static const char* difference(const spindle_command& x, const spindle_command& y) {
     if (x.turn && y.turn && x.setting.turn != y.setting.turn) return "different direction";
     const bool x_speed = x.speed || x.mode, y_speed = y.speed || y.mode;
-    if (x_speed && y_speed && x.setting.mode != speed_mode::unknown && y.setting.mode != speed_mode::unknown &&
-        x.setting.mode != y.setting.mode)
+    if (x_speed && y_speed && x.setting.mode != speed_mode::unknown &&
+        y.setting.mode != speed_mode::unknown && x.setting.mode != y.setting.mode)
       return "different speed mode (CSS and rpm)";
     if (x.speed && y.speed && x.setting.mode == y.setting.mode && x.setting.speed != y.setting.speed)
       return "different speed";
@@ -285,12 +286,13 @@ struct shared_resources::impl {
                 break;
               }
             if (!hit) continue;
-            out.push_back({severity::error, y.at.file, y.at.line, y.at.column,
-                           fmt::format("channel {} sets the shared {} spindle to {} while channel {} may set it "
-                                       "to {} at the same time ({}): {}; no wait orders the two blocks",
-                                       b, spindle(static_cast<int>(s)).name, command_text(y.cmd), a,
-                                       command_text(hit->cmd), at_text(hit->at), why),
-                           y.at.source});
+            out.push_back(
+                {severity::error, y.at.file, y.at.line, y.at.column,
+                 fmt::format("channel {} sets the shared {} spindle to {} while channel {} may set it "
+                             "to {} at the same time ({}): {}; no wait orders the two blocks",
+                             b, spindle(static_cast<int>(s)).name, command_text(y.cmd), a,
+                             command_text(hit->cmd), at_text(hit->at), why),
+                 y.at.source});
             out.push_back({severity::note, hit->at.file, hit->at.line, hit->at.column,
                            fmt::format("channel {} sets the {} spindle to {} here", a,
                                        spindle(static_cast<int>(s)).name, command_text(hit->cmd)),
@@ -352,13 +354,14 @@ struct shared_resources::impl {
         last_spindle = cut.spindle;
         const std::string& name = spindle(cut.spindle).name;
         std::string why =
-            stop ? fmt::format("channel {} stops it at {} (M{}) and no start is known to come after that", stop->channel,
-                               at_text(stop->rec->at), stop->rec->stop_code)
-                 : std::string("no channel is known to have started it before this block (a start in another channel "
-                               "counts only when a wait orders it before)");
+            stop ? fmt::format("channel {} stops it at {} (M{}) and no start is known to come after that",
+                               stop->channel, at_text(stop->rec->at), stop->rec->stop_code)
+                 : std::string(
+                       "no channel is known to have started it before this block (a start in another channel "
+                       "counts only when a wait orders it before)");
         out.push_back({severity::error, cut.at.file, cut.at.line, cut.at.column,
-                       fmt::format("channel {} cuts with feed per revolution ({}) on the {} spindle, but {}", a,
-                                   m.codes.feed_per_rev, name, why),
+                       fmt::format("channel {} cuts with feed per revolution ({}) on the {} spindle, but {}",
+                                   a, m.codes.feed_per_rev, name, why),
                        cut.at.source});
       }
     }
@@ -377,7 +380,8 @@ void shared_resources::wait(int channel) {
     ++p_->channels[static_cast<std::size_t>(channel - 1)].seg;
 }
 
-std::vector<diagnostic> shared_resources::finish(const std::vector<std::uint64_t>& rendezvous, bool waits_sound) {
+std::vector<diagnostic> shared_resources::finish(const std::vector<std::uint64_t>& rendezvous,
+                                                 bool waits_sound) {
   std::vector<diagnostic> out = p_->refusals;
   if (!waits_sound) return out;
   p_->make_clocks(rendezvous);

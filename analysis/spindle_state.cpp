@@ -20,8 +20,8 @@ bool number(const std::string& s, double& out) {
 // Two words name the same code: same address, same number (G96 = G96. = G096).
 bool same_word(const nc_word& a, const nc_word& b) {
   double x = 0, y = 0;
-  return a.address == b.address && !a.expression && !b.expression && number(a.value, x) && number(b.value, y) &&
-         x == y;
+  return a.address == b.address && !a.expression && !b.expression && number(a.value, x) &&
+         number(b.value, y) && x == y;
 }
 
 bool has_word(const std::vector<nc_word>& words, const nc_word& w, int& column) {
@@ -41,9 +41,9 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
     if (!s.clamp.empty()) {
       const std::string_view c_tpl = s.clamp;
       const std::size_t hole = c_tpl.find("{max}");
-      const std::string tpl = hole == std::string_view::npos
-                                  ? std::string(c_tpl)
-                                  : std::string(c_tpl.substr(0, hole)) + "0" + std::string(c_tpl.substr(hole + 5));
+      const std::string tpl = hole == std::string_view::npos ? std::string(c_tpl)
+                                                             : std::string(c_tpl.substr(0, hole)) + "0" +
+                                                                   std::string(c_tpl.substr(hole + 5));
       for (nc_word& w : split_nc_words(tpl))
         if (w.address != 'S') c.fixed.push_back(std::move(w));
     }
@@ -102,8 +102,10 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
     bool select = false;
     for (std::size_t i = 0; i < m_.spindles.size(); ++i) {
       const spindle_def& s = m_.spindles[i];
-      spindle_turn t = code == s.cw ? spindle_turn::cw : code == s.ccw ? spindle_turn::ccw
-                       : code == s.stop ? spindle_turn::stopped : spindle_turn::unknown;
+      spindle_turn t = code == s.cw     ? spindle_turn::cw
+                       : code == s.ccw  ? spindle_turn::ccw
+                       : code == s.stop ? spindle_turn::stopped
+                                        : spindle_turn::unknown;
       const bool sel = s.select && *s.select == code;
       if (t == spindle_turn::unknown && !sel) continue;
       if (hit < 0 || static_cast<int>(i) == current_) {

@@ -60,7 +60,8 @@ class channel_spindles {
 
   /// The spindle (index into machine::spindles) an S word without a spindle M-code goes to,
   /// and whose speed a feed per revolution follows: the last one this channel selected (its
-  /// select code or its work offset, G54/G55) or turned, at first the channel's `spindle`. -1 when the machine has no spindles.
+  /// select code or its work offset, G54/G55) or turned, at first the channel's `spindle`. -1 when the
+  /// machine has no spindles.
   int current() const { return current_; }
   const spindle_setting& setting(int spindle) const { return settings_[static_cast<std::size_t>(spindle)]; }
   /// The channel's speed mode (G96/G97 are modal per channel).

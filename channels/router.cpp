@@ -79,7 +79,8 @@ void channel_router::route(const event& e) {
       busy_[static_cast<std::size_t>(both_master_)] = true;
       return sink_.on_event(both_master_, e, false);
     }
-    if (!std::holds_alternative<comment_event>(e.data) && !std::holds_alternative<text_event>(e.data)) open_both();
+    if (!std::holds_alternative<comment_event>(e.data) && !std::holds_alternative<text_event>(e.data))
+      open_both();
   }
   // Records that write no block (ends, comments, tool geometry, ...) do not make a channel
   // busy: a mark after them still collapses with the one before.

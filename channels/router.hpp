@@ -96,7 +96,7 @@ class channel_router {
   int both_master_ = 0;  // the channel of head 1 in HEAD/BOTH
   /// Writes the opening wait of HEAD/BOTH held back by select().
   void open_both();
-  int grip_line_ = 0;        // the TRANSFER/GRIP not yet released; 0: none
+  int grip_line_ = 0;  // the TRANSFER/GRIP not yet released; 0: none
   int grip_column_ = 0;
   std::vector<bool> busy_;                         // per channel: events since its last wait
   std::vector<int> last_partners_;                 // the channels of the last mark

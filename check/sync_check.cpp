@@ -375,7 +375,8 @@ sync_result full_check(const std::vector<nc_source>& files, const machine& m) {
 
 }  // namespace
 
-sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m, const nc_read_options& also) {
+sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m,
+                           const nc_read_options& also) {
   // Read twice below: a pipe or FIFO is copied once first (check/nc_input.hpp).
   const std::vector<nc_source> files = rereadable(given);
   // First the compact way: each wait is kept only as its 32-byte simulation entry, so a

@@ -55,10 +55,12 @@ bool machine::may_command(int channel, int index) const {
   for (const channel_def& c : channels)
     if (c.number == channel) ch = &c;
   if (!ch) return false;
-  if (!ch->spindles.empty()) return std::find(ch->spindles.begin(), ch->spindles.end(), name) != ch->spindles.end();
+  if (!ch->spindles.empty())
+    return std::find(ch->spindles.begin(), ch->spindles.end(), name) != ch->spindles.end();
   // The default: its own spindles, and every one that is no channel's live spindle.
   if (name == ch->spindle || name == ch->live_spindle) return true;
-  return std::none_of(channels.begin(), channels.end(), [&](const channel_def& c) { return c.live_spindle == name; });
+  return std::none_of(channels.begin(), channels.end(),
+                      [&](const channel_def& c) { return c.live_spindle == name; });
 }
 
 bool machine::shared_spindle(int index) const {

@@ -179,7 +179,8 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
   }
   // Under HEAD/BOTH the channel of head 1 commands the spindle; the other's copy follows it.
   if (const channel_def* master = m.channel_for_head(1))
-    for (auto& w : ws.writers) w->set_balance_master(ws.writers[static_cast<std::size_t>(master->number - 1)].get());
+    for (auto& w : ws.writers)
+      w->set_balance_master(ws.writers[static_cast<std::size_t>(master->number - 1)].get());
 }
 
 struct stream_totals {

@@ -85,7 +85,8 @@ std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, c
   using key = std::pair<int, std::string>;  // segment, text
   std::vector<std::map<key, std::vector<int>>> written(blocks.size());
   for (std::size_t c = 0; c < blocks.size(); ++c)
-    for (const cl_block& b : blocks[c]) written[c][{b.segment, std::string(plain_text(b.text))}].push_back(b.cl_line);
+    for (const cl_block& b : blocks[c])
+      written[c][{b.segment, std::string(plain_text(b.text))}].push_back(b.cl_line);
   std::vector<int> segment(blocks.size(), 0);
   std::vector<std::map<key, std::size_t>> seen(blocks.size());
   nc_read_options o;

@@ -8,8 +8,8 @@
 
 #include "analysis/shared_resources.hpp"
 #include "check/sync_report.hpp"
-#include "machines/machine_loader.hpp"
 #include "machine_test_support.hpp"
+#include "machines/machine_loader.hpp"
 #include "post_test_jobs.hpp"
 #include "support/errors.hpp"
 
@@ -45,12 +45,14 @@ TEST_CASE("shared spindles: the machines say who may command what, and what is s
   CHECK(m.may_command(3, 2));
 }
 
-TEST_CASE("shared spindles: two paths set the main spindle differently between the same waits", "[analysis]") {
+TEST_CASE("shared spindles: two paths set the main spindle differently between the same waits",
+          "[analysis]") {
   const machine m = load_machine("fanuc-0itd-twin");
   const std::string a = fanuc_head + "T0101\nM100\nG50 S3000\nG96 S200 M3\nG1 X58. Z2. F0.25\nM101\nM30\n%\n";
   const std::string b = fanuc_head + "T0505\nM100\nG97 S1200 M3\nG1 Z-30. F0.08\nM101\nM30\n%\n";
   CHECK(check(m, {{"A_1.nc", a}, {"A_2.nc", b}}) ==
-        "A_2.nc:6:1: error: channel 2 sets the shared main spindle to G97 S1200 M3 while channel 1 may set it to "
+        "A_2.nc:6:1: error: channel 2 sets the shared main spindle to G97 S1200 M3 while channel 1 may set "
+        "it to "
         "G96 S200 M3 at the same time (A_1.nc:7): different speed mode (CSS and rpm); no wait orders the two "
         "blocks\n"
         "G97 S1200 M3\n^\n"
@@ -61,7 +63,8 @@ TEST_CASE("shared spindles: two paths set the main spindle differently between t
   CHECK(check(m, {{"A_1.nc", a}, {"A_2.nc", same}}) == "check: 2 channels, 4 waits paired, 0 errors\n");
   const std::string reverse = fanuc_head + "T0505\nM100\nM4\nM101\nM30\n%\n";
   CHECK(check(m, {{"A_1.nc", a}, {"A_2.nc", reverse}}) ==
-        "A_2.nc:6:1: error: channel 2 sets the shared main spindle to M4 while channel 1 may set it to G96 S200 "
+        "A_2.nc:6:1: error: channel 2 sets the shared main spindle to M4 while channel 1 may set it to G96 "
+        "S200 "
         "M3 at the same time (A_1.nc:7): different direction; no wait orders the two blocks\n"
         "M4\n^\n"
         "A_1.nc:7:1: note: channel 1 sets the main spindle to G96 S200 M3 here\nG96 S200 M3\n^\n"
@@ -80,7 +83,8 @@ TEST_CASE("shared spindles: a chain of waits through a third path orders two blo
   const std::string p2 = fanuc_head + "M201 P23\nG97 S1500 M3\nG97 S2000 M33\nM202 P123\nM30\n%\n";
   const std::string p3 = fanuc_head + "M200 P13\nM201 P23\nG97 S3000 M33\nM202 P123\nM30\n%\n";
   CHECK(check(m, {{"P_1.nc", p1}, {"P_2.nc", p2}, {"P_3.nc", p3}}) ==
-        "P_2.nc:5:1: error: channel 2 sets the shared main spindle to G97 S1500 M3 while channel 1 may set it to "
+        "P_2.nc:5:1: error: channel 2 sets the shared main spindle to G97 S1500 M3 while channel 1 may set "
+        "it to "
         "G97 S1800 M3 at the same time (P_1.nc:6): different speed; no wait orders the two blocks\n"
         "G97 S1500 M3\n^\n"
         "P_1.nc:6:1: note: channel 1 sets the main spindle to G97 S1800 M3 here\nG97 S1800 M3\n^\n"
@@ -96,12 +100,14 @@ TEST_CASE("shared spindles: a feed per revolution on a spindle not known to turn
   // Path 1 starts the spindle between the same waits as path 2's cut: not known before it.
   const std::string start = fanuc_head + "M100\nG97 S800 M3\nM101\nM5\nM30\n%\n";
   const std::string cut = fanuc_head + "M100\nG1 Z-20. F0.1\nM101\nM30\n%\n";
-  CHECK(check(m, {{"B_1.nc", start}, {"B_2.nc", cut}}) ==
-        "B_2.nc:5:1: error: channel 2 cuts with feed per revolution (G99) on the main spindle, but no channel is "
-        "known to have started it before this block (a start in another channel counts only when a wait orders "
-        "it before)\n"
-        "G1 Z-20. F0.1\n^\n"
-        "check: 2 channels, 4 waits paired, 1 error\n");
+  CHECK(
+      check(m, {{"B_1.nc", start}, {"B_2.nc", cut}}) ==
+      "B_2.nc:5:1: error: channel 2 cuts with feed per revolution (G99) on the main spindle, but no channel "
+      "is "
+      "known to have started it before this block (a start in another channel counts only when a wait orders "
+      "it before)\n"
+      "G1 Z-20. F0.1\n^\n"
+      "check: 2 channels, 4 waits paired, 1 error\n");
   // Started before the first wait: the cut after it is sound. Stopped again before a wait the
   // cut comes after: an error naming the stop.
   const std::string started = fanuc_head + "G97 S800 M3\nM100\nM101\nM30\n%\n";
@@ -114,7 +120,8 @@ TEST_CASE("shared spindles: a feed per revolution on a spindle not known to turn
         "check: 2 channels, 4 waits paired, 1 error\n");
   // Feeds per minute and reference returns are no cuts on the spindle.
   const std::string per_minute = fanuc_head + "M100\nG98\nG1 Z-20. F100.\nG28 U0.\nM101\nM30\n%\n";
-  CHECK(check(m, {{"B_1.nc", start}, {"B_2.nc", per_minute}}) == "check: 2 channels, 4 waits paired, 0 errors\n");
+  CHECK(check(m, {{"B_1.nc", start}, {"B_2.nc", per_minute}}) ==
+        "check: 2 channels, 4 waits paired, 0 errors\n");
 }
 
 TEST_CASE("shared spindles: a channel commands only the spindles the machine gives it", "[analysis]") {
@@ -123,7 +130,8 @@ TEST_CASE("shared spindles: a channel commands only the spindles the machine giv
   const std::string a = fanuc_head + "M100\nM101\nM30\n%\n";
   const std::string b = fanuc_head + "M100\nG97 S800 M103\nM105\nM101\nM30\n%\n";
   CHECK(check(m, {{"C_1.nc", a}, {"C_2.nc", b}}) ==
-        "C_2.nc:5:1: error: channel 2 commands the sub spindle (G97 S800 M103), which machine 'fanuc-0itd-twin' "
+        "C_2.nc:5:1: error: channel 2 commands the sub spindle (G97 S800 M103), which machine "
+        "'fanuc-0itd-twin' "
         "does not give it: channel 2 may command main (channel.spindles)\n"
         "G97 S800 M103\n^\n"
         "check: 2 channels, 4 waits paired, 1 error\n");
@@ -144,8 +152,9 @@ TEST_CASE("validation: channel.spindles and spindle.per_channel", "[machines]") 
         "m.toml:11:21: error: channel.spindles: 'live' names no [[spindle]]");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nspindles = [\"main\", \"main\"]\n" + xz) ==
         "m.toml:11:21: error: channel.spindles names 'main' twice");
-  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\n[[channel]]\nnumber = 1\nspindles = [\"sub\"]\n" + xz) ==
-        "m.toml:13:12: error: channel.spindles must name the channel's own spindle 'main' (channel.spindle)");
+  CHECK(
+      error_of(head + "[[spindle]]\nname = \"sub\"\n[[channel]]\nnumber = 1\nspindles = [\"sub\"]\n" + xz) ==
+      "m.toml:13:12: error: channel.spindles must name the channel's own spindle 'main' (channel.spindle)");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nspindles = [\"main\"]\n" + xz) == "no error");
 }
 
@@ -173,7 +182,8 @@ TEST_CASE("post: under HEAD/BOTH only head 1's channel commands the spindle", "[
         "M202 P12\nM204 P123\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
 }
 
-TEST_CASE("post: two heads setting the shared spindle differently are refused at their CL records", "[post]") {
+TEST_CASE("post: two heads setting the shared spindle differently are refused at their CL records",
+          "[post]") {
   const std::string cl =
       "PARTNO FIGHT\nUNITS/MM\nHEAD/1\nTLDATA/TURN\nTURRET/1,1\nFEDRAT/0.25,MMPR\nSYNC/1,1,2\n"
       "SPINDL/SMM,200,MAXRPM,3000,CLW\nGOTO/29.0,0.0,2.0\nGOTO/29.0,0.0,-40.0\nSYNC/2,1,2\nHEAD/2\n"
@@ -188,20 +198,25 @@ TEST_CASE("post: two heads setting the shared spindle differently are refused at
   for (std::size_t at = 0; at < p.diagnostics.size();) {
     const std::size_t end = p.diagnostics.find('\n', at);
     std::string line = p.diagnostics.substr(at, end - at);
-    if (const std::size_t out = line.find("/out/"); out != std::string::npos && line.find(".nc:") != std::string::npos)
+    if (const std::size_t out = line.find("/out/");
+        out != std::string::npos && line.find(".nc:") != std::string::npos)
       line.erase(0, out + 1);
     diags += line + "\n";
     at = end + 1;
   }
   CHECK(diags ==
-        "job.cls:17:1: error: channel 2 sets the shared main spindle to G97 S1200 M3 while channel 1 may set it "
-        "to G96 S200 M3 at the same time (job.cls:8): different speed mode (CSS and rpm); no wait orders the two "
+        "job.cls:17:1: error: channel 2 sets the shared main spindle to G97 S1200 M3 while channel 1 may set "
+        "it "
+        "to G96 S200 M3 at the same time (job.cls:8): different speed mode (CSS and rpm); no wait orders the "
+        "two "
         "blocks\n"
         "SPINDL/RPM,1200,CLW\n^\n"
-        "out/FIGHT_2.nc:9:1: note: the block in the program as it would have been written (no file is written)\n"
+        "out/FIGHT_2.nc:9:1: note: the block in the program as it would have been written (no file is "
+        "written)\n"
         "G97 S1200 M3\n^\n"
         "job.cls:8:1: note: channel 1 sets the main spindle to G96 S200 M3 here\n"
         "SPINDL/SMM,200,MAXRPM,3000,CLW\n^\n"
-        "out/FIGHT_1.nc:10:1: note: the block in the program as it would have been written (no file is written)\n"
+        "out/FIGHT_1.nc:10:1: note: the block in the program as it would have been written (no file is "
+        "written)\n"
         "G96 S200 M3\n^\n");
 }

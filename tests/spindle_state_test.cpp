@@ -23,7 +23,9 @@ const char* turn_name(spindle_turn t) {
   }
   return "";
 }
-const char* mode_name(speed_mode m) { return m == speed_mode::css ? "css" : m == speed_mode::rpm ? "rpm" : "?"; }
+const char* mode_name(speed_mode m) {
+  return m == speed_mode::css ? "css" : m == speed_mode::rpm ? "rpm" : "?";
+}
 
 // The changes of each block, one line per block: "spindle:turn,mode,speed,clamp@column".
 std::string run(const machine& m, int channel, std::initializer_list<std::string_view> blocks) {
