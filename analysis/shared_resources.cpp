@@ -151,6 +151,12 @@ struct shared_resources::impl {
   void block(int channel, const std::string& file, int line, std::string_view text) {
     if (channel < 1 || static_cast<std::size_t>(channel) > channels.size()) return;
     channel_data& c = channels[static_cast<std::size_t>(channel - 1)];
+    // Most blocks are moves with no G, M or S word: they change nothing here, and a cut among
+    // them counts only when it is the first of its stretch (already noted otherwise).
+    if (text.find_first_of("GMSgms") == std::string_view::npos && c.has_cut_key && c.last_seg == c.seg &&
+        c.last_spindle == c.spindles.current() &&
+        c.last_turns == c.turns[static_cast<std::size_t>(c.last_spindle)].size())
+      return;
     const std::vector<nc_word> words = split_nc_words(text);
     bool cycle = false, thread = false, no_move = false;
     int axis_column = 0, cut_column = 0;
