@@ -187,7 +187,8 @@ struct shared_resources::impl {
       }
     }
     c.spindles.apply(words);
-    place_ref at{file, line, 0, std::string(text)};
+    place_ref at{file, line, 0, {}};
+    if (!c.spindles.commands().empty()) at.source = text;
     for (const spindle_command& cmd : c.spindles.commands()) {
       const auto s = static_cast<std::size_t>(cmd.spindle);
       at.column = cmd.column;
@@ -219,7 +220,8 @@ struct shared_resources::impl {
     c.last_spindle = s;
     c.last_turns = own;
     at.column = cut_column ? cut_column : axis_column;
-    c.cuts.push_back({c.seg, s, own, at});
+    at.source = text;
+    c.cuts.push_back({c.seg, s, own, std::move(at)});
   }
 
   // --- happens-before -------------------------------------------------------------------
