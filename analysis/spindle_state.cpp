@@ -87,6 +87,7 @@ void channel_spindles::set(int spindle, const spindle_setting& to, int column) {
 
 const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_word>& words) {
   changes_.clear();
+  commands_.clear();
   if (current_ < 0) return changes_;
   // The spindle M-codes of the block: a code several spindles share goes to the current one.
   int turned = -1, turned_column = 0;
@@ -124,6 +125,15 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
       turned_column = w.column;
     }
   }
+  // A workpiece spindle's work offset (G54 main, G55 sub) says which part the channel works
+  // on from now: its S words and feeds per revolution go to that spindle (a HEAD/BOTH copy
+  // on the master's spindle selects it so, with no spindle code of its own).
+  for (std::size_t i = 0; i < m_.spindles.size(); ++i) {
+    int offset_column = 0;
+    if (!m_.spindles[i].work_offset.empty() && is_code(words, m_.spindles[i].work_offset, offset_column) &&
+        turned < 0)
+      current_ = static_cast<int>(i);
+  }
   // The mode codes (modal per channel).
   int mode_column = 0;
   const speed_mode before_mode = mode_;
@@ -147,31 +157,49 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
       spindle_setting to = setting(clamp_of);
       to.clamp = s_value;
       set(clamp_of, to, s_word->column);
+      spindle_command c{clamp_of, to};
+      c.clamp = true;
+      c.column = s_word->column;
+      commands_.push_back(c);
       return changes_;
     }
   }
   if (turned >= 0) current_ = turned;
   spindle_setting to = setting(target);
   int column = 0;
+  spindle_command command{target, {}};
   if (has_s) {
     to.speed = s_value;
     to.mode = mode_;
     column = s_word->column;
+    command.speed = true;
   } else if (mode_ != before_mode && to.mode != speed_mode::unknown) {
     to.mode = mode_;
     to.speed = 0;  // G97 after G96 without S keeps the rpm of the moment: not known here
     column = mode_column;
+    command.mode = true;
   }
   if (turned >= 0) {
     to.turn = turn;
     if (to.mode == speed_mode::unknown) to.mode = mode_;
     column = column ? std::min(column, turned_column) : turned_column;
+    command.turn = true;
   }
-  if (column) set(target, to, column);
+  if (column) {
+    set(target, to, column);
+    if (has_s && mode_column) column = std::min(column, mode_column);
+    command.setting = to;
+    command.column = column;
+    commands_.push_back(command);
+  }
   for (const auto& [spindle, col] : stops) {
     spindle_setting off = setting(spindle);
     off.turn = spindle_turn::stopped;
     set(spindle, off, col);
+    spindle_command c{spindle, off};
+    c.turn = true;
+    c.column = col;
+    commands_.push_back(c);
   }
   return changes_;
 }

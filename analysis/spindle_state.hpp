@@ -34,6 +34,19 @@ struct spindle_change {
   int column = 0;  ///< column of the word that made the change (S, M or the mode G code)
 };
 
+/// What one block commands of one spindle, whether it changes the setting or repeats it (a
+/// channel that writes `G97 S1200 M3` again still commands the spindle): the input of the
+/// shared-spindle rules (analysis/shared_resources).
+struct spindle_command {
+  int spindle = 0;          ///< index into machine::spindles
+  spindle_setting setting;  ///< the spindle as this channel has set it with the block
+  bool turn = false;        ///< the block gives the direction or stops it (M3, M4, M5)
+  bool speed = false;       ///< the block gives a speed (S) in the channel's speed mode
+  bool mode = false;        ///< the block changes the speed mode only (G96 or G97 without S)
+  bool clamp = false;       ///< the block sets the clamp (G50 S..)
+  int column = 0;           ///< column of the first word of the command
+};
+
 /// One channel's spindles, fed one block at a time.
 class channel_spindles {
  public:
@@ -42,10 +55,13 @@ class channel_spindles {
   /// Applies one block's words; returns what it changed (empty for most blocks). The block
   /// order within a channel is program order.
   const std::vector<spindle_change>& apply(const std::vector<nc_word>& words);
+  /// What the last block given to apply() commanded, changed or not.
+  const std::vector<spindle_command>& commands() const { return commands_; }
 
   /// The spindle (index into machine::spindles) an S word without a spindle M-code goes to,
-  /// and whose speed a feed per revolution follows: the last one this channel selected or
-  /// turned, at first the channel's `spindle`. -1 when the machine has no spindles.
+  /// and whose speed a feed per revolution follows: the last one this channel selected (its
+  /// select code or its work offset, G54/G55) or turned, at first the channel's `spindle`. -1 when the
+  /// machine has no spindles.
   int current() const { return current_; }
   const spindle_setting& setting(int spindle) const { return settings_[static_cast<std::size_t>(spindle)]; }
   /// The channel's speed mode (G96/G97 are modal per channel).
@@ -63,6 +79,7 @@ class channel_spindles {
   std::vector<spindle_setting> settings_;
   std::vector<clamp_block> clamps_;
   std::vector<spindle_change> changes_;
+  std::vector<spindle_command> commands_;
   int current_ = -1;
   speed_mode mode_ = speed_mode::unknown;
   bool is_code(const std::vector<nc_word>& words, std::string_view code, int& column) const;

@@ -47,6 +47,7 @@ void channel_router::route(const event& e) {
                      fmt::format("HEAD/BOTH: machine '{}' has no two channels for heads 1 and 2", m_.name));
       std::vector<int> both{a->number, b->number};
       std::sort(both.begin(), both.end());
+      both_master_ = a->number;
       return select(both, e.line, true);
     }
     const channel_def* c = head_channel(*h);
@@ -71,6 +72,16 @@ void channel_router::route(const event& e) {
   if (std::holds_alternative<units_event>(e.data) || std::holds_alternative<machin_event>(e.data))
     job_level = true;
   if (job_level) return sink_.on_event(0, e, false);
+  if (!open_both_.empty()) {
+    // Before the balance cut's opening wait: the master sets the spindle (and comments go to
+    // both); anything else opens the section.
+    if (std::holds_alternative<spindle_event>(e.data)) {
+      busy_[static_cast<std::size_t>(both_master_)] = true;
+      return sink_.on_event(both_master_, e, false);
+    }
+    if (!std::holds_alternative<comment_event>(e.data) && !std::holds_alternative<text_event>(e.data))
+      open_both();
+  }
   // Records that write no block (ends, comments, tool geometry, ...) do not make a channel
   // busy: a mark after them still collapses with the one before.
   bool writes = !(
@@ -91,10 +102,14 @@ void channel_router::select(std::vector<int> channels, int line, bool both) {
   all.erase(std::unique(all.begin(), all.end()), all.end());
   // HEAD/BOTH is always framed by waits; plain switches wait only under the sequential policy.
   // (Forced: the balance-cut codes need their waits even where nothing was cut before.)
-  if (both || both_)
-    rendezvous(all, line, both ? "HEAD/BOTH" : "the end of HEAD/BOTH", true,
-               both ? wait_mark::section::opens_both : wait_mark::section::closes_both);
-  else if (policy_ == sync_policy::sequential && all.size() > 1)
+  if (both) {
+    // The opening wait waits for the section's first record that is not a SPINDL (open_both).
+    open_both_ = all;
+    open_both_line_ = line;
+  } else if (both_) {
+    open_both();
+    rendezvous(all, line, "the end of HEAD/BOTH", true, wait_mark::section::closes_both);
+  } else if (policy_ == sync_policy::sequential && all.size() > 1)
     rendezvous(all, line, "a head switch");
   active_ = std::move(channels);
   both_ = both;
@@ -123,7 +138,15 @@ void channel_router::rendezvous(const std::vector<int>& channels, int line, cons
   ++rendezvous_;
 }
 
+void channel_router::open_both() {
+  if (open_both_.empty()) return;
+  const std::vector<int> all = std::move(open_both_);
+  open_both_.clear();
+  rendezvous(all, open_both_line_, "HEAD/BOTH", true, wait_mark::section::opens_both);
+}
+
 void channel_router::explicit_sync(const sync_event& s, int line) {
+  open_both();
   ++explicit_;
   if (policy_ != sync_policy::explicit_marks) {
     if (!warned_ignored_) {

@@ -4,7 +4,11 @@
 // - HEAD/n, HEAD/MAIN|SIDE select the channel that serves that head (machine map);
 //   CHANNEL,n / CHANNL/n select channel n; events before the first selection go to head 1.
 // - HEAD/BOTH: a wait in both channels, the following events go to both, and another wait
-//   when a single head is selected again.
+//   when a single head is selected again. Balance cutting turns one spindle with one master,
+//   the channel of head 1: a SPINDL between HEAD/BOTH and the section's first other record
+//   goes to the master alone, before the opening wait (so the spindle turns before either
+//   channel cuts); a later one goes to both, and the copy writes no spindle code
+//   (channel_writer::set_balance_master).
 // - Waits come from explicit sync records (CATIA SYNC, ICAM SYNCTR, MANUSpost UDE) or, under
 //   the sequential policy, from every head switch. A wait's code comes from the machine's
 //   range in turn; the k-th explicit sync of a channel gets the code of that sync number.
@@ -86,7 +90,13 @@ class channel_router {
   wait_allocator codes_;
   std::vector<int> active_;  // channels receiving events now
   bool both_ = false;        // inside HEAD/BOTH
-  int grip_line_ = 0;        // the TRANSFER/GRIP not yet released; 0: none
+  /// The channels of a HEAD/BOTH whose opening wait is not written yet (spindle records first).
+  std::vector<int> open_both_;
+  int open_both_line_ = 0;
+  int both_master_ = 0;  // the channel of head 1 in HEAD/BOTH
+  /// Writes the opening wait of HEAD/BOTH held back by select().
+  void open_both();
+  int grip_line_ = 0;  // the TRANSFER/GRIP not yet released; 0: none
   int grip_column_ = 0;
   std::vector<bool> busy_;                         // per channel: events since its last wait
   std::vector<int> last_partners_;                 // the channels of the last mark

@@ -61,6 +61,7 @@ class checker {
     sims_[static_cast<std::size_t>(w.channel - 1)].push_back(s);
   }
   bool nothing_found() const { return result_.diagnostics.empty(); }
+  std::vector<std::uint64_t> take_rendezvous() { return std::move(result_.rendezvous); }
   /// Simulates the channels together; true when every one reaches its end.
   bool all_paired() {
     pos_.assign(sims_.size(), 0);
@@ -259,6 +260,7 @@ class checker {
       for_each_channel(w.partners,
                        [&](int p) { ready = ready && (p == c || (!finished(p) && current(p).matches(w))); });
       if (!ready) continue;
+      result_.rendezvous.push_back(w.partners);
       for_each_channel(w.partners, [&](int p) {
         ++pos_[p - 1];
         todo.push_back(p);
@@ -386,7 +388,8 @@ sync_result full_check(const std::vector<nc_source>& files, const machine& m) {
 
 }  // namespace
 
-sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m) {
+sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m,
+                           const nc_read_options& also) {
   // Read twice below: a pipe or FIFO is copied once first (check/nc_input.hpp).
   const std::vector<nc_source> files = rereadable(given);
   // First the compact way: each wait is kept only as its 32-byte simulation entry, so a
@@ -404,7 +407,9 @@ sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m
     options.on_wait = [&](const nc_wait& w) {
       compact.take(w);
       ++waits[static_cast<std::size_t>(w.channel - 1)];
+      if (also.on_wait) also.on_wait(w);
     };
+    options.on_block = also.on_block;
     diagnostic_list read;
     const nc_programs programs = read_nc_programs(files, m, read, options);
     bool near_waits = false;
@@ -416,6 +421,7 @@ sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m
         r.channels.push_back({c.channel, c.file, waits[i], waits[i]});
         r.paired += waits[i];
       }
+      r.rendezvous = compact.take_rendezvous();
       count(r);
       no_waits_found(r, m);
       return r;

@@ -12,6 +12,7 @@
 // - a machine whose waits take no partner list must get none;
 // - an M-code that looks like a wait but is not one of the machine's wait codes is flagged.
 // The simulation is linear in the number of waits.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct sync_result {
   int paired = 0;  ///< waits of all channels that met their partners
   int errors = 0;
   int warnings = 0;
+  /// The rendezvous of the simulation in the order it released them, each as the set of
+  /// its channels (bit c-1 for channel c): every channel's own waits in program order. The
+  /// happens-before order of the channels' blocks follows from it (analysis/shared_resources).
+  std::vector<std::uint64_t> rendezvous;
 };
 
 /// Checks the waits of `programs` against the rules of machine `m` and simulates the
@@ -46,6 +51,9 @@ sync_result check_sync(const nc_programs& programs, const machine& m);
 /// Reads `files` as NC programs of machine `m` and checks them: reading problems first. A
 /// program of two or more channels in which no wait of the machine is found is an error
 /// ("is this the right machine?"): a check that checked nothing never says sound.
-sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m);
+/// `also`: its on_block and on_wait are called too, during the first reading (each block and
+/// wait once), for the analyses that read the programs with the check (check_resources).
+sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m,
+                           const nc_read_options& also = {});
 
 }  // namespace twinpost

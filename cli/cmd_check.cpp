@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "analysis/shared_resources.hpp"
 #include "check/sync_check.hpp"
 #include "check/sync_report.hpp"
 #include "cli/cli_util.hpp"
@@ -25,8 +26,9 @@ std::string check_usage() {
   return "usage: " + command_usage("check") +
          "\n"
          "\n"
-         "Checks that the waits of NC programs pair up and cannot deadlock. Give one file per\n"
-         "channel, in channel order, or one file with the machine's section markers.\n"
+         "Checks that the waits of NC programs pair up and cannot deadlock, and that channels\n"
+         "that may run at the same time do not command a shared spindle differently. Give one\n"
+         "file per channel, in channel order, or one file with the machine's section markers.\n"
          "Exit status: 0 sound, 1 problems found, 2 usage or configuration error.\n"
          "\n";
 }
@@ -83,7 +85,7 @@ int run_check(const args& a) {
     sources.push_back({path, {}, path});
   }
 
-  const sync_result r = check_nc_files(sources, m);
+  const sync_result r = check_nc_resources(sources, m);
   const std::string report = vm.count("json") ? format_sync_json(r) : format_sync_text(r);
   std::fwrite(report.data(), 1, report.size(), stdout);
   std::fflush(stdout);

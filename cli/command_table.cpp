@@ -34,7 +34,10 @@ const std::array<command_entry, 5> table{{
      &run_post},
     {"check", "FILE... --machine M [--json]", "check wait synchronisation of NC programs",
      "Checks that the waits of NC programs pair up, in order, and that no channel can "
-     "deadlock. Give one file per channel in channel order, or one file with the machine's "
+     "deadlock; then that each channel commands only its own spindles, that no two channels "
+     "that may run at the same time command a shared spindle differently, and that no cut "
+     "feeds per revolution on a spindle not known to turn. Give one file per channel in channel order, or "
+     "one file with the machine's "
      "section markers. --json prints the report as one JSON object.",
      &run_check},
     {"timeline", "FILE... --machine M [-o PAGE.html] [--json]", "cycle time and timeline of NC programs",

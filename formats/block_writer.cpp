@@ -43,6 +43,7 @@ void block_writer::put(std::string_view s) {
   if (!started_) [[unlikely]]
     start();
   buf_.append(s);
+  if (hook_) hook_(s);
   buf_ += '\n';
   flush_if_full();
 }
@@ -60,6 +61,7 @@ void block_writer::end_block() {
     const std::string n = seq_.next();
     if (!n.empty()) buf_.insert(open_at_, n);
   }
+  if (hook_) hook_(std::string_view(buf_.data() + open_at_, buf_.size() - open_at_));
   buf_ += '\n';
   flush_if_full();
 }

@@ -48,6 +48,9 @@ class block_writer {
   /// Flushes and closes; throws config_error on a write error.
   void close();
   long blocks() const { return blocks_; }
+  /// Called with every line written between the head and the tail (blocks with their N
+  /// number, comments, raw lines), without its line end.
+  void set_line_hook(std::function<void(std::string_view)> hook) { hook_ = std::move(hook); }
   /// The head written (see framing), "" before the first line.
   const std::string& head_written() const { return head_; }
 
@@ -67,6 +70,7 @@ class block_writer {
   text_buffer buf_;
   sequence_numbers seq_;
   long blocks_ = 0;
+  std::function<void(std::string_view)> hook_;
 };
 
 /// `text` as the control accepts it in a comment: upper case, printable ASCII, no comment

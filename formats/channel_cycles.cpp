@@ -316,7 +316,7 @@ void channel_writer::tap_hole(const hole& h, int line) {
   cycle_block(at_speed, code, 0, h.pitch, line);
   // Rigid tapping leaves the spindle in position mode: the CL's spindle again, then its feed mode.
   if (k.tap == "rigid")
-    for (const std::string& b : restart_blocks_) out_.block(b);
+    for (const std::string& b : restart_blocks_) spindle_block(b);
   feed_mode(was_per_rev);
 }
 

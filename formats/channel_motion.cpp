@@ -83,7 +83,8 @@ bool channel_writer::spindle_turning(int line) {
   // into a still part (or a still cutter into the work). A channel that never started the
   // spindle may cut on one another channel drives (a shared main spindle): that is the
   // job-wide check of shared spindles, not this channel's.
-  if (!stopped_by_cl_ || stopped_by_cl_ != spindle_) return true;
+  // A balance cut's copy cuts on the spindle its master turns.
+  if (balance_copy_ || !stopped_by_cl_ || stopped_by_cl_ != spindle_) return true;
   error(line, fmt::format("feed move with the {} spindle stopped by SPINDL/OFF: give SPINDL with a speed "
                           "before cutting (the tool would be driven into a part that does not turn)",
                           spindle_->name));

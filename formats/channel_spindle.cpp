@@ -134,7 +134,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   if (!target) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
   if (target != spindle_) {
     spindle_ = target;
-    if (target->select) out_.block(fmt::format("M{}", *target->select));
+    if (target->select) spindle_block(fmt::format("M{}", *target->select));
   }
   if (s.mode == spindle_mode::on) {
     // APT: ON turns the spindle on again at the last speed, mode and direction, never S0.
@@ -151,7 +151,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   if (s.mode == spindle_mode::off) {
     restart_blocks_.clear();
     stopped_by_cl_ = spindle_;
-    return out_.block(fmt::format("M{}", sp.stop));
+    return spindle_block(fmt::format("M{}", sp.stop));
   }
   if (s.mode == spindle_mode::orient || s.mode == spindle_mode::lock)
     return error(line, "spindle ORIENT/LOCK is not supported on a lathe channel yet");
@@ -181,7 +181,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     }
     restart_blocks_.push_back(
         join_words(m_.codes.css, fmt::format("S{} M{}", format_nc_number(smm, {0, false}), m)));
-    for (const std::string& b : restart_blocks_) out_.block(b);
+    for (const std::string& b : restart_blocks_) spindle_block(b);
     last_speed_ = s;
     stopped_by_cl_ = nullptr;
     return;
@@ -192,7 +192,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   if (!fits('S', s.speed, 0)) return;
   restart_blocks_ = {
       join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
-  out_.block(restart_blocks_.front());
+  spindle_block(restart_blocks_.front());
   last_speed_ = s;
   stopped_by_cl_ = nullptr;
 }

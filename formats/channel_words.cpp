@@ -61,7 +61,7 @@ void channel_writer::resume_spindle(int line) {
                                             : " and its kind is unknown (no TLDATA)"));
     }
   }
-  for (const std::string& b : restart_blocks_) out_.block(b);
+  for (const std::string& b : restart_blocks_) spindle_block(b);
 }
 
 void channel_writer::go_home() {
@@ -71,7 +71,7 @@ void channel_writer::go_home() {
 
 void channel_writer::program_stop(bool optional) {
   out_.block(optional ? m_.codes.optional_stop : m_.codes.program_stop);
-  for (const std::string& b : restart_blocks_) out_.block(b);
+  for (const std::string& b : restart_blocks_) spindle_block(b);
   if (!coolant_block_.empty()) out_.block(coolant_block_);
 }
 
@@ -150,7 +150,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   const std::string coolant_was = coolant_block_;
   const std::string coolant_off_was = coolant_off_block_;
   if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_) {
-    out_.block(fmt::format("M{}", spindle_->stop));
+    spindle_block(fmt::format("M{}", spindle_->stop));
     spindle_held_ = true;
   }
   if (!coolant_was.empty()) out_.block(coolant_off_was);

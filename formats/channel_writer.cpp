@@ -44,6 +44,23 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   }
   last_y_.max = m.formats['Y'].max_count(axis_style_.decimals);
   last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
+  out_.set_line_hook([this](std::string_view line) { note_line(line); });
+}
+
+void channel_writer::note_line(std::string_view line) {
+  if (line.empty() || line.front() == m_.program.comment_open) return;
+  bool sm = false, cut = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == m_.program.comment_open) break;
+    if (c == 'S' || c == 'M') sm = true;
+    if (c == 'G' && i + 1 < line.size() && line[i + 1] >= '1' && line[i + 1] <= '3' &&
+        (i + 2 == line.size() || line[i + 2] < '0' || line[i + 2] > '9'))
+      cut = true;
+  }
+  if (!sm && !(cut && cut_due_)) return;
+  noted_.push_back({waits_, std::string(line), line_});
+  cut_due_ = sm;
 }
 
 void channel_writer::error(int line, std::string message) {
@@ -134,6 +151,7 @@ void channel_writer::on_wait(const wait_mark& w) {
   if (!w.partner_text.empty()) b += fmt::format(" {}{}", m_.waits.partner_address, w.partner_text);
   out_.block(b);
   ++waits_;
+  cut_due_ = true;
   wait_cl_lines_.push_back(w.cl_line);
   if (w.both == wait_mark::section::opens_both && !m_.codes.balance_on.empty())
     out_.block(m_.codes.balance_on);
@@ -162,6 +180,13 @@ void channel_writer::frame(const coordsys_event& c, int line) {
 void channel_writer::on_event(const event& e, bool both) {
   // A HEAD/BOTH copy on a mirrored channel runs on the opposite side of the spindle centre.
   side_ = (both && x_mirror_) ? -1.0 : 1.0;
+  // The copy of a balance cut cuts on the master's workpiece spindle and leaves the spindle
+  // to the master (set_balance_master).
+  balance_copy_ = both && balance_master_ && balance_master_ != this;
+  if (balance_copy_ && balance_master_->work_ && balance_master_->work_ != work_) {
+    work_on(*balance_master_->work_);
+    spindle_ = work_;
+  }
   line_ = e.line;
   column_ = e.column;
   // A TLDATA right after a tool call (comments between) describes that tool.

@@ -30,6 +30,13 @@ class channel_writer {
     scale_ = cl_mm_ * out_per_mm_;
   }
   void on_event(const event& e, bool both);
+  /// Balance cutting (HEAD/BOTH): `master` is the writer of the channel that serves head 1,
+  /// which alone commands the spindle; this channel's copy writes no spindle code (no S, M3,
+  /// M4, M5, G96, G97, select or clamp block of a workpiece spindle) and cuts on the master's
+  /// workpiece spindle. Fanuc B-63944EN-1 §7.1 (balance cut G68/G69: two tool posts on one
+  /// workpiece); the S code in path 1's program only as the issue reports the Fanuc manuals,
+  /// UNVERIFIED in the pages read.
+  void set_balance_master(const channel_writer* master) { balance_master_ = master; }
   void on_wait(const wait_mark& w);
   /// Ends the body: coolant and spindle off are the footer's job; closes the file.
   void finish();
@@ -38,6 +45,15 @@ class channel_writer {
   int waits() const { return waits_; }
   /// The CL line of each wait block written, in order (to report the checker's findings).
   const std::vector<int>& wait_cl_lines() const { return wait_cl_lines_; }
+  /// A block that may carry a finding of the shared-resource rules: one with an S or M word
+  /// (spindle commands), or the first G1/G2/G3 after a wait or after such a block (a cut).
+  struct noted_block {
+    int segment = 0;   ///< waits written before it
+    std::string text;  ///< the line as written
+    int cl_line = 0;   ///< the CL record being written
+  };
+  /// Those blocks, in order (post/sync_at_cl moves findings at them to their CL records).
+  const std::vector<noted_block>& noted_blocks() const { return noted_; }
 
  private:
   void motion(const motion_event& m, int line);
@@ -214,6 +230,12 @@ class channel_writer {
   /// The last SPINDL that set a speed: SPINDL/ON turns the spindle on again with it (APT: the
   /// last speed, mode and direction), also after SPINDL/OFF.
   std::optional<spindle_event> last_speed_;
+  /// A block that commands the spindle: not written by a balance cut's copy (set_balance_master).
+  void spindle_block(const std::string& b) {
+    if (!balance_copy_) out_.block(b);
+  }
+  const channel_writer* balance_master_ = nullptr;
+  bool balance_copy_ = false;  ///< the event being written is the copy of a HEAD/BOTH section
   /// The spindle was stopped for a tool change: restart_blocks_ go out again before the next
   /// move unless a SPINDL comes first.
   bool spindle_held_ = false;
@@ -225,6 +247,9 @@ class channel_writer {
   std::string tool_call_;  ///< the last tool call written (an offset change writes a new one)
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
+  std::vector<noted_block> noted_;
+  bool cut_due_ = true;  ///< the next G1/G2/G3 line is noted
+  void note_line(std::string_view line);
   bool warned_side_ = false;
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
 };

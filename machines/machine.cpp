@@ -54,6 +54,29 @@ const spindle_def* machine::spindle(std::string_view name) const {
   return nullptr;
 }
 
+bool machine::may_command(int channel, int index) const {
+  if (index < 0 || static_cast<std::size_t>(index) >= spindles.size()) return false;
+  const std::string& name = spindles[static_cast<std::size_t>(index)].name;
+  const channel_def* ch = nullptr;
+  for (const channel_def& c : channels)
+    if (c.number == channel) ch = &c;
+  if (!ch) return false;
+  if (!ch->spindles.empty())
+    return std::find(ch->spindles.begin(), ch->spindles.end(), name) != ch->spindles.end();
+  // The default: its own spindles, and every one that is no channel's live spindle.
+  if (name == ch->spindle || name == ch->live_spindle) return true;
+  return std::none_of(channels.begin(), channels.end(),
+                      [&](const channel_def& c) { return c.live_spindle == name; });
+}
+
+bool machine::shared_spindle(int index) const {
+  if (index < 0 || static_cast<std::size_t>(index) >= spindles.size()) return false;
+  if (spindles[static_cast<std::size_t>(index)].per_channel) return false;
+  int n = 0;
+  for (const channel_def& c : channels) n += may_command(c.number, index) ? 1 : 0;
+  return n >= 2;
+}
+
 std::optional<int> machine::program_number_of(std::string_view name) const {
   // Digits only (from_chars would take a sign), at most 9: they fit an int.
   if (name.empty() || name.size() > 9 || !std::all_of(name.begin(), name.end(), ascii::is_digit))

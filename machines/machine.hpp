@@ -75,6 +75,11 @@ struct spindle_def {
   /// (a sub spindle facing the main one): Z and Y are written reversed, G2/G3 swapped in
   /// G17/G18, J and K negated (a half turn about X, as the Fusion Integrex and Doosan posts do).
   bool reverse_z = false;
+  /// Each channel that may command this spindle has its own (a turret's live-tool drive: the
+  /// same codes in every path, a motor per turret): never shared between channels, however
+  /// many list it in channel.spindles. Default false: a spindle two channels may command is
+  /// one spindle they share (the workpiece spindles).
+  bool per_channel = false;
 };
 
 /// An axis of a channel.
@@ -100,6 +105,10 @@ struct channel_def {
   /// The channel's tool-driving spindle (a mill head's milling spindle): milling tools, and
   /// drills off the centre line, turn it; empty: the channel has none.
   std::string live_spindle;
+  /// The spindles this channel may command (names of [[spindle]]s); a block of the channel
+  /// that commands another is an error (analysis/shared_resources). Default: its `spindle`,
+  /// its `live_spindle` and every spindle that is no channel's live_spindle.
+  std::vector<std::string> spindles;
   /// The spindle in force stops before a tool change and turns again before the next move
   /// (a mill head's tool changer: the Fusion Integrex post stops it before every T.. M6).
   /// Default: true for kind mill_head, false for a turret.
@@ -282,6 +291,10 @@ struct machine {
   std::string_view tool_kind(int channel, int number) const;
   /// The spindle named `name`, or nullptr.
   const spindle_def* spindle(std::string_view name) const;
+  /// Whether channel `channel` may command spindle `index` (into `spindles`).
+  bool may_command(int channel, int index) const;
+  /// Whether spindle `index` is shared: not per_channel, and two or more channels may command it.
+  bool shared_spindle(int index) const;
 };
 
 }  // namespace twinpost

@@ -80,6 +80,23 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
   if (r.read("live_spindle", c.live_spindle) && !m.spindle(c.live_spindle))
     r.fail(*r.find("live_spindle"),
            fmt::format("channel.live_spindle '{}' names no [[spindle]]", c.live_spindle));
+  if (r.read("spindles", c.spindles)) {
+    // Names of [[spindle]]s, each once, and at least the ones the channel works with.
+    const toml::array& nodes = *r.find("spindles")->as_array();
+    for (std::size_t i = 0; i < c.spindles.size(); ++i) {
+      if (!m.spindle(c.spindles[i]))
+        r.fail(*nodes.get(i), fmt::format("channel.spindles: '{}' names no [[spindle]]", c.spindles[i]));
+      for (std::size_t j = 0; j < i; ++j)
+        if (c.spindles[j] == c.spindles[i])
+          r.fail(*nodes.get(i), fmt::format("channel.spindles names '{}' twice", c.spindles[i]));
+    }
+    for (const std::string* own : {&c.spindle, &c.live_spindle})
+      if (!own->empty() && m.spindle(*own) &&
+          std::find(c.spindles.begin(), c.spindles.end(), *own) == c.spindles.end())
+        r.fail(*r.find("spindles"),
+               fmt::format("channel.spindles must name the channel's own spindle '{}' (channel.{})", *own,
+                           own == &c.spindle ? "spindle" : "live_spindle"));
+  }
   if (r.read("file_suffix", c.file_suffix) && c.file_suffix.find_first_of("/\\") != std::string::npos)
     r.fail(*r.find("file_suffix"), "channel.file_suffix must not contain a path separator");
   read_axes(r, c);
@@ -130,7 +147,7 @@ void read_channels(const table_reader& root, machine& m) {
     readers.emplace_back(*t, "channel", root.source(),
                          std::initializer_list<std::string_view>{
                              "number", "heads", "head_names", "kind", "tool_call", "spindle", "file_suffix",
-                             "axis", "tool_change_stops_spindle", "live_spindle", "offset_zero"});
+                             "axis", "tool_change_stops_spindle", "live_spindle", "offset_zero", "spindles"});
     all.push_back({read_channel_table(readers.back(), m), &readers.back()});
   }
   check_numbers_and_heads(all);

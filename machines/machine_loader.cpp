@@ -305,7 +305,8 @@ void read_limits(const table_reader& root, motion_limits& l) {
 void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   for (const toml::table* t : root.tables("spindle")) {
     table_reader r(*t, "spindle", root.source(),
-                   {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset", "reverse_z"});
+                   {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset", "reverse_z",
+                    "per_channel"});
     spindle_def s;
     r.require("name");
     r.read("name", s.name);
@@ -319,6 +320,7 @@ void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
     read_positive(r, "max_rpm", s.max_rpm, true);
     r.read_fixed("work_offset", s.work_offset);
     r.read("reverse_z", s.reverse_z);
+    r.read("per_channel", s.per_channel);
     out.push_back(std::move(s));
   }
 }

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "analysis/timeline_report.hpp"
+#include "analysis/shared_resources.hpp"
 #include "channels/job_channels.hpp"
 #include "check/sync_check.hpp"
 #include "formats/channel_writer.hpp"
@@ -177,6 +178,10 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     ws.writers.push_back(
         std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
   }
+  // Under HEAD/BOTH the channel of head 1 commands the spindle; the other's copy follows it.
+  if (const channel_def* master = m.channel_for_head(1))
+    for (auto& w : ws.writers)
+      w->set_balance_master(ws.writers[static_cast<std::size_t>(master->number - 1)].get());
 }
 
 struct stream_totals {
@@ -229,12 +234,26 @@ std::vector<nc_source> staged_sources(const post_options& o, const std::vector<f
 bool self_check(const post_options& o, const machine& m, const std::vector<framed_file>& files,
                 const writers_sink& ws, int last_line, diagnostic_sink& sink) {
   const std::vector<nc_source> sources = staged_sources(o, files);
-  sync_result check = check_nc_files(sources, m);
+  sync_result check = check_nc_resources(sources, m);
   if (!check.diagnostics.empty()) {
     std::vector<std::vector<int>> wait_lines;
-    for (auto& w : ws.writers) wait_lines.push_back(w->wait_cl_lines());
+    std::vector<std::vector<cl_block>> blocks;
+    for (auto& w : ws.writers) {
+      wait_lines.push_back(w->wait_cl_lines());
+      // The head's lines first (no CL record), so that a block of the same text there is
+      // counted as the checker reads it.
+      blocks.emplace_back();
+      const std::string& head = w->head_written();
+      for (std::size_t at = 0; at < head.size();) {
+        const std::size_t end = std::min(head.find('\n', at), head.size());
+        blocks.back().push_back({0, head.substr(at, end - at), 0});
+        at = end + 1;
+      }
+      for (const channel_writer::noted_block& b : w->noted_blocks())
+        blocks.back().push_back({b.segment, b.text, b.cl_line});
+    }
     for (diagnostic& d :
-         sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line))
+         sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line, blocks))
       sink.report(std::move(d));
   }
   return check.ok;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "support/ascii.hpp"
 #include "support/file_reader.hpp"
@@ -58,11 +59,63 @@ std::string rewrite(const std::string& message, const std::map<std::string, std:
 
 }  // namespace
 
+namespace {
+
+// A block's text as the control reads it, for matching a written block with a read one:
+// without an N number, blanks around and a line end.
+std::string_view plain_text(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  if (!s.empty() && (s.front() == 'N' || s.front() == 'n')) {
+    std::size_t i = 1;
+    while (i < s.size() && ascii::is_digit(s[i])) ++i;
+    if (i > 1) s.remove_prefix(i);
+  }
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\r' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+// NC "file:line" of each block in `wanted` -> the CL line of the written block it is: the
+// k-th block of that text after the same number of waits, in the channel's program order.
+std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, const machine& m,
+                                          const std::set<std::string>& wanted,
+                                          const std::vector<std::vector<cl_block>>& blocks) {
+  std::map<std::string, int> out;
+  if (wanted.empty() || blocks.empty()) return out;
+  using key = std::pair<int, std::string>;  // segment, text
+  std::vector<std::map<key, std::vector<int>>> written(blocks.size());
+  for (std::size_t c = 0; c < blocks.size(); ++c)
+    for (const cl_block& b : blocks[c])
+      written[c][{b.segment, std::string(plain_text(b.text))}].push_back(b.cl_line);
+  std::vector<int> segment(blocks.size(), 0);
+  std::vector<std::map<key, std::size_t>> seen(blocks.size());
+  nc_read_options o;
+  o.on_wait = [&](const nc_wait& w) {
+    if (w.channel >= 1 && static_cast<std::size_t>(w.channel) <= segment.size()) ++segment[w.channel - 1];
+  };
+  o.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
+    if (channel < 1 || static_cast<std::size_t>(channel) > blocks.size()) return;
+    const auto c = static_cast<std::size_t>(channel - 1);
+    const key k{segment[c], std::string(plain_text(text))};
+    const auto it = written[c].find(k);
+    if (it == written[c].end()) return;
+    const std::size_t nth = seen[c][k]++;
+    const std::string at = place(file, line);
+    if (nth < it->second.size() && it->second[nth] > 0 && wanted.count(at)) out[at] = it->second[nth];
+  };
+  diagnostic_list ignored;
+  read_nc_programs(files, m, ignored, o);
+  return out;
+}
+
+}  // namespace
+
 std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& found,
                                                const std::vector<nc_source>& files, const machine& m,
                                                const std::string& cl_path,
                                                const std::vector<std::vector<int>>& wait_cl_lines,
-                                               int cl_last_line) {
+                                               int cl_last_line,
+                                               const std::vector<std::vector<cl_block>>& blocks) {
   // The programs are read again only here, when something was found.
   diagnostic_list ignored;
   const nc_programs programs = read_nc_programs(files, m, ignored);
@@ -73,6 +126,15 @@ std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& fo
     for (std::size_t k = 0; k < p.waits.size() && k < wait_cl_lines[c].size(); ++k)
       if (wait_cl_lines[c][k] > 0)
         cl_line_of[place(p.waits[k].where.file, p.waits[k].where.line)] = wait_cl_lines[c][k];
+  }
+  // Findings at other blocks (the shared-resource rules): their blocks' CL records.
+  std::set<std::string> wanted;
+  for (const diagnostic& d : found)
+    if (d.line > 0 && !cl_line_of.count(place(d.file, d.line))) wanted.insert(place(d.file, d.line));
+  std::set<std::string> at_blocks;
+  for (const auto& [nc, line] : block_cl_lines(files, m, wanted, blocks)) {
+    cl_line_of[nc] = line;
+    at_blocks.insert(nc);
   }
   std::map<std::string, std::string> places;
   std::map<int, std::string> sources;
@@ -102,7 +164,9 @@ std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& fo
     out.push_back(std::move(moved));
     diagnostic note = d;
     note.level = severity::note;
-    note.message = "the wait in the program as it would have been written (no file is written)";
+    note.message = at_blocks.count(place(d.file, d.line))
+                       ? "the block in the program as it would have been written (no file is written)"
+                       : "the wait in the program as it would have been written (no file is written)";
     out.push_back(std::move(note));
   }
   return out;

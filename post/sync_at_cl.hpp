@@ -14,13 +14,26 @@
 
 namespace twinpost {
 
+/// A block a channel wrote that may carry a finding of the shared-resource rules
+/// (analysis/shared_resources): the waits written before it, its text, its CL record (0: none,
+/// a line of the program's head).
+struct cl_block {
+  int segment = 0;
+  std::string text;
+  int cl_line = 0;
+};
+
 /// `found` (the checker's diagnostics on `files`) moved to the CL file `cl_path`.
 /// `wait_cl_lines[c]`: the CL line of each wait block channel c+1 wrote, in order;
 /// `cl_last_line`: the job's last record, where every channel's program ends.
+/// `blocks[c]`: channel c+1's blocks that may carry a finding of the shared-resource rules,
+/// in order; a finding at one (the k-th block of its text after the same number of waits) is
+/// moved to its CL record, with a note at the block as it would have been written.
 std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& found,
                                                const std::vector<nc_source>& files, const machine& m,
                                                const std::string& cl_path,
                                                const std::vector<std::vector<int>>& wait_cl_lines,
-                                               int cl_last_line);
+                                               int cl_last_line,
+                                               const std::vector<std::vector<cl_block>>& blocks = {});
 
 }  // namespace twinpost

@@ -1,0 +1,420 @@
+#include "analysis/shared_resources.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <optional>
+
+#include "analysis/spindle_state.hpp"
+
+namespace twinpost {
+
+namespace {
+
+bool number(const std::string& s, double& out) {
+  if (s.empty()) return false;
+  const char* b = s.data();
+  if (*b == '+') ++b;
+  const auto [p, ec] = std::from_chars(b, s.data() + s.size(), out);
+  return ec == std::errc{} && p == s.data() + s.size();
+}
+
+// The G number of a one-word code ("G99" -> 99); nullopt when the code is not one G word.
+std::optional<double> g_number(std::string_view code) {
+  const std::vector<nc_word> w = split_nc_words(code);
+  double v = 0;
+  if (w.size() != 1 || w[0].address != 'G' || !number(w[0].value, v)) return std::nullopt;
+  return v;
+}
+
+struct place_ref {
+  std::string file;
+  int line = 0;
+  int column = 0;
+  std::string source;
+};
+
+std::string at_text(const place_ref& p) { return fmt::format("{}:{}", p.file, p.line); }
+
+// A command of a shared spindle (the conflict rule).
+struct command_rec {
+  int seg = 0;
+  spindle_command cmd;
+  place_ref at;
+};
+
+// A start or stop of a spindle (the feed rule).
+struct turn_rec {
+  int seg = 0;
+  bool start = false;
+  int stop_code = 0;
+  place_ref at;
+};
+
+// The first cut with feed per revolution of a stretch the feed rule treats alike: one
+// segment, one spindle, the same own start or stop before it.
+struct cut_rec {
+  int seg = 0;
+  int spindle = 0;
+  std::size_t own_turns = 0;  // how many starts and stops of that spindle the channel gave before it
+  place_ref at;
+};
+
+struct channel_data {
+  channel_data(const machine& m, int number) : spindles(m, number) {}
+  channel_spindles spindles;
+  int seg = 0;
+  bool per_rev = false;
+  int motion = -1;
+  std::vector<std::vector<command_rec>> commands;  // per spindle
+  std::vector<std::vector<turn_rec>> turns;        // per spindle
+  std::vector<cut_rec> cuts;
+  std::vector<bool> refused;  // per spindle: the "may not command" error is given
+  bool has_cut_key = false;
+  int last_seg = 0, last_spindle = 0;
+  std::size_t last_turns = 0;
+};
+
+// A start or stop that the feed rule weighs: which channel, which of its turns.
+struct turn_ref {
+  int channel = 0;
+  std::size_t index = 0;
+  const turn_rec* rec = nullptr;
+};
+
+}  // namespace
+
+struct shared_resources::impl {
+  explicit impl(const machine& mm) : m(mm) {
+    for (const channel_def& c : m.channels) {
+      channels.emplace_back(m, c.number);
+      channels.back().commands.resize(m.spindles.size());
+      channels.back().turns.resize(m.spindles.size());
+      channels.back().refused.assign(m.spindles.size(), false);
+    }
+    per_rev = g_number(m.codes.feed_per_rev);
+    per_min = g_number(m.codes.feed_per_min);
+    const cycle_rules& cy = m.cycles;
+    for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
+                                    &cy.tap_code, &cy.tap_left_code})
+      if (auto g = g_number(*code)) cycle_codes.push_back(*g);
+    if (cy.groove == "g75") cycle_codes.push_back(75);
+    // Threads follow the spindle whatever the feed mode.
+    if (auto g = g_number(cy.sync_feed)) thread_codes.push_back(*g);
+    if (cy.thread.size() > 1 && cy.thread[0] == 'g') {
+      double v = 0;
+      if (number(cy.thread.substr(1), v)) thread_codes.push_back(v);
+    }
+  }
+
+  const machine& m;
+  std::vector<channel_data> channels;
+  std::optional<double> per_rev, per_min;
+  std::vector<double> cycle_codes, thread_codes;
+  std::vector<diagnostic> refusals;
+  std::vector<std::vector<std::vector<int>>> clocks;  // [channel][segment][channel]
+
+  const channel_def& def(int channel) const { return m.channels[static_cast<std::size_t>(channel - 1)]; }
+  const spindle_def& spindle(int index) const { return m.spindles[static_cast<std::size_t>(index)]; }
+
+  std::string allowed(int channel) const {
+    std::string out;
+    for (std::size_t i = 0; i < m.spindles.size(); ++i)
+      if (m.may_command(channel, static_cast<int>(i))) out += (out.empty() ? "" : ", ") + m.spindles[i].name;
+    return out.empty() ? "none" : out;
+  }
+
+  // The command in the machine's words: "G96 S200 M3", "M5", "G97".
+  std::string command_text(const spindle_command& c) const {
+    const spindle_def& s = spindle(c.spindle);
+    std::string out;
+    auto add = [&](const std::string& w) {
+      if (w.empty()) return;
+      out += (out.empty() ? "" : " ") + w;
+    };
+    const std::string& mode_code = c.setting.mode == speed_mode::css   ? m.codes.css
+                                   : c.setting.mode == speed_mode::rpm ? m.codes.rpm
+                                                                       : std::string();
+    if (c.speed || c.mode) add(mode_code);
+    if (c.speed) add(fmt::format("S{}", c.setting.speed));
+    if (c.turn) {
+      const int code = c.setting.turn == spindle_turn::cw    ? s.cw
+                       : c.setting.turn == spindle_turn::ccw ? s.ccw
+                                                             : s.stop;
+      add(fmt::format("M{}", code));
+    }
+    return out;
+  }
+
+  void block(int channel, const std::string& file, int line, std::string_view text) {
+    if (channel < 1 || static_cast<std::size_t>(channel) > channels.size()) return;
+    channel_data& c = channels[static_cast<std::size_t>(channel - 1)];
+    // Most blocks are moves with no G, M or S word: they change nothing here, and a cut among
+    // them counts only when it is the first of its stretch (already noted otherwise).
+    if (text.find_first_of("GMSgms") == std::string_view::npos && c.has_cut_key && c.last_seg == c.seg &&
+        c.last_spindle == c.spindles.current() &&
+        c.last_turns == c.turns[static_cast<std::size_t>(c.last_spindle)].size())
+      return;
+    const std::vector<nc_word> words = split_nc_words(text);
+    bool cycle = false, thread = false, no_move = false;
+    int axis_column = 0, cut_column = 0;
+    for (const nc_word& w : words) {
+      double v = 0;
+      if (w.expression || !number(w.value, v)) continue;
+      if (w.address == 'G') {
+        if (v == 0 || v == 1 || v == 2 || v == 3) {
+          c.motion = static_cast<int>(v);
+          if (v != 0) cut_column = w.column;
+        }
+        if (per_rev && v == *per_rev) c.per_rev = true;
+        if (per_min && v == *per_min) c.per_rev = false;
+        if (std::find(cycle_codes.begin(), cycle_codes.end(), v) != cycle_codes.end()) {
+          cycle = true;
+          cut_column = w.column;
+        }
+        if (std::find(thread_codes.begin(), thread_codes.end(), v) != thread_codes.end()) {
+          thread = true;
+          cut_column = w.column;
+        } else if (v == 4 || v == 10 || v == 28 || v == 30 || v == 50 || v == 53 || v == 92) {
+          // Dwell, data setting, reference returns, clamps and machine coordinates: the axis
+          // words of these blocks are no cut.
+          no_move = true;
+        }
+      } else if (std::string_view("XYZUW").find(w.address) != std::string_view::npos && !axis_column) {
+        axis_column = w.column;
+      }
+    }
+    c.spindles.apply(words);
+    place_ref at{file, line, 0, {}};
+    if (!c.spindles.commands().empty()) at.source = text;
+    for (const spindle_command& cmd : c.spindles.commands()) {
+      const auto s = static_cast<std::size_t>(cmd.spindle);
+      at.column = cmd.column;
+      if (!m.may_command(channel, cmd.spindle)) {
+        if (!c.refused[s]) {
+          c.refused[s] = true;
+          refusals.push_back(
+              {severity::error, file, line, cmd.column,
+               fmt::format("channel {} commands the {} spindle ({}), which machine '{}' does not "
+                           "give it: channel {} may command {} (channel.spindles)",
+                           channel, spindle(cmd.spindle).name, command_text(cmd), m.name, channel,
+                           allowed(channel)),
+               at.source});
+        }
+        continue;
+      }
+      if (cmd.turn) c.turns[s].push_back({c.seg, cmd.setting.started(), spindle(cmd.spindle).stop, at});
+      if ((cmd.turn || cmd.speed || cmd.mode) && m.shared_spindle(cmd.spindle))
+        c.commands[s].push_back({c.seg, cmd, at});
+    }
+    const bool feeding = c.motion >= 1 && c.motion <= 3 && axis_column > 0 && !no_move;
+    if (!(thread || (c.per_rev && (cycle || feeding)))) return;
+    const int s = c.spindles.current();
+    if (s < 0) return;
+    const std::size_t own = c.turns[static_cast<std::size_t>(s)].size();
+    if (c.has_cut_key && c.last_seg == c.seg && c.last_spindle == s && c.last_turns == own) return;
+    c.has_cut_key = true;
+    c.last_seg = c.seg;
+    c.last_spindle = s;
+    c.last_turns = own;
+    at.column = cut_column ? cut_column : axis_column;
+    at.source = text;
+    c.cuts.push_back({c.seg, s, own, std::move(at)});
+  }
+
+  // --- happens-before -------------------------------------------------------------------
+
+  void make_clocks(const std::vector<std::uint64_t>& rendezvous) {
+    const std::size_t n = channels.size();
+    clocks.assign(n, {});
+    std::vector<std::vector<int>> now(n, std::vector<int>(n, 0));
+    for (std::size_t c = 0; c < n; ++c) clocks[c].push_back(now[c]);
+    for (std::uint64_t members : rendezvous) {
+      std::vector<int> merged(n, 0);
+      for (std::uint64_t b = members; b; b &= b - 1) {
+        const auto c = static_cast<std::size_t>(std::countr_zero(b));
+        if (c >= n) continue;
+        for (std::size_t k = 0; k < n; ++k) merged[k] = std::max(merged[k], now[c][k]);
+      }
+      for (std::uint64_t b = members; b; b &= b - 1) {
+        const auto c = static_cast<std::size_t>(std::countr_zero(b));
+        if (c < n) ++merged[c];
+      }
+      for (std::uint64_t b = members; b; b &= b - 1) {
+        const auto c = static_cast<std::size_t>(std::countr_zero(b));
+        if (c >= n) continue;
+        now[c] = merged;
+        clocks[c].push_back(merged);
+      }
+    }
+  }
+
+  bool known(int channel, int seg) const {
+    return seg >= 0 && static_cast<std::size_t>(seg) < clocks[static_cast<std::size_t>(channel - 1)].size();
+  }
+  /// How many segments of channel `of` are over before segment `seg` of `channel` begins.
+  int over(int channel, int seg, int of) const {
+    return clocks[static_cast<std::size_t>(channel - 1)][static_cast<std::size_t>(seg)]
+                 [static_cast<std::size_t>(of - 1)];
+  }
+  /// Segment `a_seg` of channel a ends before segment `b_seg` of channel b begins.
+  bool before(int a, int a_seg, int b, int b_seg) const { return a_seg < over(b, b_seg, a); }
+
+  // --- the rules ------------------------------------------------------------------------
+
+  static const char* difference(const spindle_command& x, const spindle_command& y) {
+    if (x.turn && y.turn && x.setting.turn != y.setting.turn) return "different direction";
+    const bool x_speed = x.speed || x.mode, y_speed = y.speed || y.mode;
+    if (x_speed && y_speed && x.setting.mode != speed_mode::unknown &&
+        y.setting.mode != speed_mode::unknown && x.setting.mode != y.setting.mode)
+      return "different speed mode (CSS and rpm)";
+    if (x.speed && y.speed && x.setting.mode == y.setting.mode && x.setting.speed != y.setting.speed)
+      return "different speed";
+    return nullptr;
+  }
+
+  void conflicts(std::vector<diagnostic>& out) const {
+    const int n = static_cast<int>(channels.size());
+    for (std::size_t s = 0; s < m.spindles.size(); ++s)
+      for (int b = 2; b <= n; ++b)
+        for (const command_rec& y : channels[static_cast<std::size_t>(b - 1)].commands[s]) {
+          if (!known(b, y.seg)) continue;
+          for (int a = 1; a < b; ++a) {
+            const std::vector<command_rec>& xs = channels[static_cast<std::size_t>(a - 1)].commands[s];
+            const int from = over(b, y.seg, a);  // segments of a over before y's begins
+            auto it = std::lower_bound(xs.begin(), xs.end(), from,
+                                       [](const command_rec& r, int seg) { return r.seg < seg; });
+            const command_rec* hit = nullptr;
+            const char* why = nullptr;
+            for (; it != xs.end() && known(a, it->seg) && !before(b, y.seg, a, it->seg); ++it)
+              if ((why = difference(it->cmd, y.cmd))) {
+                hit = &*it;
+                break;
+              }
+            if (!hit) continue;
+            out.push_back(
+                {severity::error, y.at.file, y.at.line, y.at.column,
+                 fmt::format("channel {} sets the shared {} spindle to {} while channel {} may set it "
+                             "to {} at the same time ({}): {}; no wait orders the two blocks",
+                             b, spindle(static_cast<int>(s)).name, command_text(y.cmd), a,
+                             command_text(hit->cmd), at_text(hit->at), why),
+                 y.at.source});
+            out.push_back({severity::note, hit->at.file, hit->at.line, hit->at.column,
+                           fmt::format("channel {} sets the {} spindle to {} here", a,
+                                       spindle(static_cast<int>(s)).name, command_text(hit->cmd)),
+                           hit->at.source});
+            break;  // one finding for each block
+          }
+        }
+  }
+
+  // turn `e` of channel `ec` happens before turn `f` of channel `fc`.
+  bool turn_before(const turn_ref& e, const turn_ref& f) const {
+    if (e.channel == f.channel) return e.index < f.index;
+    return before(e.channel, e.rec->seg, f.channel, f.rec->seg);
+  }
+
+  void feed_rule(std::vector<diagnostic>& out) const {
+    const int n = static_cast<int>(channels.size());
+    for (int a = 1; a <= n; ++a) {
+      const channel_data& c = channels[static_cast<std::size_t>(a - 1)];
+      std::string last_cause;  // one report while the same cause holds
+      int last_spindle = -1;
+      for (const cut_rec& cut : c.cuts) {
+        if (!known(a, cut.seg)) continue;
+        const auto s = static_cast<std::size_t>(cut.spindle);
+        // The last start or stop of each channel known to come before the cut.
+        std::vector<turn_ref> last;
+        if (cut.own_turns > 0) last.push_back({a, cut.own_turns - 1, &c.turns[s][cut.own_turns - 1]});
+        for (int b = 1; b <= n; ++b) {
+          if (b == a) continue;
+          const std::vector<turn_rec>& ts = channels[static_cast<std::size_t>(b - 1)].turns[s];
+          const int done = over(a, cut.seg, b);
+          auto it = std::lower_bound(ts.begin(), ts.end(), done,
+                                     [](const turn_rec& r, int seg) { return r.seg < seg; });
+          if (it == ts.begin()) continue;
+          --it;
+          if (!known(b, it->seg)) continue;
+          last.push_back({b, static_cast<std::size_t>(it - ts.begin()), &*it});
+        }
+        // The latest of them: those that no other one is known to follow.
+        const turn_ref* stop = nullptr;
+        bool started = false;
+        for (const turn_ref& e : last) {
+          bool superseded = false;
+          for (const turn_ref& f : last)
+            if (&e != &f && turn_before(e, f)) superseded = true;
+          if (superseded) continue;
+          if (e.rec->start)
+            started = true;
+          else if (!stop)
+            stop = &e;
+        }
+        if (started) {
+          last_cause.clear();
+          continue;
+        }
+        const std::string cause = stop ? at_text(stop->rec->at) : std::string("none");
+        if (cause == last_cause && last_spindle == cut.spindle) continue;
+        last_cause = cause;
+        last_spindle = cut.spindle;
+        const std::string& name = spindle(cut.spindle).name;
+        std::string why =
+            stop ? fmt::format("channel {} stops it at {} (M{}) and no start is known to come after that",
+                               stop->channel, at_text(stop->rec->at), stop->rec->stop_code)
+                 : std::string(
+                       "no channel is known to have started it before this block (a start in another channel "
+                       "counts only when a wait orders it before)");
+        out.push_back({severity::error, cut.at.file, cut.at.line, cut.at.column,
+                       fmt::format("channel {} cuts with feed per revolution ({}) on the {} spindle, but {}",
+                                   a, m.codes.feed_per_rev, name, why),
+                       cut.at.source});
+      }
+    }
+  }
+};
+
+shared_resources::shared_resources(const machine& m) : p_(std::make_unique<impl>(m)) {}
+shared_resources::~shared_resources() = default;
+
+void shared_resources::block(int channel, const std::string& file, int line, std::string_view text) {
+  p_->block(channel, file, line, text);
+}
+
+void shared_resources::wait(int channel) {
+  if (channel >= 1 && static_cast<std::size_t>(channel) <= p_->channels.size())
+    ++p_->channels[static_cast<std::size_t>(channel - 1)].seg;
+}
+
+std::vector<diagnostic> shared_resources::finish(const std::vector<std::uint64_t>& rendezvous,
+                                                 bool waits_sound) {
+  std::vector<diagnostic> out = p_->refusals;
+  if (!waits_sound) return out;
+  p_->make_clocks(rendezvous);
+  p_->conflicts(out);
+  p_->feed_rule(out);
+  return out;
+}
+
+sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m) {
+  shared_resources rules(m);
+  nc_read_options also;
+  also.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
+    rules.block(channel, file, line, text);
+  };
+  also.on_wait = [&](const nc_wait& w) { rules.wait(w.channel); };
+  sync_result r = check_nc_files(files, m, also);
+  std::vector<diagnostic> found = rules.finish(r.rendezvous, r.ok);
+  if (found.empty()) return r;
+  r.diagnostics.insert(r.diagnostics.end(), found.begin(), found.end());
+  diagnostic_counts n;
+  for (const diagnostic& d : r.diagnostics) n.add(d);
+  r.errors = n.errors;
+  r.warnings = n.warnings;
+  r.ok = r.errors == 0;
+  return r;
+}
+
+}  // namespace twinpost

@@ -1,0 +1,60 @@
+#pragma once
+// Shared resources: what the channels may command of the machine's spindles, and whether two
+// channels that may run at the same time command one spindle differently (docs/shared-resources.md).
+//
+// The model is happens-before: a block of channel a and a block of channel b are ordered only
+// when a chain of waits orders them (a's block comes before a wait that a meets, directly or
+// through other channels, before b reaches its block). Vector clocks over the rendezvous of
+// the wait simulation (check/sync_check: the same pairing as the checker) give each stretch of
+// a channel's program between two of its waits (a segment) the set of segments of the other
+// channels known to be over; two blocks are concurrent when neither is known to be over
+// before the other begins.
+//
+// Rules:
+// - a channel commands only the spindles machine.channels[].spindles gives it;
+// - two channels command one shared spindle (machine::shared_spindle) with a different
+//   direction, speed mode (CSS / rpm) or speed in blocks that may run at the same time: error
+//   at one block, note at the other;
+// - a channel cuts with feed per revolution (codes.feed_per_rev) on a spindle that no start
+//   happens before, or that a stop ordered after every such start has stopped: error at the cut.
+//
+// Streaming: of the blocks only the spindle commands and, per stretch of a channel that the
+// rule treats alike, its first cut with feed per revolution are kept.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "check/sync_check.hpp"
+#include "machines/machine.hpp"
+#include "support/diagnostics.hpp"
+
+namespace twinpost {
+
+class shared_resources {
+ public:
+  explicit shared_resources(const machine& m);
+  ~shared_resources();
+  shared_resources(const shared_resources&) = delete;
+  shared_resources& operator=(const shared_resources&) = delete;
+
+  /// Every block of every channel, in program order (nc_read_options::on_block).
+  void block(int channel, const std::string& file, int line, std::string_view text);
+  /// The channel passed a wait: its next block belongs to its next segment (on_wait).
+  void wait(int channel);
+  /// The rules, given the rendezvous of a check in which every channel reached its end
+  /// (sync_result::rendezvous). The commands a channel may not give are reported however the
+  /// waits paired; the others need the pairing.
+  std::vector<diagnostic> finish(const std::vector<std::uint64_t>& rendezvous, bool waits_sound);
+
+ private:
+  struct impl;
+  std::unique_ptr<impl> p_;
+};
+
+/// check_nc_files and the shared-resource rules on the same reading: what `twinpost check`
+/// and post's self-check run. The rules' findings follow the checker's, and count in the result.
+sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m);
+
+}  // namespace twinpost
