@@ -12,8 +12,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "analysis/timeline_report.hpp"
 #include "analysis/shared_resources.hpp"
+#include "analysis/timeline_report.hpp"
 #include "channels/job_channels.hpp"
 #include "check/sync_check.hpp"
 #include "formats/channel_writer.hpp"

@@ -164,9 +164,12 @@ std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& fo
     out.push_back(std::move(moved));
     diagnostic note = d;
     note.level = severity::note;
-    note.message = at_blocks.count(place(d.file, d.line))
-                       ? "the block in the program as it would have been written (no file is written)"
-                       : "the wait in the program as it would have been written (no file is written)";
+    // An error stops the post: the program is never written. A warning's program is.
+    const bool block = at_blocks.count(place(d.file, d.line)) > 0;
+    note.message = d.level != severity::error
+                       ? (block ? "the block in the program" : "the wait in the program")
+                   : block ? "the block in the program as it would have been written (no file is written)"
+                           : "the wait in the program as it would have been written (no file is written)";
     out.push_back(std::move(note));
   }
   return out;

@@ -162,13 +162,19 @@ TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "
   const std::string body =
       "GOTO/20,0,0\nINSERT/Stock Size X144. Y25. Z30.\nINSERT/M98 P9101\n" + cut + "FINI\n";
   posted apt = post_text(head + body, "insert-apt");
-  // The inserted M98 goes out; the self-check says it cannot look inside the subprogram.
-  REQUIRE(apt.diags.all().size() == 1);
-  const diagnostic& d = apt.diags.all()[0];
-  CHECK(d.level == severity::warning);
-  CHECK(std::filesystem::path(d.file).filename() == "W_1.nc");
-  CHECK(d.line == 11);
-  CHECK(d.message == "M98 P9101 calls a subprogram the checker does not read: waits in it are not checked");
+  // The inserted M98 goes out; the self-check says, at the INSERT record, that it cannot
+  // look inside the subprogram, with a note at the block in the program.
+  REQUIRE(apt.diags.all().size() == 2);
+  const diagnostic& w = apt.diags.all()[0];
+  CHECK(w.level == severity::warning);
+  CHECK(std::filesystem::path(w.file).filename() == "job.cls");
+  CHECK(w.line == 8);
+  CHECK(w.message == "M98 P9101 calls a subprogram the checker does not read: waits in it are not checked");
+  const diagnostic& n = apt.diags.all()[1];
+  CHECK(n.level == severity::note);
+  CHECK(std::filesystem::path(n.file).filename() == "W_1.nc");
+  CHECK(n.line == 11);
+  CHECK(n.message == "the block in the program");
   REQUIRE(apt.files.count("W_1.nc") == 1);
   // APT: the text goes out as it stands, information text included (the CAM user's business).
   CHECK(apt.files.at("W_1.nc") ==
