@@ -164,9 +164,9 @@ std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& fo
     out.push_back(std::move(moved));
     diagnostic note = d;
     note.level = severity::note;
-    // An error stops the post: the program is never written. A warning's program is.
+    // An error (and its notes) stops the post: the program is never written. A warning's is.
     const bool block = at_blocks.count(place(d.file, d.line)) > 0;
-    note.message = d.level != severity::error
+    note.message = d.level == severity::warning
                        ? (block ? "the block in the program" : "the wait in the program")
                    : block ? "the block in the program as it would have been written (no file is written)"
                            : "the wait in the program as it would have been written (no file is written)";
