@@ -12,7 +12,19 @@ namespace twinpost {
 namespace {
 
 constexpr double two_pi = 2 * std::numbers::pi;
-constexpr int css_steps = 16;  // a feed per revolution under CSS: the rpm at the middle of 16 steps
+
+// The integral over u in [0, 1] of max(a + b u, c): a feed per revolution under CSS, where the
+// minutes per unit of path are max(d(u) / k, 1 / limit) / f with the diameter d linear in u.
+double integral_of_max(double a, double b, double c) {
+  auto part = [&](double p, double q) {
+    const double mid = a + b * (p + q) / 2;  // on each part the line stays on one side of c
+    return mid >= c ? a * (q - p) + b * (q * q - p * p) / 2 : c * (q - p);
+  };
+  if (b == 0) return std::max(a, c);
+  const double u = (c - a) / b;
+  if (!(u > 0 && u < 1)) return part(0, 1);
+  return part(0, u) + part(u, 1);
+}
 
 bool number(std::string_view s, double& out) {
   if (s.empty()) return false;
@@ -21,11 +33,20 @@ bool number(std::string_view s, double& out) {
   return ec == std::errc{} && p == s.data() + s.size();
 }
 
-// A code as compared: "01" and "1." are "1", "84.2" stays.
+// A code as compared: "01" and "1." are "1", "84.2" stays. Written out by hand (no
+// formatting): every G word of every block comes through here.
 std::string code_of(const nc_word& w) {
   double v = 0;
   if (w.expression || !number(w.value, v)) return w.value;
-  return fmt::format("{:g}", v);
+  std::string_view s = w.value;
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.find('.') != std::string_view::npos) {
+    while (s.back() == '0') s.remove_suffix(1);
+    if (s.back() == '.') s.remove_suffix(1);
+  }
+  while (s.size() > 1 && s.front() == '0' && s[1] != '.') s.remove_prefix(1);
+  if (s.empty() || s.front() == '.' || s == "-0" || s.front() == '-') return fmt::format("{:g}", v);
+  return std::string(s);
 }
 
 // The G (or M) codes of a fixed block of the machine file ("G99", "G68"), as code_of gives them.
@@ -113,7 +134,8 @@ block_timer::axis_pos* block_timer::axis(char a) {
 }
 
 block_timing block_timer::time(std::string_view text) {
-  const std::vector<nc_word> words = split_nc_words(text);
+  split_nc_words(text, words_);
+  const std::vector<nc_word>& words = words_;
   spindles_.apply(words);
   block_timing t;
   auto untimed = [&t](std::string why) {
@@ -205,7 +227,8 @@ block_timing block_timer::time(std::string_view text) {
   }
 
   // Where the block sends each axis (program units; X as programmed).
-  std::vector<std::optional<double>> target(axes_.size());
+  std::vector<std::optional<double>>& target = target_;
+  target.resize(axes_.size());
   bool moves = false;
   for (std::size_t i = 0; i < axes_.size(); ++i) target[i] = axes_[i].value;
   const bool has_u = axis('U') != nullptr, has_w = axis('W') != nullptr, has_v = axis('V') != nullptr;
@@ -338,23 +361,24 @@ double block_timer::feed_time(double length, double x0, double x1, block_timing&
     t.untimed = code + " under CSS at an unknown diameter";
     return 0;
   }
-  const int steps = css && x0 != x1 ? css_steps : 1;
-  double seconds = 0;
-  for (int k = 0; k < steps; ++k) {
-    const double d = x0 + (x1 - x0) * (k + 0.5) / steps;
-    const double rpm = spindles_.rpm(std::max(d, 0.0), inch_);
-    if (!(rpm > 0)) {
-      // A spindle this channel never commanded turns at another channel's speed, which this
-      // channel's blocks do not tell (docs/timeline.md).
-      const bool others =
-          spindles_.current() >= 0 && spindles_.setting(spindles_.current()).turn == spindle_turn::unknown;
-      t.untimed = code + (thread ? "" : " per revolution") +
-                  (others ? " on a spindle only another channel commands" : " on a stopped spindle");
-      return 0;
-    }
-    seconds += (length / steps) / (feed_ * rpm) * 60;
+  double k = 0, limit = 0;
+  if (css && x0 != x1 && spindles_.css_law(inch_, k, limit)) {
+    // The rpm follows the diameter along the move: integrated exactly (rpm = min(limit, k/d)).
+    const double per_unit = integral_of_max(x0 / k, (x1 - x0) / k, limit > 0 ? 1 / limit : 0);
+    return length / feed_ * per_unit * 60;
   }
-  return seconds;
+  // rpm mode, or CSS along a constant diameter: one speed for the whole move.
+  const double rpm = spindles_.rpm(std::max((x0 + x1) / 2, 0.0), inch_);
+  if (!(rpm > 0)) {
+    // A spindle this channel never commanded turns at another channel's speed, which this
+    // channel's blocks do not tell (docs/timeline.md).
+    const bool others =
+        spindles_.current() >= 0 && spindles_.setting(spindles_.current()).turn == spindle_turn::unknown;
+    t.untimed = code + (thread ? "" : " per revolution") +
+                (others ? " on a spindle only another channel commands" : " on a stopped spindle");
+    return 0;
+  }
+  return length / (feed_ * rpm) * 60;
 }
 
 double block_timer::arc_length(const std::vector<std::optional<double>>& target,

@@ -148,6 +148,8 @@ struct shared_resources::impl {
     return out;
   }
 
+  std::vector<nc_word> words_;  // the block's words (reused: no allocation per block)
+
   void block(int channel, const std::string& file, int line, std::string_view text) {
     if (channel < 1 || static_cast<std::size_t>(channel) > channels.size()) return;
     channel_data& c = channels[static_cast<std::size_t>(channel - 1)];
@@ -157,7 +159,8 @@ struct shared_resources::impl {
         c.last_spindle == c.spindles.current() &&
         c.last_turns == c.turns[static_cast<std::size_t>(c.last_spindle)].size())
       return;
-    const std::vector<nc_word> words = split_nc_words(text);
+    split_nc_words(text, words_);
+    const std::vector<nc_word>& words = words_;
     bool cycle = false, thread = false, no_move = false;
     int axis_column = 0, cut_column = 0;
     for (const nc_word& w : words) {

@@ -58,9 +58,9 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
   if (current_ < 0 && !m.spindles.empty()) current_ = 0;
 }
 
-bool channel_spindles::is_code(const std::vector<nc_word>& words, std::string_view code, int& column) const {
-  const std::vector<nc_word> c = split_nc_words(code);
-  return c.size() == 1 && has_word(words, c[0], column);
+bool channel_spindles::is_code(const std::vector<nc_word>& words, const std::vector<nc_word>& code,
+                               int& column) const {
+  return code.size() == 1 && has_word(words, code[0], column);
 }
 
 bool channel_spindles::is_clamp(const std::vector<nc_word>& words, int spindle) const {
@@ -130,16 +130,14 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
   // on the master's spindle selects it so, with no spindle code of its own).
   for (std::size_t i = 0; i < m_.spindles.size(); ++i) {
     int offset_column = 0;
-    if (!m_.spindles[i].work_offset.empty() && is_code(words, m_.spindles[i].work_offset, offset_column) &&
-        turned < 0)
-      current_ = static_cast<int>(i);
+    if (is_code(words, offset_codes_[i], offset_column) && turned < 0) current_ = static_cast<int>(i);
   }
   // The mode codes (modal per channel).
   int mode_column = 0;
   const speed_mode before_mode = mode_;
-  if (is_code(words, m_.codes.css, mode_column))
+  if (is_code(words, css_code_, mode_column))
     mode_ = speed_mode::css;
-  else if (is_code(words, m_.codes.rpm, mode_column))
+  else if (is_code(words, rpm_code_, mode_column))
     mode_ = speed_mode::rpm;
   const nc_word* s_word = nullptr;
   for (const nc_word& w : words)
@@ -204,13 +202,27 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
   return changes_;
 }
 
+double channel_spindles::cap() const {
+  const spindle_setting& s = setting(current_);
+  const double max = m_.spindles[static_cast<std::size_t>(current_)].max_rpm;
+  const double cap = s.clamp > 0 ? s.clamp : max;
+  return max > 0 ? std::min(cap, max) : cap;
+}
+
+bool channel_spindles::css_law(bool inch, double& k, double& limit) const {
+  if (current_ < 0) return false;
+  const spindle_setting& s = setting(current_);
+  if (!s.started() || s.speed <= 0 || s.mode != speed_mode::css) return false;
+  k = s.speed * (inch ? 12.0 : 1000.0) / std::numbers::pi;
+  limit = cap();
+  return true;
+}
+
 double channel_spindles::rpm(double diameter, bool inch) const {
   if (current_ < 0) return 0;
   const spindle_setting& s = setting(current_);
   if (!s.started() || s.speed <= 0) return 0;
-  const double max = m_.spindles[static_cast<std::size_t>(current_)].max_rpm;
-  double cap = s.clamp > 0 ? s.clamp : max;
-  if (max > 0) cap = std::min(cap, max);
+  const double cap = this->cap();
   if (s.mode != speed_mode::css) return cap > 0 ? std::min(s.speed, cap) : s.speed;
   const double d = std::abs(diameter);
   const double per_rev = std::numbers::pi * d / (inch ? 12.0 : 1000.0);  // m (ft) per revolution

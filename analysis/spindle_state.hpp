@@ -70,6 +70,9 @@ class channel_spindles {
   /// G20, CSS in ft/min). CSS is turned into rpm at that diameter and held to the clamp and
   /// the spindle's max_rpm; 0 when the spindle is not turning or its speed is unknown.
   double rpm(double diameter, bool inch) const;
+  /// Under CSS, the law rpm(d) = min(limit, k / d) of the current spindle (d in the program's
+  /// unit; limit 0: none): false when it is not turning under CSS at a known speed.
+  bool css_law(bool inch, double& k, double& limit) const;
 
  private:
   struct clamp_block {
@@ -82,9 +85,17 @@ class channel_spindles {
   std::vector<spindle_command> commands_;
   int current_ = -1;
   speed_mode mode_ = speed_mode::unknown;
-  bool is_code(const std::vector<nc_word>& words, std::string_view code, int& column) const;
+  std::vector<nc_word> css_code_ = split_nc_words(m_.codes.css);  // G96, split once
+  std::vector<nc_word> rpm_code_ = split_nc_words(m_.codes.rpm);  // G97
+  std::vector<std::vector<nc_word>> offset_codes_ = [this] {      // each spindle's work offset
+    std::vector<std::vector<nc_word>> out;
+    for (const spindle_def& s : m_.spindles) out.push_back(split_nc_words(s.work_offset));
+    return out;
+  }();
+  bool is_code(const std::vector<nc_word>& words, const std::vector<nc_word>& code, int& column) const;
   bool is_clamp(const std::vector<nc_word>& words, int spindle) const;
   void set(int spindle, const spindle_setting& to, int column);
+  double cap() const;  // the current spindle's highest rpm: clamp and max_rpm; 0 none
 };
 
 }  // namespace twinpost

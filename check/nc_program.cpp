@@ -807,8 +807,22 @@ class reader {
 
 std::vector<nc_word> split_nc_words(std::string_view line) {
   std::vector<nc_word> words;
+  split_nc_words(line, words);
+  return words;
+}
+
+void split_nc_words(std::string_view line, std::vector<nc_word>& words) {
+  // The words are written over the vector's old ones (their strings keep their capacity):
+  // a caller that splits every block of a long program allocates nothing per block.
+  std::size_t used = 0;
+  auto next = [&]() -> nc_word& {
+    if (used == words.size()) words.emplace_back();
+    nc_word& w = words[used++];
+    w.expression = false;
+    return w;
+  };
   const std::size_t first = line.find_first_not_of(" \t");
-  if (first != std::string_view::npos && line[first] == '%') return words;
+  if (first != std::string_view::npos && line[first] == '%') return words.clear();
   const std::size_t n = line.size();
   std::size_t i = 0;
   while (i < n) {
@@ -832,16 +846,13 @@ std::vector<nc_word> split_nc_words(std::string_view line) {
         i = j;
         continue;
       }
-      nc_word w;
-      w.address = upper(c);
-      w.column = static_cast<int>(i) + 1;
       std::size_t k = j;
       while (k < n && is_blank(line[k])) ++k;
       std::size_t v = k < n && (line[k] == '+' || line[k] == '-') ? k + 1 : k;
       std::size_t d = v;
       while (d < n && (is_digit(line[d]) || line[d] == '.')) ++d;
+      bool expression = false;
       if (d > v) {
-        w.value = std::string(line.substr(k, d - k));
       } else if (k < n && (line[k] == '#' || line[k] == '[')) {
         d = k + 1;
         if (line[k] == '[')
@@ -850,19 +861,22 @@ std::vector<nc_word> split_nc_words(std::string_view line) {
           d = skip_brackets(line, d);
         else
           while (d < n && is_digit(line[d])) ++d;
-        w.value = std::string(line.substr(k, d - k));
-        w.expression = true;
+        expression = true;
       } else {
         i = j;  // a letter with no value
         continue;
       }
-      words.push_back(std::move(w));
+      nc_word& w = next();
+      w.address = upper(c);
+      w.column = static_cast<int>(i) + 1;
+      w.value.assign(line.substr(k, d - k));
+      w.expression = expression;
       i = d;
     } else {
       ++i;
     }
   }
-  return words;
+  words.resize(used);
 }
 
 nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m, diagnostic_sink& sink,

@@ -64,6 +64,8 @@ struct nc_word {
 /// block delete `/` (`/2`), `#` variables, `[...]` expressions and keywords (IF, GOTO, ...).
 /// Reads glued (`M100P12`), spaced (`M100 P12`, `M 100`) and lower-case words.
 std::vector<nc_word> split_nc_words(std::string_view line);
+/// The same into `words`, reusing its elements: no allocation per block once it has grown.
+void split_nc_words(std::string_view line, std::vector<nc_word>& words);
 
 /// One wait as written in a channel's program (or an M-code that looks like one).
 struct nc_wait {

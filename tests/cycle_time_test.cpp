@@ -233,3 +233,18 @@ heads = [1]
     CHECK(std::string(e.what()) == "t.toml:18:1: error: timing.channel.2: this machine has no channel 2");
   }
 }
+
+TEST_CASE("block timer: a facing cut under CSS follows the rpm along the diameter, up to the clamp",
+          "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  // 200 m/min clamped at 2000 rpm: the clamp holds below d = 200000 / (pi x 2000) = 31.831 mm.
+  // Facing from X100 to X20 (40 mm of path) at 0.2 mm/rev:
+  //   above 31.831: the integral of d / k over the move, k = 200000 / pi;
+  //   below it: 2000 rpm. Worked out: 11.4746 s (a 200000-step sum gives the same to 1e-9).
+  CHECK(times(m, 1, {"G50 X100. Z0.", "G50 S2000", "G96 S200 M3", "G99 G1 X20. F0.2", "G1 X0."}) ==
+        "0.0000\n"
+        "0.0000\n"
+        "0.1000\n"
+        "11.4746\n"
+        "1.5000\n");  // 10 mm at 0.2 mm/rev x 2000 rpm (below the clamp's diameter all the way)
+}
