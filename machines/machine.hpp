@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "machines/kinematic_chain.hpp"
 #include "machines/word_format.hpp"
 
 namespace twinpost {
@@ -249,6 +250,7 @@ struct machine {
   cycle_rules cycles;
   transfer_def transfer;
   std::vector<tool_def> tools;  ///< the tool table ([[tool]]); may be empty
+  std::vector<kinematic_chain> kinematics;  ///< [[kinematics]]: the chains of the channels that have one
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

@@ -411,7 +411,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   }
   table_reader root(doc, "", source,
                     {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits",
-                     "cycles", "transfer", "tool"});
+                     "cycles", "transfer", "tool", "kinematics"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -427,6 +427,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   detail::read_channels(root, m);
   read_transfer(root, m);
   read_tools(root, m);
+  detail::read_kinematics(root, m);
   check_across_tables(root, m, at);
   detail::check_code_overlaps(root, m);
   return m;

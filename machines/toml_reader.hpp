@@ -95,6 +95,9 @@ void read_channels(const table_reader& root, machine& m);
 /// Reads [cycles] (machine_cycles.cpp): the kinds and codes of drilling and tapping cycles.
 void read_cycles(const table_reader& root, cycle_rules& c);
 
+/// Reads every [[kinematics]] chain (machine_kinematics.cpp), after the channels.
+void read_kinematics(const table_reader& root, machine& m);
+
 /// Throws at the first value of the file (in file order) that names a wait code of `m`
 /// outside [waits]: spindle codes, [codes], program blocks, tool calls; a default the file
 /// leaves in place is reported at the table that omits it (machines/code_overlap.hpp).

@@ -1,0 +1,213 @@
+#include "kinematics/inverse.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "kinematics/forward.hpp"
+#include "kinematics/vec3_ops.hpp"
+
+namespace twinpost::kin {
+
+namespace {
+
+// Below this the tool axis is taken to lie on the outer rotary axis (unit vectors: the sine of
+// the angle between them). The outer angle's error there is at most ~eps/this in radians.
+constexpr double pole_sine = 1e-9;
+
+// The angle (degrees) that turns `from` to `to` about the unit `d`, both taken perpendicular
+// to it; nullopt when either has no perpendicular part.
+std::optional<double> angle_about(const vec3& d, const vec3& from, const vec3& to) {
+  const vec3 f = from - dot(d, from) * d;
+  const vec3 t = to - dot(d, to) * d;
+  if (norm(f) < pole_sine || norm(t) < pole_sine) return std::nullopt;
+  return std::atan2(dot(d, cross(f, t)), dot(f, t)) / deg;
+}
+
+std::string axis_text(const vec3& k) {
+  return fmt::format("({}, {}, {})", number_text(k.x), number_text(k.y), number_text(k.z));
+}
+
+std::string angles_text(const kinematic_chain& c, const std::array<double, 2>& r) {
+  std::string s;
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+    s += fmt::format("{}{}{}", i ? " " : "", c.rotaries[i].address, number_text(r[i]));
+  return s;
+}
+
+// The value of axis `a` equivalent to `v` (v + 360k) that a move from `prev` goes to, and the
+// length of that move; nullopt when no equivalent lies within the limits.
+struct fitted {
+  double value, move;
+};
+std::optional<fitted> fit(const rotary_axis_def& a, double v, double prev) {
+  if (a.continuous()) {
+    const double d = wrap_180(v - prev);
+    if (a.rollover == rotary_rollover::absolute) return fitted{prev + d, std::abs(d)};
+    double w = v - 360.0 * std::floor(v / 360.0);
+    if (w >= 360.0) w -= 360.0;
+    return fitted{w, std::abs(d)};
+  }
+  constexpr double slack = 1e-9;  // a value on a limit, give or take the rounding of the solve
+  const double kmin = std::ceil((*a.min - slack - v) / 360.0);
+  const double kmax = std::floor((*a.max + slack - v) / 360.0);
+  if (kmin > kmax) return std::nullopt;
+  const double k = std::clamp(std::round((prev - v) / 360.0), kmin, kmax);
+  const double value = std::clamp(v + 360.0 * k, *a.min, *a.max);
+  return fitted{value, std::abs(value - prev)};
+}
+
+bool meets(preferred_sign p, double v) {
+  constexpr double zero = 1e-9;
+  return p == preferred_sign::none || (p == preferred_sign::positive ? v >= -zero : v <= zero);
+}
+
+}  // namespace
+
+std::vector<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
+                                                        const joint_values& previous) {
+  const orientation_form f = orientation_of(c);
+  const vec3& t0 = c.tool_direction;
+  std::vector<orientation_solution> out;
+  if (f.outer < 0) {
+    out.push_back({});
+    return out;
+  }
+  const vec3& dout = c.rotaries[f.outer].direction;
+  // The outer angle that turns `v` (the tool after the inner rotation) to k, or the previous
+  // one at the pole.
+  auto outer_angle = [&](const vec3& v, orientation_solution& s) {
+    if (const std::optional<double> a = angle_about(dout, v, k)) {
+      s.rotary[f.outer] = f.outer_sign * *a;
+    } else {
+      s.rotary[f.outer] = previous.rotary[f.outer];
+      s.pole = true;
+    }
+  };
+  if (f.inner < 0) {
+    orientation_solution s;
+    outer_angle(t0, s);
+    out.push_back(s);
+    return out;
+  }
+  // The outer rotation keeps the component along its axis: dout·R(inner, φ)·t0 = dout·k, which
+  // by Rodrigues reads a + b·cos φ + c·sin φ = dout·k.
+  const vec3& din = c.rotaries[f.inner].direction;
+  const double a = dot(dout, din) * dot(din, t0);
+  const double b = dot(dout, t0) - a;
+  const double cc = dot(dout, cross(din, t0));
+  const double r = std::hypot(b, cc);
+  if (r < 1e-12) return out;  // the inner axis cannot change it (rejected by the loader)
+  const double arg = (dot(dout, k) - a) / r;
+  // Beyond ±1 by rounding only: clamp, and let the forward check judge what is reachable.
+  if (std::abs(arg) > 1 + 1e-6) return out;
+  const double base = std::atan2(cc, b) / deg;
+  const double half = std::acos(std::clamp(arg, -1.0, 1.0)) / deg;
+  for (double phi : {base + half, base - half}) {
+    orientation_solution s;
+    s.rotary[f.inner] = f.inner_sign * wrap_180(phi);
+    outer_angle(rotate(t0, din, phi), s);
+    if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
+    if (s.rotary[f.inner] == -180.0) s.rotary[f.inner] = 180.0;
+    const bool twin = !out.empty() && std::abs(wrap_180(out[0].rotary[f.inner] - s.rotary[f.inner])) < 1e-12 &&
+                      std::abs(wrap_180(out[0].rotary[f.outer] - s.rotary[f.outer])) < 1e-12;
+    if (!twin) out.push_back(s);
+  }
+  return out;
+}
+
+joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_values& angles, double tool_length) {
+  joint_values j = angles;
+  j.linear = {};
+  j.linear = part_to_machine(c, j, tip) - head_offset(c, j, tool_length);
+  return j;
+}
+
+ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length, const joint_values& previous) {
+  ik_result r;
+  const double len = norm(pose.axis);
+  if (!(len > 1e-9) || !std::isfinite(len)) {
+    r.error = ik_error::zero_axis;
+    r.message = fmt::format("tool axis {} is not a direction", axis_text(pose.axis));
+    return r;
+  }
+  const vec3 k = (1.0 / len) * pose.axis;
+  const tool_pose want{pose.tip, k};
+
+  struct candidate {
+    joint_values j;
+    bool pole;
+    int misses;  // preferred signs not met
+    double total, outer;
+    double tip_error, axis_error;
+  };
+  std::vector<candidate> fitting;
+  std::vector<std::string> beyond;  // "B30 A0 (B beyond -20..20)" for the message
+  const orientation_form f = orientation_of(c);
+  for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
+    // Generate, then verify: a candidate the forward transform does not confirm is no solution.
+    joint_values raw;
+    raw.rotary = s.rotary;
+    const tool_pose check = forward(c, positions(c, want.tip, raw, tool_length), tool_length);
+    if (angle_between(check.axis, k) > c.angle_tolerance) continue;
+    candidate cand{raw, s.pole, 0, 0, 0, 0, 0};
+    std::string why;
+    for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
+      const rotary_axis_def& a = c.rotaries[i];
+      const std::optional<fitted> v = fit(a, s.rotary[i], previous.rotary[i]);
+      if (!v) {
+        why += fmt::format("{}{} beyond {}..{}", why.empty() ? "" : "; ", a.address, number_text(*a.min),
+                           number_text(*a.max));
+        continue;
+      }
+      cand.j.rotary[i] = v->value;
+      cand.total += v->move;
+      if (static_cast<int>(i) == f.outer) cand.outer = v->move;
+      if (!meets(a.prefer, v->value)) ++cand.misses;
+    }
+    if (!why.empty()) {
+      beyond.push_back(fmt::format("{} ({})", angles_text(c, s.rotary), why));
+      continue;
+    }
+    cand.j = positions(c, want.tip, cand.j, tool_length);
+    const tool_pose got = forward(c, cand.j, tool_length);
+    cand.tip_error = distance(got.tip, want.tip);
+    cand.axis_error = angle_between(got.axis, k);
+    if (cand.tip_error <= c.tolerance && cand.axis_error <= c.angle_tolerance) fitting.push_back(cand);
+  }
+  if (fitting.empty()) {
+    if (beyond.empty()) {
+      r.error = ik_error::unreachable;
+      if (c.rotaries.empty()) {
+        r.message = fmt::format("tool axis {} is not the tool direction {} of a machine without rotary axes",
+                                axis_text(k), axis_text(c.tool_direction));
+      } else {
+        std::string names;
+        for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+          names += fmt::format("{}{}", i == 0 ? "" : " and ", c.rotaries[i].address);
+        r.message = fmt::format("tool axis {} cannot be reached by the rotary {} {}", axis_text(k),
+                                c.rotaries.size() == 1 ? "axis" : "axes", names);
+      }
+    } else {
+      r.error = ik_error::beyond_limits;
+      std::string list;
+      for (std::size_t i = 0; i < beyond.size(); ++i) list += (i ? " or " : "") + beyond[i];
+      r.message = fmt::format("tool axis {} needs {}", axis_text(k), list);
+    }
+    return r;
+  }
+  const auto best = std::min_element(fitting.begin(), fitting.end(), [](const candidate& x, const candidate& y) {
+    if (x.misses != y.misses) return x.misses < y.misses;
+    if (x.total != y.total) return x.total < y.total;
+    return x.outer < y.outer;
+  });
+  r.joints = best->j;
+  r.pole = best->pole;
+  r.tip_error = best->tip_error;
+  r.axis_error = best->axis_error;
+  return r;
+}
+
+}  // namespace twinpost::kin
