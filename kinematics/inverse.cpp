@@ -100,11 +100,21 @@ std::vector<orientation_solution> orientation_solutions(const kinematic_chain& c
   const double cc = dot(dout, cross(din, t0));
   const double r = std::hypot(b, cc);
   if (r < 1e-12) return out;  // the inner axis cannot change it (rejected by the loader)
-  const double arg = (dot(dout, k) - a) / r;
-  // Beyond ±1 by rounding only: clamp, and let the forward check judge what is reachable.
-  if (std::abs(arg) > 1 + 1e-6) return out;
+  // φ = base ± half with cos half = e / r, e = dout·k - a. Not acos(e / r): near the pole (e ≈ r)
+  // it loses half the digits. sin half = sqrt((r - e)(r + e)) / r, with r ∓ e written through
+  // 1 ∓ dout·k = |dout × k|² / (1 ± dout·k), which has no cancellation, and the constants
+  // a + r - 1 and r - a - 1 of the chain (0 when the tool can reach the outer axis).
+  const double dk = dot(dout, k);
+  const double across = dot(cross(dout, k), cross(dout, k));
+  const double one_minus = dk > 0 ? across / (1 + dk) : 1 - dk;
+  const double one_plus = dk < 0 ? across / (1 - dk) : 1 + dk;
+  const double r_minus_e = (a + r - 1) + one_minus;
+  const double r_plus_e = (r - a - 1) + one_plus;
+  // Well beyond the circle the inner axis sweeps: unreachable. Just beyond it (about 0.08°):
+  // on its edge, and the forward check holds the result to the chain's angle tolerance.
+  if (r_minus_e < -1e-6 || r_plus_e < -1e-6) return out;
   const double base = std::atan2(cc, b) / deg;
-  const double half = std::acos(std::clamp(arg, -1.0, 1.0)) / deg;
+  const double half = std::atan2(std::sqrt(std::max(0.0, r_minus_e * r_plus_e)), dk - a) / deg;
   for (double phi : {base + half, base - half}) {
     orientation_solution s;
     s.rotary[f.inner] = f.inner_sign * wrap_180(phi);

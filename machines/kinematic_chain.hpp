@@ -7,13 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace twinpost {
+#include "support/vec3.hpp"
 
-/// A point or a direction, in millimetres or unitless.
-struct vec3 {
-  double x = 0, y = 0, z = 0;
-  friend bool operator==(const vec3&, const vec3&) = default;
-};
+namespace twinpost {
 
 /// What a rotary axis turns: the tool (a head, carried by the linear axes) or the workpiece
 /// (a table, carrying the part).
