@@ -32,6 +32,7 @@ enum class ik_error {
   zero_axis,      ///< the tool axis is not a direction (length 0, or not finite)
   unreachable,    ///< no rotation of the axes turns the tool to it
   beyond_limits,  ///< every solution has an axis outside its limits
+  too_many_points,  ///< linearisation: the move needs more sub-moves than allowed
 };
 
 struct ik_result {

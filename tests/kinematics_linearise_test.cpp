@@ -1,0 +1,127 @@
+// kinematics/linearise: moves whose rotary axes swing by tens of degrees, cut until the tip of
+// the joints' linear interpolation stays within the tolerance of the CL segment — shown by the
+// forward transform at many points of every sub-move, not only at the checked ones.
+#include <catch2/catch.hpp>
+
+#include "kinematics/forward.hpp"
+#include "kinematics/linearise.hpp"
+#include "kinematics/vec3_ops.hpp"
+#include "kinematics_test_support.hpp"
+
+using namespace twinpost;
+using namespace twinpost::kin;
+using test::test_chain;
+
+namespace {
+
+joint_values rotaries(double r0, double r1) {
+  joint_values j;
+  j.rotary = {r0, r1};
+  return j;
+}
+
+struct measured {
+  double unsplit = 0;  // the tip's largest distance from the segment with no cut
+  double worst = 0;    // the same over every sub-move, 200 points each
+  double end = 0;      // the last point's tip and axis against the CL end
+};
+
+measured measure(const kinematic_chain& c, const tool_pose& from, const joint_values& j0, const tool_pose& to,
+                 double length, const linearise_result& r) {
+  measured m;
+  const ik_result end = inverse(c, to, length, j0);
+  for (int i = 1; i < 200; ++i)
+    m.unsplit = std::max(
+        m.unsplit, distance_to_segment(forward(c, interpolate(j0, end.joints, i / 200.0), length).tip, from.tip, to.tip));
+  joint_values a = j0;
+  for (const joint_values& b : r.points) {
+    for (int i = 0; i <= 200; ++i)
+      m.worst = std::max(m.worst,
+                         distance_to_segment(forward(c, interpolate(a, b, i / 200.0), length).tip, from.tip, to.tip));
+    a = b;
+  }
+  const tool_pose last = forward(c, r.points.back(), length);
+  m.end = std::max(distance(last.tip, to.tip), angle_between(last.axis, to.axis));
+  return m;
+}
+
+// The tip's distance from the chord of a smooth curve falls as the square of the number of
+// cuts: n equal cuts of a move that leaves the line by D stay within D / n² (about), so at least
+// sqrt(D / tol) sub-moves are needed; halving overshoots that by at most two, and an uneven
+// curvature by a little more. Four times the least is the most a sound cutting may take.
+void check_count(std::size_t n, double unsplit, double tol) {
+  const double least = std::sqrt(unsplit / tol);
+  CHECK(static_cast<double>(n) >= least);
+  CHECK(static_cast<double>(n) <= 4 * least);
+}
+
+}  // namespace
+
+TEST_CASE("a table/table move swinging A by 50° and C by 70° is cut to 0.01 mm", "[kinematics]") {
+  const kinematic_chain& c = test_chain(2);
+  const double length = 120;
+  const joint_values j0 = positions(c, {50, 0, 0}, rotaries(-10, 0), length);
+  const tool_pose from = forward(c, j0, length);
+  const tool_pose to{{80, 30, -10}, forward(c, rotaries(-60, 70), length).axis};
+  const linearise_result r = linearise(c, from, j0, to, length, 0.01);
+  REQUIRE(r.ok());
+  const measured m = measure(c, from, j0, to, length, r);
+  INFO("sub-moves " << r.points.size() << ", unsplit " << m.unsplit << " mm, worst " << m.worst << " mm");
+  CHECK(m.unsplit > 10);  // one linear joint move would leave the line by centimetres
+  CHECK(m.worst <= 0.01);
+  CHECK(r.deviation <= 0.01);
+  CHECK(m.end < 1e-9);
+  check_count(r.points.size(), m.unsplit, 0.01);  // 78 sub-moves in the last run
+  CHECK(r.points.back().rotary[0] == Approx(-60).margin(1e-9));
+  CHECK(r.points.back().rotary[1] == Approx(70).margin(1e-9));
+}
+
+TEST_CASE("a head/head move from B -20 A 15 to B 20 A -15 is cut to 0.005 mm", "[kinematics]") {
+  const kinematic_chain& c = test_chain(1);
+  const double length = 100;  // 400 mm from the pivot to the tip
+  const joint_values j0 = positions(c, {0, 0, 0}, rotaries(-20, 15), length);
+  const tool_pose from = forward(c, j0, length);
+  const tool_pose to{{40, 10, 0}, forward(c, rotaries(20, -15), length).axis};
+  const linearise_result r = linearise(c, from, j0, to, length, 0.005);
+  REQUIRE(r.ok());
+  const measured m = measure(c, from, j0, to, length, r);
+  INFO("sub-moves " << r.points.size() << ", unsplit " << m.unsplit << " mm, worst " << m.worst << " mm");
+  CHECK(m.unsplit > 10);
+  CHECK(m.worst <= 0.005);
+  CHECK(m.end < 1e-9);
+  check_count(r.points.size(), m.unsplit, 0.005);  // 128 sub-moves in the last run
+  CHECK(r.points.back().rotary[0] == Approx(20).margin(1e-9));
+  CHECK(r.points.back().rotary[1] == Approx(-15).margin(1e-9));
+}
+
+TEST_CASE("a move that needs no cut is one point, and too many cuts are an error", "[kinematics]") {
+  const kinematic_chain& c = test_chain(2);
+  const joint_values j0 = positions(c, {0, 0, 0}, rotaries(-30, 10), 50);
+  const tool_pose from = forward(c, j0, 50);
+  // The same orientation: the joints' linear move is the straight line.
+  const tool_pose to{{20, 5, -3}, from.axis};
+  const linearise_result one = linearise(c, from, j0, to, 50, 0.001);
+  REQUIRE(one.ok());
+  CHECK(one.points.size() == 1);
+  const tool_pose swing{{80, 30, -10}, forward(c, rotaries(-60, 70), 50).axis};
+  const linearise_result many = linearise(c, from, j0, swing, 50, 0.001, 8);
+  CHECK(many.error == ik_error::too_many_points);
+  CHECK(many.message == "the move needs more than 8 points to keep the tip within 0.001 mm of the line");
+  CHECK(many.points.empty());
+  // An end the machine cannot reach is the inverse's error.
+  const linearise_result beyond = linearise(test_chain(1), {{0, 0, 0}, {0, 0, 1}}, {}, {{0, 0, 0}, {0.5, 0, 0.8660254037844386}}, 100, 0.01);
+  CHECK(beyond.error == ik_error::beyond_limits);
+  CHECK(beyond.message ==
+        "tool axis (0.5, 0, 0.866) needs B30 A0 (B beyond -20..20) or B-150 A180 (B beyond -20..20; A beyond "
+        "-20..20)");
+}
+
+TEST_CASE("slerp and the segment distance", "[kinematics]") {
+  const vec3 h = slerp({1, 0, 0}, {0, 1, 0}, 0.5);
+  CHECK(h.x == Approx(std::sqrt(0.5)));
+  CHECK(h.y == Approx(std::sqrt(0.5)));
+  CHECK(h.z == 0);
+  CHECK(slerp({0, 0, 2}, {0, 0, 1}, 0.3) == vec3{0, 0, 1});
+  CHECK(distance_to_segment({5, 3, 0}, {0, 0, 0}, {10, 0, 0}) == 3);
+  CHECK(distance_to_segment({-4, 3, 0}, {0, 0, 0}, {10, 0, 0}) == 5);  // beyond an end: to the end
+}
