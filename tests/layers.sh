@@ -9,10 +9,11 @@ declare -A allowed=(
   [machines]="machines support"
   [parser]="parser support"
   [channels]="channels parser machines support"
-  [formats]="formats channels parser machines support"
+  [kinematics]="kinematics machines support"
+  [formats]="formats kinematics channels parser machines support"
   [check]="check machines support"
-  [post]="post formats check channels parser machines support"
-  [cli]="cli post formats check channels parser machines support"
+  [post]="post formats kinematics check channels parser machines support"
+  [cli]="cli post formats kinematics check channels parser machines support"
 )
 bad=0
 for layer in "${!allowed[@]}"; do
