@@ -588,7 +588,8 @@ class reader {
 
   // A block with no M-word, comment or special character holds no wait and no end: only
   // remember it as the channel's last block. Most of a program is such blocks.
-  void note_plain_block(const nc_source& f, int no, std::string_view line, int channel, bool is_block = true) {
+  void note_plain_block(const nc_source& f, int no, std::string_view line, int channel,
+                        bool is_block = true) {
     channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
     if (st.ended) return;
     st.last_line = no;

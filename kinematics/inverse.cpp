@@ -121,21 +121,24 @@ std::vector<orientation_solution> orientation_solutions(const kinematic_chain& c
     outer_angle(rotate(t0, din, phi), s);
     if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
     if (s.rotary[f.inner] == -180.0) s.rotary[f.inner] = 180.0;
-    const bool twin = !out.empty() && std::abs(wrap_180(out[0].rotary[f.inner] - s.rotary[f.inner])) < 1e-12 &&
+    const bool twin = !out.empty() &&
+                      std::abs(wrap_180(out[0].rotary[f.inner] - s.rotary[f.inner])) < 1e-12 &&
                       std::abs(wrap_180(out[0].rotary[f.outer] - s.rotary[f.outer])) < 1e-12;
     if (!twin) out.push_back(s);
   }
   return out;
 }
 
-joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_values& angles, double tool_length) {
+joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_values& angles,
+                       double tool_length) {
   joint_values j = angles;
   j.linear = {};
   j.linear = part_to_machine(c, j, tip) - head_offset(c, j, tool_length);
   return j;
 }
 
-ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length, const joint_values& previous) {
+ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length,
+                  const joint_values& previous) {
   ik_result r;
   const double len = norm(pose.axis);
   if (!(len > 1e-9) || !std::isfinite(len)) {
@@ -208,11 +211,12 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     }
     return r;
   }
-  const auto best = std::min_element(fitting.begin(), fitting.end(), [](const candidate& x, const candidate& y) {
-    if (x.misses != y.misses) return x.misses < y.misses;
-    if (x.total != y.total) return x.total < y.total;
-    return x.outer < y.outer;
-  });
+  const auto best =
+      std::min_element(fitting.begin(), fitting.end(), [](const candidate& x, const candidate& y) {
+        if (x.misses != y.misses) return x.misses < y.misses;
+        if (x.total != y.total) return x.total < y.total;
+        return x.outer < y.outer;
+      });
   r.joints = best->j;
   r.pole = best->pole;
   r.tip_error = best->tip_error;

@@ -25,13 +25,14 @@ std::vector<orientation_solution> orientation_solutions(const kinematic_chain& c
 
 /// The linear joint values that put the tip of a tool of `tool_length` on `tip` with the
 /// rotary axes at `angles` (`angles.linear` is ignored).
-joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_values& angles, double tool_length);
+joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_values& angles,
+                       double tool_length);
 
 enum class ik_error {
   none,
-  zero_axis,      ///< the tool axis is not a direction (length 0, or not finite)
-  unreachable,    ///< no rotation of the axes turns the tool to it
-  beyond_limits,  ///< every solution has an axis outside its limits
+  zero_axis,        ///< the tool axis is not a direction (length 0, or not finite)
+  unreachable,      ///< no rotation of the axes turns the tool to it
+  beyond_limits,    ///< every solution has an axis outside its limits
   too_many_points,  ///< linearisation: the move needs more sub-moves than allowed
 };
 
@@ -47,6 +48,7 @@ struct ik_result {
 
 /// The joint values that put the tool of `tool_length` at `pose`, chosen as
 /// docs/kinematics.md says from every solution within the limits, nearest to `previous`.
-ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length, const joint_values& previous);
+ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length,
+                  const joint_values& previous);
 
 }  // namespace twinpost::kin

@@ -13,7 +13,8 @@ namespace twinpost::kin {
 joint_values interpolate(const joint_values& a, const joint_values& b, double t) {
   joint_values j;
   j.linear = a.linear + t * (b.linear - a.linear);
-  for (std::size_t i = 0; i < j.rotary.size(); ++i) j.rotary[i] = a.rotary[i] + t * (b.rotary[i] - a.rotary[i]);
+  for (std::size_t i = 0; i < j.rotary.size(); ++i)
+    j.rotary[i] = a.rotary[i] + t * (b.rotary[i] - a.rotary[i]);
   return j;
 }
 
@@ -48,7 +49,8 @@ struct splitter {
   double deviation(const joint_values& j0, const joint_values& j1) const {
     double d = 0;
     for (double t : {0.25, 0.5, 0.75})
-      d = std::max(d, distance_to_segment(forward(c, interpolate(j0, j1, t), tool_length).tip, from.tip, to.tip));
+      d = std::max(
+          d, distance_to_segment(forward(c, interpolate(j0, j1, t), tool_length).tip, from.tip, to.tip));
     return d;
   }
 

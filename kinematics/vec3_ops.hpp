@@ -20,7 +20,9 @@ inline vec3 cross(const vec3& a, const vec3& b) {
 inline double norm(const vec3& a) { return std::sqrt(dot(a, a)); }
 inline double distance(const vec3& a, const vec3& b) { return norm(a - b); }
 /// The angle between two non-zero vectors in degrees, accurate near 0 (atan2, not acos).
-inline double angle_between(const vec3& a, const vec3& b) { return std::atan2(norm(cross(a, b)), dot(a, b)) / deg; }
+inline double angle_between(const vec3& a, const vec3& b) {
+  return std::atan2(norm(cross(a, b)), dot(a, b)) / deg;
+}
 
 /// `v` turned by `degrees` right-handed about the unit direction `d` (Rodrigues).
 inline vec3 rotate(const vec3& v, const vec3& d, double degrees) {

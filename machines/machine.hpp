@@ -250,7 +250,8 @@ struct machine {
   cycle_rules cycles;
   transfer_def transfer;
   std::vector<tool_def> tools;  ///< the tool table ([[tool]]); may be empty
-  std::vector<kinematic_chain> kinematics;  ///< [[kinematics]]: the chains of the channels that have one
+  /// [[kinematics]]: the chains of the channels that have one (docs/kinematics.md).
+  std::vector<kinematic_chain> kinematics;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

@@ -64,18 +64,21 @@ void read_name(const table_reader& r, std::string_view key, const std::pair<std:
 }
 
 constexpr std::pair<std::string_view, rotary_kind> kind_names[] = {{"head", rotary_kind::head},
-                                                                    {"table", rotary_kind::table}};
+                                                                   {"table", rotary_kind::table}};
 constexpr std::pair<std::string_view, rotary_rollover> rollover_names[] = {
     {"absolute", rotary_rollover::absolute}, {"shortest", rotary_rollover::shortest}};
 constexpr std::pair<std::string_view, preferred_sign> prefer_names[] = {
-    {"none", preferred_sign::none}, {"positive", preferred_sign::positive}, {"negative", preferred_sign::negative}};
+    {"none", preferred_sign::none},
+    {"positive", preferred_sign::positive},
+    {"negative", preferred_sign::negative}};
 
 rotary_axis_def read_rotary(const table_reader& r, const kinematic_chain& c) {
   rotary_axis_def a;
   r.require("address");
   r.read_char("address", a.address, true);
   if (c.linear.find(a.address) != std::string::npos)
-    r.fail(*r.find("address"), fmt::format("kinematics.rotary.address {} is a linear axis of the chain", a.address));
+    r.fail(*r.find("address"),
+           fmt::format("kinematics.rotary.address {} is a linear axis of the chain", a.address));
   for (const rotary_axis_def& earlier : c.rotaries)
     if (earlier.address == a.address)
       r.fail(*r.find("address"), fmt::format("channel {} has rotary axis {} twice", c.channel, a.address));
@@ -110,11 +113,12 @@ void check_geometry(const table_reader& r, const toml::table& last, const kinema
   const rotary_axis_def& a = c.rotaries[0];
   const rotary_axis_def& b = c.rotaries[1];
   if (parallel(a.direction, b.direction))
-    fail_at(r.source(), last.source(),
-            fmt::format("rotary axes {} and {} are parallel: they cannot tilt the tool", a.address, b.address));
+    fail_at(
+        r.source(), last.source(),
+        fmt::format("rotary axes {} and {} are parallel: they cannot tilt the tool", a.address, b.address));
   // The inner rotation: the head nearer the tool, the primary table, or the head of a mixed chain.
-  const rotary_axis_def& inner = a.kind == b.kind ? (a.kind == rotary_kind::head ? b : a)
-                                                  : (a.kind == rotary_kind::head ? a : b);
+  const rotary_axis_def& inner =
+      a.kind == b.kind ? (a.kind == rotary_kind::head ? b : a) : (a.kind == rotary_kind::head ? a : b);
   if (parallel(inner.direction, c.tool_direction))
     fail_at(r.source(), last.source(),
             fmt::format("rotary axis {} lies along the tool: it cannot tilt it", inner.address));
@@ -129,13 +133,15 @@ void read_kinematics(const table_reader& root, machine& m) {
     kinematic_chain c;
     r.require("channel");
     r.read("channel", c.channel);
-    if (std::none_of(m.channels.begin(), m.channels.end(), [&](const channel_def& d) { return d.number == c.channel; }))
+    if (std::none_of(m.channels.begin(), m.channels.end(),
+                     [&](const channel_def& d) { return d.number == c.channel; }))
       r.fail(*r.find("channel"), fmt::format("kinematics.channel {} names no channel", c.channel));
     for (const kinematic_chain& earlier : m.kinematics)
       if (earlier.channel == c.channel)
         r.fail(*r.find("channel"), fmt::format("channel {} has two [[kinematics]] tables", c.channel));
     if (r.read("linear", c.linear)) {
-      const bool letters = std::all_of(c.linear.begin(), c.linear.end(), [](char x) { return ascii::is_upper(x); });
+      const bool letters =
+          std::all_of(c.linear.begin(), c.linear.end(), [](char x) { return ascii::is_upper(x); });
       if (c.linear.size() != 3 || !letters || c.linear[0] == c.linear[1] || c.linear[0] == c.linear[2] ||
           c.linear[1] == c.linear[2])
         r.fail(*r.find("linear"), fmt::format("kinematics.linear must be three different letters (\"XYZ\"), "
@@ -150,10 +156,12 @@ void read_kinematics(const table_reader& root, machine& m) {
     }
     const std::vector<const toml::table*> rotaries = r.tables("rotary");
     for (const toml::table* rt : rotaries) {
-      table_reader ar(*rt, "kinematics.rotary", root.source(),
-                      {"address", "kind", "direction", "point", "min", "max", "continuous", "rollover", "prefer"});
+      table_reader ar(
+          *rt, "kinematics.rotary", root.source(),
+          {"address", "kind", "direction", "point", "min", "max", "continuous", "rollover", "prefer"});
       if (c.rotaries.size() == 2)
-        ar.fail_here(fmt::format("channel {} has more than two rotary axes (the most twinpost solves)", c.channel));
+        ar.fail_here(
+            fmt::format("channel {} has more than two rotary axes (the most twinpost solves)", c.channel));
       c.rotaries.push_back(read_rotary(ar, c));
     }
     if (!rotaries.empty()) check_geometry(r, *rotaries.back(), c);

@@ -62,7 +62,8 @@ TEST_CASE("a [[kinematics]] table gives the channel's chain, with defaults", "[k
 
 TEST_CASE("errors in [[kinematics]] are reported at their place", "[kinematics][machines]") {
   const std::string k = one_channel + "[[kinematics]]\nchannel = 1\n";  // lines 9-10
-  const std::string b = k + "[[kinematics.rotary]]\naddress = \"B\"\nkind = \"head\"\ndirection = [0, 1, 0]\n";
+  const std::string b =
+      k + "[[kinematics.rotary]]\naddress = \"B\"\nkind = \"head\"\ndirection = [0, 1, 0]\n";
   CHECK(machine_error_of(one_channel + "[[kinematics]]\nchannel = 2\n") ==
         "m.toml:10:11: error: kinematics.channel 2 names no channel");
   CHECK(machine_error_of(k + "[[kinematics]]\nchannel = 1\n") ==
@@ -73,8 +74,10 @@ TEST_CASE("errors in [[kinematics]] are reported at their place", "[kinematics][
         "m.toml:11:18: error: kinematics.tool_direction must be an array of three numbers [x, y, z]");
   CHECK(machine_error_of(k + "tool_direction = [0, 0, 0]\n") ==
         "m.toml:11:18: error: kinematics.tool_direction must not be the zero vector");
-  CHECK(machine_error_of(k + "tolerance = 0\n") == "m.toml:11:13: error: kinematics.tolerance must be > 0, not 0");
-  CHECK(machine_error_of(b) == "m.toml:11:1: error: rotary axis B needs min and max (degrees), or continuous = true");
+  CHECK(machine_error_of(k + "tolerance = 0\n") ==
+        "m.toml:11:13: error: kinematics.tolerance must be > 0, not 0");
+  CHECK(machine_error_of(b) ==
+        "m.toml:11:1: error: rotary axis B needs min and max (degrees), or continuous = true");
   CHECK(machine_error_of(b + "min = 10\nmax = -10\n") ==
         "m.toml:15:7: error: kinematics.rotary.min (10) must be <= kinematics.rotary.max (-10)");
   CHECK(machine_error_of(b + "min = 10\ncontinuous = true\n") ==
@@ -93,11 +96,13 @@ TEST_CASE("errors in [[kinematics]] are reported at their place", "[kinematics][
   CHECK(machine_error_of(c + "direction = [0, 2, 0]\ncontinuous = true\n") ==
         "m.toml:16:1: error: rotary axes B and C are parallel: they cannot tilt the tool");
   // The head is the inner rotation of a head/table chain: along the tool it tilts nothing.
-  CHECK(machine_error_of(k + "[[kinematics.rotary]]\naddress = \"B\"\nkind = \"head\"\ndirection = [0, 0, 1]\n"
-                             "continuous = true\n[[kinematics.rotary]]\naddress = \"C\"\nkind = \"table\"\n"
-                             "direction = [1, 0, 0]\ncontinuous = true\n") ==
+  CHECK(machine_error_of(k +
+                         "[[kinematics.rotary]]\naddress = \"B\"\nkind = \"head\"\ndirection = [0, 0, 1]\n"
+                         "continuous = true\n[[kinematics.rotary]]\naddress = \"C\"\nkind = \"table\"\n"
+                         "direction = [1, 0, 0]\ncontinuous = true\n") ==
         "m.toml:16:1: error: rotary axis B lies along the tool: it cannot tilt it");
-  CHECK(machine_error_of(c + "direction = [0, 0, 1]\ncontinuous = true\n[[kinematics.rotary]]\naddress = \"A\"\n") ==
+  CHECK(machine_error_of(
+            c + "direction = [0, 0, 1]\ncontinuous = true\n[[kinematics.rotary]]\naddress = \"A\"\n") ==
         "m.toml:21:1: error: channel 1 has more than two rotary axes (the most twinpost solves)");
   CHECK(machine_error_of(c + "direction = [0, 0, 1]\ncontinuous = true\naddress2 = 1\n") ==
         "m.toml:21:1: error: unknown key 'kinematics.rotary.address2'");

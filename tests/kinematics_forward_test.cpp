@@ -33,7 +33,8 @@ joint_values joints(vec3 linear, double r0, double r1) {
 
 TEST_CASE("with every rotary axis at 0 the tip is at the linear position and the tool is upright",
           "[kinematics]") {
-  for (int ch = 1; ch <= 7; ++ch) check_pose(forward(test_chain(ch), joints({1, 2, 3}, 0, 0), 75), {1, 2, 3}, {0, 0, 1});
+  for (int ch = 1; ch <= 7; ++ch)
+    check_pose(forward(test_chain(ch), joints({1, 2, 3}, 0, 0), 75), {1, 2, 3}, {0, 0, 1});
 }
 
 // Channel 2, table/table: A about X through (0, 0, -80) carrying C about Z through (12.5, -7, 0).
@@ -45,7 +46,8 @@ TEST_CASE("with every rotary axis at 0 the tip is at the linear position and the
 TEST_CASE("table/table A over C: the pose computed by hand", "[kinematics]") {
   check_pose(forward(test_chain(2), joints({100, 20, 30}, -90, 90), 40), {-90.5, -94.5, -60}, {-1, 0, 0});
   // A 30, C 0: K = (0, sin 30, cos 30); a point on the A axis does not move.
-  check_pose(forward(test_chain(2), joints({0, 0, -80}, 30, 0), 40), {0, 0, -80}, {0, 0.5, 0.8660254037844386});
+  check_pose(forward(test_chain(2), joints({0, 0, -80}, 30, 0), 40), {0, 0, -80},
+             {0, 0.5, 0.8660254037844386});
 }
 
 // Channel 3, head/table: B head about Y through the gauge point + (5, 0, 250), C table about Z

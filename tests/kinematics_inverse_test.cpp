@@ -115,9 +115,10 @@ TEST_CASE("the chains of the test machine are the kinds they describe", "[kinema
 //   so A = -asin(Ky), B = atan2(Kx, Kz) (cos A > 0; the twin 180° - A, B + 180° is beyond ±20°).
 // The tip at home is the linear position; the pivot P = lin + (0, 0, 400) stays where it is and
 // the tip turns about it: Q = P - 400·K, so lin = Q + 400·(K - z).
-//   A 0,  B 10: K = (0.173648177666930, 0, 0.984807753012208), 400(K - z) = (69.459271066772, 0, -6.076898795117)
-//   A 15, B 0:  K = (0, -0.258819045102521, 0.965925826289068), 400(K - z) = (0, -103.527618041008, -13.629669484373)
-//   A 10, B 20: K = (0.336824088833465, -0.173648177666930, 0.925416578398323),
+//   A 0,  B 10: K = (0.173648177666930, 0, 0.984807753012208), 400(K - z) = (69.459271066772, 0,
+//   -6.076898795117) A 15, B 0:  K = (0, -0.258819045102521, 0.965925826289068), 400(K - z) = (0,
+//   -103.527618041008, -13.629669484373) A 10, B 20: K = (0.336824088833465, -0.173648177666930,
+//   0.925416578398323),
 //               400(K - z) = (134.729635533386, -69.459271066772, -29.833368640671)
 //   A -20, B -20 (both on a limit): K = (-0.321393804843270, 0.342020143325669, 0.883022221559489),
 //               400(K - z) = (-128.557521937308, 136.808057330267, -46.791111376204)
@@ -196,7 +197,8 @@ TEST_CASE("a tool axis no rotation reaches, and one that is no direction, are er
   kinematic_chain three_axis;
   const ik_result t = inverse(three_axis, {{0, 0, 0}, {0, 1, 0}}, 100, {});
   CHECK(t.error == ik_error::unreachable);
-  CHECK(t.message == "tool axis (0, 1, 0) is not the tool direction (0, 0, 1) of a machine without rotary axes");
+  CHECK(t.message ==
+        "tool axis (0, 1, 0) is not the tool direction (0, 0, 1) of a machine without rotary axes");
   const ik_result ok = inverse(three_axis, {{1, 2, 3}, {0, 0, 2}}, 100, {});
   REQUIRE(ok.ok());
   CHECK(ok.joints.linear == vec3{1, 2, 3});

@@ -31,13 +31,14 @@ measured measure(const kinematic_chain& c, const tool_pose& from, const joint_va
   measured m;
   const ik_result end = inverse(c, to, length, j0);
   for (int i = 1; i < 200; ++i)
-    m.unsplit = std::max(
-        m.unsplit, distance_to_segment(forward(c, interpolate(j0, end.joints, i / 200.0), length).tip, from.tip, to.tip));
+    m.unsplit = std::max(m.unsplit,
+                         distance_to_segment(forward(c, interpolate(j0, end.joints, i / 200.0), length).tip,
+                                             from.tip, to.tip));
   joint_values a = j0;
   for (const joint_values& b : r.points) {
     for (int i = 0; i <= 200; ++i)
-      m.worst = std::max(m.worst,
-                         distance_to_segment(forward(c, interpolate(a, b, i / 200.0), length).tip, from.tip, to.tip));
+      m.worst = std::max(m.worst, distance_to_segment(forward(c, interpolate(a, b, i / 200.0), length).tip,
+                                                      from.tip, to.tip));
     a = b;
   }
   const tool_pose last = forward(c, r.points.back(), length);
@@ -109,7 +110,8 @@ TEST_CASE("a move that needs no cut is one point, and too many cuts are an error
   CHECK(many.message == "the move needs more than 8 points to keep the tip within 0.001 mm of the line");
   CHECK(many.points.empty());
   // An end the machine cannot reach is the inverse's error.
-  const linearise_result beyond = linearise(test_chain(1), {{0, 0, 0}, {0, 0, 1}}, {}, {{0, 0, 0}, {0.5, 0, 0.8660254037844386}}, 100, 0.01);
+  const linearise_result beyond = linearise(test_chain(1), {{0, 0, 0}, {0, 0, 1}}, {},
+                                            {{0, 0, 0}, {0.5, 0, 0.8660254037844386}}, 100, 0.01);
   CHECK(beyond.error == ik_error::beyond_limits);
   CHECK(beyond.message ==
         "tool axis (0.5, 0, 0.866) needs B30 A0 (B beyond -20..20) or B-150 A180 (B beyond -20..20; A beyond "
