@@ -13,5 +13,6 @@ int run_parse(const args& a);
 int run_post(const args& a);
 int run_check(const args& a);
 int run_machines(const args& a);
+int run_kin(const args& a);
 
 }  // namespace twinpost::cli
