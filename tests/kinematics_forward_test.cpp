@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "kinematics/forward.hpp"
+#include "kinematics/inverse.hpp"
 #include "kinematics/vec3_ops.hpp"
 #include "kinematics_test_support.hpp"
 
@@ -75,4 +76,49 @@ TEST_CASE("head/head C over B: the pose computed by hand", "[kinematics]") {
 // the tip: the tip goes to (0, 0, 200) - 200·(0, -1, 0) = (0, 200, 200).
 TEST_CASE("a 45° nutating head: the pose computed by hand", "[kinematics]") {
   check_pose(forward(test_chain(5), joints({0, 0, 0}, 0, 180), 0), {0, 200, 200}, {0, -1, 0});
+}
+
+// Independent closed forms of the orientation, over a grid of angles (the property test of
+// the inverse cannot see a convention shared by both directions; these can):
+// - LinuxCNC xyzac-trt (A table about X carrying C about Z): K = (sin C sin A, cos C sin A, cos A);
+// - LinuxCNC xyzbc-trt (B table about Y carrying C about Z): K = (-cos C sin B, sin C sin B, cos B)
+//   (both as ../shared/reference/style-and-kinematics.md §2.1 gives them, checked there numerically);
+// - a head nutating about an axis at v = 45° to the tool: the tool's component along the
+//   spindle after a turn θ is cos²v + sin²v cos θ (remap.py's θ2 = acos((Kz - cos²v)/(1 - cos²v))).
+TEST_CASE("the orientation agrees with LinuxCNC's trt closed forms and the nutation formula",
+          "[kinematics]") {
+  kinematic_chain bc;
+  bc.rotaries.resize(2);
+  bc.rotaries[0] = {'B', rotary_kind::table, {0, 1, 0}, {0, 0, 0}, -90.0, 90.0};
+  bc.rotaries[1] = {'C', rotary_kind::table, {0, 0, 1}, {0, 0, 0}, std::nullopt, std::nullopt};
+  const kinematic_chain& ac = test_chain(2);
+  const kinematic_chain& nutating = test_chain(5);
+  int poses = 0;
+  for (double p = -90; p <= 30; p += 7.5)
+    for (double c = -180; c <= 180; c += 15) {
+      const double sp = std::sin(p * deg), cp = std::cos(p * deg), sc = std::sin(c * deg),
+                   cc = std::cos(c * deg);
+      const vec3 k_ac = forward(ac, joints({0, 0, 0}, p, c), 0).axis;
+      CHECK(distance(k_ac, {sc * sp, cc * sp, cp}) < 1e-15);
+      const vec3 k_bc = forward(bc, joints({0, 0, 0}, p, c), 0).axis;
+      CHECK(distance(k_bc, {-cc * sp, sc * sp, cp}) < 1e-15);
+      const vec3 k_n = forward(nutating, joints({0, 0, 0}, c, p), 0).axis;
+      CHECK(k_n.z == Approx(0.5 + 0.5 * cp).margin(1e-15));
+      ++poses;
+    }
+  CHECK(poses == 17 * 25);
+}
+
+// The inverse of the nutating head gives the nutation formula's angle, ±acos((Kz - ½)/½), for
+// axes all round the cone.
+TEST_CASE("the nutating head's inverse gives remap.py's nutation angle", "[kinematics]") {
+  const kinematic_chain& c = test_chain(5);
+  for (double kz = 0.05; kz < 1; kz += 0.1)
+    for (double az = -170; az <= 180; az += 40) {
+      const double s = std::sqrt(1 - kz * kz);
+      const ik_result r =
+          inverse(c, {{0, 0, 0}, {s * std::cos(az * deg), s * std::sin(az * deg), kz}}, 0, {});
+      REQUIRE(r.ok());
+      CHECK(std::abs(r.joints.rotary[1]) == Approx(std::acos((kz - 0.5) / 0.5) / deg).margin(1e-9));
+    }
 }

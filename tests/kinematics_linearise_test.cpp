@@ -24,6 +24,7 @@ struct measured {
   double unsplit = 0;  // the tip's largest distance from the segment with no cut
   double worst = 0;    // the same over every sub-move, 200 points each
   double end = 0;      // the last point's tip and axis against the CL end
+  double on_line = 0;  // every point's tip from the segment, and its axis from the great circle
 };
 
 measured measure(const kinematic_chain& c, const tool_pose& from, const joint_values& j0, const tool_pose& to,
@@ -40,6 +41,11 @@ measured measure(const kinematic_chain& c, const tool_pose& from, const joint_va
       m.worst = std::max(m.worst, distance_to_segment(forward(c, interpolate(a, b, i / 200.0), length).tip,
                                                       from.tip, to.tip));
     a = b;
+    // Each point is a CL point: its tip on the segment, its axis in the plane of the two axes.
+    const tool_pose p = forward(c, b, length);
+    const vec3 normal = cross(from.axis, to.axis);
+    m.on_line = std::max({m.on_line, distance_to_segment(p.tip, from.tip, to.tip),
+                          std::abs(dot(p.axis, normal)) / norm(normal)});
   }
   const tool_pose last = forward(c, r.points.back(), length);
   m.end = std::max(distance(last.tip, to.tip), angle_between(last.axis, to.axis));
@@ -72,6 +78,7 @@ TEST_CASE("a table/table move swinging A by 50° and C by 70° is cut to 0.01 mm
   CHECK(m.worst <= 0.01);
   CHECK(r.deviation <= 0.01);
   CHECK(m.end < 1e-9);
+  CHECK(m.on_line < 1e-9);
   check_count(r.points.size(), m.unsplit, 0.01);  // 78 sub-moves in the last run
   CHECK(r.points.back().rotary[0] == Approx(-60).margin(1e-9));
   CHECK(r.points.back().rotary[1] == Approx(70).margin(1e-9));
@@ -90,6 +97,7 @@ TEST_CASE("a head/head move from B -20 A 15 to B 20 A -15 is cut to 0.005 mm", "
   CHECK(m.unsplit > 10);
   CHECK(m.worst <= 0.005);
   CHECK(m.end < 1e-9);
+  CHECK(m.on_line < 1e-9);
   check_count(r.points.size(), m.unsplit, 0.005);  // 128 sub-moves in the last run
   CHECK(r.points.back().rotary[0] == Approx(20).margin(1e-9));
   CHECK(r.points.back().rotary[1] == Approx(-15).margin(1e-9));
