@@ -35,6 +35,15 @@ vec3 part_to_machine(const kinematic_chain& c, const joint_values& j, const vec3
   return q;
 }
 
+vec3 tool_axis(const kinematic_chain& c, const joint_values& j) {
+  vec3 axis = c.tool_direction;
+  for (std::size_t i = c.rotaries.size(); i-- > 0;)  // the heads, the inner one first
+    if (c.rotaries[i].kind == rotary_kind::head) axis = rotate(axis, c.rotaries[i].direction, j.rotary[i]);
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)  // the tables undone, the first one first
+    if (c.rotaries[i].kind == rotary_kind::table) axis = rotate(axis, c.rotaries[i].direction, -j.rotary[i]);
+  return axis;
+}
+
 tool_pose forward(const kinematic_chain& c, const joint_values& j, double tool_length) {
   tool_pose p{{0, 0, 0}, c.tool_direction};
   apply_heads(c, j, tool_length * c.tool_direction, p.tip, p.axis);

@@ -9,6 +9,9 @@ namespace twinpost::kin {
 /// points, in the part frame, with the machine at `j`.
 tool_pose forward(const kinematic_chain& c, const joint_values& j, double tool_length);
 
+/// The tool axis alone of forward(), in the part frame.
+vec3 tool_axis(const kinematic_chain& c, const joint_values& j);
+
 /// The tool tip relative to the linear axes' position, with the heads at `j` (the heads' part
 /// of the forward transform): the linear values are the tip's place when every head is at 0.
 vec3 head_offset(const kinematic_chain& c, const joint_values& j, double tool_length);

@@ -66,11 +66,11 @@ bool meets(preferred_sign p, double v) {
 
 }  // namespace
 
-std::vector<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
+two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
                                                         const joint_values& previous) {
   const orientation_form f = orientation_of(c);
   const vec3& t0 = c.tool_direction;
-  std::vector<orientation_solution> out;
+  two_at_most<orientation_solution> out;
   if (f.outer < 0) {
     out.push_back({});
     return out;
@@ -156,23 +156,26 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     double total, outer;
     double tip_error, axis_error;
   };
-  std::vector<candidate> fitting;
-  std::vector<std::string> beyond;  // "B30 A0 (B beyond -20..20)" for the message
+  two_at_most<candidate> fitting;
+  // Candidates with an axis beyond its limits, for the message only: formatted when nothing fits.
+  struct refused {
+    std::array<double, 2> rotary;
+    std::array<bool, 2> beyond;
+  };
+  two_at_most<refused> beyond;
   const orientation_form f = orientation_of(c);
   for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
     // Generate, then verify: a candidate the forward transform does not confirm is no solution.
     joint_values raw;
     raw.rotary = s.rotary;
-    const tool_pose check = forward(c, positions(c, want.tip, raw, tool_length), tool_length);
-    if (angle_between(check.axis, k) > c.angle_tolerance) continue;
+    if (angle_between(tool_axis(c, raw), k) > c.angle_tolerance) continue;
     candidate cand{raw, s.pole, 0, 0, 0, 0, 0};
-    std::string why;
+    refused why{s.rotary, {false, false}};
     for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
       const rotary_axis_def& a = c.rotaries[i];
       const std::optional<fitted> v = fit(a, s.rotary[i], previous.rotary[i]);
       if (!v) {
-        why += fmt::format("{}{} beyond {}..{}", why.empty() ? "" : "; ", a.address, number_text(*a.min),
-                           number_text(*a.max));
+        why.beyond[i] = true;
         continue;
       }
       cand.j.rotary[i] = v->value;
@@ -180,8 +183,8 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
       if (static_cast<int>(i) == f.outer) cand.outer = v->move;
       if (!meets(a.prefer, v->value)) ++cand.misses;
     }
-    if (!why.empty()) {
-      beyond.push_back(fmt::format("{} ({})", angles_text(c, s.rotary), why));
+    if (why.beyond[0] || why.beyond[1]) {
+      beyond.push_back(why);
       continue;
     }
     cand.j = positions(c, want.tip, cand.j, tool_length);
@@ -205,8 +208,16 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
       }
     } else {
       r.error = ik_error::beyond_limits;
+      // "B30 A0 (B beyond -20..20) or B-150 A180 (B beyond -20..20; A beyond -20..20)"
       std::string list;
-      for (std::size_t i = 0; i < beyond.size(); ++i) list += (i ? " or " : "") + beyond[i];
+      for (std::size_t n = 0; n < beyond.size(); ++n) {
+        std::string why;
+        for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+          if (beyond[n].beyond[i])
+            why += fmt::format("{}{} beyond {}..{}", why.empty() ? "" : "; ", c.rotaries[i].address,
+                               number_text(*c.rotaries[i].min), number_text(*c.rotaries[i].max));
+        list += fmt::format("{}{} ({})", n ? " or " : "", angles_text(c, beyond[n].rotary), why);
+      }
       r.message = fmt::format("tool axis {} needs {}", axis_text(k), list);
     }
     return r;

@@ -4,8 +4,8 @@
 // positions from the forward transform's pieces; every candidate checked by the forward
 // transform; one chosen by limits, preferred tilt sign and the shortest move from the
 // previous joint values (docs/kinematics.md, "Choosing a solution").
+#include <array>
 #include <string>
-#include <vector>
 
 #include "kinematics/chain.hpp"
 
@@ -17,10 +17,26 @@ struct orientation_solution {
   bool pole = false;  ///< the axis lay on the outer rotary axis: its angle was kept from `previous`
 };
 
+/// At most two values, without allocation (an inverse runs once per CL point).
+template <class T>
+class two_at_most {
+ public:
+  void push_back(const T& v) { items_[count_++] = v; }
+  std::size_t size() const { return count_; }
+  bool empty() const { return count_ == 0; }
+  const T& operator[](std::size_t i) const { return items_[i]; }
+  const T* begin() const { return items_.data(); }
+  const T* end() const { return items_.data() + count_; }
+
+ private:
+  std::array<T, 2> items_{};
+  std::size_t count_ = 0;
+};
+
 /// The solutions of R(outer)·R(inner)·t0 = `axis` (two, one where they coincide, none when no
 /// rotation of the axes reaches it). Not yet checked by the forward transform. At the pole the
 /// outer angle is `previous`'s.
-std::vector<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& axis,
+two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& axis,
                                                         const joint_values& previous);
 
 /// The linear joint values that put the tip of a tool of `tool_length` on `tip` with the
