@@ -222,11 +222,16 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     }
     return r;
   }
+  // Moves that differ by rounding only are equal; on a tie of both, the positive tilt (the
+  // inner axis's value) wins, so that a symmetric choice does not depend on the solve's order.
+  constexpr double same = 1e-9;
+  const int inner = f.inner >= 0 ? f.inner : 0;
   const auto best =
-      std::min_element(fitting.begin(), fitting.end(), [](const candidate& x, const candidate& y) {
+      std::min_element(fitting.begin(), fitting.end(), [&](const candidate& x, const candidate& y) {
         if (x.misses != y.misses) return x.misses < y.misses;
-        if (x.total != y.total) return x.total < y.total;
-        return x.outer < y.outer;
+        if (std::abs(x.total - y.total) > same) return x.total < y.total;
+        if (std::abs(x.outer - y.outer) > same) return x.outer < y.outer;
+        return x.j.rotary[inner] > y.j.rotary[inner];
       });
   r.joints = best->j;
   r.pole = best->pole;

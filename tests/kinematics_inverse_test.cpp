@@ -160,6 +160,30 @@ TEST_CASE("head/head B over A with 400 mm from pivot to tip: joint values comput
   CHECK(v.joints.linear == tip);
 }
 
+// Channel 2, table/table: K = (sin C sin A, cos C sin A, cos A) (kinematics_forward_test.cpp).
+// K = (0.5, 0, cos 30°): A = ±30°, sin C = 0.5 / sin A, cos C = 0: (A 30, C 90) or (A -30, C -90).
+// From (0, 0) both move 120° in all and 90° on C: the tie goes to the positive tilt, A 30.
+// The part's zero in the machine frame: C 90 about Z through (12.5, -7): (0, 0) - (12.5, -7) =
+// (-12.5, 7) -> (-y, x) = (-7, -12.5), + (12.5, -7) = (5.5, -19.5, 0); A 30 about X through
+// (0, 0, -80): (y, z) = (-19.5, 80) -> (y cos 30 - z sin 30, y sin 30 + z cos 30) =
+// (-56.887495373797, 59.532032302755), z - 80 = -20.467967697245.
+TEST_CASE("table/table A over C: joint values computed by hand, and the tie", "[kinematics]") {
+  const ik_result r = inverse(test_chain(2), {{0, 0, 0}, {0.5, 0, 0.8660254037844386}}, 30, {});
+  REQUIRE(r.ok());
+  CHECK(r.joints.rotary[0] == Approx(30).margin(1e-9));
+  CHECK(r.joints.rotary[1] == Approx(90).margin(1e-9));
+  CHECK(r.joints.linear.x == Approx(5.5).margin(1e-9));
+  CHECK(r.joints.linear.y == Approx(-56.887495373797).margin(1e-9));
+  CHECK(r.joints.linear.z == Approx(-20.467967697245).margin(1e-9));
+  // From C -80 the twin (A -30, C -90) is the shorter move.
+  joint_values prev;
+  prev.rotary = {0, -80};
+  const ik_result t = inverse(test_chain(2), {{0, 0, 0}, {0.5, 0, 0.8660254037844386}}, 30, prev);
+  REQUIRE(t.ok());
+  CHECK(t.joints.rotary[0] == Approx(-30).margin(1e-9));
+  CHECK(t.joints.rotary[1] == Approx(-90).margin(1e-9));
+}
+
 TEST_CASE("the two orientation solutions of the head/head machine are A, B and 180 - A, B + 180",
           "[kinematics]") {
   const two_at_most<orientation_solution> s =
