@@ -45,6 +45,12 @@ struct splitter {
   int max_points;
   linearise_result& out;
 
+  // The CL point a fraction `s` of the way along the segment; the end itself at 1.
+  tool_pose at(double s) const {
+    if (s == 1) return to;
+    return {from.tip + s * (to.tip - from.tip), slerp(from.axis, to.axis, s)};
+  }
+
   // The largest distance from the segment of the tip of the joints between j0 and j1.
   double deviation(const joint_values& j0, const joint_values& j1) const {
     double d = 0;
@@ -54,29 +60,32 @@ struct splitter {
     return d;
   }
 
-  // Appends the sub-moves from (s0, j0) to (s1, j1); false on an error (in out).
-  bool split(double s0, const joint_values& j0, double s1, const joint_values& j1) {
-    const double d = deviation(j0, j1);
+  bool fail(ik_error e, std::string message) {
+    out.error = e;
+    out.message = std::move(message);
+    return false;
+  }
+
+  // Appends the sub-moves from (s0, j0) to the CL point at s1, whose joints are solved from
+  // j0: the joints follow the CL path from the start, so the end is reached the way the path
+  // goes (past a pole, the way around it), not by the shortest move from the start.
+  bool split(double s0, const joint_values& j0, double s1, int depth) {
+    const ik_result end = inverse(c, at(s1), tool_length, j0);
+    if (!end.ok()) return fail(end.error, end.message);
+    const double d = deviation(j0, end.joints);
     if (d <= tolerance) {
       out.deviation = std::max(out.deviation, d);
-      out.points.push_back(j1);
+      out.points.push_back(end.joints);
       return true;
     }
-    if (static_cast<int>(out.points.size()) + 2 > max_points) {
-      out.error = ik_error::too_many_points;
-      out.message = fmt::format("the move needs more than {} points to keep the tip within {} mm of the line",
-                                max_points, number_text(tolerance));
-      return false;
-    }
+    if (static_cast<int>(out.points.size()) + 2 > max_points || depth == 60)
+      return fail(ik_error::too_many_points,
+                  fmt::format("the move needs more than {} points to keep the tip within {} mm of the line",
+                              max_points, number_text(tolerance)));
     const double sm = (s0 + s1) / 2;
-    const tool_pose mid{from.tip + sm * (to.tip - from.tip), slerp(from.axis, to.axis, sm)};
-    const ik_result r = inverse(c, mid, tool_length, j0);
-    if (!r.ok()) {
-      out.error = r.error;
-      out.message = r.message;
-      return false;
-    }
-    return split(s0, j0, sm, r.joints) && split(sm, r.joints, s1, j1);
+    if (!split(s0, j0, sm, depth + 1)) return false;
+    const joint_values jm = out.points.back();
+    return split(sm, jm, s1, depth + 1);
   }
 };
 
@@ -85,14 +94,8 @@ struct splitter {
 linearise_result linearise(const kinematic_chain& c, const tool_pose& from, const joint_values& from_joints,
                            const tool_pose& to, double tool_length, double tolerance, int max_points) {
   linearise_result out;
-  const ik_result end = inverse(c, to, tool_length, from_joints);
-  if (!end.ok()) {
-    out.error = end.error;
-    out.message = end.message;
-    return out;
-  }
   splitter s{c, from, to, tool_length, tolerance, max_points, out};
-  s.split(0, from_joints, 1, end.joints);
+  s.split(0, from_joints, 1, 0);
   if (!out.ok()) out.points.clear();
   return out;
 }

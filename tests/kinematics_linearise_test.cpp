@@ -135,3 +135,42 @@ TEST_CASE("slerp and the segment distance", "[kinematics]") {
   CHECK(distance_to_segment({5, 3, 0}, {0, 0, 0}, {10, 0, 0}) == 3);
   CHECK(distance_to_segment({-4, 3, 0}, {0, 0, 0}, {10, 0, 0}) == 5);  // beyond an end: to the end
 }
+
+// Head/table B over C (rollover "shortest"): K = R_z(-C)·(sin B, 0, cos B) = (sin B cos C,
+// -sin B sin C, cos B). A move from the axis tilted 20° towards +X to 20° towards -X, both
+// leaning e = 0.5° towards +Y, passes the pole (K = z) at 0.5°: it never reaches it, so B never
+// crosses 0 and C turns the part half round instead: B stays acos(cos 20° / √(1 + sin² e)),
+// C goes from -atan(sin e / sin 20°) = 358.538° to 180 + atan(sin e / sin 20°) = 181.462°.
+// (The shortest move from the start, B -20 C 1.46, is on the other side of the pole: the
+// joints would cross it while the CL path does not.) Through the pole itself (e = 0) C keeps
+// its angle and B goes from 20 to -20.
+TEST_CASE("a move past the pole follows the path round it, a move through it keeps C", "[kinematics]") {
+  const kinematic_chain& c = test_chain(3);
+  const double t = 20 * deg;
+  for (double off : {0.5, 0.0}) {
+    const double e = off * deg;
+    const tool_pose from{{30, 10, 0}, {std::sin(t), std::sin(e), std::cos(t)}};
+    const tool_pose to{{-30, 10, 0}, {-std::sin(t), std::sin(e), std::cos(t)}};
+    const ik_result start = inverse(c, from, 100, {});
+    REQUIRE(start.ok());
+    const linearise_result r = linearise(c, from, start.joints, to, 100, 0.01);
+    REQUIRE(r.ok());
+    const measured m = measure(c, from, start.joints, to, 100, r);
+    INFO("off " << off << ": sub-moves " << r.points.size() << ", worst " << m.worst << " mm");
+    CHECK(m.worst <= 0.01);
+    CHECK(m.end < 1e-9);
+    CHECK(m.on_line < 1e-9);
+    const double b = std::acos(std::cos(t) / std::sqrt(1 + std::sin(e) * std::sin(e))) / deg;
+    const double turn = std::atan(std::sin(e) / std::sin(t)) / deg;
+    CHECK(start.joints.rotary[0] == Approx(b).margin(1e-9));
+    CHECK(start.joints.rotary[1] == Approx(off > 0 ? 360 - turn : 0).margin(1e-9));
+    if (off > 0) {
+      CHECK(r.points.back().rotary[0] == Approx(b).margin(1e-9));
+      CHECK(r.points.back().rotary[1] == Approx(180 + turn).margin(1e-9));
+      for (const joint_values& p : r.points) CHECK(p.rotary[0] > 0.5);  // B never near 0
+    } else {
+      CHECK(r.points.back().rotary[0] == Approx(-20).margin(1e-9));
+      for (const joint_values& p : r.points) CHECK(p.rotary[1] == Approx(0).margin(1e-9));
+    }
+  }
+}
