@@ -146,6 +146,11 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     r.message = fmt::format("tool axis {} is not a direction", axis_text(pose.axis));
     return r;
   }
+  if (!std::isfinite(pose.tip.x) || !std::isfinite(pose.tip.y) || !std::isfinite(pose.tip.z)) {
+    r.error = ik_error::bad_tip;
+    r.message = fmt::format("tool tip {} is not a point", axis_text(pose.tip));
+    return r;
+  }
   const vec3 k = (1.0 / len) * pose.axis;
   const tool_pose want{pose.tip, k};
 

@@ -47,6 +47,7 @@ joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_va
 enum class ik_error {
   none,
   zero_axis,        ///< the tool axis is not a direction (length 0, or not finite)
+  bad_tip,          ///< the tool tip is not a point (not finite)
   unreachable,      ///< no rotation of the axes turns the tool to it
   beyond_limits,    ///< every solution has an axis outside its limits
   too_many_points,  ///< linearisation: the move needs more sub-moves than allowed

@@ -2,8 +2,9 @@
 // Linearisation: a straight CL move (tip and axis at both ends) on a machine whose control
 // interpolates the joints linearly. Between two joint positions the tip leaves the straight
 // line; the move is cut at CL points on the segment (tip interpolated linearly, axis along the
-// great circle between the two axes) until the tip of the joint interpolation stays within a
-// chordal tolerance of the segment (docs/kinematics.md, "Linearisation").
+// great circle between the two axes), worked along from the start so that the joints follow
+// the path, until the tip of each joint interpolation stays within a chordal tolerance of the
+// segment (docs/kinematics.md, "Linearisation").
 #include <string>
 #include <vector>
 

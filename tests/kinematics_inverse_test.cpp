@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "kinematics/forward.hpp"
@@ -219,6 +220,9 @@ TEST_CASE("a tool axis no rotation reaches, and one that is no direction, are er
   const ik_result z = inverse(test_chain(1), {{0, 0, 0}, {0, 0, 0}}, 100, {});
   CHECK(z.error == ik_error::zero_axis);
   CHECK(z.message == "tool axis (0, 0, 0) is not a direction");
+  const ik_result nan = inverse(test_chain(1), {{0, std::nan(""), 0}, {0, 0, 1}}, 100, {});
+  CHECK(nan.error == ik_error::bad_tip);
+  CHECK(nan.message == "tool tip (0, nan, 0) is not a point");
   kinematic_chain three_axis;
   const ik_result t = inverse(three_axis, {{0, 0, 0}, {0, 1, 0}}, 100, {});
   CHECK(t.error == ik_error::unreachable);
