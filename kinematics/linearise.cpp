@@ -10,11 +10,14 @@
 
 namespace twinpost::kin {
 
-joint_values interpolate(const joint_values& a, const joint_values& b, double t) {
+joint_values interpolate(const kinematic_chain& c, const joint_values& a, const joint_values& b, double t) {
   joint_values j;
   j.linear = a.linear + t * (b.linear - a.linear);
-  for (std::size_t i = 0; i < j.rotary.size(); ++i)
-    j.rotary[i] = a.rotary[i] + t * (b.rotary[i] - a.rotary[i]);
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
+    double d = b.rotary[i] - a.rotary[i];
+    if (c.rotaries[i].rollover == rotary_rollover::shortest) d = wrap_180(d);
+    j.rotary[i] = a.rotary[i] + t * d;
+  }
   return j;
 }
 
@@ -56,7 +59,7 @@ struct splitter {
     double d = 0;
     for (double t : {0.25, 0.5, 0.75})
       d = std::max(
-          d, distance_to_segment(forward(c, interpolate(j0, j1, t), tool_length).tip, from.tip, to.tip));
+          d, distance_to_segment(forward(c, interpolate(c, j0, j1, t), tool_length).tip, from.tip, to.tip));
     return d;
   }
 

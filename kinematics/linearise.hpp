@@ -29,8 +29,9 @@ struct linearise_result {
 linearise_result linearise(const kinematic_chain& c, const tool_pose& from, const joint_values& from_joints,
                            const tool_pose& to, double tool_length, double tolerance, int max_points = 10000);
 
-/// The joints a fraction `t` of the way from `a` to `b`, as a control interpolates them.
-joint_values interpolate(const joint_values& a, const joint_values& b, double t);
+/// The joints a fraction `t` of the way from `a` to `b`, as a control interpolates them: a
+/// rotary axis with rollover "shortest" the short way round (from 359 to 1 through 360).
+joint_values interpolate(const kinematic_chain& c, const joint_values& a, const joint_values& b, double t);
 
 /// The distance of `p` from the segment `a`-`b`.
 double distance_to_segment(const vec3& p, const vec3& a, const vec3& b);
