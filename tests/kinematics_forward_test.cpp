@@ -122,3 +122,14 @@ TEST_CASE("the nutating head's inverse gives remap.py's nutation angle", "[kinem
       CHECK(std::abs(r.joints.rotary[1]) == Approx(std::acos((kz - 0.5) / 0.5) / deg).margin(1e-9));
     }
 }
+
+// Channel 8: the tool along +X, B head about Y through the gauge point + (200, 0, 0), C table
+// at (3, 4). At home the tool is along X. Tool 75: the pivot is (275, 0, 0) from the tip at
+// home. B 90 turns (x, y, z) to (z, y, -x): the tip, (-275, 0, 0) from the pivot, goes to
+// (0, 0, 275) from it, (275, 0, 275); the axis x goes to (0, 0, -1). C 180 about (3, 4) then
+// maps machine (x, y) to (6 - x, 8 - y): the tip (276, 2, 278) goes to (-270, 6, 278).
+TEST_CASE("a horizontal spindle's B head over a C table: the pose computed by hand", "[kinematics]") {
+  check_pose(forward(test_chain(8), joints({1, 2, 3}, 0, 0), 75), {1, 2, 3}, {1, 0, 0});
+  check_pose(forward(test_chain(8), joints({1, 2, 3}, 90, 0), 75), {276, 2, 278}, {0, 0, -1});
+  check_pose(forward(test_chain(8), joints({1, 2, 3}, 90, 180), 75), {-270, 6, 278}, {0, 0, -1});
+}

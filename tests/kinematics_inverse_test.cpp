@@ -89,7 +89,7 @@ TEST_CASE("IK(FK(θ)) gives θ back, and FK(IK(p)) gives p, over random poses of
           "[kinematics]") {
   // 3000 random poses per chain, each solved twice (from θ itself and from another random
   // position): 42,000 inverses. Figures of the last run: docs/kinematics.md.
-  const int channel = GENERATE(1, 2, 3, 4, 5, 6);
+  const int channel = GENERATE(1, 2, 3, 4, 5, 6, 8);
   const worst w = property(channel, 3000, 20261123 + channel);
   INFO("channel " << channel << " (" << name_of(kind_of(test_chain(channel))) << "): " << w.poses
                   << " inverses, worst tip " << w.tip << " mm, axis " << w.axis << " deg, joint " << w.joint);

@@ -9,7 +9,7 @@
 
 namespace twinpost::test {
 
-/// Seven channels, each with X and Z, and one [[kinematics]] each:
+/// Eight channels, each with X and Z, and one [[kinematics]] each:
 /// 1 head/head: B head about Y carrying an A head about X, both through a pivot 300 mm above
 ///   the gauge point (400 mm to the tip of a 100 mm tool), A and B within ±20°;
 /// 2 table/table: an A trunnion about X (axis 80 mm under the work zero, -120..30) carrying a
@@ -20,7 +20,9 @@ namespace twinpost::test {
 /// 5 head/head nutating: a continuous C head about Z carrying a continuous B head about the
 ///   45° axis (0, -1, 1);
 /// 6 one rotary: an A table about X (continuous, axis 50 mm under the work zero);
-/// 7 one rotary: a C table about Z, the tool along it (mill/turn C axis).
+/// 7 one rotary: a C table about Z, the tool along it (mill/turn C axis);
+/// 8 head/table with a horizontal spindle: the tool along +X, a B head about Y (pivot 200 mm
+///   behind the gauge point, -90..90) over a continuous C table about Z centred at (3, 4).
 inline const std::string kinematics_machine = R"([machine]
 name = "kin"
 [waits]
@@ -47,6 +49,9 @@ number = 6
 axis = [{address = "X"}, {address = "Z"}]
 [[channel]]
 number = 7
+axis = [{address = "X"}, {address = "Z"}]
+[[channel]]
+number = 8
 axis = [{address = "X"}, {address = "Z"}]
 
 [[kinematics]]
@@ -145,9 +150,26 @@ address = "C"
 kind = "table"
 direction = [0, 0, 1]
 continuous = true
+
+[[kinematics]]
+channel = 8
+tool_direction = [1, 0, 0]
+[[kinematics.rotary]]
+address = "B"
+kind = "head"
+direction = [0, 1, 0]
+point = [200, 0, 0]
+min = -90
+max = 90
+[[kinematics.rotary]]
+address = "C"
+kind = "table"
+direction = [0, 0, 1]
+point = [3, 4, 0]
+continuous = true
 )";
 
-/// The chain of channel `n` (1..7) of kinematics_machine.
+/// The chain of channel `n` (1..8) of kinematics_machine.
 inline const kinematic_chain& test_chain(int n) {
   static const machine m = parse_machine(kinematics_machine, "kin.toml");
   return m.kinematics.at(n - 1);
