@@ -48,5 +48,13 @@ expect "bad from" 2 "" "twinpost kin: --from takes 2 rotary value(s), not '1'" -
 # The vertical tool has one solution within ±20°, B 0 A 0, wherever the axes come from.
 expect "from" 0 "1: X10 Y0 Z0 B0 A0" "" -- --machine "$m" --from 5,-5 10,0,0
 
+# Head/table: the two solutions of one axis, chosen by where the axes come from (the tie from
+# 0,0 goes to the positive tilt; from B -10 C 260 the twin is 30° away).
+ht=$src/tests/kin/head-table.toml
+expect "head/table from 0" 0 "1: X149.3301 Y10 Z-37.6924 B30 C90" "" -- \
+  --machine "$ht" --tool-length 50 10,0,5,0,-0.5,0.8660254037844386
+expect "head/table from B-10 C260" 0 "1: X-150.6699 Y-10 Z-32.6924 B-30 C270" "" -- \
+  --machine "$ht" --tool-length 50 --from -10,260 10,0,5,0,-0.5,0.8660254037844386
+
 if ((bad)); then exit 1; fi
 echo "kin_cli.sh: every case as expected"

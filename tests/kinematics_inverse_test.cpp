@@ -185,6 +185,38 @@ TEST_CASE("table/table A over C: joint values computed by hand, and the tie", "[
   CHECK(t.joints.rotary[1] == Approx(-90).margin(1e-9));
 }
 
+// Channel 3, head/table: K = R_z(-C)·R_y(B)·z = (sin B cos C, -sin B sin C, cos B).
+// K = (0, -0.5, cos 30°): (B 30, C 90) or (B -30, C 270). Tool 50: the pivot is (5, 0, 300)
+// from the tip at home. The part point (10, 0, 5) in the machine: C 90 turns (x, y) to
+// (-y, x): (0, 10, 5); C 270: (0, -10, 5). The head: the tip, (-5, 0, -300) from the pivot,
+// turned by B about Y, (x cos B + z sin B, y, -x sin B + z cos B), + (5, 0, 300):
+//   B 30:  (-154.330127018922, 0, -257.307621135332) + P = (-149.330127018922, 0, 42.692378864668)
+//   B -30: (145.669872981078, 0, -262.307621135332) + P = (150.669872981078, 0, 37.692378864668)
+// linear = machine point - head offset:
+//   B 30 C 90:   (149.330127018922, 10, -37.692378864668)
+//   B -30 C 270: (-150.669872981078, -10, -32.692378864668)
+// From (0, 0) both move 120° (C the short way: 90 either way): the positive tilt wins. From
+// (B -10, C 260) the second moves 20° + 10°, the first 40° + 170°.
+TEST_CASE("head/table B over C: joint values computed by hand, from two starts", "[kinematics]") {
+  const tool_pose p{{10, 0, 5}, {0, -0.5, 0.8660254037844386}};
+  const ik_result a = inverse(test_chain(3), p, 50, {});
+  REQUIRE(a.ok());
+  CHECK(a.joints.rotary[0] == Approx(30).margin(1e-9));
+  CHECK(a.joints.rotary[1] == Approx(90).margin(1e-9));
+  CHECK(a.joints.linear.x == Approx(149.330127018922).margin(1e-9));
+  CHECK(a.joints.linear.y == Approx(10).margin(1e-9));
+  CHECK(a.joints.linear.z == Approx(-37.692378864668).margin(1e-9));
+  joint_values prev;
+  prev.rotary = {-10, 260};
+  const ik_result b = inverse(test_chain(3), p, 50, prev);
+  REQUIRE(b.ok());
+  CHECK(b.joints.rotary[0] == Approx(-30).margin(1e-9));
+  CHECK(b.joints.rotary[1] == Approx(270).margin(1e-9));
+  CHECK(b.joints.linear.x == Approx(-150.669872981078).margin(1e-9));
+  CHECK(b.joints.linear.y == Approx(-10).margin(1e-9));
+  CHECK(b.joints.linear.z == Approx(-32.692378864668).margin(1e-9));
+}
+
 TEST_CASE("the two orientation solutions of the head/head machine are A, B and 180 - A, B + 180",
           "[kinematics]") {
   const two_at_most<orientation_solution> s =
