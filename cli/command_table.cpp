@@ -53,6 +53,14 @@ const std::array<command_entry, 5> table{{
      "Lists the built-in machine definitions. --show NAME prints the definition that "
      "--machine NAME would use, as TOML, to copy and edit.",
      &run_machines},
+    {"kin", "--machine M [--channel N] [--tool-length L] [--from A,B] [--linearise T] POINT...",
+     "joint values of CL points on a machine's kinematic chain",
+     "Solves each CL point x,y,z or x,y,z,i,j,k on the [[kinematics]] chain of a channel of "
+     "machine M (docs/kinematics.md) and prints the joint values, each point from the one "
+     "before: both orientation solutions are weighed by the limits, the preferred tilt sign "
+     "and the shortest move. --linearise T also prints the sub-moves that keep the tool tip "
+     "within T mm of the straight line. Not used by post yet.",
+     &run_kin},
 }};
 
 // Roff needs a backslash before a hyphen that must print as one, and an escape before a

@@ -13,6 +13,7 @@ int run_parse(const args& a);
 int run_post(const args& a);
 int run_check(const args& a);
 int run_machines(const args& a);
+int run_kin(const args& a);
 int run_timeline(const args& a);
 
 }  // namespace twinpost::cli

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "machines/kinematic_chain.hpp"
 #include "machines/machine_timing.hpp"
 #include "machines/word_format.hpp"
 
@@ -278,6 +279,8 @@ struct machine {
   cycle_rules cycles;
   transfer_def transfer;
   std::vector<tool_def> tools;  ///< the tool table ([[tool]]); may be empty
+  /// [[kinematics]]: the chains of the channels that have one (docs/kinematics.md).
+  std::vector<kinematic_chain> kinematics;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

@@ -460,7 +460,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   }
   table_reader root(doc, "", source,
                     {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits",
-                     "cycles", "transfer", "tool", "timing"});
+                     "cycles", "transfer", "tool", "timing", "kinematics"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -477,6 +477,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   detail::read_timing(root, m);
   read_transfer(root, m);
   read_tools(root, m);
+  detail::read_kinematics(root, m);
   check_across_tables(root, m, at);
   detail::check_code_overlaps(root, m);
   return m;

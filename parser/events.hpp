@@ -10,12 +10,9 @@
 #include <vector>
 
 #include "parser/dialect.hpp"
+#include "support/vec3.hpp"
 
 namespace twinpost {
-
-struct vec3 {
-  double x = 0, y = 0, z = 0;
-};
 
 enum class motion_kind : unsigned char { from, go_to, delta, home };
 

@@ -9,11 +9,12 @@ declare -A allowed=(
   [machines]="machines support"
   [parser]="parser support"
   [channels]="channels parser machines support"
-  [formats]="formats channels parser machines support"
+  [kinematics]="kinematics machines support"
+  [formats]="formats kinematics channels parser machines support"
   [check]="check machines support"
   [analysis]="analysis check machines support"
-  [post]="post analysis formats check channels parser machines support"
-  [cli]="cli post analysis formats check channels parser machines support"
+  [post]="post analysis formats kinematics check channels parser machines support"
+  [cli]="cli post analysis formats kinematics check channels parser machines support"
 )
 bad=0
 for layer in "${!allowed[@]}"; do

@@ -7,7 +7,7 @@
 set -euo pipefail
 src=${1:?usage: program_name.sh SOURCE_DIR}
 cd "$src"
-if grep -rn '"twinpost' support parser channels formats machines check post; then
+if grep -rn '"twinpost' support parser channels formats kinematics machines check post; then
   echo "program_name.sh: the library names the program (above); the CLI adds the name" >&2
   exit 1
 fi

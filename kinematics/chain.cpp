@@ -1,0 +1,57 @@
+#include "kinematics/chain.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace twinpost::kin {
+
+chain_kind kind_of(const kinematic_chain& c) {
+  switch (c.rotaries.size()) {
+    case 0: return chain_kind::three_axis;
+    case 1: return chain_kind::one_rotary;
+    default: break;
+  }
+  if (c.rotaries[0].kind != c.rotaries[1].kind) return chain_kind::head_table;
+  return c.rotaries[0].kind == rotary_kind::head ? chain_kind::head_head : chain_kind::table_table;
+}
+
+std::string_view name_of(chain_kind k) {
+  switch (k) {
+    case chain_kind::three_axis: return "three-axis";
+    case chain_kind::one_rotary: return "one rotary";
+    case chain_kind::head_head: return "head/head";
+    case chain_kind::table_table: return "table/table";
+    case chain_kind::head_table: return "head/table";
+  }
+  return "?";
+}
+
+orientation_form orientation_of(const kinematic_chain& c) {
+  auto sign = [&](int i) { return c.rotaries[i].kind == rotary_kind::table ? -1.0 : 1.0; };
+  orientation_form f;
+  switch (kind_of(c)) {
+    case chain_kind::three_axis: return f;
+    case chain_kind::one_rotary: f.outer = 0; break;
+    case chain_kind::head_head: f.outer = 0, f.inner = 1; break;
+    // K = R_t2(-θ2)·R_t1(-θ1)·t0: the table that carries the part (the second) is outer.
+    case chain_kind::table_table: f.outer = 1, f.inner = 0; break;
+    case chain_kind::head_table:
+      f.outer = c.rotaries[0].kind == rotary_kind::table ? 0 : 1;
+      f.inner = 1 - f.outer;
+      break;
+  }
+  f.outer_sign = sign(f.outer);
+  if (f.inner >= 0) f.inner_sign = sign(f.inner);
+  return f;
+}
+
+std::string number_text(double v) {
+  std::string s = fmt::format("{:.4f}", v);
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  if (s == "-0") s = "0";
+  return s;
+}
+
+}  // namespace twinpost::kin

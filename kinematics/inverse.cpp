@@ -1,0 +1,248 @@
+#include "kinematics/inverse.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "kinematics/forward.hpp"
+#include "kinematics/vec3_ops.hpp"
+
+namespace twinpost::kin {
+
+namespace {
+
+// Below this the tool axis is taken to lie on the outer rotary axis (unit vectors: the sine of
+// the angle between them). The outer angle's error there is at most ~eps/this in radians.
+constexpr double pole_sine = 1e-9;
+
+// The angle (degrees) that turns `from` to `to` about the unit `d`, both taken perpendicular
+// to it; nullopt when either has no perpendicular part.
+std::optional<double> angle_about(const vec3& d, const vec3& from, const vec3& to) {
+  const vec3 f = from - dot(d, from) * d;
+  const vec3 t = to - dot(d, to) * d;
+  if (norm(f) < pole_sine || norm(t) < pole_sine) return std::nullopt;
+  return std::atan2(dot(d, cross(f, t)), dot(f, t)) / deg;
+}
+
+std::string axis_text(const vec3& k) {
+  return fmt::format("({}, {}, {})", number_text(k.x), number_text(k.y), number_text(k.z));
+}
+
+std::string angles_text(const kinematic_chain& c, const std::array<double, 2>& r) {
+  std::string s;
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+    s += fmt::format("{}{}{}", i ? " " : "", c.rotaries[i].address, number_text(r[i]));
+  return s;
+}
+
+// The value of axis `a` equivalent to `v` (v + 360k) that a move from `prev` goes to, and the
+// length of that move; nullopt when no equivalent lies within the limits.
+struct fitted {
+  double value, move;
+};
+std::optional<fitted> fit(const rotary_axis_def& a, double v, double prev) {
+  if (a.continuous()) {
+    const double d = wrap_180(v - prev);
+    if (a.rollover == rotary_rollover::absolute) return fitted{prev + d, std::abs(d)};
+    double w = v - 360.0 * std::floor(v / 360.0);
+    if (w >= 360.0) w -= 360.0;
+    return fitted{w, std::abs(d)};
+  }
+  constexpr double slack = 1e-9;  // a value on a limit, give or take the rounding of the solve
+  const double kmin = std::ceil((*a.min - slack - v) / 360.0);
+  const double kmax = std::floor((*a.max + slack - v) / 360.0);
+  if (kmin > kmax) return std::nullopt;
+  const double k = std::clamp(std::round((prev - v) / 360.0), kmin, kmax);
+  const double value = std::clamp(v + 360.0 * k, *a.min, *a.max);
+  return fitted{value, std::abs(value - prev)};
+}
+
+bool meets(preferred_sign p, double v) {
+  constexpr double zero = 1e-9;
+  return p == preferred_sign::none || (p == preferred_sign::positive ? v >= -zero : v <= zero);
+}
+
+}  // namespace
+
+two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
+                                                        const joint_values& previous) {
+  const orientation_form f = orientation_of(c);
+  const vec3& t0 = c.tool_direction;
+  two_at_most<orientation_solution> out;
+  if (f.outer < 0) {
+    out.push_back({});
+    return out;
+  }
+  const vec3& dout = c.rotaries[f.outer].direction;
+  // The outer angle that turns `v` (the tool after the inner rotation) to k, or the previous
+  // one at the pole.
+  auto outer_angle = [&](const vec3& v, orientation_solution& s) {
+    if (const std::optional<double> a = angle_about(dout, v, k)) {
+      s.rotary[f.outer] = f.outer_sign * *a;
+    } else {
+      s.rotary[f.outer] = previous.rotary[f.outer];
+      s.pole = true;
+    }
+  };
+  if (f.inner < 0) {
+    orientation_solution s;
+    outer_angle(t0, s);
+    out.push_back(s);
+    return out;
+  }
+  // The outer rotation keeps the component along its axis: dout·R(inner, φ)·t0 = dout·k, which
+  // by Rodrigues reads a + b·cos φ + c·sin φ = dout·k.
+  const vec3& din = c.rotaries[f.inner].direction;
+  const double a = dot(dout, din) * dot(din, t0);
+  const double b = dot(dout, t0) - a;
+  const double cc = dot(dout, cross(din, t0));
+  const double r = std::hypot(b, cc);
+  if (r < 1e-12) return out;  // the inner axis cannot change it (rejected by the loader)
+  // φ = base ± half with cos half = e / r, e = dout·k - a. Not acos(e / r): near the pole (e ≈ r)
+  // it loses half the digits. sin half = sqrt((r - e)(r + e)) / r, with r ∓ e written through
+  // 1 ∓ dout·k = |dout × k|² / (1 ± dout·k), which has no cancellation, and the constants
+  // a + r - 1 and r - a - 1 of the chain (0 when the tool can reach the outer axis).
+  const double dk = dot(dout, k);
+  const double across = dot(cross(dout, k), cross(dout, k));
+  const double one_minus = dk > 0 ? across / (1 + dk) : 1 - dk;
+  const double one_plus = dk < 0 ? across / (1 - dk) : 1 + dk;
+  const double r_minus_e = (a + r - 1) + one_minus;
+  const double r_plus_e = (r - a - 1) + one_plus;
+  // Well beyond the circle the inner axis sweeps: unreachable. Just beyond it (about 0.08°):
+  // on its edge, and the forward check holds the result to the chain's angle tolerance.
+  if (r_minus_e < -1e-6 || r_plus_e < -1e-6) return out;
+  const double base = std::atan2(cc, b) / deg;
+  const double half = std::atan2(std::sqrt(std::max(0.0, r_minus_e * r_plus_e)), dk - a) / deg;
+  for (double phi : {base + half, base - half}) {
+    orientation_solution s;
+    s.rotary[f.inner] = f.inner_sign * wrap_180(phi);
+    outer_angle(rotate(t0, din, phi), s);
+    if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
+    if (s.rotary[f.inner] == -180.0) s.rotary[f.inner] = 180.0;
+    const bool twin = !out.empty() &&
+                      std::abs(wrap_180(out[0].rotary[f.inner] - s.rotary[f.inner])) < 1e-12 &&
+                      std::abs(wrap_180(out[0].rotary[f.outer] - s.rotary[f.outer])) < 1e-12;
+    if (!twin) out.push_back(s);
+  }
+  return out;
+}
+
+joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_values& angles,
+                       double tool_length) {
+  joint_values j = angles;
+  j.linear = {};
+  j.linear = part_to_machine(c, j, tip) - head_offset(c, j, tool_length);
+  return j;
+}
+
+ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length,
+                  const joint_values& previous) {
+  ik_result r;
+  const double len = norm(pose.axis);
+  if (!(len > 1e-9) || !std::isfinite(len)) {
+    r.error = ik_error::zero_axis;
+    r.message = fmt::format("tool axis {} is not a direction", axis_text(pose.axis));
+    return r;
+  }
+  if (!std::isfinite(pose.tip.x) || !std::isfinite(pose.tip.y) || !std::isfinite(pose.tip.z)) {
+    r.error = ik_error::bad_tip;
+    r.message = fmt::format("tool tip {} is not a point", axis_text(pose.tip));
+    return r;
+  }
+  const vec3 k = (1.0 / len) * pose.axis;
+  const tool_pose want{pose.tip, k};
+
+  struct candidate {
+    joint_values j;
+    bool pole;
+    int misses;  // preferred signs not met
+    double total, outer;
+    double tip_error, axis_error;
+  };
+  two_at_most<candidate> fitting;
+  // Candidates with an axis beyond its limits, for the message only: formatted when nothing fits.
+  struct refused {
+    std::array<double, 2> rotary;
+    std::array<bool, 2> beyond;
+  };
+  two_at_most<refused> beyond;
+  const orientation_form f = orientation_of(c);
+  for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
+    // Generate, then verify: a candidate the forward transform does not confirm is no solution.
+    joint_values raw;
+    raw.rotary = s.rotary;
+    if (angle_between(tool_axis(c, raw), k) > c.angle_tolerance) continue;
+    candidate cand{raw, s.pole, 0, 0, 0, 0, 0};
+    refused why{s.rotary, {false, false}};
+    for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
+      const rotary_axis_def& a = c.rotaries[i];
+      const std::optional<fitted> v = fit(a, s.rotary[i], previous.rotary[i]);
+      if (!v) {
+        why.beyond[i] = true;
+        continue;
+      }
+      cand.j.rotary[i] = v->value;
+      cand.total += v->move;
+      if (static_cast<int>(i) == f.outer) cand.outer = v->move;
+      if (!meets(a.prefer, v->value)) ++cand.misses;
+    }
+    if (why.beyond[0] || why.beyond[1]) {
+      beyond.push_back(why);
+      continue;
+    }
+    cand.j = positions(c, want.tip, cand.j, tool_length);
+    const tool_pose got = forward(c, cand.j, tool_length);
+    cand.tip_error = distance(got.tip, want.tip);
+    cand.axis_error = angle_between(got.axis, k);
+    if (cand.tip_error <= c.tolerance && cand.axis_error <= c.angle_tolerance) fitting.push_back(cand);
+  }
+  if (fitting.empty()) {
+    if (beyond.empty()) {
+      r.error = ik_error::unreachable;
+      if (c.rotaries.empty()) {
+        r.message = fmt::format("tool axis {} is not the tool direction {} of a machine without rotary axes",
+                                axis_text(k), axis_text(c.tool_direction));
+      } else {
+        std::string names;
+        for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+          names += fmt::format("{}{}", i == 0 ? "" : " and ", c.rotaries[i].address);
+        r.message = fmt::format("tool axis {} cannot be reached by the rotary {} {}", axis_text(k),
+                                c.rotaries.size() == 1 ? "axis" : "axes", names);
+      }
+    } else {
+      r.error = ik_error::beyond_limits;
+      // "B30 A0 (B beyond -20..20) or B-150 A180 (B beyond -20..20; A beyond -20..20)"
+      std::string list;
+      for (std::size_t n = 0; n < beyond.size(); ++n) {
+        std::string why;
+        for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+          if (beyond[n].beyond[i])
+            why += fmt::format("{}{} beyond {}..{}", why.empty() ? "" : "; ", c.rotaries[i].address,
+                               number_text(*c.rotaries[i].min), number_text(*c.rotaries[i].max));
+        list += fmt::format("{}{} ({})", n ? " or " : "", angles_text(c, beyond[n].rotary), why);
+      }
+      r.message = fmt::format("tool axis {} needs {}", axis_text(k), list);
+    }
+    return r;
+  }
+  // Moves that differ by rounding only are equal; on a tie of both, the positive tilt (the
+  // inner axis's value) wins, so that a symmetric choice does not depend on the solve's order.
+  constexpr double same = 1e-9;
+  const int inner = f.inner >= 0 ? f.inner : 0;
+  const auto best =
+      std::min_element(fitting.begin(), fitting.end(), [&](const candidate& x, const candidate& y) {
+        if (x.misses != y.misses) return x.misses < y.misses;
+        if (std::abs(x.total - y.total) > same) return x.total < y.total;
+        if (std::abs(x.outer - y.outer) > same) return x.outer < y.outer;
+        return x.j.rotary[inner] > y.j.rotary[inner];
+      });
+  r.joints = best->j;
+  r.pole = best->pole;
+  r.tip_error = best->tip_error;
+  r.axis_error = best->axis_error;
+  return r;
+}
+
+}  // namespace twinpost::kin

@@ -1,0 +1,63 @@
+#pragma once
+// A channel's kinematic chain as data ([[kinematics]] of a machine file, read by
+// machines/machine_kinematics.cpp): the linear axes, then up to two rotary axes, each a head
+// or a table. Plain structs; the geometry that uses them is kinematics/ (docs/kinematics.md
+// gives the frames and signs).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "support/vec3.hpp"
+
+namespace twinpost {
+
+/// What a rotary axis turns: the tool (a head, carried by the linear axes) or the workpiece
+/// (a table, carrying the part).
+enum class rotary_kind { head, table };
+
+/// How a rotary axis without limits counts its turns.
+enum class rotary_rollover {
+  absolute,  ///< multi-turn: the value goes on past 360 (and below 0); a move is value - previous
+  shortest,  ///< the control reads the value modulo 360 and turns the shorter way: values 0 <= v < 360
+};
+
+/// The tilt sign to take when the two solutions of an orientation differ in it.
+enum class preferred_sign { none, positive, negative };
+
+/// One rotary axis. A positive value turns the moving member (the head with the tool, or the
+/// table with the part) right-handed about `direction`, through `point`.
+struct rotary_axis_def {
+  char address = 'B';
+  rotary_kind kind = rotary_kind::head;
+  /// Unit direction of the axis at the home pose (every rotary axis at 0), in the machine
+  /// frame (the axes X, Y, Z of the linear axes).
+  vec3 direction{0, 1, 0};
+  /// A point on the axis at the home pose. A table: in the part frame (the CL's frame, the
+  /// same as the machine frame with every table at 0), so the table's rotation centre
+  /// measured from the work zero. A head: measured from the gauge point (the spindle nose,
+  /// where the tool length starts) with every linear axis and rotary at 0; the pivot length
+  /// is its distance along the tool direction.
+  vec3 point{};
+  /// Travel limits in degrees; both absent: the axis is continuous.
+  std::optional<double> min, max;
+  rotary_rollover rollover = rotary_rollover::absolute;
+  preferred_sign prefer = preferred_sign::none;
+  bool continuous() const { return !min && !max; }
+};
+
+/// The kinematic chain of one channel.
+struct kinematic_chain {
+  int channel = 1;  ///< the channel it describes
+  /// The addresses of the linear axes along the machine frame's x, y and z ("X", "Y", "Z").
+  std::string linear = "XYZ";
+  /// The rotary axes in chain order: a table before the table it carries, a head before the
+  /// head it carries. At most two.
+  std::vector<rotary_axis_def> rotaries;
+  /// The tool direction (from the tip towards the spindle) at the home pose.
+  vec3 tool_direction{0, 0, 1};
+  /// Every inverse is checked by the forward transform to these: tip (mm) and axis (degrees).
+  double tolerance = 0.001;
+  double angle_tolerance = 0.001;
+};
+
+}  // namespace twinpost

@@ -1,0 +1,172 @@
+// The [[kinematics]] tables of a machine definition: each channel's kinematic chain, with its
+// [[kinematics.rotary]] axes (docs/kinematics.md, "The machine file").
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "machines/machine.hpp"
+#include "machines/toml_reader.hpp"
+#include "support/ascii.hpp"
+
+namespace twinpost::detail {
+
+namespace {
+
+double norm(const vec3& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+
+vec3 cross(const vec3& a, const vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Reads `key` as an array of three numbers; `unit` asks for a direction, stored normalised.
+bool read_vec3(const table_reader& r, std::string_view key, vec3& out, bool unit) {
+  const toml::node* n = r.find(key);
+  if (!n) return false;
+  const toml::array* a = n->as_array();
+  if (!a || a->size() != 3)
+    r.fail(*n, fmt::format("{} must be an array of three numbers [x, y, z]", r.key_path(key)));
+  double v[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    const toml::node& e = *a->get(i);
+    if (const auto* f = e.as_floating_point())
+      v[i] = f->get();
+    else if (const auto* k = e.as_integer())
+      v[i] = static_cast<double>(k->get());
+    else
+      r.fail(e, fmt::format("{} must hold only numbers, not {}", r.key_path(key), type_phrase(e.type())));
+    if (!std::isfinite(v[i])) r.fail(e, fmt::format("{} must hold finite numbers", r.key_path(key)));
+  }
+  out = {v[0], v[1], v[2]};
+  if (unit) {
+    const double l = norm(out);
+    if (l < 1e-9) r.fail(*n, fmt::format("{} must not be the zero vector", r.key_path(key)));
+    out = {out.x / l, out.y / l, out.z / l};
+  }
+  return true;
+}
+
+template <class E, std::size_t N>
+void read_name(const table_reader& r, std::string_view key, const std::pair<std::string_view, E> (&names)[N],
+               E& out) {
+  std::string text;
+  if (!r.read(key, text)) return;
+  std::string choices;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (text == names[i].first) {
+      out = names[i].second;
+      return;
+    }
+    choices += i == 0 ? "" : (i + 1 == N ? " or " : ", ");
+    choices += names[i].first;
+  }
+  r.fail(*r.find(key), fmt::format("{} must be {}, not '{}'", r.key_path(key), choices, text));
+}
+
+constexpr std::pair<std::string_view, rotary_kind> kind_names[] = {{"head", rotary_kind::head},
+                                                                   {"table", rotary_kind::table}};
+constexpr std::pair<std::string_view, rotary_rollover> rollover_names[] = {
+    {"absolute", rotary_rollover::absolute}, {"shortest", rotary_rollover::shortest}};
+constexpr std::pair<std::string_view, preferred_sign> prefer_names[] = {
+    {"none", preferred_sign::none},
+    {"positive", preferred_sign::positive},
+    {"negative", preferred_sign::negative}};
+
+rotary_axis_def read_rotary(const table_reader& r, const kinematic_chain& c) {
+  rotary_axis_def a;
+  r.require("address");
+  r.read_char("address", a.address, true);
+  if (c.linear.find(a.address) != std::string::npos)
+    r.fail(*r.find("address"),
+           fmt::format("kinematics.rotary.address {} is a linear axis of the chain", a.address));
+  for (const rotary_axis_def& earlier : c.rotaries)
+    if (earlier.address == a.address)
+      r.fail(*r.find("address"), fmt::format("channel {} has rotary axis {} twice", c.channel, a.address));
+  r.require("kind");
+  read_name(r, "kind", kind_names, a.kind);
+  r.require("direction");
+  read_vec3(r, "direction", a.direction, true);
+  read_vec3(r, "point", a.point, false);
+  r.read("min", a.min);
+  r.read("max", a.max);
+  bool continuous = false;
+  r.read("continuous", continuous);
+  if (continuous && (a.min || a.max))
+    r.fail(*r.find("continuous"), "kinematics.rotary.continuous = true takes no min or max");
+  if (!continuous && (!a.min || !a.max))
+    r.fail_here(fmt::format("rotary axis {} needs min and max (degrees), or continuous = true", a.address));
+  if (a.min && a.max && *a.min > *a.max)
+    r.fail(*r.find("min"),
+           fmt::format("kinematics.rotary.min ({}) must be <= kinematics.rotary.max ({})", *a.min, *a.max));
+  read_name(r, "rollover", rollover_names, a.rollover);
+  if (a.rollover == rotary_rollover::shortest && !continuous)
+    r.fail(*r.find("rollover"), "kinematics.rotary.rollover = \"shortest\" needs continuous = true");
+  read_name(r, "prefer", prefer_names, a.prefer);
+  return a;
+}
+
+// The closed-form inverse needs each rotary axis to turn the tool: the axis that is nearer the
+// tool (the inner one, docs/kinematics.md) must not lie along the tool, nor along the other.
+void check_geometry(const table_reader& r, const toml::table& last, const kinematic_chain& c) {
+  auto parallel = [](const vec3& a, const vec3& b) { return norm(cross(a, b)) < 1e-9; };
+  if (c.rotaries.size() != 2) return;
+  const rotary_axis_def& a = c.rotaries[0];
+  const rotary_axis_def& b = c.rotaries[1];
+  if (parallel(a.direction, b.direction))
+    fail_at(
+        r.source(), last.source(),
+        fmt::format("rotary axes {} and {} are parallel: they cannot tilt the tool", a.address, b.address));
+  // The inner rotation: the head nearer the tool, the primary table, or the head of a mixed chain.
+  const rotary_axis_def& inner =
+      a.kind == b.kind ? (a.kind == rotary_kind::head ? b : a) : (a.kind == rotary_kind::head ? a : b);
+  if (parallel(inner.direction, c.tool_direction))
+    fail_at(r.source(), last.source(),
+            fmt::format("rotary axis {} lies along the tool: it cannot tilt it", inner.address));
+}
+
+}  // namespace
+
+void read_kinematics(const table_reader& root, machine& m) {
+  for (const toml::table* t : root.tables("kinematics")) {
+    table_reader r(*t, "kinematics", root.source(),
+                   {"channel", "linear", "tool_direction", "tolerance", "angle_tolerance", "rotary"});
+    kinematic_chain c;
+    r.require("channel");
+    r.read("channel", c.channel);
+    if (std::none_of(m.channels.begin(), m.channels.end(),
+                     [&](const channel_def& d) { return d.number == c.channel; }))
+      r.fail(*r.find("channel"), fmt::format("kinematics.channel {} names no channel", c.channel));
+    for (const kinematic_chain& earlier : m.kinematics)
+      if (earlier.channel == c.channel)
+        r.fail(*r.find("channel"), fmt::format("channel {} has two [[kinematics]] tables", c.channel));
+    if (r.read("linear", c.linear)) {
+      const bool letters =
+          std::all_of(c.linear.begin(), c.linear.end(), [](char x) { return ascii::is_upper(x); });
+      if (c.linear.size() != 3 || !letters || c.linear[0] == c.linear[1] || c.linear[0] == c.linear[2] ||
+          c.linear[1] == c.linear[2])
+        r.fail(*r.find("linear"), fmt::format("kinematics.linear must be three different letters (\"XYZ\"), "
+                                              "not \"{}\"",
+                                              c.linear));
+    }
+    read_vec3(r, "tool_direction", c.tool_direction, true);
+    for (std::string_view key : {"tolerance", "angle_tolerance"}) {
+      double& v = key == "tolerance" ? c.tolerance : c.angle_tolerance;
+      if (r.read(key, v) && !(v > 0))
+        r.fail(*r.find(key), fmt::format("{} must be > 0, not {}", r.key_path(key), v));
+    }
+    const std::vector<const toml::table*> rotaries = r.tables("rotary");
+    for (const toml::table* rt : rotaries) {
+      table_reader ar(
+          *rt, "kinematics.rotary", root.source(),
+          {"address", "kind", "direction", "point", "min", "max", "continuous", "rollover", "prefer"});
+      if (c.rotaries.size() == 2)
+        ar.fail_here(
+            fmt::format("channel {} has more than two rotary axes (the most twinpost solves)", c.channel));
+      c.rotaries.push_back(read_rotary(ar, c));
+    }
+    if (!rotaries.empty()) check_geometry(r, *rotaries.back(), c);
+    m.kinematics.push_back(std::move(c));
+  }
+}
+
+}  // namespace twinpost::detail

@@ -1,0 +1,109 @@
+// machines/machine_kinematics: the [[kinematics]] tables of a machine file, their defaults and
+// their errors.
+#include <catch2/catch.hpp>
+
+#include "kinematics/chain.hpp"
+#include "kinematics_test_support.hpp"
+#include "machine_test_support.hpp"
+
+using namespace twinpost;
+using test::machine_error_of;
+
+namespace {
+
+// A machine with one channel (lines 1-8); line 9 on is the [[kinematics]] a test is about.
+const std::string one_channel = test::machine_head + "[[channel]]\nnumber = 1\n" + test::xz_axes;
+
+}  // namespace
+
+TEST_CASE("a [[kinematics]] table gives the channel's chain, with defaults", "[kinematics][machines]") {
+  const machine m = parse_machine(one_channel +
+                                      "[[kinematics]]\n"
+                                      "channel = 1\n"
+                                      "[[kinematics.rotary]]\n"
+                                      "address = \"B\"\n"
+                                      "kind = \"head\"\n"
+                                      "direction = [0, 2, 0]\n"
+                                      "point = [1.5, 0, 300]\n"
+                                      "min = -20\n"
+                                      "max = 20.5\n"
+                                      "prefer = \"positive\"\n"
+                                      "[[kinematics.rotary]]\n"
+                                      "address = \"C\"\n"
+                                      "kind = \"table\"\n"
+                                      "direction = [0, 0, -1]\n"
+                                      "continuous = true\n"
+                                      "rollover = \"shortest\"\n",
+                                  "m.toml");
+  REQUIRE(m.kinematics.size() == 1);
+  const kinematic_chain& c = m.kinematics[0];
+  CHECK(c.channel == 1);
+  CHECK(c.linear == "XYZ");
+  CHECK(c.tool_direction == vec3{0, 0, 1});
+  CHECK(c.tolerance == 0.001);
+  CHECK(c.angle_tolerance == 0.001);
+  REQUIRE(c.rotaries.size() == 2);
+  CHECK(c.rotaries[0].address == 'B');
+  CHECK(c.rotaries[0].kind == rotary_kind::head);
+  CHECK(c.rotaries[0].direction == vec3{0, 1, 0});  // normalised
+  CHECK(c.rotaries[0].point == vec3{1.5, 0, 300});
+  CHECK(c.rotaries[0].min == -20.0);
+  CHECK(c.rotaries[0].max == 20.5);
+  CHECK(!c.rotaries[0].continuous());
+  CHECK(c.rotaries[0].prefer == preferred_sign::positive);
+  CHECK(c.rotaries[0].rollover == rotary_rollover::absolute);
+  CHECK(c.rotaries[1].continuous());
+  CHECK(c.rotaries[1].rollover == rotary_rollover::shortest);
+  CHECK(c.rotaries[1].point == vec3{0, 0, 0});
+  CHECK(kin::kind_of(c) == kin::chain_kind::head_table);
+  // A machine without [[kinematics]] has no chain.
+  CHECK(parse_machine(one_channel, "m.toml").kinematics.empty());
+}
+
+TEST_CASE("errors in [[kinematics]] are reported at their place", "[kinematics][machines]") {
+  const std::string k = one_channel + "[[kinematics]]\nchannel = 1\n";  // lines 9-10
+  const std::string b =
+      k + "[[kinematics.rotary]]\naddress = \"B\"\nkind = \"head\"\ndirection = [0, 1, 0]\n";
+  CHECK(machine_error_of(one_channel + "[[kinematics]]\nchannel = 2\n") ==
+        "m.toml:10:11: error: kinematics.channel 2 names no channel");
+  CHECK(machine_error_of(k + "[[kinematics]]\nchannel = 1\n") ==
+        "m.toml:12:11: error: channel 1 has two [[kinematics]] tables");
+  CHECK(machine_error_of(k + "linear = \"XYX\"\n") ==
+        "m.toml:11:10: error: kinematics.linear must be three different letters (\"XYZ\"), not \"XYX\"");
+  CHECK(machine_error_of(k + "tool_direction = [0, 0]\n") ==
+        "m.toml:11:18: error: kinematics.tool_direction must be an array of three numbers [x, y, z]");
+  CHECK(machine_error_of(k + "tool_direction = [0, 0, 0]\n") ==
+        "m.toml:11:18: error: kinematics.tool_direction must not be the zero vector");
+  CHECK(machine_error_of(k + "tolerance = 0\n") ==
+        "m.toml:11:13: error: kinematics.tolerance must be > 0, not 0");
+  CHECK(machine_error_of(b) ==
+        "m.toml:11:1: error: rotary axis B needs min and max (degrees), or continuous = true");
+  CHECK(machine_error_of(b + "min = 10\nmax = -10\n") ==
+        "m.toml:15:7: error: kinematics.rotary.min (10) must be <= kinematics.rotary.max (-10)");
+  CHECK(machine_error_of(b + "min = 10\ncontinuous = true\n") ==
+        "m.toml:16:14: error: kinematics.rotary.continuous = true takes no min or max");
+  CHECK(machine_error_of(b + "continuous = true\nrollover = \"modulo\"\n") ==
+        "m.toml:16:12: error: kinematics.rotary.rollover must be absolute or shortest, not 'modulo'");
+  CHECK(machine_error_of(b + "min = 0\nmax = 1\nrollover = \"shortest\"\n") ==
+        "m.toml:17:12: error: kinematics.rotary.rollover = \"shortest\" needs continuous = true");
+  CHECK(machine_error_of(b + "continuous = true\nkind2 = 1\n") ==
+        "m.toml:16:1: error: unknown key 'kinematics.rotary.kind2'");
+  CHECK(machine_error_of(k + "[[kinematics.rotary]]\naddress = \"Y\"\n") ==
+        "m.toml:12:11: error: kinematics.rotary.address Y is a linear axis of the chain");
+  CHECK(machine_error_of(k + "[[kinematics.rotary]]\naddress = \"C\"\nkind = \"spindle\"\n") ==
+        "m.toml:13:8: error: kinematics.rotary.kind must be head or table, not 'spindle'");
+  const std::string c = b + "continuous = true\n[[kinematics.rotary]]\naddress = \"C\"\nkind = \"table\"\n";
+  CHECK(machine_error_of(c + "direction = [0, 2, 0]\ncontinuous = true\n") ==
+        "m.toml:16:1: error: rotary axes B and C are parallel: they cannot tilt the tool");
+  // The head is the inner rotation of a head/table chain: along the tool it tilts nothing.
+  CHECK(machine_error_of(k +
+                         "[[kinematics.rotary]]\naddress = \"B\"\nkind = \"head\"\ndirection = [0, 0, 1]\n"
+                         "continuous = true\n[[kinematics.rotary]]\naddress = \"C\"\nkind = \"table\"\n"
+                         "direction = [1, 0, 0]\ncontinuous = true\n") ==
+        "m.toml:16:1: error: rotary axis B lies along the tool: it cannot tilt it");
+  CHECK(machine_error_of(
+            c + "direction = [0, 0, 1]\ncontinuous = true\n[[kinematics.rotary]]\naddress = \"A\"\n") ==
+        "m.toml:21:1: error: channel 1 has more than two rotary axes (the most twinpost solves)");
+  CHECK(machine_error_of(c + "direction = [0, 0, 1]\ncontinuous = true\naddress2 = 1\n") ==
+        "m.toml:21:1: error: unknown key 'kinematics.rotary.address2'");
+}
