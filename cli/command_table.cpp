@@ -9,7 +9,7 @@ namespace twinpost::cli {
 
 namespace {
 
-const std::array<command_entry, 5> table{{
+const std::array<command_entry, 6> table{{
     {"parse", "FILE [--json] [--dialect D] | --records", "print the CL event stream, or the record policy",
      "Reads a CL file (APT-style cutter location data of Creo, NX, CATIA, SolidWorks CAM, "
      "Makino or generic ISO 4343) and prints one line per event, or with --json one JSON "
