@@ -26,12 +26,7 @@ double integral_of_max(double a, double b, double c) {
   return part(0, u) + part(u, 1);
 }
 
-bool number(std::string_view s, double& out) {
-  if (s.empty()) return false;
-  if (s.front() == '+') s.remove_prefix(1);
-  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-  return ec == std::errc{} && p == s.data() + s.size();
-}
+bool number(std::string_view s, double& out) { return nc_number(s, out); }
 
 // A code as compared: "01" and "1." are "1", "84.2" stays. Written out by hand (no
 // formatting): every G word of every block comes through here.

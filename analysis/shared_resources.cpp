@@ -13,13 +13,7 @@ namespace twinpost {
 
 namespace {
 
-bool number(const std::string& s, double& out) {
-  if (s.empty()) return false;
-  const char* b = s.data();
-  if (*b == '+') ++b;
-  const auto [p, ec] = std::from_chars(b, s.data() + s.size(), out);
-  return ec == std::errc{} && p == s.data() + s.size();
-}
+bool number(std::string_view s, double& out) { return nc_number(s, out); }
 
 // The G number of a one-word code ("G99" -> 99); nullopt when the code is not one G word.
 std::optional<double> g_number(std::string_view code) {

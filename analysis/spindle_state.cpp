@@ -9,13 +9,7 @@ namespace twinpost {
 
 namespace {
 
-bool number(const std::string& s, double& out) {
-  if (s.empty()) return false;
-  const char* b = s.data();
-  if (*b == '+') ++b;
-  const auto [p, ec] = std::from_chars(b, s.data() + s.size(), out);
-  return ec == std::errc{} && p == s.data() + s.size();
-}
+bool number(std::string_view s, double& out) { return nc_number(s, out); }
 
 // Two words name the same code: same address, same number (G96 = G96. = G096).
 bool same_word(const nc_word& a, const nc_word& b) {

@@ -45,11 +45,6 @@ std::size_t skip_brackets(std::string_view s, std::size_t i) {
 }
 
 /// An unsigned integer value ("100", "03"); false for signs, points and expressions.
-bool to_double(std::string_view s, double& out) {
-  if (s.starts_with('+')) s.remove_prefix(1);
-  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-  return !s.empty() && ec == std::errc{} && p == s.data() + s.size();
-}
 
 bool to_int(std::string_view s, int& out) {
   if (!all_digits(s)) return false;
@@ -610,7 +605,7 @@ class reader {
     }
     for (const nc_word& w : words) {
       double v = 0;
-      if (w.expression || !to_double(w.value, v)) continue;
+      if (w.expression || !nc_number(w.value, v)) continue;
       const std::string code = fmt::format("{}{}", w.address, w.value);
       const nc_word* program = nullptr;
       for (const nc_word& p : words)
@@ -804,6 +799,12 @@ class reader {
 };
 
 }  // namespace
+
+bool nc_number(std::string_view s, double& out) {
+  if (s.starts_with('+')) s.remove_prefix(1);
+  const auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return !s.empty() && ec == std::errc{} && p == s.data() + s.size();
+}
 
 std::vector<nc_word> split_nc_words(std::string_view line) {
   std::vector<nc_word> words;

@@ -64,6 +64,9 @@ struct nc_word {
 /// block delete `/` (`/2`), `#` variables, `[...]` expressions and keywords (IF, GOTO, ...).
 /// Reads glued (`M100P12`), spaced (`M100 P12`, `M 100`) and lower-case words.
 std::vector<nc_word> split_nc_words(std::string_view line);
+/// The number of a word's value ("-1.5", "+2", "100."): false for an empty value or anything
+/// else (an expression, "1.2.3").
+bool nc_number(std::string_view value, double& out);
 /// The same into `words`, reusing its elements: no allocation per block once it has grown.
 void split_nc_words(std::string_view line, std::vector<nc_word>& words);
 
