@@ -131,6 +131,15 @@ block_timer::axis_pos* block_timer::axis(char a) {
 block_timing block_timer::time(std::string_view text) {
   split_nc_words(text, words_);
   const std::vector<nc_word>& words = words_;
+  // Each word's number, read once (the loops below look at the words several times).
+  values_.resize(words.size());
+  for (std::size_t k = 0; k < words.size(); ++k)
+    values_[k].ok = !words[k].expression && number(words[k].value, values_[k].v);
+  auto num = [&](const nc_word& w, double& v) {
+    const cached& c = values_[static_cast<std::size_t>(&w - words.data())];
+    v = c.v;
+    return c.ok;
+  };
   spindles_.apply(words);
   block_timing t;
   auto untimed = [&t](std::string why) {
@@ -187,7 +196,7 @@ block_timing block_timer::time(std::string_view text) {
   // Tool calls, M codes, the feed.
   for (const nc_word& w : words) {
     double v = 0;
-    if (w.expression || !number(w.value, v)) continue;
+    if (!num(w, v)) continue;
     if (w.address == tool_address_ && w.address == 'T') {
       const long n = static_cast<long>(v) / tool_divisor_;
       if (n != tool_number_ && n > 0) {
@@ -212,7 +221,7 @@ block_timing block_timer::time(std::string_view text) {
     bool found = false;
     for (const nc_word& w : words) {
       double v = 0;
-      if (w.address == dwell_address_ && !w.expression && number(w.value, v)) {
+      if (w.address == dwell_address_ && num(w, v)) {
         t.seconds += v * dwell_unit_;
         found = true;
       }
@@ -239,7 +248,7 @@ block_timing block_timer::time(std::string_view text) {
     if (!p) continue;
     if (w.address == 'B' && reference) continue;
     double v = 0;
-    if (w.expression || !number(w.value, v)) {
+    if (!num(w, v)) {
       untimed(fmt::format("{}{}", w.address, w.value));
       continue;
     }

@@ -68,7 +68,12 @@ class block_timer {
   char dwell_address_ = 0;
   double dwell_unit_ = 1;  // seconds per unit of the dwell word
   std::vector<std::string> feed_rev_, feed_min_;
-  std::vector<nc_word> words_;                 // the block's words (reused: no allocation per block)
+  std::vector<nc_word> words_;  // the block's words (reused: no allocation per block)
+  struct cached {
+    double v = 0;
+    bool ok = true;
+  };
+  std::vector<cached> values_;                 // each word's number, and whether it has one
   std::vector<std::optional<double>> target_;  // where the block sends each axis (reused)
 
   axis_pos* axis(char a);

@@ -270,6 +270,20 @@ class timeline_builder {
 
 }  // namespace
 
+struct timeline_feed::impl {
+  impl(const machine& m, const timeline_options& o) : b(m, o) {}
+  timeline_builder b;
+};
+
+timeline_feed::timeline_feed(const machine& m, const timeline_options& o)
+    : o_(o), p_(std::make_unique<impl>(m, o_)) {}
+timeline_feed::~timeline_feed() = default;
+void timeline_feed::block(int channel, const std::string& file, int line, std::string_view text) {
+  p_->b.block(channel, file, line, text);
+}
+void timeline_feed::wait(const nc_wait& w) { p_->b.wait(w); }
+timeline timeline_feed::finish() { return p_->b.finish(); }
+
 bool has_timing(const machine& m) {
   return !m.channels.empty() && std::all_of(m.channels.begin(), m.channels.end(),
                                             [](const channel_def& c) { return c.timing.given; });

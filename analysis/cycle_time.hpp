@@ -9,6 +9,7 @@
 // Memory: without keep_blocks, a channel keeps one record per operation (a run of blocks
 // with one tool between two waits), per wait and per kind of untimed block, never one per
 // block: a program of 10^7 blocks is timed in memory that does not grow with its blocks.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -108,6 +109,26 @@ struct timeline {
 /// Checks `files` (check_nc_files) and, when they are sound, times them for machine `m`.
 /// A machine without [timing] has no timeline (an error diagnostic says so).
 timeline make_timeline(const std::vector<nc_source>& files, const machine& m, const timeline_options& o = {});
+
+/// The same fed by a read that is made anyway (the post's self-check): hand it every block
+/// and wait of programs that check sound, in the reader's order, then take the timeline.
+/// `m` must have timing (has_timing) and at most 64 channels.
+class timeline_feed {
+ public:
+  timeline_feed(const machine& m, const timeline_options& o);
+  ~timeline_feed();
+  timeline_feed(const timeline_feed&) = delete;
+  timeline_feed& operator=(const timeline_feed&) = delete;
+  /// Callbacks for nc_read_options (on_block, on_wait) that feed this timeline.
+  void block(int channel, const std::string& file, int line, std::string_view text);
+  void wait(const nc_wait& w);
+  timeline finish();
+
+ private:
+  timeline_options o_;
+  struct impl;
+  std::unique_ptr<impl> p_;
+};
 
 /// True when every channel of `m` has timing figures.
 bool has_timing(const machine& m);

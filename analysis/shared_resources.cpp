@@ -395,13 +395,18 @@ std::vector<diagnostic> shared_resources::finish(const std::vector<std::uint64_t
   return out;
 }
 
-sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m) {
+sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
+                               const nc_read_options& more) {
   shared_resources rules(m);
   nc_read_options also;
   also.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
     rules.block(channel, file, line, text);
+    if (more.on_block) more.on_block(channel, file, line, text);
   };
-  also.on_wait = [&](const nc_wait& w) { rules.wait(w.channel); };
+  also.on_wait = [&](const nc_wait& w) {
+    rules.wait(w.channel);
+    if (more.on_wait) more.on_wait(w);
+  };
   sync_result r = check_nc_files(files, m, also);
   std::vector<diagnostic> found = rules.finish(r.rendezvous, r.ok);
   if (found.empty()) return r;

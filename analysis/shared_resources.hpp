@@ -55,6 +55,8 @@ class shared_resources {
 
 /// check_nc_files and the shared-resource rules on the same reading: what `twinpost check`
 /// and post's self-check run. The rules' findings follow the checker's, and count in the result.
-sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m);
+/// `more` gets every block and wait of the same reading, once each (the post's cycle time).
+sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
+                               const nc_read_options& more = {});
 
 }  // namespace twinpost

@@ -231,10 +231,18 @@ std::vector<nc_source> staged_sources(const post_options& o, const std::vector<f
 
 // The same check as `twinpost check`, on the files exactly as they will be written; what it
 // finds is reported at the CL record that made the wait. True when they are sound.
+// `feed`, when given, is fed the same reading (the cycle time, without a read of its own).
 bool self_check(const post_options& o, const machine& m, const std::vector<framed_file>& files,
-                const writers_sink& ws, int last_line, diagnostic_sink& sink) {
+                const writers_sink& ws, int last_line, diagnostic_sink& sink, timeline_feed* feed) {
   const std::vector<nc_source> sources = staged_sources(o, files);
-  sync_result check = check_nc_resources(sources, m);
+  nc_read_options more;
+  if (feed) {
+    more.on_block = [feed](int channel, const std::string& file, int line, std::string_view text) {
+      feed->block(channel, file, line, text);
+    };
+    more.on_wait = [feed](const nc_wait& w) { feed->wait(w); };
+  }
+  sync_result check = check_nc_resources(sources, m, more);
   if (!check.diagnostics.empty()) {
     std::vector<std::vector<int>> wait_lines;
     std::vector<std::vector<cl_block>> blocks;
@@ -278,15 +286,13 @@ std::string timeline_name_problem(const post_options& o, const std::vector<frame
   return "";
 }
 
-// The cycle time of the staged programs (checked sound already) and, with --timeline, the
-// page staged beside them. Blocks are kept only for the page, and dropped once it is written.
+// The cycle time of the staged programs (fed by the self-check's reading, checked sound) and,
+// with --timeline, the page staged beside them. Blocks are kept only for the page, and
+// dropped once it is written.
 std::optional<staged_file> time_programs(const post_options& o, const machine& m,
-                                         const std::string& stage_dir, const std::vector<framed_file>& files,
+                                         const std::string& stage_dir, timeline_feed& feed,
                                          post_summary& sum) {
-  timeline_options to;
-  to.keep_blocks = !o.timeline_file.empty();
-  to.checked = true;
-  timeline t = make_timeline(staged_sources(o, files), m, to);
+  timeline t = feed.finish();
   if (!t.ok) return std::nullopt;
   std::optional<staged_file> page;
   if (!o.timeline_file.empty()) {
@@ -383,9 +389,14 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
       sink.report({severity::error, o.cl_path, 0, 0, std::move(why), {}});
       return sum;
     }
-  if (!self_check(o, m, files, ws, t.last_line, sink)) return sum;
+  timeline_options to;
+  to.keep_blocks = !o.timeline_file.empty();
+  to.checked = true;
+  std::optional<timeline_feed> feed;
+  if (has_timing(m) && m.channels.size() <= 64) feed.emplace(m, to);
+  if (!self_check(o, m, files, ws, t.last_line, sink, feed ? &*feed : nullptr)) return sum;
   std::optional<staged_file> page;
-  if (has_timing(m)) page = time_programs(o, m, stage.dir(), files, sum);
+  if (feed) page = time_programs(o, m, stage.dir(), *feed, sum);
   sum.files = commit_files(stage, files, page);
   sum.ok = true;
   return sum;
