@@ -161,7 +161,8 @@ const event_builder::rule_index& event_builder::rules() {
               "given, in the work offset of the machine file",
               &b::on_coordsys),
       ignored("MULTAX",
-              "says GOTO points carry a tool axis (i,j,k); the reader takes 3 or 6 numbers either way",
+              "says GOTO points carry a tool axis (i,j,k); the reader takes 3 or 6 numbers either way, and a "
+              "move whose tool axis is not along Z is an error (no rotary axis is written yet)",
               &b::on_multax),
       refused("NURBS",
               "a spline move (NX); twinpost does not cut splines into moves yet, so the move would "
@@ -227,7 +228,9 @@ const event_builder::rule_index& event_builder::rules() {
              "any other THREAD, or one on a machine without, stops the post"),
       ignored("TITLES", "headings for the CL listing (APT); nothing for the control",
               &b::on_text<text_kind::other>),
-      posted("TLAXIS", &b::on_tlaxis, "the tool axis of later moves and drilling cycles: no block"),
+      posted("TLAXIS", &b::on_tlaxis,
+             "the tool axis of later moves and drilling cycles: no block; a move or cycle under an axis "
+             "not along Z is an error (no rotary axis is written yet)"),
       posted("TLDATA", &b::on_tool_data,
              "the tool's kind (NX: TLDATA/MILL, DRILL, TURN) chooses the spindle on a channel with a live "
              "spindle (milling and off-centre drilling: the live one); no block. The geometry is for the "
