@@ -192,3 +192,25 @@ TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "
         "G1 X40. Z0. F0.2\n(STOCK SIZE X144. Y25. Z30.)\n(M98 P9101)\nZ-5.\nM100\n"
         "M9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
+
+TEST_CASE("a tool axis along Z posts; any other stops the post at the first move under it",
+          "[post][records]") {
+  // MULTAX points with the axis +Z (as NX writes them on a lathe face) post as 3-axis points.
+  posted along = post_text(head + "MULTAX/ON\nGOTO/20,0,0,0,0,1\nGOTO/20,0,-5,0,0,1\nFINI\n", "axis-z");
+  CHECK(along.diagnostics == "");
+  REQUIRE(along.files.count("W_1.nc") == 1);
+  CHECK(along.files.at("W_1.nc") ==
+        "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG99\n"
+        "G1 X40. Z0. F0.2\nZ-5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  // A tilted axis (TLAXIS or on the point): one error per axis, at the first move under it.
+  posted tilted = post_text(head + "TLAXIS/0,0.6,0.8\nGOTO/20,0,0\nGOTO/20,0,-5\nGOTO/20,0,-6,1,0,0\nFINI\n",
+                            "axis-tilted");
+  CHECK(tilted.diagnostics ==
+        "job.cls:7:1: error: channel 1: tool axis (0,0.6,0.8) is not along Z: twinpost writes no rotary axis "
+        "yet "
+        "(B head, C axis, tool-tip control), so a tilted or radial tool cannot be posted\nGOTO/20,0,0\n^\n"
+        "job.cls:9:1: error: channel 1: tool axis (1,0,0) is not along Z: twinpost writes no rotary axis yet "
+        "(B head, C axis, tool-tip control), so a tilted or radial tool cannot be "
+        "posted\nGOTO/20,0,-6,1,0,0\n^\n");
+  CHECK(tilted.files.empty());
+}
