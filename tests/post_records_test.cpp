@@ -193,7 +193,7 @@ TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "
         "M9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
-TEST_CASE("a tool axis along Z posts; any other stops the post at the first move under it",
+TEST_CASE("a tool axis along Z posts and any other stops the post at the first move under it",
           "[post][records]") {
   // MULTAX points with the axis +Z (as NX writes them on a lathe face) post as 3-axis points.
   posted along = post_text(head + "MULTAX/ON\nGOTO/20,0,0,0,0,1\nGOTO/20,0,-5,0,0,1\nFINI\n", "axis-z");
