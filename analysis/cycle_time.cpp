@@ -19,7 +19,6 @@ channel_mask bit_of(int channel) { return channel_mask{1} << (channel - 1); }
 // A wait as the run needs it: when the channel reached it (its own working time), whom it meets.
 struct run_wait {
   double work = 0;  // busy seconds of the channel when it arrives
-  channel_mask partners = 0;
 };
 
 // The text of a wait as written, as the checker's messages give it.
@@ -43,7 +42,6 @@ class timeline_builder {
  public:
   timeline_builder(const machine& m, const timeline_options& o) : m_(m), o_(o) {
     n_ = static_cast<int>(m.channels.size());
-    all_ = n_ >= 64 ? ~channel_mask{0} : bit_of(n_ + 1) - 1;
     for (const channel_def& c : m.channels) runs_.emplace_back(m, c.number);
     for (int i = 0; i < n_; ++i) runs_[static_cast<std::size_t>(i)].times.channel = i + 1;
   }
@@ -97,13 +95,6 @@ class timeline_builder {
     }
     run_wait rw;
     rw.work = c.busy;
-    rw.partners = all_;
-    if (m_.waits.partners != partner_style::none && w.has_partner_list && w.partners_readable &&
-        !w.partners.empty()) {
-      rw.partners = bit_of(w.channel);
-      for (int p : w.partners)
-        if (p >= 1 && p <= n_) rw.partners |= bit_of(p);
-    }
     r.waits.push_back(rw);
     wait_stop ws;
     ws.code = wait_text(m_, w);
@@ -112,10 +103,10 @@ class timeline_builder {
     ++r.segment;
   }
 
-  timeline finish() {
+  timeline finish(const std::vector<std::uint64_t>& rendezvous) {
     timeline tl;
     tl.machine = m_.name;
-    if (!run_together(tl)) return tl;
+    if (!run_together(tl, rendezvous)) return tl;
     place_in_time(tl);
     find_critical_path(tl);
     give_advice(tl);
@@ -142,25 +133,18 @@ class timeline_builder {
   }
 
   // The channels run together: a group of partners leaves a wait when the last one arrives.
-  // The same order as the checker's simulation (linear in the waits).
-  bool run_together(timeline& tl) {
+  // The groups and their order are the checker's own (sync_result::rendezvous): who meets whom
+  // is decided once, by the rules that proved the waits sound (partner lists, fixed waits).
+  bool run_together(timeline& tl, const std::vector<std::uint64_t>& rendezvous) {
     std::vector<std::size_t> pos(runs_.size(), 0);
     std::vector<double> idle(runs_.size(), 0);  // idle so far, per channel
     auto finished = [&](int c) { return pos[c - 1] >= runs_[c - 1].waits.size(); };
     auto arrival = [&](int c) { return runs_[c - 1].waits[pos[c - 1]].work + idle[c - 1]; };
-    std::vector<int> todo;
-    for (int c = n_; c >= 1; --c) todo.push_back(c);
-    while (!todo.empty()) {
-      const int c = todo.back();
-      todo.pop_back();
-      if (finished(c)) continue;
-      const channel_mask group = runs_[c - 1].waits[pos[c - 1]].partners;
-      bool ready = true;
+    for (const std::uint64_t group : rendezvous) {
+      bool fits = group != 0;
       for (int p = 1; p <= n_; ++p)
-        if ((group & bit_of(p)) && p != c &&
-            (finished(p) || runs_[p - 1].waits[pos[p - 1]].partners != group))
-          ready = false;
-      if (!ready) continue;
+        if ((group & bit_of(p)) && finished(p)) fits = false;
+      if (!fits) break;  // not this reading's waits: said below
       double release = 0;
       int last = 0;
       for (int p = 1; p <= n_; ++p)
@@ -180,10 +164,7 @@ class timeline_builder {
         idle[p - 1] += release - ws.arrive;
       }
       for (int p = 1; p <= n_; ++p)
-        if (group & bit_of(p)) {
-          ++pos[p - 1];
-          todo.push_back(p);
-        }
+        if (group & bit_of(p)) ++pos[p - 1];
     }
     for (int c = 1; c <= n_; ++c)
       if (!finished(c)) {
@@ -262,7 +243,6 @@ class timeline_builder {
   const machine& m_;
   const timeline_options& o_;
   int n_ = 0;
-  channel_mask all_ = 0;
   std::vector<channel_run> runs_;
   std::vector<std::vector<int>> kept_segment_;
   std::vector<untimed_group> untimed_;
@@ -282,7 +262,9 @@ void timeline_feed::block(int channel, const std::string& file, int line, std::s
   p_->b.block(channel, file, line, text);
 }
 void timeline_feed::wait(const nc_wait& w) { p_->b.wait(w); }
-timeline timeline_feed::finish() { return p_->b.finish(); }
+timeline timeline_feed::finish(const std::vector<std::uint64_t>& rendezvous) {
+  return p_->b.finish(rendezvous);
+}
 
 bool has_timing(const machine& m) {
   return !m.channels.empty() && std::all_of(m.channels.begin(), m.channels.end(),
@@ -311,8 +293,7 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
     return tl;
   }
   const std::vector<nc_source> files = rereadable(given);
-  sync_result check;
-  if (!o.checked) check = check_nc_files(files, m);
+  sync_result check = check_nc_files(files, m);
   if (!check.ok) {
     tl.diagnostics = std::move(check.diagnostics);
     return tl;
@@ -325,7 +306,7 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
   read.on_wait = [&](const nc_wait& w) { b.wait(w); };
   diagnostic_list ignored;  // the check read the same files without a problem
   read_nc_programs(files, m, ignored, read);
-  timeline out = b.finish();
+  timeline out = b.finish(check.rendezvous);
   out.diagnostics.insert(out.diagnostics.begin(), check.diagnostics.begin(), check.diagnostics.end());
   return out;
 }

@@ -9,6 +9,7 @@
 // Memory: without keep_blocks, a channel keeps one record per operation (a run of blocks
 // with one tool between two waits), per wait and per kind of untimed block, never one per
 // block: a program of 10^7 blocks is timed in memory that does not grow with its blocks.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,7 +22,6 @@ namespace twinpost {
 
 struct timeline_options {
   bool keep_blocks = false;  ///< keep every block (the page's hover), not only the totals
-  bool checked = false;      ///< the caller has checked the files sound (the post's self-check)
 };
 
 /// One block, kept for the page.
@@ -111,7 +111,8 @@ struct timeline {
 timeline make_timeline(const std::vector<nc_source>& files, const machine& m, const timeline_options& o = {});
 
 /// The same fed by a read that is made anyway (the post's self-check): hand it every block
-/// and wait of programs that check sound, in the reader's order, then take the timeline.
+/// and wait of programs that check sound, in the reader's order, then take the timeline with
+/// that check's rendezvous (sync_result::rendezvous): who meets whom is the checker's word.
 /// `m` must have timing (has_timing) and at most 64 channels.
 class timeline_feed {
  public:
@@ -122,7 +123,7 @@ class timeline_feed {
   /// Callbacks for nc_read_options (on_block, on_wait) that feed this timeline.
   void block(int channel, const std::string& file, int line, std::string_view text);
   void wait(const nc_wait& w);
-  timeline finish();
+  timeline finish(const std::vector<std::uint64_t>& rendezvous);
 
  private:
   timeline_options o_;

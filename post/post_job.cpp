@@ -233,7 +233,8 @@ std::vector<nc_source> staged_sources(const post_options& o, const std::vector<f
 // finds is reported at the CL record that made the wait. True when they are sound.
 // `feed`, when given, is fed the same reading (the cycle time, without a read of its own).
 bool self_check(const post_options& o, const machine& m, const std::vector<framed_file>& files,
-                const writers_sink& ws, int last_line, diagnostic_sink& sink, timeline_feed* feed) {
+                const writers_sink& ws, int last_line, diagnostic_sink& sink, timeline_feed* feed,
+                std::vector<std::uint64_t>& rendezvous) {
   const std::vector<nc_source> sources = staged_sources(o, files);
   nc_read_options more;
   if (feed) {
@@ -264,6 +265,7 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
          sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line, blocks))
       sink.report(std::move(d));
   }
+  rendezvous = std::move(check.rendezvous);
   return check.ok;
 }
 
@@ -291,8 +293,8 @@ std::string timeline_name_problem(const post_options& o, const std::vector<frame
 // dropped once it is written.
 std::optional<staged_file> time_programs(const post_options& o, const machine& m,
                                          const std::string& stage_dir, timeline_feed& feed,
-                                         post_summary& sum) {
-  timeline t = feed.finish();
+                                         const std::vector<std::uint64_t>& rendezvous, post_summary& sum) {
+  timeline t = feed.finish(rendezvous);
   if (!t.ok) return std::nullopt;
   std::optional<staged_file> page;
   if (!o.timeline_file.empty()) {
@@ -391,12 +393,12 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     }
   timeline_options to;
   to.keep_blocks = !o.timeline_file.empty();
-  to.checked = true;
   std::optional<timeline_feed> feed;
   if (has_timing(m) && m.channels.size() <= 64) feed.emplace(m, to);
-  if (!self_check(o, m, files, ws, t.last_line, sink, feed ? &*feed : nullptr)) return sum;
+  std::vector<std::uint64_t> rendezvous;
+  if (!self_check(o, m, files, ws, t.last_line, sink, feed ? &*feed : nullptr, rendezvous)) return sum;
   std::optional<staged_file> page;
-  if (feed) page = time_programs(o, m, stage.dir(), *feed, sum);
+  if (feed) page = time_programs(o, m, stage.dir(), *feed, rendezvous, sum);
   sum.files = commit_files(stage, files, page);
   sum.ok = true;
   return sum;

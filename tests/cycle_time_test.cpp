@@ -13,6 +13,7 @@
 #include "analysis/cycle_time.hpp"
 #include "analysis/timeline_report.hpp"
 #include "file_test_support.hpp"
+#include "machine_test_support.hpp"
 #include "machines/machine_loader.hpp"
 
 using namespace twinpost;
@@ -247,4 +248,34 @@ TEST_CASE("block timer: a facing cut under CSS follows the rpm along the diamete
         "0.1000\n"
         "11.4746\n"
         "1.5000\n");  // 10 mm at 0.2 mm/rev x 2000 rpm (below the clamp's diameter all the way)
+}
+
+TEST_CASE("timeline: who meets whom is the checker's word, fixed waits of two of three paths included",
+          "[analysis][timeline]") {
+  // Star-style: M82 is a wait of paths 1 and 2 only, M300 (no P) of all three. Timing: X and Z
+  // at 6000 mm/min, a wait 0 s, so each figure is a feed or a rapid worked out by hand.
+  const machine m = parse_machine(
+      "[machine]\nname = \"star-timed\"\n"
+      "[waits]\nfirst = 200\nlast = 998\npartners = \"path_numbers\"\npartner_list = \"optional\"\n"
+      "  [[waits.fixed]]\n  code = 82\n  channels = [1, 2]\n"
+      "[timing]\nrapid = { X = 6000, Z = 6000 }\ntool_change = 0\nwait = 0\nm_code = 0\n"
+      "[[channel]]\nnumber = 1\n" +
+          test::xz_axes + "[[channel]]\nnumber = 2\n" + test::xz_axes + "[[channel]]\nnumber = 3\n" +
+          test::xz_axes,
+      "star-timed.toml");
+  const std::vector<nc_source> job = {
+      {"S_1.NC", "G50 X0. Z0.\nG98 G1 Z100. F600.\nM82\nM300\nM30\n"},                 // 10 s, then M82, M300
+      {"S_2.NC", "G50 X0. Z0.\nG98 G1 Z50. F600.\nM82\nG1 Z150. F600.\nM300\nM30\n"},  // 5 s, M82, 10 s
+      {"S_3.NC", "G50 X0. Z0.\nG98 G1 Z20. F600.\nM300\nM30\n"}};                      // 2 s, M300
+  const timeline t = make_timeline(job, m);
+  REQUIRE(t.ok);
+  CHECK(
+      format_timeline_text(t) ==
+      "cycle time 20.000 s (channel 1 ends last)\n"
+      "  channel 1: 10.000 s working + 10.000 s idle at 2 waits = 20.000 s\n"
+      "  channel 2: 15.000 s working + 5.000 s idle at 2 waits = 20.000 s\n"
+      "  channel 3: 2.000 s working + 18.000 s idle at 1 wait = 20.000 s\n"
+      "  balance: channel 3 idles 18.000 s at M300 (S_3.NC:3) waiting for channel 2; channel 1 idles "
+      "10.000 s at M300 (S_1.NC:4) waiting for channel 2; channel 2 idles 5.000 s at M82 (S_2.NC:3) waiting "
+      "for channel 1\n");
 }
