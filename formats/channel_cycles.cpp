@@ -110,22 +110,39 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   const cycle_event& c = *cycle_;
   // Only along the spindle axis: a radial or tilted tool (cross drilling with a live tool)
   // would be fed along Z, through the side of the part.
-  if (std::abs(axis_.z) < 0.9999)
+  if (has_c_ && !index_head(line)) return;
+  // A cross hole on a channel with a C axis: drilled in the turned frame (milling.radial_frame_on),
+  // whose Z is the tool axis; its moves come in that frame (radial_ok_).
+  vec3 at = p;
+  const bool cross = has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4;
+  if (cross && !radial_point(p, at, line)) return;
+  struct frame_points {
+    bool& flag;
+    ~frame_points() { flag = false; }
+  } in_frame{radial_ok_};
+  radial_ok_ = cross;
+  if (cross && !c.meaning.fedto_is_depth && cycle_param(c, "FEDTO"))
+    return error(line, fmt::format("CYCLE/{} across the spindle axis with an absolute FEDTO: give the depth "
+                                   "(DEPTH) of a cross hole",
+                                   c.type));
+  if (cross) {
+    // as an axial hole drilled towards -Z in the turned frame
+  } else if (std::abs(axis_.z) < 0.9999)
     return error(line,
                  fmt::format("CYCLE/{} with the tool axis ({}, {}, {}): only drilling along Z is written; "
                              "cross and tilted drilling is not supported yet",
                              c.type, axis_.x, axis_.y, axis_.z));
   // On the centre line only: an axial hole off centre needs a live tool and the C axis; with
   // the workpiece turning, the drill would cut a ring.
-  if (std::hypot(p.x, p.y) * cl_mm_ > 1e-3)
+  if (!cross && std::hypot(p.x, p.y) * cl_mm_ > 1e-3 && !c_axis_hole(p) && !(c_mode_ && has_y_))
     return error(line, fmt::format("CYCLE/{} at X {} Y {}: off the spindle centre line; an axial hole off "
                                    "centre needs a live tool and the C axis, which are not posted yet",
                                    c.type, p.x, p.y));
   hole h;
-  h.x = p.x;
-  h.y = p.y;
-  h.into = axis_.z < 0 ? 1.0 : -1.0;  // the tool looks down -Z (axis +Z): it drills towards -Z
-  const double top = p.z;
+  h.x = at.x;
+  h.y = at.y;
+  h.into = axis_.z < 0 && !cross ? 1.0 : -1.0;  // the tool looks down -Z (axis +Z): it drills towards -Z
+  const double top = at.z;
   h.clear = top - h.into * cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
   const std::optional<double> fedto = cycle_param(c, "FEDTO");
   std::optional<double> bottom;
@@ -229,8 +246,9 @@ void channel_writer::cycle_block(const hole& h, const std::string& code, double 
   word_start_ = b.size();
   if (!k.return_initial.empty()) b += k.return_initial, b += ' ';
   b += code;
-  axis_word(b, 'X', nc_x(h.x), last_x_, true);
-  if (has_y_) axis_word(b, 'Y', nc_y(h.y), last_y_, true);
+  const auto [hx, hy] = c_frame(h.x, h.y);  // at a C position: in the frame C turned the part to
+  axis_word(b, 'X', nc_x(hx), last_x_, true);
+  if (has_y_) axis_word(b, 'Y', nc_y(hy), last_y_, true);
   axis_word(b, 'Z', nc_z(h.bottom), last_z_, true);
   b += " R";
   append_number(b, r, axis_style_);

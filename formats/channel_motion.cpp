@@ -40,7 +40,11 @@ bool channel_writer::tool_along_z(int line) {
 }
 
 void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, int line) {
-  if (!tool_along_z(line)) return;
+  if (has_c_) {
+    if (!c_frame_move(rapid, x_cl, y_cl, z_cl, line)) return;
+  } else if (!tool_along_z(line)) {
+    return;
+  }
   if (!has_y_ && std::abs(y_cl * cl_mm_) > y_tolerance)
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
@@ -49,7 +53,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
                                    "'{}' starts it only on a feed move (codes.cutcom_on_rapid = false): make "
                                    "the first move after CUTCOM a feed move",
                                    pending_g_, m_.name));
-  check_side(nc_x(x_cl), x_cl, line);
+  if (!radial_frame_) check_side(nc_x(x_cl), x_cl, line);
   if (!rapid && !drill_on_centre(x_cl, line)) return;
   // Built in place, in the writer's buffer: the most common block goes out without a copy.
   text_buffer& b = out_.open_block();
@@ -59,12 +63,14 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
     separate(b);
     b += rapid ? "G0" : "G1";
   }
+  add_offset_words(b);
   bool moved = axis_word(b, 'X', nc_x(x_cl), last_x_);
   if (has_y_) moved = axis_word(b, 'Y', nc_y(y_cl), last_y_) || moved;
   moved = axis_word(b, 'Z', nc_z(z_cl), last_z_) || moved;
   if (moved) {
     homed_ = false;
     pending_g_.clear();
+    pending_offset_.clear();
     motion_g_ = g;
     if (!rapid && feed_value_ > 0)
       append_feed(b);
@@ -133,6 +139,19 @@ void channel_writer::motion(const motion_event& mv, int line) {
 void channel_writer::arc(const arc_event& a, int line) {
   if (tool_ < 0) return no_tool(line);
   if (!tool_along_z(line)) return;
+  if (has_c_ && !index_head(line)) return;
+  // In C mode: in polar interpolation (the CL's Y as C), or in XY with C at 0.
+  if (c_mode_ && face_polar() && live_tool()) {
+    if (!polar_) enter_polar();
+  } else if (c_mode_) {
+    if (!last_c_.known) position_c(0);
+    if (c_sin_ != 0 || c_cos_ != 1) {
+      pos_ = a.end;
+      return error(line,
+                   "an arc with the C axis turned from 0: arcs in C mode are written at C0 or in polar "
+                   "interpolation (milling.face_milling = \"polar\")");
+    }
+  }
   if (threading_) {
     pos_ = a.end;
     return error(line, "an arc while THREAD/TURN is on: a threading pass is a straight G32 move");
@@ -152,9 +171,9 @@ void channel_writer::arc(const arc_event& a, int line) {
   if (plane == 0)
     return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane", a.normal.x, a.normal.y,
                             a.normal.z));
-  if (plane != 18 && !has_y_)
+  if (plane != 18 && !has_y_ && !polar_)
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
-  if (!has_y_ && std::abs(a.end.y * cl_mm_) > y_tolerance)
+  if (!has_y_ && !polar_ && std::abs(a.end.y * cl_mm_) > y_tolerance)
     return fail(fmt::format("Y {} on a channel without a Y axis", a.end.y));
   if (a.turns > 0) {
     // TIMES,n repeats a full circle: the move must end where it starts.
@@ -187,7 +206,8 @@ void channel_writer::arc(const arc_event& a, int line) {
   arc_ += g == 3 ? " G3" : " G2";
   // Both axes of the plane always; the third only when it moves (a helix).
   axis_word(arc_, 'X', nc_x(a.end.x), last_x_, plane != 19);
-  if (plane != 18 || has_y_) axis_word(arc_, 'Y', nc_y(a.end.y), last_y_, plane != 18);
+  if (plane != 18 || has_y_ || polar_)
+    axis_word(arc_, polar_ ? 'C' : 'Y', nc_y(a.end.y), last_y_, plane != 18);
   axis_word(arc_, 'Z', nc_z(a.end.z), last_z_, plane != 17);
 
   // In-plane coordinates of start and end about the centre, (u, v) with the normal = u x v.

@@ -132,6 +132,14 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     if (!target) return;
   }
   if (!target) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
+  // Mill/turn: a live tool holds the workpiece spindle as the C axis; a turning speed lets it go.
+  if (has_c_ && s.mode != spindle_mode::off && s.mode != spindle_mode::on) {
+    if (target != work_) {
+      if (!enter_c_axis(line)) return;
+    } else {
+      leave_c_axis();
+    }
+  }
   if (target != spindle_) {
     spindle_ = target;
     if (target->select) spindle_block(fmt::format("M{}", *target->select));
@@ -202,7 +210,8 @@ void channel_writer::transfer(const transfer_event& t, int line) {
   switch (t.step) {
     case transfer_event::phase::retract:
       // Out of the space between the spindles: coolant off, home X then Z (once: a channel
-      // already home stays there).
+      // already home stays there). A spindle held as a C axis turns freely again first.
+      leave_c_axis();
       if (!coolant_block_.empty()) out_.block(coolant_off_block_);
       coolant_block_.clear();
       coolant_off_block_.clear();

@@ -65,6 +65,8 @@ void channel_writer::resume_spindle(int line) {
 }
 
 void channel_writer::go_home() {
+  leave_polar();  // no reference return inside polar interpolation or a turned frame
+  leave_radial_frame();
   for (const std::string& b : m_.codes.home) out_.block(b);
   homed_ = true;
 }
@@ -170,6 +172,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   tool_word_ = word;
   kind_ = next_kind_;
   next_kind_ = tool_kind::unknown;
+  after_index_ = true;
   table_kind(t.tool, line);
   after_call_ = true;
 }

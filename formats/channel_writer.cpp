@@ -23,6 +23,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   x_mirror_ = x && x->mirror;
   x_diameter_ = x && x->diameter;
   has_y_ = ch.axis('Y') != nullptr;
+  has_c_ = ch.axis('C') != nullptr;
   // The plane in force after the header (G18 on a lathe, G17 on a mill).
   for (const std::string& block : m.program.header)
     for (const char* g : {"G17", "G18", "G19"})
@@ -44,6 +45,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   }
   last_y_.max = m.formats['Y'].max_count(axis_style_.decimals);
   last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
+  last_c_.max = m.formats['C'].max_count(axis_style_.decimals);
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
 }
 
@@ -314,6 +316,7 @@ void channel_writer::finish() {
     if (std::find(footer.begin(), footer.end(), coolant_off_block_) == footer.end())
       out_.block(coolant_off_block_);
   }
+  leave_c_axis();  // the next program starts with a turning spindle
   out_.close();
 }
 

@@ -137,6 +137,47 @@ class channel_writer {
   /// After a thread: the feed mode in force before it again (written only if one was).
   void restore_feed_mode(bool had_mode, bool per_rev);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
+  // Mill/turn (formats/channel_millturn.cpp): live tools on a channel with a C axis.
+  /// True while a live tool turns on a channel with a C axis (the workpiece spindle is held).
+  bool live_tool() const;
+  /// The workpiece spindle becomes the C axis (spindle.c_on), X in radius (milling.radius_input);
+  /// false, with the error, on a spindle that cannot be held.
+  bool enter_c_axis(int line);
+  /// Polar interpolation off, C unclamped, X in diameter, the spindle a turning spindle again.
+  void leave_c_axis();
+  void set_x_radius(bool radius);
+  void enter_polar();
+  void leave_polar();
+  /// G0 C<degrees>, unclamping first; the C frame's rotation follows it.
+  void position_c(double degrees);
+  void clamp_c();
+  /// True when a move along the spindle axis is written in polar interpolation.
+  bool face_polar() const;
+  void polar_linear(bool rapid, const vec3& p, int line);
+  /// The indexing head to the angle the tool in force needs (channel.head_index), homing
+  /// first when the tool is not home; false after an error.
+  bool index_head(int line);
+  /// For linear(): on a channel with a C axis, `x`, `y` in the frame C has turned the part to
+  /// (C positioned first where a rapid needs it); false when the move was written in polar
+  /// interpolation or refused.
+  bool c_frame_move(bool rapid, double& x, double& y, double& z, int line);
+  /// The CL point (x, y) in the frame of the C axis's angle (itself outside C mode, and for
+  /// a cross hole's points, which come in the turned frame already).
+  std::pair<double, double> c_frame(double x, double y) const {
+    if (!c_mode_ || radial_frame_) return {x, y};
+    return {x * c_cos_ + y * c_sin_, -x * c_sin_ + y * c_cos_};
+  }
+  /// An axial hole off centre at a C position (milling.face_holes = "c_axis"): C turned onto it
+  /// and clamped; false when the hole is not one.
+  bool c_axis_hole(const vec3& p);
+  /// Cross holes: C to `degrees` and clamped, the frame turned (milling.radial_frame_on);
+  /// false, with the error, where the machine gives no frame.
+  bool enter_radial_frame(double degrees, int line);
+  void leave_radial_frame();
+  /// CL point `p` under a radial tool axis as `q` in the turned frame (entered first).
+  bool radial_point(const vec3& p, vec3& q, int line);
+  /// The head's tool length offset words due in the first move after indexing.
+  void add_offset_words(text_buffer& b);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
   void misfit(char address, double value);
@@ -193,6 +234,17 @@ class channel_writer {
   bool x_mirror_ = false;    // the channel's X axis is mirrored (a lower turret)
   bool x_diameter_ = false;  // and programmed in diameter (a lathe's)
   bool has_y_ = false;
+  bool has_c_ = false;         // the channel has a C axis (mill/turn)
+  bool c_mode_ = false;        // the workpiece spindle is held as the C axis
+  bool c_clamped_ = false;     // and clamped (spindle.c_clamp)
+  bool polar_ = false;         // polar interpolation is on
+  bool radial_ok_ = false;     // a cross hole is being written: its points are in the turned frame
+  bool radial_frame_ = false;  // the frame is turned for cross holes (milling.radial_frame_on)
+  std::pair<std::int64_t, std::int64_t> saved_x_limits_{INT64_MIN, INT64_MAX};
+  std::string pending_offset_;            // head_index.offset_* for the next move
+  bool after_index_ = false;              // a tool was called: its offset words are due
+  double c_cos_ = 1, c_sin_ = 0;          // of the C angle in force
+  std::optional<double> head_angle_;      // the indexing head's angle, once written
   const spindle_def* spindle_ = nullptr;  // the spindle SPINDL codes go to (workpiece or live)
   const spindle_def* work_ = nullptr;     // the workpiece spindle the channel works on (main, sub)
   double z_sign_ = 1.0;                   // -1 on a spindle with reverse_z
@@ -208,6 +260,7 @@ class channel_writer {
   int motion_g_ = -1;                         // last G0/G1/G2/G3
   int plane_ = 18;                            // G17/G18/G19 in force (lathe headers set G18)
   axis_memory last_x_, last_y_, last_z_;      // axis words written last
+  axis_memory last_c_;                        // the C word written last (degrees)
   std::string feed_g_;                        // G99/G98 (G95/G94) in force
   std::string last_f_;
   text_buffer arc_;  // the block being built, reused (arcs; moves are built in place)

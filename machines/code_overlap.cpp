@@ -152,6 +152,10 @@ void spindle_codes(overlap_finder& f, const spindle_def& s, const toml::table& t
   if (s.select) f.m_code(what + " select", *s.select, t.get("select"), &t);
   f.block(what + " clamp", s.clamp, t.get("clamp"), &t);
   f.block(what + " work_offset", s.work_offset, t.get("work_offset"), &t);
+  f.blocks(what + " c_on", s.c_axis.on, &t, "c_on");
+  f.blocks(what + " c_off", s.c_axis.off, &t, "c_off");
+  f.block(what + " c_clamp", s.c_axis.clamp, t.get("c_clamp"), &t);
+  f.block(what + " c_unclamp", s.c_axis.unclamp, t.get("c_unclamp"), &t);
 }
 
 // The file's [[channel]] table of channel `number` (channels are sorted by number).
@@ -183,7 +187,20 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
   for (const channel_def& c : m.channels) {
     const toml::table* t = channel_table(root, c.number);
     f.block(fmt::format("channel {}: tool_call", c.number), c.tool_call, key_of(t, "tool_call"), t);
+    const toml::table* h = t && t->get("head_index") ? t->get("head_index")->as_table() : nullptr;
+    for (const auto& [key, block] : {std::pair{"unclamp", &c.head_index.unclamp},
+                                     {"move", &c.head_index.move},
+                                     {"clamp", &c.head_index.clamp}})
+      f.block(fmt::format("channel {}: head_index.{}", c.number, key), *block, key_of(h, key), h);
   }
+  const toml::table* g = root.sub_table("milling");
+  for (const auto& [key, blocks] : {std::pair{"radius_input", &m.milling.radius_input},
+                                    {"diameter_input", &m.milling.diameter_input},
+                                    {"polar_on", &m.milling.polar_on},
+                                    {"polar_off", &m.milling.polar_off},
+                                    {"radial_frame_on", &m.milling.radial_frame_on},
+                                    {"radial_frame_off", &m.milling.radial_frame_off}})
+    f.blocks(fmt::format("milling.{}", key), *blocks, g, key);
   // The first in the file, as a reader goes through it.
   const finding* first = nullptr;
   for (const finding& x : f.found)

@@ -11,6 +11,7 @@
 
 #include "machines/kinematic_chain.hpp"
 #include "machines/machine_timing.hpp"
+#include "machines/millturn_rules.hpp"
 #include "machines/word_format.hpp"
 
 namespace twinpost {
@@ -81,6 +82,8 @@ struct spindle_def {
   /// many list it in channel.spindles. Default false: a spindle two channels may command is
   /// one spindle they share (the workpiece spindles).
   bool per_channel = false;
+  /// The spindle held as a C axis for live-tool work (machines/millturn_rules.hpp).
+  c_axis_codes c_axis;
 };
 
 /// An axis of a channel.
@@ -118,9 +121,10 @@ struct channel_def {
   /// such a call (the tip would run at the turret's reference point); true for a control
   /// whose tool table applies the geometry by tool number.
   bool offset_zero = false;
-  std::vector<axis_def> axes;  ///< at least X and Z
-  std::string file_suffix;     ///< for split layout, e.g. "_1" or ".P-2"
-  channel_timing timing;       ///< [timing] merged with [timing.channel.N] (machine_timing.hpp)
+  std::vector<axis_def> axes;   ///< at least X and Z
+  std::string file_suffix;      ///< for split layout, e.g. "_1" or ".P-2"
+  channel_timing timing;        ///< [timing] merged with [timing.channel.N] (machine_timing.hpp)
+  head_index_rules head_index;  ///< [channel.head_index]: an indexing B head (millturn_rules.hpp)
   /// The axis with this address, or nullptr.
   const axis_def* axis(char address) const;
 };
@@ -281,6 +285,8 @@ struct machine {
   std::vector<tool_def> tools;  ///< the tool table ([[tool]]); may be empty
   /// [[kinematics]]: the chains of the channels that have one (docs/kinematics.md).
   std::vector<kinematic_chain> kinematics;
+  /// [milling]: live-tool work on a channel with a C axis (machines/millturn_rules.hpp).
+  milling_rules milling;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

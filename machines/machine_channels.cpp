@@ -100,6 +100,7 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
   if (r.read("file_suffix", c.file_suffix) && c.file_suffix.find_first_of("/\\") != std::string::npos)
     r.fail(*r.find("file_suffix"), "channel.file_suffix must not contain a path separator");
   read_axes(r, c);
+  read_head_index(r, c);
   return c;
 }
 
@@ -144,10 +145,11 @@ void read_channels(const table_reader& root, machine& m) {
   readers.reserve(tables.size());
   std::vector<read_channel> all;
   for (const toml::table* t : tables) {
-    readers.emplace_back(*t, "channel", root.source(),
-                         std::initializer_list<std::string_view>{
-                             "number", "heads", "head_names", "kind", "tool_call", "spindle", "file_suffix",
-                             "axis", "tool_change_stops_spindle", "live_spindle", "offset_zero", "spindles"});
+    readers.emplace_back(
+        *t, "channel", root.source(),
+        std::initializer_list<std::string_view>{"number", "heads", "head_names", "kind", "tool_call",
+                                                "spindle", "file_suffix", "axis", "tool_change_stops_spindle",
+                                                "live_spindle", "offset_zero", "spindles", "head_index"});
     all.push_back({read_channel_table(readers.back(), m), &readers.back()});
   }
   check_numbers_and_heads(all);

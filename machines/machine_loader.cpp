@@ -306,7 +306,7 @@ void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   for (const toml::table* t : root.tables("spindle")) {
     table_reader r(*t, "spindle", root.source(),
                    {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset", "reverse_z",
-                    "per_channel"});
+                    "per_channel", "c_on", "c_off", "c_clamp", "c_unclamp"});
     spindle_def s;
     r.require("name");
     r.read("name", s.name);
@@ -321,6 +321,7 @@ void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
     r.read_fixed("work_offset", s.work_offset);
     r.read("reverse_z", s.reverse_z);
     r.read("per_channel", s.per_channel);
+    read_c_axis(r, s.c_axis);
     out.push_back(std::move(s));
   }
 }
@@ -460,7 +461,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   }
   table_reader root(doc, "", source,
                     {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits",
-                     "cycles", "transfer", "tool", "timing", "kinematics"});
+                     "cycles", "transfer", "tool", "timing", "kinematics", "milling"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -472,6 +473,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_codes(root, m.codes);
   read_limits(root, m.limits);
   detail::read_cycles(root, m.cycles);
+  detail::read_milling(root, m);
   read_spindles(root, m.spindles);
   detail::read_channels(root, m);
   detail::read_timing(root, m);

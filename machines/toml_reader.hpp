@@ -17,6 +17,8 @@
 namespace twinpost {
 struct machine;
 struct cycle_rules;
+struct c_axis_codes;
+struct channel_def;
 }  // namespace twinpost
 
 namespace twinpost::detail {
@@ -100,6 +102,14 @@ void read_cycles(const table_reader& root, cycle_rules& c);
 void read_timing(const table_reader& root, machine& m);
 /// Reads every [[kinematics]] chain (machine_kinematics.cpp), after the channels.
 void read_kinematics(const table_reader& root, machine& m);
+
+// Mill/turn (machine_milling.cpp, machines/millturn_rules.hpp).
+/// A [[spindle]]'s c_on, c_off, c_clamp and c_unclamp.
+void read_c_axis(const table_reader& spindle, c_axis_codes& c);
+/// A [[channel]]'s [channel.head_index], after its axes.
+void read_head_index(const table_reader& channel, channel_def& c);
+/// [milling], after [limits].
+void read_milling(const table_reader& root, machine& m);
 
 /// Throws at the first value of the file (in file order) that names a wait code of `m`
 /// outside [waits]: spindle codes, [codes], program blocks, tool calls; a default the file

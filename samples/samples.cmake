@@ -49,7 +49,14 @@ foreach(_tp_job IN LISTS _tp_jobs)
     string(REPLACE "\n" " " _tp_text "${_tp_text}")
     separate_arguments(_tp_args UNIX_COMMAND "${_tp_text}")
   endif()
-  foreach(_tp_machine IN LISTS _tp_machines)
+  # A job for some machines only (mill/turn, 5-axis) names them in its `machines` file;
+  # the others post on every built-in post machine.
+  set(_tp_job_machines ${_tp_machines})
+  if(EXISTS ${_tp_dir}/machines)
+    set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${_tp_dir}/machines)
+    file(STRINGS ${_tp_dir}/machines _tp_job_machines REGEX "^[^#]")
+  endif()
+  foreach(_tp_machine IN LISTS _tp_job_machines)
     set(_tp_id ${_tp_sample}.${_tp_machine})
     add_test(NAME sample.${_tp_id}
              COMMAND ${CMAKE_COMMAND} -DTWINPOST=$<TARGET_FILE:twinpost> -DMODE=post

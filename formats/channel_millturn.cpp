@@ -1,0 +1,366 @@
+// channel_writer: live-tool work on a lathe channel with a C axis (mill/turn): the workpiece
+// spindle held as a C axis, polar interpolation for face milling, holes at C positions (face
+// and cross drilling) and the indexing head (docs/machines.md, "Mill/turn").
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+
+#include "formats/channel_writer.hpp"
+#include "formats/cycle_words.hpp"
+
+namespace twinpost {
+
+namespace {
+constexpr double along = 0.9999;    // |axis.z| at or above: along the spindle axis
+constexpr double across = 1e-4;     // |axis.z| at or below: radial
+constexpr double off_line = 1e-3;   // mm: a cross hole this far beside its radial line needs Y
+constexpr double deg = 180.0 / std::numbers::pi;
+
+double wrap_360(double a) {
+  a = std::fmod(a, 360.0);
+  if (a < 0) a += 360.0;
+  if (a >= 360.0 - 5e-4) a = 0;  // 359.9999 is written as C0.
+  return a;
+}
+}  // namespace
+
+bool channel_writer::live_tool() const {
+  return has_c_ && spindle_ && work_ && spindle_ != work_ && !restart_blocks_.empty();
+}
+
+bool channel_writer::enter_c_axis(int line) {
+  if (c_mode_) return true;
+  if (!work_ || !work_->c_axis.present()) {
+    error(line, fmt::format("live-tool work on the {} spindle, which machine '{}' cannot hold as a C axis "
+                            "(spindle.c_on): the part would be free to turn under the cutter",
+                            work_ ? work_->name : std::string("workpiece"), m_.name));
+    return false;
+  }
+  for (const std::string& b : work_->c_axis.on) out_.block(b);
+  c_mode_ = true;
+  c_clamped_ = false;
+  last_c_.known = false;
+  if (!m_.milling.radius_input.empty()) {
+    for (const std::string& b : m_.milling.radius_input) out_.block(b);
+    set_x_radius(true);
+  }
+  return true;
+}
+
+void channel_writer::leave_c_axis() {
+  if (!c_mode_) return;
+  leave_polar();
+  leave_radial_frame();
+  if (c_clamped_) out_.block(work_->c_axis.unclamp);
+  c_clamped_ = false;
+  if (!m_.milling.diameter_input.empty()) {
+    for (const std::string& b : m_.milling.diameter_input) out_.block(b);
+    set_x_radius(false);
+  }
+  for (const std::string& b : work_->c_axis.off) out_.block(b);
+  c_mode_ = false;
+}
+
+void channel_writer::set_x_radius(bool radius) {
+  // X in radius (G10.9 X0) or diameter, keeping the mirror; the travel limits go with it.
+  if (!x_diameter_) return;
+  const double sign = x_factor_ < 0 ? -1.0 : 1.0;
+  const double factor = radius ? 1.0 : 2.0;
+  if (std::abs(x_factor_) == factor) return;
+  x_factor_ = sign * factor;
+  if (last_x_.lo != INT64_MIN) {
+    last_x_.lo = radius ? last_x_.lo / 2 : last_x_.lo * 2;
+    last_x_.hi = radius ? last_x_.hi / 2 : last_x_.hi * 2;
+  }
+  last_x_.known = false;
+}
+
+void channel_writer::enter_polar() {
+  // The C axis at 0 first: the polar frame's X is the part's X (UNVERIFIED in a Mazak manual;
+  // the Fusion Integrex post positions C before G12.1 as well).
+  position_c(0);
+  for (const std::string& b : m_.milling.polar_on) {
+    out_.block(b);
+    for (const char* g : {"G17", "G18", "G19"})
+      if (b.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
+  }
+  polar_ = true;
+  motion_g_ = -1;
+  last_y_.known = false;
+}
+
+void channel_writer::leave_polar() {
+  if (!polar_) return;
+  for (const std::string& b : m_.milling.polar_off) out_.block(b);
+  polar_ = false;
+  motion_g_ = -1;
+  last_y_.known = last_c_.known = false;
+  for (const std::string& b : m_.milling.polar_off)
+    for (const char* g : {"G17", "G18", "G19"})
+      if (b.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
+}
+
+void channel_writer::position_c(double degrees) {
+  const double c = wrap_360(degrees);
+  if (last_c_.known && std::abs(last_c_.value - c) < 5e-4) return;
+  if (c_clamped_) {
+    out_.block(work_->c_axis.unclamp);
+    c_clamped_ = false;
+  }
+  text_buffer& b = out_.open_block();
+  word_start_ = b.size();
+  b += "G0";
+  motion_g_ = 0;
+  axis_word(b, 'C', c, last_c_, true);
+  out_.end_block();
+  word_start_ = std::string::npos;
+  c_cos_ = std::cos(c / deg);
+  c_sin_ = std::sin(c / deg);
+  if (c == 0) c_cos_ = 1, c_sin_ = 0;
+  forget_axes();  // the part has turned under X and Y
+}
+
+void channel_writer::clamp_c() {
+  if (c_clamped_ || work_->c_axis.clamp.empty()) return;
+  out_.block(work_->c_axis.clamp);
+  c_clamped_ = true;
+}
+
+bool channel_writer::face_polar() const {
+  // A drill's moves go to its holes: C positions, never the polar plane.
+  return c_mode_ && m_.milling.face_milling == "polar" && std::abs(axis_.z) >= along &&
+         kind_ != tool_kind::drill && !cycle_;
+}
+
+void channel_writer::polar_linear(bool rapid, const vec3& p, int line) {
+  if (!polar_) enter_polar();
+  if (c_clamped_) {
+    out_.block(work_->c_axis.unclamp);
+    c_clamped_ = false;
+  }
+  text_buffer& b = out_.open_block();
+  word_start_ = b.size();
+  if (!pending_g_.empty()) b += pending_g_;
+  // A rapid is G0, or G1 at milling.polar_rapid_feed on a control that takes no G0 here.
+  const bool g0 = rapid && m_.milling.polar_rapid_feed == 0;
+  const int g = g0 ? 0 : 1;
+  if (motion_g_ != g) {
+    separate(b);
+    b += g0 ? "G0" : "G1";
+  }
+  add_offset_words(b);
+  // X and C here are the plane's Cartesian values: the real X is the radius hypot(x, y), held to
+  // the axis's travel instead of the X word.
+  const auto lo = last_x_.lo, hi = last_x_.hi;
+  last_x_.lo = INT64_MIN, last_x_.hi = INT64_MAX;
+  bool moved = axis_word(b, 'X', nc_x(p.x), last_x_);
+  last_x_.lo = lo, last_x_.hi = hi;
+  const double r = std::hypot(nc_x(p.x), nc_y(p.y));
+  if (const axis_def* x = ch_.axis('X'); x && x->max && r * (x_diameter_ ? 2 : 1) > *x->max) {
+    out_.drop_block();
+    word_start_ = std::string::npos;
+    return error(line, fmt::format("polar interpolation to a radius of {} is outside channel {}'s X travel "
+                                   "(channel.axis max {})",
+                                   format_nc_number(r, axis_style_), ch_.number, *x->max));
+  }
+  moved = axis_word(b, 'C', nc_y(p.y), last_y_) || moved;  // the CL's Y: C's linear value (mm)
+  moved = axis_word(b, 'Z', nc_z(p.z), last_z_) || moved;
+  if (!moved) {
+    out_.drop_block();
+    word_start_ = std::string::npos;
+    return;
+  }
+  homed_ = false;
+  pending_g_.clear();
+  pending_offset_.clear();
+  motion_g_ = g;
+  if (g0) {
+  } else if (rapid) {
+    const double f = m_.milling.polar_rapid_feed * out_per_mm_;
+    text_buffer word;
+    append_number(word, f, {feed_decimals(false), m_.program.trailing_point});
+    if (std::string(word.view()) != last_f_) {
+      separate(b);
+      b += 'F';
+      b += word.view();
+      last_f_ = std::string(word.view());
+    }
+  } else if (feed_value_ > 0) {
+    append_feed(b);
+  } else {
+    error(line, "feed move with no feed rate (FEDRAT) in force");
+  }
+  out_.end_block();
+  word_start_ = std::string::npos;
+}
+
+bool channel_writer::index_head(int line) {
+  const head_index_rules& h = ch_.head_index;
+  if (!h.present() || tool_ < 0) return true;
+  // Where the tool must point: turning tools (and centre drills on the turning spindle) as
+  // the channel turns, live tools along or across the spindle axis as the CL's axis says.
+  const bool live = spindle_ && work_ && spindle_ != work_;
+  const bool axial = std::abs(axis_.z) >= along;
+  const bool radial = std::abs(axis_.z) <= across;
+  std::optional<double> want;
+  const char* which;
+  if (!live && kind_ != tool_kind::mill && !(kind_ == tool_kind::drill && axial)) {
+    want = h.turning, which = "turning";
+  } else if (axial) {
+    want = h.axial, which = "axial";
+  } else if (radial) {
+    want = h.radial, which = "radial";
+  } else {
+    return true;  // a tilted axis: the move's own check refuses it
+  }
+  if (!want) {
+    error(line, fmt::format("channel {} indexes its {} head for every tool, and channel.head_index.{} is not "
+                            "given: where the {} tool must point is unknown",
+                            ch_.number, h.address, which, which));
+    return false;
+  }
+  const std::string& offset = std::string_view(which) == "turning" ? h.offset_turning : h.offset_live;
+  if (head_angle_ && std::abs(*head_angle_ - *want) < 5e-4) {
+    if (after_index_) pending_offset_ = offset;  // a new tool at the same angle: its own offset
+    after_index_ = false;
+    return true;
+  }
+  if (!homed_) {
+    // The head never turns at the part: out to home first, then in again at the new angle.
+    leave_polar();
+    go_home();
+    forget_axes();
+    motion_g_ = -1;
+  }
+  if (!h.unclamp.empty()) out_.block(h.unclamp);
+  text_buffer& b = out_.open_block();
+  word_start_ = b.size();
+  b += h.move;
+  b += ' ';
+  b += h.address;
+  append_number(b, *want, axis_style_);
+  out_.end_block();
+  word_start_ = std::string::npos;
+  if (!h.clamp.empty()) out_.block(h.clamp);
+  head_angle_ = want;
+  motion_g_ = -1;  // the move block was G0 in machine coordinates
+  pending_offset_ = offset;
+  after_index_ = false;
+  return true;
+}
+
+void channel_writer::add_offset_words(text_buffer& b) {
+  if (pending_offset_.empty()) return;
+  separate(b);
+  b += pending_offset_;
+}
+
+bool channel_writer::c_axis_hole(const vec3& p) {
+  // An axial hole off centre: C turns it onto the X axis, where X is its radius.
+  if (!(c_mode_ && m_.milling.face_holes == "c_axis" && std::abs(axis_.z) >= along)) return false;
+  if (std::hypot(p.x, p.y) * cl_mm_ <= 1e-3) return false;  // on the centre line: as always
+  leave_polar();
+  leave_radial_frame();
+  position_c(std::atan2(p.y, p.x) * deg);
+  clamp_c();
+  return true;
+}
+
+bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, int line) {
+  if (!index_head(line)) return false;
+  if (!c_mode_) return tool_along_z(line);  // turning: as on any lathe channel
+  const bool axial = std::abs(axis_.z) >= along;
+  const bool radial = std::abs(axis_.z) <= across;
+  if (axial && face_polar() && live_tool()) {
+    leave_radial_frame();
+    polar_linear(rapid, {x, y, z}, line);
+    return false;
+  }
+  leave_polar();
+  if (radial) {
+    // The tool points across the spindle axis: C turns the part so that it points along the
+    // turned frame's Z. A hole's own moves come in that frame already.
+    if (radial_ok_) return true;
+    if (!rapid) {
+      if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y) return false;
+      refused_axis_ = axis_;  // once per tool axis, as tool_along_z
+      error(line, "a feed move with the tool across the spindle axis (milling on the diameter): twinpost "
+                  "writes no cylindrical interpolation yet, so it cannot be posted");
+      return false;
+    }
+    vec3 q;
+    if (!radial_point({x, y, z}, q, line)) return false;
+    x = q.x, y = q.y, z = q.z;
+    return true;
+  }
+  leave_radial_frame();
+  if (!axial) {
+    return tool_along_z(line);  // tilted: refused
+  } else if (!last_c_.known) {
+    position_c(0);
+  }
+  auto [u, v] = c_frame(x, y);
+  if (!has_y_ && std::abs(v) * cl_mm_ > 1e-4) {
+    if (!rapid || radial) {
+      error(line, fmt::format("a feed move to Y {} in the frame of C{} on a channel without a Y axis: it "
+                              "needs polar interpolation (milling.face_milling = \"polar\")",
+                              v, format_nc_number(last_c_.value, axis_style_)));
+      return false;
+    }
+    position_c(std::atan2(y, x) * deg);  // a rapid in XZC: C first, then X as the radius
+    std::tie(u, v) = c_frame(x, y);
+  }
+  x = u;
+  y = v;
+  return true;
+}
+
+bool channel_writer::enter_radial_frame(double degrees, int line) {
+  // The Fusion Integrex post's indexed cross drilling: C to the hole's angle and clamped, then
+  // the frame turned about Y so that the tool axis is Z (G68 ... R90.).
+  if (m_.milling.radial_frame_on.empty()) {
+    error(line, fmt::format("a move with the tool across the spindle axis: machine '{}' gives no frame for "
+                            "it (milling.radial_frame_on), so cross holes cannot be posted",
+                            m_.name));
+    return false;
+  }
+  if (std::abs(x_factor_) != 1.0) {
+    error(line, "a move with the tool across the spindle axis needs X in radius (milling.radius_input)");
+    return false;
+  }
+  const double c = wrap_360(degrees);
+  if (radial_frame_ && last_c_.known && std::abs(last_c_.value - c) < 5e-4) return true;
+  leave_radial_frame();
+  position_c(c);
+  clamp_c();
+  for (const std::string& b : m_.milling.radial_frame_on) out_.block(b);
+  radial_frame_ = true;
+  // X is now the part's -Z: its lathe travel limits do not apply.
+  saved_x_limits_ = {last_x_.lo, last_x_.hi};
+  last_x_.lo = INT64_MIN;
+  last_x_.hi = INT64_MAX;
+  forget_axes();
+  motion_g_ = -1;
+  return true;
+}
+
+void channel_writer::leave_radial_frame() {
+  if (!radial_frame_) return;
+  for (const std::string& b : m_.milling.radial_frame_off) out_.block(b);
+  radial_frame_ = false;
+  last_x_.lo = saved_x_limits_.first;
+  last_x_.hi = saved_x_limits_.second;
+  forget_axes();
+  motion_g_ = -1;
+}
+
+bool channel_writer::radial_point(const vec3& p, vec3& q, int line) {
+  const double a = std::atan2(axis_.y, axis_.x);
+  if (!enter_radial_frame(a * deg, line)) return false;
+  // In the turned frame: X the part's -Z, Y the distance beside the radial line, Z the radius.
+  const double ca = std::cos(a), sa = std::sin(a);
+  q = {-p.z, -p.x * sa + p.y * ca, p.x * ca + p.y * sa};
+  return true;
+}
+
+}  // namespace twinpost
