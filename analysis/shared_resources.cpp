@@ -133,7 +133,9 @@ struct shared_resources::impl {
                                                                        : std::string();
     if (c.speed || c.mode) add(mode_code);
     if (c.speed) add(fmt::format("S{}", c.setting.speed));
-    if (c.turn) {
+    if (c.turn && c.setting.turn == spindle_turn::held) {
+      for (const std::string& b : s.c_axis.on) add(b);
+    } else if (c.turn) {
       const int code = c.setting.turn == spindle_turn::cw    ? s.cw
                        : c.setting.turn == spindle_turn::ccw ? s.ccw
                                                              : s.stop;
@@ -262,6 +264,8 @@ struct shared_resources::impl {
   // --- the rules ------------------------------------------------------------------------
 
   static const char* difference(const spindle_command& x, const spindle_command& y) {
+    // A hold as the C axis against a start is the held rule's finding (held_rule).
+    if (x.setting.turn == spindle_turn::held || y.setting.turn == spindle_turn::held) return nullptr;
     if (x.turn && y.turn && x.setting.turn != y.setting.turn) return "different direction";
     const bool x_speed = x.speed || x.mode, y_speed = y.speed || y.mode;
     if (x_speed && y_speed && x.setting.mode != speed_mode::unknown &&
@@ -305,6 +309,45 @@ struct shared_resources::impl {
             break;  // one finding for each block
           }
         }
+  }
+
+  // A spindle held as a C axis (c_on) by one channel is held until that channel lets it go
+  // (c_off, or any other turn command of its own): a start of it by another channel that no
+  // wait orders before the hold or after the release turns the part under a live tool.
+  void held_rule(std::vector<diagnostic>& out) const {
+    const int n = static_cast<int>(channels.size());
+    for (std::size_t s = 0; s < m.spindles.size(); ++s)
+      for (int a = 1; a <= n; ++a) {
+        const std::vector<command_rec>& xs = channels[static_cast<std::size_t>(a - 1)].commands[s];
+        for (std::size_t i = 0; i < xs.size(); ++i) {
+          const command_rec& hold = xs[i];
+          if (!hold.cmd.turn || hold.cmd.setting.turn != spindle_turn::held || !known(a, hold.seg)) continue;
+          const command_rec* release = nullptr;
+          for (std::size_t j = i + 1; j < xs.size() && !release; ++j)
+            if (xs[j].cmd.turn && xs[j].cmd.setting.turn != spindle_turn::held) release = &xs[j];
+          for (int b = 1; b <= n; ++b) {
+            if (b == a) continue;
+            for (const command_rec& y : channels[static_cast<std::size_t>(b - 1)].commands[s]) {
+              if (!y.cmd.turn || !y.cmd.setting.started() || !known(b, y.seg)) continue;
+              if (before(b, y.seg, a, hold.seg)) continue;                 // turned before the hold
+              if (release && before(a, release->seg, b, y.seg)) continue;  // after the release
+              out.push_back(
+                  {severity::error, y.at.file, y.at.line, y.at.column,
+                   fmt::format("channel {} starts the shared {} spindle ({}) while channel {} may hold it as "
+                               "the C axis ({}, {}); no wait orders the start before the hold or after "
+                               "its release",
+                               b, spindle(static_cast<int>(s)).name, command_text(y.cmd), a,
+                               command_text(hold.cmd), at_text(hold.at)),
+                   y.at.source});
+              out.push_back({severity::note, hold.at.file, hold.at.line, hold.at.column,
+                             fmt::format("channel {} holds the {} spindle as the C axis here", a,
+                                         spindle(static_cast<int>(s)).name),
+                             hold.at.source});
+              break;  // one finding for each hold and channel
+            }
+          }
+        }
+      }
   }
 
   // turn `e` of channel `ec` happens before turn `f` of channel `fc`.
@@ -391,6 +434,7 @@ std::vector<diagnostic> shared_resources::finish(const std::vector<std::uint64_t
   if (!waits_sound) return out;
   p_->make_clocks(rendezvous);
   p_->conflicts(out);
+  p_->held_rule(out);
   p_->feed_rule(out);
   return out;
 }

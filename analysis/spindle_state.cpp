@@ -96,10 +96,12 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
     bool select = false;
     for (std::size_t i = 0; i < m_.spindles.size(); ++i) {
       const spindle_def& s = m_.spindles[i];
-      spindle_turn t = code == s.cw     ? spindle_turn::cw
-                       : code == s.ccw  ? spindle_turn::ccw
-                       : code == s.stop ? spindle_turn::stopped
-                                        : spindle_turn::unknown;
+      spindle_turn t = code == s.cw                 ? spindle_turn::cw
+                       : code == s.ccw              ? spindle_turn::ccw
+                       : code == s.stop             ? spindle_turn::stopped
+                       : code == c_codes_[i].first  ? spindle_turn::held
+                       : code == c_codes_[i].second ? spindle_turn::stopped
+                                                    : spindle_turn::unknown;
       const bool sel = s.select && *s.select == code;
       if (t == spindle_turn::unknown && !sel) continue;
       if (hit < 0 || static_cast<int>(i) == current_) {

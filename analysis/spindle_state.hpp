@@ -14,7 +14,9 @@
 
 namespace twinpost {
 
-enum class spindle_turn : unsigned char { unknown, stopped, cw, ccw };
+/// `held`: the spindle is held as a C axis (spindle.c_on, Mazak M200) for live-tool work, so no
+/// channel may turn it until c_off (M202) lets it go.
+enum class spindle_turn : unsigned char { unknown, stopped, cw, ccw, held };
 enum class speed_mode : unsigned char { unknown, css, rpm };
 
 /// One spindle as a channel's blocks have set it so far.
@@ -87,7 +89,19 @@ class channel_spindles {
   speed_mode mode_ = speed_mode::unknown;
   std::vector<nc_word> css_code_ = split_nc_words(m_.codes.css);  // G96, split once
   std::vector<nc_word> rpm_code_ = split_nc_words(m_.codes.rpm);  // G97
-  std::vector<std::vector<nc_word>> offset_codes_ = [this] {      // each spindle's work offset
+  /// Each spindle's c_on and c_off M-code (a block of one M word), -1 where none.
+  std::vector<std::pair<int, int>> c_codes_ = [this] {
+    std::vector<std::pair<int, int>> out;
+    auto code = [](const std::vector<std::string>& blocks) {
+      double v = -1;
+      if (blocks.size() != 1) return -1;
+      const std::vector<nc_word> w = split_nc_words(blocks[0]);
+      return w.size() == 1 && w[0].address == 'M' && nc_number(w[0].value, v) ? static_cast<int>(v) : -1;
+    };
+    for (const spindle_def& s : m_.spindles) out.emplace_back(code(s.c_axis.on), code(s.c_axis.off));
+    return out;
+  }();
+  std::vector<std::vector<nc_word>> offset_codes_ = [this] {  // each spindle's work offset
     std::vector<std::vector<nc_word>> out;
     for (const spindle_def& s : m_.spindles) out.push_back(split_nc_words(s.work_offset));
     return out;

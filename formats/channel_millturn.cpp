@@ -11,9 +11,9 @@
 namespace twinpost {
 
 namespace {
-constexpr double along = 0.9999;    // |axis.z| at or above: along the spindle axis
-constexpr double across = 1e-4;     // |axis.z| at or below: radial
-constexpr double off_line = 1e-3;   // mm: a cross hole this far beside its radial line needs Y
+constexpr double along = 0.9999;   // |axis.z| at or above: along the spindle axis
+constexpr double across = 1e-4;    // |axis.z| at or below: radial
+constexpr double off_line = 1e-3;  // mm: a cross hole this far beside its radial line needs Y
 constexpr double deg = 180.0 / std::numbers::pi;
 
 double wrap_360(double a) {
@@ -284,8 +284,9 @@ bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, i
     if (!rapid) {
       if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y) return false;
       refused_axis_ = axis_;  // once per tool axis, as tool_along_z
-      error(line, "a feed move with the tool across the spindle axis (milling on the diameter): twinpost "
-                  "writes no cylindrical interpolation yet, so it cannot be posted");
+      error(line,
+            "a feed move with the tool across the spindle axis (milling on the diameter): twinpost "
+            "writes no cylindrical interpolation yet, so it cannot be posted");
       return false;
     }
     vec3 q;

@@ -23,7 +23,9 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   x_mirror_ = x && x->mirror;
   x_diameter_ = x && x->diameter;
   has_y_ = ch.axis('Y') != nullptr;
-  has_c_ = ch.axis('C') != nullptr;
+  // Mill/turn needs the machine's [milling] table (how it holds C, its modes): a C axis on a
+  // machine without one (fanuc-31i-3path's mill head) is not driven by the post yet.
+  has_c_ = ch.axis('C') != nullptr && m.milling.present();
   // The plane in force after the header (G18 on a lathe, G17 on a mill).
   for (const std::string& block : m.program.header)
     for (const char* g : {"G17", "G18", "G19"})

@@ -31,15 +31,16 @@ void read_c_axis(const table_reader& r, c_axis_codes& c) {
     r.fail(*r.find(c.on.empty() ? "c_off" : "c_on"),
            "spindle.c_on and spindle.c_off go together: a spindle held as a C axis must be let go again");
   if (c.clamp.empty() != c.unclamp.empty())
-    r.fail(*r.find(c.clamp.empty() ? "c_unclamp" : "c_clamp"), "spindle.c_clamp and spindle.c_unclamp go together");
+    r.fail(*r.find(c.clamp.empty() ? "c_unclamp" : "c_clamp"),
+           "spindle.c_clamp and spindle.c_unclamp go together");
 }
 
 void read_head_index(const table_reader& channel, channel_def& c) {
   const toml::table* t = channel.sub_table("head_index");
   if (!t) return;
-  table_reader r(*t, "channel.head_index", channel.source(),
-                 {"address", "unclamp", "move", "clamp", "turning", "axial", "radial", "offset_turning",
-                  "offset_live"});
+  table_reader r(
+      *t, "channel.head_index", channel.source(),
+      {"address", "unclamp", "move", "clamp", "turning", "axial", "radial", "offset_turning", "offset_live"});
   head_index_rules& h = c.head_index;
   r.read_char("address", h.address, true);
   r.require("move");
@@ -59,8 +60,8 @@ void read_head_index(const table_reader& channel, channel_def& c) {
     std::optional<double> v;
     r.read(key, v);
     if (v && ((a.min && *v < *a.min) || (a.max && *v > *a.max)))
-      r.fail(*r.find(key), fmt::format("channel.head_index.{} = {} is outside the travel of axis {}", key, *v,
-                                       h.address));
+      r.fail(*r.find(key),
+             fmt::format("channel.head_index.{} = {} is outside the travel of axis {}", key, *v, h.address));
   }
 }
 
@@ -68,9 +69,10 @@ void read_milling(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("milling");
   if (!t) return;
   table_reader r(*t, "milling", root.source(),
-                 {"radius_input", "diameter_input", "polar_on", "polar_off", "polar_rapid_feed", "face_milling",
-                  "face_holes", "radial_frame_on", "radial_frame_off"});
+                 {"radius_input", "diameter_input", "polar_on", "polar_off", "polar_rapid_feed",
+                  "face_milling", "face_holes", "radial_frame_on", "radial_frame_off"});
   milling_rules& g = m.milling;
+  g.given = true;
   r.read_fixed("radius_input", g.radius_input);
   r.read_fixed("diameter_input", g.diameter_input);
   if (g.radius_input.empty() != g.diameter_input.empty())
@@ -79,7 +81,8 @@ void read_milling(const table_reader& root, machine& m) {
   r.read_fixed("polar_on", g.polar_on);
   r.read_fixed("polar_off", g.polar_off);
   if (g.polar_on.empty() != g.polar_off.empty())
-    r.fail(*r.find(g.polar_on.empty() ? "polar_off" : "polar_on"), "milling.polar_on and milling.polar_off go together");
+    r.fail(*r.find(g.polar_on.empty() ? "polar_off" : "polar_on"),
+           "milling.polar_on and milling.polar_off go together");
   if (r.read("polar_rapid_feed", g.polar_rapid_feed) && !(g.polar_rapid_feed > 0))
     r.fail(*r.find("polar_rapid_feed"), "milling.polar_rapid_feed must be a feed above 0 (mm/min)");
   read_one_of(r, "face_milling", g.face_milling, {"y_axis", "polar"});

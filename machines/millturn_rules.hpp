@@ -55,6 +55,8 @@ struct milling_rules {
   /// codes in that frame: X is the part's -Z, Y its Y, Z the radius. Empty: cross holes stop
   /// the post.
   std::vector<std::string> radial_frame_on, radial_frame_off;
+  bool given = false;  ///< the machine file has a [milling] table
+  bool present() const { return given; }
 };
 
 }  // namespace twinpost

@@ -70,6 +70,7 @@ const std::string tap = "CYCLE/TAP,FEDTO,12.,MMPR,1.25,RAPTO,5.,RTRCTO,25.\nGOTO
 machine integrex_with_drill() {
   machine m = load_machine("integrex-i200st");
   m.tools.push_back({1, 1, "drill"});
+  m.channels[0].head_index = {};  // the cycles only: the B head's index is tested in post_millturn_test
   return m;
 }
 

@@ -137,12 +137,14 @@ TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then 
   const test::posted p = post_on(transfer_job, "integrex-i200st", "xfer-integrex");
   CHECK(file_of(p, "XFER.EIA") ==
         "%\nO1000(XFER)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT01 M6\nG92 S2500 R1\nG96 S180 M203\nG95\nM8\nG1 X50. Y0. Z2. F0.2\nZ-20.\nM205\n"
-        "M9\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM540\nM306\nM511\nG0 G53 W#500\nM307\nM951\nM952\nM206\n"
-        "G0 G53 W0.\nM513\nM541\nM953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n"
-        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\n"
-        "M951\nM952\nM953\nG55\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT0303\nM902\nG97 S800 M303\nG95\n"
-        "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
+        "G0 G90 G53 Z0.\nT01 M6\nG92 S2500 R1\nG96 S180 M203\nG95\nM8\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X50. Y0. Z2. F0.2\nZ-20.\nM205\nM9\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+        "M950\nM540\nM306\nM511\nG0 G53 W#500\nM307\nM951\nM952\nM206\nG0 G53 W0.\nM513\nM541\n"
+        "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
+        "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
+        "M952\nM953\nG55\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT0303\nM902\nG97 S800 M303\nG95\n"
+        "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+        "M30\n%\n");
 }
 
 TEST_CASE("the part transfer on the 31i: the idle mill head waits and goes home too", "[post][sub]") {
@@ -167,9 +169,11 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
   const std::string f = file_of(p, "TOOLS.EIA");
   CHECK(f.substr(0, f.find("G109 L2")) ==
         "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT01 M6\nG97 S1000 M203\nG95\nG1 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT05 M6\nG97 S3000 M3\nG1 X40. Y0. Z2.\nM5\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\n"
-        "M901\nG97 S900 M203\nG1 X0. Y0. Z5.\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nT01 M6\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM200\n"
+        "G10.9 X0\nG97 S3000 M3\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2.\nM5\nG13.1\n"
+        "G18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\nG10.9 X1\nM202\nM901\nG97 S900 M203\n"
+        "G1 G43 H#3020 X0. Y0. Z5.\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n");
 }
 
@@ -247,17 +251,19 @@ TEST_CASE("a mill head does not turn the spindle of the last tool again for a to
         "move\nGOTO/20,0,2\n^\n");
 }
 
-TEST_CASE("SPINDL/...,SUB with a milling tool puts the head on the sub and turns the milling spindle",
+TEST_CASE("SPINDL/...,SUB with a milling tool stops the post: no C-axis hold of the second spindle is known",
           "[post][spindles]") {
   const test::posted p = post_on(
       "PARTNO E\nHEAD/1\nTLDATA/MILL,10\nLOADTL/5\nSPINDL/RPM,3000,CLW,SUB\nFEDRAT/200,MMPM\nGOTO/20,5,2\n"
       "FINI\n",
       "integrex-i200st", "mill-sub");
   const std::string f = file_of(p, "E.EIA");
-  // G55 and the second spindle's frame (Y and Z reversed), but M3: the cutter turns.
+  // Live-tool work needs the spindle held as the C axis; the sub has no c_on in the machine file.
   CHECK(f.substr(0, f.find("M950")) ==
-        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
-        "T05 M6\nG55\nG97 S3000 M3\nG94\nG1 X40. Y-5. Z-2. F200.\n");
+        "(failed)\n"
+        "job.cls:5:1: error: channel 1: live-tool work on the sub spindle, which machine 'integrex-i200st' "
+        "cannot hold as a C axis (spindle.c_on): the part would be free to turn under the cutter\n"
+        "SPINDL/RPM,3000,CLW,SUB\n^\n");
 }
 
 TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[post][spindles]") {
@@ -270,9 +276,10 @@ TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[p
       m, "table");
   const std::string f = file_of(p, "E.EIA");
   CHECK(f.substr(0, f.find("M950")) ==
-        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
-        "T06 M6\nG97 S800 M203\nG95\nG1 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\n"
-        "G97 S3000 M3\nG1 X40. Y0. Z2.\n");
+        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nT06 M6\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM200\n"
+        "G10.9 X0\nG97 S3000 M3\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2.\n");
   const test::posted clash =
       post_on("PARTNO E\nHEAD/1\nTLDATA/TURN\nLOADTL/5\nSPINDL/RPM,800,CLW\nFINI\n", m, "table-clash");
   CHECK_FALSE(clash.ok);

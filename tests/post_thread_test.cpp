@@ -130,6 +130,7 @@ TEST_CASE("G92 boxes and expanded grooving on the Fanuc 31i", "[post][thread]") 
 TEST_CASE("G292 boxes on the Integrex", "[post][thread]") {
   machine integrex = load_machine("integrex-i200st");
   integrex.tools.push_back({1, 1, "turn"});  // the head's tool table: a turning tool
+  integrex.channels[0].head_index = {};      // the thread only (the B head: post_millturn_test)
   const std::string b = body(integrex, thread_job, "mazak");
   CHECK(b.starts_with(
       "G95\nG0 X26. Y0. Z5.\nG292 X19.3 Z-20. F1.5\nG0 X26. Y0. Z4.916\nG292 X19.01 Z-20. F1.5\n"));

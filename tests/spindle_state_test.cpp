@@ -20,6 +20,7 @@ const char* turn_name(spindle_turn t) {
     case spindle_turn::stopped: return "stop";
     case spindle_turn::cw: return "cw";
     case spindle_turn::ccw: return "ccw";
+    case spindle_turn::held: return "held";
   }
   return "";
 }
@@ -87,4 +88,17 @@ TEST_CASE("spindle state: rpm at a diameter, CSS held to the clamp and the spind
   CHECK(s.rpm(2, true) == Approx(200 * 12 / (M_PI * 2)));  // ft/min at 2 in: 381.97 rpm
   s.apply(split_nc_words("G97 S5000"));
   CHECK(s.rpm(50, false) == 2500);  // the clamp holds in rpm mode too
+}
+
+TEST_CASE("spindle state: the Integrex main spindle held as the C axis (M200) and let go (M202)",
+          "[analysis]") {
+  const machine m = load_machine("integrex-i200st");
+  CHECK(run(m, 1, {"G97 S800 M203", "M205", "M200", "G10.9 X0", "G97 S3000 M3", "M202"}) ==
+        "main:cw,rpm,800,0@5\n"
+        "main:stop,rpm,800,0@1\n"
+        "main:held,rpm,800,0@1\n"
+        "\n"
+        "live:cw,rpm,3000,0@5\n"
+        "main:stop,rpm,800,0@1\n"
+        "current live\n");
 }
