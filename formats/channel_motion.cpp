@@ -59,7 +59,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
   if (!pending_g_.empty()) b += pending_g_;
-  if (g != motion_g_) {
+  if (g != motion_g_ || !pending_offset_.empty()) {  // G0 G43 ...: the offset's move says its G
     separate(b);
     b += rapid ? "G0" : "G1";
   }
