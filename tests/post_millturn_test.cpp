@@ -37,7 +37,8 @@ double word(const std::string& block, char address, double fallback, bool* given
   std::istringstream in(block);
   std::string w;
   while (in >> w)
-    if (w[0] == address && w.size() > 1 && (std::isdigit(static_cast<unsigned char>(w[1])) || w[1] == '-' || w[1] == '.')) {
+    if (w[0] == address && w.size() > 1 &&
+        (std::isdigit(static_cast<unsigned char>(w[1])) || w[1] == '-' || w[1] == '.')) {
       if (given) *given = true;
       return std::stod(w.substr(1));
     }
@@ -63,8 +64,8 @@ std::vector<vec3> tips(const std::string& program) {
     double wx = px, wy = py, wz = pz;
     if (turned) wx = pz, wy = py, wz = -px;  // work = Ry(90°) · program
     if (polar) return vec3{px, py, pz};
-    return vec3{wx * std::cos(c * deg) - wy * std::sin(c * deg), wx * std::sin(c * deg) + wy * std::cos(c * deg),
-                wz};
+    return vec3{wx * std::cos(c * deg) - wy * std::sin(c * deg),
+                wx * std::sin(c * deg) + wy * std::cos(c * deg), wz};
   };
   std::istringstream in(program);
   std::string b;
@@ -105,8 +106,10 @@ std::string text(const vec3& p) { return fmt::format("({:.3f}, {:.3f}, {:.3f})",
 
 }  // namespace
 
-TEST_CASE("the mill/turn sample's head 1 reaches every CL point and hole bottom it should", "[post][millturn]") {
-  const std::string cl = test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/samples/millturn-flat-cross/job.cls");
+TEST_CASE("the mill/turn sample's head 1 reaches every CL point and hole bottom it should",
+          "[post][millturn]") {
+  const std::string cl =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/samples/millturn-flat-cross/job.cls");
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "sample");
   REQUIRE(p.ok);
   std::string seen;
@@ -116,19 +119,23 @@ TEST_CASE("the mill/turn sample's head 1 reaches every CL point and hole bottom 
   // along -axis), the retracts. A point the model reads twice (the initial level before and
   // after a cycle) is listed twice.
   CHECK(seen ==
-        "(40.000, 25.000, 5.000)\n(40.000, 25.000, -8.000)\n(-40.000, 25.000, -8.000)\n(-40.000, 25.000, 5.000)\n"
+        "(40.000, 25.000, 5.000)\n(40.000, 25.000, -8.000)\n(-40.000, 25.000, -8.000)\n(-40.000, 25.000, "
+        "5.000)\n"
         "(-40.000, -25.000, 5.000)\n(-40.000, -25.000, -8.000)\n(40.000, -25.000, -8.000)\n"
         "(40.000, -25.000, 5.000)\n"
         "(20.000, 0.000, 10.000)\n(20.000, 0.000, 2.000)\n(20.000, 0.000, -12.000)\n(20.000, 0.000, 2.000)\n"
         "(-10.000, 17.321, 2.000)\n(-10.000, 17.321, -12.000)\n(-10.000, 17.321, 2.000)\n"
         "(-10.000, -17.321, 2.000)\n(-10.000, -17.321, -12.000)\n(-10.000, -17.321, 2.000)\n"
         "(-10.000, -17.321, 10.000)\n"
-        "(40.000, 0.000, -20.000)\n(33.000, 0.000, -20.000)\n(15.000, 0.000, -20.000)\n(33.000, 0.000, -20.000)\n"
-        "(0.000, 33.000, -20.000)\n(0.000, 15.000, -20.000)\n(0.000, 33.000, -20.000)\n(0.000, 40.000, -20.000)\n"
+        "(40.000, 0.000, -20.000)\n(33.000, 0.000, -20.000)\n(15.000, 0.000, -20.000)\n(33.000, 0.000, "
+        "-20.000)\n"
+        "(0.000, 33.000, -20.000)\n(0.000, 15.000, -20.000)\n(0.000, 33.000, -20.000)\n(0.000, 40.000, "
+        "-20.000)\n"
         "(0.000, 0.000, 100.000)\n");
 }
 
-TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool lets it go", "[post][millturn]") {
+TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool lets it go",
+          "[post][millturn]") {
   const std::string cl =
       "PARTNO E\nHEAD/1\nTLDATA/MILL,8\nLOADTL/5\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,300\nRAPID\n"
       "GOTO/10,5,2\nGOTO/10,5,-1\nCIRCLE/0,5,-1,0,0,1,10\nGOTO/-10,5,-1\nTLDATA/TURN,0.8\nLOADTL/1\n"
@@ -136,12 +143,15 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "hold");
   // Polar interpolation for the axial end mill (X a radius, the CL's Y as C, arcs in I/J), off
   // before the reference return; turning mode (G10.9 X1, M202) before the turning spindle starts.
-  CHECK(head1(p, "E.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM200\n"
-        "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG0 G43 H#3020 X10. C5. Z2.\n"
-        "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
-        "G10.9 X1\nM202\nM901\nG92 S2000 R1\nG96 S200 M203\nG95\nG0 G43 P1 H#3020 X60. Y0. Z2.\nM950\nM9\nM5\nM205\n"
-        "M305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  CHECK(
+      head1(p, "E.EIA") ==
+      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM200\n"
+      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG0 G43 H#3020 X10. C5. "
+      "Z2.\n"
+      "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
+      "G10.9 X1\nM202\nM901\nG92 S2000 R1\nG96 S200 M203\nG95\nG0 G43 P1 H#3020 X60. Y0. "
+      "Z2.\nM950\nM9\nM5\nM205\n"
+      "M305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("the B head turns only at home: a cross hole after face work goes home first", "[post][millturn]") {
@@ -149,12 +159,13 @@ TEST_CASE("the B head turns only at home: a cross hole after face work goes home
       "PARTNO E\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2000,CLW,LIVE\nRAPID\n"
       "GOTO/20,0,5,0,0,1\nRAPID\nGOTO/40,0,-10,1,0,0\nFINI\n";
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "index");
-  CHECK(head1(p, "E.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT12 M6\nM200\n"
-        "G10.9 X0\nG97 S2000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z5.\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nM108\nG0 G53 B90.\nM107\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\n"
-        "G0 G43 H#3020 X10. Y0. Z40.\nM950\nG69\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nM30\n");
+  CHECK(
+      head1(p, "E.EIA") ==
+      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT12 M6\nM200\n"
+      "G10.9 X0\nG97 S2000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z5.\nG0 G90 G53 X0.\n"
+      "G0 G90 G53 Z0.\nM108\nG0 G53 B90.\nM107\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\n"
+      "G0 G43 H#3020 X10. Y0. Z40.\nM950\nG69\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+      "G0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("a cross hole on a machine without a turned frame, and a feed across the axis, stop the post",
@@ -163,11 +174,13 @@ TEST_CASE("a cross hole on a machine without a turned frame, and a feed across t
   m.milling.radial_frame_on.clear();
   m.milling.radial_frame_off.clear();
   const test::posted p = post_on(
-      "PARTNO E\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2000,CLW,LIVE\nRAPID\nGOTO/40,0,-10,1,0,0\n"
+      "PARTNO "
+      "E\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2000,CLW,LIVE\nRAPID\nGOTO/40,0,-10,1,0,0\n"
       "FINI\n",
       m, "no-frame");
   CHECK(p.diagnostics ==
-        "job.cls:7:1: error: channel 1: a move with the tool across the spindle axis: machine 'integrex-i200st' "
+        "job.cls:7:1: error: channel 1: a move with the tool across the spindle axis: machine "
+        "'integrex-i200st' "
         "gives no frame for it (milling.radial_frame_on), so cross holes cannot be posted\n"
         "GOTO/40,0,-10,1,0,0\n^\n");
 }
