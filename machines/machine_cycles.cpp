@@ -10,8 +10,6 @@
 
 namespace twinpost::detail {
 
-namespace {
-
 // Reads `key` into `out` and fails at it unless it is one of `allowed`.
 void read_choice(const table_reader& r, std::string_view key, std::string& out,
                  std::initializer_list<std::string_view> allowed) {
@@ -21,8 +19,6 @@ void read_choice(const table_reader& r, std::string_view key, std::string& out,
   for (std::string_view a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : ", ", a);
   r.fail(*r.find(key), fmt::format("{} must be one of {}, not \"{}\"", r.key_path(key), list, out));
 }
-
-}  // namespace
 
 void read_cycles(const table_reader& root, cycle_rules& c) {
   const toml::table* t = root.sub_table("cycles");

@@ -11,28 +11,23 @@ namespace twinpost::detail {
 
 namespace {
 
-void read_one_of(const table_reader& r, std::string_view key, std::string& out,
-                 std::initializer_list<std::string_view> allowed) {
-  if (!r.read(key, out)) return;
-  if (std::find(allowed.begin(), allowed.end(), out) != allowed.end()) return;
-  std::string list;
-  for (std::string_view a : allowed) list += fmt::format("{}\"{}\"", list.empty() ? "" : " or ", a);
-  r.fail(*r.find(key), fmt::format("{} must be {}, not \"{}\"", r.key_path(key), list, out));
+// Reads two keys that are given together or not at all (an on block without its off block
+// would leave the machine in a mode); fails at the one given. `why` ends the message.
+template <class T>
+void read_pair(const table_reader& r, std::string_view on_key, T& on, std::string_view off_key, T& off,
+               std::string_view why = "") {
+  r.read_fixed(on_key, on);
+  r.read_fixed(off_key, off);
+  if (on.empty() == off.empty()) return;
+  r.fail(*r.find(on.empty() ? off_key : on_key),
+         fmt::format("{} and {} go together{}", r.key_path(on_key), r.key_path(off_key), why));
 }
 
 }  // namespace
 
 void read_c_axis(const table_reader& r, c_axis_codes& c) {
-  r.read_fixed("c_on", c.on);
-  r.read_fixed("c_off", c.off);
-  r.read_fixed("c_clamp", c.clamp);
-  r.read_fixed("c_unclamp", c.unclamp);
-  if (c.on.empty() != c.off.empty())
-    r.fail(*r.find(c.on.empty() ? "c_off" : "c_on"),
-           "spindle.c_on and spindle.c_off go together: a spindle held as a C axis must be let go again");
-  if (c.clamp.empty() != c.unclamp.empty())
-    r.fail(*r.find(c.clamp.empty() ? "c_unclamp" : "c_clamp"),
-           "spindle.c_clamp and spindle.c_unclamp go together");
+  read_pair(r, "c_on", c.on, "c_off", c.off, ": a spindle held as a C axis must be let go again");
+  read_pair(r, "c_clamp", c.clamp, "c_unclamp", c.unclamp);
 }
 
 void read_head_index(const table_reader& channel, channel_def& c) {
@@ -73,25 +68,13 @@ void read_milling(const table_reader& root, machine& m) {
                   "face_milling", "face_holes", "radial_frame_on", "radial_frame_off"});
   milling_rules& g = m.milling;
   g.given = true;
-  r.read_fixed("radius_input", g.radius_input);
-  r.read_fixed("diameter_input", g.diameter_input);
-  if (g.radius_input.empty() != g.diameter_input.empty())
-    r.fail(*r.find(g.radius_input.empty() ? "diameter_input" : "radius_input"),
-           "milling.radius_input and milling.diameter_input go together");
-  r.read_fixed("polar_on", g.polar_on);
-  r.read_fixed("polar_off", g.polar_off);
-  if (g.polar_on.empty() != g.polar_off.empty())
-    r.fail(*r.find(g.polar_on.empty() ? "polar_off" : "polar_on"),
-           "milling.polar_on and milling.polar_off go together");
+  read_pair(r, "radius_input", g.radius_input, "diameter_input", g.diameter_input);
+  read_pair(r, "polar_on", g.polar_on, "polar_off", g.polar_off);
   if (r.read("polar_rapid_feed", g.polar_rapid_feed) && !(g.polar_rapid_feed > 0))
     r.fail(*r.find("polar_rapid_feed"), "milling.polar_rapid_feed must be a feed above 0 (mm/min)");
-  read_one_of(r, "face_milling", g.face_milling, {"y_axis", "polar"});
-  read_one_of(r, "face_holes", g.face_holes, {"y_axis", "c_axis"});
-  r.read_fixed("radial_frame_on", g.radial_frame_on);
-  r.read_fixed("radial_frame_off", g.radial_frame_off);
-  if (g.radial_frame_on.empty() != g.radial_frame_off.empty())
-    r.fail(*r.find(g.radial_frame_on.empty() ? "radial_frame_off" : "radial_frame_on"),
-           "milling.radial_frame_on and milling.radial_frame_off go together");
+  read_choice(r, "face_milling", g.face_milling, {"y_axis", "polar"});
+  read_choice(r, "face_holes", g.face_holes, {"y_axis", "c_axis"});
+  read_pair(r, "radial_frame_on", g.radial_frame_on, "radial_frame_off", g.radial_frame_off);
   if (g.face_milling == "polar" && g.polar_on.empty())
     r.fail(*r.find("face_milling"), "milling.face_milling = \"polar\" needs milling.polar_on and polar_off");
 }

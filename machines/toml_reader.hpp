@@ -94,6 +94,9 @@ class table_reader {
 /// Lives in machine_channels.cpp.
 void read_channels(const table_reader& root, machine& m);
 
+/// Reads `key` into `out` and fails at it unless it is one of `allowed` (machine_cycles.cpp).
+void read_choice(const table_reader& r, std::string_view key, std::string& out,
+                 std::initializer_list<std::string_view> allowed);
 /// Reads [cycles] (machine_cycles.cpp): the kinds and codes of drilling and tapping cycles.
 void read_cycles(const table_reader& root, cycle_rules& c);
 
