@@ -1,5 +1,7 @@
 #include "analysis/block_timer.hpp"
 
+#include <tuple>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -96,6 +98,15 @@ block_timer::block_timer(const machine& m, int channel) : m_(m), spindles_(m, ch
   }
   // A Fanuc lathe in G-code system A: G90/G92/G94 are turning, thread and facing cycles.
   lathe_a_ = lathe && m.control.find("fanuc") != std::string::npos;
+  for (const auto& [blocks, into] :
+       {std::pair{&m.milling.radius_input, &radius_on_}, {&m.milling.diameter_input, &radius_off_}})
+    for (const std::string& b : *blocks) into->push_back(split_nc_words(b));
+  // Polar interpolation starts at the last block of polar_on (G12.1 after the plane) and ends
+  // at the first of polar_off (G13.1 before it): the plane blocks alone are planes.
+  if (!m.milling.polar_on.empty()) {
+    polar_on_.push_back(split_nc_words(m.milling.polar_on.back()));
+    polar_off_.push_back(split_nc_words(m.milling.polar_off.front()));
+  }
   add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
   add_codes(feed_min_, m.codes.feed_per_min, 'G');
   // The tool call's address and how a number splits into tool and offset (T0303: tool 3).
@@ -142,6 +153,7 @@ block_timing block_timer::time(std::string_view text) {
   };
   spindles_.apply(words);
   block_timing t;
+  if (milling_mode(words)) return t;  // a mode block: no time, no move (G10.9 X0 moves nothing)
   auto untimed = [&t](std::string why) {
     if (t.untimed.empty()) t.untimed = std::move(why);
   };
@@ -308,6 +320,32 @@ block_timing block_timer::time(std::string_view text) {
   return t;
 }
 
+bool block_timer::milling_mode(const std::vector<nc_word>& words) {
+  if (radius_on_.empty() && polar_on_.empty()) return false;
+  auto same = [&](const std::vector<nc_word>& b) {
+    if (b.size() != words.size()) return false;
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (b[i].address != words[i].address || b[i].value != words[i].value) return false;
+    return true;
+  };
+  for (const auto& [list, flag, value] : {std::tuple{&radius_on_, &radius_x_, true},
+                                          {&radius_off_, &radius_x_, false},
+                                          {&polar_on_, &polar_, true},
+                                          {&polar_off_, &polar_, false}})
+    for (const std::vector<nc_word>& b : *list)
+      if (same(b)) {
+        if (flag == &radius_x_ && radius_x_ != value)  // X's value as now programmed
+          for (axis_pos& p : axes_)
+            if (p.address == 'X' && p.diameter && p.value) *p.value = value ? *p.value / 2 : *p.value * 2;
+        if (flag == &polar_)  // C changes its unit, and X, C in the plane are not the slides' places
+          for (axis_pos& p : axes_)
+            if (p.address == 'C' || (p.address == 'X' && !value)) p.value.reset();
+        *flag = value;
+        return true;
+      }
+  return false;
+}
+
 double block_timer::move_time(const std::vector<std::optional<double>>& target, bool rapid,
                               const std::string& code, const std::vector<nc_word>& words, block_timing& t) {
   // Every axis that moves must start from a known place.
@@ -320,8 +358,8 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
       return 0;
     }
     double d = std::abs(*target[i] - *p.value);
-    if (p.diameter) d /= 2;  // the slide moves the radius
-    if (p.rotary)
+    if (p.diameter && !radius_x_) d /= 2;  // the slide moves the radius
+    if (p.rotary && !(polar_ && p.address == 'C'))
       rotary = std::max(rotary, d);
     else
       linear2 += d * d;

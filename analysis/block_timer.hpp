@@ -68,6 +68,12 @@ class block_timer {
   char dwell_address_ = 0;
   double dwell_unit_ = 1;  // seconds per unit of the dwell word
   std::vector<std::string> feed_rev_, feed_min_;
+  // Mill/turn modes ([milling]): X in radius while the spindle is a C axis, and C a linear
+  // axis (the plane's second one, mm) in polar interpolation.
+  bool radius_x_ = false, polar_ = false;
+  std::vector<std::vector<nc_word>> radius_on_, radius_off_, polar_on_, polar_off_;
+  /// True (and the mode set) when the block is one of the machine's mill/turn mode blocks.
+  bool milling_mode(const std::vector<nc_word>& words);
   std::vector<nc_word> words_;  // the block's words (reused: no allocation per block)
   struct cached {
     double v = 0;

@@ -279,3 +279,26 @@ TEST_CASE("timeline: who meets whom is the checker's word, fixed waits of two of
       "10.000 s at M300 (S_1.NC:4) waiting for channel 2; channel 2 idles 5.000 s at M82 (S_2.NC:3) waiting "
       "for channel 1\n");
 }
+
+TEST_CASE("block timer: X in radius under G10.9 X0 and C in mm under polar interpolation",
+          "[analysis][timeline]") {
+  const machine m = load_machine("integrex-i200st");  // channel 1: X 38 m/min, C 100 rev/min
+  CHECK(times(m, 1,
+              {"G0 X40. Y0. Z5. C0.", "G10.9 X0", "G0 X40.", "G1 X20. F400.", "G0 C90.", "G17 XC", "G12.1",
+               "G0 X40. C25. Z5.", "G1 X-40. F400.", "G13.1", "G18", "G1 X30. F400.", "G10.9 X1",
+               "G0 X100."}) ==
+        "0.0000|G0 from an unknown position\n"
+        "0.0000\n"  // G10.9 X0: a mode, no move; X40 in diameter is X20 now
+        "0.0316\n"  // X20 to X40 in radius: 20 mm at 38000 mm/min
+        "3.0000\n"  // 20 mm of radius at 400 mm/min
+        "0.1500\n"  // C 90 degrees at 36000 deg/min
+        "0.0000\n"
+        "0.0000\n"
+        "0.0000|G0 from an unknown position\n"  // C changed its unit: where it is in mm is unknown
+        "12.0000\n"                             // X 80 mm in the plane at 400 mm/min
+        "0.0000\n"
+        "0.0000\n"
+        "0.0000|G1 from an unknown position\n"  // the plane's X-40 is not where the X slide is
+        "0.0000\n"
+        "0.0316\n");  // X30 in radius is X60 in diameter: 20 mm of radius to X100 at 38000 mm/min
+}

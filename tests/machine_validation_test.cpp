@@ -488,25 +488,25 @@ TEST_CASE("waits.fixed and waits.partner_list: Star-style waits", "[machines]") 
         "not tell it from a wait");
 }
 
-TEST_CASE("validation: mill/turn keys go in pairs, name known choices and index within travel",
+TEST_CASE("validation: mill/turn keys go in pairs and name known choices and index within travel",
           "[machines]") {
   // head is 5 lines: [machine], name, [waits], first, last.
   CHECK(
       error_of(head + "[[spindle]]\nname = \"main\"\nc_on = [\"M200\"]\n" + two_channels) ==
-      "m.toml:8:1: error: spindle.c_on and spindle.c_off go together: a spindle held as a C axis must be let "
+      "m.toml:8:8: error: spindle.c_on and spindle.c_off go together: a spindle held as a C axis must be let "
       "go again");
   CHECK(error_of(head + "[milling]\npolar_off = [\"G13.1\"]\n" + two_channels) ==
-        "m.toml:7:1: error: milling.polar_on and milling.polar_off go together");
+        "m.toml:7:13: error: milling.polar_on and milling.polar_off go together");
   CHECK(error_of(head + "[milling]\nface_milling = \"polar\"\n" + two_channels) ==
-        "m.toml:7:1: error: milling.face_milling = \"polar\" needs milling.polar_on and polar_off");
+        "m.toml:7:16: error: milling.face_milling = \"polar\" needs milling.polar_on and polar_off");
   CHECK(error_of(head + "[milling]\nface_holes = \"c\"\n" + two_channels) ==
-        "m.toml:7:1: error: milling.face_holes must be one of \"y_axis\", \"c_axis\", not \"c\"");
+        "m.toml:7:14: error: milling.face_holes must be one of \"y_axis\", \"c_axis\", not \"c\"");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\n" + test::xz_axes +
                  "[channel.head_index]\nmove = \"G0 G53\"\n") ==
-        "m.toml:10:1: error: channel 1 has no axis B to index (channel.axis)");
+        "m.toml:10:8: error: channel 1 has no axis B to index (channel.axis)");
   CHECK(error_of(
             head +
             "[[channel]]\nnumber = 1\naxis = [{address = \"X\"}, {address = \"Z\"}, {address = \"B\", min = "
             "-30, max = 210}]\n[channel.head_index]\nmove = \"G0 G53\"\nradial = 270\n") ==
-        "m.toml:11:1: error: channel.head_index.radial = 270 is outside the travel of axis B");
+        "m.toml:11:10: error: channel.head_index.radial = 270 is outside the travel of axis B");
 }
