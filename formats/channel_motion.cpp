@@ -99,12 +99,16 @@ void channel_writer::no_tool(int line) {
 
 void channel_writer::motion(const motion_event& mv, int line) {
   switch (mv.kind) {
-    case motion_kind::from: pos_ = mv.pos; return;
+    case motion_kind::from:
+      pos_ = mv.pos;
+      pose_known_ = false;  // where the tool is, but not the joints that put it there
+      return;
     case motion_kind::home:
       go_home();
       forget_axes();
       motion_g_ = -1;
       pos_ = mv.pos;
+      pose_known_ = false;
       return;
     case motion_kind::go_to:
     case motion_kind::delta:
@@ -119,9 +123,11 @@ void channel_writer::motion(const motion_event& mv, int line) {
         groove_cycle_point(mv.pos, line);
         return;
       } else if (cycle_) {
-        cycle_point(mv.pos, line);
+        if (!chain_ || multiaxis_arc(line)) cycle_point(mv.pos, line);
       } else if (threading_ && !mv.rapid) {
         thread_pass(mv.pos, line);
+      } else if (chain_) {
+        multiaxis_move(mv.rapid, mv.pos, line);
       } else {
         linear(mv.rapid, mv.pos.x, mv.pos.y, mv.pos.z, line);
       }
@@ -132,7 +138,10 @@ void channel_writer::motion(const motion_event& mv, int line) {
 
 void channel_writer::arc(const arc_event& a, int line) {
   if (tool_ < 0) return no_tool(line);
-  if (!tool_along_z(line)) return;
+  if (chain_ ? !multiaxis_arc(line) : !tool_along_z(line)) {
+    pos_ = a.end;
+    return;
+  }
   if (threading_) {
     pos_ = a.end;
     return error(line, "an arc while THREAD/TURN is on: a threading pass is a straight G32 move");
@@ -231,6 +240,8 @@ void channel_writer::arc(const arc_event& a, int line) {
   // A full circle TIMES n: the same block n times, one turn each.
   for (int turn = 0; turn < std::max(1, a.turns); ++turn) out_.block(arc_.view().substr(1));
   pos_ = a.end;
+  pose_mm_.tip = {a.end.x * cl_mm_, a.end.y * cl_mm_, a.end.z * cl_mm_};  // the rotary axes stand at 0 (multiaxis_arc): joints = tip
+  joints_.linear = pose_mm_.tip;
 }
 
 }  // namespace twinpost

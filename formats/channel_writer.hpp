@@ -12,6 +12,7 @@
 #include "channels/router.hpp"
 #include "formats/block_writer.hpp"
 #include "formats/number_format.hpp"
+#include "kinematics/linearise.hpp"
 #include "machines/machine.hpp"
 #include "parser/events.hpp"
 #include "support/diagnostics.hpp"
@@ -137,6 +138,29 @@ class channel_writer {
   /// After a thread: the feed mode in force before it again (written only if one was).
   void restore_feed_mode(bool had_mode, bool per_rev);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
+  // Multi-axis output (formats/channel_multiaxis.cpp), on a channel whose machine gives it a
+  // kinematic chain ([[kinematics]]): every GOTO solved by kin::inverse, feed moves of joints
+  // output linearised, every written point checked by the forward transform.
+  /// A GOTO (rapid or feed) to CL point `p` under the tool axis in force.
+  void multiaxis_move(bool rapid, const vec3& p, int line);
+  /// Writes one point: the joints `j` rounded as the control reads them must give back
+  /// `pose` (mm, part frame) by the forward transform; `inverse_f` > 0 writes G93 F<it>.
+  bool write_point(bool rapid, const kin::joint_values& j, const kin::tool_pose& pose, double inverse_f,
+                   int line);
+  /// False (with the error) when the solution changes branch between `from` and `to` in a cut.
+  bool same_branch(const kin::joint_values& from, const kin::joint_values& to, int line);
+  /// The gauge length of the tool in the spindle for joints output; false with the error
+  /// (naming the tool) when neither the CL nor the machine's tool table gives it.
+  bool tool_length_known(int line);
+  /// TLDATA/MILL's length (NX: diameter, lower radius, length, ...) for the next or this tool.
+  void tool_data_length(const tool_data_event& t, bool after_call);
+  /// A tool call on a chain channel: the new tool's offset register and length.
+  void multiaxis_tool(const tool_event& t, int line);
+  /// Before a tool call and at the end: G94 again, and the length offset cancelled.
+  void multiaxis_off();
+  /// An arc on a chain channel: only with the rotary axes at 0 and the tool along Z; G94
+  /// again if G93 is in force. False after the error.
+  bool multiaxis_arc(int line);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
   void misfit(char address, double value);
@@ -161,6 +185,9 @@ class channel_writer {
   /// Appends " X12.5" to `out` unless `last` already holds that word (modal suppression)
   /// and `always` is off; returns whether it wrote the word.
   bool axis_word(text_buffer& out, char address, double value, axis_memory& last, bool always = false);
+  /// Appends " A12.345" (`decimals` places: 3 for degrees, 6 for G43.5's I J K) unless `last`
+  /// holds that value and `always` is off.
+  bool rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals, bool always);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(text_buffer& out);
   /// A blank before the next word, unless it is the first of a block built in place.
@@ -249,6 +276,19 @@ class channel_writer {
   std::vector<int> wait_cl_lines_;
   std::vector<noted_block> noted_;
   bool cut_due_ = true;  ///< the next G1/G2/G3 line is noted
+  const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
+  bool chain_heads_ = false;                ///< a rotary axis of it turns the tool (the length matters)
+  kin::joint_values joints_{};              ///< where the machine is (mm, degrees)
+  kin::tool_pose pose_mm_{};                ///< the last CL pose, in mm
+  bool pose_known_ = false;                 ///< false until the first GOTO (or FROM)
+  std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
+  double tool_length_ = 0;                            ///< the length in use (mm)
+  bool length_known_ = false;
+  int offset_ = 0;          ///< the tool's offset register (H)
+  bool offset_on_ = false;  ///< G43 / G43.4 / G43.5 written for the tool in the spindle
+  bool inverse_time_ = false;  ///< G93 in force
+  axis_memory last_rot_[2], last_ijk_[3];
+  kin::linearise_result lin_;  ///< reused by every feed move
   void note_line(std::string_view line);
   bool warned_side_ = false;
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
