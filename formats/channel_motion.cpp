@@ -33,9 +33,9 @@ bool channel_writer::tool_along_z(int line) {
     return false;
   refused_axis_ = axis_;
   error(line,
-        fmt::format("tool axis ({:g},{:g},{:g}) is not along Z: twinpost writes no rotary axis yet (B head, "
-                    "C axis, tool-tip control), so a tilted or radial tool cannot be posted",
-                    axis_.x, axis_.y, axis_.z));
+        fmt::format("tool axis ({:g},{:g},{:g}) is not along Z, and machine '{}' gives channel {} no kinematic "
+                    "chain ([[kinematics]]): without rotary axes a tilted or radial tool cannot be posted",
+                    axis_.x, axis_.y, axis_.z, m_.name, ch_.number));
   return false;
 }
 

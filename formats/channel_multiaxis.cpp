@@ -46,7 +46,7 @@ void channel_writer::tool_data_length(const tool_data_event& t, bool after_call)
   if (!(mm > 0)) return;
   if (after_call) {
     length_cl_ = mm;
-    length_known_ = false;
+    length_known_ = length_refused_ = false;
   } else {
     next_length_cl_ = mm;
   }
@@ -56,7 +56,7 @@ void channel_writer::multiaxis_tool(const tool_event& t, int) {
   offset_ = t.offset.value_or(t.tool);
   length_cl_ = next_length_cl_;
   next_length_cl_.reset();
-  length_known_ = false;
+  length_known_ = length_refused_ = false;
   offset_on_ = false;
   pose_known_ = false;  // the tool change moved the machine
   for (axis_memory& a : last_rot_) a.known = false;
@@ -77,7 +77,8 @@ void channel_writer::multiaxis_off() {
 
 bool channel_writer::tool_length_known(int line) {
   if (length_known_) return true;
-  length_known_ = true;  // one error per tool
+  if (length_refused_) return false;  // one error per tool
+  length_refused_ = true;
   const std::optional<double> table = m_.tool_length(ch_.number, tool_);
   const std::string tool = fmt::format("tool {} ({} at line {})", tool_, tool_word_, tool_line_);
   if (table && length_cl_ && std::abs(*table - *length_cl_) > chain_->tolerance) {
@@ -94,6 +95,8 @@ bool channel_writer::tool_length_known(int line) {
     return false;
   }
   tool_length_ = table ? *table : *length_cl_;
+  length_known_ = true;
+  length_refused_ = false;
   return true;
 }
 
@@ -154,24 +157,31 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   const tool_pose from = pose_mm_;
   const bool had_from = pose_known_;
   pose_mm_ = pose;
-  pose_known_ = true;
   if ((pending_g_ == "G41" || pending_g_ == "G42") && std::abs(pose.axis.z) < 0.9999)
     return error(line, fmt::format("cutter compensation ({}) under the tool axis ({:g},{:g},{:g}): twinpost "
                                    "writes no 3-D compensation (G41.2/G42.2)",
                                    pending_g_, axis_.x, axis_.y, axis_.z));
   const bool joints = c.output == multiaxis_output::joints;
   // Tool-tip control: the control holds the length (H); the rotary values do not depend on it.
+  // After an error the machine is not where the CL point puts it: the next move starts afresh
+  // (solved, not linearised from a start it never reached). The post has failed anyway.
+  pose_known_ = false;
   if (joints && chain_heads_ && !tool_length_known(line)) return;
   const double length = joints ? tool_length_ : 0;
   if (rapid || !joints || !had_from) {
     const kin::ik_result ik = kin::inverse(c, pose, length, joints_);
-    if (!ik.ok()) return error(line, ik.message);
+    if (!ik.ok()) return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
     if (!rapid && had_from && !same_branch(joints_, ik.joints, line)) return;
-    if (write_point(rapid, ik.joints, pose, 0, line)) joints_ = ik.joints;
+    if (!write_point(rapid, ik.joints, pose, 0, line)) return;
+    joints_ = ik.joints;
+    pose_known_ = true;
     return;
   }
   kin::linearise(c, from, joints_, pose, length, c.chordal_tolerance, lin_);
-  if (!lin_.ok()) return error(line, lin_.message);
+  if (!lin_.ok())
+    return error(line, lin_.error == kin::ik_error::too_many_points
+                           ? lin_.message
+                           : fmt::format("machine '{}' cannot reach this point: {}", m_.name, lin_.message));
   const double cl_length = kin::distance(from.tip, pose.tip);
   const double feed_mm = feed_value_ / out_per_mm_;
   double s0 = 0;
@@ -200,6 +210,7 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
     joints_ = j;
     s0 = s;
   }
+  pose_known_ = true;
 }
 
 bool channel_writer::rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals,

@@ -284,6 +284,7 @@ class channel_writer {
   std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
   double tool_length_ = 0;                            ///< the length in use (mm)
   bool length_known_ = false;
+  bool length_refused_ = false;  ///< the tool's length error was reported
   int offset_ = 0;          ///< the tool's offset register (H)
   bool offset_on_ = false;  ///< G43 / G43.4 / G43.5 written for the tool in the spindle
   bool inverse_time_ = false;  ///< G93 in force
