@@ -28,7 +28,8 @@ constexpr double still = 1e-9;      // a rotary axis that moves less does not mo
 double as_written(double v, int decimals) {
   std::int64_t n;
   if (!round_fixed(v, decimals, n)) return v;
-  return static_cast<double>(n) / std::pow(10.0, decimals);
+  static constexpr double scale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+  return static_cast<double>(n) / scale[decimals];
 }
 
 // The angle (degrees) of `axis` from the line of `pole` (either sense).
@@ -169,7 +170,7 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   if (joints && chain_heads_ && !tool_length_known(line)) return;
   const double length = joints ? tool_length_ : 0;
   if (rapid || !joints || !had_from) {
-    const kin::ik_result ik = kin::inverse(c, pose, length, joints_);
+    const kin::ik_result ik = kin::inverse(c, pose, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
     if (!ik.ok()) return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
     if (!rapid && had_from && !same_branch(joints_, ik.joints, line)) return;
     if (!write_point(rapid, ik.joints, pose, 0, line)) return;
