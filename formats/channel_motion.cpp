@@ -32,10 +32,10 @@ bool channel_writer::tool_along_z(int line) {
       refused_axis_->z == axis_.z)
     return false;
   refused_axis_ = axis_;
-  error(line,
-        fmt::format("tool axis ({:g},{:g},{:g}) is not along Z, and machine '{}' gives channel {} no kinematic "
-                    "chain ([[kinematics]]): without rotary axes a tilted or radial tool cannot be posted",
-                    axis_.x, axis_.y, axis_.z, m_.name, ch_.number));
+  error(line, fmt::format(
+                  "tool axis ({:g},{:g},{:g}) is not along Z, and machine '{}' gives channel {} no kinematic "
+                  "chain ([[kinematics]]): without rotary axes a tilted or radial tool cannot be posted",
+                  axis_.x, axis_.y, axis_.z, m_.name, ch_.number));
   return false;
 }
 
@@ -240,7 +240,8 @@ void channel_writer::arc(const arc_event& a, int line) {
   // A full circle TIMES n: the same block n times, one turn each.
   for (int turn = 0; turn < std::max(1, a.turns); ++turn) out_.block(arc_.view().substr(1));
   pos_ = a.end;
-  pose_mm_.tip = {a.end.x * cl_mm_, a.end.y * cl_mm_, a.end.z * cl_mm_};  // the rotary axes stand at 0 (multiaxis_arc): joints = tip
+  pose_mm_.tip = {a.end.x * cl_mm_, a.end.y * cl_mm_,
+                  a.end.z * cl_mm_};  // the rotary axes stand at 0 (multiaxis_arc): joints = tip
   joints_.linear = pose_mm_.tip;
 }
 

@@ -19,10 +19,10 @@ using kin::tool_pose;
 
 namespace {
 
-constexpr int rotary_decimals = 3;  // degrees, as the Fanuc posts write A/B/C
-constexpr int vector_decimals = 6;  // G43.5 I J K
+constexpr int rotary_decimals = 3;   // degrees, as the Fanuc posts write A/B/C
+constexpr int vector_decimals = 6;   // G43.5 I J K
 constexpr int inverse_decimals = 3;  // G93 F, 1/min
-constexpr double still = 1e-9;      // a rotary axis that moves less does not move
+constexpr double still = 1e-9;       // a rotary axis that moves less does not move
 
 // `v` as the control reads it after writing it with `decimals` places.
 double as_written(double v, int decimals) {
@@ -108,15 +108,17 @@ bool channel_writer::multiaxis_arc(int line) {
     std::string where;
     for (std::size_t i = 0; i < chain_->rotaries.size(); ++i)
       where += fmt::format(" {}{}", chain_->rotaries[i].address, kin::number_text(joints_.rotary[i]));
-    error(line, fmt::format("an arc or a drilling cycle with the tool axis ({:g},{:g},{:g}) and the rotary axes "
-                            "at{}: twinpost writes them only with every rotary axis at 0 and the tool along Z; "
-                            "output the move as GOTO points",
-                            axis_.x, axis_.y, axis_.z, where));
+    error(line,
+          fmt::format("an arc or a drilling cycle with the tool axis ({:g},{:g},{:g}) and the rotary axes "
+                      "at{}: twinpost writes them only with every rotary axis at 0 and the tool along Z; "
+                      "output the move as GOTO points",
+                      axis_.x, axis_.y, axis_.z, where));
     return false;
   }
   if (!offset_on_) {
-    error(line, "an arc or a drilling cycle as the first move after a tool call: the length offset goes out "
-                "with a straight move (give a GOTO first)");
+    error(line,
+          "an arc or a drilling cycle as the first move after a tool call: the length offset goes out "
+          "with a straight move (give a GOTO first)");
     return false;
   }
   if (inverse_time_) {
@@ -170,8 +172,10 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   if (joints && chain_heads_ && !tool_length_known(line)) return;
   const double length = joints ? tool_length_ : 0;
   if (rapid || !joints || !had_from) {
-    const kin::ik_result ik = kin::inverse(c, pose, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
-    if (!ik.ok()) return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
+    const kin::ik_result ik =
+        kin::inverse(c, pose, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
+    if (!ik.ok())
+      return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
     if (!rapid && had_from && !same_branch(joints_, ik.joints, line)) return;
     if (!write_point(rapid, ik.joints, pose, 0, line)) return;
     joints_ = ik.joints;
@@ -199,8 +203,9 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
     double inverse_f = 0;
     if (turned > still && feed_value_ > 0) {
       if (per_rev_)
-        return error(line, "a feed per revolution on a move that turns a rotary axis: inverse-time feed (G93) "
-                           "needs a feed per minute (FEDRAT/MMPM)");
+        return error(line,
+                     "a feed per revolution on a move that turns a rotary axis: inverse-time feed (G93) "
+                     "needs a feed per minute (FEDRAT/MMPM)");
       // The sub-move's CL length at the programmed feed; a turn on the spot: its degrees at the
       // feed read as degrees per minute (UNVERIFIED, docs/machines.md).
       const double sub = (s - s0) * cl_length;
@@ -214,8 +219,8 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   pose_known_ = true;
 }
 
-bool channel_writer::rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals,
-                                 bool always) {
+bool channel_writer::rotary_word(text_buffer& out, char address, double value, axis_memory& last,
+                                 int decimals, bool always) {
   std::int64_t n;
   if (!round_fixed(value, decimals, n) || !fits(address, value, decimals)) [[unlikely]] {
     last.known = false;
@@ -246,7 +251,8 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   joint_values read = j;
   const vec3 lin_read{as_written(nc[0], dec) / factor[0], as_written(nc[1], dec) / factor[1],
                       as_written(nc[2], dec) / factor[2]};
-  for (std::size_t i = 0; i < c.rotaries.size(); ++i) read.rotary[i] = as_written(j.rotary[i], rotary_decimals);
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+    read.rotary[i] = as_written(j.rotary[i], rotary_decimals);
   const vec3 ijk{as_written(pose.axis.x, vector_decimals), as_written(pose.axis.y, vector_decimals),
                  as_written(pose.axis.z, vector_decimals)};
   tool_pose back;
@@ -260,11 +266,12 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   const double tip_error = kin::distance(back.tip, pose.tip);
   const double axis_error = kin::angle_between(back.axis, pose.axis);
   if (!(tip_error <= c.tolerance && axis_error <= c.angle_tolerance)) [[unlikely]] {
-    error(line, fmt::format("the written point fails the forward transform: tip {} mm and tool axis {} degrees "
-                            "from the CL point ({}, {}, {}) (tolerance {} mm, {} degrees)",
-                            kin::number_text(tip_error), kin::number_text(axis_error), kin::number_text(pose.tip.x),
-                            kin::number_text(pose.tip.y), kin::number_text(pose.tip.z),
-                            kin::number_text(c.tolerance), kin::number_text(c.angle_tolerance)));
+    error(line,
+          fmt::format("the written point fails the forward transform: tip {} mm and tool axis {} degrees "
+                      "from the CL point ({}, {}, {}) (tolerance {} mm, {} degrees)",
+                      kin::number_text(tip_error), kin::number_text(axis_error), kin::number_text(pose.tip.x),
+                      kin::number_text(pose.tip.y), kin::number_text(pose.tip.z),
+                      kin::number_text(c.tolerance), kin::number_text(c.angle_tolerance)));
     return false;
   }
 
@@ -303,11 +310,13 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   } else {
     // The rotary words in the order of their addresses (A, B, C), as the control lists them.
     std::size_t order[2] = {0, 1};
-    if (c.rotaries.size() == 2 && c.rotaries[1].address < c.rotaries[0].address) std::swap(order[0], order[1]);
+    if (c.rotaries.size() == 2 && c.rotaries[1].address < c.rotaries[0].address)
+      std::swap(order[0], order[1]);
     for (std::size_t k = 0; k < c.rotaries.size(); ++k) {
       const std::size_t i = order[k];
-      moved = rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, offset_block) ||
-              moved;
+      moved =
+          rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, offset_block) ||
+          moved;
     }
   }
   if (!moved) {

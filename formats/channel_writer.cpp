@@ -47,7 +47,8 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
   chain_ = m.chain(ch.number);
   if (chain_) {
-    for (const rotary_axis_def& r : chain_->rotaries) chain_heads_ = chain_heads_ || r.kind == rotary_kind::head;
+    for (const rotary_axis_def& r : chain_->rotaries)
+      chain_heads_ = chain_heads_ || r.kind == rotary_kind::head;
     for (axis_memory& a : last_rot_) a.max = INT64_MAX;
     for (axis_memory& a : last_ijk_) a.max = INT64_MAX;
   }

@@ -187,7 +187,8 @@ class channel_writer {
   bool axis_word(text_buffer& out, char address, double value, axis_memory& last, bool always = false);
   /// Appends " A12.345" (`decimals` places: 3 for degrees, 6 for G43.5's I J K) unless `last`
   /// holds that value and `always` is off.
-  bool rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals, bool always);
+  bool rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals,
+                   bool always);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(text_buffer& out);
   /// A blank before the next word, unless it is the first of a block built in place.
@@ -275,7 +276,7 @@ class channel_writer {
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
   std::vector<noted_block> noted_;
-  bool cut_due_ = true;  ///< the next G1/G2/G3 line is noted
+  bool cut_due_ = true;                     ///< the next G1/G2/G3 line is noted
   const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
   bool chain_heads_ = false;                ///< a rotary axis of it turns the tool (the length matters)
   kin::joint_values joints_{};              ///< where the machine is (mm, degrees)
@@ -285,9 +286,9 @@ class channel_writer {
   double tool_length_ = 0;                            ///< the length in use (mm)
   bool length_known_ = false;
   bool length_refused_ = false;  ///< the tool's length error was reported
-  int offset_ = 0;          ///< the tool's offset register (H)
-  bool offset_on_ = false;  ///< G43 / G43.4 / G43.5 written for the tool in the spindle
-  bool inverse_time_ = false;  ///< G93 in force
+  int offset_ = 0;               ///< the tool's offset register (H)
+  bool offset_on_ = false;       ///< G43 / G43.4 / G43.5 written for the tool in the spindle
+  bool inverse_time_ = false;    ///< G93 in force
   axis_memory last_rot_[2], last_ijk_[3];
   kin::linearise_result lin_;  ///< reused by every feed move
   void note_line(std::string_view line);

@@ -161,7 +161,9 @@ void read_kinematics(const table_reader& root, machine& m) {
     r.read("length_on", c.length_on);
     r.read("inverse_time", c.inverse_time);
     for (std::string_view key : {"tolerance", "angle_tolerance", "chordal_tolerance"}) {
-      double& v = key == "tolerance" ? c.tolerance : key == "angle_tolerance" ? c.angle_tolerance : c.chordal_tolerance;
+      double& v = key == "tolerance"         ? c.tolerance
+                  : key == "angle_tolerance" ? c.angle_tolerance
+                                             : c.chordal_tolerance;
       if (r.read(key, v) && !(v > 0))
         r.fail(*r.find(key), fmt::format("{} must be > 0, not {}", r.key_path(key), v));
     }

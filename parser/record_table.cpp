@@ -160,11 +160,12 @@ const event_builder::rule_index& event_builder::rules() {
               "NX's machine coordinate system; NX writes the points in it already, and they are posted as "
               "given, in the work offset of the machine file",
               &b::on_coordsys),
-      ignored("MULTAX",
-              "says GOTO points carry a tool axis (i,j,k); the reader takes 3 or 6 numbers either way. On a "
-              "channel with a kinematic chain ([[kinematics]]) a tilted axis turns the rotary axes; elsewhere a "
-              "move whose tool axis is not along Z is an error",
-              &b::on_multax),
+      ignored(
+          "MULTAX",
+          "says GOTO points carry a tool axis (i,j,k); the reader takes 3 or 6 numbers either way. On a "
+          "channel with a kinematic chain ([[kinematics]]) a tilted axis turns the rotary axes; elsewhere a "
+          "move whose tool axis is not along Z is an error",
+          &b::on_multax),
       refused("NURBS",
               "a spline move (NX); twinpost does not cut splines into moves yet, so the move would "
               "be lost"),

@@ -164,8 +164,8 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
       // The control interpolates the joints: the tip stays near the segment all the way.
       for (int k = 1; k < 50; ++k) {
         const kin::joint_values j = kin::interpolate(c, prev->joints, b.joints, k / 50.0);
-        r.worst_chord =
-            std::max(r.worst_chord, kin::distance_to_segment(kin::forward(c, j, len).tip, at.tip, target.tip));
+        r.worst_chord = std::max(r.worst_chord,
+                                 kin::distance_to_segment(kin::forward(c, j, len).tip, at.tip, target.tip));
       }
     }
     if (tip <= c.tolerance && axis <= c.angle_tolerance) {
@@ -177,7 +177,8 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
               std::max(r.largest_swing, std::abs(b.joints.rotary[i] - at_block->joints.rotary[i]));
         for (int k = 1; k < 50; ++k) {
           const kin::joint_values j = kin::interpolate(c, at_block->joints, b.joints, k / 50.0);
-          r.uncut = std::max(r.uncut, kin::distance_to_segment(kin::forward(c, j, len).tip, at.tip, target.tip));
+          r.uncut =
+              std::max(r.uncut, kin::distance_to_segment(kin::forward(c, j, len).tip, at.tip, target.tip));
         }
       }
       at = target;
@@ -261,7 +262,8 @@ TEST_CASE("multi-axis: the four-axis wrap on the A table, swings of 60 degrees c
   CHECK(r.worst_tip <= 0.005);
 }
 
-TEST_CASE("multi-axis: a head/table chain (B head over a C spindle) posts and reads back", "[post][multiaxis]") {
+TEST_CASE("multi-axis: a head/table chain (B head over a C spindle) posts and reads back",
+          "[post][multiaxis]") {
   machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/head-table.toml");
   // Its tolerance (0.001 mm) is finer than the words: B to 0.001 degree moves the tip 0.006 mm
   // at 350 mm from the pivot (the post would stop at the forward check, as it must).
@@ -279,4 +281,116 @@ TEST_CASE("multi-axis: a head/table chain (B head over a C spindle) posts and re
   CHECK(r.sub_points > 10);
   CHECK(r.worst_tip <= 0.005);
   CHECK(r.worst_chord <= 0.01 + 0.005);
+}
+
+namespace {
+
+// A short job on `m`: a tool with a 100 mm length (unless `tldata` is empty), a rapid to
+// (0,0,50) with the tool along Z, then `moves`.
+test::posted post_moves(const machine& m, const std::string& moves, const std::string& tag,
+                        const std::string& tldata = "TLDATA/MILL,10,0,100,0,0\n") {
+  return test::post_in_fresh_dir("PARTNO MOVES\n" + tldata +
+                                     "MULTAX/ON\nLOADTL/1\nSPINDL/RPM,5000,CLW\nFEDRAT/MMPM,500\n"
+                                     "RAPID\nGOTO/0,0,50,0,0,1\n" +
+                                     moves + "FINI\n",
+                                 m, tag);
+}
+
+}  // namespace
+
+TEST_CASE("multi-axis: a change of solution inside a cut stops the post at its GOTO", "[post][multiaxis]") {
+  // The trunnion with A limited to -30..120: a tilt of 20 degrees towards +X and then -X can
+  // keep C only with A at -20 or... A20 C90 then A-20 C90 is allowed; beyond -30 it needs A40
+  // C-90 instead of A-40 C90: C turns half round while the tool cuts.
+  machine m = load_machine("trunnion-5axis");
+  m.kinematics[0].rotaries[0].min = -30;
+  const test::posted p = post_moves(m,
+                                    "GOTO/0,0,0,0.3420201,0,0.9396926\n"
+                                    "GOTO/10,0,0,-0.6427876,0,0.7660444\n",
+                                    "ma-flip");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:10:1: error: channel 1: the rotary axes would change solution inside a cut, from A20 C90 to "
+        "A40 "
+        "C-90 (C turns 180 degrees while the tool cuts): retract, reposition with RAPID and re-engage\n"
+        "GOTO/10,0,0,-0.6427876,0,0.7660444\n^\n");
+  // As a rapid the same change is a reposition, and posts.
+  CHECK(post_moves(m, "GOTO/0,0,0,0.3420201,0,0.9396926\nRAPID\nGOTO/10,0,0,-0.6427876,0,0.7660444\n",
+                   "ma-flip2")
+            .ok);
+}
+
+TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0", "[post][multiaxis]") {
+  const machine m = load_machine("trunnion-5axis");
+  // Back to the tool along Z, C stays at 90 (the pole keeps it): the arc is refused.
+  const test::posted p = post_moves(m,
+                                    "GOTO/0,0,0,0.2588190,0,0.9659258\nGOTO/0,0,0,0,0,1\n"
+                                    "CIRCLE/0,10,0,0,0,1,10,0.06,0.5,10,0\nGOTO/10,10,0\n",
+                                    "ma-arc");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:12:1: error: channel 1: an arc or a drilling cycle with the tool axis (0,0,1) and the "
+        "rotary axes "
+        "at A0 C90: twinpost writes them only with every rotary axis at 0 and the tool along Z; output the "
+        "move as "
+        "GOTO points\nGOTO/10,10,0\n^\n");
+  // With the axes at 0 the arc is the 3-axis one, after G94 where G93 was in force.
+  const test::posted q = post_moves(load_machine("head-head-5axis"),
+                                    "GOTO/0,0,0,0,0,1\nGOTO/10,0,0,0.0871557,0,0.9961947\nGOTO/20,0,0,0,0,1\n"
+                                    "CIRCLE/20,10,0,0,0,1,10,0.06,0.5,10,0\nGOTO/30,10,0\n",
+                                    "ma-arc2");
+  INFO(q.diagnostics);
+  REQUIRE(q.ok);
+  // B swings to 5 degrees and back (8 sub-moves each way, G93), then G94 for the arc.
+  CHECK(q.files.at("MOVES.nc") ==
+        "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS5000 M3\nG94\n"
+        "G0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 F400.\n"
+        "X11.226 Z-0.095 B1.25 F400.\nX16.838 Z-0.214 B1.875 F400.\nX22.448 Z-0.381 B2.5 F400.\n"
+        "X28.056 Z-0.595 B3.125 F400.\nX33.661 Z-0.856 B3.75 F400.\nX39.264 Z-1.166 B4.375 F400.\n"
+        "X44.862 Z-1.522 B5. F400.\nX41.764 Z-1.166 B4.375 F400.\nX38.661 Z-0.856 B3.75 F400.\n"
+        "X35.556 Z-0.595 B3.125 F400.\nX32.448 Z-0.381 B2.5 F400.\nX29.338 Z-0.214 B1.875 F400.\n"
+        "X26.226 Z-0.095 B1.25 F400.\nX23.113 Z-0.024 B0.625 F400.\nX20. Z0. B0. F400.\nG94\n"
+        "G3 X30. Y10. I0. J10. F500.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+}
+
+TEST_CASE("multi-axis: the tool length from TLDATA or the tool table, never guessed", "[post][multiaxis]") {
+  machine m = load_machine("head-head-5axis");
+  const std::string tilt = "GOTO/10,0,0,0.1736482,0,0.9848078\n";
+  const test::posted none = post_moves(m, tilt, "ma-len0", "");
+  CHECK(none.diagnostics ==
+        "job.cls:7:1: error: channel 1: tool 1 (LOADTL at line 3) has no length: the joint values of machine "
+        "'head-head-5axis' depend on it (a head turns the tool about its pivot); give TLDATA/MILL with the "
+        "length, "
+        "or length = ... under the tool's [[tool]] in the machine file\nGOTO/0,0,50,0,0,1\n^\n");
+  // The table's length serves where the CL gives none; the same program as with TLDATA.
+  tool_def t;
+  t.number = 1;
+  t.kind = "mill";
+  t.length = 100;
+  m.tools.push_back(t);
+  const test::posted table = post_moves(m, tilt, "ma-len1", "");
+  const test::posted cl = post_moves(load_machine("head-head-5axis"), tilt, "ma-len2");
+  REQUIRE(table.ok);
+  REQUIRE(cl.ok);
+  CHECK(table.files == cl.files);
+  // Both, and different: which tool is in the spindle?
+  m.tools.back().length = 120;
+  CHECK(post_moves(m, tilt, "ma-len3").diagnostics ==
+        "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 4): the CL's TLDATA gives a length of 100 mm, "
+        "machine 'head-head-5axis' lists 120 mm ([[tool]] length): which tool is in the spindle?\n"
+        "GOTO/0,0,50,0,0,1\n^\n");
+}
+
+TEST_CASE("multi-axis: no feed per revolution and no 2-D compensation under a tilted tool",
+          "[post][multiaxis]") {
+  const machine m = load_machine("rotary-4axis");
+  CHECK(post_moves(m, "FEDRAT/0.1,MMPR\nGOTO/0,0,0,0,0,1\nGOTO/0,10,0,0,0.5,0.8660254\n", "ma-rev")
+            .diagnostics ==
+        "job.cls:11:1: error: channel 1: a feed per revolution on a move that turns a rotary axis: "
+        "inverse-time "
+        "feed (G93) needs a feed per minute (FEDRAT/MMPM)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
+  CHECK(post_moves(m, "CUTCOM/LEFT\nGOTO/0,10,0,0,0.5,0.8660254\n", "ma-cc").diagnostics ==
+        "job.cls:10:1: error: channel 1: cutter compensation (G41) under the tool axis (0,0.5,0.866025): "
+        "twinpost "
+        "writes no 3-D compensation (G41.2/G42.2)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
 }
