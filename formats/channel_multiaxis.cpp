@@ -65,6 +65,7 @@ void channel_writer::multiaxis_tool(const tool_event& t, int) {
 }
 
 void channel_writer::multiaxis_off() {
+  if (plane_on_) close_plane();
   if (inverse_time_) {
     out_.block(m_.codes.feed_per_min);
     inverse_time_ = false;
@@ -157,6 +158,10 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
   const tool_pose pose{{p.x * cl_mm_, p.y * cl_mm_, p.z * cl_mm_},
                        len > 0 ? vec3{axis_.x / len, axis_.y / len, axis_.z / len} : axis_};
+  if (!c.plane.empty() && plane_move(rapid, pose, line)) {
+    pose_mm_ = pose;
+    return;
+  }
   const tool_pose from = pose_mm_;
   const bool had_from = pose_known_;
   pose_mm_ = pose;

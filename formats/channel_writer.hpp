@@ -156,6 +156,14 @@ class channel_writer {
   void tool_data_length(const tool_data_event& t, bool after_call);
   /// A tool call on a chain channel: the new tool's offset register and length.
   void multiaxis_tool(const tool_event& t, int line);
+  // 3+2 work (formats/channel_plane.cpp), on a chain with `plane` (G68.2).
+  /// True when the GOTO to `pose` was taken by the tilted working plane: written in the open
+  /// plane, or a plane opened for it, or an error; false: a multi-axis move as usual.
+  bool plane_move(bool rapid, const kin::tool_pose& pose, int line);
+  /// One point in the open plane: X Y Z in its frame, checked through its rotation.
+  void plane_point(bool rapid, const kin::tool_pose& pose, int line);
+  /// G69: the plane is cancelled.
+  void close_plane();
   /// Before a tool call and at the end: G94 again, and the length offset cancelled.
   void multiaxis_off();
   /// An arc on a chain channel: only with the rotary axes at 0 and the tool along Z; G94
@@ -291,6 +299,9 @@ class channel_writer {
   bool inverse_time_ = false;    ///< G93 in force
   axis_memory last_rot_[2], last_ijk_[3];
   kin::linearise_result lin_;  ///< reused by every feed move
+  bool plane_on_ = false;      ///< a tilted working plane (G68.2) is in force
+  vec3 plane_frame_[3];        ///< its X, Y, Z in the part frame, from the angles as written
+  vec3 plane_axis_;            ///< the CL tool axis it was opened for
   void note_line(std::string_view line);
   bool warned_side_ = false;
   int line_ = 0, column_ = 0;  // the event being written: where its errors point

@@ -78,6 +78,9 @@ struct kinematic_chain {
   /// Joints output: the chordal tolerance (mm) the tip of each sub-move keeps from the CL
   /// segment (kin::linearise).
   double chordal_tolerance = 0.01;
+  /// 3+2 work: the tilted working plane code (G68.2, with Z-X-Z Euler angles I J K), "" for
+  /// none; the code that turns the rotary axes to it (G53.1) and the one that cancels it (G69).
+  std::string plane, plane_index = "G53.1", plane_off = "G69";
 };
 
 }  // namespace twinpost

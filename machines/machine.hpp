@@ -201,7 +201,7 @@ struct tool_def {
   std::string kind;  ///< "turn", "drill" or "mill"
   /// The gauge length (spindle nose to tip, mm) as measured on the machine: the tool length
   /// of multi-axis output (docs/machines.md, "Multi-axis output").
-  std::optional<double> length;
+  std::optional<double> length{};
 };
 
 /// The part transfer from the main to the sub spindle (CL TRANSFER/GRIP, TRANSFER/RELEASE):

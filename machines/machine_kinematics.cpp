@@ -134,7 +134,8 @@ void read_kinematics(const table_reader& root, machine& m) {
   for (const toml::table* t : root.tables("kinematics")) {
     table_reader r(*t, "kinematics", root.source(),
                    {"channel", "linear", "tool_direction", "tolerance", "angle_tolerance", "rotary", "output",
-                    "tool_tip_on", "tool_tip_off", "length_on", "inverse_time", "chordal_tolerance"});
+                    "tool_tip_on", "tool_tip_off", "length_on", "inverse_time", "chordal_tolerance", "plane",
+                    "plane_index", "plane_off"});
     kinematic_chain c;
     r.require("channel");
     r.read("channel", c.channel);
@@ -160,6 +161,9 @@ void read_kinematics(const table_reader& root, machine& m) {
     r.read("tool_tip_off", c.tool_tip_off);
     r.read("length_on", c.length_on);
     r.read("inverse_time", c.inverse_time);
+    r.read("plane", c.plane);
+    r.read("plane_index", c.plane_index);
+    r.read("plane_off", c.plane_off);
     for (std::string_view key : {"tolerance", "angle_tolerance", "chordal_tolerance"}) {
       double& v = key == "tolerance"         ? c.tolerance
                   : key == "angle_tolerance" ? c.angle_tolerance

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -74,16 +75,38 @@ struct nc_point {
   vec3 ijk{0, 0, 1};
   bool rapid = false;
   std::string text;
+  /// In a tilted working plane (G68.2 X0 Y0 Z0 I J K): its axes in the part frame; X Y Z are
+  /// the tip in it.
+  bool in_plane = false;
+  vec3 frame[3];
 };
 
 std::vector<nc_point> nc_points(const std::string& nc, const kinematic_chain& c) {
   std::vector<nc_point> out;
   std::map<char, double> words;
-  bool rapid = true, started = false;
+  bool rapid = true, started = false, in_plane = false;
+  vec3 frame[3];
   std::istringstream in(nc);
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] == '(' || line[0] == '%' || line[0] == 'O') continue;
-    if (line.find("G28") != std::string::npos) continue;
+    if (line.find("G28") != std::string::npos || line == "G53.1") continue;
+    if (line.rfind("G68.2 X0. Y0. Z0. I", 0) == 0) {
+      // Z-X-Z Euler angles: the plane's axes are Rz(I) Rx(J) Rz(K) applied to the part's.
+      double e[3];
+      REQUIRE(std::sscanf(line.c_str(), "G68.2 X0. Y0. Z0. I%lf J%lf K%lf", &e[0], &e[1], &e[2]) == 3);
+      const vec3 basis[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+      for (int i = 0; i < 3; ++i)
+        frame[i] = kin::rotate(kin::rotate(kin::rotate(basis[i], {0, 0, 1}, e[2]), {1, 0, 0}, e[1]),
+                               {0, 0, 1}, e[0]);
+      in_plane = true;
+      words.clear();
+      continue;
+    }
+    if (line == "G69") {
+      in_plane = false;
+      words.clear();
+      continue;
+    }
     bool moves = false;
     std::istringstream w(line);
     for (std::string t; w >> t;) {
@@ -103,6 +126,8 @@ std::vector<nc_point> nc_points(const std::string& nc, const kinematic_chain& c)
     p.joints.linear = {words[c.linear[0]], words[c.linear[1]], words[c.linear[2]]};
     for (std::size_t i = 0; i < c.rotaries.size(); ++i) p.joints.rotary[i] = words[c.rotaries[i].address];
     p.ijk = {words['I'], words['J'], words['K']};
+    p.in_plane = in_plane;
+    for (int i = 0; i < 3; ++i) p.frame[i] = frame[i];
     out.push_back(p);
   }
   return out;
@@ -111,6 +136,12 @@ std::vector<nc_point> nc_points(const std::string& nc, const kinematic_chain& c)
 // Where the words put the tool: the forward transform of the joints, or under tool-tip control
 // the tip itself with the axis of the rotary values (G43.4) or I J K (G43.5).
 kin::tool_pose pose_of(const kinematic_chain& c, const nc_point& p, double length) {
+  if (p.in_plane) {
+    const vec3& l = p.joints.linear;
+    return {kin::operator+(kin::operator+(kin::operator*(l.x, p.frame[0]), kin::operator*(l.y, p.frame[1])),
+                           kin::operator*(l.z, p.frame[2])),
+            p.frame[2]};
+  }
   switch (c.output) {
     case multiaxis_output::joints: return kin::forward(c, p.joints, length);
     case multiaxis_output::tool_tip: return {p.joints.linear, kin::tool_axis(c, p.joints)};
@@ -223,6 +254,27 @@ TEST_CASE("multi-axis: every block of the five-axis wall goes back to its CL poi
   CHECK(r.largest_swing == Approx(30).margin(1e-9));
   CHECK(r.uncut > 1.0);
   CHECK(r.worst_chord <= 0.01 + 0.005);
+}
+
+TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on the head/head mill",
+          "[post][multiaxis]") {
+  const machine m = load_machine("head-head-5axis");
+  const round_trip r = read_back(sample_job("three-plus-two"), m, "ma-32");
+  CHECK(r.cl_points == 15);
+  CHECK(r.sub_points == 0);
+  CHECK(r.worst_tip <= 0.001);
+  CHECK(r.worst_axis <= 0.002);
+  // A feed move that turns the tool inside a plane is refused: 3+2 keeps its axis.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO T\nTLDATA/MILL,8,0,100,0,0\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,9000,CLW\n"
+      "FEDRAT/MMPM,600\nRAPID\nGOTO/20,0,40,0.2588190,0,0.9659258\n"
+      "GOTO/20,0,10,0.2588190,0,0.9659258\nGOTO/30,0,10,0,0,1\nFINI\n",
+      m, "ma-32b");
+  CHECK(p.diagnostics ==
+        "job.cls:10:1: error: channel 1: the tool axis turns from (0.258819,0,0.965926) to (0,0,1) in a feed "
+        "move "
+        "inside a tilted working plane (G68.2): a 3+2 operation keeps its axis; give a RAPID to change it\n"
+        "GOTO/30,0,10,0,0,1\n^\n");
 }
 
 TEST_CASE("multi-axis: the trunnion's G43.4 blocks give back the CL tip and axis", "[post][multiaxis]") {
