@@ -48,6 +48,9 @@ TEST_CASE("a [[kinematics]] table gives the channel's chain, with defaults", "[k
   CHECK(c.length_on == "G43");
   CHECK(c.inverse_time == "G93");
   CHECK(c.chordal_tolerance == 0.01);
+  CHECK(c.plane.empty());
+  CHECK(c.plane_index == "G53.1");
+  CHECK(c.plane_off == "G69");
   REQUIRE(c.rotaries.size() == 2);
   CHECK(c.rotaries[0].address == 'B');
   CHECK(c.rotaries[0].kind == rotary_kind::head);
