@@ -165,16 +165,16 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   const tool_pose from = pose_mm_;
   const bool had_from = pose_known_;
   pose_mm_ = pose;
+  // Until the point is written the machine is not where the CL puts it: after an error the
+  // next move starts afresh (solved, not linearised from a start it never reached).
+  pose_known_ = false;
   if ((pending_g_ == "G41" || pending_g_ == "G42") && std::abs(pose.axis.z) < 0.9999)
     return error(line, fmt::format("cutter compensation ({}) under the tool axis ({:g},{:g},{:g}): twinpost "
                                    "writes no 3-D compensation (G41.2/G42.2)",
                                    pending_g_, axis_.x, axis_.y, axis_.z));
   const bool joints = c.output == multiaxis_output::joints;
-  // Tool-tip control: the control holds the length (H); the rotary values do not depend on it.
-  // After an error the machine is not where the CL point puts it: the next move starts afresh
-  // (solved, not linearised from a start it never reached). The post has failed anyway.
-  pose_known_ = false;
   if (joints && chain_heads_ && !tool_length_known(line)) return;
+  // Tool-tip control: the control holds the length (H); the rotary values do not depend on it.
   const double length = joints ? tool_length_ : 0;
   if (rapid || !joints || !had_from) {
     const kin::ik_result ik =

@@ -72,7 +72,8 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
   const vec3& k = pose.axis;
   const double b = std::atan2(std::hypot(k.x, k.y), k.z) / kin::deg;
   const double a = std::hypot(k.x, k.y) < 1e-12 ? 0 : std::atan2(k.x, -k.y) / kin::deg;
-  const double euler[3] = {written(a, euler_decimals), written(b, euler_decimals), written(-a, euler_decimals)};
+  const double euler[3] = {written(a, euler_decimals), written(b, euler_decimals),
+                           written(-a, euler_decimals)};
   // The frame as the control builds it from the written angles.
   const vec3 z{0, 0, 1}, x{1, 0, 0};
   auto turn = [&](const vec3& v) {
@@ -125,12 +126,13 @@ void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int lin
   const double axis_error = kin::angle_between(plane_frame_[2], pose.axis);
   if (!(tip_error <= c.tolerance && axis_error <= c.angle_tolerance)) {
     pose_known_ = false;
-    return error(line, fmt::format("the written point fails the tilted plane's rotation: tip {} mm and tool "
-                                   "axis {} degrees from the CL point ({}, {}, {}) (tolerance {} mm, {} degrees)",
-                                   kin::number_text(tip_error), kin::number_text(axis_error),
-                                   kin::number_text(pose.tip.x), kin::number_text(pose.tip.y),
-                                   kin::number_text(pose.tip.z), kin::number_text(c.tolerance),
-                                   kin::number_text(c.angle_tolerance)));
+    return error(
+        line,
+        fmt::format("the written point fails the tilted plane's rotation: tip {} mm and tool "
+                    "axis {} degrees from the CL point ({}, {}, {}) (tolerance {} mm, {} degrees)",
+                    kin::number_text(tip_error), kin::number_text(axis_error), kin::number_text(pose.tip.x),
+                    kin::number_text(pose.tip.y), kin::number_text(pose.tip.z), kin::number_text(c.tolerance),
+                    kin::number_text(c.angle_tolerance)));
   }
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
