@@ -1,5 +1,7 @@
 #pragma once
-// Turns one channel's routed events into lathe NC blocks (G18, X in diameter, Z), keeping
+// Turns one channel's routed events into NC blocks (a lathe's G18, X in diameter, Z; on a
+// channel whose machine gives it a kinematic chain, multi-axis moves: channel_multiaxis.cpp
+// and channel_plane.cpp), keeping
 // that channel's modal state: tool, spindle and its mode, feed mode, motion G-code, last
 // axis words (modal suppression), cutter compensation, an active drilling cycle.
 // Lengths are written in the machine file's output units (mm or inch): the CL's are converted
