@@ -188,10 +188,28 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
     return;
   }
   kin::linearise(c, from, joints_, pose, length, c.chordal_tolerance, lin_);
-  if (!lin_.ok())
-    return error(line, lin_.error == kin::ik_error::too_many_points
-                           ? lin_.message
-                           : fmt::format("machine '{}' cannot reach this point: {}", m_.name, lin_.message));
+  if (!lin_.ok()) {
+    if (lin_.error != kin::ik_error::too_many_points)
+      return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, lin_.message));
+    // Most often the move leaves the pole (the tool along the outer axis, whose angle was
+    // kept) towards an axis that needs that axis at another angle: it would turn while the
+    // tool cuts. Say so.
+    const kin::orientation_form f = kin::orientation_of(c);
+    if (f.outer >= 0 && f.inner >= 0 &&
+        kin::angle_between(from.axis, c.rotaries[f.outer].direction) <= c.angle_tolerance) {
+      const kin::ik_result end = kin::inverse(c, pose, length, joints_);
+      if (end.ok()) {
+        const rotary_axis_def& o = c.rotaries[f.outer];
+        return error(
+            line, fmt::format("{}; the move leaves the pole of {} (the tool along it, {} kept at {}) "
+                              "towards a tool axis that needs {}{}: {} would turn while the tool cuts; "
+                              "give a RAPID to the start of the cut under its tool axis",
+                              lin_.message, o.address, o.address, kin::number_text(joints_.rotary[f.outer]),
+                              o.address, kin::number_text(end.joints.rotary[f.outer]), o.address));
+      }
+    }
+    return error(line, lin_.message);
+  }
   const double cl_length = kin::distance(from.tip, pose.tip);
   const double feed_mm = feed_value_ / out_per_mm_;
   double s0 = 0;

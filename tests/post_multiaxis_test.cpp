@@ -446,3 +446,21 @@ TEST_CASE("multi-axis: no feed per revolution and no 2-D compensation under a ti
         "twinpost "
         "writes no 3-D compensation (G41.2/G42.2)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
 }
+
+TEST_CASE("multi-axis: a cut that leaves the pole towards another outer angle is named as such",
+          "[post][multiaxis]") {
+  // B head over a C spindle: the tool along Z keeps C at 0; tilting it towards -Y needs C90,
+  // and C turning under the tool at (40, 40) would cut a circle into the part.
+  const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/head-table.toml");
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/40,40,5,0,0,1\nGOTO/40,40,-5,0,0,1\nGOTO/40,40,-5,0,-0.1736482,0.9848078\nFINI\n",
+      m, "ma-pole");
+  CHECK(p.diagnostics ==
+        "job.cls:9:1: error: channel 1: the move needs more than 10000 points to keep the tip within 0.01 mm "
+        "of "
+        "the line; the move leaves the pole of C (the tool along it, C kept at 0) towards a tool axis that "
+        "needs "
+        "C90: C would turn while the tool cuts; give a RAPID to the start of the cut under its tool axis\n"
+        "GOTO/40,40,-5,0,-0.1736482,0.9848078\n^\n");
+}
