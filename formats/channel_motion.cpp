@@ -123,13 +123,20 @@ void channel_writer::motion(const motion_event& mv, int line) {
         groove_cycle_point(mv.pos, line);
         return;
       } else if (cycle_) {
-        if (!chain_ || multiaxis_arc(line)) cycle_point(mv.pos, line);
+        if (!chain_ || !multiaxis_takes() || multiaxis_arc(line)) cycle_point(mv.pos, line);
       } else if (threading_ && !mv.rapid) {
         thread_pass(mv.pos, line);
-      } else if (chain_) {
+      } else if (chain_ && multiaxis_takes()) {
         multiaxis_move(mv.rapid, mv.pos, line);
       } else {
         linear(mv.rapid, mv.pos.x, mv.pos.y, mv.pos.z, line);
+        if (chain_) {
+          // A chain with moves = "tilted" left this move to the 3-axis writer: the rotary axes
+          // stand at 0, so the joints are the tip; a tilt that follows starts from here.
+          pose_mm_ = {{mv.pos.x * cl_mm_, mv.pos.y * cl_mm_, mv.pos.z * cl_mm_}, axis_};
+          joints_.linear = pose_mm_.tip;
+          pose_known_ = true;
+        }
       }
       pos_ = mv.pos;
       return;
@@ -138,7 +145,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
 
 void channel_writer::arc(const arc_event& a, int line) {
   if (tool_ < 0) return no_tool(line);
-  if (chain_ ? !multiaxis_arc(line) : !tool_along_z(line)) {
+  if (chain_ && multiaxis_takes() ? !multiaxis_arc(line) : !tool_along_z(line)) {
     pos_ = a.end;
     return;
   }

@@ -102,6 +102,23 @@ bool channel_writer::tool_length_known(int line) {
   return true;
 }
 
+bool channel_writer::multiaxis_takes() {
+  const kinematic_chain& c = *chain_;
+  if (c.moves == multiaxis_moves::all || plane_on_) return true;
+  const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
+  const bool along = len > 0 && kin::angle_between(axis_, c.tool_direction) <= c.angle_tolerance;
+  const bool at_zero = std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
+                                   [](double v) { return std::abs(v) <= still; });
+  if (!along || !at_zero) return true;
+  // Back to the 3-axis writer: it writes feeds per minute or per revolution, never G93.
+  if (inverse_time_) {
+    out_.block(m_.codes.feed_per_min);
+    inverse_time_ = false;
+    last_f_.clear();
+  }
+  return false;
+}
+
 bool channel_writer::multiaxis_arc(int line) {
   const bool at_zero = std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
                                    [](double v) { return std::abs(v) <= still; });
@@ -116,7 +133,9 @@ bool channel_writer::multiaxis_arc(int line) {
                       axis_.x, axis_.y, axis_.z, where));
     return false;
   }
-  if (!offset_on_) {
+  const std::string& on =
+      chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on;
+  if (!offset_on_ && !on.empty()) {
     error(line,
           "an arc or a drilling cycle as the first move after a tool call: the length offset goes out "
           "with a straight move (give a GOTO first)");
@@ -316,10 +335,11 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     separate(b);
     b += rapid ? "G0" : "G1";
   }
-  const bool offset_block = !offset_on_;
+  const std::string& on = joints ? c.length_on : c.tool_tip_on;
+  const bool offset_block = !offset_on_ && !on.empty();  // "": the control's offset is not the post's
   if (offset_block) {
     separate(b);
-    b += joints ? c.length_on : c.tool_tip_on;
+    b += on;
     b += " H";
     b += fmt::format_int(offset_).c_str();
   }
@@ -350,7 +370,7 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   homed_ = false;
   pending_g_.clear();
   motion_g_ = g;
-  offset_on_ = true;
+  if (offset_block) offset_on_ = true;
   if (!rapid) {
     if (feed_value_ <= 0) {
       error(line, "feed move with no feed rate (FEDRAT) in force");

@@ -142,7 +142,7 @@ void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int lin
     separate(b);
     b += rapid ? "G0" : "G1";
   }
-  const bool offset_block = !offset_on_;
+  const bool offset_block = !offset_on_ && !c.length_on.empty();
   if (offset_block) {
     separate(b);
     b += c.length_on;
@@ -158,7 +158,7 @@ void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int lin
     homed_ = false;
     pending_g_.clear();
     motion_g_ = g;
-    offset_on_ = true;
+    if (offset_block) offset_on_ = true;
     if (!rapid) {
       if (feed_value_ > 0)
         append_feed(b);

@@ -145,6 +145,10 @@ class channel_writer {
   // output linearised, every written point checked by the forward transform.
   /// A GOTO (rapid or feed) to CL point `p` under the tool axis in force.
   void multiaxis_move(bool rapid, const vec3& p, int line);
+  /// Whether the multi-axis writer takes the next move: always (chain `moves = "all"`), or
+  /// under a tool axis off the tool direction, with a rotary axis off 0 or in a tilted plane
+  /// (`moves = "tilted"`). Handing a move back to the 3-axis writer ends G93 first.
+  bool multiaxis_takes();
   /// Writes one point: the joints `j` rounded as the control reads them must give back
   /// `pose` (mm, part frame) by the forward transform; `inverse_f` > 0 writes G93 F<it>.
   bool write_point(bool rapid, const kin::joint_values& j, const kin::tool_pose& pose, double inverse_f,

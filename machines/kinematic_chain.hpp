@@ -52,6 +52,13 @@ enum class multiaxis_output {
   vector,    ///< tool-tip control with the tool axis (G43.5 H.. I J K): X Y Z the tip, I J K the axis
 };
 
+/// Which GOTOs of the channel the multi-axis writer takes.
+enum class multiaxis_moves {
+  all,     ///< every move (a 5-axis mill: the length offset and rotary words from the first)
+  tilted,  ///< only under a tool axis off the tool direction, or with a rotary axis off 0 (a
+           ///< mill/turn head: turning moves stay the lathe's)
+};
+
 /// The kinematic chain of one channel.
 struct kinematic_chain {
   int channel = 1;  ///< the channel it describes
@@ -67,6 +74,7 @@ struct kinematic_chain {
   double angle_tolerance = 0.001;
   /// How the post writes the channel's moves under a tool axis not along Z.
   multiaxis_output output = multiaxis_output::joints;
+  multiaxis_moves moves = multiaxis_moves::all;
   /// The code that turns tool-tip control on (G43.4 or G43.5, written with H and the tool's
   /// offset) and the one that cancels it (and the length offset of joints output).
   std::string tool_tip_on = "G43.4", tool_tip_off = "G49";

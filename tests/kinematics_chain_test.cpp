@@ -49,6 +49,7 @@ TEST_CASE("a [[kinematics]] table gives the channel's chain, with defaults", "[k
   CHECK(c.inverse_time == "G93");
   CHECK(c.chordal_tolerance == 0.01);
   CHECK(c.plane.empty());
+  CHECK(c.moves == multiaxis_moves::all);
   CHECK(c.plane_index == "G53.1");
   CHECK(c.plane_off == "G69");
   REQUIRE(c.rotaries.size() == 2);
