@@ -89,7 +89,7 @@ class mill_job {
   // One item of the toolpath: a cutting step, a line end, a blend arc or a tool change.
   void step() {
     if (!five_ && rng_.chance(0.01) && fits(2) && blend_arc()) return;
-    if (rng_.chance(0.00002) && fits(5)) return tool_change();
+    if (rng_.chance(0.00002) && fits(6)) return tool_change();
     double nx = x_ + dir_ * rng_.uniform(five_ ? 0.2 : 0.3, five_ ? 1.0 : 1.5);
     if (nx < x_min || nx > x_max) return line_end();
     x_ = nx;
@@ -155,6 +155,8 @@ class mill_job {
 
   void tool_change() {
     rapid_to(pos_.dx(), pos_.dy(), z_safe);
+    // NX writes each tool's TLDATA before its LOADTL: its length places a 5-axis head's joints.
+    w_.record("TLDATA/MILL,10.0000,5.0000,75.0000,0.0000,0.0000");
     w_.text("LOADTL/").integer(++tool_);
     w_.end_record();
     w_.text("SPINDL/RPM,").integer(rng_.between(60, 120) * 100).text(",CLW");

@@ -8,7 +8,10 @@ usage() {
   cat <<'EOF'
 usage: bench/run.sh [options]
   --sizes "1e5 1e6"    record counts to run (default: "1e5 1e6")
-  --kinds "mill3 ..."  job kinds (default: "mill3 mill5 lathe2")
+  --kinds "mill3 ..."  job kinds (default: "mill3 mill5 lathe2"); in --mode post also
+                       mill5-ik (the mill5 job on bench/bench-head-head.toml: full inverse
+                       kinematics, linearised, G93) and mill5-tcp (on the trunnion-5axis
+                       built-in: tool-tip control G43.4)
   --mode parse|post    what to time (default: parse)
   --machine NAME       machine for the lathe2 job in --mode post (default: fanuc-0itd-twin);
                        the mill jobs are posted for bench/bench-mill.toml
@@ -44,7 +47,7 @@ cache=${TWINPOST_BENCH_CACHE:-/tmp/twinpost-bench}
 do_sizes=1
 do_startup=1
 seed=1
-gen_version=v2  # bump when cl_generate's output changes, so stale cached jobs are not reused
+gen_version=v3  # bump when cl_generate's output changes, so stale cached jobs are not reused
 
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -142,9 +145,15 @@ best_of() {
   printf -v "${prefix}_rc" '%s' "$one_rc"
 }
 
-# machine_for KIND: the lathe job goes to the twin-turret machine, milling jobs to a mill.
+# machine_for KIND: the lathe job goes to the twin-turret machine, milling jobs to a mill,
+# the 5-axis kinds to a 5-axis mill.
 machine_for() {
-  if [[ $1 == lathe2 ]]; then echo "$machine"; else echo "$repo/bench/bench-mill.toml"; fi
+  case $1 in
+    lathe2) echo "$machine" ;;
+    mill5-ik) echo "$repo/bench/bench-head-head.toml" ;;
+    mill5-tcp) echo "trunnion-5axis" ;;
+    *) echo "$repo/bench/bench-mill.toml" ;;
+  esac
 }
 
 # set_cmd FILE KIND: the command under test for one CL file, in the array `cmd`.
@@ -159,7 +168,7 @@ set_cmd() {
 
 # job KIND RECORDS: path of the cached job, generated once.
 job() {
-  local kind=$1 n=$2
+  local kind=${1%%-*} n=$2  # mill5-ik and mill5-tcp post the mill5 job
   local f="$cache/$kind-$n-seed$seed-$gen_version.cls"
   if [[ ! -f $f ]]; then
     mkdir -p "$cache"
@@ -182,7 +191,7 @@ cpu=$(awk -F': ' '/model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || 
 commit=$(git -C "$repo" rev-parse --short HEAD 2>/dev/null || echo none)
 if [[ -n $(git -C "$repo" status --porcelain 2>/dev/null) ]]; then commit="$commit (dirty tree)"; fi
 echo "# twinpost $mode benchmark: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores ($cpu), commit $commit"
-if [[ $mode == post ]]; then echo "# machines: lathe2 on $machine${layout:+ (layout $layout)}, mill3/mill5 on bench/bench-mill.toml"; fi
+if [[ $mode == post ]]; then echo "# machines: lathe2 on $machine${layout:+ (layout $layout)}, mill3/mill5 on bench/bench-mill.toml, mill5-ik on bench/bench-head-head.toml, mill5-tcp on trunnion-5axis"; fi
 echo "# binary: $twinpost, built $(date -u -r "$twinpost" '+%Y-%m-%d %H:%M UTC')"
 echo "# best of $repeat warm-cache runs; cache: $cache"
 if [[ -n $baseline ]]; then echo "# baseline: $baseline, built $(date -u -r "$baseline" '+%Y-%m-%d %H:%M UTC')"; fi

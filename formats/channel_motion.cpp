@@ -32,10 +32,10 @@ bool channel_writer::tool_along_z(int line) {
       refused_axis_->z == axis_.z)
     return false;
   refused_axis_ = axis_;
-  error(line,
-        fmt::format("tool axis ({:g},{:g},{:g}) is not along Z: twinpost writes no rotary axis yet (B head, "
-                    "C axis, tool-tip control), so a tilted or radial tool cannot be posted",
-                    axis_.x, axis_.y, axis_.z));
+  error(line, fmt::format(
+                  "tool axis ({:g},{:g},{:g}) is not along Z, and machine '{}' gives channel {} no kinematic "
+                  "chain ([[kinematics]]): without rotary axes a tilted or radial tool cannot be posted",
+                  axis_.x, axis_.y, axis_.z, m_.name, ch_.number));
   return false;
 }
 
@@ -105,12 +105,16 @@ void channel_writer::no_tool(int line) {
 
 void channel_writer::motion(const motion_event& mv, int line) {
   switch (mv.kind) {
-    case motion_kind::from: pos_ = mv.pos; return;
+    case motion_kind::from:
+      pos_ = mv.pos;
+      pose_known_ = false;  // where the tool is, but not the joints that put it there
+      return;
     case motion_kind::home:
       go_home();
       forget_axes();
       motion_g_ = -1;
       pos_ = mv.pos;
+      pose_known_ = false;
       return;
     case motion_kind::go_to:
     case motion_kind::delta:
@@ -125,11 +129,20 @@ void channel_writer::motion(const motion_event& mv, int line) {
         groove_cycle_point(mv.pos, line);
         return;
       } else if (cycle_) {
-        cycle_point(mv.pos, line);
+        if (!chain_ || !multiaxis_takes() || multiaxis_arc(line)) cycle_point(mv.pos, line);
       } else if (threading_ && !mv.rapid) {
         thread_pass(mv.pos, line);
+      } else if (chain_ && multiaxis_takes()) {
+        multiaxis_move(mv.rapid, mv.pos, line);
       } else {
         linear(mv.rapid, mv.pos.x, mv.pos.y, mv.pos.z, line);
+        if (chain_) {
+          // A chain with moves = "tilted" left this move to the 3-axis writer: the rotary axes
+          // stand at 0, so the joints are the tip; a tilt that follows starts from here.
+          pose_mm_ = {{mv.pos.x * cl_mm_, mv.pos.y * cl_mm_, mv.pos.z * cl_mm_}, axis_};
+          joints_.linear = pose_mm_.tip;
+          pose_known_ = true;
+        }
       }
       pos_ = mv.pos;
       return;
@@ -138,7 +151,10 @@ void channel_writer::motion(const motion_event& mv, int line) {
 
 void channel_writer::arc(const arc_event& a, int line) {
   if (tool_ < 0) return no_tool(line);
-  if (!tool_along_z(line)) return;
+  if (chain_ && multiaxis_takes() ? !multiaxis_arc(line) : !tool_along_z(line)) {
+    pos_ = a.end;
+    return;
+  }
   if (has_c_ && !index_head(line)) return;
   // In C mode: in polar interpolation (the CL's Y as C), or in XY with C at 0.
   if (c_mode_ && face_polar() && live_tool()) {
@@ -251,6 +267,9 @@ void channel_writer::arc(const arc_event& a, int line) {
   // A full circle TIMES n: the same block n times, one turn each.
   for (int turn = 0; turn < std::max(1, a.turns); ++turn) out_.block(arc_.view().substr(1));
   pos_ = a.end;
+  pose_mm_.tip = {a.end.x * cl_mm_, a.end.y * cl_mm_,
+                  a.end.z * cl_mm_};  // the rotary axes stand at 0 (multiaxis_arc): joints = tip
+  joints_.linear = pose_mm_.tip;
 }
 
 }  // namespace twinpost

@@ -49,6 +49,13 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
   last_c_.max = m.formats['C'].max_count(axis_style_.decimals);
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
+  chain_ = m.chain(ch.number);
+  if (chain_) {
+    for (const rotary_axis_def& r : chain_->rotaries)
+      chain_heads_ = chain_heads_ || r.kind == rotary_kind::head;
+    for (axis_memory& a : last_rot_) a.max = INT64_MAX;
+    for (axis_memory& a : last_ijk_) a.max = INT64_MAX;
+  }
 }
 
 void channel_writer::note_line(std::string_view line) {
@@ -210,10 +217,13 @@ void channel_writer::on_event(const event& e, bool both) {
           spindle(d, e.line);
         else if constexpr (std::is_same_v<T, feed_event>)
           feed(d, e.line);
-        else if constexpr (std::is_same_v<T, tool_event>)
+        else if constexpr (std::is_same_v<T, tool_event>) {
+          if (chain_ && !d.preselect) multiaxis_off();
           tool(d, e.line);
-        else if constexpr (std::is_same_v<T, tool_data_event>) {
+          if (chain_ && !d.preselect) multiaxis_tool(d, e.line);
+        } else if constexpr (std::is_same_v<T, tool_data_event>) {
           after_call_ = after_call;
+          if (chain_) tool_data_length(d, after_call);
           tool_data(d);
         } else if constexpr (std::is_same_v<T, transfer_event>)
           transfer(d, e.line);
@@ -302,6 +312,7 @@ void channel_writer::write_dwell(double seconds) {
 }
 
 void channel_writer::finish() {
+  if (chain_) multiaxis_off();
   // The footer stops the spindles its file names (M5; the Integrex M5 M205 M305). A spindle
   // still turning whose stop code the footer lacks (the sub spindle's M105 on the 0i-TD, the
   // main spindle on a file without M5) is stopped first, as the Fusion Doosan post does

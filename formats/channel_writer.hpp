@@ -1,5 +1,7 @@
 #pragma once
-// Turns one channel's routed events into lathe NC blocks (G18, X in diameter, Z), keeping
+// Turns one channel's routed events into NC blocks (a lathe's G18, X in diameter, Z; on a
+// channel whose machine gives it a kinematic chain, multi-axis moves: channel_multiaxis.cpp
+// and channel_plane.cpp), keeping
 // that channel's modal state: tool, spindle and its mode, feed mode, motion G-code, last
 // axis words (modal suppression), cutter compensation, an active drilling cycle.
 // Lengths are written in the machine file's output units (mm or inch): the CL's are converted
@@ -12,6 +14,7 @@
 #include "channels/router.hpp"
 #include "formats/block_writer.hpp"
 #include "formats/number_format.hpp"
+#include "kinematics/linearise.hpp"
 #include "machines/machine.hpp"
 #include "parser/events.hpp"
 #include "support/diagnostics.hpp"
@@ -178,6 +181,41 @@ class channel_writer {
   bool radial_point(const vec3& p, vec3& q, int line);
   /// The head's tool length offset words due in the first move after indexing.
   void add_offset_words(text_buffer& b);
+  // Multi-axis output (formats/channel_multiaxis.cpp), on a channel whose machine gives it a
+  // kinematic chain ([[kinematics]]): every GOTO solved by kin::inverse, feed moves of joints
+  // output linearised, every written point checked by the forward transform.
+  /// A GOTO (rapid or feed) to CL point `p` under the tool axis in force.
+  void multiaxis_move(bool rapid, const vec3& p, int line);
+  /// Whether the multi-axis writer takes the next move: always (chain `moves = "all"`), or
+  /// under a tool axis off the tool direction, with a rotary axis off 0 or in a tilted plane
+  /// (`moves = "tilted"`). Handing a move back to the 3-axis writer ends G93 first.
+  bool multiaxis_takes();
+  /// Writes one point: the joints `j` rounded as the control reads them must give back
+  /// `pose` (mm, part frame) by the forward transform; `inverse_f` > 0 writes G93 F<it>.
+  bool write_point(bool rapid, const kin::joint_values& j, const kin::tool_pose& pose, double inverse_f,
+                   int line);
+  /// False (with the error) when the solution changes branch between `from` and `to` in a cut.
+  bool same_branch(const kin::joint_values& from, const kin::joint_values& to, int line);
+  /// The gauge length of the tool in the spindle for joints output; false with the error
+  /// (naming the tool) when neither the CL nor the machine's tool table gives it.
+  bool tool_length_known(int line);
+  /// TLDATA/MILL's length (NX: diameter, lower radius, length, ...) for the next or this tool.
+  void tool_data_length(const tool_data_event& t, bool after_call);
+  /// A tool call on a chain channel: the new tool's offset register and length.
+  void multiaxis_tool(const tool_event& t, int line);
+  // 3+2 work (formats/channel_plane.cpp), on a chain with `plane` (G68.2).
+  /// True when the GOTO to `pose` was taken by the tilted working plane: written in the open
+  /// plane, or a plane opened for it, or an error; false: a multi-axis move as usual.
+  bool plane_move(bool rapid, const kin::tool_pose& pose, int line);
+  /// One point in the open plane: X Y Z in its frame, checked through its rotation.
+  void plane_point(bool rapid, const kin::tool_pose& pose, int line);
+  /// G69: the plane is cancelled.
+  void close_plane();
+  /// Before a tool call and at the end: G94 again, and the length offset cancelled.
+  void multiaxis_off();
+  /// An arc on a chain channel: only with the rotary axes at 0 and the tool along Z; G94
+  /// again if G93 is in force. False after the error.
+  bool multiaxis_arc(int line);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
   void misfit(char address, double value);
@@ -202,6 +240,10 @@ class channel_writer {
   /// Appends " X12.5" to `out` unless `last` already holds that word (modal suppression)
   /// and `always` is off; returns whether it wrote the word.
   bool axis_word(text_buffer& out, char address, double value, axis_memory& last, bool always = false);
+  /// Appends " A12.345" (`decimals` places: 3 for degrees, 6 for G43.5's I J K) unless `last`
+  /// holds that value and `always` is off.
+  bool rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals,
+                   bool always);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(text_buffer& out);
   /// A blank before the next word, unless it is the first of a block built in place.
@@ -301,7 +343,24 @@ class channel_writer {
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
   std::vector<noted_block> noted_;
-  bool cut_due_ = true;  ///< the next G1/G2/G3 line is noted
+  bool cut_due_ = true;                     ///< the next G1/G2/G3 line is noted
+  const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
+  bool chain_heads_ = false;                ///< a rotary axis of it turns the tool (the length matters)
+  kin::joint_values joints_{};              ///< where the machine is (mm, degrees)
+  kin::tool_pose pose_mm_{};                ///< the last CL pose, in mm
+  bool pose_known_ = false;                 ///< false until the first GOTO (or FROM)
+  std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
+  double tool_length_ = 0;                            ///< the length in use (mm)
+  bool length_known_ = false;
+  bool length_refused_ = false;  ///< the tool's length error was reported
+  int offset_ = 0;               ///< the tool's offset register (H)
+  bool offset_on_ = false;       ///< G43 / G43.4 / G43.5 written for the tool in the spindle
+  bool inverse_time_ = false;    ///< G93 in force
+  axis_memory last_rot_[2], last_ijk_[3];
+  kin::linearise_result lin_;  ///< reused by every feed move
+  bool plane_on_ = false;      ///< a tilted working plane (G68.2) is in force
+  vec3 plane_frame_[3];        ///< its X, Y, Z in the part frame, from the angles as written
+  vec3 plane_axis_;            ///< the CL tool axis it was opened for
   void note_line(std::string_view line);
   bool warned_side_ = false;
   int line_ = 0, column_ = 0;  // the event being written: where its errors point

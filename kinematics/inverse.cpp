@@ -138,7 +138,7 @@ joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_va
 }
 
 ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length,
-                  const joint_values& previous) {
+                  const joint_values& previous, ik_need need) {
   ik_result r;
   const double len = norm(pose.axis);
   if (!(len > 1e-9) || !std::isfinite(len)) {
@@ -173,8 +173,10 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     // Generate, then verify: a candidate the forward transform does not confirm is no solution.
     joint_values raw;
     raw.rotary = s.rotary;
-    if (angle_between(tool_axis(c, raw), k) > c.angle_tolerance) continue;
-    candidate cand{raw, s.pole, 0, 0, 0, 0, 0};
+    const double axis_error = angle_between(tool_axis(c, raw), k);
+    if (axis_error > c.angle_tolerance) continue;
+    // (placing the angles below moves them by whole turns only: the same axis)
+    candidate cand{raw, s.pole, 0, 0, 0, 0, axis_error};
     refused why{s.rotary, {false, false}};
     for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
       const rotary_axis_def& a = c.rotaries[i];
@@ -192,13 +194,40 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
       beyond.push_back(why);
       continue;
     }
-    cand.j = positions(c, want.tip, cand.j, tool_length);
-    const tool_pose got = forward(c, cand.j, tool_length);
-    cand.tip_error = distance(got.tip, want.tip);
-    cand.axis_error = angle_between(got.axis, k);
-    if (cand.tip_error <= c.tolerance && cand.axis_error <= c.angle_tolerance) fitting.push_back(cand);
+    fitting.push_back(cand);
   }
-  if (fitting.empty()) {
+  // Moves that differ by rounding only are equal; on a tie of both, the positive tilt (the
+  // inner axis's value) wins, so that a symmetric choice does not depend on the solve's order.
+  constexpr double same = 1e-9;
+  const int inner = f.inner >= 0 ? f.inner : 0;
+  const auto better = [&](const candidate& x, const candidate& y) {
+    if (x.misses != y.misses) return x.misses < y.misses;
+    if (std::abs(x.total - y.total) > same) return x.total < y.total;
+    if (std::abs(x.outer - y.outer) > same) return x.outer < y.outer;
+    return x.j.rotary[inner] > y.j.rotary[inner];
+  };
+  // The positions of the better candidate first, checked by the forward transform; the other
+  // only when that one fails (the check is most of an inverse's time).
+  std::array<candidate, 2> order{};
+  std::size_t n = 0;
+  for (const candidate& cand : fitting) order[n++] = cand;
+  if (n == 2 && better(order[1], order[0])) std::swap(order[0], order[1]);
+  for (std::size_t i = 0; i < n; ++i) {
+    candidate& cand = order[i];
+    if (need == ik_need::joints) {
+      cand.j = positions(c, want.tip, cand.j, tool_length);
+      const tool_pose got = forward(c, cand.j, tool_length);
+      cand.tip_error = distance(got.tip, want.tip);
+      cand.axis_error = angle_between(got.axis, k);
+      if (cand.tip_error > c.tolerance || cand.axis_error > c.angle_tolerance) continue;
+    }
+    r.joints = cand.j;
+    r.pole = cand.pole;
+    r.tip_error = cand.tip_error;
+    r.axis_error = cand.axis_error;
+    return r;
+  }
+  {  // nothing fits: why
     if (beyond.empty()) {
       r.error = ik_error::unreachable;
       if (c.rotaries.empty()) {
@@ -227,21 +256,6 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     }
     return r;
   }
-  // Moves that differ by rounding only are equal; on a tie of both, the positive tilt (the
-  // inner axis's value) wins, so that a symmetric choice does not depend on the solve's order.
-  constexpr double same = 1e-9;
-  const int inner = f.inner >= 0 ? f.inner : 0;
-  const auto best =
-      std::min_element(fitting.begin(), fitting.end(), [&](const candidate& x, const candidate& y) {
-        if (x.misses != y.misses) return x.misses < y.misses;
-        if (std::abs(x.total - y.total) > same) return x.total < y.total;
-        if (std::abs(x.outer - y.outer) > same) return x.outer < y.outer;
-        return x.j.rotary[inner] > y.j.rotary[inner];
-      });
-  r.joints = best->j;
-  r.pole = best->pole;
-  r.tip_error = best->tip_error;
-  r.axis_error = best->axis_error;
   return r;
 }
 

@@ -63,9 +63,14 @@ struct ik_result {
   bool ok() const { return error == ik_error::none; }
 };
 
+/// What an inverse must give: every joint (the tip checked by the forward transform too), or
+/// the rotary angles alone (tool-tip control: the control places the tip; the axis checked).
+enum class ik_need { joints, angles };
+
 /// The joint values that put the tool of `tool_length` at `pose`, chosen as
 /// docs/kinematics.md says from every solution within the limits, nearest to `previous`.
+/// With ik_need::angles, `joints.linear` is left at 0 and `tip_error` is 0.
 ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length,
-                  const joint_values& previous);
+                  const joint_values& previous, ik_need need = ik_need::joints);
 
 }  // namespace twinpost::kin

@@ -49,10 +49,7 @@ struct splitter {
   linearise_result& out;
 
   // The CL point a fraction `s` of the way along the segment; the end itself at 1.
-  tool_pose at(double s) const {
-    if (s == 1) return to;
-    return {from.tip + s * (to.tip - from.tip), slerp(from.axis, to.axis, s)};
-  }
+  tool_pose at(double s) const { return segment_pose(from, to, s); }
 
   // The largest distance from the segment of the tip of the joints between j0 and j1.
   double deviation(const joint_values& j0, const joint_values& j1) const {
@@ -79,6 +76,7 @@ struct splitter {
     if (d <= tolerance) {
       out.deviation = std::max(out.deviation, d);
       out.points.push_back(end.joints);
+      out.fractions.push_back(s1);
       return true;
     }
     if (static_cast<int>(out.points.size()) + 2 > max_points || depth == 60)
@@ -97,10 +95,29 @@ struct splitter {
 linearise_result linearise(const kinematic_chain& c, const tool_pose& from, const joint_values& from_joints,
                            const tool_pose& to, double tool_length, double tolerance, int max_points) {
   linearise_result out;
+  linearise(c, from, from_joints, to, tool_length, tolerance, out, max_points);
+  return out;
+}
+
+void linearise(const kinematic_chain& c, const tool_pose& from, const joint_values& from_joints,
+               const tool_pose& to, double tool_length, double tolerance, linearise_result& out,
+               int max_points) {
+  out.error = ik_error::none;
+  out.message.clear();
+  out.points.clear();
+  out.fractions.clear();
+  out.deviation = 0;
   splitter s{c, from, to, tool_length, tolerance, max_points, out};
   s.split(0, from_joints, 1, 0);
-  if (!out.ok()) out.points.clear();
-  return out;
+  if (!out.ok()) {
+    out.points.clear();
+    out.fractions.clear();
+  }
+}
+
+tool_pose segment_pose(const tool_pose& from, const tool_pose& to, double s) {
+  if (s == 1) return to;
+  return {from.tip + s * (to.tip - from.tip), slerp(from.axis, to.axis, s)};
 }
 
 }  // namespace twinpost::kin

@@ -17,6 +17,9 @@ struct linearise_result {
   std::string message;  ///< why not, when error is not none
   /// The joint values at the end of each sub-move, in order; the last one is the CL end point.
   std::vector<joint_values> points;
+  /// Where each point lies along the CL segment (0 the start, 1 the end): its CL pose is
+  /// segment_pose(from, to, fraction).
+  std::vector<double> fractions;
   /// The largest distance from the segment of the tip, measured by the forward transform at
   /// the checked points of the accepted sub-moves (mm).
   double deviation = 0;
@@ -28,6 +31,16 @@ struct linearise_result {
 /// quarter, half and three quarters of it; at most `max_points` of them.
 linearise_result linearise(const kinematic_chain& c, const tool_pose& from, const joint_values& from_joints,
                            const tool_pose& to, double tool_length, double tolerance, int max_points = 10000);
+
+/// The same into `out`, whose vectors keep their memory from one move to the next (the post
+/// linearises every feed move: no allocation once they have grown).
+void linearise(const kinematic_chain& c, const tool_pose& from, const joint_values& from_joints,
+               const tool_pose& to, double tool_length, double tolerance, linearise_result& out,
+               int max_points = 10000);
+
+/// The CL pose a fraction `s` of the way along the move: the tip on the line, the axis on the
+/// great circle; `to` itself at 1.
+tool_pose segment_pose(const tool_pose& from, const tool_pose& to, double s);
 
 /// The joints a fraction `t` of the way from `a` to `b`, as a control interpolates them: a
 /// rotary axis with rollover "shortest" the short way round (from 359 to 1 through 360).

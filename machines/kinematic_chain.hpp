@@ -45,6 +45,20 @@ struct rotary_axis_def {
   bool continuous() const { return !min && !max; }
 };
 
+/// How the post writes a channel's multi-axis moves (docs/machines.md, "Multi-axis output").
+enum class multiaxis_output {
+  joints,    ///< full inverse kinematics: X Y Z and the rotary values, linearised, G93 on rotary moves
+  tool_tip,  ///< tool-tip control (G43.4 H..): X Y Z the tip in the part frame, with the rotary values
+  vector,    ///< tool-tip control with the tool axis (G43.5 H.. I J K): X Y Z the tip, I J K the axis
+};
+
+/// Which GOTOs of the channel the multi-axis writer takes.
+enum class multiaxis_moves {
+  all,     ///< every move (a 5-axis mill: the length offset and rotary words from the first)
+  tilted,  ///< only under a tool axis off the tool direction, or with a rotary axis off 0 (a
+           ///< mill/turn head: turning moves stay the lathe's)
+};
+
 /// The kinematic chain of one channel.
 struct kinematic_chain {
   int channel = 1;  ///< the channel it describes
@@ -58,6 +72,23 @@ struct kinematic_chain {
   /// Every inverse is checked by the forward transform to these: tip (mm) and axis (degrees).
   double tolerance = 0.001;
   double angle_tolerance = 0.001;
+  /// How the post writes the channel's moves under a tool axis not along Z.
+  multiaxis_output output = multiaxis_output::joints;
+  multiaxis_moves moves = multiaxis_moves::all;
+  /// The code that turns tool-tip control on (G43.4 or G43.5, written with H and the tool's
+  /// offset) and the one that cancels it (and the length offset of joints output).
+  std::string tool_tip_on = "G43.4", tool_tip_off = "G49";
+  /// The code of the length offset in joints output, written with H (G43).
+  std::string length_on = "G43";
+  /// Joints output: the inverse-time feed code of moves that turn a rotary axis (G93); the
+  /// machine's codes.feed_per_min (G94) ends it.
+  std::string inverse_time = "G93";
+  /// Joints output: the chordal tolerance (mm) the tip of each sub-move keeps from the CL
+  /// segment (kin::linearise).
+  double chordal_tolerance = 0.01;
+  /// 3+2 work: the tilted working plane code (G68.2, with Z-X-Z Euler angles I J K), "" for
+  /// none; the code that turns the rotary axes to it (G53.1) and the one that cancels it (G69).
+  std::string plane, plane_index = "G53.1", plane_off = "G69";
 };
 
 }  // namespace twinpost

@@ -48,6 +48,22 @@ std::string_view machine::tool_kind(int channel, int number) const {
   return any;
 }
 
+std::optional<double> machine::tool_length(int channel, int number) const {
+  std::optional<double> any;
+  for (const tool_def& t : tools)
+    if (t.number == number) {
+      if (t.channel == channel) return t.length;
+      if (t.channel == 0) any = t.length;
+    }
+  return any;
+}
+
+const kinematic_chain* machine::chain(int channel) const {
+  for (const kinematic_chain& c : kinematics)
+    if (c.channel == channel) return &c;
+  return nullptr;
+}
+
 const spindle_def* machine::spindle(std::string_view name) const {
   for (const spindle_def& s : spindles)
     if (s.name == name) return &s;

@@ -203,6 +203,9 @@ struct tool_def {
   int number = 0;    ///< the tool number of the CL tool call
   int channel = 0;   ///< the channel whose tool it is; 0: every channel
   std::string kind;  ///< "turn", "drill" or "mill"
+  /// The gauge length (spindle nose to tip, mm) as measured on the machine: the tool length
+  /// of multi-axis output (docs/machines.md, "Multi-axis output").
+  std::optional<double> length{};
 };
 
 /// The part transfer from the main to the sub spindle (CL TRANSFER/GRIP, TRANSFER/RELEASE):
@@ -298,6 +301,10 @@ struct machine {
   /// The kind ("turn", "drill", "mill") the tool table gives tool `number` of channel
   /// `channel`, or "" when it has no entry.
   std::string_view tool_kind(int channel, int number) const;
+  /// The tool table's gauge length of tool `number` of channel `channel`, if it gives one.
+  std::optional<double> tool_length(int channel, int number) const;
+  /// The kinematic chain of channel `channel`, or nullptr.
+  const kinematic_chain* chain(int channel) const;
   /// The spindle named `name`, or nullptr.
   const spindle_def* spindle(std::string_view name) const;
   /// Whether channel `channel` may command spindle `index` (into `spindles`).

@@ -67,6 +67,12 @@ constexpr std::pair<std::string_view, rotary_kind> kind_names[] = {{"head", rota
                                                                    {"table", rotary_kind::table}};
 constexpr std::pair<std::string_view, rotary_rollover> rollover_names[] = {
     {"absolute", rotary_rollover::absolute}, {"shortest", rotary_rollover::shortest}};
+constexpr std::pair<std::string_view, multiaxis_output> output_names[] = {
+    {"joints", multiaxis_output::joints},
+    {"tool_tip", multiaxis_output::tool_tip},
+    {"vector", multiaxis_output::vector}};
+constexpr std::pair<std::string_view, multiaxis_moves> moves_names[] = {{"all", multiaxis_moves::all},
+                                                                        {"tilted", multiaxis_moves::tilted}};
 constexpr std::pair<std::string_view, preferred_sign> prefer_names[] = {
     {"none", preferred_sign::none},
     {"positive", preferred_sign::positive},
@@ -129,7 +135,9 @@ void check_geometry(const table_reader& r, const toml::table& last, const kinema
 void read_kinematics(const table_reader& root, machine& m) {
   for (const toml::table* t : root.tables("kinematics")) {
     table_reader r(*t, "kinematics", root.source(),
-                   {"channel", "linear", "tool_direction", "tolerance", "angle_tolerance", "rotary"});
+                   {"channel", "linear", "tool_direction", "tolerance", "angle_tolerance", "rotary", "output",
+                    "tool_tip_on", "tool_tip_off", "length_on", "inverse_time", "chordal_tolerance", "plane",
+                    "moves", "plane_index", "plane_off"});
     kinematic_chain c;
     r.require("channel");
     r.read("channel", c.channel);
@@ -149,8 +157,20 @@ void read_kinematics(const table_reader& root, machine& m) {
                                               c.linear));
     }
     read_vec3(r, "tool_direction", c.tool_direction, true);
-    for (std::string_view key : {"tolerance", "angle_tolerance"}) {
-      double& v = key == "tolerance" ? c.tolerance : c.angle_tolerance;
+    read_name(r, "output", output_names, c.output);
+    read_name(r, "moves", moves_names, c.moves);
+    if (c.output == multiaxis_output::vector) c.tool_tip_on = "G43.5";
+    r.read("tool_tip_on", c.tool_tip_on);
+    r.read("tool_tip_off", c.tool_tip_off);
+    r.read("length_on", c.length_on);
+    r.read("inverse_time", c.inverse_time);
+    r.read("plane", c.plane);
+    r.read("plane_index", c.plane_index);
+    r.read("plane_off", c.plane_off);
+    for (std::string_view key : {"tolerance", "angle_tolerance", "chordal_tolerance"}) {
+      double& v = key == "tolerance"         ? c.tolerance
+                  : key == "angle_tolerance" ? c.angle_tolerance
+                                             : c.chordal_tolerance;
       if (r.read(key, v) && !(v > 0))
         r.fail(*r.find(key), fmt::format("{} must be > 0, not {}", r.key_path(key), v));
     }

@@ -371,7 +371,7 @@ void read_transfer(const table_reader& root, machine& m) {
 
 void read_tools(const table_reader& root, machine& m) {
   for (const toml::table* t : root.tables("tool")) {
-    table_reader r(*t, "tool", root.source(), {"number", "channel", "kind"});
+    table_reader r(*t, "tool", root.source(), {"number", "channel", "kind", "length"});
     tool_def d;
     r.require("number");
     r.read("number", d.number);
@@ -383,6 +383,11 @@ void read_tools(const table_reader& root, machine& m) {
     r.read("kind", d.kind);
     if (d.kind != "turn" && d.kind != "drill" && d.kind != "mill")
       r.fail(*r.find("kind"), fmt::format("tool.kind must be turn, drill or mill, not '{}'", d.kind));
+    double length = 0;
+    if (r.read("length", length)) {
+      if (!(length > 0)) r.fail(*r.find("length"), fmt::format("tool.length must be > 0, not {}", length));
+      d.length = length;
+    }
     for (const tool_def& earlier : m.tools)
       if (earlier.number == d.number && earlier.channel == d.channel)
         r.fail(*r.find("number"),

@@ -160,10 +160,12 @@ const event_builder::rule_index& event_builder::rules() {
               "NX's machine coordinate system; NX writes the points in it already, and they are posted as "
               "given, in the work offset of the machine file",
               &b::on_coordsys),
-      ignored("MULTAX",
-              "says GOTO points carry a tool axis (i,j,k); the reader takes 3 or 6 numbers either way, and a "
-              "move whose tool axis is not along Z is an error (no rotary axis is written yet)",
-              &b::on_multax),
+      ignored(
+          "MULTAX",
+          "says GOTO points carry a tool axis (i,j,k); the reader takes 3 or 6 numbers either way. On a "
+          "channel with a kinematic chain ([[kinematics]]) a tilted axis turns the rotary axes; elsewhere a "
+          "move whose tool axis is not along Z is an error",
+          &b::on_multax),
       refused("NURBS",
               "a spline move (NX); twinpost does not cut splines into moves yet, so the move would "
               "be lost"),
@@ -188,7 +190,9 @@ const event_builder::rule_index& event_builder::rules() {
       posted("PPRINT", &b::on_text<text_kind::pprint>,
              "a comment block, cut to the machine's comment length"),
       posted("PREFUN", &b::on_aux<true>, "`Gn` in a block of its own"),
-      posted("RAPID", &b::on_rapid, "the next move is a rapid (G0)"),
+      posted("RAPID", &b::on_rapid,
+             "the next move is a rapid (G0); with a kinematic chain the rotary axes move in the same block, "
+             "not cut into sub-moves"),
       ignored("REMARK",
               "a note for the reader of the CL source (APT); PPRINT is the record for a comment in "
               "the program",
@@ -197,8 +201,13 @@ const event_builder::rule_index& event_builder::rules() {
               "rewinds a punched tape (CATIA ends with REWIND/0); a program file has nothing to "
               "rewind"),
       refused("ROTABL",
-              "it turns a rotary table or the C axis; twinpost posts no rotary positioning yet, so "
-              "later moves would cut at the wrong angle"),
+              "SolidWorks CAM writes ROTABL/angle,AAXIS (BAXIS, CAXIS),TABLE,CCLW around each operation (a "
+              "turn in radians at its start, undone in reverse order at its end): whether it turns the "
+              "table or the part's frame, and whether the points are already turned, is not known, so "
+              "later moves could cut at the wrong angle; twinpost turns rotary axes from the tool axis"),
+      refused("ROTHED",
+              "it turns a rotary head to an angle of its own; twinpost turns the heads from the tool axis "
+              "of GOTO and TLAXIS, and a head angle given apart from it could contradict it"),
       ignored("SELCTL",
               "preselects the next tool of a magazine; a turret indexes at the tool call (LOADTL, TURRET), "
               "so nothing is written",
@@ -229,8 +238,9 @@ const event_builder::rule_index& event_builder::rules() {
       ignored("TITLES", "headings for the CL listing (APT); nothing for the control",
               &b::on_text<text_kind::other>),
       posted("TLAXIS", &b::on_tlaxis,
-             "the tool axis of later moves and drilling cycles: no block; a move or cycle under an axis "
-             "not along Z is an error (no rotary axis is written yet)"),
+             "the tool axis of later moves and drilling cycles: no block; on a channel with a kinematic "
+             "chain the next GOTO turns the rotary axes to it; a drilling cycle or an arc with the rotary "
+             "axes off 0, or a move on a channel without a chain, under an axis not along Z is an error"),
       posted("TLDATA", &b::on_tool_data,
              "the tool's kind (NX: TLDATA/MILL, DRILL, TURN) chooses the spindle on a channel with a live "
              "spindle (milling and off-centre drilling: the live one); no block. The geometry is for the "

@@ -42,6 +42,16 @@ TEST_CASE("a [[kinematics]] table gives the channel's chain, with defaults", "[k
   CHECK(c.tool_direction == vec3{0, 0, 1});
   CHECK(c.tolerance == 0.001);
   CHECK(c.angle_tolerance == 0.001);
+  CHECK(c.output == multiaxis_output::joints);
+  CHECK(c.tool_tip_on == "G43.4");
+  CHECK(c.tool_tip_off == "G49");
+  CHECK(c.length_on == "G43");
+  CHECK(c.inverse_time == "G93");
+  CHECK(c.chordal_tolerance == 0.01);
+  CHECK(c.plane.empty());
+  CHECK(c.moves == multiaxis_moves::all);
+  CHECK(c.plane_index == "G53.1");
+  CHECK(c.plane_off == "G69");
   REQUIRE(c.rotaries.size() == 2);
   CHECK(c.rotaries[0].address == 'B');
   CHECK(c.rotaries[0].kind == rotary_kind::head);
@@ -76,6 +86,10 @@ TEST_CASE("errors in [[kinematics]] are reported at their place", "[kinematics][
         "m.toml:11:18: error: kinematics.tool_direction must not be the zero vector");
   CHECK(machine_error_of(k + "tolerance = 0\n") ==
         "m.toml:11:13: error: kinematics.tolerance must be > 0, not 0");
+  CHECK(machine_error_of(k + "chordal_tolerance = -1\n") ==
+        "m.toml:11:21: error: kinematics.chordal_tolerance must be > 0, not -1");
+  CHECK(machine_error_of(k + "output = \"tcp\"\n") ==
+        "m.toml:11:10: error: kinematics.output must be joints, tool_tip or vector, not 'tcp'");
   CHECK(machine_error_of(b) ==
         "m.toml:11:1: error: rotary axis B needs min and max (degrees), or continuous = true");
   CHECK(machine_error_of(b + "min = 10\nmax = -10\n") ==

@@ -157,12 +157,15 @@ TEST_CASE("built-in fanuc-31i-3path", "[machines]") {
 
 TEST_CASE("builtin_machines lists every built-in, sorted, with its description", "[machines]") {
   const std::vector<machine_summary> all = builtin_machines();
-  REQUIRE(all.size() == 5);
+  REQUIRE(all.size() == 8);
   CHECK(all[0].name == "citizen-2system");
   CHECK(all[1].name == "fanuc-0itd-twin");
   CHECK(all[2].name == "fanuc-31i-3path");
-  CHECK(all[3].name == "integrex-i200st");
-  CHECK(all[4].name == "star-3path");
+  CHECK(all[3].name == "head-head-5axis");
+  CHECK(all[4].name == "integrex-i200st");
+  CHECK(all[5].name == "rotary-4axis");
+  CHECK(all[6].name == "star-3path");
+  CHECK(all[7].name == "trunnion-5axis");
   for (const machine_summary& s : all) CHECK_FALSE(s.description.empty());
 }
 

@@ -205,12 +205,15 @@ TEST_CASE("a tool axis along Z posts and any other stops the post at the first m
   // A tilted axis (TLAXIS or on the point): one error per axis, at the first move under it.
   posted tilted = post_text(head + "TLAXIS/0,0.6,0.8\nGOTO/20,0,0\nGOTO/20,0,-5\nGOTO/20,0,-6,1,0,0\nFINI\n",
                             "axis-tilted");
-  CHECK(tilted.diagnostics ==
-        "job.cls:7:1: error: channel 1: tool axis (0,0.6,0.8) is not along Z: twinpost writes no rotary axis "
-        "yet "
-        "(B head, C axis, tool-tip control), so a tilted or radial tool cannot be posted\nGOTO/20,0,0\n^\n"
-        "job.cls:9:1: error: channel 1: tool axis (1,0,0) is not along Z: twinpost writes no rotary axis yet "
-        "(B head, C axis, tool-tip control), so a tilted or radial tool cannot be "
-        "posted\nGOTO/20,0,-6,1,0,0\n^\n");
+  CHECK(
+      tilted.diagnostics ==
+      "job.cls:7:1: error: channel 1: tool axis (0,0.6,0.8) is not along Z, and machine 'fanuc-0itd-twin' "
+      "gives "
+      "channel 1 no kinematic chain ([[kinematics]]): without rotary axes a tilted or radial tool cannot be "
+      "posted\nGOTO/20,0,0\n^\n"
+      "job.cls:9:1: error: channel 1: tool axis (1,0,0) is not along Z, and machine 'fanuc-0itd-twin' gives "
+      "channel 1 "
+      "no kinematic chain ([[kinematics]]): without rotary axes a tilted or radial tool cannot be "
+      "posted\nGOTO/20,0,-6,1,0,0\n^\n");
   CHECK(tilted.files.empty());
 }

@@ -45,8 +45,13 @@ for m in $(ls "$work/root/usr/share/twinpost/machines"); do
       || fail "machines --show $name differs from the installed file"
     continue
   fi
+  # The turning job, or for a multi-axis mill the sample that names it in its `machines` file.
+  job=$src/samples/shaft-od-drill/job.cls
+  for f in "$src"/samples/*/machines; do
+    if grep -qx "$name" "$f"; then job=$(dirname "$f")/job.cls; fi
+  done
   # No user or site folders: the installed copy must be the one found.
-  XDG_CONFIG_HOME=$work/no-config "$bin" post "$src/samples/shaft-od-drill/job.cls" --machine "$name" -o "$out" >"$work/$name.stdout"
+  XDG_CONFIG_HOME=$work/no-config "$bin" post "$job" --machine "$name" -o "$out" >"$work/$name.stdout"
   grep -qx "  machine $name ($work/root/usr/share/twinpost/machines/$name.toml)" "$work/$name.stdout" \
     || { cat "$work/$name.stdout"; fail "post did not use the installed $m"; }
   "$bin" check "$out"/* --machine "$name" >/dev/null || fail "check of the installed post for $name"

@@ -1,0 +1,396 @@
+// channel_writer on a channel with a kinematic chain ([[kinematics]]): every GOTO solved by
+// kin::inverse from the joints the machine is at, feed moves of joints output cut to the
+// chordal tolerance by kin::linearise and fed in inverse time (G93) where a rotary axis moves,
+// tool-tip control (G43.4 with the rotary values, G43.5 with I J K) as the chain says, and
+// every written point taken back through the forward transform before it goes out
+// (docs/machines.md, "Multi-axis output").
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "formats/channel_writer.hpp"
+#include "kinematics/forward.hpp"
+#include "kinematics/vec3_ops.hpp"
+
+namespace twinpost {
+
+using kin::joint_values;
+using kin::tool_pose;
+
+namespace {
+
+constexpr int rotary_decimals = 3;   // degrees, as the Fanuc posts write A/B/C
+constexpr int vector_decimals = 6;   // G43.5 I J K
+constexpr int inverse_decimals = 3;  // G93 F, 1/min
+constexpr double still = 1e-9;       // a rotary axis that moves less does not move
+
+// `v` as the control reads it after writing it with `decimals` places.
+double as_written(double v, int decimals) {
+  std::int64_t n;
+  if (!round_fixed(v, decimals, n)) return v;
+  static constexpr double scale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+  return static_cast<double>(n) / scale[decimals];
+}
+
+// The angle (degrees) of `axis` from the line of `pole` (either sense).
+double off_pole(const vec3& axis, const vec3& pole) {
+  const double a = kin::angle_between(axis, pole);
+  return std::min(a, 180 - a);
+}
+
+}  // namespace
+
+void channel_writer::tool_data_length(const tool_data_event& t, bool after_call) {
+  // NX: TLDATA/MILL, diameter, lower radius, length, taper, tip angle (cl-formats.md).
+  if (t.major != "TLDATA" || t.words.empty() || t.words.front() != "MILL" || t.values.size() < 3) return;
+  const double mm = t.values[2] * cl_mm_;
+  if (!(mm > 0)) return;
+  if (after_call) {
+    length_cl_ = mm;
+    length_known_ = length_refused_ = false;
+  } else {
+    next_length_cl_ = mm;
+  }
+}
+
+void channel_writer::multiaxis_tool(const tool_event& t, int) {
+  offset_ = t.offset.value_or(t.tool);
+  length_cl_ = next_length_cl_;
+  next_length_cl_.reset();
+  length_known_ = length_refused_ = false;
+  offset_on_ = false;
+  pose_known_ = false;  // the tool change moved the machine
+  for (axis_memory& a : last_rot_) a.known = false;
+  for (axis_memory& a : last_ijk_) a.known = false;
+}
+
+void channel_writer::multiaxis_off() {
+  if (plane_on_) close_plane();
+  if (inverse_time_) {
+    out_.block(m_.codes.feed_per_min);
+    inverse_time_ = false;
+    last_f_.clear();
+  }
+  if (offset_on_) {
+    out_.block(chain_->tool_tip_off);
+    offset_on_ = false;
+  }
+}
+
+bool channel_writer::tool_length_known(int line) {
+  if (length_known_) return true;
+  if (length_refused_) return false;  // one error per tool
+  length_refused_ = true;
+  const std::optional<double> table = m_.tool_length(ch_.number, tool_);
+  const std::string tool = fmt::format("tool {} ({} at line {})", tool_, tool_word_, tool_line_);
+  if (table && length_cl_ && std::abs(*table - *length_cl_) > chain_->tolerance) {
+    error(line, fmt::format("{}: the CL's TLDATA gives a length of {} mm, machine '{}' lists {} mm ([[tool]] "
+                            "length): which tool is in the spindle?",
+                            tool, kin::number_text(*length_cl_), m_.name, kin::number_text(*table)));
+    return false;
+  }
+  if (!table && !length_cl_) {
+    error(line, fmt::format("{} has no length: the joint values of machine '{}' depend on it (a head turns "
+                            "the tool about its pivot); give TLDATA/MILL with the length, or length = ... "
+                            "under the tool's [[tool]] in the machine file",
+                            tool, m_.name));
+    return false;
+  }
+  tool_length_ = table ? *table : *length_cl_;
+  length_known_ = true;
+  length_refused_ = false;
+  return true;
+}
+
+bool channel_writer::multiaxis_takes() {
+  const kinematic_chain& c = *chain_;
+  if (c.moves == multiaxis_moves::all || plane_on_) return true;
+  const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
+  const bool along = len > 0 && kin::angle_between(axis_, c.tool_direction) <= c.angle_tolerance;
+  const bool at_zero = std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
+                                   [](double v) { return std::abs(v) <= still; });
+  if (!along || !at_zero) return true;
+  // Back to the 3-axis writer: it writes feeds per minute or per revolution, never G93.
+  if (inverse_time_) {
+    out_.block(m_.codes.feed_per_min);
+    inverse_time_ = false;
+    last_f_.clear();
+  }
+  return false;
+}
+
+bool channel_writer::multiaxis_arc(int line) {
+  const bool at_zero = std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
+                                   [](double v) { return std::abs(v) <= still; });
+  if (!at_zero || std::abs(axis_.z) < 0.9999) {
+    std::string where;
+    for (std::size_t i = 0; i < chain_->rotaries.size(); ++i)
+      where += fmt::format(" {}{}", chain_->rotaries[i].address, kin::number_text(joints_.rotary[i]));
+    error(line,
+          fmt::format("an arc or a drilling cycle with the tool axis ({:g},{:g},{:g}) and the rotary axes "
+                      "at{}: twinpost writes them only with every rotary axis at 0 and the tool along Z; "
+                      "output the move as GOTO points",
+                      axis_.x, axis_.y, axis_.z, where));
+    return false;
+  }
+  const std::string& on =
+      chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on;
+  if (!offset_on_ && !on.empty()) {
+    error(line,
+          "an arc or a drilling cycle as the first move after a tool call: the length offset goes out "
+          "with a straight move (give a GOTO first)");
+    return false;
+  }
+  if (inverse_time_) {
+    out_.block(m_.codes.feed_per_min);
+    inverse_time_ = false;
+    last_f_.clear();
+  }
+  return true;
+}
+
+bool channel_writer::same_branch(const joint_values& from, const joint_values& to, int line) {
+  // The two solutions of one tool axis differ by about half a turn of the outer axis; the
+  // path turns it that fast only beside the pole, where the outer axis is nearly free.
+  const kin::orientation_form f = kin::orientation_of(*chain_);
+  if (f.outer < 0 || f.inner < 0) return true;
+  const double turn = kin::wrap_180(to.rotary[f.outer] - from.rotary[f.outer]);
+  if (std::abs(turn) <= 90) return true;
+  const vec3& pole = chain_->rotaries[f.outer].direction;
+  const vec3 a0 = kin::tool_axis(*chain_, from), a1 = kin::tool_axis(*chain_, to);
+  if (off_pole(a0, pole) < 1 || off_pole(a1, pole) < 1) return true;
+  auto joints_text = [&](const joint_values& j) {
+    std::string s;
+    for (std::size_t i = 0; i < chain_->rotaries.size(); ++i)
+      s += fmt::format("{}{}{}", i ? " " : "", chain_->rotaries[i].address, kin::number_text(j.rotary[i]));
+    return s;
+  };
+  error(line, fmt::format("the rotary axes would change solution inside a cut, from {} to {} ({} turns {} "
+                          "degrees while the tool cuts): retract, reposition with RAPID and re-engage",
+                          joints_text(from), joints_text(to), chain_->rotaries[f.outer].address,
+                          kin::number_text(std::abs(turn))));
+  return false;
+}
+
+void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
+  const kinematic_chain& c = *chain_;
+  const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
+  const tool_pose pose{{p.x * cl_mm_, p.y * cl_mm_, p.z * cl_mm_},
+                       len > 0 ? vec3{axis_.x / len, axis_.y / len, axis_.z / len} : axis_};
+  if (!c.plane.empty() && plane_move(rapid, pose, line)) {
+    pose_mm_ = pose;
+    return;
+  }
+  const tool_pose from = pose_mm_;
+  const bool had_from = pose_known_;
+  pose_mm_ = pose;
+  // Until the point is written the machine is not where the CL puts it: after an error the
+  // next move starts afresh (solved, not linearised from a start it never reached).
+  pose_known_ = false;
+  if ((pending_g_ == "G41" || pending_g_ == "G42") && std::abs(pose.axis.z) < 0.9999)
+    return error(line, fmt::format("cutter compensation ({}) under the tool axis ({:g},{:g},{:g}): twinpost "
+                                   "writes no 3-D compensation (G41.2/G42.2)",
+                                   pending_g_, axis_.x, axis_.y, axis_.z));
+  const bool joints = c.output == multiaxis_output::joints;
+  if (joints && chain_heads_ && !tool_length_known(line)) return;
+  // Tool-tip control: the control holds the length (H); the rotary values do not depend on it.
+  const double length = joints ? tool_length_ : 0;
+  if (rapid || !joints || !had_from) {
+    const kin::ik_result ik =
+        kin::inverse(c, pose, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
+    if (!ik.ok())
+      return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
+    if (!rapid && had_from && !same_branch(joints_, ik.joints, line)) return;
+    if (!write_point(rapid, ik.joints, pose, 0, line)) return;
+    joints_ = ik.joints;
+    pose_known_ = true;
+    return;
+  }
+  kin::linearise(c, from, joints_, pose, length, c.chordal_tolerance, lin_);
+  if (!lin_.ok()) {
+    if (lin_.error != kin::ik_error::too_many_points)
+      return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, lin_.message));
+    // Most often the move leaves the pole (the tool along the outer axis, whose angle was
+    // kept) towards an axis that needs that axis at another angle: it would turn while the
+    // tool cuts. Say so.
+    const kin::orientation_form f = kin::orientation_of(c);
+    if (f.outer >= 0 && f.inner >= 0 &&
+        kin::angle_between(from.axis, c.rotaries[f.outer].direction) <= c.angle_tolerance) {
+      const kin::ik_result end = kin::inverse(c, pose, length, joints_);
+      if (end.ok()) {
+        const rotary_axis_def& o = c.rotaries[f.outer];
+        return error(
+            line, fmt::format("{}; the move leaves the pole of {} (the tool along it, {} kept at {}) "
+                              "towards a tool axis that needs {}{}: {} would turn while the tool cuts; "
+                              "give a RAPID to the start of the cut under its tool axis",
+                              lin_.message, o.address, o.address, kin::number_text(joints_.rotary[f.outer]),
+                              o.address, kin::number_text(end.joints.rotary[f.outer]), o.address));
+      }
+    }
+    return error(line, lin_.message);
+  }
+  const double cl_length = kin::distance(from.tip, pose.tip);
+  const double feed_mm = feed_value_ / out_per_mm_;
+  double s0 = 0;
+  for (std::size_t k = 0; k < lin_.points.size(); ++k) {
+    const joint_values& j = lin_.points[k];
+    const double s = lin_.fractions[k];
+    if (!same_branch(joints_, j, line)) return;
+    double turned = 0;  // the largest rotary move of the sub-move, degrees
+    for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
+      double d = j.rotary[i] - joints_.rotary[i];
+      if (c.rotaries[i].rollover == rotary_rollover::shortest) d = kin::wrap_180(d);
+      turned = std::max(turned, std::abs(d));
+    }
+    double inverse_f = 0;
+    if (turned > still && feed_value_ > 0) {
+      if (per_rev_)
+        return error(line,
+                     "a feed per revolution on a move that turns a rotary axis: inverse-time feed (G93) "
+                     "needs a feed per minute (FEDRAT/MMPM)");
+      // The sub-move's CL length at the programmed feed; a turn on the spot: its degrees at the
+      // feed read as degrees per minute (UNVERIFIED, docs/machines.md).
+      const double sub = (s - s0) * cl_length;
+      const double minutes = sub > 1e-6 ? sub / feed_mm : turned / feed_mm;
+      inverse_f = 1 / minutes;
+    }
+    if (!write_point(false, j, kin::segment_pose(from, pose, s), inverse_f, line)) return;
+    joints_ = j;
+    s0 = s;
+  }
+  pose_known_ = true;
+}
+
+bool channel_writer::rotary_word(text_buffer& out, char address, double value, axis_memory& last,
+                                 int decimals, bool always) {
+  std::int64_t n;
+  if (!round_fixed(value, decimals, n) || !fits(address, value, decimals)) [[unlikely]] {
+    last.known = false;
+    return false;
+  }
+  const bool same = last.known && n == last.n;
+  last.known = true;
+  last.n = n;
+  last.value = value;
+  if (same && !always) return false;
+  separate(out);
+  out += address;
+  append_fixed(out, n, {decimals, m_.program.trailing_point});
+  return true;
+}
+
+bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_pose& pose, double inverse_f,
+                                 int line) {
+  const kinematic_chain& c = *chain_;
+  const bool joints = c.output == multiaxis_output::joints;
+  const bool vector = c.output == multiaxis_output::vector;
+  // The linear words: the joints, or under tool-tip control the tip itself in the part frame.
+  const vec3 lin = joints ? j.linear : pose.tip;
+  const double factor[3] = {x_factor_ * side_ * out_per_mm_, z_sign_ * out_per_mm_, z_sign_ * out_per_mm_};
+  const double nc[3] = {lin.x * factor[0], lin.y * factor[1], lin.z * factor[2]};
+  const int dec = axis_style_.decimals;
+  // The point as the control reads the words, through the forward transform.
+  joint_values read = j;
+  const vec3 lin_read{as_written(nc[0], dec) / factor[0], as_written(nc[1], dec) / factor[1],
+                      as_written(nc[2], dec) / factor[2]};
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+    read.rotary[i] = as_written(j.rotary[i], rotary_decimals);
+  const vec3 ijk{as_written(pose.axis.x, vector_decimals), as_written(pose.axis.y, vector_decimals),
+                 as_written(pose.axis.z, vector_decimals)};
+  tool_pose back;
+  if (joints) {
+    read.linear = lin_read;
+    back = kin::forward(c, read, tool_length_);
+  } else {
+    back.tip = lin_read;
+    back.axis = vector ? ijk : kin::tool_axis(c, read);
+  }
+  const double tip_error = kin::distance(back.tip, pose.tip);
+  const double axis_error = kin::angle_between(back.axis, pose.axis);
+  if (!(tip_error <= c.tolerance && axis_error <= c.angle_tolerance)) [[unlikely]] {
+    error(line,
+          fmt::format("the written point fails the forward transform: tip {} mm and tool axis {} degrees "
+                      "from the CL point ({}, {}, {}) (tolerance {} mm, {} degrees)",
+                      kin::number_text(tip_error), kin::number_text(axis_error), kin::number_text(pose.tip.x),
+                      kin::number_text(pose.tip.y), kin::number_text(pose.tip.z),
+                      kin::number_text(c.tolerance), kin::number_text(c.angle_tolerance)));
+    return false;
+  }
+
+  text_buffer& b = out_.open_block();
+  word_start_ = b.size();
+  if (!pending_g_.empty()) b += pending_g_;
+  // The feed mode before the motion code: G93 G1 ... F (the Fusion posts' order).
+  const bool to_inverse = !rapid && inverse_f > 0 && !inverse_time_;
+  const bool to_minute = !rapid && inverse_f == 0 && inverse_time_;
+  if (to_inverse) {
+    separate(b);
+    b += c.inverse_time;
+  } else if (to_minute) {
+    separate(b);
+    b += m_.codes.feed_per_min;
+  }
+  const int g = rapid ? 0 : 1;
+  if (g != motion_g_ || to_inverse || to_minute) {
+    separate(b);
+    b += rapid ? "G0" : "G1";
+  }
+  const std::string& on = joints ? c.length_on : c.tool_tip_on;
+  const bool offset_block = !offset_on_ && !on.empty();  // "": the control's offset is not the post's
+  if (offset_block) {
+    separate(b);
+    b += on;
+    b += " H";
+    b += fmt::format_int(offset_).c_str();
+  }
+  axis_memory* mem[3] = {&last_x_, &last_y_, &last_z_};
+  bool moved = false;
+  for (int i = 0; i < 3; ++i) moved = axis_word(b, c.linear[i], nc[i], *mem[i], offset_block) || moved;
+  if (vector) {
+    const double v[3] = {pose.axis.x, pose.axis.y, pose.axis.z};
+    for (int i = 0; i < 3; ++i)
+      moved = rotary_word(b, "IJK"[i], v[i], last_ijk_[i], vector_decimals, offset_block) || moved;
+  } else {
+    // The rotary words in the order of their addresses (A, B, C), as the control lists them.
+    std::size_t order[2] = {0, 1};
+    if (c.rotaries.size() == 2 && c.rotaries[1].address < c.rotaries[0].address)
+      std::swap(order[0], order[1]);
+    for (std::size_t k = 0; k < c.rotaries.size(); ++k) {
+      const std::size_t i = order[k];
+      moved =
+          rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, offset_block) ||
+          moved;
+    }
+  }
+  if (!moved) {
+    out_.drop_block();  // already there
+    word_start_ = std::string::npos;
+    return true;
+  }
+  homed_ = false;
+  pending_g_.clear();
+  motion_g_ = g;
+  if (offset_block) offset_on_ = true;
+  if (!rapid) {
+    if (feed_value_ <= 0) {
+      error(line, "feed move with no feed rate (FEDRAT) in force");
+    } else if (inverse_f > 0) {
+      if (fits('F', inverse_f, inverse_decimals)) {
+        separate(b);
+        b += 'F';
+        append_number(b, inverse_f, {inverse_decimals, m_.program.trailing_point});
+      }
+      inverse_time_ = true;
+    } else {
+      if (to_minute) last_f_.clear();
+      inverse_time_ = false;
+      append_feed(b);
+    }
+    spindle_turning(line);
+  }
+  out_.end_block();
+  word_start_ = std::string::npos;
+  return true;
+}
+
+}  // namespace twinpost

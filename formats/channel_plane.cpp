@@ -1,0 +1,176 @@
+// channel_writer on a channel whose chain has a tilted working plane (`plane = "G68.2"`): 3+2
+// work. A RAPID that turns the tool to a new axis not along Z opens a plane whose Z is that
+// axis (G68.2 with Fanuc's Z-X-Z Euler angles, then G53.1 to turn the rotary axes to it);
+// the moves under that axis are written as 3-axis X Y Z in the plane; a RAPID to another axis
+// closes it (G69). Every written point goes back through the plane's rotation to the CL tip
+// and axis, as the other multi-axis points go through the forward transform (docs/machines.md,
+// "Tilted working plane").
+#include <cmath>
+#include <fmt/format.h>
+
+#include "formats/channel_writer.hpp"
+#include "kinematics/vec3_ops.hpp"
+
+namespace twinpost {
+
+using kin::operator*;
+using kin::operator+;
+
+namespace {
+
+constexpr int euler_decimals = 3;
+
+double written(double v, int decimals) {
+  std::int64_t n;
+  if (!round_fixed(v, decimals, n)) return v;
+  static constexpr double scale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6};
+  return static_cast<double>(n) / scale[decimals];
+}
+
+}  // namespace
+
+bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line) {
+  const kinematic_chain& c = *chain_;
+  if (plane_on_) {
+    if (kin::angle_between(pose.axis, plane_frame_[2]) <= c.angle_tolerance) {
+      plane_point(rapid, pose, line);
+      return true;
+    }
+    if (!rapid) {
+      pose_known_ = false;
+      error(line, fmt::format("the tool axis turns from ({:g},{:g},{:g}) to ({:g},{:g},{:g}) in a feed move "
+                              "inside a tilted working plane ({}): a 3+2 operation keeps its axis; give a "
+                              "RAPID to change it",
+                              plane_axis_.x, plane_axis_.y, plane_axis_.z, pose.axis.x, pose.axis.y,
+                              pose.axis.z, c.plane));
+      return true;
+    }
+    close_plane();
+  }
+  // A plane opens at a rapid that turns the tool to a new axis not along the spindle's.
+  const bool turned = !pose_known_ || kin::angle_between(pose.axis, pose_mm_.axis) > c.angle_tolerance;
+  if (!rapid || !turned || kin::angle_between(pose.axis, c.tool_direction) <= c.angle_tolerance) return false;
+  // The rotary axes G53.1 turns to it must reach it within their limits.
+  const kin::ik_result ik = kin::inverse(c, pose, 0, joints_, kin::ik_need::angles);
+  if (!ik.ok()) {
+    pose_known_ = false;
+    error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
+    return true;
+  }
+  if (inverse_time_) {
+    out_.block(m_.codes.feed_per_min);
+    inverse_time_ = false;
+    last_f_.clear();
+  }
+  // G43.4/G43.5 do not go with G68.2: the plane's length offset is G43 along its Z.
+  if (offset_on_ && c.output != multiaxis_output::joints) {
+    out_.block(c.tool_tip_off);
+    offset_on_ = false;
+  }
+  // Z-X-Z Euler angles of the plane: its Z = Rz(a) Rx(b) ez = (sin a sin b, -cos a sin b,
+  // cos b); the third angle -a keeps the plane's X near the part's.
+  const vec3& k = pose.axis;
+  const double b = std::atan2(std::hypot(k.x, k.y), k.z) / kin::deg;
+  const double a = std::hypot(k.x, k.y) < 1e-12 ? 0 : std::atan2(k.x, -k.y) / kin::deg;
+  const double euler[3] = {written(a, euler_decimals), written(b, euler_decimals),
+                           written(-a, euler_decimals)};
+  // The frame as the control builds it from the written angles.
+  const vec3 z{0, 0, 1}, x{1, 0, 0};
+  auto turn = [&](const vec3& v) {
+    return kin::rotate(kin::rotate(kin::rotate(v, z, euler[2]), x, euler[1]), z, euler[0]);
+  };
+  plane_frame_[0] = turn({1, 0, 0});
+  plane_frame_[1] = turn({0, 1, 0});
+  plane_frame_[2] = turn({0, 0, 1});
+  plane_axis_ = pose.axis;
+  // The plane's origin is the work zero (X0 Y0 Z0), its angles I J K.
+  std::string b68 = c.plane;
+  const number_style style{euler_decimals, m_.program.trailing_point};
+  for (int i = 0; i < 3; ++i) {
+    b68 += fmt::format(" {}", "XYZ"[i]);
+    append_number(b68, 0.0, axis_style_);
+  }
+  for (int i = 0; i < 3; ++i) {
+    b68 += fmt::format(" {}", "IJK"[i]);
+    append_number(b68, euler[i], style);
+  }
+  out_.block(b68);
+  out_.block(c.plane_index);
+  plane_on_ = true;
+  joints_.rotary = ik.joints.rotary;
+  for (axis_memory& r : last_rot_) r.known = false;
+  forget_axes();
+  motion_g_ = -1;
+  plane_point(rapid, pose, line);
+  return true;
+}
+
+void channel_writer::close_plane() {
+  out_.block(chain_->plane_off);
+  plane_on_ = false;
+  forget_axes();
+  motion_g_ = -1;
+  pose_known_ = false;  // the next move starts from the joints, not along a CL segment
+}
+
+void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int line) {
+  const kinematic_chain& c = *chain_;
+  // The tip in the plane: p' = R^T p (the plane's origin is the work zero).
+  const vec3 p{kin::dot(plane_frame_[0], pose.tip), kin::dot(plane_frame_[1], pose.tip),
+               kin::dot(plane_frame_[2], pose.tip)};
+  const int dec = axis_style_.decimals;
+  const vec3 back = written(p.x * out_per_mm_, dec) / out_per_mm_ * plane_frame_[0] +
+                    written(p.y * out_per_mm_, dec) / out_per_mm_ * plane_frame_[1] +
+                    written(p.z * out_per_mm_, dec) / out_per_mm_ * plane_frame_[2];
+  const double tip_error = kin::distance(back, pose.tip);
+  const double axis_error = kin::angle_between(plane_frame_[2], pose.axis);
+  if (!(tip_error <= c.tolerance && axis_error <= c.angle_tolerance)) {
+    pose_known_ = false;
+    return error(
+        line,
+        fmt::format("the written point fails the tilted plane's rotation: tip {} mm and tool "
+                    "axis {} degrees from the CL point ({}, {}, {}) (tolerance {} mm, {} degrees)",
+                    kin::number_text(tip_error), kin::number_text(axis_error), kin::number_text(pose.tip.x),
+                    kin::number_text(pose.tip.y), kin::number_text(pose.tip.z), kin::number_text(c.tolerance),
+                    kin::number_text(c.angle_tolerance)));
+  }
+  text_buffer& b = out_.open_block();
+  word_start_ = b.size();
+  if (!pending_g_.empty()) b += pending_g_;
+  const int g = rapid ? 0 : 1;
+  if (g != motion_g_) {
+    separate(b);
+    b += rapid ? "G0" : "G1";
+  }
+  const bool offset_block = !offset_on_ && !c.length_on.empty();
+  if (offset_block) {
+    separate(b);
+    b += c.length_on;
+    b += " H";
+    b += fmt::format_int(offset_).c_str();
+  }
+  bool moved = axis_word(b, 'X', p.x * out_per_mm_, last_x_, offset_block);
+  moved = axis_word(b, 'Y', p.y * out_per_mm_, last_y_, offset_block) || moved;
+  moved = axis_word(b, 'Z', p.z * out_per_mm_, last_z_, offset_block) || moved;
+  if (!moved) {
+    out_.drop_block();
+  } else {
+    homed_ = false;
+    pending_g_.clear();
+    motion_g_ = g;
+    if (offset_block) offset_on_ = true;
+    if (!rapid) {
+      if (feed_value_ > 0)
+        append_feed(b);
+      else
+        error(line, "feed move with no feed rate (FEDRAT) in force");
+      spindle_turning(line);
+    }
+    out_.end_block();
+  }
+  word_start_ = std::string::npos;
+  pose_mm_ = pose;
+  pose_known_ = true;
+}
+
+}  // namespace twinpost

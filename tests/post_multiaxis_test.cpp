@@ -1,0 +1,488 @@
+// formats/channel_multiaxis: multi-axis output read back. Every block posted on a machine with
+// a kinematic chain is taken through the forward transform (as a machinist's simulator would
+// read the words) and held to the CL: each CL point is reached within the chain's tolerance,
+// every point in between lies on the CL segment, and the tip of the joints as the control
+// interpolates them stays within the chordal tolerance of the segment.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "kinematics/forward.hpp"
+#include "kinematics/linearise.hpp"
+#include "kinematics/vec3_ops.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct cl_point {
+  kin::tool_pose pose;
+  bool rapid = false;
+};
+
+// The GOTO points of a CL job (absolute, mm, i,j,k modal), and TLDATA/MILL's length.
+std::vector<cl_point> cl_points(const std::string& cl, double& length) {
+  std::vector<cl_point> out;
+  std::istringstream in(cl);
+  vec3 axis{0, 0, 1};
+  bool rapid = false;
+  for (std::string line; std::getline(in, line);) {
+    auto numbers = [&] {
+      std::vector<double> v;
+      std::string s = line.substr(line.find('/') + 1);
+      for (char& c : s)
+        if (c == ',') c = ' ';
+      std::istringstream w(s);
+      for (std::string t; w >> t;) {
+        char* end = nullptr;
+        const double d = std::strtod(t.c_str(), &end);
+        if (end && *end == 0) v.push_back(d);
+      }
+      return v;
+    };
+    if (line.rfind("RAPID", 0) == 0) rapid = true;
+    if (line.rfind("TLDATA/MILL", 0) == 0) length = numbers()[2];
+    if (line.rfind("GOTO/", 0) != 0) continue;
+    const std::vector<double> v = numbers();
+    if (v.size() == 6) {
+      const double n = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
+      axis = {v[3] / n, v[4] / n, v[5] / n};
+    }
+    out.push_back({{{v[0], v[1], v[2]}, axis}, rapid});
+    rapid = false;
+  }
+  return out;
+}
+
+// One motion block of the program: the words in force after it.
+struct nc_point {
+  kin::joint_values joints;
+  vec3 ijk{0, 0, 1};
+  bool rapid = false;
+  std::string text;
+  /// In a tilted working plane (G68.2 X0 Y0 Z0 I J K): its axes in the part frame; X Y Z are
+  /// the tip in it.
+  bool in_plane = false;
+  vec3 frame[3];
+};
+
+std::vector<nc_point> nc_points(const std::string& nc, const kinematic_chain& c) {
+  std::vector<nc_point> out;
+  std::map<char, double> words;
+  bool rapid = true, started = false, in_plane = false;
+  vec3 frame[3];
+  std::istringstream in(nc);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '(' || line[0] == '%' || line[0] == 'O') continue;
+    if (line.find("G28") != std::string::npos || line == "G53.1") continue;
+    if (line.rfind("G68.2 X0. Y0. Z0. I", 0) == 0) {
+      // Z-X-Z Euler angles: the plane's axes are Rz(I) Rx(J) Rz(K) applied to the part's.
+      double e[3];
+      REQUIRE(std::sscanf(line.c_str(), "G68.2 X0. Y0. Z0. I%lf J%lf K%lf", &e[0], &e[1], &e[2]) == 3);
+      const vec3 basis[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+      for (int i = 0; i < 3; ++i)
+        frame[i] = kin::rotate(kin::rotate(kin::rotate(basis[i], {0, 0, 1}, e[2]), {1, 0, 0}, e[1]),
+                               {0, 0, 1}, e[0]);
+      in_plane = true;
+      words.clear();
+      continue;
+    }
+    if (line == "G69") {
+      in_plane = false;
+      words.clear();
+      continue;
+    }
+    bool moves = false;
+    std::istringstream w(line);
+    for (std::string t; w >> t;) {
+      const char a = t[0];
+      const double v = std::stod(t.substr(1));
+      if (a == 'G' && (v == 0 || v == 1)) rapid = v == 0;
+      if (a == 'G' && (v == 43 || v == 43.4 || v == 43.5)) started = true;
+      if (std::string("XYZABCIJK").find(a) != std::string::npos) {
+        words[a] = v;
+        moves = true;
+      }
+    }
+    if (!moves || !started) continue;
+    nc_point p;
+    p.rapid = rapid;
+    p.text = line;
+    p.joints.linear = {words[c.linear[0]], words[c.linear[1]], words[c.linear[2]]};
+    for (std::size_t i = 0; i < c.rotaries.size(); ++i) p.joints.rotary[i] = words[c.rotaries[i].address];
+    p.ijk = {words['I'], words['J'], words['K']};
+    p.in_plane = in_plane;
+    for (int i = 0; i < 3; ++i) p.frame[i] = frame[i];
+    out.push_back(p);
+  }
+  return out;
+}
+
+// Where the words put the tool: the forward transform of the joints, or under tool-tip control
+// the tip itself with the axis of the rotary values (G43.4) or I J K (G43.5).
+kin::tool_pose pose_of(const kinematic_chain& c, const nc_point& p, double length) {
+  if (p.in_plane) {
+    const vec3& l = p.joints.linear;
+    return {kin::operator+(kin::operator+(kin::operator*(l.x, p.frame[0]), kin::operator*(l.y, p.frame[1])),
+                           kin::operator*(l.z, p.frame[2])),
+            p.frame[2]};
+  }
+  switch (c.output) {
+    case multiaxis_output::joints: return kin::forward(c, p.joints, length);
+    case multiaxis_output::tool_tip: return {p.joints.linear, kin::tool_axis(c, p.joints)};
+    case multiaxis_output::vector: break;
+  }
+  return {p.joints.linear, p.ijk};
+}
+
+// How far the axis `a` is from the great circle arc between `a0` and `a1` (degrees).
+double off_arc(const vec3& a, const vec3& a0, const vec3& a1) {
+  return kin::angle_between(a0, a) + kin::angle_between(a, a1) - kin::angle_between(a0, a1);
+}
+
+struct round_trip {
+  int cl_points = 0, blocks = 0, sub_points = 0;
+  double worst_tip = 0, worst_axis = 0;  // at the CL points
+  double worst_chord = 0;                // the joints' interpolation, from the segment
+  double largest_swing = 0;              // degrees of one rotary axis between two CL points
+  double uncut = 0;                      // the tip's worst deviation had a swing gone uncut
+};
+
+// Posts `cl` for `m` and reads every block back (see the file's comment).
+round_trip read_back(const std::string& cl, const machine& m, const std::string& tag) {
+  const test::posted p = test::post_in_fresh_dir(cl, m, tag);
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  REQUIRE(p.files.size() == 1);
+  const kinematic_chain& c = *m.chain(1);
+  double length = 0;
+  const std::vector<cl_point> cl_pts = cl_points(cl, length);
+  const std::vector<nc_point> nc = nc_points(p.files.begin()->second, c);
+  const double len = c.output == multiaxis_output::joints ? length : 0;
+  round_trip r;
+  r.blocks = static_cast<int>(nc.size());
+  std::size_t next = 0;  // the CL point the blocks are heading for
+  kin::tool_pose at;     // the last CL point reached
+  const nc_point* at_block = nullptr;
+  const nc_point* prev = nullptr;
+  for (const nc_point& b : nc) {
+    INFO(b.text);
+    const kin::tool_pose got = pose_of(c, b, len);
+    // CL points the machine is already at write no block.
+    while (next < cl_pts.size() && next > 0 && kin::distance(cl_pts[next].pose.tip, at.tip) < 1e-9 &&
+           kin::angle_between(cl_pts[next].pose.axis, at.axis) < 1e-9)
+      ++next;
+    REQUIRE(next < cl_pts.size());
+    const kin::tool_pose& target = cl_pts[next].pose;
+    const double tip = kin::distance(got.tip, target.tip), axis = kin::angle_between(got.axis, target.axis);
+    const bool feed = !b.rapid;
+    if (feed && prev && c.output == multiaxis_output::joints) {
+      // The control interpolates the joints: the tip stays near the segment all the way.
+      for (int k = 1; k < 50; ++k) {
+        const kin::joint_values j = kin::interpolate(c, prev->joints, b.joints, k / 50.0);
+        r.worst_chord = std::max(r.worst_chord,
+                                 kin::distance_to_segment(kin::forward(c, j, len).tip, at.tip, target.tip));
+      }
+    }
+    if (tip <= c.tolerance && axis <= c.angle_tolerance) {
+      r.worst_tip = std::max(r.worst_tip, tip);
+      r.worst_axis = std::max(r.worst_axis, axis);
+      if (at_block && feed && c.output == multiaxis_output::joints) {
+        for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+          r.largest_swing =
+              std::max(r.largest_swing, std::abs(b.joints.rotary[i] - at_block->joints.rotary[i]));
+        for (int k = 1; k < 50; ++k) {
+          const kin::joint_values j = kin::interpolate(c, at_block->joints, b.joints, k / 50.0);
+          r.uncut =
+              std::max(r.uncut, kin::distance_to_segment(kin::forward(c, j, len).tip, at.tip, target.tip));
+        }
+      }
+      at = target;
+      at_block = &b;
+      ++r.cl_points;
+      ++next;
+    } else {
+      // A point of a linearised move: on the segment towards the CL point.
+      REQUIRE(feed);
+      REQUIRE(next > 0);
+      CHECK(kin::distance_to_segment(got.tip, at.tip, target.tip) <= c.tolerance);
+      CHECK(off_arc(got.axis, at.axis, target.axis) <= c.angle_tolerance);
+      ++r.sub_points;
+    }
+    prev = &b;
+  }
+  // Every CL point was reached (the last ones may repeat the point before them).
+  while (next < cl_pts.size() && kin::distance(cl_pts[next].pose.tip, at.tip) < 1e-9 &&
+         kin::angle_between(cl_pts[next].pose.axis, at.axis) < 1e-9)
+    ++next;
+  CHECK(next == cl_pts.size());
+  return r;
+}
+
+std::string sample_job(const std::string& name) {
+  return read_text(std::string(TWINPOST_SOURCE_DIR) + "/samples/" + name + "/job.cls");
+}
+
+}  // namespace
+
+TEST_CASE("multi-axis: every block of the five-axis wall goes back to its CL point on the head/head mill",
+          "[post][multiaxis]") {
+  const machine m = load_machine("head-head-5axis");
+  const round_trip r = read_back(sample_job("five-axis-wall"), m, "ma-hh");
+  CHECK(r.cl_points == 13);
+  CHECK(r.sub_points > 100);
+  CHECK(r.worst_tip <= 0.005);
+  CHECK(r.worst_axis <= 0.002);
+  // The wall's tool axis swings by 30 degrees between two CL points; left uncut the tip
+  // would leave the line by millimetres, cut it stays within the chordal tolerance (0.01 mm
+  // and the words' rounding).
+  CHECK(r.largest_swing == Approx(30).margin(1e-9));
+  CHECK(r.uncut > 1.0);
+  CHECK(r.worst_chord <= 0.01 + 0.005);
+}
+
+TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on the head/head mill",
+          "[post][multiaxis]") {
+  const machine m = load_machine("head-head-5axis");
+  const round_trip r = read_back(sample_job("three-plus-two"), m, "ma-32");
+  CHECK(r.cl_points == 15);
+  CHECK(r.sub_points == 0);
+  CHECK(r.worst_tip <= 0.001);
+  CHECK(r.worst_axis <= 0.002);
+  // A feed move that turns the tool inside a plane is refused: 3+2 keeps its axis.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO T\nTLDATA/MILL,8,0,100,0,0\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,9000,CLW\n"
+      "FEDRAT/MMPM,600\nRAPID\nGOTO/20,0,40,0.2588190,0,0.9659258\n"
+      "GOTO/20,0,10,0.2588190,0,0.9659258\nGOTO/30,0,10,0,0,1\nFINI\n",
+      m, "ma-32b");
+  CHECK(p.diagnostics ==
+        "job.cls:10:1: error: channel 1: the tool axis turns from (0.258819,0,0.965926) to (0,0,1) in a feed "
+        "move "
+        "inside a tilted working plane (G68.2): a 3+2 operation keeps its axis; give a RAPID to change it\n"
+        "GOTO/30,0,10,0,0,1\n^\n");
+}
+
+TEST_CASE("multi-axis: the trunnion's G43.4 blocks give back the CL tip and axis", "[post][multiaxis]") {
+  const machine m = load_machine("trunnion-5axis");
+  const round_trip r = read_back(sample_job("five-axis-wall"), m, "ma-tt");
+  CHECK(r.cl_points == 13);
+  CHECK(r.sub_points == 0);  // the control keeps the tip on the line
+  CHECK(r.worst_tip <= 0.0005);
+  CHECK(r.worst_axis <= 0.002);
+}
+
+TEST_CASE("multi-axis: the trunnion in the vector form writes G43.5 with I J K to 6 decimals",
+          "[post][multiaxis]") {
+  const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/trunnion-vector.toml");
+  const round_trip r = read_back(sample_job("five-axis-wall"), m, "ma-tv");
+  CHECK(r.cl_points == 13);
+  CHECK(r.worst_axis <= 0.002);
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO VEC\nMULTAX/ON\nLOADTL/4\nSPINDL/RPM,5000,CLW\nFEDRAT/MMPM,500\nRAPID\nGOTO/0,0,20,0,0,1\n"
+      "GOTO/10,0,0,0.2588190,0,0.9659258\nGOTO/10,5,0,0.2588190,0,0.9659258\nFINI\n",
+      m, "ma-tv2");
+  REQUIRE(p.ok);
+  CHECK(p.files.at("VEC.nc") ==
+        "%\nO5002 (VEC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT04 M6\nS5000 M3\nG94\n"
+        "G0 G43.5 H4 X0. Y0. Z20. I0. J0. K1.\nG1 X10. Z0. I0.258819 K0.965926 F500.\nY5.\nG49\nM9\nM5\n"
+        "G91 G28 Z0.\nG90\nM30\n%\n");
+}
+
+TEST_CASE("multi-axis: the four-axis wrap on the A table, swings of 60 degrees cut to the tolerance",
+          "[post][multiaxis]") {
+  const machine m = load_machine("rotary-4axis");
+  const round_trip r = read_back(sample_job("four-axis-wrap"), m, "ma-4x");
+  CHECK(r.cl_points == 10);
+  CHECK(r.largest_swing == Approx(60).margin(1e-9));
+  CHECK(r.uncut > 1.0);
+  CHECK(r.worst_chord <= 0.01 + 0.005);
+  CHECK(r.worst_tip <= 0.005);
+}
+
+TEST_CASE("multi-axis: a head/table chain (B head over a C spindle) posts and reads back",
+          "[post][multiaxis]") {
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/head-table.toml");
+  // Its tolerance (0.001 mm) is finer than the words: B to 0.001 degree moves the tip 0.006 mm
+  // at 350 mm from the pivot (the post would stop at the forward check, as it must).
+  m.kinematics[0].tolerance = 0.01;
+  // The wall's first half (tilts about Y: B with C at 0 or 180), then a radial cut round the
+  // C axis with the tool tilted 30 degrees towards it.
+  const std::string job =
+      "PARTNO HEAD TABLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/0,0,50,0,0,1\nRAPID\nGOTO/-40,0,10,0,0,1\nGOTO/-40,0,-5,0,0,1\n"
+      "GOTO/-20,0,-5,0.2588190,0,0.9659258\nGOTO/20,0,-5,-0.2588190,0,0.9659258\n"
+      "GOTO/20,0,-5,0.5,0,0.8660254\nGOTO/0,20,-5,0,0.5,0.8660254\nGOTO/-20,0,-5,-0.5,0,0.8660254\n"
+      "RAPID\nGOTO/-20,0,50,-0.5,0,0.8660254\nFINI\n";
+  const round_trip r = read_back(job, m, "ma-ht");
+  CHECK(r.cl_points == 9);
+  CHECK(r.sub_points > 10);
+  CHECK(r.worst_tip <= 0.005);
+  CHECK(r.worst_chord <= 0.01 + 0.005);
+}
+
+namespace {
+
+// A short job on `m`: a tool with a 100 mm length (unless `tldata` is empty), a rapid to
+// (0,0,50) with the tool along Z, then `moves`.
+test::posted post_moves(const machine& m, const std::string& moves, const std::string& tag,
+                        const std::string& tldata = "TLDATA/MILL,10,0,100,0,0\n") {
+  return test::post_in_fresh_dir("PARTNO MOVES\n" + tldata +
+                                     "MULTAX/ON\nLOADTL/1\nSPINDL/RPM,5000,CLW\nFEDRAT/MMPM,500\n"
+                                     "RAPID\nGOTO/0,0,50,0,0,1\n" +
+                                     moves + "FINI\n",
+                                 m, tag);
+}
+
+}  // namespace
+
+TEST_CASE("multi-axis: a change of solution inside a cut stops the post at its GOTO", "[post][multiaxis]") {
+  // The trunnion with A limited to -30..120: a tilt of 20 degrees towards +X and then -X can
+  // keep C only with A at -20 or... A20 C90 then A-20 C90 is allowed; beyond -30 it needs A40
+  // C-90 instead of A-40 C90: C turns half round while the tool cuts.
+  machine m = load_machine("trunnion-5axis");
+  m.kinematics[0].rotaries[0].min = -30;
+  const test::posted p = post_moves(m,
+                                    "GOTO/0,0,0,0.3420201,0,0.9396926\n"
+                                    "GOTO/10,0,0,-0.6427876,0,0.7660444\n",
+                                    "ma-flip");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:10:1: error: channel 1: the rotary axes would change solution inside a cut, from A20 C90 to "
+        "A40 "
+        "C-90 (C turns 180 degrees while the tool cuts): retract, reposition with RAPID and re-engage\n"
+        "GOTO/10,0,0,-0.6427876,0,0.7660444\n^\n");
+  // As a rapid the same change is a reposition, and posts.
+  CHECK(post_moves(m, "GOTO/0,0,0,0.3420201,0,0.9396926\nRAPID\nGOTO/10,0,0,-0.6427876,0,0.7660444\n",
+                   "ma-flip2")
+            .ok);
+}
+
+TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0", "[post][multiaxis]") {
+  const machine m = load_machine("trunnion-5axis");
+  // Back to the tool along Z, C stays at 90 (the pole keeps it): the arc is refused.
+  const test::posted p = post_moves(m,
+                                    "GOTO/0,0,0,0.2588190,0,0.9659258\nGOTO/0,0,0,0,0,1\n"
+                                    "CIRCLE/0,10,0,0,0,1,10,0.06,0.5,10,0\nGOTO/10,10,0\n",
+                                    "ma-arc");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:12:1: error: channel 1: an arc or a drilling cycle with the tool axis (0,0,1) and the "
+        "rotary axes "
+        "at A0 C90: twinpost writes them only with every rotary axis at 0 and the tool along Z; output the "
+        "move as "
+        "GOTO points\nGOTO/10,10,0\n^\n");
+  // With the axes at 0 the arc is the 3-axis one, after G94 where G93 was in force.
+  const test::posted q = post_moves(load_machine("head-head-5axis"),
+                                    "GOTO/0,0,0,0,0,1\nGOTO/10,0,0,0.0871557,0,0.9961947\nGOTO/20,0,0,0,0,1\n"
+                                    "CIRCLE/20,10,0,0,0,1,10,0.06,0.5,10,0\nGOTO/30,10,0\n",
+                                    "ma-arc2");
+  INFO(q.diagnostics);
+  REQUIRE(q.ok);
+  // B swings to 5 degrees and back (8 sub-moves each way, G93), then G94 for the arc.
+  CHECK(q.files.at("MOVES.nc") ==
+        "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS5000 M3\nG94\n"
+        "G0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 F400.\n"
+        "X11.226 Z-0.095 B1.25 F400.\nX16.838 Z-0.214 B1.875 F400.\nX22.448 Z-0.381 B2.5 F400.\n"
+        "X28.056 Z-0.595 B3.125 F400.\nX33.661 Z-0.856 B3.75 F400.\nX39.264 Z-1.166 B4.375 F400.\n"
+        "X44.862 Z-1.522 B5. F400.\nX41.764 Z-1.166 B4.375 F400.\nX38.661 Z-0.856 B3.75 F400.\n"
+        "X35.556 Z-0.595 B3.125 F400.\nX32.448 Z-0.381 B2.5 F400.\nX29.338 Z-0.214 B1.875 F400.\n"
+        "X26.226 Z-0.095 B1.25 F400.\nX23.113 Z-0.024 B0.625 F400.\nX20. Z0. B0. F400.\nG94\n"
+        "G3 X30. Y10. I0. J10. F500.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+}
+
+TEST_CASE("multi-axis: the tool length from TLDATA or the tool table, never guessed", "[post][multiaxis]") {
+  machine m = load_machine("head-head-5axis");
+  const std::string tilt = "GOTO/10,0,0,0.1736482,0,0.9848078\n";
+  const test::posted none = post_moves(m, tilt, "ma-len0", "");
+  CHECK(none.diagnostics ==
+        "job.cls:7:1: error: channel 1: tool 1 (LOADTL at line 3) has no length: the joint values of machine "
+        "'head-head-5axis' depend on it (a head turns the tool about its pivot); give TLDATA/MILL with the "
+        "length, "
+        "or length = ... under the tool's [[tool]] in the machine file\nGOTO/0,0,50,0,0,1\n^\n");
+  // The table's length serves where the CL gives none; the same program as with TLDATA.
+  tool_def t;
+  t.number = 1;
+  t.kind = "mill";
+  t.length = 100;
+  m.tools.push_back(t);
+  const test::posted table = post_moves(m, tilt, "ma-len1", "");
+  const test::posted cl = post_moves(load_machine("head-head-5axis"), tilt, "ma-len2");
+  REQUIRE(table.ok);
+  REQUIRE(cl.ok);
+  CHECK(table.files == cl.files);
+  // Both, and different: which tool is in the spindle?
+  m.tools.back().length = 120;
+  CHECK(post_moves(m, tilt, "ma-len3").diagnostics ==
+        "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 4): the CL's TLDATA gives a length of 100 mm, "
+        "machine 'head-head-5axis' lists 120 mm ([[tool]] length): which tool is in the spindle?\n"
+        "GOTO/0,0,50,0,0,1\n^\n");
+}
+
+TEST_CASE("multi-axis: no feed per revolution and no 2-D compensation under a tilted tool",
+          "[post][multiaxis]") {
+  const machine m = load_machine("rotary-4axis");
+  CHECK(post_moves(m, "FEDRAT/0.1,MMPR\nGOTO/0,0,0,0,0,1\nGOTO/0,10,0,0,0.5,0.8660254\n", "ma-rev")
+            .diagnostics ==
+        "job.cls:11:1: error: channel 1: a feed per revolution on a move that turns a rotary axis: "
+        "inverse-time "
+        "feed (G93) needs a feed per minute (FEDRAT/MMPM)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
+  CHECK(post_moves(m, "CUTCOM/LEFT\nGOTO/0,10,0,0,0.5,0.8660254\n", "ma-cc").diagnostics ==
+        "job.cls:10:1: error: channel 1: cutter compensation (G41) under the tool axis (0,0.5,0.866025): "
+        "twinpost "
+        "writes no 3-D compensation (G41.2/G42.2)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
+}
+
+TEST_CASE("multi-axis: a cut that leaves the pole towards another outer angle is named as such",
+          "[post][multiaxis]") {
+  // B head over a C spindle: the tool along Z keeps C at 0; tilting it towards -Y needs C90,
+  // and C turning under the tool at (40, 40) would cut a circle into the part.
+  const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/head-table.toml");
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/40,40,5,0,0,1\nGOTO/40,40,-5,0,0,1\nGOTO/40,40,-5,0,-0.1736482,0.9848078\nFINI\n",
+      m, "ma-pole");
+  CHECK(p.diagnostics ==
+        "job.cls:9:1: error: channel 1: the move needs more than 10000 points to keep the tip within 0.01 mm "
+        "of "
+        "the line; the move leaves the pole of C (the tool along it, C kept at 0) towards a tool axis that "
+        "needs "
+        "C90: C would turn while the tool cuts; give a RAPID to the start of the cut under its tool axis\n"
+        "GOTO/40,40,-5,0,-0.1736482,0.9848078\n^\n");
+}
+
+TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z to the 3-axis writer",
+          "[post][multiaxis]") {
+  // A mill/turn head (B over a C spindle): the plunge and the last moves stay the channel's
+  // own; the tilt between goes through the chain, with G43 H and G93, then G98 again.
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/head-table.toml");
+  m.kinematics[0].moves = multiaxis_moves::tilted;
+  m.kinematics[0].tolerance = 0.01;
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO TILTED\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/40,0,5,0,0,1\nGOTO/40,0,-5,0,0,1\nGOTO/30,0,-5,0.0348995,0,0.9993908\nGOTO/20,0,-5,0,0,1\nRAPID\n"
+      "GOTO/20,0,20,0,0,1\nFINI\n",
+      m, "ma-tilted");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  CHECK(p.files.at("TILTED.nc") ==
+        "%\nO1000 (TILTED)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 X40. Y0. Z5.\nG1 Z-5. F1000.\n"
+        "G93 G1 G43 H1 X40.554 Y0. Z-5.057 B0.5 C0. F400.\nX41.108 Z-5.141 B1. F400.\n"
+        "X41.66 Z-5.251 B1.5 F400.\nX42.212 Z-5.388 B2. F400.\nX36.66 Z-5.251 B1.5 F400.\n"
+        "X31.108 Z-5.141 B1. F400.\nX25.554 Z-5.057 B0.5 F400.\nX20. Z-5. B0. F400.\nG98\nG0 Z20.\n"
+        "G49\nM30\n%\n");
+}
