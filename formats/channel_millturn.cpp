@@ -124,6 +124,7 @@ void channel_writer::clamp_c() {
   if (c_clamped_ || work_->c_axis.clamp.empty()) return;
   out_.block(work_->c_axis.clamp);
   c_clamped_ = true;
+  axes_free_ = false;
 }
 
 bool channel_writer::face_polar() const {
@@ -242,6 +243,7 @@ bool channel_writer::index_head(int line) {
   out_.end_block();
   word_start_ = std::string::npos;
   if (!h.clamp.empty()) out_.block(h.clamp);
+  axes_free_ = false;
   head_angle_ = want;
   motion_g_ = -1;  // the move block was G0 in machine coordinates
   pending_offset_ = offset;
@@ -361,6 +363,30 @@ bool channel_writer::radial_point(const vec3& p, vec3& q, int line) {
   // In the turned frame: X the part's -Z, Y the distance beside the radial line, Z the radius.
   const double ca = std::cos(a), sa = std::sin(a);
   q = {-p.z, -p.x * sa + p.y * ca, p.x * ca + p.y * sa};
+  return true;
+}
+
+bool channel_writer::millturn_to_multiaxis(int line) {
+  // A tilted tool on the mill/turn head: the multi-axis writer turns B and C together, so the
+  // spindle must be held as C, the modes of this file ended and both axes unclamped (the
+  // Fusion Integrex post's UNLOCK_MULTI_AXIS: M108, then M212).
+  if (!c_mode_) {
+    error(line,
+          fmt::format("a tilted tool axis ({:g},{:g},{:g}) needs a live tool with the spindle held as the "
+                      "C axis (SPINDL on the live spindle)",
+                      axis_.x, axis_.y, axis_.z));
+    return false;
+  }
+  leave_polar();
+  leave_radial_frame();
+  if (!axes_free_) {  // once for a stretch of tilted moves; clamping again ends it
+    if (!ch_.head_index.unclamp.empty()) out_.block(ch_.head_index.unclamp);
+    if (!work_->c_axis.unclamp.empty()) out_.block(work_->c_axis.unclamp);
+    axes_free_ = true;
+  }
+  c_clamped_ = false;
+  head_angle_.reset();  // B and C are the multi-axis writer's now: index and position again after
+  last_c_.known = false;
   return true;
 }
 

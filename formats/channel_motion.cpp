@@ -133,6 +133,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
       } else if (threading_ && !mv.rapid) {
         thread_pass(mv.pos, line);
       } else if (chain_ && multiaxis_takes()) {
+        if (has_c_ && !millturn_to_multiaxis(line)) return;
         multiaxis_move(mv.rapid, mv.pos, line);
       } else {
         linear(mv.rapid, mv.pos.x, mv.pos.y, mv.pos.z, line);

@@ -105,6 +105,12 @@ bool channel_writer::tool_length_known(int line) {
 bool channel_writer::multiaxis_takes() {
   const kinematic_chain& c = *chain_;
   if (c.moves == multiaxis_moves::all || plane_on_) return true;
+  // A mill/turn channel writes its own moves along and across the spindle axis (C positions,
+  // polar interpolation, the turned frame of cross holes): only tilted tools come here.
+  if (has_c_ && (std::abs(axis_.z) >= 0.9999 || std::abs(axis_.z) <= 1e-4) &&
+      std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
+                  [](double v) { return std::abs(v) <= still; }))
+    return false;
   const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
   const bool along = len > 0 && kin::angle_between(axis_, c.tool_direction) <= c.angle_tolerance;
   const bool at_zero = std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
@@ -340,8 +346,10 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   if (offset_block) {
     separate(b);
     b += on;
-    b += " H";
-    b += fmt::format_int(offset_).c_str();
+    if (on.find('H') == std::string::npos) {  // a code that names its register (H#3020) as it is
+      b += " H";
+      b += fmt::format_int(offset_).c_str();
+    }
   }
   axis_memory* mem[3] = {&last_x_, &last_y_, &last_z_};
   bool moved = false;

@@ -181,6 +181,9 @@ class channel_writer {
   bool radial_point(const vec3& p, vec3& q, int line);
   /// The head's tool length offset words due in the first move after indexing.
   void add_offset_words(text_buffer& b);
+  /// Before a tilted tool's move on a mill/turn head (multi-axis writer): the spindle held as
+  /// C, polar and the turned frame ended, B and C unclamped; false with the error.
+  bool millturn_to_multiaxis(int line);
   // Multi-axis output (formats/channel_multiaxis.cpp), on a channel whose machine gives it a
   // kinematic chain ([[kinematics]]): every GOTO solved by kin::inverse, feed moves of joints
   // output linearised, every written point checked by the forward transform.
@@ -287,6 +290,7 @@ class channel_writer {
   bool after_index_ = false;              // a tool was called: its offset words are due
   double c_cos_ = 1, c_sin_ = 0;          // of the C angle in force
   std::optional<double> head_angle_;      // the indexing head's angle, once written
+  bool axes_free_ = false;                // B and C unclamped for tilted (multi-axis) moves
   const spindle_def* spindle_ = nullptr;  // the spindle SPINDL codes go to (workpiece or live)
   const spindle_def* work_ = nullptr;     // the workpiece spindle the channel works on (main, sub)
   double z_sign_ = 1.0;                   // -1 on a spindle with reverse_z

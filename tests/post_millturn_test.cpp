@@ -184,3 +184,20 @@ TEST_CASE("a cross hole on a machine without a turned frame, and a feed across t
         "gives no frame for it (milling.radial_frame_on), so cross holes cannot be posted\n"
         "GOTO/40,0,-10,1,0,0\n^\n");
 }
+
+TEST_CASE("a tilted tool on the Integrex head goes to the chain: B and C unclamped and G43.4 H#3020",
+          "[post][millturn]") {
+  const std::string cl =
+      "PARTNO E\nHEAD/1\nTLDATA/MILL,6\nLOADTL/14\nSPINDL/RPM,4000,CLW\nFEDRAT/MMPM,300\nMULTAX/ON\nRAPID\n"
+      "GOTO/40,0,10,0.7071068,0,0.7071068\nGOTO/29,0,-1\nGOTO/0,29,-1,0,0.7071068,0.7071068\nRAPID\n"
+      "GOTO/0,40,10\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "tilted");
+  // B45 tilts the tool from +Z towards +X; C90 turns the point at +Y onto the head. X Y Z are
+  // the tip in the part frame (tool-tip control), X in radius.
+  CHECK(
+      head1(p, "E.EIA") ==
+      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT14 M6\nM200\n"
+      "G10.9 X0\nG97 S4000 M3\nG94\nM108\nM212\nG0 G43.4 H#3020 X40. Y0. Z10. B45. C0.\nG1 X29. Z-1. F300.\n"
+      "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG49\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+      "G0 G90 G53 Z0.\nM30\n");
+}
