@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "file_test_support.hpp"
+#include "kinematics/forward.hpp"
 #include "machines/machine_loader.hpp"
 #include "post_test_jobs.hpp"
 #include "support/vec3.hpp"
@@ -200,4 +201,28 @@ TEST_CASE("a tilted tool on the Integrex head goes to the chain: B and C unclamp
       "G10.9 X0\nG97 S4000 M3\nG94\nM108\nM212\nG0 G43.4 H#3020 X40. Y0. Z10. B45. C0.\nG1 X29. Z-1. F300.\n"
       "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG49\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
       "G0 G90 G53 Z0.\nM30\n");
+}
+
+TEST_CASE("the Integrex chain agrees with the mill/turn writer's B and C", "[post][millturn]") {
+  // The mill/turn writer indexes B0 for a tool along Z and B90 across it, and turns C to the
+  // angle of the tool axis (C = atan2(j, i)); the chain that takes tilted tools must give those
+  // same axes by its forward transform, or a job mixing the two would turn C the wrong way.
+  const machine m = load_machine("integrex-i200st");
+  const kinematic_chain& c = *m.chain(1);
+  REQUIRE(c.rotaries.size() == 2);
+  std::string seen;
+  for (const auto& [cdeg, bdeg] :
+       {std::pair{0.0, 0.0}, {0.0, 90.0}, {90.0, 90.0}, {200.0, 90.0}, {120.0, 45.0}}) {
+    kin::joint_values j;
+    for (std::size_t i = 0; i < 2; ++i) j.rotary[i] = c.rotaries[i].address == 'C' ? cdeg : bdeg;
+    const vec3 a = kin::tool_axis(c, j);
+    seen +=
+        fmt::format("C{:g} B{:g}: ({:.4f}, {:.4f}, {:.4f})\n", cdeg, bdeg, a.x + 0.0, a.y + 0.0, a.z + 0.0);
+  }
+  CHECK(seen ==
+        "C0 B0: (0.0000, 0.0000, 1.0000)\n"
+        "C0 B90: (1.0000, 0.0000, 0.0000)\n"
+        "C90 B90: (0.0000, 1.0000, 0.0000)\n"
+        "C200 B90: (-0.9397, -0.3420, 0.0000)\n"
+        "C120 B45: (-0.3536, 0.6124, 0.7071)\n");
 }
