@@ -1,6 +1,7 @@
 #include "analysis/shared_resources.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -14,6 +15,19 @@ namespace twinpost {
 namespace {
 
 bool number(std::string_view s, double& out) { return nc_number(s, out); }
+
+// Whether the block has a G, M or S (either case) anywhere: one table look-up per character,
+// cheaper than find_first_of's search of the set for each of them.
+bool has_gms(std::string_view text) {
+  static constexpr auto table = [] {
+    std::array<bool, 256> t{};
+    for (unsigned char c : std::string_view("GMSgms")) t[c] = true;
+    return t;
+  }();
+  for (const char c : text)
+    if (table[static_cast<unsigned char>(c)]) return true;
+  return false;
+}
 
 // The G number of a one-word code ("G99" -> 99); nullopt when the code is not one G word.
 std::optional<double> g_number(std::string_view code) {
@@ -57,8 +71,9 @@ struct cut_rec {
 };
 
 struct channel_data {
-  channel_data(const machine& m, int number) : spindles(m, number) {}
+  channel_data(const machine& m, int number) : spindles(m, number), quiet_without_gms(spindles.needs_gms()) {}
   channel_spindles spindles;
+  bool quiet_without_gms;  // a block without G, M or S cannot command a spindle
   int seg = 0;
   bool per_rev = false;
   int motion = -1;
@@ -150,10 +165,11 @@ struct shared_resources::impl {
     if (channel < 1 || static_cast<std::size_t>(channel) > channels.size()) return;
     channel_data& c = channels[static_cast<std::size_t>(channel - 1)];
     // Most blocks are moves with no G, M or S word: they change nothing here, and a cut among
-    // them counts only when it is the first of its stretch (already noted otherwise).
-    if (text.find_first_of("GMSgms") == std::string_view::npos && c.has_cut_key && c.last_seg == c.seg &&
-        c.last_spindle == c.spindles.current() &&
-        c.last_turns == c.turns[static_cast<std::size_t>(c.last_spindle)].size())
+    // them counts only in feed per revolution, when it is the first of its stretch (already
+    // noted otherwise).
+    if (c.quiet_without_gms && !has_gms(text) &&
+        (!c.per_rev || (c.has_cut_key && c.last_seg == c.seg && c.last_spindle == c.spindles.current() &&
+                        c.last_turns == c.turns[static_cast<std::size_t>(c.last_spindle)].size())))
       return;
     split_nc_words(text, words_);
     const std::vector<nc_word>& words = words_;

@@ -57,6 +57,17 @@ bool channel_spindles::is_code(const std::vector<nc_word>& words, const std::vec
   return code.size() == 1 && has_word(words, code[0], column);
 }
 
+bool channel_spindles::needs_gms() const {
+  const auto gms = [](const std::vector<nc_word>& code) {
+    for (const nc_word& w : code)
+      if (w.address != 'G' && w.address != 'M' && w.address != 'S') return false;
+    return true;
+  };
+  for (const std::vector<nc_word>& code : offset_codes_)
+    if (!gms(code)) return false;
+  return gms(css_code_) && gms(rpm_code_);
+}
+
 bool channel_spindles::is_clamp(const std::vector<nc_word>& words, int spindle) const {
   const clamp_block& c = clamps_[static_cast<std::size_t>(spindle)];
   if (c.fixed.empty()) return false;

@@ -68,6 +68,10 @@ class channel_spindles {
   const spindle_setting& setting(int spindle) const { return settings_[static_cast<std::size_t>(spindle)]; }
   /// The channel's speed mode (G96/G97 are modal per channel).
   speed_mode mode() const { return mode_; }
+  /// True when every code apply() reads is a G, M or S word (the work offsets and the speed
+  /// modes; the spindle codes are M and S anyway): a block without those letters changes
+  /// nothing here.
+  bool needs_gms() const;
   /// The rpm of the current spindle with the tool at `diameter` (in the program's unit; `inch`:
   /// G20, CSS in ft/min). CSS is turned into rpm at that diameter and held to the clamp and
   /// the spindle's max_rpm; 0 when the spindle is not turning or its speed is unknown.

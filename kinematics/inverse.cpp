@@ -133,7 +133,8 @@ joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_va
                        double tool_length) {
   joint_values j = angles;
   j.linear = {};
-  j.linear = part_to_machine(c, j, tip) - head_offset(c, j, tool_length);
+  const joint_turns r(c, j);
+  j.linear = part_to_machine(c, r, tip) - head_offset(c, r, tool_length);
   return j;
 }
 
@@ -160,6 +161,7 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     int misses;  // preferred signs not met
     double total, outer;
     double tip_error, axis_error;
+    std::array<double, 2> raw{};  // the angles as solved, before placing them within the limits
   };
   two_at_most<candidate> fitting;
   // Candidates with an axis beyond its limits, for the message only: formatted when nothing fits.
@@ -169,14 +171,18 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
   };
   two_at_most<refused> beyond;
   const orientation_form f = orientation_of(c);
-  for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
-    // Generate, then verify: a candidate the forward transform does not confirm is no solution.
+  // Generate, then verify: a candidate the forward transform does not confirm is no solution.
+  // The check is made on the candidates in the order they are chosen, and stops at the first
+  // that holds (placing the angles below moves them by whole turns only: the same axis).
+  const auto axis_error_of = [&](const std::array<double, 2>& rotary) {
     joint_values raw;
-    raw.rotary = s.rotary;
-    const double axis_error = angle_between(tool_axis(c, raw), k);
-    if (axis_error > c.angle_tolerance) continue;
-    // (placing the angles below moves them by whole turns only: the same axis)
-    candidate cand{raw, s.pole, 0, 0, 0, 0, axis_error};
+    raw.rotary = rotary;
+    return angle_between(tool_axis(c, raw), k);
+  };
+  for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
+    candidate cand{{}, s.pole, 0, 0, 0, 0, 0};
+    cand.raw = s.rotary;
+    cand.j.rotary = s.rotary;
     refused why{s.rotary, {false, false}};
     for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
       const rotary_axis_def& a = c.rotaries[i];
@@ -191,7 +197,7 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
       if (!meets(a.prefer, v->value)) ++cand.misses;
     }
     if (why.beyond[0] || why.beyond[1]) {
-      beyond.push_back(why);
+      if (axis_error_of(s.rotary) <= c.angle_tolerance) beyond.push_back(why);
       continue;
     }
     fitting.push_back(cand);
@@ -214,9 +220,13 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
   if (n == 2 && better(order[1], order[0])) std::swap(order[0], order[1]);
   for (std::size_t i = 0; i < n; ++i) {
     candidate& cand = order[i];
-    if (need == ik_need::joints) {
-      cand.j = positions(c, want.tip, cand.j, tool_length);
-      const tool_pose got = forward(c, cand.j, tool_length);
+    if (need != ik_need::joints) {
+      cand.axis_error = axis_error_of(cand.raw);
+      if (cand.axis_error > c.angle_tolerance) continue;
+    } else {                               // the forward transform of the joints below checks the axis too
+      const joint_turns turns(c, cand.j);  // the angles' sines, for the positions and their check
+      cand.j.linear = part_to_machine(c, turns, want.tip) - head_offset(c, turns, tool_length);
+      const tool_pose got = forward(c, cand.j, tool_length, turns);
       cand.tip_error = distance(got.tip, want.tip);
       cand.axis_error = angle_between(got.axis, k);
       if (cand.tip_error > c.tolerance || cand.axis_error > c.angle_tolerance) continue;

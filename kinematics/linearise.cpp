@@ -56,7 +56,7 @@ struct splitter {
     double d = 0;
     for (double t : {0.25, 0.5, 0.75})
       d = std::max(
-          d, distance_to_segment(forward(c, interpolate(c, j0, j1, t), tool_length).tip, from.tip, to.tip));
+          d, distance_to_segment(forward_tip(c, interpolate(c, j0, j1, t), tool_length), from.tip, to.tip));
     return d;
   }
 

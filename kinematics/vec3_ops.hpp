@@ -21,22 +21,42 @@ inline double norm(const vec3& a) { return std::sqrt(dot(a, a)); }
 inline double distance(const vec3& a, const vec3& b) { return norm(a - b); }
 /// The angle between two non-zero vectors in degrees, accurate near 0 (atan2, not acos).
 inline double angle_between(const vec3& a, const vec3& b) {
-  return std::atan2(norm(cross(a, b)), dot(a, b)) / deg;
+  const double n = norm(cross(a, b)), d = dot(a, b);
+  if (d > 0 && n < 1e-3 * d) {
+    // Nearly parallel, as every checked axis is: atan x = x - x³/3 + x⁵/5 - ..., the terms
+    // left out below x⁶/7 < 2e-19 of the result, under the last bit of a double.
+    const double x = n / d, x2 = x * x;
+    return x * (1 - x2 * (1.0 / 3 - x2 * (1.0 / 5))) / deg;
+  }
+  return std::atan2(n, d) / deg;
 }
 
-/// `v` turned by `degrees` right-handed about the unit direction `d` (Rodrigues).
-inline vec3 rotate(const vec3& v, const vec3& d, double degrees) {
-  const double c = std::cos(degrees * deg), s = std::sin(degrees * deg);
-  return c * v + s * cross(d, v) + ((1 - c) * dot(d, v)) * d;
-}
+/// A rotation's cosine and sine, computed once for all the vectors it turns.
+struct turn {
+  double c = 1, s = 0;
+};
+inline turn turn_of(double degrees) { return {std::cos(degrees * deg), std::sin(degrees * deg)}; }
+/// The same rotation the other way (cos and sin of -x are those of x, the sine negated: the
+/// same bits as turn_of(-degrees)).
+inline turn reversed(const turn& t) { return {t.c, -t.s}; }
 
-/// The point `p` turned by `degrees` about the axis of direction `d` through `on`.
-inline vec3 rotate_about(const vec3& p, const vec3& d, const vec3& on, double degrees) {
-  return rotate(p - on, d, degrees) + on;
+/// `v` turned by `t` right-handed about the unit direction `d` (Rodrigues).
+inline vec3 rotate(const vec3& v, const vec3& d, const turn& t) {
+  return t.c * v + t.s * cross(d, v) + ((1 - t.c) * dot(d, v)) * d;
+}
+/// `v` turned by `degrees` right-handed about the unit direction `d`.
+inline vec3 rotate(const vec3& v, const vec3& d, double degrees) { return rotate(v, d, turn_of(degrees)); }
+
+/// The point `p` turned by `t` about the axis of direction `d` through `on`.
+inline vec3 rotate_about(const vec3& p, const vec3& d, const vec3& on, const turn& t) {
+  return rotate(p - on, d, t) + on;
 }
 
 /// `a` - `b` wrapped into [-180, 180] degrees (std::remainder: correct for negative values,
 /// which std::fmod is not).
-inline double wrap_180(double a) { return std::remainder(a, 360.0); }
+inline double wrap_180(double a) {
+  if (a >= -180.0 && a <= 180.0) return a;  // what std::remainder gives there, bit for bit
+  return std::remainder(a, 360.0);
+}
 
 }  // namespace twinpost::kin
