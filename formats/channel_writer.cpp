@@ -1,6 +1,7 @@
 #include "formats/channel_writer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -60,6 +61,14 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
 
 void channel_writer::note_line(std::string_view line) {
   if (line.empty() || line.front() == m_.program.comment_open) return;
+  // Most blocks are moves without G, M or S: one table look-up per character says so.
+  static constexpr auto gms = [] {
+    std::array<bool, 256> t{};
+    t['G'] = t['M'] = t['S'] = true;
+    return t;
+  }();
+  if (std::none_of(line.begin(), line.end(), [](char c) { return gms[static_cast<unsigned char>(c)]; }))
+    return;
   bool sm = false, cut = false;
   for (std::size_t i = 0; i < line.size(); ++i) {
     const char c = line[i];

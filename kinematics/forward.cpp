@@ -44,8 +44,9 @@ vec3 part_to_machine(const kinematic_chain& c, const joint_turns& r, const vec3&
   return q;
 }
 
-vec3 tool_axis(const kinematic_chain& c, const joint_values& j) {
-  const joint_turns r(c, j);
+vec3 tool_axis(const kinematic_chain& c, const joint_values& j) { return tool_axis(c, joint_turns(c, j)); }
+
+vec3 tool_axis(const kinematic_chain& c, const joint_turns& r) {
   vec3 axis = c.tool_direction;
   for (std::size_t i = c.rotaries.size(); i-- > 0;)  // the heads, the inner one first
     if (c.rotaries[i].kind == rotary_kind::head) axis = rotate(axis, c.rotaries[i].direction, r.t[i]);

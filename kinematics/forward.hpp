@@ -15,6 +15,7 @@ struct joint_turns {
   joint_turns(const kinematic_chain& c, const joint_values& j) {
     for (std::size_t i = 0; i < c.rotaries.size() && i < t.size(); ++i) t[i] = turn_of(j.rotary[i]);
   }
+  explicit joint_turns(const std::array<turn, 2>& known) : t(known) {}
 };
 
 /// Where the tool of length `tool_length` (gauge point to tip, mm) is, and which way it
@@ -26,6 +27,7 @@ vec3 forward_tip(const kinematic_chain& c, const joint_values& j, double tool_le
 
 /// The tool axis alone of forward(), in the part frame.
 vec3 tool_axis(const kinematic_chain& c, const joint_values& j);
+vec3 tool_axis(const kinematic_chain& c, const joint_turns& r);
 
 /// The tool tip relative to the linear axes' position, with the heads at `j` (the heads' part
 /// of the forward transform): the linear values are the tip's place when every head is at 0.

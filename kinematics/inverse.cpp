@@ -19,11 +19,16 @@ constexpr double pole_sine = 1e-9;
 
 // The angle (degrees) that turns `from` to `to` about the unit `d`, both taken perpendicular
 // to it; nullopt when either has no perpendicular part.
-std::optional<double> angle_about(const vec3& d, const vec3& from, const vec3& to) {
+struct angle_and_turn {
+  double degrees;
+  turn sides;  // its cosine and sine, from the sides atan2 was given
+};
+std::optional<angle_and_turn> angle_about(const vec3& d, const vec3& from, const vec3& to) {
   const vec3 f = from - dot(d, from) * d;
   const vec3 t = to - dot(d, to) * d;
   if (norm(f) < pole_sine || norm(t) < pole_sine) return std::nullopt;
-  return std::atan2(dot(d, cross(f, t)), dot(f, t)) / deg;
+  const double y = dot(d, cross(f, t)), x = dot(f, t), h = std::sqrt(x * x + y * y);  // |x|, |y| <= 1
+  return angle_and_turn{std::atan2(y, x) / deg, {x / h, y / h}};
 }
 
 std::string axis_text(const vec3& k) {
@@ -79,10 +84,12 @@ two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c
   // The outer angle that turns `v` (the tool after the inner rotation) to k, or the previous
   // one at the pole.
   auto outer_angle = [&](const vec3& v, orientation_solution& s) {
-    if (const std::optional<double> a = angle_about(dout, v, k)) {
-      s.rotary[f.outer] = f.outer_sign * *a;
+    if (const std::optional<angle_and_turn> a = angle_about(dout, v, k)) {
+      s.rotary[f.outer] = f.outer_sign * a->degrees;
+      s.turns[f.outer] = {a->sides.c, f.outer_sign * a->sides.s};
     } else {
       s.rotary[f.outer] = previous.rotary[f.outer];
+      s.turns[f.outer] = turn_of(s.rotary[f.outer]);
       s.pole = true;
     }
   };
@@ -113,12 +120,20 @@ two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c
   // Well beyond the circle the inner axis sweeps: unreachable. Just beyond it (about 0.08°):
   // on its edge, and the forward check holds the result to the chain's angle tolerance.
   if (r_minus_e < -1e-6 || r_plus_e < -1e-6) return out;
+  const double sin_half = std::sqrt(std::max(0.0, r_minus_e * r_plus_e)), cos_half = dk - a;
   const double base = std::atan2(cc, b) / deg;
-  const double half = std::atan2(std::sqrt(std::max(0.0, r_minus_e * r_plus_e)), dk - a) / deg;
-  for (double phi : {base + half, base - half}) {
+  const double half = std::atan2(sin_half, cos_half) / deg;
+  // The cosine and sine of base ± half by the sum formulas, from the sides of the two angles
+  // (no sincos: an inverse runs once per CL point).
+  const double rh = std::sqrt(sin_half * sin_half + cos_half * cos_half);  // both below 3
+  const double cb = b / r, sb = cc / r, ch = rh > 0 ? cos_half / rh : 1, sh = rh > 0 ? sin_half / rh : 0;
+  for (const double pm : {1.0, -1.0}) {
+    const double phi = base + pm * half;
+    const turn by{cb * ch - pm * sb * sh, sb * ch + pm * cb * sh};
     orientation_solution s;
     s.rotary[f.inner] = f.inner_sign * wrap_180(phi);
-    outer_angle(rotate(t0, din, phi), s);
+    s.turns[f.inner] = {by.c, f.inner_sign * by.s};
+    outer_angle(rotate(t0, din, by), s);
     if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
     if (s.rotary[f.inner] == -180.0) s.rotary[f.inner] = 180.0;
     const bool twin = !out.empty() &&
@@ -162,6 +177,7 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     double total, outer;
     double tip_error, axis_error;
     std::array<double, 2> raw{};  // the angles as solved, before placing them within the limits
+    std::array<turn, 2> turns{};  // their rotations (whole turns added below change neither)
   };
   two_at_most<candidate> fitting;
   // Candidates with an axis beyond its limits, for the message only: formatted when nothing fits.
@@ -182,6 +198,7 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
   for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
     candidate cand{{}, s.pole, 0, 0, 0, 0, 0};
     cand.raw = s.rotary;
+    cand.turns = s.turns;
     cand.j.rotary = s.rotary;
     refused why{s.rotary, {false, false}};
     for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
@@ -197,7 +214,7 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
       if (!meets(a.prefer, v->value)) ++cand.misses;
     }
     if (why.beyond[0] || why.beyond[1]) {
-      if (axis_error_of(s.rotary) <= c.angle_tolerance) beyond.push_back(why);
+      beyond.push_back(why);  // checked below, if it comes to the message
       continue;
     }
     fitting.push_back(cand);
@@ -220,11 +237,11 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
   if (n == 2 && better(order[1], order[0])) std::swap(order[0], order[1]);
   for (std::size_t i = 0; i < n; ++i) {
     candidate& cand = order[i];
+    const joint_turns turns(cand.turns);
     if (need != ik_need::joints) {
-      cand.axis_error = axis_error_of(cand.raw);
+      cand.axis_error = angle_between(tool_axis(c, turns), k);
       if (cand.axis_error > c.angle_tolerance) continue;
-    } else {                               // the forward transform of the joints below checks the axis too
-      const joint_turns turns(c, cand.j);  // the angles' sines, for the positions and their check
+    } else {  // the forward transform of the joints below checks the axis too
       cand.j.linear = part_to_machine(c, turns, want.tip) - head_offset(c, turns, tool_length);
       const tool_pose got = forward(c, cand.j, tool_length, turns);
       cand.tip_error = distance(got.tip, want.tip);
@@ -237,7 +254,11 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     r.axis_error = cand.axis_error;
     return r;
   }
-  {  // nothing fits: why
+  {  // nothing fits: why (of the candidates beyond a limit, those the forward transform confirms)
+    two_at_most<refused> confirmed;
+    for (const refused& b : beyond)
+      if (axis_error_of(b.rotary) <= c.angle_tolerance) confirmed.push_back(b);
+    beyond = confirmed;
     if (beyond.empty()) {
       r.error = ik_error::unreachable;
       if (c.rotaries.empty()) {

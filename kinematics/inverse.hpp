@@ -8,6 +8,7 @@
 #include <string>
 
 #include "kinematics/chain.hpp"
+#include "kinematics/vec3_ops.hpp"
 
 namespace twinpost::kin {
 
@@ -15,6 +16,9 @@ namespace twinpost::kin {
 struct orientation_solution {
   std::array<double, 2> rotary{};
   bool pole = false;  ///< the axis lay on the outer rotary axis: its angle was kept from `previous`
+  /// Each axis's rotation as solved (the cosine and sine of its value), from the sides of the
+  /// solve's angles: the transforms of the candidate need no sincos of their own.
+  std::array<turn, 2> turns{};
 };
 
 /// At most two values, without allocation (an inverse runs once per CL point).

@@ -51,13 +51,20 @@ struct splitter {
   // The CL point a fraction `s` of the way along the segment; the end itself at 1.
   tool_pose at(double s) const { return segment_pose(from, to, s); }
 
-  // The largest distance from the segment of the tip of the joints between j0 and j1.
+  const vec3 ab = to.tip - from.tip;  // the segment, for distance_to_segment's sums, once
+  const double len2 = dot(ab, ab);
+
+  // The largest distance from the segment of the tip of the joints between j0 and j1: the
+  // sums of distance_to_segment(), the square root taken once of the largest square.
   double deviation(const joint_values& j0, const joint_values& j1) const {
-    double d = 0;
-    for (double t : {0.25, 0.5, 0.75})
-      d = std::max(
-          d, distance_to_segment(forward_tip(c, interpolate(c, j0, j1, t), tool_length), from.tip, to.tip));
-    return d;
+    double d2 = 0;
+    for (double t : {0.25, 0.5, 0.75}) {
+      const vec3 p = forward_tip(c, interpolate(c, j0, j1, t), tool_length);
+      const double s = len2 > 0 ? std::clamp(dot(p - from.tip, ab) / len2, 0.0, 1.0) : 0.0;
+      const vec3 off = p - (from.tip + s * ab);
+      d2 = std::max(d2, dot(off, off));
+    }
+    return std::sqrt(d2);
   }
 
   bool fail(ik_error e, std::string message) {

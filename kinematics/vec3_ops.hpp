@@ -42,6 +42,19 @@ inline turn reversed(const turn& t) { return {t.c, -t.s}; }
 
 /// `v` turned by `t` right-handed about the unit direction `d` (Rodrigues).
 inline vec3 rotate(const vec3& v, const vec3& d, const turn& t) {
+  // About a machine axis (most rotary axes are), the two components that turn alone.
+  if (d.y == 0 && d.z == 0 && (d.x == 1 || d.x == -1)) {
+    const double s = d.x * t.s;
+    return {v.x, t.c * v.y - s * v.z, s * v.y + t.c * v.z};
+  }
+  if (d.x == 0 && d.z == 0 && (d.y == 1 || d.y == -1)) {
+    const double s = d.y * t.s;
+    return {t.c * v.x + s * v.z, v.y, t.c * v.z - s * v.x};
+  }
+  if (d.x == 0 && d.y == 0 && (d.z == 1 || d.z == -1)) {
+    const double s = d.z * t.s;
+    return {t.c * v.x - s * v.y, s * v.x + t.c * v.y, v.z};
+  }
   return t.c * v + t.s * cross(d, v) + ((1 - t.c) * dot(d, v)) * d;
 }
 /// `v` turned by `degrees` right-handed about the unit direction `d`.
