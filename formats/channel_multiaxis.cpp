@@ -269,8 +269,13 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
 
 bool channel_writer::rotary_word(text_buffer& out, char address, double value, axis_memory& last,
                                  int decimals, bool always) {
+  if (last.max == 0) [[unlikely]] {  // the control's largest count for the address, once
+    const word_format& f = m_.formats[address];
+    last.max = f.whole == 0 ? INT64_MAX : f.max_count(decimals);
+  }
   std::int64_t n;
-  if (!round_fixed(value, decimals, n) || !fits(address, value, decimals)) [[unlikely]] {
+  if (!round_fixed(value, decimals, n) || n > last.max || n < -last.max) [[unlikely]] {
+    misfit(address, value);  // past what the control reads: the post stops here
     last.known = false;
     return false;
   }
@@ -301,15 +306,16 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
                       as_written(nc[2], dec) / factor[2]};
   for (std::size_t i = 0; i < c.rotaries.size(); ++i)
     read.rotary[i] = as_written(j.rotary[i], rotary_decimals);
-  const vec3 ijk{as_written(pose.axis.x, vector_decimals), as_written(pose.axis.y, vector_decimals),
-                 as_written(pose.axis.z, vector_decimals)};
   tool_pose back;
   if (joints) {
     read.linear = lin_read;
     back = kin::forward(c, read, tool_length_);
   } else {
     back.tip = lin_read;
-    back.axis = vector ? ijk : kin::tool_axis(c, read);
+    back.axis = vector
+                    ? vec3{as_written(pose.axis.x, vector_decimals), as_written(pose.axis.y, vector_decimals),
+                           as_written(pose.axis.z, vector_decimals)}
+                    : kin::tool_axis(c, read);
   }
   const double tip_error = kin::distance(back.tip, pose.tip);
   const double axis_error = kin::angle_between(back.axis, pose.axis);

@@ -54,8 +54,9 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   if (chain_) {
     for (const rotary_axis_def& r : chain_->rotaries)
       chain_heads_ = chain_heads_ || r.kind == rotary_kind::head;
-    for (axis_memory& a : last_rot_) a.max = INT64_MAX;
-    for (axis_memory& a : last_ijk_) a.max = INT64_MAX;
+    // The rotary words' and I J K's largest counts are set by their first word (rotary_word).
+    for (axis_memory& a : last_rot_) a.max = 0;
+    for (axis_memory& a : last_ijk_) a.max = 0;
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -55,6 +56,9 @@ std::optional<fitted> fit(const rotary_axis_def& a, double v, double prev) {
     if (w >= 360.0) w -= 360.0;
     return fitted{w, std::abs(d)};
   }
+  // Within the limits and less than half a turn from the previous value: itself (what the
+  // search below gives there, k = 0).
+  if (v >= *a.min && v <= *a.max && std::abs(prev - v) < 180.0) return fitted{v, std::abs(v - prev)};
   constexpr double slack = 1e-9;  // a value on a limit, give or take the rounding of the solve
   const double kmin = std::ceil((*a.min - slack - v) / 360.0);
   const double kmax = std::floor((*a.max + slack - v) / 360.0);
@@ -67,6 +71,30 @@ std::optional<fitted> fit(const rotary_axis_def& a, double v, double prev) {
 bool meets(preferred_sign p, double v) {
   constexpr double zero = 1e-9;
   return p == preferred_sign::none || (p == preferred_sign::positive ? v >= -zero : v <= zero);
+}
+
+// The constants of the inner rotation's equation a + b·cos φ + c·sin φ = dout·k for the axes
+// `dout` (outer), `din` (inner) and the tool direction `t0`: a = (dout·din)(din·t0),
+// b = dout·t0 − a, c = dout·(din × t0), r = |(b, c)|, and the angle of (b, c) with its cosine
+// and sine. They depend on the chain alone: the last set is kept, keyed by the three vectors
+// themselves (so a chain at the same address with other axes cannot reuse them).
+struct inner_equation {
+  vec3 dout, din, t0;
+  double a = 0, b = 0, c = 0, r = 0, base = 0, cos_base = 1, sin_base = 0;
+};
+const inner_equation& inner_equation_of(const vec3& dout, const vec3& din, const vec3& t0) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  thread_local inner_equation last{{nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan}};
+  const auto same = [](const vec3& x, const vec3& y) { return x.x == y.x && x.y == y.y && x.z == y.z; };
+  if (same(last.dout, dout) && same(last.din, din) && same(last.t0, t0)) return last;
+  last.dout = dout, last.din = din, last.t0 = t0;
+  last.a = dot(dout, din) * dot(din, t0);
+  last.b = dot(dout, t0) - last.a;
+  last.c = dot(dout, cross(din, t0));
+  last.r = std::hypot(last.b, last.c);
+  last.base = std::atan2(last.c, last.b) / deg;
+  if (last.r > 0) last.cos_base = last.b / last.r, last.sin_base = last.c / last.r;
+  return last;
 }
 
 }  // namespace
@@ -102,10 +130,8 @@ two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c
   // The outer rotation keeps the component along its axis: dout·R(inner, φ)·t0 = dout·k, which
   // by Rodrigues reads a + b·cos φ + c·sin φ = dout·k.
   const vec3& din = c.rotaries[f.inner].direction;
-  const double a = dot(dout, din) * dot(din, t0);
-  const double b = dot(dout, t0) - a;
-  const double cc = dot(dout, cross(din, t0));
-  const double r = std::hypot(b, cc);
+  const inner_equation& eq = inner_equation_of(dout, din, t0);
+  const double a = eq.a, r = eq.r;
   if (r < 1e-12) return out;  // the inner axis cannot change it (rejected by the loader)
   // φ = base ± half with cos half = e / r, e = dout·k - a. Not acos(e / r): near the pole (e ≈ r)
   // it loses half the digits. sin half = sqrt((r - e)(r + e)) / r, with r ∓ e written through
@@ -121,12 +147,13 @@ two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c
   // on its edge, and the forward check holds the result to the chain's angle tolerance.
   if (r_minus_e < -1e-6 || r_plus_e < -1e-6) return out;
   const double sin_half = std::sqrt(std::max(0.0, r_minus_e * r_plus_e)), cos_half = dk - a;
-  const double base = std::atan2(cc, b) / deg;
+  const double base = eq.base;
   const double half = std::atan2(sin_half, cos_half) / deg;
   // The cosine and sine of base ± half by the sum formulas, from the sides of the two angles
   // (no sincos: an inverse runs once per CL point).
   const double rh = std::sqrt(sin_half * sin_half + cos_half * cos_half);  // both below 3
-  const double cb = b / r, sb = cc / r, ch = rh > 0 ? cos_half / rh : 1, sh = rh > 0 ? sin_half / rh : 0;
+  const double cb = eq.cos_base, sb = eq.sin_base, ch = rh > 0 ? cos_half / rh : 1,
+               sh = rh > 0 ? sin_half / rh : 0;
   for (const double pm : {1.0, -1.0}) {
     const double phi = base + pm * half;
     const turn by{cb * ch - pm * sb * sh, sb * ch + pm * cb * sh};
