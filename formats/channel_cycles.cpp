@@ -116,6 +116,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   vec3 at = p;
   const bool cross = has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4;
   if (cross && !radial_point(p, at, line)) return;
+  if (cross) clamp_c();  // at the angle cylindrical interpolation left C at, C is still free
   struct frame_points {
     bool& flag;
     ~frame_points() { flag = false; }
