@@ -259,8 +259,10 @@ TEST_CASE("the wrapped groove comes back to every CL point to the micron, on the
       test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/samples/millturn-wrap-groove/job.cls");
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "wrap");
   REQUIRE(p.ok);
-  const std::string program = head1(p, "MILLTURN-WRAP-GROOVE.EIA");
-  const std::vector<vec3> want = cl_points(cl), got = tips(program);
+  // The groove (OP10): its program up to the next operation, its CL points up to OP20's.
+  const std::string all = head1(p, "MILLTURN-WRAP-GROOVE.EIA");
+  const std::string program = all.substr(0, all.find("(OP20"));
+  const std::vector<vec3> want = cl_points(cl.substr(0, cl.find("PPRINT OP20"))), got = tips(program);
   REQUIRE(got.size() == want.size());
   double worst = 0;
   std::string far;
@@ -367,4 +369,39 @@ TEST_CASE("milling on the diameter refuses what cylindrical interpolation cannot
         "job.cls:9:1: error: channel 1: a feed move with the tool across the spindle axis on the sub "
         "spindle: twinpost writes cylindrical interpolation on the main spindle only (the second spindle's C "
         "turns the other way)\nGOTO/20,0,10\n^\n");
+}
+
+TEST_CASE(
+    "a cross tap: the head at B90, C at the hole and clamped, the turned frame, G84.2 at the pitch in G95",
+    "[post][millturn]") {
+  const std::string cl =
+      "PARTNO E\nHEAD/1\nTLDATA/DRILL,6,0\nLOADTL/23\nSPINDL/RPM,500,CLW,LIVE\nRAPID\n"
+      "GOTO/0,35,-20,0,1,0\nCYCLE/TAP,DEPTH,10,RAPTO,3,PITCH,1\nGOTO/0,25,-20\nCYCLE/OFF\nRAPID\n"
+      "GOTO/0,35,-20\nSPINDL/RPM,500,CCLW\nCYCLE/TAP,DEPTH,10,RAPTO,3,PITCH,1\nGOTO/-25,0,-30,-1,0,0\n"
+      "CYCLE/OFF\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "cross-tap");
+  // The live spindle taps (M3, then M4 for the left-hand tap: G84.3), feed per revolution at
+  // the pitch (G95 F1.), the spindle's speed and feed mode (G94) again after each rigid tap; C
+  // unclamped only to turn to the next hole (C180: the point at -X).
+  CHECK(head1(p, "E.EIA") ==
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT23 M6\n"
+        "M200\nG10.9 X0\nG97 S500 M3\nM108\nG0 G53 B90.\nM107\nG0 C90.\nM210\n"
+        "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X20. Y0. Z35.\nZ28.\nG95\nG17\n"
+        "G98 G84.2 X20. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M3\nG94\nZ35.\nG97 S500 M4\nG69\n"
+        "M212\nG0 C180.\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 X30. Y0. Z28.\nG95\nG17\n"
+        "G98 G84.3 X30. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M4\nG94\nM950\nG69\nM212\nG10.9 X1\n"
+        "M202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  // A machine whose taps are written as moves (G32 with the spindle reversed) cannot tap with a
+  // live tool: G32 follows the workpiece spindle.
+  machine expanded = load_machine("integrex-i200st");
+  expanded.cycles.tap = "expanded";
+  expanded.cycles.sync_feed = "G32";
+  CHECK(
+      post_on(cl, expanded, "cross-tap-expanded").diagnostics ==
+      "job.cls:9:1: error: channel 1: CYCLE/TAP with a live tool on machine 'integrex-i200st', whose tapping "
+      "is written as moves ([cycles] tap = \"expanded\"): G32 follows the workpiece spindle, not the "
+      "tool's; a live tap needs the control's tapping cycle\nGOTO/0,25,-20\n^\n"
+      "job.cls:15:1: error: channel 1: CYCLE/TAP with a live tool on machine 'integrex-i200st', whose "
+      "tapping is written as moves ([cycles] tap = \"expanded\"): G32 follows the workpiece spindle, not "
+      "the tool's; a live tap needs the control's tapping cycle\nGOTO/-25,0,-30,-1,0,0\n^\n");
 }
