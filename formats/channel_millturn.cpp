@@ -394,6 +394,8 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
   const double ca = std::cos(a), sa = std::sin(a);
   const double beside = (-x * sa + y * ca) * cl_mm_, out = (x * ca + y * sa) * cl_mm_;
   if (std::abs(beside) > 1e-3 || out <= 1e-3) {
+    if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y) return false;
+    refused_axis_ = axis_;  // once per tool axis: a flat milled across the axis is one error
     error(line,
           fmt::format("a feed move across the spindle axis to X {} Y {}, which the tool axis ({:g},{:g},"
                       "{:g}) does not point at along the radius ({} mm beside it): cylindrical "
