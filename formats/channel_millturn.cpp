@@ -417,12 +417,6 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
   const double turn = std::remainder((std::atan2(y, x) - a0) * deg, 360.0);  // degrees, -180..180
   const double dz = (z - from.z) * cl_mm_;
   const bool along_radius = std::abs(dz) <= 1e-4 && r * std::abs(turn) / deg <= 1e-4;
-  if (!pending_offset_.empty()) {
-    error(line,
-          "a feed move across the spindle axis as the first move after the head is indexed: the "
-          "length offset goes out with a RAPID (give a RAPID first)");
-    return false;
-  }
   if (along_radius && !cylinder_) {
     // A plunge (or retract) before the cut: in the turned frame, C clamped.
     if (pending_g_ == "G41" || pending_g_ == "G42") {

@@ -349,6 +349,13 @@ TEST_CASE("milling on the diameter refuses what cylindrical interpolation cannot
         "job.cls:14:1: error: channel 1: cutter compensation is still on where cylindrical interpolation "
         "ends: it must start and end inside the mode (Fanuc 15i-MA B-63324EN/03 §4): give CUTCOM/OFF before "
         "the retract\nGOTO/30,0,-20\n^\n");
+  CHECK(post_on("PARTNO E\nHEAD/1\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\n"
+                "GOTO/25,5,-10,1,0,0\nGOTO/20,0,-10\nFINI\n",
+                load_machine("integrex-i200st"), "cylinder-start")
+            .diagnostics ==
+        "job.cls:9:1: error: channel 1: a feed move across the spindle axis from a point the tool was not "
+        "taken to along its radius: start a cut on the diameter with a RAPID under the same tool axis\n"
+        "GOTO/20,0,-10\n^\n");
   machine none = load_machine("integrex-i200st");
   none.milling.cylindrical_on.clear();
   none.milling.cylindrical_off.clear();
@@ -404,4 +411,17 @@ TEST_CASE(
       "job.cls:15:1: error: channel 1: CYCLE/TAP with a live tool on machine 'integrex-i200st', whose "
       "tapping is written as moves ([cycles] tap = \"expanded\"): G32 follows the workpiece spindle, not "
       "the tool's; a live tap needs the control's tapping cycle\nGOTO/-25,0,-30,-1,0,0\n^\n");
+}
+
+TEST_CASE("cutter compensation on the diameter starts and ends inside cylindrical interpolation",
+          "[post][millturn]") {
+  const std::string cl =
+      "PARTNO E\nHEAD/1\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\n"
+      "GOTO/25,0,-10,1,0,0\nGOTO/20,0,-10\nCUTCOM/LEFT\nGOTO/0,20,-10,0,1,0\nGOTO/-20,0,-10,-1,0,0\n"
+      "CUTCOM/OFF\nGOTO/0,-20,-10,0,-1,0\nGOTO/0,-25,-10\nRAPID\nGOTO/0,-30,-10\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "cylinder-comp");
+  const std::string h = head1(p, "E.EIA");
+  CHECK(h.substr(h.find("G68"), h.find("M950") - h.find("G68")) ==
+        "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X10. Y0. Z25.\nG1 Z20. F200.\nM212\nG17\nG7.1 C20.\n"
+        "G41 G1 C90.\nC180.\nG40 C270.\nZ25.\nG7.1 C0\nG18\nG0 Z30.\n");
 }
