@@ -107,6 +107,12 @@ block_timer::block_timer(const machine& m, int channel) : m_(m), spindles_(m, ch
     polar_on_.push_back(split_nc_words(m.milling.polar_on.back()));
     polar_off_.push_back(split_nc_words(m.milling.polar_off.front()));
   }
+  for (const std::string& b : m.milling.cylindrical_on)
+    if (const std::size_t at = b.find('{'); at != std::string::npos && at > 0) {
+      cylinder_address_ = b[at - 1];
+      cylinder_per_r_ = b.compare(at, 10, "{diameter}") == 0 ? 2 : 1;
+      cylinder_code_ = split_nc_words(b.substr(0, at - 1));
+    }
   add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
   add_codes(feed_min_, m.codes.feed_per_min, 'G');
   // The tool call's address and how a number splits into tool and offset (T0303: tool 3).
@@ -321,6 +327,14 @@ block_timing block_timer::time(std::string_view text) {
 }
 
 bool block_timer::milling_mode(const std::vector<nc_word>& words) {
+  if (cylinder_address_ && words.size() == cylinder_code_.size() + 1 &&
+      words.back().address == cylinder_address_ &&
+      std::equal(
+          cylinder_code_.begin(), cylinder_code_.end(), words.begin(),
+          [](const nc_word& a, const nc_word& b) { return a.address == b.address && a.value == b.value; })) {
+    cylinder_r_ = std::abs(std::strtod(words.back().value.c_str(), nullptr)) / cylinder_per_r_;
+    return true;
+  }
   if (radius_on_.empty() && polar_on_.empty()) return false;
   auto same = [&](const std::vector<nc_word>& b) {
     if (b.size() != words.size()) return false;
@@ -359,7 +373,9 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
     }
     double d = std::abs(*target[i] - *p.value);
     if (p.diameter && !radius_x_) d /= 2;  // the slide moves the radius
-    if (p.rotary && !(polar_ && p.address == 'C'))
+    if (p.rotary && cylinder_r_ > 0 && p.address == 'C')
+      linear2 += std::pow(d * std::numbers::pi / 180 * cylinder_r_, 2);  // on the cylinder
+    else if (p.rotary && !(polar_ && p.address == 'C'))
       rotary = std::max(rotary, d);
     else
       linear2 += d * d;

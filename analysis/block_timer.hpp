@@ -72,6 +72,12 @@ class block_timer {
   // axis (the plane's second one, mm) in polar interpolation.
   bool radius_x_ = false, polar_ = false;
   std::vector<std::vector<nc_word>> radius_on_, radius_off_, polar_on_, polar_off_;
+  // Cylindrical interpolation (milling.cylindrical_on, "G7.1 C{radius}"): the block's other
+  // words, the address of the size and what it is per radius; C's degrees are then arc length
+  // on a cylinder of cylinder_r_ (0: off, "G7.1 C0").
+  std::vector<nc_word> cylinder_code_;
+  char cylinder_address_ = 0;
+  double cylinder_per_r_ = 1, cylinder_r_ = 0;
   /// True (and the mode set) when the block is one of the machine's mill/turn mode blocks.
   bool milling_mode(const std::vector<nc_word>& words);
   std::vector<nc_word> words_;  // the block's words (reused: no allocation per block)

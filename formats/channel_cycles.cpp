@@ -116,6 +116,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   vec3 at = p;
   const bool cross = has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4;
   if (cross && !radial_point(p, at, line)) return;
+  if (cross) clamp_c();  // at the angle cylindrical interpolation left C at, C is still free
   struct frame_points {
     bool& flag;
     ~frame_points() { flag = false; }
@@ -296,6 +297,12 @@ void channel_writer::tap_hole(const hole& h, int line) {
     return error(line,
                  "CYCLE/TAP needs a set spindle speed (SPINDL/RPM), not constant surface speed: the "
                  "tap's feed follows the spindle");
+  if (k.tap == "expanded" && work_ && spindle_ != work_)
+    return error(
+        line, fmt::format("CYCLE/TAP with a live tool on machine '{}', whose tapping is written as "
+                          "moves ([cycles] tap = \"expanded\"): {} follows the workpiece spindle, "
+                          "not the tool's; a live tap needs the control's tapping cycle",
+                          m_.name, k.sync_feed.empty() ? std::string("the synchronised feed") : k.sync_feed));
   if (k.tap == "expanded") {
     // G32 in, the spindle reversed at the bottom, G32 out, the spindle forward again.
     const bool ccw = last_speed_->dir == rotation::ccw;

@@ -1,6 +1,7 @@
 // channel_writer: live-tool work on a lathe channel with a C axis (mill/turn): the workpiece
 // spindle held as a C axis, polar interpolation for face milling, holes at C positions (face
-// and cross drilling) and the indexing head (docs/machines.md, "Mill/turn").
+// and cross drilling), cylindrical interpolation for milling on the diameter and the indexing
+// head (docs/machines.md, "Mill/turn").
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -15,6 +16,9 @@ constexpr double along = 0.9999;   // |axis.z| at or above: along the spindle ax
 constexpr double across = 1e-4;    // |axis.z| at or below: radial
 constexpr double off_line = 1e-3;  // mm: a cross hole this far beside its radial line needs Y
 constexpr double deg = 180.0 / std::numbers::pi;
+
+// A length (mm) or an angle for a message, to the micron (0.001): "20", "1.25".
+std::string microns(double v) { return fmt::format("{:g}", std::round(v * 1000) / 1000 + 0.0); }
 
 double wrap_360(double a) {
   a = std::fmod(a, 360.0);
@@ -102,7 +106,7 @@ void channel_writer::leave_polar() {
 
 void channel_writer::position_c(double degrees) {
   const double c = wrap_360(degrees);
-  if (last_c_.known && std::abs(last_c_.value - c) < 5e-4) return;
+  if (last_c_.known && std::abs(wrap_360(last_c_.value) - c) < 5e-4) return;
   if (c_clamped_) {
     out_.block(work_->c_axis.unclamp);
     c_clamped_ = false;
@@ -283,14 +287,8 @@ bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, i
     // The tool points across the spindle axis: C turns the part so that it points along the
     // turned frame's Z. A hole's own moves come in that frame already.
     if (radial_ok_) return true;
-    if (!rapid) {
-      if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y) return false;
-      refused_axis_ = axis_;  // once per tool axis, as tool_along_z
-      error(line,
-            "a feed move with the tool across the spindle axis (milling on the diameter): twinpost "
-            "writes no cylindrical interpolation yet, so it cannot be posted");
-      return false;
-    }
+    if (!rapid) return cylinder_feed(x, y, z, line);
+    leave_cylinder();  // no G0 in cylindrical interpolation: the rapid is the turned frame's
     vec3 q;
     if (!radial_point({x, y, z}, q, line)) return false;
     x = q.x, y = q.y, z = q.z;
@@ -332,7 +330,8 @@ bool channel_writer::enter_radial_frame(double degrees, int line) {
     return false;
   }
   const double c = wrap_360(degrees);
-  if (radial_frame_ && last_c_.known && std::abs(last_c_.value - c) < 5e-4) return true;
+  // After cylindrical interpolation C may stand past 360 (continuous): the same angle.
+  if (radial_frame_ && last_c_.known && std::abs(wrap_360(last_c_.value) - c) < 5e-4) return true;
   leave_radial_frame();
   position_c(c);
   clamp_c();
@@ -348,6 +347,7 @@ bool channel_writer::enter_radial_frame(double degrees, int line) {
 }
 
 void channel_writer::leave_radial_frame() {
+  leave_cylinder();
   if (!radial_frame_) return;
   for (const std::string& b : m_.milling.radial_frame_off) out_.block(b);
   radial_frame_ = false;
@@ -358,12 +358,171 @@ void channel_writer::leave_radial_frame() {
 }
 
 bool channel_writer::radial_point(const vec3& p, vec3& q, int line) {
+  leave_cylinder();
   const double a = std::atan2(axis_.y, axis_.x);
   if (!enter_radial_frame(a * deg, line)) return false;
   // In the turned frame: X the part's -Z, Y the distance beside the radial line, Z the radius.
   const double ca = std::cos(a), sa = std::sin(a);
   q = {-p.z, -p.x * sa + p.y * ca, p.x * ca + p.y * sa};
   return true;
+}
+
+bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
+  // Milling on the diameter (docs/machines.md, "Mill/turn"): the tool along the radius through
+  // its point, the part turned by C under it. Fanuc's cylindrical interpolation (G7.1, 15i-MA
+  // B-63324EN/03 §4; 16i/18i/21i-TB) takes the cylinder's radius, C in degrees, no G0 inside and
+  // cutter compensation started and ended inside. A cut keeps the tip on one cylinder, whose
+  // radius the mode is opened with, so F is the CL's feed at the tip; plunges and retracts go
+  // along the radius (the turned frame's Z).
+  if (m_.milling.cylindrical_on.empty()) {
+    if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y) return false;
+    refused_axis_ = axis_;  // once per tool axis, as tool_along_z
+    error(line, fmt::format("a feed move with the tool across the spindle axis (milling on the diameter): "
+                            "machine '{}' gives no cylindrical interpolation (milling.cylindrical_on), so it "
+                            "cannot be posted",
+                            m_.name));
+    return false;
+  }
+  if (z_sign_ < 0 || work_->name == "sub") {
+    error(line, fmt::format("a feed move with the tool across the spindle axis on the {} spindle: twinpost "
+                            "writes cylindrical interpolation on the main spindle only (the second spindle's "
+                            "C turns the other way)",
+                            work_->name));
+    return false;
+  }
+  const double a = std::atan2(axis_.y, axis_.x);
+  const double ca = std::cos(a), sa = std::sin(a);
+  const double beside = (-x * sa + y * ca) * cl_mm_, out = (x * ca + y * sa) * cl_mm_;
+  if (std::abs(beside) > 1e-3 || out <= 1e-3) {
+    if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y) return false;
+    refused_axis_ = axis_;  // once per tool axis: a flat milled across the axis is one error
+    error(line,
+          fmt::format("a feed move across the spindle axis to X {} Y {}, which the tool axis ({:g},{:g},"
+                      "{:g}) does not point at along the radius ({} mm beside it): cylindrical "
+                      "interpolation moves the tool along the radius through its point only",
+                      x, y, axis_.x, axis_.y, axis_.z, microns(beside)));
+    return false;
+  }
+  const vec3 from = pos_;
+  const double r = std::hypot(x, y) * cl_mm_, r0 = std::hypot(from.x, from.y) * cl_mm_;
+  const double a0 = std::atan2(from.y, from.x);
+  // Where the tool is: on the radius the turned frame (or the mode) stands at.
+  if (!radial_frame_ || !last_c_.known || r0 <= 1e-3 ||
+      r0 * std::abs(std::remainder(a0 * deg - last_c_.value, 360.0)) / deg > 1e-3) {
+    error(line,
+          "a feed move across the spindle axis from a point the tool was not taken to along its "
+          "radius: start a cut on the diameter with a RAPID under the same tool axis");
+    return false;
+  }
+  const double turn = std::remainder((std::atan2(y, x) - a0) * deg, 360.0);  // degrees, -180..180
+  const double dz = (z - from.z) * cl_mm_;
+  const bool along_radius = std::abs(dz) <= 1e-4 && r * std::abs(turn) / deg <= 1e-4;
+  if (along_radius && !cylinder_) {
+    // A plunge (or retract) before the cut: in the turned frame, C clamped.
+    if (pending_g_ == "G41" || pending_g_ == "G42") {
+      error(line, fmt::format("cutter compensation ({}) would start outside cylindrical interpolation, on "
+                              "a plunge: it must start and end inside the mode (Fanuc 15i-MA B-63324EN/03 "
+                              "§4): put CUTCOM after the plunge",
+                              pending_g_));
+      return false;
+    }
+    clamp_c();
+    x = -z, y = beside / cl_mm_, z = out / cl_mm_;
+    return true;
+  }
+  if (!along_radius) {
+    if (std::abs(r - r0) > 1e-3) {
+      error(line, fmt::format("a cut across the spindle axis changes the tip's radius from {} to {} mm: "
+                              "cylindrical interpolation keeps the tip on one cylinder; only a plunge or a "
+                              "retract along the radius (C and Z still) may change it",
+                              microns(r0), microns(r)));
+      return false;
+    }
+    if (std::abs(turn) >= 179.999) {
+      error(line,
+            fmt::format("a cut across the spindle axis turns the part {} degrees in one move: which way "
+                        "round is not known; give points less than half a turn apart",
+                        microns(std::abs(turn))));
+      return false;
+    }
+    if (cylinder_ && std::abs(cylinder_r_ - r) > 5e-4) leave_cylinder();  // a new depth: a new cylinder
+    if (!cylinder_) enter_cylinder(r);
+  }
+  text_buffer& b = out_.open_block();
+  word_start_ = b.size();
+  if (!pending_g_.empty()) b += pending_g_;
+  if (motion_g_ != 1) {
+    separate(b);
+    b += "G1";
+  }
+  bool moved = axis_word(b, 'X', nc_x(-z), last_x_);
+  if (!along_radius) {
+    cylinder_c_ += turn;
+    moved = axis_word(b, 'C', cylinder_c_, last_c_) || moved;
+  }
+  moved = axis_word(b, 'Z', nc_z(std::hypot(x, y)), last_z_) || moved;  // the turned frame's Z: the radius
+  if (!moved) {
+    out_.drop_block();
+    word_start_ = std::string::npos;
+    return false;
+  }
+  if (pending_g_ == "G41" || pending_g_ == "G42") cylinder_comp_ = true;
+  if (pending_g_ == "G40") cylinder_comp_ = false;
+  homed_ = false;
+  pending_g_.clear();
+  motion_g_ = 1;
+  if (feed_value_ > 0)
+    append_feed(b);
+  else
+    error(line, "feed move with no feed rate (FEDRAT) in force");
+  spindle_turning(line);
+  out_.end_block();
+  word_start_ = std::string::npos;
+  return false;
+}
+
+void channel_writer::enter_cylinder(double radius) {
+  // C turns in the mode: unclamped first (Mazak M212), then the mode with its radius.
+  if (c_clamped_) {
+    out_.block(work_->c_axis.unclamp);
+    c_clamped_ = false;
+  }
+  for (const std::string& block : m_.milling.cylindrical_on) {
+    std::string b = block;
+    for (const auto& [hole, factor] : {std::pair{std::string_view("{radius}"), 1.0}, {"{diameter}", 2.0}})
+      if (const std::size_t at = b.find(hole); at != std::string::npos) {
+        text_buffer w;
+        append_number(w, radius * factor * out_per_mm_, axis_style_);
+        b.replace(at, hole.size(), w.view());
+      }
+    out_.block(b);
+    for (const char* g : {"G17", "G18", "G19"})
+      if (b.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
+  }
+  cylinder_ = true;
+  cylinder_r_ = radius;
+  cylinder_c_ = last_c_.value;
+  cylinder_comp_ = false;
+  motion_g_ = -1;
+}
+
+void channel_writer::leave_cylinder() {
+  if (!cylinder_) return;
+  if (cylinder_comp_)
+    error(line_,
+          "cutter compensation is still on where cylindrical interpolation ends: it must start and "
+          "end inside the mode (Fanuc 15i-MA B-63324EN/03 §4): give CUTCOM/OFF before the retract");
+  cylinder_comp_ = false;
+  for (const std::string& b : m_.milling.cylindrical_off) {
+    out_.block(b);
+    for (const char* g : {"G17", "G18", "G19"})
+      if (b.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
+  }
+  cylinder_ = false;
+  motion_g_ = -1;
+  // The part stands where the last cut turned it: the C frame of the moves after follows.
+  c_cos_ = std::cos(cylinder_c_ / deg);
+  c_sin_ = std::sin(cylinder_c_ / deg);
 }
 
 bool channel_writer::millturn_to_multiaxis(int line) {

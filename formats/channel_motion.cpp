@@ -152,6 +152,12 @@ void channel_writer::motion(const motion_event& mv, int line) {
 
 void channel_writer::arc(const arc_event& a, int line) {
   if (tool_ < 0) return no_tool(line);
+  if (has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4) {
+    pos_ = a.end;
+    return error(line,
+                 "a CIRCLE with the tool across the spindle axis: twinpost writes no arcs on the cylinder "
+                 "(G2/G3 in cylindrical interpolation); give the path as GOTO points");
+  }
   if (chain_ && multiaxis_takes() ? !multiaxis_arc(line) : !tool_along_z(line)) {
     pos_ = a.end;
     return;

@@ -179,6 +179,14 @@ class channel_writer {
   void leave_radial_frame();
   /// CL point `p` under a radial tool axis as `q` in the turned frame (entered first).
   bool radial_point(const vec3& p, vec3& q, int line);
+  /// A feed move with the tool across the spindle axis (milling on the diameter): a cut on the
+  /// cylinder written in cylindrical interpolation (milling.cylindrical_on), or a plunge or
+  /// retract along the radius. True when linear() writes it (a plunge outside the mode, `x`,
+  /// `y`, `z` then in the turned frame); false when written here or refused.
+  bool cylinder_feed(double& x, double& y, double& z, int line);
+  /// Cylindrical interpolation on at `radius` (mm), C unclamped; off again (G7.1 C0).
+  void enter_cylinder(double radius);
+  void leave_cylinder();
   /// The head's tool length offset words due in the first move after indexing.
   void add_offset_words(text_buffer& b);
   /// Before a tilted tool's move on a mill/turn head (multi-axis writer): the spindle held as
@@ -279,12 +287,16 @@ class channel_writer {
   bool x_mirror_ = false;    // the channel's X axis is mirrored (a lower turret)
   bool x_diameter_ = false;  // and programmed in diameter (a lathe's)
   bool has_y_ = false;
-  bool has_c_ = false;         // the channel has a C axis (mill/turn)
-  bool c_mode_ = false;        // the workpiece spindle is held as the C axis
-  bool c_clamped_ = false;     // and clamped (spindle.c_clamp)
-  bool polar_ = false;         // polar interpolation is on
-  bool radial_ok_ = false;     // a cross hole is being written: its points are in the turned frame
-  bool radial_frame_ = false;  // the frame is turned for cross holes (milling.radial_frame_on)
+  bool has_c_ = false;          // the channel has a C axis (mill/turn)
+  bool c_mode_ = false;         // the workpiece spindle is held as the C axis
+  bool c_clamped_ = false;      // and clamped (spindle.c_clamp)
+  bool polar_ = false;          // polar interpolation is on
+  bool radial_ok_ = false;      // a cross hole is being written: its points are in the turned frame
+  bool radial_frame_ = false;   // the frame is turned for cross holes (milling.radial_frame_on)
+  bool cylinder_ = false;       // cylindrical interpolation is on (milling.cylindrical_on)
+  double cylinder_r_ = 0;       // its radius (mm): the tip's on every cut
+  double cylinder_c_ = 0;       // the C written last in it, continuous (no wrap at 360)
+  bool cylinder_comp_ = false;  // G41/G42 started in it and not yet ended
   std::pair<std::int64_t, std::int64_t> saved_x_limits_{INT64_MIN, INT64_MAX};
   std::string pending_offset_;            // head_index.offset_* for the next move
   bool after_index_ = false;              // a tool was called: its offset words are due

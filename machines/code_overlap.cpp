@@ -199,7 +199,9 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
                                     {"polar_on", &m.milling.polar_on},
                                     {"polar_off", &m.milling.polar_off},
                                     {"radial_frame_on", &m.milling.radial_frame_on},
-                                    {"radial_frame_off", &m.milling.radial_frame_off}})
+                                    {"radial_frame_off", &m.milling.radial_frame_off},
+                                    {"cylindrical_on", &m.milling.cylindrical_on},
+                                    {"cylindrical_off", &m.milling.cylindrical_off}})
     f.blocks(fmt::format("milling.{}", key), *blocks, g, key);
   // The first in the file, as a reader goes through it.
   const finding* first = nullptr;

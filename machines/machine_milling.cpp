@@ -63,9 +63,10 @@ void read_head_index(const table_reader& channel, channel_def& c) {
 void read_milling(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("milling");
   if (!t) return;
-  table_reader r(*t, "milling", root.source(),
-                 {"radius_input", "diameter_input", "polar_on", "polar_off", "polar_rapid_feed",
-                  "face_milling", "face_holes", "radial_frame_on", "radial_frame_off"});
+  table_reader r(
+      *t, "milling", root.source(),
+      {"radius_input", "diameter_input", "polar_on", "polar_off", "polar_rapid_feed", "face_milling",
+       "face_holes", "radial_frame_on", "radial_frame_off", "cylindrical_on", "cylindrical_off"});
   milling_rules& g = m.milling;
   g.given = true;
   read_pair(r, "radius_input", g.radius_input, "diameter_input", g.diameter_input);
@@ -75,6 +76,34 @@ void read_milling(const table_reader& root, machine& m) {
   read_choice(r, "face_milling", g.face_milling, {"y_axis", "polar"});
   read_choice(r, "face_holes", g.face_holes, {"y_axis", "c_axis"});
   read_pair(r, "radial_frame_on", g.radial_frame_on, "radial_frame_off", g.radial_frame_off);
+  // cylindrical_on is read as written: its {radius} or {diameter} is filled by the writer as an
+  // NC number (40.), not by a format template.
+  r.read("cylindrical_on", g.cylindrical_on);
+  r.read_fixed("cylindrical_off", g.cylindrical_off);
+  if (g.cylindrical_on.empty() != g.cylindrical_off.empty())
+    r.fail(*r.find(g.cylindrical_on.empty() ? "cylindrical_off" : "cylindrical_on"),
+           "milling.cylindrical_on and milling.cylindrical_off go together");
+  if (!g.cylindrical_on.empty()) {
+    // One block carries the cylinder's size; it is written inside the turned frame.
+    int holes = 0;
+    for (const std::string& b : g.cylindrical_on)
+      for (std::size_t at = b.find('{'); at != std::string::npos; at = b.find('{', at + 1)) {
+        const std::string_view rest = std::string_view(b).substr(at);
+        if (!rest.starts_with("{radius}") && !rest.starts_with("{diameter}"))
+          r.fail(*r.find("cylindrical_on"),
+                 fmt::format("milling.cylindrical_on: unknown placeholder in \"{}\" (it takes {{radius}} or "
+                             "{{diameter}})",
+                             b));
+        ++holes;
+      }
+    if (holes != 1)
+      r.fail(*r.find("cylindrical_on"),
+             "milling.cylindrical_on must hold the cylinder's size once: {radius} or {diameter}");
+    if (g.radial_frame_on.empty())
+      r.fail(*r.find("cylindrical_on"),
+             "milling.cylindrical_on needs milling.radial_frame_on: cylindrical interpolation is written in "
+             "the turned frame of cross holes");
+  }
   if (g.face_milling == "polar" && g.polar_on.empty())
     r.fail(*r.find("face_milling"), "milling.face_milling = \"polar\" needs milling.polar_on and polar_off");
 }

@@ -55,6 +55,12 @@ struct milling_rules {
   /// codes in that frame: X is the part's -Z, Y its Y, Z the radius. Empty: cross holes stop
   /// the post.
   std::vector<std::string> radial_frame_on, radial_frame_off;
+  /// Cylindrical interpolation for milling on the diameter with a radial tool, written inside
+  /// the turned frame of cross holes (Integrex: `G17`, `G7.1 C{radius}`; off `G7.1 C0`, `G18`).
+  /// One block of `cylindrical_on` holds `{radius}` (the cylinder's radius, mm) or `{diameter}`.
+  /// Inside, a cut is `G1 X<the part's -Z> C<degrees> F..` with Z (the turned frame's) the
+  /// tip's radius. Empty: a feed move with a radial tool stops the post.
+  std::vector<std::string> cylindrical_on, cylindrical_off;
   bool given = false;  ///< the machine file has a [milling] table
   bool present() const { return given; }
 };

@@ -302,3 +302,20 @@ TEST_CASE("block timer: X in radius under G10.9 X0 and C in mm under polar inter
         "0.0000\n"
         "0.0316\n");  // X30 in radius is X60 in diameter: 20 mm of radius to X100 at 38000 mm/min
 }
+
+TEST_CASE("block timer: C in cylindrical interpolation is arc length on the cylinder of G7.1",
+          "[analysis][timeline]") {
+  const machine m = load_machine("integrex-i200st");  // G7.1 C{radius}: the cylinder's radius
+  CHECK(times(m, 1,
+              {"G10.9 X0", "G0 X10. Y0. Z20. C0.", "G17", "G7.1 C20.", "G1 C90. F200.", "X15. C180.",
+               "G7.1 C0", "G1 C270."}) ==
+        "0.0000\n"
+        "0.0000|G0 from an unknown position\n"
+        "0.0000\n"
+        "0.0000\n"   // G7.1 C20.: a mode, no move
+        "9.4248\n"   // 90 degrees on radius 20: 31.416 mm at 200 mm/min
+        "9.5434\n"   // hypot(5, 31.416) mm (X in radius) at 200 mm/min
+        "0.0000\n"   // G7.1 C0: the mode off
+        "27.0000\n"  // C alone again: 90 degrees at F read as degrees per minute
+  );
+}

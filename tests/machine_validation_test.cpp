@@ -499,6 +499,25 @@ TEST_CASE("validation: mill/turn keys go in pairs and name known choices and ind
         "m.toml:7:13: error: milling.polar_on and milling.polar_off go together");
   CHECK(error_of(head + "[milling]\nface_milling = \"polar\"\n" + two_channels) ==
         "m.toml:7:16: error: milling.face_milling = \"polar\" needs milling.polar_on and polar_off");
+  // Cylindrical interpolation: its size once, in the turned frame of cross holes.
+  const std::string frame = "radial_frame_on = [\"G68\"]\nradial_frame_off = [\"G69\"]\n";
+  CHECK(error_of(head + "[milling]\n" + frame +
+                 "cylindrical_on = [\"G7.1 C40.\"]\ncylindrical_off = [\"G7.1 C0\"]\n" + two_channels) ==
+        "m.toml:9:18: error: milling.cylindrical_on must hold the cylinder's size once: {radius} or "
+        "{diameter}");
+  CHECK(
+      error_of(head + "[milling]\n" + frame +
+               "cylindrical_on = [\"G7.1 C{rad}\"]\ncylindrical_off = [\"G7.1 C0\"]\n" + two_channels) ==
+      "m.toml:9:18: error: milling.cylindrical_on: unknown placeholder in \"G7.1 C{rad}\" (it takes {radius} "
+      "or {diameter})");
+  CHECK(error_of(head +
+                 "[milling]\ncylindrical_on = [\"G7.1 C{radius}\"]\ncylindrical_off = [\"G7.1 C0\"]\n" +
+                 two_channels) ==
+        "m.toml:7:18: error: milling.cylindrical_on needs milling.radial_frame_on: cylindrical interpolation "
+        "is "
+        "written in the turned frame of cross holes");
+  CHECK(error_of(head + "[milling]\n" + frame + "cylindrical_on = [\"G7.1 C{radius}\"]\n" + two_channels) ==
+        "m.toml:9:18: error: milling.cylindrical_on and milling.cylindrical_off go together");
   CHECK(error_of(head + "[milling]\nface_holes = \"c\"\n" + two_channels) ==
         "m.toml:7:14: error: milling.face_holes must be one of \"y_axis\", \"c_axis\", not \"c\"");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\n" + test::xz_axes +

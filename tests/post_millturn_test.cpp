@@ -54,11 +54,13 @@ bool has(const std::string& block, const std::string& w) {
 // The control as the Fusion Integrex post's blocks describe it: G10.9 X0/X1 radius or
 // diameter, G12.1 with the Y value addressed as C (mm), G0 C.. turning the part (the point at
 // angle C comes onto +X), G68 X0 Y0 Z0 I0 J1 K0 R90. turning the frame about Y (its Z along
-// +X), G17 drilling cycles G81 X Y Z R along the frame's Z. Returns the part-frame tool tips of
-// the moves and the hole bottoms, in order (machine-coordinate G53 blocks are skipped).
+// +X), G17 drilling cycles G81 X Y Z R along the frame's Z. Cylindrical interpolation as the
+// Integrex shop program and Fanuc's manuals write it: G7.1 C<r> on, G7.1 C0 off, C in degrees
+// turning the part inside it while X and Z stay the turned frame's. Returns the part-frame tool
+// tips of the moves and the hole bottoms, in order (machine-coordinate G53 blocks are skipped).
 std::vector<vec3> tips(const std::string& program) {
   std::vector<vec3> out;
-  bool radius = false, polar = false, turned = false;
+  bool radius = false, polar = false, turned = false, cylinder = false;
   double c = 0, x = 0, y = 0, z = 0;
   const double deg = std::numbers::pi / 180;
   auto part = [&](double px, double py, double pz) {
@@ -83,7 +85,12 @@ std::vector<vec3> tips(const std::string& program) {
       continue;
     }
     if (has(b, "G69")) turned = false;
+    if (has(b, "G7.1")) {  // cylindrical interpolation on (C<radius>) or off (C0): a mode
+      cylinder = word(b, 'C', 0) != 0;
+      continue;
+    }
     bool gx = false, gy = false, gz = false, gc = false;
+    if (cylinder) c = word(b, 'C', c, &gc);  // in the mode C turns the part with the cut
     const double nx = word(b, 'X', x, &gx), nz = word(b, 'Z', z, &gz);
     const double ny = polar ? word(b, 'C', y, &gc) : word(b, 'Y', y, &gy);
     if (!polar && !turned && !(gx || gy || gz)) {
@@ -225,4 +232,196 @@ TEST_CASE("the Integrex chain agrees with the mill/turn writer's B and C", "[pos
         "C90 B90: (0.0000, 1.0000, 0.0000)\n"
         "C200 B90: (-0.9397, -0.3420, 0.0000)\n"
         "C120 B45: (-0.3536, 0.6124, 0.7071)\n");
+}
+
+namespace {
+
+// The GOTO points of a CL text in order (x, y, z), for the read-back below.
+std::vector<vec3> cl_points(const std::string& cl) {
+  std::vector<vec3> out;
+  std::istringstream in(cl);
+  std::string l;
+  while (std::getline(in, l)) {
+    if (l.rfind("GOTO/", 0) != 0) continue;
+    std::istringstream f(l.substr(5));
+    std::string v[3];
+    for (std::string& s : v) std::getline(f, s, ',');
+    out.push_back({std::stod(v[0]), std::stod(v[1]), std::stod(v[2])});
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("the wrapped groove comes back to every CL point to the micron, on the cylinder of G7.1",
+          "[post][millturn]") {
+  const std::string cl =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/samples/millturn-wrap-groove/job.cls");
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "wrap");
+  REQUIRE(p.ok);
+  // The groove (OP10): its program up to the next operation, its CL points up to OP20's.
+  const std::string all = head1(p, "MILLTURN-WRAP-GROOVE.EIA");
+  const std::string program = all.substr(0, all.find("(OP20"));
+  const std::vector<vec3> want = cl_points(cl.substr(0, cl.find("PPRINT OP20"))), got = tips(program);
+  REQUIRE(got.size() == want.size());
+  double worst = 0;
+  std::string far;
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    const double d = std::hypot(got[i].x - want[i].x, got[i].y - want[i].y, got[i].z - want[i].z);
+    worst = std::max(worst, d);
+    if (d > 0.001) far += fmt::format("point {}: {} for {}\n", i + 1, text(got[i]), text(want[i]));
+  }
+  CHECK(far == "");
+  CHECK(worst < 0.001);
+  // Every cut in the mode runs at the radius G7.1 was given (the tip's: F is the CL's feed at
+  // the tip), and C runs on past 360 without a jump.
+  std::istringstream in(program);
+  std::string b, seen;
+  double r = 0, z = 0, last_c = 0;
+  bool on = false;
+  while (std::getline(in, b)) {
+    if (has(b, "G7.1")) {
+      r = word(b, 'C', 0), on = r != 0;
+      continue;
+    }
+    z = word(b, 'Z', z);
+    if (!on || (" " + b).find(" C") == std::string::npos) continue;
+    const double c = word(b, 'C', 0);
+    if (std::abs(z - r) > 5e-4) seen += fmt::format("{}: at Z{} in G7.1 C{}\n", b, z, r);
+    if (std::abs(c - last_c) > 30.0005) seen += fmt::format("{}: C jumps from {}\n", b, last_c);
+    last_c = c;
+  }
+  CHECK(seen == "");
+  CHECK(last_c == 390);
+}
+
+TEST_CASE("a cut on the diameter: plunge, G7.1 at the tip's radius, C on past 360, a new depth reopens it",
+          "[post][millturn]") {
+  const std::string cl =
+      "PARTNO E\nHEAD/1\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\n"
+      "GOTO/21.6506351,-12.5,-10,0.8660254,-0.5,0\nGOTO/17.3205081,-10,-10\nGOTO/20,0,-10,1,0,0\n"
+      "GOTO/17.3205081,10,-15,0.8660254,0.5,0\nGOTO/16.4544827,9.5,-15\nGOTO/19,0,-15,1,0,0\nGOTO/25,0,-15\n"
+      "RAPID\nGOTO/30,0,-15\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "cylinder");
+  // The plunge in the turned frame with C clamped; C unclamped before the mode; the cut at C330
+  // + 30 = 360 and on to 390 (no wrap); the plunge to radius 19 inside, then the mode again at
+  // 19; the retract inside; off before the rapid (no G0 in the mode).
+  CHECK(head1(p, "E.EIA") ==
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT21 M6\n"
+        "M200\nG10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B90.\nM107\nG0 C330.\nM210\n"
+        "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X10. Y0. Z25.\nG1 Z20. F200.\nM212\nG17\nG7.1 C20.\n"
+        "G1 C360.\nX15. C390.\nZ19.\nG7.1 C0\nG18\nG17\nG7.1 C19.\nG1 C360.\nZ25.\nG7.1 C0\nG18\nG0 Z30.\n"
+        "M950\nG69\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+}
+
+TEST_CASE("milling on the diameter refuses what cylindrical interpolation cannot do, by name",
+          "[post][millturn]") {
+  const std::string start =
+      "PARTNO E\nHEAD/1\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\n"
+      "GOTO/25,0,-10,1,0,0\nGOTO/20,0,-10\n";
+  auto fails = [&](const std::string& rest, const machine& m = load_machine("integrex-i200st")) {
+    return post_on(start + rest + "FINI\n", m, "cylinder-errors").diagnostics;
+  };
+  CHECK(
+      fails("GOTO/0,21,-10,0,1,0\n") ==
+      "job.cls:10:1: error: channel 1: a cut across the spindle axis changes the tip's radius from 20 to 21 "
+      "mm: cylindrical interpolation keeps the tip on one cylinder; only a plunge or a retract along the "
+      "radius (C and Z still) may change it\nGOTO/0,21,-10,0,1,0\n^\n");
+  CHECK(fails("CIRCLE/0,0,-10,0,0,1,20\nGOTO/0,20,-10,0,1,0\n") ==
+        "job.cls:11:1: error: channel 1: a CIRCLE with the tool across the spindle axis: twinpost writes no "
+        "arcs on the cylinder (G2/G3 in cylindrical interpolation); give the path as GOTO points\n"
+        "GOTO/0,20,-10,0,1,0\n^\n");
+  CHECK(
+      fails("GOTO/-20,0,-10,-1,0,0\n") ==
+      "job.cls:10:1: error: channel 1: a cut across the spindle axis turns the part 180 degrees in one move: "
+      "which way round is not known; give points less than half a turn apart\nGOTO/-20,0,-10,-1,0,0\n^\n");
+  CHECK(
+      fails("GOTO/20,1,-10\n") ==
+      "job.cls:10:1: error: channel 1: a feed move across the spindle axis to X 20 Y 1, which the tool axis "
+      "(1,0,0) does not point at along the radius (1 mm beside it): cylindrical interpolation moves the "
+      "tool along the radius through its point only\nGOTO/20,1,-10\n^\n");
+  CHECK(fails("CUTCOM/LEFT\nGOTO/18,0,-10\n") ==
+        "job.cls:11:1: error: channel 1: cutter compensation (G41) would start outside cylindrical "
+        "interpolation, on a plunge: it must start and end inside the mode (Fanuc 15i-MA B-63324EN/03 §4): "
+        "put CUTCOM after the plunge\nGOTO/18,0,-10\n^\n");
+  CHECK(fails("GOTO/17.3205081,10,-15,0.8660254,0.5,0\nCUTCOM/LEFT\nGOTO/20,0,-20,1,0,0\nRAPID\nGOTO/"
+              "30,0,-20\n") ==
+        "job.cls:14:1: error: channel 1: cutter compensation is still on where cylindrical interpolation "
+        "ends: it must start and end inside the mode (Fanuc 15i-MA B-63324EN/03 §4): give CUTCOM/OFF before "
+        "the retract\nGOTO/30,0,-20\n^\n");
+  CHECK(post_on("PARTNO E\nHEAD/1\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\n"
+                "GOTO/25,5,-10,1,0,0\nGOTO/20,0,-10\nFINI\n",
+                load_machine("integrex-i200st"), "cylinder-start")
+            .diagnostics ==
+        "job.cls:9:1: error: channel 1: a feed move across the spindle axis from a point the tool was not "
+        "taken to along its radius: start a cut on the diameter with a RAPID under the same tool axis\n"
+        "GOTO/20,0,-10\n^\n");
+  machine none = load_machine("integrex-i200st");
+  none.milling.cylindrical_on.clear();
+  none.milling.cylindrical_off.clear();
+  CHECK(
+      fails("", none) ==
+      "job.cls:9:1: error: channel 1: a feed move with the tool across the spindle axis (milling on the "
+      "diameter): machine 'integrex-i200st' gives no cylindrical interpolation (milling.cylindrical_on), so "
+      "it cannot be posted\nGOTO/20,0,-10\n^\n");
+  // The second spindle held as C (as a machine file could give it): its C turns the other way,
+  // and twinpost does not write the mode there.
+  machine sub = load_machine("integrex-i200st");
+  for (spindle_def& s : sub.spindles)
+    if (s.name == "sub") s.c_axis = {{"M300"}, {"M302"}, "M310", "M312"};
+  CHECK(post_on("PARTNO E\nHEAD/1\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW,SUB\nFEDRAT/MMPM,200\n"
+                "RAPID\nGOTO/25,0,10,1,0,0\nGOTO/20,0,10\nFINI\n",
+                sub, "cylinder-sub")
+            .diagnostics ==
+        "job.cls:9:1: error: channel 1: a feed move with the tool across the spindle axis on the sub "
+        "spindle: twinpost writes cylindrical interpolation on the main spindle only (the second spindle's C "
+        "turns the other way)\nGOTO/20,0,10\n^\n");
+}
+
+TEST_CASE(
+    "a cross tap: the head at B90, C at the hole and clamped, the turned frame, G84.2 at the pitch in G95",
+    "[post][millturn]") {
+  const std::string cl =
+      "PARTNO E\nHEAD/1\nTLDATA/DRILL,6,0\nLOADTL/23\nSPINDL/RPM,500,CLW,LIVE\nRAPID\n"
+      "GOTO/0,35,-20,0,1,0\nCYCLE/TAP,DEPTH,10,RAPTO,3,PITCH,1\nGOTO/0,25,-20\nCYCLE/OFF\nRAPID\n"
+      "GOTO/0,35,-20\nSPINDL/RPM,500,CCLW\nCYCLE/TAP,DEPTH,10,RAPTO,3,PITCH,1\nGOTO/-25,0,-30,-1,0,0\n"
+      "CYCLE/OFF\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "cross-tap");
+  // The live spindle taps (M3, then M4 for the left-hand tap: G84.3), feed per revolution at
+  // the pitch (G95 F1.), the spindle's speed and feed mode (G94) again after each rigid tap; C
+  // unclamped only to turn to the next hole (C180: the point at -X).
+  CHECK(head1(p, "E.EIA") ==
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT23 M6\n"
+        "M200\nG10.9 X0\nG97 S500 M3\nM108\nG0 G53 B90.\nM107\nG0 C90.\nM210\n"
+        "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X20. Y0. Z35.\nZ28.\nG95\nG17\n"
+        "G98 G84.2 X20. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M3\nG94\nZ35.\nG97 S500 M4\nG69\n"
+        "M212\nG0 C180.\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 X30. Y0. Z28.\nG95\nG17\n"
+        "G98 G84.3 X30. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M4\nG94\nM950\nG69\nM212\nG10.9 X1\n"
+        "M202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  // A machine whose taps are written as moves (G32 with the spindle reversed) cannot tap with a
+  // live tool: G32 follows the workpiece spindle.
+  machine expanded = load_machine("integrex-i200st");
+  expanded.cycles.tap = "expanded";
+  expanded.cycles.sync_feed = "G32";
+  CHECK(
+      post_on(cl, expanded, "cross-tap-expanded").diagnostics ==
+      "job.cls:9:1: error: channel 1: CYCLE/TAP with a live tool on machine 'integrex-i200st', whose tapping "
+      "is written as moves ([cycles] tap = \"expanded\"): G32 follows the workpiece spindle, not the "
+      "tool's; a live tap needs the control's tapping cycle\nGOTO/0,25,-20\n^\n"
+      "job.cls:15:1: error: channel 1: CYCLE/TAP with a live tool on machine 'integrex-i200st', whose "
+      "tapping is written as moves ([cycles] tap = \"expanded\"): G32 follows the workpiece spindle, not "
+      "the tool's; a live tap needs the control's tapping cycle\nGOTO/-25,0,-30,-1,0,0\n^\n");
+}
+
+TEST_CASE("cutter compensation on the diameter starts and ends inside cylindrical interpolation",
+          "[post][millturn]") {
+  const std::string cl =
+      "PARTNO E\nHEAD/1\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\n"
+      "GOTO/25,0,-10,1,0,0\nGOTO/20,0,-10\nCUTCOM/LEFT\nGOTO/0,20,-10,0,1,0\nGOTO/-20,0,-10,-1,0,0\n"
+      "CUTCOM/OFF\nGOTO/0,-20,-10,0,-1,0\nGOTO/0,-25,-10\nRAPID\nGOTO/0,-30,-10\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "cylinder-comp");
+  const std::string h = head1(p, "E.EIA");
+  CHECK(h.substr(h.find("G68"), h.find("M950") - h.find("G68")) ==
+        "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X10. Y0. Z25.\nG1 Z20. F200.\nM212\nG17\nG7.1 C20.\n"
+        "G41 G1 C90.\nC180.\nG40 C270.\nZ25.\nG7.1 C0\nG18\nG0 Z30.\n");
 }
