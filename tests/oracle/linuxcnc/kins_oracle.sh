@@ -113,15 +113,15 @@ for tip, (r1, r2) in POSES[chain]:
         a, c = rad(r1), rad(r2)
         # LinuxCNC manual, xyzac-trt with rotary axis offsets, eq. (22).
         k = (math.sin(c) * math.sin(a), math.cos(c) * math.sin(a), math.cos(a))
-        moves.append("G0 X%r Y%r Z%r A%r C%r" % (*tip, r1, r2))
-        moves.append("G0 X%r Y%r Z%r" % tuple(t + 10 * q for t, q in zip(tip, k)))
+        moves.append("G0 X%.12f Y%.12f Z%.12f A%.12f C%.12f" % (*tip, r1, r2))
+        moves.append("G0 X%.12f Y%.12f Z%.12f" % tuple(t + 10 * q for t, q in zip(tip, k)))
     else:
         b, c = rad(r1), rad(r2)
         # 5axiskins as bridge.toml describes it (the W probe checks it).
         k = (-math.sin(b) * math.cos(c), -math.sin(b) * math.sin(c), math.cos(b))
-        moves.append("G0 X%r Y%r Z%r B%r C%r W0" % (*tip, r1, r2))
+        moves.append("G0 X%.12f Y%.12f Z%.12f B%.12f C%.12f W0" % (*tip, r1, r2))
         moves.append("G0 W10")
-    points.append(",".join(repr(float(v)) for v in (*tip, *k)))
+    points.append(",".join("%.15f" % v for v in (*tip, *k)))
     expected.append(" ".join(repr(float(v)) for v in (*tip, *k, r1, r2)))
 with open(f"{work}/moves.txt", "w") as f:
     f.write("\n".join(moves) + "\n")
@@ -203,7 +203,8 @@ for i, pose in enumerate(poses, 1):
     if dl > TOL_MM + 1e-9 or dr > TOL_DEG + 1e-9:
         twin = (abs(tr[0] + ang[0]) < TOL_DEG and abs(math.remainder(tr[1] - ang[1] - 180.0, 360.0)) < TOL_DEG)
         turn = (abs(tr[0] - ang[0]) < TOL_DEG and abs(math.remainder(tr[1] - ang[1], 360.0)) < TOL_DEG)
-        why = (" (twinpost took the other solution of this tool axis)" if twin else
+        why = (" (the same angles: the positions differ)" if dr <= TOL_DEG + 1e-9 else
+               " (twinpost took the other solution of this tool axis)" if twin else
                " (the same angles a whole turn apart)" if turn else "")
         problems.append(f"pose {i}: tip {tip} K ({k[0]:.6f}, {k[1]:.6f}, {k[2]:.6f}): "
                         f"LinuxCNC X{j[0]:.4f} Y{j[1]:.4f} Z{j[2]:.4f} {rot[0]}{j[3]:g} {rot[1]}{j[4]:g}, "
