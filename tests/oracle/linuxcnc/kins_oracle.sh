@@ -143,8 +143,11 @@ wait "$lcnc_pid"
 lcnc_status=$?
 lcnc_pid=
 if [ ! -s "$work/joints.txt" ]; then
-  echo "oracle: LinuxCNC wrote no joints (exit $lcnc_status); its log, $work/linuxcnc.log:"
-  tail -n 20 "$work/linuxcnc.log"
+  echo "oracle: LinuxCNC wrote no joints (exit $lcnc_status); its logs:"
+  # The `linuxcnc` script leaves its print and debug files in $HOME (here: $work) on failure.
+  for f in "$work/linuxcnc.log" "$work/linuxcnc_print.txt" "$work/linuxcnc_debug.txt"; do
+    [ -s "$f" ] && { echo "--- $f"; tail -n 20 "$f"; }
+  done
   exit 2
 fi
 
