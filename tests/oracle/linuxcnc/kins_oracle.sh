@@ -59,8 +59,12 @@ mkdir -p "$work/rt" || exit 2
 chmod 1777 "$work/rt"  # the realtime process (a non-root uid under root) makes its socket here
 cp -p "$here/drive.py" "$here/$chain.ini" "$here/$chain.hal" "$here/oracle.tbl" "$work/" || exit 2
 
-# One LinuxCNC at a time on this machine.
-exec 9>/tmp/twinpost-linuxcnc-oracle.lock
+# One LinuxCNC at a time on this machine (a lock file of another user's that this one may
+# not write: then only the check of /tmp/linuxcnc.lock below).
+lock=/tmp/twinpost-linuxcnc-oracle.lock
+[ -e "$lock" ] && [ ! -w "$lock" ] && lock=$work/oracle.lock
+exec 9>>"$lock"
+chmod a+rw "$lock" 2>/dev/null
 flock -w 120 9 || skip "another run of this oracle held its lock for 2 minutes"
 [ -e /tmp/linuxcnc.lock ] && skip "another LinuxCNC is running (/tmp/linuxcnc.lock): not started beside it"
 
