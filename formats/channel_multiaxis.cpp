@@ -155,6 +155,76 @@ bool channel_writer::multiaxis_arc(int line) {
   return true;
 }
 
+bool channel_writer::turn_at_pole(const tool_pose& at, const tool_pose& to, double length, int line) {
+  const kinematic_chain& c = *chain_;
+  const kin::orientation_form f = kin::orientation_of(c);
+  if (f.outer < 0 || f.inner < 0 || c.output == multiaxis_output::vector) return true;
+  const vec3& pole = c.rotaries[f.outer].direction;
+  const auto on_pole = [&](const vec3& k) { return kin::norm(kin::cross(pole, k)) < 1e-9; };
+  if (!on_pole(at.axis) || on_pole(to.axis)) return true;
+  const bool joints = c.output == multiaxis_output::joints;
+  const kin::ik_result end =
+      kin::inverse(c, to, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
+  if (!end.ok()) return true;  // the move itself says why
+  double turn = end.joints.rotary[f.outer] - joints_.rotary[f.outer];
+  if (c.rotaries[f.outer].rollover == rotary_rollover::shortest) turn = kin::wrap_180(turn);
+  if (std::abs(turn) <= still) return true;
+  // The tool lies along the outer axis: turning that axis turns the part (or the head) about
+  // a line along the tool, which stays where it is on the part, the tip on its point. After a
+  // rapid the turn is a rapid too; after a feed it is fed (with the tip held: under tool-tip
+  // control by the control, else in steps whose chord stays within the tolerance).
+  joint_values target = joints_;
+  target.rotary[f.outer] = end.joints.rotary[f.outer];
+  if (motion_g_ == 0 || !joints) {
+    if (joints) target = kin::positions(c, at.tip, target, length);
+    if (!write_point(motion_g_ == 0, target, at, 0, line)) return false;
+    joints_ = target;
+    return true;
+  }
+  if (per_rev_) {
+    error(
+        line,
+        "a feed per revolution on a move that turns a rotary axis: inverse-time feed (G93) needs a feed per "
+        "minute (FEDRAT/MMPM)");
+    return false;
+  }
+  const joint_values start = joints_;
+  const auto step = [&](int k, int n) {
+    joint_values j = start;
+    j.rotary[f.outer] = start.rotary[f.outer] + turn * k / n;
+    return kin::positions(c, at.tip, j, length);
+  };
+  // Steps halved until the tip between two of them stays within the tolerance of its point.
+  int n = 1;
+  for (;; n *= 2) {
+    double worst = 0;
+    for (int k = 0; k < n; ++k) {
+      const joint_values a = step(k, n), b = step(k + 1, n);
+      for (double t : {0.25, 0.5, 0.75})
+        worst =
+            std::max(worst, kin::distance(kin::forward_tip(c, kin::interpolate(c, a, b, t), length), at.tip));
+    }
+    if (worst <= c.chordal_tolerance) break;
+    if (n >= 4096) {
+      error(line,
+            fmt::format("the turn of {} at the pole needs more than 4096 steps to keep the tip within {} "
+                        "mm of its point",
+                        c.rotaries[f.outer].address, kin::number_text(c.chordal_tolerance)));
+      return false;
+    }
+  }
+  // A turn on the spot: its degrees at the feed read as degrees per minute (as a sub-move's,
+  // UNVERIFIED, docs/machines.md).
+  const double feed_mm = feed_value_ / out_per_mm_;
+  const double inverse_f = feed_value_ > 0 ? feed_mm / (std::abs(turn) / n) : 0;
+  for (int k = 1; k <= n; ++k) {
+    const joint_values j = step(k, n);
+    if (!write_point(false, j, at, inverse_f, line)) return false;
+    joints_ = j;
+  }
+  return true;
+}
+
 bool channel_writer::same_branch(const joint_values& from, const joint_values& to, int line) {
   // The two solutions of one tool axis differ by about half a turn of the outer axis; the
   // path turns it that fast only beside the pole, where the outer axis is nearly free.
@@ -201,9 +271,15 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   if (joints && chain_heads_ && !tool_length_known(line)) return;
   // Tool-tip control: the control holds the length (H); the rotary values do not depend on it.
   const double length = joints ? tool_length_ : 0;
+  if (!rapid && had_from && !turn_at_pole(from, pose, length, line)) return;
   if (rapid || !joints || !had_from) {
+    joint_values previous = joints_;
+    if (pole_hint_ && rapid) {  // looked ahead from the pole (channel_pole.cpp)
+      previous.rotary[kin::orientation_of(c).outer] = *pole_hint_;
+      pole_hint_.reset();
+    }
     const kin::ik_result ik =
-        kin::inverse(c, pose, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
+        kin::inverse(c, pose, length, previous, joints ? kin::ik_need::joints : kin::ik_need::angles);
     if (!ik.ok())
       return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
     if (!rapid && had_from && !same_branch(joints_, ik.joints, line)) return;

@@ -165,6 +165,7 @@ void channel_writer::check_side(double x_nc, double x_cl, int line) {
 }
 
 void channel_writer::on_wait(const wait_mark& w) {
+  release_held(std::nullopt);
   // Balance cutting: wait, G68 ... cut ... G69, wait, in both channels.
   if (w.both == wait_mark::section::closes_both && !m_.codes.balance_off.empty())
     out_.block(m_.codes.balance_off);
@@ -199,6 +200,11 @@ void channel_writer::frame(const coordsys_event& c, int line) {
 }
 
 void channel_writer::on_event(const event& e, bool both) {
+  if (chain_ && hold_for_pole(e, both)) return;  // formats/channel_pole.cpp
+  process_event(e, both);
+}
+
+void channel_writer::process_event(const event& e, bool both) {
   // A HEAD/BOTH copy on a mirrored channel runs on the opposite side of the spindle centre.
   side_ = (both && x_mirror_) ? -1.0 : 1.0;
   // The copy of a balance cut cuts on the master's workpiece spindle and leaves the spindle
@@ -322,6 +328,7 @@ void channel_writer::write_dwell(double seconds) {
 }
 
 void channel_writer::finish() {
+  release_held(std::nullopt);
   if (chain_) multiaxis_off();
   // The footer stops the spindles its file names (M5; the Integrex M5 M205 M305). A spindle
   // still turning whose stop code the footer lacks (the sub spindle's M105 on the 0i-TD, the

@@ -33,6 +33,8 @@ class channel_writer {
     scale_ = cl_mm_ * out_per_mm_;
   }
   void on_event(const event& e, bool both);
+  /// One record of the channel, in order (on_event's work once nothing is held).
+  void process_event(const event& e, bool both);
   /// Balance cutting (HEAD/BOTH): `master` is the writer of the channel that serves head 1,
   /// which alone commands the spindle; this channel's copy writes no spindle code (no S, M3,
   /// M4, M5, G96, G97, select or clamp block of a workpiece spindle) and cuts on the master's
@@ -205,6 +207,26 @@ class channel_writer {
   /// `pose` (mm, part frame) by the forward transform; `inverse_f` > 0 writes G93 F<it>.
   bool write_point(bool rapid, const kin::joint_values& j, const kin::tool_pose& pose, double inverse_f,
                    int line);
+  /// Before a feed move from a point with the tool along the outer rotary axis (the pole,
+  /// where that axis's angle was kept) to one off it that needs the outer axis elsewhere:
+  /// turns the outer axis first, with the tool where it is (`at`). The move then tilts the
+  /// tool in the plane the CL gives instead of sweeping it round while it cuts. False (with
+  /// the error) when a written point fails.
+  bool turn_at_pole(const kin::tool_pose& at, const kin::tool_pose& to, double length, int line);
+  // Looking ahead at the pole (formats/channel_pole.cpp): a RAPID to a point with the tool
+  // along the outer rotary axis, whose angle is free there, is held with the records after it
+  // (feeds, comments, more points on the pole) until the first point off the pole; the rapid
+  // then takes that point's outer angle, so the axis turns in the rapid, not while the tool
+  // cuts. Anything else, a wait or the end releases them as they came.
+  /// Whether `e` was held (true) or is the caller's to process; releases what was held first.
+  bool hold_for_pole(const event& e, bool both);
+  /// Processes the held records; a held rapid on the pole takes `outer` as its outer angle.
+  void release_held(std::optional<double> outer);
+  /// Whether the unit-or-not `axis` lies along the chain's outer rotary axis.
+  bool on_outer_pole(const vec3& axis) const;
+  /// The outer angle of the point `pos` (CL units) under `axis`, solved from where the machine
+  /// is; nullopt when it cannot be solved here (the move itself will say why).
+  std::optional<double> pole_target(const vec3& pos, const vec3& axis) const;
   /// False (with the error) when the solution changes branch between `from` and `to` in a cut.
   bool same_branch(const kin::joint_values& from, const kin::joint_values& to, int line);
   /// The gauge length of the tool in the spindle for joints output; false with the error
@@ -367,6 +389,9 @@ class channel_writer {
   bool pose_known_ = false;                 ///< false until the first GOTO (or FROM)
   std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
   double tool_length_ = 0;                            ///< the length in use (mm)
+  std::vector<std::pair<event, bool>> held_;          ///< records held at the pole, with `both`
+  vec3 held_axis_{};                                  ///< the tool axis in force after them
+  std::optional<double> pole_hint_;                   ///< the outer angle the held rapid takes
   bool length_known_ = false;
   bool length_refused_ = false;  ///< the tool's length error was reported
   int offset_ = 0;               ///< the tool's offset register (H)

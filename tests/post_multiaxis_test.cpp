@@ -281,7 +281,9 @@ TEST_CASE("multi-axis: the trunnion's G43.4 blocks give back the CL tip and axis
   const machine m = load_machine("trunnion-5axis");
   const round_trip r = read_back(sample_job("five-axis-wall"), m, "ma-tt");
   CHECK(r.cl_points == 13);
-  CHECK(r.sub_points == 0);  // the control keeps the tip on the line
+  // The control keeps the tip on the line; the one extra point is C turning from 135 to 180
+  // at (40, 40), where the tool reached the pole in the cut, before it tilts to A10.
+  CHECK(r.sub_points == 1);
   CHECK(r.worst_tip <= 0.0005);
   CHECK(r.worst_axis <= 0.002);
 }
@@ -447,22 +449,50 @@ TEST_CASE("multi-axis: no feed per revolution and no 2-D compensation under a ti
         "writes no 3-D compensation (G41.2/G42.2)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
 }
 
-TEST_CASE("multi-axis: a cut that leaves the pole towards another outer angle is named as such",
+TEST_CASE("multi-axis: a rapid onto the pole takes the outer angle of the first point off it",
           "[post][multiaxis]") {
-  // B head over a C spindle: the tool along Z keeps C at 0; tilting it towards -Y needs C90,
-  // and C turning under the tool at (40, 40) would cut a circle into the part.
+  // B head over a C spindle: the tool along Z leaves C free. Tilting it towards -Y needs C90;
+  // kept at C0 from the start, C would turn 90 degrees while the tool tilts in the cut. The
+  // rapid is held until the tilted point is read, and goes to C90 (X-40 Y40: the part turned).
   const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/head-table.toml");
   const test::posted p = test::post_in_fresh_dir(
       "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
       "GOTO/40,40,5,0,0,1\nGOTO/40,40,-5,0,0,1\nGOTO/40,40,-5,0,-0.1736482,0.9848078\nFINI\n",
       m, "ma-pole");
-  CHECK(p.diagnostics ==
-        "job.cls:9:1: error: channel 1: the move needs more than 10000 points to keep the tip within 0.01 mm "
-        "of "
-        "the line; the move leaves the pole of C (the tool along it, C kept at 0) towards a tool axis that "
-        "needs "
-        "C90: C would turn while the tool cuts; give a RAPID to the start of the cut under its tool axis\n"
-        "GOTO/40,40,-5,0,-0.1736482,0.9848078\n^\n");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  CHECK(
+      p.files.at("POLE.nc") ==
+      "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 G43 H1 X-40. Y40. Z5. B0. C90.\nG1 Z-5. F1000.\n"
+      "G93 G1 X-36.182 Z-5.075 B0.625 F1600.\nX-32.366 Z-5.192 B1.25 F1600.\nX-28.551 Z-5.351 B1.875 F1600.\n"
+      "X-24.738 Z-5.551 B2.5 F1600.\nX-20.927 Z-5.793 B3.125 F1600.\nX-17.12 Z-6.076 B3.75 F1600.\n"
+      "X-13.315 Z-6.401 B4.375 F1600.\nX-9.515 Z-6.768 B5. F1600.\nX-5.718 Z-7.175 B5.625 F1600.\n"
+      "X-1.926 Z-7.625 B6.25 F1600.\nX1.86 Z-8.115 B6.875 F1600.\nX5.641 Z-8.647 B7.5 F1600.\n"
+      "X9.416 Z-9.22 B8.125 F1600.\nX13.185 Z-9.834 B8.75 F1600.\nX16.947 Z-10.489 B9.375 F1600.\n"
+      "X20.701 Z-11.186 B10. F1600.\nG98\nG49\nM30\n%\n");
+}
+
+TEST_CASE("multi-axis: a cut that reaches the pole turns the outer axis there before it leaves it",
+          "[post][multiaxis]") {
+  // The pole reached by a feed (B-10 to B0 at the bottom of the plunge): nothing to look
+  // ahead from. C turns to 90 at the point, the tip held there in steps whose chord stays
+  // within the tolerance (1 mm here, so that they are few: 8 of 11.25 degrees on the 56.6 mm
+  // radius of (40, 40)), at the feed read as degrees per minute; then B tilts alone.
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/head-table.toml");
+  m.kinematics[0].chordal_tolerance = 1.0;
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/40,40,5,-0.1736482,0,0.9848078\nGOTO/40,40,-5,0,0,1\nGOTO/"
+      "40,40,-5,0,-0.1736482,0.9848078\nFINI\n",
+      m, "ma-pole-turn");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  CHECK(p.files.at("POLE.nc") ==
+        "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 G43 H1 X-20.853 Y40. Z0.551 B-10. C0.\n"
+        "G93 G1 X40. Z-5. B0. F100.\nX31.428 Y47.035 C11.25 F88.889\nX21.648 Y52.263 C22.5 F88.889\n"
+        "X11.036 Y55.482 C33.75 F88.889\nX0. Y56.569 C45. F88.889\nX-11.036 Y55.482 C56.25 F88.889\n"
+        "X-21.648 Y52.263 C67.5 F88.889\nX-31.428 Y47.035 C78.75 F88.889\nX-40. Y40. C90. F88.889\n"
+        "X-9.515 Z-6.768 B5. F200.\nX20.701 Z-11.186 B10. F200.\nG98\nG49\nM30\n%\n");
 }
 
 TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z to the 3-axis writer",
