@@ -76,9 +76,12 @@ bool channel_writer::hold_for_pole(const event& e, bool both) {
       held_.emplace_back(e, both);
       return true;
     }
-  } else if ((std::holds_alternative<feed_event>(e.data) || std::holds_alternative<comment_event>(e.data) ||
-              std::holds_alternative<text_event>(e.data)) &&
+  } else if ((std::holds_alternative<feed_event>(e.data) || std::holds_alternative<spindle_event>(e.data) ||
+              std::holds_alternative<coolant_event>(e.data) ||
+              std::holds_alternative<comment_event>(e.data) || std::holds_alternative<text_event>(e.data)) &&
              held_.size() < max_held) {
+    // Records that change nothing the solve of the next point depends on (the tool, its
+    // length, the chain's state): they are written after the rapid, in their order, as ever.
     held_.emplace_back(e, both);
     return true;
   }

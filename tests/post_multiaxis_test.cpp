@@ -472,6 +472,35 @@ TEST_CASE("multi-axis: a rapid onto the pole takes the outer angle of the first 
       "X20.701 Z-11.186 B10. F1600.\nG98\nG49\nM30\n%\n");
 }
 
+TEST_CASE("multi-axis: the records held with a rapid on the pole keep their order, and others release it",
+          "[post][multiaxis]") {
+  // The trunnion: tilting the tool towards +X needs C90 (A about X tilts it in Y).
+  const machine m = load_machine("trunnion-5axis");
+  const std::string head =
+      "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/40,40,5,0,0,1\nPPRINT APPROACH\nSPINDL/RPM,5000,CLW\n";
+  const std::string tail = "GOTO/40,40,-5,0,0,1\nGOTO/40,40,-5,0.1736482,0,0.9848078\nFINI\n";
+  const std::string start = "%\nO5002 (POLE)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG94\n";
+  const std::string end = "G49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n";
+  // A comment and a spindle start are held with it: the rapid takes C90, they follow it.
+  const test::posted held = test::post_in_fresh_dir(head + tail, m, "ma-pole-held");
+  INFO(held.diagnostics);
+  REQUIRE(held.ok);
+  CHECK(held.files.at("POLE.nc") == start +
+                                        "G0 G43.4 H1 X40. Y40. Z5. A0. C90.\n(APPROACH)\nS5000 M3\nG1 Z-5. "
+                                        "F1000.\nA10.\n" +
+                                        end);
+  // A dwell is not held: the rapid goes out as it came (C0), and C turns at the bottom of
+  // the plunge, where the tool reaches the pole, before the tilt.
+  const test::posted released = test::post_in_fresh_dir(head + "DELAY/2\n" + tail, m, "ma-pole-released");
+  INFO(released.diagnostics);
+  REQUIRE(released.ok);
+  CHECK(released.files.at("POLE.nc") == start +
+                                            "G0 G43.4 H1 X40. Y40. Z5. A0. C0.\n(APPROACH)\nS5000 M3\nG4 "
+                                            "P2000\nG1 Z-5. F1000.\nC90.\nA10.\n" +
+                                            end);
+}
+
 TEST_CASE("multi-axis: a cut that reaches the pole turns the outer axis there before it leaves it",
           "[post][multiaxis]") {
   // The pole reached by a feed (B-10 to B0 at the bottom of the plunge): nothing to look
