@@ -29,6 +29,7 @@ class channel_writer {
 
   /// The job's units (UNITS record); values are converted to the program's output units.
   void set_units(unit_system u) {
+    release_held(std::nullopt);  // records held at the pole came in the units before
     cl_mm_ = u == unit_system::inch ? 25.4 : 1.0;
     scale_ = cl_mm_ * out_per_mm_;
   }

@@ -499,6 +499,16 @@ TEST_CASE("multi-axis: the records held with a rapid on the pole keep their orde
                                             "G0 G43.4 H1 X40. Y40. Z5. A0. C0.\n(APPROACH)\nS5000 M3\nG4 "
                                             "P2000\nG1 Z-5. F1000.\nC90.\nA10.\n" +
                                             end);
+  // A change of units releases it too: the rapid was given in millimetres (X40, not 40 inches).
+  const test::posted units = test::post_in_fresh_dir(
+      "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/40,40,5,0,0,1\nUNITS/INCHES\nGOTO/1.5748,1.5748,-0.19685,0,0,1\n"
+      "GOTO/1.5748,1.5748,-0.19685,0.1736482,0,0.9848078\nFINI\n",
+      m, "ma-pole-units");
+  INFO(units.diagnostics);
+  REQUIRE(units.ok);
+  CHECK(units.files.at("POLE.nc") ==
+        start + "G0 G43.4 H1 X40. Y40. Z5. A0. C0.\nG1 Z-5. F1000.\nC90.\nA10.\n" + end);
 }
 
 TEST_CASE("multi-axis: a cut that reaches the pole turns the outer axis there before it leaves it",
