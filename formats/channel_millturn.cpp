@@ -471,11 +471,7 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
   homed_ = false;
   pending_g_.clear();
   motion_g_ = 1;
-  if (feed_value_ > 0)
-    append_feed(b);
-  else
-    error(line, "feed move with no feed rate (FEDRAT) in force");
-  spindle_turning(line);
+  cut_feed(b, line);
   out_.end_block();
   word_start_ = std::string::npos;
   return false;

@@ -26,6 +26,14 @@ void channel_writer::append_feed(text_buffer& out) {
   last_f_ = feed_text_;
 }
 
+void channel_writer::cut_feed(text_buffer& out, int line) {
+  if (feed_value_ > 0)
+    append_feed(out);
+  else
+    error(line, "feed move with no feed rate (FEDRAT) in force");
+  spindle_turning(line);
+}
+
 bool channel_writer::tool_along_z(int line) {
   if (std::abs(axis_.z) >= 0.9999) return true;  // the drilling cycles' rule too
   if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y &&
@@ -72,11 +80,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
     pending_g_.clear();
     pending_offset_.clear();
     motion_g_ = g;
-    if (!rapid && feed_value_ > 0)
-      append_feed(b);
-    else if (!rapid)
-      error(line, "feed move with no feed rate (FEDRAT) in force");
-    if (!rapid) spindle_turning(line);
+    if (!rapid) cut_feed(b, line);
     out_.end_block();
   } else {
     out_.drop_block();  // already there: nothing to write, the modal codes wait for a move

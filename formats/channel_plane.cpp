@@ -159,13 +159,7 @@ void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int lin
     pending_g_.clear();
     motion_g_ = g;
     if (offset_block) offset_on_ = true;
-    if (!rapid) {
-      if (feed_value_ > 0)
-        append_feed(b);
-      else
-        error(line, "feed move with no feed rate (FEDRAT) in force");
-      spindle_turning(line);
-    }
+    if (!rapid) cut_feed(b, line);
     out_.end_block();
   }
   word_start_ = std::string::npos;

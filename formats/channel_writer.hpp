@@ -280,6 +280,9 @@ class channel_writer {
                    bool always);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(text_buffer& out);
+  /// The feed word of a cut (modal), or the error when no feed is in force; then the check
+  /// that the spindle turns (spindle_turning).
+  void cut_feed(text_buffer& out, int line);
   /// A blank before the next word, unless it is the first of a block built in place.
   void separate(text_buffer& out) const {
     if (out.size() != word_start_) out += ' ';
