@@ -55,8 +55,7 @@ command -v python3 >/dev/null 2>&1 || skip "python3 is not available"
 command -v flock >/dev/null 2>&1 || skip "flock (util-linux) is not available"
 
 rm -rf "$work"
-mkdir -p "$work/rt" || exit 2
-chmod 1777 "$work/rt"  # the realtime process (a non-root uid under root) makes its socket here
+mkdir -p "$work" || exit 2
 cp -p "$here/drive.py" "$here/$chain.ini" "$here/$chain.hal" "$here/oracle.tbl" "$work/" || exit 2
 
 # One LinuxCNC at a time on this machine (a lock file of another user's that this one may
@@ -68,7 +67,12 @@ chmod a+rw "$lock" 2>/dev/null
 flock -w 120 9 || skip "another run of this oracle held its lock for 2 minutes"
 [ -e /tmp/linuxcnc.lock ] && skip "another LinuxCNC is running (/tmp/linuxcnc.lock): not started beside it"
 
-export RTAPI_FIFO_PATH=$work/rt/fifo HOME=$work
+# The realtime process (a non-root uid under root) makes its socket here: a folder of its own
+# in /tmp, which that uid can reach whatever the work folder's parents allow (a checkout in a
+# `mktemp -d` folder is 0700).
+rt=$(mktemp -d /tmp/twinpost-lcnc-rt.XXXXXX) || exit 2
+chmod 1777 "$rt"
+export RTAPI_FIFO_PATH=$rt/fifo HOME=$work
 unset DISPLAY
 if [ "$(id -u)" = 0 ]; then
   export RTAPI_UID=${RTAPI_UID:-$(id -u nobody 2>/dev/null || echo 65534)}
@@ -86,6 +90,7 @@ cleanup() {
   # Whatever of the group is still there (nothing, after a normal run).
   [ -n "$lcnc_group" ] && kill -KILL -- "-$lcnc_group" 2>/dev/null
   lcnc_pid= lcnc_group=
+  rm -rf "$rt"
 }
 trap cleanup EXIT
 trap 'cleanup; exit 2' INT TERM
