@@ -69,7 +69,10 @@ tool_pose forward(const kinematic_chain& c, const joint_values& j, double tool_l
 }
 
 vec3 forward_tip(const kinematic_chain& c, const joint_values& j, double tool_length) {
-  const joint_turns r(c, j);
+  return forward_tip(c, j, tool_length, joint_turns(c, j));
+}
+
+vec3 forward_tip(const kinematic_chain& c, const joint_values& j, double tool_length, const joint_turns& r) {
   vec3 tip{};
   apply_heads(c, r, tool_length * c.tool_direction, tip, nullptr);
   tip = tip + j.linear;

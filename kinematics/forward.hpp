@@ -24,6 +24,7 @@ tool_pose forward(const kinematic_chain& c, const joint_values& j, double tool_l
 tool_pose forward(const kinematic_chain& c, const joint_values& j, double tool_length, const joint_turns& r);
 /// The tool tip alone of forward().
 vec3 forward_tip(const kinematic_chain& c, const joint_values& j, double tool_length);
+vec3 forward_tip(const kinematic_chain& c, const joint_values& j, double tool_length, const joint_turns& r);
 
 /// The tool axis alone of forward(), in the part frame.
 vec3 tool_axis(const kinematic_chain& c, const joint_values& j);

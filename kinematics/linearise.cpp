@@ -1,6 +1,7 @@
 #include "kinematics/linearise.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -56,10 +57,24 @@ struct splitter {
 
   // The largest distance from the segment of the tip of the joints between j0 and j1: the
   // sums of distance_to_segment(), the square root taken once of the largest square.
+  // The rotations at the quarters are the start's turned by one, two and three quarters of
+  // the move (the sum formulas: one sincos per axis for the start, a series for the quarter
+  // when it is small), not a sincos of each interpolated angle.
   double deviation(const joint_values& j0, const joint_values& j1) const {
+    const joint_turns start(c, j0);
+    std::array<joint_turns, 3> at{start, start, start};
+    for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
+      double d = j1.rotary[i] - j0.rotary[i];
+      if (c.rotaries[i].rollover == rotary_rollover::shortest) d = wrap_180(d);
+      const turn q = turn_of_small(d / 4);
+      at[0].t[i] = compose(at[0].t[i], q);
+      at[1].t[i] = compose(at[0].t[i], q);
+      at[2].t[i] = compose(at[1].t[i], q);
+    }
     double d2 = 0;
-    for (double t : {0.25, 0.5, 0.75}) {
-      const vec3 p = forward_tip(c, interpolate(c, j0, j1, t), tool_length);
+    for (std::size_t n = 0; n < 3; ++n) {
+      const double t = 0.25 * static_cast<double>(n + 1);
+      const vec3 p = forward_tip(c, interpolate(c, j0, j1, t), tool_length, at[n]);
       const double s = len2 > 0 ? std::clamp(dot(p - from.tip, ab) / len2, 0.0, 1.0) : 0.0;
       const vec3 off = p - (from.tip + s * ab);
       d2 = std::max(d2, dot(off, off));
