@@ -79,6 +79,10 @@ inline vec3 rotate_about(const vec3& p, const vec3& d, const vec3& on, const tur
 /// which std::fmod is not).
 inline double wrap_180(double a) {
   if (a >= -180.0 && a <= 180.0) return a;  // what std::remainder gives there, bit for bit
+  // Within one more turn the quotient rounds to +-1 (540 and -540 are ties, to even: +-2),
+  // and a -+ 360 is exact there (Sterbenz): the same bits as std::remainder.
+  if (a > 180.0 && a < 540.0) return a - 360.0;
+  if (a < -180.0 && a > -540.0) return a + 360.0;
   return std::remainder(a, 360.0);
 }
 

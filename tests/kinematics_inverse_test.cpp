@@ -391,6 +391,31 @@ TEST_CASE("wrap_180 is correct for negative angles (the fmod pitfall)", "[kinema
   CHECK(wrap_180(-0.25) == -0.25);
 }
 
+TEST_CASE("wrap_180's fast path within a turn gives std::remainder's bits", "[kinematics]") {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> any(-540, 540);
+  for (int n = 0; n < 100000; ++n) {
+    const double a = any(rng);
+    REQUIRE(wrap_180(a) == std::remainder(a, 360.0));
+  }
+  for (double a : {540.0, -540.0, std::nextafter(540.0, 0.0), std::nextafter(-540.0, 0.0),
+                   std::nextafter(180.0, 200.0), std::nextafter(-180.0, -200.0), 900.0, -900.0})
+    CHECK(wrap_180(a) == std::remainder(a, 360.0));
+  CHECK(wrap_180(540) == -180);
+  CHECK(wrap_180(-540) == 180);
+}
+
+TEST_CASE("turn_of_small and compose give turn_of's rotation", "[kinematics]") {
+  for (double d : {0.0, 1e-9, -0.0004, 0.37, -2.5, 5.7, -5.72, 5.73, 30.0, -170.0}) {
+    const turn a = turn_of_small(d), b = turn_of(d);
+    CHECK(a.c == Approx(b.c).margin(4e-17));
+    CHECK(a.s == Approx(b.s).margin(4e-17));
+    const turn sum = compose(turn_of(12.5), turn_of_small(d)), direct = turn_of(12.5 + d);
+    CHECK(sum.c == Approx(direct.c).margin(4e-16));
+    CHECK(sum.s == Approx(direct.s).margin(4e-16));
+  }
+}
+
 TEST_CASE("number_text writes at most four decimals without trailing zeros", "[kinematics]") {
   CHECK(number_text(30) == "30");
   CHECK(number_text(-0.5) == "-0.5");
