@@ -133,9 +133,11 @@ void channel_writer::cycle_point(const vec3& p, int line) {
                  fmt::format("CYCLE/{} with the tool axis ({}, {}, {}): only drilling along Z is written; "
                              "cross and tilted drilling is not supported yet",
                              c.type, axis_.x, axis_.y, axis_.z));
-  // On the centre line only: an axial hole off centre needs a live tool and the C axis; with
-  // the workpiece turning, the drill would cut a ring.
-  if (!cross && std::hypot(p.x, p.y) * cl_mm_ > 1e-3 && !c_axis_hole(p) && !(c_mode_ && has_y_))
+  // On a lathe on the centre line only: an axial hole off centre needs a live tool and the C
+  // axis; with the workpiece turning, the drill would cut a ring. On a machining centre the
+  // part stands still: a hole anywhere.
+  if (!cross && !part_stands_still() && std::hypot(p.x, p.y) * cl_mm_ > 1e-3 && !c_axis_hole(p) &&
+      !(c_mode_ && has_y_))
     return error(line, fmt::format("CYCLE/{} at X {} Y {}: off the spindle centre line; an axial hole off "
                                    "centre needs a live tool and the C axis, which are not posted yet",
                                    c.type, p.x, p.y));

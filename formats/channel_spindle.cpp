@@ -97,7 +97,7 @@ const spindle_def* channel_writer::spindle_for_tool(const spindle_event& s, int 
 
 bool channel_writer::drill_on_centre(double x_cl, int line) {
   if (kind_ != tool_kind::drill || spindle_ != work_ || restart_blocks_.empty() || spindle_held_) return true;
-  if (m_.spindle(ch_.live_spindle) == work_) return true;  // a mill: the spindle turns the drill
+  if (part_stands_still()) return true;  // a mill: the spindle turns the drill
   if (std::abs(x_cl * scale_) <= 1e-3) return true;
   error(line, fmt::format("tool {} is a drill (TLDATA/DRILL) and the part turns on the {} spindle, but this "
                           "feed move leaves the centre line (x = {}): off-centre drilling needs the live "

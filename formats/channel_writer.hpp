@@ -74,6 +74,9 @@ class channel_writer {
   /// False, after an error, when a drill turning with the part (on-centre axial drilling on
   /// the workpiece spindle) would feed off the centre line.
   bool drill_on_centre(double x_cl, int line);
+  /// A machining centre's channel: the spindle that turns the tools is the one the channel's
+  /// work is on, so the part stands still (drills anywhere, never needs the centre line).
+  bool part_stands_still() const { return work_ != nullptr && m_.spindle(ch_.live_spindle) == work_; }
   /// False, after an error (once per tool axis), when the tool axis in force is not along Z:
   /// twinpost writes no rotary axes yet, so a tilted or radial tool cannot be posted.
   bool tool_along_z(int line);
