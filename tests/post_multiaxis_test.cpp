@@ -407,6 +407,21 @@ TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0",
         "G3 X30. Y10. I0. J10. F500.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
 }
 
+TEST_CASE("multi-axis: the trunnion writes an arc centre 20 mm away (I J K in the axes' format)",
+          "[post][multiaxis]") {
+  // I J K were "1.6" on trunnion-5axis (the unit vector of G43.5), which refused J20.
+  const test::posted p =
+      post_moves(load_machine("trunnion-5axis"),
+                 "GOTO/0,0,0\nCIRCLE/0,20,0,0,0,1,20,0.06,0.5,10,0\nGOTO/20,20,0\n", "ma-arc-trunnion");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  const std::string nc = p.files.at("MOVES.nc");
+  CHECK(
+      nc.substr(nc.find("G0 G43.4")) ==
+      "G0 G43.4 H1 X0. Y0. Z50. A0. C0.\nG1 Z0. F500.\nG3 X20. Y20. I0. J20.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\n"
+      "M30\n%\n");
+}
+
 TEST_CASE("multi-axis: the tool length from TLDATA or the tool table, never guessed", "[post][multiaxis]") {
   machine m = load_machine("head-head-5axis");
   const std::string tilt = "GOTO/10,0,0,0.1736482,0,0.9848078\n";
