@@ -99,34 +99,35 @@ const inner_equation& inner_equation_of(const vec3& dout, const vec3& din, const
 
 }  // namespace
 
-two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
-                                                        const joint_values& previous) {
-  const orientation_form f = orientation_of(c);
-  const vec3& t0 = c.tool_direction;
-  two_at_most<orientation_solution> out;
-  if (f.outer < 0) {
-    out.push_back({});
-    return out;
-  }
+namespace {
+
+// The outer angle of `s` (whose inner rotation is solved): the angle that turns the tool after
+// the inner rotation to k, or the previous one at the pole.
+void solve_outer(const kinematic_chain& c, const orientation_form& f, const vec3& k,
+                 const joint_values& previous, orientation_solution& s) {
   const vec3& dout = c.rotaries[f.outer].direction;
-  // The outer angle that turns `v` (the tool after the inner rotation) to k, or the previous
-  // one at the pole.
-  auto outer_angle = [&](const vec3& v, orientation_solution& s) {
-    if (const std::optional<angle_and_turn> a = angle_about(dout, v, k)) {
-      s.rotary[f.outer] = f.outer_sign * a->degrees;
-      s.turns[f.outer] = {a->sides.c, f.outer_sign * a->sides.s};
-    } else {
-      s.rotary[f.outer] = previous.rotary[f.outer];
-      s.turns[f.outer] = turn_of(s.rotary[f.outer]);
-      s.pole = true;
-    }
-  };
-  if (f.inner < 0) {
-    orientation_solution s;
-    outer_angle(t0, s);
-    out.push_back(s);
-    return out;
+  vec3 v = c.tool_direction;
+  if (f.inner >= 0) {  // the raw rotation (the sign undone: multiplying by +-1 is exact)
+    const turn by{s.turns[f.inner].c, f.inner_sign * s.turns[f.inner].s};
+    v = rotate(v, c.rotaries[f.inner].direction, by);
   }
+  if (const std::optional<angle_and_turn> a = angle_about(dout, v, k)) {
+    s.rotary[f.outer] = f.outer_sign * a->degrees;
+    s.turns[f.outer] = {a->sides.c, f.outer_sign * a->sides.s};
+  } else {
+    s.rotary[f.outer] = previous.rotary[f.outer];
+    s.turns[f.outer] = turn_of(s.rotary[f.outer]);
+    s.pole = true;
+  }
+}
+
+// The inner angles of the (at most two) solutions, their outer angles not yet solved; for a
+// chain of two rotary axes only.
+two_at_most<orientation_solution> solve_inner(const kinematic_chain& c, const orientation_form& f,
+                                              const vec3& k) {
+  two_at_most<orientation_solution> out;
+  const vec3& dout = c.rotaries[f.outer].direction;
+  const vec3& t0 = c.tool_direction;
   // The outer rotation keeps the component along its axis: dout·R(inner, φ)·t0 = dout·k, which
   // by Rodrigues reads a + b·cos φ + c·sin φ = dout·k.
   const vec3& din = c.rotaries[f.inner].direction;
@@ -160,13 +161,38 @@ two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c
     orientation_solution s;
     s.rotary[f.inner] = f.inner_sign * wrap_180(phi);
     s.turns[f.inner] = {by.c, f.inner_sign * by.s};
-    outer_angle(rotate(t0, din, by), s);
-    if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
     if (s.rotary[f.inner] == -180.0) s.rotary[f.inner] = 180.0;
-    const bool twin = !out.empty() &&
-                      std::abs(wrap_180(out[0].rotary[f.inner] - s.rotary[f.inner])) < 1e-12 &&
-                      std::abs(wrap_180(out[0].rotary[f.outer] - s.rotary[f.outer])) < 1e-12;
-    if (!twin) out.push_back(s);
+    out.push_back(s);
+  }
+  return out;
+}
+
+// Whether two solutions are the same (the closed form's two coincide on the edge of its circle).
+bool twins(const orientation_form& f, const orientation_solution& x, const orientation_solution& y) {
+  return std::abs(wrap_180(x.rotary[f.inner] - y.rotary[f.inner])) < 1e-12 &&
+         std::abs(wrap_180(x.rotary[f.outer] - y.rotary[f.outer])) < 1e-12;
+}
+
+}  // namespace
+
+two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
+                                                        const joint_values& previous) {
+  const orientation_form f = orientation_of(c);
+  two_at_most<orientation_solution> out;
+  if (f.outer < 0) {
+    out.push_back({});
+    return out;
+  }
+  if (f.inner < 0) {
+    orientation_solution s;
+    solve_outer(c, f, k, previous, s);
+    out.push_back(s);
+    return out;
+  }
+  for (orientation_solution s : solve_inner(c, f, k)) {
+    solve_outer(c, f, k, previous, s);
+    if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
+    if (out.empty() || !twins(f, out[0], s)) out.push_back(s);
   }
   return out;
 }
@@ -222,12 +248,14 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     raw.rotary = rotary;
     return angle_between(tool_axis(c, raw), k);
   };
-  for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
-    candidate cand{{}, s.pole, 0, 0, 0, 0, 0};
+  // Places the angles of `s` within the limits relative to `previous`: false, with `why`,
+  // when an axis has no value within them.
+  const auto place = [&](const orientation_solution& s, candidate& cand, refused& why) {
+    cand = candidate{{}, s.pole, 0, 0, 0, 0, 0};
     cand.raw = s.rotary;
     cand.turns = s.turns;
     cand.j.rotary = s.rotary;
-    refused why{s.rotary, {false, false}};
+    why = refused{s.rotary, {false, false}};
     for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
       const rotary_axis_def& a = c.rotaries[i];
       const std::optional<fitted> v = fit(a, s.rotary[i], previous.rotary[i]);
@@ -240,7 +268,59 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
       if (static_cast<int>(i) == f.outer) cand.outer = v->move;
       if (!meets(a.prefer, v->value)) ++cand.misses;
     }
-    if (why.beyond[0] || why.beyond[1]) {
+    return !why.beyond[0] && !why.beyond[1];
+  };
+  // The forward transform's check of a candidate; true (with `r` set) when it holds.
+  const auto verify = [&](candidate& cand) {
+    const joint_turns turns(cand.turns);
+    if (need != ik_need::joints) {
+      cand.axis_error = angle_between(tool_axis(c, turns), k);
+      if (cand.axis_error > c.angle_tolerance) return false;
+    } else {  // the forward transform of the joints below checks the axis too
+      cand.j.linear = part_to_machine(c, turns, want.tip) - head_offset(c, turns, tool_length);
+      const tool_pose got = forward(c, cand.j, tool_length, turns);
+      cand.tip_error = distance(got.tip, want.tip);
+      cand.axis_error = angle_between(got.axis, k);
+      if (cand.tip_error > c.tolerance || cand.axis_error > c.angle_tolerance) return false;
+    }
+    r.joints = cand.j;
+    r.pole = cand.pole;
+    r.tip_error = cand.tip_error;
+    r.axis_error = cand.axis_error;
+    return true;
+  };
+  // The short way, for two rotary axes whose outer one has no preferred sign: the solution
+  // whose inner axis moves less has its outer angle solved; when its whole move is shorter
+  // than the other's inner move alone (and the other meets no more preferred signs), the
+  // other cannot be chosen before it and its outer angle is not needed: the same choice as
+  // below, at one atan2 and one projection less. Anything else goes the whole way.
+  if (f.inner >= 0 && c.rotaries[f.outer].prefer == preferred_sign::none) {
+    const two_at_most<orientation_solution> in = solve_inner(c, f, k);
+    if (in.size() == 2) {
+      const rotary_axis_def& ia = c.rotaries[f.inner];
+      const std::optional<fitted> m0 = fit(ia, in[0].rotary[f.inner], previous.rotary[f.inner]);
+      const std::optional<fitted> m1 = fit(ia, in[1].rotary[f.inner], previous.rotary[f.inner]);
+      if (m0 || m1) {
+        const std::size_t first = !m1 || (m0 && m0->move <= m1->move) ? 0 : 1;
+        const std::optional<fitted>& other = first == 0 ? m1 : m0;
+        orientation_solution s = in[first];
+        solve_outer(c, f, k, previous, s);
+        if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
+        candidate cand;
+        refused why;
+        if (place(s, cand, why)) {
+          const int other_misses = other && !meets(ia.prefer, other->value) ? 1 : 0;
+          const bool other_later = !other || cand.misses < other_misses ||
+                                   (cand.misses == other_misses && cand.total + 1e-6 < other->move);
+          if (other_later && verify(cand)) return r;
+        }
+      }
+    }
+  }
+  for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
+    candidate cand;
+    refused why;
+    if (!place(s, cand, why)) {
       beyond.push_back(why);  // checked below, if it comes to the message
       continue;
     }
@@ -262,25 +342,8 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
   std::size_t n = 0;
   for (const candidate& cand : fitting) order[n++] = cand;
   if (n == 2 && better(order[1], order[0])) std::swap(order[0], order[1]);
-  for (std::size_t i = 0; i < n; ++i) {
-    candidate& cand = order[i];
-    const joint_turns turns(cand.turns);
-    if (need != ik_need::joints) {
-      cand.axis_error = angle_between(tool_axis(c, turns), k);
-      if (cand.axis_error > c.angle_tolerance) continue;
-    } else {  // the forward transform of the joints below checks the axis too
-      cand.j.linear = part_to_machine(c, turns, want.tip) - head_offset(c, turns, tool_length);
-      const tool_pose got = forward(c, cand.j, tool_length, turns);
-      cand.tip_error = distance(got.tip, want.tip);
-      cand.axis_error = angle_between(got.axis, k);
-      if (cand.tip_error > c.tolerance || cand.axis_error > c.angle_tolerance) continue;
-    }
-    r.joints = cand.j;
-    r.pole = cand.pole;
-    r.tip_error = cand.tip_error;
-    r.axis_error = cand.axis_error;
-    return r;
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (verify(order[i])) return r;
   {  // nothing fits: why (of the candidates beyond a limit, those the forward transform confirms)
     two_at_most<refused> confirmed;
     for (const refused& b : beyond)
