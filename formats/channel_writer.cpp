@@ -234,6 +234,14 @@ void channel_writer::process_event(const event& e, bool both) {
         else if constexpr (std::is_same_v<T, feed_event>)
           feed(d, e.line);
         else if constexpr (std::is_same_v<T, tool_event>) {
+          if (cycle_ && !d.preselect) {
+            // The cycle's depth and feed were the last tool's; every move of the next tool
+            // would be drilled as a hole. The CL must end the cycle first.
+            error(e.line, fmt::format("a tool change while CYCLE/{} (line {}) is in force: give CYCLE/OFF "
+                                      "before it, or each move of the next tool would be drilled as a hole",
+                                      cycle_->type, cycle_line_));
+            cycle_.reset();
+          }
           if (chain_ && !d.preselect) multiaxis_off();
           tool(d, e.line);
           if (chain_ && !d.preselect) multiaxis_tool(d, e.line);
@@ -265,7 +273,7 @@ void channel_writer::process_event(const event& e, bool both) {
             if (cycle_refused_)
               cycle_.reset();
             else
-              cycle_ = d;
+              cycle_ = d, cycle_line_ = e.line;
           }
         } else if constexpr (std::is_same_v<T, thread_event>) {
           thread_mode(d, e.line);

@@ -359,6 +359,7 @@ class channel_writer {
   double feed_value_ = 0;
   std::string pending_g_;  // G40/G41/G42 waiting for the next move
   std::optional<cycle_event> cycle_;
+  int cycle_line_ = 0;                     ///< the CL line of the cycle in force
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force
   bool thread_saved_per_rev_ = false;      ///< the feed mode to restore at THREAD/OFF
   bool thread_saved_mode_ = false;         ///< whether a feed mode was written before THREAD/TURN
