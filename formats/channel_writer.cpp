@@ -94,7 +94,9 @@ void channel_writer::error(int line, std::string message) {
 }
 
 void channel_writer::misfit(char address, double value) {
-  error(line_, word_misfit_message(address, fmt::format("{}", value), m_.formats[address]));
+  // 12 significant digits: the value, without the binary noise of its conversions
+  // ("142.10330499999998").
+  error(line_, word_misfit_message(address, fmt::format("{:.12g}", value), m_.formats[address]));
 }
 
 bool channel_writer::fits(char address, double v, int decimals) {

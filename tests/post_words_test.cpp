@@ -46,6 +46,16 @@ TEST_CASE("an axis word past the control's format stops the post at its record",
         "job.cls:6:1: error: channel 1: Z word 100000 does not fit the control's format (5.3: at most "
         "99999.999)\n"
         "GOTO/29,0,100000\n^\n");
+  // A value from inches: 3937.7 x 25.4 is 100017.57999999999 as a double; the message gives
+  // it to 12 digits.
+  posted inch = post_text(
+      "PARTNO W\nUNITS/INCHES\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\n"
+      "GOTO/1,0,3937.7\nFINI\n",
+      "fanuc-0itd-twin", "inch");
+  CHECK(inch.diagnostics ==
+        "job.cls:6:1: error: channel 1: Z word 100017.58 does not fit the control's format (5.3: at most "
+        "99999.999)\n"
+        "GOTO/1,0,3937.7\n^\n");
   posted edge = post_text(head + "GOTO/29,0,-99999.999\nFINI\n", "fanuc-0itd-twin", "edge");
   CHECK(edge.ok);
   CHECK(edge.diagnostics == "");
