@@ -2,6 +2,11 @@
 // a slash, free text, numbers, words, blanks, line endings, encodings, long lines.
 #include <catch2/catch.hpp>
 
+#include <charconv>
+#include <random>
+#include <string>
+
+#include "parser/detail/lexical.hpp"
 #include "tests/parser_test_support.hpp"
 
 using namespace twinpost;
@@ -166,6 +171,48 @@ TEST_CASE("numbers read exactly, on the fast path and past it", "[parser][lexica
         lines{"1\tgoto x=0.1 y=0.3 z=0.123456789012345",
               "2\tgoto x=123456789012345 y=1234567890123456 z=0.12345678901234566",
               "3\tgoto x=12.5 y=-7.4675 z=1e-07"});
+}
+
+TEST_CASE("fast_decimal reads eight digits at a time as from_chars reads them", "[parser][lexical]") {
+  // Digit runs of every length on both sides of the point, ended by every kind of character or
+  // by the end of the text at every distance (the eight-at-a-time read needs eight characters
+  // left): the value and the end must be from_chars' for each.
+  std::mt19937_64 rng(7);
+  const std::string ends[] = {"", ",", " ", "x", "/", ":", "\x7f", "\xff", "0.5", ",1.25"};
+  int compared = 0;
+  for (int whole = 0; whole <= 15; ++whole)
+    for (int frac = -1; whole + std::max(frac, 0) <= 16; ++frac)  // -1: no point at all
+      for (const std::string& end : ends)
+        for (int n = 0; n < 20; ++n) {
+          std::string number;
+          for (int i = 0; i < whole; ++i) number += static_cast<char>('0' + rng() % 10);
+          if (frac >= 0) number += '.';
+          for (int i = 0; i < frac; ++i) number += static_cast<char>('0' + rng() % 10);
+          const std::string text = number + end;
+          double fast = -1;
+          const char* stop = parser_detail::fast_decimal(text.data(), text.data() + text.size(), fast);
+          // The digits the number has, read from the text (an end of "0.5" adds to them).
+          int digits = 0;
+          std::size_t at = 0;
+          while (at < text.size() && text[at] >= '0' && text[at] <= '9') ++digits, ++at;
+          if (at < text.size() && text[at] == '.')
+            for (++at; at < text.size() && text[at] >= '0' && text[at] <= '9'; ++at) ++digits;
+          if (digits == 0 || digits > 15) {  // handed on: "." alone, or too long for the fast path
+            CHECK(stop == nullptr);
+            continue;
+          }
+          REQUIRE(stop != nullptr);
+          double exact = -2;
+          const auto r = std::from_chars(text.data(), text.data() + text.size(), exact);
+          INFO(text);
+          REQUIRE(r.ec == std::errc());
+          // from_chars takes "1." and ".5" as the fast path does; an end of "0.5" continues the
+          // digits for both, so compare where each stopped.
+          REQUIRE(stop == r.ptr);
+          REQUIRE(fast == exact);
+          ++compared;
+        }
+  CHECK(compared > 20000);
 }
 
 TEST_CASE("minus zero never prints as -0, in passthrough arguments either", "[parser][lexical]") {

@@ -2,7 +2,10 @@
 // Plain lexical pieces of CL, with no X3 in them: shared by the grammar's primitives
 // (number_parser.hpp, text_major_parser.hpp) and the fast path for numeric records
 // (fast_record.cpp), so that both read characters, numbers and text majors alike.
+#include <bit>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 #include <string_view>
 
 #include "support/ascii.hpp"
@@ -24,20 +27,66 @@ inline bool is_word_char(char c) { return word_chars.in[static_cast<unsigned cha
 // the digits as an exact integer divided by an exact power of ten is one correctly rounded
 // IEEE division (Clinger's fast path), so the value equals from_chars'. Returns the end of
 // the number, or nullptr to hand the text to from_chars (exponents, long numbers, "." alone).
+namespace swar {
+// Eight characters as one little-endian word (the first in the low byte).
+inline std::uint64_t load8(const char* p) {
+  std::uint64_t w;
+  std::memcpy(&w, p, 8);
+  if constexpr (std::endian::native == std::endian::big) w = __builtin_bswap64(w);
+  return w;
+}
+// How many of the eight characters in `w` are digits before the first that is not. A digit is
+// 0x30..0x39: its high nibble 3 and its low nibble below 10 (+6 carries no further). A byte after
+// the first non-digit may take a carry from it, which cannot move that first one.
+inline int leading_digits(std::uint64_t w) {
+  const std::uint64_t x = w ^ 0x3030303030303030ULL;
+  const std::uint64_t bad = (x | (x + 0x0606060606060606ULL)) & 0xF0F0F0F0F0F0F0F0ULL;
+  return bad == 0 ? 8 : std::countr_zero(bad) / 8;
+}
+// The value of the first `n` (1..8) digits of `w`: padded in front with '0's to eight, then
+// combined pairwise, in fours and in eights (the method of Lemire's fast_float).
+inline std::uint64_t digits_value(std::uint64_t w, int n) {
+  if (n < 8) w = (w << (8 * (8 - n))) | (0x3030303030303030ULL >> (8 * n));
+  w -= 0x3030303030303030ULL;
+  w = (w * 10) + (w >> 8);  // pairs
+  w = (((w & 0x000000FF000000FFULL) * 0x000F424000000064ULL) +
+       (((w >> 16) & 0x000000FF000000FFULL) * 0x0000271000000001ULL)) >>
+      32;
+  return w;
+}
+}  // namespace swar
+
+// The common CL number (`123.4567`, at most 15 digits, no exponent) without from_chars:
+// the digits as an exact integer divided by an exact power of ten is one correctly rounded
+// IEEE division (Clinger's fast path), so the value equals from_chars'. Returns the end of
+// the number, or nullptr to hand the text to from_chars (exponents, long numbers, "." alone).
+// Runs of digits are read eight at a time where eight characters remain.
 inline const char* fast_decimal(const char* p, const char* last, double& value) {
   static constexpr double pow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                      1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
+  static constexpr unsigned long long ipow10[] = {1,      10,      100,      1000,     10000,
+                                                  100000, 1000000, 10000000, 100000000};
   // Digits first, counted afterwards: more than 15 go to from_chars, so the unsigned
   // arithmetic here may wrap on a long number without harm.
   unsigned long long mantissa = 0;
+  const auto run = [&](const char*& q) {
+    while (last - q >= 8) {
+      const std::uint64_t w = swar::load8(q);
+      const int n = swar::leading_digits(w);
+      if (n == 0) return;
+      mantissa = mantissa * ipow10[n] + swar::digits_value(w, n);
+      q += n;
+      if (n < 8) return;
+    }
+    while (q != last && static_cast<unsigned>(*q - '0') < 10)
+      mantissa = mantissa * 10 + static_cast<unsigned>(*q++ - '0');
+  };
   const char* int_begin = p;
-  while (p != last && static_cast<unsigned>(*p - '0') < 10)
-    mantissa = mantissa * 10 + static_cast<unsigned>(*p++ - '0');
+  run(p);
   int digits = static_cast<int>(p - int_begin), fraction = 0;
   if (p != last && *p == '.') {
     const char* frac_begin = ++p;
-    while (p != last && static_cast<unsigned>(*p - '0') < 10)
-      mantissa = mantissa * 10 + static_cast<unsigned>(*p++ - '0');
+    run(p);
     fraction = static_cast<int>(p - frac_begin);
     digits += fraction;
   }
