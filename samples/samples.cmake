@@ -70,9 +70,11 @@ foreach(_tp_job IN LISTS _tp_jobs)
                      -DWORK_DIR=${TWINPOST_SAMPLE_WORK}/${_tp_id}
                      -P ${TWINPOST_SAMPLE_RUNNER})
     set_tests_properties(sample.${_tp_id} PROPERTIES LABELS "sample")
-    # No oracle on the multi-axis mills (joints, G43.4), nor for a job whose `no-oracle` file says
-    # why rs274 cannot read its programs (polar interpolation, C, a turned frame).
-    if(TWINPOST_BASH AND EXISTS ${_tp_oracle} AND NOT _tp_machine IN_LIST TWINPOST_MULTIAXIS_MACHINES
+    # No oracle on the multi-axis mills (joints, G43.4) unless the job's `rotaries-at-zero` file
+    # says its rotary axes never leave 0 (X Y Z are then the tip), nor for a job whose `no-oracle`
+    # file says why rs274 cannot read its programs (polar interpolation, C, a turned frame).
+    if(TWINPOST_BASH AND EXISTS ${_tp_oracle}
+       AND (NOT _tp_machine IN_LIST TWINPOST_MULTIAXIS_MACHINES OR EXISTS ${_tp_dir}/rotaries-at-zero)
        AND NOT EXISTS ${_tp_dir}/no-oracle)
       add_test(NAME oracle.${_tp_id}
                COMMAND ${TWINPOST_BASH} ${_tp_oracle} $<TARGET_FILE:twinpost> ${_tp_job} ${_tp_machine}
