@@ -125,7 +125,16 @@ void channel_writer::tool(const tool_event& t, int line) {
   const char* word = words[static_cast<int>(t.source)];
   // A call template without {offset} (the Integrex mill head's T01 M6) cannot select another
   // offset: TURRET/1,21 for the finish would run on the roughing offset without a word.
-  if (t.offset && *t.offset != t.tool && ch_.tool_call.find("{offset") == std::string::npos) {
+  // A channel whose every move goes through its chain writes the offset itself, in the length
+  // code of the first move after the call (G43 H<offset>, G43.4 H<offset>).
+  const bool chain_offset = [&] {
+    if (!chain_ || chain_->moves != multiaxis_moves::all) return false;
+    const std::string& on =
+        chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on;
+    return !on.empty() && on.find('H') == std::string::npos;
+  }();
+  if (t.offset && *t.offset != t.tool && !chain_offset &&
+      ch_.tool_call.find("{offset") == std::string::npos) {
     tool_ = t.tool;  // the post has failed: its moves need no second error for a missing tool
     return error(line,
                  fmt::format("{} asks for tool {} on offset {}, but the channel's tool call {} writes no "

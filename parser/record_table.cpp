@@ -94,8 +94,10 @@ const event_builder::rule_index& event_builder::rules() {
               "the tool's geometry, for the CAM's simulation; the control uses its own tool offsets",
               &b::on_tool_data),
       posted("CYCLE", &b::on_cycle,
-             "DRILL, DEEP, DEEP2 and TAP along Z on the spindle centre line: the machine's canned cycle "
-             "([cycles]: Fanuc G83/M29 G84, Mazak G81-G83/G73/G84.2 with G98) or plain moves (a tap on G32 "
+             "DRILL, DEEP, DEEP2 and TAP along Z (on a lathe on the spindle centre line, or with a live tool "
+             "and C; on a machining centre anywhere): the machine's canned cycle ([cycles]: Fanuc lathe "
+             "G83/M29 G84, Fanuc mill G81-G83/G73/M29 G84/G74, Mazak G81-G83/G73/G84.2 with G98) or plain "
+             "moves (a tap on G32 "
              "with the spindle reversed at the bottom); THREAD and GROOVE as [cycles] say (G76/G276, "
              "G92/G292 or G32 passes; G75 or G0/G1 plunges); the words read as the dialect defines them "
              "(SolidWorks FEDTO is a depth). Any other cycle, a word the post does not carry out, or a "

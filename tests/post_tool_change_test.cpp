@@ -160,6 +160,17 @@ TEST_CASE("an offset the channel's tool call cannot write is an error, never the
       "integrex-i200st", "offset-turret");
   CHECK(q.ok);
   CHECK(q.diagnostics.empty());
+  // A 4-axis mill whose every move goes through its chain writes the offset in the length code
+  // of the first move: LOADTL/2,5 is G43 H5 after T02 M6 (CATIA writes LOADTL/2,1).
+  const test::posted r = post_on(
+      "PARTNO TC\nLOADTL/2,5\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,300\nRAPID\nGOTO/10,0,20\nGOTO/10,0,0\nFINI\n",
+      "rotary-4axis", "offset-chain");
+  INFO(r.diagnostics);
+  REQUIRE(r.ok);
+  const std::string nc = r.files.at("TC.nc");
+  CHECK(nc.substr(nc.find("T02")) ==
+        "T02 M6\nS1000 M3\nG94\nG0 G43 H5 X10. Y0. Z20. A0.\nG1 Z0. F300.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\n"
+        "M30\n%\n");
 }
 
 TEST_CASE("a coolant kind still on at the end is turned off with its own code before the footer",
