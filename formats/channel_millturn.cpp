@@ -160,7 +160,9 @@ void channel_writer::polar_linear(bool rapid, const vec3& p, int line) {
   last_x_.lo = INT64_MIN, last_x_.hi = INT64_MAX;
   bool moved = axis_word(b, 'X', nc_x(p.x), last_x_);
   last_x_.lo = lo, last_x_.hi = hi;
-  const double r = std::hypot(nc_x(p.x), nc_y(p.y));
+  // The radius in the units of the X travel: X may be in diameter in the mode (Fanuc: X in
+  // diameter, C, the hypothetical axis, in radius) or in radius (Integrex G10.9 X0).
+  const double r = std::hypot(p.x, p.y) * scale_;
   if (const axis_def* x = ch_.axis('X'); x && x->max && r * (x_diameter_ ? 2 : 1) > *x->max) {
     out_.drop_block();
     word_start_ = std::string::npos;
@@ -283,6 +285,7 @@ bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, i
     return false;
   }
   leave_polar();
+  if (radial && side_holes()) return side_move(rapid, x, y, z, line);  // Fanuc: along X at a C position
   if (radial) {
     // The tool points across the spindle axis: C turns the part so that it points along the
     // turned frame's Z. A hole's own moves come in that frame already.

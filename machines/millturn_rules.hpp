@@ -55,6 +55,11 @@ struct milling_rules {
   /// codes in that frame: X is the part's -Z, Y its Y, Z the radius. Empty: cross holes stop
   /// the post.
   std::vector<std::string> radial_frame_on, radial_frame_off;
+  /// How cross holes and the moves of a radial tool are written: "turned_frame" (the frame
+  /// above, the [cycles] codes along its Z: Integrex) or "side_cycle" (C turned to the tool
+  /// axis's angle and clamped, X the diameter along the tool, the [cycles] side codes: Fanuc
+  /// G87/G88 as the Fusion "Doosan Mill/Turn" post writes them).
+  std::string cross_holes = "turned_frame";
   /// Cylindrical interpolation for milling on the diameter with a radial tool, written inside
   /// the turned frame of cross holes (Integrex: `G17`, `G7.1 C{radius}`; off `G7.1 C0`, `G18`).
   /// One block of `cylindrical_on` holds `{radius}` (the cylinder's radius, mm) or `{diameter}`.
