@@ -304,7 +304,11 @@ bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, i
     position_c(0);
   }
   auto [u, v] = c_frame(x, y);
-  if (!has_y_ && std::abs(v) * cl_mm_ > 1e-4) {
+  // A drill's rapid to a hole off the X axis on a machine that drills face holes at C
+  // positions turns C to it rather than moving Y (with C still at the last hole's angle, the
+  // approach would cross the centre line in Y).
+  const bool xzc = rapid && m_.milling.face_holes == "c_axis" && kind_ == tool_kind::drill;
+  if ((!has_y_ || xzc) && std::abs(v) * cl_mm_ > 1e-4) {
     if (!rapid || radial) {
       error(line, fmt::format("a feed move to Y {} in the frame of C{} on a channel without a Y axis: it "
                               "needs polar interpolation (milling.face_milling = \"polar\")",

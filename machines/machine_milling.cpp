@@ -60,9 +60,9 @@ void check_c_axis_codes(const table_reader& r, const c_axis_codes& c, const std:
                                             {"select", s.select}})
             if (value && *value == code)
               r.fail(*r.find(key),
-                     fmt::format("{} M{} is also spindle '{}''s {} code: a program could not tell the one "
-                                 "from the other",
-                                 r.key_path(key), code, s.name, what));
+                     fmt::format("{} M{} is also the {} code of spindle '{}': a program could not tell the "
+                                 "one from the other",
+                                 r.key_path(key), code, what, s.name));
   };
   check("c_on", c.on);
   check("c_off", c.off);
@@ -149,7 +149,11 @@ void read_milling(const table_reader& root, machine& m) {
     if (holes != 1)
       r.fail(*r.find("cylindrical_on"),
              "milling.cylindrical_on must hold the cylinder's size once: {radius} or {diameter}");
-    if (g.radial_frame_on.empty() && g.cross_holes != "side_cycle")
+    if (g.cross_holes == "side_cycle")
+      r.fail(*r.find("cylindrical_on"),
+             "milling.cylindrical_on is written in the turned frame of cross_holes = \"turned_frame\": "
+             "twinpost writes no cylindrical interpolation with \"side_cycle\" yet");
+    if (g.radial_frame_on.empty())
       r.fail(*r.find("cylindrical_on"),
              "milling.cylindrical_on needs milling.radial_frame_on: cylindrical interpolation is written in "
              "the turned frame of cross holes");
