@@ -212,9 +212,9 @@ void channel_writer::cycle_point(const vec3& p, int line) {
     const bool pecks = h.first > 0;
     // Across the spindle axis with the side cycles: no chip-breaking side code is read.
     const std::string none;
-    const std::string& code = side ? (pecks         ? (h.chip_break ? none : k.side_peck_code)
-                                      : h.dwell > 0 ? k.side_dwell_code
-                                                    : k.side_drill_code)
+    const std::string& code = side          ? (pecks         ? (h.chip_break ? none : k.side_peck_code)
+                                               : h.dwell > 0 ? k.side_dwell_code
+                                                             : k.side_drill_code)
                               : pecks       ? (h.chip_break ? k.chip_break_code : k.peck_code)
                               : h.dwell > 0 ? k.dwell_code
                                             : k.drill_code;

@@ -305,8 +305,8 @@ void read_limits(const table_reader& root, motion_limits& l) {
 void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   auto reader = [&](const toml::table& t) {
     return table_reader(t, "spindle", root.source(),
-                        {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset", "reverse_z",
-                         "per_channel", "c_on", "c_off", "c_clamp", "c_unclamp"});
+                        {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset",
+                         "reverse_z", "per_channel", "c_on", "c_off", "c_clamp", "c_unclamp"});
   };
   for (const toml::table* t : root.tables("spindle")) {
     const table_reader r = reader(*t);

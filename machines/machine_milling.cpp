@@ -42,7 +42,8 @@ std::vector<int> m_codes(std::string_view block) {
     if (depth > 0 || block[i] != 'M') continue;
     std::size_t j = i + 1;
     int v = 0;
-    while (j < block.size() && block[j] >= '0' && block[j] <= '9' && v < 100000) v = v * 10 + (block[j++] - '0');
+    while (j < block.size() && block[j] >= '0' && block[j] <= '9' && v < 100000)
+      v = v * 10 + (block[j++] - '0');
     if (j > i + 1 && (j == block.size() || block[j] != '.')) out.push_back(v);
   }
   return out;
@@ -103,11 +104,10 @@ void read_head_index(const table_reader& channel, channel_def& c) {
 void read_milling(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("milling");
   if (!t) return;
-  table_reader r(
-      *t, "milling", root.source(),
-      {"radius_input", "diameter_input", "polar_on", "polar_off", "polar_rapid_feed", "face_milling",
-       "face_holes", "cross_holes", "radial_frame_on", "radial_frame_off", "cylindrical_on",
-       "cylindrical_off"});
+  table_reader r(*t, "milling", root.source(),
+                 {"radius_input", "diameter_input", "polar_on", "polar_off", "polar_rapid_feed",
+                  "face_milling", "face_holes", "cross_holes", "radial_frame_on", "radial_frame_off",
+                  "cylindrical_on", "cylindrical_off"});
   milling_rules& g = m.milling;
   g.given = true;
   read_pair(r, "radius_input", g.radius_input, "diameter_input", g.diameter_input);

@@ -56,8 +56,8 @@ std::vector<vec3> tips(const std::string& program) {
   const double deg = std::numbers::pi / 180;
   auto part = [&](double px, double py, double pz) {
     if (polar) return vec3{px, py, pz};
-    return vec3{px * std::cos(c * deg) - py * std::sin(c * deg), px * std::sin(c * deg) + py * std::cos(c * deg),
-                pz};
+    return vec3{px * std::cos(c * deg) - py * std::sin(c * deg),
+                px * std::sin(c * deg) + py * std::cos(c * deg), pz};
   };
   std::istringstream in(program);
   std::string b;
@@ -95,7 +95,9 @@ std::vector<vec3> tips(const std::string& program) {
   return out;
 }
 
-std::string text(const vec3& p) { return fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x + 0.0, p.y + 0.0, p.z + 0.0); }
+std::string text(const vec3& p) {
+  return fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x + 0.0, p.y + 0.0, p.z + 0.0);
+}
 
 }  // namespace
 
@@ -149,41 +151,48 @@ TEST_CASE("the Fanuc cross hole: C to the hole and clamped, G87 along X, R from 
 TEST_CASE("what the Fanuc side cycles cannot do stops the post, by name", "[post][millturn]") {
   const std::string tool = "PARTNO E\nHEAD/3\nTLDATA/DRILL,6,118\nLOADTL/14\nSPINDL/RPM,500,CLW,LIVE\n";
   // A cross hole beside its radial line: G87 drills through the centre only.
-  test::posted p = post_on(tool + "RAPID\nGOTO/40,5,-20,1,0,0\nCYCLE/DRILL,DEPTH,10,RAPTO,3,MMPM,100\n"
-                                  "GOTO/30,5,-20\nCYCLE/OFF\nFINI\n",
+  test::posted p = post_on(tool +
+                               "RAPID\nGOTO/40,5,-20,1,0,0\nCYCLE/DRILL,DEPTH,10,RAPTO,3,MMPM,100\n"
+                               "GOTO/30,5,-20\nCYCLE/OFF\nFINI\n",
                            "beside");
-  CHECK(p.diagnostics ==
-        "job.cls:9:1: error: channel 3: a cross hole 5 mm beside its radial line: the side cycle (G87) drills "
-        "along X through the spindle centre only\nGOTO/30,5,-20\n^\n");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:9:1: error: channel 3: a cross hole 5 mm beside its radial line: the side cycle (G87) drills "
+      "along X through the spindle centre only\nGOTO/30,5,-20\n^\n");
   // A left-hand cross tap: that post writes no left-hand side tap.
-  p = post_on(tool + "RAPID\nGOTO/40,0,-20,1,0,0\nCYCLE/TAP,DEPTH,10,RAPTO,3,PITCH,1,LEFT\n"
-                     "GOTO/30,0,-20\nCYCLE/OFF\nFINI\n",
+  p = post_on(tool +
+                  "RAPID\nGOTO/40,0,-20,1,0,0\nCYCLE/TAP,DEPTH,10,RAPTO,3,PITCH,1,LEFT\n"
+                  "GOTO/30,0,-20\nCYCLE/OFF\nFINI\n",
               "left-tap");
-  CHECK(p.diagnostics ==
-        "job.cls:9:1: error: channel 3: CYCLE/TAP across the spindle axis: machine 'fanuc-31i-3path' gives no "
-        "left-hand side tapping cycle (cycles.side_tap_code, right-hand only)\nGOTO/30,0,-20\n^\n");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:9:1: error: channel 3: CYCLE/TAP across the spindle axis: machine 'fanuc-31i-3path' gives no "
+      "left-hand side tapping cycle (cycles.side_tap_code, right-hand only)\nGOTO/30,0,-20\n^\n");
   // Milling on the diameter: C would turn under a cutting tool; no cylindrical interpolation.
-  p = post_on("PARTNO E\nHEAD/3\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\n"
-              "RAPID\nGOTO/30,0,-10,1,0,0\nGOTO/23,0,-10\nGOTO/22.216294,5.952838,-12.5,0.9659258,0.258819,0\n"
-              "FINI\n",
-              "wrap");
+  p = post_on(
+      "PARTNO E\nHEAD/3\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\n"
+      "RAPID\nGOTO/30,0,-10,1,0,0\nGOTO/23,0,-10\nGOTO/22.216294,5.952838,-12.5,0.9659258,0.258819,0\n"
+      "FINI\n",
+      "wrap");
   CHECK(p.diagnostics ==
         "job.cls:10:1: error: channel 3: a feed move with the tool across the spindle axis (milling on the "
         "diameter): machine 'fanuc-31i-3path' writes radial tools along X at a C position only "
         "(milling.cross_holes = \"side_cycle\"), so it cannot be posted\n"
         "GOTO/22.216294,5.952838,-12.5,0.9659258,0.258819,0\n^\n");
   // A feed of the radial tool beside its line (milling with Y across the axis).
-  p = post_on("PARTNO E\nHEAD/3\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\n"
-              "RAPID\nGOTO/30,0,-10,1,0,0\nGOTO/23,0,-10\nGOTO/23,5,-10\nFINI\n",
-              "y-cut");
+  p = post_on(
+      "PARTNO E\nHEAD/3\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\n"
+      "RAPID\nGOTO/30,0,-10,1,0,0\nGOTO/23,0,-10\nGOTO/23,5,-10\nFINI\n",
+      "y-cut");
   CHECK(p.diagnostics ==
         "job.cls:10:1: error: channel 3: a feed move of the radial tool 5 mm beside its radial line at C0.: "
         "machine 'fanuc-31i-3path' writes radial tools along X through the spindle centre only\n"
         "GOTO/23,5,-10\n^\n");
   // Live-tool work on the sub spindle: it has no C-axis codes here (kept refusal).
-  p = post_on("PARTNO E\nHEAD/3\nSPINDL/SMM,100,MAXRPM,2000,CLW,SUB\nTLDATA/MILL,6\nLOADTL/21\n"
-              "SPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/20,0,5,0,0,1\nFINI\n",
-              "sub");
+  p = post_on(
+      "PARTNO E\nHEAD/3\nSPINDL/SMM,100,MAXRPM,2000,CLW,SUB\nTLDATA/MILL,6\nLOADTL/21\n"
+      "SPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/20,0,5,0,0,1\nFINI\n",
+      "sub");
   CHECK(p.diagnostics ==
         "job.cls:6:1: error: channel 3: live-tool work on the sub spindle, which machine 'fanuc-31i-3path' "
         "cannot hold as a C axis (spindle.c_on): the part would be free to turn under the cutter\n"
