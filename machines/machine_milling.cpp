@@ -152,7 +152,7 @@ void read_milling(const table_reader& root, machine& m) {
     if (g.cross_holes == "side_cycle")
       r.fail(*r.find("cylindrical_on"),
              "milling.cylindrical_on is written in the turned frame of cross_holes = \"turned_frame\": "
-             "twinpost writes no cylindrical interpolation with \"side_cycle\" yet");
+             "no cylindrical interpolation is written with \"side_cycle\" yet");
     if (g.radial_frame_on.empty())
       r.fail(*r.find("cylindrical_on"),
              "milling.cylindrical_on needs milling.radial_frame_on: cylindrical interpolation is written in "

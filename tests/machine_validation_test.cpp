@@ -566,6 +566,6 @@ TEST_CASE("validation: a C-axis code is no spindle code, and side-cycle cross ho
   CHECK(error_of(head + side + "cylindrical_on = [\"G7.1 C{radius}\"]\ncylindrical_off = [\"G7.1 C0\"]\n" +
                  two_channels) ==
         "m.toml:10:18: error: milling.cylindrical_on is written in the turned frame of cross_holes = "
-        "\"turned_frame\": twinpost writes no cylindrical interpolation with \"side_cycle\" yet");
+        "\"turned_frame\": no cylindrical interpolation is written with \"side_cycle\" yet");
   CHECK(error_of(head + side + two_channels) == "(no error)");
 }

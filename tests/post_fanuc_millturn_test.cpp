@@ -198,3 +198,33 @@ TEST_CASE("what the Fanuc side cycles cannot do stops the post, by name", "[post
         "cannot hold as a C axis (spindle.c_on): the part would be free to turn under the cutter\n"
         "SPINDL/RPM,3000,CLW\n^\n");
 }
+
+TEST_CASE("the Fanuc polar interpolation holds the radius to the X travel of the diameter axis",
+          "[post][millturn]") {
+  // X travel -50..600 in diameter: a point 310 from the centre (diameter 620) is outside it,
+  // 290 (diameter 580) inside, whatever the X and C words of the plane are.
+  const std::string job =
+      "PARTNO E\nHEAD/3\nTLDATA/MILL,10\nLOADTL/7\nSPINDL/RPM,3000,CLW\nFEDRAT/200,MMPM\n"
+      "GOTO/0,290,2,0,0,1\nGOTO/0,310,2\nFINI\n";
+  const test::posted p = post_on(job, "polar-travel");
+  CHECK(p.diagnostics ==
+        "job.cls:8:1: error: channel 3: polar interpolation to a radius of 310. is outside channel 3's X "
+        "travel (channel.axis max 600)\nGOTO/0,310,2\n^\n");
+}
+
+TEST_CASE("a cross hole the side codes cannot say is written as moves along X at its C position",
+          "[post][millturn]") {
+  // Pecks without a side peck code: each peck fed along X in diameter, out to the R plane and
+  // back in to 0.5 above the last depth, as any expanded hole.
+  machine m = load_machine("fanuc-31i-3path");
+  m.cycles.side_peck_code.clear();
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO E\nHEAD/3\nTLDATA/DRILL,6,118\nLOADTL/14\nSPINDL/RPM,2000,CLW,LIVE\nRAPID\n"
+      "GOTO/0,40,-20,0,1,0\nCYCLE/DEEP,DEPTH,10,STEP,4,RAPTO,3,MMPM,120\nGOTO/0,30,-20\nCYCLE/OFF\nFINI\n",
+      m, "fanuc-millturn-cross-pecks", [](const diagnostic& d) { return d.level == severity::error; });
+  REQUIRE(p.ok);
+  const std::string& f = p.files.at("E_3.nc");
+  CHECK(f.substr(f.find("G0 B0."), f.find("M200") - f.find("G0 B0.")) ==
+        "G0 B0.\nG0 C90.\nX80. Y0. Z-20.\nM89\nG98\nX66.\nG1 X58. F120.\nG0 X66.\nX59.\nG1 X50.\nG0 X66.\n"
+        "X51.\nG1 X42.\nG0 X66.\nX43.\nG1 X40.\nG0 X66.\n");
+}
