@@ -414,7 +414,9 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
   const double r = std::hypot(x, y) * cl_mm_, r0 = std::hypot(from.x, from.y) * cl_mm_;
   const double a0 = std::atan2(from.y, from.x);
   // Where the tool is: on the radius the turned frame (or the mode) stands at.
-  if (!radial_frame_ || !last_c_.known || r0 <= 1e-3 ||
+  // With the side cycles (Fanuc) there is no turned frame: C stands at the tool's angle.
+  const bool side = side_holes();
+  if (!(radial_frame_ || side) || !last_c_.known || r0 <= 1e-3 ||
       r0 * std::abs(std::remainder(a0 * deg - last_c_.value, 360.0)) / deg > 1e-3) {
     error(line,
           "a feed move across the spindle axis from a point the tool was not taken to along its "
@@ -434,7 +436,10 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
       return false;
     }
     clamp_c();
-    x = -z, y = beside / cl_mm_, z = out / cl_mm_;
+    if (side)
+      x = out / cl_mm_, y = beside / cl_mm_;  // along X at the hole's Z (Fanuc: X the diameter)
+    else
+      x = -z, y = beside / cl_mm_, z = out / cl_mm_;
     return true;
   }
   if (!along_radius) {
@@ -462,12 +467,24 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
     separate(b);
     b += "G1";
   }
-  bool moved = axis_word(b, 'X', nc_x(-z), last_x_);
-  if (!along_radius) {
-    cylinder_c_ += turn;
-    moved = axis_word(b, 'C', cylinder_c_, last_c_) || moved;
+  bool moved = false;
+  if (side) {
+    // The lathe's own axes: Z along the part, C in degrees, X the diameter (Fanuc G7.1 on a
+    // lathe: the cylinder in the Z-C plane).
+    moved = axis_word(b, 'Z', nc_z(z), last_z_);
+    if (!along_radius) {
+      cylinder_c_ += turn;
+      moved = axis_word(b, 'C', cylinder_c_, last_c_) || moved;
+    }
+    moved = axis_word(b, 'X', nc_x(std::hypot(x, y)), last_x_) || moved;
+  } else {
+    moved = axis_word(b, 'X', nc_x(-z), last_x_);
+    if (!along_radius) {
+      cylinder_c_ += turn;
+      moved = axis_word(b, 'C', cylinder_c_, last_c_) || moved;
+    }
+    moved = axis_word(b, 'Z', nc_z(std::hypot(x, y)), last_z_) || moved;  // the turned frame's Z: the radius
   }
-  moved = axis_word(b, 'Z', nc_z(std::hypot(x, y)), last_z_) || moved;  // the turned frame's Z: the radius
   if (!moved) {
     out_.drop_block();
     word_start_ = std::string::npos;

@@ -24,7 +24,10 @@ bool channel_writer::side_move(bool rapid, double& x, double& y, double& z, int 
     x = along, y = beside, z = part_z;
     return true;
   }
-  leave_cylinder();
+  // Milling on the diameter: every feed of the radial tool goes to cylindrical interpolation
+  // (a plunge or retract along the radius, or a cut on the cylinder: G18 W0 H0, G7.1 C<r>).
+  if (!rapid && !m_.milling.cylindrical_on.empty()) return cylinder_feed(x, y, z, line);
+  leave_cylinder();  // no G0 in the mode
   const double a = std::atan2(axis_.y, axis_.x) * deg;
   const double c = std::fmod(std::fmod(a, 360.0) + 360.0, 360.0);
   const bool at_angle = last_c_.known && std::abs(std::remainder(last_c_.value - c, 360.0)) < 5e-4;
@@ -33,8 +36,8 @@ bool channel_writer::side_move(bool rapid, double& x, double& y, double& z, int 
     if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y) return false;
     refused_axis_ = axis_;
     error(line, fmt::format("a feed move with the tool across the spindle axis (milling on the diameter): "
-                            "machine '{}' writes radial tools along X at a C position only "
-                            "(milling.cross_holes = \"side_cycle\"), so it cannot be posted",
+                            "machine '{}' gives no cylindrical interpolation (milling.cylindrical_on), so it "
+                            "cannot be posted",
                             m_.name));
     return false;
   }

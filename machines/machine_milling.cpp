@@ -149,11 +149,7 @@ void read_milling(const table_reader& root, machine& m) {
     if (holes != 1)
       r.fail(*r.find("cylindrical_on"),
              "milling.cylindrical_on must hold the cylinder's size once: {radius} or {diameter}");
-    if (g.cross_holes == "side_cycle")
-      r.fail(*r.find("cylindrical_on"),
-             "milling.cylindrical_on is written in the turned frame of cross_holes = \"turned_frame\": "
-             "no cylindrical interpolation is written with \"side_cycle\" yet");
-    if (g.radial_frame_on.empty())
+    if (g.radial_frame_on.empty() && g.cross_holes != "side_cycle")
       r.fail(*r.find("cylindrical_on"),
              "milling.cylindrical_on needs milling.radial_frame_on: cylindrical interpolation is written in "
              "the turned frame of cross holes");

@@ -563,9 +563,10 @@ TEST_CASE("validation: a C-axis code is no spindle code, and side-cycle cross ho
       error_of(head + side + "radial_frame_on = [\"G68\"]\nradial_frame_off = [\"G69\"]\n" + two_channels) ==
       "m.toml:10:19: error: milling.radial_frame_on is the turned frame of cross_holes = \"turned_frame\"; "
       "with \"side_cycle\" the holes are drilled along X without it");
-  CHECK(error_of(head + side + "cylindrical_on = [\"G7.1 C{radius}\"]\ncylindrical_off = [\"G7.1 C0\"]\n" +
-                 two_channels) ==
-        "m.toml:10:18: error: milling.cylindrical_on is written in the turned frame of cross_holes = "
-        "\"turned_frame\": no cylindrical interpolation is written with \"side_cycle\" yet");
+  // With the side cycles, cylindrical interpolation needs no turned frame (the lathe's Z and C).
+  CHECK(error_of(head + side +
+                 "cylindrical_on = [\"G18 W0 H0\", \"G7.1 C{radius}\"]\ncylindrical_off = "
+                 "[\"G7.1 C0\"]\n" +
+                 two_channels) == "(no error)");
   CHECK(error_of(head + side + two_channels) == "(no error)");
 }

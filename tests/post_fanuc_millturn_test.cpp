@@ -168,26 +168,16 @@ TEST_CASE("what the Fanuc side cycles cannot do stops the post, by name", "[post
       p.diagnostics ==
       "job.cls:9:1: error: channel 3: CYCLE/TAP across the spindle axis: machine 'fanuc-31i-3path' gives no "
       "left-hand side tapping cycle (cycles.side_tap_code, right-hand only)\nGOTO/30,0,-20\n^\n");
-  // Milling on the diameter: C would turn under a cutting tool; no cylindrical interpolation.
-  p = post_on(
-      "PARTNO E\nHEAD/3\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\n"
-      "RAPID\nGOTO/30,0,-10,1,0,0\nGOTO/23,0,-10\nGOTO/22.216294,5.952838,-12.5,0.9659258,0.258819,0\n"
-      "FINI\n",
-      "wrap");
-  CHECK(p.diagnostics ==
-        "job.cls:10:1: error: channel 3: a feed move with the tool across the spindle axis (milling on the "
-        "diameter): machine 'fanuc-31i-3path' writes radial tools along X at a C position only "
-        "(milling.cross_holes = \"side_cycle\"), so it cannot be posted\n"
-        "GOTO/22.216294,5.952838,-12.5,0.9659258,0.258819,0\n^\n");
-  // A feed of the radial tool beside its line (milling with Y across the axis).
+  // A feed of the radial tool beside its radius: cylindrical interpolation cannot carry it.
   p = post_on(
       "PARTNO E\nHEAD/3\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\n"
       "RAPID\nGOTO/30,0,-10,1,0,0\nGOTO/23,0,-10\nGOTO/23,5,-10\nFINI\n",
       "y-cut");
-  CHECK(p.diagnostics ==
-        "job.cls:10:1: error: channel 3: a feed move of the radial tool 5 mm beside its radial line at C0.: "
-        "machine 'fanuc-31i-3path' writes radial tools along X through the spindle centre only\n"
-        "GOTO/23,5,-10\n^\n");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:10:1: error: channel 3: a feed move across the spindle axis to X 23 Y 5, which the tool axis "
+      "(1,0,0) does not point at along the radius (5 mm beside it): cylindrical interpolation moves the "
+      "tool along the radius through its point only\nGOTO/23,5,-10\n^\n");
   // Live-tool work on the sub spindle: it has no C-axis codes here (kept refusal).
   p = post_on(
       "PARTNO E\nHEAD/3\nSPINDL/SMM,100,MAXRPM,2000,CLW,SUB\nTLDATA/MILL,6\nLOADTL/21\n"
@@ -227,4 +217,21 @@ TEST_CASE("a cross hole the side codes cannot say is written as moves along X at
   CHECK(f.substr(f.find("G0 B0."), f.find("M200") - f.find("G0 B0.")) ==
         "G0 B0.\nG0 C90.\nX80. Y0. Z-20.\nM89\nG98\nX66.\nG1 X58. F120.\nG0 X66.\nX59.\nG1 X50.\nG0 X66.\n"
         "X51.\nG1 X42.\nG0 X66.\nX43.\nG1 X40.\nG0 X66.\n");
+}
+
+TEST_CASE("milling on the diameter on the Fanuc: G7.1 on the lathe's Z and C, X the tip's diameter",
+          "[post][millturn]") {
+  // A plunge along the radius (C clamped), the cut on the cylinder of radius 23 (C unclamped,
+  // G18 W0 H0, G7.1 C23.), a retract along the radius inside the mode, G7.1 C0 before the rapid.
+  const test::posted p = post_on(
+      "PARTNO E\nHEAD/3\nTLDATA/MILL,6\nLOADTL/21\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,200\nRAPID\n"
+      "GOTO/30,0,-10,1,0,0\nGOTO/23,0,-10\nGOTO/22.216294,5.952838,-12.5,0.9659258,0.258819,0\n"
+      "GOTO/19.9185843,11.5,-15.0,0.8660254,0.5,0.0\nGOTO/25.9807621,15.0,-15.0\nRAPID\n"
+      "GOTO/34.6410162,20.0,-15.0\nFINI\n",
+      "wrap");
+  REQUIRE(p.ok);
+  const std::string& f = p.files.at("E_3.nc");
+  CHECK(f.substr(f.find("G0 B0."), f.find("M200") - f.find("G0 B0.")) ==
+        "G0 B0.\nG0 C0.\nX60. Y0. Z-10.\nM89\nG1 X46. F200.\nM90\nG18 W0 H0\nG7.1 C23.\nG1 Z-12.5 C15.\n"
+        "Z-15. C30.\nX60.\nG7.1 C0\nG0 X80.\n");
 }
