@@ -113,19 +113,24 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   if (has_c_ && !index_head(line)) return;
   // A cross hole on a channel with a C axis: drilled in the turned frame (milling.radial_frame_on),
   // whose Z is the tool axis; its moves come in that frame (radial_ok_).
+  // With milling.cross_holes = "side_cycle" (Fanuc) C turns to the hole and the side codes
+  // drill along X; the hole's points take the turned frame's terms all the same (side_point).
   vec3 at = p;
   const bool cross = has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4;
-  if (cross && !radial_point(p, at, line)) return;
-  if (cross) clamp_c();  // at the angle cylindrical interpolation left C at, C is still free
-  struct frame_points {
-    bool& flag;
-    ~frame_points() { flag = false; }
-  } in_frame{radial_ok_};
-  radial_ok_ = cross;
+  const bool side = cross && side_holes();
   if (cross && !c.meaning.fedto_is_depth && cycle_param(c, "FEDTO"))
     return error(line, fmt::format("CYCLE/{} across the spindle axis with an absolute FEDTO: give the depth "
                                    "(DEPTH) of a cross hole",
                                    c.type));
+  if (side ? !side_point(p, at, line) : cross && !radial_point(p, at, line)) return;
+  if (cross) clamp_c();  // at the angle cylindrical interpolation left C at, C is still free
+  struct frame_points {
+    bool& flag;
+    bool& side;
+    ~frame_points() { flag = side = false; }
+  } in_frame{radial_ok_, side_hole_};
+  radial_ok_ = cross;
+  side_hole_ = side;
   if (cross) {
     // as an axial hole drilled towards -Z in the turned frame
   } else if (std::abs(axis_.z) < 0.9999)
@@ -207,7 +212,12 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   const cycle_rules& k = m_.cycles;
   if (k.drill == "canned") {
     const bool pecks = h.first > 0;
-    const std::string& code = pecks         ? (h.chip_break ? k.chip_break_code : k.peck_code)
+    // Across the spindle axis with the side cycles: no chip-breaking side code is read.
+    const std::string none;
+    const std::string& code = side          ? (pecks         ? (h.chip_break ? none : k.side_peck_code)
+                                               : h.dwell > 0 ? k.side_dwell_code
+                                                             : k.side_drill_code)
+                              : pecks       ? (h.chip_break ? k.chip_break_code : k.peck_code)
                               : h.dwell > 0 ? k.dwell_code
                                             : k.drill_code;
     // One Q for every peck and no dwell with pecks: what the control cannot do is written
@@ -242,17 +252,27 @@ void channel_writer::cycle_block(const hole& h, const std::string& code, double 
   // written back to the retract plane: where it is whatever the control's return level.
   const cycle_rules& k = m_.cycles;
   // Z words through nc_z: a hole on a reversed (sub) spindle is drilled in the machine's Z.
-  const double r = k.r_from_initial ? (h.clear - h.initial) * scale_ * z_sign_ : nc_z(h.clear);
+  // A side cycle (G87) drills along X: R along X too, in radius (as the Fusion Doosan post
+  // writes it), and the hole's Z is the turned frame's -X.
+  const double r = side_hole_         ? (k.r_from_initial ? (h.clear - h.initial) * scale_ : nc_x(h.clear))
+                   : k.r_from_initial ? (h.clear - h.initial) * scale_ * z_sign_
+                                      : nc_z(h.clear);
   if (!fits('R', r, axis_style_.decimals)) return;
   if (!k.plane.empty()) out_.block(k.plane);
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
   if (!k.return_initial.empty()) b += k.return_initial, b += ' ';
   b += code;
-  const auto [hx, hy] = c_frame(h.x, h.y);  // at a C position: in the frame C turned the part to
-  axis_word(b, 'X', nc_x(hx), last_x_, true);
-  if (has_y_) axis_word(b, 'Y', nc_y(hy), last_y_, true);
-  axis_word(b, 'Z', nc_z(h.bottom), last_z_, true);
+  if (side_hole_) {
+    // G87 X<the bottom's diameter> Z<the hole's Z>: on the radial line at the C position.
+    axis_word(b, 'X', nc_x(h.bottom), last_x_, true);
+    axis_word(b, 'Z', nc_z(-h.x), last_z_, true);
+  } else {
+    const auto [hx, hy] = c_frame(h.x, h.y);  // at a C position: in the frame C turned the part to
+    axis_word(b, 'X', nc_x(hx), last_x_, true);
+    if (has_y_) axis_word(b, 'Y', nc_y(hy), last_y_, true);
+    axis_word(b, 'Z', nc_z(h.bottom), last_z_, true);
+  }
   b += " R";
   append_number(b, r, axis_style_);
   if (q > 0) {
@@ -279,6 +299,7 @@ void channel_writer::cycle_block(const hole& h, const std::string& code, double 
   if (!k.plane.empty()) out_.block(fmt::format("G{}", plane_));
   motion_g_ = -1;
   last_z_.known = false;
+  if (side_hole_) last_x_.known = false;  // the cycle ends on the R point or the initial level
   linear(true, h.x, h.y, h.initial, line);
 }
 
@@ -328,7 +349,11 @@ void channel_writer::tap_hole(const hole& h, int line) {
     if (h.initial != h.clear) linear(true, h.x, h.y, h.initial, line);
     return;
   }
-  const std::string& code = h.left ? k.tap_left_code : k.tap_code;
+  if (side_hole_ && (h.left || k.side_tap_code.empty()))
+    return error(line, fmt::format("CYCLE/TAP across the spindle axis: machine '{}' gives no {} side tapping "
+                                   "cycle (cycles.side_tap_code, right-hand only)",
+                                   m_.name, h.left ? "left-hand" : "right-hand"));
+  const std::string& code = side_hole_ ? k.side_tap_code : h.left ? k.tap_left_code : k.tap_code;
   if (code.empty())
     return error(line, fmt::format("CYCLE/TAP: a left-hand tap (LEFT, or the spindle turning CCLW), and "
                                    "machine '{}' gives no left-hand tapping cycle (cycles.tap_left_code)",

@@ -160,7 +160,9 @@ void channel_writer::polar_linear(bool rapid, const vec3& p, int line) {
   last_x_.lo = INT64_MIN, last_x_.hi = INT64_MAX;
   bool moved = axis_word(b, 'X', nc_x(p.x), last_x_);
   last_x_.lo = lo, last_x_.hi = hi;
-  const double r = std::hypot(nc_x(p.x), nc_y(p.y));
+  // The radius in the units of the X travel: X may be in diameter in the mode (Fanuc: X in
+  // diameter, C, the hypothetical axis, in radius) or in radius (Integrex G10.9 X0).
+  const double r = std::hypot(p.x, p.y) * scale_;
   if (const axis_def* x = ch_.axis('X'); x && x->max && r * (x_diameter_ ? 2 : 1) > *x->max) {
     out_.drop_block();
     word_start_ = std::string::npos;
@@ -283,6 +285,7 @@ bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, i
     return false;
   }
   leave_polar();
+  if (radial && side_holes()) return side_move(rapid, x, y, z, line);  // Fanuc: along X at a C position
   if (radial) {
     // The tool points across the spindle axis: C turns the part so that it points along the
     // turned frame's Z. A hole's own moves come in that frame already.
@@ -301,7 +304,11 @@ bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, i
     position_c(0);
   }
   auto [u, v] = c_frame(x, y);
-  if (!has_y_ && std::abs(v) * cl_mm_ > 1e-4) {
+  // A drill's rapid to a hole off the X axis on a machine that drills face holes at C
+  // positions turns C to it rather than moving Y (with C still at the last hole's angle, the
+  // approach would cross the centre line in Y).
+  const bool xzc = rapid && m_.milling.face_holes == "c_axis" && kind_ == tool_kind::drill;
+  if ((!has_y_ || xzc) && std::abs(v) * cl_mm_ > 1e-4) {
     if (!rapid || radial) {
       error(line, fmt::format("a feed move to Y {} in the frame of C{} on a channel without a Y axis: it "
                               "needs polar interpolation (milling.face_milling = \"polar\")",
@@ -407,7 +414,9 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
   const double r = std::hypot(x, y) * cl_mm_, r0 = std::hypot(from.x, from.y) * cl_mm_;
   const double a0 = std::atan2(from.y, from.x);
   // Where the tool is: on the radius the turned frame (or the mode) stands at.
-  if (!radial_frame_ || !last_c_.known || r0 <= 1e-3 ||
+  // With the side cycles (Fanuc) there is no turned frame: C stands at the tool's angle.
+  const bool side = side_holes();
+  if (!(radial_frame_ || side) || !last_c_.known || r0 <= 1e-3 ||
       r0 * std::abs(std::remainder(a0 * deg - last_c_.value, 360.0)) / deg > 1e-3) {
     error(line,
           "a feed move across the spindle axis from a point the tool was not taken to along its "
@@ -427,7 +436,10 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
       return false;
     }
     clamp_c();
-    x = -z, y = beside / cl_mm_, z = out / cl_mm_;
+    if (side)
+      x = out / cl_mm_, y = beside / cl_mm_;  // along X at the hole's Z (Fanuc: X the diameter)
+    else
+      x = -z, y = beside / cl_mm_, z = out / cl_mm_;
     return true;
   }
   if (!along_radius) {
@@ -455,12 +467,24 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
     separate(b);
     b += "G1";
   }
-  bool moved = axis_word(b, 'X', nc_x(-z), last_x_);
-  if (!along_radius) {
-    cylinder_c_ += turn;
-    moved = axis_word(b, 'C', cylinder_c_, last_c_) || moved;
+  bool moved = false;
+  if (side) {
+    // The lathe's own axes: Z along the part, C in degrees, X the diameter (Fanuc G7.1 on a
+    // lathe: the cylinder in the Z-C plane).
+    moved = axis_word(b, 'Z', nc_z(z), last_z_);
+    if (!along_radius) {
+      cylinder_c_ += turn;
+      moved = axis_word(b, 'C', cylinder_c_, last_c_) || moved;
+    }
+    moved = axis_word(b, 'X', nc_x(std::hypot(x, y)), last_x_) || moved;
+  } else {
+    moved = axis_word(b, 'X', nc_x(-z), last_x_);
+    if (!along_radius) {
+      cylinder_c_ += turn;
+      moved = axis_word(b, 'C', cylinder_c_, last_c_) || moved;
+    }
+    moved = axis_word(b, 'Z', nc_z(std::hypot(x, y)), last_z_) || moved;  // the turned frame's Z: the radius
   }
-  moved = axis_word(b, 'Z', nc_z(std::hypot(x, y)), last_z_) || moved;  // the turned frame's Z: the radius
   if (!moved) {
     out_.drop_block();
     word_start_ = std::string::npos;

@@ -185,6 +185,15 @@ class channel_writer {
   void leave_radial_frame();
   /// CL point `p` under a radial tool axis as `q` in the turned frame (entered first).
   bool radial_point(const vec3& p, vec3& q, int line);
+  /// Cross holes drilled along X with the lathe's side cycles (milling.cross_holes =
+  /// "side_cycle", Fanuc G87/G88): C turned to the tool axis's angle and clamped, CL point `p`
+  /// as `q` in the turned frame's terms (X the part's -Z, Y beside the radial line, Z the
+  /// radius). False, with the error, for a hole beside the radial line.
+  bool side_point(const vec3& p, vec3& q, int line);
+  /// A move of a radial tool with cross_holes = "side_cycle": C at the tool axis's angle, X
+  /// along the tool. True when linear() writes it (`x`, `y`, `z` then in the frame of C).
+  bool side_move(bool rapid, double& x, double& y, double& z, int line);
+  bool side_holes() const { return m_.milling.cross_holes == "side_cycle"; }
   /// A feed move with the tool across the spindle axis (milling on the diameter): a cut on the
   /// cylinder written in cylindrical interpolation (milling.cylindrical_on), or a plunge or
   /// retract along the radius. True when linear() writes it (a plunge outside the mode, `x`,
@@ -320,6 +329,7 @@ class channel_writer {
   bool c_mode_ = false;         // the workpiece spindle is held as the C axis
   bool c_clamped_ = false;      // and clamped (spindle.c_clamp)
   bool polar_ = false;          // polar interpolation is on
+  bool side_hole_ = false;      // that cross hole is drilled with the side cycles (G87/G88)
   bool radial_ok_ = false;      // a cross hole is being written: its points are in the turned frame
   bool radial_frame_ = false;   // the frame is turned for cross holes (milling.radial_frame_on)
   bool cylinder_ = false;       // cylindrical interpolation is on (milling.cylindrical_on)

@@ -239,6 +239,9 @@ struct cycle_rules {
   bool r_from_initial = false;  ///< R is the distance from the initial level (Fanuc lathe), else a Z
   bool q_increments = false;    ///< Q in least increments without a point (Q5000 = 5 mm)
   std::string sync_feed;        ///< expanded tapping's synchronised feed (G32); "": none
+  /// Cross (radial) holes drilled along X with the lathe's side cycles, C positioned and
+  /// clamped first (milling.cross_holes = "side_cycle"; Fanuc system A: G87 drill, G88 tap).
+  std::string side_drill_code, side_dwell_code, side_peck_code, side_tap_code;
   /// Threading (CYCLE/THREAD, THREAD/TURN): "g76" (Fanuc two-block, P/Q in the least
   /// increment), "g276" (Mazak EIA two-block, P/Q in mm), "g92" (Fanuc box per pass),
   /// "g292" (Mazak EIA box per pass), "g32" (each pass as G0/G32 moves); "": a thread is
@@ -251,7 +254,7 @@ struct cycle_rules {
   /// The keys of the blocks above and their fields (the loader reads them, the overlap check
   /// holds them to the wait range).
   using code_field = std::pair<std::string_view, std::string cycle_rules::*>;
-  static constexpr std::array<code_field, 11> code_keys{{
+  static constexpr std::array<code_field, 15> code_keys{{
       {"plane", &cycle_rules::plane},
       {"drill_code", &cycle_rules::drill_code},
       {"dwell_code", &cycle_rules::dwell_code},
@@ -263,6 +266,10 @@ struct cycle_rules {
       {"cancel", &cycle_rules::cancel},
       {"return_initial", &cycle_rules::return_initial},
       {"sync_feed", &cycle_rules::sync_feed},
+      {"side_drill_code", &cycle_rules::side_drill_code},
+      {"side_dwell_code", &cycle_rules::side_dwell_code},
+      {"side_peck_code", &cycle_rules::side_peck_code},
+      {"side_tap_code", &cycle_rules::side_tap_code},
   }};
 };
 

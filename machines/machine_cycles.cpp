@@ -23,10 +23,17 @@ void read_choice(const table_reader& r, std::string_view key, std::string& out,
 void read_cycles(const table_reader& root, cycle_rules& c) {
   const toml::table* t = root.sub_table("cycles");
   if (!t) return;
-  table_reader r(*t, "cycles", root.source(),
-                 {"drill", "tap", "plane", "drill_code", "dwell_code", "peck_code", "chip_break_code",
-                  "tap_code", "tap_left_code", "rigid_code", "cancel", "return_initial", "r_from_initial",
-                  "q_increments", "sync_feed", "thread", "groove"});
+  table_reader r(*t, "cycles", root.source(), {"drill",           "tap",
+                                               "plane",           "drill_code",
+                                               "dwell_code",      "peck_code",
+                                               "chip_break_code", "tap_code",
+                                               "tap_left_code",   "rigid_code",
+                                               "cancel",          "return_initial",
+                                               "r_from_initial",  "q_increments",
+                                               "sync_feed",       "thread",
+                                               "groove",          "side_drill_code",
+                                               "side_dwell_code", "side_peck_code",
+                                               "side_tap_code"});
   read_choice(r, "drill", c.drill, {"canned", "expanded"});
   read_choice(r, "tap", c.tap, {"rigid", "floating", "expanded", "none"});
   read_choice(r, "thread", c.thread, {"g76", "g276", "g92", "g292", "g32"});

@@ -303,10 +303,13 @@ void read_limits(const table_reader& root, motion_limits& l) {
 
 // [cycles]: which of the control's own cycles the post writes (docs/machines.md).
 void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
+  auto reader = [&](const toml::table& t) {
+    return table_reader(t, "spindle", root.source(),
+                        {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset",
+                         "reverse_z", "per_channel", "c_on", "c_off", "c_clamp", "c_unclamp"});
+  };
   for (const toml::table* t : root.tables("spindle")) {
-    table_reader r(*t, "spindle", root.source(),
-                   {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset", "reverse_z",
-                    "per_channel", "c_on", "c_off", "c_clamp", "c_unclamp"});
+    const table_reader r = reader(*t);
     spindle_def s;
     r.require("name");
     r.read("name", s.name);
@@ -323,6 +326,11 @@ void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
     r.read("per_channel", s.per_channel);
     read_c_axis(r, s.c_axis);
     out.push_back(std::move(s));
+  }
+  // Once every spindle is known: no C-axis code is another spindle function's code.
+  std::size_t i = 0;
+  for (const toml::table* t : root.tables("spindle")) {
+    check_c_axis_codes(reader(*t), out[i++].c_axis, out);
   }
 }
 

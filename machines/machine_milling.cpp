@@ -30,6 +30,47 @@ void read_c_axis(const table_reader& r, c_axis_codes& c) {
   read_pair(r, "c_clamp", c.clamp, "c_unclamp", c.unclamp);
 }
 
+namespace {
+// The M-codes of a block (M35, M89; not M98.1, not inside a comment): what the control and the
+// checker's reader take as M functions.
+std::vector<int> m_codes(std::string_view block) {
+  std::vector<int> out;
+  int depth = 0;
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    if (block[i] == '(') ++depth;
+    if (block[i] == ')' && depth > 0) --depth;
+    if (depth > 0 || block[i] != 'M') continue;
+    std::size_t j = i + 1;
+    int v = 0;
+    while (j < block.size() && block[j] >= '0' && block[j] <= '9' && v < 100000)
+      v = v * 10 + (block[j++] - '0');
+    if (j > i + 1 && (j == block.size() || block[j] != '.')) out.push_back(v);
+  }
+  return out;
+}
+}  // namespace
+
+void check_c_axis_codes(const table_reader& r, const c_axis_codes& c, const std::vector<spindle_def>& all) {
+  auto check = [&](std::string_view key, const std::vector<std::string>& blocks) {
+    for (const std::string& b : blocks)
+      for (int code : m_codes(b))
+        for (const spindle_def& s : all)
+          for (const auto& [what, value] : {std::pair{"cw", std::optional<int>(s.cw)},
+                                            {"ccw", std::optional<int>(s.ccw)},
+                                            {"stop", std::optional<int>(s.stop)},
+                                            {"select", s.select}})
+            if (value && *value == code)
+              r.fail(*r.find(key),
+                     fmt::format("{} M{} is also the {} code of spindle '{}': a program could not tell the "
+                                 "one from the other",
+                                 r.key_path(key), code, what, s.name));
+  };
+  check("c_on", c.on);
+  check("c_off", c.off);
+  check("c_clamp", {c.clamp});
+  check("c_unclamp", {c.unclamp});
+}
+
 void read_head_index(const table_reader& channel, channel_def& c) {
   const toml::table* t = channel.sub_table("head_index");
   if (!t) return;
@@ -63,10 +104,10 @@ void read_head_index(const table_reader& channel, channel_def& c) {
 void read_milling(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("milling");
   if (!t) return;
-  table_reader r(
-      *t, "milling", root.source(),
-      {"radius_input", "diameter_input", "polar_on", "polar_off", "polar_rapid_feed", "face_milling",
-       "face_holes", "radial_frame_on", "radial_frame_off", "cylindrical_on", "cylindrical_off"});
+  table_reader r(*t, "milling", root.source(),
+                 {"radius_input", "diameter_input", "polar_on", "polar_off", "polar_rapid_feed",
+                  "face_milling", "face_holes", "cross_holes", "radial_frame_on", "radial_frame_off",
+                  "cylindrical_on", "cylindrical_off"});
   milling_rules& g = m.milling;
   g.given = true;
   read_pair(r, "radius_input", g.radius_input, "diameter_input", g.diameter_input);
@@ -75,7 +116,16 @@ void read_milling(const table_reader& root, machine& m) {
     r.fail(*r.find("polar_rapid_feed"), "milling.polar_rapid_feed must be a feed above 0 (mm/min)");
   read_choice(r, "face_milling", g.face_milling, {"y_axis", "polar"});
   read_choice(r, "face_holes", g.face_holes, {"y_axis", "c_axis"});
+  read_choice(r, "cross_holes", g.cross_holes, {"turned_frame", "side_cycle"});
   read_pair(r, "radial_frame_on", g.radial_frame_on, "radial_frame_off", g.radial_frame_off);
+  if (g.cross_holes == "side_cycle" && m.cycles.side_drill_code.empty())
+    r.fail(*r.find("cross_holes"),
+           "milling.cross_holes = \"side_cycle\" needs cycles.side_drill_code (Fanuc G87): the holes are "
+           "drilled with the lathe's side cycles");
+  if (g.cross_holes == "side_cycle" && !g.radial_frame_on.empty())
+    r.fail(*r.find("radial_frame_on"),
+           "milling.radial_frame_on is the turned frame of cross_holes = \"turned_frame\"; with "
+           "\"side_cycle\" the holes are drilled along X without it");
   // cylindrical_on is read as written: its {radius} or {diameter} is filled by the writer as an
   // NC number (40.), not by a format template.
   r.read("cylindrical_on", g.cylindrical_on);
@@ -99,7 +149,7 @@ void read_milling(const table_reader& root, machine& m) {
     if (holes != 1)
       r.fail(*r.find("cylindrical_on"),
              "milling.cylindrical_on must hold the cylinder's size once: {radius} or {diameter}");
-    if (g.radial_frame_on.empty())
+    if (g.radial_frame_on.empty() && g.cross_holes != "side_cycle")
       r.fail(*r.find("cylindrical_on"),
              "milling.cylindrical_on needs milling.radial_frame_on: cylindrical interpolation is written in "
              "the turned frame of cross holes");

@@ -55,8 +55,15 @@ struct milling_rules {
   /// codes in that frame: X is the part's -Z, Y its Y, Z the radius. Empty: cross holes stop
   /// the post.
   std::vector<std::string> radial_frame_on, radial_frame_off;
+  /// How cross holes and the moves of a radial tool are written: "turned_frame" (the frame
+  /// above, the [cycles] codes along its Z: Integrex) or "side_cycle" (C turned to the tool
+  /// axis's angle and clamped, X the diameter along the tool, the [cycles] side codes: Fanuc
+  /// G87/G88 as the Fusion "Doosan Mill/Turn" post writes them).
+  std::string cross_holes = "turned_frame";
   /// Cylindrical interpolation for milling on the diameter with a radial tool, written inside
-  /// the turned frame of cross holes (Integrex: `G17`, `G7.1 C{radius}`; off `G7.1 C0`, `G18`).
+  /// the turned frame of cross holes (Integrex: `G17`, `G7.1 C{radius}`; off `G7.1 C0`, `G18`),
+  /// or with cross_holes = "side_cycle" on the lathe's own axes: `G1 Z.. C<degrees>`, X the
+  /// diameter (Fanuc: `G18 W0 H0`, `G7.1 C{radius}`; off `G7.1 C0`).
   /// One block of `cylindrical_on` holds `{radius}` (the cylinder's radius, mm) or `{diameter}`.
   /// Inside, a cut is `G1 X<the part's -Z> C<degrees> F..` with Z (the turned frame's) the
   /// tip's radius. Empty: a feed move with a radial tool stops the post.

@@ -16,6 +16,7 @@
 
 namespace twinpost {
 struct machine;
+struct spindle_def;
 struct cycle_rules;
 struct c_axis_codes;
 struct channel_def;
@@ -109,6 +110,10 @@ void read_kinematics(const table_reader& root, machine& m);
 // Mill/turn (machine_milling.cpp, machines/millturn_rules.hpp).
 /// A [[spindle]]'s c_on, c_off, c_clamp and c_unclamp.
 void read_c_axis(const table_reader& spindle, c_axis_codes& c);
+/// Holds a spindle's c_* blocks to every spindle's M-codes: M35 cannot both hold the spindle as C
+/// and stop the live tool (the checker, too, reads each code one way).
+void check_c_axis_codes(const table_reader& spindle, const c_axis_codes& c,
+                        const std::vector<spindle_def>& all);
 /// A [[channel]]'s [channel.head_index], after its axes.
 void read_head_index(const table_reader& channel, channel_def& c);
 /// [milling], after [limits].

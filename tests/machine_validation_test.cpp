@@ -529,3 +529,44 @@ TEST_CASE("validation: mill/turn keys go in pairs and name known choices and ind
             "-30, max = 210}]\n[channel.head_index]\nmove = \"G0 G53\"\nradial = 270\n") ==
         "m.toml:11:10: error: channel.head_index.radial = 270 is outside the travel of axis B");
 }
+
+TEST_CASE("validation: a C-axis code is no spindle code, and side-cycle cross holes need their codes",
+          "[machines]") {
+  // The Fusion Doosan post's M35/M34 hold and free C, and its unique-M-code table gives them to
+  // the live tool as well: the loader refuses the pair (head is 5 lines).
+  const std::string spindles =
+      "[[spindle]]\nname = \"main\"\nc_on = [\"M35\", \"G0 G28 H0.\"]\nc_off = [\"M34\"]\n"
+      "[[spindle]]\nname = \"live\"\ncw = 33\nccw = 34\nstop = 35\n";
+  CHECK(
+      error_of(head + spindles + two_channels) ==
+      "m.toml:8:8: error: spindle.c_on M35 is also the stop code of spindle 'live': a program could not tell "
+      "the one from the other");
+  CHECK(error_of(head +
+                 "[[spindle]]\nname = \"main\"\nc_on = [\"M35\"]\nc_off = [\"M34\"]\nc_clamp = "
+                 "\"M3 (CLAMP)\"\nc_unclamp = \"M90\"\n" +
+                 two_channels) ==
+        "m.toml:10:11: error: spindle.c_clamp M3 is also the cw code of spindle 'main': a program could not "
+        "tell the one from the other");
+  // M35 in a comment and M35.1 are not the code M35.
+  CHECK(error_of(head +
+                 "[[spindle]]\nname = \"main\"\nc_on = [\"M35.1 (NOT M35)\"]\nc_off = [\"M34\"]\n"
+                 "[[spindle]]\nname = \"live\"\ncw = 33\nccw = 36\nstop = 35\n" +
+                 two_channels) == "(no error)");
+  CHECK(error_of(head + "[milling]\ncross_holes = \"side_cycle\"\n" + two_channels) ==
+        "m.toml:7:15: error: milling.cross_holes = \"side_cycle\" needs cycles.side_drill_code (Fanuc G87): "
+        "the holes are drilled with the lathe's side cycles");
+  CHECK(error_of(head + "[milling]\ncross_holes = \"sideways\"\n" + two_channels) ==
+        "m.toml:7:15: error: milling.cross_holes must be one of \"turned_frame\", \"side_cycle\", not "
+        "\"sideways\"");
+  const std::string side = "[cycles]\nside_drill_code = \"G87\"\n[milling]\ncross_holes = \"side_cycle\"\n";
+  CHECK(
+      error_of(head + side + "radial_frame_on = [\"G68\"]\nradial_frame_off = [\"G69\"]\n" + two_channels) ==
+      "m.toml:10:19: error: milling.radial_frame_on is the turned frame of cross_holes = \"turned_frame\"; "
+      "with \"side_cycle\" the holes are drilled along X without it");
+  // With the side cycles, cylindrical interpolation needs no turned frame (the lathe's Z and C).
+  CHECK(error_of(head + side +
+                 "cylindrical_on = [\"G18 W0 H0\", \"G7.1 C{radius}\"]\ncylindrical_off = "
+                 "[\"G7.1 C0\"]\n" +
+                 two_channels) == "(no error)");
+  CHECK(error_of(head + side + two_channels) == "(no error)");
+}

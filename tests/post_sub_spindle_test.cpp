@@ -177,13 +177,17 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
         "G0 G90 G53 Z0.\nM30\n");
 }
 
-TEST_CASE("the 31i mill head turns its live spindle for a milling tool", "[post][spindles]") {
+TEST_CASE("the 31i mill head turns its live spindle for a milling tool, the main spindle held as C",
+          "[post][spindles]") {
+  // M35 holds the main spindle as C and M34 lets it go (Fusion Doosan post); the head turns to
+  // B-90 for an axial tool; the face is milled in polar interpolation, X in diameter.
   const test::posted p = post_on(
       "PARTNO E\nHEAD/3\nTLDATA/MILL,10\nLOADTL/7\nSPINDL/RPM,3000,CLW\nFEDRAT/200,MMPM\nGOTO/20,0,2\nFINI\n",
       "fanuc-31i-3path", "31i-mill");
   CHECK(file_of(p, "E_3.nc") ==
-        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT07 M6\nG97 S3000 M33\nG98\n"
-        "G1 X40. Y0. Z2. F200.\nM200 P123\nM35\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT07 M6\nM35\nG0 G28 H0.\n"
+        "G97 S3000 M33\nG98\nG0 B-90.\nG0 C0.\nG17\nG12.1\nG1 X40. C0. Z2. F200.\nM200 P123\nM37\n"
+        "G13.1\nG18\nM34\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
 }
 
 TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles is an error",

@@ -49,7 +49,7 @@ std::string run(const machine& m, int channel, std::initializer_list<std::string
 TEST_CASE("spindle state: Fanuc 31i codes, clamp, CSS, rpm and the live and sub spindles", "[analysis]") {
   const machine m = load_machine("fanuc-31i-3path");
   CHECK(run(m, 1,
-            {"G50 S2000", "G96 S200 M3", "G0 X50. Z2.", "G97 S1200 M33", "M35", "S300", "M105",
+            {"G50 S2000", "G96 S200 M3", "G0 X50. Z2.", "G97 S1200 M33", "M37", "S300", "M105",
              "G97 S800 M103", "M5"}) ==
         "main:?,?,0,2000@5\n"
         "main:cw,css,200,2000@5\n"
