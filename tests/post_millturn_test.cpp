@@ -15,6 +15,7 @@
 #include "file_test_support.hpp"
 #include "kinematics/forward.hpp"
 #include "machines/machine_loader.hpp"
+#include "nc_words_test_support.hpp"
 #include "post_test_jobs.hpp"
 #include "support/vec3.hpp"
 
@@ -34,22 +35,8 @@ std::string head1(const test::posted& p, const std::string& name) {
   return f.substr(from, to - from);
 }
 
-double word(const std::string& block, char address, double fallback, bool* given = nullptr) {
-  std::istringstream in(block);
-  std::string w;
-  while (in >> w)
-    if (w[0] == address && w.size() > 1 &&
-        (std::isdigit(static_cast<unsigned char>(w[1])) || w[1] == '-' || w[1] == '.')) {
-      if (given) *given = true;
-      return std::stod(w.substr(1));
-    }
-  if (given) *given = false;
-  return fallback;
-}
-
-bool has(const std::string& block, const std::string& w) {
-  return (" " + block + " ").find(" " + w + " ") != std::string::npos;
-}
+using test::has;
+using test::word;
 
 // The control as the Fusion Integrex post's blocks describe it: G10.9 X0/X1 radius or
 // diameter, G12.1 with the Y value addressed as C (mm), G0 C.. turning the part (the point at
