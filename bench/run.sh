@@ -23,10 +23,12 @@ usage: bench/run.sh [options]
   --repeat R           timed runs per row, best one reported (default: 3)
   --cache DIR          where generated jobs are kept (default: /tmp/twinpost-bench)
   --baseline BIN       also time another twinpost binary (an older build) on every row,
-                       runs interleaved with the tool's, and give the speed-up in the note
-  --baseline-mill F    the machine file the baseline reads for the mill jobs in --mode post
-                       (default: bench/bench-mill.toml; an older build may need the file
-                       as it was then)
+                       runs interleaved with the tool's, and give the speed-up in the note;
+                       may be given more than once (e.g. the session's start and the pinned
+                       reference build of docs/benchmark.md), each gets its own ratio
+  --baseline-mill F    the machine file the last --baseline before it reads for the mill
+                       jobs in --mode post (default: bench/bench-mill.toml; an older build
+                       may need the file as it was then)
   --startup            only measure the start-up time (~1 KB job, best of 20)
   --no-startup         skip the start-up measurement
 EOF
@@ -38,8 +40,8 @@ kinds="mill3 mill5 lathe2"
 mode=parse
 machine=fanuc-0itd-twin
 layout=""
-baseline=""
-baseline_mill=""
+baselines=()       # --baseline BIN, in order
+baseline_mills=()  # the --baseline-mill of each, "" for the default
 build="$repo/build-bench"
 build_first=1
 repeat=3
@@ -56,8 +58,10 @@ while [[ $# -gt 0 ]]; do
     --mode) mode=$2; shift 2 ;;
     --machine) machine=$2; shift 2 ;;
     --layout) layout=$2; shift 2 ;;
-    --baseline) baseline=$2; shift 2 ;;
-    --baseline-mill) baseline_mill=$2; shift 2 ;;
+    --baseline) baselines+=("$2"); baseline_mills+=(""); shift 2 ;;
+    --baseline-mill)
+      [[ ${#baselines[@]} -gt 0 ]] || { echo "run.sh: --baseline-mill follows the --baseline it is for" >&2; exit 2; }
+      baseline_mills[${#baselines[@]} - 1]=$2; shift 2 ;;
     --build) build=$2; shift 2 ;;
     --no-build) build_first=0; shift ;;
     --repeat) repeat=$2; shift 2 ;;
@@ -194,7 +198,9 @@ echo "# twinpost $mode benchmark: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cor
 if [[ $mode == post ]]; then echo "# machines: lathe2 on $machine${layout:+ (layout $layout)}, mill3/mill5 on bench/bench-mill.toml, mill5-ik on bench/bench-head-head.toml, mill5-tcp on trunnion-5axis"; fi
 echo "# binary: $twinpost, built $(date -u -r "$twinpost" '+%Y-%m-%d %H:%M UTC')"
 echo "# best of $repeat warm-cache runs; cache: $cache"
-if [[ -n $baseline ]]; then echo "# baseline: $baseline, built $(date -u -r "$baseline" '+%Y-%m-%d %H:%M UTC')"; fi
+for ((b = 0; b < ${#baselines[@]}; b++)); do
+  echo "# baseline B$((b + 1)): ${baselines[b]}, built $(date -u -r "${baselines[b]}" '+%Y-%m-%d %H:%M UTC')${baseline_mills[b]:+, mill file ${baseline_mills[b]}}"
+done
 echo
 
 fmt='%-7s %10s %8s %8s %9s %11s %8s %8s %8s  %s\n'
@@ -216,32 +222,40 @@ if [[ $do_sizes == 1 ]]; then
       set_cmd "$file" "$kind"
       run_timed warm "${cmd[@]}"  # warm-up run
       note=""
-      if [[ -n $baseline ]]; then
-        # Interleaved with the baseline binary, run for run: a slow spell of this shared
-        # machine hits both alike, so their ratio holds where absolute times do not.
-        base_cmd=("$baseline" "${cmd[@]:1}")
-        if [[ -n $baseline_mill && $mode == post && $kind != lathe2 ]]; then
-          for ((a = 1; a < ${#base_cmd[@]}; a++)); do
-            if [[ ${base_cmd[a - 1]} == --machine ]]; then base_cmd[a]=$baseline_mill; fi
-          done
-        fi
-        base_rc=0
-        tool_s="" tool_kb=0 base_s=""
+      if [[ ${#baselines[@]} -gt 0 ]]; then
+        # Interleaved with the baseline binaries, run for run: a slow spell of this shared
+        # machine hits them all alike, so their ratios hold where absolute times do not.
+        tool_s="" tool_kb=0
+        base_s=() base_rc=()
+        for ((b = 0; b < ${#baselines[@]}; b++)); do base_s+=(""); base_rc+=(0); done
         for ((i = 0; i < repeat; i++)); do
           run_timed one "${cmd[@]}"
           tool_rc=$one_rc
           if [[ $one_rc != 0 ]]; then break; fi
           if [[ -z $tool_s ]] || awk -v a="$one_s" -v b="$tool_s" 'BEGIN { exit !(a < b) }'; then tool_s=$one_s; fi
           if ((one_kb > tool_kb)); then tool_kb=$one_kb; fi
-          run_timed one "${base_cmd[@]}"
-          if [[ $one_rc != 0 ]]; then base_rc=$one_rc; fi
-          if [[ -z $base_s ]] || awk -v a="$one_s" -v b="$base_s" 'BEGIN { exit !(a < b) }'; then base_s=$one_s; fi
+          for ((b = 0; b < ${#baselines[@]}; b++)); do
+            base_cmd=("${baselines[b]}" "${cmd[@]:1}")
+            if [[ -n ${baseline_mills[b]} && $mode == post && $kind != lathe2 ]]; then
+              for ((a = 1; a < ${#base_cmd[@]}; a++)); do
+                if [[ ${base_cmd[a - 1]} == --machine ]]; then base_cmd[a]=${baseline_mills[b]}; fi
+              done
+            fi
+            run_timed one "${base_cmd[@]}"
+            if [[ $one_rc != 0 ]]; then base_rc[b]=$one_rc; fi
+            if [[ -z ${base_s[b]} ]] || awk -v a="$one_s" -v b="${base_s[b]}" 'BEGIN { exit !(a < b) }'; then base_s[b]=$one_s; fi
+          done
         done
-        if [[ $base_rc != 0 ]]; then
-          note="baseline failed (exit $base_rc): no ratio"
-        elif [[ $tool_rc == 0 ]]; then
-          note=$(awk -v a="$base_s" -v b="$tool_s" 'BEGIN { printf "baseline %.3f s, x%.2f", a, a / b }')
-        fi
+        for ((b = 0; b < ${#baselines[@]}; b++)); do
+          if [[ ${base_rc[b]} != 0 ]]; then
+            part="B$((b + 1)) failed (exit ${base_rc[b]})"
+          elif [[ $tool_rc == 0 ]]; then
+            part=$(awk -v n="$((b + 1))" -v a="${base_s[b]}" -v t="$tool_s" 'BEGIN { printf "B%d %.3f s, x%.2f", n, a, a / t }')
+          else
+            part=""
+          fi
+          note="${note:+$note; }$part"
+        done
         run_timed check "${cmd[@]}"  # for the diagnostics count below: the tool's own stderr
       else
         best_of "$repeat" tool "${cmd[@]}"
