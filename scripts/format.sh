@@ -14,7 +14,7 @@ if [[ -z $tool ]]; then
   exit 77
 fi
 mapfile -t files < <(git ls-files -- '*.cpp' '*.hpp' 2>/dev/null ||
-                     find support machines parser channels formats check post cli tests fuzz bench \
+                     find support machines parser channels kinematics formats machining check analysis post cli tests fuzz bench \
                        -name '*.[ch]pp')
 if ((check == 0)); then
   "$tool" -i "${files[@]}"

@@ -10,11 +10,12 @@ declare -A allowed=(
   [parser]="parser support"
   [channels]="channels parser machines support"
   [kinematics]="kinematics machines support"
-  [formats]="formats kinematics channels parser machines support"
+  [formats]="formats parser machines support"
+  [machining]="machining formats kinematics channels parser machines support"
   [check]="check machines support"
   [analysis]="analysis check machines support"
-  [post]="post analysis formats kinematics check channels parser machines support"
-  [cli]="cli post analysis formats kinematics check channels parser machines support"
+  [post]="post analysis machining formats kinematics check channels parser machines support"
+  [cli]="cli post analysis machining formats kinematics check channels parser machines support"
 )
 bad=0
 for layer in "${!allowed[@]}"; do

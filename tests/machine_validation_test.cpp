@@ -57,7 +57,7 @@ TEST_CASE("validation: keys that were read and never used are unknown now", "[ma
         "m.toml:7:1: error: unknown key 'program.block_max'");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nname = \"upper\"\n" + xz) ==
         "m.toml:8:1: error: unknown key 'channel.name'");
-  // max_feed is used (formats/channel_words.cpp): it must be a positive rate.
+  // max_feed is used (machining/channel_words.cpp): it must be a positive rate.
   CHECK(error_of(head + "[limits]\nmax_feed = 0\n") ==
         "m.toml:7:12: error: limits.max_feed must be > 0, not 0");
 }

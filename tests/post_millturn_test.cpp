@@ -1,4 +1,4 @@
-// Mill/turn on the Integrex upper head (formats/channel_millturn.cpp): the main spindle held as
+// Mill/turn on the Integrex upper head (machining/channel_millturn.cpp): the main spindle held as
 // the C axis, polar interpolation, holes at C positions, cross holes in the turned frame, the
 // B head indexed per tool. The sample job's head-1 program is read back here with a model of
 // the control written from the Fusion Integrex post's block forms (docs/machines.md,

@@ -1,4 +1,4 @@
-// formats/channel_multiaxis: multi-axis output read back. Every block posted on a machine with
+// machining/channel_multiaxis: multi-axis output read back. Every block posted on a machine with
 // a kinematic chain is taken through the forward transform (as a machinist's simulator would
 // read the words) and held to the CL: each CL point is reached within the chain's tolerance,
 // every point in between lies on the CL segment, and the tip of the joints as the control

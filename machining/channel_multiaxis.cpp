@@ -8,9 +8,9 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "formats/channel_writer.hpp"
 #include "kinematics/forward.hpp"
 #include "kinematics/vec3_ops.hpp"
+#include "machining/channel_writer.hpp"
 
 namespace twinpost {
 

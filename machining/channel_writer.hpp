@@ -66,7 +66,7 @@ class channel_writer {
   void arc(const arc_event& a, int line);
   void spindle(const spindle_event& s, int line);
   /// The spindle a SPINDL without a spindle word turns: the workpiece spindle, or the live one
-  /// for a milling tool or an off-centre drill (formats/channel_spindle.cpp); nullptr after an
+  /// for a milling tool or an off-centre drill (machining/channel_spindle.cpp); nullptr after an
   /// error.
   const spindle_def* spindle_for_tool(const spindle_event& s, int line);
   /// The channel works on workpiece spindle `s` from now on: its work offset, its Z sense.
@@ -122,7 +122,7 @@ class channel_writer {
   /// True when the writer carries out every word of cycle `c`; else an error naming the first
   /// word it would drop (a tap, a bore, a retract plane, a peck of another dialect...).
   bool cycle_supported(const cycle_event& c, int line);
-  // Threading and grooving (formats/channel_thread.cpp), as the machine's [cycles] say.
+  // Threading and grooving (machining/channel_thread.cpp), as the machine's [cycles] say.
   /// True when `c` is a lathe cycle (THREAD, GROOVE) this machine writes with every word the
   /// record gives; else an error naming the record's first word it cannot carry out.
   bool lathe_cycle_supported(const cycle_event& c, int line);
@@ -146,7 +146,7 @@ class channel_writer {
   /// After a thread: the feed mode in force before it again (written only if one was).
   void restore_feed_mode(bool had_mode, bool per_rev);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
-  // Mill/turn (formats/channel_millturn.cpp): live tools on a channel with a C axis.
+  // Mill/turn (machining/channel_millturn.cpp): live tools on a channel with a C axis.
   /// True while a live tool turns on a channel with a C axis (the workpiece spindle is held).
   bool live_tool() const;
   /// The workpiece spindle becomes the C axis (spindle.c_on), X in radius (milling.radius_input);
@@ -207,7 +207,7 @@ class channel_writer {
   /// Before a tilted tool's move on a mill/turn head (multi-axis writer): the spindle held as
   /// C, polar and the turned frame ended, B and C unclamped; false with the error.
   bool millturn_to_multiaxis(int line);
-  // Multi-axis output (formats/channel_multiaxis.cpp), on a channel whose machine gives it a
+  // Multi-axis output (machining/channel_multiaxis.cpp), on a channel whose machine gives it a
   // kinematic chain ([[kinematics]]): every GOTO solved by kin::inverse, feed moves of joints
   // output linearised, every written point checked by the forward transform.
   /// A GOTO (rapid or feed) to CL point `p` under the tool axis in force.
@@ -226,7 +226,7 @@ class channel_writer {
   /// tool in the plane the CL gives instead of sweeping it round while it cuts. False (with
   /// the error) when a written point fails.
   bool turn_at_pole(const kin::tool_pose& at, const kin::tool_pose& to, double length, int line);
-  // Looking ahead at the pole (formats/channel_pole.cpp): a RAPID to a point with the tool
+  // Looking ahead at the pole (machining/channel_pole.cpp): a RAPID to a point with the tool
   // along the outer rotary axis, whose angle is free there, is held with the records after it
   // (feeds, comments, more points on the pole) until the first point off the pole; the rapid
   // then takes that point's outer angle, so the axis turns in the rapid, not while the tool
@@ -249,7 +249,7 @@ class channel_writer {
   void tool_data_length(const tool_data_event& t, bool after_call);
   /// A tool call on a chain channel: the new tool's offset register and length.
   void multiaxis_tool(const tool_event& t, int line);
-  // 3+2 work (formats/channel_plane.cpp), on a chain with `plane` (G68.2).
+  // 3+2 work (machining/channel_plane.cpp), on a chain with `plane` (G68.2).
   /// True when the GOTO to `pose` was taken by the tilted working plane: written in the open
   /// plane, or a plane opened for it, or an error; false: a multi-axis move as usual.
   bool plane_move(bool rapid, const kin::tool_pose& pose, int line);

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "formats/channel_writer.hpp"
-#include "formats/cycle_words.hpp"
+#include "machining/channel_writer.hpp"
+#include "machining/cycle_words.hpp"
 
 namespace twinpost {
 

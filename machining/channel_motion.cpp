@@ -3,7 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "formats/channel_writer.hpp"
+#include "machining/channel_writer.hpp"
 
 namespace twinpost {
 

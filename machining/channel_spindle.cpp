@@ -5,8 +5,8 @@
 #include <cmath>
 #include <fmt/format.h>
 
-#include "formats/channel_writer.hpp"
 #include "machines/name_template.hpp"
+#include "machining/channel_writer.hpp"
 
 namespace twinpost {
 

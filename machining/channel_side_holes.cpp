@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <numbers>
 
-#include "formats/channel_writer.hpp"
+#include "machining/channel_writer.hpp"
 
 namespace twinpost {
 

@@ -1,9 +1,9 @@
-// channel_writer: coolant, feed and tool blocks (the spindle: formats/channel_spindle.cpp).
+// channel_writer: coolant, feed and tool blocks (the spindle: machining/channel_spindle.cpp).
 #include <cmath>
 #include <fmt/format.h>
 
-#include "formats/channel_writer.hpp"
 #include "machines/name_template.hpp"
+#include "machining/channel_writer.hpp"
 
 namespace twinpost {
 

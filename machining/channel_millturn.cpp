@@ -6,8 +6,8 @@
 #include <fmt/format.h>
 #include <numbers>
 
-#include "formats/channel_writer.hpp"
-#include "formats/cycle_words.hpp"
+#include "machining/channel_writer.hpp"
+#include "machining/cycle_words.hpp"
 
 namespace twinpost {
 

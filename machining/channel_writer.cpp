@@ -1,4 +1,4 @@
-#include "formats/channel_writer.hpp"
+#include "machining/channel_writer.hpp"
 
 #include <algorithm>
 #include <array>
@@ -202,7 +202,7 @@ void channel_writer::frame(const coordsys_event& c, int line) {
 }
 
 void channel_writer::on_event(const event& e, bool both) {
-  if (chain_ && hold_for_pole(e, both)) return;  // formats/channel_pole.cpp
+  if (chain_ && hold_for_pole(e, both)) return;  // machining/channel_pole.cpp
   process_event(e, both);
 }
 

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <variant>
 
-#include "formats/channel_writer.hpp"
 #include "kinematics/inverse.hpp"
 #include "kinematics/vec3_ops.hpp"
+#include "machining/channel_writer.hpp"
 
 namespace twinpost {
 
