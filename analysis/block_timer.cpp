@@ -82,7 +82,8 @@ bool one_shot_cycle(const std::string& g, bool lathe_a) {
 
 }  // namespace
 
-block_timer::block_timer(const machine& m, int channel) : m_(m), spindles_(m, channel) {
+block_timer::block_timer(const machine& m, int channel)
+    : m_(m), spindles_(m, channel), spindles_need_gms_(spindles_.needs_gms()) {
   for (const channel_def& c : m.channels)
     if (c.number == channel) ch_ = &c;
   if (!ch_) ch_ = &m.channels.front();
@@ -146,18 +147,18 @@ block_timer::axis_pos* block_timer::axis(char a) {
 }
 
 block_timing block_timer::time(std::string_view text) {
-  split_nc_words(text, words_);
-  const std::vector<nc_word>& words = words_;
-  // Each word's number, read once (the loops below look at the words several times).
-  values_.resize(words.size());
-  for (std::size_t k = 0; k < words.size(); ++k)
-    values_[k].ok = !words[k].expression && number(words[k].value, values_[k].v);
-  auto num = [&](const nc_word& w, double& v) {
-    const cached& c = values_[static_cast<std::size_t>(&w - words.data())];
-    v = c.v;
-    return c.ok;
+  const std::uint32_t letters = split_nc_words(text, words_);
+  return time(words_, letters);
+}
+
+block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t letters) {
+  // Each word's number was read once, when the block was split.
+  auto num = [](const nc_word& w, double& v) {
+    v = w.number;
+    return w.numeric;
   };
-  spindles_.apply(words);
+  constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+  if (!spindles_need_gms_ || (letters & gms)) spindles_.apply(words);
   block_timing t;
   if (milling_mode(words)) return t;  // a mode block: no time, no move (G10.9 X0 moves nothing)
   auto untimed = [&t](std::string why) {

@@ -9,6 +9,7 @@
 // A block it cannot time honestly (a canned cycle, a reference return, a move from an
 // unknown position, a feed per revolution on a stopped spindle ...) is timed 0 and named in
 // block_timing::untimed: the caller counts and reports it, never silently.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -36,6 +37,8 @@ class block_timer {
 
   /// Applies one block (the physical line) and returns its time.
   block_timing time(std::string_view text);
+  /// The same for a block already split (the reader's nc_block: words and their letters).
+  block_timing time(const std::vector<nc_word>& words, std::uint32_t letters);
   /// The seconds a wait code costs (machine [timing] wait).
   double wait_seconds() const { return ch_->timing.wait; }
   /// The tool in force, as the program calls it ("T03"); empty before the first call.
@@ -80,12 +83,8 @@ class block_timer {
   double cylinder_per_r_ = 1, cylinder_r_ = 0;
   /// True (and the mode set) when the block is one of the machine's mill/turn mode blocks.
   bool milling_mode(const std::vector<nc_word>& words);
-  std::vector<nc_word> words_;  // the block's words (reused: no allocation per block)
-  struct cached {
-    double v = 0;
-    bool ok = true;
-  };
-  std::vector<cached> values_;                 // each word's number, and whether it has one
+  std::vector<nc_word> words_;                 // the block's words when given as text (reused)
+  bool spindles_need_gms_ = false;             // a block without G, M or S cannot change a spindle
   std::vector<std::optional<double>> target_;  // where the block sends each axis (reused)
 
   axis_pos* axis(char a);

@@ -46,11 +46,15 @@ class timeline_builder {
     for (int i = 0; i < n_; ++i) runs_[static_cast<std::size_t>(i)].times.channel = i + 1;
   }
 
-  void block(int channel, const std::string& file, int line, std::string_view text) {
+  void block(const nc_block& b) {
+    const int channel = b.channel;
+    const std::string& file = b.file;
+    const int line = b.line;
+    const std::string_view text = b.text;
     channel_run& r = runs_[static_cast<std::size_t>(channel - 1)];
     channel_times& c = r.times;
     if (c.file.empty()) c.file = file;
-    const block_timing t = r.timer.time(text);
+    const block_timing t = r.timer.time(b.words(), b.letters());
     ++c.blocks;
     if (!t.untimed.empty()) {
       ++c.untimed;
@@ -258,9 +262,7 @@ struct timeline_feed::impl {
 timeline_feed::timeline_feed(const machine& m, const timeline_options& o)
     : o_(o), p_(std::make_unique<impl>(m, o_)) {}
 timeline_feed::~timeline_feed() = default;
-void timeline_feed::block(int channel, const std::string& file, int line, std::string_view text) {
-  p_->b.block(channel, file, line, text);
-}
+void timeline_feed::block(const nc_block& b) { p_->b.block(b); }
 void timeline_feed::wait(const nc_wait& w) { p_->b.wait(w); }
 timeline timeline_feed::finish(const std::vector<std::uint64_t>& rendezvous) {
   return p_->b.finish(rendezvous);
@@ -293,19 +295,17 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
     return tl;
   }
   const std::vector<nc_source> files = rereadable(given);
-  sync_result check = check_nc_files(files, m);
+  // One reading: the check's first pass feeds the timeline too (what it built is dropped
+  // when the check finds anything).
+  timeline_builder b(m, o);
+  nc_read_options read;
+  read.on_block = [&](const nc_block& blk) { b.block(blk); };
+  read.on_wait = [&](const nc_wait& w) { b.wait(w); };
+  sync_result check = check_nc_files(files, m, read);
   if (!check.ok) {
     tl.diagnostics = std::move(check.diagnostics);
     return tl;
   }
-  timeline_builder b(m, o);
-  nc_read_options read;
-  read.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
-    b.block(channel, file, line, text);
-  };
-  read.on_wait = [&](const nc_wait& w) { b.wait(w); };
-  diagnostic_list ignored;  // the check read the same files without a problem
-  read_nc_programs(files, m, ignored, read);
   timeline out = b.finish(check.rendezvous);
   out.diagnostics.insert(out.diagnostics.begin(), check.diagnostics.begin(), check.diagnostics.end());
   return out;

@@ -121,7 +121,7 @@ class timeline_feed {
   timeline_feed(const timeline_feed&) = delete;
   timeline_feed& operator=(const timeline_feed&) = delete;
   /// Callbacks for nc_read_options (on_block, on_wait) that feed this timeline.
-  void block(int channel, const std::string& file, int line, std::string_view text);
+  void block(const nc_block& b);
   void wait(const nc_wait& w);
   timeline finish(const std::vector<std::uint64_t>& rendezvous);
 

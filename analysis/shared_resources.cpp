@@ -16,19 +16,6 @@ namespace {
 
 bool number(std::string_view s, double& out) { return nc_number(s, out); }
 
-// Whether the block has a G, M or S (either case) anywhere: one table look-up per character,
-// cheaper than find_first_of's search of the set for each of them.
-bool has_gms(std::string_view text) {
-  static constexpr auto table = [] {
-    std::array<bool, 256> t{};
-    for (unsigned char c : std::string_view("GMSgms")) t[c] = true;
-    return t;
-  }();
-  for (const char c : text)
-    if (table[static_cast<unsigned char>(c)]) return true;
-  return false;
-}
-
 // The G number of a one-word code ("G99" -> 99); nullopt when the code is not one G word.
 std::optional<double> g_number(std::string_view code) {
   const std::vector<nc_word> w = split_nc_words(code);
@@ -159,25 +146,27 @@ struct shared_resources::impl {
     return out;
   }
 
-  std::vector<nc_word> words_;  // the block's words (reused: no allocation per block)
-
-  void block(int channel, const std::string& file, int line, std::string_view text) {
+  void block(const nc_block& b) {
+    const int channel = b.channel;
+    const std::string& file = b.file;
+    const int line = b.line;
+    const std::string_view text = b.text;
     if (channel < 1 || static_cast<std::size_t>(channel) > channels.size()) return;
     channel_data& c = channels[static_cast<std::size_t>(channel - 1)];
     // Most blocks are moves with no G, M or S word: they change nothing here, and a cut among
     // them counts only in feed per revolution, when it is the first of its stretch (already
     // noted otherwise).
-    if (c.quiet_without_gms && !has_gms(text) &&
+    constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+    if (c.quiet_without_gms && !(b.letters() & gms) &&
         (!c.per_rev || (c.has_cut_key && c.last_seg == c.seg && c.last_spindle == c.spindles.current() &&
                         c.last_turns == c.turns[static_cast<std::size_t>(c.last_spindle)].size())))
       return;
-    split_nc_words(text, words_);
-    const std::vector<nc_word>& words = words_;
+    const std::vector<nc_word>& words = b.words();
     bool cycle = false, thread = false, no_move = false;
     int axis_column = 0, cut_column = 0;
     for (const nc_word& w : words) {
-      double v = 0;
-      if (w.expression || !number(w.value, v)) continue;
+      if (!w.numeric) continue;
+      const double v = w.number;
       if (w.address == 'G') {
         if (v == 0 || v == 1 || v == 2 || v == 3) {
           c.motion = static_cast<int>(v);
@@ -435,9 +424,7 @@ struct shared_resources::impl {
 shared_resources::shared_resources(const machine& m) : p_(std::make_unique<impl>(m)) {}
 shared_resources::~shared_resources() = default;
 
-void shared_resources::block(int channel, const std::string& file, int line, std::string_view text) {
-  p_->block(channel, file, line, text);
-}
+void shared_resources::block(const nc_block& b) { p_->block(b); }
 
 void shared_resources::wait(int channel) {
   if (channel >= 1 && static_cast<std::size_t>(channel) <= p_->channels.size())
@@ -459,9 +446,9 @@ sync_result check_nc_resources(const std::vector<nc_source>& files, const machin
                                const nc_read_options& more) {
   shared_resources rules(m);
   nc_read_options also;
-  also.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
-    rules.block(channel, file, line, text);
-    if (more.on_block) more.on_block(channel, file, line, text);
+  also.on_block = [&](const nc_block& b) {
+    rules.block(b);
+    if (more.on_block) more.on_block(b);
   };
   also.on_wait = [&](const nc_wait& w) {
     rules.wait(w.channel);

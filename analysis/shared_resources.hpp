@@ -40,7 +40,7 @@ class shared_resources {
   shared_resources& operator=(const shared_resources&) = delete;
 
   /// Every block of every channel, in program order (nc_read_options::on_block).
-  void block(int channel, const std::string& file, int line, std::string_view text);
+  void block(const nc_block& b);
   /// The channel passed a wait: its next block belongs to its next segment (on_wait).
   void wait(int channel);
   /// The rules, given the rendezvous of a check in which every channel reached its end

@@ -9,13 +9,9 @@ namespace twinpost {
 
 namespace {
 
-bool number(std::string_view s, double& out) { return nc_number(s, out); }
-
 // Two words name the same code: same address, same number (G96 = G96. = G096).
 bool same_word(const nc_word& a, const nc_word& b) {
-  double x = 0, y = 0;
-  return a.address == b.address && !a.expression && !b.expression && number(a.value, x) &&
-         number(b.value, y) && x == y;
+  return a.address == b.address && a.numeric && b.numeric && a.number == b.number;
 }
 
 bool has_word(const std::vector<nc_word>& words, const nc_word& w, int& column) {
@@ -99,8 +95,8 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
   spindle_turn turn = spindle_turn::unknown;
   std::vector<std::pair<int, int>> stops;  // spindle, column
   for (const nc_word& w : words) {
-    double v = 0;
-    if (w.address != 'M' || w.expression || !number(w.value, v) || v != std::floor(v)) continue;
+    const double v = w.number;
+    if (w.address != 'M' || !w.numeric || v != std::floor(v)) continue;
     const int code = static_cast<int>(v);
     int hit = -1;
     spindle_turn what = spindle_turn::unknown;
@@ -149,8 +145,8 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
   const nc_word* s_word = nullptr;
   for (const nc_word& w : words)
     if (w.address == 'S' && !w.expression) s_word = &w;
-  double s_value = 0;
-  const bool has_s = s_word && number(s_word->value, s_value);
+  const bool has_s = s_word && s_word->numeric;
+  const double s_value = has_s ? s_word->number : 0;
   const int target = turned >= 0 ? turned : current_;
   // A clamp block (G50 S.., G92 S.. R1): S is the highest rpm, not a speed.
   if (has_s) {

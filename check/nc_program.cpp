@@ -34,6 +34,41 @@ int count_newlines(const char* p, std::size_t n) {
 
 bool all_digits(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), is_digit); }
 
+// The number of a word's value as std::from_chars reads it (nc_number), decoded once when the
+// block is split. NC numbers are short: their digits are gathered exactly and divided by an
+// exact power of ten, which rounds correctly as from_chars does (Clinger's fast path) while
+// the digits fit in 15; longer ones go to from_chars. `point`: written with a decimal point.
+bool decode_number(std::string_view s, double& out, bool& point) {
+  static constexpr double pow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                     1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  std::size_t i = 0;
+  bool negative = false;
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) negative = s[i++] == '-';
+  std::uint64_t mantissa = 0;
+  int digits = 0, decimals = -1;  // decimals: -1 until the point
+  for (; i < s.size(); ++i) {
+    const char c = s[i];
+    if (is_digit(c)) {
+      if (digits < 19) mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
+      ++digits;
+      if (decimals >= 0) ++decimals;
+    } else if (c == '.' && decimals < 0) {
+      decimals = 0;
+    } else {
+      return false;
+    }
+  }
+  if (digits == 0) return false;
+  point = decimals >= 0;
+  const int scale = decimals < 0 ? 0 : decimals;
+  if (digits <= 15 && scale <= 22) {
+    out = static_cast<double>(mantissa) / pow10[scale];
+    if (negative) out = -out;
+    return true;
+  }
+  return nc_number(s, out);
+}
+
 /// Index just past the `[...]` group that opens at `i` (groups nest).
 std::size_t skip_brackets(std::string_view s, std::size_t i) {
   int depth = 0;
@@ -336,7 +371,7 @@ class reader {
   template <class F>
   bool consume_run(std::string_view chunk, std::size_t& pos, int& no, F& on_line) {
     const char* base = chunk.data();
-    const std::size_t stop = pos + std::strcspn(base + pos, run_stops_.c_str());
+    const std::size_t stop = pos + span_until(base + pos, run_stops_);
     const void* nl = stop > pos ? memrchr(base + pos, '\n', stop - pos) : nullptr;
     if (!nl) return false;
     const std::size_t end = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
@@ -363,8 +398,8 @@ class reader {
   }
 
   // The same lines as above, read from a file a megabyte at a time. Most lines are plain
-  // blocks: one strcspn over the stop characters (the special ones, CR and LF; SSE4.2 in
-  // glibc) finds the end of such a line and says it is plain in the same pass.
+  // blocks: one scan to the first stop character (the special ones, CR and LF; a table
+  // look-up per byte) finds the end of such a line and says it is plain in the same pass.
   // Every line is settled before it returns: the last one may live in `carry`.
   template <class F>
   void stream_lines(const nc_source& f, F&& on_line, const bool* runs) {
@@ -377,7 +412,7 @@ class reader {
       file = own.get();
     }
     if (!file) throw config_error(fmt::format("cannot read '{}'", f.path));
-    chunk_reader reader(file);  // each chunk ends in the NUL strcspn stops at
+    chunk_reader reader(file);  // each chunk ends in the NUL the scans stop at
     std::string carry;
     int no = 0;
     bool first = true, skip_lf = false;
@@ -391,8 +426,8 @@ class reader {
         if (runs && *runs && carry.empty() && consume_run(chunk, pos, no, on_line)) continue;
         if (carry.empty() && !is_blank(chunk[pos])) {
           // A line that reaches its LF with no stop character on the way, and does not start
-          // blank, is a plain block (an embedded NUL stops strcspn too: the slow way then).
-          const std::size_t len = std::strcspn(chunk.data() + pos, stops_.c_str());
+          // blank, is a plain block (an embedded NUL stops the scan too: the slow way then).
+          const std::size_t len = span_until(chunk.data() + pos, stops_);
           if (len > 0 && chunk.data()[pos + len] == '\n') {
             on_line(++no, chunk.substr(pos, len), true);
             pos += len + 1;
@@ -556,9 +591,14 @@ class reader {
     if (channel > 0 && (plain || plain_block(line)))
       return note_plain_block(f, no, line, channel,
                               marker_words < 0 || block_beyond_marker(split_nc_words(line), marker_words));
-    std::vector<nc_word> words = split_nc_words(line);
+    letters_ = split_nc_words(line, words_);
+    std::vector<nc_word>& words = words_;
     const line_place at{f, no, line};
-    if (bang_) read_bang_waits(line, words, channel, at);
+    if (bang_) {
+      read_bang_waits(line, words, channel, at);
+      letters_ = 0;
+      for (const nc_word& w : words) letters_ |= nc_letter(w.address);
+    }
     if (channel >= 0 && !(channel > 0 && state_[static_cast<std::size_t>(channel - 1)].ended))
       report_jumps(line, words, at);
     if (words.empty()) return;
@@ -604,18 +644,21 @@ class reader {
       i = j;
     }
     for (const nc_word& w : words) {
-      double v = 0;
-      if (w.expression || !nc_number(w.value, v)) continue;
+      if (!w.numeric) continue;
+      const double v = w.number;
+      const bool call = w.address == 'M' && (v == 98 || v == 198);
+      const bool macro = w.address == 'G' && (v == 65 || v == 66 || v == 66.1);
+      if (!call && !macro) continue;  // most words: nothing to format
       const std::string code = fmt::format("{}{}", w.address, w.value);
       const nc_word* program = nullptr;
       for (const nc_word& p : words)
         if (p.address == 'P' && !program) program = &p;
       const std::string called = program ? fmt::format(" P{}", program->value) : std::string();
-      if (w.address == 'M' && (v == 98 || v == 198))
+      if (call)
         report(severity::warning, at(w.column),
                fmt::format("{}{} calls a subprogram the checker does not read: waits in it are not checked",
                            code, called));
-      else if (w.address == 'G' && (v == 65 || v == 66 || v == 66.1))
+      else
         report(severity::warning, at(w.column),
                fmt::format("{}{} calls a macro the checker does not read: waits in it are not checked", code,
                            called));
@@ -648,7 +691,7 @@ class reader {
     st.last_line = no;
     st.pending_source = &f;
     st.pending_text = line;
-    if (options_.on_block && is_block) options_.on_block(channel, f.name, no, line);
+    if (options_.on_block && is_block) options_.on_block(nc_block(channel, f.name, no, line, words_));
   }
 
   // Sorts the words of a block into wait, end and near-waits; a wait given as an expression
@@ -706,7 +749,9 @@ class reader {
     if (st.last_file != at.f.name) st.last_file = at.f.name;
     st.last_line = at.no;
     st.last_text.assign(at.line);
-    if (options_.on_block && is_block) options_.on_block(channel, at.f.name, at.no, at.line);
+    if (options_.on_block && is_block)
+      options_.on_block(
+          nc_block(channel, at.f.name, at.no, at.line, words_, letters_));  // split in read_line
     if (b.wait) {
       nc_wait w = make_wait(channel, b.wait_code, b.partner, at(b.wait->column));
       if (options_.on_wait)
@@ -775,12 +820,22 @@ class reader {
     return t;
   }
 
-  // The special characters with CR and LF: where strcspn stops in stream_lines.
-  static std::string stop_chars(const std::array<bool, 256>& special) {
-    std::string s = "\r\n";
-    for (int c = 1; c < 256; ++c)
-      if (special[static_cast<std::size_t>(c)]) s += static_cast<char>(c);
-    return s;
+  // Where a scan for the end of a plain block stops in stream_lines: the special characters,
+  // CR, LF (unless `lf` is false: a run of lines goes on past it) and the NUL that ends each
+  // chunk. A table, not strcspn: glibc's fast strcspn takes at most 16 characters, and this
+  // set has about 20 (its generic path rebuilds a table on every call).
+  static std::array<bool, 256> stop_table(const std::array<bool, 256>& special, bool lf) {
+    std::array<bool, 256> t = special;
+    t['\0'] = t['\r'] = true;
+    t['\n'] = lf;
+    return t;
+  }
+
+  // The length of the span at `p` before the first byte of `stops` (a NUL is one).
+  static std::size_t span_until(const char* p, const std::array<bool, 256>& stops) {
+    const char* q = p;
+    while (!stops[static_cast<unsigned char>(*q)]) ++q;
+    return static_cast<std::size_t>(q - p);
   }
 
   const machine& m_;
@@ -792,13 +847,40 @@ class reader {
   char partner_addr_ = m_.waits.partner_address;        // the address of its partners
   std::vector<std::pair<int, std::string>> bang_text_;  // bang waits of the line: column, as written
   std::array<bool, 256> special_ = special_chars(m_.waits.address, m_.waits);
-  std::string stops_ = stop_chars(special_);
-  std::string run_stops_ = "\r" + stops_.substr(2);  // no LF: a run of lines ends at CR or a special
+  std::array<bool, 256> stops_ = stop_table(special_, true);
+  std::array<bool, 256> run_stops_ = stop_table(special_, false);  // a run of lines ends at CR or a special
   std::vector<channel_state> state_;
   std::vector<int> end_codes_;
+  std::vector<nc_word> words_;  // the words of the line being read, split once (reused)
+  std::uint32_t letters_ = 0;   // their addresses (nc_letter bits)
 };
 
 }  // namespace
+
+const std::vector<nc_word>& nc_block::words() const {
+  if (!split_) {
+    letters_ = split_nc_words(text, *store_);
+    split_ = has_letters_ = true;
+  }
+  return *store_;
+}
+
+std::uint32_t nc_block::letters() const {
+  if (!has_letters_) {
+    // One table look-up per character: most blocks are asked only this.
+    static constexpr auto bit = [] {
+      std::array<std::uint32_t, 256> t{};
+      for (char c = 'A'; c <= 'Z'; ++c)
+        t[static_cast<unsigned char>(c)] = t[static_cast<unsigned char>(c - 'A' + 'a')] = nc_letter(c);
+      return t;
+    }();
+    std::uint32_t may = 0;
+    for (const char c : text) may |= bit[static_cast<unsigned char>(c)];
+    letters_ = may;
+    has_letters_ = true;
+  }
+  return letters_;
+}
 
 bool nc_number(std::string_view s, double& out) {
   if (s.starts_with('+')) s.remove_prefix(1);
@@ -812,10 +894,11 @@ std::vector<nc_word> split_nc_words(std::string_view line) {
   return words;
 }
 
-void split_nc_words(std::string_view line, std::vector<nc_word>& words) {
+std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words) {
   // The words are written over the vector's old ones (their strings keep their capacity):
   // a caller that splits every block of a long program allocates nothing per block.
   std::size_t used = 0;
+  std::uint32_t letters = 0;
   auto next = [&]() -> nc_word& {
     if (used == words.size()) words.emplace_back();
     nc_word& w = words[used++];
@@ -823,7 +906,10 @@ void split_nc_words(std::string_view line, std::vector<nc_word>& words) {
     return w;
   };
   const std::size_t first = line.find_first_not_of(" \t");
-  if (first != std::string_view::npos && line[first] == '%') return words.clear();
+  if (first != std::string_view::npos && line[first] == '%') {
+    words.clear();
+    return 0;
+  }
   const std::size_t n = line.size();
   std::size_t i = 0;
   while (i < n) {
@@ -872,12 +958,16 @@ void split_nc_words(std::string_view line, std::vector<nc_word>& words) {
       w.column = static_cast<int>(i) + 1;
       w.value.assign(line.substr(k, d - k));
       w.expression = expression;
+      w.numeric = !expression && decode_number(w.value, w.number, w.point);
+      if (!w.numeric) w.number = 0, w.point = false;
+      letters |= nc_letter(w.address);
       i = d;
     } else {
       ++i;
     }
   }
   words.resize(used);
+  return letters;
 }
 
 nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m, diagnostic_sink& sink,

@@ -16,6 +16,7 @@
 // `!2!3L5`), kept as written in nc_wait::partner_text. The reader judges syntax and layout only; the rules
 // (partner lists, pairing, deadlocks) are the checker's.
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -52,12 +53,52 @@ struct nc_place {
   std::string source_line;  ///< the physical line, without its line ending
 };
 
-/// One word of an NC block.
+/// One word of an NC block, read once: its number is decoded when the block is split, so
+/// that no consumer reads the digits again.
 struct nc_word {
   char address = 0;         ///< upper case letter
   std::string value;        ///< the number as written ("100", "-1.5"); empty when none
   bool expression = false;  ///< the value is a variable or expression (M#100, M[#1+2])
   int column = 0;           ///< 1-based column of the address letter
+  bool numeric = false;     ///< `value` is a plain number ("-1.5", "+2", "100."), decoded in `number`
+  bool point = false;       ///< the number is written with a decimal point ("1." and "1.5", not "1")
+  double number = 0;        ///< the value when `numeric` (as std::from_chars reads it), else 0
+};
+
+/// The letters (A..Z) of a block's words as a bit mask, bit 0 for A: one test says whether a
+/// block has a G, M or S at all.
+constexpr std::uint32_t nc_letter(char address) { return std::uint32_t{1} << (address - 'A'); }
+
+/// One block of a channel's program as the reader hands it on (nc_read_options::on_block).
+/// It is split at most once, on the first call of words() by any consumer, and that split
+/// serves them all; a consumer that needs no words of most blocks asks letters() first.
+class nc_block {
+ public:
+  /// A block not split yet; `store` is the reader's reusable word vector.
+  nc_block(int channel, const std::string& file, int line, std::string_view text, std::vector<nc_word>& store)
+      : channel(channel), file(file), line(line), text(text), store_(&store) {}
+  /// A block the reader has split already into `words`, with their `letters`.
+  nc_block(int channel, const std::string& file, int line, std::string_view text, std::vector<nc_word>& words,
+           std::uint32_t letters)
+      : channel(channel), file(file), line(line), text(text), store_(&words), split_(true), letters_(letters),
+        has_letters_(true) {}
+
+  int channel = 0;          ///< 1-based channel number
+  const std::string& file;  ///< the file's name (as in messages)
+  int line = 0;             ///< 1-based line number
+  std::string_view text;    ///< the physical line, without its line ending
+
+  /// Its words (split_nc_words), split on the first call.
+  const std::vector<nc_word>& words() const;
+  /// The addresses it may have (nc_letter bits): exact once split, else every letter of the
+  /// text, comments included (a superset: a bit not set is a word not there).
+  std::uint32_t letters() const;
+
+ private:
+  std::vector<nc_word>* store_;
+  mutable bool split_ = false;
+  mutable std::uint32_t letters_ = 0;
+  mutable bool has_letters_ = false;
 };
 
 /// Splits one physical NC line into its words. Skips `(...)` and `;` comments, `%` lines,
@@ -68,7 +109,8 @@ std::vector<nc_word> split_nc_words(std::string_view line);
 /// else (an expression, "1.2.3").
 bool nc_number(std::string_view value, double& out);
 /// The same into `words`, reusing its elements: no allocation per block once it has grown.
-void split_nc_words(std::string_view line, std::vector<nc_word>& words);
+/// Returns the addresses found (nc_letter bits).
+std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words);
 
 /// One wait as written in a channel's program (or an M-code that looks like one).
 struct nc_wait {
@@ -104,8 +146,8 @@ struct nc_read_options {
   /// When set, every block of a channel's program (a line with words, in its section, up to
   /// and including the end code) is handed to it, in program order and before the block's
   /// wait goes to `on_wait`: the input of the analyses that need more than the waits (cycle
-  /// time, shared spindles). `text` is the physical line; split it with split_nc_words.
-  std::function<void(int channel, const std::string& file, int line, std::string_view text)> on_block;
+  /// time, shared spindles, the CL-line map). The block comes split, once, for all of them.
+  std::function<void(const nc_block&)> on_block;
 };
 
 /// Reads `files` as the programs of machine `m`; layout and syntax problems go to `sink`.

@@ -238,9 +238,7 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
   const std::vector<nc_source> sources = staged_sources(o, files);
   nc_read_options more;
   if (feed) {
-    more.on_block = [feed](int channel, const std::string& file, int line, std::string_view text) {
-      feed->block(channel, file, line, text);
-    };
+    more.on_block = [feed](const nc_block& b) { feed->block(b); };
     more.on_wait = [feed](const nc_wait& w) { feed->wait(w); };
   }
   sync_result check = check_nc_resources(sources, m, more);

@@ -93,7 +93,11 @@ std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, c
   o.on_wait = [&](const nc_wait& w) {
     if (w.channel >= 1 && static_cast<std::size_t>(w.channel) <= segment.size()) ++segment[w.channel - 1];
   };
-  o.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
+  o.on_block = [&](const nc_block& b) {
+    const int channel = b.channel;
+    const std::string& file = b.file;
+    const int line = b.line;
+    const std::string_view text = b.text;
     if (channel < 1 || static_cast<std::size_t>(channel) > blocks.size()) return;
     const auto c = static_cast<std::size_t>(channel - 1);
     const key k{segment[c], std::string(plain_text(text))};

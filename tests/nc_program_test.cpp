@@ -1,4 +1,5 @@
 // Reading NC programs into per-channel wait lists (check/nc_program.hpp).
+#include <bit>
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -433,8 +434,10 @@ TEST_CASE("on_block hands over every block of a channel in program order", "[che
   diagnostic_list d;
   std::string got;
   nc_read_options o;
-  o.on_block = [&](int channel, const std::string& file, int line, std::string_view text) {
-    got += fmt::format("{}:{}:{}:{}\n", channel, file, line, text);
+  o.on_block = [&](const nc_block& b) {
+    std::string words;
+    for (const nc_word& w : b.words()) words += fmt::format(" {}={}", w.address, w.number);
+    got += fmt::format("{}:{}:{}:{} [{}] {:x}\n", b.channel, b.file, b.line, b.text, words, b.letters());
   };
   o.on_wait = [&](const nc_wait& w) { got += fmt::format("wait {} at {}\n", w.code, w.where.line); };
   read_nc_programs({{"part.eia",
@@ -452,12 +455,12 @@ TEST_CASE("on_block hands over every block of a channel in program order", "[che
                    mazak(), d, o);
   CHECK(messages(d) == "");
   CHECK(got ==
-        "1:part.eia:4:G0 X10.\n"
-        "1:part.eia:5:M950\n"
+        "1:part.eia:4:G0 X10. [ G=0 X=10] 800040\n"
+        "1:part.eia:5:M950 [ M=950] 1000\n"
         "wait 950 at 5\n"
-        "2:part.eia:8:M950\n"
+        "2:part.eia:8:M950 [ M=950] 1000\n"
         "wait 950 at 8\n"
-        "2:part.eia:9:M30\n");
+        "2:part.eia:9:M30 [ M=30] 1000\n");
 }
 
 TEST_CASE("on_block sees every plain block of a streamed file, runs of them included", "[check]") {
@@ -469,14 +472,17 @@ TEST_CASE("on_block sees every plain block of a streamed file, runs of them incl
   diagnostic_list d;
   std::string got;
   nc_read_options o;
-  o.on_block = [&](int channel, const std::string&, int line, std::string_view text) {
-    got += fmt::format("{}:{}:{}\n", channel, line, text);
+  o.on_block = [&](const nc_block& b) {
+    got += fmt::format("{}:{}:{}", b.channel, b.line, b.text);
+    for (const nc_word& w : b.words()) got += fmt::format(" {}{}", w.address, w.number);
+    got += '\n';
   };
   read_nc_programs({{"A_1.nc", {}, p1}, {"A_2.nc", {}, p2}}, m, d, o);
   CHECK(messages(d) == "");
   CHECK(got ==
-        "1:2:O1000\n1:3:G0 X10.\n1:4:G1 X5. F0.1\n1:6:G1 Z-3.\n1:7:M100\n1:8:G0 X20.\n1:9:M30\n"
-        "2:2:O1000\n2:3:G0 X30.\n2:4:M100\n2:5:M30\n");
+        "1:2:O1000 O1000\n1:3:G0 X10. G0 X10\n1:4:G1 X5. F0.1 G1 X5 F0.1\n1:6:G1 Z-3. G1 Z-3\n"
+        "1:7:M100 M100\n1:8:G0 X20. G0 X20\n1:9:M30 M30\n"
+        "2:2:O1000 O1000\n2:3:G0 X30. G0 X30\n2:4:M100 M100\n2:5:M30 M30\n");
 }
 
 TEST_CASE("jumps, loops and calls the checker does not follow are reported, not passed over", "[check]") {
@@ -512,4 +518,62 @@ TEST_CASE("jumps, loops and calls the checker does not follow are reported, not 
       "G65 P9010 A1.\n^\n"
       "J_1.nc:10:1: warning: M98 P1234 calls a subprogram the checker does not read: waits in it are not "
       "checked\nm98p1234\n^\n");
+}
+
+TEST_CASE("split_nc_words decodes each number once, as from_chars reads it", "[check]") {
+  // Every value the splitter can hand over: signs, points, leading zeros, digit counts past
+  // the exact path (15) and past 19, and what is no number.
+  std::vector<std::string> values = {"0",
+                                     "-0",
+                                     "+0",
+                                     "1",
+                                     "1.",
+                                     ".5",
+                                     "-.5",
+                                     "007",
+                                     "0.0001",
+                                     "-12.345",
+                                     "100.",
+                                     "99999999",
+                                     "1.2.3",
+                                     ".",
+                                     "12.",
+                                     "3.14159265358979",
+                                     "123456789012345",
+                                     "1234567890123456",
+                                     "12345678901234567890123",
+                                     "0.1234567890123456789"};
+  std::uint64_t x = 88172645463325252ULL;  // xorshift: random digit strings of every length
+  for (int k = 0; k < 20000; ++k) {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    std::string v = (x & 1) ? "-" : "";
+    const int digits = 1 + static_cast<int>((x >> 1) % 22);
+    const int point = static_cast<int>((x >> 8) % (digits + 2)) - 1;  // -1: none
+    for (int d = 0; d < digits; ++d) {
+      if (d == point) v += '.';
+      v += static_cast<char>('0' + (x >> (12 + d % 40)) % 10);
+    }
+    values.push_back(v);
+  }
+  std::vector<nc_word> words;
+  for (const std::string& v : values) {
+    INFO(v);
+    const std::uint32_t letters = split_nc_words("X" + v + " M3", words);
+    REQUIRE(words.size() == 2);
+    double want = 0;
+    const bool ok = nc_number(words[0].value, want);
+    CHECK(words[0].numeric == ok);
+    if (ok) {
+      CHECK(std::bit_cast<std::uint64_t>(words[0].number) == std::bit_cast<std::uint64_t>(want));
+      CHECK(words[0].point == (v.find('.') != std::string::npos));
+    }
+    CHECK(words[1].numeric);
+    CHECK(words[1].number == 3);
+    CHECK(letters == (nc_letter('X') | nc_letter('M')));
+  }
+  split_nc_words("G1 X#100 Y[#1+2] (Z5) f200", words);
+  REQUIRE(words.size() == 4);
+  CHECK((words[1].numeric || words[2].numeric) == false);
+  CHECK(words[3].address == 'F');
+  CHECK(words[3].number == 200);
 }
