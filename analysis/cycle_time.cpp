@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 
 #include <fmt/format.h>
 
@@ -35,6 +36,8 @@ struct channel_run {
   channel_times times;
   std::vector<run_wait> waits;
   int segment = 0;
+  std::vector<int> kept_segment;  // the segment of each kept block
+  bool kept_over = false;         // more blocks than timeline_max_kept_blocks: none kept
   channel_run(const machine& m, int ch) : timer(m, ch) {}
 };
 
@@ -73,18 +76,37 @@ class timeline_builder {
     tool_operation& op = c.operations.back();
     op.seconds += t.seconds;
     ++op.blocks;
-    if (o_.keep_blocks) {
-      timed_block b;
-      b.line = line;
-      b.start = c.busy;
-      b.seconds = t.seconds;
-      b.text = std::string(text);
-      b.untimed = t.untimed;
-      c.kept.push_back(std::move(b));
-      kept_segment_.resize(runs_.size());
-      kept_segment_[static_cast<std::size_t>(channel - 1)].push_back(r.segment);
+    if (o_.keep_blocks && !r.kept_over) {
+      if (c.kept.size() == timeline_max_kept_blocks) {
+        // More than the page draws: it shows the operations, and memory stays bounded.
+        r.kept_over = true;
+        std::vector<timed_block>().swap(c.kept);
+        std::vector<int>().swap(r.kept_segment);
+      } else {
+        c.kept.push_back(timed(r, line, text, t));
+        r.kept_segment.push_back(r.segment);
+      }
+    }
+    if (channel == stream_channel_) {
+      flush_streamed();
+      pending_ = timed(r, line, text, t);
+      pending_.start += stream_shift_[static_cast<std::size_t>(r.segment)];
+      has_pending_ = true;
     }
     c.busy += t.seconds;
+  }
+
+  /// Instead of keeping them, hands each timed block of `channel` to `f`, placed in time by
+  /// `shift` (the idle before each of its wait segments, from a first timing of the same
+  /// programs): a second reading that streams what keep_blocks would hold.
+  void stream_blocks(int channel, std::vector<double> shift, std::function<void(const timed_block&)> f) {
+    stream_channel_ = channel;
+    stream_shift_ = std::move(shift);
+    emit_ = std::move(f);
+  }
+  void flush_streamed() {
+    if (has_pending_) emit_(pending_);
+    has_pending_ = false;
   }
 
   void wait(const nc_wait& w) {
@@ -96,6 +118,10 @@ class timeline_builder {
     if (o_.keep_blocks && !c.kept.empty()) {
       c.kept.back().seconds += s;
       c.kept.back().wait = true;
+    }
+    if (w.channel == stream_channel_ && has_pending_) {
+      pending_.seconds += s;
+      pending_.wait = true;
     }
     run_wait rw;
     rw.work = c.busy;
@@ -197,9 +223,8 @@ class timeline_builder {
       std::vector<double> shift(t.waits.size() + 1, 0);
       for (std::size_t k = 0; k < t.waits.size(); ++k) shift[k + 1] = shift[k] + t.waits[k].idle();
       for (tool_operation& op : t.operations) op.start += shift[static_cast<std::size_t>(op.segment)];
-      if (o_.keep_blocks && i < kept_segment_.size())
-        for (std::size_t b = 0; b < t.kept.size(); ++b)
-          t.kept[b].start += shift[static_cast<std::size_t>(kept_segment_[i][b])];
+      for (std::size_t b = 0; b < t.kept.size(); ++b)
+        t.kept[b].start += shift[static_cast<std::size_t>(runs_[i].kept_segment[b])];
       if (t.end > tl.cycle + 1e-12 || tl.last_channel == 0) {
         tl.cycle = t.end;
         tl.last_channel = t.channel;
@@ -248,8 +273,23 @@ class timeline_builder {
   const timeline_options& o_;
   int n_ = 0;
   std::vector<channel_run> runs_;
-  std::vector<std::vector<int>> kept_segment_;
   std::vector<untimed_group> untimed_;
+  // stream_blocks: the channel streamed, its shifts, the block held until its wait is known.
+  int stream_channel_ = 0;
+  std::vector<double> stream_shift_;
+  std::function<void(const timed_block&)> emit_;
+  timed_block pending_;
+  bool has_pending_ = false;
+
+  static timed_block timed(const channel_run& r, int line, std::string_view text, const block_timing& t) {
+    timed_block b;
+    b.line = line;
+    b.start = r.times.busy;
+    b.seconds = t.seconds;
+    b.text = std::string(text);
+    b.untimed = t.untimed;
+    return b;
+  }
 };
 
 }  // namespace
@@ -266,6 +306,22 @@ void timeline_feed::block(const nc_block& b) { p_->b.block(b); }
 void timeline_feed::wait(const nc_wait& w) { p_->b.wait(w); }
 timeline timeline_feed::finish(const std::vector<std::uint64_t>& rendezvous) {
   return p_->b.finish(rendezvous);
+}
+
+void for_each_timed_block(const timeline& t, const std::vector<nc_source>& files, const machine& m,
+                          int channel, const std::function<void(const timed_block&)>& f) {
+  const channel_times& c = t.channels.at(static_cast<std::size_t>(channel - 1));
+  std::vector<double> shift(c.waits.size() + 1, 0);
+  for (std::size_t k = 0; k < c.waits.size(); ++k) shift[k + 1] = shift[k] + c.waits[k].idle();
+  const timeline_options o;
+  timeline_builder b(m, o);
+  b.stream_blocks(channel, std::move(shift), f);
+  nc_read_options read;
+  read.on_block = [&](const nc_block& blk) { b.block(blk); };
+  read.on_wait = [&](const nc_wait& w) { b.wait(w); };
+  diagnostic_list ignored;  // the timeline was made from the same files: they read sound
+  read_nc_programs(files, m, ignored, read);
+  b.flush_streamed();
 }
 
 bool has_timing(const machine& m) {

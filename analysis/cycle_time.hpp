@@ -9,7 +9,9 @@
 // Memory: without keep_blocks, a channel keeps one record per operation (a run of blocks
 // with one tool between two waits), per wait and per kind of untimed block, never one per
 // block: a program of 10^7 blocks is timed in memory that does not grow with its blocks.
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,8 +22,13 @@
 
 namespace twinpost {
 
+/// The most blocks a channel keeps for the page (timeline_options::keep_blocks); past it the
+/// page draws the channel's operations and no block is kept.
+constexpr std::size_t timeline_max_kept_blocks = 20000;
+
 struct timeline_options {
-  bool keep_blocks = false;  ///< keep every block (the page's hover), not only the totals
+  bool keep_blocks =
+      false;  ///< keep each block (the page's hover), up to timeline_max_kept_blocks per channel
 };
 
 /// One block, kept for the page.
@@ -75,7 +82,7 @@ struct channel_times {
   long untimed = 0;
   std::vector<tool_operation> operations;
   std::vector<wait_stop> waits;
-  std::vector<timed_block> kept;  ///< with timeline_options::keep_blocks
+  std::vector<timed_block> kept;  ///< with timeline_options::keep_blocks (none past the cap)
 };
 
 /// One wait at which a channel idles, for the balance advice.
@@ -105,6 +112,12 @@ struct timeline {
   std::vector<untimed_group> untimed_kinds;  ///< per kind, in channel then program order
   std::vector<idle_note> advice;             ///< the longest idles, longest first (at most 3)
 };
+
+/// Every block of channel `channel` of a timeline `t` made from `files`, timed and placed in
+/// time as keep_blocks would keep it, handed to `f` one at a time by a reading of its own:
+/// memory does not grow with the blocks (`timeline --json`).
+void for_each_timed_block(const timeline& t, const std::vector<nc_source>& files, const machine& m,
+                          int channel, const std::function<void(const timed_block&)>& f);
 
 /// Checks `files` (check_nc_files) and, when they are sound, times them for machine `m`.
 /// A machine without [timing] has no timeline (an error diagnostic says so).

@@ -14,7 +14,7 @@ namespace {
 
 constexpr double page_width = 1200, label_width = 150, right_margin = 30;
 constexpr double lane_top = 50, lane_height = 44, lane_gap = 36;
-constexpr std::size_t max_drawn_blocks = 20000;  // past this a lane draws operations, not blocks
+constexpr std::size_t max_drawn_blocks = timeline_max_kept_blocks;  // past this a lane draws operations
 
 // Colours of tools in order of their first call (a qualitative palette); idle is grey.
 constexpr const char* palette[] = {"#4e79a7", "#f28e2b", "#59a14f", "#b07aa1", "#edc948",

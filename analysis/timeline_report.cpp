@@ -45,8 +45,17 @@ std::string format_timeline_text(const timeline& t, std::string_view indent) {
   return out;
 }
 
-std::string format_timeline_json(const timeline& t) {
-  std::string o = "{\"machine\":" + json_quote(t.machine);
+void write_timeline_json(const timeline& t, const std::function<void(std::string_view)>& out,
+                         const timed_block_source& blocks) {
+  // Written in pieces of about 64 KB: the blocks of a long program never sit in memory.
+  std::string o;
+  auto flush = [&](bool always) {
+    if (always || o.size() >= (1u << 16)) {
+      out(o);
+      o.clear();
+    }
+  };
+  o = "{\"machine\":" + json_quote(t.machine);
   o += fmt::format(",\"cycle\":{},\"last_channel\":{},\"untimed\":{},\"channels\":[", num(t.cycle),
                    t.last_channel, t.untimed);
   for (std::size_t i = 0; i < t.channels.size(); ++i) {
@@ -63,6 +72,7 @@ std::string format_timeline_json(const timeline& t) {
           "\"text\":{},\"critical\":{}}}",
           k ? "," : "", json_quote(op.tool), num(op.start), num(op.seconds), op.blocks, op.segment,
           op.first_line, json_quote(op.first_text), op.critical ? "true" : "false");
+      flush(false);
     }
     o += "],\"waits\":[";
     for (std::size_t k = 0; k < c.waits.size(); ++k) {
@@ -71,20 +81,25 @@ std::string format_timeline_json(const timeline& t) {
           "{}{{\"code\":{},\"line\":{},\"arrive\":{},\"release\":{},\"idle\":{},\"waiting_for\":{}}}",
           k ? "," : "", json_quote(w.code), w.where.line, num(w.arrive), num(w.release), num(w.idle()),
           w.waited_for);
+      flush(false);
     }
     o += "]";
-    if (!c.kept.empty()) {
-      o += ",\"blocks\":[";
-      for (std::size_t k = 0; k < c.kept.size(); ++k) {
-        const timed_block& b = c.kept[k];
-        o += fmt::format("{}{{\"line\":{},\"start\":{},\"seconds\":{},\"text\":{}", k ? "," : "", b.line,
-                         num(b.start), num(b.seconds), json_quote(b.text));
-        if (!b.untimed.empty()) o += ",\"untimed\":" + json_quote(b.untimed);
-        if (b.wait) o += ",\"wait\":true";
-        o += "}";
-      }
-      o += "]";
-    }
+    bool first = true;
+    auto block = [&](const timed_block& b) {
+      o += first ? ",\"blocks\":[" : ",";
+      first = false;
+      o += fmt::format("{{\"line\":{},\"start\":{},\"seconds\":{},\"text\":{}", b.line, num(b.start),
+                       num(b.seconds), json_quote(b.text));
+      if (!b.untimed.empty()) o += ",\"untimed\":" + json_quote(b.untimed);
+      if (b.wait) o += ",\"wait\":true";
+      o += "}";
+      flush(false);
+    };
+    if (blocks)
+      blocks(c.channel, block);
+    else
+      for (const timed_block& b : c.kept) block(b);
+    if (!first) o += "]";
     o += "}";
   }
   o += "],\"critical\":[";
@@ -107,7 +122,13 @@ std::string format_timeline_json(const timeline& t) {
         n.waited_for, json_quote(advice_text(n)));
   }
   o += "]}\n";
-  return o;
+  flush(true);
+}
+
+std::string format_timeline_json(const timeline& t) {
+  std::string all;
+  write_timeline_json(t, [&](std::string_view piece) { all += piece; });
+  return all;
 }
 
 }  // namespace twinpost

@@ -1,6 +1,7 @@
 #pragma once
 // The timeline as text (the summary `twinpost timeline` and `post` print), as JSON
 // (`twinpost timeline --json`) and as one self-contained HTML page (analysis/timeline_page.cpp).
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -12,7 +13,15 @@ namespace twinpost {
 /// the balance advice. Each line starts with `indent`.
 std::string format_timeline_text(const timeline& t, std::string_view indent = "");
 
-/// The same data for tools, with the kept blocks when there are any.
+/// Hands the timed blocks of one channel (its number) to a callback, one at a time
+/// (for_each_timed_block).
+using timed_block_source = std::function<void(int channel, const std::function<void(const timed_block&)>&)>;
+
+/// The same data for tools, in pieces to `out`, with each channel's blocks: from `blocks` when
+/// given (streamed: memory does not grow with them), else the kept ones when there are any.
+void write_timeline_json(const timeline& t, const std::function<void(std::string_view)>& out,
+                         const timed_block_source& blocks = {});
+/// write_timeline_json into one string, with the kept blocks (the page's data).
 std::string format_timeline_json(const timeline& t);
 
 /// The balance advice, one sentence per idle: "channel 2 idles 41.30 s at M951

@@ -9,6 +9,7 @@
 
 #include "analysis/cycle_time.hpp"
 #include "analysis/timeline_report.hpp"
+#include "check/nc_input.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/command_table.hpp"
 #include "cli/commands.hpp"
@@ -79,8 +80,10 @@ int run_timeline(const args& a) {
     }
     sources.push_back({path, {}, path});
   }
+  // A pipe is copied once here: --json reads the programs a second time for their blocks.
+  sources = rereadable(sources);
   timeline_options o;
-  o.keep_blocks = vm.count("output") > 0 || vm.count("json") > 0;
+  o.keep_blocks = vm.count("output") > 0;  // the page; --json streams its blocks by a reading of its own
   const timeline t = make_timeline(sources, m, o);
   printing_sink sink;
   for (const diagnostic& d : t.diagnostics) sink.report(d);
@@ -98,7 +101,11 @@ int run_timeline(const args& a) {
   }
   std::string text;
   if (vm.count("json")) {
-    text = format_timeline_json(t);
+    write_timeline_json(
+        t, [](std::string_view piece) { std::fwrite(piece.data(), 1, piece.size(), stdout); },
+        [&](int channel, const std::function<void(const timed_block&)>& each) {
+          for_each_timed_block(t, sources, m, channel, each);
+        });
   } else {
     long blocks = 0;
     for (const channel_times& c : t.channels) blocks += c.blocks;
