@@ -102,7 +102,9 @@ bool block_timer::drill_cycle(const std::string& g, const std::vector<nc_word>& 
   }
   const std::string code = "G" + g;
   const char hole = lathe_a_ ? (g == "87" || g == "88" || g == "89" ? 'X' : 'Z')
-                             : (plane_ == 17 ? 'Z' : plane_ == 18 ? 'Y' : 'X');
+                             : (plane_ == 17   ? 'Z'
+                                : plane_ == 18 ? 'Y'
+                                               : 'X');
   axis_pos* h = axis(hole);
   if (!h) return false;
   // A diameter axis moves by half its change; R, Q and the clearance are distances along it.
@@ -250,7 +252,8 @@ bool block_timer::thread_cycle(const std::string& g, const std::vector<nc_word>&
   // One pass at the end diameter `xe`, its start shifted along Z by `shift` (flank infeed).
   auto pass = [&](double xe, double shift) {
     const double zs = z0 + (z_end >= z0 ? 1.0 : -1.0) * shift;
-    return (shift == 0 || leg(leg_kind::rapid, 'Z', zs, t, code)) && leg(leg_kind::rapid, 'X', xe + taper, t, code) &&
+    return (shift == 0 || leg(leg_kind::rapid, 'Z', zs, t, code)) &&
+           leg(leg_kind::rapid, 'X', xe + taper, t, code) &&
            leg(leg_kind::sync, 'X', xe, t, code, 'Z', z_end) && leg(leg_kind::rapid, 'X', x0, t, code) &&
            leg(leg_kind::rapid, 'Z', z0, t, code);
   };
@@ -356,7 +359,8 @@ bool block_timer::groove_cycle(const std::string& g, const std::vector<nc_word>&
     for (int k = 1; k <= pecks; ++k) {
       const double reached = k == pecks ? depth : k * peck;
       if (!leg(leg_kind::feed, plunge, p0 + into * reached, t, code)) return true;
-      if (k < pecks && back > 0 && !leg(leg_kind::rapid, plunge, p0 + into * std::max(reached - back, 0.0), t, code))
+      if (k < pecks && back > 0 &&
+          !leg(leg_kind::rapid, plunge, p0 + into * std::max(reached - back, 0.0), t, code))
         return true;
     }
     if (!leg(leg_kind::rapid, plunge, p0, t, code)) return true;

@@ -52,6 +52,7 @@ struct command_rec {
   spindle_command cmd;
   place_ref at;
   std::size_t own_turns = 0;  // how many starts and stops of that spindle the channel gave before it
+  bool balance = false;       // given in a balance cut (codes.balance_on .. balance_off)
 };
 
 // A start or stop of a spindle (the feed and hold rules, the setting a cut relies on).
@@ -80,6 +81,7 @@ struct use_rec {
   std::size_t own_turns = 0;
   spindle_setting own;  // the spindle as the channel itself set it (turn unknown: never)
   place_ref at;
+  bool balance = false;  // cut in a balance cut
 };
 
 struct channel_data {
@@ -98,6 +100,7 @@ struct channel_data {
   bool has_cut_key = false;
   int last_seg = 0, last_spindle = 0;
   std::size_t last_turns = 0;
+  bool balance = false;      // between the machine's balance_on and balance_off
   bool has_use_key = false;  // the same for uses: segment, spindle, own commands
   int use_seg = 0, use_spindle = 0;
   std::size_t use_commands = 0;
@@ -137,6 +140,9 @@ struct shared_resources::impl {
     for (std::size_t i = 0; i < m.spindles.size(); ++i)
       shared.push_back(m.shared_spindle(static_cast<int>(i)));
     per_rev = g_number(m.codes.feed_per_rev);
+    for (auto [code, into] :
+         {std::pair{&m.codes.balance_on, &balance_on}, {&m.codes.balance_off, &balance_off}})
+      if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && !w[0].expression) *into = w[0];
     per_min = g_number(m.codes.feed_per_min);
     const cycle_rules& cy = m.cycles;
     for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
@@ -156,6 +162,14 @@ struct shared_resources::impl {
   std::optional<double> per_rev, per_min;
   std::vector<double> cycle_codes, thread_codes;
   std::vector<bool> shared;  // per spindle: machine::shared_spindle
+  // The first word of the balance-cut codes (Fanuc G68/G69, Mazak M562/M563): in a balance cut
+  // the paths move together block by block, so a spindle command of one is where the other is.
+  std::optional<nc_word> balance_on, balance_off;
+  bool is_word(const nc_word& w, const std::optional<nc_word>& code) const {
+    double x = 0, y = 0;
+    return code && w.address == code->address && !w.expression && number(w.value, x) &&
+           number(code->value, y) && x == y;
+  }
   std::vector<diagnostic> refusals;
   std::vector<std::vector<std::vector<int>>> clocks;  // [channel][segment][channel]
 
@@ -229,6 +243,10 @@ struct shared_resources::impl {
         }
         if (per_rev && v == *per_rev) c.per_rev = true;
         if (per_min && v == *per_min) c.per_rev = false;
+        if (is_word(w, balance_on) || is_word(w, balance_off)) {
+          c.balance = is_word(w, balance_on);
+          c.has_use_key = false;
+        }
         if (std::find(cycle_codes.begin(), cycle_codes.end(), v) != cycle_codes.end()) {
           cycle = true;
           cut_column = w.column;
@@ -241,6 +259,9 @@ struct shared_resources::impl {
           // words of these blocks are no cut.
           no_move = true;
         }
+      } else if (w.address == 'M' && (is_word(w, balance_on) || is_word(w, balance_off))) {
+        c.balance = is_word(w, balance_on);
+        c.has_use_key = false;
       } else if (std::string_view("XYZUW").find(w.address) != std::string_view::npos && !axis_column) {
         axis_column = w.column;
       }
@@ -268,7 +289,7 @@ struct shared_resources::impl {
       if (cmd.turn)
         c.turns[s].push_back({c.seg, cmd.setting.started(), spindle(cmd.spindle).stop, cmd.setting, at});
       if ((cmd.turn || cmd.speed || cmd.mode) && shared[s]) {
-        c.commands[s].push_back({c.seg, cmd, at, own_turns});
+        c.commands[s].push_back({c.seg, cmd, at, own_turns, c.balance});
         ++c.own_commands[s];
       }
     }
@@ -283,7 +304,7 @@ struct shared_resources::impl {
       c.use_seg = c.seg;
       c.use_spindle = s;
       c.use_commands = c.own_commands[si];
-      c.uses.push_back({c.seg, s, c.turns[si].size(), c.spindles.setting(s), at});
+      c.uses.push_back({c.seg, s, c.turns[si].size(), c.spindles.setting(s), at, c.balance});
     }
     if (!(thread || c.per_rev)) return;
     const std::size_t own = c.turns[static_cast<std::size_t>(s)].size();
@@ -475,7 +496,8 @@ struct shared_resources::impl {
             spindle_setting expected;
             const char* why = nullptr;
             for (; it != us.end() && known(a, it->seg) && !before(b, y.seg, a, it->seg); ++it) {
-              if (it->spindle != static_cast<int>(s)) continue;
+              // Both in a balance cut: the paths move together, the change is where the cut is.
+              if (it->spindle != static_cast<int>(s) || (it->balance && y.balance)) continue;
               expected = relied_on(a, *it);
               if (!expected.started()) continue;
               if (y.cmd.turn && y.cmd.setting.turn == spindle_turn::stopped) {

@@ -386,3 +386,65 @@ TEST_CASE("post: a hold of the spindle another head turned is sound once that he
   CHECK(fanuc3.diagnostics.empty());
   CHECK(fanuc3.ok);
 }
+
+TEST_CASE("shared spindles: the change rule on the Integrex, on the sub spindle, and in a balance cut",
+          "[analysis]") {
+  // The Integrex: head 2 stops the main spindle (M205) between the same waits as head 1's cut.
+  const machine integrex = load_machine("integrex-i200st");
+  const std::string stop =
+      "%\nG109 L1\nG21\nT0101\nG96 S180 M203\nG95\nM950\nG1 X40. Z-20. F0.2\nM951\nM30\n"
+      "G109 L2\nG21\nT0505\nM950\nM205\nM951\nM30\n%\n";
+  CHECK(
+      check(integrex, {{"I.EIA", stop}}) ==
+      "I.EIA:15:1: error: channel 2 stops the shared main spindle (M205) while channel 1 may still cut on it "
+      "(I.EIA:8); no wait orders the stop after that cut\n"
+      "M205\n^\n"
+      "I.EIA:8:1: note: channel 1 cuts on the main spindle here\nG1 X40. Z-20. F0.2\n^\n"
+      "check: 2 channels, 4 waits paired, 1 error\n");
+  // The sub spindle on the Fanuc twin: path 2 drills on it (G55) while path 1 stops it (M105).
+  const machine fanuc = load_machine("fanuc-0itd-twin");
+  const std::string p1 = fanuc_head + "T0101\nM100\nM105\nM101\nM30\n%\n";
+  const std::string p2 = fanuc_head + "T0505\nG55\nG97 S800 M103\nM100\nG1 Z20. F0.1\nM101\nM105\nM30\n%\n";
+  CHECK(
+      check(fanuc, {{"S_1.nc", p1}, {"S_2.nc", p2}}) ==
+      "S_1.nc:6:1: error: channel 1 stops the shared sub spindle (M105) while channel 2 may still cut on it "
+      "(S_2.nc:8); no wait orders the stop after that cut\n"
+      "M105\n^\n"
+      "S_2.nc:8:1: note: channel 2 cuts on the sub spindle here\nG1 Z20. F0.1\n^\n"
+      "check: 2 channels, 4 waits paired, 1 error\n");
+  // A balance cut (G68 .. G69): the paths move together block by block, so path 1's change
+  // of speed between two of its cuts comes where path 2 is in the same place: no finding.
+  const std::string b1 = fanuc_head +
+                         "T0101\nG96 S200 M3\nM100\nG68\nG1 X72. Z-30. F0.3\nG96 S150\nZ-40.\nG69\n"
+                         "M101\nM5\nM30\n%\n";
+  const std::string b2 = fanuc_head + "T1111\nM100\nG68\nG1 X72. Z-30. F0.3\nZ-40.\nG69\nM101\nM30\n%\n";
+  CHECK(check(fanuc, {{"B_1.nc", b1}, {"B_2.nc", b2}}) == "check: 2 channels, 4 waits paired, 0 errors\n");
+  // The same change outside a balance cut is the finding.
+  const std::string n1 = fanuc_head +
+                         "T0101\nG96 S200 M3\nM100\nG1 X72. Z-30. F0.3\nG96 S150\nZ-40.\nM101\nM5\n"
+                         "M30\n%\n";
+  const std::string n2 = fanuc_head + "T1111\nM100\nG1 X72. Z-30. F0.3\nZ-40.\nM101\nM30\n%\n";
+  CHECK(check(fanuc, {{"B_1.nc", n1}, {"B_2.nc", n2}}) ==
+        "B_1.nc:8:1: error: channel 1 sets the shared main spindle to G96 S150 while channel 2 may still cut "
+        "on "
+        "it at G96 S200 M3 (B_2.nc:6): different speed; no wait orders the change after that cut\n"
+        "G96 S150\n^\n"
+        "B_2.nc:6:1: note: channel 2 cuts on the main spindle here\nG1 X72. Z-30. F0.3\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+}
+
+TEST_CASE("post: a speed change inside HEAD/BOTH is no change under the other turret's cut", "[post]") {
+  // The master writes the new speed between two cuts of the balance cut; the copy cuts in step.
+  const std::string cl =
+      "PARTNO "
+      "BOTHMID\nUNITS/MM\nHEAD/1\nTLDATA/TURN\nTURRET/1,1\nHEAD/2\nTLDATA/TURN\nTURRET/11,11\nHEAD/BOTH\n"
+      "SPINDL/SMM,200,MAXRPM,2000,CLW,MAIN\nFEDRAT/0.3,MMPR\nRAPID\nGOTO/36.0,0.0,2.0\nGOTO/36.0,0.0,-30.0\n"
+      "SPINDL/SMM,150,MAXRPM,2000,CLW,MAIN\nGOTO/34.0,0.0,-30.0\nGOTO/34.0,0.0,-40.0\nHEAD/1\nSPINDL/"
+      "OFF\nEND\nFINI\n";
+  const auto errors = [](const diagnostic& d) { return d.level == severity::error; };
+  for (const char* name : {"fanuc-0itd-twin", "fanuc-31i-3path", "integrex-i200st"}) {
+    const test::posted p = test::post_in_fresh_dir(cl, load_machine(name), "both-mid", errors);
+    CHECK(p.diagnostics.empty());
+    CHECK(p.ok);
+  }
+}
