@@ -54,6 +54,10 @@ bool block_timer::leg(leg_kind k, char a, double va, block_timing& t, const std:
     if (axes_[i].address == a) leg_target_[i] = va;
     if (b && axes_[i].address == b) leg_target_[i] = vb;
   }
+  return leg_to_target(k, t, code);
+}
+
+bool block_timer::leg_to_target(leg_kind k, block_timing& t, const std::string& code) {
   const double s = move_time(leg_target_, k == leg_kind::rapid, code, words_, t, k == leg_kind::sync);
   if (!t.untimed.empty()) return false;
   for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = leg_target_[i];
@@ -145,12 +149,12 @@ bool block_timer::drill_cycle(const std::string& g, const std::vector<nc_word>& 
     return true;
   }
 
-  // To the hole at the level the tool is at, then to the R point.
-  for (std::size_t i = 0; i < axes_.size(); ++i) {
-    if (axes_[i].address == hole || !target[i] || axes_[i].value == target[i]) continue;
-    if (!leg(leg_kind::rapid, axes_[i].address, *target[i], t, code)) return true;
-  }
-  if (!leg(leg_kind::rapid, hole, r_level, t, code)) return true;
+  // To the hole at the level the tool is at (one rapid of all the axes the block names), then
+  // to the R point.
+  leg_target_.resize(axes_.size());
+  for (std::size_t i = 0; i < axes_.size(); ++i)
+    leg_target_[i] = axes_[i].address == hole || !target[i] ? axes_[i].value : target[i];
+  if (!leg_to_target(leg_kind::rapid, t, code) || !leg(leg_kind::rapid, hole, r_level, t, code)) return true;
   const double depth = std::abs(bottom - r_level);
   const double into = bottom >= r_level ? 1.0 : -1.0;
   auto at = [&](double s) { return r_level + into * s; };

@@ -135,6 +135,8 @@ class block_timer {
   }
   bool leg(leg_kind k, char a, double va, block_timing& t, const std::string& code, char b = 0,
            double vb = 0);
+  /// The same to leg_target_ (every axis where it says).
+  bool leg_to_target(leg_kind k, block_timing& t, const std::string& code);
   /// mm (or inch) of a word the control reads in least increments when it has no point.
   double increments(const nc_word& w, double v) const;
   double arc_length(const std::vector<std::optional<double>>& target, const std::vector<nc_word>& words,

@@ -140,7 +140,7 @@ TEST_CASE("block timer: drilling, pecking, tapping and side cycles timed from th
   const machine integrex = load_machine("integrex-i200st");
   CHECK(times(integrex, 1,
               {"G17 G94 G90", "G0 X0. Y0. Z30.", "G98 G73 X0. Y0. Z-24. R3. Q6. F120.", "G80",
-               "G99 G82 X10. Y0. Z-3.5 R2. P400 F150.", "G80", "G0 Z30."}) ==
+               "G99 G82 X10. Y5. Z-3.5 R2. P400 F150.", "G80", "G0 Z30."}) ==
         "0.0000\n"
         "0.0000|G0 from an unknown position\n"
         // Z30 to R3 at rapid (27 mm), pecks of 6 backing off 0.5 mm: feeds 6 + 6.5 + 6.5 + 6.5 +
@@ -148,9 +148,10 @@ TEST_CASE("block timer: drilling, pecking, tapping and side cycles timed from th
         // of rapid at 38000 mm/min, 0.1311 s. 14.6311 s.
         "14.6311\n"
         "0.0000\n"
-        // X0 to X10 (a diameter: 5 mm at 38000, 0.0079 s), Z30 to R2 (28 mm, 0.0442 s), 5.5 mm at
-        // 150 mm/min (2.2 s), the 0.4 s dwell, back to the R point Z2 under G99 (0.0087 s).
-        "2.6608\n"
+        // X0 Y0 to X10 Y5 in one rapid (X a diameter: 5 mm at 38000, 0.0079 s; Y 5 mm at 26000,
+        // 0.0115 s: the slower), Z30 to R2 (28 mm, 0.0442 s), 5.5 mm at 150 mm/min (2.2 s), the
+        // 0.4 s dwell, back to the R point Z2 under G99 (0.0087 s).
+        "2.6644\n"
         "0.0000\n"
         "0.0442\n");  // from the R point Z2 up to Z30
 
