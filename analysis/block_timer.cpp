@@ -184,7 +184,10 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       per_rev_ = true;
     else if (among(feed_min_, g))
       per_rev_ = false;
+    else if (g == "98" || g == "99")
+      cyc_.return_r = g == "99";  // where they are not feed modes: the drilling cycles' return level
     if (lathe_a_ && (g == "90" || g == "92" || g == "94")) {
+      if (cycle_ != g) end_cycle();
       cycle_ = g;  // box cycles: modal until another motion code
       continue;
     }
@@ -193,20 +196,21 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     else if (g == "91")
       incremental_ = true;
     else if (g == "0" || g == "1" || g == "2" || g == "3")
-      motion_ = g, cycle_.clear();
+      motion_ = g, end_cycle();
     else if (g == "32" || g == "33")
-      motion_ = "32", cycle_.clear();
+      motion_ = "32", end_cycle();
     else if (g == "80")
-      cycle_.clear();
+      end_cycle();
     else if (g == "4")
       dwell = true;
     else if (g == "28" || g == "30" || g == "53")
       reference = true, untimed("G" + g);
     else if (g == "50" || g == "92")
       setting = true;  // speed clamp or coordinate setting
-    else if (modal_drill_cycle(g, lathe_a_))
+    else if (modal_drill_cycle(g, lathe_a_)) {
+      if (cycle_.empty()) cyc_.initial.reset();  // a new cycle: its initial level is where it begins
       cycle_ = g;
-    else if (one_shot_cycle(g, lathe_a_))
+    } else if (one_shot_cycle(g, lathe_a_))
       one_shot = g;
     else if (!among(plain_g_codes(), g))
       untimed("G" + g);
@@ -297,9 +301,20 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     return t;
   }
   if (!one_shot.empty() || (!cycle_.empty() && moves)) {
-    // A cycle the control expands itself: not timed. A drilling cycle leaves the tool over the
-    // hole at its initial level; a lathe cycle returns to its start point.
-    untimed("G" + (!one_shot.empty() ? one_shot : cycle_));
+    // A cycle the control expands itself: timed from its words where this knows its moves
+    // (block_cycles.cpp), else not timed. A drilling cycle leaves the tool over the hole at
+    // its initial level; a lathe cycle returns to its start point.
+    const std::string& g = !one_shot.empty() ? one_shot : cycle_;
+    if (t.untimed.empty() && time_cycle(g, words, target, t)) {
+      if (!t.untimed.empty()) {
+        t.seconds = 0;
+        t.motion = 0;
+        return t;
+      }
+      t.seconds += t.motion;
+      return t;
+    }
+    untimed("G" + g);
     if (one_shot.empty() && modal_drill_cycle(cycle_, lathe_a_))
       for (std::size_t i = 0; i < axes_.size(); ++i)
         if (axes_[i].address != 'Z') axes_[i].value = target[i];
@@ -362,7 +377,8 @@ bool block_timer::milling_mode(const std::vector<nc_word>& words) {
 }
 
 double block_timer::move_time(const std::vector<std::optional<double>>& target, bool rapid,
-                              const std::string& code, const std::vector<nc_word>& words, block_timing& t) {
+                              const std::string& code, const std::vector<nc_word>& words, block_timing& t,
+                              bool sync) {
   // Every axis that moves must start from a known place.
   double linear2 = 0, rotary = 0, slowest = 0;
   for (std::size_t i = 0; i < axes_.size(); ++i) {
@@ -403,15 +419,16 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
   }
   if (length == 0) length = rotary;  // a rotary move alone: degrees at F degrees per minute
   if (length == 0) return 0;
-  return feed_time(length, x0, x1, t, code);
+  return feed_time(length, x0, x1, t, code, sync);
 }
 
-double block_timer::feed_time(double length, double x0, double x1, block_timing& t, const std::string& code) {
+double block_timer::feed_time(double length, double x0, double x1, block_timing& t, const std::string& code,
+                              bool sync) {
   if (!(feed_ > 0)) {
     t.untimed = code + " without F";
     return 0;
   }
-  const bool thread = code == "G32";
+  const bool thread = sync || code == "G32";
   if (!per_rev_ && !thread) return length / feed_ * 60;
   // Per revolution: F units per turn at the spindle's rpm; under CSS the rpm follows the
   // diameter, so the move is summed in steps at each step's middle diameter.

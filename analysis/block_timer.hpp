@@ -6,8 +6,12 @@
 // diameter), dwells (codes.dwell tells the address and unit), tool calls, M codes and waits
 // (machine [timing]). docs/timeline.md has the rules and what is not timed.
 //
-// A block it cannot time honestly (a canned cycle, a reference return, a move from an
-// unknown position, a feed per revolution on a stopped spindle ...) is timed 0 and named in
+// Canned cycles are timed from their words as the moves the control makes of them
+// (analysis/block_cycles.cpp: drilling, pecking, tapping and boring along the hole's axis,
+// the lathe's thread and grooving cycles).
+//
+// A block it cannot time honestly (a cycle it does not know, a reference return, a move from
+// an unknown position, a feed per revolution on a stopped spindle ...) is timed 0 and named in
 // block_timing::untimed: the caller counts and reports it, never silently.
 #include <cstdint>
 #include <optional>
@@ -83,15 +87,57 @@ class block_timer {
   double cylinder_per_r_ = 1, cylinder_r_ = 0;
   /// True (and the mode set) when the block is one of the machine's mill/turn mode blocks.
   bool milling_mode(const std::vector<nc_word>& words);
-  std::vector<nc_word> words_;                 // the block's words when given as text (reused)
-  bool spindles_need_gms_ = false;             // a block without G, M or S cannot change a spindle
-  std::vector<std::optional<double>> target_;  // where the block sends each axis (reused)
+  std::vector<nc_word> words_;                     // the block's words when given as text (reused)
+  bool spindles_need_gms_ = false;                 // a block without G, M or S cannot change a spindle
+  std::vector<std::optional<double>> target_;      // where the block sends each axis (reused)
+  std::vector<std::optional<double>> leg_target_;  // where a cycle's move sends each axis (reused)
 
   axis_pos* axis(char a);
   double to_mm(double v) const { return inch_ ? v * 25.4 : v; }
   double move_time(const std::vector<std::optional<double>>& target, bool rapid, const std::string& code,
-                   const std::vector<nc_word>& words, block_timing& t);
-  double feed_time(double length, double x0, double x1, block_timing& t, const std::string& code);
+                   const std::vector<nc_word>& words, block_timing& t, bool sync = false);
+  double feed_time(double length, double x0, double x1, block_timing& t, const std::string& code,
+                   bool sync = false);
+
+  // --- canned cycles (block_cycles.cpp) ---
+  /// One move of a cycle: the axes it sends somewhere (program units, X as programmed).
+  enum class leg_kind : unsigned char { rapid, feed, sync };
+  struct cycle_state {
+    std::optional<double> initial;    // the hole axis where the drilling cycle began
+    std::optional<double> r, bottom;  // modal R level and bottom of the drilling cycle
+    bool return_r = false;            // G99 where G98/G99 are return levels: back to R
+    // G76 (Fanuc lathe) first block: finishing passes, tool angle, least cut, allowance (mm)
+    bool thread_set = false;
+    int finish_passes = 1;
+    double tool_angle = 60, min_cut = 0, allowance = 0;
+    double groove_return = 0;            // G74/G75 first block R(e), mm
+    std::optional<double> box_z, box_r;  // modal Z and R of G92/G292
+  } cyc_;
+  /// Times the cycle block `g` ("83", "292") from its words; false when it is not a cycle this
+  /// knows (the caller names it untimed). `target`: where the block's axis words send each axis.
+  bool time_cycle(const std::string& g, const std::vector<nc_word>& words,
+                  const std::vector<std::optional<double>>& target, block_timing& t);
+  bool drill_cycle(const std::string& g, const std::vector<nc_word>& words,
+                   const std::vector<std::optional<double>>& target, block_timing& t);
+  bool thread_cycle(const std::string& g, const std::vector<nc_word>& words, block_timing& t);
+  bool groove_cycle(const std::string& g, const std::vector<nc_word>& words, block_timing& t);
+  /// Moves axis `a` (and `b`, when given) to `va` (`vb`); adds its time to t.motion. False
+  /// (and t.untimed set) when it cannot be timed.
+  /// The modal cycle ends (G80, a motion code): its levels are forgotten.
+  void end_cycle() {
+    cycle_.clear();
+    cyc_.initial.reset();
+    cyc_.r.reset();
+    cyc_.bottom.reset();
+    cyc_.box_z.reset();
+    cyc_.box_r.reset();
+  }
+  bool leg(leg_kind k, char a, double va, block_timing& t, const std::string& code, char b = 0,
+           double vb = 0);
+  /// The same to leg_target_ (every axis where it says).
+  bool leg_to_target(leg_kind k, block_timing& t, const std::string& code);
+  /// mm (or inch) of a word the control reads in least increments when it has no point.
+  double increments(const nc_word& w, double v) const;
   double arc_length(const std::vector<std::optional<double>>& target, const std::vector<nc_word>& words,
                     bool cw) const;
 };

@@ -33,18 +33,21 @@ struct place_ref {
 
 std::string at_text(const place_ref& p) { return fmt::format("{}:{}", p.file, p.line); }
 
-// A command of a shared spindle (the conflict rule).
+// A command of a shared spindle (the conflict, hold and change rules).
 struct command_rec {
   int seg = 0;
   spindle_command cmd;
   place_ref at;
+  std::size_t own_turns = 0;  // how many starts and stops of that spindle the channel gave before it
+  bool balance = false;       // given in a balance cut (codes.balance_on .. balance_off)
 };
 
-// A start or stop of a spindle (the feed rule).
+// A start or stop of a spindle (the feed and hold rules, the setting a cut relies on).
 struct turn_rec {
   int seg = 0;
   bool start = false;
   int stop_code = 0;
+  spindle_setting setting;  // the spindle as the channel set it with this block
   place_ref at;
 };
 
@@ -57,6 +60,17 @@ struct cut_rec {
   place_ref at;
 };
 
+// The first cut (any feed mode) on a shared spindle of a stretch the change rule treats alike:
+// one segment, one spindle, the same commands of it by the channel before it.
+struct use_rec {
+  int seg = 0;
+  int spindle = 0;
+  std::size_t own_turns = 0;
+  spindle_setting own;  // the spindle as the channel itself set it (turn unknown: never)
+  place_ref at;
+  bool balance = false;  // cut in a balance cut
+};
+
 struct channel_data {
   channel_data(const machine& m, int number) : spindles(m, number), quiet_without_gms(spindles.needs_gms()) {}
   channel_spindles spindles;
@@ -67,10 +81,29 @@ struct channel_data {
   std::vector<std::vector<command_rec>> commands;  // per spindle
   std::vector<std::vector<turn_rec>> turns;        // per spindle
   std::vector<cut_rec> cuts;
-  std::vector<bool> refused;  // per spindle: the "may not command" error is given
+  std::vector<use_rec> uses;
+  std::vector<std::size_t> own_commands;  // per spindle: how many commands the channel gave
+  std::vector<bool> refused;              // per spindle: the "may not command" error is given
   bool has_cut_key = false;
   int last_seg = 0, last_spindle = 0;
   std::size_t last_turns = 0;
+  bool balance = false;      // between the machine's balance_on and balance_off
+  bool has_use_key = false;  // the same for uses: segment, spindle, own commands
+  int use_seg = 0, use_spindle = 0;
+  std::size_t use_commands = 0;
+
+  // The per-revolution cut of this stretch is noted (or none can be: feed per minute).
+  bool cut_noted() const {
+    return !per_rev || (has_cut_key && last_seg == seg && last_spindle == spindles.current() &&
+                        last_turns == turns[static_cast<std::size_t>(last_spindle)].size());
+  }
+  // The use of this stretch is noted (or the spindle is not shared: `shared` tells).
+  bool use_noted(const std::vector<bool>& shared) const {
+    const int s = spindles.current();
+    return s < 0 || !shared[static_cast<std::size_t>(s)] ||
+           (has_use_key && use_seg == seg && use_spindle == s &&
+            use_commands == own_commands[static_cast<std::size_t>(s)]);
+  }
 };
 
 // A start or stop that the feed rule weighs: which channel, which of its turns.
@@ -89,8 +122,14 @@ struct shared_resources::impl {
       channels.back().commands.resize(m.spindles.size());
       channels.back().turns.resize(m.spindles.size());
       channels.back().refused.assign(m.spindles.size(), false);
+      channels.back().own_commands.assign(m.spindles.size(), 0);
     }
+    for (std::size_t i = 0; i < m.spindles.size(); ++i)
+      shared.push_back(m.shared_spindle(static_cast<int>(i)));
     per_rev = g_number(m.codes.feed_per_rev);
+    for (auto [code, into] :
+         {std::pair{&m.codes.balance_on, &balance_on}, {&m.codes.balance_off, &balance_off}})
+      if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && !w[0].expression) *into = w[0];
     per_min = g_number(m.codes.feed_per_min);
     const cycle_rules& cy = m.cycles;
     for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
@@ -109,6 +148,13 @@ struct shared_resources::impl {
   std::vector<channel_data> channels;
   std::optional<double> per_rev, per_min;
   std::vector<double> cycle_codes, thread_codes;
+  std::vector<bool> shared;  // per spindle: machine::shared_spindle
+  // The first word of the balance-cut codes (Fanuc G68/G69, Mazak M562/M563): in a balance cut
+  // the paths move together block by block, so a spindle command of one is where the other is.
+  std::optional<nc_word> balance_on, balance_off;
+  bool is_word(const nc_word& w, const std::optional<nc_word>& code) const {
+    return code && w.address == code->address && w.numeric && code->numeric && w.number == code->number;
+  }
   std::vector<diagnostic> refusals;
   std::vector<std::vector<std::vector<int>>> clocks;  // [channel][segment][channel]
 
@@ -136,7 +182,9 @@ struct shared_resources::impl {
     if (c.speed || c.mode) add(mode_code);
     if (c.speed) add(fmt::format("S{}", c.setting.speed));
     if (c.turn && c.setting.turn == spindle_turn::held) {
-      for (const std::string& b : s.c_axis.on) add(b);
+      add(fmt::format("M{}", c_axis_code(s.c_axis.on)));
+    } else if (c.turn && c.release) {
+      add(fmt::format("M{}", c_axis_code(s.c_axis.off)));
     } else if (c.turn) {
       const int code = c.setting.turn == spindle_turn::cw    ? s.cw
                        : c.setting.turn == spindle_turn::ccw ? s.ccw
@@ -146,6 +194,15 @@ struct shared_resources::impl {
     return out;
   }
 
+  // A setting in the machine's words, as a command that gives all of it: "G96 S200 M3".
+  std::string setting_text(int spindle, const spindle_setting& st) const {
+    spindle_command c{spindle, st};
+    c.turn = st.turn != spindle_turn::unknown;
+    c.speed = st.mode != speed_mode::unknown && st.speed > 0;
+    c.mode = st.mode != speed_mode::unknown;
+    return command_text(c);
+  }
+
   void block(const nc_block& b) {
     const int channel = b.channel;
     const std::string& file = b.file;
@@ -153,13 +210,12 @@ struct shared_resources::impl {
     const std::string_view text = b.text;
     if (channel < 1 || static_cast<std::size_t>(channel) > channels.size()) return;
     channel_data& c = channels[static_cast<std::size_t>(channel - 1)];
-    // Most blocks are moves with no G, M or S word: they change nothing here, and a cut among
-    // them counts only in feed per revolution, when it is the first of its stretch (already
-    // noted otherwise).
+    // Most blocks are moves with no G, M or S word: they change nothing here (the motion is
+    // modal: only a G word changes it), and a cut among them counts only when it is the first
+    // of its stretch (already noted otherwise).
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (c.quiet_without_gms && !(b.letters() & gms) &&
-        (!c.per_rev || (c.has_cut_key && c.last_seg == c.seg && c.last_spindle == c.spindles.current() &&
-                        c.last_turns == c.turns[static_cast<std::size_t>(c.last_spindle)].size())))
+        (c.motion < 1 || c.motion > 3 || (c.cut_noted() && c.use_noted(shared))))
       return;
     const std::vector<nc_word>& words = b.words();
     bool cycle = false, thread = false, no_move = false;
@@ -174,6 +230,10 @@ struct shared_resources::impl {
         }
         if (per_rev && v == *per_rev) c.per_rev = true;
         if (per_min && v == *per_min) c.per_rev = false;
+        if (is_word(w, balance_on) || is_word(w, balance_off)) {
+          c.balance = is_word(w, balance_on);
+          c.has_use_key = false;
+        }
         if (std::find(cycle_codes.begin(), cycle_codes.end(), v) != cycle_codes.end()) {
           cycle = true;
           cut_column = w.column;
@@ -186,6 +246,9 @@ struct shared_resources::impl {
           // words of these blocks are no cut.
           no_move = true;
         }
+      } else if (w.address == 'M' && (is_word(w, balance_on) || is_word(w, balance_off))) {
+        c.balance = is_word(w, balance_on);
+        c.has_use_key = false;
       } else if (std::string_view("XYZUW").find(w.address) != std::string_view::npos && !axis_column) {
         axis_column = w.column;
       }
@@ -209,22 +272,34 @@ struct shared_resources::impl {
         }
         continue;
       }
-      if (cmd.turn) c.turns[s].push_back({c.seg, cmd.setting.started(), spindle(cmd.spindle).stop, at});
-      if ((cmd.turn || cmd.speed || cmd.mode) && m.shared_spindle(cmd.spindle))
-        c.commands[s].push_back({c.seg, cmd, at});
+      const std::size_t own_turns = c.turns[s].size();
+      if (cmd.turn)
+        c.turns[s].push_back({c.seg, cmd.setting.started(), spindle(cmd.spindle).stop, cmd.setting, at});
+      if ((cmd.turn || cmd.speed || cmd.mode) && shared[s]) {
+        c.commands[s].push_back({c.seg, cmd, at, own_turns, c.balance});
+        ++c.own_commands[s];
+      }
     }
     const bool feeding = c.motion >= 1 && c.motion <= 3 && axis_column > 0 && !no_move;
-    if (!(thread || (c.per_rev && (cycle || feeding)))) return;
     const int s = c.spindles.current();
-    if (s < 0) return;
+    if (s < 0 || !(thread || cycle || feeding)) return;
+    at.column = cut_column ? cut_column : axis_column;
+    at.source = text;
+    if (!c.use_noted(shared)) {
+      const auto si = static_cast<std::size_t>(s);
+      c.has_use_key = true;
+      c.use_seg = c.seg;
+      c.use_spindle = s;
+      c.use_commands = c.own_commands[si];
+      c.uses.push_back({c.seg, s, c.turns[si].size(), c.spindles.setting(s), at, c.balance});
+    }
+    if (!(thread || c.per_rev)) return;
     const std::size_t own = c.turns[static_cast<std::size_t>(s)].size();
     if (c.has_cut_key && c.last_seg == c.seg && c.last_spindle == s && c.last_turns == own) return;
     c.has_cut_key = true;
     c.last_seg = c.seg;
     c.last_spindle = s;
     c.last_turns = own;
-    at.column = cut_column ? cut_column : axis_column;
-    at.source = text;
     c.cuts.push_back({c.seg, s, own, std::move(at)});
   }
 
@@ -269,8 +344,10 @@ struct shared_resources::impl {
   // --- the rules ------------------------------------------------------------------------
 
   static const char* difference(const spindle_command& x, const spindle_command& y) {
-    // A hold as the C axis against a start is the held rule's finding (held_rule).
-    if (x.setting.turn == spindle_turn::held || y.setting.turn == spindle_turn::held) return nullptr;
+    // A hold as the C axis (or its release) against a start is the held rule's finding (held_rule).
+    if (x.setting.turn == spindle_turn::held || y.setting.turn == spindle_turn::held || x.release ||
+        y.release)
+      return nullptr;
     if (x.turn && y.turn && x.setting.turn != y.setting.turn) return "different direction";
     const bool x_speed = x.speed || x.mode, y_speed = y.speed || y.mode;
     if (x_speed && y_speed && x.setting.mode != speed_mode::unknown &&
@@ -351,14 +428,138 @@ struct shared_resources::impl {
               break;  // one finding for each hold and channel
             }
           }
+          still_turning(a, s, hold, out);
         }
       }
+  }
+
+  // A hold of spindle s by channel a while another channel's start of it may still be in force:
+  // the last starts and stops known to come before the hold end in a start by another channel,
+  // so the part may still turn when the C axis is connected. The hold is the error: stopping
+  // the spindle there would change the other channel's turning behind its back.
+  void still_turning(int a, std::size_t s, const command_rec& hold, std::vector<diagnostic>& out) const {
+    for (const turn_ref& e : latest_turns(a, hold.seg, s, hold.own_turns)) {
+      if (e.channel == a || !e.rec->start) continue;
+      const std::string& name = spindle(static_cast<int>(s)).name;
+      out.push_back(
+          {severity::error, hold.at.file, hold.at.line, hold.at.column,
+           fmt::format("channel {} holds the shared {} spindle as the C axis ({}) while channel {} may "
+                       "still turn it ({}, {}); no wait orders a stop of it before the hold",
+                       a, name, command_text(hold.cmd), e.channel,
+                       setting_text(static_cast<int>(s), e.rec->setting), at_text(e.rec->at)),
+           hold.at.source});
+      out.push_back(
+          {severity::note, e.rec->at.file, e.rec->at.line, e.rec->at.column,
+           fmt::format("channel {} starts the {} spindle here; no stop of it is known to come before "
+                       "the hold",
+                       e.channel, name),
+           e.rec->at.source});
+      return;  // one finding for each hold
+    }
+  }
+
+  // A command of a shared spindle that changes it (a stop, a direction, speed mode or speed other
+  // than the one a cut relies on) in a block that may run while another channel cuts on it: the
+  // cut goes on at a speed its program did not ask for, or on a stopped spindle.
+  void change_rule(std::vector<diagnostic>& out) const {
+    const int n = static_cast<int>(channels.size());
+    for (std::size_t s = 0; s < m.spindles.size(); ++s) {
+      if (!shared[s]) continue;
+      const std::string& name = spindle(static_cast<int>(s)).name;
+      for (int b = 1; b <= n; ++b)
+        for (const command_rec& y : channels[static_cast<std::size_t>(b - 1)].commands[s]) {
+          if (!known(b, y.seg) || y.cmd.setting.turn == spindle_turn::held || y.cmd.release)
+            continue;  // holds and releases are the hold rules' findings
+          if (std::any_of(out.begin(), out.end(),
+                          [&](const diagnostic& d) { return d.file == y.at.file && d.line == y.at.line; }))
+            continue;  // rule 2 or the hold rule has named this block already
+          for (int a = 1; a <= n; ++a) {
+            if (a == b) continue;
+            const std::vector<use_rec>& us = channels[static_cast<std::size_t>(a - 1)].uses;
+            const int from = over(b, y.seg, a);  // segments of a over before y's begins
+            auto it = std::lower_bound(us.begin(), us.end(), from,
+                                       [](const use_rec& r, int seg) { return r.seg < seg; });
+            const use_rec* hit = nullptr;
+            spindle_setting expected;
+            const char* why = nullptr;
+            for (; it != us.end() && known(a, it->seg) && !before(b, y.seg, a, it->seg); ++it) {
+              // Both in a balance cut: the paths move together, the change is where the cut is.
+              if (it->spindle != static_cast<int>(s) || (it->balance && y.balance)) continue;
+              expected = relied_on(a, *it);
+              if (!expected.started()) continue;
+              if (y.cmd.turn && y.cmd.setting.turn == spindle_turn::stopped) {
+                hit = &*it;
+                break;
+              }
+              spindle_command e{static_cast<int>(s), expected};
+              e.turn = e.speed = e.mode = true;
+              e.speed = expected.speed > 0;
+              if ((why = difference(e, y.cmd))) {
+                hit = &*it;
+                break;
+              }
+            }
+            if (!hit) continue;
+            const std::string text =
+                why ? fmt::format(
+                          "channel {} sets the shared {} spindle to {} while channel {} may still cut on "
+                          "it at {} ({}): {}; no wait orders the change after that cut",
+                          b, name, command_text(y.cmd), a, setting_text(static_cast<int>(s), expected),
+                          at_text(hit->at), why)
+                    : fmt::format(
+                          "channel {} stops the shared {} spindle ({}) while channel {} may still cut on "
+                          "it ({}); no wait orders the stop after that cut",
+                          b, name, command_text(y.cmd), a, at_text(hit->at));
+            out.push_back({severity::error, y.at.file, y.at.line, y.at.column, text, y.at.source});
+            out.push_back({severity::note, hit->at.file, hit->at.line, hit->at.column,
+                           fmt::format("channel {} cuts on the {} spindle here", a, name), hit->at.source});
+            break;  // one finding for each command
+          }
+        }
+    }
+  }
+
+  // The setting a cut of channel a relies on: its own, or where it never commanded the spindle,
+  // that of the start in force (turn unknown: none known).
+  spindle_setting relied_on(int a, const use_rec& u) const {
+    if (u.own.turn != spindle_turn::unknown) return u.own;
+    for (const turn_ref& e : latest_turns(a, u.seg, static_cast<std::size_t>(u.spindle), u.own_turns))
+      if (e.rec->start) return e.rec->setting;
+    return {};
   }
 
   // turn `e` of channel `ec` happens before turn `f` of channel `fc`.
   bool turn_before(const turn_ref& e, const turn_ref& f) const {
     if (e.channel == f.channel) return e.index < f.index;
     return before(e.channel, e.rec->seg, f.channel, f.rec->seg);
+  }
+
+  // The starts and stops of spindle `s` in force at a block of channel `a` in segment `seg`,
+  // after `own` turns of its own: of the last turn of each channel known to come before the
+  // block (its own last one by program order), those that no other one is known to follow.
+  std::vector<turn_ref> latest_turns(int a, int seg, std::size_t s, std::size_t own) const {
+    const int n = static_cast<int>(channels.size());
+    std::vector<turn_ref> last;
+    if (own > 0) last.push_back({a, own - 1, &channels[static_cast<std::size_t>(a - 1)].turns[s][own - 1]});
+    for (int b = 1; b <= n; ++b) {
+      if (b == a) continue;
+      const std::vector<turn_rec>& ts = channels[static_cast<std::size_t>(b - 1)].turns[s];
+      const int done = over(a, seg, b);
+      auto it =
+          std::lower_bound(ts.begin(), ts.end(), done, [](const turn_rec& r, int sg) { return r.seg < sg; });
+      if (it == ts.begin()) continue;
+      --it;
+      if (!known(b, it->seg)) continue;
+      last.push_back({b, static_cast<std::size_t>(it - ts.begin()), &*it});
+    }
+    std::vector<turn_ref> latest;
+    for (const turn_ref& e : last) {
+      bool superseded = false;
+      for (const turn_ref& f : last)
+        if (&e != &f && turn_before(e, f)) superseded = true;
+      if (!superseded) latest.push_back(e);
+    }
+    return latest;
   }
 
   void feed_rule(std::vector<diagnostic>& out) const {
@@ -370,28 +571,10 @@ struct shared_resources::impl {
       for (const cut_rec& cut : c.cuts) {
         if (!known(a, cut.seg)) continue;
         const auto s = static_cast<std::size_t>(cut.spindle);
-        // The last start or stop of each channel known to come before the cut.
-        std::vector<turn_ref> last;
-        if (cut.own_turns > 0) last.push_back({a, cut.own_turns - 1, &c.turns[s][cut.own_turns - 1]});
-        for (int b = 1; b <= n; ++b) {
-          if (b == a) continue;
-          const std::vector<turn_rec>& ts = channels[static_cast<std::size_t>(b - 1)].turns[s];
-          const int done = over(a, cut.seg, b);
-          auto it = std::lower_bound(ts.begin(), ts.end(), done,
-                                     [](const turn_rec& r, int seg) { return r.seg < seg; });
-          if (it == ts.begin()) continue;
-          --it;
-          if (!known(b, it->seg)) continue;
-          last.push_back({b, static_cast<std::size_t>(it - ts.begin()), &*it});
-        }
-        // The latest of them: those that no other one is known to follow.
         const turn_ref* stop = nullptr;
         bool started = false;
-        for (const turn_ref& e : last) {
-          bool superseded = false;
-          for (const turn_ref& f : last)
-            if (&e != &f && turn_before(e, f)) superseded = true;
-          if (superseded) continue;
+        const std::vector<turn_ref> latest = latest_turns(a, cut.seg, s, cut.own_turns);
+        for (const turn_ref& e : latest) {
           if (e.rec->start)
             started = true;
           else if (!stop)
@@ -438,6 +621,7 @@ std::vector<diagnostic> shared_resources::finish(const std::vector<std::uint64_t
   p_->make_clocks(rendezvous);
   p_->conflicts(out);
   p_->held_rule(out);
+  p_->change_rule(out);
   p_->feed_rule(out);
   return out;
 }

@@ -25,6 +25,15 @@ bool has_word(const std::vector<nc_word>& words, const nc_word& w, int& column) 
 
 }  // namespace
 
+int c_axis_code(const std::vector<std::string>& blocks) {
+  for (const std::string& b : blocks) {
+    double v = -1;
+    const std::vector<nc_word> w = split_nc_words(b);
+    if (w.size() == 1 && w[0].address == 'M' && nc_number(w[0].value, v)) return static_cast<int>(v);
+  }
+  return -1;
+}
+
 channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), settings_(m.spindles.size()) {
   for (const spindle_def& s : m.spindles) {
     clamp_block c;
@@ -93,7 +102,11 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
   // The spindle M-codes of the block: a code several spindles share goes to the current one.
   int turned = -1, turned_column = 0;
   spindle_turn turn = spindle_turn::unknown;
-  std::vector<std::pair<int, int>> stops;  // spindle, column
+  struct stop_word {
+    int spindle, column;
+    bool release;  // c_off: the C axis let go, the spindle still stopped
+  };
+  std::vector<stop_word> stops;
   for (const nc_word& w : words) {
     const double v = w.number;
     if (w.address != 'M' || !w.numeric || v != std::floor(v)) continue;
@@ -121,7 +134,7 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
     if (select) {
       current_ = hit;
     } else if (what == spindle_turn::stopped) {
-      stops.emplace_back(hit, w.column);
+      stops.push_back({hit, w.column, code == c_codes_[static_cast<std::size_t>(hit)].second});
     } else {
       turned = hit;
       turn = what;
@@ -193,12 +206,13 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
     command.column = column;
     commands_.push_back(command);
   }
-  for (const auto& [spindle, col] : stops) {
+  for (const auto& [spindle, col, release] : stops) {
     spindle_setting off = setting(spindle);
     off.turn = spindle_turn::stopped;
     set(spindle, off, col);
     spindle_command c{spindle, off};
     c.turn = true;
+    c.release = release;
     c.column = col;
     commands_.push_back(c);
   }

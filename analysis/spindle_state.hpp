@@ -19,6 +19,11 @@ namespace twinpost {
 enum class spindle_turn : unsigned char { unknown, stopped, cw, ccw, held };
 enum class speed_mode : unsigned char { unknown, css, rpm };
 
+/// The M code of a spindle's c_on or c_off blocks (spindle.c_axis): the first block that is one
+/// M word; -1 when none is. The 31i's c_on is `M35` then `G0 G28 H0.` (C to its reference):
+/// M35 connects the C axis, so it is the hold.
+int c_axis_code(const std::vector<std::string>& blocks);
+
 /// One spindle as a channel's blocks have set it so far.
 struct spindle_setting {
   spindle_turn turn = spindle_turn::unknown;  ///< unknown: not commanded by this channel yet
@@ -46,6 +51,7 @@ struct spindle_command {
   bool speed = false;       ///< the block gives a speed (S) in the channel's speed mode
   bool mode = false;        ///< the block changes the speed mode only (G96 or G97 without S)
   bool clamp = false;       ///< the block sets the clamp (G50 S..)
+  bool release = false;     ///< the stop is the spindle's c_off (the C axis let go: Mazak M202)
   int column = 0;           ///< column of the first word of the command
 };
 
@@ -93,15 +99,10 @@ class channel_spindles {
   speed_mode mode_ = speed_mode::unknown;
   std::vector<nc_word> css_code_ = split_nc_words(m_.codes.css);  // G96, split once
   std::vector<nc_word> rpm_code_ = split_nc_words(m_.codes.rpm);  // G97
-  /// Each spindle's c_on and c_off M-code (a block of one M word), -1 where none.
+  /// Each spindle's c_on and c_off M-code (c_axis_code), -1 where none.
   std::vector<std::pair<int, int>> c_codes_ = [this] {
     std::vector<std::pair<int, int>> out;
-    auto code = [](const std::vector<std::string>& blocks) {
-      double v = -1;
-      if (blocks.size() != 1) return -1;
-      const std::vector<nc_word> w = split_nc_words(blocks[0]);
-      return w.size() == 1 && w[0].address == 'M' && nc_number(w[0].value, v) ? static_cast<int>(v) : -1;
-    };
+    const auto code = c_axis_code;
     for (const spindle_def& s : m_.spindles) out.emplace_back(code(s.c_axis.on), code(s.c_axis.off));
     return out;
   }();

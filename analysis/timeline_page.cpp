@@ -250,8 +250,8 @@ std::string timeline_page(const timeline& t, std::string_view title) {
        "font-family:monospace;font-size:12px;white-space:pre;pointer-events:none}\n"
        "</style>\n</head>\n<body>\n";
   h += fmt::format("<h1>{}</h1>\n", escape(title));
-  h += fmt::format("<p>machine {}: cycle time <b id=\"cycle\">{:.3f} s</b>, channel {} ends last.",
-                   escape(t.machine), t.cycle, t.last_channel);
+  h += fmt::format("<p>machine {}: cycle time {}<b id=\"cycle\">{:.3f} s</b>, channel {} ends last.",
+                   escape(t.machine), t.untimed > 0 ? "at least " : "", t.cycle, t.last_channel);
   if (t.untimed > 0) {
     h += fmt::format(" <b>{} block{} not timed</b>:", t.untimed, t.untimed == 1 ? "" : "s");
     for (const untimed_group& g : t.untimed_kinds)

@@ -22,8 +22,9 @@ std::string advice_text(const idle_note& n) {
 }
 
 std::string format_timeline_text(const timeline& t, std::string_view indent) {
-  std::string out =
-      fmt::format("{}cycle time {} (channel {} ends last)\n", indent, seconds(t.cycle), t.last_channel);
+  // Blocks not timed count 0: the cycle time is then a lower bound, and says so.
+  std::string out = fmt::format("{}cycle time {}{} (channel {} ends last)\n", indent,
+                                t.untimed > 0 ? "at least " : "", seconds(t.cycle), t.last_channel);
   for (const channel_times& c : t.channels)
     out += fmt::format("{}  channel {}: {} working + {} idle at {} wait{} = {}\n", indent, c.channel,
                        seconds(c.busy), seconds(c.idle), c.waits.size(), c.waits.size() == 1 ? "" : "s",
@@ -56,8 +57,8 @@ void write_timeline_json(const timeline& t, const std::function<void(std::string
     }
   };
   o = "{\"machine\":" + json_quote(t.machine);
-  o += fmt::format(",\"cycle\":{},\"last_channel\":{},\"untimed\":{},\"channels\":[", num(t.cycle),
-                   t.last_channel, t.untimed);
+  o += fmt::format(",\"cycle\":{},\"at_least\":{},\"last_channel\":{},\"untimed\":{},\"channels\":[",
+                   num(t.cycle), t.untimed > 0 ? "true" : "false", t.last_channel, t.untimed);
   for (std::size_t i = 0; i < t.channels.size(); ++i) {
     const channel_times& c = t.channels[i];
     o += i ? "," : "";

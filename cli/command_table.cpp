@@ -43,8 +43,9 @@ const std::array<command_entry, 6> table{{
     {"timeline", "FILE... --machine M [-o PAGE.html] [--json]", "cycle time and timeline of NC programs",
      "Times every block of NC programs that check sound with the machine's [timing] (rapid "
      "rates per axis, tool-change and wait times) and its codes (feeds per minute and per "
-     "revolution, CSS, dwell), runs the channels together and prints the cycle time, each "
-     "channel's working and idle time, the blocks it could not time and the longest idles "
+     "revolution, CSS, dwell, the canned cycles' moves), runs the channels together and prints "
+     "the cycle time ('at least' while a block is not timed), each channel's working and idle "
+     "time, the blocks it could not time and the longest idles "
      "(where to balance). -o writes one self-contained HTML page: a lane per channel, "
      "operations by tool, waits linked across lanes, the critical path; --json prints the "
      "same data for tools. Files as for check.",

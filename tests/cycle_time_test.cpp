@@ -90,21 +90,118 @@ TEST_CASE("block timer: arcs by I/K and by R, tool calls, Mazak's dwell in ms", 
   CHECK(times(mazak, 2, {"G4 P1500", "G4 U3.", "T0202", "M8"}) == "1.5000\n0.0000|G4\n0.5000\n0.1000\n");
 }
 
-TEST_CASE("block timer: canned cycles and reference returns are not timed, and say so",
+TEST_CASE("block timer: reference returns, macro calls and unknown cycles are not timed, and say so",
           "[analysis][timeline]") {
   const machine m = load_machine("fanuc-0itd-twin");
   CHECK(times(m, 1,
-              {"G50 X0. Z5.", "G98 G83 X0. Z-20. R-3. Q5000 F100.", "G80", "G0 Z10.", "G28 U0.", "G0 X50.",
-               "G76 P010060 Q100 R0.02", "G65 P9001", "G0 X60."}) ==
+              {"G50 X0. Z5.", "G28 U0.", "G0 X50.", "G65 P9001", "G0 X60.", "G71 U2. R0.5",
+               "G71 P10 Q20 U0.4 W0.1 F0.25"}) ==
         "0.0000\n"
-        "0.0000|G83\n"
-        "0.0000\n"
-        "0.0125\n"  // the drilling cycle returned to the initial level: Z 5 to 10
         "0.0000|G28\n"
         "0.0000|G0 from an unknown position\n"  // X went to the reference point
-        "0.0000|G76\n"
         "0.0000|G65\n"
-        "0.0150\n");
+        "0.0150\n"
+        "0.0000|G71\n"  // the lathe's roughing cycle: its moves are the contour's, not in the block
+        "0.0000|G71\n");
+}
+
+// Canned cycles, timed from their words as the control moves (docs/timeline.md, "Canned
+// cycles"). fanuc-0itd-twin and the 31i's turrets: rapid X 20000 (the radius), Z 24000 mm/min;
+// the Integrex upper head X 38000 (radius of a diameter X), Y 26000, Z 38000 mm/min.
+TEST_CASE("block timer: drilling, pecking, tapping and side cycles timed from their words",
+          "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  CHECK(times(m, 1,
+              {"G50 X0. Z5.", "G98 G83 X0. Z-20. R-3. Q5000 F100.", "G80", "G0 Z10.", "G50 X0. Z30.",
+               "G97 S300 M3", "G99", "M29 S300", "G84 X0. Z-18. R-25. F1.5", "G80", "G0 Z30."}) ==
+        "0.0000\n"
+        // Initial level Z5, R point 5 - 3 = Z2, bottom Z-20 (22 mm), Q5000 = 5 mm pecks out to
+        // the R point, back in at rapid to 0.5 mm above the last depth (G83 with Q on a Fanuc
+        // lathe as the machine file writes it, parameter RTR = 1). Feeds at 100 mm/min: 5, then
+        // 5.5 three times (from 4.5, 9.5, 14.5), then 2.5 (19.5 to 22): 22 + 4 x 0.5 = 24 mm,
+        // 14.4 s. Rapids at 24000 mm/min: 3 (to R) + 5 + 4.5 + 10 + 9.5 + 15 + 14.5 + 20 + 19.5
+        // + 25 (back to the initial level) = 126 mm, 0.315 s.
+        "14.7150\n"
+        "0.0000\n"
+        "0.0125\n"  // the cycle returned to the initial level: Z 5 to 10
+        "0.0000\n"
+        "0.1000\n"
+        "0.0000\n"
+        "0.1000\n"  // M29
+        // Tapping at F1.5 per revolution, 300 rpm: 450 mm/min. Z30 to the R point Z5 at rapid
+        // (25 mm, 0.0625 s), in 23 mm (3.0667 s), out 23 mm with the spindle reversed (3.0667 s),
+        // to the initial level at rapid (0.0625 s): 6.2583 s.
+        "6.2583\n"
+        "0.0000\n"
+        "0.0000\n");  // already at the initial level
+
+  // The Integrex upper head: G98 back to the initial level, G99 to the R point; R is the R
+  // point's Z and Q a length in mm (no r_from_initial, no q_increments).
+  const machine integrex = load_machine("integrex-i200st");
+  CHECK(times(integrex, 1,
+              {"G17 G94 G90", "G0 X0. Y0. Z30.", "G98 G73 X0. Y0. Z-24. R3. Q6. F120.", "G80",
+               "G99 G82 X10. Y5. Z-3.5 R2. P400 F150.", "G80", "G0 Z30."}) ==
+        "0.0000\n"
+        "0.0000|G0 from an unknown position\n"
+        // Z30 to R3 at rapid (27 mm), pecks of 6 backing off 0.5 mm: feeds 6 + 6.5 + 6.5 + 6.5 +
+        // 3.5 = 29 mm at 120 mm/min (14.5 s), back-offs 4 x 0.5 = 2 mm, out to Z30 (54 mm): 83 mm
+        // of rapid at 38000 mm/min, 0.1311 s. 14.6311 s.
+        "14.6311\n"
+        "0.0000\n"
+        // X0 Y0 to X10 Y5 in one rapid (X a diameter: 5 mm at 38000, 0.0079 s; Y 5 mm at 26000,
+        // 0.0115 s: the slower), Z30 to R2 (28 mm, 0.0442 s), 5.5 mm at 150 mm/min (2.2 s), the
+        // 0.4 s dwell, back to the R point Z2 under G99 (0.0087 s).
+        "2.6644\n"
+        "0.0000\n"
+        "0.0442\n");  // from the R point Z2 up to Z30
+
+  // The 31i's mill head: side drilling along X (G87) and side tapping (G88), R from the
+  // initial level in radius, X a diameter.
+  const machine fanuc3 = load_machine("fanuc-31i-3path");
+  CHECK(times(fanuc3, 3,
+              {"G50 X66. Z-20.", "G98", "G87 X30. Z-20. R0. F120.", "G80", "G97 S400 M33", "G99",
+               "G88 X36. Z-20. R0. F1.25", "G80"}) ==
+        "0.0000\n"
+        "0.0000\n"
+        "9.0540\n"  // 18 mm (radius) in at 120 mm/min (9 s), out at 20000 mm/min (0.054 s)
+        "0.0000\n"
+        "0.1000\n"
+        "0.0000\n"
+        "3.6000\n"  // 15 mm in and 15 out at 1.25 x 400 = 500 mm/min
+        "0.0000\n");
+}
+
+TEST_CASE("block timer: thread and grooving cycles timed pass by pass", "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  CHECK(times(m, 1,
+              {"G50 X30. Z5.", "G97 S500 M3", "G76 P020060 Q50 R0.05", "G76 X21.54 Z-26. P1230 Q400 F2.",
+               "G0 X40."}) ==
+        "0.0000\n"
+        "0.1000\n"
+        "0.0000\n"  // the first block sets the cycle: 2 finishing passes, 60 degrees, 0.05 least cut
+        // Height 1.23, first cut 0.4, allowance 0.05: depths 0.4 sqrt(n) to 1.18 (0.4, 0.5657,
+        // 0.6928, 0.8, 0.8944, 0.9798, 1.0583, 1.1314, 1.18), then 1.23 twice: 11 passes. Each
+        // starts (d - 0.4) tan 30 deg later along Z (flank infeed; 3.3269 mm in all), threads to
+        // Z-26 at 2 x 500 = 1000 mm/min ((11 x 31 - 3.3269) mm: 20.2604 s), comes out and back to
+        // the start at rapid: Z 11 x 31 mm + 3.3269 mm (0.8608 s), X in and out 2 (3 + d) mm of
+        // radius a pass (86.3248 mm: 0.2590 s). 21.3802 s.
+        "21.3802\n"
+        "0.0150\n");  // back at the start X30: 5 mm of radius to X40
+  // G92 (the 31i) and G292 (the Integrex): one pass a block, modal. X30 to X28.5 (0.75 mm at
+  // 20000: 0.00225 s), 25 mm at 1.5 x 500 = 750 mm/min (2 s), out (0.00225 s), Z back (25 mm
+  // at 24000: 0.0625 s): 2.067 s; X28. the same with 1 mm in and out: 2.0685 s.
+  const machine fanuc3 = load_machine("fanuc-31i-3path");
+  CHECK(times(fanuc3, 1, {"G50 X30. Z5.", "G97 S500 M3", "G92 X28.5 Z-20. F1.5", "X28.", "G0 X40."}) ==
+        "0.0000\n0.1000\n2.0670\n2.0685\n0.0150\n");
+  const machine integrex = load_machine("integrex-i200st");
+  CHECK(times(integrex, 2, {"G0 X30. Z5.", "G97 S500 M203", "G292 X28.5 Z-20. F1.5", "G0 X40."}) ==
+        "0.0000|G0 from an unknown position\n0.1000\n2.0670\n0.0150\n");
+  // G75: from X40 Z2, plunges to X20.8 (9.6 mm of radius) in pecks of 2.6 mm (no back-off:
+  // R0.), 16 of them from Z2 to Z-28 every 2 mm, at 0.06 x 600 = 36 mm/min: 16 x 16 s. Out at
+  // rapid 16 x 9.6 mm (0.4608 s), along Z 30 mm and back 30 mm (0.15 s). 256.6108 s.
+  CHECK(times(m, 1,
+              {"G50 X40. Z2.", "G97 S600 M3", "G99", "G75 R0.", "G75 X20.8 Z-28. P2600 Q2000 F0.06",
+               "G0 X50."}) == "0.0000\n0.1000\n0.0000\n0.0000\n256.6108\n0.0150\n");
 }
 
 namespace {
@@ -130,12 +227,14 @@ TEST_CASE("timeline: two channels run together, idle at their waits, the critica
   REQUIRE(t.ok);
   REQUIRE(t.channels.size() == 2);
   CHECK(format_timeline_text(t) ==
-        "cycle time 40.245 s (channel 1 ends last)\n"
+        "cycle time at least 40.245 s (channel 1 ends last)\n"
         "  channel 1: 40.245 s working + 0.000 s idle at 2 waits = 40.245 s\n"
         "  channel 2: 9.785 s working + 30.460 s idle at 2 waits = 40.245 s\n"
         "  2 blocks not timed: G0 from an unknown position (2, first at PART_1.nc:6)\n"
         "  balance: channel 2 idles 25.810 s at M100 (PART_2.nc:9) waiting for channel 1; channel 2 idles "
         "4.650 s at M101 (PART_2.nc:13) waiting for channel 1\n");
+  // Two blocks not timed (the first rapids, from where the slides start): a lower bound.
+  CHECK(format_timeline_json(t).find(",\"cycle\":40.245,\"at_least\":true,") != std::string::npos);
   CHECK(t.channels[0].end == Approx(40.245).epsilon(1e-12));
   CHECK(t.channels[1].busy == Approx(9.785).epsilon(1e-12));
   CHECK(t.channels[1].waits[0].idle() == Approx(25.81).epsilon(1e-12));
@@ -278,6 +377,8 @@ TEST_CASE("timeline: who meets whom is the checker's word, fixed waits of two of
       "  balance: channel 3 idles 18.000 s at M300 (S_3.NC:3) waiting for channel 2; channel 1 idles "
       "10.000 s at M300 (S_1.NC:4) waiting for channel 2; channel 2 idles 5.000 s at M82 (S_2.NC:3) waiting "
       "for channel 1\n");
+  // Every block timed: the cycle time is the time, not a lower bound (the JSON says so too).
+  CHECK(format_timeline_json(t).find(",\"cycle\":20.000,\"at_least\":false,") != std::string::npos);
 }
 
 TEST_CASE("block timer: X in radius under G10.9 X0 and C in mm under polar interpolation",

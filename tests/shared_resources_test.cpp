@@ -4,6 +4,7 @@
 // Messages are asserted to the letter.
 #include <catch2/catch.hpp>
 
+#include <fmt/format.h>
 #include <string>
 
 #include "analysis/shared_resources.hpp"
@@ -219,4 +220,231 @@ TEST_CASE("post: two heads setting the shared spindle differently are refused at
         "out/FIGHT_1.nc:10:1: note: the block in the program as it would have been written (no file is "
         "written)\n"
         "G96 S200 M3\n^\n");
+}
+
+TEST_CASE("shared spindles: a stop or change of the spindle while another channel may still cut on it",
+          "[analysis]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  // Path 1 turned at G96 S200 before the first wait; path 2 drills between the waits.
+  const std::string drill = fanuc_head + "T0505\nG0 X0. Z5.\nM100\nG1 Z-25. F0.1\nG0 Z50.\nM101\nM30\n%\n";
+  auto path1 = [](const std::string& after_wait) {
+    return fanuc_head + "T0101\nG50 S3000\nG96 S200 M3\nG1 X58. Z2. F0.25\nM100\n" + after_wait +
+           "M101\nM30\n%\n";
+  };
+  // The stop: an error at it, a note at the cut.
+  CHECK(check(m, {{"D_1.nc", path1("M5\n")}, {"D_2.nc", drill}}) ==
+        "D_1.nc:9:1: error: channel 1 stops the shared main spindle (M5) while channel 2 may still cut on it "
+        "(D_2.nc:7); no wait orders the stop after that cut\n"
+        "M5\n^\n"
+        "D_2.nc:7:1: note: channel 2 cuts on the main spindle here\nG1 Z-25. F0.1\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+  // A speed, a speed mode, a direction.
+  CHECK(check(m, {{"D_1.nc", path1("G96 S150\n")}, {"D_2.nc", drill}}) ==
+        "D_1.nc:9:1: error: channel 1 sets the shared main spindle to G96 S150 while channel 2 may still cut "
+        "on "
+        "it at G96 S200 M3 (D_2.nc:7): different speed; no wait orders the change after that cut\n"
+        "G96 S150\n^\n"
+        "D_2.nc:7:1: note: channel 2 cuts on the main spindle here\nG1 Z-25. F0.1\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+  CHECK(check(m, {{"D_1.nc", path1("G97 S800\n")}, {"D_2.nc", drill}}) ==
+        "D_1.nc:9:1: error: channel 1 sets the shared main spindle to G97 S800 while channel 2 may still cut "
+        "on "
+        "it at G96 S200 M3 (D_2.nc:7): different speed mode (CSS and rpm); no wait orders the change after "
+        "that "
+        "cut\n"
+        "G97 S800\n^\n"
+        "D_2.nc:7:1: note: channel 2 cuts on the main spindle here\nG1 Z-25. F0.1\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+  CHECK(check(m, {{"D_1.nc", path1("M4\n")}, {"D_2.nc", drill}}) ==
+        "D_1.nc:9:1: error: channel 1 sets the shared main spindle to M4 while channel 2 may still cut on it "
+        "at "
+        "G96 S200 M3 (D_2.nc:7): different direction; no wait orders the change after that cut\n"
+        "M4\n^\n"
+        "D_2.nc:7:1: note: channel 2 cuts on the main spindle here\nG1 Z-25. F0.1\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+  // The same setting again is no change; a stop after the wait that follows the cut is sound;
+  // a feed per minute cut relies on the turning spindle too.
+  CHECK(check(m, {{"D_1.nc", path1("G96 S200 M3\n")}, {"D_2.nc", drill}}) ==
+        "check: 2 channels, 4 waits paired, 0 errors\n");
+  const std::string stop_later =
+      fanuc_head + "T0101\nG50 S3000\nG96 S200 M3\nG1 X58. Z2. F0.25\nM100\nM101\nM5\nM102\nM30\n%\n";
+  CHECK(check(m, {{"D_1.nc", stop_later},
+                  {"D_2.nc",
+                   fanuc_head + "T0505\nG0 X0. Z5.\nM100\nG1 Z-25. F0.1\nG0 Z50.\nM101\nM102\nM30\n%\n"}}) ==
+        "check: 2 channels, 6 waits paired, 0 errors\n");
+  const std::string per_minute =
+      fanuc_head + "T0505\nG0 X0. Z5.\nM100\nG98\nG1 Z-25. F100.\nG0 Z50.\nM101\nM30\n%\n";
+  CHECK(check(m, {{"D_1.nc", path1("M5\n")}, {"D_2.nc", per_minute}}) ==
+        "D_1.nc:9:1: error: channel 1 stops the shared main spindle (M5) while channel 2 may still cut on it "
+        "(D_2.nc:8); no wait orders the stop after that cut\n"
+        "M5\n^\n"
+        "D_2.nc:8:1: note: channel 2 cuts on the main spindle here\nG1 Z-25. F100.\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+  // Two turrets cutting at the one setting (a balance cut), CSS turning its rpm with X: no change.
+  const std::string css_cut =
+      fanuc_head + "T0101\nG50 S3000\nG96 S200 M3\nM100\nG1 X58. Z2. F0.25\nX20.\nZ-30.\nM101\nM5\nM30\n%\n";
+  const std::string other_cut = fanuc_head + "T0202\nM100\nG1 X60. Z-10. F0.2\nX30.\nM101\nM30\n%\n";
+  CHECK(check(m, {{"E_1.nc", css_cut}, {"E_2.nc", other_cut}}) ==
+        "check: 2 channels, 4 waits paired, 0 errors\n");
+}
+
+TEST_CASE("shared spindles: a hold as the C axis while another channel's start of it may be in force",
+          "[analysis]") {
+  const machine integrex = load_machine("integrex-i200st");
+  const std::string milling =
+      "G109 L1\nG21\nT11 M6\nM950\nM200\nG97 S3000 M3\nG1 X20. Z-5. F300.\nM202\nM951\nM30\n";
+  const std::string turning = "G109 L2\nG21\nT0505\nG96 S180 M203\nG95\nG1 X40. Z-20. F0.2\n";
+  CHECK(check(integrex, {{"I.EIA", "%\n" + milling + turning + "M950\nM951\nM205\nM30\n%\n"}}) ==
+        "I.EIA:6:1: error: channel 1 holds the shared main spindle as the C axis (M200) while channel 2 may "
+        "still turn it (G96 S180 M203, I.EIA:15); no wait orders a stop of it before the hold\n"
+        "M200\n^\n"
+        "I.EIA:15:1: note: channel 2 starts the main spindle here; no stop of it is known to come before the "
+        "hold\nG96 S180 M203\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+  // Stopped before the wait that comes before the hold: sound. Stopped between the same waits
+  // as the hold: the stop may come after it.
+  CHECK(check(integrex, {{"I.EIA", "%\n" + milling + turning + "M205\nM950\nM951\nM30\n%\n"}}) ==
+        "check: 2 channels, 4 waits paired, 0 errors\n");
+  const std::string late =
+      "%\nG109 L1\nG21\nT11 M6\nM950\nM200\nG97 S3000 M3\nG1 X20. Z-5. F300.\nM202\nM951\n"
+      "M30\nG109 L2\nG21\nT0505\nG96 S180 M203\nG95\nG1 X40. Z-20. F0.2\nM950\nM205\n"
+      "M951\nM30\n%\n";
+  CHECK(check(integrex, {{"I.EIA", late}}) ==
+        "I.EIA:6:1: error: channel 1 holds the shared main spindle as the C axis (M200) while channel 2 may "
+        "still turn it (G96 S180 M203, I.EIA:15); no wait orders a stop of it before the hold\n"
+        "M200\n^\n"
+        "I.EIA:15:1: note: channel 2 starts the main spindle here; no stop of it is known to come before the "
+        "hold\nG96 S180 M203\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+
+  // The second spindle held the same way (the Fusion "Mazak Integrex i" post's M300/M302 for
+  // it; the built-in file does not give them, since twinpost posts no C work there).
+  machine sub_c = integrex;
+  sub_c.spindles[1].c_axis.on = {"M300"};
+  sub_c.spindles[1].c_axis.off = {"M302"};
+  const std::string sub =
+      "%\nG109 L1\nG21\nT11 M6\nM950\nM902\nM300\nG97 S3000 M3\nG1 X20. Z5. F300.\nM302\n"
+      "M951\nM30\nG109 L2\nG21\nT0505\nG92 S2500 R2\nG96 S180 M303\nG95\nG1 X40. Z20. F0.2\n"
+      "M950\nM951\nM305\nM30\n%\n";
+  CHECK(check(sub_c, {{"S.EIA", sub}}) ==
+        "S.EIA:7:1: error: channel 1 holds the shared sub spindle as the C axis (M300) while channel 2 may "
+        "still turn it (G96 S180 M303, S.EIA:17); no wait orders a stop of it before the hold\n"
+        "M300\n^\n"
+        "S.EIA:17:1: note: channel 2 starts the sub spindle here; no stop of it is known to come before the "
+        "hold\nG96 S180 M303\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+
+  // The 31i: M35 (then G28 H0) holds the main spindle; a stop by a third path ordered between
+  // path 1's start and the hold stops what path 1 started.
+  const machine fanuc3 = load_machine("fanuc-31i-3path");
+  const std::string p1 = fanuc_head + "G97 S1000 M3\nG1 X40. Z-5. F0.2\nM200 P123\nM201 P123\nM30\n%\n";
+  const std::string p2 = fanuc_head + "M200 P123\nM201 P123\nM30\n%\n";
+  const std::string p3 =
+      fanuc_head + "M200 P123\nM201 P123\nM35\nG0 G28 H0.\nG97 S3000 M33\nM37\nM34\nM30\n%\n";
+  CHECK(check(fanuc3, {{"T_1.nc", p1}, {"T_2.nc", p2}, {"T_3.nc", p3}}) ==
+        "T_3.nc:6:1: error: channel 3 holds the shared main spindle as the C axis (M35) while channel 1 may "
+        "still turn it (G97 S1000 M3, T_1.nc:4); no wait orders a stop of it before the hold\n"
+        "M35\n^\n"
+        "T_1.nc:4:1: note: channel 1 starts the main spindle here; no stop of it is known to come before the "
+        "hold\nG97 S1000 M3\n^\n"
+        "check: 3 channels, 6 waits paired, 1 error\n");
+  const std::string p2_stops = fanuc_head + "M200 P123\nM5\nM201 P123\nM30\n%\n";
+  CHECK(check(fanuc3, {{"T_1.nc", p1}, {"T_2.nc", p2_stops}, {"T_3.nc", p3}}) ==
+        "check: 3 channels, 6 waits paired, 0 errors\n");
+  // Before this rule the 31i's two-block c_on (M35, G0 G28 H0.) was not read as a hold at all:
+  // a start by path 1 while path 3 holds the spindle is the start rule's error there too.
+  const std::string p1_late = fanuc_head + "M200 P123\nM201 P123\nG97 S1000 M3\nM30\n%\n";
+  CHECK(check(fanuc3, {{"T_1.nc", p1_late}, {"T_2.nc", p2}, {"T_3.nc", p3}}) ==
+        "T_1.nc:6:1: error: channel 1 starts the shared main spindle (G97 S1000 M3) while channel 3 may hold "
+        "it as the C axis (M35, T_3.nc:6); no wait orders the start before the hold or after its release\n"
+        "G97 S1000 M3\n^\n"
+        "T_3.nc:6:1: note: channel 3 holds the main spindle as the C axis here\nM35\n^\n"
+        "check: 3 channels, 6 waits paired, 1 error\n");
+}
+
+TEST_CASE("post: a hold of the spindle another head turned is sound once that head stops it before the wait",
+          "[post]") {
+  // samples/post-fail/spindle-held-turning with head 2's SPINDL/OFF before the wait that comes
+  // before the hold: the same job posts on both mill/turn machines.
+  auto job = [](int turret, int mill, const std::string& x) {
+    return fmt::format(
+        "PARTNO "
+        "HELD-OK\nUNITS/MM\nHEAD/{0}\nTLDATA/TURN,0.8\nTURRET/5,5\nSPINDL/SMM,180,MAXRPM,3000,CLW,MAIN\n"
+        "FEDRAT/0.2,MMPR\nRAPID\nGOTO/{2}30.0,0.0,5.0\nGOTO/{2}25.0,0.0,-30.0\nRAPID\nGOTO/{2}80.0,0.0,60.0\n"
+        "SPINDL/OFF\nSYNC/1,{0},{1}\nSYNC/2,{0},{1}\nHEAD/{1}\nSYNC/1,{1},{0}\nTLDATA/MILL,10.0\nLOADTL/11\n"
+        "SPINDL/RPM,3000,CLW\nFEDRAT/MMPM,400\nRAPID\nGOTO/40.0,25.0,5.0,0.0,0.0,1.0\nGOTO/40.0,25.0,-8.0\n"
+        "GOTO/-40.0,25.0,-8.0\nRAPID\nGOTO/-40.0,25.0,5.0\nSYNC/2,{1},{0}\nSPINDL/OFF\nEND\nFINI\n",
+        turret, mill, x);
+  };
+  const auto errors = [](const diagnostic& d) { return d.level == severity::error; };
+  const test::posted integrex =
+      test::post_in_fresh_dir(job(2, 1, "-"), load_machine("integrex-i200st"), "held-ok-integrex", errors);
+  CHECK(integrex.diagnostics.empty());
+  CHECK(integrex.ok);
+  const test::posted fanuc3 =
+      test::post_in_fresh_dir(job(1, 3, ""), load_machine("fanuc-31i-3path"), "held-ok-31i", errors);
+  CHECK(fanuc3.diagnostics.empty());
+  CHECK(fanuc3.ok);
+}
+
+TEST_CASE("shared spindles: the change rule on the Integrex, on the sub spindle, and in a balance cut",
+          "[analysis]") {
+  // The Integrex: head 2 stops the main spindle (M205) between the same waits as head 1's cut.
+  const machine integrex = load_machine("integrex-i200st");
+  const std::string stop =
+      "%\nG109 L1\nG21\nT0101\nG96 S180 M203\nG95\nM950\nG1 X40. Z-20. F0.2\nM951\nM30\n"
+      "G109 L2\nG21\nT0505\nM950\nM205\nM951\nM30\n%\n";
+  CHECK(
+      check(integrex, {{"I.EIA", stop}}) ==
+      "I.EIA:15:1: error: channel 2 stops the shared main spindle (M205) while channel 1 may still cut on it "
+      "(I.EIA:8); no wait orders the stop after that cut\n"
+      "M205\n^\n"
+      "I.EIA:8:1: note: channel 1 cuts on the main spindle here\nG1 X40. Z-20. F0.2\n^\n"
+      "check: 2 channels, 4 waits paired, 1 error\n");
+  // The sub spindle on the Fanuc twin: path 2 drills on it (G55) while path 1 stops it (M105).
+  const machine fanuc = load_machine("fanuc-0itd-twin");
+  const std::string p1 = fanuc_head + "T0101\nM100\nM105\nM101\nM30\n%\n";
+  const std::string p2 = fanuc_head + "T0505\nG55\nG97 S800 M103\nM100\nG1 Z20. F0.1\nM101\nM105\nM30\n%\n";
+  CHECK(
+      check(fanuc, {{"S_1.nc", p1}, {"S_2.nc", p2}}) ==
+      "S_1.nc:6:1: error: channel 1 stops the shared sub spindle (M105) while channel 2 may still cut on it "
+      "(S_2.nc:8); no wait orders the stop after that cut\n"
+      "M105\n^\n"
+      "S_2.nc:8:1: note: channel 2 cuts on the sub spindle here\nG1 Z20. F0.1\n^\n"
+      "check: 2 channels, 4 waits paired, 1 error\n");
+  // A balance cut (G68 .. G69): the paths move together block by block, so path 1's change
+  // of speed between two of its cuts comes where path 2 is in the same place: no finding.
+  const std::string b1 = fanuc_head +
+                         "T0101\nG96 S200 M3\nM100\nG68\nG1 X72. Z-30. F0.3\nG96 S150\nZ-40.\nG69\n"
+                         "M101\nM5\nM30\n%\n";
+  const std::string b2 = fanuc_head + "T1111\nM100\nG68\nG1 X72. Z-30. F0.3\nZ-40.\nG69\nM101\nM30\n%\n";
+  CHECK(check(fanuc, {{"B_1.nc", b1}, {"B_2.nc", b2}}) == "check: 2 channels, 4 waits paired, 0 errors\n");
+  // The same change outside a balance cut is the finding.
+  const std::string n1 = fanuc_head +
+                         "T0101\nG96 S200 M3\nM100\nG1 X72. Z-30. F0.3\nG96 S150\nZ-40.\nM101\nM5\n"
+                         "M30\n%\n";
+  const std::string n2 = fanuc_head + "T1111\nM100\nG1 X72. Z-30. F0.3\nZ-40.\nM101\nM30\n%\n";
+  CHECK(check(fanuc, {{"B_1.nc", n1}, {"B_2.nc", n2}}) ==
+        "B_1.nc:8:1: error: channel 1 sets the shared main spindle to G96 S150 while channel 2 may still cut "
+        "on "
+        "it at G96 S200 M3 (B_2.nc:6): different speed; no wait orders the change after that cut\n"
+        "G96 S150\n^\n"
+        "B_2.nc:6:1: note: channel 2 cuts on the main spindle here\nG1 X72. Z-30. F0.3\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+}
+
+TEST_CASE("post: a speed change inside HEAD/BOTH is no change under the other turret's cut", "[post]") {
+  // The master writes the new speed between two cuts of the balance cut; the copy cuts in step.
+  const std::string cl =
+      "PARTNO "
+      "BOTHMID\nUNITS/MM\nHEAD/1\nTLDATA/TURN\nTURRET/1,1\nHEAD/2\nTLDATA/TURN\nTURRET/11,11\nHEAD/BOTH\n"
+      "SPINDL/SMM,200,MAXRPM,2000,CLW,MAIN\nFEDRAT/0.3,MMPR\nRAPID\nGOTO/36.0,0.0,2.0\nGOTO/36.0,0.0,-30.0\n"
+      "SPINDL/SMM,150,MAXRPM,2000,CLW,MAIN\nGOTO/34.0,0.0,-30.0\nGOTO/34.0,0.0,-40.0\nHEAD/1\nSPINDL/"
+      "OFF\nEND\nFINI\n";
+  const auto errors = [](const diagnostic& d) { return d.level == severity::error; };
+  for (const char* name : {"fanuc-0itd-twin", "fanuc-31i-3path", "integrex-i200st"}) {
+    const test::posted p = test::post_in_fresh_dir(cl, load_machine(name), "both-mid", errors);
+    CHECK(p.diagnostics.empty());
+    CHECK(p.ok);
+  }
 }

@@ -46,12 +46,12 @@ check_dom() {  # NAME CHANNELS CYCLE
 
 cp "$src/samples/timeline/hand-timed/PART_1.nc" "$src/samples/timeline/hand-timed/PART_2.nc" .
 "$twinpost" timeline PART_1.nc PART_2.nc --machine fanuc-0itd-twin -o hand.html >hand.txt
-cycle=$(sed -n 's/^cycle time \([0-9.]*\) s.*/\1/p' hand.txt)
+cycle=$(sed -n 's/^cycle time \(at least \)\{0,1\}\([0-9.]*\) s.*/\2/p' hand.txt)
 render hand.html hand
 check_dom hand 2 "$cycle"
 
 cp "$src/samples/balanced-turning/job.cls" .
 "$twinpost" post job.cls --machine fanuc-31i-3path -o out --sync auto --timeline page.html >post.txt
-cycle=$(sed -n 's/^  cycle time \([0-9.]*\) s.*/\1/p' post.txt)
+cycle=$(sed -n 's/^  cycle time \(at least \)\{0,1\}\([0-9.]*\) s.*/\2/p' post.txt)
 render out/page.html three
 check_dom three 3 "$cycle"
