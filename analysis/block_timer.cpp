@@ -196,9 +196,9 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     else if (g == "91")
       incremental_ = true;
     else if (g == "0" || g == "1" || g == "2" || g == "3")
-      motion_ = g, end_cycle();
+      set_motion(g), end_cycle();
     else if (g == "32" || g == "33")
-      motion_ = "32", end_cycle();
+      set_motion("32"), end_cycle();
     else if (g == "80")
       end_cycle();
     else if (g == "4")
@@ -330,7 +330,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     untimed("move without G0/G1");
     return t;
   }
-  const double s = move_time(target, motion_ == "0", "G" + motion_, words, t);
+  const double s = move_time(target, motion_ == "0", motion_code_, words, t);
   for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
   if (!t.untimed.empty()) {
     t.seconds = 0;

@@ -64,9 +64,14 @@ class block_timer {
   bool incremental_ = false;
   bool inch_ = false;
   bool per_rev_ = false;
-  int plane_ = 18;      // 17, 18, 19
-  std::string motion_;  // modal motion: "0", "1", "2", "3", "32"; "": none yet
-  std::string cycle_;   // a modal cycle in force (G83, or G90 on a Fanuc lathe); "": none
+  int plane_ = 18;           // 17, 18, 19
+  std::string motion_;       // modal motion: "0", "1", "2", "3", "32"; "": none yet
+  std::string motion_code_;  // the same as a code, "G1" (made once, not at every move)
+  void set_motion(const std::string& g) {
+    motion_ = g;
+    motion_code_ = "G" + g;
+  }
+  std::string cycle_;  // a modal cycle in force (G83, or G90 on a Fanuc lathe); "": none
   double feed_ = 0;
   std::string tool_;
   int tool_number_ = -1;
