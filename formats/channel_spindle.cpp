@@ -258,7 +258,7 @@ std::optional<double> channel_writer::tool_rpm(const spindle_event& s, const spi
     error(line,
           fmt::format("{}: a surface speed for {}, which turns on the {} spindle: its rpm = 1000 v / (pi D) "
                       "needs the tool's diameter; give TLDATA/MILL,<diameter>,... with the tool, or its "
-                      "diameter in machine '{}''s tool table ([[tool]] diameter)",
+                      "diameter in the tool table of machine '{}' ([[tool]] diameter)",
                       what, tool, sp.name, m_.name));
     return std::nullopt;
   }
