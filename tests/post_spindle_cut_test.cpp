@@ -38,7 +38,8 @@ const std::string not_started_in_channel =
     "turning tool would be driven into a still part, a still cutter into the work); a tool that cuts with no "
     "spindle turning is marked spindle = false in the machine's [[tool]] table";
 const std::string not_started_in_job =
-    "feed move with the main spindle not started: no channel gives a SPINDL with a speed for it in this job (a "
+    "feed move with the main spindle not started: no channel gives a SPINDL with a speed for it in this job "
+    "(a "
     "turning tool would be driven into a still part, a still cutter into the work); a tool that cuts with no "
     "spindle turning is marked spindle = false in the machine's [[tool]] table";
 
@@ -47,8 +48,9 @@ const std::string not_started_in_job =
 TEST_CASE("a cut with no spindle started is an error at the first cut, on every kind of machine",
           "[post][spindle]") {
   // A mill: its one spindle is no other channel's, the error comes at the cut (once).
-  const std::string mill_job = "PARTNO NS\nUNITS/MM\nTLDATA/MILL,10,0,100,0,0\nLOADTL/1\nFEDRAT/500,MMPM\nRAPID\n"
-                               "GOTO/0,0,5\nGOTO/0,0,-1\nGOTO/10,0,-1\nFINI\n";
+  const std::string mill_job =
+      "PARTNO NS\nUNITS/MM\nTLDATA/MILL,10,0,100,0,0\nLOADTL/1\nFEDRAT/500,MMPM\nRAPID\n"
+      "GOTO/0,0,5\nGOTO/0,0,-1\nGOTO/10,0,-1\nFINI\n";
   for (const char* mill : {"rotary-4axis", "head-head-5axis"})
     CHECK(errors_of(mill_job, load_machine(mill), std::string("ns-") + mill) ==
           "job.cls:8:1: error: channel 1: " + not_started_in_channel + "\nGOTO/0,0,-1\n^\n");
@@ -70,7 +72,8 @@ TEST_CASE("a cut with no spindle started is an error at the first cut, on every 
   CHECK(errors_of("PARTNO NS\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/500,MMPM\nRAPID\nGOTO/0,0,5\n"
                   "SPINDL/OFF\nGOTO/0,0,-1\nFINI\n",
                   load_machine("rotary-4axis"), "ns-off") ==
-        "job.cls:9:1: error: channel 1: feed move with the main spindle stopped by SPINDL/OFF: give SPINDL with "
+        "job.cls:9:1: error: channel 1: feed move with the main spindle stopped by SPINDL/OFF: give SPINDL "
+        "with "
         "a speed before cutting (the tool would be driven into a part that does not turn)\nGOTO/0,0,-1\n^\n");
 }
 
@@ -91,13 +94,15 @@ TEST_CASE("a tool the tool table says needs no spindle cuts without one", "[post
   CHECK(read.tools[0].diameter_offset == 24);
   CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool + "diameter_offset = 0\n") ==
         "m.toml:17:19: error: tool.diameter_offset must be >= 1, not 0");
-  CHECK(test::machine_error_of(test::machine_head + "[codes]\ncutcom_offset = \"d\"\n" + test::two_channels) ==
-        "m.toml:7:17: error: codes.cutcom_offset must be \"tool\", \"cutcom\" or \"table\", not \"d\"");
+  CHECK(
+      test::machine_error_of(test::machine_head + "[codes]\ncutcom_offset = \"d\"\n" + test::two_channels) ==
+      "m.toml:7:17: error: codes.cutcom_offset must be \"tool\", \"cutcom\" or \"table\", not \"d\"");
 }
 
 TEST_CASE("a surface speed for a rotating tool is its rpm from the diameter", "[post][spindle]") {
-  const std::string job = "PARTNO SMM\nUNITS/MM\nTLDATA/MILL,10,0,75,0,0\nLOADTL/1\nSPINDL/SMM,150,CLW\n"
-                          "FEDRAT/500,MMPM\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n";
+  const std::string job =
+      "PARTNO SMM\nUNITS/MM\nTLDATA/MILL,10,0,75,0,0\nLOADTL/1\nSPINDL/SMM,150,CLW\n"
+      "FEDRAT/500,MMPM\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n";
   // 1000 x 150 / (pi x 10) = 4774.6: S4775, not S150 (nor G96 on a cutter).
   CHECK(program_of(job, load_machine("rotary-4axis"), "smm-mill") ==
         "%\nO5003 (SMM)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS4775 M3\n"
@@ -126,7 +131,8 @@ TEST_CASE("a surface speed for a rotating tool without a diameter or over a limi
   const machine m = load_machine("rotary-4axis");
   CHECK(errors_of("PARTNO SMM\nUNITS/MM\nLOADTL/1\nSPINDL/SMM,150,CLW\nFINI\n", m, "smm-nodia") ==
         "job.cls:4:1: error: channel 1: SPINDL/SMM,150: a surface speed for tool 1, which turns on the main "
-        "spindle: its rpm = 1000 v / (pi D) needs the tool's diameter; give TLDATA/MILL,<diameter>,... with the "
+        "spindle: its rpm = 1000 v / (pi D) needs the tool's diameter; give TLDATA/MILL,<diameter>,... with "
+        "the "
         "tool, or its diameter in the tool table of machine 'rotary-4axis' ([[tool]] diameter)\n"
         "SPINDL/SMM,150,CLW\n^\n");
   CHECK(errors_of("PARTNO SMM\nUNITS/MM\nTLDATA/MILL,1,0,75,0,0\nLOADTL/1\nSPINDL/SMM,150,CLW\nFINI\n", m,
@@ -134,20 +140,22 @@ TEST_CASE("a surface speed for a rotating tool without a diameter or over a limi
         "job.cls:5:1: error: channel 1: SPINDL/SMM,150 gives 47746 rpm for the 1 mm tool 1, over the main "
         "spindle's limit of 12000 rpm ([[spindle]] max_rpm): give a lower surface speed or SPINDL/RPM\n"
         "SPINDL/SMM,150,CLW\n^\n");
-  CHECK(errors_of("PARTNO SMM\nUNITS/MM\nTLDATA/MILL,10,0,75,0,0\nLOADTL/1\nSPINDL/SMM,150,MAXRPM,3000,CLW\n"
-                  "FINI\n",
-                  m, "smm-maxrpm") ==
-        "job.cls:5:1: error: channel 1: SPINDL/SMM,150 gives 4775 rpm for the 10 mm tool 1, over its MAXRPM of "
-        "3000: a clamp would cut the whole path slower than the surface speed asks, at a higher feed per "
-        "tooth; give a lower surface speed or SPINDL/RPM\nSPINDL/SMM,150,MAXRPM,3000,CLW\n^\n");
+  CHECK(
+      errors_of("PARTNO SMM\nUNITS/MM\nTLDATA/MILL,10,0,75,0,0\nLOADTL/1\nSPINDL/SMM,150,MAXRPM,3000,CLW\n"
+                "FINI\n",
+                m, "smm-maxrpm") ==
+      "job.cls:5:1: error: channel 1: SPINDL/SMM,150 gives 4775 rpm for the 10 mm tool 1, over its MAXRPM of "
+      "3000: a clamp would cut the whole path slower than the surface speed asks, at a higher feed per "
+      "tooth; give a lower surface speed or SPINDL/RPM\nSPINDL/SMM,150,MAXRPM,3000,CLW\n^\n");
 }
 
 TEST_CASE("cutter compensation swaps its side with the arcs where the frame turns the plane over",
           "[post][spindle]") {
   // Head 1 on the Z-reversed sub spindle of the 0i-TD: CUTCOM/LEFT is G42, as the CL's G3 is G2.
-  const std::string job = "PARTNO CS\nUNITS/MM\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW,SUB\nFEDRAT/0.2,MMPR\n"
-                          "RAPID\nGOTO/30,0,2\nCUTCOM/LEFT\nGOTO/25,0,0\nGOTO/25,0,10\nCIRCLE/27,0,10,0,1,0,2\n"
-                          "GOTO/27,0,12\nCUTCOM/OFF\nGOTO/30,0,12\nFINI\n";
+  const std::string job =
+      "PARTNO CS\nUNITS/MM\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW,SUB\nFEDRAT/0.2,MMPR\n"
+      "RAPID\nGOTO/30,0,2\nCUTCOM/LEFT\nGOTO/25,0,0\nGOTO/25,0,10\nCIRCLE/27,0,10,0,1,0,2\n"
+      "GOTO/27,0,12\nCUTCOM/OFF\nGOTO/30,0,12\nFINI\n";
   const test::posted p = test::post_in_fresh_dir(job, load_machine("fanuc-0itd-twin"), "cutcom-sub");
   REQUIRE(p.ok);
   CHECK(p.files.at("CS_1.nc") ==
@@ -159,20 +167,23 @@ TEST_CASE("cutter compensation swaps its side with the arcs where the frame turn
   main_job.replace(main_job.find(",SUB"), 4, "");
   const test::posted q = test::post_in_fresh_dir(main_job, load_machine("fanuc-0itd-twin"), "cutcom-main");
   REQUIRE(q.ok);
-  CHECK(q.files.at("CS_1.nc").find("G41 G1 X50. Z0. F0.2\nZ10.\nG3 X54. Z12. I2. K0.\n") != std::string::npos);
+  CHECK(q.files.at("CS_1.nc").find("G41 G1 X50. Z0. F0.2\nZ10.\nG3 X54. Z12. I2. K0.\n") !=
+        std::string::npos);
 }
 
 TEST_CASE("G41/G42 on the mills carry the D register the machine file says", "[post][spindle]") {
-  const std::string job = "PARTNO CC\nUNITS/MM\nLOADTL/3\nSPINDL/RPM,2000,CLW\nFEDRAT/400,MMPM\nRAPID\n"
-                          "GOTO/0,-20,5\nGOTO/0,-20,-2\nCUTCOM/LEFT\nGOTO/10,-20,-2\nCUTCOM/OFF\nGOTO/0,-20,-2\n"
-                          "FINI\n";
+  const std::string job =
+      "PARTNO CC\nUNITS/MM\nLOADTL/3\nSPINDL/RPM,2000,CLW\nFEDRAT/400,MMPM\nRAPID\n"
+      "GOTO/0,-20,5\nGOTO/0,-20,-2\nCUTCOM/LEFT\nGOTO/10,-20,-2\nCUTCOM/OFF\nGOTO/0,-20,-2\n"
+      "FINI\n";
   for (const char* mill : {"rotary-4axis", "head-head-5axis", "trunnion-5axis"})
     CHECK(load_machine(mill).codes.cutcom_offset == "tool");
   // The tool number (Fusion's default diameter offset), on the first move of the compensation.
-  CHECK(program_of(job, load_machine("rotary-4axis"), "d-tool") ==
-        "%\nO5003 (CC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT03 M6\nS2000 M3\n"
-        "G0 G43 H3 X0. Y-20. Z5. A0.\nG1 Z-2. F400.\nG41 D3 X10.\nG40 X0.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n"
-        "%\n");
+  CHECK(
+      program_of(job, load_machine("rotary-4axis"), "d-tool") ==
+      "%\nO5003 (CC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT03 M6\nS2000 M3\n"
+      "G0 G43 H3 X0. Y-20. Z5. A0.\nG1 Z-2. F400.\nG41 D3 X10.\nG40 X0.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n"
+      "%\n");
   // The CL's register wins.
   std::string with_register = job;
   with_register.replace(with_register.find("CUTCOM/LEFT"), 11, "CUTCOM/LEFT,21");
@@ -181,10 +192,11 @@ TEST_CASE("G41/G42 on the mills carry the D register the machine file says", "[p
   // "cutcom": the CL must give it.
   machine cutcom = load_machine("rotary-4axis");
   cutcom.codes.cutcom_offset = "cutcom";
-  CHECK(errors_of(job, cutcom, "d-cutcom") ==
-        "job.cls:9:1: error: channel 1: CUTCOM/LEFT gives no register, and machine 'rotary-4axis' takes the D "
-        "register from the CUTCOM record (codes.cutcom_offset = \"cutcom\"): give CUTCOM/LEFT,n; without a D "
-        "word the control would compensate with whatever D register is active\nCUTCOM/LEFT\n^\n");
+  CHECK(
+      errors_of(job, cutcom, "d-cutcom") ==
+      "job.cls:9:1: error: channel 1: CUTCOM/LEFT gives no register, and machine 'rotary-4axis' takes the D "
+      "register from the CUTCOM record (codes.cutcom_offset = \"cutcom\"): give CUTCOM/LEFT,n; without a D "
+      "word the control would compensate with whatever D register is active\nCUTCOM/LEFT\n^\n");
   // "table": the tool's diameter_offset, or an error naming the tool.
   machine table = load_machine("rotary-4axis");
   table.codes.cutcom_offset = "table";
@@ -203,12 +215,14 @@ TEST_CASE("G41/G42 on the mills carry the D register the machine file says", "[p
 TEST_CASE("a refused tool call leaves no misleading error about the tool after it", "[post][spindle]") {
   // TLDATA/TURN says what tool 3 is: the refused call must not lose it (the SPINDL then asked
   // for "the kind of tool 3 ( at line 0)").
-  CHECK(errors_of("PARTNO T\nUNITS/MM\nHEAD/1\nTLDATA/TURN\nTURRET/3,5\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\n"
-                  "GOTO/20,0,2\nGOTO/20,0,-5\nFINI\n",
-                  load_machine("integrex-i200st"), "refused-call") ==
-        "job.cls:5:1: error: channel 1: TURRET asks for tool 3 on offset 5, but the channel's tool call T03 M6 "
-        "writes no offset (channel.tool_call has no {offset}): the tool would cut on whatever offset is active\n"
-        "TURRET/3,5\n^\n");
+  CHECK(
+      errors_of("PARTNO T\nUNITS/MM\nHEAD/1\nTLDATA/TURN\nTURRET/3,5\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\n"
+                "GOTO/20,0,2\nGOTO/20,0,-5\nFINI\n",
+                load_machine("integrex-i200st"), "refused-call") ==
+      "job.cls:5:1: error: channel 1: TURRET asks for tool 3 on offset 5, but the channel's tool call T03 M6 "
+      "writes no offset (channel.tool_call has no {offset}): the tool would cut on whatever offset is "
+      "active\n"
+      "TURRET/3,5\n^\n");
   // Without TLDATA the kind is unknown indeed, and the message names the call.
   CHECK(errors_of("PARTNO T\nUNITS/MM\nHEAD/1\nTURRET/3,5\nSPINDL/RPM,800,CLW\nFINI\n",
                   load_machine("integrex-i200st"), "refused-call-kind")
@@ -216,9 +230,11 @@ TEST_CASE("a refused tool call leaves no misleading error about the tool after i
 }
 
 TEST_CASE("the footer writes no M9 or M5 the channel's end already has in force", "[post][spindle]") {
-  const std::string cut = "PARTNO F\nUNITS/MM\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nCOOLNT/ON\n"
-                          "FEDRAT/0.2,MMPR\nGOTO/20,0,2\nGOTO/20,0,-5\n";
-  CHECK(program_of(cut + "COOLNT/OFF\nSPINDL/OFF\nFINI\n", load_machine("fanuc-0itd-twin"), "footer-done", "F_1.nc") ==
+  const std::string cut =
+      "PARTNO F\nUNITS/MM\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nCOOLNT/ON\n"
+      "FEDRAT/0.2,MMPR\nGOTO/20,0,2\nGOTO/20,0,-5\n";
+  CHECK(program_of(cut + "COOLNT/OFF\nSPINDL/OFF\nFINI\n", load_machine("fanuc-0itd-twin"), "footer-done",
+                   "F_1.nc") ==
         "%\nO1000 (F)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\n"
         "G1 X40. Z2. F0.2\nZ-5.\nM9\nM5\nM100\nG28 U0.\nG28 W0.\nM30\n%\n");
   // An AUXFUN after them may turn either on again: the footer stays whole.
