@@ -68,6 +68,11 @@ TEST_CASE("a cut with no spindle started is an error at the first cut, on every 
                   "CYCLE/DRILL,FEDTO,-5.,MMPM,100.,RAPTO,3.\nGOTO/10,10,0\nCYCLE/OFF\nFINI\n",
                   load_machine("rotary-4axis"), "ns-cycle") ==
         "job.cls:7:1: error: channel 1: " + not_started_in_channel + "\nGOTO/10,10,0\n^\n");
+  // And a groove (the lathes' G75 or its plunges).
+  CHECK(errors_of("PARTNO NS\nUNITS/MM\nHEAD/1\nTURRET/1,1\nRAPID\nGOTO/15,0,-25\n"
+                  "CYCLE/GROOVE,DEPTH,3,RAPTO,1,MMPR,0.05\nGOTO/15,0,-25\nCYCLE/OFF\nFINI\n",
+                  load_machine("fanuc-0itd-twin"), "ns-groove") ==
+        "job.cls:8:1: error: channel 1: " + not_started_in_job + "\nGOTO/15,0,-25\n^\n");
   // After SPINDL/OFF the old message stands.
   CHECK(errors_of("PARTNO NS\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/500,MMPM\nRAPID\nGOTO/0,0,5\n"
                   "SPINDL/OFF\nGOTO/0,0,-1\nFINI\n",
@@ -162,6 +167,27 @@ TEST_CASE("cutter compensation swaps its side with the arcs where the frame turn
         "%\nO1000 (CS)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG55\nG97 S800 M103\n"
         "G0 X60. Z-2.\nG42 G1 X50. Z0. F0.2\nZ-10.\nG2 X54. Z-12. I2. K0.\nG40 G1 X60.\nM100\nM105\nM9\n"
         "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  // The Integrex's upper head on its second spindle: the same rule.
+  const test::posted integrex =
+      test::post_in_fresh_dir(job, load_machine("integrex-i200st"), "cutcom-integrex");
+  REQUIRE(integrex.ok);
+  CHECK(integrex.files.at("CS.EIA").find("G42 G1 X50. Z0. F0.2\nZ-10.\nG2 X54. Z-12. I2. K0.\n") !=
+        std::string::npos);
+  // The 0i-TD's lower turret (X mirrored) on the sub (Z reversed): both turn the plane over,
+  // together they give the CL's side and sense back: CUTCOM/LEFT stays G41, the arc (clockwise
+  // about +Y in the CL: counter-clockwise about -Y) stays G2.
+  std::string lower = job;
+  lower.replace(lower.find("HEAD/1"), 6, "HEAD/2");
+  for (const char* x : {"GOTO/30,", "GOTO/25,", "GOTO/25,", "CIRCLE/27,", "GOTO/27,", "GOTO/30,"}) {
+    const std::size_t at = lower.find(x);
+    lower.insert(at + std::string(x).find('/') + 1, "-");
+  }
+  lower.replace(lower.find("0,1,0,2"), 7, "0,-1,0,2");  // the arc about -Y on the lower side
+  const test::posted l = test::post_in_fresh_dir(lower, load_machine("fanuc-0itd-twin"), "cutcom-lower-sub");
+  INFO(l.diagnostics);
+  REQUIRE(l.ok);
+  CHECK(l.files.at("CS_2.nc").find("G41 G1 X50. Z0. F0.2\nZ-10.\nG2 X54. Z-12. I2. K0.\n") !=
+        std::string::npos);
   // On the main spindle the same job keeps its side and its sense.
   std::string main_job = job;
   main_job.replace(main_job.find(",SUB"), 4, "");
