@@ -459,7 +459,7 @@ TEST_CASE("multi-axis: no feed per revolution and no 2-D compensation under a ti
         "inverse-time "
         "feed (G93) needs a feed per minute (FEDRAT/MMPM)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
   CHECK(post_moves(m, "CUTCOM/LEFT\nGOTO/0,10,0,0,0.5,0.8660254\n", "ma-cc").diagnostics ==
-        "job.cls:10:1: error: channel 1: cutter compensation (G41) under the tool axis (0,0.5,0.866025): "
+        "job.cls:10:1: error: channel 1: cutter compensation (G41 D1) under the tool axis (0,0.5,0.866025): "
         "twinpost "
         "writes no 3-D compensation (G41.2/G42.2)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
 }
