@@ -123,9 +123,8 @@ std::string channel_writer::off_centre_hole_needs() const {
         ch_.number, m_.name);
   if (!c_mode_)
     return fmt::format(
-        "the part turns on the {} spindle: drill it with the live tool (TLDATA/DRILL before the "
-        "tool call, or SPINDL/...,LIVE), which holds the spindle as the C axis and turns it onto "
-        "the hole",
+        "the part turns on the {} spindle: drill it on the live spindle (SPINDL/...,LIVE), which "
+        "holds the part as the C axis and turns it onto the hole",
         work_ ? work_->name : ch_.spindle);
   return fmt::format(
       "machine '{}' drills face holes off centre along Y (milling.face_holes = \"y_axis\"), and "

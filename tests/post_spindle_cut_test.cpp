@@ -176,13 +176,10 @@ TEST_CASE("cutter compensation swaps its side with the arcs where the frame turn
   // The 0i-TD's lower turret (X mirrored) on the sub (Z reversed): both turn the plane over,
   // together they give the CL's side and sense back: CUTCOM/LEFT stays G41, the arc (clockwise
   // about +Y in the CL: counter-clockwise about -Y) stays G2.
-  std::string lower = job;
-  lower.replace(lower.find("HEAD/1"), 6, "HEAD/2");
-  for (const char* x : {"GOTO/30,", "GOTO/25,", "GOTO/25,", "CIRCLE/27,", "GOTO/27,", "GOTO/30,"}) {
-    const std::size_t at = lower.find(x);
-    lower.insert(at + std::string(x).find('/') + 1, "-");
-  }
-  lower.replace(lower.find("0,1,0,2"), 7, "0,-1,0,2");  // the arc about -Y on the lower side
+  const std::string lower =
+      "PARTNO CS\nUNITS/MM\nHEAD/2\nTURRET/1,1\nSPINDL/RPM,800,CLW,SUB\n"
+      "FEDRAT/0.2,MMPR\nRAPID\nGOTO/-30,0,2\nCUTCOM/LEFT\nGOTO/-25,0,0\nGOTO/-25,0,10\n"
+      "CIRCLE/-27,0,10,0,-1,0,2\nGOTO/-27,0,12\nCUTCOM/OFF\nGOTO/-30,0,12\nFINI\n";
   const test::posted l = test::post_in_fresh_dir(lower, load_machine("fanuc-0itd-twin"), "cutcom-lower-sub");
   INFO(l.diagnostics);
   REQUIRE(l.ok);
@@ -272,4 +269,31 @@ TEST_CASE("the footer writes no M9 or M5 the channel's end already has in force"
   CHECK(program_of(cut + "FEDRAT/100,MMPM\nGOTO/20,0,-8\nFINI\n", load_machine("fanuc-0itd-twin"),
                    "header-mode", "F_1.nc")
             .find("\nM8\nG1 X40. Z2. F0.2\nZ-5.\nG98\nZ-8. F100.\n") != std::string::npos);
+}
+
+TEST_CASE("an axial hole off centre says what this machine lacks, not that C-axis holes are not posted",
+          "[post][spindle]") {
+  const auto hole = [](const std::string& spindle) {
+    std::string cl = "PARTNO D\nUNITS/MM\nHEAD/1\nTLDATA/DRILL\nTURRET/5,5\n";
+    cl += spindle;
+    cl += "\nRAPID\nGOTO/10,0,20\nCYCLE/DRILL,FEDTO,-5.,MMPM,100.,RAPTO,3.\nGOTO/10,0,0\nCYCLE/OFF\nFINI\n";
+    return cl;
+  };
+  const std::string job = hole("SPINDL/RPM,800,CLW");
+  // The Integrex posts C-axis holes: with the part turning (a drill on the workpiece spindle)
+  // the way is the live spindle.
+  CHECK(
+      errors_of(job, load_machine("integrex-i200st"), "offcentre-integrex") ==
+      "job.cls:10:1: error: channel 1: CYCLE/DRILL at X 10 Y 0: off the spindle centre line; the part turns "
+      "on "
+      "the main spindle: drill it on the live spindle (SPINDL/...,LIVE), which holds the part as the C axis "
+      "and turns it onto the hole\nGOTO/10,0,0\n^\n");
+  // The 31i's turret path has no C axis.
+  CHECK(errors_of(job, load_machine("fanuc-31i-3path"), "offcentre-31i") ==
+        "job.cls:10:1: error: channel 1: CYCLE/DRILL at X 10 Y 0: off the spindle centre line; channel 1 of "
+        "machine 'fanuc-31i-3path' has no C axis with live tools (a C axis and [milling]): with the part "
+        "turning, the drill would cut a ring\nGOTO/10,0,0\n^\n");
+  // With SPINDL/...,LIVE the Integrex drills it at a C position.
+  CHECK(errors_of(hole("SPINDL/RPM,800,CLW,LIVE"), load_machine("integrex-i200st"), "offcentre-live") ==
+        "(posted)");
 }
