@@ -241,7 +241,10 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   if (!fits('S', rpm, 0)) return;
   restart_blocks_ = {join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(rpm, {0, false}), m))};
   spindle_block(restart_blocks_.front());
+  // A surface speed made rpm is the rpm in force: a tap's M29 S.. and SPINDL/ON use it.
   last_speed_ = s;
+  last_speed_->mode = spindle_mode::rpm;
+  last_speed_->speed = rpm;
   stopped_by_cl_ = nullptr;
   note_start();
 }

@@ -121,6 +121,11 @@ TEST_CASE("a surface speed for a rotating tool is its rpm from the diameter", "[
                    "FEDRAT/20,IPM\nRAPID\nGOTO/0,0,0.2\nGOTO/0,0,-0.04\nFINI\n",
                    load_machine("rotary-4axis"), "sfm-mill")
             .find("\nS3820 M3\n") != std::string::npos);
+  // A rigid tap after it taps at that rpm (M29 S4775), not at the surface speed's number.
+  CHECK(program_of("PARTNO SMM\nUNITS/MM\nTLDATA/MILL,10,0,75,0,0\nLOADTL/1\nSPINDL/SMM,150,CLW\nRAPID\n"
+                   "GOTO/10,10,20\nCYCLE/TAP,DEPTH,10.,MMPR,1.5,RAPTO,3.\nGOTO/10,10,0\nCYCLE/OFF\nFINI\n",
+                   load_machine("rotary-4axis"), "smm-tap")
+            .find("\nM29 S4775\n") != std::string::npos);
   // The diameter from the machine's tool table when the CL gives none.
   machine table = load_machine("rotary-4axis");
   table.tools.push_back({1, 0, "mill"});
