@@ -170,8 +170,8 @@ bool channel_writer::spindle_turning(int line) {
   unstarted_judged_ = true;
   unstarted_ok_ = true;
   // A spindle another channel may start (a twin lathe's main spindle): that channel's start
-  // counts, ordered by the waits (analysis/shared_resources); none in the whole job is an
-  // error at this cut, found once the job is read (finish()).
+  // counts, ordered by the waits (analysis/shared_resources); none by another channel in the
+  // whole job is an error at this cut, found once the job is read (finish()).
   const std::size_t index = spindle_index(*spindle_);
   if (job_spindles_ && m_.shared_spindle(static_cast<int>(index))) {
     unstarted_.push_back({index, line, line == line_ ? column_ : 0,

@@ -25,7 +25,8 @@ std::string upper(std::string s) {
 }  // namespace
 
 void channel_writer::note_start() {
-  if (job_spindles_ && !balance_copy_) job_spindles_->started[spindle_index(*spindle_)] = 1;
+  if (job_spindles_ && !balance_copy_)
+    job_spindles_->started[spindle_index(*spindle_)][static_cast<std::size_t>(ch_.number - 1)] = 1;
 }
 
 void channel_writer::work_on(const spindle_def& s) {

@@ -53,6 +53,7 @@ void channel_writer::resume_spindle(int line) {
                                                             : nullptr;
     if (wanted != spindle_) {
       restart_blocks_.clear();
+      unstarted_judged_ = unstarted_ok_ = true;  // the error below says it: no second one at the cut
       return error(line, fmt::format("tool {} ({} at line {}) would start with the {} spindle that turned "
                                      "before the tool change{}: give SPINDL for this tool before its first "
                                      "move",

@@ -381,10 +381,11 @@ void channel_writer::finish() {
       coolant_block(coolant_off_block_, true);
   }
   leave_c_axis();  // the next program starts with a turning spindle
-  // Cuts on a shared spindle this channel never started: now that the whole job is read, an
-  // error where no channel starts that spindle at all.
+  // Cuts on a shared spindle this channel had not started: now that the whole job is read, an
+  // error where no other channel starts that spindle at all (its own later start comes after
+  // the cut).
   for (const unstarted_cut& c : unstarted_)
-    if (!job_spindles_->started[c.spindle]) {
+    if (!job_spindles_->started_by_other(c.spindle, ch_.number)) {
       diagnostic d;
       d.file = cl_file_;
       d.line = c.line;

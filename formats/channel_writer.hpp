@@ -27,7 +27,15 @@ namespace twinpost {
 /// spindle it does not start itself relies on another's start (analysis/shared_resources
 /// orders the two); one that no channel ever starts is an error at the end of the job.
 struct job_spindles {
-  std::vector<char> started;  ///< per machine spindle (index into machine::spindles)
+  /// Per machine spindle (index into machine::spindles), per channel (number - 1): whether
+  /// that channel starts it somewhere in the job.
+  std::vector<std::vector<char>> started;
+  /// Whether a channel other than `channel` starts spindle `index` somewhere in the job.
+  bool started_by_other(std::size_t index, int channel) const {
+    for (std::size_t c = 0; c < started[index].size(); ++c)
+      if (started[index][c] && static_cast<int>(c) + 1 != channel) return true;
+    return false;
+  }
   /// The CL source line `line` while its record is being written (for a diagnostic given
   /// later, at the end of the job); may be empty.
   std::function<std::string(int line)> quote;

@@ -181,7 +181,7 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     ws.writers.push_back(
         std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
   }
-  ws.spindles.started.assign(m.spindles.size(), 0);
+  ws.spindles.started.assign(m.spindles.size(), std::vector<char>(m.channels.size(), 0));
   for (auto& w : ws.writers) w->share_spindles(&ws.spindles);
   // Under HEAD/BOTH the channel of head 1 commands the spindle; the other's copy follows it.
   if (const channel_def* master = m.channel_for_head(1))

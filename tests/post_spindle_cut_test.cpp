@@ -63,6 +63,11 @@ TEST_CASE("a cut with no spindle started is an error at the first cut, on every 
   for (const char* lathe : {"fanuc-0itd-twin", "fanuc-31i-3path", "integrex-i200st"})
     CHECK(errors_of(no_spindle, load_machine(lathe), std::string("ns-") + lathe) ==
           "job.cls:7:1: error: channel 1: " + not_started_in_job + "\nGOTO/0,0,-1\n^\n");
+  // A start after the cut in the same channel does not count.
+  CHECK(errors_of("PARTNO NS\nUNITS/MM\nLOADTL/1\nFEDRAT/500,MMPM\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\n"
+                  "SPINDL/RPM,1000,CLW\nGOTO/10,0,-1\nFINI\n",
+                  load_machine("fanuc-0itd-twin"), "ns-late") ==
+        "job.cls:7:1: error: channel 1: " + not_started_in_job + "\nGOTO/0,0,-1\n^\n");
   // A drilling cycle is a cut too.
   CHECK(errors_of("PARTNO NS\nUNITS/MM\nLOADTL/1\nRAPID\nGOTO/0,0,20\n"
                   "CYCLE/DRILL,FEDTO,-5.,MMPM,100.,RAPTO,3.\nGOTO/10,10,0\nCYCLE/OFF\nFINI\n",
