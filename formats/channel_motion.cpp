@@ -103,31 +103,33 @@ void channel_writer::cutcom(const cutcom_event& c, int line) {
   // D is active (public Fanuc mill posts write D with every G41/G42: docs/machines.md).
   const std::string& rule = m_.codes.cutcom_offset;
   if (!rule.empty()) {
-    std::optional<int> d = c.reg;
-    std::string why;
-    if (!d && rule == "cutcom")
-      why =
-          "gives no register, and machine '{}' takes the D register from the CUTCOM record "
-          "(codes.cutcom_offset = \"cutcom\"): give CUTCOM/{},n";
-    else if (!d && tool_ < 0)
-      why = "comes before any tool call, and machine '{}' writes the tool's D register with G41/G42";
-    else if (!d && rule == "tool")
-      d = tool_;
-    else if (!d) {
-      const tool_def* t = m_.tool(ch_.number, tool_);
-      if (t && t->diameter_offset)
-        d = t->diameter_offset;
-      else
-        why = fmt::format(
-            "gives no register, and machine '{{}}' takes tool {}'s D register from its tool table "
-            "(codes.cutcom_offset = \"table\"), which gives none ([[tool]] diameter_offset)",
-            tool_);
-    }
-    if (!why.empty()) {
+    auto refuse = [&](const std::string& why) {
       pending_g_.clear();
-      return error(line, fmt::format("CUTCOM/{} {}; without a D word the control would compensate with "
-                                     "whatever D register is active",
-                                     c.side, fmt::format(fmt::runtime(why), m_.name, c.side)));
+      error(line, fmt::format("CUTCOM/{} {}; without a D word the control would compensate with whatever D "
+                              "register is active",
+                              c.side, why));
+    };
+    std::optional<int> d = c.reg;
+    if (!d && rule == "cutcom")
+      return refuse(
+          fmt::format("gives no register, and machine '{}' takes the D register from the CUTCOM "
+                      "record (codes.cutcom_offset = \"cutcom\"): give CUTCOM/{},n",
+                      m_.name, c.side));
+    if (!d && tool_ < 0)
+      return refuse(
+          fmt::format("comes before any tool call, and machine '{}' writes the tool's D register "
+                      "with G41/G42",
+                      m_.name));
+    if (!d && rule == "tool") d = tool_;
+    if (!d) {
+      const tool_def* t = m_.tool(ch_.number, tool_);
+      if (!t || !t->diameter_offset)
+        return refuse(
+            fmt::format("gives no register, and machine '{}' takes tool {}'s D register from its "
+                        "tool table (codes.cutcom_offset = \"table\"), which gives none ([[tool]] "
+                        "diameter_offset)",
+                        m_.name, tool_));
+      d = t->diameter_offset;
     }
     if (*d < 1) {
       pending_g_.clear();
