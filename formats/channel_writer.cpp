@@ -15,16 +15,19 @@ namespace twinpost {
 
 namespace {
 // The last of `codes` (whole words, "" ignored) the header blocks give, in order; "" if none.
+// A word is an address letter and the digits and point after it ("G18G21" holds G18, G170
+// does not).
 std::string header_modal(const std::vector<std::string>& header,
                          std::initializer_list<std::string_view> codes) {
   std::string found;
   for (const std::string& block : header)
     for (std::size_t at = 0; at < block.size();) {
-      const std::size_t end = std::min(block.find(' ', at), block.size());
+      std::size_t end = at + 1;
+      while (end < block.size() && ((block[end] >= '0' && block[end] <= '9') || block[end] == '.')) ++end;
       const std::string_view word = std::string_view(block).substr(at, end - at);
       for (std::string_view c : codes)
         if (!c.empty() && word == c) found = c;
-      at = end + 1;
+      at = end;
     }
   return found;
 }

@@ -275,6 +275,11 @@ TEST_CASE("the footer writes no M9 or M5 the channel's end already has in force"
                    "footer-aux", "F_1.nc") ==
         "%\nO1000 (F)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\n"
         "G1 X40. Z2. F0.2\nZ-5.\nM9\nM5\nM51\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  // A header written without blanks says the same.
+  machine packed = load_machine("fanuc-0itd-twin");
+  packed.program.header = {"G0G18G21G40G54G80G99"};
+  CHECK(program_of(cut + "FINI\n", packed, "header-packed", "F_1.nc").find("\nM8\nG1 X40. Z2. F0.2\n") !=
+        std::string::npos);
   // The header's G99 holds for the first feed per revolution; a feed per minute writes G98.
   CHECK(program_of(cut + "FEDRAT/100,MMPM\nGOTO/20,0,-8\nFINI\n", load_machine("fanuc-0itd-twin"),
                    "header-mode", "F_1.nc")
