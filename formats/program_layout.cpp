@@ -1,5 +1,6 @@
 #include "formats/program_layout.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -96,11 +97,21 @@ std::string section_head(const frame_request& r, const channel_def& ch, sequence
   return s;
 }
 
-std::string section_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq) {
+std::string section_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq,
+                         std::vector<std::string> in_force) {
   const machine& m = *r.machine_def;
   const template_args a = args_for(r, &ch);
   std::string s;
-  for (const std::string& f : m.program.footer) add_block(s, m.program, seq, format_template(f, a));
+  for (const std::string& f : m.program.footer) {
+    std::string b = format_template(f, a);
+    // The channel's own last M9 or M5, still in force: the same block again would only say twice
+    // that the coolant is off.
+    if (auto done = std::find(in_force.begin(), in_force.end(), b); done != in_force.end()) {
+      in_force.erase(done);
+      continue;
+    }
+    add_block(s, m.program, seq, b);
+  }
   add_block(s, m.program, seq, m.program.end_code);
   return s;
 }
@@ -141,8 +152,9 @@ std::string frame_head(const frame_request& r, const channel_def& ch, sequence_n
   return file_opening(r) + section_head(r, ch, seq);
 }
 
-std::string frame_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq) {
-  std::string s = section_tail(r, ch, seq);
+std::string frame_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq,
+                       const std::vector<std::string>& in_force) {
+  std::string s = section_tail(r, ch, seq, in_force);
   if (!merged(r)) s += file_closing(r);  // a merged program closes after its last channel
   return s;
 }

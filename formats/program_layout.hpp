@@ -48,8 +48,10 @@ std::string frame_file_name(const frame_request& r, const channel_def& ch);
 std::string frame_head(const frame_request& r, const channel_def& ch, sequence_numbers& seq);
 
 /// The lines after a channel's blocks: footer and end code (numbered on from `seq`), and the
-/// closing '%' when the channel ends its file.
-std::string frame_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq);
+/// closing '%' when the channel ends its file. A footer block equal to one of `in_force` (the
+/// channel's last M9 or M5, still in force: channel_writer::footer_in_force) is left out.
+std::string frame_tail(const frame_request& r, const channel_def& ch, sequence_numbers& seq,
+                       const std::vector<std::string>& in_force = {});
 
 /// Completes the program files once every channel has finished: appends the spilled
 /// channels' sections to a merged program, and gives a file or section a new head when the

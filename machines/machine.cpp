@@ -38,24 +38,24 @@ const channel_def* machine::channel_for_head(std::string_view word) const {
   return nullptr;
 }
 
-std::string_view machine::tool_kind(int channel, int number) const {
-  std::string_view any;
+const tool_def* machine::tool(int channel, int number) const {
+  const tool_def* any = nullptr;
   for (const tool_def& t : tools)
     if (t.number == number) {
-      if (t.channel == channel) return t.kind;
-      if (t.channel == 0) any = t.kind;
+      if (t.channel == channel) return &t;
+      if (t.channel == 0) any = &t;
     }
   return any;
 }
 
+std::string_view machine::tool_kind(int channel, int number) const {
+  const tool_def* t = tool(channel, number);
+  return t ? std::string_view(t->kind) : std::string_view();
+}
+
 std::optional<double> machine::tool_length(int channel, int number) const {
-  std::optional<double> any;
-  for (const tool_def& t : tools)
-    if (t.number == number) {
-      if (t.channel == channel) return t.length;
-      if (t.channel == 0) any = t.length;
-    }
-  return any;
+  const tool_def* t = tool(channel, number);
+  return t ? t->length : std::nullopt;
 }
 
 const kinematic_chain* machine::chain(int channel) const {

@@ -190,6 +190,11 @@ struct control_codes {
   /// Whether G41/G42 may start on a rapid move. Fanuc accepts G41/G42 with G0 or G1; the Mazak
   /// control starts tool nose radius compensation only with a feed move.
   bool cutcom_on_rapid = true;
+  /// Where the D register of G41/G42 comes from: "" (none: a lathe's T word carries the nose
+  /// radius), "tool" (the tool number), "cutcom" (the CUTCOM record's register, required) or
+  /// "table" (the tool's [[tool]] diameter_offset). A CUTCOM register, when the CL gives one,
+  /// is written under "tool" and "table" too.
+  std::string cutcom_offset;
   /// Balance cutting (HEAD/BOTH): written in both channels right after the wait that opens
   /// the section and right before the wait that closes it (Fanuc G68/G69, Mazak M562/M563).
   /// Empty: the machine has none and the two heads simply cut together.
@@ -206,6 +211,14 @@ struct tool_def {
   /// The gauge length (spindle nose to tip, mm) as measured on the machine: the tool length
   /// of multi-axis output (docs/machines.md, "Multi-axis output").
   std::optional<double> length{};
+  /// The cutting diameter (mm): a surface speed (SPINDL/SMM, SFM) of a milling or drilling
+  /// tool becomes rpm = 1000 v / (pi D) from it when the CL gives no TLDATA diameter.
+  std::optional<double> diameter{};
+  /// The D register of its cutter radius compensation (codes.cutcom_offset = "table").
+  std::optional<int> diameter_offset{};
+  /// False: the tool cuts with no spindle turning (a burnishing roller, a scribe, a probe
+  /// moved at feed): a feed move with no spindle started is no error for it.
+  bool spindle = true;
 };
 
 /// The part transfer from the main to the sub spindle (CL TRANSFER/GRIP, TRANSFER/RELEASE):
@@ -310,6 +323,9 @@ struct machine {
   std::string_view tool_kind(int channel, int number) const;
   /// The tool table's gauge length of tool `number` of channel `channel`, if it gives one.
   std::optional<double> tool_length(int channel, int number) const;
+  /// The tool table's entry of tool `number` of channel `channel` (one of that channel before
+  /// one of every channel), or nullptr.
+  const tool_def* tool(int channel, int number) const;
   /// The kinematic chain of channel `channel`, or nullptr.
   const kinematic_chain* chain(int channel) const;
   /// The spindle named `name`, or nullptr.

@@ -266,7 +266,7 @@ void read_codes(const table_reader& root, control_codes& c) {
   table_reader r(*t, "codes", root.source(),
                  {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on", "coolant_off",
                   "balance_on", "balance_off", "program_stop", "optional_stop", "cutcom_on_rapid",
-                  "coolant_mist", "coolant_through", "coolant_air"});
+                  "coolant_mist", "coolant_through", "coolant_air", "cutcom_offset"});
   r.read_fixed("css", c.css);
   r.read_fixed("rpm", c.rpm);
   r.read_fixed("feed_per_rev", c.feed_per_rev);
@@ -280,6 +280,11 @@ void read_codes(const table_reader& root, control_codes& c) {
   r.read_fixed("program_stop", c.program_stop);
   r.read_fixed("optional_stop", c.optional_stop);
   r.read("cutcom_on_rapid", c.cutcom_on_rapid);
+  if (r.read("cutcom_offset", c.cutcom_offset) && c.cutcom_offset != "tool" && c.cutcom_offset != "cutcom" &&
+      c.cutcom_offset != "table")
+    r.fail(*r.find("cutcom_offset"),
+           fmt::format("codes.cutcom_offset must be \"tool\", \"cutcom\" or \"table\", not \"{}\"",
+                       c.cutcom_offset));
   for (auto [key, codes] :
        {std::pair<std::string_view, std::vector<std::string>*>{"coolant_mist", &c.coolant_mist},
         {"coolant_through", &c.coolant_through},
@@ -379,7 +384,8 @@ void read_transfer(const table_reader& root, machine& m) {
 
 void read_tools(const table_reader& root, machine& m) {
   for (const toml::table* t : root.tables("tool")) {
-    table_reader r(*t, "tool", root.source(), {"number", "channel", "kind", "length"});
+    table_reader r(*t, "tool", root.source(),
+                   {"number", "channel", "kind", "length", "diameter", "diameter_offset", "spindle"});
     tool_def d;
     r.require("number");
     r.read("number", d.number);
@@ -396,6 +402,21 @@ void read_tools(const table_reader& root, machine& m) {
       if (!(length > 0)) r.fail(*r.find("length"), fmt::format("tool.length must be > 0, not {}", length));
       d.length = length;
     }
+    double diameter = 0;
+    if (r.read("diameter", diameter)) {
+      if (!(diameter > 0))
+        r.fail(*r.find("diameter"), fmt::format("tool.diameter must be > 0, not {}", diameter));
+      d.diameter = diameter;
+    }
+    int d_register = 0;
+    if (r.read("diameter_offset", d_register)) {
+      // D0 is no compensation on a Fanuc control: the cutter would run on the path's centre.
+      if (d_register < 1)
+        r.fail(*r.find("diameter_offset"),
+               fmt::format("tool.diameter_offset must be >= 1, not {}", d_register));
+      d.diameter_offset = d_register;
+    }
+    r.read("spindle", d.spindle);
     for (const tool_def& earlier : m.tools)
       if (earlier.number == d.number && earlier.channel == d.channel)
         r.fail(*r.find("number"),

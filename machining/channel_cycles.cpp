@@ -111,6 +111,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   // Only along the spindle axis: a radial or tilted tool (cross drilling with a live tool)
   // would be fed along Z, through the side of the part.
   if (has_c_ && !index_head(line)) return;
+  if (!spindle_turning(line)) return;  // a hole is a cut: the spindle must turn
   // A cross hole on a channel with a C axis: drilled in the turned frame (milling.radial_frame_on),
   // whose Z is the tool axis; its moves come in that frame (radial_ok_).
   // With milling.cross_holes = "side_cycle" (Fanuc) C turns to the hole and the side codes
@@ -143,9 +144,8 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   // part stands still: a hole anywhere.
   if (!cross && !part_stands_still() && std::hypot(p.x, p.y) * cl_mm_ > 1e-3 && !c_axis_hole(p) &&
       !(c_mode_ && has_y_))
-    return error(line, fmt::format("CYCLE/{} at X {} Y {}: off the spindle centre line; an axial hole off "
-                                   "centre needs a live tool and the C axis, which are not posted yet",
-                                   c.type, p.x, p.y));
+    return error(line, fmt::format("CYCLE/{} at X {} Y {}: off the spindle centre line; {}", c.type, p.x, p.y,
+                                   off_centre_hole_needs()));
   hole h;
   h.x = at.x;
   h.y = at.y;

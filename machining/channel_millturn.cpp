@@ -428,7 +428,7 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
   const bool along_radius = std::abs(dz) <= 1e-4 && r * std::abs(turn) / deg <= 1e-4;
   if (along_radius && !cylinder_) {
     // A plunge (or retract) before the cut: in the turned frame, C clamped.
-    if (pending_g_ == "G41" || pending_g_ == "G42") {
+    if (comp_starting()) {
       error(line, fmt::format("cutter compensation ({}) would start outside cylindrical interpolation, on "
                               "a plunge: it must start and end inside the mode (Fanuc 15i-MA B-63324EN/03 "
                               "§4): put CUTCOM after the plunge",
@@ -490,7 +490,7 @@ bool channel_writer::cylinder_feed(double& x, double& y, double& z, int line) {
     word_start_ = std::string::npos;
     return false;
   }
-  if (pending_g_ == "G41" || pending_g_ == "G42") cylinder_comp_ = true;
+  if (comp_starting()) cylinder_comp_ = true;
   if (pending_g_ == "G40") cylinder_comp_ = false;
   homed_ = false;
   pending_g_.clear();

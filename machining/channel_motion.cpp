@@ -56,7 +56,7 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   if (!has_y_ && std::abs(y_cl * cl_mm_) > y_tolerance)
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
-  if (rapid && !m_.codes.cutcom_on_rapid && (pending_g_ == "G41" || pending_g_ == "G42"))
+  if (rapid && !m_.codes.cutcom_on_rapid && comp_starting())
     return error(line, fmt::format("tool nose radius compensation ({}) would start on a rapid move; machine "
                                    "'{}' starts it only on a feed move (codes.cutcom_on_rapid = false): make "
                                    "the first move after CUTCOM a feed move",
@@ -88,17 +88,111 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   word_start_ = std::string::npos;
 }
 
+void channel_writer::cutcom(const cutcom_event& c, int line) {
+  const bool left = c.side == "LEFT", right = c.side == "RIGHT";
+  if (!left && !right) {
+    pending_g_ = c.side == "OFF" ? "G40" : "";
+    return;
+  }
+  // The plane the compensation works in: the CUTCOM's, else the one in force. A frame that
+  // turns it over (a mirrored turret, the Z-reversed sub) puts the tool's left on its right,
+  // as it turns G2 into G3.
+  const int plane = c.plane == "XYPLAN" ? 17 : c.plane == "ZXPLAN" ? 18 : c.plane == "YZPLAN" ? 19 : plane_;
+  std::string g = left != sense_reversed(plane) ? "G41" : "G42";
+  // The D register (codes.cutcom_offset): without one the control compensates with whatever
+  // D is active (public Fanuc mill posts write D with every G41/G42: docs/machines.md).
+  const std::string& rule = m_.codes.cutcom_offset;
+  if (!rule.empty()) {
+    auto refuse = [&](const std::string& why) {
+      pending_g_.clear();
+      error(line, fmt::format("CUTCOM/{} {}; without a D word the control would compensate with whatever D "
+                              "register is active",
+                              c.side, why));
+    };
+    std::optional<int> d = c.reg;
+    if (!d && rule == "cutcom")
+      return refuse(
+          fmt::format("gives no register, and machine '{}' takes the D register from the CUTCOM "
+                      "record (codes.cutcom_offset = \"cutcom\"): give CUTCOM/{},n",
+                      m_.name, c.side));
+    if (!d && tool_ < 0)
+      return refuse(
+          fmt::format("comes before any tool call, and machine '{}' writes the tool's D register "
+                      "with G41/G42",
+                      m_.name));
+    if (!d && rule == "tool") d = tool_;
+    if (!d) {
+      const tool_def* t = m_.tool(ch_.number, tool_);
+      if (!t || !t->diameter_offset)
+        return refuse(
+            fmt::format("gives no register, and machine '{}' takes tool {}'s D register from its "
+                        "tool table (codes.cutcom_offset = \"table\"), which gives none ([[tool]] "
+                        "diameter_offset)",
+                        m_.name, tool_));
+      d = t->diameter_offset;
+    }
+    if (*d < 1) {
+      pending_g_.clear();
+      return error(line, fmt::format("CUTCOM/{},{}: D{} is no compensation (the cutter would run on the "
+                                     "path's centre); give the tool's register",
+                                     c.side, *d, *d));
+    }
+    if (!fits('D', *d, 0)) {
+      pending_g_.clear();
+      return;
+    }
+    g += fmt::format(" D{}", *d);
+  }
+  pending_g_ = std::move(g);
+}
+
+bool channel_writer::sense_reversed(int plane) const {
+  // Mirroring X reflects the XY and ZX planes, which reverses their sense; YZ has no X.
+  // A reversed spindle's half turn about X turns the XY and ZX planes over (G2/G3 swap, J and
+  // K negated); the YZ plane keeps its sense. Both together give the sense back.
+  if (plane == 19) return false;
+  return mirrored() != (z_sign_ < 0);
+}
+
 bool channel_writer::spindle_turning(int line) {
   // A feed after this channel's own SPINDL/OFF of the spindle it cuts on drives a turning tool
-  // into a still part (or a still cutter into the work). A channel that never started the
-  // spindle may cut on one another channel drives (a shared main spindle): that is the
-  // job-wide check of shared spindles, not this channel's.
+  // into a still part (or a still cutter into the work).
   // A balance cut's copy cuts on the spindle its master turns.
-  if (balance_copy_ || !stopped_by_cl_ || stopped_by_cl_ != spindle_) return true;
-  error(line, fmt::format("feed move with the {} spindle stopped by SPINDL/OFF: give SPINDL with a speed "
-                          "before cutting (the tool would be driven into a part that does not turn)",
-                          spindle_->name));
+  if (balance_copy_ || !spindle_) return true;
+  if (stopped_by_cl_ && stopped_by_cl_ == spindle_) {
+    error(line, fmt::format("feed move with the {} spindle stopped by SPINDL/OFF: give SPINDL with a speed "
+                            "before cutting (the tool would be driven into a part that does not turn)",
+                            spindle_->name));
+    return false;
+  }
+  if (!restart_blocks_.empty()) return true;  // this channel started it (or restarts it before the move)
+  // A tool that cuts with no spindle (a roller, a scribe) says so in the machine's tool table.
+  if (const tool_def* t = m_.tool(ch_.number, tool_); t && !t->spindle) return true;
+  if (unstarted_judged_) return unstarted_ok_;  // one report a stretch
+  unstarted_judged_ = true;
+  unstarted_ok_ = true;
+  // A spindle another channel may start (a twin lathe's main spindle): that channel's start
+  // counts, ordered by the waits (analysis/shared_resources); none by another channel in the
+  // whole job is an error at this cut, found once the job is read (finish()).
+  const std::size_t index = spindle_index(*spindle_);
+  if (job_spindles_ && m_.shared_spindle(static_cast<int>(index))) {
+    unstarted_.push_back({index, line, line == line_ ? column_ : 0,
+                          job_spindles_->quote ? job_spindles_->quote(line) : std::string()});
+    return true;
+  }
+  error(line, not_started(*spindle_, false));
+  unstarted_ok_ = false;
   return false;
+}
+
+std::string channel_writer::not_started(const spindle_def& s, bool job) const {
+  return fmt::format(
+      "feed move with the {} spindle not started: {} (a turning tool would be driven into a still "
+      "part, a still cutter into the work); a tool that cuts with no spindle turning is marked "
+      "spindle = false in the machine's [[tool]] table",
+      s.name,
+      job ? "no channel gives a SPINDL with a speed for it in this job"
+          : "no SPINDL with a speed in this channel before the cut");
 }
 
 void channel_writer::no_tool(int line) {
@@ -216,12 +310,8 @@ void channel_writer::arc(const arc_event& a, int line) {
   check_side(nc_x(a.end.x), a.end.x, line);
   double axis_sign = plane == 17 ? a.normal.z : plane == 18 ? a.normal.y : a.normal.x;
   bool ccw = a.ccw == (axis_sign > 0);
-  // Mirroring X reflects the XY and ZX planes, which reverses their sense; YZ has no X.
-  double mirror = mirrored() ? -1.0 : 1.0;
-  if (mirror < 0 && plane != 19) ccw = !ccw;
-  // A reversed spindle's half turn about X turns the XY and ZX planes over (G2/G3 swap, J and
-  // K negated); the YZ plane keeps its sense.
-  if (z_sign_ < 0 && plane != 19) ccw = !ccw;
+  const double mirror = mirrored() ? -1.0 : 1.0;
+  if (sense_reversed(plane)) ccw = !ccw;
   int g = ccw ? 3 : 2;
 
   arc_.clear();

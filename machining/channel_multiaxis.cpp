@@ -263,7 +263,7 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   // Until the point is written the machine is not where the CL puts it: after an error the
   // next move starts afresh (solved, not linearised from a start it never reached).
   pose_known_ = false;
-  if ((pending_g_ == "G41" || pending_g_ == "G42") && std::abs(pose.axis.z) < 0.9999)
+  if (comp_starting() && std::abs(pose.axis.z) < 0.9999)
     return error(line, fmt::format("cutter compensation ({}) under the tool axis ({:g},{:g},{:g}): twinpost "
                                    "writes no 3-D compensation (G41.2/G42.2)",
                                    pending_g_, axis_.x, axis_.y, axis_.z));

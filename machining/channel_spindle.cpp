@@ -4,6 +4,7 @@
 // Part transfers (TRANSFER/GRIP, RELEASE) move the channel's work to the sub spindle.
 #include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "machines/name_template.hpp"
 #include "machining/channel_writer.hpp"
@@ -23,7 +24,13 @@ std::string upper(std::string s) {
 }
 }  // namespace
 
+void channel_writer::note_start() {
+  if (job_spindles_ && !balance_copy_)
+    job_spindles_->started[spindle_index(*spindle_)][static_cast<std::size_t>(ch_.number - 1)] = 1;
+}
+
 void channel_writer::work_on(const spindle_def& s) {
+  unstarted_judged_ = false;
   offset_due_ = false;
   if (&s == work_) return;
   work_ = &s;
@@ -39,6 +46,9 @@ void channel_writer::work_on(const spindle_def& s) {
 void channel_writer::tool_data(const tool_data_event& t) {
   if (t.major != "TLDATA" || t.words.empty()) return;
   const std::string& w = t.words.front();
+  // NX TLDATA/MILL, diameter, lower radius, length, ...: the diameter a surface speed needs.
+  if (w == "MILL" && !t.values.empty() && t.values[0] > 0)
+    (after_call_ ? diameter_ : next_diameter_) = t.values[0] * cl_mm_;
   const tool_kind k = w == "MILL"                                       ? tool_kind::mill
                       : w == "DRILL"                                    ? tool_kind::drill
                       : (w == "TURN" || w == "GROOVE" || w == "THREAD") ? tool_kind::turn
@@ -106,8 +116,31 @@ bool channel_writer::drill_on_centre(double x_cl, int line) {
   return false;
 }
 
+std::string channel_writer::off_centre_hole_needs() const {
+  if (!has_c_)
+    return fmt::format(
+        "channel {} of machine '{}' has no C axis with live tools (a C axis and [milling]): with "
+        "the part turning, the drill would cut a ring",
+        ch_.number, m_.name);
+  if (!c_mode_)
+    return fmt::format(
+        "the part turns on the {} spindle: drill it on the live spindle (SPINDL/...,LIVE), which "
+        "holds the part as the C axis and turns it onto the hole",
+        work_ ? work_->name : ch_.spindle);
+  return fmt::format(
+      "machine '{}' drills face holes off centre along Y (milling.face_holes = \"y_axis\"), and "
+      "channel {} has no Y axis",
+      m_.name, ch_.number);
+}
+
 void channel_writer::spindle(const spindle_event& s, int line) {
   spindle_held_ = false;  // this record says what the spindle does now (or the post has failed)
+  // A SPINDL refused here has failed the post: the cuts after it need no second error.
+  struct judge_cuts {
+    channel_writer& w;
+    int errors;
+    ~judge_cuts() { w.unstarted_judged_ = w.unstarted_ok_ = w.errors_ > errors; }
+  } judge{*this, errors_};
   const spindle_def* target = spindle_;
   if (s.spindle == "main" || s.spindle == "sub") {
     const spindle_def* sel = m_.spindle(s.spindle);
@@ -159,12 +192,20 @@ void channel_writer::spindle(const spindle_event& s, int line) {
   if (s.mode == spindle_mode::off) {
     restart_blocks_.clear();
     stopped_by_cl_ = spindle_;
-    return spindle_block(fmt::format("M{}", sp.stop));
+    return spindle_block(fmt::format("M{}", sp.stop), true);
   }
   if (s.mode == spindle_mode::orient || s.mode == spindle_mode::lock)
     return error(line, "spindle ORIENT/LOCK is not supported on a lathe channel yet");
   int m = s.dir == rotation::ccw ? sp.ccw : sp.cw;
-  if (s.mode == spindle_mode::sfm || s.mode == spindle_mode::smm) {
+  double rpm = s.speed;
+  const bool css = s.mode == spindle_mode::sfm || s.mode == spindle_mode::smm;
+  if (css && (spindle_ != work_ || part_stands_still())) {
+    // A surface speed for a rotating tool (a mill's spindle, a live tool) is the tool's rpm:
+    // constant surface speed would follow the X position, not the cutter's diameter.
+    const std::optional<double> r = tool_rpm(s, sp, line);
+    if (!r) return;
+    rpm = *r;
+  } else if (css) {
     // G96 S is in m/min with mm output, in ft/min with inch output.
     const bool inch = out_per_mm_ < 1;
     const double smm = s.mode == spindle_mode::sfm ? (inch ? s.speed : s.speed * 0.3048)
@@ -192,17 +233,63 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     for (const std::string& b : restart_blocks_) spindle_block(b);
     last_speed_ = s;
     stopped_by_cl_ = nullptr;
+    note_start();
     return;
   }
-  if (sp.max_rpm > 0 && s.speed > sp.max_rpm)
-    return error(
-        line, fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", s.speed, sp.name, sp.max_rpm));
-  if (!fits('S', s.speed, 0)) return;
-  restart_blocks_ = {
-      join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(s.speed, {0, false}), m))};
+  if (sp.max_rpm > 0 && rpm > sp.max_rpm)
+    return error(line,
+                 fmt::format("{} rpm exceeds the {} spindle's limit of {} rpm", rpm, sp.name, sp.max_rpm));
+  if (!fits('S', rpm, 0)) return;
+  restart_blocks_ = {join_words(m_.codes.rpm, fmt::format("S{} M{}", format_nc_number(rpm, {0, false}), m))};
   spindle_block(restart_blocks_.front());
+  // A surface speed made rpm is the rpm in force: a tap's M29 S.. and SPINDL/ON use it.
   last_speed_ = s;
+  last_speed_->mode = spindle_mode::rpm;
+  last_speed_->speed = rpm;
   stopped_by_cl_ = nullptr;
+  note_start();
+}
+
+std::optional<double> channel_writer::tool_rpm(const spindle_event& s, const spindle_def& sp, int line) {
+  const char* unit = s.mode == spindle_mode::sfm ? "SFM" : "SMM";
+  const std::string what = fmt::format("SPINDL/{},{:g}", unit, s.speed);
+  const std::string tool = fmt::format("tool {}", tool_);
+  std::optional<double> d = diameter_;  // TLDATA's, in mm
+  if (!d)
+    if (const tool_def* t = m_.tool(ch_.number, tool_)) d = t->diameter;
+  if (!d) {
+    error(line,
+          fmt::format("{}: a surface speed for {}, which turns on the {} spindle: its rpm = 1000 v / (pi D) "
+                      "needs the tool's diameter; give TLDATA/MILL,<diameter>,... with the tool, or its "
+                      "diameter in the tool table of machine '{}' ([[tool]] diameter)",
+                      what, tool, sp.name, m_.name));
+    return std::nullopt;
+  }
+  // m/min (SFM: ft/min, 0.3048 m each) over the circumference in m: rpm = 1000 v / (pi D),
+  // the same as 12 v / (pi D) with v in ft/min and D in inches.
+  const double v = s.mode == spindle_mode::sfm ? s.speed * 0.3048 : s.speed;
+  const double rpm = std::round(1000 * v / (std::numbers::pi * *d));
+  const std::string gives = fmt::format("{} gives {} rpm for the {:g} mm {}", what, rpm, *d, tool);
+  // A rotating tool's diameter does not change along the path: a clamp would cut all of it
+  // slower than the speed the CAM chose, with the feed per tooth raised by the same ratio.
+  if (s.max_rpm && rpm > *s.max_rpm) {
+    error(line, fmt::format("{}, over its MAXRPM of {:g}: a clamp would cut the whole path slower than the "
+                            "surface speed asks, at a higher feed per tooth; give a lower surface speed or "
+                            "SPINDL/RPM",
+                            gives, *s.max_rpm));
+    return std::nullopt;
+  }
+  if (sp.max_rpm > 0 && rpm > sp.max_rpm) {
+    error(line, fmt::format("{}, over the {} spindle's limit of {:g} rpm ([[spindle]] max_rpm): give a lower "
+                            "surface speed or SPINDL/RPM",
+                            gives, sp.name, sp.max_rpm));
+    return std::nullopt;
+  }
+  if (rpm < 1) {
+    error(line, fmt::format("{}: the spindle would not turn", gives));
+    return std::nullopt;
+  }
+  return rpm;
 }
 
 void channel_writer::transfer(const transfer_event& t, int line) {
@@ -212,7 +299,7 @@ void channel_writer::transfer(const transfer_event& t, int line) {
       // Out of the space between the spindles: coolant off, home X then Z (once: a channel
       // already home stays there). A spindle held as a C axis turns freely again first.
       leave_c_axis();
-      if (!coolant_block_.empty()) out_.block(coolant_off_block_);
+      if (!coolant_block_.empty()) coolant_block(coolant_off_block_, true);
       coolant_block_.clear();
       coolant_off_block_.clear();
       if (homed_) return;
@@ -222,6 +309,8 @@ void channel_writer::transfer(const transfer_event& t, int line) {
       return;
     case transfer_event::phase::blocks:
       for (const std::string& b : t.release ? m_.transfer.release : m_.transfer.grip) out_.block(b);
+      spindle_ended_.clear();  // the transfer's own codes synchronise and start spindles: the footer's
+      coolant_ended_.clear();  // stops are not known to be in force any more
       return;
     case transfer_event::phase::on_sub:
       // The next SPINDL selects the sub (M902 on the Integrex) and starts it.

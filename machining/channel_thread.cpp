@@ -302,6 +302,7 @@ void channel_writer::thread_cycle_point(const vec3& p, int line) {
 }
 
 void channel_writer::groove_cycle_point(const vec3& p, int line) {
+  if (!spindle_turning(line)) return;  // the plunges are cuts: the spindle must turn
   const cycle_event& c = *cycle_;
   // The GOTO is the groove's first side on the part's surface: X the surface radius, Z where
   // the first plunge goes. Plunges feed along X to the bottom (FEDTO: its radius; DEPTH: that

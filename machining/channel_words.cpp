@@ -9,7 +9,7 @@ namespace twinpost {
 
 void channel_writer::coolant(const coolant_event& c, int line) {
   if (c.mode == "OFF") {
-    out_.block(coolant_off_block_.empty() ? m_.codes.coolant_off : coolant_off_block_);
+    coolant_block(coolant_off_block_.empty() ? m_.codes.coolant_off : coolant_off_block_, true);
     coolant_block_.clear();
     coolant_off_block_.clear();
     return;
@@ -33,9 +33,9 @@ void channel_writer::coolant(const coolant_event& c, int line) {
     return error(line, fmt::format("COOLNT/{}: machine '{}' has no coolant-on code", c.mode, m_.name));
   const std::string& on = pair ? (*pair)[0] : k.coolant_on.front();
   const std::string& off = pair ? (*pair)[1] : k.coolant_off;
-  if (coolant_block_ == on) return;                             // already on
-  if (!coolant_block_.empty()) out_.block(coolant_off_block_);  // another kind: off first
-  out_.block(on);
+  if (coolant_block_ == on) return;                                      // already on
+  if (!coolant_block_.empty()) coolant_block(coolant_off_block_, true);  // another kind: off first
+  coolant_block(on, false);
   coolant_block_ = on;
   coolant_off_block_ = off;
 }
@@ -53,6 +53,7 @@ void channel_writer::resume_spindle(int line) {
                                                             : nullptr;
     if (wanted != spindle_) {
       restart_blocks_.clear();
+      unstarted_judged_ = unstarted_ok_ = true;  // the error below says it: no second one at the cut
       return error(line, fmt::format("tool {} ({} at line {}) would start with the {} spindle that turned "
                                      "before the tool change{}: give SPINDL for this tool before its first "
                                      "move",
@@ -74,7 +75,7 @@ void channel_writer::go_home() {
 void channel_writer::program_stop(bool optional) {
   out_.block(optional ? m_.codes.optional_stop : m_.codes.program_stop);
   for (const std::string& b : restart_blocks_) spindle_block(b);
-  if (!coolant_block_.empty()) out_.block(coolant_block_);
+  if (!coolant_block_.empty()) coolant_block(coolant_block_, false);
 }
 
 void channel_writer::feed(const feed_event& f, int line) {
@@ -111,18 +112,17 @@ void channel_writer::tool(const tool_event& t, int line) {
   a.offset = t.offset.value_or(t.tool);
   a.channel = ch_.number;
   const std::string call = format_template(ch_.tool_call, a);
+  static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL", "SELECT/TOOL", "TURRET"};
+  const char* word = words[static_cast<int>(t.source)];
   // Offset 0 in a lathe tool call (T0300) cancels the tool's offset: the tip would run
   // where the turret's reference point is, not where the CL says.
   if (a.offset == 0 && !ch_.offset_zero && ch_.tool_call.find("{offset") != std::string::npos) {
-    tool_ = t.tool;  // the post has failed: its moves need no second error for a missing tool
-    return error(line,
-                 fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
-                             "give the offset number (or set channel.offset_zero where the control's tool "
-                             "table applies it)",
-                             t.tool, call));
+    error(line, fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
+                            "give the offset number (or set channel.offset_zero where the control's tool "
+                            "table applies it)",
+                            t.tool, call));
+    return take_tool(t.tool, line, word);
   }
-  static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL", "SELECT/TOOL", "TURRET"};
-  const char* word = words[static_cast<int>(t.source)];
   // A call template without {offset} (the Integrex mill head's T01 M6) cannot select another
   // offset: TURRET/1,21 for the finish would run on the roughing offset without a word.
   // A channel whose every move goes through its chain writes the offset itself, in the length
@@ -135,12 +135,11 @@ void channel_writer::tool(const tool_event& t, int line) {
   }();
   if (t.offset && *t.offset != t.tool && !chain_offset &&
       ch_.tool_call.find("{offset") == std::string::npos) {
-    tool_ = t.tool;  // the post has failed: its moves need no second error for a missing tool
-    return error(line,
-                 fmt::format("{} asks for tool {} on offset {}, but the channel's tool call {} writes no "
-                             "offset (channel.tool_call has no {{offset}}): the tool would cut on "
-                             "whatever offset is active",
-                             word, t.tool, *t.offset, call));
+    error(line, fmt::format("{} asks for tool {} on offset {}, but the channel's tool call {} writes no "
+                            "offset (channel.tool_call has no {{offset}}): the tool would cut on "
+                            "whatever offset is active",
+                            word, t.tool, *t.offset, call));
+    return take_tool(t.tool, line, word);
   }
   if (t.tool == tool_) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
@@ -151,20 +150,17 @@ void channel_writer::tool(const tool_event& t, int line) {
     }
     return;
   }
-  if (!block_fits(call)) {  // T12345 on a four-digit T: the tool does not exist
-    tool_ = t.tool;         // (the post has failed; no second error at its moves)
-    return;
-  }
+  if (!block_fits(call)) return take_tool(t.tool, line, word);  // T12345 on a four-digit T
   // Coolant off before the turret leaves the part and indexes, home X then Z, the call, and
   // the coolant the CL left on back on for the new tool (public Fanuc posts: M9, G28 U0.,
   // G28 W0., T0202, then coolant once the tool is there; docs/machines.md).
   const std::string coolant_was = coolant_block_;
   const std::string coolant_off_was = coolant_off_block_;
   if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_) {
-    spindle_block(fmt::format("M{}", spindle_->stop));
+    spindle_block(fmt::format("M{}", spindle_->stop), true);
     spindle_held_ = true;
   }
-  if (!coolant_was.empty()) out_.block(coolant_off_was);
+  if (!coolant_was.empty()) coolant_block(coolant_off_was, true);
   go_home();
   forget_axes();
   motion_g_ = -1;
@@ -174,15 +170,22 @@ void channel_writer::tool(const tool_event& t, int line) {
     out_.block(work_->work_offset);
     offset_due_ = false;
   }
-  if (!coolant_was.empty()) out_.block(coolant_was);
-  tool_ = t.tool;
+  if (!coolant_was.empty()) coolant_block(coolant_was, false);
   tool_call_ = call;
+  after_index_ = true;
+  take_tool(t.tool, line, word);
+}
+
+void channel_writer::take_tool(int tool, int line, const char* word) {
+  unstarted_judged_ = false;
+  diameter_ = next_diameter_;
+  next_diameter_.reset();
+  tool_ = tool;
   tool_line_ = line;
   tool_word_ = word;
   kind_ = next_kind_;
   next_kind_ = tool_kind::unknown;
-  after_index_ = true;
-  table_kind(t.tool, line);
+  table_kind(tool, line);
   after_call_ = true;
 }
 

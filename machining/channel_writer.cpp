@@ -5,11 +5,33 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <initializer_list>
+#include <string_view>
 
 #include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
 
 namespace twinpost {
+
+namespace {
+// The last of `codes` (whole words, "" ignored) the header blocks give, in order; "" if none.
+// A word is an address letter and the digits and point after it ("G18G21" holds G18, G170
+// does not).
+std::string header_modal(const std::vector<std::string>& header,
+                         std::initializer_list<std::string_view> codes) {
+  std::string found;
+  for (const std::string& block : header)
+    for (std::size_t at = 0; at < block.size();) {
+      std::size_t end = at + 1;
+      while (end < block.size() && ((block[end] >= '0' && block[end] <= '9') || block[end] == '.')) ++end;
+      const std::string_view word = std::string_view(block).substr(at, end - at);
+      for (std::string_view c : codes)
+        if (!c.empty() && word == c) found = c;
+      at = end;
+    }
+  return found;
+}
+}  // namespace
 
 channel_writer::channel_writer(const machine& m, const channel_def& ch, const std::string& path,
                                diagnostic_sink& diags, std::string cl_file, block_writer::framing frame)
@@ -27,10 +49,13 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   // Mill/turn needs the machine's [milling] table (how it holds C, its modes): a C axis on a
   // machine without one (fanuc-31i-3path's mill head) is not driven by the post yet.
   has_c_ = ch.axis('C') != nullptr && m.milling.present();
-  // The plane in force after the header (G18 on a lathe, G17 on a mill).
-  for (const std::string& block : m.program.header)
-    for (const char* g : {"G17", "G18", "G19"})
-      if (block.find(g) != std::string::npos) plane_ = (g[2] - '0') + 10;
+  // The plane in force after the header (G18 on a lathe, G17 on a mill), and its feed mode
+  // (the Fanuc lathes' safe start ends in G99, the mills' has G94): the first FEDRAT in that
+  // mode writes no second G99 right after it.
+  const std::string plane = header_modal(m.program.header, {"G17", "G18", "G19"});
+  if (!plane.empty()) plane_ = (plane[2] - '0') + 10;
+  feed_g_ = header_modal(m.program.header, {m.codes.feed_per_rev, m.codes.feed_per_min});
+  per_rev_ = !feed_g_.empty() && feed_g_ == m.codes.feed_per_rev;
   spindle_ = work_ = m.spindle(ch.spindle);
   if (work_) {
     z_sign_ = work_->reverse_z ? -1.0 : 1.0;
@@ -85,6 +110,7 @@ void channel_writer::note_line(std::string_view line) {
 }
 
 void channel_writer::error(int line, std::string message) {
+  ++errors_;
   diagnostic d;
   d.file = cl_file_;
   d.line = line;
@@ -258,10 +284,7 @@ void channel_writer::process_event(const event& e, bool both) {
         else if constexpr (std::is_same_v<T, stop_event>) {
           program_stop(d.optional);
         } else if constexpr (std::is_same_v<T, cutcom_event>) {
-          // Mirroring X turns the tool's left into its right, as it turns G2 into G3.
-          bool left = d.side == "LEFT", right = d.side == "RIGHT";
-          if (mirrored()) std::swap(left, right);
-          pending_g_ = left ? "G41" : right ? "G42" : d.side == "OFF" ? "G40" : "";
+          cutcom(d, e.line);
         } else if constexpr (std::is_same_v<T, cycle_event>) {
           // Threading and grooving go to channel_thread.cpp, drilling and tapping to
           // channel_cycles.cpp. A refused cycle has stopped the post: its points are passed
@@ -292,11 +315,15 @@ void channel_writer::process_event(const event& e, bool both) {
                                              wait_range_text(m_.waits)));
           std::string b = fmt::format("{}{}", address, d.code);
           if (block_fits(b)) out_.block(b);
+          spindle_ended_.clear();  // what the code does to the spindle or the coolant is not known
+          coolant_ended_.clear();
         } else if constexpr (std::is_same_v<T, text_event>) {
-          if (d.kind == text_kind::insert)
+          if (d.kind == text_kind::insert) {
             out_.raw(d.text);
-          else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint ||
-                   d.kind == text_kind::op_start || d.kind == text_kind::toolpath)
+            spindle_ended_.clear();  // the user's text may turn either on again
+            coolant_ended_.clear();
+          } else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint ||
+                     d.kind == text_kind::op_start || d.kind == text_kind::toolpath)
             out_.comment(d.text);
         } else if constexpr (std::is_same_v<T, tool_axis_event>) {
           axis_ = d.axis;
@@ -347,17 +374,37 @@ void channel_writer::finish() {
   if (spindle_ && !restart_blocks_.empty() && !spindle_held_) {
     const std::string stop = fmt::format("M{}", spindle_->stop);
     const auto& footer = m_.program.footer;
-    if (std::find(footer.begin(), footer.end(), stop) == footer.end()) out_.block(stop);
+    if (std::find(footer.begin(), footer.end(), stop) == footer.end()) spindle_block(stop, true);
   }
   // Likewise the coolant: the footer's M9 does not turn off through-tool (M109, Mazak M163)
   // or air coolant, which would blow through the final retract.
   if (!coolant_block_.empty()) {
     const auto& footer = m_.program.footer;
     if (std::find(footer.begin(), footer.end(), coolant_off_block_) == footer.end())
-      out_.block(coolant_off_block_);
+      coolant_block(coolant_off_block_, true);
   }
   leave_c_axis();  // the next program starts with a turning spindle
+  // Cuts on a shared spindle this channel had not started: now that the whole job is read, an
+  // error where no other channel starts that spindle at all (its own later start comes after
+  // the cut).
+  for (const unstarted_cut& c : unstarted_)
+    if (!job_spindles_->started_by_other(c.spindle, ch_.number)) {
+      diagnostic d;
+      d.file = cl_file_;
+      d.line = c.line;
+      d.column = c.column;
+      d.source_line = c.source;
+      d.message = fmt::format("channel {}: {}", ch_.number, not_started(m_.spindles[c.spindle], true));
+      diags_.report(std::move(d));
+    }
   out_.close();
+}
+
+std::vector<std::string> channel_writer::footer_in_force() const {
+  std::vector<std::string> v;
+  if (!coolant_ended_.empty()) v.push_back(coolant_ended_);
+  if (!spindle_ended_.empty()) v.push_back(spindle_ended_);
+  return v;
 }
 
 }  // namespace twinpost

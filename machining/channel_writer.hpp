@@ -7,6 +7,7 @@
 // Lengths are written in the machine file's output units (mm or inch): the CL's are converted
 // on the way.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,25 @@
 #include "support/diagnostics.hpp"
 
 namespace twinpost {
+
+/// What the channels of one job do to the machine's spindles, shared by their writers: which
+/// spindle some channel starts (a speed) anywhere in the job. A channel that cuts on a shared
+/// spindle it does not start itself relies on another's start (analysis/shared_resources
+/// orders the two); one that no channel ever starts is an error at the end of the job.
+struct job_spindles {
+  /// Per machine spindle (index into machine::spindles), per channel (number - 1): whether
+  /// that channel starts it somewhere in the job.
+  std::vector<std::vector<char>> started;
+  /// Whether a channel other than `channel` starts spindle `index` somewhere in the job.
+  bool started_by_other(std::size_t index, int channel) const {
+    for (std::size_t c = 0; c < started[index].size(); ++c)
+      if (started[index][c] && static_cast<int>(c) + 1 != channel) return true;
+    return false;
+  }
+  /// The CL source line `line` while its record is being written (for a diagnostic given
+  /// later, at the end of the job); may be empty.
+  std::function<std::string(int line)> quote;
+};
 
 class channel_writer {
  public:
@@ -43,9 +63,16 @@ class channel_writer {
   /// workpiece); the S code in path 1's program only as the issue reports the Fanuc manuals,
   /// UNVERIFIED in the pages read.
   void set_balance_master(const channel_writer* master) { balance_master_ = master; }
+  /// The job's record of spindle starts, shared by all its writers (see job_spindles); without
+  /// one a cut on a spindle this channel has not started is an error at once.
+  void share_spindles(job_spindles* j) { job_spindles_ = j; }
   void on_wait(const wait_mark& w);
   /// Ends the body: coolant and spindle off are the footer's job; closes the file.
   void finish();
+  /// The footer blocks the channel's end already has in force: its last coolant-off and
+  /// spindle-stop blocks, when nothing turned the coolant or the spindle on after them
+  /// (program_layout's frame_tail leaves them out, so no M9 or M5 is written twice).
+  std::vector<std::string> footer_in_force() const;
   long blocks() const { return out_.blocks(); }
   const std::string& head_written() const { return out_.head_written(); }
   int waits() const { return waits_; }
@@ -89,6 +116,10 @@ class channel_writer {
   void transfer(const transfer_event& t, int line);
   void feed(const feed_event& f, int line);
   void tool(const tool_event& t, int line);
+  /// Tool `tool` (called by `word` at `line`) is the one in the spindle from now on, its kind
+  /// from TLDATA or the tool table; also after a refused call (the post has failed, but the
+  /// records after it are judged with the tool the CL called, without errors that follow).
+  void take_tool(int tool, int line, const char* word);
   /// One hole of the cycle in force at CL point `p` (channel_cycles.cpp).
   void cycle_point(const vec3& p, int line);
   /// CSYS (SolidWorks CAM): only the identity frame is posted; any other is an error.
@@ -111,8 +142,22 @@ class channel_writer {
   void go_home();
   /// The spindle stopped for a tool change turns again (before the first move after it).
   void resume_spindle(int line);
-  /// False (with the error) when this channel's SPINDL/OFF stopped the spindle it feeds on.
+  /// False (with the error) when the spindle a feed move cuts on is not known to turn: this
+  /// channel's SPINDL/OFF stopped it, or no SPINDL started it (unless the tool needs none,
+  /// [[tool]] spindle = false, or another channel may start a shared one: judged at finish()).
   bool spindle_turning(int line);
+  /// The index of spindle `s` in the machine's spindles.
+  std::size_t spindle_index(const spindle_def& s) const {
+    return static_cast<std::size_t>(&s - m_.spindles.data());
+  }
+  /// The error for a cut on spindle `s` that nothing started: in this channel, or (`job`) in
+  /// any channel of the job.
+  std::string not_started(const spindle_def& s, bool job) const;
+  /// Notes in the job's record that this channel starts the spindle in force.
+  void note_start();
+  /// Why an axial hole off the centre line cannot be drilled here, and what would drill it:
+  /// the live tool with the part held as C on a mill/turn channel, nothing on a plain lathe's.
+  std::string off_centre_hole_needs() const;
   /// The error for a move before any tool call in this channel.
   void no_tool(int line);
   /// COOLNT: flood (ON, FLOOD) writes the machine's coolant-on block, MIST, THRU and AIR their
@@ -146,6 +191,11 @@ class channel_writer {
   /// After a thread: the feed mode in force before it again (written only if one was).
   void restore_feed_mode(bool had_mode, bool per_rev);
   void linear(bool rapid, double x_cl, double y_cl, double z_cl, int line);
+  /// CUTCOM: G41/G42 (swapped where the frame turns the plane over, sense_reversed) with the
+  /// D register codes.cutcom_offset says, or G40, for the next move.
+  void cutcom(const cutcom_event& c, int line);
+  /// True when G41 or G42 (with its D word) waits for the next move.
+  bool comp_starting() const { return pending_g_.starts_with("G41") || pending_g_.starts_with("G42"); }
   // Mill/turn (machining/channel_millturn.cpp): live tools on a channel with a C axis.
   /// True while a live tool turns on a channel with a C axis (the workpiece spindle is held).
   bool live_tool() const;
@@ -306,6 +356,10 @@ class channel_writer {
   double nc_z(double z_cl) const { return z_cl * scale_ * z_sign_; }
   /// True when this channel's X runs against the CL (a mirrored turret, not a BOTH copy).
   bool mirrored() const { return x_factor_ * side_ < 0; }
+  /// True when the channel's frame turns the sense of rotation in plane `plane` (17, 18, 19)
+  /// over: a mirrored X, a reversed Z (the sub spindle), not both. G2/G3 swap there, and so
+  /// do G41/G42 (the tool's left of the path becomes its right): one rule for both.
+  bool sense_reversed(int plane) const;
   /// Writes the feed-mode code (G99/G98 or G95/G94) when it changes.
   void feed_mode(bool per_rev);
 
@@ -382,10 +436,41 @@ class channel_writer {
   /// last speed, mode and direction), also after SPINDL/OFF.
   std::optional<spindle_event> last_speed_;
   /// A block that commands the spindle: not written by a balance cut's copy (set_balance_master).
-  void spindle_block(const std::string& b) {
-    if (!balance_copy_) out_.block(b);
+  /// `stop`: the block stops it (it stays in force for footer_in_force until the next one).
+  void spindle_block(const std::string& b, bool stop = false) {
+    if (balance_copy_) return;
+    out_.block(b);
+    spindle_ended_ = stop ? b : std::string();
   }
+  /// A coolant block; `off`: it turns the coolant off (in force for footer_in_force until the
+  /// next coolant block).
+  void coolant_block(const std::string& b, bool off) {
+    out_.block(b);
+    coolant_ended_ = off ? b : std::string();
+  }
+  /// The spindle stop and coolant off blocks this channel wrote last and that are still in
+  /// force (nothing turned them on again, no AUXFUN or INSERT since): the footer need not
+  /// write them a second time.
+  std::string spindle_ended_, coolant_ended_;
   const channel_writer* balance_master_ = nullptr;
+  job_spindles* job_spindles_ = nullptr;
+  /// A cut on a shared spindle this channel had not started: an error at finish() when no
+  /// channel starts that spindle anywhere in the job.
+  struct unstarted_cut {
+    std::size_t spindle = 0;
+    int line = 0, column = 0;
+    std::string source;  ///< the CL line, quoted in the error
+  };
+  std::vector<unstarted_cut> unstarted_;
+  /// The cuts since the last spindle or tool record have been judged (one report a stretch).
+  bool unstarted_judged_ = false;
+  bool unstarted_ok_ = true;  ///< and what was found
+  int errors_ = 0;            ///< errors this writer reported
+  /// Tool diameters (mm) from TLDATA/MILL or CUTTER: of the tool in the spindle, of the next.
+  std::optional<double> diameter_, next_diameter_;
+  /// The rpm a surface speed gives a rotating tool of the machine's tool or the CL's diameter;
+  /// nullopt after the error.
+  std::optional<double> tool_rpm(const spindle_event& s, const spindle_def& sp, int line);
   bool balance_copy_ = false;  ///< the event being written is the copy of a HEAD/BOTH section
   /// The spindle was stopped for a tool change: restart_blocks_ go out again before the next
   /// move unless a SPINDL comes first.

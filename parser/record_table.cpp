@@ -86,7 +86,8 @@ const event_builder::rule_index& event_builder::rules() {
               "identity stops the post (its points would be posted in the wrong frame)",
               &b::on_coordsys),
       posted("CUTCOM", &b::on_cutcom,
-             "G41/G42/G40 on the next move (left and right swap on a mirrored turret)"),
+             "G41/G42/G40 on the next move (left and right swap on a mirrored turret and on the Z-reversed "
+             "sub spindle, as G2/G3 do), with the D register codes.cutcom_offset says"),
       ignored("CUTCOM_GEOMETRY_TYPE",
               "Creo's note of which point of the tool the path follows (OUTPUT_ON_CENTER); the points are "
               "posted as they are"),
@@ -243,10 +244,12 @@ const event_builder::rule_index& event_builder::rules() {
              "the tool axis of later moves and drilling cycles: no block; on a channel with a kinematic "
              "chain the next GOTO turns the rotary axes to it; a drilling cycle or an arc with the rotary "
              "axes off 0, or a move on a channel without a chain, under an axis not along Z is an error"),
-      posted("TLDATA", &b::on_tool_data,
-             "the tool's kind (NX: TLDATA/MILL, DRILL, TURN) chooses the spindle on a channel with a live "
-             "spindle (milling and off-centre drilling: the live one); no block. The geometry is for the "
-             "CAM's simulation"),
+      posted(
+          "TLDATA", &b::on_tool_data,
+          "the tool's kind (NX: TLDATA/MILL, DRILL, TURN) chooses the spindle on a channel with a live "
+          "spindle (milling and off-centre drilling: the live one); no block. TLDATA/MILL's diameter turns "
+          "a surface speed into rpm; the rest of the geometry is for the CAM's simulation (and the length "
+          "for multi-axis output)"),
       posted("TOOL PATH", &b::on_text<text_kind::toolpath>, "a comment naming the NX operation and its tool"),
       ignored("TOOLNO",
               "CATIA's tool number and kind, repeated by the LOADTL that calls the tool, which is "

@@ -60,6 +60,7 @@ class counting_sink : public diagnostic_sink {
 class writers_sink : public channel_sink {
  public:
   std::vector<std::unique_ptr<channel_writer>> writers;  // index = channel - 1
+  job_spindles spindles;                                 // the starts all writers note
   std::string partno;
   const machine* m = nullptr;
   diagnostic_sink* diags = nullptr;
@@ -170,7 +171,9 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
       return frame_head(named_request(req, ws), ch, seq);
     };
     frame.tail = [&req, &ws, &ch](sequence_numbers& seq) {
-      return frame_tail(named_request(req, ws), ch, seq);
+      // Asked for when the channel's writer closes its file: it exists and knows its end.
+      const channel_writer& w = *ws.writers[static_cast<std::size_t>(ch.number - 1)];
+      return frame_tail(named_request(req, ws), ch, seq, w.footer_in_force());
     };
     frame.name = [&req, &ws, &ch, &o] {
       return (fs::path(o.out_dir) / frame_file_name(named_request(req, ws), ch)).string();
@@ -178,6 +181,8 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     ws.writers.push_back(
         std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
   }
+  ws.spindles.started.assign(m.spindles.size(), std::vector<char>(m.channels.size(), 0));
+  for (auto& w : ws.writers) w->share_spindles(&ws.spindles);
   // Under HEAD/BOTH the channel of head 1 commands the spindle; the other's copy follows it.
   if (const channel_def* master = m.channel_for_head(1))
     for (auto& w : ws.writers)
@@ -373,6 +378,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   cl_reader reader(src, posting_reader(o), sink);  // lives to the end: later messages quote its lines
   sink.reader = &reader;
   sink.file = o.cl_path;
+  ws.spindles.quote = [&reader](int line) { return std::string(reader.source_line(line)); };
   const stream_totals t = stream_job(o, reader, router);
   router.finish(t.last_line);
   for (auto& w : ws.writers) w->finish();

@@ -90,13 +90,13 @@ TEST_CASE("Fanuc lathe canned cycles: G83 face drilling, R from the initial leve
           "G0 X0. Z25.\nG98\nG83 X0. Z-4. R-22. P500 F120.\nG80\nG0 Z25.\n");
     // DEEP: pecks of Q (least increments, no point) with the full retract of parameter RTR.
     CHECK(cycle_blocks(apt_head + deep, m, "f-deep") ==
-          "G0 X0. Z25.\nG99\nZ2.\nG83 X0. Z-12. R0. Q5000 F0.1\nG80\nG0 Z2.\n");
+          "G0 X0. Z25.\nZ2.\nG83 X0. Z-12. R0. Q5000 F0.1\nG80\nG0 Z2.\n");
     // DEEP2 (chip breaking): G73 is pattern repeating in system A, so the pecks are moves.
     CHECK(cycle_blocks(sw_head + deep2, m, "f-deep2") ==
           "G0 X0. Z25.\nG98\nZ3.\nG1 Z-2. F110.\nG0 Z-1.5\nG1 Z-7.\nG0 Z-6.5\nG1 Z-12.\nG0 Z25.\n");
     // Rigid tapping: feed per revolution, M29 S, G84 at F = pitch, the spindle and feed mode again.
     CHECK(cycle_blocks(sw_head + tap, m, "f-tap") ==
-          "G0 X0. Z25.\nG99\nM29 S1000\nG84 X0. Z-12. R-20. F1.25\nG80\nG0 Z25.\nG97 S1000 M3\nG98\n");
+          "G0 X0. Z25.\nM29 S1000\nG84 X0. Z-12. R-20. F1.25\nG80\nG0 Z25.\nG97 S1000 M3\n");
   }
 }
 
@@ -136,7 +136,7 @@ TEST_CASE("expanded cycles: plain moves, a dwell block, and a tap on synchronise
   CHECK(cycle_blocks(sw_head + dwell, m, "e-dwell") ==
         "G0 X0. Z25.\nG98\nZ3.\nG1 Z-4. F120.\nG4 U0.5\nG0 Z25.\n");
   CHECK(cycle_blocks(apt_head + deep, m, "e-deep") ==
-        "G0 X0. Z25.\nG99\nZ2.\nG1 Z-3. F0.1\nG0 Z2.\nZ-2.5\nG1 Z-8.\nG0 Z2.\nZ-7.5\nG1 Z-12.\nG0 Z2.\n");
+        "G0 X0. Z25.\nZ2.\nG1 Z-3. F0.1\nG0 Z2.\nZ-2.5\nG1 Z-8.\nG0 Z2.\nZ-7.5\nG1 Z-12.\nG0 Z2.\n");
   // The tap: rapid only to the R plane outside the hole, G32 in, M4 at the bottom, G32 out, M3.
   CHECK(cycle_blocks(sw_head + tap, m, "e-tap") ==
         "G0 X0. Z25.\nZ5.\nG32 Z-12. F1.25\nM4\nG32 Z5. F1.25\nM3\nG0 Z25.\n");
@@ -149,7 +149,7 @@ TEST_CASE("expanded cycles: plain moves, a dwell block, and a tap on synchronise
 TEST_CASE("a floating tap: the canned cycle without the rigid code", "[post][drill]") {
   const machine m = with("fanuc-0itd-twin", [](cycle_rules& c) { c.tap = "floating"; });
   CHECK(cycle_blocks(sw_head + tap, m, "floating") ==
-        "G0 X0. Z25.\nG99\nG84 X0. Z-12. R-20. F1.25\nG80\nG0 Z25.\nG98\n");
+        "G0 X0. Z25.\nG84 X0. Z-12. R-20. F1.25\nG80\nG0 Z25.\n");
 }
 
 TEST_CASE("tapping that cannot be done safely stops the post at the record", "[post][drill]") {
@@ -224,11 +224,14 @@ TEST_CASE("an inch tap with PITCH, an off-centre hole, a cycle code in the wait 
       "PARTNO DRL\nUNITS/INCHES\nLOADTL/1\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/0,0,1.\n"
       "CYCLE/TAP,DEPTH,0.5,PITCH,0.05,RAPTO,0.2\nGOTO/0,0,0\nCYCLE/OFF\nEND\n";
   CHECK(cycle_blocks(inch, load_machine("fanuc-0itd-twin"), "inch") ==
-        "G0 X0. Z25.4\nZ5.08\nG99\nM29 S1000\nG84 X0. Z-12.7 R0. F1.27\nG80\nG0 Z5.08\nG97 S1000 M3\nG98\n");
-  CHECK(errors_of(sw_head + "CYCLE/DRILL,FEDTO,5.,MMPM,100.,RAPTO,3.\nGOTO/10,0,0\nEND\n",
-                  load_machine("fanuc-0itd-twin"), "offcentre") ==
-        "job.cls:8:1: error: channel 1: CYCLE/DRILL at X 10 Y 0: off the spindle centre line; an axial hole "
-        "off centre needs a live tool and the C axis, which are not posted yet\nGOTO/10,0,0\n^\n");
+        "G0 X0. Z25.4\nZ5.08\nM29 S1000\nG84 X0. Z-12.7 R0. F1.27\nG80\nG0 Z5.08\nG97 S1000 M3\n");
+  CHECK(
+      errors_of(sw_head + "CYCLE/DRILL,FEDTO,5.,MMPM,100.,RAPTO,3.\nGOTO/10,0,0\nEND\n",
+                load_machine("fanuc-0itd-twin"), "offcentre") ==
+      "job.cls:8:1: error: channel 1: CYCLE/DRILL at X 10 Y 0: off the spindle centre line; channel 1 of "
+      "machine "
+      "'fanuc-0itd-twin' has no C axis with live tools (a C axis and [milling]): with the part turning, the "
+      "drill would cut a ring\nGOTO/10,0,0\n^\n");
   CHECK(test::machine_error_of(test::machine_head + test::two_channels +
                                "[cycles]\ntap = \"rigid\"\ntap_code = \"G84\"\nrigid_code = \"M101\"\n") ==
         "m.toml:15:14: error: cycles.rigid_code M101 lies in the wait range M100-M103 ([waits]); a program "

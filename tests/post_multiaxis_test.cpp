@@ -300,7 +300,7 @@ TEST_CASE("multi-axis: the trunnion in the vector form writes G43.5 with I J K t
       m, "ma-tv2");
   REQUIRE(p.ok);
   CHECK(p.files.at("VEC.nc") ==
-        "%\nO5002 (VEC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT04 M6\nS5000 M3\nG94\n"
+        "%\nO5002 (VEC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT04 M6\nS5000 M3\n"
         "G0 G43.5 H4 X0. Y0. Z20. I0. J0. K1.\nG1 X10. Z0. I0.258819 K0.965926 F500.\nY5.\nG49\nM9\nM5\n"
         "G91 G28 Z0.\nG90\nM30\n%\n");
 }
@@ -397,7 +397,7 @@ TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0",
   REQUIRE(q.ok);
   // B swings to 5 degrees and back (8 sub-moves each way, G93), then G94 for the arc.
   CHECK(q.files.at("MOVES.nc") ==
-        "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS5000 M3\nG94\n"
+        "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS5000 M3\n"
         "G0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 F400.\n"
         "X11.226 Z-0.095 B1.25 F400.\nX16.838 Z-0.214 B1.875 F400.\nX22.448 Z-0.381 B2.5 F400.\n"
         "X28.056 Z-0.595 B3.125 F400.\nX33.661 Z-0.856 B3.75 F400.\nX39.264 Z-1.166 B4.375 F400.\n"
@@ -459,7 +459,7 @@ TEST_CASE("multi-axis: no feed per revolution and no 2-D compensation under a ti
         "inverse-time "
         "feed (G93) needs a feed per minute (FEDRAT/MMPM)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
   CHECK(post_moves(m, "CUTCOM/LEFT\nGOTO/0,10,0,0,0.5,0.8660254\n", "ma-cc").diagnostics ==
-        "job.cls:10:1: error: channel 1: cutter compensation (G41) under the tool axis (0,0.5,0.866025): "
+        "job.cls:10:1: error: channel 1: cutter compensation (G41 D1) under the tool axis (0,0.5,0.866025): "
         "twinpost "
         "writes no 3-D compensation (G41.2/G42.2)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
 }
@@ -495,7 +495,7 @@ TEST_CASE("multi-axis: the records held with a rapid on the pole keep their orde
       "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
       "GOTO/40,40,5,0,0,1\nPPRINT APPROACH\nSPINDL/RPM,5000,CLW\n";
   const std::string tail = "GOTO/40,40,-5,0,0,1\nGOTO/40,40,-5,0.1736482,0,0.9848078\nFINI\n";
-  const std::string start = "%\nO5002 (POLE)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG94\n";
+  const std::string start = "%\nO5002 (POLE)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\n";
   const std::string end = "G49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n";
   // A comment and a spindle start are held with it: the rapid takes C90, they follow it.
   const test::posted held = test::post_in_fresh_dir(head + tail, m, "ma-pole-held");
@@ -516,14 +516,15 @@ TEST_CASE("multi-axis: the records held with a rapid on the pole keep their orde
                                             end);
   // A change of units releases it too: the rapid was given in millimetres (X40, not 40 inches).
   const test::posted units = test::post_in_fresh_dir(
-      "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
+      "PARTNO "
+      "POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nSPINDL/RPM,5000,CLW\nRAPID\n"
       "GOTO/40,40,5,0,0,1\nUNITS/INCHES\nGOTO/1.5748,1.5748,-0.19685,0,0,1\n"
       "GOTO/1.5748,1.5748,-0.19685,0.1736482,0,0.9848078\nFINI\n",
       m, "ma-pole-units");
   INFO(units.diagnostics);
   REQUIRE(units.ok);
   CHECK(units.files.at("POLE.nc") ==
-        start + "G0 G43.4 H1 X40. Y40. Z5. A0. C0.\nG1 Z-5. F1000.\nC90.\nA10.\n" + end);
+        start + "S5000 M3\nG0 G43.4 H1 X40. Y40. Z5. A0. C0.\nG1 Z-5. F1000.\nC90.\nA10.\n" + end);
 }
 
 TEST_CASE("multi-axis: a cut that reaches the pole turns the outer axis there before it leaves it",

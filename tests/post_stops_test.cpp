@@ -29,7 +29,7 @@ TEST_CASE("STOP writes M0 and starts the spindle and coolant again", "[post][sto
             "RAPID\nGOTO/20,0,5\nGOTO/20,0,-10\nSTOP\nGOTO/20,0,-20\nOPSTOP\nGOTO/20,0,-25\nFINI\n",
             "css") ==
         "%\nO1000 (STOPS)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S3000\nG96 S200 "
-        "M3\nM8\nG99\nG0 X40. Z5.\n"
+        "M3\nM8\nG0 X40. Z5.\n"
         "G1 Z-10. F0.2\nM0\nG50 S3000\nG96 S200 M3\nM8\nZ-20.\nM1\nG50 S3000\nG96 S200 M3\nM8\nZ-25.\n"
         "M100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
@@ -38,7 +38,7 @@ TEST_CASE("a stop with the spindle and coolant off writes the stop alone", "[pos
   CHECK(
       program_of("PARTNO STOPS\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nSPINDL/OFF\nSTOP\nFINI\n", "off") ==
       "%\nO1000 (STOPS)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S800 M3\nM5\nM0\nM100\nM9\n"
-      "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
+      "G28 U0.\nG28 W0.\nM30\n%\n");
 }
 
 TEST_CASE("a feed move after the channel's own SPINDL/OFF is an error at the move", "[post][stops]") {

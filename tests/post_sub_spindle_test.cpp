@@ -58,7 +58,7 @@ TEST_CASE("sub-spindle work on the Fanuc twin: G55, Z reversed, G2/G3 swapped, t
   const test::posted p = post_on(sub_job, "fanuc-0itd-twin", "fanuc-twin");
   CHECK(file_of(p, "SUB_2.nc") ==
         "%\nO1000 (SUB)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0303\nG55\nG50 S3000\nG96 S200 M103\n"
-        "G99\nG1 X54. Z-2. F0.2\nX50. Z1.\nZ14.\nG3 X52. Z15. I1. K0.\nM105\nM100\nM9\nG28 U0.\nG28 W0.\n"
+        "G1 X54. Z-2. F0.2\nX50. Z1.\nZ14.\nG3 X52. Z15. I1. K0.\nM105\nM100\nM9\nG28 U0.\nG28 W0.\n"
         "M5\nM30\n%\n");
 }
 
@@ -68,7 +68,7 @@ TEST_CASE("sub-spindle work on the Integrex: M902, G92 S.. R2, M303, in G55", "[
   CHECK(f.substr(f.find("G109 L2")) ==
         "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT0303\nG55\n"
         "M902\nG92 S3000 R2\nG96 S200 M303\nG95\nG1 X54. Z-2. F0.2\nX50. Z1.\nZ14.\nG3 X52. Z15. I1. K0.\n"
-        "M305\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
+        "M305\nM950\nM9\nM5\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
 }
 
 TEST_CASE("sub-spindle work on the 31i: the lower turret starts on the main spindle, SUB moves it",
@@ -76,7 +76,7 @@ TEST_CASE("sub-spindle work on the 31i: the lower turret starts on the main spin
   const test::posted p = post_on(sub_job, "fanuc-31i-3path", "31i");
   CHECK(file_of(p, "SUB_2.nc") ==
         "%\nO1000 (SUB)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0303\nG55\nG50 S3000\nG96 S200 M103\n"
-        "G99\nG1 X54. Z-2. F0.2\nX50. Z1.\nZ14.\nG3 X52. Z15. I1. K0.\nM105\nM200 P123\nM9\nG28 U0.\n"
+        "G1 X54. Z-2. F0.2\nX50. Z1.\nZ14.\nG3 X52. Z15. I1. K0.\nM105\nM200 P123\nM9\nG28 U0.\n"
         "G28 W0.\nM30\n%\n");
 }
 
@@ -88,10 +88,10 @@ TEST_CASE("an arc on the sub spindle swaps G2/G3 and negates K", "[post][sub]") 
   const test::posted sub =
       post_on("PARTNO A\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,500,CLW,SUB\n" + arc, "fanuc-0itd-twin", "arc-sub");
   CHECK(file_of(main, "A_1.nc") ==
-        "%\nO1000 (A)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S500 M3\nG99\n"
+        "%\nO1000 (A)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S500 M3\n"
         "G1 X40. Z-5. F0.2\nG3 X46. Z-8. I0. K-3.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   CHECK(file_of(sub, "A_1.nc") ==
-        "%\nO1000 (A)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG55\nG97 S500 M103\nG99\n"
+        "%\nO1000 (A)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG55\nG97 S500 M103\n"
         "G1 X40. Z5. F0.2\nG2 X46. Z8. I0. K3.\nM100\nM105\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
@@ -123,12 +123,12 @@ TEST_CASE("the part transfer on the Fanuc twin: home, waits, path 1's blocks, th
           "[post][sub]") {
   const test::posted p = post_on(transfer_job, "fanuc-0itd-twin", "xfer-fanuc");
   CHECK(file_of(p, "XFER_1.nc") ==
-        "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\nG99\n"
+        "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\n"
         "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nM9\nG28 U0.\nG28 W0.\nM100\nM169\nM213\nG0 G53 B#500\nM168\nM101\n"
         "M102\nM69\nG28 G53 B0.\nM205\nM100\nG55\nM101\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   CHECK(file_of(p, "XFER_2.nc") ==
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM100\nM101\nM102\nM100\nG55\n"
-        "G28 U0.\nG28 W0.\nT0303\nG97 S800 M103\nG99\nG1 X50. Z-2. F0.15\nZ10.\nM105\nM101\nM9\nG28 U0.\n"
+        "G28 U0.\nG28 W0.\nT0303\nG97 S800 M103\nG1 X50. Z-2. F0.15\nZ10.\nM105\nM101\nM9\nG28 U0.\n"
         "G28 W0.\nM5\nM30\n%\n");
 }
 
@@ -143,14 +143,14 @@ TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then 
         "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
         "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
         "M952\nM953\nG55\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT0303\nM902\nG97 S800 M303\nG95\n"
-        "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+        "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
         "M30\n%\n");
 }
 
 TEST_CASE("the part transfer on the 31i: the idle mill head waits and goes home too", "[post][sub]") {
   const test::posted p = post_on(transfer_job, "fanuc-31i-3path", "xfer-31i");
   CHECK(file_of(p, "XFER_1.nc") ==
-        "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\nG99\n"
+        "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\n"
         "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nM9\nG28 U0.\nG28 W0.\nM200 P123\nM169\nM213\nG0 G53 B#500\nM168\n"
         "M201 P123\nM202 P123\nM69\nG28 G53 B0.\nM205\nM204 P123\nG55\nM206 P123\nM9\nG28 U0.\nG28 W0.\n"
         "M30\n%\n");
@@ -301,7 +301,7 @@ TEST_CASE("a channel the machine file puts on the sub spindle starts in G55 with
       "S\nHEAD/2\nTURRET/3,3\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nGOTO/-20,0,2\nGOTO/-20,0,-5\nFINI\n",
       m, "starts-on-sub");
   CHECK(file_of(p, "S_2.nc") ==
-        "%\nO1000 (S)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0303\nG55\nG97 S800 M103\nG99\n"
+        "%\nO1000 (S)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0303\nG55\nG97 S800 M103\n"
         "G1 X40. Z-2. F0.2\nZ5.\nM100\nM105\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 

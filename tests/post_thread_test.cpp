@@ -83,7 +83,7 @@ std::vector<std::string> lines_starting(const std::string& text, const std::stri
 
 TEST_CASE("G76 two-block threading and G75 grooving on the Fanuc 0i-TD", "[post][thread]") {
   CHECK(body(load_machine("fanuc-0itd-twin"), thread_job + groove_job, "0i") ==
-        "G99\n"
+        ""
         "G0 X26. Z5.\n"
         "G76 P020060 Q50 R0.05\n"
         "G76 X18.16 Z-20. P920 Q350 F1.5\n"
@@ -95,7 +95,7 @@ TEST_CASE("G76 two-block threading and G75 grooving on the Fanuc 0i-TD", "[post]
 
 TEST_CASE("G92 boxes and expanded grooving on the Fanuc 31i", "[post][thread]") {
   CHECK(body(load_machine("fanuc-31i-3path"), thread_job + groove_job, "31i") ==
-        "G99\n"
+        ""
         "G0 X26. Z5.\n"
         "G92 X19.3 Z-20. F1.5\n"
         "G0 X26. Z4.916\n"
@@ -144,7 +144,7 @@ TEST_CASE("G276 writes P and Q in mm, G32 writes passes, multi-start is cut as s
       "RAPID\nGOTO/13,0,5\nCYCLE/THREAD,LEAD,3,STARTS,2,DEPTH,0.9,PASSES,3\n"
       "GOTO/9.1,0,-15\nCYCLE/OFF\n";
   CHECK(body(variant("g276"), two_starts, "g276") ==
-        "G99\n"
+        ""
         "G0 X26. Z5.\n"
         "G276 P010000 Q0. R0.\n"
         "G276 X18.2 Z-15. P0.9 Q0.52 F3.\n"
@@ -153,7 +153,7 @@ TEST_CASE("G276 writes P and Q in mm, G32 writes passes, multi-start is cut as s
         "G276 X18.2 Z-15. P0.9 Q0.52 F3.\n"
         "G0 X26. Z5.\n");
   CHECK(body(variant("g32"), two_starts, "g32") ==
-        "G99\nG0 X26. Z5.\n"
+        "G0 X26. Z5.\n"
         "X18.961\nG32 X18.961 Z-15. F3.\nG0 X26.\nZ5.\n"
         "X18.53\nG32 X18.53 Z-15. F3.\nG0 X26.\nZ5.\n"
         "X18.2\nG32 X18.2 Z-15. F3.\nG0 X26.\nZ5.\n"
@@ -183,7 +183,7 @@ TEST_CASE("THREAD/TURN passes are G32 moves at the lead, and the next feed move 
   CHECK(body(load_machine("fanuc-0itd-twin"),
              "RAPID\nGOTO/13,0,5\nTHREAD/TURN,LEAD,1.5\nRAPID\nGOTO/12.7,0,5\nGOTO/12.7,0,-20\nRAPID\n"
              "GOTO/13,0,-20\nRAPID\nGOTO/13,0,5\nTHREAD/OFF\nGOTO/12,0,4\n",
-             "turn") == "G99\nG0 X26. Z5.\nX25.4\nG32 Z-20. F1.5\nG0 X26.\nZ5.\nG1 X24. Z4. F0.2\n");
+             "turn") == "G0 X26. Z5.\nX25.4\nG32 Z-20. F1.5\nG0 X26.\nZ5.\nG1 X24. Z4. F0.2\n");
 }
 
 TEST_CASE("G76 and G92 cut the passes the G32 expansion writes", "[post][thread]") {

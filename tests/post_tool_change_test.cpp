@@ -34,7 +34,7 @@ TEST_CASE("a turret's tool change turns the coolant off, homes X then Z, and tur
       "GOTO/20,0,2\nGOTO/20,0,-10\nTURRET/3,3\nGOTO/15,0,2\nFINI\n",
       "fanuc-0itd-twin", "turret");
   CHECK(file_of(p, "TC_1.nc") ==
-        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\nG99\n"
+        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\n"
         "G1 X40. Z2. F0.2\nZ-10.\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG1 X30. Z2.\nM100\nM9\nG28 U0.\n"
         "G28 W0.\nM5\nM30\n%\n");
 }
@@ -45,7 +45,7 @@ TEST_CASE("COOLNT/ON after the tool change writes no second M8", "[post][tools]"
       "GOTO/20,0,2\nTURRET/3,3\nCOOLNT/ON\nGOTO/15,0,2\nFINI\n",
       "fanuc-0itd-twin", "again");
   CHECK(file_of(p, "TC_1.nc") ==
-        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\nG99\n"
+        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\n"
         "G1 X40. Z2. F0.2\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG1 X30. Z2.\nM100\nM9\nG28 U0.\nG28 W0.\n"
         "M5\nM30\n%\n");
 }
@@ -74,7 +74,7 @@ TEST_CASE("SPINDL/ON turns the spindle on again at the last speed and direction"
       "fanuc-0itd-twin", "on");
   CHECK(file_of(p, "TC_1.nc") ==
         "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S3000\nG96 S200 M4\n"
-        "G99\nG1 X40. Z2. F0.2\nM5\nG50 S3000\nG96 S200 M4\nZ-5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\n"
+        "G1 X40. Z2. F0.2\nM5\nG50 S3000\nG96 S200 M4\nZ-5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\n"
         "M30\n%\n");
 }
 
@@ -169,7 +169,7 @@ TEST_CASE("an offset the channel's tool call cannot write is an error, never the
   REQUIRE(r.ok);
   const std::string nc = r.files.at("TC.nc");
   CHECK(nc.substr(nc.find("T02")) ==
-        "T02 M6\nS1000 M3\nG94\nG0 G43 H5 X10. Y0. Z20. A0.\nG1 Z0. F300.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\n"
+        "T02 M6\nS1000 M3\nG0 G43 H5 X10. Y0. Z20. A0.\nG1 Z0. F300.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\n"
         "M30\n%\n");
 }
 

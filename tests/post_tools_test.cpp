@@ -24,7 +24,7 @@ TEST_CASE("the same tool under another offset writes the new offset without inde
   REQUIRE(s.ok);
   const std::string program = test::read_file(dir + "/out/TOOLS_1.nc");
   CHECK(program ==
-        "%\nO1000 (TOOLS)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG99\nG1 X40. "
+        "%\nO1000 (TOOLS)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG1 X40. "
         "Z5. F0.2\nZ-10.\n"
         "T0121\nX39. Z5.\nZ-10.\nZ5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   std::filesystem::remove_all(dir);

@@ -29,7 +29,7 @@ const std::string mm_job =
     "FEDRAT/500,MMPM\nGOTO/40,0,-60.8\nFINI\n";
 
 const std::string inch_program =
-    "%\nO1000 (INCH)\nG0 G18 G20 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S3000\nG96 S656 M3\nG99\n"
+    "%\nO1000 (INCH)\nG0 G18 G20 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S3000\nG96 S656 M3\n"
     "G0 X2. Z0.1\nG1 Z-2. F0.00787\nG3 X2.7874 Z-2.3937 I-1. K-0.3937\nG98\nG1 X3.1496 F19.69\nM100\nM9\n"
     "G28 U0.\nG28 W0.\nM5\nM30\n%\n";
 

@@ -154,7 +154,7 @@ TEST_CASE("NX CIRCLE TIMES,n is posted as n full circles", "[post][words]") {
   CHECK(p.diagnostics == "");
   REQUIRE(p.files.count("W_1.nc") == 1);
   CHECK(p.files.at("W_1.nc") ==
-        "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG99\nG1 X40. Z0. "
+        "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nG1 X40. Z0. "
         "F0.2\n"
         "G3 X40. Z0. I-10. K0.\nG3 X40. Z0. I-10. K0.\nG1 Z5.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   // Turns of a move that does not come back to its start cannot be cut as full circles.

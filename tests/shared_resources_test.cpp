@@ -174,11 +174,11 @@ TEST_CASE("post: under HEAD/BOTH only head 1's channel commands the spindle", "[
   REQUIRE(p.ok);
   CHECK(p.files.at("BOTHSUB_1.nc") ==
         "%\nO1000 (BOTHSUB)\nG0 G18 G21 G40 G54 G80 G99\nM200 P12\nG28 U0.\nG28 W0.\nT0101\nG50 S2000\n"
-        "G96 S200 M3\nM201 P12\nG68 P12\nG99\nG0 X72. Z2.\nG1 Z-30. F0.3\nG69\nM202 P12\nM5\nM204 P123\nM9\n"
+        "G96 S200 M3\nM201 P12\nG68 P12\nG0 X72. Z2.\nG1 Z-30. F0.3\nG69\nM202 P12\nM5\nM204 P123\nM9\n"
         "G28 U0.\nG28 W0.\nM30\n%\n");
   // Path 2: no S, M3, M103 or G96 in its copy, and G54: it cuts on the master's main spindle.
   CHECK(p.files.at("BOTHSUB_2.nc") ==
-        "%\nO1000 (BOTHSUB)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT1111\nG55\nG97 S800 M103\nG99\n"
+        "%\nO1000 (BOTHSUB)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT1111\nG55\nG97 S800 M103\n"
         "G1 X40. Z-2. F0.2\nZ10.\nM105\nM200 P12\nM201 P12\nG68 P12\nG54\nG0 X72. Z2.\nG1 Z-30. F0.3\nG69\n"
         "M202 P12\nM204 P123\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
 }
@@ -212,12 +212,12 @@ TEST_CASE("post: two heads setting the shared spindle differently are refused at
         "two "
         "blocks\n"
         "SPINDL/RPM,1200,CLW\n^\n"
-        "out/FIGHT_2.nc:9:1: note: the block in the program as it would have been written (no file is "
+        "out/FIGHT_2.nc:8:1: note: the block in the program as it would have been written (no file is "
         "written)\n"
         "G97 S1200 M3\n^\n"
         "job.cls:8:1: note: channel 1 sets the main spindle to G96 S200 M3 here\n"
         "SPINDL/SMM,200,MAXRPM,3000,CLW\n^\n"
-        "out/FIGHT_1.nc:10:1: note: the block in the program as it would have been written (no file is "
+        "out/FIGHT_1.nc:9:1: note: the block in the program as it would have been written (no file is "
         "written)\n"
         "G96 S200 M3\n^\n");
 }
