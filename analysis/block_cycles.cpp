@@ -14,8 +14,9 @@ namespace {
 
 // How far above the last depth a full-retract peck (G83) comes back in at rapid, and how far a
 // chip-breaking peck (G73) backs off, in mm: Fanuc parameters 5115 and 5114, set by the machine
-// builder. 0.5 mm is what twinpost's own expanded pecks use (formats/channel_cycles.cpp); the
-// time it stands for is a few milliseconds a peck. UNVERIFIED for any given machine.
+// builder. 0.5 mm is what twinpost's own expanded pecks use (the channel writer's
+// channel_cycles.cpp); the time it stands for is a few milliseconds a peck. UNVERIFIED for any
+// given machine.
 constexpr double peck_clearance_mm = 0.5;
 
 // More pecks or passes than any real cycle: a word that would make the loop run away.
