@@ -142,8 +142,7 @@ struct shared_resources::impl {
     per_rev = g_number(m.codes.feed_per_rev);
     for (auto [code, into] :
          {std::pair{&m.codes.balance_on, &balance_on}, {&m.codes.balance_off, &balance_off}})
-      if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && !w[0].expression)
-        if (double v = 0; number(w[0].value, v)) *into = std::pair{w[0].address, v};
+      if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && !w[0].expression) *into = w[0];
     per_min = g_number(m.codes.feed_per_min);
     const cycle_rules& cy = m.cycles;
     for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
@@ -165,10 +164,11 @@ struct shared_resources::impl {
   std::vector<bool> shared;  // per spindle: machine::shared_spindle
   // The first word of the balance-cut codes (Fanuc G68/G69, Mazak M562/M563): in a balance cut
   // the paths move together block by block, so a spindle command of one is where the other is.
-  std::optional<std::pair<char, double>> balance_on, balance_off;
-  /// The word (its number `v` already read) is the code.
-  static bool is_code(const nc_word& w, double v, const std::optional<std::pair<char, double>>& code) {
-    return code && w.address == code->first && v == code->second;
+  std::optional<nc_word> balance_on, balance_off;
+  bool is_word(const nc_word& w, const std::optional<nc_word>& code) const {
+    double x = 0, y = 0;
+    return code && w.address == code->address && !w.expression && number(w.value, x) &&
+           number(code->value, y) && x == y;
   }
   std::vector<diagnostic> refusals;
   std::vector<std::vector<std::vector<int>>> clocks;  // [channel][segment][channel]
@@ -243,8 +243,8 @@ struct shared_resources::impl {
         }
         if (per_rev && v == *per_rev) c.per_rev = true;
         if (per_min && v == *per_min) c.per_rev = false;
-        if (is_code(w, v, balance_on) || is_code(w, v, balance_off)) {
-          c.balance = is_code(w, v, balance_on);
+        if (is_word(w, balance_on) || is_word(w, balance_off)) {
+          c.balance = is_word(w, balance_on);
           c.has_use_key = false;
         }
         if (std::find(cycle_codes.begin(), cycle_codes.end(), v) != cycle_codes.end()) {
@@ -259,8 +259,8 @@ struct shared_resources::impl {
           // words of these blocks are no cut.
           no_move = true;
         }
-      } else if (w.address == 'M' && (is_code(w, v, balance_on) || is_code(w, v, balance_off))) {
-        c.balance = is_code(w, v, balance_on);
+      } else if (w.address == 'M' && (is_word(w, balance_on) || is_word(w, balance_off))) {
+        c.balance = is_word(w, balance_on);
         c.has_use_key = false;
       } else if (std::string_view("XYZUW").find(w.address) != std::string_view::npos && !axis_column) {
         axis_column = w.column;
