@@ -116,6 +116,8 @@ block_timer::block_timer(const machine& m, int channel)
     }
   add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
   add_codes(feed_min_, m.codes.feed_per_min, 'G');
+  for (const char* g : {"0", "1", "2", "3"})
+    plain_motion_codes_ = plain_motion_codes_ && !among(feed_rev_, g) && !among(feed_min_, g);
   // The tool call's address and how a number splits into tool and offset (T0303: tool 3).
   const std::string& call = ch_->tool_call;
   if (const std::size_t at = call.find("{tool"); at != std::string::npos && at > 0) {
@@ -171,6 +173,15 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     if (w.address != 'G') continue;
     if (w.expression) {
       untimed("G" + w.value);
+      continue;
+    }
+    // Most G words of a program are G0-G3: the motion, set without building the code.
+    if (plain_motion_codes_ && w.numeric &&
+        (w.number == 0 || w.number == 1 || w.number == 2 || w.number == 3)) {
+      static const std::string motion[] = {"0", "1", "2", "3"};
+      const std::string& g = motion[static_cast<int>(w.number)];
+      if (motion_ != g) set_motion(g);
+      end_cycle();
       continue;
     }
     const std::string g = code_of(w);
@@ -320,7 +331,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
         if (axes_[i].address != 'Z') axes_[i].value = target[i];
     return t;
   }
-  if (!moves && !(arc_words && (motion_ == "2" || motion_ == "3"))) return t;
+  if (!moves && !(arc_words && (motion_num_ == 2 || motion_num_ == 3))) return t;
   if (!t.untimed.empty()) {
     for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
     t.seconds = 0;
@@ -330,14 +341,14 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     untimed("move without G0/G1");
     return t;
   }
-  const double s = move_time(target, motion_ == "0", motion_code_, words, t);
+  const double s = move_time(target, motion_num_ == 0, motion_code_, words, t);
   for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
   if (!t.untimed.empty()) {
     t.seconds = 0;
     return t;
   }
   t.motion = s;
-  t.rapid = motion_ == "0";
+  t.rapid = motion_num_ == 0;
   t.seconds += s;
   return t;
 }
@@ -410,8 +421,9 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
   };
   const double x0 = x ? dia(x->value) : -1, x1 = x ? dia(target[xi]) : -1;
   double length = std::sqrt(linear2);
-  if (code == "G2" || code == "G3") {
-    length = arc_length(target, words, code == "G2");
+  const std::string_view c = code;  // compared by length first: no strlen per block
+  if (c == "G2" || c == "G3") {
+    length = arc_length(target, words, c == "G2");
     if (length < 0) {
       t.untimed = code + " without I/J/K or R";
       return 0;
@@ -428,7 +440,7 @@ double block_timer::feed_time(double length, double x0, double x1, block_timing&
     t.untimed = code + " without F";
     return 0;
   }
-  const bool thread = sync || code == "G32";
+  const bool thread = sync || std::string_view(code) == "G32";
   if (!per_rev_ && !thread) return length / feed_ * 60;
   // Per revolution: F units per turn at the spindle's rpm; under CSS the rpm follows the
   // diameter, so the move is summed in steps at each step's middle diameter.

@@ -64,12 +64,15 @@ class block_timer {
   bool incremental_ = false;
   bool inch_ = false;
   bool per_rev_ = false;
-  int plane_ = 18;           // 17, 18, 19
-  std::string motion_;       // modal motion: "0", "1", "2", "3", "32"; "": none yet
-  std::string motion_code_;  // the same as a code, "G1" (made once, not at every move)
+  int plane_ = 18;                  // 17, 18, 19
+  std::string motion_;              // modal motion: "0", "1", "2", "3", "32"; "": none yet
+  std::string motion_code_;         // the same as a code, "G1" (made once, not at every move)
+  bool plain_motion_codes_ = true;  // G0-G3 are only motions (no feed mode of the machine's)
+  int motion_num_ = -1;             // the same as a number (32 for G32/G33); -1: none yet
   void set_motion(const std::string& g) {
     motion_ = g;
     motion_code_ = "G" + g;
+    motion_num_ = std::stoi(g);
   }
   std::string cycle_;  // a modal cycle in force (G83, or G90 on a Fanuc lathe); "": none
   double feed_ = 0;
