@@ -36,6 +36,12 @@ void channel_writer::work_on(const spindle_def& s) {
   if (!s.work_offset.empty()) out_.block(s.work_offset);
 }
 
+void channel_writer::select_spindle(const spindle_def* s) {
+  if (!s || !s->select || s == selected_ || balance_copy_) return;  // a copy commands no spindle
+  spindle_block(fmt::format("M{}", *s->select));
+  selected_ = s;
+}
+
 void channel_writer::tool_data(const tool_data_event& t) {
   if (t.major != "TLDATA" || t.words.empty()) return;
   const std::string& w = t.words.front();
@@ -132,6 +138,9 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     if (!target) return;
   }
   if (!target) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
+  // The spindle the section works on is selected first (the Fusion Integrex post: M901/M902,
+  // then the C axis); a live tool works on the part held in the workpiece spindle.
+  if (s.mode != spindle_mode::on) select_spindle(target->select ? target : work_);
   // Mill/turn: a live tool holds the workpiece spindle as the C axis; a turning speed lets it go.
   if (has_c_ && s.mode != spindle_mode::off && s.mode != spindle_mode::on) {
     if (target != work_) {
@@ -140,10 +149,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
       leave_c_axis();
     }
   }
-  if (target != spindle_) {
-    spindle_ = target;
-    if (target->select) spindle_block(fmt::format("M{}", *target->select));
-  }
+  spindle_ = target;
   if (s.mode == spindle_mode::on) {
     // APT: ON turns the spindle on again at the last speed, mode and direction, never S0.
     if (!last_speed_)

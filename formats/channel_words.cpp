@@ -174,6 +174,10 @@ void channel_writer::tool(const tool_event& t, int line) {
     out_.block(work_->work_offset);
     offset_due_ = false;
   }
+  // Each section selects the spindle it works on, whatever an earlier one left selected (the
+  // Fusion "Mazak Integrex i" post writes M901 or M902 in every section's start): its SPINDL,
+  // or else its first move, writes the select code again.
+  selected_ = nullptr;
   if (!coolant_was.empty()) out_.block(coolant_was);
   tool_ = t.tool;
   tool_call_ = call;

@@ -71,6 +71,9 @@ class channel_writer {
   const spindle_def* spindle_for_tool(const spindle_event& s, int line);
   /// The channel works on workpiece spindle `s` from now on: its work offset, its Z sense.
   void work_on(const spindle_def& s);
+  /// The select code of `s` (Integrex M901 main, M902 second spindle), unless it is the last
+  /// one this channel wrote; a spindle without one (the live spindle) selects nothing.
+  void select_spindle(const spindle_def* s);
   /// False, after an error, when a drill turning with the part (on-centre axial drilling on
   /// the workpiece spindle) would feed off the centre line.
   bool drill_on_centre(double x_cl, int line);
@@ -337,15 +340,16 @@ class channel_writer {
   double cylinder_c_ = 0;       // the C written last in it, continuous (no wrap at 360)
   bool cylinder_comp_ = false;  // G41/G42 started in it and not yet ended
   std::pair<std::int64_t, std::int64_t> saved_x_limits_{INT64_MIN, INT64_MAX};
-  std::string pending_offset_;            // head_index.offset_* for the next move
-  bool after_index_ = false;              // a tool was called: its offset words are due
-  double c_cos_ = 1, c_sin_ = 0;          // of the C angle in force
-  std::optional<double> head_angle_;      // the indexing head's angle, once written
-  bool axes_free_ = false;                // B and C unclamped for tilted (multi-axis) moves
-  const spindle_def* spindle_ = nullptr;  // the spindle SPINDL codes go to (workpiece or live)
-  const spindle_def* work_ = nullptr;     // the workpiece spindle the channel works on (main, sub)
-  double z_sign_ = 1.0;                   // -1 on a spindle with reverse_z
-  bool offset_due_ = false;               // the work spindle's offset goes out after the first tool call
+  std::string pending_offset_;             // head_index.offset_* for the next move
+  bool after_index_ = false;               // a tool was called: its offset words are due
+  double c_cos_ = 1, c_sin_ = 0;           // of the C angle in force
+  std::optional<double> head_angle_;       // the indexing head's angle, once written
+  bool axes_free_ = false;                 // B and C unclamped for tilted (multi-axis) moves
+  const spindle_def* spindle_ = nullptr;   // the spindle SPINDL codes go to (workpiece or live)
+  const spindle_def* work_ = nullptr;      // the workpiece spindle the channel works on (main, sub)
+  double z_sign_ = 1.0;                    // -1 on a spindle with reverse_z
+  bool offset_due_ = false;                // the work spindle's offset goes out after the first tool call
+  const spindle_def* selected_ = nullptr;  // the spindle whose select code (M901/M902) went out last
   /// The tool's kind from TLDATA: what the workpiece spindle or the live one is for.
   enum class tool_kind : unsigned char { unknown, turn, mill, drill };
   tool_kind kind_ = tool_kind::unknown;       // of the tool in the spindle

@@ -528,6 +528,11 @@ TEST_CASE("validation: mill/turn keys go in pairs and name known choices and ind
             "[[channel]]\nnumber = 1\naxis = [{address = \"X\"}, {address = \"Z\"}, {address = \"B\", min = "
             "-30, max = 210}]\n[channel.head_index]\nmove = \"G0 G53\"\nradial = 270\n") ==
         "m.toml:11:10: error: channel.head_index.radial = 270 is outside the travel of axis B");
+  CHECK(error_of(
+            head +
+            "[[channel]]\nnumber = 1\naxis = [{address = \"X\"}, {address = \"Z\"}, {address = \"B\", min = "
+            "-30, max = 210}]\n[channel.head_index]\nmove = \"G0 G53\"\naxial_sub = -180\n") ==
+        "m.toml:11:13: error: channel.head_index.axial_sub = -180 is outside the travel of axis B");
 }
 
 TEST_CASE("validation: a C-axis code is no spindle code, and side-cycle cross holes need their codes",

@@ -137,7 +137,7 @@ TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then 
   const test::posted p = post_on(transfer_job, "integrex-i200st", "xfer-integrex");
   CHECK(file_of(p, "XFER.EIA") ==
         "%\nO1000(XFER)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT01 M6\nG92 S2500 R1\nG96 S180 M203\nG95\nM8\nM108\nG0 G53 B0.\nM107\n"
+        "G0 G90 G53 Z0.\nT01 M6\nM901\nG92 S2500 R1\nG96 S180 M203\nG95\nM8\nM108\nG0 G53 B0.\nM107\n"
         "G1 G43 P1 H#3020 X50. Y0. Z2. F0.2\nZ-20.\nM205\nM9\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
         "M950\nM540\nM306\nM511\nG0 G53 W#500\nM307\nM951\nM952\nM206\nG0 G53 W0.\nM513\nM541\n"
         "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
@@ -169,10 +169,10 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
   const std::string f = file_of(p, "TOOLS.EIA");
   CHECK(f.substr(0, f.find("G109 L2")) ==
         "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT01 M6\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM200\n"
+        "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
         "G10.9 X0\nG97 S3000 M3\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2.\nM5\nG13.1\n"
-        "G18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\nG10.9 X1\nM202\nM901\nG97 S900 M203\n"
+        "G18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\n"
         "G1 G43 H#3020 X0. Y0. Z5.\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n");
 }
@@ -206,7 +206,8 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
                                    "integrex-i200st", "unknown-css");
   CHECK(file_of(css, "E.EIA") ==
         "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
-        "T01 M6\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n"
+        "T01 M6\nM901\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "Z0.\nM30\n"
         "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n%\n");
 }
@@ -281,8 +282,8 @@ TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[p
   const std::string f = file_of(p, "E.EIA");
   CHECK(f.substr(0, f.find("M950")) ==
         "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT06 M6\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM200\n"
+        "G0 G90 G53 Z0.\nT06 M6\nM901\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
         "G10.9 X0\nG97 S3000 M3\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2.\n");
   const test::posted clash =
       post_on("PARTNO E\nHEAD/1\nTLDATA/TURN\nLOADTL/5\nSPINDL/RPM,800,CLW\nFINI\n", m, "table-clash");
@@ -329,4 +330,22 @@ TEST_CASE("TRANSFER/GRIP and TRANSFER/RELEASE come in pairs", "[post][sub]") {
         "job.cls:4:1: error: TRANSFER/GRIP with no TRANSFER/RELEASE after it: the programs would end with "
         "the part "
         "held by both spindles\n");
+}
+
+TEST_CASE("every section on the Integrex selects the spindle it works on, M901 or M902", "[post][sub]") {
+  // A section on the second spindle (M902), then one on the main spindle (M901 again), then a
+  // tool change with no SPINDL: its first move selects the main spindle once more, whatever an
+  // earlier section left selected (the Fusion "Mazak Integrex i" post: M901/M902 per section).
+  const test::posted p = post_on(
+      "PARTNO S\nHEAD/1\nTLDATA/TURN\nLOADTL/1\nSPINDL/RPM,800,CLW,SUB\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n"
+      "TLDATA/TURN\nLOADTL/2\nSPINDL/RPM,900,CLW,MAIN\nGOTO/20,0,2\nTLDATA/TURN\nLOADTL/3\nGOTO/25,0,2\n"
+      "FINI\n",
+      "integrex-i200st", "select");
+  const std::string f = file_of(p, "S.EIA");
+  CHECK(f.substr(0, f.find("M950")) ==
+        "%\nO1000(S)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nT01 M6\nG55\nM902\nG97 S800 M303\nG95\nM108\nG0 G53 B180.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z-2. F0.2\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nG54\nM901\n"
+        "G97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X40. Y0. Z2.\nM205\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nT03 M6\nM901\nG97 S900 M203\nG1 G43 P1 H#3020 X50. Y0. Z2.\n");
 }
