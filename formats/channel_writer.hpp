@@ -223,6 +223,12 @@ class channel_writer {
   /// `pose` (mm, part frame) by the forward transform; `inverse_f` > 0 writes G93 F<it>.
   bool write_point(bool rapid, const kin::joint_values& j, const kin::tool_pose& pose, double inverse_f,
                    int line);
+  /// Before a rapid to `j` (linear words `nc`) that turns a rotary axis, or the first from the
+  /// tool-change position or with the length offset (`force`: every word): the approach axis up
+  /// first if the point is higher, the rotary axes alone, then the two other linear axes; the
+  /// rapid itself then brings the tool down. Returns whether it wrote a block.
+  bool reposition_rotaries(const kin::joint_values& j, const kin::tool_pose& pose, const double nc[3],
+                           bool force);
   /// Before a feed move from a point with the tool along the outer rotary axis (the pole,
   /// where that axis's angle was kept) to one off it that needs the outer axis elsewhere:
   /// turns the outer axis first, with the tool where it is (`at`). The move then tilts the
@@ -409,6 +415,8 @@ class channel_writer {
   kin::joint_values joints_{};              ///< where the machine is (mm, degrees)
   kin::tool_pose pose_mm_{};                ///< the last CL pose, in mm
   bool pose_known_ = false;                 ///< false until the first GOTO (or FROM)
+  std::optional<vec3> last_cl_tip_;         ///< the tip of the last GOTO on the chain (mm, part frame)
+  std::optional<vec3> approach_from_;       ///< the one before it: where the move being written starts
   std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
   double tool_length_ = 0;                            ///< the length in use (mm)
   std::vector<std::pair<event, bool>> held_;          ///< records held at the pole, with `both`
