@@ -226,9 +226,21 @@ void channel_writer::transfer(const transfer_event& t, int line) {
       forget_axes();
       motion_g_ = -1;
       return;
-    case transfer_event::phase::blocks:
-      for (const std::string& b : t.release ? m_.transfer.release : m_.transfer.grip) out_.block(b);
+    case transfer_event::phase::blocks: {
+      // The blocks may set the feed mode, F and the motion (the grip's G98/G94 G1 approach):
+      // the channel's own mode goes back on at once and its next move writes G and F again,
+      // never a feed per revolution read per minute.
+      bool mode_set = false;
+      for (const std::string& b : t.release ? m_.transfer.release : m_.transfer.grip) {
+        out_.block(b);
+        for (const std::string* g : {&m_.codes.feed_per_min, &m_.codes.feed_per_rev})
+          mode_set = mode_set || (!g->empty() && b.find(*g) != std::string::npos);
+      }
+      if (mode_set && !feed_g_.empty()) out_.block(feed_g_);
+      last_f_.clear();
+      motion_g_ = -1;
       return;
+    }
     case transfer_event::phase::on_sub:
       // The next SPINDL selects the sub (M902 on the Integrex) and starts it.
       if (const spindle_def* sub = m_.spindle("sub")) work_on(*sub);

@@ -535,6 +535,27 @@ TEST_CASE("validation: mill/turn keys go in pairs and name known choices and ind
         "m.toml:11:13: error: channel.head_index.axial_sub = -180 is outside the travel of axis B");
 }
 
+TEST_CASE("validation: the grip's last move onto the part is a feed with its own F", "[machines]") {
+  // The sub spindle's chuck is open when it reaches the part: a rapid there (the old built-ins'
+  // "G0 G53 B#500") crashes the jaws into it at the first error in the position.
+  const std::string machine =
+      test::machine_head + test::two_channels +
+      "[[spindle]]\nname = \"main\"\n[[spindle]]\nname = \"sub\"\n[transfer]\nchannel = 1\n";
+  CHECK(error_of(machine + "grip = [\"M169\", \"G0 G53 B#500\", \"M168\"]\n") ==
+        "m.toml:18:8: error: transfer.grip brings the sub spindle onto the part with \"G0 G53 B#500\", a "
+        "rapid: its "
+        "chuck is open and the part is there; make the last move a feed with its own F (G1 ... F.. or a G31 "
+        "torque skip), after a rapid to a position short of the part");
+  CHECK(error_of(machine + "grip = [\"G0 G53 B#501\", \"G1 G53 B#500\"]\n") ==
+        "m.toml:18:8: error: transfer.grip brings the sub spindle onto the part with \"G1 G53 B#500\", a "
+        "feed with no "
+        "F of its own: its chuck is open and the part is there; make the last move a feed with its own F (G1 "
+        "... F.. or a G31 torque skip), after a rapid to a position short of the part");
+  CHECK(error_of(machine + "grip = [\"G0 G53 B#501\", \"G98 G1 G53 B#500 F500.\", \"M168\"]\n") ==
+        "(no error)");
+  CHECK(error_of(machine + "grip = [\"G0 B#501\", \"M86\", \"G31 P99 G53 B#500 F300.\"]\n") == "(no error)");
+}
+
 TEST_CASE("validation: a C-axis code is no spindle code, and side-cycle cross holes need their codes",
           "[machines]") {
   // The Fusion Doosan post's M35/M34 hold and free C, and its unique-M-code table gives them to
