@@ -111,9 +111,15 @@ void channel_writer::tool(const tool_event& t, int line) {
   a.offset = t.offset.value_or(t.tool);
   a.channel = ch_.number;
   const std::string call = format_template(ch_.tool_call, a);
+  // A B head on a Fanuc lathe system takes the tool's offset in a block of its own (T0707 after
+  // M6 T0700: the Fusion Doosan Mill/Turn post); a turret's call carries it (T0707).
+  const std::string offset_block =
+      ch_.offset_call.empty() ? std::string() : format_template(ch_.offset_call, a);
+  const bool names_offset = ch_.tool_call.find("{offset") != std::string::npos ||
+                            ch_.offset_call.find("{offset") != std::string::npos;
   // Offset 0 in a lathe tool call (T0300) cancels the tool's offset: the tip would run
   // where the turret's reference point is, not where the CL says.
-  if (a.offset == 0 && !ch_.offset_zero && ch_.tool_call.find("{offset") != std::string::npos) {
+  if (a.offset == 0 && !ch_.offset_zero && names_offset) {
     tool_ = t.tool;  // the post has failed: its moves need no second error for a missing tool
     return error(line,
                  fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
@@ -133,8 +139,7 @@ void channel_writer::tool(const tool_event& t, int line) {
         chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on;
     return !on.empty() && on.find('H') == std::string::npos;
   }();
-  if (t.offset && *t.offset != t.tool && !chain_offset &&
-      ch_.tool_call.find("{offset") == std::string::npos) {
+  if (t.offset && *t.offset != t.tool && !chain_offset && !names_offset) {
     tool_ = t.tool;  // the post has failed: its moves need no second error for a missing tool
     return error(line,
                  fmt::format("{} asks for tool {} on offset {}, but the channel's tool call {} writes no "
@@ -145,14 +150,16 @@ void channel_writer::tool(const tool_event& t, int line) {
   if (t.tool == tool_) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
     // turret stays where it is and only the offset changes, so the call goes out alone.
-    if (call != tool_call_ && block_fits(call)) {
-      out_.block(call, true);
-      tool_call_ = call;
+    const std::string& block = offset_block.empty() ? call : offset_block;
+    if (call + offset_block != tool_call_ && block_fits(block)) {
+      out_.block(block, true);
+      tool_call_ = call + offset_block;
     }
     return;
   }
-  if (!block_fits(call)) {  // T12345 on a four-digit T: the tool does not exist
-    tool_ = t.tool;         // (the post has failed; no second error at its moves)
+  if (!block_fits(call) ||
+      (!offset_block.empty() && !block_fits(offset_block))) {  // T12345 on a four-digit T
+    tool_ = t.tool;  // (the post has failed; no second error at its moves)
     return;
   }
   // Coolant off before the turret leaves the part and indexes, home X then Z, the call, and
@@ -169,6 +176,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   forget_axes();
   motion_g_ = -1;
   out_.block(call, true);
+  if (!offset_block.empty()) out_.block(offset_block);
   // A channel that starts on the sub spindle: its work offset once the tool is there.
   if (offset_due_) {
     out_.block(work_->work_offset);
@@ -180,7 +188,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   selected_ = nullptr;
   if (!coolant_was.empty()) out_.block(coolant_was);
   tool_ = t.tool;
-  tool_call_ = call;
+  tool_call_ = call + offset_block;
   tool_line_ = line;
   tool_word_ = word;
   kind_ = next_kind_;

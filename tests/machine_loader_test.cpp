@@ -144,7 +144,9 @@ TEST_CASE("built-in fanuc-31i-3path", "[machines]") {
   CHECK(m.name == "fanuc-31i-3path");
   CHECK(m.layout == layout_kind::split);
   REQUIRE(m.channels.size() == 3);
-  CHECK(m.channels[2].tool_call == "T{tool:02} M6");
+  // The B head: M6 T0700 changes the tool, T0707 takes its offset (the Fusion Doosan post).
+  CHECK(m.channels[2].tool_call == "M6 T{tool:02}00");
+  CHECK(m.channels[2].offset_call == "T{tool:02}{offset:02}");
   CHECK(m.channel_for_head(3) == &m.channels[2]);
   CHECK(m.waits.first == 200);
   CHECK(m.waits.last == 299);

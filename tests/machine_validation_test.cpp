@@ -535,6 +535,13 @@ TEST_CASE("validation: mill/turn keys go in pairs and name known choices and ind
         "m.toml:11:13: error: channel.head_index.axial_sub = -180 is outside the travel of axis B");
 }
 
+TEST_CASE("validation: a channel's offset call is a template of the tool call's placeholders", "[machines]") {
+  CHECK(error_of(head + "[[channel]]\nnumber = 1\n" + xz + "offset_call = \"T{tool:02}{name}\"\n") ==
+        "m.toml:9:15: error: channel.offset_call: template \"T{tool:02}{name}\" names {name}, which is not "
+        "known "
+        "there (it is given {channel}, {tool}, {offset})");
+}
+
 TEST_CASE("validation: the grip's last move onto the part is a feed with its own F", "[machines]") {
   // The sub spindle's chuck is open when it reaches the part: a rapid there (the old built-ins'
   // "G0 G53 B#500") crashes the jaws into it at the first error in the position.

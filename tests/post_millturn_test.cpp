@@ -447,7 +447,24 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
       load_machine("fanuc-31i-3path"), "sub-31i");
   INFO(f.diagnostics);
   const std::string nc = f.files.at("D_3.nc");
-  CHECK(nc.substr(nc.find("T04")) ==
-        "T04 M6\nG55\nG97 S700 M103\nG99\nG0 B90.\nG0 X0. Y0. Z-5.\nG1 Z10. F0.1\nM105\nG28 U0.\nG28 W0.\n"
-        "T05 M6\nG97 S900 M103\nG0 B0.\nG0 X40. Y0. Z-2.\nM200 P123\nM105\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+  CHECK(nc.substr(nc.find("M6 T04")) ==
+        "M6 T0400\nT0404\nG55\nG97 S700 M103\nG99\nG0 B90.\nG0 X0. Y0. Z-5.\nG1 Z10. F0.1\nM105\nG28 "
+        "U0.\nG28 W0.\n"
+        "M6 T0500\nT0505\nG97 S900 M103\nG0 B0.\nG0 X40. Y0. Z-2.\nM200 P123\nM105\nM9\nG28 U0.\nG28 "
+        "W0.\nM30\n%\n");
+}
+
+TEST_CASE("the 31i's B head changes the tool with M6 T0700 and takes its offset with T0707",
+          "[post][millturn]") {
+  // The Fusion Doosan Mill/Turn (31i) post: the tool change carries offset 00, the offset comes
+  // by the T code after it, as on the turrets; a new offset for the same tool is that T alone.
+  const test::posted p = post_on(
+      "PARTNO E\nHEAD/3\nTLDATA/TURN\nLOADTL/7\nSPINDL/RPM,900,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n"
+      "LOADTL/7,27\nGOTO/20,0,1\nFINI\n",
+      load_machine("fanuc-31i-3path"), "31i-offset");
+  INFO(p.diagnostics);
+  const std::string nc = p.files.at("E_3.nc");
+  CHECK(nc.substr(0, nc.find("M200")) ==
+        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM6 T0700\nT0707\nG97 S900 M3\nG99\n"
+        "G0 B0.\nG1 X40. Y0. Z2. F0.2\nT0727\nZ1.\n");
 }
