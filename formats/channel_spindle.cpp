@@ -37,9 +37,9 @@ void channel_writer::work_on(const spindle_def& s) {
 }
 
 void channel_writer::select_spindle(const spindle_def* s) {
-  if (!s || !s->select || s == selected_ || balance_copy_) return;  // a copy commands no spindle
-  spindle_block(fmt::format("M{}", *s->select));
-  selected_ = s;
+  if (!s || s == selected_ || balance_copy_) return;  // a copy commands no spindle
+  if (s->select) spindle_block(fmt::format("M{}", *s->select));
+  selected_ = s;  // also one without a code: the moves need not ask again
 }
 
 void channel_writer::tool_data(const tool_data_event& t) {
