@@ -260,6 +260,30 @@ void read_formats(const table_reader& root, word_formats& f, anchors& at) {
   }
 }
 
+// A dwell reads as the time it says whatever the control's decimal-point setting only as seconds
+// written with their point ({seconds} always has one: U2.) or as whole milliseconds in P, which
+// takes no point. A U or X of milliseconds (U2000) is 2 s or 2000 s by parameter 3401#0, and a
+// P of seconds (P2.) is refused or misread. "" when the template's dwell word is one of the two.
+std::string dwell_problem(std::string_view t) {
+  for (const std::string_view key : {std::string_view("{ms"), std::string_view("{seconds")}) {
+    const std::size_t at = t.find(key);
+    if (at == std::string_view::npos || at == 0 || !ascii::is_upper(t[at - 1])) continue;
+    const char address = t[at - 1];
+    if (key == "{ms" && address != 'P')
+      return fmt::format(
+          "codes.dwell \"{}\": {}{{ms}} writes {}2000 for 2 s, which a Fanuc reads as 2 s or 2000 s "
+          "by its decimal-point setting; write P{{ms}} (P is always milliseconds) or {}{{seconds}} "
+          "(written with its point)",
+          t, address, address, address);
+    if (key == "{seconds" && address == 'P')
+      return fmt::format(
+          "codes.dwell \"{}\": P{{seconds}} writes P2. for 2 s, but a Fanuc's P is milliseconds "
+          "without a point; write P{{ms}}, or U{{seconds}} / X{{seconds}}",
+          t);
+  }
+  return {};
+}
+
 void read_codes(const table_reader& root, control_codes& c) {
   const toml::table* t = root.sub_table("codes");
   if (!t) return;
@@ -273,6 +297,7 @@ void read_codes(const table_reader& root, control_codes& c) {
   r.read_fixed("feed_per_min", c.feed_per_min);
   r.read_fixed("home", c.home);
   r.read_template("dwell", c.dwell, template_uses::dwell);
+  if (const std::string why = dwell_problem(c.dwell); !why.empty()) r.fail(*r.find("dwell"), why);
   r.read_fixed("coolant_on", c.coolant_on);
   r.read_fixed("coolant_off", c.coolant_off);
   r.read_fixed("balance_on", c.balance_on);

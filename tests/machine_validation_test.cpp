@@ -535,6 +535,20 @@ TEST_CASE("validation: mill/turn keys go in pairs and name known choices and ind
         "m.toml:11:13: error: channel.head_index.axial_sub = -180 is outside the travel of axis B");
 }
 
+TEST_CASE("validation: a dwell word reads the same on every decimal-point setting", "[machines]") {
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 U{ms}\"\n") ==
+        "m.toml:7:9: error: codes.dwell \"G4 U{ms}\": U{ms} writes U2000 for 2 s, which a Fanuc reads as 2 s "
+        "or "
+        "2000 s by its decimal-point setting; write P{ms} (P is always milliseconds) or U{seconds} (written "
+        "with "
+        "its point)");
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 P{seconds}\"\n") ==
+        "m.toml:7:9: error: codes.dwell \"G4 P{seconds}\": P{seconds} writes P2. for 2 s, but a Fanuc's P is "
+        "milliseconds without a point; write P{ms}, or U{seconds} / X{seconds}");
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 X{seconds}\"\n" + two_channels) == "(no error)");
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 P{ms}\"\n" + two_channels) == "(no error)");
+}
+
 TEST_CASE("validation: a channel's offset call is a template of the tool call's placeholders", "[machines]") {
   CHECK(error_of(head + "[[channel]]\nnumber = 1\n" + xz + "offset_call = \"T{tool:02}{name}\"\n") ==
         "m.toml:9:15: error: channel.offset_call: template \"T{tool:02}{name}\" names {name}, which is not "
