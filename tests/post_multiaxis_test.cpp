@@ -278,6 +278,10 @@ TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on
   const machine m = load_machine("head-head-5axis");
   const round_trip r = read_back(sample_job("three-plus-two"), m, "ma-32");
   CHECK(r.cl_points == 15);
+  // X Y before Z at each plane's first point, and back to A0 B0: up to Z60 first, then the
+  // head turns alone (docs/machines.md, the approach). G53.1 turned the head without A B words,
+  // so the reader sees no rapid that turns one.
+  CHECK(r.repositions == 4);
   CHECK(r.sub_points == 0);
   CHECK(r.worst_tip <= 0.001);
   CHECK(r.worst_axis <= 0.002);
