@@ -187,6 +187,8 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
   for (const channel_def& c : m.channels) {
     const toml::table* t = channel_table(root, c.number);
     f.block(fmt::format("channel {}: tool_call", c.number), c.tool_call, key_of(t, "tool_call"), t);
+    if (!c.offset_call.empty())
+      f.block(fmt::format("channel {}: offset_call", c.number), c.offset_call, key_of(t, "offset_call"), t);
     const toml::table* h = t && t->get("head_index") ? t->get("head_index")->as_table() : nullptr;
     for (const auto& [key, block] : {std::pair{"unclamp", &c.head_index.unclamp},
                                      {"move", &c.head_index.move},

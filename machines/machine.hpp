@@ -105,6 +105,10 @@ struct channel_def {
   /// Tool call format, e.g. "T{tool:02}{offset:02}" or "T{tool} M6"; the file's channel
   /// `kind` (turret or mill_head) only chooses its default.
   std::string tool_call;
+  /// A block after the tool call that applies the tool's offset ({tool}, {offset}): a Fanuc
+  /// lathe-system B head changes the tool with M6 T0700, then takes its offset with T0707 (the
+  /// Fusion Doosan Mill/Turn post). Empty: the tool call does it all.
+  std::string offset_call;
   std::string spindle = "main";  ///< the spindle this channel works on at start
   /// The channel's tool-driving spindle (a mill head's milling spindle): milling tools, and
   /// drills off the centre line, turn it; empty: the channel has none.

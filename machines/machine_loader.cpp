@@ -260,6 +260,30 @@ void read_formats(const table_reader& root, word_formats& f, anchors& at) {
   }
 }
 
+// A dwell reads as the time it says whatever the control's decimal-point setting only as seconds
+// written with their point ({seconds} always has one: U2.) or as whole milliseconds in P, which
+// takes no point. A U or X of milliseconds (U2000) is 2 s or 2000 s by parameter 3401#0, and a
+// P of seconds (P2.) is refused or misread. "" when the template's dwell word is one of the two.
+std::string dwell_problem(std::string_view t) {
+  for (const std::string_view key : {std::string_view("{ms"), std::string_view("{seconds")}) {
+    const std::size_t at = t.find(key);
+    if (at == std::string_view::npos || at == 0 || !ascii::is_upper(t[at - 1])) continue;
+    const char address = t[at - 1];
+    if (key == "{ms" && address != 'P')
+      return fmt::format(
+          "codes.dwell \"{}\": {}{{ms}} writes {}2000 for 2 s, which a Fanuc reads as 2 s or 2000 s "
+          "by its decimal-point setting; write P{{ms}} (P is always milliseconds) or {}{{seconds}} "
+          "(written with its point)",
+          t, address, address, address);
+    if (key == "{seconds" && address == 'P')
+      return fmt::format(
+          "codes.dwell \"{}\": P{{seconds}} writes P2. for 2 s, but a Fanuc's P is milliseconds "
+          "without a point; write P{{ms}}, or U{{seconds}} / X{{seconds}}",
+          t);
+  }
+  return {};
+}
+
 void read_codes(const table_reader& root, control_codes& c) {
   const toml::table* t = root.sub_table("codes");
   if (!t) return;
@@ -273,6 +297,7 @@ void read_codes(const table_reader& root, control_codes& c) {
   r.read_fixed("feed_per_min", c.feed_per_min);
   r.read_fixed("home", c.home);
   r.read_template("dwell", c.dwell, template_uses::dwell);
+  if (const std::string why = dwell_problem(c.dwell); !why.empty()) r.fail(*r.find("dwell"), why);
   r.read_fixed("coolant_on", c.coolant_on);
   r.read_fixed("coolant_off", c.coolant_off);
   r.read_fixed("balance_on", c.balance_on);
@@ -367,6 +392,55 @@ void check_units_code(const table_reader& root, const machine& m, const anchors&
   root.fail_here(why);
 }
 
+// The grip's last move brings the sub spindle onto the part with its chuck open: a rapid there
+// crashes the jaws into the part at the first error in the grip position. It must be a feed with
+// its own F (G1 or a G31 torque skip), after a rapid to a position short of the part, as the
+// Fusion Doosan post's stock transfer writes it (G0 to the feed position, then G1 or G31 P99 to
+// the chuck position at the cycle's feed). "" when it is; else what is wrong.
+std::string grip_approach_problem(const std::vector<std::string>& grip) {
+  int motion = -1;  // the G0/G1/G31 in force in the grip (-1: the program's, unknown)
+  const std::string* last = nullptr;
+  int last_motion = -1;
+  bool last_f = false;
+  for (const std::string& block : grip) {
+    std::string b;
+    for (std::size_t i = 0, depth = 0; i < block.size(); ++i) {  // without comments
+      if (block[i] == '(') ++depth;
+      if (depth == 0) b += ascii::upper(block[i]);
+      if (block[i] == ')' && depth > 0) --depth;
+    }
+    if (b.starts_with("IF") || b.starts_with("#") || b.starts_with("WHILE")) continue;  // macro statements
+    bool axis = false, f = false;
+    for (std::size_t i = 0; i + 1 < b.size(); ++i) {
+      const char c = b[i], n = b[i + 1];
+      const bool value = ascii::is_digit(n) || n == '-' || n == '+' || n == '.' || n == '#' || n == '[';
+      if (c == 'G' && value) {
+        std::size_t k = i + 1;
+        std::string g;
+        while (k < b.size() && (ascii::is_digit(b[k]) || b[k] == '.')) g += b[k++];
+        if (g == "0" || g == "00") motion = 0;
+        if (g == "1" || g == "01" || g == "31") motion = 1;
+      }
+      if (std::string_view("XYZUVWABC").find(c) != std::string_view::npos && value) axis = true;
+      if (c == 'F' && value) f = true;
+    }
+    if (!axis) continue;
+    last = &block;
+    last_motion = motion;
+    last_f = f;
+  }
+  if (!last) return {};
+  if (last_motion == 1 && last_f) return {};
+  return fmt::format(
+      "transfer.grip brings the sub spindle onto the part with \"{}\", {}: its chuck is open and the part "
+      "is there; make the last move a feed with its own F (G1 ... F.. or a G31 torque skip), after a rapid "
+      "to a position short of the part",
+      *last,
+      last_motion == 0   ? "a rapid"
+      : last_motion == 1 ? "a feed with no F of its own"
+                         : "in the motion the program left in force");
+}
+
 void read_transfer(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("transfer");
   if (!t) return;
@@ -379,6 +453,8 @@ void read_transfer(const table_reader& root, machine& m) {
   if (!m.spindle("sub"))
     r.fail(*r.find("channel"), "[transfer] needs a [[spindle]] named 'sub' to take the part");
   r.read_fixed("grip", m.transfer.grip);
+  if (const std::string why = grip_approach_problem(m.transfer.grip); !why.empty())
+    r.fail(*r.find("grip"), why);
   r.read_fixed("release", m.transfer.release);
 }
 

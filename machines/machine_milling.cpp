@@ -74,9 +74,9 @@ void check_c_axis_codes(const table_reader& r, const c_axis_codes& c, const std:
 void read_head_index(const table_reader& channel, channel_def& c) {
   const toml::table* t = channel.sub_table("head_index");
   if (!t) return;
-  table_reader r(
-      *t, "channel.head_index", channel.source(),
-      {"address", "unclamp", "move", "clamp", "turning", "axial", "radial", "offset_turning", "offset_live"});
+  table_reader r(*t, "channel.head_index", channel.source(),
+                 {"address", "unclamp", "move", "clamp", "turning", "axial", "radial", "turning_sub",
+                  "axial_sub", "radial_sub", "offset_turning", "offset_live"});
   head_index_rules& h = c.head_index;
   r.read_char("address", h.address, true);
   r.require("move");
@@ -88,11 +88,14 @@ void read_head_index(const table_reader& channel, channel_def& c) {
   r.read("turning", h.turning);
   r.read("axial", h.axial);
   r.read("radial", h.radial);
+  r.read("turning_sub", h.turning_sub);
+  r.read("axial_sub", h.axial_sub);
+  r.read("radial_sub", h.radial_sub);
   if (!c.axis(h.address))
     r.fail(*r.find(r.find("address") ? "address" : "move"),
            fmt::format("channel {} has no axis {} to index (channel.axis)", c.number, h.address));
   const axis_def& a = *c.axis(h.address);
-  for (const char* key : {"turning", "axial", "radial"}) {
+  for (const char* key : {"turning", "axial", "radial", "turning_sub", "axial_sub", "radial_sub"}) {
     std::optional<double> v;
     r.read(key, v);
     if (v && ((a.min && *v < *a.min) || (a.max && *v > *a.max)))

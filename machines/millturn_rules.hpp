@@ -28,6 +28,9 @@ struct head_index_rules {
   std::string move;     ///< the block the angle word is appended to ("G0 G53")
   std::string clamp;    ///< after the move; "": none
   std::optional<double> turning, axial, radial;
+  /// The same for work on a spindle that faces the main one (`reverse_z`, the sub): the head
+  /// turned to face it (Integrex B180 for axial work); none: such work stops the post.
+  std::optional<double> turning_sub, axial_sub, radial_sub;
   /// Words put in the first move after the head is indexed: the tool length offset of a
   /// turning tool and of a live tool (Integrex: `G43 P1 H#3020`, `G43 H#3020`); "": none.
   std::string offset_turning, offset_live;

@@ -2,6 +2,7 @@
 // with named values; see machines/name_template.hpp.
 #include "machines/name_template.hpp"
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -41,6 +42,39 @@ constexpr std::array<std::pair<std::string_view, placeholder>, 9> names{{
     {"rpm", placeholder::rpm},
 }};
 
+// {seconds} is a dwell time, and a Fanuc control reads a dwell word without a decimal point in
+// its least increment (G4 U1 is 1 ms with decimal-point programming off, the default): with no
+// format spec it is written as an NC number that always has its point (1., 0.5, 2.25), to the
+// millisecond, as the Autodesk Fusion posts' secFormat (3 decimals, forceDecimal) writes it. A
+// template that gives a spec ({seconds:.1f}) gets fmt's own formatting of the number.
+struct dwell_seconds {
+  double value;
+};
+
+}  // namespace
+}  // namespace twinpost
+
+template <>
+struct fmt::formatter<twinpost::dwell_seconds> : fmt::formatter<double> {
+  bool nc = true;
+  constexpr auto parse(format_parse_context& ctx) {
+    if (ctx.begin() == ctx.end() || *ctx.begin() == '}') return ctx.begin();
+    nc = false;
+    return fmt::formatter<double>::parse(ctx);
+  }
+  template <typename Context>
+  auto format(const twinpost::dwell_seconds& s, Context& ctx) const {
+    if (!nc) return fmt::formatter<double>::format(s.value, ctx);
+    std::string text = fmt::format("{:.3f}", s.value);
+    while (text.back() == '0') text.pop_back();  // "1.500" -> "1.5", "2.000" -> "2."
+    if (text == "-0.") text = "0.";
+    return std::copy(text.begin(), text.end(), ctx.out());
+  }
+};
+
+namespace twinpost {
+namespace {
+
 bool name_char(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
 }
@@ -78,8 +112,8 @@ std::string format_template(std::string_view tpl, const template_args& a) {
   reject_positional(tpl);
   return fmt::format(fmt::runtime(tpl), fmt::arg("program", a.program), fmt::arg("name", a.name),
                      fmt::arg("channel", a.channel), fmt::arg("max", a.max), fmt::arg("tool", a.tool),
-                     fmt::arg("offset", a.offset), fmt::arg("seconds", a.seconds), fmt::arg("ms", a.ms),
-                     fmt::arg("rpm", a.rpm));
+                     fmt::arg("offset", a.offset), fmt::arg("seconds", dwell_seconds{a.seconds}),
+                     fmt::arg("ms", a.ms), fmt::arg("rpm", a.rpm));
 }
 
 }  // namespace twinpost

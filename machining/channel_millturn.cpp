@@ -209,24 +209,30 @@ bool channel_writer::index_head(int line) {
   const bool live = spindle_ && work_ && spindle_ != work_;
   const bool axial = std::abs(axis_.z) >= along;
   const bool radial = std::abs(axis_.z) <= across;
+  // On a spindle that faces the main one (the sub, Z reversed) the head must turn to face it:
+  // its own angles (Integrex B180), never the main spindle's, which point the tool away.
+  const bool sub = work_ && work_->reverse_z;
   std::optional<double> want;
   const char* which;
-  if (!live && kind_ != tool_kind::mill && !(kind_ == tool_kind::drill && axial)) {
-    want = h.turning, which = "turning";
+  const bool turning = !live && kind_ != tool_kind::mill && !(kind_ == tool_kind::drill && axial);
+  if (turning) {
+    want = sub ? h.turning_sub : h.turning, which = "turning";
   } else if (axial) {
-    want = h.axial, which = "axial";
+    want = sub ? h.axial_sub : h.axial, which = "axial";
   } else if (radial) {
-    want = h.radial, which = "radial";
+    want = sub ? h.radial_sub : h.radial, which = "radial";
   } else {
     return true;  // a tilted axis: the move's own check refuses it
   }
   if (!want) {
-    error(line, fmt::format("channel {} indexes its {} head for every tool, and channel.head_index.{} is not "
-                            "given: where the {} tool must point is unknown",
-                            ch_.number, h.address, which, which));
+    error(line,
+          fmt::format("channel {} indexes its {} head for every tool, and channel.head_index.{}{} is not "
+                      "given: where the {} tool must point{} is unknown",
+                      ch_.number, h.address, which, sub ? "_sub" : "", which,
+                      sub ? fmt::format(" on the {} spindle", work_->name) : ""));
     return false;
   }
-  const std::string& offset = std::string_view(which) == "turning" ? h.offset_turning : h.offset_live;
+  const std::string& offset = turning ? h.offset_turning : h.offset_live;
   if (head_angle_ && std::abs(*head_angle_ - *want) < 5e-4) {
     if (after_index_) pending_offset_ = offset;  // a new tool at the same angle: its own offset
     after_index_ = false;

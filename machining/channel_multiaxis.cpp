@@ -253,6 +253,8 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
   const tool_pose pose{{p.x * cl_mm_, p.y * cl_mm_, p.z * cl_mm_},
                        len > 0 ? vec3{axis_.x / len, axis_.y / len, axis_.z / len} : axis_};
+  approach_from_ = last_cl_tip_;  // where the CL last put the tip, also across a plane's end
+  last_cl_tip_ = pose.tip;
   if (!c.plane.empty() && plane_move(rapid, pose, line)) {
     pose_mm_ = pose;
     return;
@@ -366,6 +368,94 @@ bool channel_writer::rotary_word(text_buffer& out, char address, double value, a
   return true;
 }
 
+bool channel_writer::reposition_rotaries(const joint_values& j, const tool_pose& pose, const double nc[3],
+                                         bool force) {
+  // The Autodesk Fusion multi-axis posts (positionABC, initialPositioning: the Fanuc and Mazak
+  // mill posts, rev. 44083) turn the rotary axes in a block of their own with the tool at the
+  // tool-change height, then position X Y, then bring Z down with the length offset: a tool
+  // never tilts (nor the table turns) while it comes down to the part. After a tool call the
+  // tool stands at the tool-change position; later, a rapid that turns an axis turns it at the
+  // higher of the two points along the tool's approach axis (the CAM's clearance), not on the
+  // way down.
+  const kinematic_chain& c = *chain_;
+  const bool vector = c.output == multiaxis_output::vector;
+  // At the tool-change position (home: no move since the home blocks) the tool is as high as it
+  // goes; the first point with the length offset (`force`) writes every word.
+  const bool home = homed_;
+  // Which rotary words the rapid changes (a word the control has not been given yet counts).
+  bool turns = home || force;
+  for (std::size_t i = 0; i < c.rotaries.size() && !turns; ++i) {
+    std::int64_t n;
+    turns = !last_rot_[i].known || !round_fixed(j.rotary[i], rotary_decimals, n) || n != last_rot_[i].n;
+  }
+  if (vector && offset_on_ && !turns) {
+    const double v[3] = {pose.axis.x, pose.axis.y, pose.axis.z};
+    for (int i = 0; i < 3 && !turns; ++i) {
+      std::int64_t n;
+      turns = !last_ijk_[i].known || !round_fixed(v[i], vector_decimals, n) || n != last_ijk_[i].n;
+    }
+  }
+  if (!turns) return false;
+  // The approach axis: the linear axis the tool points along at home (Z on the mills and on the
+  // Integrex head at B0), "up" the way the tool points (from the tip towards the spindle).
+  int k = 0;
+  const double dir[3] = {c.tool_direction.x, c.tool_direction.y, c.tool_direction.z};
+  for (int i = 1; i < 3; ++i)
+    if (std::abs(dir[i]) > std::abs(dir[k])) k = i;
+  const double factor[3] = {x_factor_ * side_ * out_per_mm_, z_sign_ * out_per_mm_, z_sign_ * out_per_mm_};
+  const double up = dir[k] * factor[k] > 0 ? 1.0 : -1.0;  // the sense of "up" in the written word
+  axis_memory* mem[3] = {&last_x_, &last_y_, &last_z_};
+  bool wrote = false;
+  const auto block = [&](auto&& words) {
+    text_buffer& b = out_.open_block();
+    word_start_ = b.size();
+    b += "G0";
+    if (words(b)) {
+      out_.end_block();
+      wrote = true;
+      motion_g_ = 0;
+      homed_ = false;
+    } else {
+      out_.drop_block();
+    }
+    word_start_ = std::string::npos;
+  };
+  // Up first when the point is higher than where the tool is: the axes turn at the higher one.
+  // Where the word's frame changed (the end of a tilted plane) the CL's last tip says it.
+  const bool higher =
+      mem[k]->known ? (nc[k] - mem[k]->value) * up > 0
+      : approach_from_
+          ? kin::dot(pose.tip, c.tool_direction) - kin::dot(*approach_from_, c.tool_direction) > 1e-6
+          : false;
+  if (!home && higher) block([&](text_buffer& b) { return axis_word(b, c.linear[k], nc[k], *mem[k], true); });
+  // The rotary axes alone. Before G43.5 is on its I J K mean nothing: the machine's own axes.
+  block([&](text_buffer& b) {
+    bool any = false;
+    if (vector && offset_on_) {
+      const double v[3] = {pose.axis.x, pose.axis.y, pose.axis.z};
+      for (int i = 0; i < 3; ++i)
+        any = rotary_word(b, "IJK"[i], v[i], last_ijk_[i], vector_decimals, false) || any;
+      return any;
+    }
+    std::size_t order[2] = {0, 1};
+    if (c.rotaries.size() == 2 && c.rotaries[1].address < c.rotaries[0].address)
+      std::swap(order[0], order[1]);
+    for (std::size_t n = 0; n < c.rotaries.size(); ++n) {
+      const std::size_t i = order[n];
+      any = rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, force) || any;
+    }
+    return any;
+  });
+  // Then over the point in the two other linear axes; the rapid itself goes down.
+  block([&](text_buffer& b) {
+    bool any = false;
+    for (int i = 0; i < 3; ++i)
+      if (i != k) any = axis_word(b, c.linear[i], nc[i], *mem[i], force) || any;
+    return any;
+  });
+  return wrote;
+}
+
 bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_pose& pose, double inverse_f,
                                  int line) {
   const kinematic_chain& c = *chain_;
@@ -405,6 +495,10 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     return false;
   }
 
+  const std::string& on = joints ? c.length_on : c.tool_tip_on;
+  const bool offset_block = !offset_on_ && !on.empty();  // "": the control's offset is not the post's
+  const bool repositioned = rapid && reposition_rotaries(j, pose, nc, offset_block);
+
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
   if (!pending_g_.empty()) b += pending_g_;
@@ -419,12 +513,10 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     b += m_.codes.feed_per_min;
   }
   const int g = rapid ? 0 : 1;
-  if (g != motion_g_ || to_inverse || to_minute) {
+  if (g != motion_g_ || to_inverse || to_minute || (repositioned && offset_block)) {
     separate(b);
     b += rapid ? "G0" : "G1";
   }
-  const std::string& on = joints ? c.length_on : c.tool_tip_on;
-  const bool offset_block = !offset_on_ && !on.empty();  // "": the control's offset is not the post's
   if (offset_block) {
     separate(b);
     b += on;

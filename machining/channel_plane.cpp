@@ -134,6 +134,37 @@ void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int lin
                     kin::number_text(pose.tip.y), kin::number_text(pose.tip.z), kin::number_text(c.tolerance),
                     kin::number_text(c.angle_tolerance)));
   }
+  const bool offset_block = !offset_on_ && !c.length_on.empty();
+  // The first rapid in a plane just opened (G53.1 turned the head where the tool stood) goes
+  // over the point in X Y and then down the plane's Z, or up first when the point is higher
+  // than the CL's last one: never down and across at once (docs/machines.md, "Multi-axis
+  // output", the approach). The length offset goes with the Z move.
+  bool z_first = false;
+  if (rapid && !last_x_.known && !last_z_.known && approach_from_) {
+    z_first = p.z > kin::dot(plane_frame_[2], *approach_from_) + 1e-9;
+    text_buffer& pre = out_.open_block();
+    word_start_ = pre.size();
+    pre += "G0";
+    if (z_first && offset_block) {
+      separate(pre);
+      pre += c.length_on;
+      pre += " H";
+      pre += fmt::format_int(offset_).c_str();
+      offset_on_ = true;
+    }
+    const bool moved = z_first ? axis_word(pre, 'Z', p.z * out_per_mm_, last_z_, true)
+                               : axis_word(pre, 'X', p.x * out_per_mm_, last_x_, true) |
+                                     axis_word(pre, 'Y', p.y * out_per_mm_, last_y_, true);
+    if (moved) {
+      out_.end_block();
+      motion_g_ = 0;
+      homed_ = false;
+    } else {
+      out_.drop_block();
+    }
+    word_start_ = std::string::npos;
+  }
+  const bool offset_now = offset_block && !z_first;
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
   if (!pending_g_.empty()) b += pending_g_;
@@ -142,23 +173,22 @@ void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int lin
     separate(b);
     b += rapid ? "G0" : "G1";
   }
-  const bool offset_block = !offset_on_ && !c.length_on.empty();
-  if (offset_block) {
+  if (offset_now) {
     separate(b);
     b += c.length_on;
     b += " H";
     b += fmt::format_int(offset_).c_str();
   }
-  bool moved = axis_word(b, 'X', p.x * out_per_mm_, last_x_, offset_block);
-  moved = axis_word(b, 'Y', p.y * out_per_mm_, last_y_, offset_block) || moved;
-  moved = axis_word(b, 'Z', p.z * out_per_mm_, last_z_, offset_block) || moved;
+  bool moved = axis_word(b, 'X', p.x * out_per_mm_, last_x_, offset_now);
+  moved = axis_word(b, 'Y', p.y * out_per_mm_, last_y_, offset_now) || moved;
+  moved = axis_word(b, 'Z', p.z * out_per_mm_, last_z_, offset_now) || moved;
   if (!moved) {
     out_.drop_block();
   } else {
     homed_ = false;
     pending_g_.clear();
     motion_g_ = g;
-    if (offset_block) offset_on_ = true;
+    if (offset_now) offset_on_ = true;
     if (!rapid) cut_feed(b, line);
     out_.end_block();
   }

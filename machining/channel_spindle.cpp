@@ -43,6 +43,12 @@ void channel_writer::work_on(const spindle_def& s) {
   if (!s.work_offset.empty()) out_.block(s.work_offset);
 }
 
+void channel_writer::select_spindle(const spindle_def* s) {
+  if (!s || s == selected_ || balance_copy_) return;  // a copy commands no spindle
+  if (s->select) spindle_block(fmt::format("M{}", *s->select));
+  selected_ = s;  // also one without a code: the moves need not ask again
+}
+
 void channel_writer::tool_data(const tool_data_event& t) {
   if (t.major != "TLDATA" || t.words.empty()) return;
   const std::string& w = t.words.front();
@@ -165,6 +171,9 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     if (!target) return;
   }
   if (!target) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
+  // The spindle the section works on is selected first (the Fusion Integrex post: M901/M902,
+  // then the C axis); a live tool works on the part held in the workpiece spindle.
+  if (s.mode != spindle_mode::on) select_spindle(target->select ? target : work_);
   // Mill/turn: a live tool holds the workpiece spindle as the C axis; a turning speed lets it go.
   if (has_c_ && s.mode != spindle_mode::off && s.mode != spindle_mode::on) {
     if (target != work_) {
@@ -173,10 +182,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
       leave_c_axis();
     }
   }
-  if (target != spindle_) {
-    spindle_ = target;
-    if (target->select) spindle_block(fmt::format("M{}", *target->select));
-  }
+  spindle_ = target;
   if (s.mode == spindle_mode::on) {
     // APT: ON turns the spindle on again at the last speed, mode and direction, never S0.
     if (!last_speed_)
@@ -307,11 +313,23 @@ void channel_writer::transfer(const transfer_event& t, int line) {
       forget_axes();
       motion_g_ = -1;
       return;
-    case transfer_event::phase::blocks:
-      for (const std::string& b : t.release ? m_.transfer.release : m_.transfer.grip) out_.block(b);
+    case transfer_event::phase::blocks: {
+      // The blocks may set the feed mode, F and the motion (the grip's G98/G94 G1 approach):
+      // the channel's own mode goes back on at once and its next move writes G and F again,
+      // never a feed per revolution read per minute.
+      bool mode_set = false;
+      for (const std::string& b : t.release ? m_.transfer.release : m_.transfer.grip) {
+        out_.block(b);
+        for (const std::string* g : {&m_.codes.feed_per_min, &m_.codes.feed_per_rev})
+          mode_set = mode_set || (!g->empty() && b.find(*g) != std::string::npos);
+      }
+      if (mode_set && !feed_g_.empty()) out_.block(feed_g_);
+      last_f_.clear();
+      motion_g_ = -1;
       spindle_ended_.clear();  // the transfer's own codes synchronise and start spindles: the footer's
       coolant_ended_.clear();  // stops are not known to be in force any more
       return;
+    }
     case transfer_event::phase::on_sub:
       // The next SPINDL selects the sub (M902 on the Integrex) and starts it.
       if (const spindle_def* sub = m_.spindle("sub")) work_on(*sub);

@@ -112,11 +112,17 @@ void channel_writer::tool(const tool_event& t, int line) {
   a.offset = t.offset.value_or(t.tool);
   a.channel = ch_.number;
   const std::string call = format_template(ch_.tool_call, a);
+  // A B head on a Fanuc lathe system takes the tool's offset in a block of its own (T0707 after
+  // M6 T0700: the Fusion Doosan Mill/Turn post); a turret's call carries it (T0707).
+  const std::string offset_block =
+      ch_.offset_call.empty() ? std::string() : format_template(ch_.offset_call, a);
+  const bool names_offset = ch_.tool_call.find("{offset") != std::string::npos ||
+                            ch_.offset_call.find("{offset") != std::string::npos;
   static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL", "SELECT/TOOL", "TURRET"};
   const char* word = words[static_cast<int>(t.source)];
   // Offset 0 in a lathe tool call (T0300) cancels the tool's offset: the tip would run
   // where the turret's reference point is, not where the CL says.
-  if (a.offset == 0 && !ch_.offset_zero && ch_.tool_call.find("{offset") != std::string::npos) {
+  if (a.offset == 0 && !ch_.offset_zero && names_offset) {
     error(line, fmt::format("tool {} with offset 0 would be called as {}, which cancels the tool offset; "
                             "give the offset number (or set channel.offset_zero where the control's tool "
                             "table applies it)",
@@ -133,8 +139,7 @@ void channel_writer::tool(const tool_event& t, int line) {
         chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on;
     return !on.empty() && on.find('H') == std::string::npos;
   }();
-  if (t.offset && *t.offset != t.tool && !chain_offset &&
-      ch_.tool_call.find("{offset") == std::string::npos) {
+  if (t.offset && *t.offset != t.tool && !chain_offset && !names_offset) {
     error(line, fmt::format("{} asks for tool {} on offset {}, but the channel's tool call {} writes no "
                             "offset (channel.tool_call has no {{offset}}): the tool would cut on "
                             "whatever offset is active",
@@ -144,13 +149,15 @@ void channel_writer::tool(const tool_event& t, int line) {
   if (t.tool == tool_) {
     // The same tool under another offset (TURRET/1,1 then TURRET/1,21 for the finish): the
     // turret stays where it is and only the offset changes, so the call goes out alone.
-    if (call != tool_call_ && block_fits(call)) {
-      out_.block(call, true);
-      tool_call_ = call;
+    const std::string& block = offset_block.empty() ? call : offset_block;
+    if (call + offset_block != tool_call_ && block_fits(block)) {
+      out_.block(block, true);
+      tool_call_ = call + offset_block;
     }
     return;
   }
-  if (!block_fits(call)) return take_tool(t.tool, line, word);  // T12345 on a four-digit T
+  if (!block_fits(call) || (!offset_block.empty() && !block_fits(offset_block)))
+    return take_tool(t.tool, line, word);  // T12345 on a four-digit T
   // Coolant off before the turret leaves the part and indexes, home X then Z, the call, and
   // the coolant the CL left on back on for the new tool (public Fanuc posts: M9, G28 U0.,
   // G28 W0., T0202, then coolant once the tool is there; docs/machines.md).
@@ -165,13 +172,18 @@ void channel_writer::tool(const tool_event& t, int line) {
   forget_axes();
   motion_g_ = -1;
   out_.block(call, true);
+  if (!offset_block.empty()) out_.block(offset_block);
   // A channel that starts on the sub spindle: its work offset once the tool is there.
   if (offset_due_) {
     out_.block(work_->work_offset);
     offset_due_ = false;
   }
+  // Each section selects the spindle it works on, whatever an earlier one left selected (the
+  // Fusion "Mazak Integrex i" post writes M901 or M902 in every section's start): its SPINDL,
+  // or else its first move, writes the select code again.
+  selected_ = nullptr;
   if (!coolant_was.empty()) coolant_block(coolant_was, false);
-  tool_call_ = call;
+  tool_call_ = call + offset_block;
   after_index_ = true;
   take_tool(t.tool, line, word);
 }

@@ -98,6 +98,9 @@ class channel_writer {
   const spindle_def* spindle_for_tool(const spindle_event& s, int line);
   /// The channel works on workpiece spindle `s` from now on: its work offset, its Z sense.
   void work_on(const spindle_def& s);
+  /// The select code of `s` (Integrex M901 main, M902 second spindle), unless it is the last
+  /// one this channel wrote; a spindle without one (the live spindle) selects nothing.
+  void select_spindle(const spindle_def* s);
   /// False, after an error, when a drill turning with the part (on-centre axial drilling on
   /// the workpiece spindle) would feed off the centre line.
   bool drill_on_centre(double x_cl, int line);
@@ -270,6 +273,12 @@ class channel_writer {
   /// `pose` (mm, part frame) by the forward transform; `inverse_f` > 0 writes G93 F<it>.
   bool write_point(bool rapid, const kin::joint_values& j, const kin::tool_pose& pose, double inverse_f,
                    int line);
+  /// Before a rapid to `j` (linear words `nc`) that turns a rotary axis, or the first from the
+  /// tool-change position or with the length offset (`force`: every word): the approach axis up
+  /// first if the point is higher, the rotary axes alone, then the two other linear axes; the
+  /// rapid itself then brings the tool down. Returns whether it wrote a block.
+  bool reposition_rotaries(const kin::joint_values& j, const kin::tool_pose& pose, const double nc[3],
+                           bool force);
   /// Before a feed move from a point with the tool along the outer rotary axis (the pole,
   /// where that axis's angle was kept) to one off it that needs the outer axis elsewhere:
   /// turns the outer axis first, with the tool where it is (`at`). The move then tilts the
@@ -391,15 +400,16 @@ class channel_writer {
   double cylinder_c_ = 0;       // the C written last in it, continuous (no wrap at 360)
   bool cylinder_comp_ = false;  // G41/G42 started in it and not yet ended
   std::pair<std::int64_t, std::int64_t> saved_x_limits_{INT64_MIN, INT64_MAX};
-  std::string pending_offset_;            // head_index.offset_* for the next move
-  bool after_index_ = false;              // a tool was called: its offset words are due
-  double c_cos_ = 1, c_sin_ = 0;          // of the C angle in force
-  std::optional<double> head_angle_;      // the indexing head's angle, once written
-  bool axes_free_ = false;                // B and C unclamped for tilted (multi-axis) moves
-  const spindle_def* spindle_ = nullptr;  // the spindle SPINDL codes go to (workpiece or live)
-  const spindle_def* work_ = nullptr;     // the workpiece spindle the channel works on (main, sub)
-  double z_sign_ = 1.0;                   // -1 on a spindle with reverse_z
-  bool offset_due_ = false;               // the work spindle's offset goes out after the first tool call
+  std::string pending_offset_;             // head_index.offset_* for the next move
+  bool after_index_ = false;               // a tool was called: its offset words are due
+  double c_cos_ = 1, c_sin_ = 0;           // of the C angle in force
+  std::optional<double> head_angle_;       // the indexing head's angle, once written
+  bool axes_free_ = false;                 // B and C unclamped for tilted (multi-axis) moves
+  const spindle_def* spindle_ = nullptr;   // the spindle SPINDL codes go to (workpiece or live)
+  const spindle_def* work_ = nullptr;      // the workpiece spindle the channel works on (main, sub)
+  double z_sign_ = 1.0;                    // -1 on a spindle with reverse_z
+  bool offset_due_ = false;                // the work spindle's offset goes out after the first tool call
+  const spindle_def* selected_ = nullptr;  // the spindle whose select code (M901/M902) went out last
   /// The tool's kind from TLDATA: what the workpiece spindle or the live one is for.
   enum class tool_kind : unsigned char { unknown, turn, mill, drill };
   tool_kind kind_ = tool_kind::unknown;       // of the tool in the spindle
@@ -490,6 +500,8 @@ class channel_writer {
   kin::joint_values joints_{};              ///< where the machine is (mm, degrees)
   kin::tool_pose pose_mm_{};                ///< the last CL pose, in mm
   bool pose_known_ = false;                 ///< false until the first GOTO (or FROM)
+  std::optional<vec3> last_cl_tip_;         ///< the tip of the last GOTO on the chain (mm, part frame)
+  std::optional<vec3> approach_from_;       ///< the one before it: where the move being written starts
   std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
   double tool_length_ = 0;                            ///< the length in use (mm)
   std::vector<std::pair<event, bool>> held_;          ///< records held at the pole, with `both`

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "file_test_support.hpp"
 #include "machine_test_support.hpp"
@@ -142,7 +144,9 @@ TEST_CASE("built-in fanuc-31i-3path", "[machines]") {
   CHECK(m.name == "fanuc-31i-3path");
   CHECK(m.layout == layout_kind::split);
   REQUIRE(m.channels.size() == 3);
-  CHECK(m.channels[2].tool_call == "T{tool:02} M6");
+  // The B head: M6 T0700 changes the tool, T0707 takes its offset (the Fusion Doosan post).
+  CHECK(m.channels[2].tool_call == "M6 T{tool:02}00");
+  CHECK(m.channels[2].offset_call == "T{tool:02}{offset:02}");
   CHECK(m.channel_for_head(3) == &m.channels[2]);
   CHECK(m.waits.first == 200);
   CHECK(m.waits.last == 299);
@@ -217,6 +221,14 @@ TEST_CASE("format_template formats the named placeholders", "[machines]") {
   CHECK(format_template("G92 S{max} R{channel}", a) == "G92 S3500 R2");
   CHECK(format_template("G4 U{seconds} (P{ms}) S{rpm}", a) == "G4 U0.5 (P500) S1200");
   CHECK(format_template("{{literal}}", a) == "{literal}");
+  // {seconds} always has its point (a Fanuc reads U1 as 1 ms with decimal-point input off),
+  // rounded to the millisecond; a spec of the file's own is fmt's.
+  for (const auto& [s, text] : std::vector<std::pair<double, std::string>>{
+           {1, "U1."}, {2.25, "U2.25"}, {0.0004, "U0."}, {1.23456, "U1.235"}, {120, "U120."}}) {
+    a.seconds = s;
+    CHECK(format_template("U{seconds}", a) == text);
+  }
+  CHECK(format_template("U{seconds:.2f}", a) == "U120.00");
   CHECK_THROWS_AS(format_template("G50 S{}", a), fmt::format_error);
   CHECK_THROWS_AS(format_template("T{tol}", a), fmt::format_error);
 }

@@ -528,6 +528,53 @@ TEST_CASE("validation: mill/turn keys go in pairs and name known choices and ind
             "[[channel]]\nnumber = 1\naxis = [{address = \"X\"}, {address = \"Z\"}, {address = \"B\", min = "
             "-30, max = 210}]\n[channel.head_index]\nmove = \"G0 G53\"\nradial = 270\n") ==
         "m.toml:11:10: error: channel.head_index.radial = 270 is outside the travel of axis B");
+  CHECK(error_of(
+            head +
+            "[[channel]]\nnumber = 1\naxis = [{address = \"X\"}, {address = \"Z\"}, {address = \"B\", min = "
+            "-30, max = 210}]\n[channel.head_index]\nmove = \"G0 G53\"\naxial_sub = -180\n") ==
+        "m.toml:11:13: error: channel.head_index.axial_sub = -180 is outside the travel of axis B");
+}
+
+TEST_CASE("validation: a dwell word reads the same on every decimal-point setting", "[machines]") {
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 U{ms}\"\n") ==
+        "m.toml:7:9: error: codes.dwell \"G4 U{ms}\": U{ms} writes U2000 for 2 s, which a Fanuc reads as 2 s "
+        "or "
+        "2000 s by its decimal-point setting; write P{ms} (P is always milliseconds) or U{seconds} (written "
+        "with "
+        "its point)");
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 P{seconds}\"\n") ==
+        "m.toml:7:9: error: codes.dwell \"G4 P{seconds}\": P{seconds} writes P2. for 2 s, but a Fanuc's P is "
+        "milliseconds without a point; write P{ms}, or U{seconds} / X{seconds}");
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 X{seconds}\"\n" + two_channels) == "(no error)");
+  CHECK(error_of(head + "[codes]\ndwell = \"G4 P{ms}\"\n" + two_channels) == "(no error)");
+}
+
+TEST_CASE("validation: a channel's offset call is a template of the tool call's placeholders", "[machines]") {
+  CHECK(error_of(head + "[[channel]]\nnumber = 1\n" + xz + "offset_call = \"T{tool:02}{name}\"\n") ==
+        "m.toml:9:15: error: channel.offset_call: template \"T{tool:02}{name}\" names {name}, which is not "
+        "known "
+        "there (it is given {channel}, {tool}, {offset})");
+}
+
+TEST_CASE("validation: the grip's last move onto the part is a feed with its own F", "[machines]") {
+  // The sub spindle's chuck is open when it reaches the part: a rapid there (the old built-ins'
+  // "G0 G53 B#500") crashes the jaws into it at the first error in the position.
+  const std::string machine =
+      test::machine_head + test::two_channels +
+      "[[spindle]]\nname = \"main\"\n[[spindle]]\nname = \"sub\"\n[transfer]\nchannel = 1\n";
+  CHECK(error_of(machine + "grip = [\"M169\", \"G0 G53 B#500\", \"M168\"]\n") ==
+        "m.toml:18:8: error: transfer.grip brings the sub spindle onto the part with \"G0 G53 B#500\", a "
+        "rapid: its "
+        "chuck is open and the part is there; make the last move a feed with its own F (G1 ... F.. or a G31 "
+        "torque skip), after a rapid to a position short of the part");
+  CHECK(error_of(machine + "grip = [\"G0 G53 B#501\", \"G1 G53 B#500\"]\n") ==
+        "m.toml:18:8: error: transfer.grip brings the sub spindle onto the part with \"G1 G53 B#500\", a "
+        "feed with no "
+        "F of its own: its chuck is open and the part is there; make the last move a feed with its own F (G1 "
+        "... F.. or a G31 torque skip), after a rapid to a position short of the part");
+  CHECK(error_of(machine + "grip = [\"G0 G53 B#501\", \"G98 G1 G53 B#500 F500.\", \"M168\"]\n") ==
+        "(no error)");
+  CHECK(error_of(machine + "grip = [\"G0 B#501\", \"M86\", \"G31 P99 G53 B#500 F300.\"]\n") == "(no error)");
 }
 
 TEST_CASE("validation: a C-axis code is no spindle code, and side-cycle cross holes need their codes",

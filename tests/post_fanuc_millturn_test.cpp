@@ -129,8 +129,8 @@ TEST_CASE("the Fanuc cross hole: C to the hole and clamped, G87 along X, R from 
       "cross-peck");
   REQUIRE(p.ok);
   const std::string& f = p.files.at("E_3.nc");
-  CHECK(f.substr(f.find("T14 M6")) ==
-        "T14 M6\nM35\nG0 G28 H0.\nG97 S2000 M33\nG0 B0.\nG0 C30.\nX100. Y0. Z-20.\nM89\nG98\nX66.\n"
+  CHECK(f.substr(f.find("M6 T14")) ==
+        "M6 T1400\nT1414\nM35\nG0 G28 H0.\nG97 S2000 M33\nG0 B0.\nG0 C30.\nX100. Y0. Z-20.\nM89\nG98\nX66.\n"
         "G87 X30. Z-20. R0. Q5000 F120.\nG80\nG0 X66. Z-20.\nM200 P123\nM37\nM90\nM34\nM9\nG28 U0.\n"
         "G28 W0.\nM30\n%\n");
 }

@@ -161,6 +161,8 @@ struct round_trip {
   double worst_chord = 0;                // the joints' interpolation, from the segment
   double largest_swing = 0;              // degrees of one rotary axis between two CL points
   double uncut = 0;                      // the tip's worst deviation had a swing gone uncut
+  int repositions = 0;                   // rapids on the way to a CL point (rotaries first, then X Y)
+  int rapid_turns = 0;                   // rapids that turn a rotary axis
 };
 
 // Posts `cl` for `m` and reads every block back (see the file's comment).
@@ -191,6 +193,19 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
     const kin::tool_pose& target = cl_pts[next].pose;
     const double tip = kin::distance(got.tip, target.tip), axis = kin::angle_between(got.axis, target.axis);
     const bool feed = !b.rapid;
+    if (b.rapid && prev) {
+      // A rapid that turns a rotary axis moves no linear axis: the axes turn where the tool
+      // stands clear (at the tool-change height, or the higher of two points), never on the
+      // way down to the part (the Fusion posts' positionABC, then X Y, then Z).
+      bool turns = false;
+      for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+        turns = turns || std::abs(b.joints.rotary[i] - prev->joints.rotary[i]) > 1e-9;
+      if (c.output == multiaxis_output::vector) turns = kin::angle_between(b.ijk, prev->ijk) > 1e-9;
+      if (turns) {
+        ++r.rapid_turns;
+        CHECK(kin::distance(b.joints.linear, prev->joints.linear) < 1e-9);
+      }
+    }
     if (feed && prev && c.output == multiaxis_output::joints) {
       // The control interpolates the joints: the tip stays near the segment all the way.
       for (int k = 1; k < 50; ++k) {
@@ -216,6 +231,8 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
       at_block = &b;
       ++r.cl_points;
       ++next;
+    } else if (b.rapid) {
+      ++r.repositions;  // the rotaries alone, then X Y, before the rapid that reaches the point
     } else {
       // A point of a linearised move: on the segment towards the CL point.
       REQUIRE(feed);
@@ -261,6 +278,10 @@ TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on
   const machine m = load_machine("head-head-5axis");
   const round_trip r = read_back(sample_job("three-plus-two"), m, "ma-32");
   CHECK(r.cl_points == 15);
+  // X Y before Z at each plane's first point, and back to A0 B0: up to Z60 first, then the
+  // head turns alone (docs/machines.md, the approach). G53.1 turned the head without A B words,
+  // so the reader sees no rapid that turns one.
+  CHECK(r.repositions == 4);
   CHECK(r.sub_points == 0);
   CHECK(r.worst_tip <= 0.001);
   CHECK(r.worst_axis <= 0.002);
@@ -299,10 +320,12 @@ TEST_CASE("multi-axis: the trunnion in the vector form writes G43.5 with I J K t
       "GOTO/10,0,0,0.2588190,0,0.9659258\nGOTO/10,5,0,0.2588190,0,0.9659258\nFINI\n",
       m, "ma-tv2");
   REQUIRE(p.ok);
-  CHECK(p.files.at("VEC.nc") ==
-        "%\nO5002 (VEC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT04 M6\nS5000 M3\n"
-        "G0 G43.5 H4 X0. Y0. Z20. I0. J0. K1.\nG1 X10. Z0. I0.258819 K0.965926 F500.\nY5.\nG49\nM9\nM5\n"
-        "G91 G28 Z0.\nG90\nM30\n%\n");
+  CHECK(
+      p.files.at("VEC.nc") ==
+      "%\nO5002 (VEC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT04 M6\nS5000 M3\n"
+      "G0 A0. C0.\nG0 X0. Y0.\nG0 G43.5 H4 X0. Y0. Z20. I0. J0. K1.\nG1 X10. Z0. I0.258819 K0.965926 F500.\n"
+      "Y5.\nG49\nM9\nM5\n"
+      "G91 G28 Z0.\nG90\nM30\n%\n");
 }
 
 TEST_CASE("multi-axis: the four-axis wrap on the A table, swings of 60 degrees cut to the tolerance",
@@ -310,6 +333,10 @@ TEST_CASE("multi-axis: the four-axis wrap on the A table, swings of 60 degrees c
   const machine m = load_machine("rotary-4axis");
   const round_trip r = read_back(sample_job("four-axis-wrap"), m, "ma-4x");
   CHECK(r.cl_points == 10);
+  // A30 and back to A0 turn in rapids of their own at the higher point: G0 A30. at Z80 before
+  // the rapid down to Z50; after the retract to Z60, G0 Z80. first and then G0 A0.
+  CHECK(r.rapid_turns == 2);
+  CHECK(r.repositions == 2);
   CHECK(r.largest_swing == Approx(60).margin(1e-9));
   CHECK(r.uncut > 1.0);
   CHECK(r.worst_chord <= 0.01 + 0.005);
@@ -398,7 +425,8 @@ TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0",
   // B swings to 5 degrees and back (8 sub-moves each way, G93), then G94 for the arc.
   CHECK(q.files.at("MOVES.nc") ==
         "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS5000 M3\n"
-        "G0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 F400.\n"
+        "G0 A0. B0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 "
+        "F400.\n"
         "X11.226 Z-0.095 B1.25 F400.\nX16.838 Z-0.214 B1.875 F400.\nX22.448 Z-0.381 B2.5 F400.\n"
         "X28.056 Z-0.595 B3.125 F400.\nX33.661 Z-0.856 B3.75 F400.\nX39.264 Z-1.166 B4.375 F400.\n"
         "X44.862 Z-1.522 B5. F400.\nX41.764 Z-1.166 B4.375 F400.\nX38.661 Z-0.856 B3.75 F400.\n"
@@ -478,7 +506,9 @@ TEST_CASE("multi-axis: a rapid onto the pole takes the outer angle of the first 
   REQUIRE(p.ok);
   CHECK(
       p.files.at("POLE.nc") ==
-      "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 G43 H1 X-40. Y40. Z5. B0. C90.\nG1 Z-5. F1000.\n"
+      "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 B0. C90.\nG0 X-40. Y40.\nG0 G43 H1 X-40. Y40. Z5. "
+      "B0. C90.\n"
+      "G1 Z-5. F1000.\n"
       "G93 G1 X-36.182 Z-5.075 B0.625 F1600.\nX-32.366 Z-5.192 B1.25 F1600.\nX-28.551 Z-5.351 B1.875 F1600.\n"
       "X-24.738 Z-5.551 B2.5 F1600.\nX-20.927 Z-5.793 B3.125 F1600.\nX-17.12 Z-6.076 B3.75 F1600.\n"
       "X-13.315 Z-6.401 B4.375 F1600.\nX-9.515 Z-6.768 B5. F1600.\nX-5.718 Z-7.175 B5.625 F1600.\n"
@@ -501,30 +531,33 @@ TEST_CASE("multi-axis: the records held with a rapid on the pole keep their orde
   const test::posted held = test::post_in_fresh_dir(head + tail, m, "ma-pole-held");
   INFO(held.diagnostics);
   REQUIRE(held.ok);
-  CHECK(held.files.at("POLE.nc") == start +
-                                        "G0 G43.4 H1 X40. Y40. Z5. A0. C90.\n(APPROACH)\nS5000 M3\nG1 Z-5. "
-                                        "F1000.\nA10.\n" +
-                                        end);
+  CHECK(held.files.at("POLE.nc") ==
+        start +
+            "G0 A0. C90.\nG0 X40. Y40.\nG0 G43.4 H1 X40. Y40. Z5. A0. C90.\n(APPROACH)\nS5000 M3\nG1 Z-5. "
+            "F1000.\nA10.\n" +
+            end);
   // A dwell is not held: the rapid goes out as it came (C0), and C turns at the bottom of
   // the plunge, where the tool reaches the pole, before the tilt.
   const test::posted released = test::post_in_fresh_dir(head + "DELAY/2\n" + tail, m, "ma-pole-released");
   INFO(released.diagnostics);
   REQUIRE(released.ok);
-  CHECK(released.files.at("POLE.nc") == start +
-                                            "G0 G43.4 H1 X40. Y40. Z5. A0. C0.\n(APPROACH)\nS5000 M3\nG4 "
-                                            "P2000\nG1 Z-5. F1000.\nC90.\nA10.\n" +
-                                            end);
+  CHECK(released.files.at("POLE.nc") ==
+        start +
+            "G0 A0. C0.\nG0 X40. Y40.\nG0 G43.4 H1 X40. Y40. Z5. A0. C0.\n(APPROACH)\nS5000 M3\nG4 "
+            "P2000\nG1 Z-5. F1000.\nC90.\nA10.\n" +
+            end);
   // A change of units releases it too: the rapid was given in millimetres (X40, not 40 inches).
   const test::posted units = test::post_in_fresh_dir(
-      "PARTNO "
-      "POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nSPINDL/RPM,5000,CLW\nRAPID\n"
-      "GOTO/40,40,5,0,0,1\nUNITS/INCHES\nGOTO/1.5748,1.5748,-0.19685,0,0,1\n"
+      "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nSPINDL/RPM,5000,CLW\n"
+      "RAPID\nGOTO/40,40,5,0,0,1\nUNITS/INCHES\nGOTO/1.5748,1.5748,-0.19685,0,0,1\n"
       "GOTO/1.5748,1.5748,-0.19685,0.1736482,0,0.9848078\nFINI\n",
       m, "ma-pole-units");
   INFO(units.diagnostics);
   REQUIRE(units.ok);
-  CHECK(units.files.at("POLE.nc") ==
-        start + "S5000 M3\nG0 G43.4 H1 X40. Y40. Z5. A0. C0.\nG1 Z-5. F1000.\nC90.\nA10.\n" + end);
+  CHECK(units.files.at("POLE.nc") == start +
+                                         "S5000 M3\nG0 A0. C0.\nG0 X40. Y40.\nG0 G43.4 H1 X40. Y40. Z5. A0. "
+                                         "C0.\nG1 Z-5. F1000.\nC90.\nA10.\n" +
+                                         end);
 }
 
 TEST_CASE("multi-axis: a cut that reaches the pole turns the outer axis there before it leaves it",
@@ -543,7 +576,8 @@ TEST_CASE("multi-axis: a cut that reaches the pole turns the outer axis there be
   INFO(p.diagnostics);
   REQUIRE(p.ok);
   CHECK(p.files.at("POLE.nc") ==
-        "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 G43 H1 X-20.853 Y40. Z0.551 B-10. C0.\n"
+        "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 B-10. C0.\nG0 X-20.853 Y40.\n"
+        "G0 G43 H1 X-20.853 Y40. Z0.551 B-10. C0.\n"
         "G93 G1 X40. Z-5. B0. F100.\nX31.428 Y47.035 C11.25 F88.889\nX21.648 Y52.263 C22.5 F88.889\n"
         "X11.036 Y55.482 C33.75 F88.889\nX0. Y56.569 C45. F88.889\nX-11.036 Y55.482 C56.25 F88.889\n"
         "X-21.648 Y52.263 C67.5 F88.889\nX-31.428 Y47.035 C78.75 F88.889\nX-40. Y40. C90. F88.889\n"

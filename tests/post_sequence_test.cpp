@@ -72,14 +72,14 @@ TEST_CASE("each section of a merged program counts from the start, also under a 
           "[post][sequence]") {
   CHECK(file_of(two_head_job, numbered("integrex-i200st", sequence_mode::all), "LATE.EIA", "merged") ==
         "%\nO1000(LATE)\nG109 L1\nN10 G21\nN20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\n"
-        "N40 G0 G90 G53 X0.\nN50 G0 G90 G53 Z0.\nN60 T01 M6\nN70 G97 S1000 M203\nN80 G95\n"
-        "N90 M108\nN100 G0 G53 B0.\nN110 M107\nN120 G0 G43 P1 H#3020 X40. Y0. Z5.\n"
-        "N130 G1 Z-10. F0.2\nN140 M950\nN150 M951\nN160 M9\nN170 M5\nN180 M205\nN190 M305\n"
-        "N200 G0 G90 G53 X0.\nN210 G0 G90 G53 Z0.\nN220 M30\nG109 L2\nN10 G21\n"
+        "N40 G0 G90 G53 X0.\nN50 G0 G90 G53 Z0.\nN60 T01 M6\nN70 M901\nN80 G97 S1000 M203\nN90 G95\n"
+        "N100 M108\nN110 G0 G53 B0.\nN120 M107\nN130 G0 G43 P1 H#3020 X40. Y0. Z5.\n"
+        "N140 G1 Z-10. F0.2\nN150 M950\nN160 M951\nN170 M9\nN180 M5\nN190 M205\nN200 M305\n"
+        "N210 G0 G90 G53 X0.\nN220 G0 G90 G53 Z0.\nN230 M30\nG109 L2\nN10 G21\n"
         "N20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\nN40 M950\nN50 G0 G90 G53 X0.\n"
-        "N60 G0 G90 G53 Z0.\nN70 T0404\nN80 G97 S800 M203\nN90 G95\nN100 G0 X20. Z5.\n"
-        "N110 G1 Z-3. F0.1\nN120 M951\nN130 M9\nN140 M5\nN150 M205\nN160 M305\n"
-        "N170 G0 G90 G53 X0.\nN180 G0 G90 G53 Z0.\nN190 M30\n%\n");
+        "N60 G0 G90 G53 Z0.\nN70 T0404\nN80 M901\nN90 G97 S800 M203\nN100 G95\nN110 G0 X20. Z5.\n"
+        "N120 G1 Z-3. F0.1\nN130 M951\nN140 M9\nN150 M5\nN160 M205\nN170 M305\n"
+        "N180 G0 G90 G53 X0.\nN190 G0 G90 G53 Z0.\nN200 M30\n%\n");
 }
 
 TEST_CASE("the machine file's numbering is checked at load", "[machines][sequence]") {

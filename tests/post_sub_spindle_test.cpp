@@ -124,7 +124,9 @@ TEST_CASE("the part transfer on the Fanuc twin: home, waits, path 1's blocks, th
   const test::posted p = post_on(transfer_job, "fanuc-0itd-twin", "xfer-fanuc");
   CHECK(file_of(p, "XFER_1.nc") ==
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\n"
-        "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nM9\nG28 U0.\nG28 W0.\nM100\nM169\nM213\nG0 G53 B#500\nM168\nM101\n"
+        "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nM9\nG28 U0.\nG28 W0.\nM100\nM169\nM213\nIF [#500 EQ #0] THEN "
+        "#3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF [#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH "
+        "POSITION #501 NOT SET)\nG0 G53 B#501\nG98 G1 G53 B#500 F500.\nM168\nG99\nM101\n"
         "M102\nM69\nG28 G53 B0.\nM205\nM100\nG55\nM101\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   CHECK(file_of(p, "XFER_2.nc") ==
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM100\nM101\nM102\nM100\nG55\n"
@@ -137,9 +139,11 @@ TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then 
   const test::posted p = post_on(transfer_job, "integrex-i200st", "xfer-integrex");
   CHECK(file_of(p, "XFER.EIA") ==
         "%\nO1000(XFER)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT01 M6\nG92 S2500 R1\nG96 S180 M203\nG95\nM8\nM108\nG0 G53 B0.\nM107\n"
+        "G0 G90 G53 Z0.\nT01 M6\nM901\nG92 S2500 R1\nG96 S180 M203\nG95\nM8\nM108\nG0 G53 B0.\nM107\n"
         "G1 G43 P1 H#3020 X50. Y0. Z2. F0.2\nZ-20.\nM205\nM9\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
-        "M950\nM540\nM306\nM511\nG0 G53 W#500\nM307\nM951\nM952\nM206\nG0 G53 W0.\nM513\nM541\n"
+        "M950\nM540\nM306\nM511\nIF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF "
+        "[#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\nG0 G53 W#501\nG94 G1 G53 W#500 "
+        "F500.\nM307\nG95\nM951\nM952\nM206\nG0 G53 W0.\nM513\nM541\n"
         "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
         "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
         "M952\nM953\nG55\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT0303\nM902\nG97 S800 M303\nG95\n"
@@ -151,7 +155,9 @@ TEST_CASE("the part transfer on the 31i: the idle mill head waits and goes home 
   const test::posted p = post_on(transfer_job, "fanuc-31i-3path", "xfer-31i");
   CHECK(file_of(p, "XFER_1.nc") ==
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\n"
-        "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nM9\nG28 U0.\nG28 W0.\nM200 P123\nM169\nM213\nG0 G53 B#500\nM168\n"
+        "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nM9\nG28 U0.\nG28 W0.\nM200 P123\nM169\nM213\nIF [#500 EQ #0] THEN "
+        "#3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF [#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH "
+        "POSITION #501 NOT SET)\nG0 G53 B#501\nG98 G1 G53 B#500 F500.\nM168\nG99\n"
         "M201 P123\nM202 P123\nM69\nG28 G53 B0.\nM205\nM204 P123\nG55\nM206 P123\nM9\nG28 U0.\nG28 W0.\n"
         "M30\n%\n");
   CHECK(file_of(p, "XFER_3.nc") ==
@@ -169,10 +175,10 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
   const std::string f = file_of(p, "TOOLS.EIA");
   CHECK(f.substr(0, f.find("G109 L2")) ==
         "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT01 M6\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM200\n"
+        "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
         "G10.9 X0\nG97 S3000 M3\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2.\nM5\nG13.1\n"
-        "G18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\nG10.9 X1\nM202\nM901\nG97 S900 M203\n"
+        "G18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\n"
         "G1 G43 H#3020 X0. Y0. Z5.\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n");
 }
@@ -185,7 +191,7 @@ TEST_CASE("the 31i mill head turns its live spindle for a milling tool, the main
       "PARTNO E\nHEAD/3\nTLDATA/MILL,10\nLOADTL/7\nSPINDL/RPM,3000,CLW\nFEDRAT/200,MMPM\nGOTO/20,0,2\nFINI\n",
       "fanuc-31i-3path", "31i-mill");
   CHECK(file_of(p, "E_3.nc") ==
-        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT07 M6\nM35\nG0 G28 H0.\n"
+        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM6 T0700\nT0707\nM35\nG0 G28 H0.\n"
         "G97 S3000 M33\nG98\nG0 B-90.\nG0 C0.\nG17\nG12.1\nG1 X40. C0. Z2. F200.\nM200 P123\nM37\n"
         "G13.1\nG18\nM34\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
 }
@@ -206,7 +212,8 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
                                    "integrex-i200st", "unknown-css");
   CHECK(file_of(css, "E.EIA") ==
         "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
-        "T01 M6\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n"
+        "T01 M6\nM901\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "Z0.\nM30\n"
         "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n%\n");
 }
@@ -281,8 +288,8 @@ TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[p
   const std::string f = file_of(p, "E.EIA");
   CHECK(f.substr(0, f.find("M950")) ==
         "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT06 M6\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM200\n"
+        "G0 G90 G53 Z0.\nT06 M6\nM901\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
         "G10.9 X0\nG97 S3000 M3\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2.\n");
   const test::posted clash =
       post_on("PARTNO E\nHEAD/1\nTLDATA/TURN\nLOADTL/5\nSPINDL/RPM,800,CLW\nFINI\n", m, "table-clash");
@@ -329,4 +336,40 @@ TEST_CASE("TRANSFER/GRIP and TRANSFER/RELEASE come in pairs", "[post][sub]") {
         "job.cls:4:1: error: TRANSFER/GRIP with no TRANSFER/RELEASE after it: the programs would end with "
         "the part "
         "held by both spindles\n");
+}
+
+TEST_CASE("every section on the Integrex selects the spindle it works on, M901 or M902", "[post][sub]") {
+  // A section on the second spindle (M902), then one on the main spindle (M901 again), then a
+  // tool change with no SPINDL: its first move selects the main spindle once more, whatever an
+  // earlier section left selected (the Fusion "Mazak Integrex i" post: M901/M902 per section).
+  const test::posted p = post_on(
+      "PARTNO S\nHEAD/1\nTLDATA/TURN\nLOADTL/1\nSPINDL/RPM,800,CLW,SUB\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n"
+      "TLDATA/TURN\nLOADTL/2\nSPINDL/RPM,900,CLW,MAIN\nGOTO/20,0,2\nTLDATA/TURN\nLOADTL/3\nGOTO/25,0,2\n"
+      "FINI\n",
+      "integrex-i200st", "select");
+  const std::string f = file_of(p, "S.EIA");
+  CHECK(f.substr(0, f.find("M950")) ==
+        "%\nO1000(S)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nT01 M6\nG55\nM902\nG97 S800 M303\nG95\nM108\nG0 G53 B180.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z-2. F0.2\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nG54\nM901\n"
+        "G97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X40. Y0. Z2.\nM205\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nT03 M6\nM901\nG97 S900 M203\nG1 G43 P1 H#3020 X50. Y0. Z2.\n");
+}
+
+TEST_CASE("the transfer's grip feeds the sub spindle onto the part, and the channel's feed mode comes back",
+          "[post][sub]") {
+  // The built-ins check that the setup set both positions (#500 grip, #501 approach), rapid to
+  // the approach position and feed the last stretch with the chuck open (G98 G1 ... F500.),
+  // then path 1, which cut in G99 before, is in G99 again: F0.2 is not read per minute.
+  const test::posted p = post_on(
+      "PARTNO XF\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW,MAIN\nFEDRAT/0.2,MMPR\nGOTO/25,0,2\nGOTO/25,0,-20\n"
+      "TRANSFER/GRIP\nTRANSFER/RELEASE\nHEAD/1\nSPINDL/RPM,900,CLW\nGOTO/25,0,2\nGOTO/25,0,-5\nFINI\n",
+      "fanuc-0itd-twin", "grip-feed");
+  CHECK(file_of(p, "XF_1.nc") ==
+        "%\nO1000 (XF)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\n"
+        "G1 X50. Z2. F0.2\nZ-20.\nG28 U0.\nG28 W0.\nM100\nM169\nM213\n"
+        "IF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\n"
+        "IF [#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\n"
+        "G0 G53 B#501\nG98 G1 G53 B#500 F500.\nM168\nG99\nM101\nM102\nM69\nG28 G53 B0.\nM205\nM100\nG55\n"
+        "G97 S900 M103\nG1 X50. Z-2. F0.2\nZ5.\nM101\nM105\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }

@@ -237,3 +237,30 @@ TEST_CASE("an X word past the channel's X travel stops the post at its record", 
         "GOTO/0.8,0,0\n^\n");
   CHECK(post_text(job, "fanuc-0itd-twin", "travel-fanuc").ok);
 }
+
+TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point setting", "[post][words]") {
+  // A Fanuc reads a dwell word without a point in its least increment (G4 U1 is 1 ms with
+  // decimal-point programming off, the default): seconds always carry their point, and
+  // milliseconds (P) are whole numbers, which no setting reads otherwise.
+  const std::map<std::string, std::string> want = {
+      {"fanuc-0itd-twin", "G4 U1."},   {"fanuc-31i-3path", "G4 U1."}, {"integrex-i200st", "G4 P1000"},
+      {"head-head-5axis", "G4 P1000"}, {"rotary-4axis", "G4 P1000"},  {"trunnion-5axis", "G4 P1000"},
+  };
+  for (const auto& [name, block] : want) {
+    INFO(name);
+    posted p = post_text("PARTNO W\nLOADTL/1\nDELAY/1\nDELAY/2.25\nFINI\n", name, "dwell-" + name);
+    CHECK(p.diagnostics == "");
+    std::string all;
+    for (const auto& [file, text] : p.files) all += text;
+    CHECK(all.find("\n" + block + "\n") != std::string::npos);
+    CHECK(all.find(block.starts_with("G4 U") ? "\nG4 U2.25\n" : "\nG4 P2250\n") != std::string::npos);
+  }
+  // A machine file's own template: {seconds} with no spec has its point; with a spec it is fmt's.
+  machine m = load_machine("fanuc-0itd-twin");
+  m.codes.dwell = "G4 X{seconds}";
+  posted x = post_text("PARTNO W\nTURRET/1,1\nDELAY/3\nFINI\n", m, "dwell-x");
+  CHECK(x.files.at("W_1.nc").find("\nG4 X3.\n") != std::string::npos);
+  m.codes.dwell = "G4 U{seconds:.1f}";
+  posted spec = post_text("PARTNO W\nTURRET/1,1\nDELAY/3\nFINI\n", m, "dwell-spec");
+  CHECK(spec.files.at("W_1.nc").find("\nG4 U3.0\n") != std::string::npos);
+}

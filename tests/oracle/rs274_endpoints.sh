@@ -298,6 +298,11 @@ scale = 1.0
 cycle = None
 
 zsign = {c["number"]: c["zsign"] for c in channels}
+# A channel whose every move goes through its kinematic chain (the multi-axis mills) comes from
+# a tool change as the Fusion posts do: the rotary axes alone, then X Y at the height the tool
+# is at, then down (docs/machines.md, "Multi-axis output"): one more rapid, in X at the old Z.
+chained = {k.get("channel", 1) for k in mdef.get("kinematics", []) if k.get("moves", "all") == "all"}
+approach_due = set()
 
 def emit(move):
     for ch, sign in active:
@@ -449,12 +454,19 @@ for e in events:
     elif kind == "transfer" and e.get("step") == "release":
         for ch in zsign:
             zsign[ch] = zsign_of.get("sub", 1.0)
+    elif kind == "tool" and not e.get("preselect"):
+        approach_due.update(ch for ch, _ in active if ch in chained)
     elif kind == "cycle":
         cycle = None if e.get("type") in ("OFF", "ON", "INIT") else e
     elif kind == "thread":
         thread_lead = e.get("lead") * scale if e.get("mode") == "TURN" else None
     elif kind in ("goto", "godlta"):
         x, z = e["x"] * scale, e["z"] * scale
+        for ch, sign in active:
+            if ch in approach_due and e.get("rapid"):
+                last_z = cl[ch][-1]["z"] if cl[ch] else 0.0  # where the last move left the tool
+                cl[ch].append({"kind": "rapid", "x": sign * x, "z": last_z, "line": line})
+            approach_due.discard(ch)
         if cycle and cycle["type"] == "THREAD":
             expand_thread(cycle, pos[0], pos[1], x, z, line)
             continue  # the cycle ends where it started
