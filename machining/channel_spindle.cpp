@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "machines/name_template.hpp"
+#include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
 
 namespace twinpost {
@@ -46,9 +47,9 @@ void channel_writer::work_on(const spindle_def& s) {
 void channel_writer::tool_data(const tool_data_event& t) {
   if (t.major != "TLDATA" || t.words.empty()) return;
   const std::string& w = t.words.front();
-  // NX TLDATA/MILL, diameter, lower radius, length, ...: the diameter a surface speed needs.
-  if (w == "MILL" && !t.values.empty() && t.values[0] > 0)
-    (after_call_ ? diameter_ : next_diameter_) = t.values[0] * cl_mm_;
+  // NX TLDATA/MILL or DRILL, diameter, ...: the diameter a surface speed needs.
+  if (const std::optional<double> d = tldata_diameter(t))
+    (after_call_ ? diameter_ : next_diameter_) = *d * cl_mm_;
   const tool_kind k = w == "MILL"                                       ? tool_kind::mill
                       : w == "DRILL"                                    ? tool_kind::drill
                       : (w == "TURN" || w == "GROOVE" || w == "THREAD") ? tool_kind::turn
@@ -57,6 +58,7 @@ void channel_writer::tool_data(const tool_data_event& t) {
   if (after_call_) {
     kind_ = k;
     table_kind(tool_, line_);
+    if (kind_ == tool_kind::unknown) kind_ = default_kind_;
   } else
     next_kind_ = k;
 }
