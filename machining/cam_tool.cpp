@@ -39,7 +39,8 @@ std::string_view cam_tool_name(const text_event& t) {
     if (end == std::string_view::npos) return {};
     if (ascii::iequals(trimmed(s.substr(at + 1, end - at - 1)), "TOOL")) {
       const std::size_t next = s.find(',', end + 1);
-      return trimmed(s.substr(end + 1, next == std::string_view::npos ? std::string_view::npos : next - end - 1));
+      return trimmed(
+          s.substr(end + 1, next == std::string_view::npos ? std::string_view::npos : next - end - 1));
     }
   }
   return {};

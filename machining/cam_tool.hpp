@@ -1,9 +1,9 @@
 #pragma once
 // What the CAM says of its tool outside the tool call: its name and its length. Each CAM
 // writes them its own way (docs/records.md); these read the forms whose fields are known.
+#include "parser/events.hpp"
 #include <optional>
 #include <string_view>
-#include "parser/events.hpp"
 
 namespace twinpost {
 

@@ -99,11 +99,13 @@ const spindle_def* channel_writer::spindle_for_tool(const spindle_event& s, int 
   }
   // Constant surface speed is a turning speed: it means the workpiece spindle.
   if (s.mode == spindle_mode::smm || s.mode == spindle_mode::sfm) return work_;
-  error(line, fmt::format("SPINDL: the kind of {} is unknown, and channel {} has a workpiece spindle and a "
-                          "live one ({}): give TLDATA/TURN, MILL or DRILL before the tool call, or name the "
-                          "spindle (SPINDL/...,MAIN, SUB or LIVE)",
-                          tool_ < 0 ? std::string("the tool (no tool called yet)") : tool, ch_.number,
-                          ch_.live_spindle));
+  error(line,
+        fmt::format("SPINDL: the kind of {} is unknown, and channel {} has a workpiece spindle and a "
+                    "live one ({}): give TLDATA/TURN, MILL or DRILL before the tool call, kind = ... under "
+                    "the tool's [[tool]] in the machine file, or post --tool-kind for every tool without "
+                    "one, or name the spindle (SPINDL/...,MAIN, SUB or LIVE)",
+                    tool_ < 0 ? std::string("the tool (no tool called yet)") : tool, ch_.number,
+                    ch_.live_spindle));
   return nullptr;
 }
 

@@ -1,9 +1,9 @@
 // A job that moves before any tool call (an NX operation file, one of many operations CATIA or
 // Creo wrote under one LOADTL): which tool is in the spindle, and the program started as after
 // its call. Kinds for tools the CL leaves without one (post --tool-kind).
-#include <fmt/format.h>
 #include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
+#include <fmt/format.h>
 
 namespace twinpost {
 
@@ -52,14 +52,17 @@ void channel_writer::no_tool(int line) {
   const std::string option = ch_.number == 1 ? "post --tool N" : fmt::format("post --tool {}:N", ch_.number);
   const std::string name =
       cam_tool_.empty()
-          ? std::string("the CAM's name of the tool under its [[tool]] in the machine file (name = ..., as NX "
-                        "TOOL PATH or CATIA TPRINT gives it)")
-          : fmt::format("the CAM's name of the tool under its [[tool]] in machine '{}' (name = \"{}\", as {} at "
-                        "line {} names it)",
-                        m_.name, cam_tool_, cam_tool_record_, cam_tool_line_);
-  error(line, fmt::format("a move with no tool called in this channel: give LOADTL or TURRET before the first "
-                          "move, {}, or the tool in the spindle with {}",
-                          name, option));
+          ? std::string(
+                "the CAM's name of the tool under its [[tool]] in the machine file (name = ..., as NX "
+                "TOOL PATH or CATIA TPRINT gives it)")
+          : fmt::format(
+                "the CAM's name of the tool under its [[tool]] in machine '{}' (name = \"{}\", as {} at "
+                "line {} names it)",
+                m_.name, cam_tool_, cam_tool_record_, cam_tool_line_);
+  error(line,
+        fmt::format("a move with no tool called in this channel: give LOADTL or TURRET before the first "
+                    "move, {}, or the tool in the spindle with {}",
+                    name, option));
 }
 
 }  // namespace twinpost
