@@ -54,21 +54,25 @@ std::string nx_program(const std::string& t) {
 TEST_CASE("an NX operation file starts with the tool the [[tool]] table names by the CAM's name",
           "[post][tools][start]") {
   // The name is matched without regard to case; the table's tool wins over post --tool.
-  const machine m = builtin_with("rotary-4axis", "[[tool]]\nnumber = 7\nkind = \"mill\"\nname = \"mill-20mm\"\n");
+  const machine m =
+      builtin_with("rotary-4axis", "[[tool]]\nnumber = 7\nkind = \"mill\"\nname = \"mill-20mm\"\n");
   CHECK(only_file(post(nx_operation, m, "named")) == nx_program("7"));
-  CHECK(only_file(post(nx_operation, m, "named-over-option",
-                       [](post_options& o) { o.start_tools = {{1, 3}}; })) == nx_program("7"));
+  CHECK(only_file(post(nx_operation, m, "named-over-option", [](post_options& o) {
+          o.start_tools = {{1, 3}};
+        })) == nx_program("7"));
 }
 
 TEST_CASE("post --tool gives the tool in the spindle when the CAM's name is not in the table",
           "[post][tools][start]") {
   const machine m = load_machine("rotary-4axis");
-  CHECK(only_file(post(nx_operation, m, "option", [](post_options& o) { o.start_tools = {{1, 3}}; })) ==
-        nx_program("3"));
+  CHECK(only_file(post(nx_operation, m, "option", [](post_options& o) {
+          o.start_tools = {{1, 3}};
+        })) == nx_program("3"));
   // The same program as a job that calls the tool itself.
   const std::string called = "LOAD/TOOL,3\n" + nx_operation.substr(nx_operation.find("SPINDL"));
-  const std::string with_call = only_file(post(
-      "TOOL PATH/FACE,TOOL,MILL-20MM\nTLDATA/MILL,20.0000,0.0000,75.0000,0.0000,0.0000\n" + called, m, "called"));
+  const std::string with_call = only_file(
+      post("TOOL PATH/FACE,TOOL,MILL-20MM\nTLDATA/MILL,20.0000,0.0000,75.0000,0.0000,0.0000\n" + called, m,
+           "called"));
   CHECK(with_call == nx_program("3"));
 }
 
@@ -77,15 +81,17 @@ TEST_CASE("a job that moves with no tool call, no known name and no --tool fails
   const test::posted p = post(nx_operation, load_machine("trunnion-5axis"), "none");
   CHECK_FALSE(p.ok);
   CHECK(p.files.empty());
-  CHECK(p.diagnostics ==
-        "job.cls:7:1: error: channel 1: a move with no tool called in this channel: give LOADTL or TURRET "
-        "before the first move, the CAM's name of the tool under its [[tool]] in machine 'trunnion-5axis' "
-        "(name = \"MILL-20MM\", as TOOL PATH at line 1 names it), or the tool in the spindle with post --tool "
-        "N\nGOTO/0,0,40,0,0,1\n^\n");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:7:1: error: channel 1: a move with no tool called in this channel: give LOADTL or TURRET "
+      "before the first move, the CAM's name of the tool under its [[tool]] in machine 'trunnion-5axis' "
+      "(name = \"MILL-20MM\", as TOOL PATH at line 1 names it), or the tool in the spindle with post --tool "
+      "N\nGOTO/0,0,40,0,0,1\n^\n");
 }
 
 TEST_CASE("CATIA's TPRINT names the tool", "[post][tools][start]") {
-  const machine m = builtin_with("trunnion-5axis", "[[tool]]\nnumber = 2\nkind = \"mill\"\nname = \"T1 PointeurD10\"\n");
+  const machine m =
+      builtin_with("trunnion-5axis", "[[tool]]\nnumber = 2\nkind = \"mill\"\nname = \"T1 PointeurD10\"\n");
   const test::posted p =
       post("PARTNO P\nTPRINT/T1 PointeurD10\nSPINDL/RPM,2000,CLW\nRAPID\nGOTO/0,0,10\nFINI\n", m, "tprint");
   REQUIRE(p.ok);
@@ -105,11 +111,11 @@ TEST_CASE("the TLDATA forms whose tool length is known", "[parser][tools]") {
   const auto length = [](std::vector<std::string> words, std::vector<double> values) {
     return tldata_length(tool_data_event{"TLDATA", std::move(words), std::move(values)});
   };
-  CHECK(length({"MILL"}, {20, 0, 75, 0, 0}) == 75.0);                    // NX, 5 values
-  CHECK(length({"MILL"}, {20, 1, 80, 0, 0, 2, 3}) == 80.0);              // NX, 7 values
-  CHECK(length({"DRILL", "MILL"}, {8.5, 0, 120, 118, 60}) == 120.0);     // NX DRILL with its module
-  CHECK(length({"DRILL"}, {8.5, 0, 110, 118, 60}) == 110.0);             // without one
-  CHECK_FALSE(length({"TURN"}, {1, 2, 3, 4, 5}).has_value());            // turning: none
+  CHECK(length({"MILL"}, {20, 0, 75, 0, 0}) == 75.0);                 // NX, 5 values
+  CHECK(length({"MILL"}, {20, 1, 80, 0, 0, 2, 3}) == 80.0);           // NX, 7 values
+  CHECK(length({"DRILL", "MILL"}, {8.5, 0, 120, 118, 60}) == 120.0);  // NX DRILL with its module
+  CHECK(length({"DRILL"}, {8.5, 0, 110, 118, 60}) == 110.0);          // without one
+  CHECK_FALSE(length({"TURN"}, {1, 2, 3, 4, 5}).has_value());         // turning: none
   CHECK_FALSE(length({"MILL"}, {20, 0}).has_value());
   CHECK_FALSE(tldata_length(tool_data_event{"CUTTER", {}, {10, 0, 5, 5, 45, 0, 50}}).has_value());
   CHECK(tldata_diameter(tool_data_event{"TLDATA", {"DRILL", "MILL"}, {8.5, 0, 120}}) == 8.5);
@@ -126,17 +132,20 @@ TEST_CASE("the CAM's tool name in NX TOOL PATH and CATIA TPRINT", "[parser][tool
 
 TEST_CASE("post --tool-kind gives a tool without TLDATA or [[tool]] its kind on the Integrex",
           "[post][tools][kind]") {
-  const std::string cl = "PARTNO K\nLOADTL/5\nSPINDL/RPM,2000,CLW\nFEDRAT/MMPM,300\nRAPID\nGOTO/0,0,5,0,0,1\n"
-                         "GOTO/0,0,-10\nFINI\n";
+  const std::string cl =
+      "PARTNO K\nLOADTL/5\nSPINDL/RPM,2000,CLW\nFEDRAT/MMPM,300\nRAPID\nGOTO/0,0,5,0,0,1\n"
+      "GOTO/0,0,-10\nFINI\n";
   const machine m = load_machine("integrex-i200st");
   // None of the three gives a kind: the refusal stays.
   const test::posted none = post(cl, m, "kind-none");
   CHECK_FALSE(none.ok);
-  CHECK(none.diagnostics ==
-        "job.cls:3:1: error: channel 1: SPINDL: the kind of tool 5 (LOADTL at line 2) is unknown, and channel 1 "
-        "has a workpiece spindle and a live one (live): give TLDATA/TURN, MILL or DRILL before the tool call, "
-        "kind = ... under the tool's [[tool]] in the machine file, or post --tool-kind for every tool without "
-        "one, or name the spindle (SPINDL/...,MAIN, SUB or LIVE)\nSPINDL/RPM,2000,CLW\n^\n");
+  CHECK(
+      none.diagnostics ==
+      "job.cls:3:1: error: channel 1: SPINDL: the kind of tool 5 (LOADTL at line 2) is unknown, and channel "
+      "1 "
+      "has a workpiece spindle and a live one (live): give TLDATA/TURN, MILL or DRILL before the tool call, "
+      "kind = ... under the tool's [[tool]] in the machine file, or post --tool-kind for every tool without "
+      "one, or name the spindle (SPINDL/...,MAIN, SUB or LIVE)\nSPINDL/RPM,2000,CLW\n^\n");
   // A drill on the centre line turns the part (M203 on the main spindle); a mill the live tool (M200 ... M3).
   const test::posted drill = post(cl, m, "kind-drill", [](post_options& o) { o.tool_kind = "drill"; });
   REQUIRE(drill.ok);
@@ -146,7 +155,8 @@ TEST_CASE("post --tool-kind gives a tool without TLDATA or [[tool]] its kind on 
   CHECK(only_file(mill).find("T05 M6\nM200\nG10.9 X0\nG97 S2000 M3\n") != std::string::npos);
   // The [[tool]] table's kind comes before --tool-kind.
   const machine with_table = builtin_with("integrex-i200st", "[[tool]]\nnumber = 5\nkind = \"drill\"\n");
-  const test::posted table = post(cl, with_table, "kind-table", [](post_options& o) { o.tool_kind = "mill"; });
+  const test::posted table =
+      post(cl, with_table, "kind-table", [](post_options& o) { o.tool_kind = "mill"; });
   REQUIRE(table.ok);
   CHECK(only_file(table).find("T05 M6\nG97 S2000 M203\n") != std::string::npos);
 }
