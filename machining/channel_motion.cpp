@@ -210,7 +210,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
       return;
     case motion_kind::go_to:
     case motion_kind::delta:
-      if (tool_ < 0 && !start_tool(line)) return no_tool(line);
+      if ((tool_ < 0 || cam_tool_due_) && !start_tool(line)) return no_tool(line);
       if (spindle_held_) resume_spindle(line);
       if (cycle_refused_) {
         // the post has already failed at the CYCLE record
@@ -243,7 +243,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
 }
 
 void channel_writer::arc(const arc_event& a, int line) {
-  if (tool_ < 0 && !start_tool(line)) return no_tool(line);
+  if ((tool_ < 0 || cam_tool_due_) && !start_tool(line)) return no_tool(line);
   if (has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4) {
     pos_ = a.end;
     return error(line,

@@ -21,6 +21,7 @@ void channel_writer::note_cam_tool(const text_event& t, int line) {
   cam_tool_ = name;
   cam_tool_line_ = line;
   cam_tool_record_ = t.major;
+  cam_tool_due_ = true;
 }
 
 bool channel_writer::start_tool(int line) {
@@ -28,11 +29,19 @@ bool channel_writer::start_tool(int line) {
   // what the spindle holds when the CL names no tool the machine knows. Either way the call is
   // written, as a tool call record would be: the program does not lean on what the last one
   // left in the spindle, and the length offset, spindle and coolant follow as after any call.
+  // An operation whose CAM name maps to another tool than the one in force, with no call of
+  // its own (NX writes LOAD/TOOL at a change; a file without it would cut with the last
+  // tool): its tool is called, as at the start.
+  const bool named_due = cam_tool_due_;
+  cam_tool_due_ = false;
   tool_event t;
-  if (const tool_def* named = cam_tool_.empty() ? nullptr : m_.tool_named(ch_.number, cam_tool_)) {
+  const tool_def* named = cam_tool_.empty() ? nullptr : m_.tool_named(ch_.number, cam_tool_);
+  if (named && named_due && named->number != tool_) {
     t.source = tool_source::cam_name;
     t.tool = named->number;
     line = cam_tool_line_;
+  } else if (tool_ >= 0) {
+    return true;
   } else if (start_tool_) {
     t.source = tool_source::option;
     t.tool = *start_tool_;

@@ -237,6 +237,7 @@ void channel_writer::call_tool(const tool_event& d, int line) {
     cycle_.reset();
   }
   if (chain_ && !d.preselect) multiaxis_off();
+  if (!d.preselect) cam_tool_due_ = false;  // the CL calls its tool itself (the same one too)
   tool(d, line);
   if (chain_ && !d.preselect) multiaxis_tool(d, line);
 }
@@ -272,7 +273,7 @@ void channel_writer::process_event(const event& e, bool both) {
         } else if constexpr (std::is_same_v<T, arc_event>)
           arc(d, e.line);
         else if constexpr (std::is_same_v<T, spindle_event>) {
-          if (tool_ < 0) start_tool(e.line);  // a job that starts without a tool call
+          if (tool_ < 0 || cam_tool_due_) start_tool(e.line);  // a job that starts without a tool call
           spindle(d, e.line);
         } else if constexpr (std::is_same_v<T, feed_event>)
           feed(d, e.line);
@@ -285,12 +286,12 @@ void channel_writer::process_event(const event& e, bool both) {
         } else if constexpr (std::is_same_v<T, transfer_event>)
           transfer(d, e.line);
         else if constexpr (std::is_same_v<T, coolant_event>) {
-          if (tool_ < 0) start_tool(e.line);
+          if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
           coolant(d, e.line);
         } else if constexpr (std::is_same_v<T, stop_event>) {
           program_stop(d.optional);
         } else if constexpr (std::is_same_v<T, cutcom_event>) {
-          if (tool_ < 0) start_tool(e.line);
+          if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
           cutcom(d, e.line);
         } else if constexpr (std::is_same_v<T, cycle_event>) {
           // Threading and grooving go to channel_thread.cpp, drilling and tapping to
@@ -300,7 +301,7 @@ void channel_writer::process_event(const event& e, bool both) {
             cycle_.reset();
             cycle_refused_ = false;
           } else if (d.type != "ON" && d.type != "INIT") {
-            if (tool_ < 0) start_tool(e.line);
+            if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
             const bool lathe = d.type == "THREAD" || d.type == "GROOVE";
             cycle_refused_ = !(lathe ? lathe_cycle_supported(d, e.line) : cycle_supported(d, e.line));
             if (cycle_refused_)

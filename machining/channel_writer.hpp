@@ -166,8 +166,9 @@ class channel_writer {
   /// The error for a move before any tool call in this channel, once per channel.
   void no_tool(int line);
   /// Before a record that needs the tool (a move, SPINDL, COOLNT, a cycle, CUTCOM) with no
-  /// tool called yet: calls the tool the CAM's name or post --tool gives, as a tool call
-  /// record would (machining/channel_start_tool.cpp). False when neither gives one.
+  /// tool called yet, or with a CAM name of a tool since the last call: calls the tool the
+  /// CAM's name or (with none called) post --tool gives, as a tool call record would
+  /// (machining/channel_start_tool.cpp). False when no tool is in force after it.
   bool start_tool(int line);
   /// A tool call record, or the post's own (start_tool): the cycle in force ended, the
   /// multi-axis state closed and opened for the new tool.
@@ -500,6 +501,9 @@ class channel_writer {
   int cam_tool_line_ = 0;                        ///< the line that gave it
   std::string cam_tool_record_;                  ///< its major word
   bool no_tool_said_ = false;                    ///< the error for a move with no tool was given
+  /// A CAM name came since the last tool call: the tool it names is called before the next
+  /// record that needs one, unless a tool call record comes first.
+  bool cam_tool_due_ = false;
   std::string tool_call_;  ///< the last tool call written (an offset change writes a new one)
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;

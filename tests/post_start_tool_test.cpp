@@ -160,3 +160,25 @@ TEST_CASE("post --tool-kind gives a tool without TLDATA or [[tool]] its kind on 
   REQUIRE(table.ok);
   CHECK(only_file(table).find("T05 M6\nG97 S2000 M203\n") != std::string::npos);
 }
+
+TEST_CASE("an operation whose CAM name maps to another tool, with no call of its own, calls that tool",
+          "[post][tools][start]") {
+  const machine m = builtin_with("rotary-4axis",
+                                 "[[tool]]\nnumber = 7\nkind = \"mill\"\nname = \"MILL-20MM\"\n"
+                                 "[[tool]]\nnumber = 8\nkind = \"drill\"\nname = \"DRILL-8\"\n");
+  // The second operation names DRILL-8 and has no LOAD/TOOL: T08 is called before its moves.
+  // The third calls its tool itself (LOAD/TOOL,8 after TOOL PATH naming MILL-20MM): the call
+  // record stands (the same tool: its length offset again), no call of T07.
+  const test::posted p =
+      post(nx_operation +
+               "TOOL PATH/DRILL,TOOL,DRILL-8\nSPINDL/RPM,1500,CLW\nRAPID\nGOTO/5,5,10\n"
+               "END-OF-PATH\nTOOL PATH/OTHER,TOOL,MILL-20MM\nLOAD/TOOL,8\nRAPID\nGOTO/6,6,10\n"
+               "END-OF-PATH\n",
+           m, "second-operation");
+  CHECK(only_file(p) ==
+        "%\nO5003 (PROGRAM)\nG21\nG90 G94 G17 G40 G49 G80\n(FACE,TOOL,MILL-20MM)\nG91 G28 Z0.\nG90\nT07 M6\n"
+        "S1000 M3\nM8\nG0 G43 H7 X0. Y0. Z40. A0.\nG1 X10. Z20. "
+        "F250.\nX20.\n(DRILL,TOOL,DRILL-8)\nG49\nM5\nM9\n"
+        "G91 G28 Z0.\nG90\nT08 M6\nM8\nS1500 M3\nG0 G43 H8 X5. Y5. Z10. A0.\n(OTHER,TOOL,MILL-20MM)\n"
+        "G49\nG43 H8 X6. Y6. Z10. A0.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+}
