@@ -182,3 +182,21 @@ TEST_CASE("an operation whose CAM name maps to another tool, with no call of its
         "G91 G28 Z0.\nG90\nT08 M6\nM8\nS1500 M3\nG0 G43 H8 X5. Y5. Z10. A0.\n(OTHER,TOOL,MILL-20MM)\n"
         "G49\nG43 H8 X6. Y6. Z10. A0.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
 }
+
+TEST_CASE("post --tool C:N gives channel C its tool; another channel without one still fails",
+          "[post][tools][start]") {
+  const std::string cl =
+      "PARTNO TW\nHEAD/2\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nGOTO/-20,0,2\nGOTO/-20,0,-10\nFINI\n";
+  const machine m = load_machine("fanuc-0itd-twin");
+  const test::posted two = post(cl, m, "channel-2", [](post_options& o) { o.start_tools = {{2, 5}}; });
+  REQUIRE(two.ok);
+  CHECK(two.files.at("TW_2.nc").find("\nT0505\nG97 S800 M3\n") != std::string::npos);
+  // --tool 5 is channel 1's: channel 2 still moves without a tool.
+  const test::posted one = post(cl, m, "channel-1-only", [](post_options& o) { o.start_tools = {{1, 5}}; });
+  CHECK_FALSE(one.ok);
+  CHECK(one.diagnostics ==
+        "job.cls:5:1: error: channel 2: a move with no tool called in this channel: give LOADTL or TURRET "
+        "before the first move, the CAM's name of the tool under its [[tool]] in the machine file (name = "
+        "..., as NX TOOL PATH or CATIA TPRINT gives it), or the tool in the spindle with post --tool 2:N\n"
+        "GOTO/-20,0,2\n^\n");
+}
