@@ -1,5 +1,6 @@
 // twinpost post: post a CL job. The synopses of all commands: cli/command_table.cpp.
 #include <boost/program_options.hpp>
+#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <fmt/format.h>
@@ -39,6 +40,10 @@ po::options_description post_option_descriptions() {
       "dialect", po::value<std::string>(), "CL dialect (default: detect)")(
       "permissive", "an unknown major word is a warning, not an error")(
       "timeline", po::value<std::string>(), "also write the timeline page (HTML) into DIR under this name")(
+      "tool", po::value<std::vector<std::string>>(),
+      "[C:]N: tool N is in the spindle of channel C (default 1) when the job moves before any tool call")(
+      "tool-kind", po::value<std::string>(),
+      "turn|mill|drill: the kind of a tool neither TLDATA nor [[tool]] gives")(
       "job", po::value<std::string>(), "CL file");
   return opts;
 }
@@ -53,6 +58,20 @@ bool has_required(const po::variables_map& vm) {
     }
   }
   return true;
+}
+
+// --tool's value: "N" (channel 1) or "C:N", whole numbers, C >= 1, N >= 0; nullopt otherwise.
+std::optional<std::pair<int, int>> channel_tool(std::string_view s) {
+  const auto whole = [](std::string_view d, int& v) {
+    const auto [end, ec] = std::from_chars(d.data(), d.data() + d.size(), v);
+    return !d.empty() && ec == std::errc() && end == d.data() + d.size() && v >= 0;
+  };
+  int channel = 1, tool = 0;
+  const std::size_t colon = s.find(':');
+  if (colon != std::string_view::npos && (!whole(s.substr(0, colon), channel) || channel < 1))
+    return std::nullopt;
+  if (!whole(colon == std::string_view::npos ? s : s.substr(colon + 1), tool)) return std::nullopt;
+  return std::pair{channel, tool};
 }
 
 // The options as the library takes them; nullopt (said on stderr) when one names nothing.
@@ -74,6 +93,23 @@ std::optional<post_options> read_post_options(const po::variables_map& vm) {
     if (!o.layout) {
       fmt::print(stderr, "twinpost post: --layout must be {}\n",
                  names_joined(layout_names, layout_option, ", ", " or "));
+      return std::nullopt;
+    }
+  }
+  if (vm.count("tool"))
+    for (const std::string& t : vm["tool"].as<std::vector<std::string>>()) {
+      const std::optional<std::pair<int, int>> start = channel_tool(t);
+      if (!start) {
+        fmt::print(stderr,
+                   "twinpost post: --tool must be N or C:N (a tool number, a channel number), not '{}'\n", t);
+        return std::nullopt;
+      }
+      o.start_tools.push_back(*start);
+    }
+  if (vm.count("tool-kind")) {
+    o.tool_kind = vm["tool-kind"].as<std::string>();
+    if (o.tool_kind != "turn" && o.tool_kind != "mill" && o.tool_kind != "drill") {
+      fmt::print(stderr, "twinpost post: --tool-kind must be turn, mill or drill, not '{}'\n", o.tool_kind);
       return std::nullopt;
     }
   }

@@ -17,7 +17,9 @@ const std::array<command_entry, 6> table{{
      "the record policy instead: every major word twinpost knows and what a post does with it "
      "(posted, ignored, or an error), with the reason, as a Markdown table.",
      &run_parse},
-    {"post", "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--permissive] [--timeline FILE]",
+    {"post",
+     "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--permissive] [--timeline FILE]"
+     " [--tool [C:]N]... [--tool-kind K]",
      "post a CL job to NC programs",
      "Posts a CL job for machine M into the folder DIR (made if missing): one program per "
      "channel, or one merged program, as the machine's control expects (--layout split, "
@@ -30,7 +32,10 @@ const std::array<command_entry, 6> table{{
      "known record the post cannot carry out (STOP is posted, THREAD is not: see 'twinpost "
      "parse --records') stays an error. The summary gives the cycle time and each channel's "
      "idle at its waits when the machine file has [timing]; --timeline FILE writes the "
-     "timeline page of the programs into DIR with them.",
+     "timeline page of the programs into DIR with them. A job that moves before any tool call "
+     "starts with the tool the machine's [[tool]] table names by the CAM's name of it (NX TOOL "
+     "PATH, CATIA TPRINT), else with --tool N (C:N for channel C), called as a tool call record "
+     "would be; --tool-kind K is the kind of every tool neither TLDATA nor [[tool]] gives.",
      &run_post},
     {"check", "FILE... --machine M [--json]", "check wait synchronisation of NC programs",
      "Checks that the waits of NC programs pair up, in order, and that no channel can "

@@ -48,6 +48,16 @@ const tool_def* machine::tool(int channel, int number) const {
   return any;
 }
 
+const tool_def* machine::tool_named(int channel, std::string_view name) const {
+  const tool_def* any = nullptr;
+  for (const tool_def& t : tools)
+    if (!t.name.empty() && ascii::iequals(t.name, name)) {
+      if (t.channel == channel) return &t;
+      if (t.channel == 0 && !any) any = &t;
+    }
+  return any;
+}
+
 std::string_view machine::tool_kind(int channel, int number) const {
   const tool_def* t = tool(channel, number);
   return t ? std::string_view(t->kind) : std::string_view();

@@ -212,6 +212,9 @@ struct tool_def {
   int number = 0;    ///< the tool number of the CL tool call
   int channel = 0;   ///< the channel whose tool it is; 0: every channel
   std::string kind;  ///< "turn", "drill" or "mill"
+  /// The CAM's name of the tool (NX `TOOL PATH/op,TOOL,name`, CATIA `TPRINT/name`): a job that
+  /// moves before any tool call starts with this tool when the CAM names it (docs/machines.md).
+  std::string name{};
   /// The gauge length (spindle nose to tip, mm) as measured on the machine: the tool length
   /// of multi-axis output (docs/machines.md, "Multi-axis output").
   std::optional<double> length{};
@@ -330,6 +333,9 @@ struct machine {
   /// The tool table's entry of tool `number` of channel `channel` (one of that channel before
   /// one of every channel), or nullptr.
   const tool_def* tool(int channel, int number) const;
+  /// The tool table's entry named `name` (ASCII case ignored) for channel `channel` (one of that
+  /// channel before one for every channel); null if none.
+  const tool_def* tool_named(int channel, std::string_view name) const;
   /// The kinematic chain of channel `channel`, or nullptr.
   const kinematic_chain* chain(int channel) const;
   /// The spindle named `name`, or nullptr.

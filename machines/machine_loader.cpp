@@ -461,7 +461,7 @@ void read_transfer(const table_reader& root, machine& m) {
 void read_tools(const table_reader& root, machine& m) {
   for (const toml::table* t : root.tables("tool")) {
     table_reader r(*t, "tool", root.source(),
-                   {"number", "channel", "kind", "length", "diameter", "diameter_offset", "spindle"});
+                   {"number", "channel", "kind", "name", "length", "diameter", "diameter_offset", "spindle"});
     tool_def d;
     r.require("number");
     r.read("number", d.number);
@@ -498,6 +498,13 @@ void read_tools(const table_reader& root, machine& m) {
         r.fail(*r.find("number"),
                d.channel ? fmt::format("tool {} of channel {} is listed twice", d.number, d.channel)
                          : fmt::format("tool {} is listed twice", d.number));
+    // One name, one tool: a job that starts without a tool call is given the tool by its name.
+    if (r.read("name", d.name))
+      for (const tool_def& earlier : m.tools)
+        if (earlier.channel == d.channel && !earlier.name.empty() &&
+            m.tool_named(d.channel, d.name) == &earlier)
+          r.fail(*r.find("name"),
+                 fmt::format("tool.name '{}' is given to tools {} and {}", d.name, earlier.number, d.number));
     m.tools.push_back(std::move(d));
   }
 }

@@ -195,12 +195,6 @@ std::string channel_writer::not_started(const spindle_def& s, bool job) const {
           : "no SPINDL with a speed in this channel before the cut");
 }
 
-void channel_writer::no_tool(int line) {
-  // The turret's tool and offset would be whatever the last program left: a move with no tool
-  // call (HEAD/BOTH's second channel, a job that starts moving before LOADTL) is refused.
-  error(line, "a move with no tool called in this channel: give LOADTL or TURRET before the first move");
-}
-
 void channel_writer::motion(const motion_event& mv, int line) {
   switch (mv.kind) {
     case motion_kind::from:
@@ -216,7 +210,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
       return;
     case motion_kind::go_to:
     case motion_kind::delta:
-      if (tool_ < 0) return no_tool(line);
+      if ((tool_ < 0 || cam_tool_due_) && !start_tool(line)) return no_tool(line);
       if (!selected_) select_spindle(work_);  // a section that moves before its SPINDL
       if (spindle_held_) resume_spindle(line);
       if (cycle_refused_) {
@@ -250,7 +244,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
 }
 
 void channel_writer::arc(const arc_event& a, int line) {
-  if (tool_ < 0) return no_tool(line);
+  if ((tool_ < 0 || cam_tool_due_) && !start_tool(line)) return no_tool(line);
   if (has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4) {
     pos_ = a.end;
     return error(line,

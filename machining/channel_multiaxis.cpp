@@ -10,6 +10,7 @@
 
 #include "kinematics/forward.hpp"
 #include "kinematics/vec3_ops.hpp"
+#include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
 
 namespace twinpost {
@@ -41,10 +42,10 @@ double off_pole(const vec3& axis, const vec3& pole) {
 }  // namespace
 
 void channel_writer::tool_data_length(const tool_data_event& t, bool after_call) {
-  // NX: TLDATA/MILL, diameter, lower radius, length, taper, tip angle (cl-formats.md).
-  if (t.major != "TLDATA" || t.words.empty() || t.words.front() != "MILL" || t.values.size() < 3) return;
-  const double mm = t.values[2] * cl_mm_;
-  if (!(mm > 0)) return;
+  // Every TLDATA form whose length is known for certain (machining/cam_tool.hpp).
+  const std::optional<double> cl = tldata_length(t);
+  if (!cl) return;
+  const double mm = *cl * cl_mm_;
   if (after_call) {
     length_cl_ = mm;
     length_known_ = length_refused_ = false;

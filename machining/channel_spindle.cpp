@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "machines/name_template.hpp"
+#include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
 
 namespace twinpost {
@@ -52,9 +53,9 @@ void channel_writer::select_spindle(const spindle_def* s) {
 void channel_writer::tool_data(const tool_data_event& t) {
   if (t.major != "TLDATA" || t.words.empty()) return;
   const std::string& w = t.words.front();
-  // NX TLDATA/MILL, diameter, lower radius, length, ...: the diameter a surface speed needs.
-  if (w == "MILL" && !t.values.empty() && t.values[0] > 0)
-    (after_call_ ? diameter_ : next_diameter_) = t.values[0] * cl_mm_;
+  // NX TLDATA/MILL or DRILL, diameter, ...: the diameter a surface speed needs.
+  if (const std::optional<double> d = tldata_diameter(t))
+    (after_call_ ? diameter_ : next_diameter_) = *d * cl_mm_;
   const tool_kind k = w == "MILL"                                       ? tool_kind::mill
                       : w == "DRILL"                                    ? tool_kind::drill
                       : (w == "TURN" || w == "GROOVE" || w == "THREAD") ? tool_kind::turn
@@ -63,6 +64,7 @@ void channel_writer::tool_data(const tool_data_event& t) {
   if (after_call_) {
     kind_ = k;
     table_kind(tool_, line_);
+    if (kind_ == tool_kind::unknown) kind_ = default_kind_;
   } else
     next_kind_ = k;
 }
@@ -103,11 +105,13 @@ const spindle_def* channel_writer::spindle_for_tool(const spindle_event& s, int 
   }
   // Constant surface speed is a turning speed: it means the workpiece spindle.
   if (s.mode == spindle_mode::smm || s.mode == spindle_mode::sfm) return work_;
-  error(line, fmt::format("SPINDL: the kind of {} is unknown, and channel {} has a workpiece spindle and a "
-                          "live one ({}): give TLDATA/TURN, MILL or DRILL before the tool call, or name the "
-                          "spindle (SPINDL/...,MAIN, SUB or LIVE)",
-                          tool_ < 0 ? std::string("the tool (no tool called yet)") : tool, ch_.number,
-                          ch_.live_spindle));
+  error(line,
+        fmt::format("SPINDL: the kind of {} is unknown, and channel {} has a workpiece spindle and a "
+                    "live one ({}): give TLDATA/TURN, MILL or DRILL before the tool call, kind = ... under "
+                    "the tool's [[tool]] in the machine file, or post --tool-kind for every tool without "
+                    "one, or name the spindle (SPINDL/...,MAIN, SUB or LIVE)",
+                    tool_ < 0 ? std::string("the tool (no tool called yet)") : tool, ch_.number,
+                    ch_.live_spindle));
   return nullptr;
 }
 

@@ -118,7 +118,8 @@ void channel_writer::tool(const tool_event& t, int line) {
       ch_.offset_call.empty() ? std::string() : format_template(ch_.offset_call, a);
   const bool names_offset = ch_.tool_call.find("{offset") != std::string::npos ||
                             ch_.offset_call.find("{offset") != std::string::npos;
-  static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL", "SELECT/TOOL", "TURRET"};
+  static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL",     "SELECT/TOOL",
+                                          "TURRET", "[[tool]] name", "post --tool"};
   const char* word = words[static_cast<int>(t.source)];
   // Offset 0 in a lathe tool call (T0300) cancels the tool's offset: the tip would run
   // where the turret's reference point is, not where the CL says.
@@ -198,6 +199,8 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   kind_ = next_kind_;
   next_kind_ = tool_kind::unknown;
   table_kind(tool, line);
+  // Neither TLDATA nor [[tool]]: the kind post --tool-kind gives every such tool.
+  if (kind_ == tool_kind::unknown) kind_ = default_kind_;
   after_call_ = true;
 }
 

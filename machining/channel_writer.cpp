@@ -227,6 +227,21 @@ void channel_writer::frame(const coordsys_event& c, int line) {
                             fmt::join(c.values, ",")));
 }
 
+void channel_writer::call_tool(const tool_event& d, int line) {
+  if (cycle_ && !d.preselect) {
+    // The cycle's depth and feed were the last tool's; every move of the next tool
+    // would be drilled as a hole. The CL must end the cycle first.
+    error(line, fmt::format("a tool change while CYCLE/{} (line {}) is in force: give CYCLE/OFF "
+                            "before it, or each move of the next tool would be drilled as a hole",
+                            cycle_->type, cycle_line_));
+    cycle_.reset();
+  }
+  if (chain_ && !d.preselect) multiaxis_off();
+  if (!d.preselect) cam_tool_due_ = false;  // the CL calls its tool itself (the same one too)
+  tool(d, line);
+  if (chain_ && !d.preselect) multiaxis_tool(d, line);
+}
+
 void channel_writer::on_event(const event& e, bool both) {
   if (chain_ && hold_for_pole(e, both)) return;  // machining/channel_pole.cpp
   process_event(e, both);
@@ -257,33 +272,26 @@ void channel_writer::process_event(const event& e, bool both) {
           motion(d, e.line);
         } else if constexpr (std::is_same_v<T, arc_event>)
           arc(d, e.line);
-        else if constexpr (std::is_same_v<T, spindle_event>)
+        else if constexpr (std::is_same_v<T, spindle_event>) {
+          if (tool_ < 0 || cam_tool_due_) start_tool(e.line);  // a job that starts without a tool call
           spindle(d, e.line);
-        else if constexpr (std::is_same_v<T, feed_event>)
+        } else if constexpr (std::is_same_v<T, feed_event>)
           feed(d, e.line);
         else if constexpr (std::is_same_v<T, tool_event>) {
-          if (cycle_ && !d.preselect) {
-            // The cycle's depth and feed were the last tool's; every move of the next tool
-            // would be drilled as a hole. The CL must end the cycle first.
-            error(e.line, fmt::format("a tool change while CYCLE/{} (line {}) is in force: give CYCLE/OFF "
-                                      "before it, or each move of the next tool would be drilled as a hole",
-                                      cycle_->type, cycle_line_));
-            cycle_.reset();
-          }
-          if (chain_ && !d.preselect) multiaxis_off();
-          tool(d, e.line);
-          if (chain_ && !d.preselect) multiaxis_tool(d, e.line);
+          call_tool(d, e.line);
         } else if constexpr (std::is_same_v<T, tool_data_event>) {
           after_call_ = after_call;
           if (chain_) tool_data_length(d, after_call);
           tool_data(d);
         } else if constexpr (std::is_same_v<T, transfer_event>)
           transfer(d, e.line);
-        else if constexpr (std::is_same_v<T, coolant_event>)
+        else if constexpr (std::is_same_v<T, coolant_event>) {
+          if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
           coolant(d, e.line);
-        else if constexpr (std::is_same_v<T, stop_event>) {
+        } else if constexpr (std::is_same_v<T, stop_event>) {
           program_stop(d.optional);
         } else if constexpr (std::is_same_v<T, cutcom_event>) {
+          if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
           cutcom(d, e.line);
         } else if constexpr (std::is_same_v<T, cycle_event>) {
           // Threading and grooving go to channel_thread.cpp, drilling and tapping to
@@ -293,6 +301,7 @@ void channel_writer::process_event(const event& e, bool both) {
             cycle_.reset();
             cycle_refused_ = false;
           } else if (d.type != "ON" && d.type != "INIT") {
+            if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
             const bool lathe = d.type == "THREAD" || d.type == "GROOVE";
             cycle_refused_ = !(lathe ? lathe_cycle_supported(d, e.line) : cycle_supported(d, e.line));
             if (cycle_refused_)
@@ -323,8 +332,10 @@ void channel_writer::process_event(const event& e, bool both) {
             spindle_ended_.clear();  // the user's text may turn either on again
             coolant_ended_.clear();
           } else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint ||
-                     d.kind == text_kind::op_start || d.kind == text_kind::toolpath)
+                     d.kind == text_kind::op_start || d.kind == text_kind::toolpath) {
+            if (d.kind != text_kind::pprint && d.kind != text_kind::op_start) note_cam_tool(d, e.line);
             out_.comment(d.text);
+          }
         } else if constexpr (std::is_same_v<T, tool_axis_event>) {
           axis_ = d.axis;
         } else if constexpr (std::is_same_v<T, units_event>) {

@@ -63,6 +63,11 @@ class channel_writer {
   /// workpiece); the S code in path 1's program only as the issue reports the Fanuc manuals,
   /// UNVERIFIED in the pages read.
   void set_balance_master(const channel_writer* master) { balance_master_ = master; }
+  /// A job that moves before any tool call in this channel: `tool`, when given, is the tool in
+  /// the channel's spindle (post --tool); a tool the machine's [[tool]] table names by the
+  /// CAM's name of it comes first. `kind` ("turn", "mill", "drill" or empty) is the kind of
+  /// every tool the CL and the [[tool]] table leave without one (post --tool-kind).
+  void start_with(std::optional<int> tool, std::string_view kind);
   /// The job's record of spindle starts, shared by all its writers (see job_spindles); without
   /// one a cut on a spindle this channel has not started is an error at once.
   void share_spindles(job_spindles* j) { job_spindles_ = j; }
@@ -161,8 +166,18 @@ class channel_writer {
   /// Why an axial hole off the centre line cannot be drilled here, and what would drill it:
   /// the live tool with the part held as C on a mill/turn channel, nothing on a plain lathe's.
   std::string off_centre_hole_needs() const;
-  /// The error for a move before any tool call in this channel.
+  /// The error for a move before any tool call in this channel, once per channel.
   void no_tool(int line);
+  /// Before a record that needs the tool (a move, SPINDL, COOLNT, a cycle, CUTCOM) with no
+  /// tool called yet, or with a CAM name of a tool since the last call: calls the tool the
+  /// CAM's name or (with none called) post --tool gives, as a tool call record would
+  /// (machining/channel_start_tool.cpp). False when no tool is in force after it.
+  bool start_tool(int line);
+  /// A tool call record, or the post's own (start_tool): the cycle in force ended, the
+  /// multi-axis state closed and opened for the new tool.
+  void call_tool(const tool_event& t, int line);
+  /// Remembers the CAM's name of its tool from a text record (TOOL PATH, TPRINT).
+  void note_cam_tool(const text_event& t, int line);
   /// COOLNT: flood (ON, FLOOD) writes the machine's coolant-on block, MIST, THRU and AIR their
   /// pairs (codes.coolant_mist ...); a kind the machine file gives no code for (and TAP) is
   /// an error, never plain flood. OFF writes the off block of the kind in force.
@@ -490,6 +505,15 @@ class channel_writer {
   std::string coolant_block_;      ///< the coolant-on block in force, "" when off
   std::string coolant_off_block_;  ///< the off block of the coolant kind in force
   int tool_ = -1;
+  std::optional<int> start_tool_;                ///< post --tool: the tool in the spindle at the start
+  tool_kind default_kind_ = tool_kind::unknown;  ///< post --tool-kind
+  std::string cam_tool_;                         ///< the CAM's name of its tool (TOOL PATH, TPRINT)
+  int cam_tool_line_ = 0;                        ///< the line that gave it
+  std::string cam_tool_record_;                  ///< its major word
+  bool no_tool_said_ = false;                    ///< the error for a move with no tool was given
+  /// A CAM name came since the last tool call: the tool it names is called before the next
+  /// record that needs one, unless a tool call record comes first.
+  bool cam_tool_due_ = false;
   std::string tool_call_;  ///< the last tool call written (an offset change writes a new one)
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;

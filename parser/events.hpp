@@ -38,7 +38,10 @@ struct arc_event {
 /// The most full turns one CIRCLE/...,TIMES,n may ask for.
 inline constexpr int max_circle_turns = 9999;
 
-enum class tool_source : unsigned char { loadtl, load_tool, select_tool, turret };
+/// `cam_name` and `option` are no CL record: the post's own call of the tool a job moves with
+/// before any tool call, named by the CAM in the machine's [[tool]] table or given by
+/// `post --tool` (machining/channel_start_tool.cpp).
+enum class tool_source : unsigned char { loadtl, load_tool, select_tool, turret, cam_name, option };
 
 /// A tool call, or a tool preselection (SELECT/TOOL).
 struct tool_event {

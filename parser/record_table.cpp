@@ -250,11 +250,15 @@ const event_builder::rule_index& event_builder::rules() {
           "spindle (milling and off-centre drilling: the live one); no block. TLDATA/MILL's diameter turns "
           "a surface speed into rpm; the rest of the geometry is for the CAM's simulation (and the length "
           "for multi-axis output)"),
-      posted("TOOL PATH", &b::on_text<text_kind::toolpath>, "a comment naming the NX operation and its tool"),
+      posted("TOOL PATH", &b::on_text<text_kind::toolpath>,
+             "a comment naming the NX operation and its tool; the name finds the tool in [[tool]] (name) for "
+             "a job that moves before any tool call"),
       ignored("TOOLNO",
               "CATIA's tool number and kind, repeated by the LOADTL that calls the tool, which is "
               "posted"),
-      posted("TPRINT", &b::on_text<text_kind::tprint>, "a comment block, as PPRINT"),
+      posted("TPRINT", &b::on_text<text_kind::tprint>,
+             "a comment block, as PPRINT; CATIA's tool name, found in [[tool]] (name) for a job that moves "
+             "before any tool call"),
       posted("TRANSFER", &b::on_transfer,
              "the part transfer to the sub spindle (twinpost's record, from an NX UDE or a CAM's "
              "user command): GRIP (sync, sub advance, chuck close) and RELEASE (main chuck open, sub "

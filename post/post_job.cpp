@@ -181,6 +181,12 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     ws.writers.push_back(
         std::make_unique<channel_writer>(m, ch, target.path, sink, o.cl_path, std::move(frame)));
   }
+  for (const channel_def& ch : m.channels) {
+    std::optional<int> start;
+    for (const auto& [channel, tool] : o.start_tools)
+      if (channel == ch.number) start = tool;
+    ws.writers[static_cast<std::size_t>(ch.number - 1)]->start_with(start, o.tool_kind);
+  }
   ws.spindles.started.assign(m.spindles.size(), std::vector<char>(m.channels.size(), 0));
   for (auto& w : ws.writers) w->share_spindles(&ws.spindles);
   // Under HEAD/BOTH the channel of head 1 commands the spindle; the other's copy follows it.
@@ -371,6 +377,10 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   ws.diags = &sink;
   ws.file = o.cl_path;
   const frame_request req = staged_request(o, m, stage.dir());
+  for (const auto& [channel, tool] : o.start_tools)
+    if (channel < 1 || channel > static_cast<int>(m.channels.size()))
+      throw config_error(fmt::format("--tool {}:{}: machine '{}' has no channel {} (it has {})", channel,
+                                     tool, m.name, channel, m.channels.size()));
   open_writers(o, m, req, ws, sink);
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
 

@@ -31,6 +31,12 @@ struct post_options {
   /// When set, the timeline page of the posted programs (analysis/timeline_report.hpp) is
   /// written into the output folder under this plain file name, as one of the set.
   std::string timeline_file;
+  /// post --tool [C:]N: tool N is in the spindle of channel C (1 unless given) when the job
+  /// moves before any tool call (machining/channel_start_tool.cpp); one per channel.
+  std::vector<std::pair<int, int>> start_tools;
+  /// post --tool-kind: "turn", "mill" or "drill" for every tool whose kind neither the CL
+  /// (TLDATA) nor the machine's [[tool]] table gives; empty: none.
+  std::string tool_kind;
   /// Called now and then (every 64k records) with the CL bytes read so far; may be empty.
   std::function<void(std::size_t bytes)> progress;
 };

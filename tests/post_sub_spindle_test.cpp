@@ -206,7 +206,8 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
       "job.cls:4:1: error: channel 1: SPINDL: the kind of tool 1 (LOADTL at line 3) is unknown, and channel "
       "1 "
       "has a workpiece spindle and a live one (live): give TLDATA/TURN, MILL or DRILL before the tool call, "
-      "or name the spindle (SPINDL/...,MAIN, SUB or LIVE)\nSPINDL/RPM,500,CLW\n^\n");
+      "kind = ... under the tool's [[tool]] in the machine file, or post --tool-kind for every tool without "
+      "one, or name the spindle (SPINDL/...,MAIN, SUB or LIVE)\nSPINDL/RPM,500,CLW\n^\n");
   // A constant surface speed is a turning speed: the workpiece spindle.
   const test::posted css = post_on("PARTNO E\nHEAD/1\nLOADTL/1\nSPINDL/SMM,150,MAXRPM,2000,CLW\nFINI\n",
                                    "integrex-i200st", "unknown-css");

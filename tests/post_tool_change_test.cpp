@@ -136,7 +136,9 @@ TEST_CASE("a move before any tool call is an error", "[post][tools]") {
   CHECK_FALSE(p.ok);
   CHECK(p.diagnostics ==
         "job.cls:5:1: error: channel 1: a move with no tool called in this channel: give LOADTL or TURRET "
-        "before the first move\nGOTO/20,0,2\n^\n");
+        "before the first move, the CAM's name of the tool under its [[tool]] in the machine file (name = "
+        "..., as NX TOOL PATH or CATIA TPRINT gives it), or the tool in the spindle with post --tool N\n"
+        "GOTO/20,0,2\n^\n");
 }
 
 TEST_CASE("an offset the channel's tool call cannot write is an error, never the last offset",

@@ -47,8 +47,9 @@ for m in $(ls "$work/root/usr/share/twinpost/machines"); do
   fi
   # The turning job, or for a multi-axis mill the sample that names it in its `machines` file.
   job=$src/samples/shaft-od-drill/job.cls
+  # (A sample with post.args needs its options: not this plain post.)
   for f in "$src"/samples/*/machines; do
-    if grep -qx "$name" "$f"; then job=$(dirname "$f")/job.cls; fi
+    if grep -qx "$name" "$f" && [ ! -e "$(dirname "$f")/post.args" ]; then job=$(dirname "$f")/job.cls; fi
   done
   # No user or site folders: the installed copy must be the one found.
   XDG_CONFIG_HOME=$work/no-config "$bin" post "$job" --machine "$name" -o "$out" >"$work/$name.stdout"
