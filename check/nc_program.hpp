@@ -66,8 +66,10 @@ struct nc_word {
 };
 
 /// The letters (A..Z) of a block's words as a bit mask, bit 0 for A: one test says whether a
-/// block has a G, M or S at all.
-constexpr std::uint32_t nc_letter(char address) { return std::uint32_t{1} << (address - 'A'); }
+/// block has a G, M or S at all. An address that is no letter (a bang wait's `!`) has no bit.
+constexpr std::uint32_t nc_letter(char address) {
+  return address >= 'A' && address <= 'Z' ? std::uint32_t{1} << (address - 'A') : 0;
+}
 
 /// One block of a channel's program as the reader hands it on (nc_read_options::on_block).
 /// It is split at most once, on the first call of words() by any consumer, and that split
