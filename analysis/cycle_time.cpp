@@ -38,6 +38,9 @@ struct channel_run {
   int segment = 0;
   std::vector<int> kept_segment;  // the segment of each kept block
   bool kept_over = false;         // more blocks than timeline_max_kept_blocks: none kept
+  // Untimed blocks per kind, in program order: kept per channel, so that the kinds come out
+  // in channel then program order however the channels' blocks were interleaved.
+  std::vector<untimed_group> untimed;
   channel_run(const machine& m, int ch) : timer(m, ch) {}
 };
 
@@ -61,7 +64,7 @@ class timeline_builder {
     ++c.blocks;
     if (!t.untimed.empty()) {
       ++c.untimed;
-      note_untimed(t.untimed, file, line, text);
+      note_untimed(r.untimed, t.untimed, file, line, text);
     }
     // A new operation at a tool call and after each wait.
     if (c.operations.empty() || t.tool_call || c.operations.back().segment != r.segment) {
@@ -140,15 +143,16 @@ class timeline_builder {
     place_in_time(tl);
     find_critical_path(tl);
     give_advice(tl);
-    tl.untimed_kinds = std::move(untimed_);
+    tl.untimed_kinds = untimed_kinds();
     for (channel_run& r : runs_) tl.channels.push_back(std::move(r.times));
     tl.ok = true;
     return tl;
   }
 
  private:
-  void note_untimed(const std::string& why, const std::string& file, int line, std::string_view text) {
-    for (untimed_group& g : untimed_)
+  static void note_untimed(std::vector<untimed_group>& groups, const std::string& why,
+                           const std::string& file, int line, std::string_view text) {
+    for (untimed_group& g : groups)
       if (g.why == why) {
         ++g.count;
         return;
@@ -159,7 +163,22 @@ class timeline_builder {
     g.first.file = file;
     g.first.line = line;
     g.first.source_line = std::string(text);
-    untimed_.push_back(std::move(g));
+    groups.push_back(std::move(g));
+  }
+
+  // The channels' untimed kinds as one list: channel 1's, then each kind first seen later.
+  std::vector<untimed_group> untimed_kinds() {
+    std::vector<untimed_group> all;
+    for (channel_run& r : runs_)
+      for (untimed_group& g : r.untimed) {
+        auto same =
+            std::find_if(all.begin(), all.end(), [&](const untimed_group& a) { return a.why == g.why; });
+        if (same != all.end())
+          same->count += g.count;
+        else
+          all.push_back(std::move(g));
+      }
+    return all;
   }
 
   // The channels run together: a group of partners leaves a wait when the last one arrives.
@@ -273,7 +292,6 @@ class timeline_builder {
   const timeline_options& o_;
   int n_ = 0;
   std::vector<channel_run> runs_;
-  std::vector<untimed_group> untimed_;
   // stream_blocks: the channel streamed, its shifts, the block held until its wait is known.
   int stream_channel_ = 0;
   std::vector<double> stream_shift_;

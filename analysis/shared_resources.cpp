@@ -626,27 +626,61 @@ std::vector<diagnostic> shared_resources::finish(const std::vector<std::uint64_t
   return out;
 }
 
-sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
-                               const nc_read_options& more) {
-  shared_resources rules(m);
-  nc_read_options also;
-  also.on_block = [&](const nc_block& b) {
-    rules.block(b);
-    if (more.on_block) more.on_block(b);
-  };
-  also.on_wait = [&](const nc_wait& w) {
-    rules.wait(w.channel);
-    if (more.on_wait) more.on_wait(w);
-  };
-  sync_result r = check_nc_files(files, m, also);
+namespace {
+
+// The rules' findings after the checker's, counted in the result.
+void add_findings(sync_result& r, shared_resources& rules) {
   std::vector<diagnostic> found = rules.finish(r.rendezvous, r.ok);
-  if (found.empty()) return r;
+  if (found.empty()) return;
   r.diagnostics.insert(r.diagnostics.end(), found.begin(), found.end());
   diagnostic_counts n;
   for (const diagnostic& d : r.diagnostics) n.add(d);
   r.errors = n.errors;
   r.warnings = n.warnings;
   r.ok = r.errors == 0;
+}
+
+// The rules fed by a reading, and `more` with them.
+nc_read_options feeding(shared_resources& rules, const nc_read_options& more) {
+  nc_read_options also;
+  also.on_block = [&rules, more](const nc_block& b) {
+    rules.block(b);
+    if (more.on_block) more.on_block(b);
+  };
+  also.on_wait = [&rules, more](const nc_wait& w) {
+    rules.wait(w.channel);
+    if (more.on_wait) more.on_wait(w);
+  };
+  return also;
+}
+
+}  // namespace
+
+sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
+                               const nc_read_options& more) {
+  shared_resources rules(m);
+  sync_result r = check_nc_files(files, m, feeding(rules, more));
+  add_findings(r, rules);
+  return r;
+}
+
+struct compact_resource_check::impl {
+  impl(const machine& m, const nc_read_options& more) : rules(m), compact(m, feeding(rules, more)) {}
+  shared_resources rules;
+  compact_sync_check compact;
+};
+
+compact_resource_check::compact_resource_check(const machine& m, const nc_read_options& more)
+    : p_(std::make_unique<impl>(m, more)) {}
+
+compact_resource_check::~compact_resource_check() = default;
+
+const nc_read_options& compact_resource_check::options() const { return p_->compact.options(); }
+
+std::optional<sync_result> compact_resource_check::result(const nc_programs& programs,
+                                                          const diagnostic_list& read) {
+  std::optional<sync_result> r = p_->compact.result(programs, read);
+  if (r) add_findings(*r, p_->rules);
   return r;
 }
 

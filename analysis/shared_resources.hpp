@@ -22,6 +22,7 @@
 // rule treats alike, its first cut with feed per revolution are kept.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -58,5 +59,24 @@ class shared_resources {
 /// `more` gets every block and wait of the same reading, once each (the post's cycle time).
 sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
                                const nc_read_options& more = {});
+
+/// check_nc_resources for a caller that reads the programs itself (post reads its programs
+/// while they are written: nc_stream_reader): read with options(), then result().
+class compact_resource_check {
+ public:
+  explicit compact_resource_check(const machine& m, const nc_read_options& more = {});
+  ~compact_resource_check();
+  compact_resource_check(const compact_resource_check&) = delete;
+  compact_resource_check& operator=(const compact_resource_check&) = delete;
+  /// What to read with: the check's and the rules' callbacks, and `more`'s.
+  const nc_read_options& options() const;
+  /// What check_nc_resources returns for the same programs, when the reading found nothing to
+  /// say (compact_sync_check::result); nullopt: read them with check_nc_resources instead.
+  std::optional<sync_result> result(const nc_programs& programs, const diagnostic_list& read);
+
+ private:
+  struct impl;
+  std::unique_ptr<impl> p_;
+};
 
 }  // namespace twinpost

@@ -198,17 +198,52 @@ class reader {
 
   /// Reads a whole file as the program of `channel` (split layout).
   void read_split(const nc_source& f, int channel) {
-    out_.channels[static_cast<std::size_t>(channel - 1)].file = f.name;
-    channel_state& st = state_[static_cast<std::size_t>(channel - 1)];
-    // Runs of plain blocks may be skipped: only the last of a run matters here, once the
-    // channel is known to have a block at all (until then every line is looked at), unless
-    // every block goes to on_block.
+    begin_split(f, channel);
     for_each_line(
         f, [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); },
-        options_.on_block ? nullptr : &st.has_block);
-    if (!st.has_block)
+        split_runs(channel));
+    end_split(f, channel);
+  }
+
+  // Where a file read piece by piece is between two pieces.
+  struct stream_state {
+    std::string carry;  // the start of a line the last piece did not end
+    int no = 0;         // lines handed on so far
+    bool first = true, skip_lf = false;
+    bool stopped = false;  // a line too long ended the reading
+  };
+
+  /// The next piece of `channel`'s file (split layout), as its writer produced it;
+  /// `chunk.data()[chunk.size()]` is a NUL (the scans stop at it).
+  void feed_split(const nc_source& f, int channel, stream_state& s, std::string_view chunk) {
+    auto on_line = [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); };
+    stream_chunk(f, s, chunk, on_line, split_runs(channel));
+  }
+
+  /// The end of `channel`'s file fed piece by piece.
+  void end_split(const nc_source& f, int channel, stream_state& s) {
+    auto on_line = [&](int no, std::string_view line, bool plain) { read_line(f, no, line, channel, plain); };
+    if (!s.stopped) stream_end(s, on_line);
+    end_split(f, channel);
+  }
+
+  /// Starts the program of `channel` (split layout), read from `f`.
+  void begin_split(const nc_source& f, int channel) {
+    out_.channels[static_cast<std::size_t>(channel - 1)].file = f.name;
+  }
+
+  // A split file read to its end: a channel with no block has no program.
+  void end_split(const nc_source& f, int channel) {
+    if (!state_[static_cast<std::size_t>(channel - 1)].has_block)
       report(severity::error, {f.name, 0, 0, {}},
              fmt::format("no NC block in this file: channel {} has no program", channel));
+  }
+
+  // Runs of plain blocks may be skipped: only the last of a run matters here, once the
+  // channel is known to have a block at all (until then every line is looked at), unless
+  // every block goes to on_block.
+  const bool* split_runs(int channel) const {
+    return options_.on_block ? nullptr : &state_[static_cast<std::size_t>(channel - 1)].has_block;
   }
 
   /// Reads a file with section markers (merged layouts).
@@ -413,60 +448,80 @@ class reader {
     }
     if (!file) throw config_error(fmt::format("cannot read '{}'", f.path));
     chunk_reader reader(file);  // each chunk ends in the NUL the scans stop at
-    std::string carry;
-    int no = 0;
-    bool first = true, skip_lf = false;
+    stream_state s;
     for (std::string_view chunk; !(chunk = reader.next()).empty();) {
-      if (first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
-      first = false;
-      std::size_t pos = 0;
-      if (skip_lf && !chunk.empty() && chunk[0] == '\n') pos = 1;  // CR LF split by the chunk
-      skip_lf = false;
-      while (pos < chunk.size()) {
-        if (runs && *runs && carry.empty() && consume_run(chunk, pos, no, on_line)) continue;
-        if (carry.empty() && !is_blank(chunk[pos])) {
-          // A line that reaches its LF with no stop character on the way, and does not start
-          // blank, is a plain block (an embedded NUL stops the scan too: the slow way then).
-          const std::size_t len = span_until(chunk.data() + pos, stops_);
-          if (len > 0 && chunk.data()[pos + len] == '\n') {
-            on_line(++no, chunk.substr(pos, len), true);
-            pos += len + 1;
-            continue;
-          }
-        }
-        std::size_t eol = line_end(chunk, pos);
-        const std::size_t len = (eol == std::string_view::npos ? chunk.size() : eol) - pos;
-        if (carry.size() + len > nc_max_line_bytes) return too_long(f, no + 1);
-        if (eol == std::string_view::npos) {
-          carry.append(chunk.substr(pos));
-          break;
-        }
-        std::string_view line = chunk.substr(pos, eol - pos);
-        const bool carried = !carry.empty();
-        if (carried) {
-          carry.append(line);
-          line = carry;
-        }
-        on_line(++no, line, false);
-        if (carried) settle();  // the line lives in `carry`, cleared now
-        carry.clear();
-        pos = eol + 1;
-        if (chunk[eol] == '\r') {
-          if (pos < chunk.size() && chunk[pos] == '\n')
-            ++pos;
-          else if (pos == chunk.size())
-            skip_lf = true;
-        }
-      }
-      settle();  // the buffer is read over next
+      stream_chunk(f, s, chunk, on_line, runs);
+      if (s.stopped) return;
     }
     // A read error (EIO, a directory) must not pass for the end of the program.
     if (reader.failed())
       throw config_error(fmt::format("cannot read '{}': {}", f.path, std::strerror(errno)));
-    if (!carry.empty()) {  // a last line without a line end
-      on_line(++no, carry, false);
-      settle();  // before `carry` goes
+    stream_end(s, on_line);
+  }
+
+  // One piece of a streamed file (NUL after its end): its whole lines handed on, the start
+  // of a line it does not end kept in s.carry. Every line is settled before it returns.
+  template <class F>
+  void stream_chunk(const nc_source& f, stream_state& s, std::string_view chunk, F& on_line,
+                    const bool* runs) {
+    if (s.stopped) return;
+    // A byte order mark is taken off whole from the first piece (pieces are 1 MB read from a
+    // file, 256 KB from a writer, which writes none).
+    if (s.first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
+    s.first = false;
+    std::string& carry = s.carry;
+    int& no = s.no;
+    std::size_t pos = 0;
+    if (s.skip_lf && !chunk.empty() && chunk[0] == '\n') pos = 1;  // CR LF split by the chunk
+    s.skip_lf = false;
+    while (pos < chunk.size()) {
+      if (runs && *runs && carry.empty() && consume_run(chunk, pos, no, on_line)) continue;
+      if (carry.empty() && !is_blank(chunk[pos])) {
+        // A line that reaches its LF with no stop character on the way, and does not start
+        // blank, is a plain block (an embedded NUL stops the scan too: the slow way then).
+        const std::size_t len = span_until(chunk.data() + pos, stops_);
+        if (len > 0 && chunk.data()[pos + len] == '\n') {
+          on_line(++no, chunk.substr(pos, len), true);
+          pos += len + 1;
+          continue;
+        }
+      }
+      std::size_t eol = line_end(chunk, pos);
+      const std::size_t len = (eol == std::string_view::npos ? chunk.size() : eol) - pos;
+      if (carry.size() + len > nc_max_line_bytes) {
+        s.stopped = true;
+        return too_long(f, no + 1);
+      }
+      if (eol == std::string_view::npos) {
+        carry.append(chunk.substr(pos));
+        break;
+      }
+      std::string_view line = chunk.substr(pos, eol - pos);
+      const bool carried = !carry.empty();
+      if (carried) {
+        carry.append(line);
+        line = carry;
+      }
+      on_line(++no, line, false);
+      if (carried) settle();  // the line lives in `carry`, cleared now
+      carry.clear();
+      pos = eol + 1;
+      if (chunk[eol] == '\r') {
+        if (pos < chunk.size() && chunk[pos] == '\n')
+          ++pos;
+        else if (pos == chunk.size())
+          s.skip_lf = true;
+      }
     }
+    settle();  // the buffer is read over next
+  }
+
+  // The end of a streamed file: a last line without a line end.
+  template <class F>
+  void stream_end(stream_state& s, F& on_line) {
+    if (s.carry.empty()) return;
+    on_line(++s.no, s.carry, false);
+    settle();  // before `carry` goes
   }
 
   void report(severity level, nc_place at, std::string message) {
@@ -994,6 +1049,50 @@ nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine&
   }
   r.finish();
   return out;
+}
+
+struct nc_stream_reader::impl {
+  impl(const machine& m, diagnostic_sink& sink, const nc_read_options& options)
+      : options(options), out(empty_programs(m)), sources(m.channels.size()), states(m.channels.size()),
+        r(m, sink, out, this->options) {}
+
+  static nc_programs empty_programs(const machine& m) {
+    nc_programs p;
+    for (std::size_t i = 0; i < m.channels.size(); ++i)
+      p.channels.push_back({static_cast<int>(i) + 1, {}, {}, {}, {}});
+    return p;
+  }
+
+  nc_read_options options;  // a copy: the reader keeps a reference
+  nc_programs out;
+  std::vector<nc_source> sources;  // by channel: the names (their addresses stay put)
+  std::vector<reader::stream_state> states;
+  std::vector<char> opened = std::vector<char>(sources.size(), 0);
+  reader r;
+};
+
+nc_stream_reader::nc_stream_reader(const machine& m, diagnostic_sink& sink, const nc_read_options& options)
+    : p_(std::make_unique<impl>(m, sink, options)) {}
+
+nc_stream_reader::~nc_stream_reader() = default;
+
+void nc_stream_reader::open(int channel, std::string name) {
+  const auto i = static_cast<std::size_t>(channel - 1);
+  p_->sources[i].name = std::move(name);
+  p_->opened[i] = 1;
+  p_->r.begin_split(p_->sources[i], channel);
+}
+
+void nc_stream_reader::feed(int channel, std::string_view chunk) {
+  const auto i = static_cast<std::size_t>(channel - 1);
+  p_->r.feed_split(p_->sources[i], channel, p_->states[i], chunk);
+}
+
+nc_programs nc_stream_reader::finish() {
+  for (std::size_t i = 0; i < p_->sources.size(); ++i)
+    if (p_->opened[i]) p_->r.end_split(p_->sources[i], static_cast<int>(i) + 1, p_->states[i]);
+  p_->r.finish();
+  return std::move(p_->out);
 }
 
 }  // namespace twinpost

@@ -156,4 +156,28 @@ struct nc_read_options {
 nc_programs read_nc_programs(const std::vector<nc_source>& files, const machine& m, diagnostic_sink& sink,
                              const nc_read_options& options = {});
 
+/// The reader of read_nc_programs for programs that are handed in piece by piece as they are
+/// produced (post's self-check reads each channel's program while its writer writes it):
+/// one program per channel (the split layout), each fed in order; the channels' pieces may
+/// come in any interleaving, and every consumer of `options` gets each channel's blocks and
+/// waits in that channel's order. What it reads is what read_nc_programs reads from the same
+/// bytes.
+class nc_stream_reader {
+ public:
+  nc_stream_reader(const machine& m, diagnostic_sink& sink, const nc_read_options& options);
+  ~nc_stream_reader();
+  nc_stream_reader(const nc_stream_reader&) = delete;
+  nc_stream_reader& operator=(const nc_stream_reader&) = delete;
+  /// Starts the program of `channel` (1-based), named `name` in messages and places.
+  void open(int channel, std::string name);
+  /// The next bytes of `channel`'s program; `chunk.data()[chunk.size()]` must be a NUL.
+  void feed(int channel, std::string_view chunk);
+  /// Ends every program opened and returns them all, as read_nc_programs would.
+  nc_programs finish();
+
+ private:
+  struct impl;
+  std::unique_ptr<impl> p_;
+};
+
 }  // namespace twinpost

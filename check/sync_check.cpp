@@ -388,6 +388,54 @@ sync_result full_check(const std::vector<nc_source>& files, const machine& m) {
 
 }  // namespace
 
+struct compact_sync_check::impl {
+  impl(const machine& m, const nc_read_options& also)
+      : m(m), shape(one_per_channel(m)), compact(shape, m), waits(m.channels.size(), 0) {
+    compact.begin_compact();
+    options.on_wait = [this, also](const nc_wait& w) {
+      compact.take(w);
+      ++waits[static_cast<std::size_t>(w.channel - 1)];
+      if (also.on_wait) also.on_wait(w);
+    };
+    options.on_block = also.on_block;
+  }
+  static nc_programs one_per_channel(const machine& m) {
+    nc_programs p;
+    p.channels.resize(m.channels.size());
+    return p;
+  }
+  const machine& m;
+  nc_programs shape;  // one program per machine channel, as read_nc_programs makes them
+  checker compact;
+  std::vector<int> waits;
+  nc_read_options options;
+};
+
+compact_sync_check::compact_sync_check(const machine& m, const nc_read_options& also)
+    : p_(std::make_unique<impl>(m, also)) {}
+
+compact_sync_check::~compact_sync_check() = default;
+
+const nc_read_options& compact_sync_check::options() const { return p_->options; }
+
+std::optional<sync_result> compact_sync_check::result(const nc_programs& programs,
+                                                      const diagnostic_list& read) {
+  bool near_waits = false;
+  for (const nc_channel_program& c : programs.channels) near_waits = near_waits || !c.near_waits.empty();
+  if (!read.all().empty() || near_waits || !p_->compact.nothing_found() || !p_->compact.all_paired())
+    return std::nullopt;
+  sync_result r;
+  for (std::size_t i = 0; i < programs.channels.size(); ++i) {
+    const nc_channel_program& c = programs.channels[i];
+    r.channels.push_back({c.channel, c.file, p_->waits[i], p_->waits[i]});
+    r.paired += p_->waits[i];
+  }
+  r.rendezvous = p_->compact.take_rendezvous();
+  count(r);
+  no_waits_found(r, p_->m);
+  return r;
+}
+
 sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m,
                            const nc_read_options& also) {
   // Read twice below: a pipe or FIFO is copied once first (check/nc_input.hpp).
@@ -398,34 +446,10 @@ sync_result check_nc_files(const std::vector<nc_source>& given, const machine& m
   // not reach its end) has the files read again the full way, which says it: the same
   // reader, the same rules and the same simulation, with every wait kept for the messages.
   if (m.channels.size() <= static_cast<std::size_t>(max_channels)) {
-    nc_programs shape;  // one program per machine channel, as read_nc_programs makes them
-    shape.channels.resize(m.channels.size());
-    checker compact(shape, m);
-    compact.begin_compact();
-    std::vector<int> waits(m.channels.size(), 0);
-    nc_read_options options;
-    options.on_wait = [&](const nc_wait& w) {
-      compact.take(w);
-      ++waits[static_cast<std::size_t>(w.channel - 1)];
-      if (also.on_wait) also.on_wait(w);
-    };
-    options.on_block = also.on_block;
+    compact_sync_check compact(m, also);
     diagnostic_list read;
-    const nc_programs programs = read_nc_programs(files, m, read, options);
-    bool near_waits = false;
-    for (const nc_channel_program& c : programs.channels) near_waits = near_waits || !c.near_waits.empty();
-    if (read.all().empty() && !near_waits && compact.nothing_found() && compact.all_paired()) {
-      sync_result r;
-      for (std::size_t i = 0; i < programs.channels.size(); ++i) {
-        const nc_channel_program& c = programs.channels[i];
-        r.channels.push_back({c.channel, c.file, waits[i], waits[i]});
-        r.paired += waits[i];
-      }
-      r.rendezvous = compact.take_rendezvous();
-      count(r);
-      no_waits_found(r, m);
-      return r;
-    }
+    const nc_programs programs = read_nc_programs(files, m, read, compact.options());
+    if (std::optional<sync_result> r = compact.result(programs, read)) return std::move(*r);
   }
   sync_result r = full_check(files, m);
   no_waits_found(r, m);

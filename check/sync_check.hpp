@@ -13,6 +13,8 @@
 // - an M-code that looks like a wait but is not one of the machine's wait codes is flagged.
 // The simulation is linear in the number of waits.
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,5 +57,27 @@ sync_result check_sync(const nc_programs& programs, const machine& m);
 /// wait once), for the analyses that read the programs with the check (check_resources).
 sync_result check_nc_files(const std::vector<nc_source>& files, const machine& m,
                            const nc_read_options& also = {});
+
+/// The first, compact reading of check_nc_files, for a caller that reads the programs
+/// itself (post reads its programs while they are written: nc_stream_reader). Read with
+/// options(), reading problems into a diagnostic_list; then result().
+class compact_sync_check {
+ public:
+  /// `also`: as for check_nc_files.
+  explicit compact_sync_check(const machine& m, const nc_read_options& also = {});
+  ~compact_sync_check();
+  compact_sync_check(const compact_sync_check&) = delete;
+  compact_sync_check& operator=(const compact_sync_check&) = delete;
+  /// What to read with: the waits to the check (and to `also`), the blocks to `also`.
+  const nc_read_options& options() const;
+  /// The check of what was read, when the reading found nothing to say (nothing in `read`,
+  /// no code that looks like a wait, every channel at its end): what check_nc_files returns
+  /// then. nullopt: the programs need the full check (check_nc_files) for its messages.
+  std::optional<sync_result> result(const nc_programs& programs, const diagnostic_list& read);
+
+ private:
+  struct impl;
+  std::unique_ptr<impl> p_;
+};
 
 }  // namespace twinpost

@@ -44,7 +44,9 @@ po::options_description post_option_descriptions() {
       "[C:]N: tool N is in the spindle of channel C (default 1) when the job moves before any tool call")(
       "tool-kind", po::value<std::string>(),
       "turn|mill|drill: the kind of a tool neither TLDATA nor [[tool]] gives")(
-      "job", po::value<std::string>(), "CL file");
+      "threads", po::value<int>(),
+      "1: check the programs after they are written; 2: while they are written, on a second "
+      "thread (default with two cores); the output is the same")("job", po::value<std::string>(), "CL file");
   return opts;
 }
 
@@ -110,6 +112,13 @@ std::optional<post_options> read_post_options(const po::variables_map& vm) {
     o.tool_kind = vm["tool-kind"].as<std::string>();
     if (o.tool_kind != "turn" && o.tool_kind != "mill" && o.tool_kind != "drill") {
       fmt::print(stderr, "twinpost post: --tool-kind must be turn, mill or drill, not '{}'\n", o.tool_kind);
+      return std::nullopt;
+    }
+  }
+  if (vm.count("threads")) {
+    o.threads = vm["threads"].as<int>();
+    if (o.threads < 1) {
+      fmt::print(stderr, "twinpost post: --threads must be 1 or more, not {}\n", o.threads);
       return std::nullopt;
     }
   }

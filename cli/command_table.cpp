@@ -19,7 +19,7 @@ const std::array<command_entry, 6> table{{
      &run_parse},
     {"post",
      "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--permissive] [--timeline FILE]"
-     " [--tool [C:]N]... [--tool-kind K]",
+     " [--tool [C:]N]... [--tool-kind K] [--threads N]",
      "post a CL job to NC programs",
      "Posts a CL job for machine M into the folder DIR (made if missing): one program per "
      "channel, or one merged program, as the machine's control expects (--layout split, "
@@ -35,7 +35,9 @@ const std::array<command_entry, 6> table{{
      "timeline page of the programs into DIR with them. A job that moves before any tool call "
      "starts with the tool the machine's [[tool]] table names by the CAM's name of it (NX TOOL "
      "PATH, CATIA TPRINT), else with --tool N (C:N for channel C), called as a tool call record "
-     "would be; --tool-kind K is the kind of every tool neither TLDATA nor [[tool]] gives.",
+     "would be; --tool-kind K is the kind of every tool neither TLDATA nor [[tool]] gives. "
+     "With two cores the programs are checked on a second thread while they are written "
+     "(--threads 1: after), with the same output.",
      &run_post},
     {"check", "FILE... --machine M [--json]", "check wait synchronisation of NC programs",
      "Checks that the waits of NC programs pair up, in order, and that no channel can "

@@ -34,6 +34,7 @@ void block_writer::start() {
 
 void block_writer::flush_if_full() {
   if (buf_.size() >= flush_at) {
+    if (tap_) tap_(std::string_view(buf_.data(), buf_.size()));
     if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size()) write_failed(errno);
     buf_.clear();
   }
@@ -95,6 +96,7 @@ void block_writer::close() {
   if (!f_) return;
   if (!started_) start();
   if (frame_.tail) buf_.append(frame_.tail(seq_));
+  if (tap_) tap_(std::string_view(buf_.data(), buf_.size()));
   bool ok = std::fwrite(buf_.data(), 1, buf_.size(), f_) == buf_.size();
   int err = ok ? 0 : errno;
   buf_.clear();

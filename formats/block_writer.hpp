@@ -51,6 +51,10 @@ class block_writer {
   /// Called with every line written between the head and the tail (blocks with their N
   /// number, comments, raw lines), without its line end.
   void set_line_hook(std::function<void(std::string_view)> hook) { hook_ = std::move(hook); }
+  /// Called with every piece of bytes as it goes to the file, in order, just before it is
+  /// written (the last piece, the tail's, at close, even when it is empty): together the
+  /// file's bytes exactly. For a reader of the program while it is written.
+  void set_output_tap(std::function<void(std::string_view)> tap) { tap_ = std::move(tap); }
   /// The head written (see framing), "" before the first line.
   const std::string& head_written() const { return head_; }
 
@@ -71,6 +75,7 @@ class block_writer {
   sequence_numbers seq_;
   long blocks_ = 0;
   std::function<void(std::string_view)> hook_;
+  std::function<void(std::string_view)> tap_;
 };
 
 /// `text` as the control accepts it in a comment: upper case, printable ASCII, no comment

@@ -177,9 +177,10 @@ std::vector<framed_file> finish_frames(const frame_request& r, const std::vector
       close_or_throw(r, name, f);
       if (std::rename(renamed.c_str(), path.c_str()) != 0) write_failed(r, name, errno);
     }
-    out.push_back({name, path, ch.number});
+    out.push_back({name, path, ch.number, written != head});
   }
   if (!merged(r)) return out;
+  out.front().rewritten = true;
   // Merged: the other channels' sections (each written whole, marker to end code, into its
   // body file) after the first one's, under the right head, then the closing '%'.
   file_ptr f = open_or_throw(out.front().tmp_path, "ab");

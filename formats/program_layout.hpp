@@ -35,6 +35,9 @@ struct framed_file {
   std::string name;      ///< final file name (no directory)
   std::string tmp_path;  ///< where it was written
   int channel = 0;       ///< the channel that opens the file
+  /// The file is not byte for byte what its channel's writer wrote: its head was written
+  /// again under the right name, or other channels' sections were appended (merged).
+  bool rewritten = false;
 };
 
 channel_target frame_target(const frame_request& r, const channel_def& ch);

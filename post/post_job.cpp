@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <memory>
 #include <sys/stat.h>
+#include <thread>
 #include <unistd.h>
 
 #include "analysis/shared_resources.hpp"
@@ -22,6 +23,7 @@
 #include "machining/channel_writer.hpp"
 #include "parser/cl_reader.hpp"
 #include "parser/job_scan.hpp"
+#include "post/concurrent_check.hpp"
 #include "post/output_commit.hpp"
 #include "post/output_names.hpp"
 #include "post/sync_at_cl.hpp"
@@ -195,6 +197,25 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
       w->set_balance_master(ws.writers[static_cast<std::size_t>(master->number - 1)].get());
 }
 
+// Whether the programs are checked while they are written (post/concurrent_check.hpp): with
+// a second core, on programs each written whole by its channel's writer (split layout), as
+// far as the checker handles the machine's channels.
+bool check_while_writing(const post_options& o, const machine& m, const frame_request& req) {
+  const int threads = o.threads > 0 ? o.threads : std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+  return threads >= 2 && req.layout == layout_kind::split && m.channels.size() <= 64;
+}
+
+// Every piece each writer writes, handed to the concurrent check, named as the frame names it.
+void tap_writers(const post_options& o, const frame_request& req, writers_sink& ws, concurrent_check& cc) {
+  for (std::size_t i = 0; i < ws.writers.size(); ++i) {
+    const channel_def& ch = ws.m->channels[i];
+    ws.writers[i]->set_output_tap([&o, &req, &ws, &ch, &cc](std::string_view piece) {
+      cc.bytes(ch.number, piece,
+               [&] { return (fs::path(o.out_dir) / frame_file_name(named_request(req, ws), ch)).string(); });
+    });
+  }
+}
+
 struct stream_totals {
   int last_line = 0;    // of the last event
   long statements = 0;  // records other than comments
@@ -243,16 +264,18 @@ std::vector<nc_source> staged_sources(const post_options& o, const std::vector<f
 // The same check as `twinpost check`, on the files exactly as they will be written; what it
 // finds is reported at the CL record that made the wait. True when they are sound.
 // `feed`, when given, is fed the same reading (the cycle time, without a read of its own).
+// `done`: the check made while the files were written (post/concurrent_check.hpp), which
+// then stands for it.
 bool self_check(const post_options& o, const machine& m, const std::vector<framed_file>& files,
                 const writers_sink& ws, int last_line, diagnostic_sink& sink, timeline_feed* feed,
-                std::vector<std::uint64_t>& rendezvous) {
+                std::optional<sync_result> done, std::vector<std::uint64_t>& rendezvous) {
   const std::vector<nc_source> sources = staged_sources(o, files);
   nc_read_options more;
-  if (feed) {
+  if (feed && !done) {
     more.on_block = [feed](const nc_block& b) { feed->block(b); };
     more.on_wait = [feed](const nc_wait& w) { feed->wait(w); };
   }
-  sync_result check = check_nc_resources(sources, m, more);
+  sync_result check = done ? std::move(*done) : check_nc_resources(sources, m, more);
   if (!check.diagnostics.empty()) {
     std::vector<std::vector<int>> wait_lines;
     std::vector<std::vector<cl_block>> blocks;
@@ -383,6 +406,15 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
                                      tool, m.name, channel, m.channels.size()));
   open_writers(o, m, req, ws, sink);
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
+  timeline_options to;
+  to.keep_blocks = !o.timeline_file.empty();
+  std::optional<timeline_feed> feed;  // the cycle time, fed by the self-check's reading
+  if (has_timing(m) && m.channels.size() <= 64) feed.emplace(m, to);
+  std::optional<concurrent_check> during;  // after `feed`: its thread feeds it
+  if (check_while_writing(o, m, req)) {
+    during.emplace(m, feed ? &*feed : nullptr);
+    tap_writers(o, req, ws, *during);
+  }
 
   file_source src(in.get());
   cl_reader reader(src, posting_reader(o), sink);  // lives to the end: later messages quote its lines
@@ -405,12 +437,23 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
       sink.report({severity::error, o.cl_path, 0, 0, std::move(why), {}});
       return sum;
     }
-  timeline_options to;
-  to.keep_blocks = !o.timeline_file.empty();
-  std::optional<timeline_feed> feed;
-  if (has_timing(m) && m.channels.size() <= 64) feed.emplace(m, to);
+  std::optional<sync_result> done;
+  if (during) {
+    std::vector<std::string> names(m.channels.size());
+    std::vector<bool> rewritten;
+    for (const framed_file& f : files) {
+      names[static_cast<std::size_t>(f.channel - 1)] = (fs::path(o.out_dir) / f.name).string();
+      rewritten.push_back(f.rewritten);
+    }
+    done = during->finish(names, rewritten);
+    if (!done && feed) {  // checked again after the fact: a fresh feed for that reading
+      feed.reset();
+      feed.emplace(m, to);
+    }
+  }
   std::vector<std::uint64_t> rendezvous;
-  if (!self_check(o, m, files, ws, t.last_line, sink, feed ? &*feed : nullptr, rendezvous)) return sum;
+  if (!self_check(o, m, files, ws, t.last_line, sink, feed ? &*feed : nullptr, std::move(done), rendezvous))
+    return sum;
   std::optional<staged_file> page;
   if (feed) page = time_programs(o, m, stage.dir(), *feed, rendezvous, sum);
   sum.files = commit_files(stage, files, page);

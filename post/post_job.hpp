@@ -37,6 +37,10 @@ struct post_options {
   /// post --tool-kind: "turn", "mill" or "drill" for every tool whose kind neither the CL
   /// (TLDATA) nor the machine's [[tool]] table gives; empty: none.
   std::string tool_kind;
+  /// Threads the post may use: 1 checks the programs after they are written; 2 or more (the
+  /// default, 0, where the machine has two cores) checks them on a second thread while they
+  /// are written (post/concurrent_check.hpp). The output is the same byte for byte.
+  int threads = 0;
   /// Called now and then (every 64k records) with the CL bytes read so far; may be empty.
   std::function<void(std::size_t bytes)> progress;
 };

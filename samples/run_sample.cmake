@@ -263,6 +263,41 @@ elseif(MODE STREQUAL "post-fail")
   endif()
 endif()
 
+# The same post with its check after the writing (--threads 1) must give the same output,
+# byte for byte, as the default, which checks on a second thread while it writes
+# (post/concurrent_check.hpp): the exit code, stdout, stderr and every file.
+if((MODE STREQUAL "post" OR MODE STREQUAL "post-fail") AND NOT update)
+  set(one "${WORK_DIR}/one-thread")
+  file(MAKE_DIRECTORY "${one}")
+  file(GLOB inputs LIST_DIRECTORIES false RELATIVE "${WORK_DIR}" "${WORK_DIR}/*")
+  foreach(f IN LISTS inputs)
+    if(NOT f MATCHES "^(actual\\..*|empty\\.txt)$")
+      configure_file("${WORK_DIR}/${f}" "${one}/${f}" COPYONLY)
+    endif()
+  endforeach()
+  execute_process(COMMAND ${command} --threads 1
+                  WORKING_DIRECTORY "${one}"
+                  RESULT_VARIABLE one_rc
+                  OUTPUT_FILE "${one}/actual.stdout"
+                  ERROR_FILE "${one}/actual.stderr")
+  if(NOT "${one_rc}" STREQUAL "${rc}")
+    fail("--threads 1: exit code ${one_rc}, the default's ${rc}")
+  endif()
+  list_files("${WORK_DIR}/out" two_files)
+  list_files("${one}/out" one_files)
+  if(NOT "${one_files}" STREQUAL "${two_files}")
+    fail("--threads 1 wrote '${one_files}', the default '${two_files}'")
+  endif()
+  foreach(f actual.stdout actual.stderr)
+    check_text("${one}/${f}" "${WORK_DIR}/${f}" "--threads 1 ${f}" OFF)
+  endforeach()
+  foreach(f IN LISTS one_files)
+    if(EXISTS "${WORK_DIR}/out/${f}")
+      check_text("${one}/out/${f}" "${WORK_DIR}/out/${f}" "--threads 1 out/${f}" OFF)
+    endif()
+  endforeach()
+endif()
+
 if(failures)
   # Indented lines are printed as they are (CMake would re-flow the others).
   string(REPLACE "\n" "\n    " failures "    ${failures}")

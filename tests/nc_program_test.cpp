@@ -577,3 +577,72 @@ TEST_CASE("split_nc_words decodes each number once, as from_chars reads it", "[c
   CHECK(words[3].address == 'F');
   CHECK(words[3].number == 200);
 }
+
+namespace {
+
+// What a reading hands on, as text: every block and wait in the order they came, per channel
+// (channels read one after the other or interleaved give the same), the programs' ends and
+// the reading's problems.
+struct reading_log {
+  std::vector<std::string> per_channel[2];
+  nc_read_options options() {
+    nc_read_options o;
+    o.on_block = [this](const nc_block& b) {
+      std::string words;
+      for (const nc_word& w : b.words()) words += fmt::format(" {}{}", w.address, w.value);
+      per_channel[b.channel - 1].push_back(fmt::format("{}:{} '{}'{}", b.file, b.line, b.text, words));
+    };
+    o.on_wait = [this](const nc_wait& w) {
+      per_channel[w.channel - 1].push_back(
+          fmt::format("wait M{} at {}:{}:{}", w.code, w.where.file, w.where.line, w.where.column));
+    };
+    return o;
+  }
+};
+
+std::string ends_and_problems(const nc_programs& p, const diagnostic_list& d) {
+  std::string s;
+  for (const nc_channel_program& c : p.channels)
+    s += fmt::format("channel {} in {} ends at {}:{} '{}'\n", c.channel, c.file, c.end.file, c.end.line,
+                     c.end.source_line);
+  for (const diagnostic& x : d.all()) s += fmt::format("{}:{}:{}: {}\n", x.file, x.line, x.column, x.message);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("nc_stream_reader: two programs fed in interleaved pieces cut anywhere read as their files") {
+  const machine m = two_channels(100, 199, "");
+  // CR LF, a lone CR, a byte order mark, a comment, a last line without its line end.
+  const std::string one = "%\r\nO1000 (FIRST)\r\nG0 X10. Z5.\r\nM100\r\nG1 X5. F0.2\rG0 X20.\r\nM30\r\n%";
+  const std::string two = "\xEF\xBB\xBF%\nO2000\nG0 X20. Z1.\n\nM100\nG1 Z-5. F0.1\nM30\n%\n";
+  std::vector<nc_source> files = {{"one.nc", one}, {"two.nc", two}};
+  reading_log whole;
+  diagnostic_list whole_problems;
+  const nc_programs expected = read_nc_programs(files, m, whole_problems, whole.options());
+  REQUIRE(whole.per_channel[0].size() == 7);  // 6 blocks (not '%') and the wait
+  REQUIRE(whole.per_channel[0][1] == "one.nc:3 'G0 X10. Z5.' G0 X10. Z5.");
+  REQUIRE(whole.per_channel[1][3] == "wait M100 at two.nc:5:1");
+  for (std::size_t cut = 1; cut <= 9; ++cut) {
+    CAPTURE(cut);
+    reading_log pieces;
+    diagnostic_list problems;
+    nc_stream_reader r(m, problems, pieces.options());
+    r.open(2, "two.nc");
+    r.open(1, "one.nc");
+    // Channel 2 first, then the two in turns: a piece of `cut` bytes each (a copy, with the
+    // NUL the reader asks for after it).
+    std::size_t at[2] = {0, 0};
+    const std::string* text[2] = {&one, &two};
+    for (int turn = 1; at[0] < one.size() || at[1] < two.size(); turn ^= 1) {
+      if (at[turn] >= text[turn]->size()) continue;
+      const std::string piece = text[turn]->substr(at[turn], cut);
+      r.feed(turn + 1, piece);
+      at[turn] += piece.size();
+    }
+    const nc_programs got = r.finish();
+    CHECK(pieces.per_channel[0] == whole.per_channel[0]);
+    CHECK(pieces.per_channel[1] == whole.per_channel[1]);
+    CHECK(ends_and_problems(got, problems) == ends_and_problems(expected, whole_problems));
+  }
+}

@@ -1,0 +1,62 @@
+#pragma once
+// The self-check on the second core: post's programs read while they are written.
+//
+// Each channel's writer hands every piece of its program's bytes to bytes() as it goes to
+// the file (block_writer::set_output_tap); a thread of this class reads them with the
+// checker's own reader (check/nc_program's nc_stream_reader) and feeds the same consumers
+// as the check after the fact: the wait check, the shared-spindle rules and the cycle time.
+// It reads the bytes that are committed, not the writers' words, so the check stays
+// independent of the writer.
+//
+// The result is taken only when it is exactly what the check after the fact would give:
+// each file's bytes are the ones read (no head written again, no merged layout), read under
+// the name they are committed as, and the check had nothing to say (its messages are
+// ordered by a reading of the files one after the other, which the concurrent one is not).
+// Otherwise finish() says so and post checks the files after the fact, as with one core.
+//
+// Memory: a few pieces of 256 KB queued; the writer waits when the reader is behind.
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "analysis/cycle_time.hpp"
+#include "check/sync_check.hpp"
+#include "machines/machine.hpp"
+
+namespace twinpost {
+
+class concurrent_check {
+ public:
+  /// Starts the reading thread. `feed`, when given, is fed every block and wait (from that
+  /// thread, until finish() returns).
+  concurrent_check(const machine& m, timeline_feed* feed);
+  /// Stops the thread (a post that failed does not wait for its check).
+  ~concurrent_check();
+  concurrent_check(const concurrent_check&) = delete;
+  concurrent_check& operator=(const concurrent_check&) = delete;
+
+  /// The next piece of `channel`'s program (1-based), from its writer; the first piece opens
+  /// the program under `name()` (the name its file is committed as, as far as known then).
+  template <class Name>
+  void bytes(int channel, std::string_view piece, Name&& name) {
+    if (!opened(channel)) open(channel, name());
+    put(channel, piece);
+  }
+
+  /// Waits for the reading to end; the check's result when it may stand for the check of
+  /// the committed files named `names` (by channel), read one after the other, with
+  /// `rewritten` telling which of them are not what their writer wrote. nullopt: check
+  /// those files after the fact (and feed a fresh timeline).
+  std::optional<sync_result> finish(const std::vector<std::string>& names, const std::vector<bool>& rewritten);
+
+ private:
+  bool opened(int channel) const;
+  void open(int channel, std::string name);
+  void put(int channel, std::string_view piece);
+  struct impl;
+  std::unique_ptr<impl> p_;
+};
+
+}  // namespace twinpost
