@@ -175,6 +175,10 @@ bool cl_reader::next(event& out) {
 
 dialect cl_reader::current_dialect() const { return impl_->d; }
 std::string_view cl_reader::source_line(int line) const { return impl_->lines.physical_line(line); }
+std::size_t cl_reader::source_lines() const { return impl_->lines.physical_lines(); }
+std::pair<int, std::string_view> cl_reader::source_line_at(std::size_t i) const {
+  return impl_->lines.physical_line_at(i);
+}
 std::size_t cl_reader::records() const { return impl_->record_count; }
 std::size_t cl_reader::bytes() const { return impl_->lines.bytes_read(); }
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "parser/dialect.hpp"
 #include "parser/events.hpp"
@@ -44,6 +45,10 @@ class cl_reader {
   /// Source line `line` when it belongs to the record read last (the one whose events are
   /// being handled), else empty: later stages give their diagnostics a source line with it.
   std::string_view source_line(int line) const;
+  /// How many physical lines the record read last has (those source_line gives).
+  std::size_t source_lines() const;
+  /// The i-th physical line of the record read last: its number and text.
+  std::pair<int, std::string_view> source_line_at(std::size_t i) const;
   /// Logical records read so far.
   std::size_t records() const;
   /// Bytes read so far.

@@ -93,6 +93,12 @@ class line_reader {
       if (s.line == line) return s.physical;
     return {};
   }
+  /// The physical lines of the current logical record (physical_line gives each by number).
+  std::size_t physical_lines() const { return segments_.size(); }
+  /// The i-th of them: its number and text.
+  std::pair<int, std::string_view> physical_line_at(std::size_t i) const {
+    return {segments_[i].line, segments_[i].physical};
+  }
   /// Bytes consumed so far.
   std::size_t bytes_read() const { return consumed_; }
 

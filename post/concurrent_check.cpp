@@ -81,9 +81,9 @@ struct concurrent_check::impl {
     }
   }
 
-  diagnostic_list read;           // the reading's problems (any: the check after the fact)
-  compact_resource_check check;   // the waits, the spindle rules, and the feed
-  nc_stream_reader reader;        // used by the thread until it is joined
+  diagnostic_list read;            // the reading's problems (any: the check after the fact)
+  compact_resource_check check;    // the waits, the spindle rules, and the feed
+  nc_stream_reader reader;         // used by the thread until it is joined
   std::vector<std::string> names;  // by channel: the name each program was read under ("" : not opened)
   bool failed = false;             // written by the thread, read after the join
 
@@ -108,7 +108,9 @@ void concurrent_check::open(int channel, std::string name) {
   p_->push({channel, true, std::move(name)});
 }
 
-void concurrent_check::put(int channel, std::string_view bytes) { p_->push({channel, false, std::string(bytes)}); }
+void concurrent_check::put(int channel, std::string_view bytes) {
+  p_->push({channel, false, std::string(bytes)});
+}
 
 std::optional<sync_result> concurrent_check::finish(const std::vector<std::string>& names,
                                                     const std::vector<bool>& rewritten) {

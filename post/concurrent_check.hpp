@@ -49,7 +49,8 @@ class concurrent_check {
   /// the committed files named `names` (by channel), read one after the other, with
   /// `rewritten` telling which of them are not what their writer wrote. nullopt: check
   /// those files after the fact (and feed a fresh timeline).
-  std::optional<sync_result> finish(const std::vector<std::string>& names, const std::vector<bool>& rewritten);
+  std::optional<sync_result> finish(const std::vector<std::string>& names,
+                                    const std::vector<bool>& rewritten);
 
  private:
   bool opened(int channel) const;

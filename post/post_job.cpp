@@ -26,6 +26,7 @@
 #include "post/concurrent_check.hpp"
 #include "post/output_commit.hpp"
 #include "post/output_names.hpp"
+#include "post/reader_thread.hpp"
 #include "post/sync_at_cl.hpp"
 #include "support/ascii.hpp"
 #include "support/errors.hpp"
@@ -39,23 +40,61 @@ namespace {
 
 constexpr std::size_t progress_every = 1 << 16;  // events between progress calls
 
+// The CL events: from the reader on this thread, or on a thread of its own a few batches
+// ahead (post/reader_thread.hpp), which gives out the same events, diagnostics and lines.
+class job_events {
+ public:
+  job_events(byte_source& src, cl_reader_options o, diagnostic_sink& sink, diagnostic_sink& as_is,
+             bool threaded) {
+    if (threaded)
+      two_.emplace(src, std::move(o), as_is);
+    else
+      one_.emplace(src, std::move(o), sink);
+  }
+  const event* next() { return one_ ? one_->next() : two_->next(); }
+  /// cl_reader::source_line, for the event returned last.
+  std::string_view source_line(int line) const {
+    return one_ ? one_->source_line(line) : two_->source_line(line);
+  }
+  std::size_t bytes() const { return one_ ? one_->bytes() : two_->bytes(); }
+  std::size_t records() const { return one_ ? one_->records() : two_->records(); }
+
+ private:
+  std::optional<cl_reader> one_;
+  std::optional<reader_thread> two_;
+};
+
 // Counts what passes through, so the run knows whether it failed.
 class counting_sink : public diagnostic_sink {
  public:
   explicit counting_sink(diagnostic_sink& next) : next_(next) {}
   void report(diagnostic d) override {
-    counts.add(d);
     // Router and writer diagnostics come while their record is the reader's current one.
     if (reader && d.column > 0 && d.source_line.empty() && d.file == file)
       d.source_line = std::string(reader->source_line(d.line));
+    pass(std::move(d));
+  }
+  /// Counted and passed on as it is (the reader thread's, whose lines are given already).
+  void pass(diagnostic d) {
+    counts.add(d);
     next_.report(std::move(d));
   }
   diagnostic_counts counts;
-  const cl_reader* reader = nullptr;
+  const job_events* reader = nullptr;
   std::string file;
 
  private:
   diagnostic_sink& next_;
+};
+
+// counting_sink::pass as a sink.
+class passing_sink : public diagnostic_sink {
+ public:
+  explicit passing_sink(counting_sink& to) : to_(to) {}
+  void report(diagnostic d) override { to_.pass(std::move(d)); }
+
+ private:
+  counting_sink& to_;
 };
 
 // Routes events to the channel writers; job-level events set the name and units.
@@ -197,12 +236,16 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
       w->set_balance_master(ws.writers[static_cast<std::size_t>(master->number - 1)].get());
 }
 
+// The threads the post may use (post_options::threads).
+int threads(const post_options& o) {
+  return o.threads > 0 ? o.threads : std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+}
+
 // Whether the programs are checked while they are written (post/concurrent_check.hpp): with
 // a second core, on programs each written whole by its channel's writer (split layout), as
 // far as the checker handles the machine's channels.
 bool check_while_writing(const post_options& o, const machine& m, const frame_request& req) {
-  const int threads = o.threads > 0 ? o.threads : std::thread::hardware_concurrency() >= 2 ? 2 : 1;
-  return threads >= 2 && req.layout == layout_kind::split && m.channels.size() <= 64;
+  return threads(o) >= 2 && req.layout == layout_kind::split && m.channels.size() <= 64;
 }
 
 // Every piece each writer writes, handed to the concurrent check, named as the frame names it.
@@ -222,7 +265,7 @@ struct stream_totals {
 };
 
 // The one pass that posts: every event of the job through the router to the writers.
-stream_totals stream_job(const post_options& o, cl_reader& reader, channel_router& router) {
+stream_totals stream_job(const post_options& o, job_events& reader, channel_router& router) {
   stream_totals t;
   std::size_t until_progress = progress_every;
   while (const event* e = reader.next()) {
@@ -417,7 +460,9 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   }
 
   file_source src(in.get());
-  cl_reader reader(src, posting_reader(o), sink);  // lives to the end: later messages quote its lines
+  passing_sink as_is(sink);
+  // Lives to the end: later messages quote its lines.
+  job_events reader(src, posting_reader(o), sink, as_is, threads(o) >= 2);
   sink.reader = &reader;
   sink.file = o.cl_path;
   ws.spindles.quote = [&reader](int line) { return std::string(reader.source_line(line)); };
