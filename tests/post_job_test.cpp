@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "channels/job_channels.hpp"
 #include "file_test_support.hpp"
 #include "machines/machine_loader.hpp"
@@ -152,4 +154,45 @@ TEST_CASE("a one-channel machine: no pre-pass, and a sync record is an error", "
   REQUIRE(d.all().size() == 1);
   CHECK(d.all()[0].message == "sync 1 names channel 2, machine 'bench-mill' has 1 channels");
   CHECK(d.all()[0].line == 7);
+}
+
+TEST_CASE("on three threads the post gives what it gives on one, across many batches of events", "[post]") {
+  // The reader runs ahead in batches of 4096 events and the check reads the programs while
+  // they are written (post/reader_thread, post/concurrent_check): the reader's errors, the
+  // writer's errors with their records' source lines (one continued over two lines), and a
+  // sound post, all as on one thread.
+  std::string cl = "PARTNO/THREADS\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW,MAIN\nFEDRAT/0.2,MMPR\n";
+  std::string sound = cl;
+  for (int i = 0; i < 9000; ++i) {
+    const std::string z = fmt::format("{:.3f}", 5 - (i % 50) * 0.1);
+    const std::string move = "GOTO/20,0," + z + "\n";
+    sound += move;
+    if (i == 4095)
+      cl += "GOTO/5000,0,$\n  " + z + "\n";  // the writer's error on a record of two lines
+    else if (i % 3001 == 11)
+      cl += "GOTO/20,,0,5,\n";  // the reader's
+    else if (i % 2999 == 5)
+      cl += "GOTO/5000,0,5\n";  // the writer's
+    else
+      cl += move;
+  }
+  const std::string tail = "HEAD/2\nTURRET/4,4\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\nGOTO/-10,0,5\nFINI\n";
+  const machine m = load_machine("fanuc-0itd-twin");
+  for (const std::string& job : {cl + tail, sound + tail}) {
+    const bool fails = job.size() != (sound + tail).size();
+    INFO((fails ? "with errors" : "sound"));
+    auto with = [](int n) { return [n](post_options& o) { o.threads = n; }; };
+    const test::posted one = test::post_in_fresh_dir(job, m, "threads-1", {}, {}, with(1));
+    const test::posted three = test::post_in_fresh_dir(job, m, "threads-2", {}, {}, with(2));
+    CHECK(one.ok == !fails);
+    CHECK(three.diagnostics == one.diagnostics);
+    CHECK(three.files == one.files);
+    CHECK(one.files.size() == (fails ? 0u : 2u));
+    if (fails) {
+      CHECK(one.diagnostics.find("job.cls:4101:1: error: channel 1: X10000. is outside channel 1's X travel "
+                                 "-10..460 (channel.axis min/max)\nGOTO/5000,0,$\n^\n") != std::string::npos);
+      CHECK(one.diagnostics.find("job.cls:3018:6: error: GOTO takes 3 or 6 numbers (x,y,z[,i,j,k]), found 4 "
+                                 "arguments\nGOTO/20,,0,5,\n     ^\n") != std::string::npos);
+    }
+  }
 }
