@@ -433,6 +433,10 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     return sum;
   }
   file_ptr in = open_job(o.cl_path);
+  // On two threads the reader starts at once, and reads ahead while the scan below runs.
+  file_source src(in.get());
+  passing_sink as_is(sink);
+  job_events reader(src, posting_reader(o), sink, as_is, threads(o) >= 2);  // to the end: messages quote it
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);
   const job_scan scan = scan_for_sync(o, m);
@@ -459,10 +463,6 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     tap_writers(o, req, ws, *during);
   }
 
-  file_source src(in.get());
-  passing_sink as_is(sink);
-  // Lives to the end: later messages quote its lines.
-  job_events reader(src, posting_reader(o), sink, as_is, threads(o) >= 2);
   sink.reader = &reader;
   sink.file = o.cl_path;
   ws.spindles.quote = [&reader](int line) { return std::string(reader.source_line(line)); };
