@@ -33,8 +33,8 @@ bool number(std::string_view s, double& out) { return nc_number(s, out); }
 // A code as compared: "01" and "1." are "1", "84.2" stays. Written out by hand (no
 // formatting): every G word of every block comes through here.
 std::string code_of(const nc_word& w) {
-  double v = 0;
-  if (w.expression || !number(w.value, v)) return w.value;
+  if (w.expression || !w.numeric) return w.value;
+  const double v = w.number;  // decoded when the block was split
   std::string_view s = w.value;
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   if (s.find('.') != std::string_view::npos) {
@@ -493,8 +493,8 @@ double block_timer::arc_length(const std::vector<std::optional<double>>& target,
   get(a3, true, h1);
   std::optional<double> r, c1, c2;
   for (const nc_word& w : words) {
-    double v = 0;
-    if (w.expression || !number(w.value, v)) continue;
+    if (!w.numeric) continue;
+    const double v = w.number;
     if (w.address == 'R') r = v;
     if (w.address == centre_word(a1)) c1 = v;
     if (w.address == centre_word(a2)) c2 = v;
