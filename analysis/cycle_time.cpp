@@ -60,7 +60,8 @@ class timeline_builder {
     channel_run& r = runs_[static_cast<std::size_t>(channel - 1)];
     channel_times& c = r.times;
     if (c.file.empty()) c.file = file;
-    const block_timing t = r.timer.time(b.words(), b.letters());
+    const std::vector<nc_word>& words = b.words();  // first: split, the letters come exact
+    const block_timing t = r.timer.time(words, b.letters());
     ++c.blocks;
     if (!t.untimed.empty()) {
       ++c.untimed;

@@ -643,9 +643,11 @@ void add_findings(sync_result& r, shared_resources& rules) {
 // The rules fed by a reading, and `more` with them.
 nc_read_options feeding(shared_resources& rules, const nc_read_options& more) {
   nc_read_options also;
+  // `more` first: the cycle time splits every block, and the rules, which ask most blocks
+  // only for their letters, then find them exact without a scan of their own.
   also.on_block = [&rules, more](const nc_block& b) {
-    rules.block(b);
     if (more.on_block) more.on_block(b);
+    rules.block(b);
   };
   also.on_wait = [&rules, more](const nc_wait& w) {
     rules.wait(w.channel);
