@@ -34,39 +34,53 @@ int count_newlines(const char* p, std::size_t n) {
 
 bool all_digits(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), is_digit); }
 
+// The digits and the point of a word's number, gathered as they are read.
+struct decimal_digits {
+  std::uint64_t mantissa = 0;
+  int digits = 0, decimals = -1;  // decimals: -1 until the point
+  bool clean = true;              // at most one point
+
+  void add(char c) {
+    if (c == '.') {
+      clean = clean && decimals < 0;
+      if (decimals < 0) decimals = 0;
+      return;
+    }
+    if (digits < 19) mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
+    ++digits;
+    if (decimals >= 0) ++decimals;
+  }
+
+  // The number as std::from_chars reads `text` (nc_number). NC numbers are short: the digits
+  // are divided by an exact power of ten, which rounds correctly as from_chars does
+  // (Clinger's fast path) while they fit in 15; longer ones go to from_chars.
+  bool value(bool negative, std::string_view text, double& out, bool& point) const {
+    static constexpr double pow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                       1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    if (!clean || digits == 0) return false;
+    point = decimals >= 0;
+    const int scale = decimals < 0 ? 0 : decimals;
+    if (digits <= 15 && scale <= 22) {
+      out = static_cast<double>(mantissa) / pow10[scale];
+      if (negative) out = -out;
+      return true;
+    }
+    return nc_number(text, out);
+  }
+};
+
 // The number of a word's value as std::from_chars reads it (nc_number), decoded once when the
-// block is split. NC numbers are short: their digits are gathered exactly and divided by an
-// exact power of ten, which rounds correctly as from_chars does (Clinger's fast path) while
-// the digits fit in 15; longer ones go to from_chars. `point`: written with a decimal point.
+// block is split. `point`: written with a decimal point.
 bool decode_number(std::string_view s, double& out, bool& point) {
-  static constexpr double pow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                     1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
   std::size_t i = 0;
   bool negative = false;
   if (i < s.size() && (s[i] == '+' || s[i] == '-')) negative = s[i++] == '-';
-  std::uint64_t mantissa = 0;
-  int digits = 0, decimals = -1;  // decimals: -1 until the point
+  decimal_digits n;
   for (; i < s.size(); ++i) {
-    const char c = s[i];
-    if (is_digit(c)) {
-      if (digits < 19) mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
-      ++digits;
-      if (decimals >= 0) ++decimals;
-    } else if (c == '.' && decimals < 0) {
-      decimals = 0;
-    } else {
-      return false;
-    }
+    if (!is_digit(s[i]) && s[i] != '.') return false;
+    n.add(s[i]);
   }
-  if (digits == 0) return false;
-  point = decimals >= 0;
-  const int scale = decimals < 0 ? 0 : decimals;
-  if (digits <= 15 && scale <= 22) {
-    out = static_cast<double>(mantissa) / pow10[scale];
-    if (negative) out = -out;
-    return true;
-  }
-  return nc_number(s, out);
+  return n.value(negative, s, out, point);
 }
 
 /// Index just past the `[...]` group that opens at `i` (groups nest).
@@ -982,6 +996,28 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
     } else if (c == '#') {
       for (++i; i < n && is_digit(line[i]);) ++i;  // a variable, not a word
     } else if (is_letter(c)) {
+      // The commonest word, a letter right before its number (X-12.5, G1): read and decoded
+      // in one pass. Anything else (a keyword, blanks, a variable) takes the general way.
+      if (i + 1 < n &&
+          (is_digit(line[i + 1]) || line[i + 1] == '.' || line[i + 1] == '-' || line[i + 1] == '+')) {
+        const std::size_t k = i + 1;
+        const bool negative = line[k] == '-';
+        const std::size_t v = line[k] == '+' || negative ? k + 1 : k;
+        decimal_digits number;
+        std::size_t d = v;
+        for (; d < n && (is_digit(line[d]) || line[d] == '.'); ++d) number.add(line[d]);
+        if (d > v) {
+          nc_word& w = next();
+          w.address = upper(c);
+          w.column = static_cast<int>(i) + 1;
+          w.value.assign(line.substr(k, d - k));
+          w.numeric = number.value(negative, w.value, w.number, w.point);
+          if (!w.numeric) w.number = 0, w.point = false;
+          letters |= nc_letter(w.address);
+          i = d;
+          continue;
+        }
+      }
       std::size_t j = i;
       while (j < n && is_letter(line[j])) ++j;
       if (j - i > 1) {  // IF, GOTO, THEN, WHILE, ...: a keyword of macro statements
