@@ -222,6 +222,12 @@ void channel_writer::motion(const motion_event& mv, int line) {
         groove_cycle_point(mv.pos, line);
         return;
       } else if (cycle_) {
+        // A hole as the first move after a tool call (NX writes CYCLE before the first GOTO):
+        // the length offset goes out with a rapid to the hole's retract plane first, as a
+        // GOTO there would; the canned cycle starts from that plane.
+        if (chain_ && multiaxis_takes() && !offset_on_ &&
+            !(chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on).empty())
+          multiaxis_move(true, cycle_approach(mv.pos), line);
         if (!chain_ || !multiaxis_takes() || multiaxis_arc(line)) cycle_point(mv.pos, line);
       } else if (threading_ && !mv.rapid) {
         thread_pass(mv.pos, line);

@@ -132,6 +132,9 @@ class channel_writer {
   void take_tool(int tool, int line, const char* word);
   /// One hole of the cycle in force at CL point `p` (channel_cycles.cpp).
   void cycle_point(const vec3& p, int line);
+  /// Where a hole at CL point `p` of the cycle in force is approached: above it on the
+  /// cycle's retract plane (RTRCTO, else the R plane: RAPTO or CLEAR above the top).
+  vec3 cycle_approach(const vec3& p) const;
   /// CSYS (SolidWorks CAM): only the identity frame is posted; any other is an error.
   void frame(const coordsys_event& c, int line);
   struct hole;

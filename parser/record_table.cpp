@@ -101,7 +101,9 @@ const event_builder::rule_index& event_builder::rules() {
              "moves (a tap on G32 "
              "with the spindle reversed at the bottom); THREAD and GROOVE as [cycles] say (G76/G276, "
              "G92/G292 or G32 passes; G75 or G0/G1 plunges); the words read as the dialect defines them "
-             "(SolidWorks FEDTO is a depth). Any other cycle, a word the post does not carry out, or a "
+             "(SolidWorks FEDTO is a depth; NX's DRILL,DEEP is DEEP; a hole as a tool's first move is "
+             "approached on its retract plane). Positional values (CATIA's DRILL,d,f), any other cycle, a "
+             "word the post does not carry out, or a "
              "cycle the machine file names no form for stops the post at the record"),
       refused("DEFSUB",
               "it starts a subprogram definition; twinpost posts no subprograms yet, and posting "
