@@ -71,9 +71,7 @@ const event_builder::rule_index& event_builder::rules() {
       refused("CLAMP",
               "it clamps or unclamps an axis with the machine's own codes, which no machine file "
               "names yet; a dropped clamp or unclamp changes what the axis can do"),
-      refused("CNTRL",
-              "a control point of a NURBS spline (NX); twinpost does not cut splines into moves "
-              "yet, so the move would be lost"),
+      refused("CNTRL", "a control point of a NURBS spline (NX): as NURBS"),
       posted("COOLNT", &b::on_coolnt, "the machine's coolant on and off codes (M8, M9)"),
       refused("COUPLE",
               "it couples axes or spindles (ICAM's lathe vocabulary); its exact meaning is not "
@@ -140,7 +138,7 @@ const event_builder::rule_index& event_builder::rules() {
       ignored("INTOL",
               "the inside tolerance the CAM used to cut curves into moves; the moves in the file "
               "already meet it"),
-      refused("KNOT", "the knot vector of a NURBS spline (NX): as CNTRL"),
+      refused("KNOT", "the knot vector of a NURBS spline (NX): as NURBS"),
       ignored("LINTOL", "the tolerance of multi-axis moves between points; the CAM has already applied it"),
       posted("LOAD", &b::on_load_tool, "a tool call, from the machine's tool template (T0101)", "TOOL,..."),
       refused("LOAD",
@@ -174,8 +172,10 @@ const event_builder::rule_index& event_builder::rules() {
           "move whose tool axis is not along Z is an error",
           &b::on_multax),
       refused("NURBS",
-              "a spline move (NX); twinpost does not cut splines into moves yet, so the move would "
-              "be lost"),
+              "a spline move (NX: NURBS/, then KNOT/ and CNTRL/x,y,z records); no public definition of "
+              "the record was found (its order, the knots it leaves out, whether the point before it is "
+              "the first control point), and a spline read by a guess is a path the CAM never made, so it "
+              "is not cut into moves"),
       ignored("OPFEATEND",
               "the end of a SolidWorks CAM operation; the next OPFEATSTART comment names the next one",
               &b::on_text<text_kind::op_end>),
