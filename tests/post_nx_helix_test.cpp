@@ -111,7 +111,8 @@ double worst_distance(const std::vector<nc_arc>& arcs, char axis, const p3& star
       const double phi = two_pi * (static_cast<double>(b) + t);
       const double cu = u(centre) + r * std::cos(a0 - phi), cv = v(centre) + r * std::sin(a0 - phi);
       const double cw = w(start) + (w(end) - w(start)) * phi / (two_pi * turns);
-      worst = std::max(worst, std::sqrt((nu - cu) * (nu - cu) + (nv - cv) * (nv - cv) + (nw - cw) * (nw - cw)));
+      worst =
+          std::max(worst, std::sqrt((nu - cu) * (nu - cu) + (nv - cv) * (nv - cv) + (nw - cw) * (nw - cw)));
     }
   }
   return worst;
@@ -128,19 +129,22 @@ std::optional<std::vector<nc_arc>> rs274_arcs(const std::string& program, const 
   bool on = false;
   while (std::getline(in, line)) {
     on = on || line.find(" M6") != std::string::npos;
-    if (!on || line.empty() || !(line[0] == 'G' || line[0] == 'X' || line[0] == 'Y' || line[0] == 'Z')) continue;
+    if (!on || line.empty() || !(line[0] == 'G' || line[0] == 'X' || line[0] == 'Y' || line[0] == 'Z'))
+      continue;
     if (line.starts_with("G91") || line.starts_with("G90") || line.starts_with("G49")) continue;
     std::istringstream words(line);
     std::string word;
     while (words >> word)
-      if (word != "G43" && word != "G43.4" && word[0] != 'H' && word[0] != 'A' && word[0] != 'B' && word[0] != 'C')
+      if (word != "G43" && word != "G43.4" && word[0] != 'H' && word[0] != 'A' && word[0] != 'B' &&
+          word[0] != 'C')
         kept += word + ' ';
     kept += '\n';
   }
   kept += "M2\n";
   const std::string ngc = dir + "/helix.ngc", canon = dir + "/helix.canon";
   std::ofstream(ngc) << kept;
-  if (std::system(("rs274 -g " + ngc + " > " + canon + " 2>&1 < /dev/null").c_str()) != 0) return std::nullopt;
+  if (std::system(("rs274 -g " + ngc + " > " + canon + " 2>&1 < /dev/null").c_str()) != 0)
+    return std::nullopt;
   std::ifstream out(canon);
   std::vector<nc_arc> arcs;
   p3 at;
@@ -219,14 +223,18 @@ TEST_CASE("NX helix in YZ and ZX: the axis word is X or Y", "[post][arc][nx]") {
   }
 }
 
-TEST_CASE("TIMES: a GOTO off the circle's axis is refused, the same depth stays full circles", "[post][arc][nx]") {
-  const test::posted off = post(helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {29, 20, -6}, 2), "rotary-4axis", "off");
+TEST_CASE("TIMES: a GOTO off the circle's axis is refused, the same depth stays full circles",
+          "[post][arc][nx]") {
+  const test::posted off =
+      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {29, 20, -6}, 2), "rotary-4axis", "off");
   CHECK_FALSE(off.ok);
-  CHECK(off.diagnostics ==
-        "job.cls:11:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts, or above or below "
-        "it along the circle's axis, to be written as full turns (it ends 1 mm away in the circle's plane)\n"
-        "GOTO/29,20,-6\n^\n");
-  const test::posted flat = post(helix_job("0,0,1", {30, 20, 2}, {25, 20, 2}, {30, 20, 2}, 2), "rotary-4axis", "flat");
+  CHECK(
+      off.diagnostics ==
+      "job.cls:11:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts, or above or below "
+      "it along the circle's axis, to be written as full turns (it ends 1 mm away in the circle's plane)\n"
+      "GOTO/29,20,-6\n^\n");
+  const test::posted flat =
+      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, 2}, {30, 20, 2}, 2), "rotary-4axis", "flat");
   REQUIRE(flat.ok);
   const std::vector<nc_arc> arcs = arcs_of(flat.files.begin()->second);
   REQUIRE(arcs.size() == 2);
