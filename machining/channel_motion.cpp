@@ -314,6 +314,13 @@ void channel_writer::arc(const arc_event& a, int line) {
           fmt::format("CIRCLE TIMES {}: the move must end where it starts, or above or below it along the "
                       "circle's axis, to be written as full turns (it ends {} mm away in the circle's plane)",
                       a.turns, gap));
+    // In polar interpolation (G12.1) the arc is in the X-C plane the control builds; whether it
+    // takes a Z word into a helix there is not verified in a control's manual.
+    if (polar_ && std::max({std::abs(rise.x), std::abs(rise.y), std::abs(rise.z)}) * scale_ > y_tolerance)
+      return fail(
+          fmt::format("CIRCLE TIMES {}: a helix in polar interpolation (G12.1) is not written: "
+                      "helical interpolation in that mode is not verified; give the ramp as GOTO points",
+                      a.turns));
   }
   check_side(nc_x(a.end.x), a.end.x, line);
   double axis_sign = plane == 17 ? a.normal.z : plane == 18 ? a.normal.y : a.normal.x;

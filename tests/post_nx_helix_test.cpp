@@ -241,3 +241,14 @@ TEST_CASE("TIMES: a GOTO off the circle's axis is refused, the same depth stays 
   CHECK(arcs[0].text == "G2 X30. Y20. I-5. J0. F400.");
   CHECK(arcs[1].text == "G2 X30. Y20. I-5. J0.");
 }
+
+TEST_CASE("a helix in polar interpolation is refused", "[post][arc][nx]") {
+  // The Integrex mills the face with the spindle held as C in polar interpolation (G12.1).
+  const test::posted p =
+      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {30, 20, -6}, 4), "integrex-i200st", "polar");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics.find(
+            "job.cls:11:1: error: channel 1: CIRCLE TIMES 4: a helix in polar interpolation "
+            "(G12.1) is not written: helical interpolation in that mode is not verified; give the "
+            "ramp as GOTO points\nGOTO/30,20,-6\n^\n") != std::string::npos);
+}
