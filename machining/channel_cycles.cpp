@@ -81,8 +81,22 @@ bool channel_writer::cycle_supported(const cycle_event& c, int line) {
     return false;
   }
   if (!c.positional.empty()) {
-    error(line, fmt::format("CYCLE/{}: the value {} is not carried out by the post ({}, each with its value)",
-                            c.type, c.positional.front(), knows));
+    // CATIA writes CYCLE/DRILL,d,f,... as its site's PP table says (the table names each value,
+    // "PP Tables and PP Word Syntaxes" of the CATIA V5 manual); Creo's cycle_format = fixed and
+    // the old ISO 4343:1978 form are positional too, and ICAM's CYCLE page calls that form
+    // undocumented. No public definition says which value is the depth: none is guessed.
+    std::string values;
+    for (double v : c.positional) values += fmt::format("{}{}", values.empty() ? "" : ", ", v);
+    error(line, fmt::format("CYCLE/{}: the values {} stand by position, whose meaning the CAM's post table "
+                            "sets (CATIA's PP table) and no public definition fixes; twinpost does not "
+                            "guess which is the depth ({}, each with its value)",
+                            c.type, values, knows));
+    return false;
+  }
+  if (c.type == "DEEP" && !(cycle_param(c, "STEP").value_or(0) > 0)) {
+    // Without a peck depth the peck cycle would be drilled in one feed: a deep hole's chips
+    // would jam the drill.
+    error(line, "CYCLE/DEEP (NX: CYCLE/DRILL,DEEP) needs STEP, the depth of each peck");
     return false;
   }
   if (c.type == "DEEP2" && !(cycle_param(c, "SUBPECK").value_or(0) > 0)) {
@@ -104,6 +118,17 @@ bool channel_writer::cycle_supported(const cycle_event& c, int line) {
     }
   }
   return true;
+}
+
+vec3 channel_writer::cycle_approach(const vec3& p) const {
+  // As cycle_point reads the planes: the tool looks down -Z (axis +Z) and drills towards -Z.
+  const cycle_event& c = *cycle_;
+  const double into = axis_.z < 0 ? 1.0 : -1.0;
+  const std::optional<double> above =
+      c.meaning.rtrcto_above_top && cycle_param(c, "RTRCTO")
+          ? cycle_param(c, "RTRCTO")
+          : cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
+  return {p.x, p.y, p.z - into * *above};
 }
 
 void channel_writer::cycle_point(const vec3& p, int line) {

@@ -222,6 +222,12 @@ void channel_writer::motion(const motion_event& mv, int line) {
         groove_cycle_point(mv.pos, line);
         return;
       } else if (cycle_) {
+        // A hole as the first move after a tool call (NX writes CYCLE before the first GOTO):
+        // the length offset goes out with a rapid to the hole's retract plane first, as a
+        // GOTO there would; the canned cycle starts from that plane.
+        if (chain_ && multiaxis_takes() && !offset_on_ &&
+            !(chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on).empty())
+          multiaxis_move(true, cycle_approach(mv.pos), line);
         if (!chain_ || !multiaxis_takes() || multiaxis_arc(line)) cycle_point(mv.pos, line);
       } else if (threading_ && !mv.rapid) {
         thread_pass(mv.pos, line);
@@ -292,16 +298,29 @@ void channel_writer::arc(const arc_event& a, int line) {
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
   if (!has_y_ && !polar_ && std::abs(a.end.y * cl_mm_) > y_tolerance)
     return fail(fmt::format("Y {} on a channel without a Y axis", a.end.y));
+  // TIMES,n (NX): n full turns about the axis; a GOTO at another depth along the axis makes
+  // them a helix (NX's CLSF: "a tool path arc ... or a helical motion", x,y,z "the center of
+  // the curve or helix"). Each turn is one block whose axis word moves 1/n of the depth: the
+  // control's helical interpolation at a constant pitch goes down the same helix.
+  vec3 rise{0, 0, 0};  // the whole helix's travel along the axis, CL units
   if (a.turns > 0) {
-    // TIMES,n repeats a full circle: the move must end where it starts.
-    const double gap = std::max({std::abs(a.end.x - a.start.x), std::abs(a.end.y - a.start.y),
-                                 std::abs(a.end.z - a.start.z)}) *
-                       scale_;
+    const vec3 d{a.end.x - a.start.x, a.end.y - a.start.y, a.end.z - a.start.z};
+    const double along = (d.x * a.normal.x + d.y * a.normal.y + d.z * a.normal.z) / (nlen * nlen);
+    rise = {a.normal.x * along, a.normal.y * along, a.normal.z * along};
+    const double gap =
+        std::max({std::abs(d.x - rise.x), std::abs(d.y - rise.y), std::abs(d.z - rise.z)}) * scale_;
     if (gap > y_tolerance)
       return fail(
-          fmt::format("CIRCLE TIMES {}: the move must end where it starts to be repeated as full "
-                      "circles (it ends {} mm away)",
+          fmt::format("CIRCLE TIMES {}: the move must end where it starts, or above or below it along the "
+                      "circle's axis, to be written as full turns (it ends {} mm away in the circle's plane)",
                       a.turns, gap));
+    // In polar interpolation (G12.1) the arc is in the X-C plane the control builds; whether it
+    // takes a Z word into a helix there is not verified in a control's manual.
+    if (polar_ && std::max({std::abs(rise.x), std::abs(rise.y), std::abs(rise.z)}) * scale_ > y_tolerance)
+      return fail(
+          fmt::format("CIRCLE TIMES {}: a helix in polar interpolation (G12.1) is not written: "
+                      "helical interpolation in that mode is not verified; give the ramp as GOTO points",
+                      a.turns));
   }
   check_side(nc_x(a.end.x), a.end.x, line);
   double axis_sign = plane == 17 ? a.normal.z : plane == 18 ? a.normal.y : a.normal.x;
@@ -317,11 +336,36 @@ void channel_writer::arc(const arc_event& a, int line) {
     plane_ = plane;
   }
   arc_ += g == 3 ? " G3" : " G2";
+  if (feed_value_ <= 0) error(line, "arc with no feed rate (FEDRAT) in force");
+  const int blocks = std::max(1, a.turns);
+  for (int turn = 1; turn <= blocks; ++turn) {
+    // Full turns (TIMES): each block ends 1/n further along the axis, the last at the GOTO.
+    const double k = static_cast<double>(turn) / blocks;
+    const vec3 end =
+        turn == blocks ? a.end : vec3{a.start.x + rise.x * k, a.start.y + rise.y * k, a.start.z + rise.z * k};
+    if (!arc_block(a, end, plane, axis_sign, mirror, line)) return fail_quietly();
+    if (turn < blocks) {
+      out_.block(arc_.view().substr(1));
+      arc_.clear();
+      arc_ += g == 3 ? " G3" : " G2";
+    }
+  }
+  pending_g_.clear();
+  motion_g_ = g;
+  homed_ = false;
+  out_.block(arc_.view().substr(1));
+  pos_ = a.end;
+  pose_mm_.tip = {a.end.x * cl_mm_, a.end.y * cl_mm_,
+                  a.end.z * cl_mm_};  // the rotary axes stand at 0 (multiaxis_arc): joints = tip
+  joints_.linear = pose_mm_.tip;
+}
+
+bool channel_writer::arc_block(const arc_event& a, const vec3& end, int plane, double axis_sign,
+                               double mirror, int line) {
   // Both axes of the plane always; the third only when it moves (a helix).
-  axis_word(arc_, 'X', nc_x(a.end.x), last_x_, plane != 19);
-  if (plane != 18 || has_y_ || polar_)
-    axis_word(arc_, polar_ ? 'C' : 'Y', nc_y(a.end.y), last_y_, plane != 18);
-  axis_word(arc_, 'Z', nc_z(a.end.z), last_z_, plane != 17);
+  axis_word(arc_, 'X', nc_x(end.x), last_x_, plane != 19);
+  if (plane != 18 || has_y_ || polar_) axis_word(arc_, polar_ ? 'C' : 'Y', nc_y(end.y), last_y_, plane != 18);
+  axis_word(arc_, 'Z', nc_z(end.z), last_z_, plane != 17);
 
   // In-plane coordinates of start and end about the centre, (u, v) with the normal = u x v.
   auto uv = [&](const vec3& p) -> std::pair<double, double> {
@@ -343,30 +387,21 @@ void channel_writer::arc(const arc_event& a, int line) {
     if (plane != 17) offset('K', (a.center.z - a.start.z) * z_sign_);
   } else {
     auto [su, sv] = uv(a.start);
-    auto [eu, ev] = uv(a.end);
-    if (std::abs(su - eu) < 1e-9 && std::abs(sv - ev) < 1e-9)
-      return fail("a full circle cannot be written with R; the machine must take I/K arcs");
+    auto [eu, ev] = uv(end);
+    if (std::abs(su - eu) < 1e-9 && std::abs(sv - ev) < 1e-9) {
+      error(line, "a full circle cannot be written with R; the machine must take I/K arcs");
+      return false;
+    }
     // The long way round (over 180 degrees) takes a negative R.
     bool short_way_ccw = su * ev - sv * eu > 0;
     bool over_half = short_way_ccw != (a.ccw == (axis_sign > 0));
     const double r = (over_half ? -1 : 1) * a.radius * scale_;
-    if (!fits('R', r, axis_style_.decimals)) return fail_quietly();
+    if (!fits('R', r, axis_style_.decimals)) return false;
     arc_ += " R";
     append_number(arc_, r, axis_style_);
   }
-  if (feed_value_ > 0)
-    append_feed(arc_);
-  else
-    error(line, "arc with no feed rate (FEDRAT) in force");
-  pending_g_.clear();
-  motion_g_ = g;
-  homed_ = false;
-  // A full circle TIMES n: the same block n times, one turn each.
-  for (int turn = 0; turn < std::max(1, a.turns); ++turn) out_.block(arc_.view().substr(1));
-  pos_ = a.end;
-  pose_mm_.tip = {a.end.x * cl_mm_, a.end.y * cl_mm_,
-                  a.end.z * cl_mm_};  // the rotary axes stand at 0 (multiaxis_arc): joints = tip
-  joints_.linear = pose_mm_.tip;
+  if (feed_value_ > 0) append_feed(arc_);
+  return true;
 }
 
 }  // namespace twinpost

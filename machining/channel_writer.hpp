@@ -132,6 +132,9 @@ class channel_writer {
   void take_tool(int tool, int line, const char* word);
   /// One hole of the cycle in force at CL point `p` (channel_cycles.cpp).
   void cycle_point(const vec3& p, int line);
+  /// Where a hole at CL point `p` of the cycle in force is approached: above it on the
+  /// cycle's retract plane (RTRCTO, else the R plane: RAPTO or CLEAR above the top).
+  vec3 cycle_approach(const vec3& p) const;
   /// CSYS (SolidWorks CAM): only the identity frame is posted; any other is an error.
   void frame(const coordsys_event& c, int line);
   struct hole;
@@ -368,6 +371,9 @@ class channel_writer {
                    bool always);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(text_buffer& out);
+  /// The words of one arc block ending at `end` after the G codes already in arc_: the axes,
+  /// I/J/K (from the arc's start) or R, the feed. False when a word cannot be written.
+  bool arc_block(const arc_event& a, const vec3& end, int plane, double axis_sign, double mirror, int line);
   /// The feed word of a cut (modal), or the error when no feed is in force; then the check
   /// that the spindle turns (spindle_turning).
   void cut_feed(text_buffer& out, int line);

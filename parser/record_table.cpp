@@ -65,13 +65,13 @@ const event_builder::rule_index& event_builder::rules() {
       posted("CHANNEL", &b::on_channel, "selects the channel (turret) the records after it go to"),
       posted("CHANNL", &b::on_channel, "as CHANNEL (ICAM)"),
       posted("CIRCLE", &b::circle,
-             "with the GOTO after it: a G2/G3 arc with I and K, its sense as the dialect gives it"),
+             "with the GOTO after it: a G2/G3 arc with I and K, its sense as the dialect gives it; NX's "
+             "TIMES,n: n full turns, one block each, a helix (the axis word 1/n of the depth a turn) when "
+             "the GOTO lies along the circle's axis at another depth"),
       refused("CLAMP",
               "it clamps or unclamps an axis with the machine's own codes, which no machine file "
               "names yet; a dropped clamp or unclamp changes what the axis can do"),
-      refused("CNTRL",
-              "a control point of a NURBS spline (NX); twinpost does not cut splines into moves "
-              "yet, so the move would be lost"),
+      refused("CNTRL", "a control point of a NURBS spline (NX): as NURBS"),
       posted("COOLNT", &b::on_coolnt, "the machine's coolant on and off codes (M8, M9)"),
       refused("COUPLE",
               "it couples axes or spindles (ICAM's lathe vocabulary); its exact meaning is not "
@@ -101,7 +101,9 @@ const event_builder::rule_index& event_builder::rules() {
              "moves (a tap on G32 "
              "with the spindle reversed at the bottom); THREAD and GROOVE as [cycles] say (G76/G276, "
              "G92/G292 or G32 passes; G75 or G0/G1 plunges); the words read as the dialect defines them "
-             "(SolidWorks FEDTO is a depth). Any other cycle, a word the post does not carry out, or a "
+             "(SolidWorks FEDTO is a depth; NX's DRILL,DEEP is DEEP; a hole as a tool's first move is "
+             "approached on its retract plane). Positional values (CATIA's DRILL,d,f), any other cycle, a "
+             "word the post does not carry out, or a "
              "cycle the machine file names no form for stops the post at the record"),
       refused("DEFSUB",
               "it starts a subprogram definition; twinpost posts no subprograms yet, and posting "
@@ -136,7 +138,7 @@ const event_builder::rule_index& event_builder::rules() {
       ignored("INTOL",
               "the inside tolerance the CAM used to cut curves into moves; the moves in the file "
               "already meet it"),
-      refused("KNOT", "the knot vector of a NURBS spline (NX): as CNTRL"),
+      refused("KNOT", "the knot vector of a NURBS spline (NX): as NURBS"),
       ignored("LINTOL", "the tolerance of multi-axis moves between points; the CAM has already applied it"),
       posted("LOAD", &b::on_load_tool, "a tool call, from the machine's tool template (T0101)", "TOOL,..."),
       refused("LOAD",
@@ -170,8 +172,10 @@ const event_builder::rule_index& event_builder::rules() {
           "move whose tool axis is not along Z is an error",
           &b::on_multax),
       refused("NURBS",
-              "a spline move (NX); twinpost does not cut splines into moves yet, so the move would "
-              "be lost"),
+              "a spline move (NX: NURBS/, then KNOT/ and CNTRL/x,y,z records); no public definition of "
+              "the record was found (its order, the knots it leaves out, whether the point before it is "
+              "the first control point), and a spline read by a guess is a path the CAM never made, so it "
+              "is not cut into moves"),
       ignored("OPFEATEND",
               "the end of a SolidWorks CAM operation; the next OPFEATSTART comment names the next one",
               &b::on_text<text_kind::op_end>),

@@ -234,6 +234,11 @@ cycle_event read_cycle(const cl_record& r) {
   cycle_event e;
   std::size_t i = 0;
   if (is_word(r, 0)) e.type = upper(r.args[0].word), i = 1;
+  // NX (and Autodesk's APT post) write the peck cycle as CYCLE/DRILL,DEEP,...: the same cycle
+  // as Creo's CYCLE/DEEP, read by the same rules (a public NX reader's own example:
+  // "CYCLE/DRILL,DEEP,STEP,20,CLEAR,3,FEDTO,-72,RTRCTO,AUTO,MMPM,250").
+  if (e.type == "DRILL" && is_word(r, 1) && word_is(r.args[1].word, "DEEP") && !is_num(r, 2))
+    e.type = "DEEP", i = 2;
   for (; i < r.args.size(); ++i) {
     const cl_arg& a = r.args[i];
     if (a.kind == arg_kind::word && is_num(r, i + 1)) {

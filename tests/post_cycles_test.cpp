@@ -59,7 +59,8 @@ TEST_CASE("a cycle word the writer would drop stops the post", "[post][cycles]")
             .starts_with("job.cls:6:1: error: channel 1: CYCLE/DRILL: STEP is not carried out by the post"));
   CHECK(errors_of("CYCLE/DRILL,3.0,5.0\nGOTO/0,0,0\nFINI\n", "positional")
             .starts_with(
-                "job.cls:6:1: error: channel 1: CYCLE/DRILL: the value 3 is not carried out by the post"));
+                "job.cls:6:1: error: channel 1: CYCLE/DRILL: the values 3, 5 stand by position, whose "
+                "meaning the CAM's post table sets (CATIA's PP table) and no public definition fixes"));
 }
 
 TEST_CASE("a drill bottom behind the clearance plane is an error, not a move away from the part",

@@ -163,8 +163,16 @@ TEST_CASE("NX CIRCLE TIMES,n is posted as n full circles", "[post][words]") {
                 "fanuc-0itd-twin", "times-off");
   CHECK_FALSE(off.ok);
   CHECK(off.diagnostics ==
-        "job.cls:8:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts to be repeated as "
-        "full circles (it ends 20 mm away)\nGOTO/0,0,10\n^\n");
+        "job.cls:8:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts, or above or below "
+        "it "
+        "along the circle's axis, to be written as full turns (it ends 20 mm away in the circle's plane)\n"
+        "GOTO/0,0,10\n^\n");
+  // A helix about Y (G18) needs a Y axis: the lathe has none.
+  posted helix =
+      post_text(head + "GOTO/20,0,0\nCIRCLE/10,0,0,0,1,0,10,0.06,0.5,4,0,TIMES,2\nGOTO/20,-4,0\nFINI\n",
+                "fanuc-0itd-twin", "times-helix");
+  CHECK(helix.diagnostics ==
+        "job.cls:8:1: error: channel 1: Y -4 on a channel without a Y axis\nGOTO/20,-4,0\n^\n");
 }
 
 TEST_CASE("a post stops at a record it cannot carry out, and warns at a job cut off", "[post][words]") {

@@ -463,7 +463,8 @@ for e in events:
     elif kind in ("goto", "godlta"):
         x, z = e["x"] * scale, e["z"] * scale
         for ch, sign in active:
-            if ch in approach_due and e.get("rapid"):
+            # A hole as the first move (NX's CYCLE before the first GOTO) is approached the same way.
+            if ch in approach_due and (e.get("rapid") or (cycle and cycle["type"] not in ("THREAD", "GROOVE"))):
                 last_z = cl[ch][-1]["z"] if cl[ch] else 0.0  # where the last move left the tool
                 cl[ch].append({"kind": "rapid", "x": sign * x, "z": last_z, "line": line})
             approach_due.discard(ch)

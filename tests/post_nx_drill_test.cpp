@@ -1,0 +1,100 @@
+// NX drilling forms on the mills (issue 24 item 5): CYCLE/DRILL before the first GOTO of a
+// tool (NX's "standard drill"), CYCLE/DRILL,DEEP as the peck cycle, and the positional
+// CYCLE/DRILL,d,f of CATIA, refused with the reason.
+#include <catch2/catch.hpp>
+
+#include <sstream>
+#include <string>
+
+#include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+#include "support/diagnostics.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+// An NX operation: tool 3 loaded, spindle on, the cycle given before the first point.
+const std::string nx_head =
+    "TOOL PATH/DRILLING,TOOL,DRILL-8\nTLDATA/DRILL,8.0000,0.0000,75.0000,118.0000,40.0000\n"
+    "LOAD/TOOL,3\nSPINDL/RPM,1200,CLW\n";
+const std::string nx_points =
+    "GOTO/20.0000,10.0000,0.0000,0.0000000,0.0000000,1.0000000\nGOTO/40.0000,10.0000,0.0000\n"
+    "CYCLE/OFF\nEND-OF-PATH\n";
+
+// The blocks from the tool call to the length offset's cancel, for `cl` posted on `machine`.
+std::string blocks(const std::string& cl, const std::string& machine, const std::string& tag) {
+  const test::posted p = test::post_in_fresh_dir(cl, load_machine(machine), "nxdrill-" + tag);
+  if (!p.ok) return "(failed)\n" + p.diagnostics;
+  std::istringstream in(p.files.begin()->second);
+  std::string line, out;
+  bool on = false;
+  while (std::getline(in, line)) {
+    on = on || line.ends_with(" M6");
+    if (!on) continue;
+    out += line + "\n";
+    if (line == "G49") break;
+  }
+  return out;
+}
+
+std::string errors_of(const std::string& cl, const std::string& machine, const std::string& tag) {
+  const test::posted p =
+      test::post_in_fresh_dir(cl, load_machine(machine), "nxdrill-err-" + tag,
+                              [](const diagnostic& d) { return d.level == severity::error; });
+  return p.ok ? "(posted)" : p.diagnostics;
+}
+
+}  // namespace
+
+TEST_CASE("NX: a drilling cycle as the first move after a tool call", "[post][drill][nx]") {
+  // The length offset goes out with a rapid above the first hole, on its R plane (RAPTO 3 above
+  // the hole's top at Z0), as a GOTO there would; the canned cycle starts from that plane.
+  const std::string cl = nx_head + "CYCLE/DRILL,RAPTO,3.0000,FEDTO,-12.0000,MMPM,150.0000\n" + nx_points;
+  CHECK(blocks(cl, "rotary-4axis", "std4") ==
+        "T03 M6\nS1200 M3\nG0 A0.\nG0 X20. Y10.\nG0 G43 H3 X20. Y10. Z3. A0.\n"
+        "G98 G81 X20. Y10. Z-12. R3. F150.\nG80\nG0 Z3.\nX40.\nG98 G81 X40. Y10. Z-12. R3. F150.\nG80\n"
+        "G0 Z3.\nG49\n");
+  // The trunnion has no canned cycle ([cycles] drill = "moves"): the same hole as moves.
+  CHECK(blocks(cl, "trunnion-5axis", "std5") ==
+        "T03 M6\nS1200 M3\nG0 A0. C0.\nG0 X20. Y10.\nG0 G43.4 H3 X20. Y10. Z3. A0. C0.\nG1 Z-12. F150.\n"
+        "G0 Z3.\nX40.\nG1 Z-12.\nG0 Z3.\nG49\n");
+}
+
+TEST_CASE("NX: CYCLE/DRILL,DEEP is the peck cycle, in pecks of STEP", "[post][drill][nx]") {
+  const std::string cl =
+      nx_head + "CYCLE/DRILL,DEEP,STEP,4.0000,RAPTO,3.0000,FEDTO,-12.0000,MMPM,150.0000\n" + nx_points;
+  CHECK(blocks(cl, "rotary-4axis", "deep4") ==
+        "T03 M6\nS1200 M3\nG0 A0.\nG0 X20. Y10.\nG0 G43 H3 X20. Y10. Z3. A0.\n"
+        "G98 G83 X20. Y10. Z-12. R3. Q4. F150.\nG80\nG0 Z3.\nX40.\nG98 G83 X40. Y10. Z-12. R3. Q4. F150.\n"
+        "G80\nG0 Z3.\nG49\n");
+  // As moves: from R3 pecks of 4 to Z-1, -5, -9, back in to 0.5 above each, and the bottom.
+  CHECK(blocks(nx_head +
+                   "CYCLE/DRILL,DEEP,STEP,4.0000,RAPTO,3.0000,FEDTO,-12.0000,MMPM,150.0000\n"
+                   "GOTO/20.0000,10.0000,0.0000,0.0000000,0.0000000,1.0000000\nCYCLE/OFF\nEND-OF-PATH\n",
+               "trunnion-5axis", "deep5") ==
+        "T03 M6\nS1200 M3\nG0 A0. C0.\nG0 X20. Y10.\nG0 G43.4 H3 X20. Y10. Z3. A0. C0.\nG1 Z-1. F150.\n"
+        "G0 Z3.\nZ-0.5\nG1 Z-5.\nG0 Z3.\nZ-4.5\nG1 Z-9.\nG0 Z3.\nZ-8.5\nG1 Z-12.\nG0 Z3.\nG49\n");
+}
+
+TEST_CASE("a peck cycle without STEP, and positional cycle values, stop the post", "[post][drill][nx]") {
+  // Without a peck depth a peck cycle would be drilled in one feed; so would Creo's CYCLE/DEEP.
+  CHECK(errors_of(nx_head + "CYCLE/DRILL,DEEP,RAPTO,3.0000,FEDTO,0.0000,MMPM,250.0000\n" + nx_points,
+                  "rotary-4axis", "nostep") ==
+        "job.cls:5:1: error: channel 1: CYCLE/DEEP (NX: CYCLE/DRILL,DEEP) needs STEP, the depth of each "
+        "peck\nCYCLE/DRILL,DEEP,RAPTO,3.0000,FEDTO,0.0000,MMPM,250.0000\n^\n");
+  CHECK(errors_of(nx_head + "CYCLE/DEEP,FEDTO,-12.,RAPTO,3.,MMPM,150.\n" + nx_points, "rotary-4axis",
+                  "creo-nostep") ==
+        "job.cls:5:1: error: channel 1: CYCLE/DEEP (NX: CYCLE/DRILL,DEEP) needs STEP, the depth of each "
+        "peck\nCYCLE/DEEP,FEDTO,-12.,RAPTO,3.,MMPM,150.\n^\n");
+  // CATIA's CYCLE/DRILL,d,f: the values' meaning is its site's PP table's.
+  CHECK(errors_of("PARTNO P\nLOADTL/2,1\nSPINDL/ 2546.4790,RPM,CLW\nRAPID\nGOTO/98,100,35,0,0,1\n"
+                  "FEDRAT/300,MMPM\nGOTO/98,100,25,0,0,1\nCYCLE/DRILL,    3.000000,    5.000000\n"
+                  "GOTO/98,100,20,0,0,1\nCYCLE/OFF\nEND\n",
+                  "rotary-4axis", "catia") ==
+        "job.cls:8:1: error: channel 1: CYCLE/DRILL: the values 3, 5 stand by position, whose meaning the "
+        "CAM's post table sets (CATIA's PP table) and no public definition fixes; twinpost does not guess "
+        "which is the depth (it knows FEDTO, DEPTH, RAPTO, CLEAR, STEP and the feed, each with its value)\n"
+        "CYCLE/DRILL,    3.000000,    5.000000\n^\n");
+}

@@ -1,0 +1,254 @@
+// NX helical ramps (issue 24 item 3): CIRCLE/...,TIMES,n followed by a GOTO at another depth
+// along the circle's axis is a helix of n turns, written as n helical G2/G3 blocks. The
+// written words are read back and the tool tip is followed along each block as the control
+// moves it (the plane's arc about I/J/K, the axis word reached at a constant pitch) and
+// compared with the CL's helix at 72 points a turn.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+#include "support/diagnostics.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+struct p3 {
+  double x = 0, y = 0, z = 0;
+};
+
+// The CL: a ramp at (cx, cy) of radius 5 from `top` down to `bottom` in `turns` turns, about
+// the axis `axis` ("0,0,1" and the like); NX's CIRCLE: centre, axis, radius, tolerances,
+// the tool's diameter and corner radius, then TIMES.
+std::string helix_job(const std::string& axis, const p3& start, const p3& centre, const p3& end, int turns) {
+  std::ostringstream cl;
+  cl << "TOOL PATH/HELIX,TOOL,MILL-10\nTLDATA/MILL,10.0000,0.0000,75.0000,0.0000,0.0000\nLOAD/TOOL,2\n"
+     << "SPINDL/RPM,3000,CLW\nRAPID\nGOTO/" << start.x << "," << start.y << "," << start.z + 8
+     << ",0,0,1\nRAPID\nGOTO/" << start.x << "," << start.y << "," << start.z << "\nFEDRAT/MMPM,400\n"
+     << "CIRCLE/" << centre.x << "," << centre.y << "," << centre.z << "," << axis
+     << ",5.0000,0.0600,0.5000,10.0000,0.0000,TIMES," << turns << "\nGOTO/" << end.x << "," << end.y << ","
+     << end.z << "\nEND-OF-PATH\n";
+  return cl.str();
+}
+
+// Every G2/G3 block after the tool call, with the position it starts from (X Y Z modal).
+struct nc_arc {
+  p3 from, to, offset;  // offset: I J K, from the start to the centre
+  bool cw = false;
+  std::string text;
+};
+
+std::vector<nc_arc> arcs_of(const std::string& program) {
+  std::istringstream in(program);
+  std::string line;
+  p3 at;
+  std::vector<nc_arc> out;
+  int motion = 0;
+  while (std::getline(in, line)) {
+    if (line.find(" M6") != std::string::npos) at = {};
+    std::map<char, double> w;
+    std::istringstream words(line);
+    std::string word;
+    while (words >> word) {
+      if (word.size() < 2 || word[0] == '(') break;
+      w[word[0]] = std::stod(word.substr(1));
+    }
+    if (w.count('G')) {
+      // the last G of the motion group on the line
+      std::istringstream again(line);
+      while (again >> word)
+        if (word == "G0" || word == "G1" || word == "G2" || word == "G3") motion = word[1] - '0';
+    }
+    p3 to = at;
+    if (w.count('X')) to.x = w['X'];
+    if (w.count('Y')) to.y = w['Y'];
+    if (w.count('Z')) to.z = w['Z'];
+    if ((motion == 2 || motion == 3) && (w.count('I') || w.count('J') || w.count('K')))
+      out.push_back({at, to, {w['I'], w['J'], w['K']}, motion == 2, line});
+    at = to;
+  }
+  return out;
+}
+
+// The largest distance between the control's path through `arcs` (72 points a turn) and the
+// CL helix about `axis` (a unit vector along X, Y or Z) through `start` with centre `centre`,
+// clockwise about the axis (NX), reaching `end` after `turns` turns.
+double worst_distance(const std::vector<nc_arc>& arcs, char axis, const p3& start, const p3& centre,
+                      const p3& end, int turns) {
+  // Plane coordinates (u, v) with axis = u x v, and the axis coordinate w.
+  auto u = [&](const p3& p) { return axis == 'Z' ? p.x : axis == 'Y' ? p.z : p.y; };
+  auto v = [&](const p3& p) { return axis == 'Z' ? p.y : axis == 'Y' ? p.x : p.z; };
+  auto w = [&](const p3& p) { return axis == 'Z' ? p.z : axis == 'Y' ? p.y : p.x; };
+  const double two_pi = 2 * std::numbers::pi;
+  const double r = std::hypot(u(start) - u(centre), v(start) - v(centre));
+  const double a0 = std::atan2(v(start) - v(centre), u(start) - u(centre));
+  double worst = 0;
+  for (std::size_t b = 0; b < arcs.size(); ++b) {
+    const nc_arc& a = arcs[b];
+    const p3 c{a.from.x + a.offset.x, a.from.y + a.offset.y, a.from.z + a.offset.z};
+    const double rn = std::hypot(u(a.from) - u(c), v(a.from) - v(c));
+    const double s0 = std::atan2(v(a.from) - v(c), u(a.from) - u(c));
+    for (int i = 0; i <= 72; ++i) {
+      const double t = i / 72.0;
+      // The control: a full turn (start = end in the plane) in the block's sense, the axis
+      // word reached linearly with the angle.
+      const double ang = s0 + (a.cw ? -1 : 1) * two_pi * t;
+      const double nu = u(c) + rn * std::cos(ang), nv = v(c) + rn * std::sin(ang);
+      const double nw = w(a.from) + (w(a.to) - w(a.from)) * t;
+      // The CL helix at the same total angle: clockwise about the axis.
+      const double phi = two_pi * (static_cast<double>(b) + t);
+      const double cu = u(centre) + r * std::cos(a0 - phi), cv = v(centre) + r * std::sin(a0 - phi);
+      const double cw = w(start) + (w(end) - w(start)) * phi / (two_pi * turns);
+      worst =
+          std::max(worst, std::sqrt((nu - cu) * (nu - cu) + (nv - cv) * (nv - cv) + (nw - cw) * (nw - cw)));
+    }
+  }
+  return worst;
+}
+
+// LinuxCNC's rs274 as an independent reader of a G17 program (optional: empty when rs274 is
+// not installed): the motion blocks of `program` (the length offset and the rotary words left
+// out) run through `rs274 -g`, and each ARC_FEED of its canonical output turned back into an
+// arc from the point the previous move ended at.
+std::optional<std::vector<nc_arc>> rs274_arcs(const std::string& program, const std::string& dir) {
+  if (std::system("command -v rs274 >/dev/null 2>&1") != 0) return std::nullopt;
+  std::istringstream in(program);
+  std::string line, kept = "G17 G21 G90\n";
+  bool on = false;
+  while (std::getline(in, line)) {
+    on = on || line.find(" M6") != std::string::npos;
+    if (!on || line.empty() || !(line[0] == 'G' || line[0] == 'X' || line[0] == 'Y' || line[0] == 'Z'))
+      continue;
+    if (line.starts_with("G91") || line.starts_with("G90") || line.starts_with("G49")) continue;
+    std::istringstream words(line);
+    std::string word;
+    while (words >> word)
+      if (word != "G43" && word != "G43.4" && word[0] != 'H' && word[0] != 'A' && word[0] != 'B' &&
+          word[0] != 'C')
+        kept += word + ' ';
+    kept += '\n';
+  }
+  kept += "M2\n";
+  const std::string ngc = dir + "/helix.ngc", canon = dir + "/helix.canon";
+  std::ofstream(ngc) << kept;
+  if (std::system(("rs274 -g " + ngc + " > " + canon + " 2>&1 < /dev/null").c_str()) != 0)
+    return std::nullopt;
+  std::ifstream out(canon);
+  std::vector<nc_arc> arcs;
+  p3 at;
+  while (std::getline(out, line)) {
+    const auto open = line.find('(');
+    if (open == std::string::npos) continue;
+    std::vector<double> v;
+    std::istringstream args(line.substr(open + 1));
+    for (std::string a; std::getline(args, a, ',');) v.push_back(std::strtod(a.c_str(), nullptr));
+    if (line.find("STRAIGHT_") != std::string::npos && v.size() >= 3) {
+      at = {v[0], v[1], v[2]};
+    } else if (line.find("ARC_FEED") != std::string::npos && v.size() >= 6) {
+      // first end, second end, first centre, second centre, rotation (-1: one turn clockwise), axis end
+      const p3 to{v[0], v[1], v[5]};
+      arcs.push_back({at, to, {v[2] - at.x, v[3] - at.y, 0}, v[4] < 0, line});
+      CHECK(std::abs(v[4]) == 1);  // one turn a block
+      at = to;
+    }
+  }
+  return arcs;
+}
+
+test::posted post(const std::string& cl, const std::string& machine, const std::string& tag) {
+  return test::post_in_fresh_dir(cl, load_machine(machine), "nxhelix-" + tag);
+}
+
+}  // namespace
+
+TEST_CASE("NX helix in XY: one helical G2 a turn, the tip on the CL's helix", "[post][arc][nx]") {
+  // Down from Z2 to Z-6 in 4 turns about +Z (NX: clockwise about the axis, G2), radius 5.
+  const p3 start{30, 20, 2}, centre{25, 20, -6}, end{30, 20, -6};
+  const std::string cl = helix_job("0,0,1", start, centre, end, 4);
+  for (const char* machine : {"rotary-4axis", "trunnion-5axis", "head-head-5axis"}) {
+    INFO(machine);
+    const test::posted p = post(cl, machine, machine);
+    REQUIRE(p.ok);
+    const std::vector<nc_arc> arcs = arcs_of(p.files.begin()->second);
+    REQUIRE(arcs.size() == 4);
+    CHECK(arcs[0].text == "G2 X30. Y20. Z0. I-5. J0. F400.");
+    CHECK(arcs[1].text == "G2 X30. Y20. Z-2. I-5. J0.");
+    CHECK(arcs[2].text == "G2 X30. Y20. Z-4. I-5. J0.");
+    CHECK(arcs[3].text == "G2 X30. Y20. Z-6. I-5. J0.");
+    CHECK(worst_distance(arcs, 'Z', start, centre, end, 4) < 1e-9);
+    // The same blocks as LinuxCNC reads them, where rs274 is installed.
+    const std::string dir = test::fresh_temp_dir(std::string("nxhelix-rs274-") + machine);
+    if (const auto read = rs274_arcs(p.files.begin()->second, dir)) {
+      REQUIRE(read->size() == 4);
+      CHECK(worst_distance(*read, 'Z', start, centre, end, 4) < 1e-6);
+    } else {
+      WARN("rs274 not installed: the helix is not read by LinuxCNC");
+    }
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST_CASE("NX helix in YZ and ZX: the axis word is X or Y", "[post][arc][nx]") {
+  // About +X (G19): from X8 to X2 in 3 turns; about +Y (G18): from Y8 to Y-1 in 3 turns.
+  {
+    const p3 start{8, 10, 5}, centre{2, 10, 0}, end{2, 10, 5};
+    const test::posted p = post(helix_job("1,0,0", start, centre, end, 3), "rotary-4axis", "yz");
+    REQUIRE(p.ok);
+    const std::vector<nc_arc> arcs = arcs_of(p.files.begin()->second);
+    REQUIRE(arcs.size() == 3);
+    CHECK(arcs[0].text == "G19 G2 X6. Y10. Z5. J0. K-5. F400.");
+    CHECK(arcs[2].text == "G2 X2. Y10. Z5. J0. K-5.");
+    CHECK(worst_distance(arcs, 'X', start, centre, end, 3) < 1e-9);
+  }
+  {
+    const p3 start{10, 8, 5}, centre{10, -1, 0}, end{10, -1, 5};
+    const test::posted p = post(helix_job("0,1,0", start, centre, end, 3), "trunnion-5axis", "zx");
+    REQUIRE(p.ok);
+    const std::vector<nc_arc> arcs = arcs_of(p.files.begin()->second);
+    REQUIRE(arcs.size() == 3);
+    CHECK(arcs[0].text == "G18 G2 X10. Y5. Z5. I0. K-5. F400.");
+    CHECK(worst_distance(arcs, 'Y', start, centre, end, 3) < 1e-9);
+  }
+}
+
+TEST_CASE("TIMES: a GOTO off the circle's axis is refused, the same depth stays full circles",
+          "[post][arc][nx]") {
+  const test::posted off =
+      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {29, 20, -6}, 2), "rotary-4axis", "off");
+  CHECK_FALSE(off.ok);
+  CHECK(
+      off.diagnostics ==
+      "job.cls:11:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts, or above or below "
+      "it along the circle's axis, to be written as full turns (it ends 1 mm away in the circle's plane)\n"
+      "GOTO/29,20,-6\n^\n");
+  const test::posted flat =
+      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, 2}, {30, 20, 2}, 2), "rotary-4axis", "flat");
+  REQUIRE(flat.ok);
+  const std::vector<nc_arc> arcs = arcs_of(flat.files.begin()->second);
+  REQUIRE(arcs.size() == 2);
+  CHECK(arcs[0].text == "G2 X30. Y20. I-5. J0. F400.");
+  CHECK(arcs[1].text == "G2 X30. Y20. I-5. J0.");
+}
+
+TEST_CASE("a helix in polar interpolation is refused", "[post][arc][nx]") {
+  // The Integrex mills the face with the spindle held as C in polar interpolation (G12.1).
+  const test::posted p =
+      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {30, 20, -6}, 4), "integrex-i200st", "polar");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics.find(
+            "job.cls:11:1: error: channel 1: CIRCLE TIMES 4: a helix in polar interpolation "
+            "(G12.1) is not written: helical interpolation in that mode is not verified; give the "
+            "ramp as GOTO points\nGOTO/30,20,-6\n^\n") != std::string::npos);
+}
