@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <string_view>
 
+#include "kinematics/vec3_ops.hpp"
 #include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
 
@@ -77,8 +78,14 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
   chain_ = m.chain(ch.number);
   if (chain_) {
-    for (const rotary_axis_def& r : chain_->rotaries)
-      chain_heads_ = chain_heads_ || r.kind == rotary_kind::head;
+    for (std::size_t i = 0; i < chain_->rotaries.size(); ++i) {
+      const rotary_axis_def& r = chain_->rotaries[i];
+      if (r.kind != rotary_kind::head) continue;
+      chain_heads_ = true;
+      // A head along the tool (a spindle-axis C head) turns it about itself: it never tilts it,
+      // whatever its angle, and the tip then does not depend on the length.
+      if (kin::norm(kin::cross(r.direction, chain_->tool_direction)) > 1e-12) tilting_heads_ |= 1u << i;
+    }
     // The rotary words' and I J K's largest counts are set by their first word (rotary_word).
     for (axis_memory& a : last_rot_) a.max = 0;
     for (axis_memory& a : last_ijk_) a.max = 0;

@@ -319,8 +319,12 @@ class channel_writer {
   /// False (with the error) when the solution changes branch between `from` and `to` in a cut.
   bool same_branch(const kin::joint_values& from, const kin::joint_values& to, int line);
   /// The gauge length of the tool in the spindle for joints output; false with the error
-  /// (naming the tool) when neither the CL nor the machine's tool table gives it.
+  /// (naming the tool) when the CL's and the tool table's lengths differ. A length neither
+  /// gives is no error yet: the moves post as long as no head tilts the tool (`length_free_`).
   bool tool_length_known(int line);
+  /// With the length unknown: false (with the error naming the tool, once per tool) when the
+  /// head values `read` (as the control reads them) tilt the tool.
+  bool untilted_without_length(const kin::joint_values& read, int line);
   /// TLDATA/MILL's length (NX: diameter, lower radius, length, ...) for the next or this tool.
   void tool_data_length(const tool_data_event& t, bool after_call);
   /// A tool call on a chain channel: the new tool's offset register and length.
@@ -523,6 +527,7 @@ class channel_writer {
   bool cut_due_ = true;                     ///< the next G1/G2/G3 line is noted
   const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
   bool chain_heads_ = false;                ///< a rotary axis of it turns the tool (the length matters)
+  unsigned tilting_heads_ = 0;              ///< bit i: rotary i is a head not along the tool (it tilts it)
   kin::joint_values joints_{};              ///< where the machine is (mm, degrees)
   kin::tool_pose pose_mm_{};                ///< the last CL pose, in mm
   bool pose_known_ = false;                 ///< false until the first GOTO (or FROM)
@@ -535,9 +540,12 @@ class channel_writer {
   std::optional<double> pole_hint_;                   ///< the outer angle the held rapid takes
   bool length_known_ = false;
   bool length_refused_ = false;  ///< the tool's length error was reported
-  int offset_ = 0;               ///< the tool's offset register (H)
-  bool offset_on_ = false;       ///< G43 / G43.4 / G43.5 written for the tool in the spindle
-  bool inverse_time_ = false;    ///< G93 in force
+  /// The tool's length is unknown and the moves are posted while no head tilts the tool (the
+  /// joints do not depend on the length there); the first point that tilts it is refused.
+  bool length_free_ = false;
+  int offset_ = 0;             ///< the tool's offset register (H)
+  bool offset_on_ = false;     ///< G43 / G43.4 / G43.5 written for the tool in the spindle
+  bool inverse_time_ = false;  ///< G93 in force
   axis_memory last_rot_[2], last_ijk_[3];
   kin::linearise_result lin_;  ///< reused by every feed move
   bool plane_on_ = false;      ///< a tilted working plane (G68.2) is in force

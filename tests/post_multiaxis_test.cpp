@@ -454,11 +454,13 @@ TEST_CASE("multi-axis: the tool length from TLDATA or the tool table, never gues
   machine m = load_machine("head-head-5axis");
   const std::string tilt = "GOTO/10,0,0,0.1736482,0,0.9848078\n";
   const test::posted none = post_moves(m, tilt, "ma-len0", "");
-  CHECK(none.diagnostics ==
-        "job.cls:7:1: error: channel 1: tool 1 (LOADTL at line 3) has no length: the joint values of machine "
-        "'head-head-5axis' depend on it (a head turns the tool about its pivot); give TLDATA/MILL with the "
-        "length, "
-        "or length = ... under the tool's [[tool]] in the machine file\nGOTO/0,0,50,0,0,1\n^\n");
+  // The rapid to GOTO/0,0,50 under the spindle's axis posts; the tilted feed move is refused.
+  CHECK(
+      none.diagnostics ==
+      "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 3) has no length, and this move tilts it (B10): "
+      "the joint values of machine 'head-head-5axis' then depend on it (a head turns the tool about its "
+      "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
+      "file\nGOTO/10,0,0,0.1736482,0,0.9848078\n^\n");
   // The table's length serves where the CL gives none; the same program as with TLDATA.
   tool_def t;
   t.number = 1;
@@ -604,4 +606,45 @@ TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z 
         "X41.66 Z-5.251 B1.5 F400.\nX42.212 Z-5.388 B2. F400.\nX36.66 Z-5.251 B1.5 F400.\n"
         "X31.108 Z-5.141 B1. F400.\nX25.554 Z-5.057 B0.5 F400.\nX20. Z-5. B0. F400.\nG98\nG0 Z20.\n"
         "G49\nM30\n%\n");
+}
+
+TEST_CASE("multi-axis: a head machine posts a tool of unknown length while no head tilts it",
+          "[post][multiaxis]") {
+  // With both heads at 0 the linear words are the tip whatever the length (docs/kinematics.md,
+  // "Frames and signs"): the program without a length is the one with any length.
+  const machine m = load_machine("head-head-5axis");
+  const std::string flat =
+      "GOTO/10,0,-5\nGOTO/20,5,-5\nCIRCLE/20,15,-5,0,0,1,10,0.06,0.5,10,0\nGOTO/30,15,-5\nRAPID\n"
+      "GOTO/30,15,50\n";
+  const test::posted none = post_moves(m, flat, "ma-free0", "");
+  const test::posted l100 = post_moves(m, flat, "ma-free1", "TLDATA/MILL,10,0,100,0,0\n");
+  const test::posted l250 = post_moves(m, flat, "ma-free2", "TLDATA/MILL,10,0,250,0,0\n");
+  INFO(none.diagnostics);
+  REQUIRE(none.ok);
+  REQUIRE(l100.ok);
+  REQUIRE(l250.ok);
+  CHECK(none.files == l100.files);
+  CHECK(none.files == l250.files);
+  const std::string nc = none.files.at("MOVES.nc");
+  CHECK(nc.substr(nc.find("G0 G43")) ==
+        "G0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 X10. Z-5. F500.\nX20. Y5.\nG3 X30. Y15. I0. J10.\nG0 Z50.\nG49\n"
+        "M9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+  // A tilted feed move is refused once per tool, at the first; the moves under the spindle's
+  // axis after it still post, and the next tool is judged afresh.
+  const test::posted tilted = test::post_in_fresh_dir(
+      "PARTNO MOVES\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,5000,CLW\nFEDRAT/MMPM,500\nRAPID\nGOTO/0,0,50,0,0,1\n"
+      "GOTO/10,0,0,0.1736482,0,0.9848078\nGOTO/20,0,0,0,0.1736482,0.9848078\nGOTO/20,0,50,0,0,1\n"
+      "LOADTL/2\nSPINDL/RPM,5000,CLW\nRAPID\nGOTO/0,0,50,0,0,1\nGOTO/0,10,0,0,-0.1736482,0.9848078\nFINI\n",
+      m, "ma-free3");
+  CHECK(
+      tilted.diagnostics ==
+      "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 3) has no length, and this move tilts it (B10): "
+      "the joint values of machine 'head-head-5axis' then depend on it (a head turns the tool about its "
+      "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
+      "file\nGOTO/10,0,0,0.1736482,0,0.9848078\n^\n"
+      "job.cls:15:1: error: channel 1: tool 2 (LOADTL at line 11) has no length, and this move tilts it "
+      "(A10): "
+      "the joint values of machine 'head-head-5axis' then depend on it (a head turns the tool about its "
+      "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
+      "file\nGOTO/0,10,0,0,-0.1736482,0.9848078\n^\n");
 }
