@@ -6,6 +6,7 @@
 // axis words (modal suppression), cutter compensation, an active drilling cycle.
 // Lengths are written in the machine file's output units (mm or inch): the CL's are converted
 // on the way.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -132,8 +133,17 @@ class channel_writer {
   void take_tool(int tool, int line, const char* word);
   /// One hole of the cycle in force at CL point `p` (channel_cycles.cpp).
   void cycle_point(const vec3& p, int line);
-  /// CSYS (SolidWorks CAM): only the identity frame is posted; any other is an error.
+  // Frames of the CL (machining/channel_frames.cpp).
+  /// NX MSYS: its rotation (MCS to absolute) turns every later point and tool axis; SolidWorks
+  /// CSYS: a rigid frame about the world origin names the operation's tool axis (the points stay
+  /// in the world frame, TRNTYP/WORLD). A frame that is not rigid is an error.
   void frame(const coordsys_event& c, int line);
+  /// The event's points and axes turned by MSYS's rotation; false (with the error) for a record
+  /// whose meaning under the turn is not known (a drilling cycle's levels).
+  bool turn_to_msys(event& e);
+  /// Under a turned CSYS: false (with the error, once per CSYS) for a GOTO whose tool axis is
+  /// not the CSYS's Z.
+  bool csys_axis_fits(const event& e);
   struct hole;
   /// Plain moves: rapid to the retract and R planes, feed (in pecks), dwell, rapid out.
   void expanded_hole(const hole& h, int line);
@@ -458,10 +468,17 @@ class channel_writer {
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force
   bool thread_saved_per_rev_ = false;      ///< the feed mode to restore at THREAD/OFF
   bool thread_saved_mode_ = false;         ///< whether a feed mode was written before THREAD/TURN
-  bool cycle_refused_ = false;        ///< the cycle in force was refused (an error): its points write nothing
-  vec3 pos_;                          // last CL point of this channel
-  vec3 axis_{0, 0, 1};                // tool axis, from GOTO i,j,k or TLAXIS
-  std::optional<vec3> refused_axis_;  // the tool axis tool_along_z last refused
+  bool cycle_refused_ = false;  ///< the cycle in force was refused (an error): its points write nothing
+  vec3 pos_;                    // last CL point of this channel
+  vec3 axis_{0, 0, 1};          // tool axis, from GOTO i,j,k or TLAXIS
+  /// NX MSYS's rotation: the columns (the MCS's X, Y, Z in the absolute frame); unset when it is
+  /// the identity.
+  std::optional<std::array<vec3, 3>> msys_;
+  int msys_line_ = 0;
+  std::optional<vec3> csys_axis_;  ///< a turned SolidWorks CSYS's Z: the tool axis of its moves
+  int csys_line_ = 0;
+  bool csys_refused_ = false;                ///< the error for a move under another axis was given
+  std::optional<vec3> refused_axis_;         // the tool axis tool_along_z last refused
   std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning
   /// The last SPINDL that set a speed: SPINDL/ON turns the spindle on again with it (APT: the
   /// last speed, mode and direction), also after SPINDL/OFF.
