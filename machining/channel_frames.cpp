@@ -51,13 +51,14 @@ void channel_writer::frame(const coordsys_event& c, int line) {
   const std::vector<double>& v = c.values;
   if (c.source == "MSYS") {
     if (v.size() != 9)
-      return error(line, fmt::format("MSYS/{}: NX writes 9 values (origin, the MCS's X and Y)", fmt::join(v, ",")));
+      return error(line,
+                   fmt::format("MSYS/{}: NX writes 9 values (origin, the MCS's X and Y)", fmt::join(v, ",")));
     const vec3 x{v[3], v[4], v[5]}, y{v[6], v[7], v[8]};
     const vec3 z = kin::cross(x, y);
     const std::string why = not_rigid(x, y, z);
     if (!why.empty())
-      return error(line, fmt::format("MSYS/{}: {}; only a rigid turn of the points is posted", fmt::join(v, ","),
-                                     why));
+      return error(line, fmt::format("MSYS/{}: {}; only a rigid turn of the points is posted",
+                                     fmt::join(v, ","), why));
     if (is_identity(x, y, z)) {
       msys_.reset();
       return;
@@ -65,9 +66,10 @@ void channel_writer::frame(const coordsys_event& c, int line) {
     // A lathe's CL frame is its own (x the radius, z along the spindle): what a turned MCS means
     // there is not known (UNVERIFIED), so it is not guessed.
     if (std::abs(x_factor_) == 2.0)
-      return error(line, fmt::format("MSYS/{}: a turned MCS on a lathe channel (X in diameter), whose CL frame "
-                                     "is the lathe's own; twinpost turns the points of an MCS on a mill only",
-                                     fmt::join(v, ",")));
+      return error(line,
+                   fmt::format("MSYS/{}: a turned MCS on a lathe channel (X in diameter), whose CL frame "
+                               "is the lathe's own; twinpost turns the points of an MCS on a mill only",
+                               fmt::join(v, ",")));
     msys_ = std::array<vec3, 3>{x, y, z};
     msys_line_ = line;
     return;
@@ -76,8 +78,9 @@ void channel_writer::frame(const coordsys_event& c, int line) {
   // already in; SolidWorks' CSYS is the operation's frame with the points in the world's.
   if (c.source != "CSYS") return;
   if (v.size() != 12 && v.size() != 9)
-    return error(line, fmt::format("CSYS/{}: SolidWorks CAM writes 12 values (3 rows of a rotation and its origin)",
-                                   fmt::join(v, ",")));
+    return error(line,
+                 fmt::format("CSYS/{}: SolidWorks CAM writes 12 values (3 rows of a rotation and its origin)",
+                             fmt::join(v, ",")));
   const std::size_t row = v.size() == 12 ? 4 : 3;
   // The rows of the matrix: its columns are the frame's axes in the world frame.
   const vec3 x{v[0], v[row], v[2 * row]}, y{v[1], v[row + 1], v[2 * row + 1]},
@@ -86,10 +89,11 @@ void channel_writer::frame(const coordsys_event& c, int line) {
   if (!why.empty())
     return error(line, fmt::format("CSYS/{}: {}; only a rigid frame is posted", fmt::join(v, ","), why));
   if (row == 4 && (std::abs(v[3]) > 1e-4 || std::abs(v[7]) > 1e-4 || std::abs(v[11]) > 1e-4))
-    return error(line, fmt::format("CSYS/{}: a frame moved from the world origin; SolidWorks' points are in the "
-                                   "world frame (TRNTYP/WORLD), but whether they include the move is not "
-                                   "known (UNVERIFIED: no file seen), so it is not posted",
-                                   fmt::join(v, ",")));
+    return error(line,
+                 fmt::format("CSYS/{}: a frame moved from the world origin; SolidWorks' points are in the "
+                             "world frame (TRNTYP/WORLD), but whether they include the move is not "
+                             "known (UNVERIFIED: no file seen), so it is not posted",
+                             fmt::join(v, ",")));
   csys_refused_ = false;
   if (is_identity(x, y, z)) {
     csys_axis_.reset();
@@ -136,10 +140,11 @@ bool channel_writer::turn_to_msys(event& e) {
           if (d.type != "OFF" && d.type != "ON" && d.type != "INIT") {
             line_ = e.line;
             column_ = e.column;
-            error(e.line, fmt::format("CYCLE/{} under MSYS (line {}), which turns the MCS: whether the cycle's "
-                                      "levels turn with the points is not known (UNVERIFIED), so it is not "
-                                      "posted; give the holes as GOTO moves",
-                                      d.type, msys_line_));
+            error(e.line,
+                  fmt::format("CYCLE/{} under MSYS (line {}), which turns the MCS: whether the cycle's "
+                              "levels turn with the points is not known (UNVERIFIED), so it is not "
+                              "posted; give the holes as GOTO moves",
+                              d.type, msys_line_));
             return false;
           }
         }

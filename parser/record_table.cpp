@@ -208,10 +208,10 @@ const event_builder::rule_index& event_builder::rules() {
               "rewinds a punched tape (CATIA ends with REWIND/0); a program file has nothing to "
               "rewind"),
       refused("ROTABL",
-              "SolidWorks CAM writes ROTABL/angle,AAXIS (BAXIS, CAXIS),TABLE,CCLW around each operation (a "
-              "turn in radians at its start, undone in reverse order at its end): whether it turns the "
-              "table or the part's frame, and whether the points are already turned, is not known, so "
-              "later moves could cut at the wrong angle; twinpost turns rotary axes from the tool axis"),
+              "SolidWorks CAM writes ROTABL/angle,AAXIS (BAXIS, CAXIS),TABLE,CCLW around each operation and "
+              "undoes it in reverse order at its end; its files read as a turn in radians of the frame the "
+              "points after it are in, but no public definition confirms that (ICAM's ROTABL/a positions the "
+              "axis at a degrees), so the turn is not guessed: later moves could cut at the wrong angle"),
       refused("ROTHED",
               "it turns a rotary head to an angle of its own; twinpost turns the heads from the tool axis "
               "of GOTO and TLAXIS, and a head angle given apart from it could contradict it"),
