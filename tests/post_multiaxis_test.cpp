@@ -667,11 +667,12 @@ TEST_CASE("multi-axis: a head machine posts a tool of unknown length while no he
       "PARTNO BRIDGE\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,500\nRAPID\nGOTO/0,0,50,0,0,1\nGOTO/0,0,0,0,0,1\n"
       "GOTO/10,0,0,0,0.1736482,0.9848078\nFINI\n",
       load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/oracle/linuxcnc/bridge.toml"), "ma-free4");
-  CHECK(bridge.diagnostics ==
-        "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 3) has no length, and this move tilts it (B10): "
-        "the joint values of machine 'lcnc-5axiskins' then depend on it (a head turns the tool about its "
-        "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
-        "file\nGOTO/10,0,0,0,0.1736482,0.9848078\n^\n");
+  CHECK(
+      bridge.diagnostics ==
+      "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 3) has no length, and this move tilts it (B10): "
+      "the joint values of machine 'lcnc-5axiskins' then depend on it (a head turns the tool about its "
+      "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
+      "file\nGOTO/10,0,0,0,0.1736482,0.9848078\n^\n");
 }
 
 TEST_CASE("frames: NX MSYS turns the points and tool axes before the kinematics",
