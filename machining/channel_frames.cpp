@@ -145,6 +145,8 @@ bool channel_writer::turn_to_msys(event& e) {
                               "levels turn with the points is not known (UNVERIFIED), so it is not "
                               "posted; give the holes as GOTO moves",
                               d.type, msys_line_));
+            cycle_.reset();  // its holes are passed over, as after any refused cycle
+            cycle_refused_ = true;
             return false;
           }
         }
