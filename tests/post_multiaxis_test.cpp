@@ -741,6 +741,15 @@ TEST_CASE("frames: MSYS and CSYS that are not rigid, or whose meaning is not kno
         "cycle's "
         "levels turn with the points is not known (UNVERIFIED), so it is not posted; give the holes as GOTO "
         "moves\nCYCLE/DRILL,RAPTO,3,FEDTO,-10,MMPM,100\n^\n");
+  // A lathe's CL frame is its own: a turned MCS there is not guessed at.
+  CHECK(test::post_in_fresh_dir("PARTNO L\nMSYS/0,0,0,1,0,0,0,-1,0\nTURRET/1,1\nSPINDL/RPM,1000,CLW\n"
+                                "FEDRAT/0.2,MMPR\nGOTO/20,0,0\nGOTO/20,0,-5\nFINI\n",
+                                load_machine("fanuc-0itd-twin"), "fr-lathe")
+            .diagnostics ==
+        "job.cls:2:1: error: channel 1: MSYS/0,0,0,1,0,0,0,-1,0: a turned MCS on a lathe channel (X in "
+        "diameter), "
+        "whose CL frame is the lathe's own; twinpost turns the points of an MCS on a mill only\n"
+        "MSYS/0,0,0,1,0,0,0,-1,0\n^\n");
   CHECK(
       test::post_in_fresh_dir("PARTNO F\nCSYS/1,0,0,0,0,1,0,0,0,0,-1,0\n" + start + "FINI\n", mill, "fr-bad4")
           .diagnostics ==
