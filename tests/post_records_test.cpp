@@ -111,7 +111,7 @@ TEST_CASE("a record the post cannot carry out stops it with the reason", "[post]
   }
 }
 
-TEST_CASE("a SolidWorks CSYS moved from the origin stops the post; a turned one posts its world points",
+TEST_CASE("a SolidWorks CSYS moved from the origin stops the post, a turned one posts its world points",
           "[post][records]") {
   // The origin 25 mm up Z: whether SolidWorks' world points include the move is not known.
   posted moved = post_text(head + "CSYS/1.,0,0,0,0,1.,0,0,0,0,1.,25.\n" + cut + "FINI\n", "csys-moved");
