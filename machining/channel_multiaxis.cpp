@@ -48,7 +48,7 @@ void channel_writer::tool_data_length(const tool_data_event& t, bool after_call)
   const double mm = *cl * cl_mm_;
   if (after_call) {
     length_cl_ = mm;
-    length_known_ = length_refused_ = false;
+    length_known_ = length_refused_ = length_free_ = false;
   } else {
     next_length_cl_ = mm;
   }
@@ -58,7 +58,7 @@ void channel_writer::multiaxis_tool(const tool_event& t, int) {
   offset_ = t.offset.value_or(t.tool);
   length_cl_ = next_length_cl_;
   next_length_cl_.reset();
-  length_known_ = length_refused_ = false;
+  length_known_ = length_refused_ = length_free_ = false;
   offset_on_ = false;
   pose_known_ = false;  // the tool change moved the machine
   for (axis_memory& a : last_rot_) a.known = false;
@@ -79,28 +79,45 @@ void channel_writer::multiaxis_off() {
 }
 
 bool channel_writer::tool_length_known(int line) {
-  if (length_known_) return true;
+  if (length_known_ || length_free_) return true;
   if (length_refused_) return false;  // one error per tool
-  length_refused_ = true;
   const std::optional<double> table = m_.tool_length(ch_.number, tool_);
-  const std::string tool = fmt::format("tool {} ({} at line {})", tool_, tool_word_, tool_line_);
   if (table && length_cl_ && std::abs(*table - *length_cl_) > chain_->tolerance) {
-    error(line, fmt::format("{}: the CL's TLDATA gives a length of {} mm, machine '{}' lists {} mm ([[tool]] "
-                            "length): which tool is in the spindle?",
-                            tool, kin::number_text(*length_cl_), m_.name, kin::number_text(*table)));
+    length_refused_ = true;
+    error(line,
+          fmt::format("tool {} ({} at line {}): the CL's TLDATA gives a length of {} mm, machine '{}' lists "
+                      "{} mm ([[tool]] length): which tool is in the spindle?",
+                      tool_, tool_word_, tool_line_, kin::number_text(*length_cl_), m_.name,
+                      kin::number_text(*table)));
     return false;
   }
   if (!table && !length_cl_) {
-    error(line, fmt::format("{} has no length: the joint values of machine '{}' depend on it (a head turns "
-                            "the tool about its pivot); give TLDATA/MILL with the length, or length = ... "
-                            "under the tool's [[tool]] in the machine file",
-                            tool, m_.name));
-    return false;
+    // With every head that tilts the tool at 0 the tip is the linear values whatever the
+    // length (docs/kinematics.md, "Frames and signs"): a 3-axis job posts, and the first
+    // point that tilts the tool is refused (write_point).
+    tool_length_ = 0;
+    length_free_ = true;
+    return true;
   }
   tool_length_ = table ? *table : *length_cl_;
   length_known_ = true;
-  length_refused_ = false;
   return true;
+}
+
+bool channel_writer::untilted_without_length(const joint_values& read, int line) {
+  std::string tilt;
+  for (std::size_t i = 0; i < chain_->rotaries.size(); ++i)
+    if ((tilting_heads_ >> i & 1u) && read.rotary[i] != 0)
+      tilt += fmt::format(" {}{}", chain_->rotaries[i].address, kin::number_text(read.rotary[i]));
+  if (tilt.empty()) return true;
+  if (!length_refused_)
+    error(line, fmt::format("tool {} ({} at line {}) has no length, and this move tilts it ({}): the joint "
+                            "values of machine '{}' then depend on it (a head turns the tool about its "
+                            "pivot); give TLDATA/MILL with the length, or length = ... under the tool's "
+                            "[[tool]] in the machine file",
+                            tool_, tool_word_, tool_line_, tilt.substr(1), m_.name));
+  length_refused_ = true;  // one error per tool; its later tilted moves are left out silently
+  return false;
 }
 
 bool channel_writer::multiaxis_takes() {
@@ -314,6 +331,11 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
     }
     return error(line, lin_.message);
   }
+  if (length_free_ && joints) {  // the move's end names the tilt, before any sub-move is written
+    joint_values end = lin_.points.back();
+    for (double& v : end.rotary) v = as_written(v, rotary_decimals);
+    if (!untilted_without_length(end, line)) return;
+  }
   const double cl_length = kin::distance(from.tip, pose.tip);
   const double feed_mm = feed_value_ / out_per_mm_;
   double s0 = 0;
@@ -474,6 +496,8 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   for (std::size_t i = 0; i < c.rotaries.size(); ++i)
     read.rotary[i] = as_written(j.rotary[i], rotary_decimals);
   tool_pose back;
+  if (length_free_ && joints && !untilted_without_length(read, line)) [[unlikely]]
+    return false;
   if (joints) {
     read.linear = lin_read;
     back = kin::forward(c, read, tool_length_);

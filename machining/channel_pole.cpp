@@ -34,14 +34,14 @@ std::optional<double> channel_writer::pole_target(const vec3& pos, const vec3& a
   if (joints) {
     // The length as tool_length_known() will take it, without its errors (the move gives them).
     const std::optional<double> table = m_.tool_length(ch_.number, tool_);
+    // Neither known: 0, as the move takes it while no head tilts the tool (tool_length_known);
+    // a target that tilts it is refused by the move itself.
     if (length_known_)
       length = tool_length_;
     else if (table && length_cl_ && std::abs(*table - *length_cl_) > c.tolerance)
       return std::nullopt;
     else if (table || length_cl_)
       length = table ? *table : *length_cl_;
-    else if (chain_heads_)
-      return std::nullopt;
   }
   const double len = kin::norm(axis);
   const kin::tool_pose pose{{pos.x * cl_mm_, pos.y * cl_mm_, pos.z * cl_mm_}, (1 / len) * axis};

@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <string_view>
 
+#include "kinematics/vec3_ops.hpp"
 #include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
 
@@ -77,8 +78,14 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
   chain_ = m.chain(ch.number);
   if (chain_) {
-    for (const rotary_axis_def& r : chain_->rotaries)
-      chain_heads_ = chain_heads_ || r.kind == rotary_kind::head;
+    for (std::size_t i = 0; i < chain_->rotaries.size(); ++i) {
+      const rotary_axis_def& r = chain_->rotaries[i];
+      if (r.kind != rotary_kind::head) continue;
+      chain_heads_ = true;
+      // A head along the tool (a spindle-axis C head) turns it about itself: it never tilts it,
+      // whatever its angle, and the tip then does not depend on the length.
+      if (kin::norm(kin::cross(r.direction, chain_->tool_direction)) > 1e-12) tilting_heads_ |= 1u << i;
+    }
     // The rotary words' and I J K's largest counts are set by their first word (rotary_word).
     for (axis_memory& a : last_rot_) a.max = 0;
     for (axis_memory& a : last_ijk_) a.max = 0;
@@ -207,26 +214,6 @@ void channel_writer::on_wait(const wait_mark& w) {
     out_.block(m_.codes.balance_on);
 }
 
-void channel_writer::frame(const coordsys_event& c, int line) {
-  // SolidWorks CAM writes CSYS/ the 3x4 matrix of the setup's frame (rotation rows, each with
-  // its origin value) with TRNTYP/WORLD: points in the world frame. Posted as given, they are
-  // right only when that frame is the world's; any other would move every point. NX MSYS,
-  // Creo `$$-> CSYS` and CATIA's matrix describe the frame the points are already in.
-  if (c.source != "CSYS") return;
-  const std::size_t n = c.values.size();
-  bool identity = n == 12 || n == 9;
-  const std::size_t row = n == 12 ? 4 : 3;
-  for (std::size_t i = 0; identity && i < n; ++i) {
-    const std::size_t r = i / row, col = i % row;
-    const double want = col == r ? 1.0 : 0.0;  // col 3: the origin, 0
-    identity = std::abs(c.values[i] - want) <= (col == 3 ? 1e-4 : 1e-9);
-  }
-  if (!identity)
-    error(line, fmt::format("CSYS/{}: a frame moved or turned from the world frame, which twinpost does not "
-                            "apply: every point would be posted off by it (only the identity CSYS is posted)",
-                            fmt::join(c.values, ",")));
-}
-
 void channel_writer::call_tool(const tool_event& d, int line) {
   if (cycle_ && !d.preselect) {
     // The cycle's depth and feed were the last tool's; every move of the next tool
@@ -243,6 +230,14 @@ void channel_writer::call_tool(const tool_event& d, int line) {
 }
 
 void channel_writer::on_event(const event& e, bool both) {
+  if (msys_) [[unlikely]] {  // NX MSYS turned the CL's frame (machining/channel_frames.cpp)
+    event turned = e;
+    if (!turn_to_msys(turned)) return;
+    if (chain_ && hold_for_pole(turned, both)) return;
+    return process_event(turned, both);
+  }
+  if (csys_axis_ && !csys_axis_fits(e)) [[unlikely]]
+    return;
   if (chain_ && hold_for_pole(e, both)) return;  // machining/channel_pole.cpp
   process_event(e, both);
 }

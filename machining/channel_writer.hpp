@@ -6,6 +6,7 @@
 // axis words (modal suppression), cutter compensation, an active drilling cycle.
 // Lengths are written in the machine file's output units (mm or inch): the CL's are converted
 // on the way.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -135,8 +136,17 @@ class channel_writer {
   /// Where a hole at CL point `p` of the cycle in force is approached: above it on the
   /// cycle's retract plane (RTRCTO, else the R plane: RAPTO or CLEAR above the top).
   vec3 cycle_approach(const vec3& p) const;
-  /// CSYS (SolidWorks CAM): only the identity frame is posted; any other is an error.
+  // Frames of the CL (machining/channel_frames.cpp).
+  /// NX MSYS: its rotation (MCS to absolute) turns every later point and tool axis; SolidWorks
+  /// CSYS: a rigid frame about the world origin names the operation's tool axis (the points stay
+  /// in the world frame, TRNTYP/WORLD). A frame that is not rigid is an error.
   void frame(const coordsys_event& c, int line);
+  /// The event's points and axes turned by MSYS's rotation; false (with the error) for a record
+  /// whose meaning under the turn is not known (a drilling cycle's levels).
+  bool turn_to_msys(event& e);
+  /// Under a turned CSYS: false (with the error, once per CSYS) for a GOTO whose tool axis is
+  /// not the CSYS's Z.
+  bool csys_axis_fits(const event& e);
   struct hole;
   /// Plain moves: rapid to the retract and R planes, feed (in pecks), dwell, rapid out.
   void expanded_hole(const hole& h, int line);
@@ -322,8 +332,12 @@ class channel_writer {
   /// False (with the error) when the solution changes branch between `from` and `to` in a cut.
   bool same_branch(const kin::joint_values& from, const kin::joint_values& to, int line);
   /// The gauge length of the tool in the spindle for joints output; false with the error
-  /// (naming the tool) when neither the CL nor the machine's tool table gives it.
+  /// (naming the tool) when the CL's and the tool table's lengths differ. A length neither
+  /// gives is no error yet: the moves post as long as no head tilts the tool (`length_free_`).
   bool tool_length_known(int line);
+  /// With the length unknown: false (with the error naming the tool, once per tool) when the
+  /// head values `read` (as the control reads them) tilt the tool.
+  bool untilted_without_length(const kin::joint_values& read, int line);
   /// TLDATA/MILL's length (NX: diameter, lower radius, length, ...) for the next or this tool.
   void tool_data_length(const tool_data_event& t, bool after_call);
   /// A tool call on a chain channel: the new tool's offset register and length.
@@ -460,10 +474,17 @@ class channel_writer {
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force
   bool thread_saved_per_rev_ = false;      ///< the feed mode to restore at THREAD/OFF
   bool thread_saved_mode_ = false;         ///< whether a feed mode was written before THREAD/TURN
-  bool cycle_refused_ = false;        ///< the cycle in force was refused (an error): its points write nothing
-  vec3 pos_;                          // last CL point of this channel
-  vec3 axis_{0, 0, 1};                // tool axis, from GOTO i,j,k or TLAXIS
-  std::optional<vec3> refused_axis_;  // the tool axis tool_along_z last refused
+  bool cycle_refused_ = false;  ///< the cycle in force was refused (an error): its points write nothing
+  vec3 pos_;                    // last CL point of this channel
+  vec3 axis_{0, 0, 1};          // tool axis, from GOTO i,j,k or TLAXIS
+  /// NX MSYS's rotation: the columns (the MCS's X, Y, Z in the absolute frame); unset when it is
+  /// the identity.
+  std::optional<std::array<vec3, 3>> msys_;
+  int msys_line_ = 0;
+  std::optional<vec3> csys_axis_;  ///< a turned SolidWorks CSYS's Z: the tool axis of its moves
+  int csys_line_ = 0;
+  bool csys_refused_ = false;                ///< the error for a move under another axis was given
+  std::optional<vec3> refused_axis_;         // the tool axis tool_along_z last refused
   std::vector<std::string> restart_blocks_;  ///< the blocks that started the spindle now turning
   /// The last SPINDL that set a speed: SPINDL/ON turns the spindle on again with it (APT: the
   /// last speed, mode and direction), also after SPINDL/OFF.
@@ -529,6 +550,7 @@ class channel_writer {
   bool cut_due_ = true;                     ///< the next G1/G2/G3 line is noted
   const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
   bool chain_heads_ = false;                ///< a rotary axis of it turns the tool (the length matters)
+  unsigned tilting_heads_ = 0;              ///< bit i: rotary i is a head not along the tool (it tilts it)
   kin::joint_values joints_{};              ///< where the machine is (mm, degrees)
   kin::tool_pose pose_mm_{};                ///< the last CL pose, in mm
   bool pose_known_ = false;                 ///< false until the first GOTO (or FROM)
@@ -541,9 +563,12 @@ class channel_writer {
   std::optional<double> pole_hint_;                   ///< the outer angle the held rapid takes
   bool length_known_ = false;
   bool length_refused_ = false;  ///< the tool's length error was reported
-  int offset_ = 0;               ///< the tool's offset register (H)
-  bool offset_on_ = false;       ///< G43 / G43.4 / G43.5 written for the tool in the spindle
-  bool inverse_time_ = false;    ///< G93 in force
+  /// The tool's length is unknown and the moves are posted while no head tilts the tool (the
+  /// joints do not depend on the length there); the first point that tilts it is refused.
+  bool length_free_ = false;
+  int offset_ = 0;             ///< the tool's offset register (H)
+  bool offset_on_ = false;     ///< G43 / G43.4 / G43.5 written for the tool in the spindle
+  bool inverse_time_ = false;  ///< G93 in force
   axis_memory last_rot_[2], last_ijk_[3];
   kin::linearise_result lin_;  ///< reused by every feed move
   bool plane_on_ = false;      ///< a tilted working plane (G68.2) is in force

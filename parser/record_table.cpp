@@ -82,8 +82,10 @@ const event_builder::rule_index& event_builder::rules() {
               "SolidWorks CAM's flute length, for its simulation; the control uses its own tool offsets"),
       ignored("CSYS",
               "the frame the CAM gives the points in (SolidWorks CAM; Creo's `$$-> CSYS`); the points are "
-              "posted as given, in the work offset of the machine file; a SolidWorks CSYS that is not the "
-              "identity stops the post (its points would be posted in the wrong frame)",
+              "posted as given, in the work offset of the machine file. SolidWorks writes TRNTYP/WORLD: a "
+              "turned CSYS names the operation's tool axis (its Z) with the points in the world frame, and "
+              "each move must be under that axis; a CSYS that is not rigid or is moved from the origin stops "
+              "the post",
               &b::on_coordsys),
       posted("CUTCOM", &b::on_cutcom,
              "G41/G42/G40 on the next move (left and right swap on a mirrored turret and on the Z-reversed "
@@ -162,8 +164,10 @@ const event_builder::rule_index& event_builder::rules() {
               "SolidWorks CAM tags the moves after it as lead-in, lead-out or link, for its "
               "display; the moves themselves follow as GOTO records"),
       ignored("MSYS",
-              "NX's machine coordinate system; NX writes the points in it already, and they are posted as "
-              "given, in the work offset of the machine file",
+              "NX's machine coordinate system: the points stay measured from its origin (the work offset), "
+              "and on a mill its rotation (MCS to absolute) turns every later point and tool axis before the "
+              "kinematics; a frame that is not rigid, a turned MCS on a lathe channel and a drilling cycle "
+              "under a turned MCS stop the post",
               &b::on_coordsys),
       ignored(
           "MULTAX",
@@ -208,10 +212,10 @@ const event_builder::rule_index& event_builder::rules() {
               "rewinds a punched tape (CATIA ends with REWIND/0); a program file has nothing to "
               "rewind"),
       refused("ROTABL",
-              "SolidWorks CAM writes ROTABL/angle,AAXIS (BAXIS, CAXIS),TABLE,CCLW around each operation (a "
-              "turn in radians at its start, undone in reverse order at its end): whether it turns the "
-              "table or the part's frame, and whether the points are already turned, is not known, so "
-              "later moves could cut at the wrong angle; twinpost turns rotary axes from the tool axis"),
+              "SolidWorks CAM writes ROTABL/angle,AAXIS (BAXIS, CAXIS),TABLE,CCLW around each operation and "
+              "undoes it in reverse order at its end; its files read as a turn in radians of the frame the "
+              "points after it are in, but no public definition confirms that (ICAM's ROTABL/a positions the "
+              "axis at a degrees), so the turn is not guessed: later moves could cut at the wrong angle"),
       refused("ROTHED",
               "it turns a rotary head to an angle of its own; twinpost turns the heads from the tool axis "
               "of GOTO and TLAXIS, and a head angle given apart from it could contradict it"),

@@ -35,11 +35,19 @@ struct cl_point {
   bool rapid = false;
 };
 
-// The GOTO points of a CL job (absolute, mm, i,j,k modal), and TLDATA/MILL's length.
+// The GOTO points of a CL job (absolute, mm, i,j,k modal), and TLDATA/MILL's length. An NX
+// MSYS turns them into the absolute frame's directions: x·X + y·Y + z·(X × Y), its two columns
+// as NX describes them (the test's own reading, not the post's).
 std::vector<cl_point> cl_points(const std::string& cl, double& length) {
   std::vector<cl_point> out;
   std::istringstream in(cl);
   vec3 axis{0, 0, 1};
+  vec3 frame[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const auto turned = [&](const vec3& v) {
+    return vec3{v.x * frame[0].x + v.y * frame[1].x + v.z * frame[2].x,
+                v.x * frame[0].y + v.y * frame[1].y + v.z * frame[2].y,
+                v.x * frame[0].z + v.y * frame[1].z + v.z * frame[2].z};
+  };
   bool rapid = false;
   for (std::string line; std::getline(in, line);) {
     auto numbers = [&] {
@@ -57,13 +65,19 @@ std::vector<cl_point> cl_points(const std::string& cl, double& length) {
     };
     if (line.rfind("RAPID", 0) == 0) rapid = true;
     if (line.rfind("TLDATA/MILL", 0) == 0) length = numbers()[2];
+    if (line.rfind("MSYS/", 0) == 0) {
+      const std::vector<double> m = numbers();
+      frame[0] = {m[3], m[4], m[5]};
+      frame[1] = {m[6], m[7], m[8]};
+      frame[2] = kin::cross(frame[0], frame[1]);
+    }
     if (line.rfind("GOTO/", 0) != 0) continue;
     const std::vector<double> v = numbers();
     if (v.size() == 6) {
       const double n = std::sqrt(v[3] * v[3] + v[4] * v[4] + v[5] * v[5]);
       axis = {v[3] / n, v[4] / n, v[5] / n};
     }
-    out.push_back({{{v[0], v[1], v[2]}, axis}, rapid});
+    out.push_back({{turned({v[0], v[1], v[2]}), turned(axis)}, rapid});
     rapid = false;
   }
   return out;
@@ -454,11 +468,13 @@ TEST_CASE("multi-axis: the tool length from TLDATA or the tool table, never gues
   machine m = load_machine("head-head-5axis");
   const std::string tilt = "GOTO/10,0,0,0.1736482,0,0.9848078\n";
   const test::posted none = post_moves(m, tilt, "ma-len0", "");
-  CHECK(none.diagnostics ==
-        "job.cls:7:1: error: channel 1: tool 1 (LOADTL at line 3) has no length: the joint values of machine "
-        "'head-head-5axis' depend on it (a head turns the tool about its pivot); give TLDATA/MILL with the "
-        "length, "
-        "or length = ... under the tool's [[tool]] in the machine file\nGOTO/0,0,50,0,0,1\n^\n");
+  // The rapid to GOTO/0,0,50 under the spindle's axis posts; the tilted feed move is refused.
+  CHECK(
+      none.diagnostics ==
+      "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 3) has no length, and this move tilts it (B10): "
+      "the joint values of machine 'head-head-5axis' then depend on it (a head turns the tool about its "
+      "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
+      "file\nGOTO/10,0,0,0.1736482,0,0.9848078\n^\n");
   // The table's length serves where the CL gives none; the same program as with TLDATA.
   tool_def t;
   t.number = 1;
@@ -604,4 +620,175 @@ TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z 
         "X41.66 Z-5.251 B1.5 F400.\nX42.212 Z-5.388 B2. F400.\nX36.66 Z-5.251 B1.5 F400.\n"
         "X31.108 Z-5.141 B1. F400.\nX25.554 Z-5.057 B0.5 F400.\nX20. Z-5. B0. F400.\nG98\nG0 Z20.\n"
         "G49\nM30\n%\n");
+}
+
+TEST_CASE("multi-axis: a head machine posts a tool of unknown length while no head tilts it",
+          "[post][multiaxis]") {
+  // With both heads at 0 the linear words are the tip whatever the length (docs/kinematics.md,
+  // "Frames and signs"): the program without a length is the one with any length.
+  const machine m = load_machine("head-head-5axis");
+  const std::string flat =
+      "GOTO/10,0,-5\nGOTO/20,5,-5\nCIRCLE/20,15,-5,0,0,1,10,0.06,0.5,10,0\nGOTO/30,15,-5\nRAPID\n"
+      "GOTO/30,15,50\n";
+  const test::posted none = post_moves(m, flat, "ma-free0", "");
+  const test::posted l100 = post_moves(m, flat, "ma-free1", "TLDATA/MILL,10,0,100,0,0\n");
+  const test::posted l250 = post_moves(m, flat, "ma-free2", "TLDATA/MILL,10,0,250,0,0\n");
+  INFO(none.diagnostics);
+  REQUIRE(none.ok);
+  REQUIRE(l100.ok);
+  REQUIRE(l250.ok);
+  CHECK(none.files == l100.files);
+  CHECK(none.files == l250.files);
+  const std::string nc = none.files.at("MOVES.nc");
+  CHECK(nc.substr(nc.find("G0 G43")) ==
+        "G0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 X10. Z-5. F500.\nX20. Y5.\nG3 X30. Y15. I0. J10.\nG0 Z50.\nG49\n"
+        "M9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+  // A tilted feed move is refused once per tool, at the first; the moves under the spindle's
+  // axis after it still post, and the next tool is judged afresh.
+  const test::posted tilted = test::post_in_fresh_dir(
+      "PARTNO MOVES\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,5000,CLW\nFEDRAT/MMPM,500\nRAPID\nGOTO/0,0,50,0,0,1\n"
+      "GOTO/10,0,0,0.1736482,0,0.9848078\nGOTO/20,0,0,0,0.1736482,0.9848078\nGOTO/20,0,50,0,0,1\n"
+      "LOADTL/2\nSPINDL/RPM,5000,CLW\nRAPID\nGOTO/0,0,50,0,0,1\nGOTO/0,10,0,0,-0.1736482,0.9848078\nFINI\n",
+      m, "ma-free3");
+  CHECK(
+      tilted.diagnostics ==
+      "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 3) has no length, and this move tilts it (B10): "
+      "the joint values of machine 'head-head-5axis' then depend on it (a head turns the tool about its "
+      "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
+      "file\nGOTO/10,0,0,0.1736482,0,0.9848078\n^\n"
+      "job.cls:15:1: error: channel 1: tool 2 (LOADTL at line 11) has no length, and this move tilts it "
+      "(A10): "
+      "the joint values of machine 'head-head-5axis' then depend on it (a head turns the tool about its "
+      "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
+      "file\nGOTO/0,10,0,0,-0.1736482,0.9848078\n^\n");
+  // A head along the tool (the bridge mill's C over its B head) never tilts it: the cut that
+  // leaves the pole turns C there and then tilts B; only B is the tilt the length matters for.
+  const test::posted bridge = test::post_in_fresh_dir(
+      "PARTNO BRIDGE\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,500\nRAPID\nGOTO/0,0,50,0,0,1\nGOTO/0,0,0,0,0,1\n"
+      "GOTO/10,0,0,0,0.1736482,0.9848078\nFINI\n",
+      load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/oracle/linuxcnc/bridge.toml"), "ma-free4");
+  CHECK(
+      bridge.diagnostics ==
+      "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 3) has no length, and this move tilts it (B10): "
+      "the joint values of machine 'lcnc-5axiskins' then depend on it (a head turns the tool about its "
+      "pivot); give TLDATA/MILL with the length, or length = ... under the tool's [[tool]] in the machine "
+      "file\nGOTO/10,0,0,0,0.1736482,0.9848078\n^\n");
+}
+
+TEST_CASE("frames: NX MSYS turns the points and tool axes before the kinematics",
+          "[post][multiaxis][frames]") {
+  // An MCS with Z down (its Y is the absolute -Y, so Z = X x Y = -Z): the CL's tool axis
+  // (0,0,-1) is the absolute +Z, which the heads reach at 0, not at B180; the written blocks,
+  // read back through the forward transform, are the CL points turned by MSYS.
+  const std::string job =
+      "PARTNO MSYS DOWN\nMSYS/0.0000,0.0000,0.0000,1.0000000,0.0000000,0.0000000,0.0000000,-1.0000000,"
+      "0.0000000\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\n"
+      "RAPID\nGOTO/0,0,-50,0,0,-1\nGOTO/10,0,5\nGOTO/20,0,5,0.1736482,0,-0.9848078\nGOTO/20,10,5\nRAPID\n"
+      "GOTO/20,10,-50,0,0,-1\nFINI\n";
+  for (const char* name : {"head-head-5axis", "trunnion-5axis"}) {
+    INFO(name);
+    const machine m = load_machine(name);
+    const round_trip r = read_back(job, m, std::string("fr-msys-") + name);
+    CHECK(r.cl_points == 5);
+    CHECK(r.worst_tip <= m.chain(1)->tolerance);
+    CHECK(r.worst_axis <= m.chain(1)->angle_tolerance);
+  }
+  // The sample (an arc and a tilt about X under the turned MCS) on the three mills.
+  for (const char* name : {"head-head-5axis", "trunnion-5axis", "rotary-4axis"}) {
+    INFO(name);
+    const machine m = load_machine(name);
+    const round_trip r = read_back(sample_job("nx-msys-z-down"), m, std::string("fr-msys-sample-") + name);
+    CHECK(r.cl_points == 9);
+    CHECK(r.worst_tip <= m.chain(1)->tolerance);
+    CHECK(r.worst_axis <= m.chain(1)->angle_tolerance);
+  }
+  const test::posted t = test::post_in_fresh_dir(job, load_machine("trunnion-5axis"), "fr-msys-exact");
+  REQUIRE(t.ok);
+  const std::string nc = t.files.at("MSYS_DOWN.nc");
+  CHECK(nc.substr(nc.find("T01")) ==
+        "T01 M6\nS6000 M3\nG0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z50. A0. C90.\nG1 X10. Z-5. F800.\n"
+        "X20. A10.\nY-10.\nG0 Z50.\nG0 A0.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+  // On a 3-axis mill the turned axis is along Z: the points post, turned.
+  const test::posted flat = test::post_in_fresh_dir(
+      "PARTNO MSYS FLAT\nMSYS/5,0,0,0,1,0,1,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\n"
+      "RAPID\nGOTO/0,0,-50,0,0,-1\nGOTO/10,20,3\nFINI\n",
+      load_machine("rotary-4axis"), "fr-msys-flat");
+  INFO(flat.diagnostics);
+  REQUIRE(flat.ok);
+  const std::string f = flat.files.at("MSYS_FLAT.nc");
+  // X = (0,1,0), Y = (1,0,0): (10,20,3) is the absolute (20,10,-3); the origin (5,0,0) is where
+  // the MCS sits in the model, and the work offset stays on it.
+  CHECK(f.find("G1 X20. Y10. Z-3. F800.") != std::string::npos);
+}
+
+TEST_CASE("frames: MSYS and CSYS that are not rigid, or whose meaning is not known, stop the post",
+          "[post][frames]") {
+  const machine mill = load_machine("rotary-4axis");
+  const std::string start = "LOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\nRAPID\nGOTO/0,0,50\n";
+  CHECK(test::post_in_fresh_dir("PARTNO F\nMSYS/0,0,0,2,0,0,0,1,0\n" + start + "FINI\n", mill, "fr-bad1")
+            .diagnostics ==
+        "job.cls:2:1: error: channel 1: MSYS/0,0,0,2,0,0,0,1,0: its X and Y axes are 2 and 1 long, not 1 (a "
+        "scaled frame); only a rigid turn of the points is posted\nMSYS/0,0,0,2,0,0,0,1,0\n^\n");
+  CHECK(test::post_in_fresh_dir("PARTNO F\nMSYS/0,0,0,1,0,0,0.6,0.8,0\n" + start + "FINI\n", mill, "fr-bad2")
+            .diagnostics ==
+        "job.cls:2:1: error: channel 1: MSYS/0,0,0,1,0,0,0.6,0.8,0: its axes are not square to each other (a "
+        "sheared frame); only a rigid turn of the points is posted\nMSYS/0,0,0,1,0,0,0.6,0.8,0\n^\n");
+  CHECK(test::post_in_fresh_dir("PARTNO F\nMSYS/0,0,0,1,0,0,0,-1,0\n" + start +
+                                    "CYCLE/DRILL,RAPTO,3,FEDTO,-10,MMPM,100\nGOTO/0,0,0\nCYCLE/OFF\nFINI\n",
+                                mill, "fr-bad3")
+            .diagnostics ==
+        "job.cls:8:1: error: channel 1: CYCLE/DRILL under MSYS (line 2), which turns the MCS: whether the "
+        "cycle's "
+        "levels turn with the points is not known (UNVERIFIED), so it is not posted; give the holes as GOTO "
+        "moves\nCYCLE/DRILL,RAPTO,3,FEDTO,-10,MMPM,100\n^\n");
+  // A lathe's CL frame is its own: a turned MCS there is not guessed at.
+  CHECK(test::post_in_fresh_dir("PARTNO L\nMSYS/0,0,0,1,0,0,0,-1,0\nTURRET/1,1\nSPINDL/RPM,1000,CLW\n"
+                                "FEDRAT/0.2,MMPR\nGOTO/20,0,0\nGOTO/20,0,-5\nFINI\n",
+                                load_machine("fanuc-0itd-twin"), "fr-lathe")
+            .diagnostics ==
+        "job.cls:2:1: error: channel 1: MSYS/0,0,0,1,0,0,0,-1,0: a turned MCS on a lathe channel (X in "
+        "diameter), "
+        "whose CL frame is the lathe's own; twinpost turns the points of an MCS on a mill only\n"
+        "MSYS/0,0,0,1,0,0,0,-1,0\n^\n");
+  CHECK(
+      test::post_in_fresh_dir("PARTNO F\nCSYS/1,0,0,0,0,1,0,0,0,0,-1,0\n" + start + "FINI\n", mill, "fr-bad4")
+          .diagnostics ==
+      "job.cls:2:1: error: channel 1: CSYS/1,0,0,0,0,1,0,0,0,0,-1,0: it is left-handed (a mirrored frame); "
+      "only a rigid frame is posted\nCSYS/1,0,0,0,0,1,0,0,0,0,-1,0\n^\n");
+  CHECK(
+      test::post_in_fresh_dir("PARTNO F\nCSYS/1,0,0,10,0,1,0,0,0,0,1,0\n" + start + "FINI\n", mill, "fr-bad5")
+          .diagnostics ==
+      "job.cls:2:1: error: channel 1: CSYS/1,0,0,10,0,1,0,0,0,0,1,0: a frame moved from the world origin; "
+      "SolidWorks' points are in the world frame (TRNTYP/WORLD), but whether they include the move is not "
+      "known (UNVERIFIED: no file seen), so it is not posted\nCSYS/1,0,0,10,0,1,0,0,0,0,1,0\n^\n");
+}
+
+TEST_CASE("frames: a turned SolidWorks CSYS posts its world points, each move along the frame's Z",
+          "[post][multiaxis][frames]") {
+  // As aamorim_Teste-Metrologia.apt: TRNTYP/WORLD, CSYS whose Z is +X, then GOTOs with the
+  // axis 1,0,0 in the world frame, approaching along X.
+  const machine m = load_machine("trunnion-5axis");
+  const std::string head = "PARTNO SW\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\n";
+  const std::string csys = "TRNTYP/WORLD,0,0,0\nCSYS/0,0,1.,0,0,1.,0,0,-1.,0,0,0\n";
+  const std::string moves =
+      "RAPID\nGOTO/250.,35.8375,-12.1625,1.,0,0\nGOTO/78.,35.8375,-12.1625,1.,0,0\n"
+      "GOTO/78.,22.749812,-12.1625,1.,0,0\nFINI\n";
+  const test::posted with = test::post_in_fresh_dir(head + csys + moves, m, "fr-csys1");
+  const test::posted without = test::post_in_fresh_dir(head + moves, m, "fr-csys2");
+  INFO(with.diagnostics);
+  REQUIRE(with.ok);
+  CHECK(with.files == without.files);
+  const round_trip r = read_back(head + csys + moves, m, "fr-csys3");
+  CHECK(r.cl_points == 3);
+  // A move under another axis while the CSYS is in force: which frame is it in?
+  CHECK(
+      test::post_in_fresh_dir(head + csys +
+                                  "RAPID\nGOTO/250.,35.8375,-12.1625,1.,0,0\nGOTO/78.,35,-12,0,0,1\n"
+                                  "GOTO/78.,30,-12,0,0,1\nFINI\n",
+                              m, "fr-csys4")
+          .diagnostics ==
+      "job.cls:10:1: error: channel 1: a move under the tool axis (0,0,1) while CSYS (line 7) turns the "
+      "operation's tool to (1,0,0): SolidWorks CAM gives the points of a turned CSYS in the world frame with "
+      "the tool along its Z; a point under another axis is in a frame twinpost cannot tell\n"
+      "GOTO/78.,35,-12,0,0,1\n^\n");
 }
