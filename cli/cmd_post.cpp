@@ -149,9 +149,9 @@ void show_progress_on_terminal(post_options& o, bool& shown) {
 
 void print_summary(const post_summary& s, const printing_sink& sink, const located_machine& found) {
   // One channel waits for nobody: no policy to report.
-  const std::string waits = s.channels == 1
-                                ? "no waits (one channel)"
-                                : fmt::format("{} waits ({})", s.waits, sync_policy_to_name(s.policy));
+  const std::string waits = s.channels == 1 ? "no waits (one channel)"
+                                            : fmt::format("{} wait{} ({})", s.waits, s.waits == 1 ? "" : "s",
+                                                          sync_policy_to_name(s.policy));
   fmt::print("post: {} records, {} channel{}, {} blocks, {}, {} warning{}\n", s.records, s.channels,
              s.channels == 1 ? "" : "s", s.blocks, waits, sink.warnings(), sink.warnings() == 1 ? "" : "s");
   fmt::print("  machine {} ({})\n", found.def.name, found.origin);
