@@ -22,14 +22,12 @@ namespace twinpost::scripting {
 script_error::script_error(std::string file_, int line_, std::string message_)
     : std::runtime_error(line_ > 0 ? file_ + ':' + std::to_string(line_) + ": " + message_
                                    : file_ + ": " + message_),
-      file(std::move(file_)),
-      line(line_),
-      message(std::move(message_)) {}
+      file(std::move(file_)), line(line_), message(std::move(message_)) {}
 
 namespace {
 
-constexpr const char* hook_names[] = {"on_record", "on_tool_change", "on_program_start",
-                                      "on_program_end", "on_block"};
+constexpr const char* hook_names[] = {"on_record", "on_tool_change", "on_program_start", "on_program_end",
+                                      "on_block"};
 enum hook { h_record, h_tool_change, h_program_start, h_program_end, h_block, h_count };
 
 std::string base_name(const std::string& path) {
@@ -77,16 +75,13 @@ struct lua_script::impl {
       self->used -= old_used;
       return nullptr;
     }
-    if (new_size > old_used && self->used - old_used + new_size > self->limits.memory_bytes)
-      return nullptr;
+    if (new_size > old_used && self->used - old_used + new_size > self->limits.memory_bytes) return nullptr;
     void* p = std::realloc(ptr, new_size);
     if (p) self->used = self->used - old_used + new_size;
     return p;
   }
 
-  static impl* self_of(lua_State* L) {
-    return static_cast<impl*>(lua_touserdata(L, lua_upvalueindex(1)));
-  }
+  static impl* self_of(lua_State* L) { return static_cast<impl*>(lua_touserdata(L, lua_upvalueindex(1))); }
 
   // Runs when the budget is spent: the error carries the line the script was at.
   static void budget_hook(lua_State* L, lua_Debug* ar) {
@@ -127,8 +122,7 @@ struct lua_script::impl {
     auto* self = self_of(L);
     std::string file = luaL_checkstring(L, 1);
     if (file.empty() || file.find_first_of("/\\:") != std::string::npos || file[0] == '.')
-      return luaL_error(L, "post.read_file: '%s' is not a file name beside the machine file",
-                        file.c_str());
+      return luaL_error(L, "post.read_file: '%s' is not a file name beside the machine file", file.c_str());
     std::ifstream in(self->dir + '/' + file, std::ios::binary);
     if (!in) return luaL_error(L, "post.read_file: no file '%s' beside the machine file", file.c_str());
     std::string text;
@@ -162,15 +156,14 @@ struct lua_script::impl {
     lua_pop(L, 5);
     lua_pushglobaltable(L);
     int g = lua_gettop(L);
-    copy_fields(g, {"assert", "error", "ipairs", "next", "pairs", "pcall", "select", "tonumber",
-                    "tostring", "type", "xpcall", "rawequal", "rawget", "rawset", "rawlen",
-                    "setmetatable", "getmetatable", "_VERSION"});
+    copy_fields(
+        g, {"assert", "error", "ipairs", "next", "pairs", "pcall", "select", "tonumber", "tostring", "type",
+            "xpcall", "rawequal", "rawget", "rawset", "rawlen", "setmetatable", "getmetatable", "_VERSION"});
     int env = lua_gettop(L);
     lua_getfield(L, g, "string");
     // string.dump is left out: bytecode has no use without load.
-    copy_fields(lua_gettop(L), {"byte", "char", "find", "format", "gmatch", "gsub", "len",
-                                "lower", "match", "rep", "reverse", "sub", "upper", "pack",
-                                "packsize", "unpack"});
+    copy_fields(lua_gettop(L), {"byte", "char", "find", "format", "gmatch", "gsub", "len", "lower", "match",
+                                "rep", "reverse", "sub", "upper", "pack", "packsize", "unpack"});
     lua_setfield(L, env, "string");
     lua_pop(L, 1);
     for (const char* lib : {"table", "math", "utf8"}) {
@@ -357,8 +350,8 @@ void lua_script::on_program_end(const script_context& ctx, script_host& host) {
   s.call(1, 0, &host);
 }
 
-block_verdict lua_script::on_block(std::string_view text, const script_context& ctx,
-                                   script_host& host, std::string& replacement) {
+block_verdict lua_script::on_block(std::string_view text, const script_context& ctx, script_host& host,
+                                   std::string& replacement) {
   auto& s = *impl_;
   if (!s.push_hook(h_block)) return block_verdict::keep;
   lua_State* L = s.L;
@@ -377,8 +370,7 @@ block_verdict lua_script::on_block(std::string_view text, const script_context& 
   } else if (t != LUA_TNIL) {
     std::string what = luaL_typename(L, -1);
     lua_settop(L, 0);
-    throw script_error(s.name, 0,
-                       "on_block returned a " + what + ": return a string, false or nothing");
+    throw script_error(s.name, 0, "on_block returned a " + what + ": return a string, false or nothing");
   }
   lua_settop(L, 0);
   if (v == block_verdict::replace && replacement.find_first_of("\r\n") != std::string::npos)

@@ -38,13 +38,12 @@ std::string load_error(const char* source) {
 }  // namespace
 
 TEST_CASE("lua script: a syntax error names the script and its line", "[scripting]") {
-  CHECK(load_error("x = 1\nfunction on_block(t\n") ==
-        "ev.lua:3: ')' expected near <eof>");
+  CHECK(load_error("x = 1\nfunction on_block(t\n") == "ev.lua:3: ')' expected near <eof>");
 }
 
 TEST_CASE("lua script: the sandbox has no os, io, package, debug, load or require", "[scripting]") {
-  for (const char* name : {"os", "io", "package", "debug", "load", "loadfile", "dofile",
-                           "require", "collectgarbage", "print", "loadstring"}) {
+  for (const char* name : {"os", "io", "package", "debug", "load", "loadfile", "dofile", "require",
+                           "collectgarbage", "print", "loadstring"}) {
     INFO(name);
     std::string src = std::string("assert(") + name + " == nil, 'open')";
     CHECK(load_error(src.c_str()).empty());
@@ -87,9 +86,8 @@ TEST_CASE("lua script: a runaway call stops at its budget, even inside pcall", "
 TEST_CASE("lua script: memory has a ceiling", "[scripting]") {
   script_limits limits;
   limits.memory_bytes = 4u << 20;
-  std::string e = error_of([&] {
-    lua_script s("/m/ev.lua", "local s = 'x'\nwhile true do s = s .. s end", limits);
-  });
+  std::string e =
+      error_of([&] { lua_script s("/m/ev.lua", "local s = 'x'\nwhile true do s = s .. s end", limits); });
   CHECK(e == "ev.lua: not enough memory");
 }
 
@@ -100,29 +98,30 @@ TEST_CASE("lua script: a run-time error and post.error name the script line", "[
                "  local x = nil + 1\n"
                "end\n");
   recording_host host;
-  CHECK(error_of([&] { s.on_record({"BAD", {"ON"}, 12}, host); }) ==
-        "ev.lua:2: no such catcher: ON");
-  CHECK(error_of([&] { s.on_record({"OTHER", {}, 12}, host); }) ==
-        "ev.lua:3: attempt to perform arithmetic on a nil value");
+  CHECK(error_of([&] { s.on_record({"BAD", {"ON"}, 12}, host); }) == "ev.lua:2: no such catcher: ON");
+  CHECK(error_of([&] {
+          s.on_record({"OTHER", {}, 12}, host);
+        }) == "ev.lua:3: attempt to perform arithmetic on a nil value");
   script_error e("ev.lua", 0, "x");
   CHECK(std::string(e.what()) == "ev.lua: x");
-  CHECK(error_of([&] { lua_script t("/m/ev.lua", "error({})"); }) ==
-        "ev.lua: error object is a table value");
+  CHECK(error_of([&] { lua_script t("/m/ev.lua", "error({})"); }) == "ev.lua: error object is a table value");
 }
 
 TEST_CASE("lua script: on_record gets major, words and line; emits and warns", "[scripting]") {
-  lua_script s("/m/ev.lua",
-               "function on_record(rec)\n"
-               "  post.emit(string.format('(%s %s L%d)', rec.major, table.concat(rec.words, ','), rec.line))\n"
-               "  if rec.words[1] == 'ON' then post.emit('M77') else post.warning('off') end\n"
-               "end\n");
+  lua_script s(
+      "/m/ev.lua",
+      "function on_record(rec)\n"
+      "  post.emit(string.format('(%s %s L%d)', rec.major, table.concat(rec.words, ','), rec.line))\n"
+      "  if rec.words[1] == 'ON' then post.emit('M77') else post.warning('off') end\n"
+      "end\n");
   CHECK(s.has_on_record());
   CHECK_FALSE(s.has_on_block());
   CHECK_FALSE(s.has_on_tool_change());
   recording_host host;
   s.on_record({"PARTS_CATCHER", {"ON", "2"}, 40}, host);
   s.on_record({"PARTS_CATCHER", {"OFF"}, 41}, host);
-  CHECK(host.blocks == std::vector<std::string>{"(PARTS_CATCHER ON,2 L40)", "M77", "(PARTS_CATCHER OFF L41)"});
+  CHECK(host.blocks ==
+        std::vector<std::string>{"(PARTS_CATCHER ON,2 L40)", "M77", "(PARTS_CATCHER OFF L41)"});
   CHECK(host.warnings == std::vector<std::string>{"off"});
   CHECK(error_of([&] {
           lua_script t("/m/ev.lua", "function on_record() post.emit('M1\\nM2') end");
@@ -130,8 +129,7 @@ TEST_CASE("lua script: on_record gets major, words and line; emits and warns", "
         }) == "ev.lua:1: post.emit: one block per call, without a line break");
 }
 
-TEST_CASE("lua script: on_block keeps, replaces or drops; post.vars lives through the job",
-          "[scripting]") {
+TEST_CASE("lua script: on_block keeps, replaces or drops; post.vars lives through the job", "[scripting]") {
   lua_script s("/m/ev.lua",
                "post.vars.n = 0\n"
                "function on_block(text, ctx)\n"
@@ -169,8 +167,8 @@ TEST_CASE("lua script: on_tool_change and the program hooks get their tables", "
   s.on_tool_change({5, 105, "DRILL 8", "drill", 120.5, 8, 1}, host);
   s.on_program_start({1, "O1000", 0}, host);
   s.on_program_end({2, "O2000", 0}, host);
-  CHECK(host.blocks == std::vector<std::string>{"(T5 D105 DRILL 8 drill L120.5 D8.0 CH1)",
-                                                "(START O1000)", "(END CH2)"});
+  CHECK(host.blocks ==
+        std::vector<std::string>{"(T5 D105 DRILL 8 drill L120.5 D8.0 CH1)", "(START O1000)", "(END CH2)"});
 }
 
 TEST_CASE("lua script: post.read_file reads beside the script and nowhere else", "[scripting]") {
@@ -185,18 +183,22 @@ TEST_CASE("lua script: post.read_file reads beside the script and nowhere else",
                "end\n");
   recording_host host;
   std::string csv = "twinpost-lua-test-tools.csv";
-  CHECK(error_of([&] { s.on_record({"R", {csv}, 1}, host); }) ==
-        "ev.lua:2: post.emit: one block per call, without a line break");
+  CHECK(error_of([&] {
+          s.on_record({"R", {csv}, 1}, host);
+        }) == "ev.lua:2: post.emit: one block per call, without a line break");
   lua_script t("/tmp/ev.lua",
                "function on_record(rec) post.emit((post.read_file(rec.words[1]):gsub('\\n', ''))) end");
   t.on_record({"R", {csv}, 1}, host);
   CHECK(host.blocks == std::vector<std::string>{"5;DRILL 8"});
-  CHECK(error_of([&] { t.on_record({"R", {"../etc/passwd"}, 1}, host); }) ==
-        "ev.lua:1: post.read_file: '../etc/passwd' is not a file name beside the machine file");
-  CHECK(error_of([&] { t.on_record({"R", {"/etc/passwd"}, 1}, host); }) ==
-        "ev.lua:1: post.read_file: '/etc/passwd' is not a file name beside the machine file");
-  CHECK(error_of([&] { t.on_record({"R", {"none.csv"}, 1}, host); }) ==
-        "ev.lua:1: post.read_file: no file 'none.csv' beside the machine file");
+  CHECK(error_of([&] {
+          t.on_record({"R", {"../etc/passwd"}, 1}, host);
+        }) == "ev.lua:1: post.read_file: '../etc/passwd' is not a file name beside the machine file");
+  CHECK(error_of([&] {
+          t.on_record({"R", {"/etc/passwd"}, 1}, host);
+        }) == "ev.lua:1: post.read_file: '/etc/passwd' is not a file name beside the machine file");
+  CHECK(error_of([&] {
+          t.on_record({"R", {"none.csv"}, 1}, host);
+        }) == "ev.lua:1: post.read_file: no file 'none.csv' beside the machine file");
   std::remove(tmp.c_str());
 }
 
