@@ -11,11 +11,10 @@
 #include <iterator>
 #include <sstream>
 
-extern "C" {
+// Lua built as C++ (liblua5.4-c++, CMakeLists.txt): C++ linkage, no extern "C".
 #include <lauxlib.h>
 #include <lua.h>
 #include <lualib.h>
-}
 
 namespace twinpost::scripting {
 

@@ -23,7 +23,9 @@ struct script_error : std::runtime_error {
   std::string message;  ///< without the "NAME.lua:LINE: " prefix
 };
 
-/// What a script may do to the post: write a block at the current place, warn.
+/// What a script may do to the post: write a block at the current place, warn. Its functions
+/// run inside a Lua call and must not throw: a host that refuses a block keeps the error and
+/// reports it after the call returns.
 class script_host {
  public:
   virtual ~script_host() = default;

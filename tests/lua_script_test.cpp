@@ -107,7 +107,7 @@ TEST_CASE("lua script: a run-time error and post.error name the script line", "[
   CHECK(error_of([&] { lua_script t("/m/ev.lua", "error({})"); }) == "ev.lua: error object is a table value");
 }
 
-TEST_CASE("lua script: on_record gets major, words and line; emits and warns", "[scripting]") {
+TEST_CASE("lua script: on_record gets major, words and line, emits and warns", "[scripting]") {
   lua_script s(
       "/m/ev.lua",
       "function on_record(rec)\n"
@@ -129,7 +129,7 @@ TEST_CASE("lua script: on_record gets major, words and line; emits and warns", "
         }) == "ev.lua:1: post.emit: one block per call, without a line break");
 }
 
-TEST_CASE("lua script: on_block keeps, replaces or drops; post.vars lives through the job", "[scripting]") {
+TEST_CASE("lua script: on_block keeps, replaces or drops, post.vars lives through the job", "[scripting]") {
   lua_script s("/m/ev.lua",
                "post.vars.n = 0\n"
                "function on_block(text, ctx)\n"
