@@ -9,6 +9,8 @@ packages=(
   libfmt-dev                    # formatting
   catch2                        # tests (v2, as Debian packages it)
   libtomlplusplus-dev           # machine definition files
+  liblua5.4-dev                 # the machine's event script (docs/customising.md)
+  pkg-config                    # how CMake finds Lua 5.4
   dpkg-dev                      # the .deb's Depends (dpkg-shlibdeps, used by CPack)
   file                          # CPack's test for which installed files are programs
   clang-format-14               # the style check (ctest format, scripts/format.sh)

@@ -7,15 +7,16 @@ src=${1:?usage: layers.sh SOURCE_DIR}
 declare -A allowed=(
   [support]="support"
   [machines]="machines support"
+  [scripting]="scripting support"
   [parser]="parser support"
   [channels]="channels parser machines support"
   [kinematics]="kinematics machines support"
   [formats]="formats parser machines support"
-  [machining]="machining formats kinematics channels parser machines support"
+  [machining]="machining scripting formats kinematics channels parser machines support"
   [check]="check machines support"
   [analysis]="analysis check machines support"
-  [post]="post analysis machining formats kinematics check channels parser machines support"
-  [cli]="cli post analysis machining formats kinematics check channels parser machines support"
+  [post]="post analysis machining scripting formats kinematics check channels parser machines support"
+  [cli]="cli post analysis machining scripting formats kinematics check channels parser machines support"
 )
 bad=0
 for layer in "${!allowed[@]}"; do
