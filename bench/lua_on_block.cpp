@@ -25,7 +25,6 @@ int main(int argc, char** argv) {
   long replaced = 0;
   for (long i = 0; i < n; ++i) replaced += s.on_block(block, ctx, host, out) == block_verdict::replace;
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("%ld blocks in %.3f s: %.2f M blocks/s (%ld replaced)\n", n, secs, n / secs / 1e6,
-              replaced);
+  std::printf("%ld blocks in %.3f s: %.2f M blocks/s (%ld replaced)\n", n, secs, n / secs / 1e6, replaced);
   return replaced == n ? 0 : 1;
 }
