@@ -1,6 +1,7 @@
 #include "analysis/interference.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <fmt/format.h>
@@ -72,8 +73,8 @@ struct sweep {
   xz_box tip;          // r = X/2 as programmed
   int line = 0;        // the first block's line
   float x = 0, z = 0;  // its programmed end point (X as a diameter)
-  int tool = 0;        // the T word in force (0: none seen)
   int spindle = 0;
+  std::array<char, 12> tool{};  // the T word in force as written ("0505"), "" when none
 };
 
 xz_box unite(const xz_box& a, const xz_box& b) {
@@ -95,10 +96,10 @@ struct channel_data {
   double x = 0, z = 0;
   bool known_x = false, known_z = false;
   int motion = 0;
-  bool cycle = false;    // a drilling cycle is modal (until G80)
-  bool balance = false;  // in a balance cut: ordered by its own sync
-  int tool = 0;
-  bool merge_open = false;  // the last sweep may take the next one
+  bool cycle = false;           // a drilling cycle is modal (until G80)
+  bool balance = false;         // in a balance cut: ordered by its own sync
+  std::array<char, 12> tool{};  // the last T word's value as written
+  bool merge_open = false;      // the last sweep may take the next one
 };
 
 }  // namespace
@@ -113,8 +114,8 @@ struct interference_check::impl {
     }
     active = with >= 2 || !m.interference.zones.empty();
     const cycle_rules& cy = m.cycles;
-    for (const std::string* code :
-         {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code, &cy.tap_code, &cy.tap_left_code})
+    for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
+                                    &cy.tap_code, &cy.tap_left_code})
       if (auto g = g_number(*code)) cycle_codes.push_back(*g);
     for (auto [code, into] :
          {std::pair{&m.codes.balance_on, &balance_on}, {&m.codes.balance_off, &balance_off}})
@@ -132,7 +133,8 @@ struct interference_check::impl {
     return code && w.address == code->address && w.numeric && w.number == code->number;
   }
 
-  void add(channel_data& c, const xz_box& tip, int line) {
+  // `x`, `z`: the block's point in messages (a drilling cycle's: the hole's bottom).
+  void add(channel_data& c, const xz_box& tip, int line, double x, double z) {
     std::vector<sweep>& s = c.segments.back().sweeps;
     const int spindle = c.spindles.current();
     if (c.merge_open && !s.empty() && s.back().spindle == spindle && s.back().tool == c.tool) {
@@ -143,7 +145,7 @@ struct interference_check::impl {
       }
     }
     if (s.size() >= segment_cap) coarsen(s);
-    s.push_back({tip, line, static_cast<float>(c.x), static_cast<float>(c.z), c.tool, spindle});
+    s.push_back({tip, line, static_cast<float>(x), static_cast<float>(z), spindle, c.tool});
     c.merge_open = true;
   }
 
@@ -195,7 +197,11 @@ struct interference_check::impl {
           if (is_word(w, balance_on)) c.balance = true;
           if (is_word(w, balance_off)) c.balance = false;
           break;
-        case 'T': c.tool = static_cast<int>(w.number); break;
+        case 'T': {
+          c.tool = {};
+          std::copy_n(w.value.begin(), std::min(w.value.size(), c.tool.size() - 1), c.tool.begin());
+          break;
+        }
         case 'X': xw = &w; break;
         case 'Z': zw = &w; break;
         case 'U': uw = &w; break;
@@ -225,13 +231,15 @@ struct interference_check::impl {
     // Where the tip came from: unknown (after a reference return) means only the end point.
     const double rs = known ? x0 / 2 : c.x / 2, zs = known ? z0 : c.z;
     xz_box tip{std::min(rs, c.x / 2), std::max(rs, c.x / 2), std::min(zs, c.z), std::max(zs, c.z)};
+    double shown_z = c.z;
     if (c.cycle && zw) {  // down to the hole's bottom and back
       tip.z0 = std::min(tip.z0, zw->number);
       tip.z1 = std::max(tip.z1, zw->number);
+      shown_z = zw->number;
     } else if (known && (c.motion == 2 || c.motion == 3) && (iw || kw || rw)) {
       tip = unite(tip, arc_of(x0 / 2, z0, c.x / 2, c.z, iw, kw, rw, c.motion == 2));
     }
-    add(c, tip, b.line);
+    add(c, tip, b.line, c.x, shown_z);
   }
 
   // The box of an arc given by its centre (I, K: radius values from the start) or its radius R.
@@ -291,15 +299,17 @@ struct interference_check::impl {
   // --- the rules ---------------------------------------------------------------------------
 
   std::string where(const sweep& s) const {
-    return fmt::format("{}X{:g} Z{:g}", s.tool ? fmt::format("T{:04} at ", s.tool) : std::string(), s.x, s.z);
+    return fmt::format("{}X{:g} Z{:g}", s.tool[0] ? fmt::format("T{} at ", s.tool.data()) : std::string(),
+                       s.x, s.z);
   }
   std::string between(const channel_data& c, std::size_t seg) const {
-    const std::string from =
-        seg == 0 ? std::string("the start")
-                 : fmt::format("M{} (line {})", c.segments[seg - 1].wait_code, c.segments[seg - 1].wait_line);
-    const std::string to = c.segments[seg].wait_code
-                               ? fmt::format("M{} (line {})", c.segments[seg].wait_code, c.segments[seg].wait_line)
-                               : std::string("the end");
+    // The waits as file:line places: post moves them to their CL records (post/sync_at_cl).
+    const std::string from = seg == 0 ? std::string("its start")
+                                      : fmt::format("M{} ({}:{})", c.segments[seg - 1].wait_code, c.file,
+                                                    c.segments[seg - 1].wait_line);
+    const std::string to = c.segments[seg].wait_code ? fmt::format("M{} ({}:{})", c.segments[seg].wait_code,
+                                                                   c.file, c.segments[seg].wait_line)
+                                                     : std::string("its end");
     return fmt::format("between {} and {}", from, to);
   }
 
@@ -370,14 +380,18 @@ struct interference_check::impl {
       if (!hit) continue;
       const sweep& x = *hit->first->s;
       const sweep& y = *hit->second->s;
-      out.push_back({severity::error, ca.file, x.line, 1,
-                     fmt::format("channel {} ({}) may meet channel {} ({}, {}:{}) on the {} spindle {}: {:.1f} mm "
-                                 "apart, {:g} mm required; no wait orders the two blocks",
-                                 a, where(x), b, where(y), cb.file, y.line, m.spindles[s].name,
-                                 between(ca, i), d, m.interference.clearance),
-                     {}});
-      out.push_back({severity::note, cb.file, y.line, 1,
-                     fmt::format("channel {} is here ({})", b, where(y)), {}});
+      out.push_back(
+          {severity::error,
+           ca.file,
+           x.line,
+           1,
+           fmt::format("channel {} ({}) may meet channel {} ({}, {}:{}) on the {} spindle, {} of channel {}: "
+                       "{:.1f} mm apart, {:g} mm required; no wait orders the two blocks",
+                       a, where(x), b, where(y), cb.file, y.line, m.spindles[s].name, between(ca, i), a, d,
+                       m.interference.clearance),
+           {}});
+      out.push_back(
+          {severity::note, cb.file, y.line, 1, fmt::format("channel {} is here ({})", b, where(y)), {}});
       return;  // one finding for each pair of segments
     }
   }
@@ -398,12 +412,16 @@ struct interference_check::impl {
               for (const xz_box& zb : sides)
                 if (!found && box_distance(e, zb) < m.interference.clearance) {
                   found = true;
-                  out.push_back({severity::error, c.file, s.line, 1,
-                                 fmt::format("channel {} ({}) comes within {:.1f} mm of the {} spindle's static "
-                                             "zone [{:g}, {:g}, {:g}, {:g}] (interference.zone), {:g} mm required",
-                                             k + 1, where(s), box_distance(e, zb), z.spindle, z.box.r0,
-                                             z.box.r1, z.box.z0, z.box.z1, m.interference.clearance),
-                                 {}});
+                  out.push_back(
+                      {severity::error,
+                       c.file,
+                       s.line,
+                       1,
+                       fmt::format("channel {} ({}) comes within {:.1f} mm of the {} spindle's static "
+                                   "zone [{:g}, {:g}, {:g}, {:g}] (interference.zone), {:g} mm required",
+                                   k + 1, where(s), box_distance(e, zb), z.spindle, z.box.r0, z.box.r1,
+                                   z.box.z0, z.box.z1, m.interference.clearance),
+                       {}});
                 }
             if (found) break;
           }
@@ -411,6 +429,20 @@ struct interference_check::impl {
     }
   }
 };
+
+void fill_source_lines(std::vector<diagnostic>& found, const std::vector<nc_source>& files,
+                       const machine& m) {
+  if (std::none_of(found.begin(), found.end(),
+                   [](const diagnostic& d) { return d.line > 0 && d.source_line.empty(); }))
+    return;
+  nc_read_options o;
+  o.on_block = [&found](const nc_block& b) {
+    for (diagnostic& d : found)
+      if (d.line == b.line && d.source_line.empty() && d.file == b.file) d.source_line = std::string(b.text);
+  };
+  diagnostic_list ignored;
+  read_nc_programs(files, m, ignored, o);
+}
 
 interference_check::interference_check(const machine& m) : p_(std::make_unique<impl>(m)) {}
 interference_check::~interference_check() = default;

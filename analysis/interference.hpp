@@ -34,6 +34,10 @@ std::vector<xz_box> envelope_boxes(const interference_channel& e, const xz_box& 
 /// The distance between two boxes (0 when they touch or overlap).
 double box_distance(const xz_box& a, const xz_box& b);
 
+/// Gives each diagnostic at a line of `files` that has no source line (the interference rule
+/// keeps line numbers only) the line's text, reading the programs again when there is one.
+void fill_source_lines(std::vector<diagnostic>& found, const std::vector<nc_source>& files, const machine& m);
+
 /// The interference rule, fed block by block like analysis/shared_resources.
 class interference_check {
  public:

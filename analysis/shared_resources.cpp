@@ -676,6 +676,7 @@ sync_result check_nc_resources(const std::vector<nc_source>& files, const machin
   interference_check meet(m);
   sync_result r = check_nc_files(files, m, feeding(rules, meet, more));
   add_findings(r, rules, meet);
+  fill_source_lines(r.diagnostics, files, m);
   return r;
 }
 

@@ -60,7 +60,8 @@ void read_interference(const table_reader& root, machine& m) {
     z.require("spindle");
     z.read("spindle", e.spindle);
     if (!m.spindle(e.spindle))
-      z.fail(*z.find("spindle"), fmt::format("interference.zone.spindle '{}' names no [[spindle]]", e.spindle));
+      z.fail(*z.find("spindle"),
+             fmt::format("interference.zone.spindle '{}' names no [[spindle]]", e.spindle));
     z.require("box");
     e.box = read_box(z, *z.find("box"));
     out.zones.push_back(std::move(e));
