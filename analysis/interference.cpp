@@ -68,13 +68,15 @@ std::optional<double> g_number(std::string_view code) {
   return w[0].number;
 }
 
-// What one block (or a run of merged blocks) of a channel sweeps.
+// What one block (or a run of merged blocks) of a channel sweeps: 32 bytes, in floats (a
+// micrometre at a metre), since a long job keeps many.
 struct sweep {
-  xz_box tip;          // r = X/2 as programmed
-  int line = 0;        // the first block's line
-  float x = 0, z = 0;  // its programmed end point (X as a diameter)
-  int spindle = 0;
-  std::array<char, 12> tool{};  // the T word in force as written ("0505"), "" when none
+  float r0, r1, z0, z1;  // the tip's box, r = X/2 as programmed
+  int line;              // the first block's line
+  float x, z;            // its point in messages (X as a diameter)
+  std::uint16_t spindle;
+  std::uint16_t tool;  // into channel_data::tools
+  xz_box tip() const { return {r0, r1, z0, z1}; }
 };
 
 xz_box unite(const xz_box& a, const xz_box& b) {
@@ -96,10 +98,12 @@ struct channel_data {
   double x = 0, z = 0;
   bool known_x = false, known_z = false;
   int motion = 0;
-  bool cycle = false;           // a drilling cycle is modal (until G80)
-  bool balance = false;         // in a balance cut: ordered by its own sync
-  std::array<char, 12> tool{};  // the last T word's value as written
-  bool merge_open = false;      // the last sweep may take the next one
+  bool cycle = false;    // a drilling cycle is modal (until G80)
+  bool balance = false;  // in a balance cut: ordered by its own sync
+  // The T words seen, as written ("0505"); [0] is none. `tool` is the one in force.
+  std::vector<std::array<char, 12>> tools = std::vector<std::array<char, 12>>(1);
+  std::uint16_t tool = 0;
+  bool merge_open = false;  // the last sweep may take the next one
 };
 
 }  // namespace
@@ -136,17 +140,32 @@ struct interference_check::impl {
   // `x`, `z`: the block's point in messages (a drilling cycle's: the hole's bottom).
   void add(channel_data& c, const xz_box& tip, int line, double x, double z) {
     std::vector<sweep>& s = c.segments.back().sweeps;
-    const int spindle = c.spindles.current();
+    const auto spindle = static_cast<std::uint16_t>(std::max(c.spindles.current(), 0));
     if (c.merge_open && !s.empty() && s.back().spindle == spindle && s.back().tool == c.tool) {
-      const xz_box u = unite(s.back().tip, tip);
+      const xz_box u = unite(s.back().tip(), tip);
       if (u.r1 - u.r0 <= merge_size && u.z1 - u.z0 <= merge_size) {
-        s.back().tip = u;
+        set_tip(s.back(), u);
         return;
       }
     }
     if (s.size() >= segment_cap) coarsen(s);
-    s.push_back({tip, line, static_cast<float>(x), static_cast<float>(z), spindle, c.tool});
+    sweep w{};
+    set_tip(w, tip);
+    w.line = line;
+    w.x = static_cast<float>(x);
+    w.z = static_cast<float>(z);
+    w.spindle = spindle;
+    w.tool = c.tool;
+    s.push_back(w);
     c.merge_open = true;
+  }
+
+  // Floats rounded outwards: the stored box never smaller than the swept one.
+  static void set_tip(sweep& w, const xz_box& b) {
+    w.r0 = std::nextafter(static_cast<float>(b.r0), -1e30f);
+    w.r1 = std::nextafter(static_cast<float>(b.r1), 1e30f);
+    w.z0 = std::nextafter(static_cast<float>(b.z0), -1e30f);
+    w.z1 = std::nextafter(static_cast<float>(b.z1), 1e30f);
   }
 
   // Halves a segment's boxes by merging neighbours of one spindle and tool: bounded memory.
@@ -154,7 +173,7 @@ struct interference_check::impl {
     std::size_t out = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
       if (out > 0 && (i % 2) == 1 && s[out - 1].spindle == s[i].spindle && s[out - 1].tool == s[i].tool)
-        s[out - 1].tip = unite(s[out - 1].tip, s[i].tip);
+        set_tip(s[out - 1], unite(s[out - 1].tip(), s[i].tip()));
       else
         s[out++] = s[i];
     }
@@ -198,8 +217,16 @@ struct interference_check::impl {
           if (is_word(w, balance_off)) c.balance = false;
           break;
         case 'T': {
-          c.tool = {};
-          std::copy_n(w.value.begin(), std::min(w.value.size(), c.tool.size() - 1), c.tool.begin());
+          std::array<char, 12> t{};
+          std::copy_n(w.value.begin(), std::min(w.value.size(), t.size() - 1), t.begin());
+          auto at = static_cast<std::size_t>(std::find(c.tools.begin(), c.tools.end(), t) - c.tools.begin());
+          if (at == c.tools.size()) {
+            if (at < 65535)
+              c.tools.push_back(t);
+            else
+              at = 0;  // more tools than the index holds: named by none
+          }
+          c.tool = static_cast<std::uint16_t>(at);
           break;
         }
         case 'X': xw = &w; break;
@@ -298,9 +325,9 @@ struct interference_check::impl {
 
   // --- the rules ---------------------------------------------------------------------------
 
-  std::string where(const sweep& s) const {
-    return fmt::format("{}X{:g} Z{:g}", s.tool[0] ? fmt::format("T{} at ", s.tool.data()) : std::string(),
-                       s.x, s.z);
+  std::string where(const channel_data& c, const sweep& s) const {
+    const char* t = c.tools[s.tool].data();
+    return fmt::format("{}X{:g} Z{:g}", t[0] ? fmt::format("T{} at ", t) : std::string(), s.x, s.z);
   }
   std::string between(const channel_data& c, std::size_t seg) const {
     // The waits as file:line places: post moves them to their CL records (post/sync_at_cl).
@@ -317,11 +344,12 @@ struct interference_check::impl {
     xz_box box;
     const sweep* s;
   };
-  std::vector<placed> place(const channel_data& c, const segment_data& seg, int spindle) const {
+  // The `k`-th box of the channel's envelope around each sweep on `spindle`, sorted along Z.
+  std::vector<placed> place(const channel_data& c, const segment_data& seg, int spindle,
+                            std::size_t k) const {
     std::vector<placed> out;
     for (const sweep& s : seg.sweeps)
-      if (s.spindle == spindle)
-        for (const xz_box& b : envelope_boxes(*c.env, s.tip)) out.push_back({b, &s});
+      if (s.spindle == spindle) out.push_back({envelope_boxes(*c.env, s.tip())[k], &s});
     std::sort(out.begin(), out.end(), [](const placed& p, const placed& q) { return p.box.z0 < q.box.z0; });
     return out;
   }
@@ -368,14 +396,33 @@ struct interference_check::impl {
   void meet(const channel_data& ca, int a, std::size_t i, const channel_data& cb, int b, std::size_t j,
             std::vector<diagnostic>& out) const {
     for (std::size_t s = 0; s < m.spindles.size(); ++s) {
-      const std::vector<placed> pa = place(ca, ca.segments[i], static_cast<int>(s));
-      if (pa.empty()) continue;
-      const std::vector<placed> pb = place(cb, cb.segments[j], static_cast<int>(s));
+      // Most concurrent work stays apart as a whole (an upper and a lower turret, each on its
+      // side of the axis): the boxes around all of each interval's sweeps say so at once.
+      const auto around = [&](const segment_data& seg, const interference_channel& e) {
+        std::optional<xz_box> u;
+        for (const sweep& w : seg.sweeps)
+          if (w.spindle == s) u = u ? unite(*u, w.tip()) : w.tip();
+        if (!u) return u;
+        const std::vector<xz_box> boxes = envelope_boxes(e, *u);
+        xz_box all = boxes.front();
+        for (const xz_box& x : boxes) all = unite(all, x);
+        return std::optional<xz_box>(all);
+      };
+      const std::optional<xz_box> ua = around(ca.segments[i], *ca.env);
+      if (!ua) continue;
+      const std::optional<xz_box> ub = around(cb.segments[j], *cb.env);
+      if (!ub || box_distance(*ua, *ub) >= m.interference.clearance) continue;
+      // Box by box of the envelopes (each kind alike in size: the sweep along Z stays narrow).
       double d = 0;
-      auto hit = first_meeting(pa, pb, d);
-      if (!hit) {
-        hit = first_meeting(pb, pa, d);
-        if (hit) std::swap(hit->first, hit->second);
+      std::optional<std::pair<const placed*, const placed*>> hit;
+      std::vector<std::vector<placed>> pbs;
+      for (std::size_t kb = 0; kb < cb.env->boxes.size(); ++kb)
+        pbs.push_back(place(cb, cb.segments[j], static_cast<int>(s), kb));
+      std::vector<placed> pa;
+      for (std::size_t ka = 0; ka < ca.env->boxes.size() && !hit; ++ka) {
+        pa = place(ca, ca.segments[i], static_cast<int>(s), ka);
+        // Complete in one direction: every box of b near one of a in Z is looked at.
+        for (std::size_t kb = 0; kb < pbs.size() && !hit; ++kb) hit = first_meeting(pa, pbs[kb], d);
       }
       if (!hit) continue;
       const sweep& x = *hit->first->s;
@@ -387,11 +434,11 @@ struct interference_check::impl {
            1,
            fmt::format("channel {} ({}) may meet channel {} ({}, {}:{}) on the {} spindle, {} of channel {}: "
                        "{:.1f} mm apart, {:g} mm required; no wait orders the two blocks",
-                       a, where(x), b, where(y), cb.file, y.line, m.spindles[s].name, between(ca, i), a, d,
-                       m.interference.clearance),
+                       a, where(ca, x), b, where(cb, y), cb.file, y.line, m.spindles[s].name, between(ca, i),
+                       a, d, m.interference.clearance),
            {}});
       out.push_back(
-          {severity::note, cb.file, y.line, 1, fmt::format("channel {} is here ({})", b, where(y)), {}});
+          {severity::note, cb.file, y.line, 1, fmt::format("channel {} is here ({})", b, where(cb, y)), {}});
       return;  // one finding for each pair of segments
     }
   }
@@ -408,7 +455,7 @@ struct interference_check::impl {
         for (std::size_t seg = 0; seg < c.segments.size() && !found; ++seg)
           for (const sweep& s : c.segments[seg].sweeps) {
             if (s.spindle != si) continue;
-            for (const xz_box& e : envelope_boxes(*c.env, s.tip))
+            for (const xz_box& e : envelope_boxes(*c.env, s.tip()))
               for (const xz_box& zb : sides)
                 if (!found && box_distance(e, zb) < m.interference.clearance) {
                   found = true;
@@ -419,7 +466,7 @@ struct interference_check::impl {
                        1,
                        fmt::format("channel {} ({}) comes within {:.1f} mm of the {} spindle's static "
                                    "zone [{:g}, {:g}, {:g}, {:g}] (interference.zone), {:g} mm required",
-                                   k + 1, where(s), box_distance(e, zb), z.spindle, z.box.r0, z.box.r1,
+                                   k + 1, where(c, s), box_distance(e, zb), z.spindle, z.box.r0, z.box.r1,
                                    z.box.z0, z.box.z1, m.interference.clearance),
                        {}});
                 }

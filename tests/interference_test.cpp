@@ -87,18 +87,21 @@ TEST_CASE("interference: the machine file gives envelopes and zones, checked", "
              Catch::Contains("interference.channel.channel 3 names no channel (the machine has 2)"));
   CHECK_THAT(fails("[interference]\n[[interference.channel]]\nchannel = 1\nboxes = [[1, 0, 0, 1]]\n"),
              Catch::Contains("a box needs r0 <= r1 and z0 <= z1"));
-  CHECK_THAT(fails("[interference]\n[[interference.channel]]\nchannel = 1\nside = 2\nboxes = [[0, 1, 0, 1]]\n"),
-             Catch::Contains("interference.channel.side must be 1 or -1, not 2"));
+  CHECK_THAT(
+      fails("[interference]\n[[interference.channel]]\nchannel = 1\nside = 2\nboxes = [[0, 1, 0, 1]]\n"),
+      Catch::Contains("interference.channel.side must be 1 or -1, not 2"));
   CHECK_THAT(fails("[interference]\n[[interference.zone]]\nspindle = \"back\"\nbox = [0, 1, 0, 1]\n"),
              Catch::Contains("interference.zone.spindle 'back' names no [[spindle]]"));
-  CHECK(fails("[interference]\nclearance = 3\n[[interference.zone]]\nspindle = \"main\"\nbox = [0, 80, -200, -150]\n")
+  CHECK(fails("[interference]\nclearance = 3\n[[interference.zone]]\nspindle = \"main\"\nbox = [0, 80, -200, "
+              "-150]\n")
             .empty());
 }
 
 TEST_CASE("interference: the rule in check, concurrent and sequenced, to the letter", "[analysis]") {
   const machine twin = load_machine("fanuc-0itd-twin");
   const std::string head = "%\nO1000\nG0 G18 G21 G40 G54 G80 G99\n";
-  const std::string face = head + "T0101\nG97 S1000 M3\nG0 X64. Z0.\nM100\nG1 X-1.6 F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
+  const std::string face =
+      head + "T0101\nG97 S1000 M3\nG0 X64. Z0.\nM100\nG1 X-1.6 F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
   const std::string drill = head + "T0505\nG0 X0. Z5.\nM100\nG1 Z-25. F0.08\nG0 Z50.\nM101\nM30\n%\n";
   CHECK(check(twin, face, drill) ==
         "A_1.nc:8:1: error: channel 1 (T0101 at X-1.6 Z0) may meet channel 2 (T0505 at X0 Z-25, A_2.nc:7) on "
@@ -109,17 +112,24 @@ TEST_CASE("interference: the rule in check, concurrent and sequenced, to the let
         "G1 Z-25. F0.08\n^\n"
         "check: 2 channels, 4 waits paired, 1 error\n");
   // An arc about the centre (G3 from X20 to X-1.6): its sweep reaches the drill as well.
-  const std::string arc = head + "T0101\nG97 S1000 M3\nG0 X20. Z0.\nM100\nG3 X-1.6 Z-10.8 R10.8 F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
-  CHECK_THAT(check(twin, arc, drill), Catch::Contains("A_1.nc:8:1: error: channel 1 (T0101 at X-1.6 Z-10.8)"));
+  const std::string arc =
+      head +
+      "T0101\nG97 S1000 M3\nG0 X20. Z0.\nM100\nG3 X-1.6 Z-10.8 R10.8 F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
+  CHECK_THAT(check(twin, arc, drill),
+             Catch::Contains("A_1.nc:8:1: error: channel 1 (T0101 at X-1.6 Z-10.8)"));
   // Ordered by a wait: no finding.
-  const std::string face_then = head + "T0101\nG97 S1000 M3\nG0 X64. Z0.\nM100\nG1 X-1.6 F0.15\nG0 X100. Z100.\nM102\nM101\nM30\n%\n";
-  const std::string drill_after = head + "T0505\nG0 X0. Z5.\nM100\nM102\nG1 Z-25. F0.08\nG0 Z50.\nM101\nM30\n%\n";
+  const std::string face_then =
+      head + "T0101\nG97 S1000 M3\nG0 X64. Z0.\nM100\nG1 X-1.6 F0.15\nG0 X100. Z100.\nM102\nM101\nM30\n%\n";
+  const std::string drill_after =
+      head + "T0505\nG0 X0. Z5.\nM100\nM102\nG1 Z-25. F0.08\nG0 Z50.\nM101\nM30\n%\n";
   CHECK(check(twin, face_then, drill_after) == "check: 2 channels, 6 waits paired, 0 errors\n");
   // Concurrent, the tips 30 mm apart (26 mm between the envelopes): no finding; 8 mm apart
   // (4 mm between them, under the 5 mm clearance): the finding.
-  const std::string od = head + "T0101\nG97 S1000 M3\nG0 X60. Z2.\nM100\nG1 Z-40. F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
+  const std::string od =
+      head + "T0101\nG97 S1000 M3\nG0 X60. Z2.\nM100\nG1 Z-40. F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
   CHECK(check(twin, od, drill) == "check: 2 channels, 4 waits paired, 0 errors\n");
-  const std::string near = head + "T0101\nG97 S1000 M3\nG0 X16. Z2.\nM100\nG1 Z-40. F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
+  const std::string near =
+      head + "T0101\nG97 S1000 M3\nG0 X16. Z2.\nM100\nG1 Z-40. F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
   CHECK_THAT(check(twin, near, drill), Catch::Contains(": 4.0 mm apart, 5 mm required"));
   // A machine without envelopes: the rule is off.
   CHECK(check(load_machine("citizen-2system"), face, drill).find("may meet") == std::string::npos);
