@@ -111,6 +111,9 @@ struct timeline {
   long untimed = 0;                          ///< blocks of all channels not timed
   std::vector<untimed_group> untimed_kinds;  ///< per kind, in channel then program order
   std::vector<idle_note> advice;             ///< the longest idles, longest first (at most 3)
+  /// The turret interference rule's findings (analysis/interference.hpp), each error with its
+  /// note at the other channel's block; the programs are timed all the same (make_timeline).
+  std::vector<diagnostic> conflicts;
 };
 
 /// Every block of channel `channel` of a timeline `t` made from `files`, timed and placed in

@@ -64,6 +64,7 @@ class page {
     for (std::size_t i = 0; i < t_.channels.size(); ++i) lane(s, t_.channels[i], lane_y(i));
     links(s);
     critical(s);
+    conflicts(s);
     s += "</svg>\n";
     return s;
   }
@@ -177,6 +178,26 @@ class page {
       }
   }
 
+  // Each conflict of the interference rule: a red bar across its lane at its block, where the
+  // block was kept (timeline_options::keep_blocks), the message as its tip.
+  void conflicts(std::string& s) const {
+    for (const diagnostic& d : t_.conflicts) {
+      const int channel = conflict_channel(t_, d);
+      if (channel < 1) continue;
+      const channel_times& c = t_.channels[static_cast<std::size_t>(channel - 1)];
+      const auto k =
+          std::find_if(c.kept.begin(), c.kept.end(), [&](const timed_block& b) { return b.line == d.line; });
+      if (k == c.kept.end()) continue;
+      const std::string tip = escape(fmt::format("{}:{}: {}", d.file, d.line, d.message));
+      s += fmt::format(
+          "<rect class=\"conflict\" data-channel=\"{}\" x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" "
+          "height=\"{}\" fill=\"none\" stroke=\"#d62728\" stroke-width=\"2\" "
+          "data-tip=\"{}\"><title>{}</title></rect>\n",
+          channel, x(k->start), lane_y(static_cast<std::size_t>(channel - 1)) - 2,
+          std::max(k->seconds * scale_, 3.0), lane_height + 4, tip, tip);
+    }
+  }
+
   void critical(std::string& s) const {
     for (const critical_stretch& c : t_.critical) {
       const double y = lane_y(static_cast<std::size_t>(c.channel - 1)) + lane_height + 4;
@@ -262,6 +283,12 @@ std::string timeline_page(const timeline& t, std::string_view title) {
   if (t.advice.empty()) h += "no channel idles at a wait.";
   for (std::size_t i = 0; i < t.advice.size(); ++i) h += (i ? "; " : "") + escape(advice_text(t.advice[i]));
   h += "</p>\n";
+  if (!t.conflicts.empty()) {  // the interference rule's findings, marked on the lanes too
+    h += "<p class=\"conflicts\"><b>Turrets may meet</b> (docs/interference.md):";
+    for (const diagnostic& d : t.conflicts)
+      if (d.level == severity::error) h += escape(fmt::format(" {}:{}: {}", d.file, d.line, d.message));
+    h += "</p>\n";
+  }
   h += p.legend();
   h += p.svg();
   h += "<table id=\"totals\"><thead><tr><th>channel</th><th>program</th><th>working</th><th>idle</th>"

@@ -7,6 +7,7 @@
 
 #include "analysis/interference.hpp"
 #include "analysis/shared_resources.hpp"
+#include "analysis/timeline_report.hpp"
 #include "check/sync_report.hpp"
 #include "machines/machine_loader.hpp"
 #include "machines/machine_search.hpp"
@@ -133,4 +134,31 @@ TEST_CASE("interference: the rule in check, concurrent and sequenced, to the let
   CHECK_THAT(check(twin, near, drill), Catch::Contains(": 4.0 mm apart, 5 mm required"));
   // A machine without envelopes: the rule is off.
   CHECK(check(load_machine("citizen-2system"), face, drill).find("may meet") == std::string::npos);
+}
+
+TEST_CASE("interference: the timeline carries the conflicts and the page marks both lanes", "[analysis]") {
+  const machine twin = load_machine("fanuc-0itd-twin");
+  const std::string head = "%\nO1000\nG0 G18 G21 G40 G54 G80 G99\n";
+  const std::string face =
+      head + "T0101\nG97 S1000 M3\nG0 X64. Z0.\nM100\nG1 X-1.6 F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
+  const std::string drill = head + "T0505\nG0 X0. Z5.\nM100\nG1 Z-25. F0.08\nG0 Z50.\nM101\nM30\n%\n";
+  timeline_options o;
+  o.keep_blocks = true;
+  const timeline t = make_timeline({{"A_1.nc", face}, {"A_2.nc", drill}}, twin, o);
+  REQUIRE(t.ok);
+  REQUIRE(t.conflicts.size() == 2);
+  CHECK(conflict_channel(t, t.conflicts[0]) == 1);
+  CHECK(conflict_channel(t, t.conflicts[1]) == 2);
+  CHECK_THAT(format_timeline_json(t), Catch::Contains("\"conflicts\":[{\"channel\":1,\"severity\":\"error\","
+                                                      "\"file\":\"A_1.nc\",\"line\":8,"));
+  const std::string page = timeline_page(t, "t");
+  CHECK(page.find("<rect class=\"conflict\" data-channel=\"1\"") != std::string::npos);
+  CHECK(page.find("<rect class=\"conflict\" data-channel=\"2\"") != std::string::npos);
+  CHECK(page.find("<b>Turrets may meet</b>") != std::string::npos);
+  // A sound job: no conflicts, and no key for them in the data.
+  const std::string od =
+      head + "T0101\nG97 S1000 M3\nG0 X60. Z2.\nM100\nG1 Z-40. F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
+  const timeline sound = make_timeline({{"A_1.nc", od}, {"A_2.nc", drill}}, twin, o);
+  CHECK(sound.conflicts.empty());
+  CHECK(format_timeline_json(sound).find("conflicts") == std::string::npos);
 }
