@@ -1,7 +1,5 @@
 #include "analysis/cycle_time.hpp"
 
-#include "analysis/interference.hpp"
-
 #include <algorithm>
 #include <cstdint>
 #include <functional>
@@ -391,6 +389,7 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
   }
   timeline out = b.finish(check.rendezvous);
   out.conflicts = meet.finish(check.rendezvous, true);
+  out.meetings = meet.meetings();
   fill_source_lines(out.conflicts, files, m);
   out.diagnostics.insert(out.diagnostics.begin(), check.diagnostics.begin(), check.diagnostics.end());
   return out;

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/interference.hpp"
 #include "check/nc_program.hpp"
 #include "machines/machine.hpp"
 #include "support/diagnostics.hpp"
@@ -114,6 +115,7 @@ struct timeline {
   /// The turret interference rule's findings (analysis/interference.hpp), each error with its
   /// note at the other channel's block; the programs are timed all the same (make_timeline).
   std::vector<diagnostic> conflicts;
+  std::vector<interference_meeting> meetings;  ///< the same conflicts' envelopes (the page's pictures)
 };
 
 /// Every block of channel `channel` of a timeline `t` made from `files`, timed and placed in

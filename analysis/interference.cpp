@@ -131,7 +131,8 @@ struct interference_check::impl {
   std::vector<channel_data> channels;
   std::vector<double> cycle_codes;
   std::optional<nc_word> balance_on, balance_off;
-  std::vector<std::vector<std::vector<int>>> clocks;  // [channel][segment][channel]
+  std::vector<std::vector<std::vector<int>>> clocks;   // [channel][segment][channel]
+  mutable std::vector<interference_meeting> meetings;  // what meet() found, for pictures
 
   bool is_word(const nc_word& w, const std::optional<nc_word>& code) const {
     return code && w.address == code->address && w.numeric && w.number == code->number;
@@ -428,6 +429,12 @@ struct interference_check::impl {
       if (!hit) continue;
       const sweep& x = *hit->first->s;
       const sweep& y = *hit->second->s;
+      const auto mirrored = [](const interference_channel& e, const xz_box& t) {
+        return e.side < 0 ? xz_box{-t.r1, -t.r0, t.z0, t.z1} : t;
+      };
+      meetings.push_back({a, b, m.spindles[s].name, mirrored(*ca.env, x.tip()), mirrored(*cb.env, y.tip()),
+                          envelope_boxes(*ca.env, x.tip()), envelope_boxes(*cb.env, y.tip()), d, ca.file,
+                          cb.file, x.line, y.line});
       out.push_back(
           {severity::error,
            ca.file,
@@ -495,6 +502,7 @@ void fill_source_lines(std::vector<diagnostic>& found, const std::vector<nc_sour
 interference_check::interference_check(const machine& m) : p_(std::make_unique<impl>(m)) {}
 interference_check::~interference_check() = default;
 bool interference_check::active() const { return p_->active; }
+const std::vector<interference_meeting>& interference_check::meetings() const { return p_->meetings; }
 void interference_check::block(const nc_block& b) { p_->block(b); }
 void interference_check::wait(const nc_wait& w) { p_->wait(w); }
 

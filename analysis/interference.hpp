@@ -14,6 +14,7 @@
 // boxes (neighbours are merged beyond it): memory is bounded by segments, not by blocks.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "check/nc_program.hpp"
@@ -33,6 +34,18 @@ std::vector<xz_box> envelope_boxes(const interference_channel& e, const xz_box& 
 
 /// The distance between two boxes (0 when they touch or overlap).
 double box_distance(const xz_box& a, const xz_box& b);
+
+/// One finding of the rule, for a picture (the timeline page): the two blocks' envelopes in the
+/// frame of their spindle, as the rule compared them.
+struct interference_meeting {
+  int channel_a = 0, channel_b = 0;
+  std::string spindle;
+  xz_box tip_a, tip_b;                         ///< the swept tip boxes, in the spindle's frame
+  std::vector<xz_box> envelope_a, envelope_b;  ///< their envelopes' boxes
+  double distance = 0;
+  std::string file_a, file_b;
+  int line_a = 0, line_b = 0;
+};
 
 /// Gives each diagnostic at a line of `files` that has no source line (the interference rule
 /// keeps line numbers only) the line's text, reading the programs again when there is one.
@@ -55,6 +68,8 @@ class interference_check {
   /// The findings, given the rendezvous of a sound check (sync_result::rendezvous); the static
   /// zones need no order and are checked however the waits paired.
   std::vector<diagnostic> finish(const std::vector<std::uint64_t>& rendezvous, bool waits_sound);
+  /// The pairs of blocks finish() found, one per error of the pair rule, in the same order.
+  const std::vector<interference_meeting>& meetings() const;
 
  private:
   struct impl;

@@ -155,6 +155,20 @@ TEST_CASE("interference: the timeline carries the conflicts and the page marks b
   CHECK(page.find("<rect class=\"conflict\" data-channel=\"1\"") != std::string::npos);
   CHECK(page.find("<rect class=\"conflict\" data-channel=\"2\"") != std::string::npos);
   CHECK(page.find("<b>Turrets may meet</b>") != std::string::npos);
+  // The picture of the two envelopes: the facing tool's sweep from X64 to X-1.6 (r 32 to -0.8),
+  // its tool box 2 mm past it; the lower turret's drill mirrored below the axis.
+  REQUIRE(t.meetings.size() == 1);
+  const interference_meeting& g = t.meetings[0];
+  CHECK(g.channel_a == 1);
+  CHECK(g.channel_b == 2);
+  CHECK(g.tip_a.r0 == Approx(-0.8));
+  CHECK(g.tip_a.r1 == Approx(32));
+  CHECK(g.envelope_a[0].r0 == Approx(-2.8));
+  CHECK(g.envelope_b[0].r0 == Approx(-60));
+  CHECK(g.envelope_b[0].r1 == Approx(2));
+  CHECK(g.distance == 0);
+  CHECK(page.find("<figure class=\"meeting\"><svg class=\"envelopes\"") != std::string::npos);
+  CHECK(page.find("<title>channel 1: r -2.8..92, Z -5..60</title>") != std::string::npos);
   // A sound job: no conflicts, and no key for them in the data.
   const std::string od =
       head + "T0101\nG97 S1000 M3\nG0 X60. Z2.\nM100\nG1 Z-40. F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
