@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "analysis/shared_resources.hpp"
 #include "analysis/spindle_state.hpp"
 
 namespace twinpost {
@@ -302,24 +303,9 @@ struct interference_check::impl {
   // --- happens-before (as analysis/shared_resources) ---------------------------------------
 
   void make_clocks(const std::vector<std::uint64_t>& rendezvous) {
-    const std::size_t n = channels.size();
-    clocks.assign(n, {});
-    std::vector<std::vector<int>> now(n, std::vector<int>(n, 0));
-    for (std::size_t c = 0; c < n; ++c) clocks[c].push_back(now[c]);
-    for (std::uint64_t members : rendezvous) {
-      std::vector<int> merged(n, 0);
-      for (std::uint64_t b = members; b; b &= b - 1)
-        if (const auto c = static_cast<std::size_t>(std::countr_zero(b)); c < n)
-          for (std::size_t k = 0; k < n; ++k) merged[k] = std::max(merged[k], now[c][k]);
-      for (std::uint64_t b = members; b; b &= b - 1)
-        if (const auto c = static_cast<std::size_t>(std::countr_zero(b)); c < n) ++merged[c];
-      for (std::uint64_t b = members; b; b &= b - 1)
-        if (const auto c = static_cast<std::size_t>(std::countr_zero(b)); c < n) {
-          now[c] = merged;
-          clocks[c].push_back(merged);
-        }
-    }
+    clocks = segment_clocks(rendezvous, channels.size());
   }
+
   int over(int channel, std::size_t seg, int of) const {
     const auto& cl = clocks[static_cast<std::size_t>(channel - 1)];
     return seg < cl.size() ? cl[seg][static_cast<std::size_t>(of - 1)] : -1;

@@ -307,28 +307,7 @@ struct shared_resources::impl {
   // --- happens-before -------------------------------------------------------------------
 
   void make_clocks(const std::vector<std::uint64_t>& rendezvous) {
-    const std::size_t n = channels.size();
-    clocks.assign(n, {});
-    std::vector<std::vector<int>> now(n, std::vector<int>(n, 0));
-    for (std::size_t c = 0; c < n; ++c) clocks[c].push_back(now[c]);
-    for (std::uint64_t members : rendezvous) {
-      std::vector<int> merged(n, 0);
-      for (std::uint64_t b = members; b; b &= b - 1) {
-        const auto c = static_cast<std::size_t>(std::countr_zero(b));
-        if (c >= n) continue;
-        for (std::size_t k = 0; k < n; ++k) merged[k] = std::max(merged[k], now[c][k]);
-      }
-      for (std::uint64_t b = members; b; b &= b - 1) {
-        const auto c = static_cast<std::size_t>(std::countr_zero(b));
-        if (c < n) ++merged[c];
-      }
-      for (std::uint64_t b = members; b; b &= b - 1) {
-        const auto c = static_cast<std::size_t>(std::countr_zero(b));
-        if (c >= n) continue;
-        now[c] = merged;
-        clocks[c].push_back(merged);
-      }
-    }
+    clocks = segment_clocks(rendezvous, channels.size());
   }
 
   bool known(int channel, int seg) const {
@@ -604,6 +583,32 @@ struct shared_resources::impl {
     }
   }
 };
+
+std::vector<std::vector<std::vector<int>>> segment_clocks(const std::vector<std::uint64_t>& rendezvous,
+                                                          std::size_t n) {
+  std::vector<std::vector<std::vector<int>>> clocks(n);
+  std::vector<std::vector<int>> now(n, std::vector<int>(n, 0));
+  for (std::size_t c = 0; c < n; ++c) clocks[c].push_back(now[c]);
+  for (std::uint64_t members : rendezvous) {
+    std::vector<int> merged(n, 0);
+    for (std::uint64_t b = members; b; b &= b - 1) {
+      const auto c = static_cast<std::size_t>(std::countr_zero(b));
+      if (c >= n) continue;
+      for (std::size_t k = 0; k < n; ++k) merged[k] = std::max(merged[k], now[c][k]);
+    }
+    for (std::uint64_t b = members; b; b &= b - 1) {
+      const auto c = static_cast<std::size_t>(std::countr_zero(b));
+      if (c < n) ++merged[c];
+    }
+    for (std::uint64_t b = members; b; b &= b - 1) {
+      const auto c = static_cast<std::size_t>(std::countr_zero(b));
+      if (c >= n) continue;
+      now[c] = merged;
+      clocks[c].push_back(merged);
+    }
+  }
+  return clocks;
+}
 
 shared_resources::shared_resources(const machine& m) : p_(std::make_unique<impl>(m)) {}
 shared_resources::~shared_resources() = default;
