@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <fmt/format.h>
 #include <numbers>
@@ -37,6 +36,20 @@ xz_box arc_box(double r_start, double z_start, double r_end, double z_end, doubl
     }
   }
   return b;
+}
+
+xz_box arc_box_radius(double r_start, double z_start, double r_end, double z_end, double radius, bool cw) {
+  const double dr = r_end - r_start, dz = z_end - z_start, chord = std::hypot(dr, dz);
+  const xz_box ends{std::min(r_start, r_end), std::max(r_start, r_end), std::min(z_start, z_end),
+                    std::max(z_start, z_end)};
+  if (chord < 1e-12 || std::abs(radius) < chord / 2 - 1e-9) return ends;  // no such arc: its ends
+  const double h = std::sqrt(std::max(0.0, radius * radius - chord * chord / 4));
+  // The centre of a clockwise minor arc (R > 0) lies to the left of the chord seen from the
+  // start (z to the right, r up); a major arc's (R < 0) or a counter-clockwise one's to the right.
+  const double sign = ((radius > 0) == cw) ? 1 : -1;
+  const double rc = (r_start + r_end) / 2 + sign * h * (-dz) / chord;
+  const double zc = (z_start + z_end) / 2 + sign * h * dr / chord;
+  return arc_box(r_start, z_start, r_end, z_end, rc, zc, cw);
 }
 
 std::vector<xz_box> envelope_boxes(const interference_channel& e, const xz_box& tip) {
@@ -95,7 +108,7 @@ struct channel_data {
   const interference_channel* env = nullptr;
   std::string file;  // the program's name, as in messages
   channel_spindles spindles;
-  std::vector<segment_data> segments{1};
+  std::vector<segment_data> segments = std::vector<segment_data>(1);
   double x = 0, z = 0;
   bool known_x = false, known_z = false;
   int motion = 0;
@@ -275,20 +288,8 @@ struct interference_check::impl {
   // The box of an arc given by its centre (I, K: radius values from the start) or its radius R.
   static xz_box arc_of(double r0, double z0, double r1, double z1, const nc_word* iw, const nc_word* kw,
                        const nc_word* rw, bool cw) {
-    double rc = r0, zc = z0;
-    if (iw || kw) {
-      rc = r0 + (iw ? iw->number : 0);
-      zc = z0 + (kw ? kw->number : 0);
-    } else {
-      const double radius = rw->number, dr = r1 - r0, dz = z1 - z0, chord = std::hypot(dr, dz);
-      if (chord < 1e-12 || std::abs(radius) < chord / 2) return unite({r0, r0, z0, z0}, {r1, r1, z1, z1});
-      const double h = std::sqrt(radius * radius - chord * chord / 4);
-      // Of the two centres, a cw minor arc (R > 0) has its centre to the right of the chord.
-      const double sign = ((radius > 0) == cw) ? -1 : 1;
-      rc = (r0 + r1) / 2 + sign * h * (-dz) / chord;
-      zc = (z0 + z1) / 2 + sign * h * dr / chord;
-    }
-    return arc_box(r0, z0, r1, z1, rc, zc, cw);
+    if (iw || kw) return arc_box(r0, z0, r1, z1, r0 + (iw ? iw->number : 0), z0 + (kw ? kw->number : 0), cw);
+    return arc_box_radius(r0, z0, r1, z1, rw->number, cw);
   }
 
   void wait(const nc_wait& w) {
@@ -319,12 +320,14 @@ struct interference_check::impl {
   }
   std::string between(const channel_data& c, std::size_t seg) const {
     // The waits as file:line places: post moves them to their CL records (post/sync_at_cl).
-    const std::string from = seg == 0 ? std::string("its start")
-                                      : fmt::format("M{} ({}:{})", c.segments[seg - 1].wait_code, c.file,
-                                                    c.segments[seg - 1].wait_line);
-    const std::string to = c.segments[seg].wait_code ? fmt::format("M{} ({}:{})", c.segments[seg].wait_code,
-                                                                   c.file, c.segments[seg].wait_line)
-                                                     : std::string("its end");
+    const std::string from = seg == 0
+                                 ? std::string("its start")
+                                 : fmt::format("{}{} ({}:{})", m.waits.address, c.segments[seg - 1].wait_code,
+                                               c.file, c.segments[seg - 1].wait_line);
+    const std::string to = c.segments[seg].wait_code
+                               ? fmt::format("{}{} ({}:{})", m.waits.address, c.segments[seg].wait_code,
+                                             c.file, c.segments[seg].wait_line)
+                               : std::string("its end");
     return fmt::format("between {} and {}", from, to);
   }
 

@@ -28,6 +28,10 @@ namespace twinpost {
 /// A full circle when start and end are one point.
 xz_box arc_box(double r_start, double z_start, double r_end, double z_end, double r_c, double z_c, bool cw);
 
+/// The box of an arc given by its radius (G2/G3 R): R > 0 the arc of at most 180 degrees, R < 0
+/// the longer one; an R too short for the chord gives the box of the two ends.
+xz_box arc_box_radius(double r_start, double z_start, double r_end, double z_end, double radius, bool cw);
+
 /// The boxes of channel `e` around the swept tip box `tip` (r as programmed: X/2), in the frame
 /// of the spindle: r mirrored for a lower turret (side -1).
 std::vector<xz_box> envelope_boxes(const interference_channel& e, const xz_box& tip);

@@ -40,6 +40,12 @@ TEST_CASE("interference: the swept box of an arc takes the quadrant points it pa
   // below the centre (r -5), clockwise above it (r 15).
   same_box(arc_box(5, 0, 5, 20, 5, 10, false), -5, 5, 0, 20);
   same_box(arc_box(5, 0, 5, 20, 5, 10, true), 5, 15, 0, 20);
+  // Given by R: the same quarter clockwise (R 10: about (0, 0)); R -10, the longer way about
+  // (10, 10): through r 20 and z 20.
+  same_box(arc_box_radius(10, 0, 0, 10, 10, true), 0, 10, 0, 10);
+  same_box(arc_box_radius(10, 0, 0, 10, -10, true), 0, 20, 0, 20);
+  // Counter-clockwise with R 10 the short arc is about (10, 10): its box is the chord's too.
+  same_box(arc_box_radius(10, 0, 0, 10, 10, false), 0, 10, 0, 10);
   // Start and end in one point: the full circle.
   same_box(arc_box(3, 0, 3, 0, 0, 0, true), -3, 3, -3, 3);
 }
