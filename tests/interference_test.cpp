@@ -182,3 +182,26 @@ TEST_CASE("interference: the timeline carries the conflicts and the page marks b
   CHECK(sound.conflicts.empty());
   CHECK(format_timeline_json(sound).find("conflicts") == std::string::npos);
 }
+
+TEST_CASE("interference: a static zone of the spindle, however the waits pair", "[analysis]") {
+  // fanuc-0itd-twin with a chuck zone for this job: |r| up to 80 mm, Z -250 to -180.
+  const machine twin =
+      parse_machine(find_machine("fanuc-0itd-twin", {}).text +
+                        "\n[[interference.zone]]\nspindle = \"main\"\nbox = [0.0, 80.0, -250.0, -180.0]\n",
+                    "m.toml");
+  const std::string head = "%\nO1000\nG0 G18 G21 G40 G54 G80 G99\n";
+  // Turning at X60 to Z-172: the tool box reaches 5 mm past the tip towards the chuck, 3 mm from
+  // it (the turret body, 90 mm and more from the axis, passes 10 mm outside the chuck's 80).
+  const std::string near =
+      head + "T0101\nG97 S1000 M3\nG0 X60. Z2.\nM100\nG1 Z-172. F0.2\nG0 X100. Z100.\nM101\nM30\n%\n";
+  const std::string idle = head + "T0505\nM100\nM101\nM30\n%\n";
+  CHECK(check(twin, near, idle) ==
+        "A_1.nc:8:1: error: channel 1 (T0101 at X60 Z-172) comes within 3.0 mm of the main spindle's static "
+        "zone "
+        "[0, 80, -250, -180] (interference.zone), 5 mm required\n"
+        "G1 Z-172. F0.2\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+  const std::string clear =
+      head + "T0101\nG97 S1000 M3\nG0 X60. Z2.\nM100\nG1 Z-160. F0.2\nG0 X100. Z100.\nM101\nM30\n%\n";
+  CHECK(check(twin, clear, idle) == "check: 2 channels, 4 waits paired, 0 errors\n");
+}
