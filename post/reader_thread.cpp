@@ -25,15 +25,15 @@ struct line_ref {
 // the reader would have: the diagnostics between them and their records' source lines.
 struct batch {
   std::vector<event> events;
-  std::vector<std::uint32_t> record_of;      // per event: its record (index into record_start)
-  std::vector<std::uint32_t> record_start;   // per record: its first line in `lines`
-  std::vector<line_ref> lines;               // the records' physical lines, one after another
-  std::string text;                          // their text
+  std::vector<std::uint32_t> record_of;     // per event: its record (index into record_start)
+  std::vector<std::uint32_t> record_start;  // per record: its first line in `lines`
+  std::vector<line_ref> lines;              // the records' physical lines, one after another
+  std::string text;                         // their text
   std::vector<std::pair<std::size_t, diagnostic>> diagnostics;  // each before event [first]
-  std::size_t bytes = 0, records = 0;        // the reader's counts at the batch's end
-  bool last = false;                         // the input ends after it
-  std::uint32_t end_record = 0;              // last: the record read last
-  std::exception_ptr error;                  // last: the reader threw this
+  std::size_t bytes = 0, records = 0;                           // the reader's counts at the batch's end
+  bool last = false;                                            // the input ends after it
+  std::uint32_t end_record = 0;                                 // last: the record read last
+  std::exception_ptr error;                                     // last: the reader threw this
 
   void clear() {
     events.clear();
