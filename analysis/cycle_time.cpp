@@ -373,15 +373,25 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
   // One reading: the check's first pass feeds the timeline too (what it built is dropped
   // when the check finds anything).
   timeline_builder b(m, o);
+  interference_check meet(m);  // its findings are marked on the page, not a reason for no timeline
   nc_read_options read;
-  read.on_block = [&](const nc_block& blk) { b.block(blk); };
-  read.on_wait = [&](const nc_wait& w) { b.wait(w); };
+  read.on_block = [&](const nc_block& blk) {
+    b.block(blk);
+    if (meet.active()) meet.block(blk);
+  };
+  read.on_wait = [&](const nc_wait& w) {
+    b.wait(w);
+    meet.wait(w);
+  };
   sync_result check = check_nc_files(files, m, read);
   if (!check.ok) {
     tl.diagnostics = std::move(check.diagnostics);
     return tl;
   }
   timeline out = b.finish(check.rendezvous);
+  out.conflicts = meet.finish(check.rendezvous, true);
+  out.meetings = meet.meetings();
+  fill_source_lines(out.conflicts, files, m);
   out.diagnostics.insert(out.diagnostics.begin(), check.diagnostics.begin(), check.diagnostics.end());
   return out;
 }

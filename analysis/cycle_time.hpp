@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/interference.hpp"
 #include "check/nc_program.hpp"
 #include "machines/machine.hpp"
 #include "support/diagnostics.hpp"
@@ -111,6 +112,10 @@ struct timeline {
   long untimed = 0;                          ///< blocks of all channels not timed
   std::vector<untimed_group> untimed_kinds;  ///< per kind, in channel then program order
   std::vector<idle_note> advice;             ///< the longest idles, longest first (at most 3)
+  /// The turret interference rule's findings (analysis/interference.hpp), each error with its
+  /// note at the other channel's block; the programs are timed all the same (make_timeline).
+  std::vector<diagnostic> conflicts;
+  std::vector<interference_meeting> meetings;  ///< the same conflicts' envelopes (the page's pictures)
 };
 
 /// Every block of channel `channel` of a timeline `t` made from `files`, timed and placed in

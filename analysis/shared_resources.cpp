@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <optional>
 
+#include "analysis/interference.hpp"
 #include "analysis/spindle_state.hpp"
 
 namespace twinpost {
@@ -306,28 +307,7 @@ struct shared_resources::impl {
   // --- happens-before -------------------------------------------------------------------
 
   void make_clocks(const std::vector<std::uint64_t>& rendezvous) {
-    const std::size_t n = channels.size();
-    clocks.assign(n, {});
-    std::vector<std::vector<int>> now(n, std::vector<int>(n, 0));
-    for (std::size_t c = 0; c < n; ++c) clocks[c].push_back(now[c]);
-    for (std::uint64_t members : rendezvous) {
-      std::vector<int> merged(n, 0);
-      for (std::uint64_t b = members; b; b &= b - 1) {
-        const auto c = static_cast<std::size_t>(std::countr_zero(b));
-        if (c >= n) continue;
-        for (std::size_t k = 0; k < n; ++k) merged[k] = std::max(merged[k], now[c][k]);
-      }
-      for (std::uint64_t b = members; b; b &= b - 1) {
-        const auto c = static_cast<std::size_t>(std::countr_zero(b));
-        if (c < n) ++merged[c];
-      }
-      for (std::uint64_t b = members; b; b &= b - 1) {
-        const auto c = static_cast<std::size_t>(std::countr_zero(b));
-        if (c >= n) continue;
-        now[c] = merged;
-        clocks[c].push_back(merged);
-      }
-    }
+    clocks = segment_clocks(rendezvous, channels.size());
   }
 
   bool known(int channel, int seg) const {
@@ -604,6 +584,32 @@ struct shared_resources::impl {
   }
 };
 
+std::vector<std::vector<std::vector<int>>> segment_clocks(const std::vector<std::uint64_t>& rendezvous,
+                                                          std::size_t n) {
+  std::vector<std::vector<std::vector<int>>> clocks(n);
+  std::vector<std::vector<int>> now(n, std::vector<int>(n, 0));
+  for (std::size_t c = 0; c < n; ++c) clocks[c].push_back(now[c]);
+  for (std::uint64_t members : rendezvous) {
+    std::vector<int> merged(n, 0);
+    for (std::uint64_t b = members; b; b &= b - 1) {
+      const auto c = static_cast<std::size_t>(std::countr_zero(b));
+      if (c >= n) continue;
+      for (std::size_t k = 0; k < n; ++k) merged[k] = std::max(merged[k], now[c][k]);
+    }
+    for (std::uint64_t b = members; b; b &= b - 1) {
+      const auto c = static_cast<std::size_t>(std::countr_zero(b));
+      if (c < n) ++merged[c];
+    }
+    for (std::uint64_t b = members; b; b &= b - 1) {
+      const auto c = static_cast<std::size_t>(std::countr_zero(b));
+      if (c >= n) continue;
+      now[c] = merged;
+      clocks[c].push_back(merged);
+    }
+  }
+  return clocks;
+}
+
 shared_resources::shared_resources(const machine& m) : p_(std::make_unique<impl>(m)) {}
 shared_resources::~shared_resources() = default;
 
@@ -628,9 +634,13 @@ std::vector<diagnostic> shared_resources::finish(const std::vector<std::uint64_t
 
 namespace {
 
-// The rules' findings after the checker's, counted in the result.
-void add_findings(sync_result& r, shared_resources& rules) {
-  std::vector<diagnostic> found = rules.finish(r.rendezvous, r.ok);
+// The rules' findings after the checker's, counted in the result; the interference rule's
+// (analysis/interference) after the spindle rules'.
+void add_findings(sync_result& r, shared_resources& rules, interference_check& meet) {
+  const bool sound = r.ok;
+  std::vector<diagnostic> found = rules.finish(r.rendezvous, sound);
+  std::vector<diagnostic> met = meet.finish(r.rendezvous, sound);
+  found.insert(found.end(), met.begin(), met.end());
   if (found.empty()) return;
   r.diagnostics.insert(r.diagnostics.end(), found.begin(), found.end());
   diagnostic_counts n;
@@ -641,16 +651,25 @@ void add_findings(sync_result& r, shared_resources& rules) {
 }
 
 // The rules fed by a reading, and `more` with them.
-nc_read_options feeding(shared_resources& rules, const nc_read_options& more) {
+nc_read_options feeding(shared_resources& rules, interference_check& meet, const nc_read_options& more) {
   nc_read_options also;
   // `more` first: the cycle time splits every block, and the rules, which ask most blocks
   // only for their letters, then find them exact without a scan of their own.
-  also.on_block = [&rules, more](const nc_block& b) {
-    if (more.on_block) more.on_block(b);
-    rules.block(b);
-  };
-  also.on_wait = [&rules, more](const nc_wait& w) {
+  if (meet.active()) {  // a machine without envelopes pays nothing per block for the rule
+    also.on_block = [&rules, &meet, more](const nc_block& b) {
+      if (more.on_block) more.on_block(b);
+      rules.block(b);
+      meet.block(b);
+    };
+  } else {
+    also.on_block = [&rules, more](const nc_block& b) {
+      if (more.on_block) more.on_block(b);
+      rules.block(b);
+    };
+  }
+  also.on_wait = [&rules, &meet, more](const nc_wait& w) {
     rules.wait(w.channel);
+    meet.wait(w);
     if (more.on_wait) more.on_wait(w);
   };
   return also;
@@ -661,14 +680,18 @@ nc_read_options feeding(shared_resources& rules, const nc_read_options& more) {
 sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
                                const nc_read_options& more) {
   shared_resources rules(m);
-  sync_result r = check_nc_files(files, m, feeding(rules, more));
-  add_findings(r, rules);
+  interference_check meet(m);
+  sync_result r = check_nc_files(files, m, feeding(rules, meet, more));
+  add_findings(r, rules, meet);
+  fill_source_lines(r.diagnostics, files, m);
   return r;
 }
 
 struct compact_resource_check::impl {
-  impl(const machine& m, const nc_read_options& more) : rules(m), compact(m, feeding(rules, more)) {}
+  impl(const machine& m, const nc_read_options& more)
+      : rules(m), meet(m), compact(m, feeding(rules, meet, more)) {}
   shared_resources rules;
+  interference_check meet;
   compact_sync_check compact;
 };
 
@@ -682,7 +705,7 @@ const nc_read_options& compact_resource_check::options() const { return p_->comp
 std::optional<sync_result> compact_resource_check::result(const nc_programs& programs,
                                                           const diagnostic_list& read) {
   std::optional<sync_result> r = p_->compact.result(programs, read);
-  if (r) add_findings(*r, p_->rules);
+  if (r) add_findings(*r, p_->rules, p_->meet);
   return r;
 }
 

@@ -33,6 +33,13 @@
 
 namespace twinpost {
 
+/// The vector clocks of the rendezvous (sync_result::rendezvous) for `channels` channels:
+/// [channel-1][segment][other-1] = how many segments of channel `other` are over before that
+/// segment of `channel` begins (docs/shared-resources.md, "The model"). Shared by the spindle
+/// rules and the interference rule (analysis/interference).
+std::vector<std::vector<std::vector<int>>> segment_clocks(const std::vector<std::uint64_t>& rendezvous,
+                                                          std::size_t channels);
+
 class shared_resources {
  public:
   explicit shared_resources(const machine& m);

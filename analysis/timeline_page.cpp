@@ -64,6 +64,7 @@ class page {
     for (std::size_t i = 0; i < t_.channels.size(); ++i) lane(s, t_.channels[i], lane_y(i));
     links(s);
     critical(s);
+    conflicts(s);
     s += "</svg>\n";
     return s;
   }
@@ -177,6 +178,26 @@ class page {
       }
   }
 
+  // Each conflict of the interference rule: a red bar across its lane at its block, where the
+  // block was kept (timeline_options::keep_blocks), the message as its tip.
+  void conflicts(std::string& s) const {
+    for (const diagnostic& d : t_.conflicts) {
+      const int channel = conflict_channel(t_, d);
+      if (channel < 1) continue;
+      const channel_times& c = t_.channels[static_cast<std::size_t>(channel - 1)];
+      const auto k =
+          std::find_if(c.kept.begin(), c.kept.end(), [&](const timed_block& b) { return b.line == d.line; });
+      if (k == c.kept.end()) continue;
+      const std::string tip = escape(fmt::format("{}:{}: {}", d.file, d.line, d.message));
+      s += fmt::format(
+          "<rect class=\"conflict\" data-channel=\"{}\" x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" "
+          "height=\"{}\" fill=\"none\" stroke=\"#d62728\" stroke-width=\"2\" "
+          "data-tip=\"{}\"><title>{}</title></rect>\n",
+          channel, x(k->start), lane_y(static_cast<std::size_t>(channel - 1)) - 2,
+          std::max(k->seconds * scale_, 3.0), lane_height + 4, tip, tip);
+    }
+  }
+
   void critical(std::string& s) const {
     for (const critical_stretch& c : t_.critical) {
       const double y = lane_y(static_cast<std::size_t>(c.channel - 1)) + lane_height + 4;
@@ -192,6 +213,49 @@ class page {
   double scale_ = 1;
   std::map<std::string, std::string> colours_;
 };
+
+// A picture of one conflict of the interference rule: the two blocks' envelopes in the XZ plane
+// of their spindle (Z to the right, r up, the spindle axis dashed), each channel's boxes in its
+// colour, the swept tip boxes solid.
+std::string meeting_svg(const interference_meeting& g) {
+  xz_box all = g.tip_a;
+  auto grow = [&](const xz_box& b) {
+    all = {std::min(all.r0, b.r0), std::max(all.r1, b.r1), std::min(all.z0, b.z0), std::max(all.z1, b.z1)};
+  };
+  for (const auto* v : {&g.envelope_a, &g.envelope_b})
+    for (const xz_box& b : *v) grow(b);
+  grow(g.tip_b);
+  const double pad = 10, span_z = all.z1 - all.z0 + 2 * pad, span_r = all.r1 - all.r0 + 2 * pad;
+  // At most 360 wide and 300 high, one scale for both axes (true shapes).
+  const double scale = std::min(360 / std::max(span_z, 1.0), 300 / std::max(span_r, 1.0));
+  const double w = span_z * scale, h = span_r * scale;
+  const auto px = [&](double z) { return (z - all.z0 + pad) * scale; };
+  const auto py = [&](double r) { return (all.r1 + pad - r) * scale; };
+  std::string s = fmt::format(
+      "<svg class=\"envelopes\" width=\"{:.0f}\" height=\"{:.0f}\" viewBox=\"0 0 {:.0f} {:.0f}\" "
+      "style=\"border:1px solid #ccc;margin:4px\">\n",
+      w, h, w, h);
+  s += fmt::format(
+      "<line x1=\"0\" y1=\"{0:.1f}\" x2=\"{1:.0f}\" y2=\"{0:.1f}\" stroke=\"#888\" "
+      "stroke-dasharray=\"6,3\"/>\n",
+      py(0), w);
+  const auto boxes = [&](const std::vector<xz_box>& v, const xz_box& tip, const char* colour, int channel) {
+    for (const xz_box& b : v)
+      s += fmt::format(
+          "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\" "
+          "fill-opacity=\"0.25\" "
+          "stroke=\"{}\"><title>channel {}: r {:g}..{:g}, Z {:g}..{:g}</title></rect>\n",
+          px(b.z0), py(b.r1), std::max((b.z1 - b.z0) * scale, 1.0), std::max((b.r1 - b.r0) * scale, 1.0),
+          colour, colour, channel, b.r0, b.r1, b.z0, b.z1);
+    s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"{}\"/>\n",
+                     px(tip.z0), py(tip.r1), std::max((tip.z1 - tip.z0) * scale, 2.0),
+                     std::max((tip.r1 - tip.r0) * scale, 2.0), colour);
+  };
+  boxes(g.envelope_a, g.tip_a, "#1f77b4", g.channel_a);
+  boxes(g.envelope_b, g.tip_b, "#ff7f0e", g.channel_b);
+  s += "</svg>\n";
+  return s;
+}
 
 // The inline script: a tooltip for data-tip, and the totals table built from the data.
 constexpr const char* script = R"JS(
@@ -262,6 +326,19 @@ std::string timeline_page(const timeline& t, std::string_view title) {
   if (t.advice.empty()) h += "no channel idles at a wait.";
   for (std::size_t i = 0; i < t.advice.size(); ++i) h += (i ? "; " : "") + escape(advice_text(t.advice[i]));
   h += "</p>\n";
+  if (!t.conflicts.empty()) {  // the interference rule's findings, marked on the lanes too
+    h += "<p class=\"conflicts\"><b>Turrets may meet</b> (docs/interference.md):";
+    for (const diagnostic& d : t.conflicts)
+      if (d.level == severity::error) h += escape(fmt::format(" {}:{}: {}", d.file, d.line, d.message));
+    h += "</p>\n";
+    // The envelopes of each conflict, XZ view (channel colours: the first blue, the second orange).
+    for (const interference_meeting& g : t.meetings)
+      h += fmt::format(
+          "<figure class=\"meeting\">{}<figcaption>{}:{} (channel {}, blue) and {}:{} (channel {}, "
+          "orange) on the {} spindle, Z to the right, r up: {:.1f} mm apart</figcaption></figure>\n",
+          meeting_svg(g), escape(g.file_a), g.line_a, g.channel_a, escape(g.file_b), g.line_b, g.channel_b,
+          escape(g.spindle), g.distance);
+  }
   h += p.legend();
   h += p.svg();
   h += "<table id=\"totals\"><thead><tr><th>channel</th><th>program</th><th>working</th><th>idle</th>"

@@ -14,6 +14,12 @@ std::string num(double v) { return fmt::format("{:.3f}", v); }
 
 }  // namespace
 
+int conflict_channel(const timeline& t, const diagnostic& d) {
+  for (const channel_times& c : t.channels)
+    if (c.file == d.file) return c.channel;
+  return 0;
+}
+
 std::string advice_text(const idle_note& n) {
   std::string s =
       fmt::format("channel {} idles {} at {} ({})", n.channel, seconds(n.seconds), n.code, place(n.where));
@@ -43,6 +49,9 @@ std::string format_timeline_text(const timeline& t, std::string_view indent) {
     for (const idle_note& n : t.advice) s += (s.empty() ? "" : "; ") + advice_text(n);
     out += fmt::format("{}  balance: {}\n", indent, s);
   }
+  for (const diagnostic& d : t.conflicts)  // the interference rule's (only where it found some)
+    if (d.level == severity::error)
+      out += fmt::format("{}  turrets may meet: {}:{}: {}\n", indent, d.file, d.line, d.message);
   return out;
 }
 
@@ -122,7 +131,21 @@ void write_timeline_json(const timeline& t, const std::function<void(std::string
         k ? "," : "", n.channel, num(n.seconds), json_quote(n.code), json_quote(n.where.file), n.where.line,
         n.waited_for, json_quote(advice_text(n)));
   }
-  o += "]}\n";
+  o += "]";
+  // The interference rule's findings, only where there are some (the data of a sound job is
+  // unchanged): each with its channel (by its file) and its place in time when it was kept.
+  if (!t.conflicts.empty()) {
+    o += ",\"conflicts\":[";
+    for (std::size_t k = 0; k < t.conflicts.size(); ++k) {
+      const diagnostic& d = t.conflicts[k];
+      o += fmt::format("{}{{\"channel\":{},\"severity\":{},\"file\":{},\"line\":{},\"message\":{}}}",
+                       k ? "," : "", conflict_channel(t, d),
+                       json_quote(d.level == severity::error ? "error" : "note"), json_quote(d.file), d.line,
+                       json_quote(d.message));
+    }
+    o += "]";
+  }
+  o += "}\n";
   flush(true);
 }
 

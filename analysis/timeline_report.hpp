@@ -28,6 +28,10 @@ std::string format_timeline_json(const timeline& t);
 /// (PART_2.nc:14) waiting for channel 1".
 std::string advice_text(const idle_note& n);
 
+/// The channel whose program holds the place of `d` (a conflict of timeline::conflicts), by
+/// its file; 0 when none.
+int conflict_channel(const timeline& t, const diagnostic& d);
+
 /// One HTML file, nothing fetched: a lane per channel, operations coloured by tool, waits
 /// linked across lanes, idle in grey, the critical path, totals; `title` heads it.
 std::string timeline_page(const timeline& t, std::string_view title);

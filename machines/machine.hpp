@@ -293,6 +293,44 @@ struct cycle_rules {
   }};
 };
 
+/// A box in the XZ plane of a spindle: radius (mm from the spindle axis, signed: the side of
+/// channel 1's turret is +) and Z (the program's Z of that spindle).
+struct xz_box {
+  double r0 = 0, r1 = 0, z0 = 0, z1 = 0;
+};
+
+/// [[interference.channel]]: what moves with a channel's tool tip (docs/interference.md).
+struct interference_channel {
+  int channel = 0;
+  /// +1: the tool works on the + side of the spindle axis at a positive X (an upper turret);
+  /// -1: a mirrored (lower) turret, whose X is programmed positive on the other side.
+  int side = 1;
+  /// The tool and the turret or head body, each as a box relative to the tool tip on the
+  /// turret's own side (r: away from the spindle axis towards the turret; z: along Z).
+  std::vector<xz_box> boxes;
+};
+
+/// [[interference.zone]]: a static zone of a spindle (chuck and jaws, tailstock), in the
+/// program's coordinates of that spindle, r symmetric about the axis (|r| <= r1, from r0).
+struct interference_zone {
+  std::string spindle;
+  xz_box box;
+};
+
+/// [interference]: the geometry for the turret interference rule (analysis/interference).
+/// No channels: the rule is off.
+struct interference_rules {
+  double clearance = 5;  ///< the least distance between two envelopes (mm)
+  std::vector<interference_channel> channels;
+  std::vector<interference_zone> zones;
+  /// The entry of channel `c`, or nullptr.
+  const interference_channel* channel(int c) const {
+    for (const interference_channel& e : channels)
+      if (e.channel == c) return &e;
+    return nullptr;
+  }
+};
+
 /// One machine and its control.
 struct machine {
   std::string name;  ///< "integrex-i200st"
@@ -317,6 +355,8 @@ struct machine {
   std::vector<kinematic_chain> kinematics;
   /// [milling]: live-tool work on a channel with a C axis (machines/millturn_rules.hpp).
   milling_rules milling;
+  /// [interference]: envelopes and static zones (docs/interference.md).
+  interference_rules interference;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

@@ -119,6 +119,9 @@ void read_head_index(const table_reader& channel, channel_def& c);
 /// [milling], after [limits].
 void read_milling(const table_reader& root, machine& m);
 
+/// [interference] (machine_interference.cpp), after the channels and spindles.
+void read_interference(const table_reader& root, machine& m);
+
 /// Throws at the first value of the file (in file order) that names a wait code of `m`
 /// outside [waits]: spindle codes, [codes], program blocks, tool calls; a default the file
 /// leaves in place is reported at the table that omits it (machines/code_overlap.hpp).

@@ -76,6 +76,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
   last_c_.max = m.formats['C'].max_count(axis_style_.decimals);
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
+  note_every_block_ = m.interference.channels.size() >= 2 && m.interference.channel(ch.number);
   chain_ = m.chain(ch.number);
   if (chain_) {
     for (std::size_t i = 0; i < chain_->rotaries.size(); ++i) {
@@ -94,6 +95,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
 
 void channel_writer::note_line(std::string_view line) {
   if (line.empty() || line.front() == m_.program.comment_open) return;
+  if (note_every_block_) block_cl_.push_back(line_);
   // Most blocks are moves without G, M or S: one table look-up per character says so.
   static constexpr auto gms = [] {
     std::array<bool, 256> t{};
@@ -210,6 +212,7 @@ void channel_writer::on_wait(const wait_mark& w) {
   ++waits_;
   cut_due_ = true;
   wait_cl_lines_.push_back(w.cl_line);
+  if (note_every_block_ && !block_cl_.empty()) wait_block_.push_back(block_cl_.size() - 1);
   if (w.both == wait_mark::section::opens_both && !m_.codes.balance_on.empty())
     out_.block(m_.codes.balance_on);
 }

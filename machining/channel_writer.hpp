@@ -95,6 +95,12 @@ class channel_writer {
   };
   /// Those blocks, in order (post/sync_at_cl moves findings at them to their CL records).
   const std::vector<noted_block>& noted_blocks() const { return noted_; }
+  /// The CL line of every block written after the head (no comment lines), in order, for a
+  /// channel the turret interference rule watches (machine.interference); else empty. The
+  /// rule's findings may be at any move (post/sync_at_cl).
+  const std::vector<int>& block_cl_lines() const { return block_cl_; }
+  /// The index into block_cl_lines() of each wait block, in order (the same channels).
+  const std::vector<std::size_t>& wait_block_indices() const { return wait_block_; }
 
  private:
   void motion(const motion_event& m, int line);
@@ -547,6 +553,9 @@ class channel_writer {
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
   std::vector<noted_block> noted_;
+  std::vector<int> block_cl_;            ///< block_cl_lines()
+  std::vector<std::size_t> wait_block_;  ///< wait_block_indices()
+  bool note_every_block_ = false;
   bool cut_due_ = true;                     ///< the next G1/G2/G3 line is noted
   const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
   bool chain_heads_ = false;                ///< a rotary axis of it turns the tool (the length matters)

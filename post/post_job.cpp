@@ -13,6 +13,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "analysis/interference.hpp"
 #include "analysis/shared_resources.hpp"
 #include "analysis/timeline_report.hpp"
 #include "channels/job_channels.hpp"
@@ -320,9 +321,12 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
   }
   sync_result check = done ? std::move(*done) : check_nc_resources(sources, m, more);
   if (!check.diagnostics.empty()) {
+    fill_source_lines(check.diagnostics, sources, m);  // the interference rule's (done: not yet)
     std::vector<std::vector<int>> wait_lines;
     std::vector<std::vector<cl_block>> blocks;
+    std::vector<cl_block_index> block_lines;  // the interference rule's (channel_writer::block_cl_lines)
     for (auto& w : ws.writers) {
+      block_lines.push_back({w->block_cl_lines(), w->wait_block_indices()});
       wait_lines.push_back(w->wait_cl_lines());
       // The head's lines first (no CL record), so that a block of the same text there is
       // counted as the checker reads it.
@@ -336,8 +340,8 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
       for (const channel_writer::noted_block& b : w->noted_blocks())
         blocks.back().push_back({b.segment, b.text, b.cl_line});
     }
-    for (diagnostic& d :
-         sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines, last_line, blocks))
+    for (diagnostic& d : sync_diagnostics_at_cl(check.diagnostics, sources, m, o.cl_path, wait_lines,
+                                                last_line, blocks, block_lines))
       sink.report(std::move(d));
   }
   rendezvous = std::move(check.rendezvous);

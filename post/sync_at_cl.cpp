@@ -79,7 +79,8 @@ std::string_view plain_text(std::string_view s) {
 // k-th block of that text after the same number of waits, in the channel's program order.
 std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, const machine& m,
                                           const std::set<std::string>& wanted,
-                                          const std::vector<std::vector<cl_block>>& blocks) {
+                                          const std::vector<std::vector<cl_block>>& blocks,
+                                          const std::vector<cl_block_index>& block_lines) {
   std::map<std::string, int> out;
   if (wanted.empty() || blocks.empty()) return out;
   using key = std::pair<int, std::string>;  // segment, text
@@ -89,9 +90,22 @@ std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, c
       written[c][{b.segment, std::string(plain_text(b.text))}].push_back(b.cl_line);
   std::vector<int> segment(blocks.size(), 0);
   std::vector<std::map<key, std::size_t>> seen(blocks.size());
+  // For block_lines: each channel's blocks counted as read, its waits' counts, and the wanted
+  // blocks not among `blocks` with their count and segment.
+  struct found_at {
+    std::size_t channel, ordinal;
+    int segment;
+  };
+  std::vector<std::size_t> ordinal(blocks.size(), 0);
+  std::vector<std::vector<std::size_t>> wait_ordinals(blocks.size());
+  std::map<std::string, found_at> by_count;
   nc_read_options o;
   o.on_wait = [&](const nc_wait& w) {
-    if (w.channel >= 1 && static_cast<std::size_t>(w.channel) <= segment.size()) ++segment[w.channel - 1];
+    if (w.channel >= 1 && static_cast<std::size_t>(w.channel) <= segment.size()) {
+      const auto c = static_cast<std::size_t>(w.channel - 1);
+      ++segment[c];
+      wait_ordinals[c].push_back(ordinal[c] - 1);  // its block came just before
+    }
   };
   o.on_block = [&](const nc_block& b) {
     const int channel = b.channel;
@@ -100,26 +114,40 @@ std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, c
     const std::string_view text = b.text;
     if (channel < 1 || static_cast<std::size_t>(channel) > blocks.size()) return;
     const auto c = static_cast<std::size_t>(channel - 1);
+    const std::size_t n = ordinal[c]++;
     const key k{segment[c], std::string(plain_text(text))};
     const auto it = written[c].find(k);
-    if (it == written[c].end()) return;
+    if (it == written[c].end()) {
+      if (c < block_lines.size() && !block_lines[c].cl_lines.empty() && wanted.count(place(file, line)))
+        by_count[place(file, line)] = {c, n, segment[c]};
+      return;
+    }
     const std::size_t nth = seen[c][k]++;
     const std::string at = place(file, line);
     if (nth < it->second.size() && it->second[nth] > 0 && wanted.count(at)) out[at] = it->second[nth];
   };
   diagnostic_list ignored;
   read_nc_programs(files, m, ignored, o);
+  for (const auto& [at, f] : by_count) {
+    const cl_block_index& w = block_lines[f.channel];
+    const std::vector<std::size_t>& read_waits = wait_ordinals[f.channel];
+    // Anchored at the wait before it, or (before any wait) at the first wait.
+    const auto anchor = static_cast<std::size_t>(f.segment > 0 ? f.segment - 1 : 0);
+    if (anchor >= read_waits.size() || anchor >= w.waits.size()) continue;
+    const long index = static_cast<long>(w.waits[anchor]) + static_cast<long>(f.ordinal) -
+                       static_cast<long>(read_waits[anchor]);
+    if (index >= 0 && static_cast<std::size_t>(index) < w.cl_lines.size() && w.cl_lines[index] > 0)
+      out[at] = w.cl_lines[static_cast<std::size_t>(index)];
+  }
   return out;
 }
 
 }  // namespace
 
-std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& found,
-                                               const std::vector<nc_source>& files, const machine& m,
-                                               const std::string& cl_path,
-                                               const std::vector<std::vector<int>>& wait_cl_lines,
-                                               int cl_last_line,
-                                               const std::vector<std::vector<cl_block>>& blocks) {
+std::vector<diagnostic> sync_diagnostics_at_cl(
+    const std::vector<diagnostic>& found, const std::vector<nc_source>& files, const machine& m,
+    const std::string& cl_path, const std::vector<std::vector<int>>& wait_cl_lines, int cl_last_line,
+    const std::vector<std::vector<cl_block>>& blocks, const std::vector<cl_block_index>& block_lines) {
   // The programs are read again only here, when something was found.
   diagnostic_list ignored;
   const nc_programs programs = read_nc_programs(files, m, ignored);
@@ -136,7 +164,7 @@ std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& fo
   for (const diagnostic& d : found)
     if (d.line > 0 && !cl_line_of.count(place(d.file, d.line))) wanted.insert(place(d.file, d.line));
   std::set<std::string> at_blocks;
-  for (const auto& [nc, line] : block_cl_lines(files, m, wanted, blocks)) {
+  for (const auto& [nc, line] : block_cl_lines(files, m, wanted, blocks, block_lines)) {
     cl_line_of[nc] = line;
     at_blocks.insert(nc);
   }

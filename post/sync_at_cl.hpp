@@ -17,6 +17,12 @@ namespace twinpost {
 /// A block a channel wrote that may carry a finding of the shared-resource rules
 /// (analysis/shared_resources): the waits written before it, its text, its CL record (0: none,
 /// a line of the program's head).
+/// Every block a channel wrote after its head, by CL line, and the indices of its waits.
+struct cl_block_index {
+  std::vector<int> cl_lines;
+  std::vector<std::size_t> waits;
+};
+
 struct cl_block {
   int segment = 0;
   std::string text;
@@ -29,11 +35,16 @@ struct cl_block {
 /// `blocks[c]`: channel c+1's blocks that may carry a finding of the shared-resource rules,
 /// in order; a finding at one (the k-th block of its text after the same number of waits) is
 /// moved to its CL record, with a note at the block as it would have been written.
+/// `block_lines[c]`: the CL line of every block channel c+1 wrote after its head, and which of
+/// them are its waits (channel_writer::block_cl_lines, wait_block_indices), for findings at any
+/// block (the interference rule): a block is found by how many blocks it lies after the wait
+/// before it (before the first wait: before that wait). Empty: only `blocks` are matched.
 std::vector<diagnostic> sync_diagnostics_at_cl(const std::vector<diagnostic>& found,
                                                const std::vector<nc_source>& files, const machine& m,
                                                const std::string& cl_path,
                                                const std::vector<std::vector<int>>& wait_cl_lines,
                                                int cl_last_line,
-                                               const std::vector<std::vector<cl_block>>& blocks = {});
+                                               const std::vector<std::vector<cl_block>>& blocks = {},
+                                               const std::vector<cl_block_index>& block_lines = {});
 
 }  // namespace twinpost

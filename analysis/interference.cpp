@@ -1,0 +1,509 @@
+#include "analysis/interference.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "analysis/shared_resources.hpp"
+#include "analysis/spindle_state.hpp"
+
+namespace twinpost {
+
+xz_box arc_box(double r_start, double z_start, double r_end, double z_end, double r_c, double z_c, bool cw) {
+  xz_box b{std::min(r_start, r_end), std::max(r_start, r_end), std::min(z_start, z_end),
+           std::max(z_start, z_end)};
+  const double radius = std::hypot(r_start - r_c, z_start - z_c);
+  // Angles with Z as the horizontal axis and r as the vertical one.
+  const double a0 = std::atan2(r_start - r_c, z_start - z_c);
+  const double a1 = std::atan2(r_end - r_c, z_end - z_c);
+  constexpr double two_pi = 2 * std::numbers::pi;
+  // The sweep counter-clockwise from the start: cw arcs are swept from the end instead.
+  double from = cw ? a1 : a0, to = cw ? a0 : a1;
+  double span = std::fmod(to - from + 2 * two_pi, two_pi);
+  if (std::abs(r_start - r_end) < 1e-9 && std::abs(z_start - z_end) < 1e-9) span = two_pi;
+  for (int q = 0; q < 4; ++q) {
+    const double at = q * std::numbers::pi / 2;  // +z, +r, -z, -r
+    if (std::fmod(at - from + 2 * two_pi, two_pi) <= span + 1e-12) {
+      const double r = r_c + radius * std::sin(at), z = z_c + radius * std::cos(at);
+      b.r0 = std::min(b.r0, r);
+      b.r1 = std::max(b.r1, r);
+      b.z0 = std::min(b.z0, z);
+      b.z1 = std::max(b.z1, z);
+    }
+  }
+  return b;
+}
+
+xz_box arc_box_radius(double r_start, double z_start, double r_end, double z_end, double radius, bool cw) {
+  const double dr = r_end - r_start, dz = z_end - z_start, chord = std::hypot(dr, dz);
+  const xz_box ends{std::min(r_start, r_end), std::max(r_start, r_end), std::min(z_start, z_end),
+                    std::max(z_start, z_end)};
+  if (chord < 1e-12 || std::abs(radius) < chord / 2 - 1e-9) return ends;  // no such arc: its ends
+  const double h = std::sqrt(std::max(0.0, radius * radius - chord * chord / 4));
+  // The centre of a clockwise minor arc (R > 0) lies to the left of the chord seen from the
+  // start (z to the right, r up); a major arc's (R < 0) or a counter-clockwise one's to the right.
+  const double sign = ((radius > 0) == cw) ? 1 : -1;
+  const double rc = (r_start + r_end) / 2 + sign * h * (-dz) / chord;
+  const double zc = (z_start + z_end) / 2 + sign * h * dr / chord;
+  return arc_box(r_start, z_start, r_end, z_end, rc, zc, cw);
+}
+
+std::vector<xz_box> envelope_boxes(const interference_channel& e, const xz_box& tip) {
+  std::vector<xz_box> out;
+  for (const xz_box& b : e.boxes) {
+    xz_box own{tip.r0 + b.r0, tip.r1 + b.r1, tip.z0 + b.z0, tip.z1 + b.z1};
+    if (e.side < 0) own = {-own.r1, -own.r0, own.z0, own.z1};
+    out.push_back(own);
+  }
+  return out;
+}
+
+double box_distance(const xz_box& a, const xz_box& b) {
+  const double dr = std::max({0.0, a.r0 - b.r1, b.r0 - a.r1});
+  const double dz = std::max({0.0, a.z0 - b.z1, b.z0 - a.z1});
+  return std::hypot(dr, dz);
+}
+
+namespace {
+
+// Consecutive sweeps are merged while the tip's box stays within this size (mm): the error of
+// the model is at most this much, and a contour of many short moves keeps few boxes.
+constexpr double merge_size = 2.0;
+// The most boxes a segment keeps; beyond it neighbours are merged (coarser, never smaller).
+constexpr std::size_t segment_cap = 4096;
+
+std::optional<double> g_number(std::string_view code) {
+  const std::vector<nc_word> w = split_nc_words(code);
+  if (w.size() != 1 || w[0].address != 'G' || !w[0].numeric) return std::nullopt;
+  return w[0].number;
+}
+
+// What one block (or a run of merged blocks) of a channel sweeps: 32 bytes, in floats (a
+// micrometre at a metre), since a long job keeps many.
+struct sweep {
+  float r0, r1, z0, z1;  // the tip's box, r = X/2 as programmed
+  int line;              // the first block's line
+  float x, z;            // its point in messages (X as a diameter)
+  std::uint16_t spindle;
+  std::uint16_t tool;  // into channel_data::tools
+  xz_box tip() const { return {r0, r1, z0, z1}; }
+};
+
+xz_box unite(const xz_box& a, const xz_box& b) {
+  return {std::min(a.r0, b.r0), std::max(a.r1, b.r1), std::min(a.z0, b.z0), std::max(a.z1, b.z1)};
+}
+
+struct segment_data {
+  std::vector<sweep> sweeps;
+  int wait_code = 0;  // the wait that ends it (0: the program's end)
+  int wait_line = 0;
+};
+
+struct channel_data {
+  channel_data(const machine& m, int number) : spindles(m, number) {}
+  const interference_channel* env = nullptr;
+  std::string file;  // the program's name, as in messages
+  channel_spindles spindles;
+  std::vector<segment_data> segments = std::vector<segment_data>(1);
+  double x = 0, z = 0;
+  bool known_x = false, known_z = false;
+  int motion = 0;
+  bool cycle = false;    // a drilling cycle is modal (until G80)
+  bool balance = false;  // in a balance cut: ordered by its own sync
+  // The T words seen, as written ("0505"); [0] is none. `tool` is the one in force.
+  std::vector<std::array<char, 12>> tools = std::vector<std::array<char, 12>>(1);
+  std::uint16_t tool = 0;
+  bool merge_open = false;  // the last sweep may take the next one
+};
+
+}  // namespace
+
+struct interference_check::impl {
+  explicit impl(const machine& mm) : m(mm) {
+    int with = 0;
+    for (const channel_def& c : m.channels) {
+      channels.emplace_back(m, c.number);
+      channels.back().env = m.interference.channel(c.number);
+      if (channels.back().env) ++with;
+    }
+    active = with >= 2 || !m.interference.zones.empty();
+    const cycle_rules& cy = m.cycles;
+    for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
+                                    &cy.tap_code, &cy.tap_left_code})
+      if (auto g = g_number(*code)) cycle_codes.push_back(*g);
+    for (auto [code, into] :
+         {std::pair{&m.codes.balance_on, &balance_on}, {&m.codes.balance_off, &balance_off}})
+      if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && w[0].numeric) *into = w[0];
+  }
+
+  const machine& m;
+  bool active = false;
+  std::vector<channel_data> channels;
+  std::vector<double> cycle_codes;
+  std::optional<nc_word> balance_on, balance_off;
+  std::vector<std::vector<std::vector<int>>> clocks;   // [channel][segment][channel]
+  mutable std::vector<interference_meeting> meetings;  // what meet() found, for pictures
+
+  bool is_word(const nc_word& w, const std::optional<nc_word>& code) const {
+    return code && w.address == code->address && w.numeric && w.number == code->number;
+  }
+
+  // `x`, `z`: the block's point in messages (a drilling cycle's: the hole's bottom).
+  void add(channel_data& c, const xz_box& tip, int line, double x, double z) {
+    std::vector<sweep>& s = c.segments.back().sweeps;
+    const auto spindle = static_cast<std::uint16_t>(std::max(c.spindles.current(), 0));
+    if (c.merge_open && !s.empty() && s.back().spindle == spindle && s.back().tool == c.tool) {
+      const xz_box u = unite(s.back().tip(), tip);
+      if (u.r1 - u.r0 <= merge_size && u.z1 - u.z0 <= merge_size) {
+        set_tip(s.back(), u);
+        return;
+      }
+    }
+    if (s.size() >= segment_cap) coarsen(s);
+    sweep w{};
+    set_tip(w, tip);
+    w.line = line;
+    w.x = static_cast<float>(x);
+    w.z = static_cast<float>(z);
+    w.spindle = spindle;
+    w.tool = c.tool;
+    s.push_back(w);
+    c.merge_open = true;
+  }
+
+  // In floats: off by at most half a float's step (0.03 um at 1 m), nothing beside a clearance
+  // of millimetres.
+  static void set_tip(sweep& w, const xz_box& b) {
+    w.r0 = static_cast<float>(b.r0);
+    w.r1 = static_cast<float>(b.r1);
+    w.z0 = static_cast<float>(b.z0);
+    w.z1 = static_cast<float>(b.z1);
+  }
+
+  // Halves a segment's boxes by merging neighbours of one spindle and tool: bounded memory.
+  static void coarsen(std::vector<sweep>& s) {
+    std::size_t out = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (out > 0 && (i % 2) == 1 && s[out - 1].spindle == s[i].spindle && s[out - 1].tool == s[i].tool)
+        set_tip(s[out - 1], unite(s[out - 1].tip(), s[i].tip()));
+      else
+        s[out++] = s[i];
+    }
+    s.resize(out);
+  }
+
+  void block(const nc_block& b) {
+    if (b.channel < 1 || static_cast<std::size_t>(b.channel) > channels.size()) return;
+    channel_data& c = channels[static_cast<std::size_t>(b.channel - 1)];
+    if (!c.env) return;
+    if (c.file.empty()) c.file = b.file;  // one file per channel (its sections are joined)
+    const std::vector<nc_word>& words = b.words();
+    constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+    if (b.letters() & gms) c.spindles.apply(words);
+    const nc_word *xw = nullptr, *zw = nullptr, *uw = nullptr, *ww = nullptr, *iw = nullptr, *kw = nullptr,
+                  *rw = nullptr;
+    bool no_move = false, home = false;
+    for (const nc_word& w : words) {
+      if (!w.numeric) continue;
+      switch (w.address) {
+        case 'G': {
+          const double v = w.number;
+          if (v == 0 || v == 1 || v == 2 || v == 3) {
+            c.motion = static_cast<int>(v);
+            c.cycle = false;
+          } else if (v == 80) {
+            c.cycle = false;
+          } else if (std::find(cycle_codes.begin(), cycle_codes.end(), v) != cycle_codes.end()) {
+            c.cycle = true;
+          } else if (v == 28 || v == 30 || v == 53) {
+            home = true;  // to the reference point: the tip is out of the work area
+          } else if (v == 4 || v == 10 || v == 50 || v == 92) {
+            no_move = true;  // dwell, data, clamp or coordinate setting: no motion
+          }
+          if (is_word(w, balance_on)) c.balance = true;
+          if (is_word(w, balance_off)) c.balance = false;
+          break;
+        }
+        case 'M':
+          if (is_word(w, balance_on)) c.balance = true;
+          if (is_word(w, balance_off)) c.balance = false;
+          break;
+        case 'T': {
+          std::array<char, 12> t{};
+          std::copy_n(w.value.begin(), std::min(w.value.size(), t.size() - 1), t.begin());
+          auto at = static_cast<std::size_t>(std::find(c.tools.begin(), c.tools.end(), t) - c.tools.begin());
+          if (at == c.tools.size()) {
+            if (at < 65535)
+              c.tools.push_back(t);
+            else
+              at = 0;  // more tools than the index holds: named by none
+          }
+          c.tool = static_cast<std::uint16_t>(at);
+          break;
+        }
+        case 'X': xw = &w; break;
+        case 'Z': zw = &w; break;
+        case 'U': uw = &w; break;
+        case 'W': ww = &w; break;
+        case 'I': iw = &w; break;
+        case 'K': kw = &w; break;
+        case 'R': rw = &w; break;
+        default: break;
+      }
+    }
+    if (home) {
+      c.known_x = c.known_z = false;
+      c.merge_open = false;
+      return;
+    }
+    if (no_move || !(xw || zw || uw || ww)) return;
+    const double x0 = c.x, z0 = c.z;
+    const bool known = c.known_x && c.known_z;
+    if (xw) c.x = xw->number, c.known_x = true;
+    if (uw && c.known_x) c.x += uw->number;
+    if (zw && !c.cycle) c.z = zw->number, c.known_z = true;
+    if (ww && c.known_z && !c.cycle) c.z += ww->number;
+    if (!c.known_x || !c.known_z || c.balance) {
+      c.merge_open = false;
+      return;
+    }
+    // Where the tip came from: unknown (after a reference return) means only the end point.
+    const double rs = known ? x0 / 2 : c.x / 2, zs = known ? z0 : c.z;
+    xz_box tip{std::min(rs, c.x / 2), std::max(rs, c.x / 2), std::min(zs, c.z), std::max(zs, c.z)};
+    double shown_z = c.z;
+    if (c.cycle && zw) {  // down to the hole's bottom and back
+      tip.z0 = std::min(tip.z0, zw->number);
+      tip.z1 = std::max(tip.z1, zw->number);
+      shown_z = zw->number;
+    } else if (known && (c.motion == 2 || c.motion == 3) && (iw || kw || rw)) {
+      tip = unite(tip, arc_of(x0 / 2, z0, c.x / 2, c.z, iw, kw, rw, c.motion == 2));
+    }
+    add(c, tip, b.line, c.x, shown_z);
+  }
+
+  // The box of an arc given by its centre (I, K: radius values from the start) or its radius R.
+  static xz_box arc_of(double r0, double z0, double r1, double z1, const nc_word* iw, const nc_word* kw,
+                       const nc_word* rw, bool cw) {
+    if (iw || kw) return arc_box(r0, z0, r1, z1, r0 + (iw ? iw->number : 0), z0 + (kw ? kw->number : 0), cw);
+    return arc_box_radius(r0, z0, r1, z1, rw->number, cw);
+  }
+
+  void wait(const nc_wait& w) {
+    if (w.channel < 1 || static_cast<std::size_t>(w.channel) > channels.size()) return;
+    channel_data& c = channels[static_cast<std::size_t>(w.channel - 1)];
+    c.segments.back().wait_code = w.code;
+    c.segments.back().wait_line = w.where.line;
+    c.segments.emplace_back();
+    c.merge_open = false;
+  }
+
+  // --- happens-before (as analysis/shared_resources) ---------------------------------------
+
+  void make_clocks(const std::vector<std::uint64_t>& rendezvous) {
+    clocks = segment_clocks(rendezvous, channels.size());
+  }
+
+  int over(int channel, std::size_t seg, int of) const {
+    const auto& cl = clocks[static_cast<std::size_t>(channel - 1)];
+    return seg < cl.size() ? cl[seg][static_cast<std::size_t>(of - 1)] : -1;
+  }
+
+  // --- the rules ---------------------------------------------------------------------------
+
+  std::string where(const channel_data& c, const sweep& s) const {
+    const char* t = c.tools[s.tool].data();
+    return fmt::format("{}X{:g} Z{:g}", t[0] ? fmt::format("T{} at ", t) : std::string(), s.x, s.z);
+  }
+  std::string between(const channel_data& c, std::size_t seg) const {
+    // The waits as file:line places: post moves them to their CL records (post/sync_at_cl).
+    const std::string from = seg == 0
+                                 ? std::string("its start")
+                                 : fmt::format("{}{} ({}:{})", m.waits.address, c.segments[seg - 1].wait_code,
+                                               c.file, c.segments[seg - 1].wait_line);
+    const std::string to = c.segments[seg].wait_code
+                               ? fmt::format("{}{} ({}:{})", m.waits.address, c.segments[seg].wait_code,
+                                             c.file, c.segments[seg].wait_line)
+                               : std::string("its end");
+    return fmt::format("between {} and {}", from, to);
+  }
+
+  struct placed {
+    xz_box box;
+    const sweep* s;
+  };
+  // The `k`-th box of the channel's envelope around each sweep on `spindle`, sorted along Z.
+  std::vector<placed> place(const channel_data& c, const segment_data& seg, int spindle,
+                            std::size_t k) const {
+    std::vector<placed> out;
+    for (const sweep& s : seg.sweeps)
+      if (s.spindle == spindle) out.push_back({envelope_boxes(*c.env, s.tip())[k], &s});
+    std::sort(out.begin(), out.end(), [](const placed& p, const placed& q) { return p.box.z0 < q.box.z0; });
+    return out;
+  }
+
+  // The first pair of boxes of two segments closer than the clearance: a sweep along Z.
+  std::optional<std::pair<const placed*, const placed*>> first_meeting(const std::vector<placed>& a,
+                                                                       const std::vector<placed>& b,
+                                                                       double& distance) const {
+    const double cl = m.interference.clearance;
+    double longest = 0;  // no box of b is longer along Z: those starting before are too far
+    for (const placed& q : b) longest = std::max(longest, q.box.z1 - q.box.z0);
+    std::size_t start = 0;
+    for (const placed& p : a) {
+      while (start < b.size() && b[start].box.z0 + longest < p.box.z0 - cl) ++start;
+      for (std::size_t j = start; j < b.size() && b[j].box.z0 < p.box.z1 + cl; ++j) {
+        const double d = box_distance(p.box, b[j].box);
+        if (d < cl) {
+          distance = d;
+          return std::pair{&p, &b[j]};
+        }
+      }
+    }
+    return std::nullopt;
+  }
+
+  void pair_rule(std::vector<diagnostic>& out) const {
+    const int n = static_cast<int>(channels.size());
+    for (int a = 1; a <= n; ++a)
+      for (int b = a + 1; b <= n; ++b) {
+        const channel_data& ca = channels[static_cast<std::size_t>(a - 1)];
+        const channel_data& cb = channels[static_cast<std::size_t>(b - 1)];
+        if (!ca.env || !cb.env) continue;
+        for (std::size_t i = 0; i < ca.segments.size(); ++i) {
+          if (ca.segments[i].sweeps.empty() || over(a, i, b) < 0) continue;
+          for (auto j = static_cast<std::size_t>(over(a, i, b)); j < cb.segments.size(); ++j) {
+            const int b_over_a = over(b, j, a);
+            if (b_over_a < 0 || static_cast<int>(i) < b_over_a) break;  // a's segment ends before b's
+            if (!cb.segments[j].sweeps.empty()) meet(ca, a, i, cb, b, j, out);
+          }
+        }
+      }
+  }
+
+  void meet(const channel_data& ca, int a, std::size_t i, const channel_data& cb, int b, std::size_t j,
+            std::vector<diagnostic>& out) const {
+    for (std::size_t s = 0; s < m.spindles.size(); ++s) {
+      // Most concurrent work stays apart as a whole (an upper and a lower turret, each on its
+      // side of the axis): the boxes around all of each interval's sweeps say so at once.
+      const auto around = [&](const segment_data& seg, const interference_channel& e) {
+        std::optional<xz_box> u;
+        for (const sweep& w : seg.sweeps)
+          if (w.spindle == s) u = u ? unite(*u, w.tip()) : w.tip();
+        if (!u) return u;
+        const std::vector<xz_box> boxes = envelope_boxes(e, *u);
+        xz_box all = boxes.front();
+        for (const xz_box& x : boxes) all = unite(all, x);
+        return std::optional<xz_box>(all);
+      };
+      const std::optional<xz_box> ua = around(ca.segments[i], *ca.env);
+      if (!ua) continue;
+      const std::optional<xz_box> ub = around(cb.segments[j], *cb.env);
+      if (!ub || box_distance(*ua, *ub) >= m.interference.clearance) continue;
+      // Box by box of the envelopes (each kind alike in size: the sweep along Z stays narrow).
+      double d = 0;
+      std::optional<std::pair<const placed*, const placed*>> hit;
+      std::vector<std::vector<placed>> pbs;
+      for (std::size_t kb = 0; kb < cb.env->boxes.size(); ++kb)
+        pbs.push_back(place(cb, cb.segments[j], static_cast<int>(s), kb));
+      std::vector<placed> pa;
+      for (std::size_t ka = 0; ka < ca.env->boxes.size() && !hit; ++ka) {
+        pa = place(ca, ca.segments[i], static_cast<int>(s), ka);
+        // Complete in one direction: every box of b near one of a in Z is looked at.
+        for (std::size_t kb = 0; kb < pbs.size() && !hit; ++kb) hit = first_meeting(pa, pbs[kb], d);
+      }
+      if (!hit) continue;
+      const sweep& x = *hit->first->s;
+      const sweep& y = *hit->second->s;
+      const auto mirrored = [](const interference_channel& e, const xz_box& t) {
+        return e.side < 0 ? xz_box{-t.r1, -t.r0, t.z0, t.z1} : t;
+      };
+      meetings.push_back({a, b, m.spindles[s].name, mirrored(*ca.env, x.tip()), mirrored(*cb.env, y.tip()),
+                          envelope_boxes(*ca.env, x.tip()), envelope_boxes(*cb.env, y.tip()), d, ca.file,
+                          cb.file, x.line, y.line});
+      out.push_back(
+          {severity::error,
+           ca.file,
+           x.line,
+           1,
+           fmt::format("channel {} ({}) may meet channel {} ({}, {}:{}) on the {} spindle, {} of channel {}: "
+                       "{:.1f} mm apart, {:g} mm required; no wait orders the two blocks",
+                       a, where(ca, x), b, where(cb, y), cb.file, y.line, m.spindles[s].name, between(ca, i),
+                       a, d, m.interference.clearance),
+           {}});
+      out.push_back(
+          {severity::note, cb.file, y.line, 1, fmt::format("channel {} is here ({})", b, where(cb, y)), {}});
+      return;  // one finding for each pair of segments
+    }
+  }
+
+  void zone_rule(std::vector<diagnostic>& out) const {
+    for (std::size_t k = 0; k < channels.size(); ++k) {
+      const channel_data& c = channels[k];
+      if (!c.env) continue;
+      for (const interference_zone& z : m.interference.zones) {
+        const spindle_def* sp = m.spindle(z.spindle);
+        const int si = static_cast<int>(sp - m.spindles.data());
+        const xz_box sides[2] = {z.box, {-z.box.r1, -z.box.r0, z.box.z0, z.box.z1}};
+        bool found = false;
+        for (std::size_t seg = 0; seg < c.segments.size() && !found; ++seg)
+          for (const sweep& s : c.segments[seg].sweeps) {
+            if (s.spindle != si) continue;
+            for (const xz_box& e : envelope_boxes(*c.env, s.tip()))
+              for (const xz_box& zb : sides)
+                if (!found && box_distance(e, zb) < m.interference.clearance) {
+                  found = true;
+                  out.push_back(
+                      {severity::error,
+                       c.file,
+                       s.line,
+                       1,
+                       fmt::format("channel {} ({}) comes within {:.1f} mm of the {} spindle's static "
+                                   "zone [{:g}, {:g}, {:g}, {:g}] (interference.zone), {:g} mm required",
+                                   k + 1, where(c, s), box_distance(e, zb), z.spindle, z.box.r0, z.box.r1,
+                                   z.box.z0, z.box.z1, m.interference.clearance),
+                       {}});
+                }
+            if (found) break;
+          }
+      }
+    }
+  }
+};
+
+void fill_source_lines(std::vector<diagnostic>& found, const std::vector<nc_source>& files,
+                       const machine& m) {
+  if (std::none_of(found.begin(), found.end(),
+                   [](const diagnostic& d) { return d.line > 0 && d.source_line.empty(); }))
+    return;
+  nc_read_options o;
+  o.on_block = [&found](const nc_block& b) {
+    for (diagnostic& d : found)
+      if (d.line == b.line && d.source_line.empty() && d.file == b.file) d.source_line = std::string(b.text);
+  };
+  diagnostic_list ignored;
+  read_nc_programs(files, m, ignored, o);
+}
+
+interference_check::interference_check(const machine& m) : p_(std::make_unique<impl>(m)) {}
+interference_check::~interference_check() = default;
+bool interference_check::active() const { return p_->active; }
+const std::vector<interference_meeting>& interference_check::meetings() const { return p_->meetings; }
+void interference_check::block(const nc_block& b) { p_->block(b); }
+void interference_check::wait(const nc_wait& w) { p_->wait(w); }
+
+std::vector<diagnostic> interference_check::finish(const std::vector<std::uint64_t>& rendezvous,
+                                                   bool waits_sound) {
+  std::vector<diagnostic> out;
+  if (!p_->active) return out;
+  p_->zone_rule(out);
+  if (!waits_sound) return out;
+  p_->make_clocks(rendezvous);
+  p_->pair_rule(out);
+  return out;
+}
+
+}  // namespace twinpost
