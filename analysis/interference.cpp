@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <fmt/format.h>
 #include <numbers>
 #include <optional>
@@ -10,6 +11,7 @@
 
 #include "analysis/shared_resources.hpp"
 #include "analysis/spindle_state.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 
@@ -98,8 +100,14 @@ xz_box unite(const xz_box& a, const xz_box& b) {
 }
 
 struct segment_data {
+  // The open segment's sweeps. A closed one's go to the spill file (bounded memory however
+  // long the programs are): `count` of them at `offset`, with the box around each spindle's.
   std::vector<sweep> sweeps;
-  int wait_code = 0;  // the wait that ends it (0: the program's end)
+  long offset = 0;
+  std::uint32_t count = 0;
+  bool spilled = false;
+  std::vector<std::pair<std::uint16_t, xz_box>> around;  // per spindle: around its sweeps' tips
+  int wait_code = 0;                                     // the wait that ends it (0: the program's end)
   int wait_line = 0;
 };
 
@@ -140,8 +148,14 @@ struct interference_check::impl {
       if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && w[0].numeric) *into = w[0];
   }
 
+  ~impl() {
+    if (spill) std::fclose(spill);
+  }
+
   const machine& m;
   bool active = false;
+  std::FILE* spill = nullptr;  // closed segments' sweeps (an anonymous temporary file)
+  bool spill_failed = false;   // no temporary file: the sweeps stay in memory
   std::vector<channel_data> channels;
   std::vector<double> cycle_codes;
   std::optional<nc_word> balance_on, balance_off;
@@ -292,11 +306,54 @@ struct interference_check::impl {
     return arc_box_radius(r0, z0, r1, z1, rw->number, cw);
   }
 
+  // A segment ends: the box around each spindle's sweeps kept, the sweeps to the spill file.
+  void close(segment_data& seg) {
+    for (const sweep& w : seg.sweeps) {
+      auto at = std::find_if(seg.around.begin(), seg.around.end(),
+                             [&](const auto& a) { return a.first == w.spindle; });
+      if (at == seg.around.end())
+        seg.around.emplace_back(w.spindle, w.tip());
+      else
+        at->second = unite(at->second, w.tip());
+    }
+    if (seg.sweeps.empty() || spill_failed) return;
+    if (!spill && !(spill = std::tmpfile())) {
+      spill_failed = true;
+      return;
+    }
+    if (std::fseek(spill, 0, SEEK_END) != 0) {
+      spill_failed = true;
+      return;
+    }
+    seg.offset = std::ftell(spill);
+    if (seg.offset < 0 ||
+        std::fwrite(seg.sweeps.data(), sizeof(sweep), seg.sweeps.size(), spill) != seg.sweeps.size()) {
+      spill_failed = true;
+      return;
+    }
+    seg.count = static_cast<std::uint32_t>(seg.sweeps.size());
+    seg.spilled = true;
+    std::vector<sweep>().swap(seg.sweeps);
+  }
+
+  // A segment's sweeps: in memory, or read back from the spill file into `buf`.
+  const std::vector<sweep>& sweeps_of(const segment_data& seg, std::vector<sweep>& buf) const {
+    if (!seg.spilled) return seg.sweeps;
+    buf.resize(seg.count);
+    if (std::fflush(spill) != 0 || std::fseek(spill, seg.offset, SEEK_SET) != 0 ||
+        std::fread(buf.data(), sizeof(sweep), buf.size(), spill) != buf.size())
+      throw config_error("cannot read back the interference check's temporary file");
+    return buf;
+  }
+
+  static bool empty(const segment_data& seg) { return seg.sweeps.empty() && seg.count == 0; }
+
   void wait(const nc_wait& w) {
     if (w.channel < 1 || static_cast<std::size_t>(w.channel) > channels.size()) return;
     channel_data& c = channels[static_cast<std::size_t>(w.channel - 1)];
     c.segments.back().wait_code = w.code;
     c.segments.back().wait_line = w.where.line;
+    close(c.segments.back());
     c.segments.emplace_back();
     c.merge_open = false;
   }
@@ -336,10 +393,10 @@ struct interference_check::impl {
     const sweep* s;
   };
   // The `k`-th box of the channel's envelope around each sweep on `spindle`, sorted along Z.
-  std::vector<placed> place(const channel_data& c, const segment_data& seg, int spindle,
+  std::vector<placed> place(const channel_data& c, const std::vector<sweep>& sweeps, int spindle,
                             std::size_t k) const {
     std::vector<placed> out;
-    for (const sweep& s : seg.sweeps)
+    for (const sweep& s : sweeps)
       if (s.spindle == spindle) out.push_back({envelope_boxes(*c.env, s.tip())[k], &s});
     std::sort(out.begin(), out.end(), [](const placed& p, const placed& q) { return p.box.z0 < q.box.z0; });
     return out;
@@ -374,11 +431,11 @@ struct interference_check::impl {
         const channel_data& cb = channels[static_cast<std::size_t>(b - 1)];
         if (!ca.env || !cb.env) continue;
         for (std::size_t i = 0; i < ca.segments.size(); ++i) {
-          if (ca.segments[i].sweeps.empty() || over(a, i, b) < 0) continue;
+          if (empty(ca.segments[i]) || over(a, i, b) < 0) continue;
           for (auto j = static_cast<std::size_t>(over(a, i, b)); j < cb.segments.size(); ++j) {
             const int b_over_a = over(b, j, a);
             if (b_over_a < 0 || static_cast<int>(i) < b_over_a) break;  // a's segment ends before b's
-            if (!cb.segments[j].sweeps.empty()) meet(ca, a, i, cb, b, j, out);
+            if (!empty(cb.segments[j])) meet(ca, a, i, cb, b, j, out);
           }
         }
       }
@@ -391,8 +448,8 @@ struct interference_check::impl {
       // side of the axis): the boxes around all of each interval's sweeps say so at once.
       const auto around = [&](const segment_data& seg, const interference_channel& e) {
         std::optional<xz_box> u;
-        for (const sweep& w : seg.sweeps)
-          if (w.spindle == s) u = u ? unite(*u, w.tip()) : w.tip();
+        for (const auto& [spindle, box] : seg.around)
+          if (spindle == s) u = box;
         if (!u) return u;
         const std::vector<xz_box> boxes = envelope_boxes(e, *u);
         xz_box all = boxes.front();
@@ -406,12 +463,15 @@ struct interference_check::impl {
       // Box by box of the envelopes (each kind alike in size: the sweep along Z stays narrow).
       double d = 0;
       std::optional<std::pair<const placed*, const placed*>> hit;
+      std::vector<sweep> buf_a, buf_b;  // the sweeps read back (the hits point into them)
+      const std::vector<sweep>& sa = sweeps_of(ca.segments[i], buf_a);
+      const std::vector<sweep>& sb = sweeps_of(cb.segments[j], buf_b);
       std::vector<std::vector<placed>> pbs;
       for (std::size_t kb = 0; kb < cb.env->boxes.size(); ++kb)
-        pbs.push_back(place(cb, cb.segments[j], static_cast<int>(s), kb));
+        pbs.push_back(place(cb, sb, static_cast<int>(s), kb));
       std::vector<placed> pa;
       for (std::size_t ka = 0; ka < ca.env->boxes.size() && !hit; ++ka) {
-        pa = place(ca, ca.segments[i], static_cast<int>(s), ka);
+        pa = place(ca, sa, static_cast<int>(s), ka);
         // Complete in one direction: every box of b near one of a in Z is looked at.
         for (std::size_t kb = 0; kb < pbs.size() && !hit; ++kb) hit = first_meeting(pa, pbs[kb], d);
       }
@@ -449,8 +509,9 @@ struct interference_check::impl {
         const int si = static_cast<int>(sp - m.spindles.data());
         const xz_box sides[2] = {z.box, {-z.box.r1, -z.box.r0, z.box.z0, z.box.z1}};
         bool found = false;
+        std::vector<sweep> buf;
         for (std::size_t seg = 0; seg < c.segments.size() && !found; ++seg)
-          for (const sweep& s : c.segments[seg].sweeps) {
+          for (const sweep& s : sweeps_of(c.segments[seg], buf)) {
             if (s.spindle != si) continue;
             for (const xz_box& e : envelope_boxes(*c.env, s.tip()))
               for (const xz_box& zb : sides)
@@ -499,6 +560,7 @@ std::vector<diagnostic> interference_check::finish(const std::vector<std::uint64
                                                    bool waits_sound) {
   std::vector<diagnostic> out;
   if (!p_->active) return out;
+  for (channel_data& c : p_->channels) p_->close(c.segments.back());
   p_->zone_rule(out);
   if (!waits_sound) return out;
   p_->make_clocks(rendezvous);

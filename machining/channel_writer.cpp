@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <initializer_list>
@@ -11,6 +13,7 @@
 #include "kinematics/vec3_ops.hpp"
 #include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
+#include "support/errors.hpp"
 
 namespace twinpost {
 
@@ -93,9 +96,38 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   }
 }
 
+void channel_writer::note_block_cl() {
+  block_cl_mem_.push_back(line_);
+  ++block_cl_count_;
+  // Every 64k lines to an anonymous temporary file; where none can be made or written, they
+  // stay in memory (the post's own writes then fail and say so).
+  if (block_cl_mem_.size() < (std::size_t{1} << 16) || block_cl_failed_) return;
+  if (!block_cl_) block_cl_.reset(std::tmpfile());
+  if (!block_cl_ || std::fwrite(block_cl_mem_.data(), sizeof(std::int32_t), block_cl_mem_.size(),
+                                block_cl_.get()) != block_cl_mem_.size()) {
+    block_cl_failed_ = true;
+    return;
+  }
+  block_cl_in_file_ += block_cl_mem_.size();
+  block_cl_mem_.clear();
+}
+
+std::vector<int> channel_writer::block_cl_lines() const {
+  std::vector<int> lines(block_cl_in_file_);
+  if (block_cl_in_file_ > 0) {
+    std::vector<std::int32_t> raw(block_cl_in_file_);
+    if (std::fflush(block_cl_.get()) != 0 || std::fseek(block_cl_.get(), 0, SEEK_SET) != 0 ||
+        std::fread(raw.data(), sizeof(std::int32_t), raw.size(), block_cl_.get()) != raw.size())
+      throw config_error("cannot read back the CL lines' temporary file");
+    std::copy(raw.begin(), raw.end(), lines.begin());
+  }
+  lines.insert(lines.end(), block_cl_mem_.begin(), block_cl_mem_.end());
+  return lines;
+}
+
 void channel_writer::note_line(std::string_view line) {
   if (line.empty() || line.front() == m_.program.comment_open) return;
-  if (note_every_block_) block_cl_.push_back(line_);
+  if (note_every_block_) note_block_cl();
   // Most blocks are moves without G, M or S: one table look-up per character says so.
   static constexpr auto gms = [] {
     std::array<bool, 256> t{};
@@ -212,7 +244,7 @@ void channel_writer::on_wait(const wait_mark& w) {
   ++waits_;
   cut_due_ = true;
   wait_cl_lines_.push_back(w.cl_line);
-  if (note_every_block_ && !block_cl_.empty()) wait_block_.push_back(block_cl_.size() - 1);
+  if (note_every_block_ && block_cl_count_ > 0) wait_block_.push_back(block_cl_count_ - 1);
   if (w.both == wait_mark::section::opens_both && !m_.codes.balance_on.empty())
     out_.block(m_.codes.balance_on);
 }

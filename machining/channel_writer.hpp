@@ -8,7 +8,9 @@
 // on the way.
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -98,11 +100,15 @@ class channel_writer {
   /// The CL line of every block written after the head (no comment lines), in order, for a
   /// channel the turret interference rule watches (machine.interference); else empty. The
   /// rule's findings may be at any move (post/sync_at_cl).
-  const std::vector<int>& block_cl_lines() const { return block_cl_; }
+  /// Kept in an anonymous temporary file while the post runs (memory stays flat however long
+  /// the programs are), read back here: asked for only when the rule found something.
+  std::vector<int> block_cl_lines() const;
   /// The index into block_cl_lines() of each wait block, in order (the same channels).
   const std::vector<std::size_t>& wait_block_indices() const { return wait_block_; }
 
  private:
+  /// The CL line of the block being written, to block_cl_'s file.
+  void note_block_cl();
   void motion(const motion_event& m, int line);
   void arc(const arc_event& a, int line);
   void spindle(const spindle_event& s, int line);
@@ -553,8 +559,12 @@ class channel_writer {
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
   std::vector<noted_block> noted_;
-  std::vector<int> block_cl_;            ///< block_cl_lines()
-  std::vector<std::size_t> wait_block_;  ///< wait_block_indices()
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> block_cl_{nullptr, &std::fclose};  ///< block_cl_lines()
+  std::size_t block_cl_count_ = 0;                                                   // all of them
+  std::size_t block_cl_in_file_ = 0;                                                 // those in the file
+  std::vector<std::int32_t> block_cl_mem_;                                           // the others
+  bool block_cl_failed_ = false;                                                     // no file: all in memory
+  std::vector<std::size_t> wait_block_;                                              ///< wait_block_indices()
   bool note_every_block_ = false;
   bool cut_due_ = true;                     ///< the next G1/G2/G3 line is noted
   const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
