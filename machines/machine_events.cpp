@@ -58,8 +58,8 @@ void read_events(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("events");
   if (!t) return;
   table_reader r(*t, "events", root.source(),
-                 {"program_start", "program_end", "tool_change", "spindle_start", "spindle_stop", "coolant_on",
-                  "coolant_off", "wait", "cycle", "transfer", "operation", "record"});
+                 {"program_start", "program_end", "tool_change", "spindle_start", "spindle_stop",
+                  "coolant_on", "coolant_off", "wait", "cycle", "transfer", "operation", "record"});
   for (std::size_t i = 0; i < event_point_count; ++i) {
     const toml::table* e = r.sub_table(event_point_keys[i]);
     if (!e) continue;
@@ -68,11 +68,13 @@ void read_events(const table_reader& root, machine& m) {
     // The program's first and last blocks are [program] header and footer: a block before
     // the header or after the footer would be outside the frame the checker reads.
     if (p == event_point::program_start && er.find("before"))
-      er.fail(*er.find("before"), "events.program_start takes `after` only (blocks before the safe start "
-                                  "belong in program.header)");
+      er.fail(*er.find("before"),
+              "events.program_start takes `after` only (blocks before the safe start "
+              "belong in program.header)");
     if (p == event_point::program_end && er.find("after"))
-      er.fail(*er.find("after"), "events.program_end takes `before` only (blocks after the last ones belong "
-                                 "in program.footer)");
+      er.fail(*er.find("after"),
+              "events.program_end takes `before` only (blocks after the last ones belong "
+              "in program.footer)");
     er.read_templates("before", m.events.at[i].before, event_uses::of[i]);
     er.read_templates("after", m.events.at[i].after, event_uses::of[i]);
   }
@@ -88,7 +90,8 @@ void read_events(const table_reader& root, machine& m) {
     er.read("words", rec.words);
     for (std::string& w : rec.words) ascii::upper_in_place(w);
     er.read_templates("blocks", rec.blocks, event_uses::record);
-    if (rec.blocks.empty()) er.fail(*er.find("blocks"), "events.record.blocks is empty: give at least one block");
+    if (rec.blocks.empty())
+      er.fail(*er.find("blocks"), "events.record.blocks is empty: give at least one block");
     m.events.records.push_back(std::move(rec));
   }
 }

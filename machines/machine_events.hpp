@@ -40,17 +40,17 @@ inline constexpr std::array<std::string_view, event_point_count> event_point_key
 namespace event_uses {
 using p = placeholder;
 inline constexpr std::array<placeholder_set, event_point_count> of{{
-    {p::channel},                             // program_start
-    {p::channel},                             // program_end
+    {p::channel},                               // program_start
+    {p::channel},                               // program_end
     {p::tool, p::offset, p::channel, p::text},  // tool_change: {text} the tool table's name
-    {p::rpm, p::channel},                     // spindle_start
-    {p::channel},                             // spindle_stop
-    {p::channel},                             // coolant_on
-    {p::channel},                             // coolant_off
-    {p::code, p::channel},                    // wait: {code} the wait code
-    {p::channel, p::text},                    // cycle: {text} its type (DRILL, TAP ...)
-    {p::channel},                             // transfer
-    {p::channel, p::text},                    // operation: {text} the operation's name
+    {p::rpm, p::channel},                       // spindle_start
+    {p::channel},                               // spindle_stop
+    {p::channel},                               // coolant_on
+    {p::channel},                               // coolant_off
+    {p::code, p::channel},                      // wait: {code} the wait code
+    {p::channel, p::text},                      // cycle: {text} its type (DRILL, TAP ...)
+    {p::channel},                               // transfer
+    {p::channel, p::text},                      // operation: {text} the operation's name
 }};
 /// [[events.record]] blocks: {text} the record's arguments as written.
 inline constexpr placeholder_set record{p::channel, p::text};
