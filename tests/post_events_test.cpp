@@ -59,11 +59,12 @@ name = "DRILL 8"
 }  // namespace
 
 TEST_CASE("[events] blocks go out before and after each of the post's events", "[post][events]") {
-  const test::posted p = post_with(every_event,
-                                   "PARTNO EV\nHEAD/1\nTOOL PATH/DRILL_1,TOOL,DRILL 8\nTURRET/1,1\n"
-                                   "SPINDL/RPM,800,CLW\nCOOLNT/ON\nRAPID\nGOTO/0,0,5\nCYCLE/DRILL,DEPTH,10,CLEAR,2,MMPR,0.1\n"
-                                   "GOTO/0,0,0\nCYCLE/OFF\nCOOLNT/OFF\nSPINDL/OFF\nFINI\n",
-                                   "every");
+  const test::posted p =
+      post_with(every_event,
+                "PARTNO EV\nHEAD/1\nTOOL PATH/DRILL_1,TOOL,DRILL 8\nTURRET/1,1\n"
+                "SPINDL/RPM,800,CLW\nCOOLNT/ON\nRAPID\nGOTO/0,0,5\nCYCLE/DRILL,DEPTH,10,CLEAR,2,MMPR,0.1\n"
+                "GOTO/0,0,0\nCYCLE/OFF\nCOOLNT/OFF\nSPINDL/OFF\nFINI\n",
+                "every");
   CHECK(program_1(p) ==
         "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\n(START 1)\n(OPERATION)\n"
         "(DRILL_1,TOOL,DRILL 8)\n(OPERATION DRILL_1,TOOL,DRILL 8)\n(OUT)\nG28 U0.\nG28 W0.\nT0101\n"
@@ -93,7 +94,8 @@ blocks = ["(NOTE {text})", "M0"]
         "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S800 M3\n"
         "G0 X40. Z5.\nM10\nM11\n(NOTE CHECK,DIAMETER)\nM0\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   SECTION("a record none of whose entries match is an error at it") {
-    const test::posted p = post_with(events, "PARTNO EV\nHEAD/1\nTURRET/1,1\nPARTS_CATCHER/HALF\nFINI\n", "nomatch");
+    const test::posted p =
+        post_with(events, "PARTNO EV\nHEAD/1\nTURRET/1,1\nPARTS_CATCHER/HALF\nFINI\n", "nomatch");
     CHECK_FALSE(p.ok);
     CHECK(p.diagnostics ==
           "job.cls:4:1: error: channel 1: PARTS_CATCHER/HALF matches no [[events.record]] of machine "
@@ -125,25 +127,28 @@ TEST_CASE("an event block is held to the control's word formats", "[post][events
 TEST_CASE("a wait code an event writes is checked like the post's own: unpaired, nothing is written",
           "[post][events]") {
   // M101 is a wait code of the machine (waits 100..102, no partner list); channel 2 never waits for it.
-  const test::posted p =
-      post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M101\"]\n",
-                "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nCATCHER\nRAPID\nGOTO/20,0,5\nFINI\n", "wait");
+  const test::posted p = post_with(
+      "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M101\"]\n",
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nCATCHER\nRAPID\nGOTO/20,0,5\nFINI\n", "wait");
   CHECK_FALSE(p.ok);
   // The self-check's finding, at the CL record whose event wrote the wait.
-  CHECK(p.diagnostics.starts_with("job.cls:5:1: error: deadlock: channel 1 waits on M101 at job.cls:5 while "
-                                  "channel 2 waits on M100 at job.cls:8 (different codes, Fanuc PS0160)\n"
-                                  "CATCHER\n^\n"));
-  CHECK(p.diagnostics.ends_with("/out/EV_1.nc:8:1: note: the wait in the program as it would have been written "
-                                "(no file is written)\nM101\n^\n"));
+  CHECK(
+      p.diagnostics.starts_with("job.cls:5:1: error: deadlock: channel 1 waits on M101 at job.cls:5 while "
+                                "channel 2 waits on M100 at job.cls:8 (different codes, Fanuc PS0160)\n"
+                                "CATCHER\n^\n"));
+  CHECK(
+      p.diagnostics.ends_with("/out/EV_1.nc:8:1: note: the wait in the program as it would have been written "
+                              "(no file is written)\nM101\n^\n"));
   CHECK(p.files.empty());
 }
 
 TEST_CASE("an event wait paired in both channels posts", "[post][events]") {
   // Both channels start with M101: the control (and the self-check) pairs them.
-  const test::posted p =
-      post_with("[events]\nprogram_start.after = [\"M101\"]\n", "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "paired");
-  CHECK(program_1(p) == "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 U0.\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\n"
-                        "G28 W0.\nM5\nM30\n%\n");
+  const test::posted p = post_with("[events]\nprogram_start.after = [\"M101\"]\n",
+                                   "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "paired");
+  CHECK(program_1(p) ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 U0.\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\n"
+        "G28 W0.\nM5\nM30\n%\n");
   CHECK(program_1(p, "EV_2.nc") ==
         "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
@@ -151,11 +156,13 @@ TEST_CASE("an event wait paired in both channels posts", "[post][events]") {
 TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][events]") {
   const std::string head = test::machine_head + test::two_channels;
   CHECK(test::machine_error_of(head + "[events]\ntool_change.after = [\"S{rpm}\"]\n") ==
-        "m.toml:13:22: error: events.tool_change.after: template \"S{rpm}\" names {rpm}, which is not known there (it "
+        "m.toml:13:22: error: events.tool_change.after: template \"S{rpm}\" names {rpm}, which is not known "
+        "there (it "
         "is given {channel}, {tool}, {offset}, {text})");
-  CHECK(test::machine_error_of(head + "[events]\nprogram_start.before = [\"M10\"]\n") ==
-        "m.toml:13:24: error: events.program_start takes `after` only (blocks before the safe start belong in "
-        "program.header)");
+  CHECK(
+      test::machine_error_of(head + "[events]\nprogram_start.before = [\"M10\"]\n") ==
+      "m.toml:13:24: error: events.program_start takes `after` only (blocks before the safe start belong in "
+      "program.header)");
   CHECK(test::machine_error_of(head + "[events]\nprogram_end.after = [\"M10\"]\n") ==
         "m.toml:13:21: error: events.program_end takes `before` only (blocks after the last ones belong in "
         "program.footer)");
@@ -166,6 +173,7 @@ TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][e
   CHECK(test::machine_error_of(head + "[[events.record]]\nmajor = \"1CATCHER\"\nblocks = [\"M10\"]\n") ==
         "m.toml:13:9: error: events.record.major \"1CATCHER\" is not a CL major word");
   CHECK(test::machine_error_of(head + "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M{code}\"]\n") ==
-        "m.toml:14:11: error: events.record.blocks: template \"M{code}\" names {code}, which is not known there (it "
+        "m.toml:14:11: error: events.record.blocks: template \"M{code}\" names {code}, which is not known "
+        "there (it "
         "is given {channel}, {text})");
 }
