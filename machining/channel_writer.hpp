@@ -566,6 +566,9 @@ class channel_writer {
   /// Writes one user block: formatted, word formats checked, its wait codes noted for the
   /// self-check's findings, the modal state it may change forgotten.
   void user_block(const std::string& tpl, const template_args& a);
+  /// Whether the X words of user block `b` are within the channel's X travel, as the post's
+  /// own X words are held (axis_word); reports the first that is not.
+  bool user_block_in_travel(std::string_view b);
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
 };
 

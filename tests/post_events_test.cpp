@@ -124,6 +124,28 @@ TEST_CASE("an event block is held to the control's word formats", "[post][events
   CHECK(p.files.empty());
 }
 
+TEST_CASE("an event block's X is held to the channel's travel, as the post's own moves are",
+          "[post][events]") {
+  // channel.axis X of fanuc-0itd-twin: -10..460 (diameter).
+  const test::posted p =
+      post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G4 X1.5\", \"G0 X470.\"]\n",
+                "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "travel");
+  CHECK_FALSE(p.ok);
+  CHECK(
+      p.diagnostics ==
+      "job.cls:4:1: error: channel 1: X470. is outside channel 1's X travel -10..460 (channel.axis min/max)\n"
+      "CATCHER\n^\n");
+  CHECK(p.files.empty());
+  SECTION("within it, and X as a dwell (G4 X), posts") {
+    const test::posted q =
+        post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G4 X1.5\", \"G0 X460.\"]\n",
+                  "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "travel-ok");
+    CHECK(program_1(q) ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG4 X1.5\nG0 X460.\n"
+          "M100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+}
+
 TEST_CASE("a wait code an event writes is checked like the post's own: unpaired, nothing is written",
           "[post][events]") {
   // M101 is a wait code of the machine (waits 100..102, no partner list); channel 2 never waits for it.
