@@ -84,6 +84,8 @@ void read_events(const table_reader& root, machine& m) {
     er.require("blocks");
     record_event rec;
     er.read("major", rec.major);
+    rec.line = static_cast<int>(er.find("major")->source().begin.line);
+    rec.column = static_cast<int>(er.find("major")->source().begin.column);
     if (!major_word(rec.major))
       er.fail(*er.find("major"), fmt::format("events.record.major \"{}\" is not a CL major word", rec.major));
     ascii::upper_in_place(rec.major);

@@ -66,6 +66,7 @@ struct record_event {
   std::string major;               ///< upper case (PARTS_CATCHER)
   std::vector<std::string> words;  ///< the first arguments it must have (upper case); empty: any
   std::vector<std::string> blocks;
+  int line = 0, column = 0;  ///< where `major` is in the machine file (for messages about it)
 };
 
 /// [events]; empty when the file has none (then the post writes what it wrote without it).

@@ -28,6 +28,7 @@
 #include "post/output_names.hpp"
 #include "post/reader_thread.hpp"
 #include "post/sync_at_cl.hpp"
+#include "post/user_records.hpp"
 #include "support/ascii.hpp"
 #include "support/errors.hpp"
 #include "support/file_reader.hpp"
@@ -415,6 +416,10 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
                              "codes beyond the waits are not verified for posting",
                              m.name),
                  {}});
+    return sum;
+  }
+  if (std::optional<diagnostic> d = known_user_record(m)) {
+    sink.report(std::move(*d));
     return sum;
   }
   // A layout given in the options is held to the rule the loader holds the machine file to.

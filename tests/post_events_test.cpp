@@ -114,6 +114,18 @@ blocks = ["(NOTE {text})", "M0"]
   }
 }
 
+TEST_CASE("[[events.record]] for a word the post knows is an error at the entry", "[post][events]") {
+  // AUXFUN is posted by the post itself: the entry would never be used, without a word.
+  const test::posted p = post_with("[[events.record]]\nmajor = \"auxfun\"\nblocks = [\"M10\"]\n",
+                                   "PARTNO EV\nHEAD/1\nTURRET/1,1\nAUXFUN/10\nFINI\n", "known");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics.ends_with(
+      "twin-events.toml:255:9: error: events.record.major \"AUXFUN\" is a record the post knows (posted "
+      "in a post, docs/records.md): it never reaches [[events.record]], which takes only "
+      "words the post does not know\n"));
+  CHECK(p.files.empty());
+}
+
 TEST_CASE("an event block is held to the control's word formats", "[post][events]") {
   const test::posted p = post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M10 T12345\"]\n",
                                    "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "format");
