@@ -294,7 +294,9 @@ void channel_writer::process_event(const event& e, bool both) {
           if (ev_) [[unlikely]] {
             const event_point p =
                 d.mode == spindle_mode::off ? event_point::spindle_stop : event_point::spindle_start;
-            const bool around = d.mode != spindle_mode::orient && d.mode != spindle_mode::lock;
+            // The copy of a balance cut writes no spindle block (spindle_block): no event either.
+            const bool around =
+                d.mode != spindle_mode::orient && d.mode != spindle_mode::lock && !balance_copy_;
             template_args a;
             a.rpm = d.speed;
             if (around) user_blocks(p, false, a);

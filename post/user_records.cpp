@@ -14,9 +14,10 @@ std::optional<diagnostic> known_user_record(const machine& m) {
       d.file = m.source;
       d.line = r.line;
       d.column = r.column;
-      d.message = fmt::format("events.record.major \"{}\" is a record the post knows ({} in a post, docs/records.md): "
-                              "it never reaches [[events.record]], which takes only words the post does not know",
-                              r.major, record_use_name(rule.use));
+      d.message = fmt::format(
+          "events.record.major \"{}\" is a record the post knows ({} in a post, docs/records.md): "
+          "it never reaches [[events.record]], which takes only words the post does not know",
+          r.major, record_use_name(rule.use));
       return d;
     }
   return std::nullopt;

@@ -74,6 +74,23 @@ TEST_CASE("[events] blocks go out before and after each of the post's events", "
         "(WAIT 100)\nM100\n(WAITED)\n(END 1)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
+TEST_CASE("a HEAD/BOTH copy writes no spindle event, as it writes no spindle block", "[post][events]") {
+  const test::posted p =
+      post_with("[events]\nspindle_start.after = [\"(SPINDLE {channel})\"]\n",
+                "PARTNO EV\nHEAD/1\nTURRET/1,1\nHEAD/2\nTURRET/11,11\nHEAD/BOTH\n"
+                "SPINDL/RPM,800,CLW\nRAPID\nGOTO/36,0,2\nSPINDL/RPM,900,CLW\nRAPID\nGOTO/36,0,3\n"
+                "HEAD/1\nFINI\n",
+                "both");
+  CHECK(
+      program_1(p) ==
+      "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nM100\nG97 S800 M3\n(SPINDLE 1)\n"
+      "M101\nG68\nG0 X72. Z2.\nG97 S900 M3\n(SPINDLE 1)\nZ3.\nG69\nM102\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  CHECK(program_1(p, "EV_2.nc") ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM100\nG28 U0.\nG28 W0.\nT1111\nM101\nG68\nG0 X72. "
+        "Z2.\nZ3.\n"
+        "G69\nM102\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
+
 TEST_CASE("[[events.record]] turns a CL record the post does not know into blocks", "[post][events]") {
   const std::string events = R"T([[events.record]]
 major = "PARTS_CATCHER"
