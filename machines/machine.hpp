@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "machines/kinematic_chain.hpp"
+#include "machines/machine_events.hpp"
 #include "machines/machine_timing.hpp"
 #include "machines/millturn_rules.hpp"
 #include "machines/word_format.hpp"
@@ -357,6 +358,8 @@ struct machine {
   milling_rules milling;
   /// [interference]: envelopes and static zones (docs/interference.md).
   interference_rules interference;
+  /// [events]: the user's blocks at the post's events and for records it does not know.
+  event_templates events;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

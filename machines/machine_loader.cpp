@@ -576,9 +576,10 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   } catch (const toml::parse_error& e) {
     detail::fail_at(source, e.source(), e.description());
   }
-  table_reader root(doc, "", source,
-                    {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits",
-                     "cycles", "transfer", "tool", "timing", "kinematics", "milling", "interference"});
+  table_reader root(
+      doc, "", source,
+      {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits", "cycles", "transfer",
+       "tool", "timing", "kinematics", "milling", "interference", "events"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -598,6 +599,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_tools(root, m);
   detail::read_kinematics(root, m);
   detail::read_interference(root, m);
+  detail::read_events(root, m);
   check_across_tables(root, m, at);
   detail::check_code_overlaps(root, m);
   return m;
