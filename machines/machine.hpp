@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "machines/kinematic_chain.hpp"
+#include "machines/machine_events.hpp"
 #include "machines/machine_timing.hpp"
 #include "machines/millturn_rules.hpp"
 #include "machines/word_format.hpp"
@@ -317,6 +318,8 @@ struct machine {
   std::vector<kinematic_chain> kinematics;
   /// [milling]: live-tool work on a channel with a C axis (machines/millturn_rules.hpp).
   milling_rules milling;
+  /// [events]: the user's blocks at the post's events and for records it does not know.
+  event_templates events;
 
   /// The channel that serves CL head `head`, or nullptr.
   const channel_def* channel_for_head(int head) const;

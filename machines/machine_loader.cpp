@@ -578,7 +578,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   }
   table_reader root(doc, "", source,
                     {"machine", "channel", "spindle", "waits", "program", "format", "codes", "limits",
-                     "cycles", "transfer", "tool", "timing", "kinematics", "milling"});
+                     "cycles", "transfer", "tool", "timing", "kinematics", "milling", "events"});
   machine m;
   m.source = std::string(source);
   anchors at;
@@ -597,6 +597,7 @@ machine parse_machine(std::string_view toml_text, std::string_view source) {
   read_transfer(root, m);
   read_tools(root, m);
   detail::read_kinematics(root, m);
+  detail::read_events(root, m);
   check_across_tables(root, m, at);
   detail::check_code_overlaps(root, m);
   return m;

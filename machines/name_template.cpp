@@ -30,7 +30,7 @@ void reject_positional(std::string_view tpl) {
 }
 
 // In the order of template_args.
-constexpr std::array<std::pair<std::string_view, placeholder>, 9> names{{
+constexpr std::array<std::pair<std::string_view, placeholder>, 11> names{{
     {"program", placeholder::program},
     {"name", placeholder::name},
     {"channel", placeholder::channel},
@@ -40,6 +40,8 @@ constexpr std::array<std::pair<std::string_view, placeholder>, 9> names{{
     {"seconds", placeholder::seconds},
     {"ms", placeholder::ms},
     {"rpm", placeholder::rpm},
+    {"text", placeholder::text},
+    {"code", placeholder::code},
 }};
 
 // {seconds} is a dwell time, and a Fanuc control reads a dwell word without a decimal point in
@@ -113,7 +115,8 @@ std::string format_template(std::string_view tpl, const template_args& a) {
   return fmt::format(fmt::runtime(tpl), fmt::arg("program", a.program), fmt::arg("name", a.name),
                      fmt::arg("channel", a.channel), fmt::arg("max", a.max), fmt::arg("tool", a.tool),
                      fmt::arg("offset", a.offset), fmt::arg("seconds", dwell_seconds{a.seconds}),
-                     fmt::arg("ms", a.ms), fmt::arg("rpm", a.rpm));
+                     fmt::arg("ms", a.ms), fmt::arg("rpm", a.rpm), fmt::arg("text", a.text),
+                     fmt::arg("code", a.code));
 }
 
 }  // namespace twinpost

@@ -23,6 +23,8 @@ struct template_args {
   double seconds = 0;  ///< dwell time in seconds
   int ms = 0;          ///< dwell time in milliseconds
   double rpm = 0;      ///< spindle speed
+  std::string text{};  ///< [events]: a name or the arguments of a record (machine_events.hpp)
+  int code = 0;        ///< [events]: the wait code of a wait event
 };
 
 /// One placeholder of template_args.
@@ -36,6 +38,8 @@ enum class placeholder : unsigned {
   seconds = 1u << 6,
   ms = 1u << 7,
   rpm = 1u << 8,
+  text = 1u << 9,
+  code = 1u << 10,
 };
 
 /// The placeholders a template is given where it is used.

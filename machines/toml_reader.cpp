@@ -184,7 +184,9 @@ template_args sample_template_args() {
           .offset = 1,
           .seconds = 1.5,
           .ms = 1500,
-          .rpm = 1000};
+          .rpm = 1000,
+          .text = "TEXT",
+          .code = 100};
 }
 
 }  // namespace

@@ -104,6 +104,8 @@ void read_cycles(const table_reader& root, cycle_rules& c);
 /// Reads [timing] and its [timing.channel.N] overrides into every channel of `m` (after the
 /// channels). Lives in machine_timing.cpp.
 void read_timing(const table_reader& root, machine& m);
+/// Reads [events] and its [[events.record]] (machine_events.cpp).
+void read_events(const table_reader& root, machine& m);
 /// Reads every [[kinematics]] chain (machine_kinematics.cpp), after the channels.
 void read_kinematics(const table_reader& root, machine& m);
 

@@ -322,12 +322,16 @@ void channel_writer::transfer(const transfer_event& t, int line) {
       // the channel's own mode goes back on at once and its next move writes G and F again,
       // never a feed per revolution read per minute.
       bool mode_set = false;
+      if (ev_) [[unlikely]]
+        user_blocks(event_point::transfer, false, {});
       for (const std::string& b : t.release ? m_.transfer.release : m_.transfer.grip) {
         out_.block(b);
         for (const std::string* g : {&m_.codes.feed_per_min, &m_.codes.feed_per_rev})
           mode_set = mode_set || (!g->empty() && b.find(*g) != std::string::npos);
       }
       if (mode_set && !feed_g_.empty()) out_.block(feed_g_);
+      if (ev_) [[unlikely]]
+        user_blocks(event_point::transfer, true, {});
       last_f_.clear();
       motion_g_ = -1;
       spindle_ended_.clear();  // the transfer's own codes synchronise and start spindles: the footer's

@@ -164,6 +164,12 @@ void channel_writer::tool(const tool_event& t, int line) {
   // G28 W0., T0202, then coolant once the tool is there; docs/machines.md).
   const std::string coolant_was = coolant_block_;
   const std::string coolant_off_was = coolant_off_block_;
+  template_args ea;  // events.tool_change
+  if (ev_) [[unlikely]] {
+    ea = a;
+    if (const tool_def* d = m_.tool(ch_.number, t.tool)) ea.text = d->name;
+    user_blocks(event_point::tool_change, false, ea);
+  }
   if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_) {
     spindle_block(fmt::format("M{}", spindle_->stop), true);
     spindle_held_ = true;
@@ -183,6 +189,8 @@ void channel_writer::tool(const tool_event& t, int line) {
   // Fusion "Mazak Integrex i" post writes M901 or M902 in every section's start): its SPINDL,
   // or else its first move, writes the select code again.
   selected_ = nullptr;
+  if (ev_) [[unlikely]]
+    user_blocks(event_point::tool_change, true, ea);
   if (!coolant_was.empty()) coolant_block(coolant_was, false);
   tool_call_ = call + offset_block;
   after_index_ = true;

@@ -76,6 +76,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   last_z_.max = m.formats['Z'].max_count(axis_style_.decimals);
   last_c_.max = m.formats['C'].max_count(axis_style_.decimals);
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
+  if (!m.events.empty()) ev_ = &m.events;
   chain_ = m.chain(ch.number);
   if (chain_) {
     for (std::size_t i = 0; i < chain_->rotaries.size(); ++i) {
@@ -206,10 +207,21 @@ void channel_writer::on_wait(const wait_mark& w) {
     out_.block(m_.codes.balance_off);
   std::string b = fmt::format("{}{}", m_.waits.address, w.code);
   if (!w.partner_text.empty()) b += fmt::format(" {}{}", m_.waits.partner_address, w.partner_text);
+  if (ev_) [[unlikely]] {
+    if (!program_started_) user_program_start();
+    template_args a;
+    a.code = w.code;
+    user_blocks(event_point::wait, false, a);
+  }
   out_.block(b);
   ++waits_;
   cut_due_ = true;
   wait_cl_lines_.push_back(w.cl_line);
+  if (ev_) [[unlikely]] {
+    template_args a;
+    a.code = w.code;
+    user_blocks(event_point::wait, true, a);
+  }
   if (w.both == wait_mark::section::opens_both && !m_.codes.balance_on.empty())
     out_.block(m_.codes.balance_on);
 }
@@ -230,6 +242,11 @@ void channel_writer::call_tool(const tool_event& d, int line) {
 }
 
 void channel_writer::on_event(const event& e, bool both) {
+  if (ev_ && !program_started_) [[unlikely]] {
+    line_ = e.line;
+    column_ = e.column;
+    user_program_start();
+  }
   if (msys_) [[unlikely]] {  // NX MSYS turned the CL's frame (machining/channel_frames.cpp)
     event turned = e;
     if (!turn_to_msys(turned)) return;
@@ -269,7 +286,17 @@ void channel_writer::process_event(const event& e, bool both) {
           arc(d, e.line);
         else if constexpr (std::is_same_v<T, spindle_event>) {
           if (tool_ < 0 || cam_tool_due_) start_tool(e.line);  // a job that starts without a tool call
-          spindle(d, e.line);
+          if (ev_) [[unlikely]] {
+            const event_point p =
+                d.mode == spindle_mode::off ? event_point::spindle_stop : event_point::spindle_start;
+            const bool around = d.mode != spindle_mode::orient && d.mode != spindle_mode::lock;
+            template_args a;
+            a.rpm = d.speed;
+            if (around) user_blocks(p, false, a);
+            spindle(d, e.line);
+            if (around) user_blocks(p, true, a);
+          } else
+            spindle(d, e.line);
         } else if constexpr (std::is_same_v<T, feed_event>)
           feed(d, e.line);
         else if constexpr (std::is_same_v<T, tool_event>) {
@@ -282,7 +309,13 @@ void channel_writer::process_event(const event& e, bool both) {
           transfer(d, e.line);
         else if constexpr (std::is_same_v<T, coolant_event>) {
           if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
-          coolant(d, e.line);
+          if (ev_) [[unlikely]] {
+            const event_point p = d.mode == "OFF" ? event_point::coolant_off : event_point::coolant_on;
+            user_blocks(p, false, {});
+            coolant(d, e.line);
+            user_blocks(p, true, {});
+          } else
+            coolant(d, e.line);
         } else if constexpr (std::is_same_v<T, stop_event>) {
           program_stop(d.optional);
         } else if constexpr (std::is_same_v<T, cutcom_event>) {
@@ -295,6 +328,12 @@ void channel_writer::process_event(const event& e, bool both) {
           if (d.type == "OFF") {
             cycle_.reset();
             cycle_refused_ = false;
+            if (ev_ && !user_cycle_.empty()) [[unlikely]] {
+              template_args a;
+              a.text = std::move(user_cycle_);
+              user_cycle_.clear();
+              user_blocks(event_point::cycle, true, a);
+            }
           } else if (d.type != "ON" && d.type != "INIT") {
             if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
             const bool lathe = d.type == "THREAD" || d.type == "GROOVE";
@@ -303,6 +342,13 @@ void channel_writer::process_event(const event& e, bool both) {
               cycle_.reset();
             else
               cycle_ = d, cycle_line_ = e.line;
+            // events.cycle: `before` as the cycle starts, `after` at its CYCLE/OFF.
+            if (ev_ && !cycle_refused_ && user_cycle_.empty()) [[unlikely]] {
+              user_cycle_ = d.type;
+              template_args a;
+              a.text = d.type;
+              user_blocks(event_point::cycle, false, a);
+            }
           }
         } else if constexpr (std::is_same_v<T, thread_event>) {
           thread_mode(d, e.line);
@@ -329,7 +375,15 @@ void channel_writer::process_event(const event& e, bool both) {
           } else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint ||
                      d.kind == text_kind::op_start || d.kind == text_kind::toolpath) {
             if (d.kind != text_kind::pprint && d.kind != text_kind::op_start) note_cam_tool(d, e.line);
+            const bool op = ev_ && (d.kind == text_kind::op_start || d.kind == text_kind::toolpath);
+            template_args a;
+            if (op) [[unlikely]] {
+              a.text = d.text;
+              user_blocks(event_point::operation, false, a);
+            }
             out_.comment(d.text);
+            if (op) [[unlikely]]
+              user_blocks(event_point::operation, true, a);
           }
         } else if constexpr (std::is_same_v<T, tool_axis_event>) {
           axis_ = d.axis;
@@ -337,6 +391,8 @@ void channel_writer::process_event(const event& e, bool both) {
           set_units(d.units);
         } else if constexpr (std::is_same_v<T, coordsys_event>) {
           frame(d, e.line);
+        } else if constexpr (std::is_same_v<T, passthrough_event>) {
+          if (d.user) user_record(d, e.line);  // only a machine with [[events.record]] makes these
         }
         // FROM-only state, tool data, coordinate systems, comments, ends: no block.
       },
@@ -373,6 +429,10 @@ void channel_writer::write_dwell(double seconds) {
 void channel_writer::finish() {
   release_held(std::nullopt);
   if (chain_) multiaxis_off();
+  if (ev_) [[unlikely]] {
+    if (!program_started_) user_program_start();
+    user_blocks(event_point::program_end, false, {});
+  }
   // The footer stops the spindles its file names (M5; the Integrex M5 M205 M305). A spindle
   // still turning whose stop code the footer lacks (the sub spindle's M105 on the 0i-TD, the
   // main spindle on a file without M5) is stopped first, as the Fusion Doosan post does

@@ -576,6 +576,21 @@ class channel_writer {
   vec3 plane_axis_;            ///< the CL tool axis it was opened for
   void note_line(std::string_view line);
   bool warned_side_ = false;
+  // [events] (machining/channel_events.cpp). ev_ is null when the machine file has none: the
+  // post's own events then cost one pointer test each, and nothing else changes.
+  const event_templates* ev_ = nullptr;
+  bool program_started_ = false;  ///< events.program_start went out
+  std::string user_cycle_;        ///< the type of the cycle whose events.cycle `before` went out
+  /// The blocks of event `p` (`after` or before the post's own), formatted with `a` (its
+  /// channel is set here), each held to the control's word formats like the post's own.
+  void user_blocks(event_point p, bool after, template_args a);
+  /// events.program_start, once, before the channel's first block.
+  void user_program_start();
+  /// A record the machine file turns into blocks ([[events.record]]).
+  void user_record(const passthrough_event& r, int line);
+  /// Writes one user block: formatted, word formats checked, its wait codes noted for the
+  /// self-check's findings, the modal state it may change forgotten.
+  void user_block(const std::string& tpl, const template_args& a);
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
 };
 

@@ -18,6 +18,7 @@ struct cl_reader::impl {
         d(options.forced ? *options.forced : detect_dialect(lines.peek(64 * 1024))), builder(d) {
     builder.set_posting(options.posting);
     builder.set_permissive(options.permissive);
+    builder.set_user_records(options.user_records);
   }
 
   void report(const build_issue& i) {

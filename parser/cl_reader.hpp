@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "parser/dialect.hpp"
 #include "parser/events.hpp"
@@ -26,6 +27,9 @@ struct cl_reader_options {
   /// With `posting`: an unknown major word is a warning, not an error (`post --permissive`).
   /// A known word the post refuses (docs/records.md) stays an error.
   bool permissive = false;
+  /// Major words (upper case) the machine file turns into blocks ([[events.record]]): read as
+  /// passthrough events with `user` set, never as unknown words.
+  std::vector<std::string> user_records;
 };
 
 class cl_reader {

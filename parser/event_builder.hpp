@@ -4,6 +4,7 @@
 // CIRCLE waiting for its end point, units, ICAM marker numbers.
 #include <array>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -25,6 +26,9 @@ class event_builder {
   /// A permissive post: an unknown major word is a warning, not an error. A known word the
   /// post refuses (parser/record_table.cpp) stays an error.
   void set_permissive(bool on) { permissive_ = on; }
+  /// Major words (upper case) that the machine file turns into blocks ([[events.record]]): such a
+  /// word the post does not know is a passthrough event with `user` set, not an error.
+  void set_user_records(std::vector<std::string> words) { user_records_ = std::move(words); }
   /// The column of the next record's major word, for messages about it that come later.
   void set_column(int column) { column_ = column; }
 
@@ -73,6 +77,7 @@ class event_builder {
     statement_handler handler = nullptr;
   };
   handler_cache last_handler_;
+  std::vector<std::string> user_records_;
   template <motion_kind K>
   void on_motion(const cl_record& r, int line, event_queue& out, build_issues& issues) {
     motion(r, K, line, out, issues);

@@ -1,5 +1,6 @@
 // event_builder: statements (MAJOR/args) other than motion, found through one table of
 // handlers by major word.
+#include <algorithm>
 #include <array>
 #include <cstring>
 
@@ -218,6 +219,11 @@ void event_builder::on_refused(const cl_record& r, int line, event_queue& out, b
 
 void event_builder::other(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   const std::string m = upper(r.major);
+  if (!user_records_.empty() &&
+      std::find(user_records_.begin(), user_records_.end(), m) != user_records_.end()) {
+    out.push_back({line, passthrough_event{m, detail::args_text(r), false, true}});
+    return;
+  }
   if (posting_ && !permissive_) {
     // Nothing silent in a post: a word twinpost does not know stops it.
     issues.push_back({severity::error, r.major_offset,

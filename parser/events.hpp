@@ -208,6 +208,8 @@ struct passthrough_event {
   std::string major;
   std::string text;  ///< the arguments as written
   bool known = false;
+  /// A word the machine file turns into blocks ([[events.record]], cl_reader_options::user_records).
+  bool user = false;
 };
 
 using event_data = std::variant<motion_event, arc_event, tool_event, tool_data_event, spindle_event,

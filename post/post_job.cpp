@@ -184,8 +184,9 @@ frame_request staged_request(const post_options& o, const machine& m, const std:
   return req;
 }
 
-cl_reader_options posting_reader(const post_options& o) {
+cl_reader_options posting_reader(const post_options& o, const machine& m) {
   cl_reader_options ro;
+  for (const record_event& r : m.events.records) ro.user_records.push_back(r.major);
   ro.file_name = o.cl_path;
   ro.forced = o.forced_dialect;
   ro.posting = true;
@@ -436,7 +437,8 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   // On two threads the reader starts at once, and reads ahead while the scan below runs.
   file_source src(in.get());
   passing_sink as_is(sink);
-  job_events reader(src, posting_reader(o), sink, as_is, threads(o) >= 2);  // to the end: messages quote it
+  job_events reader(src, posting_reader(o, m), sink, as_is,
+                    threads(o) >= 2);  // to the end: messages quote it
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);
   const job_scan scan = scan_for_sync(o, m);

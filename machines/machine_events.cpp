@@ -1,0 +1,100 @@
+// [events] and [[events.record]] of a machine file (machines/machine_events.hpp).
+#include "machines/machine_events.hpp"
+
+#include <fmt/format.h>
+
+#include "machines/machine.hpp"
+#include "machines/toml_reader.hpp"
+#include "support/ascii.hpp"
+
+namespace twinpost {
+
+namespace {
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+// A major word as the CL writes it: a letter, then letters, digits and '_' (PARTS_CATCHER).
+bool major_word(std::string_view w) {
+  if (w.empty() || !ascii::is_letter(w.front())) return false;
+  for (char c : w)
+    if (!ascii::is_letter(c) && !ascii::is_digit(c) && c != '_' && c != '-') return false;
+  return true;
+}
+
+}  // namespace
+
+const record_event* event_templates::record_for(std::string_view major, std::string_view args) const {
+  for (const record_event& r : records) {
+    if (r.major != major) continue;
+    std::string_view rest = args;
+    bool match = true;
+    for (const std::string& w : r.words) {
+      const std::size_t comma = rest.find(',');
+      const std::string_view arg = trimmed(rest.substr(0, comma));
+      if (!ascii::iequals(arg, w)) {
+        match = false;
+        break;
+      }
+      rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
+    }
+    if (match) return &r;
+  }
+  return nullptr;
+}
+
+bool event_templates::names_record(std::string_view major) const {
+  for (const record_event& r : records)
+    if (r.major == major) return true;
+  return false;
+}
+
+namespace detail {
+
+void read_events(const table_reader& root, machine& m) {
+  const toml::table* t = root.sub_table("events");
+  if (!t) return;
+  table_reader r(*t, "events", root.source(),
+                 {"program_start", "program_end", "tool_change", "spindle_start", "spindle_stop",
+                  "coolant_on", "coolant_off", "wait", "cycle", "transfer", "operation", "record"});
+  for (std::size_t i = 0; i < event_point_count; ++i) {
+    const toml::table* e = r.sub_table(event_point_keys[i]);
+    if (!e) continue;
+    table_reader er(*e, fmt::format("events.{}", event_point_keys[i]), root.source(), {"before", "after"});
+    const auto p = static_cast<event_point>(i);
+    // The program's first and last blocks are [program] header and footer: a block before
+    // the header or after the footer would be outside the frame the checker reads.
+    if (p == event_point::program_start && er.find("before"))
+      er.fail(*er.find("before"),
+              "events.program_start takes `after` only (blocks before the safe start "
+              "belong in program.header)");
+    if (p == event_point::program_end && er.find("after"))
+      er.fail(*er.find("after"),
+              "events.program_end takes `before` only (blocks after the last ones belong "
+              "in program.footer)");
+    er.read_templates("before", m.events.at[i].before, event_uses::of[i]);
+    er.read_templates("after", m.events.at[i].after, event_uses::of[i]);
+  }
+  for (const toml::table* e : r.tables("record")) {
+    table_reader er(*e, "events.record", root.source(), {"major", "words", "blocks"});
+    er.require("major");
+    er.require("blocks");
+    record_event rec;
+    er.read("major", rec.major);
+    if (!major_word(rec.major))
+      er.fail(*er.find("major"), fmt::format("events.record.major \"{}\" is not a CL major word", rec.major));
+    ascii::upper_in_place(rec.major);
+    er.read("words", rec.words);
+    for (std::string& w : rec.words) ascii::upper_in_place(w);
+    er.read_templates("blocks", rec.blocks, event_uses::record);
+    if (rec.blocks.empty())
+      er.fail(*er.find("blocks"), "events.record.blocks is empty: give at least one block");
+    m.events.records.push_back(std::move(rec));
+  }
+}
+
+}  // namespace detail
+}  // namespace twinpost

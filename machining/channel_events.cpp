@@ -1,0 +1,82 @@
+// channel_writer: the machine file's [events] blocks and [[events.record]] records
+// (machines/machine_events.hpp, docs/customising.md). Every block goes through the same
+// block_writer as the post's own, so the self-check reads it like any other block: a wait code
+// in it must pair, its words must fit the control's formats.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "machines/code_overlap.hpp"
+#include "machines/name_template.hpp"
+#include "machining/channel_writer.hpp"
+#include "support/ascii.hpp"
+
+namespace twinpost {
+
+void channel_writer::user_block(const std::string& tpl, const template_args& a) {
+  const std::string b = format_template(tpl, a);
+  if (!block_fits(b)) return;  // a word past the control's format: an error at the CL record
+  out_.block(b);
+  // The words of the block, outside comments: a wait code is numbered like the post's own
+  // waits (post/sync_at_cl reports the checker's findings at this CL record); a G code may
+  // move the axes or change the motion mode, so the next move writes them all again.
+  bool g = false;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b[i] == m_.program.comment_open) {
+      const std::size_t close = b.find(m_.program.comment_close, i + 1);
+      if (close == std::string::npos) break;
+      i = close;
+      continue;
+    }
+    if (b[i] == 'G') g = true;
+    if (b[i] != m_.waits.address || i + 1 >= b.size() || !ascii::is_digit(b[i + 1])) continue;
+    long long code = 0;
+    std::size_t j = i + 1;
+    for (; j < b.size() && ascii::is_digit(b[j]) && code < 1000000000; ++j) code = code * 10 + (b[j] - '0');
+    if (is_wait_word(m_.waits, m_.waits.address, code)) {
+      ++waits_;
+      cut_due_ = true;
+      wait_cl_lines_.push_back(line_);
+    }
+    i = j - 1;
+  }
+  if (g) {
+    forget_axes();
+    motion_g_ = -1;
+  }
+  // What the user's codes do to the spindle or the coolant is not known (as after AUXFUN).
+  spindle_ended_.clear();
+  coolant_ended_.clear();
+}
+
+void channel_writer::user_blocks(event_point p, bool after, template_args a) {
+  const event_blocks& e = (*ev_)[p];
+  const std::vector<std::string>& blocks = after ? e.after : e.before;
+  if (blocks.empty()) return;
+  a.channel = ch_.number;
+  for (const std::string& t : blocks) user_block(t, a);
+}
+
+void channel_writer::user_program_start() {
+  program_started_ = true;
+  user_blocks(event_point::program_start, true, {});
+}
+
+void channel_writer::user_record(const passthrough_event& r, int line) {
+  const record_event* rec = ev_->record_for(r.major, r.text);
+  if (!rec) {
+    std::string forms;
+    for (const record_event& e : ev_->records)
+      if (e.major == r.major) {
+        if (!forms.empty()) forms += ", ";
+        forms += e.words.empty() ? e.major : fmt::format("{}/{}", e.major, fmt::join(e.words, ","));
+      }
+    return error(line, fmt::format("{}/{} matches no [[events.record]] of machine '{}' (it has {})", r.major,
+                                   r.text, m_.name, forms));
+  }
+  template_args a;
+  a.channel = ch_.number;
+  a.text = r.text;
+  for (const std::string& t : rec->blocks) user_block(t, a);
+}
+
+}  // namespace twinpost

@@ -1,0 +1,179 @@
+// [events] of a machine file (docs/customising.md): the user's blocks at the post's events and
+// for CL records the post does not know, written through the channel's own writer and so held
+// to the same checks as the post's blocks (word formats, waits paired by the self-check).
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "file_test_support.hpp"
+#include "machine_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+// fanuc-0itd-twin as its file is, with `events` appended (the file ends with [timing]).
+std::string twin_with(const std::string& events) {
+  return test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/fanuc-0itd-twin.toml") + "\n" +
+         events;
+}
+
+test::posted post_with(const std::string& events, const std::string& cl, const std::string& tag) {
+  return test::post_in_fresh_dir(cl, parse_machine(twin_with(events), "twin-events.toml"), "events-" + tag);
+}
+
+std::string program_1(const test::posted& p, const std::string& name = "EV_1.nc") {
+  if (!p.ok) return "(failed)\n" + p.diagnostics;
+  const auto f = p.files.find(name);
+  return f == p.files.end() ? "(missing)" : f->second;
+}
+
+const std::string every_event = R"T([events]
+program_start.after = ["(START {channel})"]
+program_end.before = ["(END {channel})"]
+tool_change.before = ["(OUT)"]
+tool_change.after = ["(T{tool:02} OFFSET {offset} {text})"]
+spindle_start.before = ["(SPINDLE {rpm})"]
+spindle_start.after = ["(SPINDLE ON)"]
+spindle_stop.before = ["(SPINDLE STOPS)"]
+spindle_stop.after = ["(SPINDLE OFF)"]
+coolant_on.before = ["(COOLANT)"]
+coolant_on.after = ["(COOLANT ON)"]
+coolant_off.before = ["(COOLANT STOPS)"]
+coolant_off.after = ["(COOLANT OFF)"]
+wait.before = ["(WAIT {code})"]
+wait.after = ["(WAITED)"]
+cycle.before = ["(CYCLE {text})"]
+cycle.after = ["(CYCLE DONE)"]
+operation.before = ["(OPERATION)"]
+operation.after = ["(OPERATION {text})"]
+
+[[tool]]
+number = 1
+kind = "drill"
+name = "DRILL 8"
+)T";
+
+}  // namespace
+
+TEST_CASE("[events] blocks go out before and after each of the post's events", "[post][events]") {
+  const test::posted p =
+      post_with(every_event,
+                "PARTNO EV\nHEAD/1\nTOOL PATH/DRILL_1,TOOL,DRILL 8\nTURRET/1,1\n"
+                "SPINDL/RPM,800,CLW\nCOOLNT/ON\nRAPID\nGOTO/0,0,5\nCYCLE/DRILL,DEPTH,10,CLEAR,2,MMPR,0.1\n"
+                "GOTO/0,0,0\nCYCLE/OFF\nCOOLNT/OFF\nSPINDL/OFF\nFINI\n",
+                "every");
+  CHECK(program_1(p) ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\n(START 1)\n(OPERATION)\n"
+        "(DRILL_1,TOOL,DRILL 8)\n(OPERATION DRILL_1,TOOL,DRILL 8)\n(OUT)\nG28 U0.\nG28 W0.\nT0101\n"
+        "(T01 OFFSET 1 DRILL 8)\n(SPINDLE 800)\nG97 S800 M3\n(SPINDLE ON)\n(COOLANT)\nM8\n"
+        "(COOLANT ON)\nG0 X0. Z5.\n(CYCLE DRILL)\nZ2.\nG83 X0. Z-10. R0. F0.1\nG80\nG0 Z2.\n"
+        "(CYCLE DONE)\n(COOLANT STOPS)\nM9\n(COOLANT OFF)\n(SPINDLE STOPS)\nM5\n(SPINDLE OFF)\n"
+        "(WAIT 100)\nM100\n(WAITED)\n(END 1)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
+
+TEST_CASE("[[events.record]] turns a CL record the post does not know into blocks", "[post][events]") {
+  const std::string events = R"T([[events.record]]
+major = "PARTS_CATCHER"
+words = ["ON"]
+blocks = ["M10"]
+[[events.record]]
+major = "parts_catcher"
+words = ["off"]
+blocks = ["M11"]
+[[events.record]]
+major = "OPERATOR_NOTE"
+blocks = ["(NOTE {text})", "M0"]
+)T";
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/20,0,5\nparts_catcher/on\n"
+      "PARTS_CATCHER / OFF\nOPERATOR_NOTE/CHECK,DIAMETER\nFINI\n";
+  CHECK(program_1(post_with(events, job, "record")) ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S800 M3\n"
+        "G0 X40. Z5.\nM10\nM11\n(NOTE CHECK,DIAMETER)\nM0\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  SECTION("a record none of whose entries match is an error at it") {
+    const test::posted p =
+        post_with(events, "PARTNO EV\nHEAD/1\nTURRET/1,1\nPARTS_CATCHER/HALF\nFINI\n", "nomatch");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics ==
+          "job.cls:4:1: error: channel 1: PARTS_CATCHER/HALF matches no [[events.record]] of machine "
+          "'fanuc-0itd-twin' (it has PARTS_CATCHER/ON, PARTS_CATCHER/OFF)\nPARTS_CATCHER/HALF\n^\n");
+  }
+  SECTION("without the entry the word stays unknown") {
+    const test::posted p = post_with("", job, "unknown");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics ==
+          "job.cls:7:1: error: unknown major word 'PARTS_CATCHER': this record cannot be posted\n"
+          "parts_catcher/on\n^\n"
+          "job.cls:8:1: error: unknown major word 'PARTS_CATCHER': this record cannot be posted\n"
+          "PARTS_CATCHER / OFF\n^\n"
+          "job.cls:9:1: error: unknown major word 'OPERATOR_NOTE': this record cannot be posted\n"
+          "OPERATOR_NOTE/CHECK,DIAMETER\n^\n");
+  }
+}
+
+TEST_CASE("an event block is held to the control's word formats", "[post][events]") {
+  const test::posted p = post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M10 T12345\"]\n",
+                                   "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "format");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:4:1: error: channel 1: T word 12345 does not fit the control's format (4: at most 9999)\n"
+        "CATCHER\n^\n");
+  CHECK(p.files.empty());
+}
+
+TEST_CASE("a wait code an event writes is checked like the post's own: unpaired, nothing is written",
+          "[post][events]") {
+  // M101 is a wait code of the machine (waits 100..102, no partner list); channel 2 never waits for it.
+  const test::posted p = post_with(
+      "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M101\"]\n",
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nCATCHER\nRAPID\nGOTO/20,0,5\nFINI\n", "wait");
+  CHECK_FALSE(p.ok);
+  // The self-check's finding, at the CL record whose event wrote the wait.
+  CHECK(
+      p.diagnostics.starts_with("job.cls:5:1: error: deadlock: channel 1 waits on M101 at job.cls:5 while "
+                                "channel 2 waits on M100 at job.cls:8 (different codes, Fanuc PS0160)\n"
+                                "CATCHER\n^\n"));
+  CHECK(
+      p.diagnostics.ends_with("/out/EV_1.nc:8:1: note: the wait in the program as it would have been written "
+                              "(no file is written)\nM101\n^\n"));
+  CHECK(p.files.empty());
+}
+
+TEST_CASE("an event wait paired in both channels posts", "[post][events]") {
+  // Both channels start with M101: the control (and the self-check) pairs them.
+  const test::posted p = post_with("[events]\nprogram_start.after = [\"M101\"]\n",
+                                   "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "paired");
+  CHECK(program_1(p) ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 U0.\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\n"
+        "G28 W0.\nM5\nM30\n%\n");
+  CHECK(program_1(p, "EV_2.nc") ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
+
+TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][events]") {
+  const std::string head = test::machine_head + test::two_channels;
+  CHECK(test::machine_error_of(head + "[events]\ntool_change.after = [\"S{rpm}\"]\n") ==
+        "m.toml:13:22: error: events.tool_change.after: template \"S{rpm}\" names {rpm}, which is not known "
+        "there (it "
+        "is given {channel}, {tool}, {offset}, {text})");
+  CHECK(
+      test::machine_error_of(head + "[events]\nprogram_start.before = [\"M10\"]\n") ==
+      "m.toml:13:24: error: events.program_start takes `after` only (blocks before the safe start belong in "
+      "program.header)");
+  CHECK(test::machine_error_of(head + "[events]\nprogram_end.after = [\"M10\"]\n") ==
+        "m.toml:13:21: error: events.program_end takes `before` only (blocks after the last ones belong in "
+        "program.footer)");
+  CHECK(test::machine_error_of(head + "[events]\ntool_swap.after = [\"M10\"]\n") ==
+        "m.toml:13:1: error: unknown key 'events.tool_swap'");
+  CHECK(test::machine_error_of(head + "[[events.record]]\nmajor = \"CATCHER\"\n") ==
+        "m.toml:12:1: error: events.record.blocks is required");
+  CHECK(test::machine_error_of(head + "[[events.record]]\nmajor = \"1CATCHER\"\nblocks = [\"M10\"]\n") ==
+        "m.toml:13:9: error: events.record.major \"1CATCHER\" is not a CL major word");
+  CHECK(test::machine_error_of(head + "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M{code}\"]\n") ==
+        "m.toml:14:11: error: events.record.blocks: template \"M{code}\" names {code}, which is not known "
+        "there (it "
+        "is given {channel}, {text})");
+}
