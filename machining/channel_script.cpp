@@ -92,9 +92,17 @@ void channel_writer::script_record(const passthrough_event& r, int line) {
 void channel_writer::emit(std::string_view block) {
   // Called inside a Lua call: reports, never throws (script_host).
   const std::string b(block);
-  if (!block_fits(b)) return;  // a word past the control's format: an error at the CL record
+  if (!block_fits(b)) return script_block_note(b, "post.emit");  // the error is at the CL record
   out_.block_as_is(b);
   note_user_block(b, true);
+}
+
+void channel_writer::script_block_note(std::string_view block, std::string_view how) {
+  diagnostic n;
+  n.level = severity::note;
+  n.file = script_->lua->name();
+  n.message = fmt::format("channel {}: the block '{}' came from the script ({})", ch_.number, block, how);
+  diags_.report(std::move(n));
 }
 
 void channel_writer::warning(std::string_view message) {
@@ -113,7 +121,10 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
   run_script([&](scripting::lua_script& s) { v = s.on_block(block, script_context(), *this, replacement); });
   if (v == scripting::block_verdict::drop) return block_writer::verdict::drop;
   if (v == scripting::block_verdict::keep || script_->failed) return block_writer::verdict::keep;
-  if (!block_fits(replacement)) return block_writer::verdict::drop;  // the error is given
+  if (!block_fits(replacement)) {  // the error is at the CL record
+    script_block_note(replacement, "on_block");
+    return block_writer::verdict::drop;
+  }
   // A wait the post wrote is counted already; one a replacement adds is the self-check's to find.
   note_user_block(replacement, false);
   return block_writer::verdict::replace;

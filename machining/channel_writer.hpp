@@ -617,6 +617,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
     }
   }
   void script_failed(const scripting::script_error& e);
+  /// A note after the error for a block of the script's (`how`: post.emit, on_block).
+  void script_block_note(std::string_view block, std::string_view how);
   scripting::script_context script_context() const;
   void script_program(bool start);
   void script_tool(int tool, int offset);

@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# tests/script_cli.sh TWINPOST SOURCE_DIR: [events] script through the command line
+# (docs/scripting.md): the loader's errors for a script that is not a plain file name beside
+# the machine file or is missing, and `machines --show` naming the script. Exact output.
+set -uo pipefail
+tp=${1:?usage: script_cli.sh TWINPOST SOURCE_DIR}
+src=${2:?usage: script_cli.sh TWINPOST SOURCE_DIR}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+cp "$src/samples/script-shop/shop-0itd.toml" m.toml
+sed 's/script = "shop.lua"/script = "sub\/shop.lua"/' m.toml > path.toml
+sed 's/script = "shop.lua"/script = "..lua"/' m.toml > dot.toml
+bad=0
+expect() {  # expect NAME STATUS STDOUT_LAST_LINE STDERR -- ARGS...
+  local name=$1 status=$2 out=$3 err=$4
+  shift 5
+  local got_out got_err got_status
+  got_out=$("$tp" "$@" 2>err.txt | tail -n 1)
+  got_status=${PIPESTATUS[0]}
+  got_err=$(cat err.txt)
+  if [[ $got_out != "$out" || $got_err != "$err" || $got_status != "$status" ]]; then
+    echo "script_cli.sh: case '$name' differs"
+    echo "--- expected (status $status)"; echo "$out"; echo "$err"
+    echo "--- got (status $got_status)"; echo "$got_out"; echo "$got_err"
+    bad=1
+  fi
+}
+expect "missing script" 2 "" "./m.toml:260:10: error: events.script \"shop.lua\": no such file beside the machine file ('./shop.lua')" -- machines --show ./m.toml
+expect "a path" 2 "" "./path.toml:260:10: error: events.script \"sub/shop.lua\" must be a file name beside the machine file (no '/', '\\', ':' or leading '.')" -- machines --show ./path.toml
+expect "a leading dot" 2 "" "./dot.toml:260:10: error: events.script \"..lua\" must be a file name beside the machine file (no '/', '\\', ':' or leading '.')" -- machines --show ./dot.toml
+cp "$src/samples/script-shop/shop.lua" shop.lua
+expect "--show" 0 "# [events] script: shop.lua (read from ./shop.lua): copy it beside this file too" "" -- machines --show ./m.toml
+exit $bad
