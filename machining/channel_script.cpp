@@ -120,7 +120,9 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
   scripting::block_verdict v = scripting::block_verdict::keep;
   run_script([&](scripting::lua_script& s) { v = s.on_block(block, script_context(), *this, replacement); });
   if (v == scripting::block_verdict::drop) return block_writer::verdict::drop;
-  if (v == scripting::block_verdict::keep || script_->failed) return block_writer::verdict::keep;
+  // The block given back as it came (`return text`) is kept: the writer's modal state still holds.
+  if (v == scripting::block_verdict::keep || script_->failed || replacement == block)
+    return block_writer::verdict::keep;
   if (!block_fits(replacement)) {  // the error is at the CL record
     script_block_note(replacement, "on_block");
     return block_writer::verdict::drop;

@@ -31,4 +31,18 @@ expect "a path" 2 "" "./path.toml:260:10: error: events.script \"sub/shop.lua\" 
 expect "a leading dot" 2 "" "./dot.toml:260:10: error: events.script \"..lua\" must be a file name beside the machine file (no '/', '\\', ':' or leading '.')" -- machines --show ./dot.toml
 cp "$src/samples/script-shop/shop.lua" shop.lua
 expect "--show" 0 "# [events] script: shop.lua (read from ./shop.lua): copy it beside this file too" "" -- machines --show ./m.toml
+
+# An on_block that gives every block back as it came changes nothing: the same programs,
+# byte for byte, as without the script (bench/bench-lathe-script.toml is fanuc-0itd-twin
+# with such a script).
+cp "$src/bench/bench-lathe-script.toml" "$src/bench/bench_on_block.lua" .
+for job in balanced-turning thread-groove shaft-od-drill; do
+  "$tp" post "$src/samples/$job/job.cls" -m fanuc-0itd-twin -o "plain-$job" >/dev/null 2>&1
+  "$tp" post "$src/samples/$job/job.cls" -m ./bench-lathe-script.toml -o "kept-$job" >/dev/null 2>&1
+  if ! diff -r "plain-$job" "kept-$job" >/dev/null || [[ -z $(ls "plain-$job") ]]; then
+    echo "script_cli.sh: $job: on_block returning its argument changed the program"
+    diff -r "plain-$job" "kept-$job" | head -10
+    bad=1
+  fi
+done
 exit $bad
