@@ -70,7 +70,7 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
     }
     case record_kind::text: {
       end_of_motion_record();
-      if (!script_records_.empty() && to_script(r, line, out)) [[unlikely]]
+      if (any_script_records_ && to_script(r, line, out)) [[unlikely]]
         return;
       // PARTNO, PPRINT, INSERT, ...: each has its row in the record table.
       (this->*handler_of(r.major))(r, line, out, issues);
@@ -78,7 +78,7 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
     }
     case record_kind::statement:
       if (detail::has_bad_number(r, issues)) return skip_record(r.kind);
-      if (!script_records_.empty() && to_script(r, line, out)) [[unlikely]]
+      if (any_script_records_ && to_script(r, line, out)) [[unlikely]]
         return;
       statement(r, line, out, issues);
       return;

@@ -34,6 +34,7 @@ class event_builder {
   void set_script_records(std::vector<std::string> words, bool unknown) {
     script_records_ = std::move(words);
     unknown_to_script_ = unknown;
+    any_script_records_ = !script_records_.empty();
   }
   /// The column of the next record's major word, for messages about it that come later.
   void set_column(int column) { column_ = column; }
@@ -86,6 +87,7 @@ class event_builder {
   std::vector<std::string> user_records_;
   std::vector<std::string> script_records_;
   bool unknown_to_script_ = false;
+  bool any_script_records_ = false;  ///< one flag test per record (no script: false)
   /// True (and the record is out as a `user` passthrough) when the script takes `r` over.
   bool to_script(const cl_record& r, int line, event_queue& out);
   template <motion_kind K>
