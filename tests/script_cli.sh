@@ -45,4 +45,36 @@ for job in balanced-turning thread-groove shaft-od-drill; do
     bad=1
   fi
 done
+# script_records: PPRINT (a record the post knows) goes to on_record in place of the post's
+# comment; FOO (unknown) goes to on_record too, not to an error.
+mkdir rec && cd rec || exit 1
+sed 's/script = "shop.lua"/script = "pp.lua"\nscript_records = ["pprint"]/' ../m.toml > m.toml
+cat > pp.lua <<'LUA'
+function on_record(rec)
+  post.emit("(NOTE " .. rec.major .. " " .. table.concat(rec.words, "|") .. " AT " .. rec.line .. ")")
+end
+LUA
+printf 'PARTNO / PP\nUNITS / MM\nLOADTL / 1, 1\nPPRINT / ROUGH, OD\nSPINDL / RPM, 1500, CLW\nRAPID\nGOTO / 22, 0, 2\nFOO / 1, 2\nFINI\n' > job.cls
+"$tp" post job.cls -m ./m.toml -o o >/dev/null 2>&1
+want='%
+O1000 (PP)
+G0 G18 G21 G40 G54 G80 G99
+G28 U0.
+G28 W0.
+T0101
+(NOTE PPRINT ROUGH|OD AT 4)
+G97 S1500 M3
+G0 X44. Z2.
+(NOTE FOO 1|2 AT 8)
+M100
+M9
+G28 U0.
+G28 W0.
+M5
+M30
+%'
+if [[ $(cat o/PP_1.nc 2>&1) != "$want" ]]; then
+  echo "script_cli.sh: script_records: PP_1.nc differs"; cat o/PP_1.nc; bad=1
+fi
+cd ..
 exit $bad
