@@ -13,7 +13,11 @@ post.vars.uses = {}
 -- A comment naming the tool after each tool change, and one use more of it.
 function on_tool_change(tool)
   local name = names[tool.number]
-  if name then post.emit(string.format("(T%02d %s)", tool.number, name)) end
+  if name then
+    post.emit(string.format("(T%02d %s)", tool.number, name))
+  else
+    post.warning(string.format("T%02d is not in tools.csv: no name comment", tool.number))
+  end
   local uses = post.vars.uses[tool.channel] or {}
   post.vars.uses[tool.channel] = uses
   uses[tool.number] = (uses[tool.number] or 0) + 1
