@@ -39,6 +39,12 @@ int run_machines(const args& a) {
   if (a.size() == 2 && a[0] == "--show") {
     const located_machine found = locate_machine(a[1]);  // an invalid file throws: exit 2
     std::fwrite(found.text.data(), 1, found.text.size(), stdout);
+    // The script is a second file: a copy of this text works only with the script beside it.
+    // A TOML comment, so that the output stays a machine file to copy and edit.
+    if (!found.def.events.script.empty())
+      fmt::print("{}# [events] script: {} (read from {}): copy it beside this file too\n",
+                 found.text.empty() || found.text.back() == '\n' ? "" : "\n", found.def.events.script,
+                 found.def.events.script_path);
     return 0;
   }
   if (!a.empty()) {

@@ -57,6 +57,11 @@ text_buffer& block_writer::open_block() {
 }
 
 void block_writer::end_block() {
+  if (filter_ && !filtering_) [[unlikely]] {
+    const std::string b(buf_.data() + open_at_, buf_.size() - open_at_);
+    buf_.truncate(open_at_);
+    return filtered(b, false);
+  }
   ++blocks_;
   if (fmt_.sequence_start > 0) {
     const std::string n = seq_.next();
@@ -67,7 +72,23 @@ void block_writer::end_block() {
   flush_if_full();
 }
 
+void block_writer::filtered(std::string_view words, bool restart) {
+  filtering_ = true;
+  std::string replacement;
+  verdict v;
+  try {
+    v = filter_->filter(words, replacement);
+  } catch (...) {
+    filtering_ = false;
+    throw;
+  }
+  if (v != verdict::drop) block(v == verdict::replace ? std::string_view(replacement) : words, restart);
+  filtering_ = false;
+}
+
 void block_writer::block(std::string_view words, bool restart) {
+  if (filter_ && !filtering_) [[unlikely]]
+    return filtered(words, restart);
   if (!started_) [[unlikely]]
     start();  // the head's blocks take the first numbers
   ++blocks_;

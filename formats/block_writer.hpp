@@ -15,6 +15,17 @@ namespace twinpost {
 
 class block_writer {
  public:
+  /// What a block_filter does with a block.
+  enum class verdict { keep, replace, drop };
+  /// Sees each body block before it is written (the machine's script's on_block): keeps it,
+  /// replaces it (with `replacement`), or drops it. Blocks it writes itself while it runs go
+  /// out as they are.
+  class block_filter {
+   public:
+    virtual ~block_filter() = default;
+    virtual verdict filter(std::string_view block, std::string& replacement) = 0;
+  };
+
   /// Text around the blocks, as whole lines: `head` is asked for just before the first line
   /// is written (or at close, when there is none), `tail` at close. Empty: nothing. Both
   /// number their blocks from the writer's count (header blocks before the body's, footer
@@ -41,6 +52,17 @@ class block_writer {
   text_buffer& open_block();
   void end_block();
   void drop_block() { buf_.truncate(open_at_); }
+  /// Writes one block past the filter (a block the filter's own script wrote).
+  void block_as_is(std::string_view words) {
+    const bool was = filtering_;
+    filtering_ = true;
+    block(words);
+    filtering_ = was;
+  }
+  /// Every block of block() and end_block() passes `f` first; nullptr (the default): none.
+  void set_filter(block_filter* f) { filter_ = f; }
+  /// The program's name in messages (framing::name), or the path written.
+  std::string name() const { return frame_.name ? frame_.name() : path_; }
   /// Writes a comment block, made safe: upper case, no parentheses inside, length-limited.
   void comment(std::string_view text);
   /// Writes a line as it is (program frame lines, user INSERT text).
@@ -60,6 +82,8 @@ class block_writer {
 
  private:
   void put(std::string_view s);
+  /// block() through the filter.
+  void filtered(std::string_view words, bool restart);
   void start();
   void flush_if_full();
   /// Throws config_error naming the file and the reason (errno of the failed call).
@@ -76,6 +100,8 @@ class block_writer {
   long blocks_ = 0;
   std::function<void(std::string_view)> hook_;
   std::function<void(std::string_view)> tap_;
+  block_filter* filter_ = nullptr;
+  bool filtering_ = false;  // inside filter_: the blocks it writes go out as they are
 };
 
 /// `text` as the control accepts it in a comment: upper case, printable ASCII, no comment

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include "machines/machine.hpp"
 #include "machines/toml_reader.hpp"
 #include "support/ascii.hpp"
@@ -23,6 +25,35 @@ bool major_word(std::string_view w) {
   for (char c : w)
     if (!ascii::is_letter(c) && !ascii::is_digit(c) && c != '_' && c != '-') return false;
   return true;
+}
+
+// [events] script and script_records. The script is a plain file name, found beside the
+// machine file: a machine file and its script travel together, and a name cannot reach
+// elsewhere (the same rule as post.read_file's).
+void read_script(const detail::table_reader& r, std::string_view source, event_templates& ev) {
+  if (const toml::node* n = r.find("script")) {
+    r.read("script", ev.script);
+    const std::string& s = ev.script;
+    if (s.empty() || s.find_first_of("/\\:") != std::string::npos || s.front() == '.')
+      r.fail(*n, fmt::format("events.script \"{}\" must be a file name beside the machine file (no '/', "
+                             "'\\', ':' or leading '.')",
+                             s));
+    const std::filesystem::path p = std::filesystem::path(source).parent_path() / s;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec))
+      r.fail(*n,
+             fmt::format("events.script \"{}\": no such file beside the machine file ('{}')", s, p.string()));
+    ev.script_path = p.string();
+  }
+  r.read("script_records", ev.script_records);
+  for (std::string& w : ev.script_records) {
+    if (!major_word(w))
+      r.fail(*r.find("script_records"),
+             fmt::format("events.script_records: \"{}\" is not a CL major word", w));
+    ascii::upper_in_place(w);
+  }
+  if (!ev.script_records.empty() && ev.script.empty())
+    r.fail(*r.find("script_records"), "events.script_records without events.script: no script to take them");
 }
 
 }  // namespace
@@ -57,9 +88,11 @@ namespace detail {
 void read_events(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("events");
   if (!t) return;
-  table_reader r(*t, "events", root.source(),
-                 {"program_start", "program_end", "tool_change", "spindle_start", "spindle_stop",
-                  "coolant_on", "coolant_off", "wait", "cycle", "transfer", "operation", "record"});
+  table_reader r(
+      *t, "events", root.source(),
+      {"program_start", "program_end", "tool_change", "spindle_start", "spindle_stop", "coolant_on",
+       "coolant_off", "wait", "cycle", "transfer", "operation", "record", "script", "script_records"});
+  read_script(r, root.source(), m.events);
   for (std::size_t i = 0; i < event_point_count; ++i) {
     const toml::table* e = r.sub_table(event_point_keys[i]);
     if (!e) continue;

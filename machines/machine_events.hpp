@@ -73,12 +73,19 @@ struct record_event {
 struct event_templates {
   std::array<event_blocks, event_point_count> at;
   std::vector<record_event> records;
+  /// [events] script: the Lua script's file name as the machine file writes it
+  /// ("catcher.lua"), empty when none; `script_path` the file beside the machine file
+  /// (docs/scripting.md).
+  std::string script, script_path;
+  /// [events] script_records: CL majors (upper case) the script's on_record takes over, even
+  /// ones the post knows.
+  std::vector<std::string> script_records;
 
   const event_blocks& operator[](event_point p) const { return at[static_cast<std::size_t>(p)]; }
   bool empty() const {
     for (const event_blocks& b : at)
       if (!b.before.empty() || !b.after.empty()) return false;
-    return records.empty();
+    return records.empty() && script.empty();
   }
   /// The entry for a record with major word `major` (upper case) and arguments `args` (as
   /// written): the first whose words are the first arguments (ASCII case ignored); nullptr if none.

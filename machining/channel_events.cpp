@@ -8,6 +8,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+
 #include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
 #include "machining/channel_writer.hpp"
@@ -64,6 +66,10 @@ void channel_writer::user_block(const std::string& tpl, const template_args& a) 
   // A word past the control's format or an X past the travel: an error at the CL record.
   if (!block_fits(b) || !user_block_in_travel(b)) return;
   out_.block(b);
+  note_user_block(b, true);
+}
+
+void channel_writer::note_user_block(std::string_view b, bool waits) {
   // The words of the block, outside comments: a wait code is numbered like the post's own
   // waits (post/sync_at_cl reports the checker's findings at this CL record); a G code may
   // move the axes or change the motion mode, so the next move writes them all again.
@@ -76,7 +82,7 @@ void channel_writer::user_block(const std::string& tpl, const template_args& a) 
       continue;
     }
     if (b[i] == 'G') g = true;
-    if (b[i] != m_.waits.address || i + 1 >= b.size() || !ascii::is_digit(b[i + 1])) continue;
+    if (!waits || b[i] != m_.waits.address || i + 1 >= b.size() || !ascii::is_digit(b[i + 1])) continue;
     long long code = 0;
     std::size_t j = i + 1;
     for (; j < b.size() && ascii::is_digit(b[j]) && code < 1000000000; ++j) code = code * 10 + (b[j] - '0');
@@ -107,9 +113,16 @@ void channel_writer::user_blocks(event_point p, bool after, template_args a) {
 void channel_writer::user_program_start() {
   program_started_ = true;
   user_blocks(event_point::program_start, true, {});
+  if (script_) [[unlikely]]
+    script_program(true);
 }
 
 void channel_writer::user_record(const passthrough_event& r, int line) {
+  // The script takes its script_records, and every record no [[events.record]] names.
+  if (script_ &&
+      (!ev_->names_record(r.major) || std::find(ev_->script_records.begin(), ev_->script_records.end(),
+                                                r.major) != ev_->script_records.end()))
+    return script_record(r, line);
   const record_event* rec = ev_->record_for(r.major, r.text);
   if (!rec) {
     std::string forms;

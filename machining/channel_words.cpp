@@ -195,6 +195,8 @@ void channel_writer::tool(const tool_event& t, int line) {
   tool_call_ = call + offset_block;
   after_index_ = true;
   take_tool(t.tool, line, word);
+  if (script_) [[unlikely]]
+    script_tool(t.tool, a.offset);
 }
 
 void channel_writer::take_tool(int tool, int line, const char* word) {

@@ -469,6 +469,7 @@ void channel_writer::finish() {
   if (ev_) [[unlikely]] {
     if (!program_started_) user_program_start();
     user_blocks(event_point::program_end, false, {});
+    if (script_) script_program(false);
   }
   // The footer stops the spindles its file names (M5; the Integrex M5 M205 M305). A spindle
   // still turning whose stop code the footer lacks (the sub spindle's M105 on the 0i-TD, the

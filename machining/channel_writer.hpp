@@ -21,6 +21,7 @@
 #include "kinematics/linearise.hpp"
 #include "machines/machine.hpp"
 #include "parser/events.hpp"
+#include "scripting/lua_script.hpp"
 #include "support/diagnostics.hpp"
 
 namespace twinpost {
@@ -44,7 +45,14 @@ struct job_spindles {
   std::function<std::string(int line)> quote;
 };
 
-class channel_writer {
+/// The machine's script, shared by a job's writers (post/post_job loads it once per job). After
+/// its first error it is not called again: the post has failed, one message says why.
+struct job_script {
+  scripting::lua_script* lua = nullptr;
+  bool failed = false;
+};
+
+class channel_writer : private scripting::script_host, private block_writer::block_filter {
  public:
   /// Writes the channel's blocks to `path`, framed by `frame` (see block_writer).
   channel_writer(const machine& m, const channel_def& ch, const std::string& path, diagnostic_sink& diags,
@@ -74,6 +82,9 @@ class channel_writer {
   /// The job's record of spindle starts, shared by all its writers (see job_spindles); without
   /// one a cut on a spindle this channel has not started is an error at once.
   void share_spindles(job_spindles* j) { job_spindles_ = j; }
+  /// The job's script ([events] script; machining/channel_script.cpp): its hooks run at the
+  /// writer's event points, its on_block (when it has one) sees every body block.
+  void use_script(job_script* s);
   void on_wait(const wait_mark& w);
   /// Ends the body: coolant and spindle off are the footer's job; closes the file.
   void finish();
@@ -614,6 +625,35 @@ class channel_writer {
   /// own X words are held (axis_word); reports the first that is not.
   bool user_block_in_travel(std::string_view b);
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
+  // The script (machining/channel_script.cpp); null without one (then no script work at all).
+  job_script* script_ = nullptr;
+  /// Runs `call` (a hook) unless the script has failed; a script_error becomes the error at
+  /// the script's line and a note at the CL record being posted.
+  template <class F>
+  void run_script(F&& call) {
+    if (script_->failed) return;
+    try {
+      call(*script_->lua);
+    } catch (const scripting::script_error& e) {
+      script_failed(e);
+    }
+  }
+  void script_failed(const scripting::script_error& e);
+  /// A note after the error for a block of the script's (`how`: post.emit, on_block).
+  void script_block_note(std::string_view block, std::string_view how);
+  scripting::script_context script_context() const;
+  void script_program(bool start);
+  void script_tool(int tool, int offset);
+  void script_record(const passthrough_event& r, int line);
+  // script_host and block_filter: post.emit, post.warning, on_block.
+  void emit(std::string_view block) override;
+  void warning(std::string_view message) override;
+  block_writer::verdict filter(std::string_view block, std::string& replacement) override;
+  /// What a user block (template or script) does besides being written: its wait codes are
+  /// noted for the self-check's findings (`waits`), a G code makes the next move write its
+  /// axes again, the spindle and coolant state is no longer known.
+  void note_user_block(std::string_view b, bool waits);
+  std::string program_name_;  ///< for ctx.program, asked for once
 };
 
 }  // namespace twinpost

@@ -19,6 +19,7 @@ struct cl_reader::impl {
     builder.set_posting(options.posting);
     builder.set_permissive(options.permissive);
     builder.set_user_records(options.user_records);
+    builder.set_script_records(options.script_records, options.unknown_to_script);
   }
 
   void report(const build_issue& i) {

@@ -30,6 +30,12 @@ struct cl_reader_options {
   /// Major words (upper case) the machine file turns into blocks ([[events.record]]): read as
   /// passthrough events with `user` set, never as unknown words.
   std::vector<std::string> user_records;
+  /// Major words (upper case) the machine's script takes over ([events] script_records), even
+  /// ones the post knows: passthrough events with `user` set, in place of the post's own.
+  std::vector<std::string> script_records;
+  /// The machine's script has on_record: every unknown major word goes to it (a passthrough
+  /// event with `user` set), not an error.
+  bool unknown_to_script = false;
 };
 
 class cl_reader {

@@ -1,5 +1,7 @@
 #include "parser/event_builder.hpp"
 
+#include <algorithm>
+
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
@@ -36,6 +38,15 @@ bool matrix_row(std::string_view text, std::vector<double>& out) {
 
 }  // namespace
 
+bool event_builder::to_script(const cl_record& r, int line, event_queue& out) {
+  std::string m = upper(r.major);
+  if (std::find(script_records_.begin(), script_records_.end(), m) == script_records_.end()) return false;
+  end_of_motion_record();
+  std::string args = r.kind == record_kind::text ? std::string(r.text) : detail::args_text(r);
+  out.push_back({line, passthrough_event{std::move(m), std::move(args), false, true}});
+  return true;
+}
+
 void event_builder::build(const cl_record& r, int line, event_queue& out, build_issues& issues) {
   if (r.kind != record_kind::comment && r.kind != record_kind::coordinates) after_bad_record_ = false;
   switch (r.kind) {
@@ -59,12 +70,16 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
     }
     case record_kind::text: {
       end_of_motion_record();
+      if (any_script_records_ && to_script(r, line, out)) [[unlikely]]
+        return;
       // PARTNO, PPRINT, INSERT, ...: each has its row in the record table.
       (this->*handler_of(r.major))(r, line, out, issues);
       return;
     }
     case record_kind::statement:
       if (detail::has_bad_number(r, issues)) return skip_record(r.kind);
+      if (any_script_records_ && to_script(r, line, out)) [[unlikely]]
+        return;
       statement(r, line, out, issues);
       return;
   }

@@ -29,6 +29,13 @@ class event_builder {
   /// Major words (upper case) that the machine file turns into blocks ([[events.record]]): such a
   /// word the post does not know is a passthrough event with `user` set, not an error.
   void set_user_records(std::vector<std::string> words) { user_records_ = std::move(words); }
+  /// The machine's script: `words` (upper case) go to its on_record in place of the post's
+  /// own events; with `unknown`, so does every unknown word (cl_reader_options).
+  void set_script_records(std::vector<std::string> words, bool unknown) {
+    script_records_ = std::move(words);
+    unknown_to_script_ = unknown;
+    any_script_records_ = !script_records_.empty();
+  }
   /// The column of the next record's major word, for messages about it that come later.
   void set_column(int column) { column_ = column; }
 
@@ -78,6 +85,11 @@ class event_builder {
   };
   handler_cache last_handler_;
   std::vector<std::string> user_records_;
+  std::vector<std::string> script_records_;
+  bool unknown_to_script_ = false;
+  bool any_script_records_ = false;  ///< one flag test per record (no script: false)
+  /// True (and the record is out as a `user` passthrough) when the script takes `r` over.
+  bool to_script(const cl_record& r, int line, event_queue& out);
   template <motion_kind K>
   void on_motion(const cl_record& r, int line, event_queue& out, build_issues& issues) {
     motion(r, K, line, out, issues);

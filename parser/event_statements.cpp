@@ -224,6 +224,10 @@ void event_builder::other(const cl_record& r, int line, event_queue& out, build_
     out.push_back({line, passthrough_event{m, detail::args_text(r), false, true}});
     return;
   }
+  if (unknown_to_script_) {
+    out.push_back({line, passthrough_event{m, detail::args_text(r), false, true}});
+    return;
+  }
   if (posting_ && !permissive_) {
     // Nothing silent in a post: a word twinpost does not know stops it.
     issues.push_back({severity::error, r.major_offset,

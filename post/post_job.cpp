@@ -186,9 +186,14 @@ frame_request staged_request(const post_options& o, const machine& m, const std:
   return req;
 }
 
-cl_reader_options posting_reader(const post_options& o, const machine& m) {
+cl_reader_options posting_reader(const post_options& o, const machine& m,
+                                 const scripting::lua_script* script) {
   cl_reader_options ro;
   for (const record_event& r : m.events.records) ro.user_records.push_back(r.major);
+  if (script && script->has_on_record()) {
+    ro.script_records = m.events.script_records;
+    ro.unknown_to_script = true;
+  }
   ro.file_name = o.cl_path;
   ro.forced = o.forced_dialect;
   ro.posting = true;
@@ -442,11 +447,23 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
          {}});
     return sum;
   }
+  // The machine's script, once per job, before the reader: on_record decides what it reads.
+  // It runs on this thread only, in the writers (machining/channel_script.cpp).
+  std::unique_ptr<scripting::lua_script> lua;
+  if (!m.events.script_path.empty()) {
+    try {
+      lua = std::make_unique<scripting::lua_script>(m.events.script_path);
+    } catch (const scripting::script_error& e) {
+      sink.report({severity::error, e.file, e.line, 0, e.message, {}});
+      return sum;
+    }
+  }
+  job_script script{lua.get()};
   file_ptr in = open_job(o.cl_path);
   // On two threads the reader starts at once, and reads ahead while the scan below runs.
   file_source src(in.get());
   passing_sink as_is(sink);
-  job_events reader(src, posting_reader(o, m), sink, as_is,
+  job_events reader(src, posting_reader(o, m, lua.get()), sink, as_is,
                     threads(o) >= 2);  // to the end: messages quote it
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);
@@ -463,6 +480,8 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
       throw config_error(fmt::format("--tool {}:{}: machine '{}' has no channel {} (it has {})", channel,
                                      tool, m.name, channel, m.channels.size()));
   open_writers(o, m, req, ws, sink);
+  if (lua)
+    for (auto& w : ws.writers) w->use_script(&script);
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
   timeline_options to;
   to.keep_blocks = !o.timeline_file.empty();

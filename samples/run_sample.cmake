@@ -176,8 +176,10 @@ if(MODE STREQUAL "post")
     message(FATAL_ERROR "run_sample.cmake: mode post needs -DMACHINE=...")
   endif()
   configure_file("${CASE_DIR}/job.cls" "${WORK_DIR}/job.cls" COPYONLY)
-  # A machine file of the sample (its `machines` file names it as NAME.toml, read from here).
-  file(GLOB machine_files LIST_DIRECTORIES false RELATIVE "${CASE_DIR}" "${CASE_DIR}/*.toml")
+  # A machine file of the sample (its `machines` file names it as NAME.toml, read from here),
+  # and the files beside it: its script, the files the script reads (docs/scripting.md).
+  file(GLOB machine_files LIST_DIRECTORIES false RELATIVE "${CASE_DIR}" "${CASE_DIR}/*.toml"
+       "${CASE_DIR}/*.lua" "${CASE_DIR}/*.csv")
   foreach(f IN LISTS machine_files)
     configure_file("${CASE_DIR}/${f}" "${WORK_DIR}/${f}" COPYONLY)
   endforeach()

@@ -1,0 +1,135 @@
+// channel_writer: the machine's Lua script ([events] script, docs/scripting.md). The script
+// runs here only, on the post's main thread (the reader and the self-check run on others). A
+// block the script writes or puts in place of one of the post's goes through the same checks
+// as a block of [events]: its words must fit the control's formats, its wait codes are the
+// self-check's to pair.
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "machining/channel_writer.hpp"
+
+namespace twinpost {
+
+void channel_writer::use_script(job_script* s) {
+  script_ = s;
+  // on_block costs a test of one pointer per block, and only when the script defines it.
+  if (s && s->lua && s->lua->has_on_block()) out_.set_filter(this);
+}
+
+void channel_writer::script_failed(const scripting::script_error& e) {
+  script_->failed = true;
+  ++errors_;
+  diagnostic d;
+  d.file = e.file;
+  d.line = e.line;
+  d.message = e.message;
+  diags_.report(std::move(d));
+  diagnostic n;
+  n.level = severity::note;
+  n.file = cl_file_;
+  n.line = line_;
+  n.column = line_ > 0 ? column_ : 0;
+  n.message = fmt::format("channel {}: the script failed while this record was posted", ch_.number);
+  diags_.report(std::move(n));
+}
+
+scripting::script_context channel_writer::script_context() const {
+  scripting::script_context ctx;
+  ctx.channel = ch_.number;
+  ctx.program = program_name_;
+  ctx.cl_line = line_;
+  return ctx;
+}
+
+void channel_writer::script_program(bool start) {
+  if (program_name_.empty()) program_name_ = std::filesystem::path(out_.name()).filename().string();
+  const scripting::script_context ctx = script_context();
+  run_script([&](scripting::lua_script& s) {
+    if (start)
+      s.on_program_start(ctx, *this);
+    else
+      s.on_program_end(ctx, *this);
+  });
+}
+
+void channel_writer::script_tool(int tool, int offset) {
+  scripting::script_tool t;
+  t.number = tool;
+  t.offset = offset;
+  t.channel = ch_.number;
+  const tool_def* d = m_.tool(ch_.number, tool);
+  if (d) {
+    t.name = d->name;
+    t.length = d->length.value_or(0);
+    t.diameter = d->diameter.value_or(0);
+  }
+  t.kind = kind_ == tool_kind::turn    ? "turn"
+           : kind_ == tool_kind::mill  ? "mill"
+           : kind_ == tool_kind::drill ? "drill"
+                                       : "";
+  run_script([&](scripting::lua_script& s) { s.on_tool_change(t, *this); });
+}
+
+void channel_writer::script_record(const passthrough_event& r, int line) {
+  scripting::script_record rec;
+  rec.major = r.major;
+  rec.line = line;
+  // The arguments as the CL writes them, split at the commas, each without its blanks.
+  std::string_view rest = r.text;
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(',');
+    std::string_view w = rest.substr(0, comma);
+    while (!w.empty() && (w.front() == ' ' || w.front() == '\t')) w.remove_prefix(1);
+    while (!w.empty() && (w.back() == ' ' || w.back() == '\t')) w.remove_suffix(1);
+    rec.words.emplace_back(w);
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  run_script([&](scripting::lua_script& s) { s.on_record(rec, *this); });
+}
+
+void channel_writer::emit(std::string_view block) {
+  // Called inside a Lua call: reports, never throws (script_host).
+  const std::string b(block);
+  if (!block_fits(b)) return script_block_note(b, "post.emit");  // the error is at the CL record
+  out_.block_as_is(b);
+  note_user_block(b, true);
+}
+
+void channel_writer::script_block_note(std::string_view block, std::string_view how) {
+  diagnostic n;
+  n.level = severity::note;
+  n.file = script_->lua->name();
+  n.message = fmt::format("channel {}: the block '{}' came from the script ({})", ch_.number, block, how);
+  diags_.report(std::move(n));
+}
+
+void channel_writer::warning(std::string_view message) {
+  diagnostic d;
+  d.level = severity::warning;
+  d.file = cl_file_;
+  d.line = line_;
+  d.column = line_ > 0 ? column_ : 0;
+  d.message = fmt::format("channel {}: {}", ch_.number, message);
+  diags_.report(std::move(d));
+}
+
+block_writer::verdict channel_writer::filter(std::string_view block, std::string& replacement) {
+  if (script_->failed) return block_writer::verdict::keep;
+  scripting::block_verdict v = scripting::block_verdict::keep;
+  run_script([&](scripting::lua_script& s) { v = s.on_block(block, script_context(), *this, replacement); });
+  if (v == scripting::block_verdict::drop) return block_writer::verdict::drop;
+  // The block given back as it came (`return text`) is kept: the writer's modal state still holds.
+  if (v == scripting::block_verdict::keep || script_->failed || replacement == block)
+    return block_writer::verdict::keep;
+  if (!block_fits(replacement)) {  // the error is at the CL record
+    script_block_note(replacement, "on_block");
+    return block_writer::verdict::drop;
+  }
+  // A wait the post wrote is counted already; one a replacement adds is the self-check's to find.
+  note_user_block(replacement, false);
+  return block_writer::verdict::replace;
+}
+
+}  // namespace twinpost
