@@ -34,6 +34,11 @@ bool x_not_a_position(std::string_view b, char comment_open) {
   return false;
 }
 
+// Where the comment opened at b[i] closes; npos when it runs to the end of the block.
+std::size_t comment_close(std::string_view b, std::size_t i, const program_format& f) {
+  return b.find(f.comment_close, i + 1);
+}
+
 }  // namespace
 
 bool channel_writer::user_block_in_travel(std::string_view b) {
@@ -41,9 +46,7 @@ bool channel_writer::user_block_in_travel(std::string_view b) {
   if (!x || !x->min || !x->max || x_not_a_position(b, m_.program.comment_open)) return true;
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b[i] == m_.program.comment_open) {
-      const std::size_t close = b.find(m_.program.comment_close, i + 1);
-      if (close == std::string::npos) break;
-      i = close;
+      if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) break;
       continue;
     }
     if (b[i] != 'X') continue;
@@ -76,9 +79,7 @@ void channel_writer::note_user_block(std::string_view b, bool waits) {
   bool g = false;
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b[i] == m_.program.comment_open) {
-      const std::size_t close = b.find(m_.program.comment_close, i + 1);
-      if (close == std::string::npos) break;
-      i = close;
+      if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) break;
       continue;
     }
     if (b[i] == 'G') g = true;
