@@ -97,6 +97,12 @@ block_timer::block_timer(const machine& m, int channel)
     axes_.push_back(p);
     if (a.address == 'X' && a.diameter) lathe = true;
   }
+  axis_at_.fill(-1);
+  for (std::size_t i = 0; i < axes_.size(); ++i)
+    if (static_cast<unsigned char>(axes_[i].address) < axis_at_.size() && axis_at_[axes_[i].address] < 0)
+      axis_at_[static_cast<unsigned char>(axes_[i].address)] = static_cast<std::int8_t>(i);
+  lathe_x_ = axis('X') && axis('X')->diameter;
+  has_u_ = axis('U') != nullptr, has_w_ = axis('W') != nullptr, has_v_ = axis('V') != nullptr;
   // A Fanuc lathe in G-code system A: G90/G92/G94 are turning, thread and facing cycles.
   lathe_a_ = lathe && m.control.find("fanuc") != std::string::npos;
   for (const auto& [blocks, into] :
@@ -142,12 +148,6 @@ block_timer::block_timer(const machine& m, int channel)
     }
 }
 
-block_timer::axis_pos* block_timer::axis(char a) {
-  for (axis_pos& p : axes_)
-    if (p.address == a) return &p;
-  return nullptr;
-}
-
 block_timing block_timer::time(std::string_view text) {
   const std::uint32_t letters = split_nc_words(text, words_);
   return time(words_, letters);
@@ -169,7 +169,12 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
 
   bool dwell = false, reference = false, setting = false;
   std::string one_shot;
+  // Most blocks of a program are moves without a G word, a tool, an M code or a feed: the
+  // block's letters say so without a loop over its words.
+  const bool has_g = (letters & nc_letter('G')) != 0;
+  constexpr std::uint32_t tmf = nc_letter('T') | nc_letter('M') | nc_letter('F');
   for (const nc_word& w : words) {
+    if (!has_g) break;
     if (w.address != 'G') continue;
     if (w.expression) {
       untimed("G" + w.value);
@@ -229,6 +234,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
 
   // Tool calls, M codes, the feed.
   for (const nc_word& w : words) {
+    if (!(letters & tmf)) break;
     double v = 0;
     if (!num(w, v)) continue;
     if (w.address == tool_address_ && w.address == 'T') {
@@ -269,8 +275,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   target.resize(axes_.size());
   bool moves = false;
   for (std::size_t i = 0; i < axes_.size(); ++i) target[i] = axes_[i].value;
-  const bool has_u = axis('U') != nullptr, has_w = axis('W') != nullptr, has_v = axis('V') != nullptr;
-  const bool lathe = axis('X') && axis('X')->diameter;
+  const bool has_u = has_u_, has_w = has_w_, has_v = has_v_;
+  const bool lathe = lathe_x_;
   for (const nc_word& w : words) {
     char a = w.address;
     bool inc = incremental_;

@@ -13,6 +13,7 @@
 // A block it cannot time honestly (a cycle it does not know, a reference return, a move from
 // an unknown position, a feed per revolution on a stopped spindle ...) is timed 0 and named in
 // block_timing::untimed: the caller counts and reports it, never silently.
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -100,7 +101,16 @@ class block_timer {
   std::vector<std::optional<double>> target_;      // where the block sends each axis (reused)
   std::vector<std::optional<double>> leg_target_;  // where a cycle's move sends each axis (reused)
 
-  axis_pos* axis(char a);
+  axis_pos* axis(char a) {
+    const unsigned char u = static_cast<unsigned char>(a);
+    return u < axis_at_.size() && axis_at_[u] >= 0 ? &axes_[static_cast<std::size_t>(axis_at_[u])] : nullptr;
+  }
+  // axes_'s index of each address, -1 where the channel has no such axis: one look-up per
+  // word of every block, where a search of axes_ cost a loop.
+  std::array<std::int8_t, 128> axis_at_{};
+  // Fixed by the channel's axes (set once): X in diameter, and whether U, W, V are axes of
+  // their own or a Fanuc lathe's incremental X, Z, Y.
+  bool lathe_x_ = false, has_u_ = false, has_w_ = false, has_v_ = false;
   double to_mm(double v) const { return inch_ ? v * 25.4 : v; }
   double move_time(const std::vector<std::optional<double>>& target, bool rapid, const std::string& code,
                    const std::vector<nc_word>& words, block_timing& t, bool sync = false);

@@ -61,6 +61,8 @@ class block_writer {
   }
   /// Every block of block() and end_block() passes `f` first; nullptr (the default): none.
   void set_filter(block_filter* f) { filter_ = f; }
+  /// Whether blocks pass a filter (which may replace them with other words).
+  bool has_filter() const { return filter_ != nullptr; }
   /// The program's name in messages (framing::name), or the path written.
   std::string name() const { return frame_.name ? frame_.name() : path_; }
   /// Writes a comment block, made safe: upper case, no parentheses inside, length-limited.

@@ -64,6 +64,9 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   if (!radial_frame_) check_side(nc_x(x_cl), x_cl, line);
   if (!rapid && !drill_on_centre(x_cl, line)) return;
   // Built in place, in the writer's buffer: the most common block goes out without a copy.
+  // No G word and no offset: the block is axis words and a feed, which the line hook need not
+  // read (plain_block_); a filter may replace it, so not with one.
+  const bool plain = pending_g_.empty() && pending_offset_.empty() && g == motion_g_ && !out_.has_filter();
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
   if (!pending_g_.empty()) b += pending_g_;
@@ -81,7 +84,9 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
     pending_offset_.clear();
     motion_g_ = g;
     if (!rapid) cut_feed(b, line);
+    plain_block_ = plain;
     out_.end_block();
+    plain_block_ = false;
   } else {
     out_.drop_block();  // already there: nothing to write, the modal codes wait for a move
   }

@@ -127,6 +127,10 @@ std::vector<int> channel_writer::block_cl_lines() const {
 }
 
 void channel_writer::note_line(std::string_view line) {
+  if (plain_block_) {  // a move the writer built without G, M or S: nothing here to read
+    if (note_every_block_) note_block_cl();
+    return;
+  }
   if (line.empty() || line.front() == m_.program.comment_open) return;
   if (note_every_block_) note_block_cl();
   // Most blocks are moves without G, M or S: one table look-up per character says so.

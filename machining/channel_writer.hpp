@@ -578,6 +578,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::vector<std::size_t> wait_block_;                                              ///< wait_block_indices()
   bool note_every_block_ = false;
   bool cut_due_ = true;                     ///< the next G1/G2/G3 line is noted
+  bool plain_block_ = false;                ///< the block being ended has no G, M or S word
   const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
   bool chain_heads_ = false;                ///< a rotary axis of it turns the tool (the length matters)
   unsigned tilting_heads_ = 0;              ///< bit i: rotary i is a head not along the tool (it tilts it)
