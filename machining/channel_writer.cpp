@@ -113,17 +113,15 @@ void channel_writer::note_block_cl() {
   block_cl_mem_.clear();
 }
 
-std::vector<int> channel_writer::block_cl_lines() const {
-  std::vector<int> lines(block_cl_in_file_);
-  if (block_cl_in_file_ > 0) {
-    std::vector<std::int32_t> raw(block_cl_in_file_);
-    if (std::fflush(block_cl_.get()) != 0 || std::fseek(block_cl_.get(), 0, SEEK_SET) != 0 ||
-        std::fread(raw.data(), sizeof(std::int32_t), raw.size(), block_cl_.get()) != raw.size())
-      throw config_error("cannot read back the CL lines' temporary file");
-    std::copy(raw.begin(), raw.end(), lines.begin());
-  }
-  lines.insert(lines.end(), block_cl_mem_.begin(), block_cl_mem_.end());
-  return lines;
+int channel_writer::block_cl_line(std::size_t i) const {
+  if (i >= block_cl_in_file_) return block_cl_mem_.at(i - block_cl_in_file_);
+  std::int32_t line = 0;
+  if (std::fflush(block_cl_.get()) != 0 ||
+      std::fseek(block_cl_.get(), static_cast<long>(i * sizeof line), SEEK_SET) != 0 ||
+      std::fread(&line, sizeof line, 1, block_cl_.get()) != 1)
+    throw config_error("cannot read back the CL lines' temporary file");
+  std::fseek(block_cl_.get(), 0, SEEK_END);  // where the next write goes, should one come
+  return line;
 }
 
 void channel_writer::note_line(std::string_view line) {

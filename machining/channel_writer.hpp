@@ -112,9 +112,11 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// channel the turret interference rule watches (machine.interference); else empty. The
   /// rule's findings may be at any move (post/sync_at_cl).
   /// Kept in an anonymous temporary file while the post runs (memory stays flat however long
-  /// the programs are), read back here: asked for only when the rule found something.
-  std::vector<int> block_cl_lines() const;
-  /// The index into block_cl_lines() of each wait block, in order (the same channels).
+  /// the programs are), read back one at a time: asked for only at the rule's findings.
+  /// `i` < block_cl_count(); throws config_error when the file cannot be read.
+  int block_cl_line(std::size_t i) const;
+  std::size_t block_cl_count() const { return block_cl_count_; }
+  /// The index (for block_cl_line) of each wait block, in order (the same channels).
   const std::vector<std::size_t>& wait_block_indices() const { return wait_block_; }
 
  private:
@@ -570,7 +572,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   int waits_ = 0;
   std::vector<int> wait_cl_lines_;
   std::vector<noted_block> noted_;
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> block_cl_{nullptr, &std::fclose};  ///< block_cl_lines()
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> block_cl_{nullptr, &std::fclose};  ///< block_cl_line()
   std::size_t block_cl_count_ = 0;                                                   // all of them
   std::size_t block_cl_in_file_ = 0;                                                 // those in the file
   std::vector<std::int32_t> block_cl_mem_;                                           // the others

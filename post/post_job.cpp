@@ -331,9 +331,12 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
     fill_source_lines(check.diagnostics, sources, m);  // the interference rule's (done: not yet)
     std::vector<std::vector<int>> wait_lines;
     std::vector<std::vector<cl_block>> blocks;
-    std::vector<cl_block_index> block_lines;  // the interference rule's (channel_writer::block_cl_lines)
+    std::vector<cl_block_index> block_lines;  // the interference rule's (channel_writer::block_cl_line)
     for (auto& w : ws.writers) {
-      block_lines.push_back({w->block_cl_lines(), w->wait_block_indices()});
+      const channel_writer* writer = w.get();
+      block_lines.push_back({writer->block_cl_count(),
+                             [writer](std::size_t i) { return writer->block_cl_line(i); },
+                             writer->wait_block_indices()});
       wait_lines.push_back(w->wait_cl_lines());
       // The head's lines first (no CL record), so that a block of the same text there is
       // counted as the checker reads it.

@@ -118,7 +118,7 @@ std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, c
     const key k{segment[c], std::string(plain_text(text))};
     const auto it = written[c].find(k);
     if (it == written[c].end()) {
-      if (c < block_lines.size() && !block_lines[c].cl_lines.empty() && wanted.count(place(file, line)))
+      if (c < block_lines.size() && block_lines[c].count > 0 && wanted.count(place(file, line)))
         by_count[place(file, line)] = {c, n, segment[c]};
       return;
     }
@@ -136,8 +136,8 @@ std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, c
     if (anchor >= read_waits.size() || anchor >= w.waits.size()) continue;
     const long index = static_cast<long>(w.waits[anchor]) + static_cast<long>(f.ordinal) -
                        static_cast<long>(read_waits[anchor]);
-    if (index >= 0 && static_cast<std::size_t>(index) < w.cl_lines.size() && w.cl_lines[index] > 0)
-      out[at] = w.cl_lines[static_cast<std::size_t>(index)];
+    if (index < 0 || static_cast<std::size_t>(index) >= w.count) continue;
+    if (const int cl = w.cl_line(static_cast<std::size_t>(index)); cl > 0) out[at] = cl;
   }
   return out;
 }

@@ -5,6 +5,7 @@
 // job): file:line:col of the CL with its source line, and the places of waits in the
 // message become CL places. A note keeps the wait's line in the program as it would have
 // been written.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -14,14 +15,18 @@
 
 namespace twinpost {
 
+/// Every block a channel wrote after its head, by CL line, and the indices of its waits.
+/// `cl_line(i)` is asked only for the blocks of findings: the lines stay where the writer
+/// keeps them (a temporary file), so memory does not grow with the programs.
+struct cl_block_index {
+  std::size_t count = 0;                    ///< blocks written after the head
+  std::function<int(std::size_t)> cl_line;  ///< the CL line of block i < count
+  std::vector<std::size_t> waits;
+};
+
 /// A block a channel wrote that may carry a finding of the shared-resource rules
 /// (analysis/shared_resources): the waits written before it, its text, its CL record (0: none,
 /// a line of the program's head).
-/// Every block a channel wrote after its head, by CL line, and the indices of its waits.
-struct cl_block_index {
-  std::vector<int> cl_lines;
-  std::vector<std::size_t> waits;
-};
 
 struct cl_block {
   int segment = 0;
