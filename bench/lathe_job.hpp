@@ -51,7 +51,7 @@ class lathe_job {
   static constexpr std::uint64_t minimum_records = 32;
 
  private:
-  static constexpr double z_clear = 154, z_face = 152, x_stock = 45, x_min = 5;
+  static constexpr double z_clear = 154, z_face = 152, x_stock = 45, x_min = 10;
   static constexpr std::uint64_t min_moves = 3;  // RAPID + GOTO approach, one cut
 
   enum class phase { approach, engage, turn, retract, back };

@@ -49,7 +49,7 @@ cache=${TWINPOST_BENCH_CACHE:-/tmp/twinpost-bench}
 do_sizes=1
 do_startup=1
 seed=1
-gen_version=v3  # bump when cl_generate's output changes, so stale cached jobs are not reused
+gen_version=v4  # bump when cl_generate's output changes, so stale cached jobs are not reused
 
 while [[ $# -gt 0 ]]; do
   case $1 in
