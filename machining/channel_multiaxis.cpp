@@ -550,6 +550,9 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
       b += fmt::format_int(offset_).c_str();
     }
   }
+  // Nothing before the axis words (no G word, no offset): the block is axis words and a feed,
+  // which the line hook need not read (plain_block_); a filter may replace it, so not with one.
+  const bool plain = b.size() == word_start_ && !out_.has_filter();
   axis_memory* mem[3] = {&last_x_, &last_y_, &last_z_};
   bool moved = false;
   for (int i = 0; i < 3; ++i) moved = axis_word(b, c.linear[i], nc[i], *mem[i], offset_block) || moved;
@@ -595,7 +598,9 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     }
     spindle_turning(line);
   }
+  plain_block_ = plain;
   out_.end_block();
+  plain_block_ = false;
   word_start_ = std::string::npos;
   return true;
 }
