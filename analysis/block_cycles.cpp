@@ -69,47 +69,48 @@ bool block_timer::leg_to_target(leg_kind k, block_timing& t, const std::string& 
   return true;
 }
 
-bool block_timer::time_cycle(const std::string& g, const std::vector<nc_word>& words,
+bool block_timer::time_cycle(int g, const std::vector<nc_word>& words,
                              const std::vector<std::optional<double>>& target, block_timing& t) {
-  if ((lathe_a_ && (g == "76" || g == "92")) || g == "292") return thread_cycle(g, words, t);
-  if (lathe_a_ && (g == "74" || g == "75")) return groove_cycle(g, words, t);
+  if ((lathe_a_ && (g == g_code("76") || g == g_code("92"))) || g == g_code("292"))
+    return thread_cycle(g, words, t);
+  if (lathe_a_ && (g == g_code("74") || g == g_code("75"))) return groove_cycle(g, words, t);
   return drill_cycle(g, words, target, t);  // false for any other code
 }
 
 // Drilling, pecking, tapping and boring along the hole's axis: Z (the plane's third axis on a
 // mill; the face cycles G83-G85 on a Fanuc lathe), or X for the lathe's side cycles G87-G89.
-bool block_timer::drill_cycle(const std::string& g, const std::vector<nc_word>& words,
+bool block_timer::drill_cycle(int g, const std::vector<nc_word>& words,
                               const std::vector<std::optional<double>>& target, block_timing& t) {
   enum class kind { drill, peck, chip_break, tap, bore_feed_out, bore_rapid_out } what = kind::drill;
   const nc_word* q_word = find(words, 'Q');
   double q = 0;
   const bool pecks = value(q_word, q) && q > 0;
   if (lathe_a_) {
-    if (g == "83" || g == "87")
+    if (g == g_code("83") || g == g_code("87"))
       what = pecks ? kind::peck : kind::drill;
-    else if (g == "84" || g == "88")
+    else if (g == g_code("84") || g == g_code("88"))
       what = kind::tap;
-    else if (g == "85" || g == "89")
+    else if (g == g_code("85") || g == g_code("89"))
       what = kind::bore_feed_out;
     else
       return false;
-  } else if (g == "81" || g == "82") {
+  } else if (g == g_code("81") || g == g_code("82")) {
     what = kind::drill;
-  } else if (g == "83") {
+  } else if (g == g_code("83")) {
     what = pecks ? kind::peck : kind::drill;
-  } else if (g == "73") {
+  } else if (g == g_code("73")) {
     what = pecks ? kind::chip_break : kind::drill;
-  } else if (g == "84" || g == "74" || g == "84.2" || g == "84.3") {
+  } else if (g == g_code("84") || g == g_code("74") || g == g_code("84.2") || g == g_code("84.3")) {
     what = kind::tap;
-  } else if (g == "85" || g == "89") {
+  } else if (g == g_code("85") || g == g_code("89")) {
     what = kind::bore_feed_out;
-  } else if (g == "86") {
+  } else if (g == g_code("86")) {
     what = kind::bore_rapid_out;
   } else {
     return false;
   }
-  const std::string code = "G" + g;
-  const char hole = lathe_a_ ? (g == "87" || g == "88" || g == "89" ? 'X' : 'Z')
+  const std::string code = g_code_text(g, "G");
+  const char hole = lathe_a_ ? (g == g_code("87") || g == g_code("88") || g == g_code("89") ? 'X' : 'Z')
                              : (plane_ == 17   ? 'Z'
                                 : plane_ == 18 ? 'Y'
                                                : 'X');
@@ -206,8 +207,8 @@ bool block_timer::drill_cycle(const std::string& g, const std::vector<nc_word>& 
 // Threading: Fanuc lathe G76 (two blocks: passes of the control's own depths) and G92, Mazak
 // G292 (one pass a block). Each pass: in along X at rapid, the thread at the lead, out along X
 // and back along Z at rapid, to the start point where the cycle ends.
-bool block_timer::thread_cycle(const std::string& g, const std::vector<nc_word>& words, block_timing& t) {
-  const std::string code = "G" + g;
+bool block_timer::thread_cycle(int g, const std::vector<nc_word>& words, block_timing& t) {
+  const std::string code = g_code_text(g, "G");
   axis_pos* x = axis('X');
   axis_pos* z = axis('Z');
   if (!x || !z) return false;
@@ -217,7 +218,7 @@ bool block_timer::thread_cycle(const std::string& g, const std::vector<nc_word>&
   const nc_word* zw = find(words, 'Z');
   const nc_word* uw = u_alias ? find(words, 'U') : nullptr;
   const nc_word* ww = w_alias ? find(words, 'W') : nullptr;
-  if (g == "76" && !xw && !zw && !uw && !ww) {
+  if (g == g_code("76") && !xw && !zw && !uw && !ww) {
     // The first block: P(m finishing passes)(r pull-out)(a tool angle) Q(least cut) R(allowance).
     double p = 0, v = 0;
     if (value(find(words, 'P'), p)) {
@@ -265,7 +266,7 @@ bool block_timer::thread_cycle(const std::string& g, const std::vector<nc_word>&
            leg(leg_kind::sync, 'X', xe, t, code, 'Z', z_end) && leg(leg_kind::rapid, 'X', x0, t, code) &&
            leg(leg_kind::rapid, 'Z', z0, t, code);
   };
-  if (g != "76") {
+  if (g != g_code("76")) {
     pass(x_end, 0);
     return true;
   }
@@ -312,8 +313,8 @@ bool block_timer::thread_cycle(const std::string& g, const std::vector<nc_word>&
 // along X): the first block R(e) the back-off of each peck; the second X(U) Z(W) P(peck along
 // X) Q(along Z) F. Each plunge pecks to the bottom, comes back to the start level at rapid,
 // steps on at rapid; the cycle ends at its start point.
-bool block_timer::groove_cycle(const std::string& g, const std::vector<nc_word>& words, block_timing& t) {
-  const std::string code = "G" + g;
+bool block_timer::groove_cycle(int g, const std::vector<nc_word>& words, block_timing& t) {
+  const std::string code = g_code_text(g, "G");
   axis_pos* x = axis('X');
   axis_pos* z = axis('Z');
   if (!x || !z) return false;
@@ -347,7 +348,7 @@ bool block_timer::groove_cycle(const std::string& g, const std::vector<nc_word>&
   if (value(pw, p)) p = increments(*pw, p);
   if (value(qw, q)) q = increments(*qw, q);
   // G75 plunges along X (P the peck, radius) and steps along Z (Q); G74 the other way round.
-  const bool along_x = g == "75";
+  const bool along_x = g == g_code("75");
   const char plunge = along_x ? 'X' : 'Z', shift = along_x ? 'Z' : 'X';
   const double p0 = along_x ? x0 : z0, p1 = along_x ? x1 : z1;
   const double s0 = along_x ? z0 : x0, s1 = along_x ? z1 : x1;

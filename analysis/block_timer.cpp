@@ -28,56 +28,48 @@ double integral_of_max(double a, double b, double c) {
   return part(0, u) + part(u, 1);
 }
 
-bool number(std::string_view s, double& out) { return nc_number(s, out); }
-
-// A code as compared: "01" and "1." are "1", "84.2" stays. Written out by hand (no
-// formatting): every G word of every block comes through here.
-std::string code_of(const nc_word& w) {
-  if (w.expression || !w.numeric) return w.value;
-  const double v = w.number;  // decoded when the block was split
-  std::string_view s = w.value;
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  if (s.find('.') != std::string_view::npos) {
-    while (s.back() == '0') s.remove_suffix(1);
-    if (s.back() == '.') s.remove_suffix(1);
-  }
-  while (s.size() > 1 && s.front() == '0' && s[1] != '.') s.remove_prefix(1);
-  if (s.empty() || s.front() == '.' || s == "-0" || s.front() == '-') return fmt::format("{:g}", v);
-  return std::string(s);
+// The code of a G word as compared (g_code): "01", "1." and "1.0" are G1, "84.2" is G84.2;
+// -1 for a negative code or one of more than one decimal (no control has one: it is named as
+// written, not timed).
+int g_code_of(const nc_word& w) {
+  if (std::signbit(w.number)) return -1;  // G-1, G-0: no code (named as written)
+  const double tenths = w.number * 10;
+  const double r = std::round(tenths);
+  if (std::abs(tenths - r) > 1e-6 || std::abs(r) > 1e6) return -1;
+  return static_cast<int>(r);
 }
 
-// The G (or M) codes of a fixed block of the machine file ("G99", "G68"), as code_of gives them.
-void add_codes(std::vector<std::string>& out, std::string_view block, char address) {
+// The G (or M) codes of a fixed block of the machine file ("G99", "G68").
+void add_codes(std::vector<int>& out, std::string_view block, char address) {
   for (const nc_word& w : split_nc_words(block))
-    if (w.address == address) out.push_back(code_of(w));
+    if (w.address == address && w.numeric && g_code_of(w) >= 0) out.push_back(g_code_of(w));
 }
 
-bool among(const std::vector<std::string>& set, const std::string& c) {
-  return std::find(set.begin(), set.end(), c) != set.end();
-}
+bool among(const std::vector<int>& set, int c) { return std::find(set.begin(), set.end(), c) != set.end(); }
 
 // G codes that set a mode or an offset and take no time of their own.
-const std::vector<std::string>& plain_g_codes() {
-  static const std::vector<std::string> codes = {
-      "10.1", "12.1", "13.1", "15",  "16",   "17", "18", "19", "20", "21", "40",   "41",
-      "42",   "43",   "44",   "49",  "54",   "55", "56", "57", "58", "59", "54.1", "61",
-      "64",   "67",   "68",   "69",  "69.1", "80", "90", "91", "94", "95", "96",   "97",
-      "98",   "99",   "112",  "113", "0",    "1",  "2",  "3",  "4",  "32", "33"};
-  return codes;
+bool plain_g_code(int g) {
+  static constexpr int codes[] = {
+      g_code("10.1"), g_code("12.1"), g_code("13.1"), g_code("15"),  g_code("16"),   g_code("17"),
+      g_code("18"),   g_code("19"),   g_code("20"),   g_code("21"),  g_code("40"),   g_code("41"),
+      g_code("42"),   g_code("43"),   g_code("44"),   g_code("49"),  g_code("54"),   g_code("55"),
+      g_code("56"),   g_code("57"),   g_code("58"),   g_code("59"),  g_code("54.1"), g_code("61"),
+      g_code("64"),   g_code("67"),   g_code("68"),   g_code("69"),  g_code("69.1"), g_code("80"),
+      g_code("90"),   g_code("91"),   g_code("94"),   g_code("95"),  g_code("96"),   g_code("97"),
+      g_code("98"),   g_code("99"),   g_code("112"),  g_code("113"), g_code("0"),    g_code("1"),
+      g_code("2"),    g_code("3"),    g_code("4"),    g_code("32"),  g_code("33")};
+  return std::find(std::begin(codes), std::end(codes), g) != std::end(codes);
 }
 
-bool modal_drill_cycle(const std::string& g, bool lathe_a) {
-  double v = 0;
-  if (!number(g, v)) return false;
-  if (v >= 81 && v < 90) return true;  // G81-G89 and G84.2/G84.3
-  return !lathe_a && (g == "73" || g == "74" || g == "76");
+bool modal_drill_cycle(int g, bool lathe_a) {
+  if (g >= g_code("81") && g < g_code("90")) return true;  // G81-G89 and G84.2/G84.3
+  return !lathe_a && (g == g_code("73") || g == g_code("74") || g == g_code("76"));
 }
 
-bool one_shot_cycle(const std::string& g, bool lathe_a) {
-  if (lathe_a &&
-      (g == "70" || g == "71" || g == "72" || g == "73" || g == "74" || g == "75" || g == "76" || g == "78"))
-    return true;
-  return g == "276" || g == "290" || g == "292" || g == "294" || g == "270" || g == "271" || g == "272";
+bool one_shot_cycle(int g, bool lathe_a) {
+  if (lathe_a && ((g >= g_code("70") && g <= g_code("76") && g % 10 == 0) || g == g_code("78"))) return true;
+  return g == g_code("276") || g == g_code("290") || g == g_code("292") || g == g_code("294") ||
+         g == g_code("270") || g == g_code("271") || g == g_code("272");
 }
 
 }  // namespace
@@ -122,7 +114,7 @@ block_timer::block_timer(const machine& m, int channel)
     }
   add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
   add_codes(feed_min_, m.codes.feed_per_min, 'G');
-  for (const char* g : {"0", "1", "2", "3"})
+  for (const int g : {g_code("0"), g_code("1"), g_code("2"), g_code("3")})
     plain_motion_codes_ = plain_motion_codes_ && !among(feed_rev_, g) && !among(feed_min_, g);
   // The tool call's address and how a number splits into tool and offset (T0303: tool 3).
   const std::string& call = ch_->tool_call;
@@ -168,7 +160,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   };
 
   bool dwell = false, reference = false, setting = false;
-  std::string one_shot;
+  int one_shot = -1;  // a one-shot cycle's code; -1: none
   // Most blocks of a program are moves without a G word, a tool, an M code or a feed: the
   // block's letters say so without a loop over its words.
   const bool has_g = (letters & nc_letter('G')) != 0;
@@ -176,60 +168,58 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   for (const nc_word& w : words) {
     if (!has_g) break;
     if (w.address != 'G') continue;
-    if (w.expression) {
+    // A G code is a number (G84.2 is 842, see g_code): no text is built or compared per block.
+    const int g = w.expression || !w.numeric ? -1 : g_code_of(w);
+    if (g < 0) {
       untimed("G" + w.value);
       continue;
     }
-    // Most G words of a program are G0-G3: the motion, set without building the code.
-    if (plain_motion_codes_ && w.numeric &&
-        (w.number == 0 || w.number == 1 || w.number == 2 || w.number == 3)) {
-      static const std::string motion[] = {"0", "1", "2", "3"};
-      const std::string& g = motion[static_cast<int>(w.number)];
-      if (motion_ != g) set_motion(g);
+    // Most G words of a program are G0-G3: the motion, set at once.
+    if (plain_motion_codes_ && g <= g_code("3") && g % 10 == 0) {
+      if (motion_num_ != g / 10) set_motion(g);
       end_cycle();
       continue;
     }
-    const std::string g = code_of(w);
-    if (g == "20")
+    if (g == g_code("20"))
       inch_ = true;
-    else if (g == "21")
+    else if (g == g_code("21"))
       inch_ = false;
-    else if (g == "17" || g == "18" || g == "19")
-      plane_ = std::stoi(g);
+    else if (g == g_code("17") || g == g_code("18") || g == g_code("19"))
+      plane_ = g / 10;
     if (among(feed_rev_, g))
       per_rev_ = true;
     else if (among(feed_min_, g))
       per_rev_ = false;
-    else if (g == "98" || g == "99")
-      cyc_.return_r = g == "99";  // where they are not feed modes: the drilling cycles' return level
-    if (lathe_a_ && (g == "90" || g == "92" || g == "94")) {
+    else if (g == g_code("98") || g == g_code("99"))
+      cyc_.return_r = g == g_code("99");  // where they are not feed modes: the drilling cycles' return level
+    if (lathe_a_ && (g == g_code("90") || g == g_code("92") || g == g_code("94"))) {
       if (cycle_ != g) end_cycle();
       cycle_ = g;  // box cycles: modal until another motion code
       continue;
     }
-    if (g == "90")
+    if (g == g_code("90"))
       incremental_ = false;
-    else if (g == "91")
+    else if (g == g_code("91"))
       incremental_ = true;
-    else if (g == "0" || g == "1" || g == "2" || g == "3")
+    else if (g <= g_code("3") && g % 10 == 0)
       set_motion(g), end_cycle();
-    else if (g == "32" || g == "33")
-      set_motion("32"), end_cycle();
-    else if (g == "80")
+    else if (g == g_code("32") || g == g_code("33"))
+      set_motion(g_code("32")), end_cycle();
+    else if (g == g_code("80"))
       end_cycle();
-    else if (g == "4")
+    else if (g == g_code("4"))
       dwell = true;
-    else if (g == "28" || g == "30" || g == "53")
-      reference = true, untimed("G" + g);
-    else if (g == "50" || g == "92")
+    else if (g == g_code("28") || g == g_code("30") || g == g_code("53"))
+      reference = true, untimed(g_code_text(g, "G"));
+    else if (g == g_code("50") || g == g_code("92"))
       setting = true;  // speed clamp or coordinate setting
     else if (modal_drill_cycle(g, lathe_a_)) {
-      if (cycle_.empty()) cyc_.initial.reset();  // a new cycle: its initial level is where it begins
+      if (cycle_ < 0) cyc_.initial.reset();  // a new cycle: its initial level is where it begins
       cycle_ = g;
     } else if (one_shot_cycle(g, lathe_a_))
       one_shot = g;
-    else if (!among(plain_g_codes(), g))
-      untimed("G" + g);
+    else if (!plain_g_code(g))
+      untimed(g_code_text(g, "G"));
   }
 
   // Tool calls, M codes, the feed.
@@ -300,7 +290,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       target[i] = v;
     if (inc && !p->value) target[i].reset();
     if (inc && !p->value && !setting)
-      untimed(fmt::format("{} from an unknown position", motion_.empty() ? "move" : "G" + motion_));
+      untimed(fmt::format("{} from an unknown position", motion_num_ < 0 ? "move" : motion_code_));
   }
   const bool arc_words = std::any_of(words.begin(), words.end(), [](const nc_word& w) {
     return w.address == 'I' || w.address == 'J' || w.address == 'K' || w.address == 'R';
@@ -317,11 +307,11 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
         p->value.reset();
     return t;
   }
-  if (!one_shot.empty() || (!cycle_.empty() && moves)) {
+  if (one_shot >= 0 || (cycle_ >= 0 && moves)) {
     // A cycle the control expands itself: timed from its words where this knows its moves
     // (block_cycles.cpp), else not timed. A drilling cycle leaves the tool over the hole at
     // its initial level; a lathe cycle returns to its start point.
-    const std::string& g = !one_shot.empty() ? one_shot : cycle_;
+    const int g = one_shot >= 0 ? one_shot : cycle_;
     if (t.untimed.empty() && time_cycle(g, words, target, t)) {
       if (!t.untimed.empty()) {
         t.seconds = 0;
@@ -331,8 +321,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       t.seconds += t.motion;
       return t;
     }
-    untimed("G" + g);
-    if (one_shot.empty() && modal_drill_cycle(cycle_, lathe_a_))
+    untimed(g_code_text(g, "G"));
+    if (one_shot < 0 && modal_drill_cycle(cycle_, lathe_a_))
       for (std::size_t i = 0; i < axes_.size(); ++i)
         if (axes_[i].address != 'Z') axes_[i].value = target[i];
     return t;
@@ -343,7 +333,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     t.seconds = 0;
     return t;
   }
-  if (motion_.empty()) {
+  if (motion_num_ < 0) {
     untimed("move without G0/G1");
     return t;
   }

@@ -27,6 +27,34 @@
 namespace twinpost {
 
 /// What one block costs.
+/// A G code as an integer in tenths, G1 as 10 and G84.2 as 842, so that a block's codes are
+/// compared as numbers (no control has a code of two decimals).
+consteval int g_code(std::string_view code) {
+  int v = 0, decimals = -1;
+  for (const char c : code) {
+    if (c == '.') {
+      decimals = 0;
+      continue;
+    }
+    v = v * 10 + (c - '0');
+    if (decimals >= 0) ++decimals;
+  }
+  return decimals <= 0 ? v * 10 : v;
+}
+
+/// The code as the program writes it after `prefix`: 10 "1", 842 "84.2" (with "G": "G84.2").
+inline std::string g_code_text(int g, std::string_view prefix = {}) {
+  const int a = g < 0 ? -g : g;
+  std::string s(prefix);
+  if (g < 0) s += '-';
+  s += std::to_string(a / 10);
+  if (a % 10 != 0) {
+    s += '.';
+    s += static_cast<char>('0' + a % 10);
+  }
+  return s;
+}
+
 struct block_timing {
   double seconds = 0;      ///< time of the block (0 when untimed)
   double motion = 0;       ///< of which moving (rapid, feed, thread)
@@ -66,24 +94,22 @@ class block_timer {
   bool inch_ = false;
   bool per_rev_ = false;
   int plane_ = 18;                  // 17, 18, 19
-  std::string motion_;              // modal motion: "0", "1", "2", "3", "32"; "": none yet
-  std::string motion_code_;         // the same as a code, "G1" (made once, not at every move)
+  std::string motion_code_;         // the modal motion as a code, "G1" (made once, not at every move)
   bool plain_motion_codes_ = true;  // G0-G3 are only motions (no feed mode of the machine's)
-  int motion_num_ = -1;             // the same as a number (32 for G32/G33); -1: none yet
-  void set_motion(const std::string& g) {
-    motion_ = g;
-    motion_code_ = "G" + g;
-    motion_num_ = std::stoi(g);
+  int motion_num_ = -1;             // the modal motion: 0, 1, 2, 3, 32 (G32/G33); -1: none yet
+  void set_motion(int g) {
+    motion_num_ = g / 10;
+    motion_code_ = g_code_text(g, "G");
   }
-  std::string cycle_;  // a modal cycle in force (G83, or G90 on a Fanuc lathe); "": none
+  int cycle_ = -1;  // a modal cycle in force (G83, or G90 on a Fanuc lathe, as g_code); -1: none
   double feed_ = 0;
   std::string tool_;
   int tool_number_ = -1;
   char tool_address_ = 'T';
   long tool_divisor_ = 1;  // T0303 with {tool:02}{offset:02}: the tool is T / 100
   char dwell_address_ = 0;
-  double dwell_unit_ = 1;  // seconds per unit of the dwell word
-  std::vector<std::string> feed_rev_, feed_min_;
+  double dwell_unit_ = 1;                 // seconds per unit of the dwell word
+  std::vector<int> feed_rev_, feed_min_;  // g_code
   // Mill/turn modes ([milling]): X in radius while the spindle is a C axis, and C a linear
   // axis (the plane's second one, mm) in polar interpolation.
   bool radius_x_ = false, polar_ = false;
@@ -131,19 +157,19 @@ class block_timer {
     double groove_return = 0;            // G74/G75 first block R(e), mm
     std::optional<double> box_z, box_r;  // modal Z and R of G92/G292
   } cyc_;
-  /// Times the cycle block `g` ("83", "292") from its words; false when it is not a cycle this
-  /// knows (the caller names it untimed). `target`: where the block's axis words send each axis.
-  bool time_cycle(const std::string& g, const std::vector<nc_word>& words,
-                  const std::vector<std::optional<double>>& target, block_timing& t);
-  bool drill_cycle(const std::string& g, const std::vector<nc_word>& words,
-                   const std::vector<std::optional<double>>& target, block_timing& t);
-  bool thread_cycle(const std::string& g, const std::vector<nc_word>& words, block_timing& t);
-  bool groove_cycle(const std::string& g, const std::vector<nc_word>& words, block_timing& t);
+  /// Times the cycle block `g` (g_code("83"), g_code("292")) from its words; false when it is not a cycle
+  /// this knows (the caller names it untimed). `target`: where the block's axis words send each axis.
+  bool time_cycle(int g, const std::vector<nc_word>& words, const std::vector<std::optional<double>>& target,
+                  block_timing& t);
+  bool drill_cycle(int g, const std::vector<nc_word>& words, const std::vector<std::optional<double>>& target,
+                   block_timing& t);
+  bool thread_cycle(int g, const std::vector<nc_word>& words, block_timing& t);
+  bool groove_cycle(int g, const std::vector<nc_word>& words, block_timing& t);
   /// Moves axis `a` (and `b`, when given) to `va` (`vb`); adds its time to t.motion. False
   /// (and t.untimed set) when it cannot be timed.
   /// The modal cycle ends (G80, a motion code): its levels are forgotten.
   void end_cycle() {
-    cycle_.clear();
+    cycle_ = -1;
     cyc_.initial.reset();
     cyc_.r.reset();
     cyc_.bottom.reset();

@@ -105,6 +105,24 @@ TEST_CASE("block timer: reference returns, macro calls and unknown cycles are no
         "0.0000|G71\n");
 }
 
+TEST_CASE("block timer: G codes compared as numbers, however written; a code no control has is named",
+          "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  CHECK(times(m, 1,
+              {"G50 X100. Z10.", "G00 X110.", "G01. Z0. F200.", "G1.0 Z-10.", "G098", "G0 Z5.", "G84.25 Z0.",
+               "G-1 Z-5.", "G+0 X120.", "G0.5 X100."}) ==
+        "0.0000\n"
+        "0.0150\n"         // G00: a rapid, X 5 mm at 20000 mm/min
+        "3.0000\n"         // G01.: a feed, 10 mm at 200 mm/min
+        "3.0000\n"         // G1.0 as well
+        "0.0000\n"         // G098: feed per minute (the machine's feed_per_min code)
+        "0.0375\n"         // 15 mm at 24000 mm/min
+        "0.0000|G84.25\n"  // two decimals: no control's code, named as written
+        "0.0000|G-1\n"
+        "0.0150\n"         // G+0 is G0
+        "0.0000|G0.5\n");  // one decimal: a code (not this control's), named as the program has it
+}
+
 // Canned cycles, timed from their words as the control moves (docs/timeline.md, "Canned
 // cycles"). fanuc-0itd-twin and the 31i's turrets: rapid X 20000 (the radius), Z 24000 mm/min;
 // the Integrex upper head X 38000 (radius of a diameter X), Y 26000, Z 38000 mm/min.
