@@ -105,7 +105,7 @@ TEST_CASE("block timer: reference returns, macro calls and unknown cycles are no
         "0.0000|G71\n");
 }
 
-TEST_CASE("block timer: G codes compared as numbers however written; a code no control has is named",
+TEST_CASE("block timer: G codes compared as numbers however written and a code no control has is named",
           "[analysis][timeline]") {
   const machine m = load_machine("fanuc-0itd-twin");
   CHECK(times(m, 1,
