@@ -55,7 +55,7 @@ machine_for() {  # KIND MILL
 
 # Millions of instructions per thread of one post, as "total t1 t2 t3".
 count() {  # BIN MACHINE JOB
-  rm -rf "$work/out" "$work"/cg.*
+  rm -rf "$work/out" "$work/cg" "$work"/cg-*
   valgrind --tool=callgrind --separate-threads=yes --callgrind-out-file="$work/cg" \
     "$1" post "$3" --machine "$2" -o "$work/out" >/dev/null 2>"$work/log" || true
   local total=0 parts=() files=("$work"/cg-*)
