@@ -69,13 +69,95 @@ void channel_writer::user_block(const std::string& tpl, const template_args& a) 
   // A word past the control's format or an X past the travel: an error at the CL record.
   if (!block_fits(b) || !user_block_in_travel(b)) return;
   out_.block(b);
-  note_user_block(b, true);
+  note_user_block(b, !filtered_);  // through on_block its waits are counted as written
+}
+
+void channel_writer::count_wait(int cl_line) {
+  ++waits_;
+  cut_due_ = true;
+  wait_cl_lines_.push_back(cl_line);
+  if (note_every_block_ && block_cl_count_ > 0) wait_block_.push_back(block_cl_count_ - 1);
+}
+
+void channel_writer::count_waits_in(std::string_view b, int cl_line) {
+  // The wait words as the self-check reads them: the wait address and digits, outside comments.
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b[i] == m_.program.comment_open) {
+      if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) break;
+      continue;
+    }
+    if (b[i] != m_.waits.address || i + 1 >= b.size() || !ascii::is_digit(b[i + 1])) continue;
+    long long code = 0;
+    std::size_t j = i + 1;
+    for (; j < b.size() && ascii::is_digit(b[j]) && code < 1000000000; ++j) code = code * 10 + (b[j] - '0');
+    if (is_wait_word(m_.waits, m_.waits.address, code)) count_wait(cl_line);
+    i = j - 1;
+  }
+}
+
+namespace {
+
+// Whether fixed block `block` of the machine file ("M8", "M8 M26") has the word M`code`.
+bool has_m(std::string_view block, long long code) {
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    if (block[i] != 'M' || (i > 0 && ascii::is_letter(block[i - 1]))) continue;
+    long long c = 0;
+    std::size_t j = i + 1;
+    for (; j < block.size() && ascii::is_digit(block[j]) && c < 1000000000; ++j)
+      c = c * 10 + (block[j] - '0');
+    if (j > i + 1 && c == code && (j == block.size() || block[j] != '.')) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void channel_writer::note_user_m(long long code) {
+  // What the machine file says the code is. A spindle start or a coolant-on code turns that
+  // one on again: the footer must stop it, with the stop or off code of that spindle or kind
+  // (finish()); a spindle stop or a coolant-off code turns nothing on. Any other M code is the
+  // machine's own (M10 a parts catcher, M13 spindle and coolant on together on some controls,
+  // M98 a subprogram): what it does is not known here, so both count as on again, as after
+  // AUXFUN.
+  bool stop = false;
+  for (const spindle_def& s : m_.spindles) {
+    if (code == s.cw || code == s.ccw) {
+      spindle_ended_.clear();
+      if (std::find(user_spindles_.begin(), user_spindles_.end(), &s) == user_spindles_.end())
+        user_spindles_.push_back(&s);
+      return;
+    }
+    stop = stop || code == s.stop;
+  }
+  const control_codes& k = m_.codes;
+  const std::string* on = nullptr;
+  const std::string* off = nullptr;
+  for (const std::string& b : k.coolant_on)
+    if (has_m(b, code)) on = &b, off = &k.coolant_off;
+  for (const auto* kind : {&k.coolant_mist, &k.coolant_through, &k.coolant_air})
+    if (kind->size() == 2 && has_m((*kind)[0], code)) on = &(*kind)[0], off = &(*kind)[1];
+  if (on) {
+    coolant_ended_.clear();
+    coolant_block_ = *on;  // the post's own state: a tool change and the end turn it off
+    coolant_off_block_ = *off;
+    return;
+  }
+  bool is_off = has_m(k.coolant_off, code);
+  for (const auto* kind : {&k.coolant_mist, &k.coolant_through, &k.coolant_air})
+    is_off = is_off || (kind->size() == 2 && has_m((*kind)[1], code));
+  if (stop || is_off) return;
+  spindle_ended_.clear();
+  coolant_ended_.clear();
 }
 
 void channel_writer::note_user_block(std::string_view b, bool waits) {
-  // The words of the block, outside comments: a wait code is numbered like the post's own
-  // waits (post/sync_at_cl reports the checker's findings at this CL record); a G code may
-  // move the axes or change the motion mode, so the next move writes them all again.
+  // Its wait codes are numbered like the post's own waits (post/sync_at_cl reports the
+  // checker's findings at this CL record).
+  if (waits) count_waits_in(b, line_);
+  // Its other words, outside comments: a G code may move the axes or change the motion mode,
+  // so the next move writes them all again; an M code may turn the spindle or the coolant on
+  // (note_user_m). A block of neither (a comment, #501=#501+1, G30's axes aside) leaves the
+  // footer's spindle stop and coolant off in force.
   bool g = false;
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b[i] == m_.program.comment_open) {
@@ -83,24 +165,19 @@ void channel_writer::note_user_block(std::string_view b, bool waits) {
       continue;
     }
     if (b[i] == 'G') g = true;
-    if (!waits || b[i] != m_.waits.address || i + 1 >= b.size() || !ascii::is_digit(b[i + 1])) continue;
+    if (b[i] != 'M' || i + 1 >= b.size() || !ascii::is_digit(b[i + 1]) ||
+        (i > 0 && ascii::is_letter(b[i - 1])))
+      continue;
     long long code = 0;
     std::size_t j = i + 1;
     for (; j < b.size() && ascii::is_digit(b[j]) && code < 1000000000; ++j) code = code * 10 + (b[j] - '0');
-    if (is_wait_word(m_.waits, m_.waits.address, code)) {
-      ++waits_;
-      cut_due_ = true;
-      wait_cl_lines_.push_back(line_);
-    }
+    if (m_.waits.address != 'M' || !is_wait_word(m_.waits, 'M', code)) note_user_m(code);
     i = j - 1;
   }
   if (g) {
     forget_axes();
     motion_g_ = -1;
   }
-  // What the user's codes do to the spindle or the coolant is not known (as after AUXFUN).
-  spindle_ended_.clear();
-  coolant_ended_.clear();
 }
 
 void channel_writer::user_blocks(event_point p, bool after, template_args a) {

@@ -14,7 +14,16 @@ namespace twinpost {
 void channel_writer::use_script(job_script* s) {
   script_ = s;
   // on_block costs a test of one pointer per block, and only when the script defines it.
-  if (s && s->lua && s->lua->has_on_block()) out_.set_filter(this);
+  if (s && s->lua && s->lua->has_on_block()) {
+    out_.set_filter(this);
+    filtered_ = true;
+  }
+}
+
+void channel_writer::block_written(std::string_view block) {
+  // Every block the filter saw, as written: a wait the post wrote, one a replacement adds, none
+  // for one a replacement took away. The CL line of the post's own wait is the wait's.
+  count_waits_in(block, wait_line_ > 0 ? wait_line_ : line_);
 }
 
 void channel_writer::script_failed(const scripting::script_error& e) {
@@ -127,7 +136,7 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
     script_block_note(replacement, "on_block");
     return block_writer::verdict::drop;
   }
-  // A wait the post wrote is counted already; one a replacement adds is the self-check's to find.
+  // Its waits are counted as it is written (block_written()); its G and M codes change the modal state.
   note_user_block(replacement, false);
   return block_writer::verdict::replace;
 }

@@ -247,11 +247,11 @@ void channel_writer::on_wait(const wait_mark& w) {
     a.code = w.code;
     user_blocks(event_point::wait, false, a);
   }
+  wait_line_ = w.cl_line;
   out_.block(b);
-  ++waits_;
-  cut_due_ = true;
-  wait_cl_lines_.push_back(w.cl_line);
-  if (note_every_block_ && block_cl_count_ > 0) wait_block_.push_back(block_cl_count_ - 1);
+  wait_line_ = 0;
+  // Through the script's on_block the wait is counted as written (block_written()): dropped, none.
+  if (!filtered_) count_wait(w.cl_line);
   if (ev_) [[unlikely]] {
     template_args a;
     a.code = w.code;
@@ -479,6 +479,13 @@ void channel_writer::finish() {
     const std::string stop = fmt::format("M{}", spindle_->stop);
     const auto& footer = m_.program.footer;
     if (std::find(footer.begin(), footer.end(), stop) == footer.end()) spindle_block(stop, true);
+  }
+  // A spindle a user block started ([events], the script), whose stop the footer lacks.
+  for (const spindle_def* s : user_spindles_) {
+    const std::string stop = fmt::format("M{}", s->stop);
+    const auto& footer = m_.program.footer;
+    if (spindle_ended_ != stop && std::find(footer.begin(), footer.end(), stop) == footer.end())
+      spindle_block(stop, true);
   }
   // Likewise the coolant: the footer's M9 does not turn off through-tool (M109, Mazak M163)
   // or air coolant, which would blow through the final retract.

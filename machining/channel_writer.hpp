@@ -650,9 +650,24 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void warning(std::string_view message) override;
   block_writer::verdict filter(std::string_view block, std::string& replacement) override;
   /// What a user block (template or script) does besides being written: its wait codes are
-  /// noted for the self-check's findings (`waits`), a G code makes the next move write its
-  /// axes again, the spindle and coolant state is no longer known.
+  /// counted (`waits`; count_waits_in), a G code makes the next move write its axes again, an
+  /// M code may turn the spindle or the coolant on (note_user_m).
   void note_user_block(std::string_view b, bool waits);
+  /// M`code` of a user block: which of the footer's spindle stop and coolant off it leaves in
+  /// force (footer_in_force).
+  void note_user_m(long long code);
+  /// One wait block written at CL line `cl_line`: numbered for the self-check's findings
+  /// (post/sync_at_cl), the interference rule's block index, the next cut noted.
+  void count_wait(int cl_line);
+  /// count_wait for each wait code in block `b` (outside comments), as the checker reads it.
+  void count_waits_in(std::string_view b, int cl_line);
+  /// block_filter: a block the filter saw went out as `block` (kept or replaced); its waits
+  /// are counted here, the post's own as a replacement's (the writer then counts none itself).
+  void block_written(std::string_view block) override;
+  bool filtered_ = false;  ///< the script's on_block sees every block (use_script)
+  /// The spindles a user block started (note_user_m): finish() stops those the footer does not.
+  std::vector<const spindle_def*> user_spindles_;
+  int wait_line_ = 0;         ///< the CL line of the wait block being written (on_wait)
   std::string program_name_;  ///< for ctx.program, asked for once
 };
 

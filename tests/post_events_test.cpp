@@ -3,6 +3,7 @@
 // to the same checks as the post's blocks (word formats, waits paired by the self-check).
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <filesystem>
 
 #include <string>
 
@@ -23,6 +24,19 @@ std::string twin_with(const std::string& events) {
 
 test::posted post_with(const std::string& events, const std::string& cl, const std::string& tag) {
   return test::post_in_fresh_dir(cl, parse_machine(twin_with(events), "twin-events.toml"), "events-" + tag);
+}
+
+// The same machine with [events] script = "t.lua", the script `lua` beside it.
+test::posted post_with_script(const std::string& events, const std::string& lua, const std::string& cl,
+                              const std::string& tag) {
+  const std::string dir = test::fresh_temp_dir("script-" + tag);
+  test::write_file(dir + "/t.lua", lua);
+  machine m = parse_machine(twin_with(events), "twin-events.toml");
+  m.events.script = "t.lua";
+  m.events.script_path = dir + "/t.lua";
+  test::posted p = test::post_in_fresh_dir(cl, m, "events-" + tag);
+  std::filesystem::remove_all(dir);
+  return p;
 }
 
 std::string program_1(const test::posted& p, const std::string& name = "EV_1.nc") {
@@ -72,7 +86,33 @@ TEST_CASE("[events] blocks go out before and after each of the post's events", "
         "(T01 OFFSET 1 DRILL 8)\n(SPINDLE 800)\nG97 S800 M3\n(SPINDLE ON)\n(COOLANT)\nM8\n"
         "(COOLANT ON)\nG0 X0. Z5.\n(CYCLE DRILL)\nZ2.\nG83 X0. Z-10. R0. F0.1\nG80\nG0 Z2.\n"
         "(CYCLE DONE)\n(COOLANT STOPS)\nM9\n(COOLANT OFF)\n(SPINDLE STOPS)\nM5\n(SPINDLE OFF)\n"
-        "(WAIT 100)\nM100\n(WAITED)\n(END 1)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+        "(WAIT 100)\nM100\n(WAITED)\n(END 1)\nG28 U0.\nG28 W0.\nM30\n%\n");
+}
+
+TEST_CASE("a user block leaves the footer's M9 and M5 out unless its M codes may turn them on",
+          "[post][events]") {
+  // The CL turns both off before its end: the footer's M9 and M5 are in force (left out), and a
+  // block without M codes keeps them so; the machine's coolant-on code puts M9 back, a spindle
+  // start M5, an M code the machine file does not name (M13) both.
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nCOOLNT/ON\nRAPID\nGOTO/20,0,5\n"
+      "COOLNT/OFF\nSPINDL/OFF\nCATCHER\nFINI\n";
+  const std::string body =
+      "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S800 M3\nM8\nG0 X40. Z5.\n"
+      "M9\nM5\n";
+  const auto with = [&](const std::string& blocks, const std::string& tag) {
+    return program_1(post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [" + blocks + "]\n", job,
+                               "footer-" + tag));
+  };
+  CHECK(with("\"(CATCHER)\", \"#501=#501+1\", \"G4 U1.\", \"M9\", \"M5\"", "none") ==
+        body + "(CATCHER)\n#501=#501+1\nG4 U1.\nM9\nM5\nM100\nG28 U0.\nG28 W0.\nM30\n%\n");
+  CHECK(with("\"M8\"", "coolant") == body + "M8\nM100\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+  // Mist (codes.coolant_mist M138/M139) is turned off by its own code, which the footer lacks.
+  CHECK(with("\"M138\"", "mist") == body + "M138\nM100\nM139\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+  CHECK(with("\"M3 S500\"", "spindle") == body + "M3 S500\nM100\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  // The sub spindle (M104 turns it, M105 stops it): the footer's M5 stops only the main.
+  CHECK(with("\"M104\"", "sub") == body + "M104\nM100\nM105\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  CHECK(with("\"M13\"", "unknown") == body + "M13\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
 TEST_CASE("a HEAD/BOTH copy writes no spindle event, as it writes no spindle block", "[post][events]") {
@@ -232,4 +272,44 @@ TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][e
         "m.toml:14:11: error: events.record.blocks: template \"M{code}\" names {code}, which is not known "
         "there (it "
         "is given {channel}, {text})");
+}
+
+TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at its CL record",
+          "[post][events][script]") {
+  // The first G28 U0. of each channel (its tool change) becomes M101 (a wait code of the machine).
+  // SYNCTR: the channels run at once, each from its tool change to the mark (M100).
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nSYNCTR/NEXT\nHEAD/2\nTURRET/11,11\nSYNCTR/NEXT\nFINI\n";
+  const std::string lua =
+      "function on_block(text, ctx)\n"
+      "  if text == 'G28 U0.' and not post.vars[ctx.channel] and ctx.channel <= CHANNELS then\n"
+      "    post.vars[ctx.channel] = true\n"
+      "    return 'M101'\n"
+      "  end\n"
+      "end\n";
+  const auto with = [&](const std::string& channels, const std::string& tag) {
+    std::string l = lua;
+    l.replace(l.find("CHANNELS"), 8, channels);
+    return post_with_script("", l, job, tag);
+  };
+  SECTION("in one channel: unpaired, the self-check's error at the tool call that wrote it") {
+    const test::posted p = with("1", "onblock-unpaired");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics.starts_with(
+        "job.cls:3:1: error: deadlock: channel 1 waits on M101 at job.cls:3 while channel 2 waits on M100 at "
+        "job.cls:7 (different codes, Fanuc PS0160)\nTURRET/1,1\n^\n"));
+    CHECK(
+        p.diagnostics.ends_with("/out/EV_1.nc:4:1: note: the wait in the program as it would have been "
+                                "written (no file is written)\nM101\n^\n"));
+    CHECK(p.files.empty());
+  }
+  SECTION("in both: paired, it posts") {
+    const test::posted p = with("2", "onblock-paired");
+    CHECK(program_1(p) ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\nG28 W0.\n"
+          "M5\nM30\n%\n");
+    CHECK(program_1(p, "EV_2.nc") ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 W0.\nT1111\nM100\nM9\n"
+          "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
 }
