@@ -11,6 +11,18 @@
 
 namespace twinpost {
 
+diagnostic script_diagnostic(const scripting::script_error& e) {
+  diagnostic d;
+  d.file = e.file;
+  d.line = e.line;
+  d.message = e.message;
+  d.source_line = e.source_line;
+  // Lua gives the line only: the caret under the line's first word (its statement).
+  const std::size_t first = e.source_line.find_first_not_of(" \t");
+  if (first != std::string::npos) d.caret = static_cast<int>(first) + 1;
+  return d;
+}
+
 void channel_writer::use_script(job_script* s) {
   script_ = s;
   // on_block costs a test of one pointer per block, and only when the script defines it.
@@ -29,11 +41,7 @@ void channel_writer::block_written(std::string_view block) {
 void channel_writer::script_failed(const scripting::script_error& e) {
   script_->failed = true;
   ++errors_;
-  diagnostic d;
-  d.file = e.file;
-  d.line = e.line;
-  d.message = e.message;
-  diags_.report(std::move(d));
+  diags_.report(script_diagnostic(e));
   diagnostic n;
   n.level = severity::note;
   n.file = cl_file_;

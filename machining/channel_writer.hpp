@@ -52,6 +52,10 @@ struct job_script {
   bool failed = false;
 };
 
+/// The diagnostic of a script error: `NAME.lua:LINE: error: message`, the script's line and a
+/// caret under its first word (machining/channel_script.cpp).
+diagnostic script_diagnostic(const scripting::script_error& e);
+
 class channel_writer : private scripting::script_host, private block_writer::block_filter {
  public:
   /// Writes the channel's blocks to `path`, framed by `frame` (see block_writer).

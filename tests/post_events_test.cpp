@@ -313,3 +313,16 @@ TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at
           "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
 }
+
+TEST_CASE("a script error quotes the script line with a caret under its first word",
+          "[post][events][script]") {
+  const test::posted p =
+      post_with_script("", "function on_tool_change(tool)\n\t  post.emit(tool.life + 1)\nend\n",
+                       "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "script-caret");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "t.lua:2: error: attempt to perform arithmetic on a nil value (field 'life')\n"
+        "\t  post.emit(tool.life + 1)\n\t  ^\n"
+        "job.cls:3:1: note: channel 1: the script failed while this record was posted\nTURRET/1,1\n^\n");
+  CHECK(p.files.empty());
+}
