@@ -3,6 +3,7 @@
 // block_writer as the post's own, so the self-check reads it like any other block: a wait code
 // in it must pair, its words must fit the control's formats.
 #include <charconv>
+#include <cmath>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 
+#include "formats/number_format.hpp"
 #include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
 #include "machining/channel_writer.hpp"
@@ -64,7 +66,103 @@ bool channel_writer::user_block_in_travel(std::string_view b) {
   return true;
 }
 
-void channel_writer::user_block(const std::string& tpl, const template_args& a) {
+namespace {
+
+// Whether template `tpl` names placeholder {`c`} ({x}, {x:>9}); "{{" is a brace.
+bool names_axis(std::string_view tpl, char c) {
+  for (std::size_t i = 0; i + 2 < tpl.size(); ++i) {
+    if (tpl[i] != '{') continue;
+    if (tpl[i + 1] == '{') {
+      ++i;
+      continue;
+    }
+    if (tpl[i + 1] == c && (tpl[i + 2] == '}' || tpl[i + 2] == ':')) return true;
+  }
+  return false;
+}
+
+// The operation's name in an operation record: NX TOOL PATH/name,TOOL,tool (before the first
+// comma), SolidWorks OPFEATSTART/name (all of it).
+std::string operation_name(const text_event& t) {
+  std::string_view s = t.text;
+  if (t.kind == text_kind::toolpath) s = s.substr(0, s.find(','));
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return std::string(s);
+}
+
+}  // namespace
+
+void channel_writer::position_args(template_args& a) const {
+  // The last axis words the program commanded, as it wrote them: X in diameter on a lathe's
+  // diameter axis (and with its sign on a mirrored turret), in the work frame, in the output
+  // units; none before the channel's first move.
+  if (!moved_) return;
+  const double unit = std::pow(10.0, -axis_style_.decimals);
+  a.x = format_nc_number(static_cast<double>(last_x_.n) * unit, axis_style_);
+  a.z = format_nc_number(static_cast<double>(last_z_.n) * unit, axis_style_);
+  if (has_y_) a.y = format_nc_number(static_cast<double>(last_y_.n) * unit, axis_style_);
+}
+
+bool channel_writer::position_given(std::string_view tpl, const template_args& a, std::string_view where) {
+  for (const auto& [c, v] : {std::pair{'x', &a.x}, std::pair{'y', &a.y}, std::pair{'z', &a.z}}) {
+    if (!v->empty() || !names_axis(tpl, c)) continue;
+    error(line_,
+          c == 'y' && !has_y_
+              ? fmt::format("{}: \"{}\" names {{y}}, but channel {} has no Y axis", where, tpl, ch_.number)
+              : fmt::format("{}: \"{}\" names {{{}}}, but channel {} has made no move before it (no "
+                            "position yet)",
+                            where, tpl, c, ch_.number));
+    return false;
+  }
+  return true;
+}
+
+void channel_writer::section_at_move(bool rapid, int line) {
+  // The tool the move needs is called first (as motion() would): its change ends a section.
+  if (tool_ < 0 || cam_tool_due_) start_tool(line);
+  if (section_open_ && (work_ != section_work_ || (rapid && (std::abs(axis_.x - section_axis_.x) > 1e-9 ||
+                                                             std::abs(axis_.y - section_axis_.y) > 1e-9 ||
+                                                             std::abs(axis_.z - section_axis_.z) > 1e-9))))
+    section_end();
+  if (tool_ < 0) return;  // no tool: the move is refused
+  // The move goes out next: every later event has a position.
+  const bool first_move = !moved_;
+  moved_ = true;
+  if (section_open_) return;
+  section_open_ = true;
+  section_work_ = work_;
+  section_axis_ = axis_;
+  section_args_ = {};
+  section_args_.tool = tool_;
+  section_args_.offset = tool_offset_;
+  section_args_.name = op_name_;
+  // Its `before` blocks stand before that move: the position is the one the tool left (none
+  // before the channel's first move).
+  moved_ = !first_move;
+  user_blocks(event_point::section, false, section_args_);
+  moved_ = true;
+}
+
+void channel_writer::section_end() {
+  if (!section_open_) return;
+  section_open_ = false;
+  user_blocks(event_point::section, true, section_args_);
+}
+
+void channel_writer::user_operation(const text_event& d, bool after) {
+  template_args a;
+  a.text = d.text;
+  a.name = operation_name(d);
+  if (!after) {
+    section_end();  // an operation is a section of its own
+    op_name_ = a.name;
+  }
+  user_blocks(event_point::operation, after, std::move(a));
+}
+
+void channel_writer::user_block(const std::string& tpl, const template_args& a, std::string_view where) {
+  if (!position_given(tpl, a, where)) return;
   const std::string b = format_template(tpl, a);
   // A word past the control's format or an X past the travel: an error at the CL record.
   if (!block_fits(b) || !user_block_in_travel(b)) return;
@@ -185,7 +283,10 @@ void channel_writer::user_blocks(event_point p, bool after, template_args a) {
   const std::vector<std::string>& blocks = after ? e.after : e.before;
   if (blocks.empty()) return;
   a.channel = ch_.number;
-  for (const std::string& t : blocks) user_block(t, a);
+  position_args(a);
+  const std::string where =
+      fmt::format("events.{}.{}", event_point_keys[static_cast<std::size_t>(p)], after ? "after" : "before");
+  for (const std::string& t : blocks) user_block(t, a, where);
 }
 
 void channel_writer::user_program_start() {
@@ -215,7 +316,8 @@ void channel_writer::user_record(const passthrough_event& r, int line) {
   template_args a;
   a.channel = ch_.number;
   a.text = r.text;
-  for (const std::string& t : rec->blocks) user_block(t, a);
+  position_args(a);
+  for (const std::string& t : rec->blocks) user_block(t, a, "events.record.blocks");
 }
 
 }  // namespace twinpost

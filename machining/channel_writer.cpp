@@ -270,6 +270,9 @@ void channel_writer::call_tool(const tool_event& d, int line) {
                             cycle_->type, cycle_line_));
     cycle_.reset();
   }
+  // A tool change ends the section before anything of the change goes out (G49 included).
+  if (ev_ && !d.preselect && d.tool != tool_) [[unlikely]]
+    section_end();
   if (chain_ && !d.preselect) multiaxis_off();
   if (!d.preselect) cam_tool_due_ = false;  // the CL calls its tool itself (the same one too)
   tool(d, line);
@@ -316,10 +319,14 @@ void channel_writer::process_event(const event& e, bool both) {
         using T = std::decay_t<decltype(d)>;
         if constexpr (std::is_same_v<T, motion_event>) {
           if (d.axis) axis_ = *d.axis;
+          if (ev_ && (d.kind == motion_kind::go_to || d.kind == motion_kind::delta)) [[unlikely]]
+            section_at_move(d.rapid, e.line);
           motion(d, e.line);
-        } else if constexpr (std::is_same_v<T, arc_event>)
+        } else if constexpr (std::is_same_v<T, arc_event>) {
+          if (ev_) [[unlikely]]
+            section_at_move(false, e.line);
           arc(d, e.line);
-        else if constexpr (std::is_same_v<T, spindle_event>) {
+        } else if constexpr (std::is_same_v<T, spindle_event>) {
           if (tool_ < 0 || cam_tool_due_) start_tool(e.line);  // a job that starts without a tool call
           if (ev_) [[unlikely]] {
             const event_point p =
@@ -373,6 +380,8 @@ void channel_writer::process_event(const event& e, bool both) {
             }
           } else if (d.type != "ON" && d.type != "INIT") {
             if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
+            if (ev_) [[unlikely]]
+              section_at_move(false, e.line);
             const bool lathe = d.type == "THREAD" || d.type == "GROOVE";
             cycle_refused_ = !(lathe ? lathe_cycle_supported(d, e.line) : cycle_supported(d, e.line));
             if (cycle_refused_)
@@ -413,14 +422,11 @@ void channel_writer::process_event(const event& e, bool both) {
                      d.kind == text_kind::op_start || d.kind == text_kind::toolpath) {
             if (d.kind != text_kind::pprint && d.kind != text_kind::op_start) note_cam_tool(d, e.line);
             const bool op = ev_ && (d.kind == text_kind::op_start || d.kind == text_kind::toolpath);
-            template_args a;
-            if (op) [[unlikely]] {
-              a.text = d.text;
-              user_blocks(event_point::operation, false, a);
-            }
+            if (op) [[unlikely]]
+              user_operation(d, false);
             out_.comment(d.text);
             if (op) [[unlikely]]
-              user_blocks(event_point::operation, true, a);
+              user_operation(d, true);
           }
         } else if constexpr (std::is_same_v<T, tool_axis_event>) {
           axis_ = d.axis;
@@ -465,9 +471,12 @@ void channel_writer::write_dwell(double seconds) {
 
 void channel_writer::finish() {
   release_held(std::nullopt);
+  if (ev_) [[unlikely]] {  // the last section ends before the channel's closing blocks (G49 ...)
+    if (!program_started_) user_program_start();
+    section_end();
+  }
   if (chain_) multiaxis_off();
   if (ev_) [[unlikely]] {
-    if (!program_started_) user_program_start();
     user_blocks(event_point::program_end, false, {});
     if (script_) script_program(false);
   }

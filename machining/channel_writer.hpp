@@ -624,7 +624,28 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void user_record(const passthrough_event& r, int line);
   /// Writes one user block: formatted, word formats checked, its wait codes noted for the
   /// self-check's findings, the modal state it may change forgotten.
-  void user_block(const std::string& tpl, const template_args& a);
+  /// `where` names the template in errors (events.tool_change.after).
+  void user_block(const std::string& tpl, const template_args& a, std::string_view where);
+  /// {x} {y} {z} into `a`: the last position the program commanded (none before a move).
+  void position_args(template_args& a) const;
+  /// False, with the error at the CL record, when `tpl` names an axis `a` has no value for
+  /// (no move yet; {y} on a channel without Y).
+  bool position_given(std::string_view tpl, const template_args& a, std::string_view where);
+  /// events.section (docs/customising.md): before a move, the section in force ends when the
+  /// workpiece spindle or (at a rapid) the tool axis changed, and one opens when none is.
+  void section_at_move(bool rapid, int line);
+  /// events.section.after, when a section is open: at a tool change, an operation start, the
+  /// program's end, or before the next section.
+  void section_end();
+  /// events.operation around an operation record's comment; `before` ends the section.
+  void user_operation(const text_event& d, bool after);
+  bool moved_ = false;                         ///< a move has gone out: {x} {y} {z} have values
+  bool section_open_ = false;                  ///< events.section.before went out, .after not yet
+  const spindle_def* section_work_ = nullptr;  ///< the section's workpiece spindle
+  vec3 section_axis_;                          ///< its tool axis
+  template_args section_args_;                 ///< its tool, offset and operation
+  int tool_offset_ = 0;                        ///< the offset of the tool call in force
+  std::string op_name_;                        ///< the operation in force (TOOL PATH, OPFEATSTART)
   /// Whether the X words of user block `b` are within the channel's X travel, as the post's
   /// own X words are held (axis_word); reports the first that is not.
   bool user_block_in_travel(std::string_view b);

@@ -254,7 +254,20 @@ TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][e
   CHECK(test::machine_error_of(head + "[events]\ntool_change.after = [\"S{rpm}\"]\n") ==
         "m.toml:13:22: error: events.tool_change.after: template \"S{rpm}\" names {rpm}, which is not known "
         "there (it "
-        "is given {channel}, {tool}, {offset}, {text})");
+        "is given {name}, {channel}, {tool}, {offset}, {text}, {x}, {y}, {z})");
+  // {x} at the program's start (no move yet), {rpm} at a section: each event's own set.
+  CHECK(test::machine_error_of(head + "[events]\nprogram_start.after = [\"(X{x})\"]\n") ==
+        "m.toml:13:24: error: events.program_start.after: template \"(X{x})\" names {x}, which is not known "
+        "there (it is given {channel})");
+  CHECK(test::machine_error_of(head + "[events]\nsection.before = [\"S{rpm}\"]\n") ==
+        "m.toml:13:19: error: events.section.before: template \"S{rpm}\" names {rpm}, which is not known "
+        "there (it is given {name}, {channel}, {tool}, {offset}, {x}, {y}, {z})");
+  CHECK(test::machine_error_of(head + "[events]\nspindle_start.after = [\"({name})\"]\n") ==
+        "m.toml:13:24: error: events.spindle_start.after: template \"({name})\" names {name}, which is not "
+        "known there (it is given {channel}, {rpm}, {x}, {y}, {z})");
+  // A name no event gives is no placeholder at all: refused as a bad template, as before.
+  CHECK(test::machine_error_of(head + "[events]\nsection.after = [\"(W{w})\"]\n") ==
+        "m.toml:13:18: error: events.section.after: bad template \"(W{w})\": argument not found");
   CHECK(
       test::machine_error_of(head + "[events]\nprogram_start.before = [\"M10\"]\n") ==
       "m.toml:13:24: error: events.program_start takes `after` only (blocks before the safe start belong in "
@@ -271,7 +284,7 @@ TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][e
   CHECK(test::machine_error_of(head + "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M{code}\"]\n") ==
         "m.toml:14:11: error: events.record.blocks: template \"M{code}\" names {code}, which is not known "
         "there (it "
-        "is given {channel}, {text})");
+        "is given {channel}, {text}, {x}, {y}, {z})");
 }
 
 TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at its CL record",
@@ -325,4 +338,108 @@ TEST_CASE("a script error quotes the script line with a caret under its first wo
         "\t  post.emit(tool.life + 1)\n\t  ^\n"
         "job.cls:3:1: note: channel 1: the script failed while this record was posted\nTURRET/1,1\n^\n");
   CHECK(p.files.empty());
+}
+
+namespace {
+
+// Built-in machine `name` with `events` appended.
+test::posted post_on(const std::string& name, const std::string& events, const std::string& cl,
+                     const std::string& tag) {
+  const std::string text =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/" + name + ".toml") + "\n" +
+      events;
+  return test::post_in_fresh_dir(cl, parse_machine(text, "ev.toml"), "events-" + tag);
+}
+
+const std::string section_events = R"T([events]
+section.before = ["(SECTION {name} T{tool:02} OFFSET {offset})"]
+section.after = ["(END {name} T{tool:02} AT X{x} Z{z})"]
+operation.after = ["(OPERATION {name})"]
+tool_change.after = ["(T{tool:02} {name})"]
+program_end.before = ["(PROGRAM END AT X{x} Z{z})"]
+)T";
+
+}  // namespace
+
+TEST_CASE(
+    "events.section: one tool, spindle and operation of a channel, from its first move to before the next",
+    "[post][events]") {
+  // Two operations of tool 1 in channel 1 (a section each), tool 11 in channel 2 while channel
+  // 1 waits: each channel's sections in its own program, closed before the next tool change,
+  // the next operation and the program's end; {x} as written (diameter; the lower turret's X).
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTOOL PATH/ROUGH_OD,TOOL,OD ROUGH\nTURRET/1,1\nSPINDL/RPM,800,CLW\nRAPID\n"
+      "GOTO/30,0,2\nFEDRAT/0.2,MMPR\nGOTO/30,0,-20\nTOOL PATH/FINISH_OD,TOOL,OD ROUGH\nGOTO/29,0,-20\n"
+      "GOTO/29,0,2\nTOOL PATH/DRILL_1,TOOL,DRILL 8\nTURRET/3,3\nRAPID\nGOTO/0,0,5\nHEAD/2\n"
+      "TOOL PATH/BACK_OD,TOOL,OD LOWER\nTURRET/11,11\nRAPID\nGOTO/-20,0,3\nFINI\n";
+  const test::posted p = post_with(section_events, job, "section");
+  CHECK(
+      program_1(p) ==
+      "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\n(ROUGH_OD,TOOL,OD ROUGH)\n(OPERATION ROUGH_OD)\n"
+      "G28 U0.\nG28 W0.\nT0101\n(T01 OD ROUGH)\nG97 S800 M3\n(SECTION ROUGH_OD T01 OFFSET 1)\n"
+      "G0 X60. Z2.\nG1 Z-20. F0.2\n(END ROUGH_OD T01 AT X60. Z-20.)\n(FINISH_OD,TOOL,OD ROUGH)\n"
+      "(OPERATION FINISH_OD)\n(SECTION FINISH_OD T01 OFFSET 1)\nX58.\nZ2.\n(END FINISH_OD T01 AT X58. Z2.)\n"
+      "(DRILL_1,TOOL,DRILL 8)\n(OPERATION DRILL_1)\nG28 U0.\nG28 W0.\nT0303\n(T03 DRILL 8)\n"
+      "(SECTION DRILL_1 T03 OFFSET 3)\nG0 X0. Z5.\nM100\nM101\n(END DRILL_1 T03 AT X0. Z5.)\n"
+      "(PROGRAM END AT X0. Z5.)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  CHECK(program_1(p, "EV_2.nc") ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM100\n(BACK_OD,TOOL,OD LOWER)\n(OPERATION BACK_OD)\n"
+        "G28 U0.\nG28 W0.\nT1111\n(T11 OD LOWER)\n(SECTION BACK_OD T11 OFFSET 11)\nG0 X40. Z3.\nM101\n"
+        "(END BACK_OD T11 AT X40. Z3.)\n(PROGRAM END AT X40. Z3.)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
+
+TEST_CASE(
+    "events.section on a 4-axis mill: a new tool axis at a rapid opens a section, {y} where the channel has "
+    "Y",
+    "[post][events]") {
+  const std::string events = R"T([events]
+section.before = ["(SECTION {name} T{tool:02})"]
+section.after = ["(END {name} AT X{x} Y{y} Z{z})"]
+)T";
+  const std::string job =
+      "PARTNO EV\nUNITS/MM\nTOOL "
+      "PATH/TOP,TOOL,EM10\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,20,5,0,0,1\n"
+      "FEDRAT/500,MMPM\nGOTO/10,20,-1,0,0,1\nGOTO/30,20,-1,0,0,1\nRAPID\nGOTO/30,20,40,0,0,1\n"
+      "RAPID\nGOTO/10,-40,5,0,-1,0\nGOTO/10,-30,5,0,-1,0\nLOADTL/2\nSPINDL/RPM,2000,CLW\nRAPID\nGOTO/"
+      "0,0,50,0,-1,0\nFINI\n";
+  const test::posted p = post_on("rotary-4axis", events, job, "section-mill");
+  // The second section: the same tool and operation, the tool axis along -Y from a rapid (A-90.).
+  CHECK(program_1(p, "EV.nc") ==
+        "%\nO5003 (EV)\nG21\nG90 G94 G17 G40 G49 G80\n(TOP,TOOL,EM10)\nG91 G28 Z0.\nG90\nT01 M6\nS3000 M3\n"
+        "(SECTION TOP T01)\nG0 A0.\nG0 X10. Y20.\nG0 G43 H1 X10. Y20. Z5. A0.\nG1 Z-1. F500.\nX30.\nG0 Z40.\n"
+        "(END TOP AT X30. Y20. Z40.)\n(SECTION TOP T01)\nG0 A-90.\nG0 X10. Y5.\nG1 Z30.\n"
+        "(END TOP AT X10. Y5. Z30.)\nG49\nM5\nG91 G28 Z0.\nG90\nT02 M6\nS2000 M3\n(SECTION TOP T02)\n"
+        "G0 A-90.\nG0 X0. Y50.\nG0 G43 H2 X0. Y50. Z0. A-90.\n(END TOP AT X0. Y50. Z0.)\nG49\nM9\nM5\n"
+        "G91 G28 Z0.\nG90\nM30\n%\n");
+}
+
+TEST_CASE("{x} before the channel's first move and {y} on a channel without Y are errors at the CL record",
+          "[post][events]") {
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nRAPID\nGOTO/30,0,2\nTURRET/3,3\nRAPID\nGOTO/0,0,5\nFINI\n";
+  const test::posted p = post_with("[events]\nsection.before = [\"(FROM X{x:>8})\"]\n", job, "x-first");
+  CHECK_FALSE(p.ok);
+  CHECK(
+      p.diagnostics ==
+      "job.cls:5:1: error: channel 1: events.section.before: \"(FROM X{x:>8})\" names {x}, but channel 1 has "
+      "made no move before it (no position yet)\nGOTO/30,0,2\n^\n");
+  CHECK(p.files.empty());
+  SECTION("after a move it is the position the tool left, with the template's format spec") {
+    const test::posted q = post_with("[events]\nsection.after = [\"(AT X{x:>8} Z{z})\"]\n", job, "x-later");
+    CHECK(
+        program_1(q) ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG0 X60. Z2.\n(AT X     60. "
+        "Z2.)\n"
+        "G28 U0.\nG28 W0.\nT0303\nG0 X0. Z5.\nM100\n(AT X      0. Z5.)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+  SECTION("{y} on the lathe's channel") {
+    const test::posted q = post_with("[events]\ntool_change.before = [\"(Y{y})\"]\n", job, "y-lathe");
+    CHECK(q.diagnostics ==
+          "job.cls:3:1: error: channel 1: events.tool_change.before: \"(Y{y})\" names {y}, but channel 1 has "
+          "no "
+          "Y axis\nTURRET/1,1\n^\n"
+          "job.cls:6:1: error: channel 1: events.tool_change.before: \"(Y{y})\" names {y}, but channel 1 has "
+          "no "
+          "Y axis\nTURRET/3,3\n^\n");
+  }
 }
