@@ -86,7 +86,7 @@ void block_writer::filtered(std::string_view words, bool restart) {
     const std::string_view out = v == verdict::replace ? std::string_view(replacement) : words;
     block(out, restart);
     try {
-      filter_->block_written(out);
+      filter_->block_written(out, v == verdict::replace);
     } catch (...) {
       filtering_ = false;
       throw;

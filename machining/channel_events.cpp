@@ -144,6 +144,24 @@ void channel_writer::section_at_move(bool rapid, int line) {
   moved_ = true;
 }
 
+void channel_writer::user_motion(const motion_event& m, int line) {
+  if (m.kind == motion_kind::go_to || m.kind == motion_kind::delta) {
+    if (sections_)
+      section_at_move(m.rapid, line);
+    else
+      moved_ = true;  // (a move without a tool is refused: the post has failed then)
+  }
+  motion(m, line);
+}
+
+void channel_writer::user_arc(const arc_event& a, int line) {
+  if (sections_)
+    section_at_move(false, line);
+  else
+    moved_ = true;
+  arc(a, line);
+}
+
 void channel_writer::section_end() {
   if (!section_open_) return;
   section_open_ = false;
@@ -166,7 +184,9 @@ void channel_writer::user_block(const std::string& tpl, const template_args& a, 
   const std::string b = format_template(tpl, a);
   // A word past the control's format or an X past the travel: an error at the CL record.
   if (!block_fits(b) || !user_block_in_travel(b)) return;
+  user_writing_ = true;
   out_.block(b);
+  user_writing_ = false;
   note_user_block(b, !filtered_);  // through on_block its waits are counted as written
 }
 
@@ -179,6 +199,8 @@ void channel_writer::count_wait(int cl_line) {
 
 void channel_writer::count_waits_in(std::string_view b, int cl_line) {
   // The wait words as the self-check reads them: the wait address and digits, outside comments.
+  // Most blocks (moves) have no word of the wait address at all: one memchr says so.
+  if (b.find(m_.waits.address) == std::string_view::npos) return;
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b[i] == m_.program.comment_open) {
       if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) break;

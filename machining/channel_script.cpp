@@ -32,10 +32,12 @@ void channel_writer::use_script(job_script* s) {
   }
 }
 
-void channel_writer::block_written(std::string_view block) {
-  // Every block the filter saw, as written: a wait the post wrote, one a replacement adds, none
-  // for one a replacement took away. The CL line of the post's own wait is the wait's.
-  count_waits_in(block, wait_line_ > 0 ? wait_line_ : line_);
+void channel_writer::block_written(std::string_view block, bool replaced) {
+  // The waits of every block the filter saw, as written: of the post's wait block and of a
+  // user block, kept or replaced; of any replacement (a wait it adds). The post's other blocks
+  // carry no wait code (the loader holds the machine's codes to that, the post AUXFUN's), so a
+  // kept one is not read. The CL line of the post's own wait is the wait's.
+  if (replaced || wait_line_ > 0 || user_writing_) count_waits_in(block, wait_line_ > 0 ? wait_line_ : line_);
 }
 
 void channel_writer::script_failed(const scripting::script_error& e) {

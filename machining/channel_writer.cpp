@@ -81,6 +81,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
   note_every_block_ = m.interference.channels.size() >= 2 && m.interference.channel(ch.number);
   if (!m.events.empty()) ev_ = &m.events;
+  sections_ = !m.events[event_point::section].before.empty() || !m.events[event_point::section].after.empty();
   chain_ = m.chain(ch.number);
   if (chain_) {
     for (std::size_t i = 0; i < chain_->rotaries.size(); ++i) {
@@ -319,12 +320,13 @@ void channel_writer::process_event(const event& e, bool both) {
         using T = std::decay_t<decltype(d)>;
         if constexpr (std::is_same_v<T, motion_event>) {
           if (d.axis) axis_ = *d.axis;
-          if (ev_ && (d.kind == motion_kind::go_to || d.kind == motion_kind::delta)) [[unlikely]]
-            section_at_move(d.rapid, e.line);
+          // With [events], through user_motion (a section may open); the plain path stays a tail call.
+          if (ev_) [[unlikely]]
+            return user_motion(d, e.line);
           motion(d, e.line);
         } else if constexpr (std::is_same_v<T, arc_event>) {
           if (ev_) [[unlikely]]
-            section_at_move(false, e.line);
+            return user_arc(d, e.line);
           arc(d, e.line);
         } else if constexpr (std::is_same_v<T, spindle_event>) {
           if (tool_ < 0 || cam_tool_due_) start_tool(e.line);  // a job that starts without a tool call
@@ -380,7 +382,7 @@ void channel_writer::process_event(const event& e, bool both) {
             }
           } else if (d.type != "ON" && d.type != "INIT") {
             if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
-            if (ev_) [[unlikely]]
+            if (ev_ && sections_) [[unlikely]]
               section_at_move(false, e.line);
             const bool lathe = d.type == "THREAD" || d.type == "GROOVE";
             cycle_refused_ = !(lathe ? lathe_cycle_supported(d, e.line) : cycle_supported(d, e.line));

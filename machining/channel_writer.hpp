@@ -634,12 +634,16 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// events.section (docs/customising.md): before a move, the section in force ends when the
   /// workpiece spindle or (at a rapid) the tool axis changed, and one opens when none is.
   void section_at_move(bool rapid, int line);
+  /// motion() and arc() on a machine with [events]: section_at_move first.
+  void user_motion(const motion_event& m, int line);
+  void user_arc(const arc_event& a, int line);
   /// events.section.after, when a section is open: at a tool change, an operation start, the
   /// program's end, or before the next section.
   void section_end();
   /// events.operation around an operation record's comment; `before` ends the section.
   void user_operation(const text_event& d, bool after);
   bool moved_ = false;                         ///< a move has gone out: {x} {y} {z} have values
+  bool sections_ = false;                      ///< the machine has events.section blocks
   bool section_open_ = false;                  ///< events.section.before went out, .after not yet
   const spindle_def* section_work_ = nullptr;  ///< the section's workpiece spindle
   vec3 section_axis_;                          ///< its tool axis
@@ -688,8 +692,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void count_waits_in(std::string_view b, int cl_line);
   /// block_filter: a block the filter saw went out as `block` (kept or replaced); its waits
   /// are counted here, the post's own as a replacement's (the writer then counts none itself).
-  void block_written(std::string_view block) override;
-  bool filtered_ = false;  ///< the script's on_block sees every block (use_script)
+  void block_written(std::string_view block, bool replaced) override;
+  bool user_writing_ = false;  ///< user_block is writing its block (its waits: block_written)
+  bool filtered_ = false;      ///< the script's on_block sees every block (use_script)
   /// The spindles a user block started (note_user_m): finish() stops those the footer does not.
   std::vector<const spindle_def*> user_spindles_;
   int wait_line_ = 0;         ///< the CL line of the wait block being written (on_wait)
