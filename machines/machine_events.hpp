@@ -1,7 +1,7 @@
 #pragma once
 // [events] of a machine file: blocks a user adds before or after the post's own at each event
 // (program start and end, tool change, spindle, coolant, wait, cycle, transfer, operation
-// start), and [[events.record]] entries that turn a CL record the post does not know into
+// start, section), and [[events.record]] entries that turn a CL record the post does not know into
 // blocks (docs/customising.md). Plain data: machines/machine_events.cpp reads it, the channel
 // writer (machining/channel_events.cpp) writes it.
 #include <array>
