@@ -316,6 +316,20 @@ TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at
                                 "written (no file is written)\nM101\n^\n"));
     CHECK(p.files.empty());
   }
+  SECTION("the post's own wait dropped in one channel is no wait of that channel") {
+    const test::posted p = post_with_script(
+        "",
+        "function on_block(text, ctx)\n  if ctx.channel == 1 and text == 'M100' then return false end\nend\n",
+        job, "onblock-drop");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics.starts_with(
+        "job.cls:7:1: error: wait M100 of channel 2 is never met: channel 1 ends at "
+        "job.cls:8 without a matching wait\nSYNCTR/NEXT\n^\n"));
+    CHECK(
+        p.diagnostics.ends_with("/out/EV_2.nc:7:1: note: the wait in the program as it would have been "
+                                "written (no file is written)\nM100\n^\n"));
+    CHECK(p.files.empty());
+  }
   SECTION("in both: paired, it posts") {
     const test::posted p = with("2", "onblock-paired");
     CHECK(program_1(p) ==
