@@ -82,7 +82,16 @@ void block_writer::filtered(std::string_view words, bool restart) {
     filtering_ = false;
     throw;
   }
-  if (v != verdict::drop) block(v == verdict::replace ? std::string_view(replacement) : words, restart);
+  if (v != verdict::drop) {
+    const std::string_view out = v == verdict::replace ? std::string_view(replacement) : words;
+    block(out, restart);
+    try {
+      filter_->block_written(out, v == verdict::replace);
+    } catch (...) {
+      filtering_ = false;
+      throw;
+    }
+  }
   filtering_ = false;
 }
 

@@ -24,6 +24,9 @@ class block_writer {
    public:
     virtual ~block_filter() = default;
     virtual verdict filter(std::string_view block, std::string& replacement) = 0;
+    /// After filter(): the block as it was written (kept, or the replacement: `replaced`);
+    /// not after a drop.
+    virtual void block_written(std::string_view block, bool replaced) = 0;
   };
 
   /// Text around the blocks, as whole lines: `head` is asked for just before the first line

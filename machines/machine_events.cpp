@@ -88,10 +88,10 @@ namespace detail {
 void read_events(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("events");
   if (!t) return;
-  table_reader r(
-      *t, "events", root.source(),
-      {"program_start", "program_end", "tool_change", "spindle_start", "spindle_stop", "coolant_on",
-       "coolant_off", "wait", "cycle", "transfer", "operation", "record", "script", "script_records"});
+  table_reader r(*t, "events", root.source(),
+                 {"program_start", "program_end", "tool_change", "spindle_start", "spindle_stop",
+                  "coolant_on", "coolant_off", "wait", "cycle", "transfer", "operation", "section", "record",
+                  "script", "script_records"});
   read_script(r, root.source(), m.events);
   for (std::size_t i = 0; i < event_point_count; ++i) {
     const toml::table* e = r.sub_table(event_point_keys[i]);

@@ -1,7 +1,7 @@
 #pragma once
 // [events] of a machine file: blocks a user adds before or after the post's own at each event
 // (program start and end, tool change, spindle, coolant, wait, cycle, transfer, operation
-// start), and [[events.record]] entries that turn a CL record the post does not know into
+// start, section), and [[events.record]] entries that turn a CL record the post does not know into
 // blocks (docs/customising.md). Plain data: machines/machine_events.cpp reads it, the channel
 // writer (machining/channel_events.cpp) writes it.
 #include <array>
@@ -27,33 +27,39 @@ enum class event_point : unsigned char {
   cycle,          ///< around each CYCLE that starts (drill, tap, thread, groove ...)
   transfer,       ///< around the transfer channel's grip or release blocks
   operation,      ///< around the comment of an operation start (TOOL PATH, operation PPRINT)
+  section,        ///< one tool, workpiece spindle and tool axis: before its first move, after its last
 };
-inline constexpr std::size_t event_point_count = 11;
+inline constexpr std::size_t event_point_count = 12;
 
 /// The TOML key of each event_point, in its order.
 inline constexpr std::array<std::string_view, event_point_count> event_point_keys{
     "program_start", "program_end", "tool_change", "spindle_start", "spindle_stop", "coolant_on",
-    "coolant_off",   "wait",        "cycle",       "transfer",      "operation"};
+    "coolant_off",   "wait",        "cycle",       "transfer",      "operation",    "section"};
 
 /// The placeholders the blocks of each event are given (name_template.hpp), in the order of
 /// event_point_keys.
 namespace event_uses {
 using p = placeholder;
+// {x} {y} {z}: the position at the event (channel_events.cpp), everywhere but at the program's
+// start (no move yet); {name}: the CAM's name of the tool (tool_change), of the operation
+// (operation, section).
 inline constexpr std::array<placeholder_set, event_point_count> of{{
-    {p::channel},                               // program_start
-    {p::channel},                               // program_end
-    {p::tool, p::offset, p::channel, p::text},  // tool_change: {text} the tool table's name
-    {p::rpm, p::channel},                       // spindle_start
-    {p::channel},                               // spindle_stop
-    {p::channel},                               // coolant_on
-    {p::channel},                               // coolant_off
-    {p::code, p::channel},                      // wait: {code} the wait code
-    {p::channel, p::text},                      // cycle: {text} its type (DRILL, TAP ...)
-    {p::channel},                               // transfer
-    {p::channel, p::text},                      // operation: {text} the operation's name
+    {p::channel},                    // program_start
+    {p::channel, p::x, p::y, p::z},  // program_end
+    {p::tool, p::offset, p::channel, p::text, p::name, p::x, p::y,
+     p::z},                                                       // tool_change: {text} [[tool]] name
+    {p::rpm, p::channel, p::x, p::y, p::z},                       // spindle_start
+    {p::channel, p::x, p::y, p::z},                               // spindle_stop
+    {p::channel, p::x, p::y, p::z},                               // coolant_on
+    {p::channel, p::x, p::y, p::z},                               // coolant_off
+    {p::code, p::channel, p::x, p::y, p::z},                      // wait: {code} the wait code
+    {p::channel, p::text, p::x, p::y, p::z},                      // cycle: {text} its type (DRILL, TAP ...)
+    {p::channel, p::x, p::y, p::z},                               // transfer
+    {p::channel, p::text, p::name, p::x, p::y, p::z},             // operation: {text} the record's text
+    {p::tool, p::offset, p::channel, p::name, p::x, p::y, p::z},  // section
 }};
 /// [[events.record]] blocks: {text} the record's arguments as written.
-inline constexpr placeholder_set record{p::channel, p::text};
+inline constexpr placeholder_set record{p::channel, p::text, p::x, p::y, p::z};
 }  // namespace event_uses
 
 /// The blocks of one event.

@@ -30,7 +30,7 @@ void reject_positional(std::string_view tpl) {
 }
 
 // In the order of template_args.
-constexpr std::array<std::pair<std::string_view, placeholder>, 11> names{{
+constexpr std::array<std::pair<std::string_view, placeholder>, 14> names{{
     {"program", placeholder::program},
     {"name", placeholder::name},
     {"channel", placeholder::channel},
@@ -42,6 +42,9 @@ constexpr std::array<std::pair<std::string_view, placeholder>, 11> names{{
     {"rpm", placeholder::rpm},
     {"text", placeholder::text},
     {"code", placeholder::code},
+    {"x", placeholder::x},
+    {"y", placeholder::y},
+    {"z", placeholder::z},
 }};
 
 // {seconds} is a dwell time, and a Fanuc control reads a dwell word without a decimal point in
@@ -116,7 +119,7 @@ std::string format_template(std::string_view tpl, const template_args& a) {
                      fmt::arg("channel", a.channel), fmt::arg("max", a.max), fmt::arg("tool", a.tool),
                      fmt::arg("offset", a.offset), fmt::arg("seconds", dwell_seconds{a.seconds}),
                      fmt::arg("ms", a.ms), fmt::arg("rpm", a.rpm), fmt::arg("text", a.text),
-                     fmt::arg("code", a.code));
+                     fmt::arg("code", a.code), fmt::arg("x", a.x), fmt::arg("y", a.y), fmt::arg("z", a.z));
 }
 
 }  // namespace twinpost

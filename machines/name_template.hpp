@@ -25,6 +25,9 @@ struct template_args {
   double rpm = 0;      ///< spindle speed
   std::string text{};  ///< [events]: a name or the arguments of a record (machine_events.hpp)
   int code = 0;        ///< [events]: the wait code of a wait event
+  /// [events]: the position at the event, each word's number as the program writes it ("44.",
+  /// X in diameter on a lathe); `name` there is the tool's or the operation's name.
+  std::string x{}, y{}, z{};
 };
 
 /// One placeholder of template_args.
@@ -40,6 +43,9 @@ enum class placeholder : unsigned {
   rpm = 1u << 8,
   text = 1u << 9,
   code = 1u << 10,
+  x = 1u << 11,
+  y = 1u << 12,
+  z = 1u << 13,
 };
 
 /// The placeholders a template is given where it is used.

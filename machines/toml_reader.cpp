@@ -186,7 +186,10 @@ template_args sample_template_args() {
           .ms = 1500,
           .rpm = 1000,
           .text = "TEXT",
-          .code = 100};
+          .code = 100,
+          .x = "1.",
+          .y = "1.",
+          .z = "1."};
 }
 
 }  // namespace

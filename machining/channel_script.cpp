@@ -11,20 +11,39 @@
 
 namespace twinpost {
 
+diagnostic script_diagnostic(const scripting::script_error& e) {
+  diagnostic d;
+  d.file = e.file;
+  d.line = e.line;
+  d.message = e.message;
+  d.source_line = e.source_line;
+  // Lua gives the line only: the caret under the line's first word (its statement).
+  const std::size_t first = e.source_line.find_first_not_of(" \t");
+  if (first != std::string::npos) d.caret = static_cast<int>(first) + 1;
+  return d;
+}
+
 void channel_writer::use_script(job_script* s) {
   script_ = s;
   // on_block costs a test of one pointer per block, and only when the script defines it.
-  if (s && s->lua && s->lua->has_on_block()) out_.set_filter(this);
+  if (s && s->lua && s->lua->has_on_block()) {
+    out_.set_filter(this);
+    filtered_ = true;
+  }
+}
+
+void channel_writer::block_written(std::string_view block, bool replaced) {
+  // The waits of every block the filter saw, as written: of the post's wait block and of a
+  // user block, kept or replaced; of any replacement (a wait it adds). The post's other blocks
+  // carry no wait code (the loader holds the machine's codes to that, the post AUXFUN's), so a
+  // kept one is not read. The CL line of the post's own wait is the wait's.
+  if (replaced || wait_line_ > 0 || user_writing_) count_waits_in(block, wait_line_ > 0 ? wait_line_ : line_);
 }
 
 void channel_writer::script_failed(const scripting::script_error& e) {
   script_->failed = true;
   ++errors_;
-  diagnostic d;
-  d.file = e.file;
-  d.line = e.line;
-  d.message = e.message;
-  diags_.report(std::move(d));
+  diags_.report(script_diagnostic(e));
   diagnostic n;
   n.level = severity::note;
   n.file = cl_file_;
@@ -127,7 +146,7 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
     script_block_note(replacement, "on_block");
     return block_writer::verdict::drop;
   }
-  // A wait the post wrote is counted already; one a replacement adds is the self-check's to find.
+  // Its waits are counted as it is written (block_written()); its G and M codes change the modal state.
   note_user_block(replacement, false);
   return block_writer::verdict::replace;
 }

@@ -152,6 +152,10 @@ void channel_writer::tool(const tool_event& t, int line) {
     // turret stays where it is and only the offset changes, so the call goes out alone.
     const std::string& block = offset_block.empty() ? call : offset_block;
     if (call + offset_block != tool_call_ && block_fits(block)) {
+      if (ev_) [[unlikely]] {  // the same tool on another offset: a section of its own
+        section_end();
+        tool_offset_ = a.offset;
+      }
       out_.block(block, true);
       tool_call_ = call + offset_block;
     }
@@ -166,7 +170,10 @@ void channel_writer::tool(const tool_event& t, int line) {
   const std::string coolant_off_was = coolant_off_block_;
   template_args ea;  // events.tool_change
   if (ev_) [[unlikely]] {
+    section_end();
+    tool_offset_ = a.offset;
     ea = a;
+    ea.name = cam_tool_;  // the CAM's name of the tool (TOOL PATH, TPRINT before the call)
     if (const tool_def* d = m_.tool(ch_.number, t.tool)) ea.text = d->name;
     user_blocks(event_point::tool_change, false, ea);
   }

@@ -81,6 +81,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   out_.set_line_hook([this](std::string_view line) { note_line(line); });
   note_every_block_ = m.interference.channels.size() >= 2 && m.interference.channel(ch.number);
   if (!m.events.empty()) ev_ = &m.events;
+  sections_ = !m.events[event_point::section].before.empty() || !m.events[event_point::section].after.empty();
   chain_ = m.chain(ch.number);
   if (chain_) {
     for (std::size_t i = 0; i < chain_->rotaries.size(); ++i) {
@@ -249,11 +250,11 @@ void channel_writer::on_wait(const wait_mark& w) {
     a.code = w.code;
     user_blocks(event_point::wait, false, a);
   }
+  wait_line_ = w.cl_line;
   out_.block(b);
-  ++waits_;
-  cut_due_ = true;
-  wait_cl_lines_.push_back(w.cl_line);
-  if (note_every_block_ && block_cl_count_ > 0) wait_block_.push_back(block_cl_count_ - 1);
+  wait_line_ = 0;
+  // Through the script's on_block the wait is counted as written (block_written()): dropped, none.
+  if (!filtered_) count_wait(w.cl_line);
   if (ev_) [[unlikely]] {
     template_args a;
     a.code = w.code;
@@ -272,6 +273,9 @@ void channel_writer::call_tool(const tool_event& d, int line) {
                             cycle_->type, cycle_line_));
     cycle_.reset();
   }
+  // A tool change ends the section before anything of the change goes out (G49 included).
+  if (ev_ && !d.preselect && d.tool != tool_) [[unlikely]]
+    section_end();
   if (chain_ && !d.preselect) multiaxis_off();
   if (!d.preselect) cam_tool_due_ = false;  // the CL calls its tool itself (the same one too)
   tool(d, line);
@@ -318,10 +322,15 @@ void channel_writer::process_event(const event& e, bool both) {
         using T = std::decay_t<decltype(d)>;
         if constexpr (std::is_same_v<T, motion_event>) {
           if (d.axis) axis_ = *d.axis;
+          // With [events], through user_motion (a section may open); the plain path stays a tail call.
+          if (ev_) [[unlikely]]
+            return user_motion(d, e.line);
           motion(d, e.line);
-        } else if constexpr (std::is_same_v<T, arc_event>)
+        } else if constexpr (std::is_same_v<T, arc_event>) {
+          if (ev_) [[unlikely]]
+            return user_arc(d, e.line);
           arc(d, e.line);
-        else if constexpr (std::is_same_v<T, spindle_event>) {
+        } else if constexpr (std::is_same_v<T, spindle_event>) {
           if (tool_ < 0 || cam_tool_due_) start_tool(e.line);  // a job that starts without a tool call
           if (ev_) [[unlikely]] {
             const event_point p =
@@ -375,6 +384,8 @@ void channel_writer::process_event(const event& e, bool both) {
             }
           } else if (d.type != "ON" && d.type != "INIT") {
             if (tool_ < 0 || cam_tool_due_) start_tool(e.line);
+            if (ev_ && sections_) [[unlikely]]
+              section_at_move(false, e.line);
             const bool lathe = d.type == "THREAD" || d.type == "GROOVE";
             cycle_refused_ = !(lathe ? lathe_cycle_supported(d, e.line) : cycle_supported(d, e.line));
             if (cycle_refused_)
@@ -415,14 +426,11 @@ void channel_writer::process_event(const event& e, bool both) {
                      d.kind == text_kind::op_start || d.kind == text_kind::toolpath) {
             if (d.kind != text_kind::pprint && d.kind != text_kind::op_start) note_cam_tool(d, e.line);
             const bool op = ev_ && (d.kind == text_kind::op_start || d.kind == text_kind::toolpath);
-            template_args a;
-            if (op) [[unlikely]] {
-              a.text = d.text;
-              user_blocks(event_point::operation, false, a);
-            }
+            if (op) [[unlikely]]
+              user_operation(d, false);
             out_.comment(d.text);
             if (op) [[unlikely]]
-              user_blocks(event_point::operation, true, a);
+              user_operation(d, true);
           }
         } else if constexpr (std::is_same_v<T, tool_axis_event>) {
           axis_ = d.axis;
@@ -467,9 +475,12 @@ void channel_writer::write_dwell(double seconds) {
 
 void channel_writer::finish() {
   release_held(std::nullopt);
+  if (ev_) [[unlikely]] {  // the last section ends before the channel's closing blocks (G49 ...)
+    if (!program_started_) user_program_start();
+    section_end();
+  }
   if (chain_) multiaxis_off();
   if (ev_) [[unlikely]] {
-    if (!program_started_) user_program_start();
     user_blocks(event_point::program_end, false, {});
     if (script_) script_program(false);
   }
@@ -481,6 +492,13 @@ void channel_writer::finish() {
     const std::string stop = fmt::format("M{}", spindle_->stop);
     const auto& footer = m_.program.footer;
     if (std::find(footer.begin(), footer.end(), stop) == footer.end()) spindle_block(stop, true);
+  }
+  // A spindle a user block started ([events], the script), whose stop the footer lacks.
+  for (const spindle_def* s : user_spindles_) {
+    const std::string stop = fmt::format("M{}", s->stop);
+    const auto& footer = m_.program.footer;
+    if (spindle_ended_ != stop && std::find(footer.begin(), footer.end(), stop) == footer.end())
+      spindle_block(stop, true);
   }
   // Likewise the coolant: the footer's M9 does not turn off through-tool (M109, Mazak M163)
   // or air coolant, which would blow through the final retract.

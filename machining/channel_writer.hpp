@@ -52,6 +52,10 @@ struct job_script {
   bool failed = false;
 };
 
+/// The diagnostic of a script error: `NAME.lua:LINE: error: message`, the script's line and a
+/// caret under its first word (machining/channel_script.cpp).
+diagnostic script_diagnostic(const scripting::script_error& e);
+
 class channel_writer : private scripting::script_host, private block_writer::block_filter {
  public:
   /// Writes the channel's blocks to `path`, framed by `frame` (see block_writer).
@@ -623,7 +627,32 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void user_record(const passthrough_event& r, int line);
   /// Writes one user block: formatted, word formats checked, its wait codes noted for the
   /// self-check's findings, the modal state it may change forgotten.
-  void user_block(const std::string& tpl, const template_args& a);
+  /// `where` names the template in errors (events.tool_change.after).
+  void user_block(const std::string& tpl, const template_args& a, std::string_view where);
+  /// {x} {y} {z} into `a`: the last position the program commanded (none before a move).
+  void position_args(template_args& a) const;
+  /// False, with the error at the CL record, when `tpl` names an axis `a` has no value for
+  /// (no move yet; {y} on a channel without Y).
+  bool position_given(std::string_view tpl, const template_args& a, std::string_view where);
+  /// events.section (docs/customising.md): before a move, the section in force ends when the
+  /// workpiece spindle or (at a rapid) the tool axis changed, and one opens when none is.
+  void section_at_move(bool rapid, int line);
+  /// motion() and arc() on a machine with [events]: section_at_move first.
+  void user_motion(const motion_event& m, int line);
+  void user_arc(const arc_event& a, int line);
+  /// events.section.after, when a section is open: at a tool change, an operation start, the
+  /// program's end, or before the next section.
+  void section_end();
+  /// events.operation around an operation record's comment; `before` ends the section.
+  void user_operation(const text_event& d, bool after);
+  bool moved_ = false;                         ///< a move has gone out: {x} {y} {z} have values
+  bool sections_ = false;                      ///< the machine has events.section blocks
+  bool section_open_ = false;                  ///< events.section.before went out, .after not yet
+  const spindle_def* section_work_ = nullptr;  ///< the section's workpiece spindle
+  vec3 section_axis_;                          ///< its tool axis
+  template_args section_args_;                 ///< its tool, offset and operation
+  int tool_offset_ = 0;                        ///< the offset of the tool call in force
+  std::string op_name_;                        ///< the operation in force (TOOL PATH, OPFEATSTART)
   /// Whether the X words of user block `b` are within the channel's X travel, as the post's
   /// own X words are held (axis_word); reports the first that is not.
   bool user_block_in_travel(std::string_view b);
@@ -653,9 +682,25 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void warning(std::string_view message) override;
   block_writer::verdict filter(std::string_view block, std::string& replacement) override;
   /// What a user block (template or script) does besides being written: its wait codes are
-  /// noted for the self-check's findings (`waits`), a G code makes the next move write its
-  /// axes again, the spindle and coolant state is no longer known.
+  /// counted (`waits`; count_waits_in), a G code makes the next move write its axes again, an
+  /// M code may turn the spindle or the coolant on (note_user_m).
   void note_user_block(std::string_view b, bool waits);
+  /// M`code` of a user block: which of the footer's spindle stop and coolant off it leaves in
+  /// force (footer_in_force).
+  void note_user_m(long long code);
+  /// One wait block written at CL line `cl_line`: numbered for the self-check's findings
+  /// (post/sync_at_cl), the interference rule's block index, the next cut noted.
+  void count_wait(int cl_line);
+  /// count_wait for each wait code in block `b` (outside comments), as the checker reads it.
+  void count_waits_in(std::string_view b, int cl_line);
+  /// block_filter: a block the filter saw went out as `block` (kept or replaced); its waits
+  /// are counted here, the post's own as a replacement's (the writer then counts none itself).
+  void block_written(std::string_view block, bool replaced) override;
+  bool user_writing_ = false;  ///< user_block is writing its block (its waits: block_written)
+  bool filtered_ = false;      ///< the script's on_block sees every block (use_script)
+  /// The spindles a user block started (note_user_m): finish() stops those the footer does not.
+  std::vector<const spindle_def*> user_spindles_;
+  int wait_line_ = 0;         ///< the CL line of the wait block being written (on_wait)
   std::string program_name_;  ///< for ctx.program, asked for once
 };
 

@@ -457,7 +457,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     try {
       lua = std::make_unique<scripting::lua_script>(m.events.script_path);
     } catch (const scripting::script_error& e) {
-      sink.report({severity::error, e.file, e.line, 0, e.message, {}});
+      sink.report(script_diagnostic(e));
       return sum;
     }
   }

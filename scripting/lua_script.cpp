@@ -42,8 +42,9 @@ std::string dir_name(const std::string& path) {
 }  // namespace
 
 struct lua_script::impl {
-  std::string name;  // "catcher.lua"
-  std::string dir;   // where post.read_file looks
+  std::string name;    // "catcher.lua"
+  std::string dir;     // where post.read_file looks
+  std::string source;  // the script's text, for the line an error quotes
   script_limits limits;
   std::size_t used = 0;
   lua_State* L = nullptr;
@@ -193,14 +194,29 @@ struct lua_script::impl {
     lua_remove(L, g);  // env stays
   }
 
+  // A script_error at script line `line`, with that line's text for the diagnostic's quote.
+  [[noreturn]] void raise(int line, std::string message) {
+    script_error e(name, line, std::move(message));
+    std::string_view rest = source;
+    for (int i = 1; i < line && !rest.empty(); ++i) {
+      const std::size_t nl = rest.find('\n');
+      rest = nl == std::string_view::npos ? std::string_view() : rest.substr(nl + 1);
+    }
+    if (line > 0) {
+      rest = rest.substr(0, rest.find('\n'));
+      if (!rest.empty() && rest.back() == '\r') rest.remove_suffix(1);
+      e.source_line = rest;
+    }
+    throw e;
+  }
+
   // Turns the error value on the stack into script_error: "NAME.lua:LINE: text" is split,
   // anything else keeps line 0.
   [[noreturn]] void fail() {
     if (exhausted) {
       lua_settop(L, 0);
-      throw script_error(name, exhausted_line,
-                         "instruction budget of " + std::to_string(limits.instructions_per_call) +
-                             " exceeded (an endless loop?)");
+      raise(exhausted_line, "instruction budget of " + std::to_string(limits.instructions_per_call) +
+                                " exceeded (an endless loop?)");
     }
     std::string text;
     if (const char* s = lua_tostring(L, -1))
@@ -214,8 +230,7 @@ struct lua_script::impl {
       const char* e = text.data() + text.size();
       int line = 0;
       auto [p, ec] = std::from_chars(b, e, line);
-      if (ec == std::errc() && p + 1 < e && p[0] == ':' && p[1] == ' ')
-        throw script_error(name, line, std::string(p + 2, e));
+      if (ec == std::errc() && p + 1 < e && p[0] == ':' && p[1] == ' ') raise(line, std::string(p + 2, e));
     }
     throw script_error(name, 0, std::move(text));
   }
@@ -230,7 +245,8 @@ struct lua_script::impl {
     if (rc != LUA_OK) fail();
   }
 
-  void load(std::string_view source) {
+  void load(std::string_view text) {
+    source = text;
     L = lua_newstate(alloc, this);
     if (!L) throw script_error(name, 0, "cannot create the Lua state");
     make_env();

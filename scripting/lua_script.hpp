@@ -20,7 +20,8 @@ struct script_error : std::runtime_error {
   script_error(std::string file_, int line_, std::string message_);
   std::string file;
   int line = 0;
-  std::string message;  ///< without the "NAME.lua:LINE: " prefix
+  std::string message;      ///< without the "NAME.lua:LINE: " prefix
+  std::string source_line;  ///< the script's line `line` as written (empty when line is 0)
 };
 
 /// What a script may do to the post: write a block at the current place, warn. Its functions

@@ -28,7 +28,8 @@ std::string format_diagnostic(const diagnostic& d) {
     // The line as a terminal shows it safely: control and non-ASCII bytes as \xHH, and at
     // most source_window columns around the caret (a 16 MB line echoes 200 columns).
     const std::string_view src = d.source_line;
-    const std::size_t caret = d.column > 0 ? std::min(static_cast<std::size_t>(d.column - 1), src.size()) : 0;
+    const int column = d.column > 0 ? d.column : d.caret;
+    const std::size_t caret = column > 0 ? std::min(static_cast<std::size_t>(column - 1), src.size()) : 0;
     std::size_t from = 0, to = src.size();
     if (src.size() > source_window) {
       from = caret > source_window / 2 ? caret - source_window / 2 : 0;
@@ -50,7 +51,7 @@ std::string format_diagnostic(const diagnostic& d) {
     out += shown;
     out += '\n';
     // Tabs are kept in the caret line so the caret lines up under the source column.
-    if (d.column > 0) out += pad + "^\n";
+    if (column > 0) out += pad + "^\n";
   }
   return out;
 }

@@ -19,6 +19,9 @@ struct diagnostic {
   int column = 0;
   std::string message;
   std::string source_line;  ///< the physical source line, without its line ending
+  /// Where the caret goes under source_line when the place has no column of its own (a Lua
+  /// error knows its line only): 1-based, not written in the `file:line:` prefix. 0: column.
+  int caret = 0;
 };
 
 /// Errors and warnings counted as diagnostics pass by: whether a run failed is decided from

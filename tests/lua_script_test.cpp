@@ -104,6 +104,28 @@ TEST_CASE("lua script: a run-time error and post.error name the script line", "[
         }) == "ev.lua:3: attempt to perform arithmetic on a nil value");
   script_error e("ev.lua", 0, "x");
   CHECK(std::string(e.what()) == "ev.lua: x");
+  CHECK(e.source_line.empty());
+}
+
+TEST_CASE("lua script: an error carries the script line it names, as written", "[scripting]") {
+  const auto line_of = [](std::string_view source, const char* major) {
+    try {
+      lua_script s("/m/ev.lua", source);
+      recording_host host;
+      s.on_record({major, {}, 1}, host);
+    } catch (const script_error& e) {
+      return std::to_string(e.line) + "|" + e.source_line;
+    }
+    return std::string("(no error)");
+  };
+  // CRLF line ends are not part of the line; the last line may have no line end.
+  const std::string crlf =
+      "function on_record(rec)\r\n\tif rec.major == 'A' then post.error('a') end\r\n"
+      "  local x = nil + 1 end";
+  CHECK(line_of(crlf, "A") == "2|\tif rec.major == 'A' then post.error('a') end");
+  CHECK(line_of(crlf, "B") == "3|  local x = nil + 1 end");
+  // No line: nothing quoted.
+  CHECK(line_of("function on_record(rec) error({}) end", "A") == "0|");
   CHECK(error_of([&] { lua_script t("/m/ev.lua", "error({})"); }) == "ev.lua: error object is a table value");
 }
 

@@ -3,6 +3,7 @@
 // to the same checks as the post's blocks (word formats, waits paired by the self-check).
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <filesystem>
 
 #include <string>
 
@@ -23,6 +24,19 @@ std::string twin_with(const std::string& events) {
 
 test::posted post_with(const std::string& events, const std::string& cl, const std::string& tag) {
   return test::post_in_fresh_dir(cl, parse_machine(twin_with(events), "twin-events.toml"), "events-" + tag);
+}
+
+// The same machine with [events] script = "t.lua", the script `lua` beside it.
+test::posted post_with_script(const std::string& events, const std::string& lua, const std::string& cl,
+                              const std::string& tag) {
+  const std::string dir = test::fresh_temp_dir("script-" + tag);
+  test::write_file(dir + "/t.lua", lua);
+  machine m = parse_machine(twin_with(events), "twin-events.toml");
+  m.events.script = "t.lua";
+  m.events.script_path = dir + "/t.lua";
+  test::posted p = test::post_in_fresh_dir(cl, m, "events-" + tag);
+  std::filesystem::remove_all(dir);
+  return p;
 }
 
 std::string program_1(const test::posted& p, const std::string& name = "EV_1.nc") {
@@ -72,7 +86,33 @@ TEST_CASE("[events] blocks go out before and after each of the post's events", "
         "(T01 OFFSET 1 DRILL 8)\n(SPINDLE 800)\nG97 S800 M3\n(SPINDLE ON)\n(COOLANT)\nM8\n"
         "(COOLANT ON)\nG0 X0. Z5.\n(CYCLE DRILL)\nZ2.\nG83 X0. Z-10. R0. F0.1\nG80\nG0 Z2.\n"
         "(CYCLE DONE)\n(COOLANT STOPS)\nM9\n(COOLANT OFF)\n(SPINDLE STOPS)\nM5\n(SPINDLE OFF)\n"
-        "(WAIT 100)\nM100\n(WAITED)\n(END 1)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+        "(WAIT 100)\nM100\n(WAITED)\n(END 1)\nG28 U0.\nG28 W0.\nM30\n%\n");
+}
+
+TEST_CASE("a user block leaves the footer's M9 and M5 out unless its M codes may turn them on",
+          "[post][events]") {
+  // The CL turns both off before its end: the footer's M9 and M5 are in force (left out), and a
+  // block without M codes keeps them so; the machine's coolant-on code puts M9 back, a spindle
+  // start M5, an M code the machine file does not name (M13) both.
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nCOOLNT/ON\nRAPID\nGOTO/20,0,5\n"
+      "COOLNT/OFF\nSPINDL/OFF\nCATCHER\nFINI\n";
+  const std::string body =
+      "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S800 M3\nM8\nG0 X40. Z5.\n"
+      "M9\nM5\n";
+  const auto with = [&](const std::string& blocks, const std::string& tag) {
+    return program_1(post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [" + blocks + "]\n", job,
+                               "footer-" + tag));
+  };
+  CHECK(with("\"(CATCHER)\", \"#501=#501+1\", \"G4 U1.\", \"M9\", \"M5\"", "none") ==
+        body + "(CATCHER)\n#501=#501+1\nG4 U1.\nM9\nM5\nM100\nG28 U0.\nG28 W0.\nM30\n%\n");
+  CHECK(with("\"M8\"", "coolant") == body + "M8\nM100\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+  // Mist (codes.coolant_mist M138/M139) is turned off by its own code, which the footer lacks.
+  CHECK(with("\"M138\"", "mist") == body + "M138\nM100\nM139\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+  CHECK(with("\"M3 S500\"", "spindle") == body + "M3 S500\nM100\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  // The sub spindle (M104 turns it, M105 stops it): the footer's M5 stops only the main.
+  CHECK(with("\"M104\"", "sub") == body + "M104\nM100\nM105\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  CHECK(with("\"M13\"", "unknown") == body + "M13\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
 TEST_CASE("a HEAD/BOTH copy writes no spindle event, as it writes no spindle block", "[post][events]") {
@@ -214,7 +254,20 @@ TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][e
   CHECK(test::machine_error_of(head + "[events]\ntool_change.after = [\"S{rpm}\"]\n") ==
         "m.toml:13:22: error: events.tool_change.after: template \"S{rpm}\" names {rpm}, which is not known "
         "there (it "
-        "is given {channel}, {tool}, {offset}, {text})");
+        "is given {name}, {channel}, {tool}, {offset}, {text}, {x}, {y}, {z})");
+  // {x} at the program's start (no move yet), {rpm} at a section: each event's own set.
+  CHECK(test::machine_error_of(head + "[events]\nprogram_start.after = [\"(X{x})\"]\n") ==
+        "m.toml:13:24: error: events.program_start.after: template \"(X{x})\" names {x}, which is not known "
+        "there (it is given {channel})");
+  CHECK(test::machine_error_of(head + "[events]\nsection.before = [\"S{rpm}\"]\n") ==
+        "m.toml:13:19: error: events.section.before: template \"S{rpm}\" names {rpm}, which is not known "
+        "there (it is given {name}, {channel}, {tool}, {offset}, {x}, {y}, {z})");
+  CHECK(test::machine_error_of(head + "[events]\nspindle_start.after = [\"({name})\"]\n") ==
+        "m.toml:13:24: error: events.spindle_start.after: template \"({name})\" names {name}, which is not "
+        "known there (it is given {channel}, {rpm}, {x}, {y}, {z})");
+  // A name no event gives is no placeholder at all: refused as a bad template, as before.
+  CHECK(test::machine_error_of(head + "[events]\nsection.after = [\"(W{w})\"]\n") ==
+        "m.toml:13:18: error: events.section.after: bad template \"(W{w})\": argument not found");
   CHECK(
       test::machine_error_of(head + "[events]\nprogram_start.before = [\"M10\"]\n") ==
       "m.toml:13:24: error: events.program_start takes `after` only (blocks before the safe start belong in "
@@ -231,5 +284,176 @@ TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][e
   CHECK(test::machine_error_of(head + "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"M{code}\"]\n") ==
         "m.toml:14:11: error: events.record.blocks: template \"M{code}\" names {code}, which is not known "
         "there (it "
-        "is given {channel}, {text})");
+        "is given {channel}, {text}, {x}, {y}, {z})");
+}
+
+TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at its CL record",
+          "[post][events][script]") {
+  // The first G28 U0. of each channel (its tool change) becomes M101 (a wait code of the machine).
+  // SYNCTR: the channels run at once, each from its tool change to the mark (M100).
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nSYNCTR/NEXT\nHEAD/2\nTURRET/11,11\nSYNCTR/NEXT\nFINI\n";
+  const std::string lua =
+      "function on_block(text, ctx)\n"
+      "  if text == 'G28 U0.' and not post.vars[ctx.channel] and ctx.channel <= CHANNELS then\n"
+      "    post.vars[ctx.channel] = true\n"
+      "    return 'M101'\n"
+      "  end\n"
+      "end\n";
+  const auto with = [&](const std::string& channels, const std::string& tag) {
+    std::string l = lua;
+    l.replace(l.find("CHANNELS"), 8, channels);
+    return post_with_script("", l, job, tag);
+  };
+  SECTION("in one channel: unpaired, the self-check's error at the tool call that wrote it") {
+    const test::posted p = with("1", "onblock-unpaired");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics.starts_with(
+        "job.cls:3:1: error: deadlock: channel 1 waits on M101 at job.cls:3 while channel 2 waits on M100 at "
+        "job.cls:7 (different codes, Fanuc PS0160)\nTURRET/1,1\n^\n"));
+    CHECK(
+        p.diagnostics.ends_with("/out/EV_1.nc:4:1: note: the wait in the program as it would have been "
+                                "written (no file is written)\nM101\n^\n"));
+    CHECK(p.files.empty());
+  }
+  SECTION("the post's own wait dropped in one channel is no wait of that channel") {
+    const test::posted p = post_with_script(
+        "",
+        "function on_block(text, ctx)\n  if ctx.channel == 1 and text == 'M100' then return false end\nend\n",
+        job, "onblock-drop");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics.starts_with(
+        "job.cls:7:1: error: wait M100 of channel 2 is never met: channel 1 ends at "
+        "job.cls:8 without a matching wait\nSYNCTR/NEXT\n^\n"));
+    CHECK(
+        p.diagnostics.ends_with("/out/EV_2.nc:7:1: note: the wait in the program as it would have been "
+                                "written (no file is written)\nM100\n^\n"));
+    CHECK(p.files.empty());
+  }
+  SECTION("in both: paired, it posts") {
+    const test::posted p = with("2", "onblock-paired");
+    CHECK(program_1(p) ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\nG28 W0.\n"
+          "M5\nM30\n%\n");
+    CHECK(program_1(p, "EV_2.nc") ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 W0.\nT1111\nM100\nM9\n"
+          "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+}
+
+TEST_CASE("a script error quotes the script line with a caret under its first word",
+          "[post][events][script]") {
+  const test::posted p =
+      post_with_script("", "function on_tool_change(tool)\n\t  post.emit(tool.life + 1)\nend\n",
+                       "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "script-caret");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "t.lua:2: error: attempt to perform arithmetic on a nil value (field 'life')\n"
+        "\t  post.emit(tool.life + 1)\n\t  ^\n"
+        "job.cls:3:1: note: channel 1: the script failed while this record was posted\nTURRET/1,1\n^\n");
+  CHECK(p.files.empty());
+}
+
+namespace {
+
+// Built-in machine `name` with `events` appended.
+test::posted post_on(const std::string& name, const std::string& events, const std::string& cl,
+                     const std::string& tag) {
+  const std::string text =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/" + name + ".toml") + "\n" +
+      events;
+  return test::post_in_fresh_dir(cl, parse_machine(text, "ev.toml"), "events-" + tag);
+}
+
+const std::string section_events = R"T([events]
+section.before = ["(SECTION {name} T{tool:02} OFFSET {offset})"]
+section.after = ["(END {name} T{tool:02} AT X{x} Z{z})"]
+operation.after = ["(OPERATION {name})"]
+tool_change.after = ["(T{tool:02} {name})"]
+program_end.before = ["(PROGRAM END AT X{x} Z{z})"]
+)T";
+
+}  // namespace
+
+TEST_CASE(
+    "events.section: one tool, spindle and operation of a channel, from its first move to before the next",
+    "[post][events]") {
+  // Two operations of tool 1 in channel 1 (a section each), tool 11 in channel 2 while channel
+  // 1 waits: each channel's sections in its own program, closed before the next tool change,
+  // the next operation and the program's end; {x} as written (diameter; the lower turret's X).
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTOOL PATH/ROUGH_OD,TOOL,OD ROUGH\nTURRET/1,1\nSPINDL/RPM,800,CLW\nRAPID\n"
+      "GOTO/30,0,2\nFEDRAT/0.2,MMPR\nGOTO/30,0,-20\nTOOL PATH/FINISH_OD,TOOL,OD ROUGH\nGOTO/29,0,-20\n"
+      "GOTO/29,0,2\nTOOL PATH/DRILL_1,TOOL,DRILL 8\nTURRET/3,3\nRAPID\nGOTO/0,0,5\nHEAD/2\n"
+      "TOOL PATH/BACK_OD,TOOL,OD LOWER\nTURRET/11,11\nRAPID\nGOTO/-20,0,3\nFINI\n";
+  const test::posted p = post_with(section_events, job, "section");
+  CHECK(
+      program_1(p) ==
+      "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\n(ROUGH_OD,TOOL,OD ROUGH)\n(OPERATION ROUGH_OD)\n"
+      "G28 U0.\nG28 W0.\nT0101\n(T01 OD ROUGH)\nG97 S800 M3\n(SECTION ROUGH_OD T01 OFFSET 1)\n"
+      "G0 X60. Z2.\nG1 Z-20. F0.2\n(END ROUGH_OD T01 AT X60. Z-20.)\n(FINISH_OD,TOOL,OD ROUGH)\n"
+      "(OPERATION FINISH_OD)\n(SECTION FINISH_OD T01 OFFSET 1)\nX58.\nZ2.\n(END FINISH_OD T01 AT X58. Z2.)\n"
+      "(DRILL_1,TOOL,DRILL 8)\n(OPERATION DRILL_1)\nG28 U0.\nG28 W0.\nT0303\n(T03 DRILL 8)\n"
+      "(SECTION DRILL_1 T03 OFFSET 3)\nG0 X0. Z5.\nM100\nM101\n(END DRILL_1 T03 AT X0. Z5.)\n"
+      "(PROGRAM END AT X0. Z5.)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  CHECK(program_1(p, "EV_2.nc") ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM100\n(BACK_OD,TOOL,OD LOWER)\n(OPERATION BACK_OD)\n"
+        "G28 U0.\nG28 W0.\nT1111\n(T11 OD LOWER)\n(SECTION BACK_OD T11 OFFSET 11)\nG0 X40. Z3.\nM101\n"
+        "(END BACK_OD T11 AT X40. Z3.)\n(PROGRAM END AT X40. Z3.)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
+
+TEST_CASE(
+    "events.section on a 4-axis mill: a new tool axis at a rapid opens a section, {y} where the channel has "
+    "Y",
+    "[post][events]") {
+  const std::string events = R"T([events]
+section.before = ["(SECTION {name} T{tool:02})"]
+section.after = ["(END {name} AT X{x} Y{y} Z{z})"]
+)T";
+  const std::string job =
+      "PARTNO EV\nUNITS/MM\nTOOL "
+      "PATH/TOP,TOOL,EM10\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/10,20,5,0,0,1\n"
+      "FEDRAT/500,MMPM\nGOTO/10,20,-1,0,0,1\nGOTO/30,20,-1,0,0,1\nRAPID\nGOTO/30,20,40,0,0,1\n"
+      "RAPID\nGOTO/10,-40,5,0,-1,0\nGOTO/10,-30,5,0,-1,0\nLOADTL/2\nSPINDL/RPM,2000,CLW\nRAPID\nGOTO/"
+      "0,0,50,0,-1,0\nFINI\n";
+  const test::posted p = post_on("rotary-4axis", events, job, "section-mill");
+  // The second section: the same tool and operation, the tool axis along -Y from a rapid (A-90.).
+  CHECK(program_1(p, "EV.nc") ==
+        "%\nO5003 (EV)\nG21\nG90 G94 G17 G40 G49 G80\n(TOP,TOOL,EM10)\nG91 G28 Z0.\nG90\nT01 M6\nS3000 M3\n"
+        "(SECTION TOP T01)\nG0 A0.\nG0 X10. Y20.\nG0 G43 H1 X10. Y20. Z5. A0.\nG1 Z-1. F500.\nX30.\nG0 Z40.\n"
+        "(END TOP AT X30. Y20. Z40.)\n(SECTION TOP T01)\nG0 A-90.\nG0 X10. Y5.\nG1 Z30.\n"
+        "(END TOP AT X10. Y5. Z30.)\nG49\nM5\nG91 G28 Z0.\nG90\nT02 M6\nS2000 M3\n(SECTION TOP T02)\n"
+        "G0 A-90.\nG0 X0. Y50.\nG0 G43 H2 X0. Y50. Z0. A-90.\n(END TOP AT X0. Y50. Z0.)\nG49\nM9\nM5\n"
+        "G91 G28 Z0.\nG90\nM30\n%\n");
+}
+
+TEST_CASE("{x} before the channel's first move and {y} on a channel without Y are errors at the CL record",
+          "[post][events]") {
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nRAPID\nGOTO/30,0,2\nTURRET/3,3\nRAPID\nGOTO/0,0,5\nFINI\n";
+  const test::posted p = post_with("[events]\nsection.before = [\"(FROM X{x:>8})\"]\n", job, "x-first");
+  CHECK_FALSE(p.ok);
+  CHECK(
+      p.diagnostics ==
+      "job.cls:5:1: error: channel 1: events.section.before: \"(FROM X{x:>8})\" names {x}, but channel 1 has "
+      "made no move before it (no position yet)\nGOTO/30,0,2\n^\n");
+  CHECK(p.files.empty());
+  SECTION("after a move it is the position the tool left, with the template's format spec") {
+    const test::posted q = post_with("[events]\nsection.after = [\"(AT X{x:>8} Z{z})\"]\n", job, "x-later");
+    CHECK(
+        program_1(q) ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG0 X60. Z2.\n(AT X     60. "
+        "Z2.)\n"
+        "G28 U0.\nG28 W0.\nT0303\nG0 X0. Z5.\nM100\n(AT X      0. Z5.)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+  SECTION("{y} on the lathe's channel") {
+    const test::posted q = post_with("[events]\ntool_change.before = [\"(Y{y})\"]\n", job, "y-lathe");
+    CHECK(q.diagnostics ==
+          "job.cls:3:1: error: channel 1: events.tool_change.before: \"(Y{y})\" names {y}, but channel 1 has "
+          "no "
+          "Y axis\nTURRET/1,1\n^\n"
+          "job.cls:6:1: error: channel 1: events.tool_change.before: \"(Y{y})\" names {y}, but channel 1 has "
+          "no "
+          "Y axis\nTURRET/3,3\n^\n");
+  }
 }
