@@ -144,6 +144,7 @@ bool channel_writer::multiaxis_takes() {
 }
 
 bool channel_writer::multiaxis_arc(int line) {
+  if (plane_on_) return plane_takes(line);  // G17 of the tilted working plane (channel_plane.cpp)
   const bool at_zero = std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
                                    [](double v) { return std::abs(v) <= still; });
   if (!at_zero || std::abs(axis_.z) < 0.9999) {

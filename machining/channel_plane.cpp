@@ -15,6 +15,7 @@ namespace twinpost {
 
 using kin::operator*;
 using kin::operator+;
+using kin::operator-;
 
 namespace {
 
@@ -46,6 +47,10 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
       return true;
     }
     close_plane();
+    // A table machine's tool-tip control is off with the plane: the tables then turn with the
+    // tool at its tool-change height, as after a tool call (reposition_rotaries), never with
+    // the tip left by the part and no length offset in force.
+    if (c.output != multiaxis_output::joints) go_home();
   }
   // A plane opens at a rapid that turns the tool to a new axis not along the spindle's.
   const bool turned = !pose_known_ || kin::angle_between(pose.axis, pose_mm_.axis) > c.angle_tolerance;
@@ -107,6 +112,12 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
 
 void channel_writer::close_plane() {
   out_.block(chain_->plane_off);
+  // The plane's G43 is not the chain's tool-tip control: cancelled, so that the next move
+  // turns G43.4 (G43.5) on again with the rotary values (a joints chain keeps its G43).
+  if (offset_on_ && chain_->output != multiaxis_output::joints) {
+    out_.block(chain_->tool_tip_off);
+    offset_on_ = false;
+  }
   plane_on_ = false;
   forget_axes();
   motion_g_ = -1;
@@ -116,12 +127,8 @@ void channel_writer::close_plane() {
 void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int line) {
   const kinematic_chain& c = *chain_;
   // The tip in the plane: p' = R^T p (the plane's origin is the work zero).
-  const vec3 p{kin::dot(plane_frame_[0], pose.tip), kin::dot(plane_frame_[1], pose.tip),
-               kin::dot(plane_frame_[2], pose.tip)};
-  const int dec = axis_style_.decimals;
-  const vec3 back = written(p.x * out_per_mm_, dec) / out_per_mm_ * plane_frame_[0] +
-                    written(p.y * out_per_mm_, dec) / out_per_mm_ * plane_frame_[1] +
-                    written(p.z * out_per_mm_, dec) / out_per_mm_ * plane_frame_[2];
+  const vec3 p = to_plane(pose.tip);
+  const vec3 back = plane_written(p);
   const double tip_error = kin::distance(back, pose.tip);
   const double axis_error = kin::angle_between(plane_frame_[2], pose.axis);
   if (!(tip_error <= c.tolerance && axis_error <= c.angle_tolerance)) {
@@ -134,14 +141,17 @@ void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int lin
                     kin::number_text(pose.tip.y), kin::number_text(pose.tip.z), kin::number_text(c.tolerance),
                     kin::number_text(c.angle_tolerance)));
   }
+  if (comp_on_rapid_refused(rapid, line)) return;
   const bool offset_block = !offset_on_ && !c.length_on.empty();
   // The first rapid in a plane just opened (G53.1 turned the head where the tool stood) goes
   // over the point in X Y and then down the plane's Z, or up first when the point is higher
   // than the CL's last one: never down and across at once (docs/machines.md, "Multi-axis
   // output", the approach). The length offset goes with the Z move.
+  // From the tool-change height (after a tool call, or a table machine's plane change) the
+  // tool comes from above the work: over the point first, then down.
   bool z_first = false;
-  if (rapid && !last_x_.known && !last_z_.known && approach_from_) {
-    z_first = p.z > kin::dot(plane_frame_[2], *approach_from_) + 1e-9;
+  if (rapid && !last_x_.known && !last_z_.known) {
+    z_first = approach_from_ && !homed_ && p.z > kin::dot(plane_frame_[2], *approach_from_) + 1e-9;
     text_buffer& pre = out_.open_block();
     word_start_ = pre.size();
     pre += "G0";
@@ -195,6 +205,65 @@ void channel_writer::plane_point(bool rapid, const kin::tool_pose& pose, int lin
   word_start_ = std::string::npos;
   pose_mm_ = pose;
   pose_known_ = true;
+}
+
+vec3 channel_writer::to_plane(const vec3& v) const {
+  return {kin::dot(plane_frame_[0], v), kin::dot(plane_frame_[1], v), kin::dot(plane_frame_[2], v)};
+}
+
+vec3 channel_writer::plane_written(const vec3& v) const {
+  const int dec = axis_style_.decimals;
+  return written(v.x * out_per_mm_, dec) / out_per_mm_ * plane_frame_[0] +
+         written(v.y * out_per_mm_, dec) / out_per_mm_ * plane_frame_[1] +
+         written(v.z * out_per_mm_, dec) / out_per_mm_ * plane_frame_[2];
+}
+
+bool channel_writer::plane_due() const {
+  const kinematic_chain& c = *chain_;
+  if (c.plane.empty()) return false;
+  const double len = kin::norm(axis_);
+  if (!(len > 0)) return false;
+  const vec3 k = (1 / len) * axis_;
+  if (plane_on_) return kin::angle_between(k, plane_frame_[2]) > c.angle_tolerance;
+  return kin::angle_between(k, c.tool_direction) > c.angle_tolerance;
+}
+
+bool channel_writer::plane_takes(int line) {
+  const double len = kin::norm(axis_);
+  if (len > 0 && kin::angle_between((1 / len) * axis_, plane_frame_[2]) <= chain_->angle_tolerance)
+    return true;
+  const vec3& z = plane_frame_[2];
+  error(line,
+        fmt::format("an arc or a drilling cycle with the tool axis ({:g},{:g},{:g}) in a tilted working "
+                    "plane ({}) whose Z is ({:g},{:g},{:g}): give a RAPID under the new tool axis first",
+                    axis_.x, axis_.y, axis_.z, chain_->plane, z.x, z.y, z.z));
+  return false;
+}
+
+arc_event channel_writer::plane_arc(const arc_event& cl) const {
+  arc_event w = cl;
+  w.start = to_plane(cl.start);
+  w.end = to_plane(cl.end);
+  w.center = to_plane(cl.center);
+  w.normal = to_plane(cl.normal);
+  return w;
+}
+
+bool channel_writer::plane_arc_checked(const arc_event& cl, const arc_event& w, int line) {
+  // The control reads the end as written and the centre as the written start plus the
+  // written I J K (each rounded on its own); both, turned back, must land on the CL's.
+  const vec3 end = plane_written(cl_mm_ * w.end);
+  const vec3 start = plane_written(cl_mm_ * w.start);
+  const vec3 centre = start + plane_written(cl_mm_ * (w.center - w.start));
+  const double end_error = kin::distance(end, cl_mm_ * cl.end);
+  const double centre_error = m_.program.arcs_ijk ? kin::distance(centre, cl_mm_ * cl.center) : 0;
+  const double tolerance = chain_->tolerance;
+  if (end_error <= tolerance && centre_error <= tolerance) return true;
+  error(line, fmt::format(
+                  "the written arc fails the tilted plane's rotation: end {} mm and centre {} mm from "
+                  "the CL's (tolerance {} mm)",
+                  kin::number_text(end_error), kin::number_text(centre_error), kin::number_text(tolerance)));
+  return false;
 }
 
 }  // namespace twinpost

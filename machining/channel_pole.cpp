@@ -56,8 +56,7 @@ bool channel_writer::hold_for_pole(const event& e, bool both) {
   if (held_.empty()) {
     const kinematic_chain& c = *chain_;
     if (!m || m->kind != motion_kind::go_to || !m->rapid || tool_ < 0 || cycle_ || cycle_refused_ ||
-        threading_ || c.moves != multiaxis_moves::all || !c.plane.empty() || plane_on_ ||
-        c.output == multiaxis_output::vector)
+        threading_ || c.moves != multiaxis_moves::all || c.output == multiaxis_output::vector)
       return false;
     const vec3 axis = m->axis ? *m->axis : axis_;
     if (!on_outer_pole(axis)) return false;

@@ -373,11 +373,30 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void plane_point(bool rapid, const kin::tool_pose& pose, int line);
   /// G69: the plane is cancelled.
   void close_plane();
+  /// `v` (a point or direction of the part frame) in the open plane's frame.
+  vec3 to_plane(const vec3& v) const;
+  /// A point or offset of the plane's frame (mm) as the control reads it after writing it
+  /// with the axes' decimals, turned back into the part frame.
+  vec3 plane_written(const vec3& v) const;
+  /// True when the tool axis in force is tilted and no plane is open for it: a hole there
+  /// opens one with the rapid to its retract plane.
+  bool plane_due() const;
+  /// An arc or a drilling cycle in the open plane: true when the tool stands along the
+  /// plane's Z (its G17); false with the error.
+  bool plane_takes(int line);
+  /// The CL arc `cl` in the open plane's frame (start, end, centre, axis).
+  arc_event plane_arc(const arc_event& cl) const;
+  /// The written end and centre of arc `w` (in the plane) taken back through the plane's
+  /// rotation: false with the error when either misses the CL's `cl` by more than the tolerance.
+  bool plane_arc_checked(const arc_event& cl, const arc_event& w, int line);
   /// Before a tool call and at the end: G94 again, and the length offset cancelled.
   void multiaxis_off();
   /// An arc on a chain channel: only with the rotary axes at 0 and the tool along Z; G94
   /// again if G93 is in force. False after the error.
   bool multiaxis_arc(int line);
+  /// A rapid that would start cutter compensation where the machine starts it only on a feed
+  /// move (codes.cutcom_on_rapid = false): true with the error.
+  bool comp_on_rapid_refused(bool rapid, int line);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
   void misfit(char address, double value);
@@ -454,6 +473,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool polar_ = false;          // polar interpolation is on
   bool side_hole_ = false;      // that cross hole is drilled with the side cycles (G87/G88)
   bool radial_ok_ = false;      // a cross hole is being written: its points are in the turned frame
+  bool plane_hole_ = false;     // a hole in a tilted working plane: its points are in the plane's frame
   bool radial_frame_ = false;   // the frame is turned for cross holes (milling.radial_frame_on)
   bool cylinder_ = false;       // cylindrical interpolation is on (milling.cylindrical_on)
   double cylinder_r_ = 0;       // its radius (mm): the tip's on every cut
