@@ -96,6 +96,7 @@ bool channel_writer::comp_on_rapid_refused(bool rapid, int line) {
 
 void channel_writer::cutcom(const cutcom_event& c, int line) {
   const bool left = c.side == "LEFT", right = c.side == "RIGHT";
+  comp_cl_on_ = left || right;
   if (!left && !right) {
     pending_g_ = c.side == "OFF" ? "G40" : "";
     return;
@@ -309,8 +310,8 @@ void channel_writer::arc(const arc_event& cl, int line) {
   auto fail_quietly = [&] { pos_ = cl.end; };
   if (!spindle_turning(line)) return fail_quietly();
   if (plane == 0)
-    return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane", a.normal.x, a.normal.y,
-                            a.normal.z));
+    return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane{}", cl.normal.x,
+                            cl.normal.y, cl.normal.z, in_plane ? " of the tilted working plane" : ""));
   if (plane != 18 && !has_y_ && !polar_)
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
   if (!has_y_ && !polar_ && std::abs(a.end.y * cl_mm_) > y_tolerance)

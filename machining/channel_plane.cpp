@@ -5,9 +5,12 @@
 // closes it (G69). Every written point goes back through the plane's rotation to the CL tip
 // and axis, as the other multi-axis points go through the forward transform (docs/machines.md,
 // "Tilted working plane").
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fmt/format.h>
 
+#include "kinematics/forward.hpp"
 #include "kinematics/vec3_ops.hpp"
 #include "machining/channel_writer.hpp"
 
@@ -28,7 +31,40 @@ double written(double v, int decimals) {
   return static_cast<double>(n) / scale[decimals];
 }
 
+// The plane for tool axis `k` as the control builds it from the angles as written (X, Y, Z
+// in the part frame); the angles in `euler`. Z-X-Z Euler angles: the plane's Z = Rz(a) Rx(b)
+// ez = (sin a sin b, -cos a sin b, cos b); the third angle -a keeps the plane's X near the part's.
+std::array<vec3, 3> plane_frame_of(const vec3& k, double* euler = nullptr) {
+  const double b = std::atan2(std::hypot(k.x, k.y), k.z) / kin::deg;
+  const double a = std::hypot(k.x, k.y) < 1e-12 ? 0 : std::atan2(k.x, -k.y) / kin::deg;
+  const double e[3] = {written(a, euler_decimals), written(b, euler_decimals), written(-a, euler_decimals)};
+  if (euler) std::copy(e, e + 3, euler);
+  const vec3 z{0, 0, 1}, x{1, 0, 0};
+  auto turn = [&](const vec3& v) {
+    return kin::rotate(kin::rotate(kin::rotate(v, z, e[2]), x, e[1]), z, e[0]);
+  };
+  return {turn({1, 0, 0}), turn({0, 1, 0}), turn({0, 0, 1})};
+}
+
 }  // namespace
+
+bool channel_writer::plane_comp_off(int line) {
+  // Fanuc's G68.2 and G69 are given with cutter compensation cancelled (G40): a G40 still
+  // waiting for its move goes out on its own first; compensation the CL leaves on is refused.
+  if (comp_cl_on_) {
+    pose_known_ = false;
+    error(line, fmt::format("the tool axis turns with cutter compensation on: the tilted working plane ({}) "
+                            "is set and cancelled with G40 in force; give CUTCOM/OFF and a move before "
+                            "the RAPID",
+                            chain_->plane));
+    return false;
+  }
+  if (pending_g_.starts_with("G40")) {
+    out_.block(pending_g_);
+    pending_g_.clear();
+  }
+  return true;
+}
 
 bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line) {
   const kinematic_chain& c = *chain_;
@@ -46,6 +82,7 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
                               pose.axis.z, c.plane));
       return true;
     }
+    if (!plane_comp_off(line)) return true;
     close_plane();
     // A table machine's tool-tip control is off with the plane: the tables then turn with the
     // tool at its tool-change height, as after a tool call (reposition_rotaries), never with
@@ -55,11 +92,22 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
   // A plane opens at a rapid that turns the tool to a new axis not along the spindle's.
   const bool turned = !pose_known_ || kin::angle_between(pose.axis, pose_mm_.axis) > c.angle_tolerance;
   if (!rapid || !turned || kin::angle_between(pose.axis, c.tool_direction) <= c.angle_tolerance) return false;
+  if (!plane_comp_off(line)) return true;
   // The rotary axes G53.1 turns to it must reach it within their limits.
   const kin::ik_result ik = kin::inverse(c, pose, 0, joints_, kin::ik_need::angles);
   if (!ik.ok()) {
     pose_known_ = false;
     error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
+    return true;
+  }
+  // The tables (heads) at the rotary values the inverse gave must turn the plane's Z (as the
+  // angles are written) onto the spindle: the forward transform's tool axis.
+  if (const double off = kin::angle_between(kin::tool_axis(c, ik.joints), plane_frame_of(pose.axis)[2]);
+      off > c.angle_tolerance) {
+    pose_known_ = false;
+    error(line, fmt::format("the tilted working plane's Z is {} degrees from the tool axis the rotary values "
+                            "give (tolerance {} degrees)",
+                            kin::number_text(off), kin::number_text(c.angle_tolerance)));
     return true;
   }
   if (inverse_time_) {
@@ -72,21 +120,9 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
     out_.block(c.tool_tip_off);
     offset_on_ = false;
   }
-  // Z-X-Z Euler angles of the plane: its Z = Rz(a) Rx(b) ez = (sin a sin b, -cos a sin b,
-  // cos b); the third angle -a keeps the plane's X near the part's.
-  const vec3& k = pose.axis;
-  const double b = std::atan2(std::hypot(k.x, k.y), k.z) / kin::deg;
-  const double a = std::hypot(k.x, k.y) < 1e-12 ? 0 : std::atan2(k.x, -k.y) / kin::deg;
-  const double euler[3] = {written(a, euler_decimals), written(b, euler_decimals),
-                           written(-a, euler_decimals)};
-  // The frame as the control builds it from the written angles.
-  const vec3 z{0, 0, 1}, x{1, 0, 0};
-  auto turn = [&](const vec3& v) {
-    return kin::rotate(kin::rotate(kin::rotate(v, z, euler[2]), x, euler[1]), z, euler[0]);
-  };
-  plane_frame_[0] = turn({1, 0, 0});
-  plane_frame_[1] = turn({0, 1, 0});
-  plane_frame_[2] = turn({0, 0, 1});
+  double euler[3];
+  const std::array<vec3, 3> frame = plane_frame_of(pose.axis, euler);
+  for (int i = 0; i < 3; ++i) plane_frame_[i] = frame[i];
   plane_axis_ = pose.axis;
   // The plane's origin is the work zero (X0 Y0 Z0), its angles I J K.
   std::string b68 = c.plane;

@@ -373,6 +373,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void plane_point(bool rapid, const kin::tool_pose& pose, int line);
   /// G69: the plane is cancelled.
   void close_plane();
+  /// Before a plane is set or cancelled: a waiting G40 goes out on its own; false (with the
+  /// error) when the CL's cutter compensation is still on.
+  bool plane_comp_off(int line);
   /// `v` (a point or direction of the part frame) in the open plane's frame.
   vec3 to_plane(const vec3& v) const;
   /// A point or offset of the plane's frame (mm) as the control reads it after writing it
@@ -511,7 +514,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool feed_text_per_rev_ = false;
   bool per_rev_ = false;  // feed mode of the last FEDRAT
   double feed_value_ = 0;
-  std::string pending_g_;  // G40/G41/G42 waiting for the next move
+  std::string pending_g_;    // G40/G41/G42 waiting for the next move
+  bool comp_cl_on_ = false;  // the CL's CUTCOM/LEFT or RIGHT is in force (OFF not yet given)
   std::optional<cycle_event> cycle_;
   int cycle_line_ = 0;                     ///< the CL line of the cycle in force
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force

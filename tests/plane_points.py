@@ -100,7 +100,7 @@ def read_cl(path):
     cycle = False
     text = open(path, errors="replace").read().replace("$\n", "")
     for line in text.splitlines():
-        line = line.strip().upper()
+        line = line.replace(" ", "").upper()
         if line.startswith("UNIT/IN") or line.startswith("UNITS/INCH"):
             scale = 25.4
         if line.startswith("CYCLE/"):
@@ -151,9 +151,12 @@ def main():
     # One arc block per CIRCLE: each centre against its own arc's, in order.
     if len(centres) == len(circles):
         lost = [q for q, p in zip(circles, centres) if math.dist(p, q) > tol]
-    else:
-        lost = circles
-        print(f"{len(circles)} CIRCLE records but {len(centres)} arc blocks")
+    else:  # full turns (TIMES) or arcs split into blocks: any arc's centre
+        cgrid = {}
+        for p in centres:
+            cgrid.setdefault(tuple(round(v) for v in p), []).append(p)
+        lost = [q for q in circles if not found(q, cgrid)]
+        print(f"{len(circles)} CIRCLE records in {len(centres)} arc blocks: centres matched as a set")
     print(f"{len(gotos) - len(missing)} of {len(gotos)} GOTO points and {len(circles) - len(lost)} of "
           f"{len(circles)} CIRCLE centres found in the program (tolerance {tol} mm)")
     for q in missing[:5]:

@@ -207,7 +207,7 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
     const kin::tool_pose& target = cl_pts[next].pose;
     const double tip = kin::distance(got.tip, target.tip), axis = kin::angle_between(got.axis, target.axis);
     const bool feed = !b.rapid;
-    if (b.rapid && prev) {
+    if (b.rapid && prev && b.in_plane == prev->in_plane) {  // (G69 left the plane's words behind)
       // A rapid that turns a rotary axis moves no linear axis: the axes turn where the tool
       // stands clear (at the tool-change height, or the higher of two points), never on the
       // way down to the part (the Fusion posts' positionABC, then X Y, then Z).
@@ -310,6 +310,17 @@ TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on
         "move "
         "inside a tilted working plane (G68.2): a 3+2 operation keeps its axis; give a RAPID to change it\n"
         "GOTO/30,0,10,0,0,1\n^\n");
+}
+
+TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on the trunnion",
+          "[post][multiaxis][plane]") {
+  // The same planes on the table/table machine: G53.1 turns the tables, X Y Z are the tip in
+  // the plane; outside them G43.4 with A C.
+  const machine m = load_machine("trunnion-5axis");
+  const round_trip r = read_back(sample_job("three-plus-two"), m, "ma-32t");
+  CHECK(r.cl_points == 15);
+  CHECK(r.worst_tip <= 0.001);
+  CHECK(r.worst_axis <= 0.002);
 }
 
 TEST_CASE("multi-axis: the trunnion's G43.4 blocks give back the CL tip and axis", "[post][multiaxis]") {

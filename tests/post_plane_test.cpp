@@ -1,0 +1,84 @@
+// 3+2 work in tilted working planes (G68.2) on the table/table trunnion: arcs in the plane's
+// G17/G18/G19, drilling cycles along its Z, cutter compensation in it, and the rules at a
+// plane's change (docs/machines.md, "Tilted working plane").
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+// The tool along +X: the plane G68.2 I90 J90 K-90 has X = -Z, Y = Y, Z = X of the part.
+const std::string side_face_start =
+    "MULTAX/ON\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,500\nRAPID\nGOTO/40,0,-10,1,0,0\n";
+const std::string program_start =
+    "G21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS6000 M3\n"
+    "G68.2 X0. Y0. Z0. I90. J90. K-90.\nG53.1\nG0 X10. Y0.\nG43 H1 X10. Y0. Z40.\n";
+
+}  // namespace
+
+TEST_CASE("tilted plane: an arc about an axis across the tool is written in the plane's G18",
+          "[post][multiaxis][plane]") {
+  const machine m = load_machine("trunnion-5axis");
+  // About the part's +Y (the plane's Y), counter-clockwise: G18 G3, the centre as I K in the plane.
+  const test::posted p = test::post_in_fresh_dir("PARTNO G18\n" + side_face_start +
+                                                     "GOTO/20,0,-10,1,0,0\nGOTO/20,0,-20,1,0,0\n"
+                                                     "CIRCLE/10,0,-20,0,1,0,10\nGOTO/0,0,-20,1,0,0\n"
+                                                     "RAPID\nGOTO/40,0,-20,1,0,0\nFINI\n",
+                                                 m, "plane-g18");
+  REQUIRE(p.ok);
+  CHECK(p.files.at("G18.nc") == "%\nO5002 (G18)\n" + program_start +
+                                    "G1 Z20. F500.\nX20.\nG18 G3 X20. Z0. I0. K-10.\nG0 Z40.\nG69\nG49\nM9\nM5\n"
+                                    "G91 G28 Z0.\nG90\nM30\n%\n");
+}
+
+TEST_CASE("tilted plane: a hole along the plane's Z is drilled in its frame, from the depth",
+          "[post][multiaxis][plane]") {
+  const machine m = load_machine("trunnion-5axis");
+  // The trunnion drills in moves ([cycles] drill = "expanded"): to the clearance, feed to the
+  // depth, back out, all along the plane's Z.
+  const test::posted p =
+      test::post_in_fresh_dir("PARTNO DEPTH\n" + side_face_start +
+                                  "CYCLE/DRILL,DEPTH,10,MMPM,200,CLEAR,3\nGOTO/20,0,-10,1,0,0\nCYCLE/OFF\nFINI\n",
+                              m, "plane-depth");
+  REQUIRE(p.ok);
+  CHECK(p.files.at("DEPTH.nc") == "%\nO5002 (DEPTH)\n" + program_start +
+                                      "Z23.\nG1 Z10. F200.\nG0 Z23.\nG69\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+  // An absolute FEDTO is a Z of the part frame: no depth along the tilted tool.
+  const test::posted abs = test::post_in_fresh_dir(
+      "PARTNO FEDTO\n" + side_face_start +
+          "CYCLE/DRILL,FEDTO,10,MMPM,200,CLEAR,3\nGOTO/20,0,-10,1,0,0\nCYCLE/OFF\nFINI\n",
+      m, "plane-fedto");
+  CHECK_FALSE(abs.ok);
+  CHECK(abs.diagnostics ==
+        "job.cls:9:1: error: channel 1: CYCLE/DRILL in a tilted working plane (G68.2) with an absolute FEDTO: a "
+        "Z of the part frame is no depth along the tilted tool; give the depth (DEPTH)\nGOTO/20,0,-10,1,0,0\n^\n");
+}
+
+TEST_CASE("tilted plane: cutter compensation in the plane, G40 before G69, and none across a change",
+          "[post][multiaxis][plane]") {
+  const machine m = load_machine("trunnion-5axis");
+  const std::string cut = "GOTO/20,0,-10,1,0,0\nCUTCOM/LEFT\nGOTO/20,10,-10,1,0,0\nGOTO/20,10,-20,1,0,0\n";
+  // G41 in the plane's G17; the CL's CUTCOM/OFF before the RAPID that leaves the plane goes
+  // out on its own, before G69; the tables turn back at the tool-change height, and G43.4
+  // comes on again with the next point.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO COMP\n" + side_face_start + cut + "CUTCOM/OFF\nRAPID\nGOTO/0,0,60,0,0,1\nFINI\n", m, "plane-comp");
+  REQUIRE(p.ok);
+  CHECK(p.files.at("COMP.nc") == "%\nO5002 (COMP)\n" + program_start +
+                                     "G1 Z20. F500.\nG41 D1 Y10.\nX20.\nG40\nG69\nG49\nG91 G28 Z0.\nG90\n"
+                                     "G0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z60. A0. C90.\nG49\nM9\nM5\n"
+                                     "G91 G28 Z0.\nG90\nM30\n%\n");
+  // Compensation still on where the tool axis turns: G68.2 and G69 need G40 in force.
+  const test::posted on = test::post_in_fresh_dir(
+      "PARTNO COMP\n" + side_face_start + cut + "RAPID\nGOTO/0,-40,-20,0,-1,0\nFINI\n", m,
+      "plane-comp-on");
+  CHECK_FALSE(on.ok);
+  CHECK(on.diagnostics ==
+        "job.cls:13:1: error: channel 1: the tool axis turns with cutter compensation on: the tilted working "
+        "plane (G68.2) is set and cancelled with G40 in force; give CUTCOM/OFF and a move before the RAPID\n"
+        "GOTO/0,-40,-20,0,-1,0\n^\n");
+}
