@@ -30,9 +30,10 @@ TEST_CASE("tilted plane: an arc about an axis across the tool is written in the 
                                                      "RAPID\nGOTO/40,0,-20,1,0,0\nFINI\n",
                                                  m, "plane-g18");
   REQUIRE(p.ok);
-  CHECK(p.files.at("G18.nc") == "%\nO5002 (G18)\n" + program_start +
-                                    "G1 Z20. F500.\nX20.\nG18 G3 X20. Z0. I0. K-10.\nG0 Z40.\nG69\nG49\nM9\nM5\n"
-                                    "G91 G28 Z0.\nG90\nM30\n%\n");
+  CHECK(p.files.at("G18.nc") ==
+        "%\nO5002 (G18)\n" + program_start +
+            "G1 Z20. F500.\nX20.\nG18 G3 X20. Z0. I0. K-10.\nG0 Z40.\nG69\nG49\nM9\nM5\n"
+            "G91 G28 Z0.\nG90\nM30\n%\n");
 }
 
 TEST_CASE("tilted plane: a hole along the plane's Z is drilled in its frame, from the depth",
@@ -40,13 +41,14 @@ TEST_CASE("tilted plane: a hole along the plane's Z is drilled in its frame, fro
   const machine m = load_machine("trunnion-5axis");
   // The trunnion drills in moves ([cycles] drill = "expanded"): to the clearance, feed to the
   // depth, back out, all along the plane's Z.
-  const test::posted p =
-      test::post_in_fresh_dir("PARTNO DEPTH\n" + side_face_start +
-                                  "CYCLE/DRILL,DEPTH,10,MMPM,200,CLEAR,3\nGOTO/20,0,-10,1,0,0\nCYCLE/OFF\nFINI\n",
-                              m, "plane-depth");
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO DEPTH\n" + side_face_start +
+          "CYCLE/DRILL,DEPTH,10,MMPM,200,CLEAR,3\nGOTO/20,0,-10,1,0,0\nCYCLE/OFF\nFINI\n",
+      m, "plane-depth");
   REQUIRE(p.ok);
-  CHECK(p.files.at("DEPTH.nc") == "%\nO5002 (DEPTH)\n" + program_start +
-                                      "Z23.\nG1 Z10. F200.\nG0 Z23.\nG69\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+  CHECK(p.files.at("DEPTH.nc") ==
+        "%\nO5002 (DEPTH)\n" + program_start +
+            "Z23.\nG1 Z10. F200.\nG0 Z23.\nG69\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
   // An absolute FEDTO is a Z of the part frame: no depth along the tilted tool.
   const test::posted abs = test::post_in_fresh_dir(
       "PARTNO FEDTO\n" + side_face_start +
@@ -54,8 +56,10 @@ TEST_CASE("tilted plane: a hole along the plane's Z is drilled in its frame, fro
       m, "plane-fedto");
   CHECK_FALSE(abs.ok);
   CHECK(abs.diagnostics ==
-        "job.cls:9:1: error: channel 1: CYCLE/DRILL in a tilted working plane (G68.2) with an absolute FEDTO: a "
-        "Z of the part frame is no depth along the tilted tool; give the depth (DEPTH)\nGOTO/20,0,-10,1,0,0\n^\n");
+        "job.cls:9:1: error: channel 1: CYCLE/DRILL in a tilted working plane (G68.2) with an absolute "
+        "FEDTO: a "
+        "Z of the part frame is no depth along the tilted tool; give the depth "
+        "(DEPTH)\nGOTO/20,0,-10,1,0,0\n^\n");
 }
 
 TEST_CASE("tilted plane: cutter compensation in the plane, G40 before G69, and none across a change",
@@ -66,19 +70,37 @@ TEST_CASE("tilted plane: cutter compensation in the plane, G40 before G69, and n
   // out on its own, before G69; the tables turn back at the tool-change height, and G43.4
   // comes on again with the next point.
   const test::posted p = test::post_in_fresh_dir(
-      "PARTNO COMP\n" + side_face_start + cut + "CUTCOM/OFF\nRAPID\nGOTO/0,0,60,0,0,1\nFINI\n", m, "plane-comp");
+      "PARTNO COMP\n" + side_face_start + cut + "CUTCOM/OFF\nRAPID\nGOTO/0,0,60,0,0,1\nFINI\n", m,
+      "plane-comp");
   REQUIRE(p.ok);
-  CHECK(p.files.at("COMP.nc") == "%\nO5002 (COMP)\n" + program_start +
-                                     "G1 Z20. F500.\nG41 D1 Y10.\nX20.\nG40\nG69\nG49\nG91 G28 Z0.\nG90\n"
-                                     "G0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z60. A0. C90.\nG49\nM9\nM5\n"
-                                     "G91 G28 Z0.\nG90\nM30\n%\n");
+  CHECK(p.files.at("COMP.nc") ==
+        "%\nO5002 (COMP)\n" + program_start +
+            "G1 Z20. F500.\nG41 D1 Y10.\nX20.\nG40\nG69\nG49\nG91 G28 Z0.\nG90\n"
+            "G0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z60. A0. C90.\nG49\nM9\nM5\n"
+            "G91 G28 Z0.\nG90\nM30\n%\n");
   // Compensation still on where the tool axis turns: G68.2 and G69 need G40 in force.
   const test::posted on = test::post_in_fresh_dir(
-      "PARTNO COMP\n" + side_face_start + cut + "RAPID\nGOTO/0,-40,-20,0,-1,0\nFINI\n", m,
-      "plane-comp-on");
+      "PARTNO COMP\n" + side_face_start + cut + "RAPID\nGOTO/0,-40,-20,0,-1,0\nFINI\n", m, "plane-comp-on");
   CHECK_FALSE(on.ok);
   CHECK(on.diagnostics ==
         "job.cls:13:1: error: channel 1: the tool axis turns with cutter compensation on: the tilted working "
         "plane (G68.2) is set and cancelled with G40 in force; give CUTCOM/OFF and a move before the RAPID\n"
         "GOTO/0,-40,-20,0,-1,0\n^\n");
+}
+
+TEST_CASE("tilted plane: an arc whose written centre misses the CL's is refused",
+          "[post][multiaxis][plane]") {
+  // Every point lies on the 0.001 mm grid of the words, the centre 0.0004 mm off it (J0.0004
+  // in the plane, written J0.): with a tolerance of 0.0001 mm only the centre fails.
+  machine m = load_machine("trunnion-5axis");
+  m.kinematics[0].tolerance = 1e-4;
+  const test::posted p = test::post_in_fresh_dir("PARTNO ARC\n" + side_face_start +
+                                                     "GOTO/20,0,-10,1,0,0\nCIRCLE/20,0.0004,-20,1,0,0,10\n"
+                                                     "GOTO/20,0,-30,1,0,0\nFINI\n",
+                                                 m, "plane-arc-centre");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:10:1: error: channel 1: the written arc fails the tilted plane's rotation: end 0 mm and "
+        "centre "
+        "0.0004 mm from the CL's (tolerance 0.0001 mm)\nGOTO/20,0,-30,1,0,0\n^\n");
 }
