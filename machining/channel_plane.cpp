@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <fmt/format.h>
+#include <variant>
 
 #include "kinematics/forward.hpp"
 #include "kinematics/vec3_ops.hpp"
@@ -23,6 +24,9 @@ using kin::operator-;
 namespace {
 
 constexpr int euler_decimals = 3;
+// Records held after a rapid before the cut is taken for 3+2 work: an operation's moves under
+// one axis, not a whole job (a later turn inside the plane is refused, naming its record).
+constexpr std::size_t max_plane_held = 4096;
 
 double written(double v, int decimals) {
   std::int64_t n;
@@ -47,6 +51,76 @@ std::array<vec3, 3> plane_frame_of(const vec3& k, double* euler = nullptr) {
 }
 
 }  // namespace
+
+bool channel_writer::hold_multiaxis(const event& e, bool both) {
+  if (!plane_held_.empty()) {
+    const auto* m = std::get_if<motion_event>(&e.data);
+    bool decided = false, plane = true;
+    if (m && m->kind != motion_kind::from && m->kind != motion_kind::home) {
+      const vec3 axis = m->axis ? *m->axis : plane_held_axis_;
+      const double len = kin::norm(axis);
+      if (m->rapid) {
+        decided = true;  // the cut kept its axis up to the next rapid
+      } else if (len > 0 &&
+                 kin::angle_between((1 / len) * axis, plane_held_axis_) > chain_->angle_tolerance) {
+        decided = true;
+        plane = false;  // a feed move turns the tool: simultaneous work
+      }
+    } else if (m ||
+               !(std::holds_alternative<arc_event>(e.data) || std::holds_alternative<feed_event>(e.data) ||
+                 std::holds_alternative<cutcom_event>(e.data) ||
+                 std::holds_alternative<cycle_event>(e.data) ||
+                 std::holds_alternative<spindle_event>(e.data) ||
+                 std::holds_alternative<coolant_event>(e.data) ||
+                 std::holds_alternative<delay_event>(e.data) ||
+                 std::holds_alternative<comment_event>(e.data) ||
+                 std::holds_alternative<text_event>(e.data) ||
+                 std::holds_alternative<passthrough_event>(e.data))) {
+      // FROM, GOHOME, a tool change, a frame (CSYS, MSYS: checked as they come), the end: the
+      // cut ends with the axis it kept. The records of a cut are held.
+      decided = true;
+    }
+    if (!decided && plane_held_.size() < max_plane_held) {
+      hold_plane_record(e, both);
+      return true;
+    }
+    release_plane_held(plane);
+  }
+  if (hold_for_pole(e, both)) return true;
+  // A rapid that would open a plane: a tilted axis, not the open plane's.
+  const kinematic_chain& c = *chain_;
+  const auto* m = std::get_if<motion_event>(&e.data);
+  if (c.plane.empty() || !m || m->kind != motion_kind::go_to || !m->rapid || tool_ < 0 || cycle_)
+    return false;
+  const vec3 axis = m->axis ? *m->axis : axis_;
+  const double len = kin::norm(axis);
+  if (!(len > 0)) return false;
+  const vec3 k = (1 / len) * axis;
+  if (kin::angle_between(k, c.tool_direction) <= c.angle_tolerance ||
+      (plane_on_ && kin::angle_between(k, plane_axis_) <= c.angle_tolerance))
+    return false;
+  plane_held_axis_ = k;
+  hold_plane_record(e, both);
+  return true;
+}
+
+void channel_writer::hold_plane_record(const event& e, bool both) {
+  plane_held_.push_back({e, both, job_spindles_ && job_spindles_->quote ? job_spindles_->quote(e.line) : ""});
+}
+
+void channel_writer::release_plane_held(bool plane) {
+  std::vector<held_record> events;
+  events.swap(plane_held_);
+  plane_veto_ = !plane;
+  for (const held_record& r : events) {
+    held_source_ = r.source.empty() ? nullptr : &r.source;
+    process_event(r.e, r.both);
+  }
+  held_source_ = nullptr;
+  plane_veto_ = false;
+  events.clear();
+  plane_held_.swap(events);  // keep the capacity for the next cut
+}
 
 bool channel_writer::plane_comp_off(int line) {
   // Fanuc's G68.2 and G69 are given with cutter compensation cancelled (G40): a G40 still
@@ -91,7 +165,9 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
   }
   // A plane opens at a rapid that turns the tool to a new axis not along the spindle's.
   const bool turned = !pose_known_ || kin::angle_between(pose.axis, pose_mm_.axis) > c.angle_tolerance;
-  if (!rapid || !turned || kin::angle_between(pose.axis, c.tool_direction) <= c.angle_tolerance) return false;
+  if (!rapid || !turned || plane_veto_ ||
+      kin::angle_between(pose.axis, c.tool_direction) <= c.angle_tolerance)
+    return false;
   if (!plane_comp_off(line)) return true;
   // The rotary axes G53.1 turns to it must reach it within their limits.
   const kin::ik_result ik = kin::inverse(c, pose, 0, joints_, kin::ik_need::angles);

@@ -89,6 +89,8 @@ bool channel_writer::hold_for_pole(const event& e, bool both) {
 }
 
 void channel_writer::release_held(std::optional<double> outer) {
+  // A wait, the units or the end: a cut held for the plane ends there as it stands.
+  if (!plane_held_.empty()) release_plane_held(true);
   if (held_.empty()) return;
   std::vector<std::pair<event, bool>> events;
   events.swap(held_);

@@ -373,6 +373,16 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void plane_point(bool rapid, const kin::tool_pose& pose, int line);
   /// G69: the plane is cancelled.
   void close_plane();
+  /// Looking ahead on a chain (the pole, channel_pole.cpp, and the plane): whether `e` was
+  /// held (true) or is the caller's to process. A RAPID that would open a tilted working plane
+  /// is held with the records after it until the cut shows what it is: the next RAPID, a tool
+  /// change or `max_plane_held` records under its axis make it 3+2 work (a plane), a feed move
+  /// that turns the tool makes it simultaneous (no plane: the chain's `output`).
+  bool hold_multiaxis(const event& e, bool both);
+  /// Holds `e` for the plane, with its CL line.
+  void hold_plane_record(const event& e, bool both);
+  /// Processes the records held for the plane; `plane` is what the cut showed.
+  void release_plane_held(bool plane);
   /// Before a plane is set or cancelled: a waiting G40 goes out on its own; false (with the
   /// error) when the CL's cutter compensation is still on.
   bool plane_comp_off(int line);
@@ -613,8 +623,19 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
   double tool_length_ = 0;                            ///< the length in use (mm)
   std::vector<std::pair<event, bool>> held_;          ///< records held at the pole, with `both`
-  vec3 held_axis_{};                                  ///< the tool axis in force after them
-  std::optional<double> pole_hint_;                   ///< the outer angle the held rapid takes
+  /// A record held until a cut shows 3+2 or not, with its CL line for its errors (the reader
+  /// has moved on when it is written).
+  struct held_record {
+    event e;
+    bool both = false;
+    std::string source;
+  };
+  std::vector<held_record> plane_held_;
+  const std::string* held_source_ = nullptr;  ///< the CL line of the held record being written
+  vec3 plane_held_axis_{};                    ///< the tool axis of the rapid that began them
+  bool plane_veto_ = false;                   ///< the released cut turns the tool: its rapid opens no plane
+  vec3 held_axis_{};                          ///< the tool axis in force after them
+  std::optional<double> pole_hint_;           ///< the outer angle the held rapid takes
   bool length_known_ = false;
   bool length_refused_ = false;  ///< the tool's length error was reported
   /// The tool's length is unknown and the moves are posted while no head tilts the tool (the

@@ -299,17 +299,30 @@ TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on
   CHECK(r.sub_points == 0);
   CHECK(r.worst_tip <= 0.001);
   CHECK(r.worst_axis <= 0.002);
-  // A feed move that turns the tool inside a plane is refused: 3+2 keeps its axis.
+  // A feed move that turns the tool inside a plane (the cut kept its axis up to a RAPID, so
+  // the plane was opened) is refused: 3+2 keeps its axis.
   const test::posted p = test::post_in_fresh_dir(
       "PARTNO T\nTLDATA/MILL,8,0,100,0,0\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,9000,CLW\n"
       "FEDRAT/MMPM,600\nRAPID\nGOTO/20,0,40,0.2588190,0,0.9659258\n"
-      "GOTO/20,0,10,0.2588190,0,0.9659258\nGOTO/30,0,10,0,0,1\nFINI\n",
+      "GOTO/20,0,10,0.2588190,0,0.9659258\nRAPID\nGOTO/20,0,12,0.2588190,0,0.9659258\n"
+      "GOTO/30,0,10,0,0,1\nFINI\n",
       m, "ma-32b");
   CHECK(p.diagnostics ==
-        "job.cls:10:1: error: channel 1: the tool axis turns from (0.258819,0,0.965926) to (0,0,1) in a feed "
+        "job.cls:12:1: error: channel 1: the tool axis turns from (0.258819,0,0.965926) to (0,0,1) in a feed "
         "move "
         "inside a tilted working plane (G68.2): a 3+2 operation keeps its axis; give a RAPID to change it\n"
         "GOTO/30,0,10,0,0,1\n^\n");
+  // A cut whose feed moves turn the tool after the RAPID is simultaneous work: no plane, the
+  // rapid and the cut in joints (G93 on the turning move), as without `plane`.
+  const test::posted s = test::post_in_fresh_dir(
+      "PARTNO S\nTLDATA/MILL,8,0,100,0,0\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,9000,CLW\n"
+      "FEDRAT/MMPM,600\nRAPID\nGOTO/20,0,40,0.2588190,0,0.9659258\n"
+      "GOTO/20,0,10,0.2588190,0,0.9659258\nGOTO/30,0,10,0,0,1\nFINI\n",
+      m, "ma-32s");
+  INFO(s.diagnostics);
+  REQUIRE(s.ok);
+  CHECK(s.files.at("S.nc").find("G68.2") == std::string::npos);
+  CHECK(s.files.at("S.nc").find("G93") != std::string::npos);
 }
 
 TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on the trunnion",
