@@ -81,7 +81,7 @@ bool channel_writer::hold_multiaxis(const event& e, bool both) {
       decided = true;
     }
     if (!decided && plane_held_.size() < max_plane_held) {
-      hold_plane_record(e, both);
+      plane_held_.push_back(held_of(e, both));
       return true;
     }
     release_plane_held(plane);
@@ -100,12 +100,12 @@ bool channel_writer::hold_multiaxis(const event& e, bool both) {
       (plane_on_ && kin::angle_between(k, plane_axis_) <= c.angle_tolerance))
     return false;
   plane_held_axis_ = k;
-  hold_plane_record(e, both);
+  plane_held_.push_back(held_of(e, both));
   return true;
 }
 
-void channel_writer::hold_plane_record(const event& e, bool both) {
-  plane_held_.push_back({e, both, job_spindles_ && job_spindles_->quote ? job_spindles_->quote(e.line) : ""});
+channel_writer::held_record channel_writer::held_of(const event& e, bool both) const {
+  return {e, both, job_spindles_ && job_spindles_->quote ? job_spindles_->quote(e.line) : ""};
 }
 
 void channel_writer::release_plane_held(bool plane) {

@@ -379,8 +379,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// change or `max_plane_held` records under its axis make it 3+2 work (a plane), a feed move
   /// that turns the tool makes it simultaneous (no plane: the chain's `output`).
   bool hold_multiaxis(const event& e, bool both);
-  /// Holds `e` for the plane, with its CL line.
-  void hold_plane_record(const event& e, bool both);
+  struct held_record;
+  /// `e` to hold (at the pole or for the plane), with its CL line.
+  held_record held_of(const event& e, bool both) const;
   /// Processes the records held for the plane; `plane` is what the cut showed.
   void release_plane_held(bool plane);
   /// Before a plane is set or cancelled: a waiting G40 goes out on its own; false (with the
@@ -622,19 +623,19 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::optional<vec3> approach_from_;       ///< the one before it: where the move being written starts
   std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
   double tool_length_ = 0;                            ///< the length in use (mm)
-  std::vector<std::pair<event, bool>> held_;          ///< records held at the pole, with `both`
-  /// A record held until a cut shows 3+2 or not, with its CL line for its errors (the reader
-  /// has moved on when it is written).
+  /// A record held (at the pole, or until a cut shows 3+2 or not), with its CL line for its
+  /// errors: the reader has moved on when it is written.
   struct held_record {
     event e;
     bool both = false;
     std::string source;
   };
-  std::vector<held_record> plane_held_;
+  std::vector<held_record> held_;             ///< records held at the pole
+  vec3 held_axis_{};                          ///< the tool axis in force after them
+  std::vector<held_record> plane_held_;       ///< records held for the plane
   const std::string* held_source_ = nullptr;  ///< the CL line of the held record being written
   vec3 plane_held_axis_{};                    ///< the tool axis of the rapid that began them
   bool plane_veto_ = false;                   ///< the released cut turns the tool: its rapid opens no plane
-  vec3 held_axis_{};                          ///< the tool axis in force after them
   std::optional<double> pole_hint_;           ///< the outer angle the held rapid takes
   bool length_known_ = false;
   bool length_refused_ = false;  ///< the tool's length error was reported
