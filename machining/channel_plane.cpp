@@ -196,6 +196,10 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
     out_.block(c.tool_tip_off);
     offset_on_ = false;
   }
+  // A table machine turns the part under the tool: G53.1 turns the tables with the tool at
+  // its tool-change height, as between two planes (the head machine turns its head where the
+  // tool stands, clear of the part at the CL's rapid point).
+  if (c.output != multiaxis_output::joints && !homed_) go_home();
   double euler[3];
   const std::array<vec3, 3> frame = plane_frame_of(pose.axis, euler);
   for (int i = 0; i < 3; ++i) plane_frame_[i] = frame[i];
