@@ -55,20 +55,22 @@ std::array<vec3, 3> plane_frame_of(const vec3& k, double* euler = nullptr) {
 bool channel_writer::hold_multiaxis(const event& e, bool both) {
   if (!plane_held_.empty()) {
     const auto* m = std::get_if<motion_event>(&e.data);
-    bool decided = false, plane = true;
+    bool decided = false, plane = plane_held_cut_;  // rapids alone position, they cut nothing
     if (m && m->kind != motion_kind::from && m->kind != motion_kind::home) {
       const vec3 axis = m->axis ? *m->axis : plane_held_axis_;
       const double len = kin::norm(axis);
-      if (m->rapid) {
-        decided = true;  // the cut kept its axis up to the next rapid
-      } else if (len > 0 &&
-                 kin::angle_between((1 / len) * axis, plane_held_axis_) > chain_->angle_tolerance) {
-        decided = true;
-        plane = false;  // a feed move turns the tool: simultaneous work
+      const bool turns =
+          len > 0 && kin::angle_between((1 / len) * axis, plane_held_axis_) > chain_->angle_tolerance;
+      if (turns) {
+        decided = true;  // a rapid to another axis ends the cut; a feed move turns the tool in it
+        plane = plane_held_cut_ && m->rapid;
+      } else if (!m->rapid) {
+        plane_held_cut_ = true;  // a cut under the held axis
       }
+    } else if (std::holds_alternative<arc_event>(e.data)) {
+      plane_held_cut_ = true;
     } else if (m ||
-               !(std::holds_alternative<arc_event>(e.data) || std::holds_alternative<feed_event>(e.data) ||
-                 std::holds_alternative<cutcom_event>(e.data) ||
+               !(std::holds_alternative<feed_event>(e.data) || std::holds_alternative<cutcom_event>(e.data) ||
                  std::holds_alternative<cycle_event>(e.data) ||
                  std::holds_alternative<spindle_event>(e.data) ||
                  std::holds_alternative<coolant_event>(e.data) ||
@@ -100,6 +102,7 @@ bool channel_writer::hold_multiaxis(const event& e, bool both) {
       (plane_on_ && kin::angle_between(k, plane_axis_) <= c.angle_tolerance))
     return false;
   plane_held_axis_ = k;
+  plane_held_cut_ = false;
   plane_held_.push_back(held_of(e, both));
   return true;
 }

@@ -375,9 +375,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void close_plane();
   /// Looking ahead on a chain (the pole, channel_pole.cpp, and the plane): whether `e` was
   /// held (true) or is the caller's to process. A RAPID that would open a tilted working plane
-  /// is held with the records after it until the cut shows what it is: the next RAPID, a tool
-  /// change or `max_plane_held` records under its axis make it 3+2 work (a plane), a feed move
-  /// that turns the tool makes it simultaneous (no plane: the chain's `output`).
+  /// is held with the records after it until the cut shows what it is: feed moves (or arcs)
+  /// under its axis up to a RAPID to another axis, a tool change, a frame or `max_plane_held`
+  /// records make it 3+2 work (a plane); a feed move that turns the tool makes it simultaneous,
+  /// and rapids alone position (no plane either: the chain's `output`).
   bool hold_multiaxis(const event& e, bool both);
   struct held_record;
   /// `e` to hold (at the pole or for the plane), with its CL line.
@@ -636,6 +637,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   const std::string* held_source_ = nullptr;  ///< the CL line of the held record being written
   vec3 plane_held_axis_{};                    ///< the tool axis of the rapid that began them
   bool plane_veto_ = false;                   ///< the released cut turns the tool: its rapid opens no plane
+  bool plane_held_cut_ = false;               ///< a feed move or an arc under the held axis came
   std::optional<double> pole_hint_;           ///< the outer angle the held rapid takes
   bool length_known_ = false;
   bool length_refused_ = false;  ///< the tool's length error was reported

@@ -299,19 +299,18 @@ TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on
   CHECK(r.sub_points == 0);
   CHECK(r.worst_tip <= 0.001);
   CHECK(r.worst_axis <= 0.002);
-  // A feed move that turns the tool inside a plane (the cut kept its axis up to a RAPID, so
-  // the plane was opened) is refused: 3+2 keeps its axis.
-  const test::posted p = test::post_in_fresh_dir(
+  // A feed move that turns the tool inside a plane is refused: 3+2 keeps its axis. The cut is
+  // looked at 4096 records ahead; one that kept its axis that long is taken for 3+2 work.
+  std::string cl =
       "PARTNO T\nTLDATA/MILL,8,0,100,0,0\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,9000,CLW\n"
-      "FEDRAT/MMPM,600\nRAPID\nGOTO/20,0,40,0.2588190,0,0.9659258\n"
-      "GOTO/20,0,10,0.2588190,0,0.9659258\nRAPID\nGOTO/20,0,12,0.2588190,0,0.9659258\n"
-      "GOTO/30,0,10,0,0,1\nFINI\n",
-      m, "ma-32b");
+      "FEDRAT/MMPM,600\nRAPID\nGOTO/20,0,40,0.2588190,0,0.9659258\n";
+  for (int i = 0; i < 4100; ++i) cl += i % 2 ? "GOTO/20,0,10,0.2588190,0,0.9659258\n" : "GOTO/21,0,10\n";
+  cl += "GOTO/30,0,10,0,0,1\nFINI\n";
+  const test::posted p = test::post_in_fresh_dir(cl, m, "ma-32b");
   CHECK(p.diagnostics ==
-        "job.cls:12:1: error: channel 1: the tool axis turns from (0.258819,0,0.965926) to (0,0,1) in a feed "
-        "move "
-        "inside a tilted working plane (G68.2): a 3+2 operation keeps its axis; give a RAPID to change it\n"
-        "GOTO/30,0,10,0,0,1\n^\n");
+        "job.cls:4109:1: error: channel 1: the tool axis turns from (0.258819,0,0.965926) to (0,0,1) in a "
+        "feed move inside a tilted working plane (G68.2): a 3+2 operation keeps its axis; give a RAPID to "
+        "change it\nGOTO/30,0,10,0,0,1\n^\n");
   // A cut whose feed moves turn the tool after the RAPID is simultaneous work: no plane, the
   // rapid and the cut in joints (G93 on the turning move), as without `plane`.
   const test::posted s = test::post_in_fresh_dir(

@@ -104,3 +104,33 @@ TEST_CASE("tilted plane: an arc whose written centre misses the CL's is refused"
         "centre "
         "0.0004 mm from the CL's (tolerance 0.0001 mm)\nGOTO/20,0,-30,1,0,0\n^\n");
 }
+
+TEST_CASE("tilted plane: only a cut that keeps its axis opens a plane", "[post][multiaxis][plane]") {
+  const machine m = load_machine("trunnion-5axis");
+  auto planes = [](const std::string& nc) {
+    int n = 0;
+    for (std::size_t at = 0; (at = nc.find("G68.2", at)) != std::string::npos; ++at) ++n;
+    return n;
+  };
+  // A rapid under one tilted axis and then a rapid under another: positioning, no plane for
+  // the first; the cut under the second keeps its axis: one plane.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO POS\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,500\nRAPID\n"
+      "GOTO/0,0,25,0.4881149,-0.3206994,0.8117239\nRAPID\nGOTO/0,1,25,0.2588190,0,0.9659258\n"
+      "GOTO/0,1,5,0.2588190,0,0.9659258\nGOTO/10,1,5\nRAPID\nGOTO/0,0,60,0,0,1\nFINI\n",
+      m, "plane-positioning");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  CHECK(planes(p.files.at("POS.nc")) == 1);
+  CHECK(p.files.at("POS.nc").find("G68.2 X0. Y0. Z0. I90. J15. K-90.") != std::string::npos);
+  // The same with the cut turning the tool: simultaneous work under G43.4, no plane.
+  const test::posted s = test::post_in_fresh_dir(
+      "PARTNO SIM\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,500\nRAPID\n"
+      "GOTO/0,1,25,0.2588190,0,0.9659258\nGOTO/0,1,5,0.2588190,0,0.9659258\n"
+      "GOTO/10,1,5,0.3420201,0,0.9396926\nRAPID\nGOTO/0,0,60,0,0,1\nFINI\n",
+      m, "plane-simultaneous");
+  INFO(s.diagnostics);
+  REQUIRE(s.ok);
+  CHECK(planes(s.files.at("SIM.nc")) == 0);
+  CHECK(s.files.at("SIM.nc").find("G43.4 H1") != std::string::npos);
+}
