@@ -166,11 +166,11 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
     // the tip left by the part and no length offset in force.
     if (c.output != multiaxis_output::joints) go_home();
   }
-  // A plane opens at a rapid that turns the tool to a new axis not along the spindle's.
+  // A plane opens at a rapid that turns the tool to a new axis not along the spindle's (feed
+  // moves outside a plane return first: no angle computed for them).
+  if (!rapid || plane_veto_) return false;
   const bool turned = !pose_known_ || kin::angle_between(pose.axis, pose_mm_.axis) > c.angle_tolerance;
-  if (!rapid || !turned || plane_veto_ ||
-      kin::angle_between(pose.axis, c.tool_direction) <= c.angle_tolerance)
-    return false;
+  if (!turned || kin::angle_between(pose.axis, c.tool_direction) <= c.angle_tolerance) return false;
   if (!plane_comp_off(line)) return true;
   // The rotary axes G53.1 turns to it must reach it within their limits.
   const kin::ik_result ik = kin::inverse(c, pose, 0, joints_, kin::ik_need::angles);
