@@ -274,7 +274,7 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
                        len > 0 ? vec3{axis_.x / len, axis_.y / len, axis_.z / len} : axis_};
   approach_from_ = last_cl_tip_;  // where the CL last put the tip, also across a plane's end
   last_cl_tip_ = pose.tip;
-  if (!c.plane.empty() && plane_move(rapid, pose, line)) {
+  if (!c.plane.empty() && (rapid || plane_on_) && plane_move(rapid, pose, line)) {
     pose_mm_ = pose;
     return;
   }

@@ -286,12 +286,13 @@ void channel_writer::on_event(const event& e, bool both) {
   if (msys_) [[unlikely]] {  // NX MSYS turned the CL's frame (machining/channel_frames.cpp)
     event turned = e;
     if (!turn_to_msys(turned)) return;
-    if (chain_ && hold_multiaxis(turned, both)) return;
+    if (chain_ && may_hold(turned) && hold_multiaxis(turned, both)) return;
     return process_event(turned, both);
   }
   if (csys_axis_ && !csys_axis_fits(e)) [[unlikely]]
     return;
-  if (chain_ && hold_multiaxis(e, both)) return;  // machining/channel_pole.cpp, channel_plane.cpp
+  if (chain_ && may_hold(e) && hold_multiaxis(e, both))
+    return;  // machining/channel_pole.cpp, channel_plane.cpp
   process_event(e, both);
 }
 

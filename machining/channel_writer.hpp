@@ -380,6 +380,13 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// records make it 3+2 work (a plane); a feed move that turns the tool makes it simultaneous,
   /// and rapids alone position (no plane either: the chain's `output`).
   bool hold_multiaxis(const event& e, bool both);
+  /// Whether `e` may be held (a rapid GOTO, or a record after held ones): the look-ahead is
+  /// asked about these only, so a feed move costs it one test.
+  bool may_hold(const event& e) const {
+    if (!held_.empty() || !plane_held_.empty()) return true;
+    const auto* m = std::get_if<motion_event>(&e.data);
+    return m && m->rapid;
+  }
   struct held_record;
   /// `e` to hold (at the pole or for the plane), with its CL line.
   held_record held_of(const event& e, bool both) const;
