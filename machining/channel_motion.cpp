@@ -84,14 +84,12 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   word_start_ = std::string::npos;
 }
 
-bool channel_writer::comp_on_rapid_refused(bool rapid, int line) {
-  if (!rapid || m_.codes.cutcom_on_rapid || !comp_starting()) return false;
+void channel_writer::comp_on_rapid_error(int line) {
   error(line,
         fmt::format("tool nose radius compensation ({}) would start on a rapid move; machine '{}' starts "
                     "it only on a feed move (codes.cutcom_on_rapid = false): make the first move after "
                     "CUTCOM a feed move",
                     pending_g_, m_.name));
-  return true;
 }
 
 void channel_writer::cutcom(const cutcom_event& c, int line) {
@@ -266,9 +264,9 @@ void channel_writer::arc(const arc_event& cl, int line) {
   // In a tilted working plane the arc is written in the plane's frame (G17 there when its
   // axis is the plane's Z); pos_ and the pose stay the CL's.
   const bool in_plane = chain_ && plane_on_;
-  arc_event turned;
+  std::optional<arc_event> turned;  // built only in a plane
   if (in_plane) turned = plane_arc(cl);
-  const arc_event& a = in_plane ? turned : cl;
+  const arc_event& a = in_plane ? *turned : cl;
   if (has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4) {
     pos_ = cl.end;
     return error(line,

@@ -418,7 +418,12 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool multiaxis_arc(int line);
   /// A rapid that would start cutter compensation where the machine starts it only on a feed
   /// move (codes.cutcom_on_rapid = false): true with the error.
-  bool comp_on_rapid_refused(bool rapid, int line);
+  bool comp_on_rapid_refused(bool rapid, int line) {
+    if (!rapid || m_.codes.cutcom_on_rapid || !comp_starting()) return false;
+    comp_on_rapid_error(line);
+    return true;
+  }
+  void comp_on_rapid_error(int line);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
   void misfit(char address, double value);
