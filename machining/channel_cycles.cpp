@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "kinematics/vec3_ops.hpp"
 #include "machining/channel_writer.hpp"
 #include "machining/cycle_words.hpp"
 
@@ -128,7 +129,10 @@ vec3 channel_writer::cycle_approach(const vec3& p) const {
       c.meaning.rtrcto_above_top && cycle_param(c, "RTRCTO")
           ? cycle_param(c, "RTRCTO")
           : cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
-  return {p.x, p.y, p.z - into * *above};
+  if (std::abs(axis_.z) >= 0.9999) return {p.x, p.y, p.z - into * *above};
+  // A tilted tool (a hole in a tilted working plane): up its axis.
+  const double len = kin::norm(axis_);
+  return {p.x + *above * axis_.x / len, p.y + *above * axis_.y / len, p.z + *above * axis_.z / len};
 }
 
 void channel_writer::cycle_point(const vec3& p, int line) {
@@ -150,15 +154,28 @@ void channel_writer::cycle_point(const vec3& p, int line) {
                                    c.type));
   if (side ? !side_point(p, at, line) : cross && !radial_point(p, at, line)) return;
   if (cross) clamp_c();  // at the angle cylindrical interpolation left C at, C is still free
+  // In a tilted working plane: the hole in the plane's frame, drilled down its Z (G17 there).
+  const bool tilted = chain_ && plane_on_;
+  if (tilted) {
+    if (!plane_takes(line)) return;
+    if (!c.meaning.fedto_is_depth && cycle_param(c, "FEDTO"))
+      return error(line, fmt::format("CYCLE/{} in a tilted working plane ({}) with an absolute FEDTO: a Z of "
+                                     "the part frame is no depth along the tilted tool; give the depth "
+                                     "(DEPTH)",
+                                     c.type, chain_->plane));
+    at = to_plane(p);
+  }
   struct frame_points {
     bool& flag;
     bool& side;
-    ~frame_points() { flag = side = false; }
-  } in_frame{radial_ok_, side_hole_};
+    bool& plane;
+    ~frame_points() { flag = side = plane = false; }
+  } in_frame{radial_ok_, side_hole_, plane_hole_};
   radial_ok_ = cross;
   side_hole_ = side;
-  if (cross) {
-    // as an axial hole drilled towards -Z in the turned frame
+  plane_hole_ = tilted;
+  if (cross || tilted) {
+    // as an axial hole drilled towards -Z in the turned frame or the plane
   } else if (std::abs(axis_.z) < 0.9999)
     return error(line,
                  fmt::format("CYCLE/{} with the tool axis ({}, {}, {}): only drilling along Z is written; "
@@ -174,7 +191,8 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   hole h;
   h.x = at.x;
   h.y = at.y;
-  h.into = axis_.z < 0 && !cross ? 1.0 : -1.0;  // the tool looks down -Z (axis +Z): it drills towards -Z
+  // The tool looks down -Z (axis +Z): it drills towards -Z (in a plane: its Z is the tool's).
+  h.into = axis_.z < 0 && !cross && !tilted ? 1.0 : -1.0;
   const double top = at.z;
   h.clear = top - h.into * cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
   const std::optional<double> fedto = cycle_param(c, "FEDTO");

@@ -50,17 +50,13 @@ bool channel_writer::tool_along_z(int line) {
 void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, int line) {
   if (has_c_) {
     if (!c_frame_move(rapid, x_cl, y_cl, z_cl, line)) return;
-  } else if (!tool_along_z(line)) {
+  } else if (!plane_hole_ && !tool_along_z(line)) {  // a hole in a plane comes in the plane's frame
     return;
   }
   if (!has_y_ && std::abs(y_cl * cl_mm_) > y_tolerance)
     return error(line, fmt::format("Y {} on a channel without a Y axis", y_cl));
   int g = rapid ? 0 : 1;
-  if (rapid && !m_.codes.cutcom_on_rapid && comp_starting())
-    return error(line, fmt::format("tool nose radius compensation ({}) would start on a rapid move; machine "
-                                   "'{}' starts it only on a feed move (codes.cutcom_on_rapid = false): make "
-                                   "the first move after CUTCOM a feed move",
-                                   pending_g_, m_.name));
+  if (comp_on_rapid_refused(rapid, line)) return;
   if (!radial_frame_) check_side(nc_x(x_cl), x_cl, line);
   if (!rapid && !drill_on_centre(x_cl, line)) return;
   // Built in place, in the writer's buffer: the most common block goes out without a copy.
@@ -93,8 +89,17 @@ void channel_writer::linear(bool rapid, double x_cl, double y_cl, double z_cl, i
   word_start_ = std::string::npos;
 }
 
+void channel_writer::comp_on_rapid_error(int line) {
+  error(line,
+        fmt::format("tool nose radius compensation ({}) would start on a rapid move; machine '{}' starts "
+                    "it only on a feed move (codes.cutcom_on_rapid = false): make the first move after "
+                    "CUTCOM a feed move",
+                    pending_g_, m_.name));
+}
+
 void channel_writer::cutcom(const cutcom_event& c, int line) {
   const bool left = c.side == "LEFT", right = c.side == "RIGHT";
+  comp_cl_on_ = left || right;
   if (!left && !right) {
     pending_g_ = c.side == "OFF" ? "G40" : "";
     return;
@@ -230,8 +235,13 @@ void channel_writer::motion(const motion_event& mv, int line) {
         // A hole as the first move after a tool call (NX writes CYCLE before the first GOTO):
         // the length offset goes out with a rapid to the hole's retract plane first, as a
         // GOTO there would; the canned cycle starts from that plane.
-        if (chain_ && multiaxis_takes() && !offset_on_ &&
-            !(chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on).empty())
+        // On a chain with a tilted working plane, a hole under a new tilted tool axis opens
+        // its plane by that rapid too (the cycle is then written in the plane).
+        if (chain_ && multiaxis_takes() &&
+            ((!offset_on_ &&
+              !(chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on)
+                   .empty()) ||
+             plane_due()))
           multiaxis_move(true, cycle_approach(mv.pos), line);
         if (!chain_ || !multiaxis_takes() || multiaxis_arc(line)) cycle_point(mv.pos, line);
       } else if (threading_ && !mv.rapid) {
@@ -254,16 +264,22 @@ void channel_writer::motion(const motion_event& mv, int line) {
   }
 }
 
-void channel_writer::arc(const arc_event& a, int line) {
+void channel_writer::arc(const arc_event& cl, int line) {
   if ((tool_ < 0 || cam_tool_due_) && !start_tool(line)) return no_tool(line);
+  // In a tilted working plane the arc is written in the plane's frame (G17 there when its
+  // axis is the plane's Z); pos_ and the pose stay the CL's.
+  const bool in_plane = chain_ && plane_on_;
+  std::optional<arc_event> turned;  // built only in a plane
+  if (in_plane) turned = plane_arc(cl);
+  const arc_event& a = in_plane ? *turned : cl;
   if (has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4) {
-    pos_ = a.end;
+    pos_ = cl.end;
     return error(line,
                  "a CIRCLE with the tool across the spindle axis: twinpost writes no arcs on the cylinder "
                  "(G2/G3 in cylindrical interpolation); give the path as GOTO points");
   }
   if (chain_ && multiaxis_takes() ? !multiaxis_arc(line) : !tool_along_z(line)) {
-    pos_ = a.end;
+    pos_ = cl.end;
     return;
   }
   if (has_c_ && !index_head(line)) return;
@@ -273,14 +289,14 @@ void channel_writer::arc(const arc_event& a, int line) {
   } else if (c_mode_) {
     if (!last_c_.known) position_c(0);
     if (c_sin_ != 0 || c_cos_ != 1) {
-      pos_ = a.end;
+      pos_ = cl.end;
       return error(line,
                    "an arc with the C axis turned from 0: arcs in C mode are written at C0 or in polar "
                    "interpolation (milling.face_milling = \"polar\")");
     }
   }
   if (threading_) {
-    pos_ = a.end;
+    pos_ = cl.end;
     return error(line, "an arc while THREAD/TURN is on: a threading pass is a straight G32 move");
   }
   if (!selected_) select_spindle(work_);
@@ -292,13 +308,13 @@ void channel_writer::arc(const arc_event& a, int line) {
   int plane = along(a.normal.z) ? 17 : along(a.normal.y) ? 18 : along(a.normal.x) ? 19 : 0;
   auto fail = [&](std::string message) {
     error(line, std::move(message));
-    pos_ = a.end;
+    pos_ = cl.end;
   };
-  auto fail_quietly = [&] { pos_ = a.end; };
+  auto fail_quietly = [&] { pos_ = cl.end; };
   if (!spindle_turning(line)) return fail_quietly();
   if (plane == 0)
-    return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane", a.normal.x, a.normal.y,
-                            a.normal.z));
+    return fail(fmt::format("arc about ({},{},{}) is not in the XY, ZX or YZ plane{}", cl.normal.x,
+                            cl.normal.y, cl.normal.z, in_plane ? " of the tilted working plane" : ""));
   if (plane != 18 && !has_y_ && !polar_)
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
   if (!has_y_ && !polar_ && std::abs(a.end.y * cl_mm_) > y_tolerance)
@@ -355,14 +371,15 @@ void channel_writer::arc(const arc_event& a, int line) {
       arc_ += g == 3 ? " G3" : " G2";
     }
   }
+  if (in_plane && !plane_arc_checked(cl, a, line)) return fail_quietly();
   pending_g_.clear();
   motion_g_ = g;
   homed_ = false;
   out_.block(arc_.view().substr(1));
-  pos_ = a.end;
-  pose_mm_.tip = {a.end.x * cl_mm_, a.end.y * cl_mm_,
-                  a.end.z * cl_mm_};  // the rotary axes stand at 0 (multiaxis_arc): joints = tip
-  joints_.linear = pose_mm_.tip;
+  pos_ = cl.end;
+  pose_mm_.tip = {cl.end.x * cl_mm_, cl.end.y * cl_mm_, cl.end.z * cl_mm_};
+  // The rotary axes stand at 0 (multiaxis_arc): joints = tip; in a plane G53.1 holds them.
+  if (!in_plane) joints_.linear = pose_mm_.tip;
 }
 
 bool channel_writer::arc_block(const arc_event& a, const vec3& end, int plane, double axis_sign,

@@ -144,6 +144,7 @@ bool channel_writer::multiaxis_takes() {
 }
 
 bool channel_writer::multiaxis_arc(int line) {
+  if (plane_on_) return plane_takes(line);  // G17 of the tilted working plane (channel_plane.cpp)
   const bool at_zero = std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
                                    [](double v) { return std::abs(v) <= still; });
   if (!at_zero || std::abs(axis_.z) < 0.9999) {
@@ -273,7 +274,7 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
                        len > 0 ? vec3{axis_.x / len, axis_.y / len, axis_.z / len} : axis_};
   approach_from_ = last_cl_tip_;  // where the CL last put the tip, also across a plane's end
   last_cl_tip_ = pose.tip;
-  if (!c.plane.empty() && plane_move(rapid, pose, line)) {
+  if (!c.plane.empty() && (rapid || plane_on_) && plane_move(rapid, pose, line)) {
     pose_mm_ = pose;
     return;
   }

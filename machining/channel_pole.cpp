@@ -56,13 +56,12 @@ bool channel_writer::hold_for_pole(const event& e, bool both) {
   if (held_.empty()) {
     const kinematic_chain& c = *chain_;
     if (!m || m->kind != motion_kind::go_to || !m->rapid || tool_ < 0 || cycle_ || cycle_refused_ ||
-        threading_ || c.moves != multiaxis_moves::all || !c.plane.empty() || plane_on_ ||
-        c.output == multiaxis_output::vector)
+        threading_ || c.moves != multiaxis_moves::all || c.output == multiaxis_output::vector)
       return false;
     const vec3 axis = m->axis ? *m->axis : axis_;
     if (!on_outer_pole(axis)) return false;
     held_axis_ = axis;
-    held_.emplace_back(e, both);
+    held_.push_back(held_of(e, both));
     return true;
   }
   if (m && m->kind == motion_kind::go_to) {
@@ -73,7 +72,7 @@ bool channel_writer::hold_for_pole(const event& e, bool both) {
     }
     if (held_.size() < max_held) {
       held_axis_ = axis;
-      held_.emplace_back(e, both);
+      held_.push_back(held_of(e, both));
       return true;
     }
   } else if ((std::holds_alternative<feed_event>(e.data) || std::holds_alternative<spindle_event>(e.data) ||
@@ -82,7 +81,7 @@ bool channel_writer::hold_for_pole(const event& e, bool both) {
              held_.size() < max_held) {
     // Records that change nothing the solve of the next point depends on (the tool, its
     // length, the chain's state): they are written after the rapid, in their order, as ever.
-    held_.emplace_back(e, both);
+    held_.push_back(held_of(e, both));
     return true;
   }
   release_held(std::nullopt);
@@ -90,11 +89,17 @@ bool channel_writer::hold_for_pole(const event& e, bool both) {
 }
 
 void channel_writer::release_held(std::optional<double> outer) {
+  // A wait, the units or the end: a cut held for the plane ends there as it stands.
+  if (!plane_held_.empty()) release_plane_held(true);
   if (held_.empty()) return;
-  std::vector<std::pair<event, bool>> events;
+  std::vector<held_record> events;
   events.swap(held_);
   pole_hint_ = outer;
-  for (const auto& [e, both] : events) process_event(e, both);
+  for (const held_record& r : events) {
+    held_source_ = r.source.empty() ? nullptr : &r.source;
+    process_event(r.e, r.both);
+  }
+  held_source_ = nullptr;
   pole_hint_.reset();
   events.clear();
   held_.swap(events);  // keep the capacity for the next pole

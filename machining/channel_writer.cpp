@@ -160,6 +160,7 @@ void channel_writer::error(int line, std::string message) {
   d.file = cl_file_;
   d.line = line;
   d.column = line == line_ ? column_ : 0;
+  if (held_source_ && line == line_) d.source_line = *held_source_;  // a record held and written later
   d.message = fmt::format("channel {}: {}", ch_.number, message);
   diags_.report(std::move(d));
 }
@@ -291,12 +292,13 @@ void channel_writer::on_event(const event& e, bool both) {
   if (msys_) [[unlikely]] {  // NX MSYS turned the CL's frame (machining/channel_frames.cpp)
     event turned = e;
     if (!turn_to_msys(turned)) return;
-    if (chain_ && hold_for_pole(turned, both)) return;
+    if (chain_ && may_hold(turned) && hold_multiaxis(turned, both)) return;
     return process_event(turned, both);
   }
   if (csys_axis_ && !csys_axis_fits(e)) [[unlikely]]
     return;
-  if (chain_ && hold_for_pole(e, both)) return;  // machining/channel_pole.cpp
+  if (chain_ && may_hold(e) && hold_multiaxis(e, both))
+    return;  // machining/channel_pole.cpp, channel_plane.cpp
   process_event(e, both);
 }
 

@@ -379,11 +379,57 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void plane_point(bool rapid, const kin::tool_pose& pose, int line);
   /// G69: the plane is cancelled.
   void close_plane();
+  /// Looking ahead on a chain (the pole, channel_pole.cpp, and the plane): whether `e` was
+  /// held (true) or is the caller's to process. A RAPID that would open a tilted working plane
+  /// is held with the records after it until the cut shows what it is: feed moves (or arcs)
+  /// under its axis up to a RAPID to another axis, a tool change, a frame or `max_plane_held`
+  /// records make it 3+2 work (a plane); a feed move that turns the tool makes it simultaneous,
+  /// and rapids alone position (no plane either: the chain's `output`).
+  bool hold_multiaxis(const event& e, bool both);
+  /// Whether `e` may be held (a rapid GOTO, or a record after held ones): the look-ahead is
+  /// asked about these only, so a feed move costs it one test.
+  bool may_hold(const event& e) const {
+    if (!held_.empty() || !plane_held_.empty()) return true;
+    const auto* m = std::get_if<motion_event>(&e.data);
+    return m && m->rapid;
+  }
+  struct held_record;
+  /// `e` to hold (at the pole or for the plane), with its CL line.
+  held_record held_of(const event& e, bool both) const;
+  /// Processes the records held for the plane; `plane` is what the cut showed.
+  void release_plane_held(bool plane);
+  /// Before a plane is set or cancelled: a waiting G40 goes out on its own; false (with the
+  /// error) when the CL's cutter compensation is still on.
+  bool plane_comp_off(int line);
+  /// `v` (a point or direction of the part frame) in the open plane's frame.
+  vec3 to_plane(const vec3& v) const;
+  /// A point or offset of the plane's frame (mm) as the control reads it after writing it
+  /// with the axes' decimals, turned back into the part frame.
+  vec3 plane_written(const vec3& v) const;
+  /// True when the tool axis in force is tilted and no plane is open for it: a hole there
+  /// opens one with the rapid to its retract plane.
+  bool plane_due() const;
+  /// An arc or a drilling cycle in the open plane: true when the tool stands along the
+  /// plane's Z (its G17); false with the error.
+  bool plane_takes(int line);
+  /// The CL arc `cl` in the open plane's frame (start, end, centre, axis).
+  arc_event plane_arc(const arc_event& cl) const;
+  /// The written end and centre of arc `w` (in the plane) taken back through the plane's
+  /// rotation: false with the error when either misses the CL's `cl` by more than the tolerance.
+  bool plane_arc_checked(const arc_event& cl, const arc_event& w, int line);
   /// Before a tool call and at the end: G94 again, and the length offset cancelled.
   void multiaxis_off();
   /// An arc on a chain channel: only with the rotary axes at 0 and the tool along Z; G94
   /// again if G93 is in force. False after the error.
   bool multiaxis_arc(int line);
+  /// A rapid that would start cutter compensation where the machine starts it only on a feed
+  /// move (codes.cutcom_on_rapid = false): true with the error.
+  bool comp_on_rapid_refused(bool rapid, int line) {
+    if (!rapid || m_.codes.cutcom_on_rapid || !comp_starting()) return false;
+    comp_on_rapid_error(line);
+    return true;
+  }
+  void comp_on_rapid_error(int line);
   void error(int line, std::string message);
   /// The error for a word that does not fit the control's format (see machine::formats).
   void misfit(char address, double value);
@@ -460,6 +506,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool polar_ = false;          // polar interpolation is on
   bool side_hole_ = false;      // that cross hole is drilled with the side cycles (G87/G88)
   bool radial_ok_ = false;      // a cross hole is being written: its points are in the turned frame
+  bool plane_hole_ = false;     // a hole in a tilted working plane: its points are in the plane's frame
   bool radial_frame_ = false;   // the frame is turned for cross holes (milling.radial_frame_on)
   bool cylinder_ = false;       // cylindrical interpolation is on (milling.cylindrical_on)
   double cylinder_r_ = 0;       // its radius (mm): the tip's on every cut
@@ -497,7 +544,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool feed_text_per_rev_ = false;
   bool per_rev_ = false;  // feed mode of the last FEDRAT
   double feed_value_ = 0;
-  std::string pending_g_;  // G40/G41/G42 waiting for the next move
+  std::string pending_g_;    // G40/G41/G42 waiting for the next move
+  bool comp_cl_on_ = false;  // the CL's CUTCOM/LEFT or RIGHT is in force (OFF not yet given)
   std::optional<cycle_event> cycle_;
   int cycle_line_ = 0;                     ///< the CL line of the cycle in force
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force
@@ -595,9 +643,21 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::optional<vec3> approach_from_;       ///< the one before it: where the move being written starts
   std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
   double tool_length_ = 0;                            ///< the length in use (mm)
-  std::vector<std::pair<event, bool>> held_;          ///< records held at the pole, with `both`
-  vec3 held_axis_{};                                  ///< the tool axis in force after them
-  std::optional<double> pole_hint_;                   ///< the outer angle the held rapid takes
+  /// A record held (at the pole, or until a cut shows 3+2 or not), with its CL line for its
+  /// errors: the reader has moved on when it is written.
+  struct held_record {
+    event e;
+    bool both = false;
+    std::string source;
+  };
+  std::vector<held_record> held_;             ///< records held at the pole
+  vec3 held_axis_{};                          ///< the tool axis in force after them
+  std::vector<held_record> plane_held_;       ///< records held for the plane
+  const std::string* held_source_ = nullptr;  ///< the CL line of the held record being written
+  vec3 plane_held_axis_{};                    ///< the tool axis of the rapid that began them
+  bool plane_veto_ = false;                   ///< the released cut turns the tool: its rapid opens no plane
+  bool plane_held_cut_ = false;               ///< a feed move or an arc under the held axis came
+  std::optional<double> pole_hint_;           ///< the outer angle the held rapid takes
   bool length_known_ = false;
   bool length_refused_ = false;  ///< the tool's length error was reported
   /// The tool's length is unknown and the moves are posted while no head tilts the tool (the
