@@ -242,12 +242,19 @@ void channel_writer::note_user_m(long long code) {
   bool stop = false;
   for (const spindle_def& s : m_.spindles) {
     if (code == s.cw || code == s.ccw) {
+      if (&s == stopped_by_user_) stopped_by_user_ = nullptr;  // started again, at the S in force
       spindle_ended_.clear();
       if (std::find(user_spindles_.begin(), user_spindles_.end(), &s) == user_spindles_.end())
         user_spindles_.push_back(&s);
       return;
     }
     stop = stop || code == s.stop;
+    // The spindle the channel cuts on, stopped by the user: no cut may follow until it turns
+    // again (spindle_turning), as after the CL's own SPINDL/OFF.
+    if (code == s.stop && &s == spindle_ && !balance_copy_) {
+      stopped_by_user_ = spindle_;
+      user_stop_ = fmt::format("M{}", code);
+    }
   }
   const control_codes& k = m_.codes;
   const std::string* on = nullptr;

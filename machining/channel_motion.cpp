@@ -175,6 +175,16 @@ bool channel_writer::spindle_turning(int line) {
                             spindle_->name));
     return false;
   }
+  if (stopped_by_user_ && stopped_by_user_ == spindle_) {
+    error(line,
+          fmt::format("feed move with the {} spindle stopped by {} of a user block (the machine's [events] "
+                      "or script) and not started again: the tool would be driven into a part that does "
+                      "not turn (or a still cutter into the work); start it in the user block, or give "
+                      "SPINDL with a speed before the cut",
+                      spindle_->name, user_stop_));
+    stopped_by_user_ = nullptr;  // one report a stop
+    return false;
+  }
   if (!restart_blocks_.empty()) return true;  // this channel started it (or restarts it before the move)
   // A tool that cuts with no spindle (a roller, a scribe) says so in the machine's tool table.
   if (const tool_def* t = m_.tool(ch_.number, tool_); t && !t->spindle) return true;

@@ -145,6 +145,7 @@ std::string channel_writer::off_centre_hole_needs() const {
 
 void channel_writer::spindle(const spindle_event& s, int line) {
   spindle_held_ = false;  // this record says what the spindle does now (or the post has failed)
+  stopped_by_user_ = nullptr;
   // A SPINDL refused here has failed the post: the cuts after it need no second error.
   struct judge_cuts {
     channel_writer& w;

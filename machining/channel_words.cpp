@@ -42,6 +42,7 @@ void channel_writer::coolant(const coolant_event& c, int line) {
 
 void channel_writer::resume_spindle(int line) {
   spindle_held_ = false;
+  stopped_by_user_ = nullptr;  // the post starts it again before the move
   // On a head with a workpiece and a live spindle, the spindle stopped for the tool change
   // turns again only for a tool of the same kind: a milling cutter after a turning tool
   // needs the other spindle.

@@ -608,6 +608,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool spindle_held_ = false;
   /// The spindle this channel's SPINDL/OFF stopped, until a speed is given again.
   const spindle_def* stopped_by_cl_ = nullptr;
+  /// The spindle a user block ([events], the script) stopped with its stop code, until the
+  /// post or a user block starts it again; `user_stop_` the block.
+  const spindle_def* stopped_by_user_ = nullptr;
+  std::string user_stop_;
   std::string coolant_block_;      ///< the coolant-on block in force, "" when off
   std::string coolant_off_block_;  ///< the off block of the coolant kind in force
   int tool_ = -1;

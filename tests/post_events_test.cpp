@@ -115,6 +115,33 @@ TEST_CASE("a user block leaves the footer's M9 and M5 out unless its M codes may
   CHECK(with("\"M13\"", "unknown") == body + "M13\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
+TEST_CASE("a cut after a user block stopped the spindle is an error, as after SPINDL/OFF", "[post][events]") {
+  const std::string job =
+      "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/20,0,5\nFEDRAT/0.2,MMPR\n"
+      "GOTO/20,0,-10\nFINI\n";
+  // M5 after the start: the first cut names the user's stop.
+  const test::posted stopped = post_with("[events]\nspindle_start.after = [\"M5\"]\n", job, "user-stop");
+  CHECK(program_1(stopped) ==
+        "(failed)\n"
+        "job.cls:8:1: error: channel 1: feed move with the main spindle stopped by M5 of a user block (the "
+        "machine's [events] or script) and not started again: the tool would be driven into a part that does "
+        "not "
+        "turn (or a still cutter into the work); start it in the user block, or give SPINDL with a speed "
+        "before "
+        "the cut\n"
+        "GOTO/20,0,-10\n"
+        "^\n");
+  // Started again in the same user block (M3 at the S in force): the cut posts.
+  const test::posted again =
+      post_with("[events]\nspindle_start.after = [\"M5\", \"M3\"]\n", job, "user-restart");
+  CHECK(program_1(again) ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S800 M3\nM5\nM3\n"
+        "G0 X40. Z5.\nG1 Z-10. F0.2\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  // The sub spindle's stop (M105) leaves the main turning.
+  CHECK(program_1(post_with("[events]\nspindle_start.after = [\"M105\"]\n", job, "user-stop-sub"))
+            .find("G1 Z-10. F0.2") != std::string::npos);
+}
+
 TEST_CASE("a HEAD/BOTH copy writes no spindle event, as it writes no spindle block", "[post][events]") {
   const test::posted p =
       post_with("[events]\nspindle_start.after = [\"(SPINDLE {channel})\"]\n",
