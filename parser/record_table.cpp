@@ -98,7 +98,8 @@ const event_builder::rule_index& event_builder::rules() {
               &b::on_tool_data),
       posted("CYCLE", &b::on_cycle,
              "DRILL, DEEP, DEEP2 and TAP along Z (on a lathe on the spindle centre line, or with a live tool "
-             "and C; on a machining centre anywhere): the machine's canned cycle ([cycles]: Fanuc lathe "
+             "and C; on a machining centre anywhere, and along the Z of a tilted working plane, G68.2, on a "
+             "machine with one): the machine's canned cycle ([cycles]: Fanuc lathe "
              "G83/M29 G84, Fanuc mill G81-G83/G73/M29 G84/G74, Mazak G81-G83/G73/G84.2 with G98) or plain "
              "moves (a tap on G32 "
              "with the spindle reversed at the bottom); THREAD and GROOVE as [cycles] say (G76/G276, "
@@ -251,7 +252,8 @@ const event_builder::rule_index& event_builder::rules() {
       posted("TLAXIS", &b::on_tlaxis,
              "the tool axis of later moves and drilling cycles: no block; on a channel with a kinematic "
              "chain the next GOTO turns the rotary axes to it; a drilling cycle or an arc with the rotary "
-             "axes off 0, or a move on a channel without a chain, under an axis not along Z is an error"),
+             "axes off 0 outside a tilted working plane (G68.2, where the machine has one), or a move on a "
+             "channel without a chain, under an axis not along Z is an error"),
       posted(
           "TLDATA", &b::on_tool_data,
           "the tool's kind (NX: TLDATA/MILL, DRILL, TURN) chooses the spindle on a channel with a live "
