@@ -34,42 +34,44 @@ int count_newlines(const char* p, std::size_t n) {
 
 bool all_digits(std::string_view s) { return !s.empty() && std::all_of(s.begin(), s.end(), is_digit); }
 
-// The value of `digits` decimal digits read as `mantissa` with `decimals` of them after the
-// point (-1: no point), as std::from_chars reads `text` (nc_number). NC numbers are short: the
-// digits are divided by an exact power of ten, which rounds correctly as from_chars does
-// (Clinger's fast path) while they fit in 15; longer ones go to from_chars.
-bool decimal_value(std::uint64_t mantissa, std::size_t digits, int decimals, bool negative,
-                   std::string_view text, double& out) {
-  static constexpr double pow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                     1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-  if (digits > 15) return nc_number(text, out);
-  out = static_cast<double>(mantissa) / pow10[decimals < 0 ? 0 : decimals];
-  if (negative) out = -out;
-  return true;
-}
+// The digits and the point of a number, from `s[at]` (after any sign) up to the first
+// character that is neither; `end` is where they stop. Digits, a point, digits: each run in a
+// loop of its own (no test per character of which part it is in); a second point leaves the
+// word as written, not a number.
+struct decimal_scan {
+  std::uint64_t mantissa = 0;  // wraps harmlessly past 19 digits: those go to nc_number
+  std::size_t digits = 0, end = 0;
+  int decimals = -1;  // digits after the point; -1: no point
+  bool clean = true;  // at most one point
 
-// The digits and the point of a word's number, gathered as they are read.
-struct decimal_digits {
-  std::uint64_t mantissa = 0;
-  int digits = 0, decimals = -1;  // decimals: -1 until the point
-  bool clean = true;              // at most one point
-
-  void add(char c) {
-    if (c == '.') {
-      clean = clean && decimals < 0;
-      if (decimals < 0) decimals = 0;
-      return;
+  decimal_scan(std::string_view s, std::size_t at) {
+    const std::size_t n = s.size();
+    std::size_t d = at;
+    while (d < n && is_digit(s[d])) mantissa = mantissa * 10 + static_cast<std::uint64_t>(s[d++] - '0');
+    digits = d - at;
+    if (d < n && s[d] == '.') {
+      const std::size_t f = ++d;
+      while (d < n && is_digit(s[d])) mantissa = mantissa * 10 + static_cast<std::uint64_t>(s[d++] - '0');
+      decimals = static_cast<int>(d - f);
+      digits += d - f;
+      for (; d < n && (is_digit(s[d]) || s[d] == '.'); ++d) clean = false;
     }
-    if (digits < 19) mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
-    ++digits;
-    if (decimals >= 0) ++decimals;
+    end = d;
   }
 
-  // The number as std::from_chars reads `text` (nc_number): see decimal_value.
+  // The number as std::from_chars reads `text` (the word's value, sign included: nc_number).
+  // NC numbers are short: the digits are divided by an exact power of ten, which rounds
+  // correctly as from_chars does (Clinger's fast path) while they fit in 15; longer ones go to
+  // from_chars. `point`: written with a decimal point.
   bool value(bool negative, std::string_view text, double& out, bool& point) const {
+    static constexpr double pow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
     if (!clean || digits == 0) return false;
     point = decimals >= 0;
-    return decimal_value(mantissa, static_cast<std::size_t>(digits), decimals, negative, text, out);
+    if (digits > 15) return nc_number(text, out);
+    out = static_cast<double>(mantissa) / pow10[decimals < 0 ? 0 : decimals];
+    if (negative) out = -out;
+    return true;
   }
 };
 
@@ -79,12 +81,8 @@ bool decode_number(std::string_view s, double& out, bool& point) {
   std::size_t i = 0;
   bool negative = false;
   if (i < s.size() && (s[i] == '+' || s[i] == '-')) negative = s[i++] == '-';
-  decimal_digits n;
-  for (; i < s.size(); ++i) {
-    if (!is_digit(s[i]) && s[i] != '.') return false;
-    n.add(s[i]);
-  }
-  return n.value(negative, s, out, point);
+  const decimal_scan n(s, i);
+  return n.end == s.size() && n.value(negative, s, out, point);
 }
 
 /// Index just past the `[...]` group that opens at `i` (groups nest).
@@ -1007,31 +1005,15 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
         const std::size_t k = i + 1;
         const bool negative = line[k] == '-';
         const std::size_t v = line[k] == '+' || negative ? k + 1 : k;
-        // Digits, a point, digits: each run in a loop of its own (no test per character of
-        // which part it is in); a second point leaves the word as written, not a number.
-        const char* const s = line.data();
-        std::uint64_t mantissa = 0;  // wraps harmlessly past 19 digits: those go to nc_number
-        std::size_t d = v;
-        while (d < n && is_digit(s[d])) mantissa = mantissa * 10 + static_cast<std::uint64_t>(s[d++] - '0');
-        std::size_t digits = d - v;
-        int decimals = -1;
-        bool clean = true;
-        if (d < n && s[d] == '.') {
-          const std::size_t f = ++d;
-          while (d < n && is_digit(s[d])) mantissa = mantissa * 10 + static_cast<std::uint64_t>(s[d++] - '0');
-          decimals = static_cast<int>(d - f);
-          digits += d - f;
-          for (; d < n && (is_digit(s[d]) || s[d] == '.'); ++d) clean = false;
-        }
+        const decimal_scan number(line, v);
+        const std::size_t d = number.end;
         if (d > v) {
           nc_word& w = next();
           w.address = upper(c);
           w.column = static_cast<int>(i) + 1;
-          w.value.assign(s + k, d - k);
-          w.numeric =
-              clean && digits > 0 && decimal_value(mantissa, digits, decimals, negative, w.value, w.number);
-          w.point = w.numeric && decimals >= 0;
-          if (!w.numeric) w.number = 0;
+          w.value.assign(line.data() + k, d - k);
+          w.numeric = number.value(negative, w.value, w.number, w.point);
+          if (!w.numeric) w.number = 0, w.point = false;
           letters |= nc_letter(w.address);
           i = d;
           continue;
