@@ -72,10 +72,18 @@ void channel_writer::multiaxis_off() {
     inverse_time_ = false;
     last_f_.clear();
   }
-  if (offset_on_) {
+  if (offset_on_) cancel_length_offset();
+}
+
+void channel_writer::cancel_length_offset() {
+  offset_on_ = false;
+  // G49 away from home would move Z by the tool's length, towards the part on a control that
+  // cancels at once: the Autodesk posts retract first (writeRetract(Z), then
+  // disableLengthCompensation, which refuses "if the machine is not fully retracted").
+  if (homed_)
     out_.block(chain_->tool_tip_off);
-    offset_on_ = false;
-  }
+  else
+    length_cancel_due_ = true;
 }
 
 bool channel_writer::tool_length_known(int line) {

@@ -195,10 +195,7 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
     last_f_.clear();
   }
   // G43.4/G43.5 do not go with G68.2: the plane's length offset is G43 along its Z.
-  if (offset_on_ && c.output != multiaxis_output::joints) {
-    out_.block(c.tool_tip_off);
-    offset_on_ = false;
-  }
+  if (offset_on_ && c.output != multiaxis_output::joints) cancel_length_offset();
   // A table machine turns the part under the tool: G53.1 turns the tables with the tool at
   // its tool-change height, as between two planes (the head machine turns its head where the
   // tool stands, clear of the part at the CL's rapid point).
@@ -233,10 +230,7 @@ void channel_writer::close_plane() {
   out_.block(chain_->plane_off);
   // The plane's G43 is not the chain's tool-tip control: cancelled, so that the next move
   // turns G43.4 (G43.5) on again with the rotary values (a joints chain keeps its G43).
-  if (offset_on_ && chain_->output != multiaxis_output::joints) {
-    out_.block(chain_->tool_tip_off);
-    offset_on_ = false;
-  }
+  if (offset_on_ && chain_->output != multiaxis_output::joints) cancel_length_offset();
   plane_on_ = false;
   forget_axes();
   motion_g_ = -1;

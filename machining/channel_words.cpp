@@ -71,6 +71,9 @@ void channel_writer::go_home() {
   leave_radial_frame();
   for (const std::string& b : m_.codes.home) out_.block(b);
   homed_ = true;
+  // (A length offset turned on again since, the same tool called again, needs no cancel.)
+  if (length_cancel_due_ && !offset_on_) out_.block(chain_->tool_tip_off);
+  length_cancel_due_ = false;
 }
 
 void channel_writer::program_stop(bool optional) {

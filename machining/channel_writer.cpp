@@ -482,6 +482,7 @@ void channel_writer::finish() {
     section_end();
   }
   if (chain_) multiaxis_off();
+  if (length_cancel_due_) footer_cancels_length();
   if (ev_) [[unlikely]] {
     user_blocks(event_point::program_end, false, {});
     if (script_) script_program(false);
@@ -524,6 +525,20 @@ void channel_writer::finish() {
       diags_.report(std::move(d));
     }
   out_.close();
+}
+
+void channel_writer::footer_cancels_length() {
+  // The built-in footers home Z and then cancel (M9 M5 G91 G28 Z0. G90 G49, as the Autodesk
+  // posts' onClose: writeRetract(Z), then disableLengthCompensation(true)).
+  const auto& footer = m_.program.footer;
+  const auto cancel = std::find(footer.begin(), footer.end(), chain_->tool_tip_off);
+  const auto home =
+      m_.codes.home.empty() ? footer.end() : std::find(footer.begin(), footer.end(), m_.codes.home.front());
+  if (cancel != footer.end() && home < cancel) {
+    length_cancel_due_ = false;
+    return;
+  }
+  go_home();  // a footer that does not: home and cancel here, before it
 }
 
 std::vector<std::string> channel_writer::footer_in_force() const {

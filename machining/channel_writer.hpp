@@ -190,8 +190,12 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// M0/M1, then the spindle and coolant blocks in force again: the stop turns them off on
   /// most lathes, and cycle start must not resume cutting with a still spindle.
   void program_stop(bool optional);
-  /// The machine's home blocks (X, then Z).
+  /// The machine's home blocks (X, then Z), then a length-offset cancel that waited for them.
   void go_home();
+  /// The length offset (G43, G43.4, the plane's G43) cancelled, with the tool at its home: the
+  /// cancel may move Z by the tool's length, so away from home it waits for the home blocks
+  /// (docs/machines.md, "Length offset cancel").
+  void cancel_length_offset();
   /// The spindle stopped for a tool change turns again (before the first move after it).
   void resume_spindle(int line);
   /// False (with the error) when the spindle a feed move cuts on is not known to turn: this
@@ -419,6 +423,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool plane_arc_checked(const arc_event& cl, const arc_event& w, int line);
   /// Before a tool call and at the end: G94 again, and the length offset cancelled.
   void multiaxis_off();
+  /// At the end, a length-offset cancel still waiting for the home blocks: the footer's, when it
+  /// homes and then cancels, else the home blocks and the cancel before the footer.
+  void footer_cancels_length();
   /// An arc on a chain channel: only with the rotary axes at 0 and the tool along Z; G94
   /// again if G93 is in force. False after the error.
   bool multiaxis_arc(int line);
@@ -528,6 +535,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   tool_kind kind_ = tool_kind::unknown;       // of the tool in the spindle
   tool_kind next_kind_ = tool_kind::unknown;  // a TLDATA before the next tool call
   bool homed_ = false;                        // at home: no move since the home blocks
+  bool length_cancel_due_ = false;            // the length offset's cancel waits for the home blocks
   bool after_call_ = false;                   // the last record that wrote anything was a tool call
   int tool_line_ = 0;                         // the CL line of the last tool call
   std::string tool_word_;                     // its major word (LOADTL, TURRET ...)

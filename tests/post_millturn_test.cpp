@@ -194,7 +194,8 @@ TEST_CASE("a tilted tool on the Integrex head goes to the chain: B and C unclamp
         "M6\nM901\nM200\n"
         "G10.9 X0\nG97 S4000 M3\nG94\nM108\nM212\nG0 B45. C0.\nG0 X40. Y0.\nG0 G43.4 H#3020 X40. Y0. Z10. "
         "B45. C0.\nG1 X29. Z-1. F300.\n"
-        "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG49\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nG49\nG10.9 "
+        "X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n");
 }
 

@@ -361,8 +361,8 @@ TEST_CASE("multi-axis: the trunnion in the vector form writes G43.5 with I J K t
       p.files.at("VEC.nc") ==
       "%\nO5002 (VEC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT04 M6\nS5000 M3\n"
       "G0 A0. C0.\nG0 X0. Y0.\nG0 G43.5 H4 X0. Y0. Z20. I0. J0. K1.\nG1 X10. Z0. I0.258819 K0.965926 F500.\n"
-      "Y5.\nG49\nM9\nM5\n"
-      "G91 G28 Z0.\nG90\nM30\n%\n");
+      "Y5.\nM9\nM5\n"
+      "G91 G28 Z0.\nG90\nG49\nM30\n%\n");
 }
 
 TEST_CASE("multi-axis: the four-axis wrap on the A table, swings of 60 degrees cut to the tolerance",
@@ -469,7 +469,7 @@ TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0",
         "X44.862 Z-1.522 B5. F400.\nX41.764 Z-1.166 B4.375 F400.\nX38.661 Z-0.856 B3.75 F400.\n"
         "X35.556 Z-0.595 B3.125 F400.\nX32.448 Z-0.381 B2.5 F400.\nX29.338 Z-0.214 B1.875 F400.\n"
         "X26.226 Z-0.095 B1.25 F400.\nX23.113 Z-0.024 B0.625 F400.\nX20. Z0. B0. F400.\nG94\n"
-        "G3 X30. Y10. I0. J10. F500.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+        "G3 X30. Y10. I0. J10. F500.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
 }
 
 TEST_CASE("multi-axis: the trunnion writes an arc centre 20 mm away (I J K in the axes' format)",
@@ -483,7 +483,7 @@ TEST_CASE("multi-axis: the trunnion writes an arc centre 20 mm away (I J K in th
   const std::string nc = p.files.at("MOVES.nc");
   CHECK(
       nc.substr(nc.find("G0 G43.4")) ==
-      "G0 G43.4 H1 X0. Y0. Z50. A0. C0.\nG1 Z0. F500.\nG3 X20. Y20. I0. J20.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\n"
+      "G0 G43.4 H1 X0. Y0. Z50. A0. C0.\nG1 Z0. F500.\nG3 X20. Y20. I0. J20.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\n"
       "M30\n%\n");
 }
 
@@ -553,7 +553,7 @@ TEST_CASE("multi-axis: a rapid onto the pole takes the outer angle of the first 
       "X-13.315 Z-6.401 B4.375 F1600.\nX-9.515 Z-6.768 B5. F1600.\nX-5.718 Z-7.175 B5.625 F1600.\n"
       "X-1.926 Z-7.625 B6.25 F1600.\nX1.86 Z-8.115 B6.875 F1600.\nX5.641 Z-8.647 B7.5 F1600.\n"
       "X9.416 Z-9.22 B8.125 F1600.\nX13.185 Z-9.834 B8.75 F1600.\nX16.947 Z-10.489 B9.375 F1600.\n"
-      "X20.701 Z-11.186 B10. F1600.\nG98\nG49\nM30\n%\n");
+      "X20.701 Z-11.186 B10. F1600.\nG98\nG28 U0.\nG28 W0.\nG49\nM30\n%\n");
 }
 
 TEST_CASE("multi-axis: the records held with a rapid on the pole keep their order, and others release it",
@@ -565,7 +565,7 @@ TEST_CASE("multi-axis: the records held with a rapid on the pole keep their orde
       "GOTO/40,40,5,0,0,1\nPPRINT APPROACH\nSPINDL/RPM,5000,CLW\n";
   const std::string tail = "GOTO/40,40,-5,0,0,1\nGOTO/40,40,-5,0.1736482,0,0.9848078\nFINI\n";
   const std::string start = "%\nO5002 (POLE)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\n";
-  const std::string end = "G49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n";
+  const std::string end = "M9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n";
   // A comment and a spindle start are held with it: the rapid takes C90, they follow it.
   const test::posted held = test::post_in_fresh_dir(head + tail, m, "ma-pole-held");
   INFO(held.diagnostics);
@@ -620,7 +620,7 @@ TEST_CASE("multi-axis: a cut that reaches the pole turns the outer axis there be
         "G93 G1 X40. Z-5. B0. F100.\nX31.428 Y47.035 C11.25 F88.889\nX21.648 Y52.263 C22.5 F88.889\n"
         "X11.036 Y55.482 C33.75 F88.889\nX0. Y56.569 C45. F88.889\nX-11.036 Y55.482 C56.25 F88.889\n"
         "X-21.648 Y52.263 C67.5 F88.889\nX-31.428 Y47.035 C78.75 F88.889\nX-40. Y40. C90. F88.889\n"
-        "X-9.515 Z-6.768 B5. F200.\nX20.701 Z-11.186 B10. F200.\nG98\nG49\nM30\n%\n");
+        "X-9.515 Z-6.768 B5. F200.\nX20.701 Z-11.186 B10. F200.\nG98\nG28 U0.\nG28 W0.\nG49\nM30\n%\n");
 }
 
 TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z to the 3-axis writer",
@@ -642,7 +642,7 @@ TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z 
         "G93 G1 G43 H1 X40.554 Y0. Z-5.057 B0.5 C0. F400.\nX41.108 Z-5.141 B1. F400.\n"
         "X41.66 Z-5.251 B1.5 F400.\nX42.212 Z-5.388 B2. F400.\nX36.66 Z-5.251 B1.5 F400.\n"
         "X31.108 Z-5.141 B1. F400.\nX25.554 Z-5.057 B0.5 F400.\nX20. Z-5. B0. F400.\nG98\nG0 Z20.\n"
-        "G49\nM30\n%\n");
+        "G28 U0.\nG28 W0.\nG49\nM30\n%\n");
 }
 
 TEST_CASE("multi-axis: a head machine posts a tool of unknown length while no head tilts it",
@@ -664,8 +664,8 @@ TEST_CASE("multi-axis: a head machine posts a tool of unknown length while no he
   CHECK(none.files == l250.files);
   const std::string nc = none.files.at("MOVES.nc");
   CHECK(nc.substr(nc.find("G0 G43")) ==
-        "G0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 X10. Z-5. F500.\nX20. Y5.\nG3 X30. Y15. I0. J10.\nG0 Z50.\nG49\n"
-        "M9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+        "G0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 X10. Z-5. F500.\nX20. Y5.\nG3 X30. Y15. I0. J10.\nG0 "
+        "Z50.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
   // A tilted feed move is refused once per tool, at the first; the moves under the spindle's
   // axis after it still post, and the next tool is judged afresh.
   const test::posted tilted = test::post_in_fresh_dir(
@@ -730,7 +730,7 @@ TEST_CASE("frames: NX MSYS turns the points and tool axes before the kinematics"
   const std::string nc = t.files.at("MSYS_DOWN.nc");
   CHECK(nc.substr(nc.find("T01")) ==
         "T01 M6\nS6000 M3\nG0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z50. A0. C90.\nG1 X10. Z-5. F800.\n"
-        "X20. A10.\nY-10.\nG0 Z50.\nG0 A0.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+        "X20. A10.\nY-10.\nG0 Z50.\nG0 A0.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
   // On a 3-axis mill the turned axis is along Z: the points post, turned.
   const test::posted flat = test::post_in_fresh_dir(
       "PARTNO MSYS FLAT\nMSYS/5,0,0,0,1,0,1,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\n"

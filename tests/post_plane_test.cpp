@@ -30,10 +30,9 @@ TEST_CASE("tilted plane: an arc about an axis across the tool is written in the 
                                                      "RAPID\nGOTO/40,0,-20,1,0,0\nFINI\n",
                                                  m, "plane-g18");
   REQUIRE(p.ok);
-  CHECK(p.files.at("G18.nc") ==
-        "%\nO5002 (G18)\n" + program_start +
-            "G1 Z20. F500.\nX20.\nG18 G3 X20. Z0. I0. K-10.\nG0 Z40.\nG69\nG49\nM9\nM5\n"
-            "G91 G28 Z0.\nG90\nM30\n%\n");
+  CHECK(p.files.at("G18.nc") == "%\nO5002 (G18)\n" + program_start +
+                                    "G1 Z20. F500.\nX20.\nG18 G3 X20. Z0. I0. K-10.\nG0 Z40.\nG69\nM9\nM5\n"
+                                    "G91 G28 Z0.\nG90\nG49\nM30\n%\n");
 }
 
 TEST_CASE("tilted plane: a hole along the plane's Z is drilled in its frame, from the depth",
@@ -48,7 +47,7 @@ TEST_CASE("tilted plane: a hole along the plane's Z is drilled in its frame, fro
   REQUIRE(p.ok);
   CHECK(p.files.at("DEPTH.nc") ==
         "%\nO5002 (DEPTH)\n" + program_start +
-            "Z23.\nG1 Z10. F200.\nG0 Z23.\nG69\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n%\n");
+            "Z23.\nG1 Z10. F200.\nG0 Z23.\nG69\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
   // An absolute FEDTO is a Z of the part frame: no depth along the tilted tool.
   const test::posted abs = test::post_in_fresh_dir(
       "PARTNO FEDTO\n" + side_face_start +
@@ -73,11 +72,10 @@ TEST_CASE("tilted plane: cutter compensation in the plane, G40 before G69, and n
       "PARTNO COMP\n" + side_face_start + cut + "CUTCOM/OFF\nRAPID\nGOTO/0,0,60,0,0,1\nFINI\n", m,
       "plane-comp");
   REQUIRE(p.ok);
-  CHECK(p.files.at("COMP.nc") ==
-        "%\nO5002 (COMP)\n" + program_start +
-            "G1 Z20. F500.\nG41 D1 Y10.\nX20.\nG40\nG69\nG49\nG91 G28 Z0.\nG90\n"
-            "G0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z60. A0. C90.\nG49\nM9\nM5\n"
-            "G91 G28 Z0.\nG90\nM30\n%\n");
+  CHECK(p.files.at("COMP.nc") == "%\nO5002 (COMP)\n" + program_start +
+                                     "G1 Z20. F500.\nG41 D1 Y10.\nX20.\nG40\nG69\nG91 G28 Z0.\nG90\nG49\n"
+                                     "G0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z60. A0. C90.\nM9\nM5\n"
+                                     "G91 G28 Z0.\nG90\nG49\nM30\n%\n");
   // Compensation still on where the tool axis turns: G68.2 and G69 need G40 in force.
   const test::posted on = test::post_in_fresh_dir(
       "PARTNO COMP\n" + side_face_start + cut + "RAPID\nGOTO/0,-40,-20,0,-1,0\nFINI\n", m, "plane-comp-on");

@@ -91,8 +91,8 @@ TEST_CASE("a tool the tool table says needs no spindle cuts without one", "[post
   m.tools.back().spindle = false;  // a scribe, a burnishing roller
   CHECK(program_of(no_spindle, m, "ns-table") ==
         "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\n"
-        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nG49\nM9\nM5\nG91 G28 "
-        "Z0.\nG90\nM30\n%\n");
+        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nM9\nM5\nG91 G28 "
+        "Z0.\nG90\nG49\nM30\n%\n");
   // The key as the machine file gives it.
   const std::string tool = "[[tool]]\nnumber = 4\nkind = \"turn\"\nspindle = false\ndiameter = 12\n";
   const machine read =
@@ -115,8 +115,8 @@ TEST_CASE("a surface speed for a rotating tool is its rpm from the diameter", "[
   // 1000 x 150 / (pi x 10) = 4774.6: S4775, not S150 (nor G96 on a cutter).
   CHECK(program_of(job, load_machine("rotary-4axis"), "smm-mill") ==
         "%\nO5003 (SMM)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS4775 M3\n"
-        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nG49\nM9\nM5\nG91 G28 "
-        "Z0.\nG90\nM30\n%\n");
+        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nM9\nM5\nG91 G28 "
+        "Z0.\nG90\nG49\nM30\n%\n");
   // The Integrex's milling spindle: rpm mode (G97), never G96 on the live tool.
   const std::string integrex = program_of(job, load_machine("integrex-i200st"), "smm-integrex");
   CHECK(integrex.find("\nG97 S4775 M3\n") != std::string::npos);
@@ -215,7 +215,7 @@ TEST_CASE("G41/G42 on the mills carry the D register the machine file says", "[p
   CHECK(program_of(job, load_machine("rotary-4axis"), "d-tool") ==
         "%\nO5003 (CC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT03 M6\nS2000 M3\n"
         "G0 A0.\nG0 X0. Y-20.\nG0 G43 H3 X0. Y-20. Z5. A0.\nG1 Z-2. F400.\nG41 D3 X10.\nG40 "
-        "X0.\nG49\nM9\nM5\nG91 G28 Z0.\nG90\nM30\n"
+        "X0.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n"
         "%\n");
   // The CL's register wins.
   std::string with_register = job;
