@@ -6,12 +6,17 @@
 #include <exception>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace twinpost {
 
 namespace {
+
+// A new event holds a move: the reading thread copies moves into one (run).
+static_assert(std::is_same_v<std::variant_alternative_t<0, event_data>, motion_event>);
 
 constexpr std::size_t batch_events = 4096;  // events handed over at a time
 constexpr std::size_t queue_batches = 4;    // batches read ahead at most
@@ -86,7 +91,16 @@ struct reader_thread::impl {
       while (const event* e = reader.next()) {
         batch& b = *filling;
         if (b.record_start.empty() || reader.records() != seen) seen = keep_record(b);
-        b.events.push_back(*e);
+        // A move (most events) is copied as itself into a new event, which holds a move
+        // already: not through the variant's table of copies.
+        if (const auto* m = std::get_if<motion_event>(&e->data)) {
+          event& copy = b.events.emplace_back();
+          copy.line = e->line;
+          copy.column = e->column;
+          *std::get_if<motion_event>(&copy.data) = *m;
+        } else {
+          b.events.push_back(*e);
+        }
         b.record_of.push_back(static_cast<std::uint32_t>(b.record_start.size() - 1));
         if (b.events.size() == batch_events && !hand_over()) return;
       }
