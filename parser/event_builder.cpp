@@ -91,12 +91,6 @@ void event_builder::skip_record(record_kind seen) {
   after_bad_record_ = true;
 }
 
-void event_builder::end_of_motion_record() {
-  in_goto_ = false;
-  rapid_record_ = false;
-  if (circle_used_) circle_.reset(), circle_used_ = false;
-}
-
 void event_builder::comment(const cl_record& r, int line, event_queue& out) {
   if (r.data_comment) {
     // Creo `$$->` records: CSYS and CUTTER carry data; the rest are kept as data comments.

@@ -153,7 +153,12 @@ class event_builder {
   }
   void point(std::span<const double> n, bool continued, motion_kind kind, int line, event_queue& out);
   void circle(const cl_record& r, int line, event_queue& out, build_issues& issues);
-  void end_of_motion_record();
+  /// Inline: every statement ends the motion record before it.
+  void end_of_motion_record() {
+    in_goto_ = false;
+    rapid_record_ = false;
+    if (circle_used_) circle_.reset(), circle_used_ = false;
+  }
 
   dialect dialect_;
   unit_system units_ = unit_system::mm;
