@@ -10,6 +10,19 @@ namespace twinpost {
 
 namespace {
 
+// The error of a motion record without 3 or 6 numbers. Out of line: motion() stays small and
+// its prologue short for the GOTOs that have them.
+[[gnu::noinline, gnu::cold]] void report_motion_arguments(const cl_record& r, motion_kind kind,
+                                                          build_issues& issues) {
+  const char* name = kind == motion_kind::go_to   ? "GOTO"
+                     : kind == motion_kind::from  ? "FROM"
+                     : kind == motion_kind::delta ? "GODLTA"
+                                                  : "GOHOME";
+  issues.push_back({severity::error, detail::args_offset(r),
+                    fmt::format("{} takes 3 or 6 numbers (x,y,z[,i,j,k]), found {} argument{}", name,
+                                r.args.size(), r.args.size() == 1 ? "" : "s")});
+}
+
 double planar_radius(vec3 p, vec3 c, vec3 n) {
   double dx = p.x - c.x, dy = p.y - c.y, dz = p.z - c.z;
   double nl = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
@@ -36,14 +49,8 @@ void event_builder::motion(const cl_record& r, motion_kind kind, int line, event
     point(along, false, kind, line, out);
     return;
   }
-  if ((n.size() != 3 && n.size() != 6) || words) {
-    const char* name = kind == motion_kind::go_to   ? "GOTO"
-                       : kind == motion_kind::from  ? "FROM"
-                       : kind == motion_kind::delta ? "GODLTA"
-                                                    : "GOHOME";
-    issues.push_back({severity::error, detail::args_offset(r),
-                      fmt::format("{} takes 3 or 6 numbers (x,y,z[,i,j,k]), found {} argument{}", name,
-                                  r.args.size(), r.args.size() == 1 ? "" : "s")});
+  if ((n.size() != 3 && n.size() != 6) || words) [[unlikely]] {
+    report_motion_arguments(r, kind, issues);
     end_of_motion_record();
     return;
   }
