@@ -59,7 +59,7 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
                           "coordinate line without a preceding GOTO"});
         return;
       }
-      const std::vector<double>& n = numbers(r);
+      const std::span<const double> n = numbers(r);
       if ((n.size() != 3 && n.size() != 6) || n.size() != r.args.size()) {
         issues.push_back({severity::error, r.args.front().offset,
                           fmt::format("a GOTO point takes 3 or 6 numbers, found {}", r.args.size())});
@@ -77,7 +77,7 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
       return;
     }
     case record_kind::statement:
-      if (detail::has_bad_number(r, issues)) return skip_record(r.kind);
+      if (!r.numbers_only && detail::has_bad_number(r, issues)) return skip_record(r.kind);
       if (any_script_records_ && to_script(r, line, out)) [[unlikely]]
         return;
       statement(r, line, out, issues);
@@ -85,26 +85,10 @@ void event_builder::build(const cl_record& r, int line, event_queue& out, build_
   }
 }
 
-const std::vector<double>& event_builder::numbers(const cl_record& r) {
-  // Sized once, then written through a pointer: no capacity check per number.
-  if (numbers_.size() < r.args.size()) numbers_.resize(r.args.size());
-  double* p = numbers_.data();
-  for (const cl_arg& a : r.args)
-    if (a.kind == arg_kind::number) *p++ = a.number;
-  numbers_.resize(static_cast<std::size_t>(p - numbers_.data()));
-  return numbers_;
-}
-
 void event_builder::skip_record(record_kind seen) {
   if (seen == record_kind::coordinates && in_goto_) return;
   end_of_motion_record();
   after_bad_record_ = true;
-}
-
-void event_builder::end_of_motion_record() {
-  in_goto_ = false;
-  rapid_record_ = false;
-  if (circle_used_) circle_.reset(), circle_used_ = false;
 }
 
 void event_builder::comment(const cl_record& r, int line, event_queue& out) {

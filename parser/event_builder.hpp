@@ -4,6 +4,7 @@
 // CIRCLE waiting for its end point, units, ICAM marker numbers.
 #include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -136,11 +137,28 @@ class event_builder {
 
   void comment(const cl_record& r, int line, event_queue& out);
   void motion(const cl_record& r, motion_kind kind, int line, event_queue& out, build_issues& issues);
-  /// The record's numbers in a vector reused from record to record (no allocation per GOTO).
-  const std::vector<double>& numbers(const cl_record& r);
-  void point(const std::vector<double>& n, bool continued, motion_kind kind, int line, event_queue& out);
+  /// The record's numbers, in a vector reused from record to record (no allocation per GOTO);
+  /// valid until the next call. Inline: it is asked once per GOTO.
+  std::span<const double> numbers(const cl_record& r) {
+    // Sized once, then written through a pointer: no capacity check per number.
+    if (numbers_.size() < r.args.size()) numbers_.resize(r.args.size());
+    double* p = numbers_.data();
+    if (r.numbers_only) {
+      for (const cl_arg& a : r.args) *p++ = a.number;
+    } else {
+      for (const cl_arg& a : r.args)
+        if (a.kind == arg_kind::number) *p++ = a.number;
+    }
+    return {numbers_.data(), static_cast<std::size_t>(p - numbers_.data())};
+  }
+  void point(std::span<const double> n, bool continued, motion_kind kind, int line, event_queue& out);
   void circle(const cl_record& r, int line, event_queue& out, build_issues& issues);
-  void end_of_motion_record();
+  /// Inline: every statement ends the motion record before it.
+  void end_of_motion_record() {
+    in_goto_ = false;
+    rapid_record_ = false;
+    if (circle_used_) circle_.reset(), circle_used_ = false;
+  }
 
   dialect dialect_;
   unit_system units_ = unit_system::mm;

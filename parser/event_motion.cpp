@@ -10,6 +10,19 @@ namespace twinpost {
 
 namespace {
 
+// The error of a motion record without 3 or 6 numbers. Out of line: motion() stays small and
+// its prologue short for the GOTOs that have them.
+[[gnu::noinline, gnu::cold]] void report_motion_arguments(const cl_record& r, motion_kind kind,
+                                                          build_issues& issues) {
+  const char* name = kind == motion_kind::go_to   ? "GOTO"
+                     : kind == motion_kind::from  ? "FROM"
+                     : kind == motion_kind::delta ? "GODLTA"
+                                                  : "GOHOME";
+  issues.push_back({severity::error, detail::args_offset(r),
+                    fmt::format("{} takes 3 or 6 numbers (x,y,z[,i,j,k]), found {} argument{}", name,
+                                r.args.size(), r.args.size() == 1 ? "" : "s")});
+}
+
 double planar_radius(vec3 p, vec3 c, vec3 n) {
   double dx = p.x - c.x, dy = p.y - c.y, dz = p.z - c.z;
   double nl = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
@@ -22,26 +35,22 @@ double planar_radius(vec3 p, vec3 c, vec3 n) {
 
 void event_builder::motion(const cl_record& r, motion_kind kind, int line, event_queue& out,
                            build_issues& issues) {
-  const std::vector<double>& n = numbers(r);
+  const std::span<const double> n = numbers(r);
   bool words = n.size() != r.args.size();
   if (kind == motion_kind::home && r.args.empty()) {
-    point({pos_.x, pos_.y, pos_.z}, false, kind, line, out);
+    const double here[] = {pos_.x, pos_.y, pos_.z};
+    point(here, false, kind, line, out);
     return;
   }
   if (kind == motion_kind::delta && n.size() == 1 && !words) {
     // GODLTA/d: along the tool axis.
     vec3 a = axis_.value_or(vec3{0, 0, 1});
-    point({a.x * n[0], a.y * n[0], a.z * n[0]}, false, kind, line, out);
+    const double along[] = {a.x * n[0], a.y * n[0], a.z * n[0]};
+    point(along, false, kind, line, out);
     return;
   }
-  if ((n.size() != 3 && n.size() != 6) || words) {
-    const char* name = kind == motion_kind::go_to   ? "GOTO"
-                       : kind == motion_kind::from  ? "FROM"
-                       : kind == motion_kind::delta ? "GODLTA"
-                                                    : "GOHOME";
-    issues.push_back({severity::error, detail::args_offset(r),
-                      fmt::format("{} takes 3 or 6 numbers (x,y,z[,i,j,k]), found {} argument{}", name,
-                                  r.args.size(), r.args.size() == 1 ? "" : "s")});
+  if ((n.size() != 3 && n.size() != 6) || words) [[unlikely]] {
+    report_motion_arguments(r, kind, issues);
     end_of_motion_record();
     return;
   }
@@ -53,7 +62,7 @@ void event_builder::motion(const cl_record& r, motion_kind kind, int line, event
   point(n, false, kind, line, out);
 }
 
-void event_builder::point(const std::vector<double>& n, bool continued, motion_kind kind, int line,
+void event_builder::point(std::span<const double> n, bool continued, motion_kind kind, int line,
                           event_queue& out) {
   vec3 p{n[0], n[1], n[2]};
   if (kind == motion_kind::delta) p = {pos_.x + p.x, pos_.y + p.y, pos_.z + p.z};
@@ -88,7 +97,9 @@ void event_builder::point(const std::vector<double>& n, bool continued, motion_k
 }
 
 void event_builder::circle(const cl_record& r, int line, event_queue&, build_issues& issues) {
-  std::vector<double> n;
+  // The builder's scratch vector: no allocation per CIRCLE.
+  std::vector<double>& n = numbers_;
+  n.clear();
   pending_circle c;
   c.line = line;
   c.column = column_;

@@ -29,7 +29,10 @@ void event_builder::statement(const cl_record& r, int line, event_queue& out, bu
   const std::string_view m = r.major;
   handler_cache& c = last_handler_;
   statement_handler h = c.handler;
-  if (h == nullptr || m.size() != c.size || std::memcmp(m.data(), c.word.data(), m.size()) != 0) {
+  // At most eight bytes compared in line: a call of memcmp costs more than the compare.
+  bool same = h != nullptr && m.size() == c.size;
+  for (std::size_t k = 0; same && k < m.size(); ++k) same = m[k] == c.word[k];
+  if (!same) {
     h = handler_of(m);
     if (m.size() <= c.word.size()) {  // a longer word is looked up each time
       c.size = m.size();

@@ -7,6 +7,15 @@ namespace twinpost::parser_detail {
 
 namespace {
 bool blank(char c) { return c == ' ' || c == '\t'; }
+
+// The characters of a major word (word characters and '-', END-OF-PATH): one look-up each.
+constexpr auto major_chars = [] {
+  struct table {
+    bool in[256] = {};
+  } t;
+  for (int c = 0; c < 256; ++c) t.in[c] = word_chars.in[c] || c == '-';
+  return t;
+}();
 }  // namespace
 
 bool parse_numeric_statement(std::string_view text, cl_record& out) {
@@ -17,12 +26,13 @@ bool parse_numeric_statement(std::string_view text, cl_record& out) {
   if (p == end || !ascii::is_letter(*p)) return false;
   if (text_major_length(std::string_view(p, static_cast<std::size_t>(end - p))) != 0) return false;
   const char* major = p;
-  while (p != end && (is_word_char(*p) || *p == '-')) ++p;
+  while (p != end && major_chars.in[static_cast<unsigned char>(*p)]) ++p;
   out.clear();
   out.source = text;
   out.kind = record_kind::statement;
   out.major = std::string_view(major, static_cast<std::size_t>(p - major));
   out.major_offset = static_cast<std::size_t>(major - begin);
+  out.numbers_only = true;
   while (p != end && blank(*p)) ++p;
   if (p == end) return true;  // a bare major: RAPID, FINI
   if (*p != '/') return false;
@@ -35,14 +45,20 @@ bool parse_numeric_statement(std::string_view text, cl_record& out) {
     const char* start = p;
     bool negative = false;
     if (*p == '+' || *p == '-') negative = *p++ == '-';
-    if (p == end || !(ascii::is_digit(*p) || *p == '.')) return false;
+    // No digit or point (`inf`, a word, a sign alone) is no number to fast_decimal_in either.
     double value = 0;
-    p = fast_decimal(p, end, value);
-    if (!p || (p != end && is_word_char(*p))) return false;
+    p = fast_decimal_in(begin, p, end, value);
+    if (!p) return false;
     cl_arg& a = out.args.emplace_back();
     a.kind = arg_kind::number;
     a.number = negative ? -value : value;
     a.offset = static_cast<std::size_t>(start - begin);
+    if (p == end) return true;
+    if (*p == ',') {  // the common case first: the next number follows at once
+      ++p;
+      continue;
+    }
+    if (is_word_char(*p)) return false;  // `1STPECK` is a word
     while (p != end && blank(*p)) ++p;
     if (p == end) return true;
     if (*p != ',') return false;

@@ -140,6 +140,27 @@ bool all_blank(std::string_view s) {
 }  // namespace
 
 bool line_reader::next(logical_record& out) {
+  // Nearly every line of a job is whole in the buffer, starts with its data and has no '$'
+  // (no comment, no continuation): the shape is then known without reading it again.
+  if (const void* nl = std::memchr(buf_.data() + begin_, '\n', end_ - begin_)) {
+    const char* base = buf_.data() + begin_;
+    std::string_view line(base, static_cast<std::size_t>(static_cast<const char*>(nl) - base));
+    const std::size_t taken = line.size() + 1;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (!line.empty() && !blank(line.front()) && line.size() <= max_record_bytes &&
+        !std::memchr(line.data(), '$', line.size())) {
+      consumed_ += taken;
+      begin_ += taken;
+      ++line_no_;
+      overlong_ = false;
+      segments_.clear();
+      segments_.push_back({0, line_no_, 0, line});
+      out.line = line_no_;
+      out.problem = record_problem::none;
+      out.text = line;
+      return true;
+    }
+  }
   std::string_view line;
   line_shape shape{};
   do {

@@ -37,6 +37,9 @@ struct cl_record {
   std::vector<cl_arg> args;   ///< arguments in order; a trailing empty argument is dropped
   std::string_view text;      ///< text records and comments: the free text, blanks trimmed
   bool data_comment = false;  ///< parsed from inside a `$$->` pseudo-comment (Creo)
+  /// Every argument is a number (the fast path's records, which are most of a job): readers
+  /// of the numbers may skip the test of each argument's kind. False says nothing.
+  bool numbers_only = false;
   std::string_view source;    ///< the whole logical record text; offsets count from here
   std::size_t arg_start = 0;  ///< grammar scratch: where the argument being read starts
 
@@ -47,6 +50,7 @@ struct cl_record {
     args.clear();
     text = {};
     data_comment = false;
+    numbers_only = false;
     source = {};
   }
 };

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include "parser/detail/bad_number.hpp"
-#include "parser/detail/fast_record.hpp"
 #include "parser/detail/grammar.hpp"
 #include "support/ascii.hpp"
 
@@ -70,12 +69,6 @@ record_error describe_stop(std::string_view text, const cl_record& rec, std::siz
 }
 
 }  // namespace
-
-bool parse_record(std::string_view text, cl_record& out, record_error& err) {
-  // Most records of a long job are numeric statements (GOTO/x,y,z): read them directly.
-  if (parser_detail::parse_numeric_statement(text, out)) return true;
-  return parse_record_with_grammar(text, out, err);
-}
 
 bool parse_record_with_grammar(std::string_view text, cl_record& out, record_error& err) {
   std::size_t stop = 0;

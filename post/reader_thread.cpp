@@ -6,12 +6,17 @@
 #include <exception>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace twinpost {
 
 namespace {
+
+// A new event holds a move: the reading thread copies moves into one (run).
+static_assert(std::is_same_v<std::variant_alternative_t<0, event_data>, motion_event>);
 
 constexpr std::size_t batch_events = 4096;  // events handed over at a time
 constexpr std::size_t queue_batches = 4;    // batches read ahead at most
@@ -85,8 +90,20 @@ struct reader_thread::impl {
     try {
       while (const event* e = reader.next()) {
         batch& b = *filling;
-        if (b.record_start.empty() || reader.records() != seen) seen = keep_record(b);
-        b.events.push_back(*e);
+        if (const std::size_t now = reader.records(); b.record_start.empty() || now != seen) {
+          keep_record(b);
+          seen = now;
+        }
+        // A move (most events) is copied as itself into a new event, which holds a move
+        // already: not through the variant's table of copies.
+        if (const auto* m = std::get_if<motion_event>(&e->data)) {
+          event& copy = b.events.emplace_back();
+          copy.line = e->line;
+          copy.column = e->column;
+          *std::get_if<motion_event>(&copy.data) = *m;
+        } else {
+          b.events.push_back(*e);
+        }
         b.record_of.push_back(static_cast<std::uint32_t>(b.record_start.size() - 1));
         if (b.events.size() == batch_events && !hand_over()) return;
       }
@@ -99,15 +116,14 @@ struct reader_thread::impl {
     hand_over();
   }
 
-  // The lines of the reader's current record into `b`; returns the reader's record count.
-  std::size_t keep_record(batch& b) {
+  // The lines of the reader's current record into `b`.
+  void keep_record(batch& b) {
     b.record_start.push_back(static_cast<std::uint32_t>(b.lines.size()));
     for (std::size_t i = 0, n = reader.source_lines(); i < n; ++i) {
       const auto [line, text] = reader.source_line_at(i);
       b.lines.push_back({line, b.text.size(), text.size()});
       b.text.append(text);
     }
-    return reader.records();
   }
 
   // Queues the batch being filled and takes an empty one; false when the post has stopped.

@@ -215,6 +215,37 @@ TEST_CASE("fast_decimal reads eight digits at a time as from_chars reads them", 
   CHECK(compared > 20000);
 }
 
+TEST_CASE("fast_decimal_in reads a number inside a text as fast_decimal reads it", "[parser][lexical]") {
+  // The same numbers and ends as above, now behind 0 to 9 characters of text (the word loads
+  // near the end read the eight bytes that end there when the text has them, else byte by
+  // byte): the value and the end, or the handing on, must be fast_decimal's for each.
+  std::mt19937_64 rng(8);
+  const std::string ends[] = {"", ",", " ", "x", "e5", "E", "/", "\xff", "0.5", ",1.25", ".", ".7"};
+  int compared = 0;
+  for (int whole = 0; whole <= 16; ++whole)
+    for (int frac = -1; whole + std::max(frac, 0) <= 17; ++frac)  // -1: no point at all
+      for (const std::string& end : ends)
+        for (std::size_t before = 0; before <= 9; ++before) {
+          std::string number;
+          for (int i = 0; i < whole; ++i) number += static_cast<char>('0' + rng() % 10);
+          if (frac >= 0) number += '.';
+          for (int i = 0; i < frac; ++i) number += static_cast<char>('0' + rng() % 10);
+          const std::string text = std::string(before, 'G') + number + end;
+          const char* first = text.data() + before;
+          const char* last = text.data() + text.size();
+          double old_value = -1, new_value = -2;
+          const char* old_stop = parser_detail::fast_decimal(first, last, old_value);
+          const char* new_stop = parser_detail::fast_decimal_in(text.data(), first, last, new_value);
+          INFO(text << " at " << before);
+          REQUIRE(new_stop == old_stop);
+          if (old_stop) {
+            REQUIRE(new_value == old_value);
+            ++compared;
+          }
+        }
+  CHECK(compared > 10000);
+}
+
 TEST_CASE("minus zero never prints as -0, in passthrough arguments either", "[parser][lexical]") {
   // Regression: passthrough and MACHIN arguments were printed with fmt's "{}" ("-0").
   CHECK(events_of("ROTABL/ -0.000000,BAXIS,TABLE,CCLW \n"
