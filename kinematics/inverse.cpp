@@ -175,9 +175,12 @@ bool twins(const orientation_form& f, const orientation_solution& x, const orien
 
 }  // namespace
 
-two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
+namespace {
+
+two_at_most<orientation_solution> orientation_solutions(const chain_plan& p, const vec3& k,
                                                         const joint_values& previous) {
-  const orientation_form f = orientation_of(c);
+  const kinematic_chain& c = *p.chain;
+  const orientation_form& f = p.form;
   two_at_most<orientation_solution> out;
   if (f.outer < 0) {
     out.push_back({});
@@ -197,17 +200,31 @@ two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c
   return out;
 }
 
+}  // namespace
+
+two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
+                                                        const joint_values& previous) {
+  return orientation_solutions(chain_plan(c), k, previous);
+}
+
 joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_values& angles,
                        double tool_length) {
   joint_values j = angles;
   j.linear = {};
-  const joint_turns r(c, j);
-  j.linear = part_to_machine(c, r, tip) - head_offset(c, r, tool_length);
+  const chain_plan p(c);
+  const joint_turns r(p, j);
+  j.linear = part_to_machine(p, r, tip) - head_offset(p, r, tool_length);
   return j;
 }
 
 ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length,
                   const joint_values& previous, ik_need need) {
+  return inverse(chain_plan(c), pose, tool_length, previous, need);
+}
+
+ik_result inverse(const chain_plan& p, const tool_pose& pose, double tool_length,
+                  const joint_values& previous, ik_need need) {
+  const kinematic_chain& c = *p.chain;
   ik_result r;
   const double len = norm(pose.axis);
   if (!(len > 1e-9) || !std::isfinite(len)) {
@@ -239,14 +256,14 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     std::array<bool, 2> beyond;
   };
   two_at_most<refused> beyond;
-  const orientation_form f = orientation_of(c);
+  const orientation_form& f = p.form;
   // Generate, then verify: a candidate the forward transform does not confirm is no solution.
   // The check is made on the candidates in the order they are chosen, and stops at the first
   // that holds (placing the angles below moves them by whole turns only: the same axis).
   const auto axis_error_of = [&](const std::array<double, 2>& rotary) {
     joint_values raw;
     raw.rotary = rotary;
-    return angle_between(tool_axis(c, raw), k);
+    return angle_between(tool_axis(p, joint_turns(p, raw)), k);
   };
   // Places the angles of `s` within the limits relative to `previous`: false, with `why`,
   // when an axis has no value within them.
@@ -274,11 +291,13 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
   const auto verify = [&](candidate& cand) {
     const joint_turns turns(cand.turns);
     if (need != ik_need::joints) {
-      cand.axis_error = angle_between(tool_axis(c, turns), k);
+      cand.axis_error = angle_between(tool_axis(p, turns), k);
       if (cand.axis_error > c.angle_tolerance) return false;
     } else {  // the forward transform of the joints below checks the axis too
-      cand.j.linear = part_to_machine(c, turns, want.tip) - head_offset(c, turns, tool_length);
-      const tool_pose got = forward(c, cand.j, tool_length, turns);
+      // The heads' part of the tip is the same in the solve and in its check: turned once.
+      const vec3 offset = head_offset(p, turns, tool_length);
+      cand.j.linear = part_to_machine(p, turns, want.tip) - offset;
+      const tool_pose got = forward_from_offset(p, cand.j.linear, offset, turns);
       cand.tip_error = distance(got.tip, want.tip);
       cand.axis_error = angle_between(got.axis, k);
       if (cand.tip_error > c.tolerance || cand.axis_error > c.angle_tolerance) return false;
@@ -317,7 +336,7 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
       }
     }
   }
-  for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
+  for (const orientation_solution& s : orientation_solutions(p, k, previous)) {
     candidate cand;
     refused why;
     if (!place(s, cand, why)) {

@@ -41,6 +41,12 @@ double off_pole(const vec3& axis, const vec3& pole) {
 
 }  // namespace
 
+const kin::chain_plan& channel_writer::plan() {
+  if (plan_.chain != chain_) [[unlikely]]
+    plan_ = kin::chain_plan(*chain_);
+  return plan_;
+}
+
 void channel_writer::tool_data_length(const tool_data_event& t, bool after_call) {
   // Every TLDATA form whose length is known for certain (machining/cam_tool.hpp).
   const std::optional<double> cl = tldata_length(t);
@@ -176,14 +182,14 @@ bool channel_writer::multiaxis_arc(int line) {
 
 bool channel_writer::turn_at_pole(const tool_pose& at, const tool_pose& to, double length, int line) {
   const kinematic_chain& c = *chain_;
-  const kin::orientation_form f = kin::orientation_of(c);
+  const kin::orientation_form& f = plan().form;
   if (f.outer < 0 || f.inner < 0 || c.output == multiaxis_output::vector) return true;
   const vec3& pole = c.rotaries[f.outer].direction;
   const auto on_pole = [&](const vec3& k) { return kin::norm(kin::cross(pole, k)) < 1e-9; };
   if (!on_pole(at.axis) || on_pole(to.axis)) return true;
   const bool joints = c.output == multiaxis_output::joints;
   const kin::ik_result end =
-      kin::inverse(c, to, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
+      kin::inverse(plan_, to, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
   if (!end.ok()) return true;  // the move itself says why
   double turn = end.joints.rotary[f.outer] - joints_.rotary[f.outer];
   if (c.rotaries[f.outer].rollover == rotary_rollover::shortest) turn = kin::wrap_180(turn);
@@ -247,7 +253,7 @@ bool channel_writer::turn_at_pole(const tool_pose& at, const tool_pose& to, doub
 bool channel_writer::same_branch(const joint_values& from, const joint_values& to, int line) {
   // The two solutions of one tool axis differ by about half a turn of the outer axis; the
   // path turns it that fast only beside the pole, where the outer axis is nearly free.
-  const kin::orientation_form f = kin::orientation_of(*chain_);
+  const kin::orientation_form& f = plan().form;
   if (f.outer < 0 || f.inner < 0) return true;
   const double turn = kin::wrap_180(to.rotary[f.outer] - from.rotary[f.outer]);
   if (std::abs(turn) <= 90) return true;
@@ -296,11 +302,11 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   if (rapid || !joints || !had_from) {
     joint_values previous = joints_;
     if (pole_hint_ && rapid) {  // looked ahead from the pole (channel_pole.cpp)
-      previous.rotary[kin::orientation_of(c).outer] = *pole_hint_;
+      previous.rotary[plan().form.outer] = *pole_hint_;
       pole_hint_.reset();
     }
     const kin::ik_result ik =
-        kin::inverse(c, pose, length, previous, joints ? kin::ik_need::joints : kin::ik_need::angles);
+        kin::inverse(plan(), pose, length, previous, joints ? kin::ik_need::joints : kin::ik_need::angles);
     if (!ik.ok())
       return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
     if (!rapid && had_from && !same_branch(joints_, ik.joints, line)) return;
@@ -309,17 +315,17 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
     pose_known_ = true;
     return;
   }
-  kin::linearise(c, from, joints_, pose, length, c.chordal_tolerance, lin_);
+  kin::linearise(plan(), from, joints_, pose, length, c.chordal_tolerance, lin_);
   if (!lin_.ok()) {
     if (lin_.error != kin::ik_error::too_many_points)
       return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, lin_.message));
     // Most often the move leaves the pole (the tool along the outer axis, whose angle was
     // kept) towards an axis that needs that axis at another angle: it would turn while the
     // tool cuts. Say so.
-    const kin::orientation_form f = kin::orientation_of(c);
+    const kin::orientation_form& f = plan_.form;
     if (f.outer >= 0 && f.inner >= 0 &&
         kin::angle_between(from.axis, c.rotaries[f.outer].direction) <= c.angle_tolerance) {
-      const kin::ik_result end = kin::inverse(c, pose, length, joints_);
+      const kin::ik_result end = kin::inverse(plan_, pose, length, joints_);
       if (end.ok()) {
         const rotary_axis_def& o = c.rotaries[f.outer];
         return error(
@@ -501,13 +507,13 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     return false;
   if (joints) {
     read.linear = lin_read;
-    back = kin::forward(c, read, tool_length_);
+    back = kin::forward(plan(), read, tool_length_);
   } else {
     back.tip = lin_read;
     back.axis = vector
                     ? vec3{as_written(pose.axis.x, vector_decimals), as_written(pose.axis.y, vector_decimals),
                            as_written(pose.axis.z, vector_decimals)}
-                    : kin::tool_axis(c, read);
+                    : kin::tool_axis(plan(), kin::joint_turns(plan_, read));
   }
   const double tip_error = kin::distance(back.tip, pose.tip);
   const double axis_error = kin::angle_between(back.axis, pose.axis);

@@ -677,6 +677,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   vec3 plane_axis_;            ///< the CL tool axis it was opened for
   void note_line(std::string_view line);
   bool warned_side_ = false;
+  /// *chain_'s plan (kinematics/chain.hpp), made at its first move: plan() gives it.
+  kin::chain_plan plan_;
+  const kin::chain_plan& plan();
   // [events] (machining/channel_events.cpp). ev_ is null when the machine file has none: the
   // post's own events then cost one pointer test each, and nothing else changes.
   const event_templates* ev_ = nullptr;
