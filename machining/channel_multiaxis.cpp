@@ -592,10 +592,18 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     if (feed_value_ <= 0) {
       error(line, "feed move with no feed rate (FEDRAT) in force");
     } else if (inverse_f > 0) {
-      if (fits('F', inverse_f, inverse_decimals)) {
+      // fits('F', ...) and append_number() in one rounding, the format's limit found once.
+      if (inverse_f_max_ == 0) [[unlikely]] {
+        const word_format& f = m_.formats['F'];
+        inverse_f_max_ = f.whole == 0 ? INT64_MAX : f.max_count(inverse_decimals);
+      }
+      std::int64_t n;
+      if (round_fixed(inverse_f, inverse_decimals, n) && n <= inverse_f_max_ && -n <= inverse_f_max_) {
         separate(b);
         b += 'F';
-        append_number(b, inverse_f, {inverse_decimals, m_.program.trailing_point});
+        append_fixed(b, n, {inverse_decimals, m_.program.trailing_point});
+      } else {
+        misfit('F', inverse_f);
       }
       inverse_time_ = true;
     } else {

@@ -680,6 +680,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// *chain_'s plan (kinematics/chain.hpp), made at its first move: plan() gives it.
   kin::chain_plan plan_;
   const kin::chain_plan& plan();
+  /// The largest count of an inverse-time F word (G93), taken from the word format at the
+  /// first one (0 until then): fits('F', ...) finds it twice at every block.
+  std::int64_t inverse_f_max_ = 0;
   // [events] (machining/channel_events.cpp). ev_ is null when the machine file has none: the
   // post's own events then cost one pointer test each, and nothing else changes.
   const event_templates* ev_ = nullptr;
