@@ -61,10 +61,21 @@ chain_plan::chain_plan(const kinematic_chain& c) : chain(&c), form(orientation_o
       s.along = 2, s.sign = d.z;
     return s;
   };
+  for (int i = 0; i < rotary_count; ++i) steps[i] = step(i);
   for (int i = rotary_count; i-- > 0;)
     if (c.rotaries[i].kind == rotary_kind::head) heads[head_count++] = step(i);
   for (int i = 0; i < rotary_count; ++i)
     if (c.rotaries[i].kind == rotary_kind::table) tables[table_count++] = step(i);
+  if (form.inner >= 0) {
+    const vec3 &dout = c.rotaries[form.outer].direction, &din = c.rotaries[form.inner].direction,
+               &t0 = c.tool_direction;
+    inner.a = dot(dout, din) * dot(din, t0);
+    inner.b = dot(dout, t0) - inner.a;
+    inner.c = dot(dout, cross(din, t0));
+    inner.r = std::hypot(inner.b, inner.c);
+    inner.base = std::atan2(inner.c, inner.b) / deg;
+    if (inner.r > 0) inner.cos_base = inner.b / inner.r, inner.sin_base = inner.c / inner.r;
+  }
 }
 
 std::string number_text(double v) {

@@ -70,6 +70,14 @@ inline vec3 rotate(const vec3& v, const rotary_step& s, const turn& t) {
   }
 }
 
+/// The constants of the inner rotation's equation a + b·cos φ + c·sin φ = dout·k for the axes
+/// `dout` (outer), `din` (inner) and the tool direction `t0`: a = (dout·din)(din·t0),
+/// b = dout·t0 − a, c = dout·(din × t0), r = |(b, c)|, and the angle of (b, c) with its cosine
+/// and sine (kinematics/inverse.cpp solves it). They depend on the chain alone.
+struct inner_equation {
+  double a = 0, b = 0, c = 0, r = 0, base = 0, cos_base = 1, sin_base = 0;
+};
+
 /// What the transforms of a chain need of it, laid out once per chain rather than found again
 /// at every point (every CL point runs an inverse and several forward transforms): the
 /// orientation form, the heads in the order they turn the tool (the inner one first), the
@@ -79,6 +87,8 @@ struct chain_plan {
   orientation_form form;
   int rotary_count = 0, head_count = 0, table_count = 0;
   std::array<rotary_step, 2> heads{}, tables{};
+  std::array<rotary_step, 2> steps{};  ///< every rotary axis, in the chain's order
+  inner_equation inner;                ///< with an inner axis (form.inner >= 0)
   chain_plan() = default;
   explicit chain_plan(const kinematic_chain& c);
 };
