@@ -223,13 +223,11 @@ ik_result inverse(const chain_plan& p, const tool_pose& pose, double tool_length
     std::array<double, 2> raw{};  // the angles as solved, before placing them within the limits
     std::array<turn, 2> turns{};  // their rotations (whole turns added below change neither)
   };
-  two_at_most<candidate> fitting;
   // Candidates with an axis beyond its limits, for the message only: formatted when nothing fits.
   struct refused {
     std::array<double, 2> rotary;
     std::array<bool, 2> beyond;
   };
-  two_at_most<refused> beyond;
   const orientation_form& f = p.form;
   // Generate, then verify: a candidate the forward transform does not confirm is no solution.
   // The check is made on the candidates in the order they are chosen, and stops at the first
@@ -310,6 +308,9 @@ ik_result inverse(const chain_plan& p, const tool_pose& pose, double tool_length
       }
     }
   }
+  // The whole way (the short one above returns before these are needed).
+  two_at_most<candidate> fitting;
+  two_at_most<refused> beyond;
   for (const orientation_solution& s : orientation_solutions(p, k, previous)) {
     candidate cand;
     refused why;
