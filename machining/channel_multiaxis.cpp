@@ -25,12 +25,18 @@ constexpr int vector_decimals = 6;   // G43.5 I J K
 constexpr int inverse_decimals = 3;  // G93 F, 1/min
 constexpr double still = 1e-9;       // a rotary axis that moves less does not move
 
-// `v` as the control reads it after writing it with `decimals` places.
-double as_written(double v, int decimals) {
-  std::int64_t n;
-  if (!round_fixed(v, decimals, n)) return v;
+// `v` as the control reads it after writing it with `decimals` places; `counted` says whether
+// it rounds to a count `n` (else `v` itself).
+double as_written(double v, int decimals, std::int64_t& n, bool& counted) {
+  counted = round_fixed(v, decimals, n);
+  if (!counted) return v;
   static constexpr double scale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
   return static_cast<double>(n) / scale[decimals];
+}
+double as_written(double v, int decimals) {
+  std::int64_t n;
+  bool counted;
+  return as_written(v, decimals, n, counted);
 }
 
 // The angle (degrees) of `axis` from the line of `pole` (either sense).
@@ -376,13 +382,13 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
 }
 
 bool channel_writer::rotary_word(text_buffer& out, char address, double value, axis_memory& last,
-                                 int decimals, bool always) {
+                                 int decimals, bool always, const std::int64_t* counted) {
   if (last.max == 0) [[unlikely]] {  // the control's largest count for the address, once
     const word_format& f = m_.formats[address];
     last.max = f.whole == 0 ? INT64_MAX : f.max_count(decimals);
   }
-  std::int64_t n;
-  if (!round_fixed(value, decimals, n) || n > last.max || n < -last.max) [[unlikely]] {
+  std::int64_t n = counted ? *counted : 0;
+  if ((!counted && !round_fixed(value, decimals, n)) || n > last.max || n < -last.max) [[unlikely]] {
     misfit(address, value);  // past what the control reads: the post stops here
     last.known = false;
     return false;
@@ -500,8 +506,11 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   joint_values read = j;
   const vec3 lin_read{as_written(nc[0], dec) / factor[0], as_written(nc[1], dec) / factor[1],
                       as_written(nc[2], dec) / factor[2]};
+  // The rotary words' counts, for rotary_word() below (one rounding of each value).
+  std::int64_t rotary_n[2] = {0, 0};
+  bool rotary_counted[2] = {false, false};
   for (std::size_t i = 0; i < c.rotaries.size(); ++i)
-    read.rotary[i] = as_written(j.rotary[i], rotary_decimals);
+    read.rotary[i] = as_written(j.rotary[i], rotary_decimals, rotary_n[i], rotary_counted[i]);
   tool_pose back;
   if (length_free_ && joints && !untilted_without_length(read, line)) [[unlikely]]
     return false;
@@ -574,9 +583,9 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
       std::swap(order[0], order[1]);
     for (std::size_t k = 0; k < c.rotaries.size(); ++k) {
       const std::size_t i = order[k];
-      moved =
-          rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, offset_block) ||
-          moved;
+      moved = rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, offset_block,
+                          rotary_counted[i] ? &rotary_n[i] : nullptr) ||
+              moved;
     }
   }
   if (!moved) {

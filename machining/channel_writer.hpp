@@ -455,9 +455,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// and `always` is off; returns whether it wrote the word.
   bool axis_word(text_buffer& out, char address, double value, axis_memory& last, bool always = false);
   /// Appends " A12.345" (`decimals` places: 3 for degrees, 6 for G43.5's I J K) unless `last`
-  /// holds that value and `always` is off.
-  bool rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals,
-                   bool always);
+  /// holds that value and `always` is off. `counted`: round_fixed()'s count of `value`, when
+  /// the caller has it.
+  bool rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals, bool always,
+                   const std::int64_t* counted = nullptr);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(text_buffer& out);
   /// The words of one arc block ending at `end` after the G codes already in arc_: the axes,
