@@ -1,5 +1,6 @@
 #include "kinematics/chain.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -44,6 +45,37 @@ orientation_form orientation_of(const kinematic_chain& c) {
   f.outer_sign = sign(f.outer);
   if (f.inner >= 0) f.inner_sign = sign(f.inner);
   return f;
+}
+
+chain_plan::chain_plan(const kinematic_chain& c) : chain(&c), form(orientation_of(c)) {
+  rotary_count = static_cast<int>(std::min<std::size_t>(c.rotaries.size(), 2));
+  const auto step = [&](int i) {
+    const rotary_axis_def& a = c.rotaries[i];
+    const vec3& d = a.direction;
+    rotary_step s{i, -1, 1, d, a.point};
+    if (d.y == 0 && d.z == 0 && (d.x == 1 || d.x == -1))
+      s.along = 0, s.sign = d.x;
+    else if (d.x == 0 && d.z == 0 && (d.y == 1 || d.y == -1))
+      s.along = 1, s.sign = d.y;
+    else if (d.x == 0 && d.y == 0 && (d.z == 1 || d.z == -1))
+      s.along = 2, s.sign = d.z;
+    return s;
+  };
+  for (int i = 0; i < rotary_count; ++i) steps[i] = step(i);
+  for (int i = rotary_count; i-- > 0;)
+    if (c.rotaries[i].kind == rotary_kind::head) heads[head_count++] = step(i);
+  for (int i = 0; i < rotary_count; ++i)
+    if (c.rotaries[i].kind == rotary_kind::table) tables[table_count++] = step(i);
+  if (form.inner >= 0) {
+    const vec3 &dout = c.rotaries[form.outer].direction, &din = c.rotaries[form.inner].direction,
+               &t0 = c.tool_direction;
+    inner.a = dot(dout, din) * dot(din, t0);
+    inner.b = dot(dout, t0) - inner.a;
+    inner.c = dot(dout, cross(din, t0));
+    inner.r = std::hypot(inner.b, inner.c);
+    inner.base = std::atan2(inner.c, inner.b) / deg;
+    if (inner.r > 0) inner.cos_base = inner.b / inner.r, inner.sin_base = inner.c / inner.r;
+  }
 }
 
 std::string number_text(double v) {

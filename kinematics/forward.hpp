@@ -15,6 +15,9 @@ struct joint_turns {
   joint_turns(const kinematic_chain& c, const joint_values& j) {
     for (std::size_t i = 0; i < c.rotaries.size() && i < t.size(); ++i) t[i] = turn_of(j.rotary[i]);
   }
+  joint_turns(const chain_plan& p, const joint_values& j) {
+    for (int i = 0; i < p.rotary_count; ++i) t[i] = turn_of(j.rotary[i]);
+  }
   explicit joint_turns(const std::array<turn, 2>& known) : t(known) {}
 };
 
@@ -22,19 +25,31 @@ struct joint_turns {
 /// points, in the part frame, with the machine at `j`.
 tool_pose forward(const kinematic_chain& c, const joint_values& j, double tool_length);
 tool_pose forward(const kinematic_chain& c, const joint_values& j, double tool_length, const joint_turns& r);
+tool_pose forward(const chain_plan& p, const joint_values& j, double tool_length);
+tool_pose forward(const chain_plan& p, const joint_values& j, double tool_length, const joint_turns& r);
 /// The tool tip alone of forward().
 vec3 forward_tip(const kinematic_chain& c, const joint_values& j, double tool_length);
 vec3 forward_tip(const kinematic_chain& c, const joint_values& j, double tool_length, const joint_turns& r);
+/// The same from the linear values alone: the rotations are `r`'s.
+vec3 forward_tip(const chain_plan& p, const vec3& linear, double tool_length, const joint_turns& r);
+
+/// forward()'s pose from the heads' part already known (`offset`, head_offset()'s value for
+/// these turns and length): the same bits, one turn of the tip by the heads less.
+tool_pose forward_from_offset(const chain_plan& p, const vec3& linear, const vec3& offset,
+                              const joint_turns& r);
 
 /// The tool axis alone of forward(), in the part frame.
 vec3 tool_axis(const kinematic_chain& c, const joint_values& j);
 vec3 tool_axis(const kinematic_chain& c, const joint_turns& r);
+vec3 tool_axis(const chain_plan& p, const joint_turns& r);
 
 /// The tool tip relative to the linear axes' position, with the heads at `j` (the heads' part
 /// of the forward transform): the linear values are the tip's place when every head is at 0.
 vec3 head_offset(const kinematic_chain& c, const joint_turns& r, double tool_length);
+vec3 head_offset(const chain_plan& p, const joint_turns& r, double tool_length);
 
 /// A point of the part frame in the machine frame with the tables at `j` (the tables' part).
 vec3 part_to_machine(const kinematic_chain& c, const joint_turns& r, const vec3& p);
+vec3 part_to_machine(const chain_plan& plan, const joint_turns& r, const vec3& p);
 
 }  // namespace twinpost::kin

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 
 #include <fmt/format.h>
@@ -73,43 +72,20 @@ bool meets(preferred_sign p, double v) {
   return p == preferred_sign::none || (p == preferred_sign::positive ? v >= -zero : v <= zero);
 }
 
-// The constants of the inner rotation's equation a + b·cos φ + c·sin φ = dout·k for the axes
-// `dout` (outer), `din` (inner) and the tool direction `t0`: a = (dout·din)(din·t0),
-// b = dout·t0 − a, c = dout·(din × t0), r = |(b, c)|, and the angle of (b, c) with its cosine
-// and sine. They depend on the chain alone: the last set is kept, keyed by the three vectors
-// themselves (so a chain at the same address with other axes cannot reuse them).
-struct inner_equation {
-  vec3 dout, din, t0;
-  double a = 0, b = 0, c = 0, r = 0, base = 0, cos_base = 1, sin_base = 0;
-};
-const inner_equation& inner_equation_of(const vec3& dout, const vec3& din, const vec3& t0) {
-  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-  thread_local inner_equation last{{nan, nan, nan}, {nan, nan, nan}, {nan, nan, nan}};
-  const auto same = [](const vec3& x, const vec3& y) { return x.x == y.x && x.y == y.y && x.z == y.z; };
-  if (same(last.dout, dout) && same(last.din, din) && same(last.t0, t0)) return last;
-  last.dout = dout, last.din = din, last.t0 = t0;
-  last.a = dot(dout, din) * dot(din, t0);
-  last.b = dot(dout, t0) - last.a;
-  last.c = dot(dout, cross(din, t0));
-  last.r = std::hypot(last.b, last.c);
-  last.base = std::atan2(last.c, last.b) / deg;
-  if (last.r > 0) last.cos_base = last.b / last.r, last.sin_base = last.c / last.r;
-  return last;
-}
-
 }  // namespace
 
 namespace {
 
 // The outer angle of `s` (whose inner rotation is solved): the angle that turns the tool after
 // the inner rotation to k, or the previous one at the pole.
-void solve_outer(const kinematic_chain& c, const orientation_form& f, const vec3& k,
-                 const joint_values& previous, orientation_solution& s) {
+void solve_outer(const chain_plan& p, const vec3& k, const joint_values& previous, orientation_solution& s) {
+  const kinematic_chain& c = *p.chain;
+  const orientation_form& f = p.form;
   const vec3& dout = c.rotaries[f.outer].direction;
   vec3 v = c.tool_direction;
   if (f.inner >= 0) {  // the raw rotation (the sign undone: multiplying by +-1 is exact)
     const turn by{s.turns[f.inner].c, f.inner_sign * s.turns[f.inner].s};
-    v = rotate(v, c.rotaries[f.inner].direction, by);
+    v = rotate(v, p.steps[f.inner], by);
   }
   if (const std::optional<angle_and_turn> a = angle_about(dout, v, k)) {
     s.rotary[f.outer] = f.outer_sign * a->degrees;
@@ -123,15 +99,14 @@ void solve_outer(const kinematic_chain& c, const orientation_form& f, const vec3
 
 // The inner angles of the (at most two) solutions, their outer angles not yet solved; for a
 // chain of two rotary axes only.
-two_at_most<orientation_solution> solve_inner(const kinematic_chain& c, const orientation_form& f,
-                                              const vec3& k) {
+two_at_most<orientation_solution> solve_inner(const chain_plan& p, const vec3& k) {
+  const kinematic_chain& c = *p.chain;
+  const orientation_form& f = p.form;
   two_at_most<orientation_solution> out;
   const vec3& dout = c.rotaries[f.outer].direction;
-  const vec3& t0 = c.tool_direction;
   // The outer rotation keeps the component along its axis: dout·R(inner, φ)·t0 = dout·k, which
-  // by Rodrigues reads a + b·cos φ + c·sin φ = dout·k.
-  const vec3& din = c.rotaries[f.inner].direction;
-  const inner_equation& eq = inner_equation_of(dout, din, t0);
+  // by Rodrigues reads a + b·cos φ + c·sin φ = dout·k (its constants: the plan's).
+  const inner_equation& eq = p.inner;
   const double a = eq.a, r = eq.r;
   if (r < 1e-12) return out;  // the inner axis cannot change it (rejected by the loader)
   // φ = base ± half with cos half = e / r, e = dout·k - a. Not acos(e / r): near the pole (e ≈ r)
@@ -175,9 +150,11 @@ bool twins(const orientation_form& f, const orientation_solution& x, const orien
 
 }  // namespace
 
-two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
+namespace {
+
+two_at_most<orientation_solution> orientation_solutions(const chain_plan& p, const vec3& k,
                                                         const joint_values& previous) {
-  const orientation_form f = orientation_of(c);
+  const orientation_form& f = p.form;
   two_at_most<orientation_solution> out;
   if (f.outer < 0) {
     out.push_back({});
@@ -185,29 +162,43 @@ two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c
   }
   if (f.inner < 0) {
     orientation_solution s;
-    solve_outer(c, f, k, previous, s);
+    solve_outer(p, k, previous, s);
     out.push_back(s);
     return out;
   }
-  for (orientation_solution s : solve_inner(c, f, k)) {
-    solve_outer(c, f, k, previous, s);
+  for (orientation_solution s : solve_inner(p, k)) {
+    solve_outer(p, k, previous, s);
     if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
     if (out.empty() || !twins(f, out[0], s)) out.push_back(s);
   }
   return out;
 }
 
+}  // namespace
+
+two_at_most<orientation_solution> orientation_solutions(const kinematic_chain& c, const vec3& k,
+                                                        const joint_values& previous) {
+  return orientation_solutions(chain_plan(c), k, previous);
+}
+
 joint_values positions(const kinematic_chain& c, const vec3& tip, const joint_values& angles,
                        double tool_length) {
   joint_values j = angles;
   j.linear = {};
-  const joint_turns r(c, j);
-  j.linear = part_to_machine(c, r, tip) - head_offset(c, r, tool_length);
+  const chain_plan p(c);
+  const joint_turns r(p, j);
+  j.linear = part_to_machine(p, r, tip) - head_offset(p, r, tool_length);
   return j;
 }
 
 ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length,
                   const joint_values& previous, ik_need need) {
+  return inverse(chain_plan(c), pose, tool_length, previous, need);
+}
+
+ik_result inverse(const chain_plan& p, const tool_pose& pose, double tool_length,
+                  const joint_values& previous, ik_need need) {
+  const kinematic_chain& c = *p.chain;
   ik_result r;
   const double len = norm(pose.axis);
   if (!(len > 1e-9) || !std::isfinite(len)) {
@@ -232,21 +223,19 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
     std::array<double, 2> raw{};  // the angles as solved, before placing them within the limits
     std::array<turn, 2> turns{};  // their rotations (whole turns added below change neither)
   };
-  two_at_most<candidate> fitting;
   // Candidates with an axis beyond its limits, for the message only: formatted when nothing fits.
   struct refused {
     std::array<double, 2> rotary;
     std::array<bool, 2> beyond;
   };
-  two_at_most<refused> beyond;
-  const orientation_form f = orientation_of(c);
+  const orientation_form& f = p.form;
   // Generate, then verify: a candidate the forward transform does not confirm is no solution.
   // The check is made on the candidates in the order they are chosen, and stops at the first
   // that holds (placing the angles below moves them by whole turns only: the same axis).
   const auto axis_error_of = [&](const std::array<double, 2>& rotary) {
     joint_values raw;
     raw.rotary = rotary;
-    return angle_between(tool_axis(c, raw), k);
+    return angle_between(tool_axis(p, joint_turns(p, raw)), k);
   };
   // Places the angles of `s` within the limits relative to `previous`: false, with `why`,
   // when an axis has no value within them.
@@ -274,11 +263,13 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
   const auto verify = [&](candidate& cand) {
     const joint_turns turns(cand.turns);
     if (need != ik_need::joints) {
-      cand.axis_error = angle_between(tool_axis(c, turns), k);
+      cand.axis_error = angle_between(tool_axis(p, turns), k);
       if (cand.axis_error > c.angle_tolerance) return false;
     } else {  // the forward transform of the joints below checks the axis too
-      cand.j.linear = part_to_machine(c, turns, want.tip) - head_offset(c, turns, tool_length);
-      const tool_pose got = forward(c, cand.j, tool_length, turns);
+      // The heads' part of the tip is the same in the solve and in its check: turned once.
+      const vec3 offset = head_offset(p, turns, tool_length);
+      cand.j.linear = part_to_machine(p, turns, want.tip) - offset;
+      const tool_pose got = forward_from_offset(p, cand.j.linear, offset, turns);
       cand.tip_error = distance(got.tip, want.tip);
       cand.axis_error = angle_between(got.axis, k);
       if (cand.tip_error > c.tolerance || cand.axis_error > c.angle_tolerance) return false;
@@ -295,7 +286,7 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
   // other cannot be chosen before it and its outer angle is not needed: the same choice as
   // below, at one atan2 and one projection less. Anything else goes the whole way.
   if (f.inner >= 0 && c.rotaries[f.outer].prefer == preferred_sign::none) {
-    const two_at_most<orientation_solution> in = solve_inner(c, f, k);
+    const two_at_most<orientation_solution> in = solve_inner(p, k);
     if (in.size() == 2) {
       const rotary_axis_def& ia = c.rotaries[f.inner];
       const std::optional<fitted> m0 = fit(ia, in[0].rotary[f.inner], previous.rotary[f.inner]);
@@ -304,7 +295,7 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
         const std::size_t first = !m1 || (m0 && m0->move <= m1->move) ? 0 : 1;
         const std::optional<fitted>& other = first == 0 ? m1 : m0;
         orientation_solution s = in[first];
-        solve_outer(c, f, k, previous, s);
+        solve_outer(p, k, previous, s);
         if (s.rotary[f.outer] == -180.0) s.rotary[f.outer] = 180.0;
         candidate cand;
         refused why;
@@ -317,7 +308,10 @@ ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_l
       }
     }
   }
-  for (const orientation_solution& s : orientation_solutions(c, k, previous)) {
+  // The whole way (the short one above returns before these are needed).
+  two_at_most<candidate> fitting;
+  two_at_most<refused> beyond;
+  for (const orientation_solution& s : orientation_solutions(p, k, previous)) {
     candidate cand;
     refused why;
     if (!place(s, cand, why)) {

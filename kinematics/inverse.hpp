@@ -76,5 +76,8 @@ enum class ik_need { joints, angles };
 /// With ik_need::angles, `joints.linear` is left at 0 and `tip_error` is 0.
 ik_result inverse(const kinematic_chain& c, const tool_pose& pose, double tool_length,
                   const joint_values& previous, ik_need need = ik_need::joints);
+/// The same with the chain's plan made once by the caller (a post solves every CL point).
+ik_result inverse(const chain_plan& p, const tool_pose& pose, double tool_length,
+                  const joint_values& previous, ik_need need = ik_need::joints);
 
 }  // namespace twinpost::kin

@@ -42,12 +42,13 @@ vec3 slerp(const vec3& a0, const vec3& b0, double t) {
 namespace {
 
 struct splitter {
-  const kinematic_chain& c;
+  const chain_plan& p;
   const tool_pose& from;
   const tool_pose& to;
   double tool_length, tolerance;
   int max_points;
   linearise_result& out;
+  const kinematic_chain& c = *p.chain;
 
   // The CL point a fraction `s` of the way along the segment; the end itself at 1.
   tool_pose at(double s) const { return segment_pose(from, to, s); }
@@ -61,9 +62,9 @@ struct splitter {
   // the move (the sum formulas: one sincos per axis for the start, a series for the quarter
   // when it is small), not a sincos of each interpolated angle.
   double deviation(const joint_values& j0, const joint_values& j1) const {
-    const joint_turns start(c, j0);
+    const joint_turns start(p, j0);
     std::array<joint_turns, 3> at{start, start, start};
-    for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
+    for (int i = 0; i < p.rotary_count; ++i) {
       double d = j1.rotary[i] - j0.rotary[i];
       if (c.rotaries[i].rollover == rotary_rollover::shortest) d = wrap_180(d);
       const turn q = turn_of_small(d / 4);
@@ -72,11 +73,13 @@ struct splitter {
       at[2].t[i] = compose(at[1].t[i], q);
     }
     double d2 = 0;
+    const vec3 move = j1.linear - j0.linear;
     for (std::size_t n = 0; n < 3; ++n) {
       const double t = 0.25 * static_cast<double>(n + 1);
-      const vec3 p = forward_tip(c, interpolate(c, j0, j1, t), tool_length, at[n]);
-      const double s = len2 > 0 ? std::clamp(dot(p - from.tip, ab) / len2, 0.0, 1.0) : 0.0;
-      const vec3 off = p - (from.tip + s * ab);
+      // The linear values of interpolate(): the rotations are at[n].
+      const vec3 tip = forward_tip(p, j0.linear + t * move, tool_length, at[n]);
+      const double s = len2 > 0 ? std::clamp(dot(tip - from.tip, ab) / len2, 0.0, 1.0) : 0.0;
+      const vec3 off = tip - (from.tip + s * ab);
       d2 = std::max(d2, dot(off, off));
     }
     return std::sqrt(d2);
@@ -92,7 +95,7 @@ struct splitter {
   // j0: the joints follow the CL path from the start, so the end is reached the way the path
   // goes (past a pole, the way around it), not by the shortest move from the start.
   bool split(double s0, const joint_values& j0, double s1, int depth) {
-    const ik_result end = inverse(c, at(s1), tool_length, j0);
+    const ik_result end = inverse(p, at(s1), tool_length, j0);
     if (!end.ok()) return fail(end.error, end.message);
     const double d = deviation(j0, end.joints);
     if (d <= tolerance) {
@@ -124,12 +127,18 @@ linearise_result linearise(const kinematic_chain& c, const tool_pose& from, cons
 void linearise(const kinematic_chain& c, const tool_pose& from, const joint_values& from_joints,
                const tool_pose& to, double tool_length, double tolerance, linearise_result& out,
                int max_points) {
+  linearise(chain_plan(c), from, from_joints, to, tool_length, tolerance, out, max_points);
+}
+
+void linearise(const chain_plan& p, const tool_pose& from, const joint_values& from_joints,
+               const tool_pose& to, double tool_length, double tolerance, linearise_result& out,
+               int max_points) {
   out.error = ik_error::none;
   out.message.clear();
   out.points.clear();
   out.fractions.clear();
   out.deviation = 0;
-  splitter s{c, from, to, tool_length, tolerance, max_points, out};
+  splitter s{p, from, to, tool_length, tolerance, max_points, out};
   s.split(0, from_joints, 1, 0);
   if (!out.ok()) {
     out.points.clear();

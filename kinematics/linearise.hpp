@@ -37,6 +37,10 @@ linearise_result linearise(const kinematic_chain& c, const tool_pose& from, cons
 void linearise(const kinematic_chain& c, const tool_pose& from, const joint_values& from_joints,
                const tool_pose& to, double tool_length, double tolerance, linearise_result& out,
                int max_points = 10000);
+/// The same with the chain's plan made once by the caller.
+void linearise(const chain_plan& p, const tool_pose& from, const joint_values& from_joints,
+               const tool_pose& to, double tool_length, double tolerance, linearise_result& out,
+               int max_points = 10000);
 
 /// The CL pose a fraction `s` of the way along the move: the tip on the line, the axis on the
 /// great circle; `to` itself at 1.

@@ -25,12 +25,18 @@ constexpr int vector_decimals = 6;   // G43.5 I J K
 constexpr int inverse_decimals = 3;  // G93 F, 1/min
 constexpr double still = 1e-9;       // a rotary axis that moves less does not move
 
-// `v` as the control reads it after writing it with `decimals` places.
-double as_written(double v, int decimals) {
-  std::int64_t n;
-  if (!round_fixed(v, decimals, n)) return v;
+// `v` as the control reads it after writing it with `decimals` places; `counted` says whether
+// it rounds to a count `n` (else `v` itself).
+double as_written(double v, int decimals, std::int64_t& n, bool& counted) {
+  counted = round_fixed(v, decimals, n);
+  if (!counted) return v;
   static constexpr double scale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
   return static_cast<double>(n) / scale[decimals];
+}
+double as_written(double v, int decimals) {
+  std::int64_t n;
+  bool counted;
+  return as_written(v, decimals, n, counted);
 }
 
 // The angle (degrees) of `axis` from the line of `pole` (either sense).
@@ -40,6 +46,12 @@ double off_pole(const vec3& axis, const vec3& pole) {
 }
 
 }  // namespace
+
+const kin::chain_plan& channel_writer::plan() {
+  if (plan_.chain != chain_) [[unlikely]]
+    plan_ = kin::chain_plan(*chain_);
+  return plan_;
+}
 
 void channel_writer::tool_data_length(const tool_data_event& t, bool after_call) {
   // Every TLDATA form whose length is known for certain (machining/cam_tool.hpp).
@@ -184,14 +196,14 @@ bool channel_writer::multiaxis_arc(int line) {
 
 bool channel_writer::turn_at_pole(const tool_pose& at, const tool_pose& to, double length, int line) {
   const kinematic_chain& c = *chain_;
-  const kin::orientation_form f = kin::orientation_of(c);
+  const kin::orientation_form& f = plan().form;
   if (f.outer < 0 || f.inner < 0 || c.output == multiaxis_output::vector) return true;
   const vec3& pole = c.rotaries[f.outer].direction;
   const auto on_pole = [&](const vec3& k) { return kin::norm(kin::cross(pole, k)) < 1e-9; };
   if (!on_pole(at.axis) || on_pole(to.axis)) return true;
   const bool joints = c.output == multiaxis_output::joints;
   const kin::ik_result end =
-      kin::inverse(c, to, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
+      kin::inverse(plan_, to, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
   if (!end.ok()) return true;  // the move itself says why
   double turn = end.joints.rotary[f.outer] - joints_.rotary[f.outer];
   if (c.rotaries[f.outer].rollover == rotary_rollover::shortest) turn = kin::wrap_180(turn);
@@ -255,7 +267,7 @@ bool channel_writer::turn_at_pole(const tool_pose& at, const tool_pose& to, doub
 bool channel_writer::same_branch(const joint_values& from, const joint_values& to, int line) {
   // The two solutions of one tool axis differ by about half a turn of the outer axis; the
   // path turns it that fast only beside the pole, where the outer axis is nearly free.
-  const kin::orientation_form f = kin::orientation_of(*chain_);
+  const kin::orientation_form& f = plan().form;
   if (f.outer < 0 || f.inner < 0) return true;
   const double turn = kin::wrap_180(to.rotary[f.outer] - from.rotary[f.outer]);
   if (std::abs(turn) <= 90) return true;
@@ -304,11 +316,11 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   if (rapid || !joints || !had_from) {
     joint_values previous = joints_;
     if (pole_hint_ && rapid) {  // looked ahead from the pole (channel_pole.cpp)
-      previous.rotary[kin::orientation_of(c).outer] = *pole_hint_;
+      previous.rotary[plan().form.outer] = *pole_hint_;
       pole_hint_.reset();
     }
     const kin::ik_result ik =
-        kin::inverse(c, pose, length, previous, joints ? kin::ik_need::joints : kin::ik_need::angles);
+        kin::inverse(plan(), pose, length, previous, joints ? kin::ik_need::joints : kin::ik_need::angles);
     if (!ik.ok())
       return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
     if (!rapid && had_from && !same_branch(joints_, ik.joints, line)) return;
@@ -317,17 +329,17 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
     pose_known_ = true;
     return;
   }
-  kin::linearise(c, from, joints_, pose, length, c.chordal_tolerance, lin_);
+  kin::linearise(plan(), from, joints_, pose, length, c.chordal_tolerance, lin_);
   if (!lin_.ok()) {
     if (lin_.error != kin::ik_error::too_many_points)
       return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, lin_.message));
     // Most often the move leaves the pole (the tool along the outer axis, whose angle was
     // kept) towards an axis that needs that axis at another angle: it would turn while the
     // tool cuts. Say so.
-    const kin::orientation_form f = kin::orientation_of(c);
+    const kin::orientation_form& f = plan_.form;
     if (f.outer >= 0 && f.inner >= 0 &&
         kin::angle_between(from.axis, c.rotaries[f.outer].direction) <= c.angle_tolerance) {
-      const kin::ik_result end = kin::inverse(c, pose, length, joints_);
+      const kin::ik_result end = kin::inverse(plan_, pose, length, joints_);
       if (end.ok()) {
         const rotary_axis_def& o = c.rotaries[f.outer];
         return error(
@@ -378,13 +390,13 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
 }
 
 bool channel_writer::rotary_word(text_buffer& out, char address, double value, axis_memory& last,
-                                 int decimals, bool always) {
+                                 int decimals, bool always, const std::int64_t* counted) {
   if (last.max == 0) [[unlikely]] {  // the control's largest count for the address, once
     const word_format& f = m_.formats[address];
     last.max = f.whole == 0 ? INT64_MAX : f.max_count(decimals);
   }
-  std::int64_t n;
-  if (!round_fixed(value, decimals, n) || n > last.max || n < -last.max) [[unlikely]] {
+  std::int64_t n = counted ? *counted : 0;
+  if ((!counted && !round_fixed(value, decimals, n)) || n > last.max || n < -last.max) [[unlikely]] {
     misfit(address, value);  // past what the control reads: the post stops here
     last.known = false;
     return false;
@@ -502,20 +514,23 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   joint_values read = j;
   const vec3 lin_read{as_written(nc[0], dec) / factor[0], as_written(nc[1], dec) / factor[1],
                       as_written(nc[2], dec) / factor[2]};
+  // The rotary words' counts, for rotary_word() below (one rounding of each value).
+  std::int64_t rotary_n[2] = {0, 0};
+  bool rotary_counted[2] = {false, false};
   for (std::size_t i = 0; i < c.rotaries.size(); ++i)
-    read.rotary[i] = as_written(j.rotary[i], rotary_decimals);
+    read.rotary[i] = as_written(j.rotary[i], rotary_decimals, rotary_n[i], rotary_counted[i]);
   tool_pose back;
   if (length_free_ && joints && !untilted_without_length(read, line)) [[unlikely]]
     return false;
   if (joints) {
     read.linear = lin_read;
-    back = kin::forward(c, read, tool_length_);
+    back = kin::forward(plan(), read, tool_length_);
   } else {
     back.tip = lin_read;
     back.axis = vector
                     ? vec3{as_written(pose.axis.x, vector_decimals), as_written(pose.axis.y, vector_decimals),
                            as_written(pose.axis.z, vector_decimals)}
-                    : kin::tool_axis(c, read);
+                    : kin::tool_axis(plan(), kin::joint_turns(plan_, read));
   }
   const double tip_error = kin::distance(back.tip, pose.tip);
   const double axis_error = kin::angle_between(back.axis, pose.axis);
@@ -576,9 +591,9 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
       std::swap(order[0], order[1]);
     for (std::size_t k = 0; k < c.rotaries.size(); ++k) {
       const std::size_t i = order[k];
-      moved =
-          rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, offset_block) ||
-          moved;
+      moved = rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, offset_block,
+                          rotary_counted[i] ? &rotary_n[i] : nullptr) ||
+              moved;
     }
   }
   if (!moved) {
@@ -594,10 +609,18 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     if (feed_value_ <= 0) {
       error(line, "feed move with no feed rate (FEDRAT) in force");
     } else if (inverse_f > 0) {
-      if (fits('F', inverse_f, inverse_decimals)) {
+      // fits('F', ...) and append_number() in one rounding, the format's limit found once.
+      if (inverse_f_max_ == 0) [[unlikely]] {
+        const word_format& f = m_.formats['F'];
+        inverse_f_max_ = f.whole == 0 ? INT64_MAX : f.max_count(inverse_decimals);
+      }
+      std::int64_t n;
+      if (round_fixed(inverse_f, inverse_decimals, n) && n <= inverse_f_max_ && -n <= inverse_f_max_) {
         separate(b);
         b += 'F';
-        append_number(b, inverse_f, {inverse_decimals, m_.program.trailing_point});
+        append_fixed(b, n, {inverse_decimals, m_.program.trailing_point});
+      } else {
+        misfit('F', inverse_f);
       }
       inverse_time_ = true;
     } else {

@@ -462,9 +462,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// and `always` is off; returns whether it wrote the word.
   bool axis_word(text_buffer& out, char address, double value, axis_memory& last, bool always = false);
   /// Appends " A12.345" (`decimals` places: 3 for degrees, 6 for G43.5's I J K) unless `last`
-  /// holds that value and `always` is off.
-  bool rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals,
-                   bool always);
+  /// holds that value and `always` is off. `counted`: round_fixed()'s count of `value`, when
+  /// the caller has it.
+  bool rotary_word(text_buffer& out, char address, double value, axis_memory& last, int decimals, bool always,
+                   const std::int64_t* counted = nullptr);
   void forget_axes() { last_x_.known = last_y_.known = last_z_.known = false; }
   void append_feed(text_buffer& out);
   /// The words of one arc block ending at `end` after the G codes already in arc_: the axes,
@@ -685,6 +686,12 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   vec3 plane_axis_;            ///< the CL tool axis it was opened for
   void note_line(std::string_view line);
   bool warned_side_ = false;
+  /// *chain_'s plan (kinematics/chain.hpp), made at its first move: plan() gives it.
+  kin::chain_plan plan_;
+  const kin::chain_plan& plan();
+  /// The largest count of an inverse-time F word (G93), taken from the word format at the
+  /// first one (0 until then): fits('F', ...) finds it twice at every block.
+  std::int64_t inverse_f_max_ = 0;
   // [events] (machining/channel_events.cpp). ev_ is null when the machine file has none: the
   // post's own events then cost one pointer test each, and nothing else changes.
   const event_templates* ev_ = nullptr;

@@ -531,6 +531,54 @@ TEST_CASE("multi-axis: no feed per revolution and no 2-D compensation under a ti
         "writes no 3-D compensation (G41.2/G42.2)\nGOTO/0,10,0,0,0.5,0.8660254\n^\n");
 }
 
+TEST_CASE("multi-axis: an inverse-time F past the control's format stops the post at its GOTO",
+          "[post][multiaxis]") {
+  // A turn of 0.01 degrees on the spot at 200000 mm/min: 1 / (0.01 / 200000) = 2e7 per minute,
+  // past F's 6.3 (999999.999).
+  const test::posted p =
+      post_moves(load_machine("rotary-4axis"),
+                 "FEDRAT/200000\nGOTO/0,0,0,0,0,1\nGOTO/0,0,0,0,0.0001745,0.99999998\n", "ma-f");
+  CHECK_FALSE(p.ok);
+  CHECK(
+      p.diagnostics ==
+      "job.cls:11:1: error: channel 1: F word 20003773.4648 does not fit the control's format (6.3: at most "
+      "999999.999)\nGOTO/0,0,0,0,0.0001745,0.99999998\n^\n");
+}
+
+TEST_CASE("multi-axis: a rotary word past the control's format stops the post at its GOTO",
+          "[post][multiaxis]") {
+  // B given one whole digit (1.3, at most 9.999): the feed move's sub-moves to B15 past B9.999
+  // do not fit.
+  machine m = load_machine("head-head-5axis");
+  m.formats['B'] = {1, 3};
+  const test::posted p = post_moves(m, "GOTO/0,0,0,0,0,1\nGOTO/10,0,0,0.2588190,0,0.9659258\n", "ma-b");
+  CHECK_FALSE(p.ok);
+  // Each sub-move past it is refused, with its own error (and the post writes no file).
+  CHECK(p.diagnostics ==
+        "job.cls:10:1: error: channel 1: B word 10.3124985519 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 10.7812484861 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 11.2499984203 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 11.7187483545 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 12.1874982886 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 12.6562482228 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 13.124998157 does not fit the control's format (1.3: at most "
+        "9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 13.5937480912 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 14.0624980254 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 14.5312479595 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:10:1: error: channel 1: B word 14.9999978937 does not fit the control's format (1.3: at "
+        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n");
+}
+
 TEST_CASE("multi-axis: a rapid onto the pole takes the outer angle of the first point off it",
           "[post][multiaxis]") {
   // B head over a C spindle: the tool along Z leaves C free. Tilting it towards -Y needs C90;
