@@ -1,5 +1,6 @@
 #include "formats/number_format.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -9,7 +10,6 @@ namespace twinpost {
 
 namespace {
 
-constexpr double pow10[] = {1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
 constexpr std::int64_t ipow10[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
 
 // "00" .. "99": two digits per division.
@@ -53,26 +53,18 @@ char* write_digits(char* end, std::uint64_t v) {
 
 }  // namespace
 
-bool round_fixed(double v, int decimals, std::int64_t& n) {
-  if (decimals < 0 || decimals > 9) return false;
-  double a = std::fabs(v);
-  double scale = pow10[decimals];
-  double p = a * scale;  // the product, rounded to a double
-  if (!(p < 1e15)) return false;
-  // p >= 0: truncation is floor, and exact (p < 2^52).
-  auto k = static_cast<std::int64_t>(p);
-  double frac = p - static_cast<double>(k);
-  k += frac > 0.5;  // no branch: the fraction is anyone's guess
-  if (frac == 0.5) [[unlikely]] {
-    // Only an exact half in p needs the product's rounding error e (a * scale = p + e,
-    // exactly, by fma); elsewhere |e| <= ulp(p)/2 cannot carry the true product across the
-    // half. A true tie goes to even, as to_chars does.
-    double e = std::fma(a, scale, -p);
-    if (e > 0 || (e == 0 && (k & 1))) ++k;
-  }
-  n = v < 0 ? -k : k;
-  return true;
+namespace number_detail {
+
+bool round_fixed_tie(double a, double scale, double p) {
+  // Only an exact half in p needs the product's rounding error e (a * scale = p + e,
+  // exactly, by fma); elsewhere |e| <= ulp(p)/2 cannot carry the true product across the
+  // half. True when the true product is above the half, or on it with k odd (ties to even,
+  // as to_chars does); the caller's k is then one too small.
+  const double e = std::fma(a, scale, -p);
+  return e > 0 || (e == 0 && (static_cast<std::int64_t>(p) & 1));
 }
+
+}  // namespace number_detail
 
 namespace {
 
@@ -122,12 +114,6 @@ void store8(char* p, std::uint64_t w) {
   std::memcpy(p, &w, 8);
 }
 
-// Decimal digits of 0 < v < 10^8 (1 for 0), without a branch.
-int digit_count(std::uint32_t v) {
-  return 1 + (v >= 10) + (v >= 100) + (v >= 1000) + (v >= 10000) + (v >= 100000) + (v >= 1000000) +
-         (v >= 10000000);
-}
-
 // D decimals, whole part below 10^8 (every coordinate a machine has), written straight into
 // `out`: fixed-width digits cut to length, the same work whatever the number, no loop to
 // mispredict and no digit stored twice. Anything else goes the general way.
@@ -147,7 +133,10 @@ char* write_fixed_d(char* p, std::int64_t n, const number_style& style) {
   if constexpr (D < 8) {
     // The whole part is the first 8 - D characters, i.e. the low bytes of the word.
     constexpr std::uint64_t whole_bytes = D == 0 ? ~0ULL : (1ULL << (8 * (8 - D))) - 1;
-    const int whole = digit_count(m) > D ? digit_count(m) - D : 1;  // at least "0"
+    // The eight digits' leading zeros are the word's low '0' bytes: the whole part is what
+    // is left of its 8 - D digits, at least "0".
+    const int leading = std::countr_zero(all ^ 0x3030303030303030ULL) / 8;  // 8 for m = 0
+    const int whole = std::max(8 - D - leading, 1);
     store8(p, (all & whole_bytes) >> (8 * (8 - D - whole)));
     p += whole;
   } else {

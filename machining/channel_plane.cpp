@@ -29,7 +29,7 @@ constexpr int euler_decimals = 3;
 constexpr std::size_t max_plane_held = 4096;
 
 double written(double v, int decimals) {
-  std::int64_t n;
+  std::int64_t n = 0;
   if (!round_fixed(v, decimals, n)) return v;
   static constexpr double scale[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6};
   return static_cast<double>(n) / scale[decimals];
