@@ -110,7 +110,7 @@ block_timer::block_timer(const machine& m, int channel)
     if (const std::size_t at = b.find('{'); at != std::string::npos && at > 0) {
       cylinder_address_ = b[at - 1];
       cylinder_per_r_ = b.compare(at, 10, "{diameter}") == 0 ? 2 : 1;
-      cylinder_code_ = split_nc_words(b.substr(0, at - 1));
+      cylinder_code_ = split_nc_words(std::string_view(b).substr(0, at - 1));  // in the machine's text
     }
   add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
   add_codes(feed_min_, m.codes.feed_per_min, 'G');
@@ -171,7 +171,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     // A G code is a number (G84.2 is 842, see g_code): no text is built or compared per block.
     const int g = w.expression || !w.numeric ? -1 : g_code_of(w);
     if (g < 0) {
-      untimed("G" + w.value);
+      untimed(fmt::format("G{}", w.value));
       continue;
     }
     // Most G words of a program are G0-G3: the motion, set at once.
@@ -355,7 +355,7 @@ bool block_timer::milling_mode(const std::vector<nc_word>& words) {
       std::equal(
           cylinder_code_.begin(), cylinder_code_.end(), words.begin(),
           [](const nc_word& a, const nc_word& b) { return a.address == b.address && a.value == b.value; })) {
-    cylinder_r_ = std::abs(std::strtod(words.back().value.c_str(), nullptr)) / cylinder_per_r_;
+    cylinder_r_ = std::abs(std::strtod(std::string(words.back().value).c_str(), nullptr)) / cylinder_per_r_;
     return true;
   }
   if (radius_on_.empty() && polar_on_.empty()) return false;

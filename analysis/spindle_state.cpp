@@ -44,7 +44,10 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
                                                              : std::string(c_tpl.substr(0, hole)) + "0" +
                                                                    std::string(c_tpl.substr(hole + 5));
       for (nc_word& w : split_nc_words(tpl))
-        if (w.address != 'S') c.fixed.push_back(std::move(w));
+        if (w.address != 'S') {
+          w.value = {};  // `tpl` dies here: the words are compared by their numbers (same_word)
+          c.fixed.push_back(w);
+        }
     }
     clamps_.push_back(std::move(c));
   }

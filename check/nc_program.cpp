@@ -589,16 +589,16 @@ class reader {
       if (c == ';') return;
       if (c != marker) continue;
       const std::size_t start = i;
-      std::string partners;
       std::size_t j = i + 1;
       for (;;) {
-        while (j < line.size() && is_digit(line[j])) partners += line[j++];
+        while (j < line.size() && is_digit(line[j])) ++j;
         if (j < line.size() && line[j] == marker && j + 1 < line.size() && is_digit(line[j + 1])) {
-          partners += line[j++];
+          ++j;
           continue;
         }
         break;
       }
+      const std::string_view partners = line.substr(i + 1, j - (i + 1));  // as written, in the line
       std::size_t k = j;
       while (k < line.size() && is_blank(line[k])) ++k;
       const int start_column = static_cast<int>(start) + 1;
@@ -642,7 +642,7 @@ class reader {
     if (partner) {
       w.has_partner_list = true;
       w.partner_text = partner->value;
-      std::string digits = partner->value;  // bang: `2!3` lists channels 2 and 3
+      std::string digits(partner->value);  // bang: `2!3` lists channels 2 and 3
       if (bang_) std::erase(digits, m_.waits.marker);
       w.partners_readable =
           !partner->expression && decode_partner_list(digits, m_.waits.partners, w.partners);
@@ -966,8 +966,8 @@ std::vector<nc_word> split_nc_words(std::string_view line) {
 }
 
 std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words) {
-  // The words are written over the vector's old ones (their strings keep their capacity):
-  // a caller that splits every block of a long program allocates nothing per block.
+  // The words are written over the vector's old ones, their values views into `line`: a
+  // caller that splits every block of a long program allocates and copies nothing per block.
   std::size_t used = 0;
   std::uint32_t letters = 0;
   auto next = [&]() -> nc_word& {
@@ -1011,7 +1011,7 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
           nc_word& w = next();
           w.address = upper(c);
           w.column = static_cast<int>(i) + 1;
-          w.value.assign(line.data() + k, d - k);
+          w.value = std::string_view(line.data() + k, d - k);
           w.numeric = number.value(negative, w.value, w.number, w.point);
           if (!w.numeric) w.number = 0, w.point = false;
           letters |= nc_letter(w.address);
@@ -1048,7 +1048,7 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
       nc_word& w = next();
       w.address = upper(c);
       w.column = static_cast<int>(i) + 1;
-      w.value.assign(line.substr(k, d - k));
+      w.value = line.substr(k, d - k);
       w.expression = expression;
       w.numeric = !expression && decode_number(w.value, w.number, w.point);
       if (!w.numeric) w.number = 0, w.point = false;

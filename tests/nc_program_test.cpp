@@ -35,7 +35,7 @@ std::string words_of(std::string_view line) {
   std::string out;
   for (const nc_word& w : split_nc_words(line)) {
     if (!out.empty()) out += ' ';
-    out += w.address + w.value + (w.expression ? "!" : "") + "@" + std::to_string(w.column);
+    out += w.address + std::string(w.value) + (w.expression ? "!" : "") + "@" + std::to_string(w.column);
   }
   return out;
 }
@@ -558,7 +558,8 @@ TEST_CASE("split_nc_words decodes each number once, as from_chars reads it", "[c
   std::vector<nc_word> words;
   for (const std::string& v : values) {
     INFO(v);
-    const std::uint32_t letters = split_nc_words("X" + v + " M3", words);
+    const std::string line = "X" + v + " M3";  // lives while its words are read
+    const std::uint32_t letters = split_nc_words(line, words);
     REQUIRE(words.size() == 2);
     double want = 0;
     const bool ok = nc_number(words[0].value, want);
