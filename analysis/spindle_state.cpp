@@ -58,6 +58,19 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
   for (std::size_t i = 0; i < m.spindles.size(); ++i)
     if (m.spindles[i].name == start) current_ = static_cast<int>(i);
   if (current_ < 0 && !m.spindles.empty()) current_ = 0;
+  for (const std::vector<nc_word>* code : {&css_code_, &rpm_code_})
+    if (code->size() == 1) keys_.push_back(code->front());
+  for (const std::vector<nc_word>& code : offset_codes_)
+    if (code.size() == 1) keys_.push_back(code.front());
+}
+
+bool channel_spindles::may_command(const std::vector<nc_word>& words) const {
+  for (const nc_word& w : words) {
+    if (w.address == 'M' || w.address == 'S') return true;
+    for (const nc_word& k : keys_)
+      if (same_word(w, k)) return true;
+  }
+  return false;
 }
 
 bool channel_spindles::is_code(const std::vector<nc_word>& words, const std::vector<nc_word>& code,
@@ -101,7 +114,8 @@ void channel_spindles::set(int spindle, const spindle_setting& to, int column) {
 const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_word>& words) {
   changes_.clear();
   commands_.clear();
-  if (current_ < 0) return changes_;
+  // Only M and S words and the one-word codes (is_code) can change or command anything below.
+  if (current_ < 0 || !may_command(words)) return changes_;
   // The spindle M-codes of the block: a code several spindles share goes to the current one.
   int turned = -1, turned_column = 0;
   spindle_turn turn = spindle_turn::unknown;

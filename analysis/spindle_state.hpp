@@ -111,6 +111,10 @@ class channel_spindles {
     for (const spindle_def& s : m_.spindles) out.push_back(split_nc_words(s.work_offset));
     return out;
   }();
+  // The one-word codes apply() looks for besides M and S words (work offsets, G96, G97): a
+  // block with none of them and no M or S word commands nothing (most moves with a G0/G1).
+  std::vector<nc_word> keys_;
+  bool may_command(const std::vector<nc_word>& words) const;
   bool is_code(const std::vector<nc_word>& words, const std::vector<nc_word>& code, int& column) const;
   bool is_clamp(const std::vector<nc_word>& words, int spindle) const;
   void set(int spindle, const spindle_setting& to, int column);
