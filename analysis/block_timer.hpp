@@ -134,6 +134,12 @@ class block_timer {
   // axes_'s index of each address, -1 where the channel has no such axis: one look-up per
   // word of every block, where a search of axes_ cost a loop.
   std::array<std::int8_t, 128> axis_at_{};
+  // The axis a word's address moves (axis_at_, with a Fanuc lathe's U/W/V as X/Z/Y) and whether
+  // it is incremental by its address alone.
+  std::array<std::int8_t, 128> word_axis_{};
+  std::array<bool, 128> word_incremental_{};
+  int x_index_ = -1;        // axes_'s last X (the diameter of CSS), -1: none
+  bool has_modes_ = false;  // the machine has mill/turn mode blocks (milling_mode has work)
   // Fixed by the channel's axes (set once): X in diameter, and whether U, W, V are axes of
   // their own or a Fanuc lathe's incremental X, Z, Y.
   bool lathe_x_ = false, has_u_ = false, has_w_ = false, has_v_ = false;
