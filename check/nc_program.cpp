@@ -976,28 +976,18 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
     w.expression = false;
     return w;
   };
-  const std::size_t first = line.find_first_not_of(" \t");
-  if (first != std::string_view::npos && line[first] == '%') {
+  // Blanks skipped by hand: find_first_not_of calls memchr for each character.
+  const std::size_t n = line.size();
+  std::size_t i = 0;
+  while (i < n && is_blank(line[i])) ++i;
+  if (i < n && line[i] == '%') {
     words.clear();
     return 0;
   }
-  const std::size_t n = line.size();
-  std::size_t i = 0;
   while (i < n) {
     const char c = line[i];
-    if (c == '(') {
-      const std::size_t close = line.find(')', i);
-      if (close == std::string_view::npos) break;  // an unclosed comment runs to the end
-      i = close + 1;
-    } else if (c == ';') {
-      break;
-    } else if (c == '/') {
-      i += i + 1 < n && is_digit(line[i + 1]) ? 2 : 1;  // block delete, optionally /1../9
-    } else if (c == '[') {
-      i = skip_brackets(line, i);
-    } else if (c == '#') {
-      for (++i; i < n && is_digit(line[i]);) ++i;  // a variable, not a word
-    } else if (is_letter(c)) {
+    // A letter first: most characters of a block begin a word (or are its digits, read with it).
+    if (is_letter(c)) {
       // The commonest word, a letter right before its number (X-12.5, G1): read and decoded
       // in one pass. Anything else (a keyword, blanks, a variable) takes the general way.
       if (i + 1 < n &&
@@ -1054,6 +1044,18 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
       if (!w.numeric) w.number = 0, w.point = false;
       letters |= nc_letter(w.address);
       i = d;
+    } else if (c == '(') {
+      const std::size_t close = line.find(')', i);
+      if (close == std::string_view::npos) break;  // an unclosed comment runs to the end
+      i = close + 1;
+    } else if (c == ';') {
+      break;
+    } else if (c == '/') {
+      i += i + 1 < n && is_digit(line[i + 1]) ? 2 : 1;  // block delete, optionally /1../9
+    } else if (c == '[') {
+      i = skip_brackets(line, i);
+    } else if (c == '#') {
+      for (++i; i < n && is_digit(line[i]);) ++i;  // a variable, not a word
     } else {
       ++i;
     }
