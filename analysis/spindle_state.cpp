@@ -236,22 +236,6 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
   return changes_;
 }
 
-double channel_spindles::cap() const {
-  const spindle_setting& s = setting(current_);
-  const double max = m_.spindles[static_cast<std::size_t>(current_)].max_rpm;
-  const double cap = s.clamp > 0 ? s.clamp : max;
-  return max > 0 ? std::min(cap, max) : cap;
-}
-
-bool channel_spindles::css_law(bool inch, double& k, double& limit) const {
-  if (current_ < 0) return false;
-  const spindle_setting& s = setting(current_);
-  if (!s.started() || s.speed <= 0 || s.mode != speed_mode::css) return false;
-  k = s.speed * (inch ? 12.0 : 1000.0) / std::numbers::pi;
-  limit = cap();
-  return true;
-}
-
 double channel_spindles::rpm(double diameter, bool inch) const {
   if (current_ < 0) return 0;
   const spindle_setting& s = setting(current_);
