@@ -123,6 +123,7 @@ block_timer::block_timer(const machine& m, int channel)
       cylinder_code_ = split_nc_words(std::string_view(b).substr(0, at - 1));  // in the machine's text
     }
   has_modes_ = cylinder_address_ || !radius_on_.empty() || !polar_on_.empty();
+  target_.resize(axes_.size());
   add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
   add_codes(feed_min_, m.codes.feed_per_min, 'G');
   for (const int g : {g_code("0"), g_code("1"), g_code("2"), g_code("3")})
@@ -272,8 +273,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   }
 
   // Where the block sends each axis (program units; X as programmed).
-  std::vector<std::optional<double>>& target = target_;
-  target.resize(axes_.size());
+  std::vector<std::optional<double>>& target = target_;  // one per axis (sized once)
   bool moves = false;
   for (std::size_t i = 0; i < axes_.size(); ++i) target[i] = axes_[i].value;
   const bool lathe = lathe_x_;
@@ -298,9 +298,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     if (inc && !p->value && !setting)
       untimed(fmt::format("{} from an unknown position", motion_num_ < 0 ? "move" : motion_code_));
   }
-  const bool arc_words = std::any_of(words.begin(), words.end(), [](const nc_word& w) {
-    return w.address == 'I' || w.address == 'J' || w.address == 'K' || w.address == 'R';
-  });
+  // `letters` are the block's exact addresses (it is split).
+  const bool arc_words = (letters & (nc_letter('I') | nc_letter('J') | nc_letter('K') | nc_letter('R'))) != 0;
 
   if (setting) {
     for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];

@@ -70,7 +70,8 @@ class block_timer {
 
   /// Applies one block (the physical line) and returns its time.
   block_timing time(std::string_view text);
-  /// The same for a block already split (the reader's nc_block: words and their letters).
+  /// The same for a block already split (the reader's nc_block: words and their letters, which
+  /// must be exact: split_nc_words' own, not nc_block::letters() before the split).
   block_timing time(const std::vector<nc_word>& words, std::uint32_t letters);
   /// The seconds a wait code costs (machine [timing] wait).
   double wait_seconds() const { return ch_->timing.wait; }
