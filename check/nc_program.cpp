@@ -928,28 +928,24 @@ class reader {
 
 }  // namespace
 
-const std::vector<nc_word>& nc_block::words() const {
-  if (!split_) {
-    letters_ = split_nc_words(text, *store_);
-    split_ = has_letters_ = true;
-  }
+const std::vector<nc_word>& nc_block::split() const {
+  letters_ = split_nc_words(text, *store_);
+  split_ = has_letters_ = true;
   return *store_;
 }
 
-std::uint32_t nc_block::letters() const {
-  if (!has_letters_) {
-    // One table look-up per character: most blocks are asked only this.
-    static constexpr auto bit = [] {
-      std::array<std::uint32_t, 256> t{};
-      for (char c = 'A'; c <= 'Z'; ++c)
-        t[static_cast<unsigned char>(c)] = t[static_cast<unsigned char>(c - 'A' + 'a')] = nc_letter(c);
-      return t;
-    }();
-    std::uint32_t may = 0;
-    for (const char c : text) may |= bit[static_cast<unsigned char>(c)];
-    letters_ = may;
-    has_letters_ = true;
-  }
+std::uint32_t nc_block::scan_letters() const {
+  // One table look-up per character: most blocks are asked only this.
+  static constexpr auto bit = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (char c = 'A'; c <= 'Z'; ++c)
+      t[static_cast<unsigned char>(c)] = t[static_cast<unsigned char>(c - 'A' + 'a')] = nc_letter(c);
+    return t;
+  }();
+  std::uint32_t may = 0;
+  for (const char c : text) may |= bit[static_cast<unsigned char>(c)];
+  letters_ = may;
+  has_letters_ = true;
   return letters_;
 }
 

@@ -91,13 +91,16 @@ class nc_block {
   int line = 0;             ///< 1-based line number
   std::string_view text;    ///< the physical line, without its line ending
 
-  /// Its words (split_nc_words), split on the first call.
-  const std::vector<nc_word>& words() const;
+  /// Its words (split_nc_words), split on the first call. Inline: every consumer asks, and
+  /// all but the first find it split.
+  const std::vector<nc_word>& words() const { return split_ ? *store_ : split(); }
   /// The addresses it may have (nc_letter bits): exact once split, else every letter of the
   /// text, comments included (a superset: a bit not set is a word not there).
-  std::uint32_t letters() const;
+  std::uint32_t letters() const { return has_letters_ ? letters_ : scan_letters(); }
 
  private:
+  const std::vector<nc_word>& split() const;
+  std::uint32_t scan_letters() const;
   std::vector<nc_word>* store_;
   mutable bool split_ = false;
   mutable std::uint32_t letters_ = 0;
