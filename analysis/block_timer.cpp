@@ -410,7 +410,7 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
       linear2 += d * d;
     // Rapid: each axis at its own rate; the block lasts as long as the slowest axis.
     const double travel = p.rotary ? d : to_mm(d);
-    if (p.rate > 0) slowest = std::max(slowest, travel / p.rate * 60);
+    if (rapid && p.rate > 0) slowest = std::max(slowest, travel / p.rate * 60);  // a feed needs none
   }
   if (rapid) return slowest;
   const axis_pos* x = x_index_ >= 0 ? &axes_[static_cast<std::size_t>(x_index_)] : nullptr;
