@@ -62,11 +62,16 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
     if (code->size() == 1) keys_.push_back(code->front());
   for (const std::vector<nc_word>& code : offset_codes_)
     if (code.size() == 1) keys_.push_back(code.front());
+  for (const nc_word& k : keys_) {
+    key_letters_ |= nc_letter(k.address);
+    keys_not_letters_ = keys_not_letters_ || nc_letter(k.address) == 0;
+  }
 }
 
 bool channel_spindles::may_command(const std::vector<nc_word>& words) const {
   for (const nc_word& w : words) {
     if (w.address == 'M' || w.address == 'S') return true;
+    if (!(nc_letter(w.address) & key_letters_) && !keys_not_letters_) continue;  // X, Z, F ...: no key
     for (const nc_word& k : keys_)
       if (same_word(w, k)) return true;
   }
