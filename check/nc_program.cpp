@@ -45,18 +45,23 @@ struct decimal_scan {
   bool clean = true;  // at most one point
 
   decimal_scan(std::string_view s, std::size_t at) {
-    const std::size_t n = s.size();
-    std::size_t d = at;
-    while (d < n && is_digit(s[d])) mantissa = mantissa * 10 + static_cast<std::uint64_t>(s[d++] - '0');
-    digits = d - at;
-    if (d < n && s[d] == '.') {
-      const std::size_t f = ++d;
-      while (d < n && is_digit(s[d])) mantissa = mantissa * 10 + static_cast<std::uint64_t>(s[d++] - '0');
-      decimals = static_cast<int>(d - f);
-      digits += d - f;
-      for (; d < n && (is_digit(s[d]) || s[d] == '.'); ++d) clean = false;
+    // Pointers and a local sum, each digit tested by one unsigned compare: the digit loops
+    // are most of the split's time.
+    const char* const first = s.data() + at;
+    const char* const e = s.data() + s.size();
+    const char* p = first;
+    std::uint64_t m = 0;
+    for (unsigned dg; p < e && (dg = static_cast<unsigned char>(*p) - 48u) <= 9; ++p) m = m * 10 + dg;
+    digits = static_cast<std::size_t>(p - first);
+    if (p < e && *p == '.') {
+      const char* const f = ++p;
+      for (unsigned dg; p < e && (dg = static_cast<unsigned char>(*p) - 48u) <= 9; ++p) m = m * 10 + dg;
+      decimals = static_cast<int>(p - f);
+      digits += static_cast<std::size_t>(p - f);
+      for (; p < e && (is_digit(*p) || *p == '.'); ++p) clean = false;
     }
-    end = d;
+    mantissa = m;
+    end = static_cast<std::size_t>(p - s.data());
   }
 
   // The number as std::from_chars reads `text` (the word's value, sign included: nc_number).
