@@ -58,22 +58,25 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
   for (std::size_t i = 0; i < m.spindles.size(); ++i)
     if (m.spindles[i].name == start) current_ = static_cast<int>(i);
   if (current_ < 0 && !m.spindles.empty()) current_ = 0;
-  for (const std::vector<nc_word>* code : {&css_code_, &rpm_code_})
-    if (code->size() == 1) keys_.push_back(code->front());
-  for (const std::vector<nc_word>& code : offset_codes_)
-    if (code.size() == 1) keys_.push_back(code.front());
-  for (const nc_word& k : keys_) {
-    key_letters_ |= nc_letter(k.address);
-    keys_not_letters_ = keys_not_letters_ || nc_letter(k.address) == 0;
-  }
+  // A key that is no number matches no word (same_word).
+  const auto key = [this](const std::vector<nc_word>& code) {
+    if (code.size() != 1 || !code.front().numeric) return;
+    keys_.emplace_back(code.front().address, code.front().number);
+    key_letters_ |= nc_letter(code.front().address);
+    keys_not_letters_ = keys_not_letters_ || nc_letter(code.front().address) == 0;
+  };
+  key(css_code_);
+  key(rpm_code_);
+  for (const std::vector<nc_word>& code : offset_codes_) key(code);
 }
 
 bool channel_spindles::may_command(const std::vector<nc_word>& words) const {
   for (const nc_word& w : words) {
     if (w.address == 'M' || w.address == 'S') return true;
-    if (!(nc_letter(w.address) & key_letters_) && !keys_not_letters_) continue;  // X, Z, F ...: no key
-    for (const nc_word& k : keys_)
-      if (same_word(w, k)) return true;
+    if (!w.numeric || (!(nc_letter(w.address) & key_letters_) && !keys_not_letters_))
+      continue;  // X, Z, F ...: no key
+    for (const auto& [address, number] : keys_)
+      if (w.address == address && w.number == number) return true;
   }
   return false;
 }

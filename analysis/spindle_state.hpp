@@ -123,8 +123,8 @@ class channel_spindles {
   }();
   // The one-word codes apply() looks for besides M and S words (work offsets, G96, G97): a
   // block with none of them and no M or S word commands nothing (most moves with a G0/G1).
-  std::vector<nc_word> keys_;
-  std::uint32_t key_letters_ = 0;  // their addresses (nc_letter bits)
+  std::vector<std::pair<char, double>> keys_;  // address and number (same_word: numeric ones only)
+  std::uint32_t key_letters_ = 0;              // their addresses (nc_letter bits)
   bool keys_not_letters_ = false;  // a key's address is no letter (no bit): every word is looked at
   bool may_command(const std::vector<nc_word>& words) const;
   bool is_code(const std::vector<nc_word>& words, const std::vector<nc_word>& code, int& column) const;
