@@ -100,8 +100,15 @@ class block_timer {
   int motion_num_ = -1;             // the modal motion: 0, 1, 2, 3, 32 (G32/G33); -1: none yet
   void set_motion(int g) {
     motion_num_ = g / 10;
-    motion_code_ = g_code_text(g, "G");
+    // G0-G3 change at most blocks with a G word: their texts are made once.
+    if (g >= 0 && g <= g_code("3") && g % 10 == 0)
+      motion_code_ = plain_motion_texts_[static_cast<std::size_t>(g / 10)];
+    else
+      motion_code_ = g_code_text(g, "G");
   }
+  const std::array<std::string, 4> plain_motion_texts_ = {
+      g_code_text(g_code("0"), "G"), g_code_text(g_code("1"), "G"), g_code_text(g_code("2"), "G"),
+      g_code_text(g_code("3"), "G")};
   int cycle_ = -1;  // a modal cycle in force (G83, or G90 on a Fanuc lathe, as g_code); -1: none
   double feed_ = 0;
   std::string tool_;
