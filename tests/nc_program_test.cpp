@@ -520,6 +520,24 @@ TEST_CASE("jumps, loops and calls the checker does not follow are reported, not 
       "checked\nm98p1234\n^\n");
 }
 
+// A word's value is a view into the split line: a temporary string would leave every word
+// pointing into freed memory, so splitting one must not compile; a string that lives, a view
+// and a literal split as before.
+template <class S>
+concept splittable = requires(S s) { split_nc_words(std::forward<S>(s)); };
+static_assert(!splittable<std::string>, "a temporary std::string dies before its words");
+static_assert(splittable<const std::string&> && splittable<std::string_view> && splittable<const char*>);
+
+TEST_CASE("a word's value is a view into the split line", "[check]") {
+  const std::string line = "G1 X-12.5 (X9) M#100";
+  const std::vector<nc_word> words = split_nc_words(line);
+  REQUIRE(words.size() == 3);
+  CHECK(words[1].value == "-12.5");
+  CHECK(words[1].value.data() == line.data() + 4);  // in the line, not a copy
+  CHECK(words[2].value == "#100");
+  CHECK(words[2].value.data() == line.data() + 16);
+}
+
 TEST_CASE("split_nc_words decodes each number once, as from_chars reads it", "[check]") {
   // Every value the splitter can hand over: signs, points, leading zeros, digit counts past
   // the exact path (15) and past 19, and what is no number.
