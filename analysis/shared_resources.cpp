@@ -215,7 +215,7 @@ struct shared_resources::impl {
     // modal: only a G word changes it), and a cut among them counts only when it is the first
     // of its stretch (already noted otherwise).
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-    if (c.quiet_without_gms && !(b.letters() & gms) &&
+    if (c.quiet_without_gms && !b.may_have(gms) &&
         (c.motion < 1 || c.motion > 3 || (c.cut_noted() && c.use_noted(shared))))
       return;
     const std::vector<nc_word>& words = b.words();

@@ -939,6 +939,17 @@ const std::vector<nc_word>& nc_block::split() const {
   return *store_;
 }
 
+std::uint32_t nc_block::scan_gms() const {
+  // Byte flags ORed over the text: one compare per letter and case, vector code.
+  unsigned char g = 0, m = 0, s = 0;
+  for (const char c : text) {
+    g |= static_cast<unsigned char>((c == 'G') | (c == 'g'));
+    m |= static_cast<unsigned char>((c == 'M') | (c == 'm'));
+    s |= static_cast<unsigned char>((c == 'S') | (c == 's'));
+  }
+  return (g ? nc_letter('G') : 0) | (m ? nc_letter('M') : 0) | (s ? nc_letter('S') : 0);
+}
+
 std::uint32_t nc_block::scan_letters() const {
   // One table look-up per character: most blocks are asked only this.
   static constexpr auto bit = [] {

@@ -524,7 +524,9 @@ TEST_CASE("jumps, loops and calls the checker does not follow are reported, not 
 // pointing into freed memory, so splitting one must not compile; a string that lives, a view
 // and a literal split as before.
 template <class S>
-concept splittable = requires(S s) { split_nc_words(std::forward<S>(s)); };
+concept splittable = requires(S s) {
+  split_nc_words(std::forward<S>(s));
+};
 static_assert(!splittable<std::string>, "a temporary std::string dies before its words");
 static_assert(splittable<const std::string&> && splittable<std::string_view> && splittable<const char*>);
 
@@ -536,6 +538,24 @@ TEST_CASE("a word's value is a view into the split line", "[check]") {
   CHECK(words[1].value.data() == line.data() + 4);  // in the line, not a copy
   CHECK(words[2].value == "#100");
   CHECK(words[2].value.data() == line.data() + 16);
+}
+
+TEST_CASE("may_have says what letters() says, split or not", "[check]") {
+  constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+  const std::string file = "p.nc";
+  std::vector<nc_word> store;
+  for (const std::string_view text :
+       {"X10. Z5.", "G1 X10.", "x1 (MOVE) z2", "m3", "X1 s200", "(g) X1", "T0101"}) {
+    INFO(text);
+    for (const std::uint32_t mask :
+         {gms, nc_letter('G'), nc_letter('S'), nc_letter('X'), gms | nc_letter('T')}) {
+      const nc_block fresh(1, file, 1, text, store);
+      const bool want = (nc_block(1, file, 1, text, store).letters() & mask) != 0;
+      CHECK(fresh.may_have(mask) == want);  // not split: the G/M/S scan or the letters
+      (void)fresh.words();
+      CHECK(fresh.may_have(mask) == ((fresh.letters() & mask) != 0));  // split: exact
+    }
+  }
 }
 
 TEST_CASE("split_nc_words decodes each number once, as from_chars reads it", "[check]") {
