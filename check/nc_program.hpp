@@ -98,12 +98,13 @@ class nc_block {
   /// text, comments included (a superset: a bit not set is a word not there).
   std::uint32_t letters() const { return has_letters_ ? letters_ : scan_letters(); }
   /// Whether it may have a word of an address of `mask` (nc_letter bits), as `letters() & mask`
-  /// says; a block not split yet is scanned for G, M and S only when the mask asks no other
-  /// letter (a scan the compiler makes vector code, where every letter is a table look-up per
-  /// character: the long lines of 5-axis programs).
+  /// says; a long block not split yet is scanned for G, M and S only when the mask asks no
+  /// other letter (a scan the compiler makes vector code, where every letter is a table
+  /// look-up per character: the long lines of 5-axis programs; on a short line the vector
+  /// code's set-up costs more than the look-ups).
   bool may_have(std::uint32_t mask) const {
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-    if (has_letters_ || (mask & ~gms) != 0) return (letters() & mask) != 0;
+    if (has_letters_ || (mask & ~gms) != 0 || text.size() < 48) return (letters() & mask) != 0;
     return (scan_gms() & mask) != 0;
   }
 
