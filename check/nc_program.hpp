@@ -104,7 +104,7 @@ class nc_block {
   /// code's set-up costs more than the look-ups).
   bool may_have(std::uint32_t mask) const {
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-    if (has_letters_ || (mask & ~gms) != 0 || text.size() < 48) return (letters() & mask) != 0;
+    if (has_letters_ || (mask & ~gms) != 0 || text.size() < 32) return (letters() & mask) != 0;
     return (scan_gms() & mask) != 0;
   }
 
