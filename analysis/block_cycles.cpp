@@ -46,7 +46,7 @@ int steps_of(double depth, double step) {
 }  // namespace
 
 double block_timer::increments(const nc_word& w, double v) const {
-  if (w.value.find('.') != std::string::npos) return v;
+  if (w.value.find('.') != std::string_view::npos) return v;
   return v * (inch_ ? 0.0001 : 0.001);
 }
 

@@ -95,6 +95,16 @@ block_timer::block_timer(const machine& m, int channel)
       axis_at_[static_cast<unsigned char>(axes_[i].address)] = static_cast<std::int8_t>(i);
   lathe_x_ = axis('X') && axis('X')->diameter;
   has_u_ = axis('U') != nullptr, has_w_ = axis('W') != nullptr, has_v_ = axis('V') != nullptr;
+  // Each word's axis once for all blocks: a Fanuc lathe's U, W, V (where no axis of their own)
+  // are X, Z, Y incremental.
+  word_axis_ = axis_at_;
+  for (const auto& [alias, to, own] : {std::tuple{'U', 'X', has_u_}, {'W', 'Z', has_w_}, {'V', 'Y', has_v_}})
+    if (lathe_x_ && !own) {
+      word_axis_[static_cast<unsigned char>(alias)] = axis_at_[static_cast<unsigned char>(to)];
+      word_incremental_[static_cast<unsigned char>(alias)] = true;
+    }
+  for (std::size_t i = 0; i < axes_.size(); ++i)
+    if (axes_[i].address == 'X') x_index_ = static_cast<int>(i);  // the last X, as move_time took it
   // A Fanuc lathe in G-code system A: G90/G92/G94 are turning, thread and facing cycles.
   lathe_a_ = lathe && m.control.find("fanuc") != std::string::npos;
   for (const auto& [blocks, into] :
@@ -110,8 +120,10 @@ block_timer::block_timer(const machine& m, int channel)
     if (const std::size_t at = b.find('{'); at != std::string::npos && at > 0) {
       cylinder_address_ = b[at - 1];
       cylinder_per_r_ = b.compare(at, 10, "{diameter}") == 0 ? 2 : 1;
-      cylinder_code_ = split_nc_words(b.substr(0, at - 1));
+      cylinder_code_ = split_nc_words(std::string_view(b).substr(0, at - 1));  // in the machine's text
     }
+  has_modes_ = cylinder_address_ || !radius_on_.empty() || !polar_on_.empty();
+  target_.resize(axes_.size());
   add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
   add_codes(feed_min_, m.codes.feed_per_min, 'G');
   for (const int g : {g_code("0"), g_code("1"), g_code("2"), g_code("3")})
@@ -154,7 +166,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
   if (!spindles_need_gms_ || (letters & gms)) spindles_.apply(words);
   block_timing t;
-  if (milling_mode(words)) return t;  // a mode block: no time, no move (G10.9 X0 moves nothing)
+  if (has_modes_ && milling_mode(words)) return t;  // a mode block: no time, no move (G10.9 X0 moves nothing)
   auto untimed = [&t](std::string why) {
     if (t.untimed.empty()) t.untimed = std::move(why);
   };
@@ -171,7 +183,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     // A G code is a number (G84.2 is 842, see g_code): no text is built or compared per block.
     const int g = w.expression || !w.numeric ? -1 : g_code_of(w);
     if (g < 0) {
-      untimed("G" + w.value);
+      untimed(fmt::format("G{}", w.value));
       continue;
     }
     // Most G words of a program are G0-G3: the motion, set at once.
@@ -261,21 +273,15 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   }
 
   // Where the block sends each axis (program units; X as programmed).
-  std::vector<std::optional<double>>& target = target_;
-  target.resize(axes_.size());
+  std::vector<std::optional<double>>& target = target_;  // one per axis (sized once)
   bool moves = false;
   for (std::size_t i = 0; i < axes_.size(); ++i) target[i] = axes_[i].value;
-  const bool has_u = has_u_, has_w = has_w_, has_v = has_v_;
   const bool lathe = lathe_x_;
   for (const nc_word& w : words) {
-    char a = w.address;
-    bool inc = incremental_;
-    if (lathe && ((a == 'U' && !has_u) || (a == 'W' && !has_w) || (a == 'V' && !has_v))) {
-      a = a == 'U' ? 'X' : a == 'W' ? 'Z' : 'Y';
-      inc = true;
-    }
-    axis_pos* p = axis(a);
-    if (!p) continue;
+    const auto u = static_cast<unsigned char>(w.address);
+    if (u >= word_axis_.size() || word_axis_[u] < 0) continue;
+    axis_pos* p = &axes_[static_cast<std::size_t>(word_axis_[u])];
+    const bool inc = incremental_ || word_incremental_[u];
     if (w.address == 'B' && reference) continue;
     double v = 0;
     if (!num(w, v)) {
@@ -292,9 +298,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     if (inc && !p->value && !setting)
       untimed(fmt::format("{} from an unknown position", motion_num_ < 0 ? "move" : motion_code_));
   }
-  const bool arc_words = std::any_of(words.begin(), words.end(), [](const nc_word& w) {
-    return w.address == 'I' || w.address == 'J' || w.address == 'K' || w.address == 'R';
-  });
+  // `letters` are the block's exact addresses (it is split).
+  const bool arc_words = (letters & (nc_letter('I') | nc_letter('J') | nc_letter('K') | nc_letter('R'))) != 0;
 
   if (setting) {
     for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
@@ -355,7 +360,7 @@ bool block_timer::milling_mode(const std::vector<nc_word>& words) {
       std::equal(
           cylinder_code_.begin(), cylinder_code_.end(), words.begin(),
           [](const nc_word& a, const nc_word& b) { return a.address == b.address && a.value == b.value; })) {
-    cylinder_r_ = std::abs(std::strtod(words.back().value.c_str(), nullptr)) / cylinder_per_r_;
+    cylinder_r_ = std::abs(std::strtod(std::string(words.back().value).c_str(), nullptr)) / cylinder_per_r_;
     return true;
   }
   if (radius_on_.empty() && polar_on_.empty()) return false;
@@ -405,13 +410,11 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
       linear2 += d * d;
     // Rapid: each axis at its own rate; the block lasts as long as the slowest axis.
     const double travel = p.rotary ? d : to_mm(d);
-    if (p.rate > 0) slowest = std::max(slowest, travel / p.rate * 60);
+    if (rapid && p.rate > 0) slowest = std::max(slowest, travel / p.rate * 60);  // a feed needs none
   }
   if (rapid) return slowest;
-  const axis_pos* x = nullptr;
-  std::size_t xi = 0;
-  for (std::size_t i = 0; i < axes_.size(); ++i)
-    if (axes_[i].address == 'X') x = &axes_[i], xi = i;
+  const axis_pos* x = x_index_ >= 0 ? &axes_[static_cast<std::size_t>(x_index_)] : nullptr;
+  const std::size_t xi = x_index_ >= 0 ? static_cast<std::size_t>(x_index_) : 0;
   auto dia = [&](std::optional<double> v) {
     return !v ? -1.0 : x && x->diameter ? std::abs(*v) : 2 * std::abs(*v);
   };

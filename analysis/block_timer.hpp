@@ -70,7 +70,8 @@ class block_timer {
 
   /// Applies one block (the physical line) and returns its time.
   block_timing time(std::string_view text);
-  /// The same for a block already split (the reader's nc_block: words and their letters).
+  /// The same for a block already split (the reader's nc_block: words and their letters, which
+  /// must be exact: split_nc_words' own, not nc_block::letters() before the split).
   block_timing time(const std::vector<nc_word>& words, std::uint32_t letters);
   /// The seconds a wait code costs (machine [timing] wait).
   double wait_seconds() const { return ch_->timing.wait; }
@@ -99,8 +100,15 @@ class block_timer {
   int motion_num_ = -1;             // the modal motion: 0, 1, 2, 3, 32 (G32/G33); -1: none yet
   void set_motion(int g) {
     motion_num_ = g / 10;
-    motion_code_ = g_code_text(g, "G");
+    // G0-G3 change at most blocks with a G word: their texts are made once.
+    if (g >= 0 && g <= g_code("3") && g % 10 == 0)
+      motion_code_ = plain_motion_texts_[static_cast<std::size_t>(g / 10)];
+    else
+      motion_code_ = g_code_text(g, "G");
   }
+  const std::array<std::string, 4> plain_motion_texts_ = {
+      g_code_text(g_code("0"), "G"), g_code_text(g_code("1"), "G"), g_code_text(g_code("2"), "G"),
+      g_code_text(g_code("3"), "G")};
   int cycle_ = -1;  // a modal cycle in force (G83, or G90 on a Fanuc lathe, as g_code); -1: none
   double feed_ = 0;
   std::string tool_;
@@ -134,6 +142,12 @@ class block_timer {
   // axes_'s index of each address, -1 where the channel has no such axis: one look-up per
   // word of every block, where a search of axes_ cost a loop.
   std::array<std::int8_t, 128> axis_at_{};
+  // The axis a word's address moves (axis_at_, with a Fanuc lathe's U/W/V as X/Z/Y) and whether
+  // it is incremental by its address alone.
+  std::array<std::int8_t, 128> word_axis_{};
+  std::array<bool, 128> word_incremental_{};
+  int x_index_ = -1;        // axes_'s last X (the diameter of CSS), -1: none
+  bool has_modes_ = false;  // the machine has mill/turn mode blocks (milling_mode has work)
   // Fixed by the channel's axes (set once): X in diameter, and whether U, W, V are axes of
   // their own or a Fanuc lathe's incremental X, Z, Y.
   bool lathe_x_ = false, has_u_ = false, has_w_ = false, has_v_ = false;

@@ -215,7 +215,7 @@ struct shared_resources::impl {
     // modal: only a G word changes it), and a cut among them counts only when it is the first
     // of its stretch (already noted otherwise).
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-    if (c.quiet_without_gms && !(b.letters() & gms) &&
+    if (c.quiet_without_gms && !b.may_have(gms) &&
         (c.motion < 1 || c.motion > 3 || (c.cut_noted() && c.use_noted(shared))))
       return;
     const std::vector<nc_word>& words = b.words();
@@ -255,48 +255,54 @@ struct shared_resources::impl {
       }
     }
     c.spindles.apply(words);
-    place_ref at{file, line, 0, {}};
-    if (!c.spindles.commands().empty()) at.source = text;
-    for (const spindle_command& cmd : c.spindles.commands()) {
-      const auto s = static_cast<std::size_t>(cmd.spindle);
-      at.column = cmd.column;
-      if (!m.may_command(channel, cmd.spindle)) {
-        if (!c.refused[s]) {
-          c.refused[s] = true;
-          refusals.push_back(
-              {severity::error, file, line, cmd.column,
-               fmt::format("channel {} commands the {} spindle ({}), which machine '{}' does not "
-                           "give it: channel {} may command {} (channel.spindles)",
-                           channel, spindle(cmd.spindle).name, command_text(cmd), m.name, channel,
-                           allowed(channel)),
-               at.source});
+    // A place (its file name a copy) is made only for a block that is noted: most blocks with
+    // a G word command nothing and cut in a stretch already noted.
+    const std::vector<spindle_command>& commands = c.spindles.commands();
+    if (!commands.empty()) {
+      place_ref at{file, line, 0, std::string(text)};
+      for (const spindle_command& cmd : commands) {
+        const auto s = static_cast<std::size_t>(cmd.spindle);
+        at.column = cmd.column;
+        if (!m.may_command(channel, cmd.spindle)) {
+          if (!c.refused[s]) {
+            c.refused[s] = true;
+            refusals.push_back(
+                {severity::error, file, line, cmd.column,
+                 fmt::format("channel {} commands the {} spindle ({}), which machine '{}' does not "
+                             "give it: channel {} may command {} (channel.spindles)",
+                             channel, spindle(cmd.spindle).name, command_text(cmd), m.name, channel,
+                             allowed(channel)),
+                 at.source});
+          }
+          continue;
         }
-        continue;
-      }
-      const std::size_t own_turns = c.turns[s].size();
-      if (cmd.turn)
-        c.turns[s].push_back({c.seg, cmd.setting.started(), spindle(cmd.spindle).stop, cmd.setting, at});
-      if ((cmd.turn || cmd.speed || cmd.mode) && shared[s]) {
-        c.commands[s].push_back({c.seg, cmd, at, own_turns, c.balance});
-        ++c.own_commands[s];
+        const std::size_t own_turns = c.turns[s].size();
+        if (cmd.turn)
+          c.turns[s].push_back({c.seg, cmd.setting.started(), spindle(cmd.spindle).stop, cmd.setting, at});
+        if ((cmd.turn || cmd.speed || cmd.mode) && shared[s]) {
+          c.commands[s].push_back({c.seg, cmd, at, own_turns, c.balance});
+          ++c.own_commands[s];
+        }
       }
     }
     const bool feeding = c.motion >= 1 && c.motion <= 3 && axis_column > 0 && !no_move;
     const int s = c.spindles.current();
     if (s < 0 || !(thread || cycle || feeding)) return;
-    at.column = cut_column ? cut_column : axis_column;
-    at.source = text;
-    if (!c.use_noted(shared)) {
-      const auto si = static_cast<std::size_t>(s);
+    const auto si = static_cast<std::size_t>(s);
+    const bool new_use = !c.use_noted(shared);
+    const std::size_t own = c.turns[si].size();
+    const bool new_cut = (thread || c.per_rev) && !(c.has_cut_key && c.last_seg == c.seg &&
+                                                    c.last_spindle == s && c.last_turns == own);
+    if (!new_use && !new_cut) return;
+    place_ref at{file, line, cut_column ? cut_column : axis_column, std::string(text)};
+    if (new_use) {
       c.has_use_key = true;
       c.use_seg = c.seg;
       c.use_spindle = s;
       c.use_commands = c.own_commands[si];
-      c.uses.push_back({c.seg, s, c.turns[si].size(), c.spindles.setting(s), at, c.balance});
+      c.uses.push_back({c.seg, s, own, c.spindles.setting(s), at, c.balance});
     }
-    if (!(thread || c.per_rev)) return;
-    const std::size_t own = c.turns[static_cast<std::size_t>(s)].size();
-    if (c.has_cut_key && c.last_seg == c.seg && c.last_spindle == s && c.last_turns == own) return;
+    if (!new_cut) return;
     c.has_cut_key = true;
     c.last_seg = c.seg;
     c.last_spindle = s;

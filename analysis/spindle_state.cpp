@@ -44,7 +44,10 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
                                                              : std::string(c_tpl.substr(0, hole)) + "0" +
                                                                    std::string(c_tpl.substr(hole + 5));
       for (nc_word& w : split_nc_words(tpl))
-        if (w.address != 'S') c.fixed.push_back(std::move(w));
+        if (w.address != 'S') {
+          w.value = {};  // `tpl` dies here: the words are compared by their numbers (same_word)
+          c.fixed.push_back(w);
+        }
     }
     clamps_.push_back(std::move(c));
   }
@@ -55,6 +58,27 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
   for (std::size_t i = 0; i < m.spindles.size(); ++i)
     if (m.spindles[i].name == start) current_ = static_cast<int>(i);
   if (current_ < 0 && !m.spindles.empty()) current_ = 0;
+  // A key that is no number matches no word (same_word).
+  const auto key = [this](const std::vector<nc_word>& code) {
+    if (code.size() != 1 || !code.front().numeric) return;
+    keys_.emplace_back(code.front().address, code.front().number);
+    key_letters_ |= nc_letter(code.front().address);
+    keys_not_letters_ = keys_not_letters_ || nc_letter(code.front().address) == 0;
+  };
+  key(css_code_);
+  key(rpm_code_);
+  for (const std::vector<nc_word>& code : offset_codes_) key(code);
+}
+
+bool channel_spindles::may_command(const std::vector<nc_word>& words) const {
+  for (const nc_word& w : words) {
+    if (w.address == 'M' || w.address == 'S') return true;
+    if (!w.numeric || (!(nc_letter(w.address) & key_letters_) && !keys_not_letters_))
+      continue;  // X, Z, F ...: no key
+    for (const auto& [address, number] : keys_)
+      if (w.address == address && w.number == number) return true;
+  }
+  return false;
 }
 
 bool channel_spindles::is_code(const std::vector<nc_word>& words, const std::vector<nc_word>& code,
@@ -98,7 +122,8 @@ void channel_spindles::set(int spindle, const spindle_setting& to, int column) {
 const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_word>& words) {
   changes_.clear();
   commands_.clear();
-  if (current_ < 0) return changes_;
+  // Only M and S words and the one-word codes (is_code) can change or command anything below.
+  if (current_ < 0 || !may_command(words)) return changes_;
   // The spindle M-codes of the block: a code several spindles share goes to the current one.
   int turned = -1, turned_column = 0;
   spindle_turn turn = spindle_turn::unknown;
@@ -217,22 +242,6 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
     commands_.push_back(c);
   }
   return changes_;
-}
-
-double channel_spindles::cap() const {
-  const spindle_setting& s = setting(current_);
-  const double max = m_.spindles[static_cast<std::size_t>(current_)].max_rpm;
-  const double cap = s.clamp > 0 ? s.clamp : max;
-  return max > 0 ? std::min(cap, max) : cap;
-}
-
-bool channel_spindles::css_law(bool inch, double& k, double& limit) const {
-  if (current_ < 0) return false;
-  const spindle_setting& s = setting(current_);
-  if (!s.started() || s.speed <= 0 || s.mode != speed_mode::css) return false;
-  k = s.speed * (inch ? 12.0 : 1000.0) / std::numbers::pi;
-  limit = cap();
-  return true;
 }
 
 double channel_spindles::rpm(double diameter, bool inch) const {

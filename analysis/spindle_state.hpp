@@ -5,6 +5,8 @@
 // clamp, [codes] css/rpm), so it reads any program of the machine, not only twinpost's.
 // The input of the shared-spindle rules (analysis/shared_resources) and the cycle time
 // (feeds per revolution need the speed in rpm).
+#include <algorithm>
+#include <numbers>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -84,7 +86,15 @@ class channel_spindles {
   double rpm(double diameter, bool inch) const;
   /// Under CSS, the law rpm(d) = min(limit, k / d) of the current spindle (d in the program's
   /// unit; limit 0: none): false when it is not turning under CSS at a known speed.
-  bool css_law(bool inch, double& k, double& limit) const;
+  /// Inline: the timer asks it at every feed move under CSS.
+  bool css_law(bool inch, double& k, double& limit) const {
+    if (current_ < 0) return false;
+    const spindle_setting& s = setting(current_);
+    if (!s.started() || s.speed <= 0 || s.mode != speed_mode::css) return false;
+    k = s.speed * (inch ? 12.0 : 1000.0) / std::numbers::pi;
+    limit = cap();
+    return true;
+  }
 
  private:
   struct clamp_block {
@@ -111,10 +121,21 @@ class channel_spindles {
     for (const spindle_def& s : m_.spindles) out.push_back(split_nc_words(s.work_offset));
     return out;
   }();
+  // The one-word codes apply() looks for besides M and S words (work offsets, G96, G97): a
+  // block with none of them and no M or S word commands nothing (most moves with a G0/G1).
+  std::vector<std::pair<char, double>> keys_;  // address and number (same_word: numeric ones only)
+  std::uint32_t key_letters_ = 0;              // their addresses (nc_letter bits)
+  bool keys_not_letters_ = false;  // a key's address is no letter (no bit): every word is looked at
+  bool may_command(const std::vector<nc_word>& words) const;
   bool is_code(const std::vector<nc_word>& words, const std::vector<nc_word>& code, int& column) const;
   bool is_clamp(const std::vector<nc_word>& words, int spindle) const;
   void set(int spindle, const spindle_setting& to, int column);
-  double cap() const;  // the current spindle's highest rpm: clamp and max_rpm; 0 none
+  double cap() const {  // the current spindle's highest rpm: clamp and max_rpm; 0 none
+    const spindle_setting& s = setting(current_);
+    const double max = m_.spindles[static_cast<std::size_t>(current_)].max_rpm;
+    const double cap = s.clamp > 0 ? s.clamp : max;
+    return max > 0 ? std::min(cap, max) : cap;
+  }
 };
 
 }  // namespace twinpost

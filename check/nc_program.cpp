@@ -45,18 +45,23 @@ struct decimal_scan {
   bool clean = true;  // at most one point
 
   decimal_scan(std::string_view s, std::size_t at) {
-    const std::size_t n = s.size();
-    std::size_t d = at;
-    while (d < n && is_digit(s[d])) mantissa = mantissa * 10 + static_cast<std::uint64_t>(s[d++] - '0');
-    digits = d - at;
-    if (d < n && s[d] == '.') {
-      const std::size_t f = ++d;
-      while (d < n && is_digit(s[d])) mantissa = mantissa * 10 + static_cast<std::uint64_t>(s[d++] - '0');
-      decimals = static_cast<int>(d - f);
-      digits += d - f;
-      for (; d < n && (is_digit(s[d]) || s[d] == '.'); ++d) clean = false;
+    // Pointers and a local sum, each digit tested by one unsigned compare: the digit loops
+    // are most of the split's time.
+    const char* const first = s.data() + at;
+    const char* const e = s.data() + s.size();
+    const char* p = first;
+    std::uint64_t m = 0;
+    for (unsigned dg; p < e && (dg = static_cast<unsigned char>(*p) - 48u) <= 9; ++p) m = m * 10 + dg;
+    digits = static_cast<std::size_t>(p - first);
+    if (p < e && *p == '.') {
+      const char* const f = ++p;
+      for (unsigned dg; p < e && (dg = static_cast<unsigned char>(*p) - 48u) <= 9; ++p) m = m * 10 + dg;
+      decimals = static_cast<int>(p - f);
+      digits += static_cast<std::size_t>(p - f);
+      for (; p < e && (is_digit(*p) || *p == '.'); ++p) clean = false;
     }
-    end = d;
+    mantissa = m;
+    end = static_cast<std::size_t>(p - s.data());
   }
 
   // The number as std::from_chars reads `text` (the word's value, sign included: nc_number).
@@ -589,16 +594,16 @@ class reader {
       if (c == ';') return;
       if (c != marker) continue;
       const std::size_t start = i;
-      std::string partners;
       std::size_t j = i + 1;
       for (;;) {
-        while (j < line.size() && is_digit(line[j])) partners += line[j++];
+        while (j < line.size() && is_digit(line[j])) ++j;
         if (j < line.size() && line[j] == marker && j + 1 < line.size() && is_digit(line[j + 1])) {
-          partners += line[j++];
+          ++j;
           continue;
         }
         break;
       }
+      const std::string_view partners = line.substr(i + 1, j - (i + 1));  // as written, in the line
       std::size_t k = j;
       while (k < line.size() && is_blank(line[k])) ++k;
       const int start_column = static_cast<int>(start) + 1;
@@ -642,7 +647,7 @@ class reader {
     if (partner) {
       w.has_partner_list = true;
       w.partner_text = partner->value;
-      std::string digits = partner->value;  // bang: `2!3` lists channels 2 and 3
+      std::string digits(partner->value);  // bang: `2!3` lists channels 2 and 3
       if (bang_) std::erase(digits, m_.waits.marker);
       w.partners_readable =
           !partner->expression && decode_partner_list(digits, m_.waits.partners, w.partners);
@@ -928,28 +933,35 @@ class reader {
 
 }  // namespace
 
-const std::vector<nc_word>& nc_block::words() const {
-  if (!split_) {
-    letters_ = split_nc_words(text, *store_);
-    split_ = has_letters_ = true;
-  }
+const std::vector<nc_word>& nc_block::split() const {
+  letters_ = split_nc_words(text, *store_);
+  split_ = has_letters_ = true;
   return *store_;
 }
 
-std::uint32_t nc_block::letters() const {
-  if (!has_letters_) {
-    // One table look-up per character: most blocks are asked only this.
-    static constexpr auto bit = [] {
-      std::array<std::uint32_t, 256> t{};
-      for (char c = 'A'; c <= 'Z'; ++c)
-        t[static_cast<unsigned char>(c)] = t[static_cast<unsigned char>(c - 'A' + 'a')] = nc_letter(c);
-      return t;
-    }();
-    std::uint32_t may = 0;
-    for (const char c : text) may |= bit[static_cast<unsigned char>(c)];
-    letters_ = may;
-    has_letters_ = true;
+std::uint32_t nc_block::scan_gms() const {
+  // Byte flags ORed over the text: one compare per letter and case, vector code.
+  unsigned char g = 0, m = 0, s = 0;
+  for (const char c : text) {
+    g |= static_cast<unsigned char>((c == 'G') | (c == 'g'));
+    m |= static_cast<unsigned char>((c == 'M') | (c == 'm'));
+    s |= static_cast<unsigned char>((c == 'S') | (c == 's'));
   }
+  return (g ? nc_letter('G') : 0) | (m ? nc_letter('M') : 0) | (s ? nc_letter('S') : 0);
+}
+
+std::uint32_t nc_block::scan_letters() const {
+  // One table look-up per character: most blocks are asked only this.
+  static constexpr auto bit = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (char c = 'A'; c <= 'Z'; ++c)
+      t[static_cast<unsigned char>(c)] = t[static_cast<unsigned char>(c - 'A' + 'a')] = nc_letter(c);
+    return t;
+  }();
+  std::uint32_t may = 0;
+  for (const char c : text) may |= bit[static_cast<unsigned char>(c)];
+  letters_ = may;
+  has_letters_ = true;
   return letters_;
 }
 
@@ -966,8 +978,8 @@ std::vector<nc_word> split_nc_words(std::string_view line) {
 }
 
 std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words) {
-  // The words are written over the vector's old ones (their strings keep their capacity):
-  // a caller that splits every block of a long program allocates nothing per block.
+  // The words are written over the vector's old ones, their values views into `line`: a
+  // caller that splits every block of a long program allocates and copies nothing per block.
   std::size_t used = 0;
   std::uint32_t letters = 0;
   auto next = [&]() -> nc_word& {
@@ -976,28 +988,18 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
     w.expression = false;
     return w;
   };
-  const std::size_t first = line.find_first_not_of(" \t");
-  if (first != std::string_view::npos && line[first] == '%') {
+  // Blanks skipped by hand: find_first_not_of calls memchr for each character.
+  const std::size_t n = line.size();
+  std::size_t i = 0;
+  while (i < n && is_blank(line[i])) ++i;
+  if (i < n && line[i] == '%') {
     words.clear();
     return 0;
   }
-  const std::size_t n = line.size();
-  std::size_t i = 0;
   while (i < n) {
     const char c = line[i];
-    if (c == '(') {
-      const std::size_t close = line.find(')', i);
-      if (close == std::string_view::npos) break;  // an unclosed comment runs to the end
-      i = close + 1;
-    } else if (c == ';') {
-      break;
-    } else if (c == '/') {
-      i += i + 1 < n && is_digit(line[i + 1]) ? 2 : 1;  // block delete, optionally /1../9
-    } else if (c == '[') {
-      i = skip_brackets(line, i);
-    } else if (c == '#') {
-      for (++i; i < n && is_digit(line[i]);) ++i;  // a variable, not a word
-    } else if (is_letter(c)) {
+    // A letter first: most characters of a block begin a word (or are its digits, read with it).
+    if (is_letter(c)) {
       // The commonest word, a letter right before its number (X-12.5, G1): read and decoded
       // in one pass. Anything else (a keyword, blanks, a variable) takes the general way.
       if (i + 1 < n &&
@@ -1011,7 +1013,7 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
           nc_word& w = next();
           w.address = upper(c);
           w.column = static_cast<int>(i) + 1;
-          w.value.assign(line.data() + k, d - k);
+          w.value = std::string_view(line.data() + k, d - k);
           w.numeric = number.value(negative, w.value, w.number, w.point);
           if (!w.numeric) w.number = 0, w.point = false;
           letters |= nc_letter(w.address);
@@ -1048,12 +1050,24 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
       nc_word& w = next();
       w.address = upper(c);
       w.column = static_cast<int>(i) + 1;
-      w.value.assign(line.substr(k, d - k));
+      w.value = line.substr(k, d - k);
       w.expression = expression;
       w.numeric = !expression && decode_number(w.value, w.number, w.point);
       if (!w.numeric) w.number = 0, w.point = false;
       letters |= nc_letter(w.address);
       i = d;
+    } else if (c == '(') {
+      const std::size_t close = line.find(')', i);
+      if (close == std::string_view::npos) break;  // an unclosed comment runs to the end
+      i = close + 1;
+    } else if (c == ';') {
+      break;
+    } else if (c == '/') {
+      i += i + 1 < n && is_digit(line[i + 1]) ? 2 : 1;  // block delete, optionally /1../9
+    } else if (c == '[') {
+      i = skip_brackets(line, i);
+    } else if (c == '#') {
+      for (++i; i < n && is_digit(line[i]);) ++i;  // a variable, not a word
     } else {
       ++i;
     }

@@ -54,10 +54,11 @@ struct nc_place {
 };
 
 /// One word of an NC block, read once: its number is decoded when the block is split, so
-/// that no consumer reads the digits again.
+/// that no consumer reads the digits again. `value` is a view into the split line (no copy
+/// per word): a word is good while the text it was split from lives.
 struct nc_word {
   char address = 0;         ///< upper case letter
-  std::string value;        ///< the number as written ("100", "-1.5"); empty when none
+  std::string_view value;   ///< the number as written ("100", "-1.5"), in the split line; empty when none
   bool expression = false;  ///< the value is a variable or expression (M#100, M[#1+2])
   int column = 0;           ///< 1-based column of the address letter
   bool numeric = false;     ///< `value` is a plain number ("-1.5", "+2", "100."), decoded in `number`
@@ -90,13 +91,27 @@ class nc_block {
   int line = 0;             ///< 1-based line number
   std::string_view text;    ///< the physical line, without its line ending
 
-  /// Its words (split_nc_words), split on the first call.
-  const std::vector<nc_word>& words() const;
+  /// Its words (split_nc_words), split on the first call. Inline: every consumer asks, and
+  /// all but the first find it split.
+  const std::vector<nc_word>& words() const { return split_ ? *store_ : split(); }
   /// The addresses it may have (nc_letter bits): exact once split, else every letter of the
   /// text, comments included (a superset: a bit not set is a word not there).
-  std::uint32_t letters() const;
+  std::uint32_t letters() const { return has_letters_ ? letters_ : scan_letters(); }
+  /// Whether it may have a word of an address of `mask` (nc_letter bits), as `letters() & mask`
+  /// says; a long block not split yet is scanned for G, M and S only when the mask asks no
+  /// other letter (a scan the compiler makes vector code, where every letter is a table
+  /// look-up per character: the long lines of 5-axis programs; on a short line the vector
+  /// code's set-up costs more than the look-ups).
+  bool may_have(std::uint32_t mask) const {
+    constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+    if (has_letters_ || (mask & ~gms) != 0 || text.size() < 32) return (letters() & mask) != 0;
+    return (scan_gms() & mask) != 0;
+  }
 
  private:
+  std::uint32_t scan_gms() const;
+  const std::vector<nc_word>& split() const;
+  std::uint32_t scan_letters() const;
   std::vector<nc_word>* store_;
   mutable bool split_ = false;
   mutable std::uint32_t letters_ = 0;
@@ -106,13 +121,24 @@ class nc_block {
 /// Splits one physical NC line into its words. Skips `(...)` and `;` comments, `%` lines,
 /// block delete `/` (`/2`), `#` variables, `[...]` expressions and keywords (IF, GOTO, ...).
 /// Reads glued (`M100P12`), spaced (`M100 P12`, `M 100`) and lower-case words.
+/// The words' values point into `line`: it must outlive them.
 std::vector<nc_word> split_nc_words(std::string_view line);
+/// The same for a literal (which lives for ever).
+inline std::vector<nc_word> split_nc_words(const char* line) {
+  return split_nc_words(std::string_view(line));
+}
+/// A temporary string would die before its words: refused at compile time.
+std::vector<nc_word> split_nc_words(std::string&& line) = delete;
 /// The number of a word's value ("-1.5", "+2", "100."): false for an empty value or anything
 /// else (an expression, "1.2.3").
 bool nc_number(std::string_view value, double& out);
 /// The same into `words`, reusing its elements: no allocation per block once it has grown.
 /// Returns the addresses found (nc_letter bits).
 std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words);
+inline std::uint32_t split_nc_words(const char* line, std::vector<nc_word>& words) {
+  return split_nc_words(std::string_view(line), words);
+}
+std::uint32_t split_nc_words(std::string&& line, std::vector<nc_word>& words) = delete;
 
 /// One wait as written in a channel's program (or an M-code that looks like one).
 struct nc_wait {

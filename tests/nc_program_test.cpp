@@ -35,7 +35,7 @@ std::string words_of(std::string_view line) {
   std::string out;
   for (const nc_word& w : split_nc_words(line)) {
     if (!out.empty()) out += ' ';
-    out += w.address + w.value + (w.expression ? "!" : "") + "@" + std::to_string(w.column);
+    out += w.address + std::string(w.value) + (w.expression ? "!" : "") + "@" + std::to_string(w.column);
   }
   return out;
 }
@@ -520,6 +520,44 @@ TEST_CASE("jumps, loops and calls the checker does not follow are reported, not 
       "checked\nm98p1234\n^\n");
 }
 
+// A word's value is a view into the split line: a temporary string would leave every word
+// pointing into freed memory, so splitting one must not compile; a string that lives, a view
+// and a literal split as before.
+template <class S>
+concept splittable = requires(S s) {
+  split_nc_words(std::forward<S>(s));
+};
+static_assert(!splittable<std::string>, "a temporary std::string dies before its words");
+static_assert(splittable<const std::string&> && splittable<std::string_view> && splittable<const char*>);
+
+TEST_CASE("a word's value is a view into the split line", "[check]") {
+  const std::string line = "G1 X-12.5 (X9) M#100";
+  const std::vector<nc_word> words = split_nc_words(line);
+  REQUIRE(words.size() == 3);
+  CHECK(words[1].value == "-12.5");
+  CHECK(words[1].value.data() == line.data() + 4);  // in the line, not a copy
+  CHECK(words[2].value == "#100");
+  CHECK(words[2].value.data() == line.data() + 16);
+}
+
+TEST_CASE("may_have says what letters() says, split or not", "[check]") {
+  constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+  const std::string file = "p.nc";
+  std::vector<nc_word> store;
+  for (const std::string_view text :
+       {"X10. Z5.", "G1 X10.", "x1 (MOVE) z2", "m3", "X1 s200", "(g) X1", "T0101"}) {
+    INFO(text);
+    for (const std::uint32_t mask :
+         {gms, nc_letter('G'), nc_letter('S'), nc_letter('X'), gms | nc_letter('T')}) {
+      const nc_block fresh(1, file, 1, text, store);
+      const bool want = (nc_block(1, file, 1, text, store).letters() & mask) != 0;
+      CHECK(fresh.may_have(mask) == want);  // not split: the G/M/S scan or the letters
+      (void)fresh.words();
+      CHECK(fresh.may_have(mask) == ((fresh.letters() & mask) != 0));  // split: exact
+    }
+  }
+}
+
 TEST_CASE("split_nc_words decodes each number once, as from_chars reads it", "[check]") {
   // Every value the splitter can hand over: signs, points, leading zeros, digit counts past
   // the exact path (15) and past 19, and what is no number.
@@ -558,7 +596,8 @@ TEST_CASE("split_nc_words decodes each number once, as from_chars reads it", "[c
   std::vector<nc_word> words;
   for (const std::string& v : values) {
     INFO(v);
-    const std::uint32_t letters = split_nc_words("X" + v + " M3", words);
+    const std::string line = "X" + v + " M3";  // lives while its words are read
+    const std::uint32_t letters = split_nc_words(line, words);
     REQUIRE(words.size() == 2);
     double want = 0;
     const bool ok = nc_number(words[0].value, want);
