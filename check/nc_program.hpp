@@ -105,7 +105,11 @@ class nc_block {
   bool may_have(std::uint32_t mask) const {
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (has_letters_ || (mask & ~gms) != 0 || text.size() < 32) return (letters() & mask) != 0;
-    return (scan_gms() & mask) != 0;
+    if (!has_gms_) {  // kept: the spindle rules and the length offset's rule both ask
+      gms_ = scan_gms();
+      has_gms_ = true;
+    }
+    return (gms_ & mask) != 0;
   }
 
  private:
@@ -116,6 +120,8 @@ class nc_block {
   mutable bool split_ = false;
   mutable std::uint32_t letters_ = 0;
   mutable bool has_letters_ = false;
+  mutable bool has_gms_ = false;
+  mutable std::uint32_t gms_ = 0;  // scan_gms, once asked
 };
 
 /// Splits one physical NC line into its words. Skips `(...)` and `;` comments, `%` lines,
