@@ -64,12 +64,13 @@ struct length_offset_rule::impl {
     const bool at_home = homes || (machine_coordinates && moves_z);
     if (cancel) {
       if (c.on && !c.home && !at_home)
-        found.push_back({severity::warning, b.file, b.line, cancel_column,
-                         fmt::format("channel {}: G49 cancels the length offset ({} at line {}) away from the "
-                                     "home position: a control that cancels at once moves Z towards the part "
-                                     "by the tool's length; cancel it after the reference return (G28/G53 Z)",
-                                     b.channel, c.on_code, c.on_line),
-                         std::string(b.text)});
+        found.push_back(
+            {severity::warning, b.file, b.line, cancel_column,
+             fmt::format("channel {}: G49 cancels the length offset ({} at line {}) away from the "
+                         "home position: a control that cancels at once moves Z towards the part "
+                         "by the tool's length; cancel it after the reference return (G28/G53 Z)",
+                         b.channel, c.on_code, c.on_line),
+             std::string(b.text)});
       c.on = false;
     }
     if (on_code) {

@@ -22,8 +22,7 @@ const std::string clean = "check: 1 channel, 0 waits paired, 0 errors\n";
 
 }  // namespace
 
-TEST_CASE("length offset: G49 after the home return is quiet, before it a warning at the G49",
-          "[analysis]") {
+TEST_CASE("length offset: G49 after the home return is quiet, before it a warning at the G49", "[analysis]") {
   // The header's G49 (no offset in force) and the cancel after G91 G28 Z0.: quiet.
   CHECK(check(start + cut + "M5\nM9\nG91 G28 Z0.\nG90\nG49\nM30\n%\n") == clean);
   // Home and cancel in one block, either order of the words: at home.
