@@ -21,6 +21,8 @@ block_writer::block_writer(const std::string& path, const program_format& fmt, f
 }
 
 block_writer::~block_writer() {
+  // Not closed (a post that failed): a relay has written every piece by now (its owner stops
+  // it before the writers go: post/post_job.cpp), so the file is not written after this.
   if (f_) std::fclose(f_);
 }
 
@@ -34,10 +36,19 @@ void block_writer::start() {
 
 void block_writer::flush_if_full() {
   if (buf_.size() >= flush_at) {
-    if (tap_) tap_(std::string_view(buf_.data(), buf_.size()));
+    if (relay_) return pass_on();
     if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size()) write_failed(errno);
     buf_.clear();
   }
+}
+
+void block_writer::pass_on() {
+  // A write that failed is said at the next piece, as a write of our own would have said it.
+  if (const int err = relay_->write_error(false)) write_failed(err);
+  *buf_.room(1) = '\0';  // the reader's scans stop at it; not one of the file's bytes
+  buf_ = relay_->pass(std::move(buf_), f_);
+  buf_.clear();
+  buf_.reserve(flush_at + 4096);
 }
 
 void block_writer::put(std::string_view s) {
@@ -126,9 +137,19 @@ void block_writer::close() {
   if (!f_) return;
   if (!started_) start();
   if (frame_.tail) buf_.append(frame_.tail(seq_));
-  if (tap_) tap_(std::string_view(buf_.data(), buf_.size()));
-  bool ok = std::fwrite(buf_.data(), 1, buf_.size(), f_) == buf_.size();
-  int err = ok ? 0 : errno;
+  bool ok = true;
+  int err = 0;
+  if (relay_) {
+    // The last piece (even an empty one: the reader learns the program ends), then every
+    // piece written before the file is closed.
+    *buf_.room(1) = '\0';
+    buf_ = relay_->pass(std::move(buf_), f_);
+    err = relay_->write_error(true);
+    ok = err == 0;
+  } else {
+    ok = std::fwrite(buf_.data(), 1, buf_.size(), f_) == buf_.size();
+    err = ok ? 0 : errno;
+  }
   buf_.clear();
   if (std::fclose(f_) != 0 && ok) {
     ok = false;

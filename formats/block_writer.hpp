@@ -3,6 +3,7 @@
 // comments made safe for the control, block-length limits. One writer per channel.
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -78,10 +79,22 @@ class block_writer {
   /// Called with every line written between the head and the tail (blocks with their N
   /// number, comments, raw lines), without its line end.
   void set_line_hook(std::function<void(std::string_view)> hook) { hook_ = std::move(hook); }
-  /// Called with every piece of bytes as it goes to the file, in order, just before it is
-  /// written (the last piece, the tail's, at close, even when it is empty): together the
-  /// file's bytes exactly. For a reader of the program while it is written.
-  void set_output_tap(std::function<void(std::string_view)> tap) { tap_ = std::move(tap); }
+  /// Another thread that writes the file: the writer hands it each full buffer (and the
+  /// last one, the tail's, at close, even when it is empty) instead of writing it, and goes
+  /// on in an empty one. The relay writes the pieces to the file in order; it may read them
+  /// first (post's self-check on the second core reads the program while it is written).
+  class relay {
+   public:
+    virtual ~relay() = default;
+    /// The next piece of the bytes of `f` (`piece.data()[piece.size()]` is a NUL), to be
+    /// written to `f` after those passed before it; returns an empty buffer.
+    virtual text_buffer pass(text_buffer&& piece, std::FILE* f) = 0;
+    /// The errno of a failed write of the pieces passed (0: none so far). `all`: first waits
+    /// until every piece passed is written.
+    virtual int write_error(bool all) = 0;
+  };
+  /// Hands the file's bytes to `r` from now on (nullptr: written here, the default).
+  void set_relay(std::unique_ptr<relay> r) { relay_ = std::move(r); }
   /// The head written (see framing), "" before the first line.
   const std::string& head_written() const { return head_; }
 
@@ -91,6 +104,8 @@ class block_writer {
   void filtered(std::string_view words, bool restart);
   void start();
   void flush_if_full();
+  /// The buffer to the relay (its NUL after the bytes), and an empty one back.
+  void pass_on();
   /// Throws config_error naming the file and the reason (errno of the failed call).
   [[noreturn]] void write_failed(int err) const;
   framing frame_;
@@ -104,7 +119,7 @@ class block_writer {
   sequence_numbers seq_;
   long blocks_ = 0;
   std::function<void(std::string_view)> hook_;
-  std::function<void(std::string_view)> tap_;
+  std::unique_ptr<relay> relay_;
   block_filter* filter_ = nullptr;
   bool filtering_ = false;  // inside filter_: the blocks it writes go out as they are
 };

@@ -98,8 +98,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::vector<std::string> footer_in_force() const;
   long blocks() const { return out_.blocks(); }
   const std::string& head_written() const { return out_.head_written(); }
-  /// Every piece of the program's bytes as it goes to its file (block_writer::set_output_tap).
-  void set_output_tap(std::function<void(std::string_view)> tap) { out_.set_output_tap(std::move(tap)); }
+  /// Another thread writes the program's file (block_writer::relay).
+  void set_relay(std::unique_ptr<block_writer::relay> r) { out_.set_relay(std::move(r)); }
   int waits() const { return waits_; }
   /// The CL line of each wait block written, in order (to report the checker's findings).
   const std::vector<int>& wait_cl_lines() const { return wait_cl_lines_; }

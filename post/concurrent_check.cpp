@@ -1,6 +1,8 @@
 #include "post/concurrent_check.hpp"
 
+#include <cerrno>
 #include <condition_variable>
+#include <cstdio>
 #include <deque>
 #include <exception>
 #include <mutex>
@@ -17,8 +19,9 @@ constexpr std::size_t queue_pieces = 8;  // pieces of up to 256 KB waiting for t
 
 struct piece {
   int channel = 0;
-  bool opens = false;  // `text` is the program's name, not its bytes
-  std::string text;    // its NUL is the one the reader's scans stop at
+  std::string opens;       // not empty: the program starts here, named this
+  text_buffer bytes;       // its NUL (after the bytes) is the one the reader's scans stop at
+  std::FILE* f = nullptr;  // the file the bytes are written to once read
 };
 
 nc_read_options feeding(timeline_feed* feed) {
@@ -35,19 +38,35 @@ nc_read_options feeding(timeline_feed* feed) {
 struct concurrent_check::impl {
   impl(const machine& m, timeline_feed* feed)
       : check(m, feeding(feed)), reader(m, read, check.options()), names(m.channels.size()),
-        thread([this] { run(); }) {}
+        pending(m.channels.size()), write_errors(m.channels.size()), thread([this] { run(); }) {}
 
   ~impl() {
     stop();
     if (thread.joinable()) thread.join();
   }
 
-  void push(piece p) {
+  // Queues `p` (the writer's thread) and gives back an empty buffer.
+  text_buffer push(piece p) {
     std::unique_lock lock(mutex);
     room.wait(lock, [this] { return queue.size() < queue_pieces; });
+    ++pending[static_cast<std::size_t>(p.channel - 1)];
     queue.push_back(std::move(p));
+    text_buffer empty;
+    if (!spare.empty()) {
+      empty = std::move(spare.back());
+      spare.pop_back();
+    }
     lock.unlock();
     ready.notify_one();
+    return empty;
+  }
+
+  // The errno of the first failed write of `channel`'s pieces; `all`: once all are written.
+  int write_error(int channel, bool all) {
+    const auto i = static_cast<std::size_t>(channel - 1);
+    std::unique_lock lock(mutex);
+    if (all) written.wait(lock, [&] { return pending[i] == 0; });
+    return write_errors[i];
   }
 
   void stop() {
@@ -59,7 +78,8 @@ struct concurrent_check::impl {
   }
 
   // The reading thread: pieces in the order they were written, until stop() and an empty
-  // queue. After a failure it goes on taking pieces (a writer must never wait for ever).
+  // queue. After a failure of the reading it goes on writing the pieces (a writer must never
+  // wait for ever, and its file gets every byte).
   void run() {
     for (;;) {
       std::unique_lock lock(mutex);
@@ -67,17 +87,25 @@ struct concurrent_check::impl {
       if (queue.empty()) return;
       piece p = std::move(queue.front());
       queue.pop_front();
+      const auto i = static_cast<std::size_t>(p.channel - 1);
+      const bool write = write_errors[i] == 0;  // after a failed write, nothing more of it
       lock.unlock();
       room.notify_one();
-      if (failed) continue;
-      try {
-        if (p.opens)
-          reader.open(p.channel, std::move(p.text));
-        else
-          reader.feed(p.channel, p.text);
-      } catch (...) {
-        failed = true;  // the check after the fact meets it again and says it
-      }
+      if (!failed) try {
+          if (!p.opens.empty()) reader.open(p.channel, std::move(p.opens));
+          reader.feed(p.channel, p.bytes.view());
+        } catch (...) {
+          failed = true;  // the check after the fact meets it again and says it
+        }
+      int err = 0;
+      if (write && std::fwrite(p.bytes.data(), 1, p.bytes.size(), p.f) != p.bytes.size()) err = errno;
+      p.bytes.clear();
+      lock.lock();
+      if (err != 0) write_errors[i] = err;
+      --pending[i];
+      if (spare.size() < queue_pieces) spare.push_back(std::move(p.bytes));
+      lock.unlock();
+      written.notify_all();
     }
   }
 
@@ -88,10 +116,38 @@ struct concurrent_check::impl {
   bool failed = false;             // written by the thread, read after the join
 
   std::mutex mutex;
-  std::condition_variable ready, room;
+  std::condition_variable ready, room, written;
   std::deque<piece> queue;
+  std::vector<text_buffer> spare;    // buffers written, for the writers to fill again
+  std::vector<std::size_t> pending;  // by channel: pieces queued or being read, not yet written
+  std::vector<int> write_errors;     // by channel: errno of the first failed write, 0: none
   bool stopping = false;
   std::thread thread;  // last: starts when everything it uses exists
+};
+
+// One channel's writer's relay: its pieces queued for the thread.
+struct concurrent_check::channel_relay : block_writer::relay {
+  channel_relay(concurrent_check::impl& p, int channel, std::function<std::string()> name)
+      : p(p), channel(channel), name(std::move(name)) {}
+
+  text_buffer pass(text_buffer&& bytes, std::FILE* f) override {
+    piece next;
+    next.channel = channel;
+    std::string& opened = p.names[static_cast<std::size_t>(channel - 1)];
+    if (opened.empty()) {
+      opened = name();
+      next.opens = opened;
+    }
+    next.bytes = std::move(bytes);
+    next.f = f;
+    return p.push(std::move(next));
+  }
+
+  int write_error(bool all) override { return p.write_error(channel, all); }
+
+  concurrent_check::impl& p;
+  int channel;
+  std::function<std::string()> name;
 };
 
 concurrent_check::concurrent_check(const machine& m, timeline_feed* feed)
@@ -99,17 +155,9 @@ concurrent_check::concurrent_check(const machine& m, timeline_feed* feed)
 
 concurrent_check::~concurrent_check() = default;
 
-bool concurrent_check::opened(int channel) const {
-  return !p_->names[static_cast<std::size_t>(channel - 1)].empty();
-}
-
-void concurrent_check::open(int channel, std::string name) {
-  p_->names[static_cast<std::size_t>(channel - 1)] = name;
-  p_->push({channel, true, std::move(name)});
-}
-
-void concurrent_check::put(int channel, std::string_view bytes) {
-  p_->push({channel, false, std::string(bytes)});
+std::unique_ptr<block_writer::relay> concurrent_check::relay_for(int channel,
+                                                                 std::function<std::string()> name) {
+  return std::make_unique<channel_relay>(*p_, channel, std::move(name));
 }
 
 std::optional<sync_result> concurrent_check::finish(const std::vector<std::string>& names,

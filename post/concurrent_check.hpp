@@ -1,12 +1,13 @@
 #pragma once
 // The self-check on the second core: post's programs read while they are written.
 //
-// Each channel's writer hands every piece of its program's bytes to bytes() as it goes to
-// the file (block_writer::set_output_tap); a thread of this class reads them with the
-// checker's own reader (check/nc_program's nc_stream_reader) and feeds the same consumers
-// as the check after the fact: the wait check, the shared-spindle rules and the cycle time.
-// It reads the bytes that are committed, not the writers' words, so the check stays
-// independent of the writer.
+// Each channel's writer hands every full buffer of its program's bytes to this class instead
+// of writing it (block_writer::relay); a thread of this class reads them with the checker's
+// own reader (check/nc_program's nc_stream_reader), feeding the same consumers as the check
+// after the fact (the wait check, the shared-spindle rules and the cycle time), and then
+// writes them to the file: the post's thread neither copies nor writes its output. It reads
+// the bytes that are committed, not the writers' words, so the check stays independent of
+// the writer.
 //
 // The result is taken only when it is exactly what the check after the fact would give:
 // each file's bytes are the ones read (no head written again, no merged layout), read under
@@ -14,7 +15,9 @@
 // ordered by a reading of the files one after the other, which the concurrent one is not).
 // Otherwise finish() says so and post checks the files after the fact, as with one core.
 //
-// Memory: a few pieces of 256 KB queued; the writer waits when the reader is behind.
+// Memory: a few pieces of 256 KB queued; the writer waits when the reader is behind. The
+// buffers go round: a piece written is the next empty buffer of a writer.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +26,7 @@
 
 #include "analysis/cycle_time.hpp"
 #include "check/sync_check.hpp"
+#include "formats/block_writer.hpp"
 #include "machines/machine.hpp"
 
 namespace twinpost {
@@ -32,18 +36,17 @@ class concurrent_check {
   /// Starts the reading thread. `feed`, when given, is fed every block and wait (from that
   /// thread, until finish() returns).
   concurrent_check(const machine& m, timeline_feed* feed);
-  /// Stops the thread (a post that failed does not wait for its check).
+  /// Stops the thread once every piece handed in is read and written (a post that failed
+  /// does not wait for its check, but its files get every byte their writers gave).
   ~concurrent_check();
   concurrent_check(const concurrent_check&) = delete;
   concurrent_check& operator=(const concurrent_check&) = delete;
 
-  /// The next piece of `channel`'s program (1-based), from its writer; the first piece opens
-  /// the program under `name()` (the name its file is committed as, as far as known then).
-  template <class Name>
-  void bytes(int channel, std::string_view piece, Name&& name) {
-    if (!opened(channel)) open(channel, name());
-    put(channel, piece);
-  }
+  /// The writer of `channel`'s program (1-based) hands its bytes to this (block_writer::relay):
+  /// the thread reads each piece, then writes it to the writer's file. The first piece opens
+  /// the program under `name()` (the name its file is committed as, as far as known then),
+  /// asked on the writer's thread. The relay must not be used after this object is gone.
+  std::unique_ptr<block_writer::relay> relay_for(int channel, std::function<std::string()> name);
 
   /// Waits for the reading to end; the check's result when it may stand for the check of
   /// the committed files named `names` (by channel), read one after the other, with
@@ -53,10 +56,8 @@ class concurrent_check {
                                     const std::vector<bool>& rewritten);
 
  private:
-  bool opened(int channel) const;
-  void open(int channel, std::string name);
-  void put(int channel, std::string_view piece);
   struct impl;
+  struct channel_relay;
   std::unique_ptr<impl> p_;
 };
 

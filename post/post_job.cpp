@@ -256,14 +256,14 @@ bool check_while_writing(const post_options& o, const machine& m, const frame_re
   return threads(o) >= 2 && req.layout == layout_kind::split && m.channels.size() <= 64;
 }
 
-// Every piece each writer writes, handed to the concurrent check, named as the frame names it.
-void tap_writers(const post_options& o, const frame_request& req, writers_sink& ws, concurrent_check& cc) {
+// Every piece each writer writes goes through the concurrent check, which reads it and then
+// writes it; the program is named as the frame names it.
+void relay_writers(const post_options& o, const frame_request& req, writers_sink& ws, concurrent_check& cc) {
   for (std::size_t i = 0; i < ws.writers.size(); ++i) {
     const channel_def& ch = ws.m->channels[i];
-    ws.writers[i]->set_output_tap([&o, &req, &ws, &ch, &cc](std::string_view piece) {
-      cc.bytes(ch.number, piece,
-               [&] { return (fs::path(o.out_dir) / frame_file_name(named_request(req, ws), ch)).string(); });
-    });
+    ws.writers[i]->set_relay(cc.relay_for(ch.number, [&o, &req, &ws, &ch] {
+      return (fs::path(o.out_dir) / frame_file_name(named_request(req, ws), ch)).string();
+    }));
   }
 }
 
@@ -493,7 +493,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   std::optional<concurrent_check> during;  // after `feed`: its thread feeds it
   if (check_while_writing(o, m, req)) {
     during.emplace(m, feed ? &*feed : nullptr);
-    tap_writers(o, req, ws, *during);
+    relay_writers(o, req, ws, *during);
   }
 
   sink.reader = &reader;
