@@ -5,12 +5,21 @@
 #include "support/file_reader.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <optional>
 #include <string_view>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace twinpost {
 
@@ -67,20 +76,37 @@ void scan_line(std::string_view l, job_scan& s) {
   }
 }
 
-// The complete lines of `text` (it ends just after a '\n'; text[size] is a NUL). Only lines
-// that start, after blanks, with S, H, C or $ can matter, and motion records have none of
-// those letters at all: one strcspn (SSE4.2 in glibc) skips whole runs of them.
+// The first of S, H, C (either case) or $ in [p, end), or end. Motion records have none of
+// them: sixteen bytes are tested at once (a byte with 0x20 set is s, h, c or $ only if it
+// was one of the seven).
+const char* next_candidate(const char* p, const char* end) {
+#if defined(__SSE2__)
+  const __m128i lower = _mm_set1_epi8(0x20);
+  const __m128i s = _mm_set1_epi8('s'), h = _mm_set1_epi8('h'), c = _mm_set1_epi8('c'),
+                dollar = _mm_set1_epi8('$');
+  for (; end - p >= 16; p += 16) {
+    const __m128i v = _mm_or_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), lower);
+    const __m128i any = _mm_or_si128(_mm_or_si128(_mm_cmpeq_epi8(v, s), _mm_cmpeq_epi8(v, h)),
+                                     _mm_or_si128(_mm_cmpeq_epi8(v, c), _mm_cmpeq_epi8(v, dollar)));
+    if (const int mask = _mm_movemask_epi8(any)) return p + std::countr_zero(static_cast<unsigned>(mask));
+  }
+#endif
+  for (; p < end; ++p) {
+    const char u = static_cast<char>(*p | 0x20);
+    if (u == 's' || u == 'h' || u == 'c' || u == '$') return p;
+  }
+  return end;
+}
+
+// The lines of `text` (the last one may have no line end). Only lines that start, after
+// blanks, with S, H, C or $ can matter, and motion records have none of those letters at all.
 void scan_lines(std::string_view text, job_scan& s) {
   const char* const begin = text.data();
   const char* const end = begin + text.size();
   const char* p = begin;
   while (p < end) {
-    const char* hit = p + std::strcspn(p, "SsHhCc$");
+    const char* hit = next_candidate(p, end);
     if (hit >= end) return;
-    if (*hit == '\0') {  // an embedded NUL stops strcspn: go on after it
-      p = hit + 1;
-      continue;
-    }
     // The line the hit is on; it counts only if nothing but blanks comes before it. TRANSFER
     // (a part transfer, a synchronisation of its own) is found by its S.
     const char* line = hit;
@@ -96,14 +122,55 @@ void scan_lines(std::string_view text, job_scan& s) {
   }
 }
 
+// A regular file's bytes mapped for reading (no copy into a buffer of ours); empty when the
+// file is not one (a pipe) or cannot be mapped.
+class mapped_file {
+ public:
+  mapped_file(int fd, std::size_t size) {
+    void* at = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (at == MAP_FAILED) return;
+    data_ = static_cast<const char*>(at);
+    size_ = size;
+  }
+  ~mapped_file() {
+    if (data_) ::munmap(const_cast<char*>(data_), size_);
+  }
+  mapped_file(const mapped_file&) = delete;
+  mapped_file& operator=(const mapped_file&) = delete;
+  std::string_view text() const { return {data_, size_}; }
+  explicit operator bool() const { return data_ != nullptr; }
+
+ private:
+  const char* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
 }  // namespace
 
 job_scan scan_job(const std::string& path) {
   job_scan s;
-  const file_ptr f = open_file_ptr(path.c_str(), "rb");
-  if (!f) return s;
+  // Opened once: a pipe's bytes can be read only once.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return s;
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+    if (st.st_size == 0) {
+      ::close(fd);
+      return s;
+    }
+    const mapped_file mapped(fd, static_cast<std::size_t>(st.st_size));
+    if (mapped) {
+      ::close(fd);
+      scan_lines(mapped.text(), s);
+      return s;
+    }
+  }
+  const file_ptr f(::fdopen(fd, "rb"), &std::fclose);
+  if (!f) {
+    ::close(fd);
+    return s;
+  }
   chunk_reader reader(f.get());
-  char* const buf = reader.data();
   std::string carry;  // a line begun in the previous chunk
   // Only a line's first words matter, and the reader refuses lines past max_record_bytes:
   // a line without a newline must not grow the carry without bound.
@@ -130,10 +197,7 @@ job_scan scan_job(const std::string& path) {
       keep(chunk.substr(start));
       continue;
     }
-    char saved = buf[last + 1];
-    buf[last + 1] = '\0';
     scan_lines(chunk.substr(start, last + 1 - start), s);
-    buf[last + 1] = saved;
     keep(chunk.substr(last + 1));
   }
   scan_line(carry, s);

@@ -6,6 +6,9 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <thread>
+
+#include <sys/stat.h>
 
 #include <fmt/format.h>
 
@@ -51,6 +54,32 @@ TEST_CASE("the job scan finds sync records and the heads in use", "[post]") {
   job_scan words = scan_job(write_temp("HEAD/SIDE\n"));
   CHECK(words.head_words == std::vector<std::string>{"SIDE"});
   CHECK(scan_job(write_temp("$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=1")).explicit_sync);
+}
+
+TEST_CASE("the job scan reads a head or a sync wherever its line falls in the file", "[post]") {
+  // The scan tests sixteen bytes at a time: a record at every place against those blocks,
+  // behind motion lines of every length, in a file read in place (a regular file) and through
+  // a pipe (read in chunks).
+  for (int pad = 0; pad < 40; ++pad) {
+    INFO("pad " << pad);
+    const std::string moves = "GOTO/" + std::string(static_cast<std::size_t>(pad), '1') + ",0,5\n";
+    const std::string text = moves + std::string(static_cast<std::size_t>(pad % 7), ' ') + "HEAD/" +
+                             std::to_string(pad + 1) + "\n" + moves + "TRANSFER/1\n" + moves + "CHANNL/2";
+    const job_scan s = scan_job(write_temp(text));
+    CHECK(s.heads == std::vector<int>{pad + 1});
+    CHECK(s.explicit_sync);
+    CHECK(s.channels == std::vector<int>{2});
+    const job_scan none = scan_job(write_temp(moves + moves + "$$ a comment\n" + moves));
+    CHECK_FALSE(none.explicit_sync);
+    CHECK(none.heads.empty());
+  }
+  const std::string fifo = test::fresh_temp_dir("scan-fifo") + "/job.cls";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::thread feed([&] { test::write_file(fifo, "GOTO/1,2,3\nHEAD/2\nSYNC/1,1,2\n"); });
+  const job_scan piped = scan_job(fifo);
+  feed.join();
+  CHECK(piped.heads == std::vector<int>{2});
+  CHECK(piped.explicit_sync);
 }
 
 TEST_CASE("the channels a job uses, on a 3-path machine", "[post]") {
