@@ -289,6 +289,7 @@ bool channel_writer::same_branch(const joint_values& from, const joint_values& t
 
 void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   const kinematic_chain& c = *chain_;
+  plan();  // plan_ is made before anything reads it, also when the move was worked out ahead
   const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
   const tool_pose pose{{p.x * cl_mm_, p.y * cl_mm_, p.z * cl_mm_},
                        len > 0 ? vec3{axis_.x / len, axis_.y / len, axis_.z / len} : axis_};
@@ -319,8 +320,10 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
       previous.rotary[plan().form.outer] = *pole_hint_;
       pole_hint_.reset();
     }
-    const kin::ik_result ik =
-        kin::inverse(plan(), pose, length, previous, joints ? kin::ik_need::joints : kin::ik_need::angles);
+    const kin::ik_need need = joints ? kin::ik_need::joints : kin::ik_need::angles;
+    // Worked out ahead on another thread from these very inputs, or here (machining/kin_lookahead.hpp).
+    const kin::ik_result* ahead = ahead_ ? ahead_->inverse(chain_, pose, length, previous, need) : nullptr;
+    const kin::ik_result ik = ahead ? *ahead : kin::inverse(plan(), pose, length, previous, need);
     if (!ik.ok())
       return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, ik.message));
     if (!rapid && had_from && !same_branch(joints_, ik.joints, line)) return;
@@ -329,7 +332,8 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
     pose_known_ = true;
     return;
   }
-  kin::linearise(plan(), from, joints_, pose, length, c.chordal_tolerance, lin_);
+  if (!ahead_ || !ahead_->linearise(chain_, from, joints_, pose, length, c.chordal_tolerance, lin_))
+    kin::linearise(plan(), from, joints_, pose, length, c.chordal_tolerance, lin_);
   if (!lin_.ok()) {
     if (lin_.error != kin::ik_error::too_many_points)
       return error(line, fmt::format("machine '{}' cannot reach this point: {}", m_.name, lin_.message));

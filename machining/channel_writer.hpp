@@ -20,6 +20,7 @@
 #include "formats/number_format.hpp"
 #include "kinematics/linearise.hpp"
 #include "machines/machine.hpp"
+#include "machining/kin_lookahead.hpp"
 #include "parser/events.hpp"
 #include "scripting/lua_script.hpp"
 #include "support/diagnostics.hpp"
@@ -98,6 +99,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::vector<std::string> footer_in_force() const;
   long blocks() const { return out_.blocks(); }
   const std::string& head_written() const { return out_.head_written(); }
+  /// The moves worked out ahead on another thread (machining/kin_lookahead.hpp); nullptr: none.
+  void set_lookahead(const kin_lookahead* ahead) { ahead_ = ahead; }
   /// Another thread writes the program's file (block_writer::relay).
   void set_relay(std::unique_ptr<block_writer::relay> r) { out_.set_relay(std::move(r)); }
   int waits() const { return waits_; }
@@ -647,6 +650,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool cut_due_ = true;                     ///< the next G1/G2/G3 line is noted
   bool plain_block_ = false;                ///< the block being ended has no G, M or S word
   const kinematic_chain* chain_ = nullptr;  ///< this channel's chain, or nullptr (3-axis)
+  const kin_lookahead* ahead_ = nullptr;    ///< its moves worked out ahead, or nullptr
   bool chain_heads_ = false;                ///< a rotary axis of it turns the tool (the length matters)
   unsigned tilting_heads_ = 0;              ///< bit i: rotary i is a head not along the tool (it tilts it)
   kin::joint_values joints_{};              ///< where the machine is (mm, degrees)

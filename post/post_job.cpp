@@ -47,9 +47,9 @@ constexpr std::size_t progress_every = 1 << 16;  // events between progress call
 class job_events {
  public:
   job_events(byte_source& src, cl_reader_options o, diagnostic_sink& sink, diagnostic_sink& as_is,
-             bool threaded) {
+             bool threaded, kin_lookahead* ahead) {
     if (threaded)
-      two_.emplace(src, std::move(o), as_is);
+      two_.emplace(src, std::move(o), as_is, ahead);
     else
       one_.emplace(src, std::move(o), sink);
   }
@@ -247,6 +247,13 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
 // The threads the post may use (post_options::threads).
 int threads(const post_options& o) {
   return o.threads > 0 ? o.threads : std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+}
+
+// Whether a thread of its own works out the 5-axis moves ahead of the writer
+// (machining/kin_lookahead.hpp): with a second core, on a machine of one channel with a
+// kinematic chain (a post routes a multi-channel job's events only as it writes them).
+bool look_ahead(const post_options& o, const machine& m) {
+  return threads(o) >= 2 && m.channels.size() == 1 && m.chain(m.channels.front().number) != nullptr;
 }
 
 // Whether the programs are checked while they are written (post/concurrent_check.hpp): with
@@ -463,11 +470,14 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   }
   job_script script{lua.get()};
   file_ptr in = open_job(o.cl_path);
-  // On two threads the reader starts at once, and reads ahead while the scan below runs.
+  // On two threads the reader starts at once, and reads ahead while the scan below runs; a
+  // 5-axis job's moves are worked out by a third thread between the two.
   file_source src(in.get());
   passing_sink as_is(sink);
-  job_events reader(src, posting_reader(o, m, lua.get()), sink, as_is,
-                    threads(o) >= 2);  // to the end: messages quote it
+  std::optional<kin_lookahead> ahead;  // before the reader, whose thread uses it
+  if (look_ahead(o, m)) ahead.emplace(m, m.channels.front().number);
+  job_events reader(src, posting_reader(o, m, lua.get()), sink, as_is, threads(o) >= 2,
+                    ahead ? &*ahead : nullptr);  // to the end: messages quote it
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);
   const job_scan scan = scan_for_sync(o, m);
@@ -483,6 +493,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
       throw config_error(fmt::format("--tool {}:{}: machine '{}' has no channel {} (it has {})", channel,
                                      tool, m.name, channel, m.channels.size()));
   open_writers(o, m, req, ws, sink);
+  if (ahead) ws.writers.front()->set_lookahead(&*ahead);
   if (lua)
     for (auto& w : ws.writers) w->use_script(&script);
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));

@@ -39,8 +39,10 @@ struct batch {
   bool last = false;                                            // the input ends after it
   std::uint32_t end_record = 0;                                 // last: the record read last
   std::exception_ptr error;                                     // last: the reader threw this
+  kin_lookahead::notes worked;  // the look-ahead's moves (reader_thread's `ahead`), else empty
 
   void clear() {
+    worked.clear();
     events.clear();
     record_of.clear();
     record_start.clear();
@@ -69,9 +71,11 @@ struct reader_thread::impl {
     }
   };
 
-  impl(byte_source& src, cl_reader_options options, diagnostic_sink& out)
+  impl(byte_source& src, cl_reader_options options, diagnostic_sink& out, kin_lookahead* ahead)
       : file(options.file_name), keep(this), filling(std::make_unique<batch>()),
-        reader(src, std::move(options), keep), out(out), thread([this] { run(); }) {}
+        reader(src, std::move(options), keep), out(out), ahead(ahead), thread([this] { run(); }) {
+    if (ahead) looking = std::thread([this] { look(); });
+  }
 
   ~impl() {
     {
@@ -80,7 +84,10 @@ struct reader_thread::impl {
     }
     room.notify_all();
     ready.notify_all();
+    looked_room.notify_all();
+    looked_ready.notify_all();
     if (thread.joinable()) thread.join();
+    if (looking.joinable()) looking.join();
   }
 
   // --- the reading thread ---------------------------------------------------------------
@@ -146,6 +153,30 @@ struct reader_thread::impl {
     return true;
   }
 
+  // --- the look-ahead's thread (with `ahead` only) ----------------------------------------
+
+  // Takes each batch the reader queued, works out its moves, and queues it for the post.
+  void look() {
+    for (;;) {
+      std::unique_lock lock(mutex);
+      ready.wait(lock, [this] { return !queue.empty() || stopping; });
+      if (stopping) return;
+      std::unique_ptr<batch> b = std::move(queue.front());
+      queue.pop_front();
+      lock.unlock();
+      room.notify_one();
+      ahead->look(b->events, b->worked);
+      const bool last = b->last;
+      lock.lock();
+      looked_room.wait(lock, [this] { return looked.size() < queue_batches || stopping; });
+      if (stopping) return;
+      looked.push_back(std::move(b));
+      lock.unlock();
+      looked_ready.notify_one();
+      if (last) return;
+    }
+  }
+
   // --- the post's thread -----------------------------------------------------------------
 
   const event* next() {
@@ -156,6 +187,7 @@ struct reader_thread::impl {
           out.report(std::move(b.diagnostics[told++].second));
         if (at < b.events.size()) {
           record = b.record_of[at];
+          if (ahead) ahead->at(&b.worked, at);
           return &b.events[at++];
         }
         if (b.error) std::rethrow_exception(b.error);
@@ -168,17 +200,21 @@ struct reader_thread::impl {
     }
   }
 
+  // The next batch: the reader's, or with `ahead` the look-ahead's.
   void take() {
+    if (ahead) ahead->at(nullptr, 0);  // the batch it points into goes back to the reader
+    std::deque<std::unique_ptr<batch>>& from = ahead ? looked : queue;
+    std::condition_variable& filled = ahead ? looked_ready : ready;
     std::unique_lock lock(mutex);
-    ready.wait(lock, [this] { return !queue.empty(); });
+    filled.wait(lock, [&] { return !from.empty(); });
     if (current) {
       current->clear();
       spare.push_back(std::move(current));
     }
-    current = std::move(queue.front());
-    queue.pop_front();
+    current = std::move(from.front());
+    from.pop_front();
     lock.unlock();
-    room.notify_one();
+    (ahead ? looked_room : room).notify_one();
     at = told = 0;
   }
 
@@ -198,9 +234,13 @@ struct reader_thread::impl {
   cl_reader reader;                // used by the thread only, once it runs
   diagnostic_sink& out;
 
+  kin_lookahead* ahead;  // nullptr: the post takes the reader's batches as they are
+
   std::mutex mutex;
   std::condition_variable ready, room;
-  std::deque<std::unique_ptr<batch>> queue;
+  std::deque<std::unique_ptr<batch>> queue;  // read, for the look-ahead (with `ahead`) or the post
+  std::condition_variable looked_ready, looked_room;
+  std::deque<std::unique_ptr<batch>> looked;  // with `ahead`: looked at, for the post
   std::vector<std::unique_ptr<batch>> spare;  // emptied batches for the thread to fill again
   bool stopping = false;
 
@@ -208,11 +248,13 @@ struct reader_thread::impl {
   std::size_t at = 0, told = 0;    // its next event and next diagnostic
   std::uint32_t record = 0;        // the record of the event given out last
 
-  std::thread thread;  // last: starts when everything it uses exists
+  std::thread thread;   // last: starts when everything it uses exists
+  std::thread looking;  // the look-ahead's, started after `thread`
 };
 
-reader_thread::reader_thread(byte_source& src, cl_reader_options options, diagnostic_sink& sink)
-    : p_(std::make_unique<impl>(src, std::move(options), sink)) {}
+reader_thread::reader_thread(byte_source& src, cl_reader_options options, diagnostic_sink& sink,
+                             kin_lookahead* ahead)
+    : p_(std::make_unique<impl>(src, std::move(options), sink, ahead)) {}
 
 reader_thread::~reader_thread() = default;
 

@@ -7,10 +7,12 @@
 // before (and the last ones at the end), and, for the messages of the later stages, the
 // source lines of the record each event comes from (source_line, as cl_reader's).
 //
-// Memory: a few batches of events and the text of their records.
+// Memory: a few batches of events and the text of their records (with a look-ahead, twice as
+// many: those read and those looked at).
 #include <memory>
 #include <string_view>
 
+#include "machining/kin_lookahead.hpp"
 #include "parser/cl_reader.hpp"
 #include "support/diagnostics.hpp"
 
@@ -21,7 +23,10 @@ class reader_thread {
   /// Reads `src` with a cl_reader of `options` on a new thread. The reader's diagnostics go
   /// to `sink` on the caller's thread, from next(), with their source line already given
   /// (as the reader's record was when it reported them).
-  reader_thread(byte_source& src, cl_reader_options options, diagnostic_sink& sink);
+  /// `ahead`, when given: a third thread works out each batch's moves with it before the post
+  /// takes the batch, and ahead->at() tells it which event the post has (machining/kin_lookahead.hpp).
+  reader_thread(byte_source& src, cl_reader_options options, diagnostic_sink& sink,
+                kin_lookahead* ahead = nullptr);
   /// Stops the thread (it may be ahead, or waiting for room).
   ~reader_thread();
   reader_thread(const reader_thread&) = delete;
