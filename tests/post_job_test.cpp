@@ -73,6 +73,18 @@ TEST_CASE("the job scan reads a head or a sync wherever its line falls in the fi
     CHECK_FALSE(none.explicit_sync);
     CHECK(none.heads.empty());
   }
+  // A job longer than the scan's window of 8 MB: a record across the window's end, and one
+  // after it.
+  std::string big;
+  while (big.size() + 11 < (std::size_t{8} << 20) - 3) big += "GOTO/1,2,3\n";
+  big += std::string((std::size_t{8} << 20) - 3 - big.size() - 1, ' ') +
+         "\n";  // HEAD/7 begins 3 bytes before 8 MB
+  big += "HEAD/7\n";
+  for (int i = 0; i < 1000; ++i) big += "GOTO/1,2,3\n";
+  big += "SYNC/1,1,2\n";
+  const job_scan across = scan_job(write_temp(big));
+  CHECK(across.heads == std::vector<int>{7});
+  CHECK(across.explicit_sync);
   const std::string fifo = test::fresh_temp_dir("scan-fifo") + "/job.cls";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   std::thread feed([&] { test::write_file(fifo, "GOTO/1,2,3\nHEAD/2\nSYNC/1,1,2\n"); });
