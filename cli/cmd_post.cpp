@@ -46,7 +46,8 @@ po::options_description post_option_descriptions() {
       "turn|mill|drill: the kind of a tool neither TLDATA nor [[tool]] gives")(
       "threads", po::value<int>(),
       "1: check the programs after they are written; 2: while they are written, on a second "
-      "thread (default with two cores); the output is the same")("job", po::value<std::string>(), "CL file");
+      "thread, and work out a 5-axis job's moves ahead on a third (default with two cores); "
+      "the output is the same")("job", po::value<std::string>(), "CL file");
   return opts;
 }
 

@@ -39,7 +39,9 @@ struct post_options {
   std::string tool_kind;
   /// Threads the post may use: 1 checks the programs after they are written; 2 or more (the
   /// default, 0, where the machine has two cores) checks them on a second thread while they
-  /// are written (post/concurrent_check.hpp). The output is the same byte for byte.
+  /// are written (post/concurrent_check.hpp), and a machine of one channel with a kinematic
+  /// chain works its moves out ahead on a third (machining/kin_lookahead.hpp). The output is
+  /// the same byte for byte.
   int threads = 0;
   /// Called now and then (every 64k records) with the CL bytes read so far; may be empty.
   std::function<void(std::size_t bytes)> progress;

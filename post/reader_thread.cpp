@@ -20,6 +20,7 @@ static_assert(std::is_same_v<std::variant_alternative_t<0, event_data>, motion_e
 
 constexpr std::size_t batch_events = 4096;  // events handed over at a time
 constexpr std::size_t queue_batches = 4;    // batches read ahead at most
+constexpr std::size_t ahead_batches = 3;    // with a look-ahead: in each of its two queues
 
 struct line_ref {
   int line = 0;
@@ -138,7 +139,7 @@ struct reader_thread::impl {
     filling->bytes = reader.bytes();
     filling->records = reader.records();
     std::unique_lock lock(mutex);
-    room.wait(lock, [this] { return queue.size() < queue_batches || stopping; });
+    room.wait(lock, [this] { return queue.size() < (ahead ? ahead_batches : queue_batches) || stopping; });
     if (stopping) return false;
     queue.push_back(std::move(filling));
     if (!spare.empty()) {
@@ -168,7 +169,7 @@ struct reader_thread::impl {
       ahead->look(b->events, b->worked);
       const bool last = b->last;
       lock.lock();
-      looked_room.wait(lock, [this] { return looked.size() < queue_batches || stopping; });
+      looked_room.wait(lock, [this] { return looked.size() < ahead_batches || stopping; });
       if (stopping) return;
       looked.push_back(std::move(b));
       lock.unlock();
