@@ -166,7 +166,11 @@ struct reader_thread::impl {
       queue.pop_front();
       lock.unlock();
       room.notify_one();
-      ahead->look(b->events, b->worked);
+      try {
+        ahead->look(b->events, b->worked);
+      } catch (...) {
+        b->worked.clear();  // nothing worked out ahead: the writer works every move out itself
+      }
       const bool last = b->last;
       lock.lock();
       looked_room.wait(lock, [this] { return looked.size() < ahead_batches || stopping; });
