@@ -4,6 +4,7 @@
 #include "parser/events.hpp"
 #include <optional>
 #include <string_view>
+#include <variant>
 
 namespace twinpost {
 
@@ -12,6 +13,13 @@ namespace twinpost {
 /// (5, 7 or 10 values) and `TLDATA/DRILL[,module],diameter,corner radius,length,point angle,
 /// flute length`: the length is the third number of both.
 std::optional<double> tldata_length(const tool_data_event& t);
+
+/// Whether a TLDATA after `e` still describes the tool called before it: a TLDATA right after
+/// a tool call, with only comments and texts between, describes that tool.
+inline bool keeps_tool_call_open(const event& e) {
+  return std::holds_alternative<text_event>(e.data) || std::holds_alternative<comment_event>(e.data) ||
+         std::holds_alternative<passthrough_event>(e.data);
+}
 
 /// The cutting diameter a TLDATA/MILL or TLDATA/DRILL gives (its first number), in CL units.
 std::optional<double> tldata_diameter(const tool_data_event& t);

@@ -1,4 +1,5 @@
 #include "machining/channel_writer.hpp"
+#include "machining/cam_tool.hpp"
 
 #include <algorithm>
 #include <array>
@@ -316,9 +317,7 @@ void channel_writer::process_event(const event& e, bool both) {
   column_ = e.column;
   // A TLDATA right after a tool call (comments between) describes that tool.
   const bool after_call = after_call_;
-  after_call_ = after_call && (std::holds_alternative<text_event>(e.data) ||
-                               std::holds_alternative<comment_event>(e.data) ||
-                               std::holds_alternative<passthrough_event>(e.data));
+  after_call_ = after_call && keeps_tool_call_open(e);
   std::visit(
       [&](const auto& d) {
         using T = std::decay_t<decltype(d)>;

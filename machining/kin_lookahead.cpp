@@ -41,11 +41,8 @@ void kin_lookahead::look(std::span<const event> events, notes& out) {
   const bool joints = c.output == multiaxis_output::joints;
   for (std::size_t i = 0; i < events.size(); ++i) {
     const event& e = events[i];
-    // A TLDATA right after a tool call (comments between) describes that tool (as the writer).
-    const bool after_call = after_call_;
-    after_call_ = after_call && (std::holds_alternative<text_event>(e.data) ||
-                                 std::holds_alternative<comment_event>(e.data) ||
-                                 std::holds_alternative<passthrough_event>(e.data));
+    const bool after_call = after_call_;  // as the writer
+    after_call_ = after_call && keeps_tool_call_open(e);
     std::visit(
         [&](const auto& d) {
           using T = std::decay_t<decltype(d)>;
