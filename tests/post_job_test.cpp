@@ -85,6 +85,29 @@ TEST_CASE("the job scan reads a head or a sync wherever its line falls in the fi
   const job_scan across = scan_job(write_temp(big));
   CHECK(across.heads == std::vector<int>{7});
   CHECK(across.explicit_sync);
+  // A job of 20 MB is scanned in two halves at once, each 8 MB at a time: a record across
+  // the middle, across each half's window end, and records before and after, found in the
+  // file's order.
+  constexpr std::size_t size = std::size_t{20} << 20, window = std::size_t{8} << 20;
+  std::string halves;
+  auto place = [&halves](std::size_t at, const std::string& record) {  // `record` begins 3 bytes before `at`
+    while (halves.size() + 11 < at - 3) halves += "GOTO/1,2,3\n";
+    halves += std::string(at - 3 - halves.size() - 1, ' ') + "\n" + record + "\n";
+  };
+  halves += "HEAD/1\n";
+  place(window, "HEAD/2");
+  place(size / 2, "CHANNL/4");
+  const std::size_t second = halves.size();  // where the second half starts
+  place(size / 2 + 200, "HEAD/MAIN");
+  place(second + window, "HEAD/3");
+  place(size - 100, "SYNC/1,1,2");
+  halves += std::string(size - halves.size() - 1, ' ') + "\n";
+  REQUIRE(halves.size() == size);
+  const job_scan two = scan_job(write_temp(halves));
+  CHECK(two.heads == std::vector<int>{1, 2, 3});
+  CHECK(two.head_words == std::vector<std::string>{"MAIN"});
+  CHECK(two.channels == std::vector<int>{4});
+  CHECK(two.explicit_sync);
   const std::string fifo = test::fresh_temp_dir("scan-fifo") + "/job.cls";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   std::thread feed([&] { test::write_file(fifo, "GOTO/1,2,3\nHEAD/2\nSYNC/1,1,2\n"); });
