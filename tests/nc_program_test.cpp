@@ -595,20 +595,29 @@ TEST_CASE("split_nc_words decodes each number once, as from_chars reads it", "[c
   }
   std::vector<nc_word> words;
   for (const std::string& v : values) {
-    INFO(v);
-    const std::string line = "X" + v + " M3";  // lives while its words are read
-    const std::uint32_t letters = split_nc_words(line, words);
-    REQUIRE(words.size() == 2);
-    double want = 0;
-    const bool ok = nc_number(words[0].value, want);
-    CHECK(words[0].numeric == ok);
-    if (ok) {
-      CHECK(std::bit_cast<std::uint64_t>(words[0].number) == std::bit_cast<std::uint64_t>(want));
-      CHECK(words[0].point == (v.find('.') != std::string::npos));
+    // Followed by a blank and a word, by a letter at once, and by the line's end: the number is
+    // read eight characters at a time where it ends within them (the line's end included).
+    for (const std::string& after : {std::string(" M3"), std::string("M3"), std::string()}) {
+      INFO(v << " then '" << after << "'");
+      const std::string line = "X" + v + after;  // lives while its words are read
+      const std::uint32_t letters = split_nc_words(line, words);
+      REQUIRE(words.size() == (after.empty() ? 1u : 2u));
+      CHECK(words[0].value == v);
+      double want = 0;
+      const bool ok = nc_number(words[0].value, want);
+      CHECK(words[0].numeric == ok);
+      if (ok) {
+        CHECK(std::bit_cast<std::uint64_t>(words[0].number) == std::bit_cast<std::uint64_t>(want));
+        CHECK(words[0].point == (v.find('.') != std::string::npos));
+      }
+      if (after.empty()) {
+        CHECK(letters == nc_letter('X'));
+        continue;
+      }
+      CHECK(words[1].numeric);
+      CHECK(words[1].number == 3);
+      CHECK(letters == (nc_letter('X') | nc_letter('M')));
     }
-    CHECK(words[1].numeric);
-    CHECK(words[1].number == 3);
-    CHECK(letters == (nc_letter('X') | nc_letter('M')));
   }
   split_nc_words("G1 X#100 Y[#1+2] (Z5) f200", words);
   REQUIRE(words.size() == 4);
