@@ -130,15 +130,20 @@ struct channel_data {
 
 }  // namespace
 
+bool interference_checked(const machine& m) {
+  const auto with = std::count_if(m.channels.begin(), m.channels.end(), [&m](const channel_def& c) {
+    return m.interference.channel(c.number) != nullptr;
+  });
+  return with >= 2 || !m.interference.zones.empty();
+}
+
 struct interference_check::impl {
   explicit impl(const machine& mm) : m(mm) {
-    int with = 0;
     for (const channel_def& c : m.channels) {
       channels.emplace_back(m, c.number);
       channels.back().env = m.interference.channel(c.number);
-      if (channels.back().env) ++with;
     }
-    active = with >= 2 || !m.interference.zones.empty();
+    active = interference_checked(m);
     const cycle_rules& cy = m.cycles;
     for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
                                     &cy.tap_code, &cy.tap_left_code})

@@ -55,6 +55,10 @@ struct interference_meeting {
 /// keeps line numbers only) the line's text, reading the programs again when there is one.
 void fill_source_lines(std::vector<diagnostic>& found, const std::vector<nc_source>& files, const machine& m);
 
+/// Whether machine `m` has the interference rule on: two or more of its channels with an
+/// envelope, or a static zone ([interference], docs/interference.md).
+bool interference_checked(const machine& m);
+
 /// The interference rule, fed block by block like analysis/shared_resources.
 class interference_check {
  public:

@@ -249,20 +249,6 @@ int threads(const post_options& o) {
   return o.threads > 0 ? o.threads : std::thread::hardware_concurrency() >= 2 ? 2 : 1;
 }
 
-// Whether a thread of its own works out the 5-axis moves ahead of the writer
-// (machining/kin_lookahead.hpp): with a second core, on a machine of one channel with a
-// kinematic chain (a post routes a multi-channel job's events only as it writes them).
-bool look_ahead(const post_options& o, const machine& m) {
-  return threads(o) >= 2 && m.channels.size() == 1 && m.chain(m.channels.front().number) != nullptr;
-}
-
-// Whether the programs are checked while they are written (post/concurrent_check.hpp): with
-// a second core, on programs each written whole by its channel's writer (split layout), as
-// far as the checker handles the machine's channels.
-bool check_while_writing(const post_options& o, const machine& m, const frame_request& req) {
-  return threads(o) >= 2 && req.layout == layout_kind::split && m.channels.size() <= 64;
-}
-
 // Every piece each writer writes goes through the concurrent check, which reads it and then
 // writes it; the program is named as the frame names it.
 void relay_writers(const post_options& o, const frame_request& req, writers_sink& ws, concurrent_check& cc) {
@@ -409,6 +395,24 @@ std::optional<staged_file> time_programs(const post_options& o, const machine& m
 
 }  // namespace
 
+post_threads plan_threads(const post_options& o, const machine& m) {
+  post_threads p;
+  if (threads(o) < 2) return p;
+  // The look-ahead: on a machine of one channel with a kinematic chain (a post routes a
+  // multi-channel job's events only as it writes them).
+  p.look_ahead = m.channels.size() == 1 && m.chain(m.channels.front().number) != nullptr;
+  // The check while writing: on programs each written whole by its channel's writer (split
+  // layout), as far as the checker handles the machine's channels.
+  p.check = o.layout.value_or(m.layout) == layout_kind::split && m.channels.size() <= 64;
+  // The reader: not where the check times the programs or checks the turrets' interference.
+  // That check then has about as much work per block as the reader and the writer together,
+  // and a third busy thread only makes two cores share three (docs/benchmark.md, "Issue 23,
+  // sixth pass": the two-turret lathe job 0.188 s on three threads, 0.160 s on two). The
+  // look-ahead works between the reader's thread and the post's, and keeps it.
+  p.reader = p.look_ahead || !(p.check && (has_timing(m) || interference_checked(m)));
+  return p;
+}
+
 std::string safe_file_stem(std::string_view partno) {
   std::string s;
   for (char c : partno) {
@@ -475,8 +479,9 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   file_source src(in.get());
   passing_sink as_is(sink);
   std::optional<kin_lookahead> ahead;  // before the reader, whose thread uses it
-  if (look_ahead(o, m)) ahead.emplace(m, m.channels.front().number);
-  job_events reader(src, posting_reader(o, m, lua.get()), sink, as_is, threads(o) >= 2,
+  const post_threads plan = plan_threads(o, m);
+  if (plan.look_ahead) ahead.emplace(m, m.channels.front().number);
+  job_events reader(src, posting_reader(o, m, lua.get()), sink, as_is, plan.reader,
                     ahead ? &*ahead : nullptr);  // to the end: messages quote it
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);
@@ -502,7 +507,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   std::optional<timeline_feed> feed;  // the cycle time, fed by the self-check's reading
   if (has_timing(m) && m.channels.size() <= 64) feed.emplace(m, to);
   std::optional<concurrent_check> during;  // after `feed`: its thread feeds it
-  if (check_while_writing(o, m, req)) {
+  if (plan.check) {
     during.emplace(m, feed ? &*feed : nullptr);
     relay_writers(o, req, ws, *during);
   }

@@ -60,6 +60,15 @@ struct post_summary {
   std::optional<timeline> timing;
 };
 
+/// The threads a post runs besides its own, with post_options::threads of two or more (with
+/// one: none). docs/design.md, "Two cores".
+struct post_threads {
+  bool reader = false;      ///< the CL reader's (post/reader_thread.hpp)
+  bool look_ahead = false;  ///< the 5-axis moves worked out ahead (machining/kin_lookahead.hpp)
+  bool check = false;       ///< the check of the programs while they are written (post/concurrent_check.hpp)
+};
+post_threads plan_threads(const post_options& o, const machine& m);
+
 /// Posts `o.cl_path` (a regular file: it is read twice) for machine `m`. Problems go to
 /// `diags`; the summary says whether files were written. Throws config_error for I/O
 /// failures, a job that is not a regular file, and file names a machine file makes unsafe

@@ -199,6 +199,34 @@ TEST_CASE("the job scan looks only at first words, across read chunks", "[post]"
   CHECK(s.channels == std::vector<int>{2});
 }
 
+TEST_CASE("a post's threads: the reader's own only where the check while writing is light", "[post]") {
+  post_options o;
+  o.threads = 2;
+  auto plan = [&o](const machine& m) {
+    const post_threads p = plan_threads(o, m);
+    return std::string(p.reader ? "reader " : "") + (p.look_ahead ? "look-ahead " : "") +
+           (p.check ? "check" : "");
+  };
+  const machine twin = load_machine("fanuc-0itd-twin");  // [timing] and [interference]
+  CHECK(plan(twin) == "check");
+  machine untimed = twin;
+  for (channel_def& c : untimed.channels) c.timing = {};
+  CHECK(plan(untimed) == "check");  // the interference check alone
+  machine light = untimed;
+  light.interference = {};
+  CHECK(plan(light) == "reader check");
+  machine unchecked = twin;
+  unchecked.interference = {};
+  CHECK(plan(unchecked) == "check");        // the timer alone
+  o.layout = layout_kind::merged_sections;  // checked after it is written: the reader's thread
+  CHECK(plan(twin) == "reader ");
+  o.layout.reset();
+  CHECK(plan(load_machine("head-head-5axis")) == "reader look-ahead check");
+  o.threads = 1;
+  CHECK(plan(twin).empty());
+  CHECK(plan(load_machine("head-head-5axis")).empty());
+}
+
 TEST_CASE("a one-channel machine: no pre-pass, and a sync record is an error", "[post]") {
   // Nothing to wait for on one channel: the job is read once, and a SYNC in it (a job made
   // for a twin-turret machine) fails the post with the reason instead of being ignored.
@@ -241,22 +269,32 @@ TEST_CASE("on three threads the post gives what it gives on one, across many bat
       cl += move;
   }
   const std::string tail = "HEAD/2\nTURRET/4,4\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\nGOTO/-10,0,5\nFINI\n";
-  const machine m = load_machine("fanuc-0itd-twin");
-  for (const std::string& job : {cl + tail, sound + tail}) {
-    const bool fails = job.size() != (sound + tail).size();
-    INFO((fails ? "with errors" : "sound"));
-    auto with = [](int n) { return [n](post_options& o) { o.threads = n; }; };
-    const test::posted one = test::post_in_fresh_dir(job, m, "threads-1", {}, {}, with(1));
-    const test::posted three = test::post_in_fresh_dir(job, m, "threads-2", {}, {}, with(2));
-    CHECK(one.ok == !fails);
-    CHECK(three.diagnostics == one.diagnostics);
-    CHECK(three.files == one.files);
-    CHECK(one.files.size() == (fails ? 0u : 2u));
-    if (fails) {
-      CHECK(one.diagnostics.find("job.cls:4101:1: error: channel 1: X10000. is outside channel 1's X travel "
+  // The twin lathe times its programs and checks its turrets, and reads on the post's thread
+  // (post_job.cpp, reader_gets_thread); without [timing] and [interference] the reader has a
+  // thread of its own.
+  const machine twin = load_machine("fanuc-0itd-twin");
+  machine light = twin;
+  for (channel_def& c : light.channels) c.timing = {};
+  light.interference = {};
+  for (const machine* mp : {&twin, static_cast<const machine*>(&light)})
+    for (const std::string& job : {cl + tail, sound + tail}) {
+      const machine& m = *mp;
+      const bool fails = job.size() != (sound + tail).size();
+      INFO((fails ? "with errors" : "sound") << (mp == &twin ? "" : ", no timing"));
+      auto with = [](int n) { return [n](post_options& o) { o.threads = n; }; };
+      const test::posted one = test::post_in_fresh_dir(job, m, "threads-1", {}, {}, with(1));
+      const test::posted three = test::post_in_fresh_dir(job, m, "threads-2", {}, {}, with(2));
+      CHECK(one.ok == !fails);
+      CHECK(three.diagnostics == one.diagnostics);
+      CHECK(three.files == one.files);
+      CHECK(one.files.size() == (fails ? 0u : 2u));
+      if (fails) {
+        CHECK(
+            one.diagnostics.find("job.cls:4101:1: error: channel 1: X10000. is outside channel 1's X travel "
                                  "-10..460 (channel.axis min/max)\nGOTO/5000,0,$\n^\n") != std::string::npos);
-      CHECK(one.diagnostics.find("job.cls:3018:6: error: GOTO takes 3 or 6 numbers (x,y,z[,i,j,k]), found 4 "
+        CHECK(
+            one.diagnostics.find("job.cls:3018:6: error: GOTO takes 3 or 6 numbers (x,y,z[,i,j,k]), found 4 "
                                  "arguments\nGOTO/20,,0,5,\n     ^\n") != std::string::npos);
+      }
     }
-  }
 }
