@@ -487,7 +487,7 @@ class reader {
                     const bool* runs) {
     if (s.stopped) return;
     // A byte order mark is taken off whole from the first piece (pieces are 1 MB read from a
-    // file, 256 KB from a writer, which writes none).
+    // file, 64 KB from a writer, which writes none).
     if (s.first && chunk.starts_with("\xEF\xBB\xBF")) chunk.remove_prefix(3);
     s.first = false;
     std::string& carry = s.carry;

@@ -15,7 +15,7 @@ namespace twinpost {
 
 namespace {
 
-constexpr std::size_t queue_pieces = 8;  // pieces of up to 256 KB waiting for the reader
+constexpr std::size_t queue_pieces = 8;  // pieces of up to 64 KB waiting for the reader
 
 struct piece {
   int channel = 0;

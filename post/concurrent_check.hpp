@@ -15,7 +15,7 @@
 // ordered by a reading of the files one after the other, which the concurrent one is not).
 // Otherwise finish() says so and post checks the files after the fact, as with one core.
 //
-// Memory: a few pieces of 256 KB queued; the writer waits when the reader is behind. The
+// Memory: a few pieces of 64 KB queued; the writer waits when the reader is behind. The
 // buffers go round: a piece written is the next empty buffer of a writer.
 #include <functional>
 #include <memory>
