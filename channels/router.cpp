@@ -38,6 +38,14 @@ const channel_def* channel_router::head_channel(const head_event& h) const {
 void channel_router::route(const event& e) {
   column_line_ = e.line;
   column_ = e.column;
+  // Most events are moves: no head, channel, sync or job-level record, and a block to write.
+  if (std::holds_alternative<motion_event>(e.data) && open_both_.empty()) [[likely]] {
+    for (int ch : active_) {
+      busy_[static_cast<std::size_t>(ch)] = true;
+      sink_.on_event(ch, e, both_);
+    }
+    return;
+  }
   if (const auto* h = std::get_if<head_event>(&e.data)) {
     if (h->which == head_select::both) {
       const channel_def* a = m_.channel_for_head(1);
