@@ -128,7 +128,7 @@ struct cl_reader::impl {
       builder.set_column(last_column);
       issues.clear();
       const std::size_t before = queue.size();
-      builder.build(rec, lr.line, queue, issues);
+      if (!builder.build_goto(rec, lr.line, queue)) builder.build(rec, lr.line, queue, issues);
       for (const build_issue& i : issues) report(i);
       if (queue.size() > before) {
         // Later stages (router, writers) report at the record's major word.

@@ -42,6 +42,10 @@ class event_builder {
 
   /// Appends the events of record `r` (from physical line `line`) to `out`.
   void build(const cl_record& r, int line, event_queue& out, build_issues& issues);
+  /// build() for a GOTO of three or six numbers, most records of a long job: the same event
+  /// and the same state, without the look-up of its handler. False, with nothing done, for
+  /// any other record, and for every record when a script takes records (build() then).
+  bool build_goto(const cl_record& r, int line, event_queue& out);
   /// Notes a record that could not be parsed (already reported; `seen` is what it looked
   /// like). It ends a GOTO, and the coordinate lines right after it are dropped without
   /// further errors; a bad coordinate line inside a GOTO leaves the GOTO going.

@@ -62,6 +62,23 @@ void event_builder::motion(const cl_record& r, motion_kind kind, int line, event
   point(n, false, kind, line, out);
 }
 
+bool event_builder::build_goto(const cl_record& r, int line, event_queue& out) {
+  const std::size_t count = r.args.size();
+  if (r.kind != record_kind::statement || !r.numbers_only || (count != 3 && count != 6) ||
+      any_script_records_ || !word_is(r.major, "GOTO"))
+    return false;
+  // As build(), statement() and motion() take it: a statement ends the last motion record.
+  after_bad_record_ = false;
+  end_of_motion_record();
+  in_goto_ = true;
+  rapid_record_ = rapid_;
+  rapid_ = false;
+  double n[6];
+  for (std::size_t i = 0; i < count; ++i) n[i] = r.args[i].number;
+  point({n, count}, false, motion_kind::go_to, line, out);
+  return true;
+}
+
 void event_builder::point(std::span<const double> n, bool continued, motion_kind kind, int line,
                           event_queue& out) {
   vec3 p{n[0], n[1], n[2]};

@@ -11,6 +11,8 @@
 
 #include "fuzz/fast_path_check.hpp"
 #include "parser/detail/fast_record.hpp"
+#include "parser/event_builder.hpp"
+#include "parser/event_text.hpp"
 #include "parser/line_reader.hpp"
 #include "parser/record_parser.hpp"
 #include "tests/shared_samples.hpp"
@@ -25,6 +27,40 @@ bool fast_accepts(std::string_view text) {
   cl_record r;
   return parser_detail::parse_numeric_statement(text, r);
 }
+
+// Two builders fed the same records, one through build() alone, the other through
+// build_goto() first (as cl_reader does): their events and messages, record by record.
+struct goto_lane_pair {
+  explicit goto_lane_pair(dialect d) : general(d), lane(d) {}
+  event_builder general, lane;
+  int taken = 0;  // records build_goto took
+
+  // "" when both gave the same; else what each gave.
+  std::string feed(std::string_view text, int line) {
+    cl_record r;
+    record_error err;
+    if (!parse_record(text, r, err)) {
+      general.skip_record(r.kind);
+      lane.skip_record(r.kind);
+      return {};
+    }
+    event_queue a, b;
+    build_issues ia, ib;
+    general.build(r, line, a, ia);
+    if (lane.build_goto(r, line, b))
+      ++taken;
+    else
+      lane.build(r, line, b, ib);
+    const std::string ga = describe(a, ia), gb = describe(b, ib);
+    return ga == gb ? std::string() : "build: " + ga + "\nbuild_goto: " + gb;
+  }
+  static std::string describe(const event_queue& q, const build_issues& issues) {
+    std::string out;
+    for (const event& e : q) out += event_to_json(e) + "\n";
+    for (const build_issue& i : issues) out += i.message + "\n";
+    return out;
+  }
+};
 
 }  // namespace
 
@@ -96,4 +132,74 @@ TEST_CASE("fast path: the real CL files read alike", "[parser][fast][samples]") 
   }
   CHECK(records > 5000);
   CHECK(accepted > records / 2);
+}
+
+TEST_CASE("the GOTO lane builds what build() builds", "[parser][fast]") {
+  // RAPID before it, six numbers and the modal axis, a Pro/E coordinate line after it, a
+  // CIRCLE it ends on, a GODLTA from where it ends, the wrong counts, words, and a record
+  // that does not parse before a coordinate line.
+  const char* job[] = {"RAPID",
+                       "GOTO/1,2,3",
+                       "GOTO/4,5,6,0,0,1",
+                       "goto / 7.5, 8, 9 ",
+                       "10,11,12",
+                       "GOTO/1,1,1",
+                       "CIRCLE/0,0,0,0,0,1,5",
+                       "GOTO/5,0,0",
+                       "GOTO/0,5,0",
+                       "GODLTA/1,1,1",
+                       "GOTO/1,2",
+                       "13,14,15",
+                       "GOTO/1,2,3,4",
+                       "GOTO/1,2,3,4,5,6,7",
+                       "GOTO/1,2,ABC",
+                       "RAPID",
+                       "FROM/1,1,1",
+                       "GOTO/0,0,0",
+                       "GOTO/1,2,3,",
+                       "GOTOX/1,2,3",
+                       "GOTO/1,,3",
+                       "16,17,18",
+                       "GOTO/-0,+2.5,.5",
+                       "END"};
+  for (dialect d : {dialect::generic, dialect::creo, dialect::nx}) {
+    goto_lane_pair p(d);
+    int line = 0;
+    for (const char* text : job) {
+      INFO(text);
+      CHECK(p.feed(text, ++line) == "");
+    }
+    CHECK(p.taken == 9);
+  }
+  // A script that takes records gets every record through build().
+  event_builder b(dialect::generic);
+  b.set_script_records({"GOTO"}, false);
+  cl_record r;
+  record_error err;
+  REQUIRE(parse_record("GOTO/1,2,3", r, err));
+  event_queue q;
+  CHECK_FALSE(b.build_goto(r, 1, q));
+  CHECK(q.empty());
+}
+
+TEST_CASE("the GOTO lane: the real CL files build alike", "[parser][fast][samples]") {
+  const std::filesystem::path dir = test::require_shared_samples();
+  int taken = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file() || entry.path().filename() == "README.md") continue;
+    std::FILE* f = std::fopen(entry.path().c_str(), "rb");
+    REQUIRE(f);
+    file_source src(f);
+    line_reader lines(src);
+    const dialect d = detect_dialect(lines.peek(64 * 1024));
+    goto_lane_pair p(d);
+    logical_record lr;
+    while (lines.next(lr)) {
+      INFO(entry.path().filename().string() << ":" << lr.line << ": " << lr.text);
+      REQUIRE(p.feed(lr.text, lr.line) == "");
+    }
+    std::fclose(f);
+    taken += p.taken;
+  }
+  CHECK(taken > 2000);
 }
