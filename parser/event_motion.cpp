@@ -1,5 +1,7 @@
 // event_builder: motion records (GOTO, FROM, GODLTA, GOHOME, CIRCLE) and their points.
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fmt/format.h>
 
 #include "parser/detail/word_events.hpp"
@@ -29,6 +31,16 @@ double planar_radius(vec3 p, vec3 c, vec3 n) {
   double a = nl > 0 ? (dx * n.x + dy * n.y + dz * n.z) / nl : 0;
   double r2 = dx * dx + dy * dy + dz * dz - a * a;
   return r2 > 0 ? std::sqrt(r2) : 0;
+}
+
+// `major` is GOTO in any case: its four bytes with the case bit set are "goto" (of the
+// characters a major word has, only G or g gives g so, O or o gives o, T or t gives t).
+bool is_goto(std::string_view major) {
+  if (major.size() != 4) return false;
+  std::uint32_t w = 0, want = 0;
+  std::memcpy(&w, major.data(), 4);
+  std::memcpy(&want, "goto", 4);
+  return (w | 0x20202020u) == want;
 }
 
 }  // namespace
@@ -65,7 +77,7 @@ void event_builder::motion(const cl_record& r, motion_kind kind, int line, event
 bool event_builder::build_goto(const cl_record& r, int line, event_queue& out) {
   const std::size_t count = r.args.size();
   if (r.kind != record_kind::statement || !r.numbers_only || (count != 3 && count != 6) ||
-      any_script_records_ || !word_is(r.major, "GOTO"))
+      any_script_records_ || !is_goto(r.major))
     return false;
   // As build(), statement() and motion() take it: a statement ends the last motion record.
   after_bad_record_ = false;
