@@ -220,7 +220,7 @@ job_scan scan_job(const std::string& path) {
         const std::size_t nl = text.find('\n', text.size() / 2);
         half = nl == std::string_view::npos ? text.size() : nl + 1;
       }
-      // The second half on a thread of its own (none to start: the whole file here).
+      // The second half on a thread of its own; where none can start, this one scans it all.
       job_scan later;
       std::future<void> second;
       if (half < text.size()) {
