@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fmt/format.h>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <string>
@@ -159,8 +160,12 @@ struct interference_check::impl {
 
   const machine& m;
   bool active = false;
-  std::FILE* spill = nullptr;  // closed segments' sweeps (an anonymous temporary file)
-  bool spill_failed = false;   // no temporary file: the sweeps stay in memory
+  static constexpr std::size_t spill_buffer_size = std::size_t{1} << 16;
+  std::unique_ptr<char[]> spill_buffer;  // the spill's stdio buffer (closed with it in ~impl)
+  std::FILE* spill = nullptr;            // closed segments' sweeps (an anonymous temporary file)
+  bool spill_failed = false;             // no temporary file: the sweeps stay in memory
+  long spill_size = 0;                   // bytes written to it
+  mutable bool spill_at_end = true;      // its position is its end (no reading since the last write)
   std::vector<channel_data> channels;
   std::vector<double> cycle_codes;
   std::optional<nc_word> balance_on, balance_off;
@@ -322,20 +327,28 @@ struct interference_check::impl {
         at->second = unite(at->second, w.tip());
     }
     if (seg.sweeps.empty() || spill_failed) return;
-    if (!spill && !(spill = std::tmpfile())) {
+    if (!spill) {
+      if (!(spill = std::tmpfile())) {
+        spill_failed = true;
+        return;
+      }
+      // 64 KB a write, not the 4 KB glibc gives a buffer it allocates itself.
+      spill_buffer = std::make_unique<char[]>(spill_buffer_size);
+      std::setvbuf(spill, spill_buffer.get(), _IOFBF, spill_buffer_size);
+    }
+    // Written at the file's end, which this counts: a seek to it only after a reading (each
+    // seek flushes and reads back the last block, four system calls per segment).
+    if (!spill_at_end && std::fseek(spill, 0, SEEK_END) != 0) {
       spill_failed = true;
       return;
     }
-    if (std::fseek(spill, 0, SEEK_END) != 0) {
+    spill_at_end = true;
+    seg.offset = spill_size;
+    if (std::fwrite(seg.sweeps.data(), sizeof(sweep), seg.sweeps.size(), spill) != seg.sweeps.size()) {
       spill_failed = true;
       return;
     }
-    seg.offset = std::ftell(spill);
-    if (seg.offset < 0 ||
-        std::fwrite(seg.sweeps.data(), sizeof(sweep), seg.sweeps.size(), spill) != seg.sweeps.size()) {
-      spill_failed = true;
-      return;
-    }
+    spill_size += static_cast<long>(seg.sweeps.size() * sizeof(sweep));
     seg.count = static_cast<std::uint32_t>(seg.sweeps.size());
     seg.spilled = true;
     std::vector<sweep>().swap(seg.sweeps);
@@ -345,6 +358,7 @@ struct interference_check::impl {
   const std::vector<sweep>& sweeps_of(const segment_data& seg, std::vector<sweep>& buf) const {
     if (!seg.spilled) return seg.sweeps;
     buf.resize(seg.count);
+    spill_at_end = false;
     if (std::fflush(spill) != 0 || std::fseek(spill, seg.offset, SEEK_SET) != 0 ||
         std::fread(buf.data(), sizeof(sweep), buf.size(), spill) != buf.size())
       throw config_error("cannot read back the interference check's temporary file");
