@@ -62,6 +62,21 @@ struct goto_lane_pair {
   }
 };
 
+// Each real CL file of ../shared/cl-samples, read by a line_reader (skipped without them).
+template <class F>
+void for_each_sample_file(F&& read) {
+  const std::filesystem::path dir = test::require_shared_samples();
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file() || entry.path().filename() == "README.md") continue;
+    std::FILE* f = std::fopen(entry.path().c_str(), "rb");
+    REQUIRE(f);
+    file_source src(f);
+    line_reader lines(src);
+    read(entry.path(), lines);
+    std::fclose(f);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("fast path: takes the common numeric records", "[parser][fast]") {
@@ -113,23 +128,16 @@ TEST_CASE("fast path: random numeric records read as the grammar reads them", "[
 }
 
 TEST_CASE("fast path: the real CL files read alike", "[parser][fast][samples]") {
-  const std::filesystem::path dir = test::require_shared_samples();
   int records = 0, accepted = 0;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
-    if (!entry.is_regular_file() || entry.path().filename() == "README.md") continue;
-    std::FILE* f = std::fopen(entry.path().c_str(), "rb");
-    REQUIRE(f);
-    file_source src(f);
-    line_reader lines(src);
+  for_each_sample_file([&](const std::filesystem::path& path, line_reader& lines) {
     logical_record lr;
     while (lines.next(lr)) {
       ++records;
       if (fast_accepts(lr.text)) ++accepted;
-      INFO(entry.path().filename().string() << ":" << lr.line << ": " << lr.text);
+      INFO(path.filename().string() << ":" << lr.line << ": " << lr.text);
       REQUIRE(fast_path_difference(lr.text).empty());
     }
-    std::fclose(f);
-  }
+  });
   CHECK(records > 5000);
   CHECK(accepted > records / 2);
 }
@@ -186,23 +194,15 @@ TEST_CASE("the GOTO lane builds what build() builds", "[parser][fast]") {
 }
 
 TEST_CASE("the GOTO lane: the real CL files build alike", "[parser][fast][samples]") {
-  const std::filesystem::path dir = test::require_shared_samples();
   int taken = 0;
-  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
-    if (!entry.is_regular_file() || entry.path().filename() == "README.md") continue;
-    std::FILE* f = std::fopen(entry.path().c_str(), "rb");
-    REQUIRE(f);
-    file_source src(f);
-    line_reader lines(src);
-    const dialect d = detect_dialect(lines.peek(64 * 1024));
-    goto_lane_pair p(d);
+  for_each_sample_file([&](const std::filesystem::path& path, line_reader& lines) {
+    goto_lane_pair p(detect_dialect(lines.peek(64 * 1024)));
     logical_record lr;
     while (lines.next(lr)) {
-      INFO(entry.path().filename().string() << ":" << lr.line << ": " << lr.text);
+      INFO(path.filename().string() << ":" << lr.line << ": " << lr.text);
       REQUIRE(p.feed(lr.text, lr.line) == "");
     }
-    std::fclose(f);
     taken += p.taken;
-  }
+  });
   CHECK(taken > 2000);
 }
