@@ -46,6 +46,9 @@ class event_builder {
   /// and the same state, without the look-up of its handler. False, with nothing done, for
   /// any other record, and for every record when a script takes records (build() then).
   bool build_goto(const cl_record& r, int line, event_queue& out);
+  /// build_goto for a GOTO read straight into its numbers (parse_goto_statement): `count` is 3
+  /// or 6. False, with nothing done, when a script takes records.
+  bool build_goto(const double* numbers, std::size_t count, int line, event_queue& out);
   /// Notes a record that could not be parsed (already reported; `seen` is what it looked
   /// like). It ends a GOTO, and the coordinate lines right after it are dropped without
   /// further errors; a bad coordinate line inside a GOTO leaves the GOTO going.

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fmt/format.h>
 
+#include "parser/detail/fast_record.hpp"
 #include "parser/detail/word_events.hpp"
 #include "parser/event_builder.hpp"
 #include "parser/event_text.hpp"
@@ -31,16 +32,6 @@ double planar_radius(vec3 p, vec3 c, vec3 n) {
   double a = nl > 0 ? (dx * n.x + dy * n.y + dz * n.z) / nl : 0;
   double r2 = dx * dx + dy * dy + dz * dz - a * a;
   return r2 > 0 ? std::sqrt(r2) : 0;
-}
-
-// `major` is GOTO in any case: its four bytes with the case bit set are "goto" (of the
-// characters a major word has, only G or g gives g so, O or o gives o, T or t gives t).
-bool is_goto(std::string_view major) {
-  if (major.size() != 4) return false;
-  std::uint32_t w = 0, want = 0;
-  std::memcpy(&w, major.data(), 4);
-  std::memcpy(&want, "goto", 4);
-  return (w | 0x20202020u) == want;
 }
 
 }  // namespace
@@ -77,17 +68,22 @@ void event_builder::motion(const cl_record& r, motion_kind kind, int line, event
 bool event_builder::build_goto(const cl_record& r, int line, event_queue& out) {
   const std::size_t count = r.args.size();
   if (r.kind != record_kind::statement || !r.numbers_only || (count != 3 && count != 6) ||
-      any_script_records_ || !is_goto(r.major))
+      !parser_detail::is_goto(r.major))
     return false;
+  double n[6];
+  for (std::size_t i = 0; i < count; ++i) n[i] = r.args[i].number;
+  return build_goto(n, count, line, out);
+}
+
+bool event_builder::build_goto(const double* numbers, std::size_t count, int line, event_queue& out) {
+  if (any_script_records_) return false;
   // As build(), statement() and motion() take it: a statement ends the last motion record.
   after_bad_record_ = false;
   end_of_motion_record();
   in_goto_ = true;
   rapid_record_ = rapid_;
   rapid_ = false;
-  double n[6];
-  for (std::size_t i = 0; i < count; ++i) n[i] = r.args[i].number;
-  point({n, count}, false, motion_kind::go_to, line, out);
+  point({numbers, count}, false, motion_kind::go_to, line, out);
   return true;
 }
 

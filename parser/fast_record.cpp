@@ -16,9 +16,12 @@ constexpr auto major_chars = [] {
   for (int c = 0; c < 256; ++c) t.in[c] = word_chars.in[c] || c == '-';
   return t;
 }();
-}  // namespace
 
-bool parse_numeric_statement(std::string_view text, cl_record& out) {
+// The one reading of a numeric statement, for both kinds of result: `Out` takes the major
+// (`major(text, offset)`, false to give up) and each number (`number(value, offset)`, false to
+// give up), and says at the end whether what it took is complete (`done()`).
+template <class Out>
+bool scan_numeric_statement(std::string_view text, Out& out) {
   const char* const begin = text.data();
   const char* const end = begin + text.size();
   const char* p = begin;
@@ -27,21 +30,18 @@ bool parse_numeric_statement(std::string_view text, cl_record& out) {
   if (text_major_length(std::string_view(p, static_cast<std::size_t>(end - p))) != 0) return false;
   const char* major = p;
   while (p != end && major_chars.in[static_cast<unsigned char>(*p)]) ++p;
-  out.clear();
-  out.source = text;
-  out.kind = record_kind::statement;
-  out.major = std::string_view(major, static_cast<std::size_t>(p - major));
-  out.major_offset = static_cast<std::size_t>(major - begin);
-  out.numbers_only = true;
+  if (!out.major(std::string_view(major, static_cast<std::size_t>(p - major)),
+                 static_cast<std::size_t>(major - begin)))
+    return false;
   while (p != end && blank(*p)) ++p;
-  if (p == end) return true;  // a bare major: RAPID, FINI
+  if (p == end) return out.done();  // a bare major: RAPID, FINI
   if (*p != '/') return false;
   ++p;
   for (bool first = true;; first = false) {
     while (p != end && blank(*p)) ++p;
     // Nothing after '/' is the grammar's to judge; nothing after a comma is a trailing
     // comma, which carries nothing (as in the grammar).
-    if (p == end) return !first;
+    if (p == end) return !first && out.done();
     const char* start = p;
     bool negative = false;
     if (*p == '+' || *p == '-') negative = *p++ == '-';
@@ -49,21 +49,69 @@ bool parse_numeric_statement(std::string_view text, cl_record& out) {
     double value = 0;
     p = fast_decimal_in(begin, p, end, value);
     if (!p) return false;
-    cl_arg& a = out.args.emplace_back();
-    a.kind = arg_kind::number;
-    a.number = negative ? -value : value;
-    a.offset = static_cast<std::size_t>(start - begin);
-    if (p == end) return true;
+    if (!out.number(negative ? -value : value, static_cast<std::size_t>(start - begin))) return false;
+    if (p == end) return out.done();
     if (*p == ',') {  // the common case first: the next number follows at once
       ++p;
       continue;
     }
     if (is_word_char(*p)) return false;  // `1STPECK` is a word
     while (p != end && blank(*p)) ++p;
-    if (p == end) return true;
+    if (p == end) return out.done();
     if (*p != ',') return false;
     ++p;
   }
+}
+
+// The record as the grammar makes it.
+struct record_out {
+  std::string_view text;
+  cl_record& r;
+  bool major(std::string_view m, std::size_t offset) {
+    r.clear();
+    r.source = text;
+    r.kind = record_kind::statement;
+    r.major = m;
+    r.major_offset = offset;
+    r.numbers_only = true;
+    return true;
+  }
+  bool number(double v, std::size_t offset) {
+    cl_arg& a = r.args.emplace_back();
+    a.kind = arg_kind::number;
+    a.number = v;
+    a.offset = offset;
+    return true;
+  }
+  static bool done() { return true; }
+};
+
+// A GOTO of three or six numbers, nothing else.
+struct goto_out {
+  goto_statement& g;
+  bool major(std::string_view m, std::size_t offset) {
+    g.major = m;
+    g.major_offset = offset;
+    g.count = 0;
+    return is_goto(m);
+  }
+  bool number(double v, std::size_t) {
+    if (g.count == 6) return false;
+    g.numbers[g.count++] = v;
+    return true;
+  }
+  bool done() const { return g.count == 3 || g.count == 6; }
+};
+}  // namespace
+
+bool parse_numeric_statement(std::string_view text, cl_record& out) {
+  record_out o{text, out};
+  return scan_numeric_statement(text, o);
+}
+
+bool parse_goto_statement(std::string_view text, goto_statement& out) {
+  goto_out o{out};
+  return scan_numeric_statement(text, o);
 }
 
 }  // namespace twinpost::parser_detail

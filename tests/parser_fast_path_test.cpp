@@ -36,18 +36,23 @@ struct goto_lane_pair {
   int taken = 0;  // records build_goto took
 
   // "" when both gave the same; else what each gave.
+  // The lane as cl_reader takes it: parse_goto_statement into build_goto's numbers, else
+  // build_goto of the record, else build().
   std::string feed(std::string_view text, int line) {
     cl_record r;
     record_error err;
+    event_queue a, b;
+    build_issues ia, ib;
+    parser_detail::goto_statement g;
+    const bool direct =
+        parser_detail::parse_goto_statement(text, g) && lane.build_goto(g.numbers, g.count, line, b);
     if (!parse_record(text, r, err)) {
       general.skip_record(r.kind);
       lane.skip_record(r.kind);
-      return {};
+      return direct ? "parse_goto_statement took a record parse_record refuses" : "";
     }
-    event_queue a, b;
-    build_issues ia, ib;
     general.build(r, line, a, ia);
-    if (lane.build_goto(r, line, b))
+    if (direct || lane.build_goto(r, line, b))
       ++taken;
     else
       lane.build(r, line, b, ib);
@@ -61,6 +66,24 @@ struct goto_lane_pair {
     return out;
   }
 };
+
+// "" when parse_goto_statement reads `text` as parse_numeric_statement does: the same GOTO of
+// three or six numbers (major, its offset, the numbers to the bit), or nothing from either.
+std::string goto_statement_difference(std::string_view text) {
+  cl_record r;
+  const bool statement = parser_detail::parse_numeric_statement(text, r) && parser_detail::is_goto(r.major) &&
+                         (r.args.size() == 3 || r.args.size() == 6);
+  parser_detail::goto_statement g;
+  const bool lane = parser_detail::parse_goto_statement(text, g);
+  if (statement != lane)
+    return lane ? "only parse_goto_statement takes it" : "only parse_numeric_statement takes it";
+  if (!lane) return {};
+  if (g.major != r.major || g.major_offset != r.major_offset) return "major differs";
+  if (g.count != r.args.size()) return "count differs";
+  for (std::size_t i = 0; i < g.count; ++i)
+    if (std::memcmp(&g.numbers[i], &r.args[i].number, sizeof(double)) != 0) return "number differs";
+  return {};
+}
 
 // Each real CL file of ../shared/cl-samples, read by a line_reader (skipped without them).
 template <class F>
@@ -86,6 +109,7 @@ TEST_CASE("fast path: takes the common numeric records", "[parser][fast]") {
     INFO(t);
     CHECK(fast_accepts(t));
     CHECK(fast_path_difference(t).empty());
+    CHECK(goto_statement_difference(t).empty());
   }
 }
 
@@ -95,6 +119,7 @@ TEST_CASE("fast path: leaves everything else to the grammar", "[parser][fast]") 
                         "GOTO/1STPECK", "GOTO/inf,0,0", "GOTO/1234567890123456,0,0", "GOTO/1,2,3)"}) {
     INFO(t);
     CHECK_FALSE(fast_accepts(t));
+    CHECK(goto_statement_difference(t).empty());
   }
 }
 
@@ -123,6 +148,7 @@ TEST_CASE("fast path: random numeric records read as the grammar reads them", "[
     if (fast_accepts(t)) ++accepted;
     INFO(t);
     REQUIRE(fast_path_difference(t).empty());
+    REQUIRE(goto_statement_difference(t).empty());
   }
   CHECK(accepted > 10000);  // the fast path is really taken
 }
@@ -136,6 +162,7 @@ TEST_CASE("fast path: the real CL files read alike", "[parser][fast][samples]") 
       if (fast_accepts(lr.text)) ++accepted;
       INFO(path.filename().string() << ":" << lr.line << ": " << lr.text);
       REQUIRE(fast_path_difference(lr.text).empty());
+      REQUIRE(goto_statement_difference(lr.text).empty());
     }
   });
   CHECK(records > 5000);
@@ -190,6 +217,8 @@ TEST_CASE("the GOTO lane builds what build() builds", "[parser][fast]") {
   REQUIRE(parse_record("GOTO/1,2,3", r, err));
   event_queue q;
   CHECK_FALSE(b.build_goto(r, 1, q));
+  const double n[] = {1, 2, 3};
+  CHECK_FALSE(b.build_goto(n, 3, 1, q));
   CHECK(q.empty());
 }
 
