@@ -144,8 +144,13 @@ class timeline_feed {
   timeline finish(const std::vector<std::uint64_t>& rendezvous);
 
  private:
-  timeline_options o_;
+  // The builder is made by the first call, on the thread that feeds it: a self-check's thread
+  // then has it in its own memory, not in cache lines shared with the writer's (docs/design.md,
+  // "Two cores").
   struct impl;
+  impl& made();
+  const machine& m_;
+  timeline_options o_;
   std::unique_ptr<impl> p_;
 };
 

@@ -37,8 +37,8 @@ nc_read_options feeding(timeline_feed* feed) {
 
 struct concurrent_check::impl {
   impl(const machine& m, timeline_feed* feed)
-      : check(m, feeding(feed)), reader(m, read, check.options()), names(m.channels.size()),
-        pending(m.channels.size()), write_errors(m.channels.size()), thread([this] { run(); }) {}
+      : m(m), feed(feed), names(m.channels.size()), pending(m.channels.size()),
+        write_errors(m.channels.size()), thread([this] { run(); }) {}
 
   ~impl() {
     stop();
@@ -81,6 +81,15 @@ struct concurrent_check::impl {
   // queue. After a failure of the reading it goes on writing the pieces (a writer must never
   // wait for ever, and its file gets every byte).
   void run() {
+    // The check is made here, on its thread: its memory (the reader's words, the timer's and the
+    // rules' state, written for every block) then comes from this thread's allocator, never in a
+    // cache line with the writer's state. Made on the post's thread, some of it shared lines with
+    // the reader's, and the two cores passed those lines to and fro: a third more time.
+    try {
+      parts = std::make_unique<check_parts>(m, feed, read);
+    } catch (...) {
+      failed = true;
+    }
     for (;;) {
       std::unique_lock lock(mutex);
       ready.wait(lock, [this] { return !queue.empty() || stopping; });
@@ -92,8 +101,8 @@ struct concurrent_check::impl {
       lock.unlock();
       room.notify_one();
       if (!failed) try {
-          if (!p.opens.empty()) reader.open(p.channel, std::move(p.opens));
-          reader.feed(p.channel, p.bytes.view());
+          if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
+          parts->reader.feed(p.channel, p.bytes.view());
         } catch (...) {
           failed = true;  // the check after the fact meets it again and says it
         }
@@ -109,11 +118,19 @@ struct concurrent_check::impl {
     }
   }
 
-  diagnostic_list read;            // the reading's problems (any: the check after the fact)
-  compact_resource_check check;    // the waits, the spindle rules, and the feed
-  nc_stream_reader reader;         // used by the thread until it is joined
-  std::vector<std::string> names;  // by channel: the name each program was read under ("" : not opened)
-  bool failed = false;             // written by the thread, read after the join
+  struct check_parts {
+    check_parts(const machine& m, timeline_feed* feed, diagnostic_list& read)
+        : check(m, feeding(feed)), reader(m, read, check.options()) {}
+    compact_resource_check check;  // the waits, the spindle rules, and the feed
+    nc_stream_reader reader;
+  };
+
+  const machine& m;
+  timeline_feed* feed;
+  diagnostic_list read;                // the reading's problems (any: the check after the fact)
+  std::unique_ptr<check_parts> parts;  // made and used by the thread until it is joined
+  std::vector<std::string> names;      // by channel: the name each program was read under ("" : not opened)
+  bool failed = false;                 // written by the thread, read after the join
 
   std::mutex mutex;
   std::condition_variable ready, room, written;
@@ -167,8 +184,8 @@ std::optional<sync_result> concurrent_check::finish(const std::vector<std::strin
   if (p_->failed || names != p_->names) return std::nullopt;
   for (bool r : rewritten)
     if (r) return std::nullopt;
-  const nc_programs programs = p_->reader.finish();
-  std::optional<sync_result> r = p_->check.result(programs, p_->read);
+  const nc_programs programs = p_->parts->reader.finish();
+  std::optional<sync_result> r = p_->parts->check.result(programs, p_->read);
   if (!r || !r->diagnostics.empty()) return std::nullopt;
   return r;
 }

@@ -5,6 +5,7 @@
 #include <deque>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <type_traits>
 #include <utility>
@@ -67,14 +68,14 @@ struct reader_thread::impl {
     impl* p;
     void report(diagnostic d) override {
       if (d.column > 0 && d.source_line.empty() && d.file == p->file)
-        d.source_line = std::string(p->reader.source_line(d.line));
+        d.source_line = std::string(p->reader->source_line(d.line));
       p->filling->diagnostics.emplace_back(p->filling->events.size(), std::move(d));
     }
   };
 
   impl(byte_source& src, cl_reader_options options, diagnostic_sink& out, kin_lookahead* ahead)
-      : file(options.file_name), keep(this), filling(std::make_unique<batch>()),
-        reader(src, std::move(options), keep), out(out), ahead(ahead), thread([this] { run(); }) {
+      : src(src), options(std::move(options)), file(this->options.file_name), keep(this), out(out),
+        ahead(ahead), thread([this] { run(); }) {
     if (ahead) looking = std::thread([this] { look(); });
   }
 
@@ -95,10 +96,15 @@ struct reader_thread::impl {
 
   void run() {
     std::size_t seen = 0;  // reader.records() when the current record's lines were kept
+    // The reader and its first batch are made here, on this thread: their memory (the line
+    // buffer, the record, the events), written for every record, then comes from this thread's
+    // allocator and shares no cache line with the post's state (post/concurrent_check.cpp).
+    filling = std::make_unique<batch>();  // before the reader: it may report at once
     try {
-      while (const event* e = reader.next()) {
+      reader.emplace(src, std::move(options), keep);
+      while (const event* e = reader->next()) {
         batch& b = *filling;
-        if (const std::size_t now = reader.records(); b.record_start.empty() || now != seen) {
+        if (const std::size_t now = reader->records(); b.record_start.empty() || now != seen) {
           keep_record(b);
           seen = now;
         }
@@ -127,8 +133,8 @@ struct reader_thread::impl {
   // The lines of the reader's current record into `b`.
   void keep_record(batch& b) {
     b.record_start.push_back(static_cast<std::uint32_t>(b.lines.size()));
-    for (std::size_t i = 0, n = reader.source_lines(); i < n; ++i) {
-      const auto [line, text] = reader.source_line_at(i);
+    for (std::size_t i = 0, n = reader->source_lines(); i < n; ++i) {
+      const auto [line, text] = reader->source_line_at(i);
       b.lines.push_back({line, b.text.size(), text.size()});
       b.text.append(text);
     }
@@ -136,8 +142,8 @@ struct reader_thread::impl {
 
   // Queues the batch being filled and takes an empty one; false when the post has stopped.
   bool hand_over() {
-    filling->bytes = reader.bytes();
-    filling->records = reader.records();
+    filling->bytes = reader ? reader->bytes() : 0;
+    filling->records = reader ? reader->records() : 0;
     std::unique_lock lock(mutex);
     room.wait(lock, [this] { return queue.size() < (ahead ? ahead_batches : queue_batches) || stopping; });
     if (stopping) return false;
@@ -233,10 +239,12 @@ struct reader_thread::impl {
     return {};
   }
 
-  std::string file;  // the job's name in diagnostics
+  byte_source& src;           // until the thread makes its reader of it
+  cl_reader_options options;  // likewise
+  std::string file;           // the job's name in diagnostics
   keeping_sink keep;
-  std::unique_ptr<batch> filling;  // the thread's (before the reader: it may report at once)
-  cl_reader reader;                // used by the thread only, once it runs
+  std::unique_ptr<batch> filling;   // the thread's
+  std::optional<cl_reader> reader;  // made and used by the thread only
   diagnostic_sink& out;
 
   kin_lookahead* ahead;  // nullptr: the post takes the reader's batches as they are
