@@ -320,14 +320,19 @@ struct timeline_feed::impl {
 
 timeline_feed::timeline_feed(const machine& m, const timeline_options& o) : m_(m), o_(o) {}
 timeline_feed::~timeline_feed() = default;
-timeline_feed::impl& timeline_feed::made() {
-  if (!p_) p_ = std::make_unique<impl>(m_, o_);
-  return *p_;
+void timeline_feed::make() { p_ = std::make_unique<impl>(m_, o_); }
+void timeline_feed::block(const nc_block& b) {
+  if (!p_) [[unlikely]]
+    make();
+  p_->b.block(b);
 }
-void timeline_feed::block(const nc_block& b) { made().b.block(b); }
-void timeline_feed::wait(const nc_wait& w) { made().b.wait(w); }
+void timeline_feed::wait(const nc_wait& w) {
+  if (!p_) make();
+  p_->b.wait(w);
+}
 timeline timeline_feed::finish(const std::vector<std::uint64_t>& rendezvous) {
-  return made().b.finish(rendezvous);
+  if (!p_) make();
+  return p_->b.finish(rendezvous);
 }
 
 void for_each_timed_block(const timeline& t, const std::vector<nc_source>& files, const machine& m,

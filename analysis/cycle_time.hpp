@@ -148,7 +148,7 @@ class timeline_feed {
   // then has it in its own memory, not in cache lines shared with the writer's (docs/design.md,
   // "Two cores").
   struct impl;
-  impl& made();
+  void make();
   const machine& m_;
   timeline_options o_;
   std::unique_ptr<impl> p_;

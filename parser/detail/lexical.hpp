@@ -123,7 +123,10 @@ inline std::uint64_t load_upto8(const char* begin, const char* p, const char* la
 /// (`0.3206994`) takes one more word. Never a loop over characters; seven digits or more on
 /// either side of the point go to fast_decimal. The same value (digits / 10^fraction, one
 /// correctly rounded division) and the same end as fast_decimal, or nullptr where it hands on.
-inline const char* fast_decimal_in(const char* begin, const char* p, const char* last, double& value) {
+/// Always inline: the fast path reads three numbers a record through it, and a call each cost
+/// a tenth of the reading.
+[[gnu::always_inline]] inline const char* fast_decimal_in(const char* begin, const char* p, const char* last,
+                                                          double& value) {
   static constexpr double pow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7};
   static constexpr std::uint64_t ipow10[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000};
   const std::uint64_t w = load_upto8(begin, p, last);
