@@ -1,5 +1,8 @@
 #include "parser/detail/fast_record.hpp"
 
+#include <cstdint>
+#include <cstring>
+
 #include "parser/detail/lexical.hpp"
 #include "support/ascii.hpp"
 
@@ -17,26 +20,11 @@ constexpr auto major_chars = [] {
   return t;
 }();
 
-// The one reading of a numeric statement, for both kinds of result: `Out` takes the major
-// (`major(text, offset)`, false to give up) and each number (`number(value, offset)`, false to
-// give up), and says at the end whether what it took is complete (`done()`).
+// The arguments of a numeric statement, from just after its '/' at `p` (the text starts at
+// `begin` and ends at `end`): each number to `out.number(value, offset)` (false to give up), and
+// at the end `out.done()` says whether what it took is complete.
 template <class Out>
-bool scan_numeric_statement(std::string_view text, Out& out) {
-  const char* const begin = text.data();
-  const char* const end = begin + text.size();
-  const char* p = begin;
-  while (p != end && blank(*p)) ++p;
-  if (p == end || !ascii::is_letter(*p)) return false;
-  if (text_major_length(std::string_view(p, static_cast<std::size_t>(end - p))) != 0) return false;
-  const char* major = p;
-  while (p != end && major_chars.in[static_cast<unsigned char>(*p)]) ++p;
-  if (!out.major(std::string_view(major, static_cast<std::size_t>(p - major)),
-                 static_cast<std::size_t>(major - begin)))
-    return false;
-  while (p != end && blank(*p)) ++p;
-  if (p == end) return out.done();  // a bare major: RAPID, FINI
-  if (*p != '/') return false;
-  ++p;
+bool scan_numbers(const char* const begin, const char* p, const char* const end, Out& out) {
   for (bool first = true;; first = false) {
     while (p != end && blank(*p)) ++p;
     // Nothing after '/' is the grammar's to judge; nothing after a comma is a trailing
@@ -61,6 +49,27 @@ bool scan_numeric_statement(std::string_view text, Out& out) {
     if (*p != ',') return false;
     ++p;
   }
+}
+
+// The one reading of a numeric statement, for both kinds of result: `Out` takes the major
+// (`major(text, offset)`, false to give up) and the numbers (scan_numbers).
+template <class Out>
+bool scan_numeric_statement(std::string_view text, Out& out) {
+  const char* const begin = text.data();
+  const char* const end = begin + text.size();
+  const char* p = begin;
+  while (p != end && blank(*p)) ++p;
+  if (p == end || !ascii::is_letter(*p)) return false;
+  if (text_major_length(std::string_view(p, static_cast<std::size_t>(end - p))) != 0) return false;
+  const char* major = p;
+  while (p != end && major_chars.in[static_cast<unsigned char>(*p)]) ++p;
+  if (!out.major(std::string_view(major, static_cast<std::size_t>(p - major)),
+                 static_cast<std::size_t>(major - begin)))
+    return false;
+  while (p != end && blank(*p)) ++p;
+  if (p == end) return out.done();  // a bare major: RAPID, FINI
+  if (*p != '/') return false;
+  return scan_numbers(begin, p + 1, end, out);
 }
 
 // The record as the grammar makes it.
@@ -111,6 +120,20 @@ bool parse_numeric_statement(std::string_view text, cl_record& out) {
 
 bool parse_goto_statement(std::string_view text, goto_statement& out) {
   goto_out o{out};
+  // Most GOTOs start the line as `GOTO/` (any case): its five bytes at once, then the numbers,
+  // as scan_numeric_statement reads them after the same five bytes.
+  if (text.size() >= 8) {
+    // Byte strings, so that the masks fall on the same bytes in either byte order.
+    std::uint64_t w = 0, want = 0, lower = 0, keep = 0;
+    std::memcpy(&w, text.data(), 8);
+    std::memcpy(&want, "goto/\0\0\0", 8);
+    std::memcpy(&lower, "\x20\x20\x20\x20\0\0\0\0", 8);  // the case bit of the four letters
+    std::memcpy(&keep, "\xff\xff\xff\xff\xff\0\0\0", 8);
+    if (((w | lower) & keep) == want) {
+      o.major(text.substr(0, 4), 0);
+      return scan_numbers(text.data(), text.data() + 5, text.data() + text.size(), o);
+    }
+  }
   return scan_numeric_statement(text, o);
 }
 
