@@ -67,7 +67,7 @@ struct reader_thread::impl {
     explicit keeping_sink(impl* p) : p(p) {}
     impl* p;
     void report(diagnostic d) override {
-      if (d.column > 0 && d.source_line.empty() && d.file == p->file)
+      if (d.column > 0 && d.source_line.empty() && d.file == p->file && p->reader)  // not while it is made
         d.source_line = std::string(p->reader->source_line(d.line));
       p->filling->diagnostics.emplace_back(p->filling->events.size(), std::move(d));
     }
