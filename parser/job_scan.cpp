@@ -5,6 +5,7 @@
 #include "support/file_reader.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <charconv>
 #include <cstdio>
@@ -167,12 +168,16 @@ class mapped_file {
   std::size_t size_ = 0;
 };
 
-// The whole lines of `text` in [from, to), 8 MB at a time, each window let go once read: a
-// job of gigabytes costs the scan no more memory than a small one. `from` and `to` are line
-// starts (or the text's end).
-void scan_range(const mapped_file& mapped, std::size_t from, std::size_t to, job_scan& s) {
-  constexpr std::size_t window = std::size_t{8} << 20;
+// The whole lines of `text` in [from, to), each window let go once read: a job of gigabytes
+// costs the scan no more memory than a small one. The first window is 256 KB and each next
+// twice the last, up to 8 MB: a scan that stops early maps little, a long one makes few calls.
+// After each window `go_on(end)` says whether to read on; false when it stopped the scan.
+// `from` and `to` are line starts (or the text's end).
+template <class GoOn>
+bool scan_range(const mapped_file& mapped, std::size_t from, std::size_t to, job_scan& s, GoOn&& go_on) {
+  constexpr std::size_t first_window = std::size_t{256} << 10, last_window = std::size_t{8} << 20;
   const std::string_view text = mapped.text();
+  std::size_t window = first_window;
   for (std::size_t done = from; done < to;) {
     std::size_t end = std::min(to, done + window);
     if (end < to) {
@@ -183,7 +188,10 @@ void scan_range(const mapped_file& mapped, std::size_t from, std::size_t to, job
     scan_lines(text.substr(done, end - done), s);
     mapped.release(done, end);
     done = end;
+    window = std::min(window * 2, last_window);
+    if (!go_on(end)) return false;
   }
+  return true;
 }
 
 // What a later part of the job found, after what an earlier part found.
@@ -200,7 +208,7 @@ constexpr std::size_t split_bytes = std::size_t{4} << 20;
 
 }  // namespace
 
-job_scan scan_job(const std::string& path) {
+job_scan scan_job(const std::string& path, const std::function<bool(const job_scan&)>& enough) {
   job_scan s;
   // Opened once: a pipe's bytes can be read only once.
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -220,21 +228,35 @@ job_scan scan_job(const std::string& path) {
         const std::size_t nl = text.find('\n', text.size() / 2);
         half = nl == std::string_view::npos ? text.size() : nl + 1;
       }
-      // The second half on a thread of its own; where none can start, this one scans it all.
+      // The first half here, asking `enough` after each window. The second half on a thread of
+      // its own, started after the first window (a job whose answer is in its first lines
+      // costs no thread); where none can start, this one scans it after the first. When
+      // `enough` stops the first half, the second stops at its next window and what it found
+      // is dropped: the result is the first part's, wherever the thread had got to.
       job_scan later;
       std::future<void> second;
-      if (half < text.size()) {
-        try {
-          second = std::async(std::launch::async, [&] { scan_range(mapped, half, text.size(), later); });
-        } catch (const std::system_error&) {
-          half = text.size();
+      std::atomic<bool> stop{false};
+      bool tried = half == text.size();  // no second half, or its thread was asked for
+      const bool whole = scan_range(mapped, 0, half, s, [&](std::size_t) {
+        if (enough && enough(s)) return false;
+        if (!tried) {
+          tried = true;
+          try {
+            second = std::async(std::launch::async, [&] {
+              scan_range(mapped, half, text.size(), later,
+                         [&stop](std::size_t) { return !stop.load(std::memory_order_relaxed); });
+            });
+          } catch (const std::system_error&) {
+          }
         }
-      }
-      scan_range(mapped, 0, half, s);
-      if (second.valid()) {
+        return true;
+      });
+      if (!whole) stop = true;
+      if (second.valid())
         second.get();
-        append_scan(s, std::move(later));
-      }
+      else if (whole && half < text.size())
+        scan_range(mapped, half, text.size(), later, [](std::size_t) { return true; });
+      if (whole) append_scan(s, std::move(later));
       return s;
     }
   }

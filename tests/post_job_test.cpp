@@ -1,6 +1,7 @@
 // post/post_job and parser/job_scan: file names from PARTNO, and the quick scan.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -73,9 +74,11 @@ TEST_CASE("the job scan reads a head or a sync wherever its line falls in the fi
     CHECK_FALSE(none.explicit_sync);
     CHECK(none.heads.empty());
   }
-  // A job longer than the scan's window of 8 MB: a record across the window's end, and one
-  // after it.
+  // A job longer than the scan's largest window (8 MB; the first is 256 KB, each next twice
+  // the last): a record across the first window's nominal end, one across 8 MB, and one after.
   std::string big;
+  while (big.size() + 11 < (std::size_t{256} << 10) - 3) big += "GOTO/1,2,3\n";
+  big += std::string((std::size_t{256} << 10) - 3 - big.size() - 1, ' ') + "\nHEAD/6\n";
   while (big.size() + 11 < (std::size_t{8} << 20) - 3) big += "GOTO/1,2,3\n";
   big += std::string((std::size_t{8} << 20) - 3 - big.size() - 1, ' ') +
          "\n";  // HEAD/7 begins 3 bytes before 8 MB
@@ -83,9 +86,9 @@ TEST_CASE("the job scan reads a head or a sync wherever its line falls in the fi
   for (int i = 0; i < 1000; ++i) big += "GOTO/1,2,3\n";
   big += "SYNC/1,1,2\n";
   const job_scan across = scan_job(write_temp(big));
-  CHECK(across.heads == std::vector<int>{7});
+  CHECK(across.heads == std::vector<int>{6, 7});
   CHECK(across.explicit_sync);
-  // A job of 20 MB is scanned in two halves at once, each 8 MB at a time: a record across
+  // A job of 20 MB is scanned in two halves at once, each in windows of up to 8 MB: a record across
   // the middle, across each half's window end, and records before and after, found in the
   // file's order.
   constexpr std::size_t size = std::size_t{20} << 20, window = std::size_t{8} << 20;
@@ -115,6 +118,44 @@ TEST_CASE("the job scan reads a head or a sync wherever its line falls in the fi
   feed.join();
   CHECK(piped.heads == std::vector<int>{2});
   CHECK(piped.explicit_sync);
+}
+
+TEST_CASE("the job scan stops once the caller has enough", "[post]") {
+  // `enough` is asked after each window of the first half (256 KB, then 512 KB, 1 MB ...):
+  // the result is what the file holds up to the window where it said so.
+  auto has_head = [](int h) {
+    return [h](const job_scan& s) { return std::find(s.heads.begin(), s.heads.end(), h) != s.heads.end(); };
+  };
+  auto job = [](const std::vector<std::pair<std::size_t, std::string>>& records, std::size_t size) {
+    std::string text;
+    for (const auto& [at, record] : records) {
+      while (text.size() + 11 < at) text += "GOTO/1,2,3\n";
+      text += record + "\n";
+    }
+    while (text.size() + 11 < size) text += "GOTO/1,2,3\n";
+    return write_temp(text);
+  };
+  constexpr std::size_t kb = 1024, mb = kb * kb;
+  // A short job: one window, asked once at its end.
+  const std::string small =
+      job({{0, "HEAD/1"}, {100, "SYNC/1,1,2"}, {200, "HEAD/2"}, {90 * kb, "HEAD/3"}}, 100 * kb);
+  CHECK(scan_job(small, has_head(2)).heads == std::vector<int>{1, 2, 3});
+  // Past the first window: what follows it is not read.
+  const std::string one =
+      job({{0, "HEAD/1"}, {100, "SYNC/1,1,2"}, {200, "HEAD/2"}, {300 * kb, "HEAD/3"}}, mb);
+  const job_scan early = scan_job(one, has_head(2));
+  CHECK(early.heads == std::vector<int>{1, 2});
+  CHECK(early.explicit_sync);
+  CHECK(scan_job(one).heads == std::vector<int>{1, 2, 3});
+  CHECK(scan_job(one, has_head(3)).heads == std::vector<int>{1, 2, 3});  // found in the second window
+  CHECK(scan_job(one, has_head(9)).heads == std::vector<int>{1, 2, 3});  // never enough: all of it
+  // A job of two halves (8 MB): enough in the third window of the first half (it ends past
+  // 1.75 MB); the second half, already begun on its thread, is dropped, every time.
+  const std::string two =
+      job({{0, "HEAD/1"}, {mb, "HEAD/2"}, {3 * mb, "HEAD/3"}, {6 * mb, "HEAD/4"}}, 8 * mb);
+  for (int run = 0; run < 3; ++run) CHECK(scan_job(two, has_head(2)).heads == std::vector<int>{1, 2});
+  CHECK(scan_job(two, has_head(3)).heads == std::vector<int>{1, 2, 3});
+  CHECK(scan_job(two, has_head(4)).heads == std::vector<int>{1, 2, 3, 4});  // in the second half: all
 }
 
 TEST_CASE("the channels a job uses, on a 3-path machine", "[post]") {
