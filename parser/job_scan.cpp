@@ -233,9 +233,11 @@ job_scan scan_job(const std::string& path, const std::function<bool(const job_sc
       // costs no thread); where none can start, this one scans it after the first. When
       // `enough` stops the first half, the second stops at its next window and what it found
       // is dropped: the result is the first part's, wherever the thread had got to.
+      // `stop` and `later` before `second`: should this thread throw, the future waits for
+      // the scan's thread while both still exist.
+      std::atomic<bool> stop{false};
       job_scan later;
       std::future<void> second;
-      std::atomic<bool> stop{false};
       bool tried = half == text.size();  // no second half, or its thread was asked for
       const bool whole = scan_range(mapped, 0, half, s, [&](std::size_t) {
         if (enough && enough(s)) return false;
