@@ -21,4 +21,8 @@ std::vector<int> used_channels(const job_scan& scan, const machine& m) {
   return used;
 }
 
+bool scan_settled(const job_scan& scan, const machine& m, bool policy_given) {
+  return (policy_given || scan.explicit_sync) && used_channels(scan, m).size() == m.channels.size();
+}
+
 }  // namespace twinpost

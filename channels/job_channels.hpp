@@ -12,4 +12,12 @@ namespace twinpost {
 /// goes there) and those of every head and channel the scan found.
 std::vector<int> used_channels(const job_scan& scan, const machine& m);
 
+/// True when what a job scan has found so far settles both things the post takes from it, so
+/// that the scan may stop (parser/job_scan's `enough`): the sync policy (`policy_given` with
+/// --sync, or a sync record found) and the channels (every channel of the machine in use: a
+/// sync record that names none can mean no more). Under the `auto` policy a job without sync
+/// records is never settled (one at its last line would change the policy), nor is one that
+/// leaves a channel idle.
+bool scan_settled(const job_scan& scan, const machine& m, bool policy_given);
+
 }  // namespace twinpost

@@ -202,7 +202,7 @@ void append_scan(job_scan& to, job_scan&& later) {
   to.channels.insert(to.channels.end(), later.channels.begin(), later.channels.end());
 }
 
-// Above this size a mapped job is scanned in two halves at once: the scan is the serial start
+// From this size on a mapped job is scanned in two halves at once: the scan is the serial start
 // of a multi-channel post, and the second core has little else to do then.
 constexpr std::size_t split_bytes = std::size_t{4} << 20;
 
@@ -233,11 +233,16 @@ job_scan scan_job(const std::string& path, const std::function<bool(const job_sc
       // costs no thread); where none can start, this one scans it after the first. When
       // `enough` stops the first half, the second stops at its next window and what it found
       // is dropped: the result is the first part's, wherever the thread had got to.
-      // `stop` and `later` before `second`: should this thread throw, the future waits for
-      // the scan's thread while both still exist.
+      // `stop` and `later` before `second`, and `stopper` after it: should this thread throw,
+      // `stop` is set first, and the future then waits for the scan's thread (one window at
+      // most) while both still exist.
       std::atomic<bool> stop{false};
       job_scan later;
       std::future<void> second;
+      struct stopper {
+        std::atomic<bool>& stop;
+        ~stopper() { stop = true; }
+      } stop_on_exit{stop};
       bool tried = half == text.size();  // no second half, or its thread was asked for
       const bool whole = scan_range(mapped, 0, half, s, [&](std::size_t) {
         if (enough && enough(s)) return false;
@@ -253,12 +258,16 @@ job_scan scan_job(const std::string& path, const std::function<bool(const job_sc
         }
         return true;
       });
-      if (!whole) stop = true;
+      if (!whole) {
+        stop = true;
+        if (second.valid()) second.wait();  // its findings, or its failure, are not needed
+        return s;
+      }
       if (second.valid())
         second.get();
-      else if (whole && half < text.size())
+      else if (half < text.size())
         scan_range(mapped, half, text.size(), later, [](std::size_t) { return true; });
-      if (whole) append_scan(s, std::move(later));
+      append_scan(s, std::move(later));
       return s;
     }
   }

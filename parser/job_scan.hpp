@@ -23,9 +23,10 @@ struct job_scan {
 
 /// Scans `path`; a file that cannot be read gives an empty scan (the post reports it).
 /// `enough`, when given, is asked as the scan goes, with what it has found so far (which only
-/// ever grows): after each part it reads of a regular file's first half (256 KB at first, then
-/// larger parts; a pipe is read to its end). Once it says true the scan stops and returns that,
-/// the findings of the file up to there. The same file gives the same result every time.
+/// ever grows): after each part it reads of a regular file's first half (the whole file below
+/// 4 MB), 256 KB at first, then larger parts; a pipe is read to its end. Once it says true the
+/// scan stops and returns that, the findings of the file up to there. The same file gives the
+/// same result every time.
 job_scan scan_job(const std::string& path, const std::function<bool(const job_scan&)>& enough = {});
 
 }  // namespace twinpost

@@ -150,15 +150,11 @@ file_ptr open_job(const std::string& path) {
 // pass over the text before posting. A one-channel machine has nothing to wait for: no
 // pass (a long 5-axis job is read once), and a sync record in its job is an error under the
 // explicit policy (no partner channel).
-// The scan stops once its two answers cannot change: the policy is settled (given, or a sync
-// record found) and the job uses every channel of the machine (a sync record that names none
-// then means all of them). A job without sync records is read to its end.
+// The scan stops once its two answers cannot change (channels/job_channels' scan_settled).
 job_scan scan_for_sync(const post_options& o, const machine& m) {
   if (m.channels.size() == 1) return {};
   const bool policy_given = o.policy != sync_policy::automatic;
-  return scan_job(o.cl_path, [&](const job_scan& s) {
-    return (policy_given || s.explicit_sync) && used_channels(s, m).size() == m.channels.size();
-  });
+  return scan_job(o.cl_path, [&](const job_scan& s) { return scan_settled(s, m, policy_given); });
 }
 
 // The policy `auto` stands for: the job's sync records if it has any, else a rendezvous at

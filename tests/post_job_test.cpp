@@ -74,36 +74,34 @@ TEST_CASE("the job scan reads a head or a sync wherever its line falls in the fi
     CHECK_FALSE(none.explicit_sync);
     CHECK(none.heads.empty());
   }
-  // A job longer than the scan's largest window (8 MB; the first is 256 KB, each next twice
-  // the last): a record across the first window's nominal end, one across 8 MB, and one after.
+  // The scan reads a file in windows, the first of 256 KB and each next twice the last, up to
+  // 8 MB; a window ends at the line end after its nominal end. A record that begins 3 bytes
+  // before `at`, after motion lines:
+  auto place = [](std::string& text, std::size_t at, const std::string& record) {
+    while (text.size() + 11 < at - 3) text += "GOTO/1,2,3\n";
+    text += std::string(at - 3 - text.size() - 1, ' ') + "\n" + record + "\n";
+  };
+  // A job of 8 MB (two halves, below): records across the first window's nominal end and across
+  // the second's (the first one ends just after HEAD/6), and one after 8 MB.
   std::string big;
-  while (big.size() + 11 < (std::size_t{256} << 10) - 3) big += "GOTO/1,2,3\n";
-  big += std::string((std::size_t{256} << 10) - 3 - big.size() - 1, ' ') + "\nHEAD/6\n";
-  while (big.size() + 11 < (std::size_t{8} << 20) - 3) big += "GOTO/1,2,3\n";
-  big += std::string((std::size_t{8} << 20) - 3 - big.size() - 1, ' ') +
-         "\n";  // HEAD/7 begins 3 bytes before 8 MB
-  big += "HEAD/7\n";
+  place(big, std::size_t{256} << 10, "HEAD/6");
+  place(big, big.size() + (std::size_t{512} << 10), "HEAD/8");
+  place(big, std::size_t{8} << 20, "HEAD/7");
   for (int i = 0; i < 1000; ++i) big += "GOTO/1,2,3\n";
   big += "SYNC/1,1,2\n";
   const job_scan across = scan_job(write_temp(big));
-  CHECK(across.heads == std::vector<int>{6, 7});
+  CHECK(across.heads == std::vector<int>{6, 8, 7});
   CHECK(across.explicit_sync);
-  // A job of 20 MB is scanned in two halves at once, each in windows of up to 8 MB: a record across
-  // the middle, across each half's window end, and records before and after, found in the
-  // file's order.
-  constexpr std::size_t size = std::size_t{20} << 20, window = std::size_t{8} << 20;
-  std::string halves;
-  auto place = [&halves](std::size_t at, const std::string& record) {  // `record` begins 3 bytes before `at`
-    while (halves.size() + 11 < at - 3) halves += "GOTO/1,2,3\n";
-    halves += std::string(at - 3 - halves.size() - 1, ' ') + "\n" + record + "\n";
-  };
-  halves += "HEAD/1\n";
-  place(window, "HEAD/2");
-  place(size / 2, "CHANNL/4");
+  // A job of 20 MB is scanned in two halves at once: a record across the middle, across the
+  // first window's end in each half, and records before and after, found in the file's order.
+  constexpr std::size_t size = std::size_t{20} << 20, first_window = std::size_t{256} << 10;
+  std::string halves = "HEAD/1\n";
+  place(halves, first_window, "HEAD/2");
+  place(halves, size / 2, "CHANNL/4");
   const std::size_t second = halves.size();  // where the second half starts
-  place(size / 2 + 200, "HEAD/MAIN");
-  place(second + window, "HEAD/3");
-  place(size - 100, "SYNC/1,1,2");
+  place(halves, size / 2 + 200, "HEAD/MAIN");
+  place(halves, second + first_window, "HEAD/3");
+  place(halves, size - 100, "SYNC/1,1,2");
   halves += std::string(size - halves.size() - 1, ' ') + "\n";
   REQUIRE(halves.size() == size);
   const job_scan two = scan_job(write_temp(halves));
@@ -150,12 +148,35 @@ TEST_CASE("the job scan stops once the caller has enough", "[post]") {
   CHECK(scan_job(one, has_head(3)).heads == std::vector<int>{1, 2, 3});  // found in the second window
   CHECK(scan_job(one, has_head(9)).heads == std::vector<int>{1, 2, 3});  // never enough: all of it
   // A job of two halves (8 MB): enough in the third window of the first half (it ends past
-  // 1.75 MB); the second half, already begun on its thread, is dropped, every time.
-  const std::string two =
-      job({{0, "HEAD/1"}, {mb, "HEAD/2"}, {3 * mb, "HEAD/3"}, {6 * mb, "HEAD/4"}}, 8 * mb);
+  // 1.75 MB). The second half's thread, begun after the first window, reads at least its own
+  // first window (HEAD/5, just past the middle) before it sees the stop: what it found is
+  // dropped, every time.
+  const std::string two = job(
+      {{0, "HEAD/1"}, {mb, "HEAD/2"}, {3 * mb, "HEAD/3"}, {4 * mb + 100 * kb, "HEAD/5"}, {6 * mb, "HEAD/4"}},
+      8 * mb);
   for (int run = 0; run < 3; ++run) CHECK(scan_job(two, has_head(2)).heads == std::vector<int>{1, 2});
   CHECK(scan_job(two, has_head(3)).heads == std::vector<int>{1, 2, 3});
-  CHECK(scan_job(two, has_head(4)).heads == std::vector<int>{1, 2, 3, 4});  // in the second half: all
+  CHECK(scan_job(two, has_head(4)).heads == std::vector<int>{1, 2, 3, 5, 4});  // in the second half: all
+}
+
+TEST_CASE("the job scan is settled once the policy and every channel are known", "[post]") {
+  const machine twin = load_machine("fanuc-0itd-twin");  // channels 1 and 2, heads 1 and 2
+  job_scan s;
+  s.heads = {1};
+  CHECK_FALSE(scan_settled(s, twin, false));
+  CHECK_FALSE(scan_settled(s, twin, true));  // channel 2 may still come
+  s.explicit_sync = true;
+  CHECK_FALSE(scan_settled(s, twin, false));
+  s.heads = {1, 2};
+  CHECK(scan_settled(s, twin, false));
+  s.explicit_sync = false;
+  CHECK_FALSE(scan_settled(s, twin, false));  // auto: a sync record may still come
+  CHECK(scan_settled(s, twin, true));         // --sync given: the channels are all it needs
+  const machine three = load_machine("fanuc-31i-3path");
+  s.explicit_sync = true;
+  CHECK_FALSE(scan_settled(s, three, false));  // a third path may still be used
+  s.channels = {3};
+  CHECK(scan_settled(s, three, false));
 }
 
 TEST_CASE("the channels a job uses, on a 3-path machine", "[post]") {
