@@ -207,6 +207,9 @@ TEST_CASE(
     REQUIRE(child >= 0);
     if (child == 0) {
       // The command-line tool's handler; the progress call (after 65,536 events) is the signal.
+      // The handler leaves alone a signal ignored at the start, and a run of these tests under
+      // nohup passes its ignored SIGHUP on: the child starts from the defaults.
+      for (int s : {SIGINT, SIGTERM, SIGHUP}) ::signal(s, SIG_DFL);
       cli::install_interrupt_cleanup();
       post_options o;
       o.cl_path = dir + "/big.cls";
@@ -229,6 +232,27 @@ TEST_CASE(
   CHECK(test::read_file(dir + "/out/RACE_1.nc") == old_one);
   CHECK(test::list_dir(dir) == "a.cls big.cls out");
   fs::remove_all(dir);
+}
+
+TEST_CASE("a signal ignored when the tool starts stays ignored (nohup)", "[post][commit]") {
+  // In a child: what the handler's installation leaves of SIGHUP, ignored or not before it.
+  auto after_install = [](bool ignored) {
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+      ::signal(SIGHUP, ignored ? SIG_IGN : SIG_DFL);
+      cli::install_interrupt_cleanup();
+      struct sigaction now {};
+      ::sigaction(SIGHUP, nullptr, &now);
+      ::_exit(now.sa_handler == SIG_IGN ? 1 : now.sa_handler == &cli::on_interrupt ? 2 : 3);
+    }
+    int status = 0;
+    REQUIRE(::waitpid(child, &status, 0) == child);
+    REQUIRE(WIFEXITED(status));
+    return WEXITSTATUS(status);
+  };
+  CHECK(after_install(true) == 1);   // still ignored: nohup's promise kept
+  CHECK(after_install(false) == 2);  // the cleanup handler
 }
 
 TEST_CASE("the job must be a regular file with records", "[post]") {
