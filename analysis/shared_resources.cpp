@@ -1,5 +1,6 @@
 #include "analysis/shared_resources.hpp"
 
+#include "analysis/control_emulator.hpp"
 #include "analysis/length_offset.hpp"
 
 #include <algorithm>
@@ -645,14 +646,16 @@ namespace {
 // The rules' findings after the checker's, counted in the result; the interference rule's
 // (analysis/interference) after the spindle rules', the length offset's (analysis/length_offset)
 // last.
-void add_findings(sync_result& r, shared_resources& rules, interference_check& meet,
-                  length_offset_rule& len) {
+void add_findings(sync_result& r, shared_resources& rules, interference_check& meet, length_offset_rule& len,
+                  control_emulator& control) {
   const bool sound = r.ok;
   std::vector<diagnostic> found = rules.finish(r.rendezvous, sound);
   std::vector<diagnostic> met = meet.finish(r.rendezvous, sound);
   found.insert(found.end(), met.begin(), met.end());
   std::vector<diagnostic> cancels = len.finish();
   found.insert(found.end(), cancels.begin(), cancels.end());
+  std::vector<diagnostic> emulated = control.finish();
+  found.insert(found.end(), emulated.begin(), emulated.end());
   if (found.empty()) return;
   r.diagnostics.insert(r.diagnostics.end(), found.begin(), found.end());
   diagnostic_counts n;
@@ -664,24 +667,30 @@ void add_findings(sync_result& r, shared_resources& rules, interference_check& m
 
 // The rules fed by a reading, and `more` with them.
 nc_read_options feeding(shared_resources& rules, interference_check& meet, length_offset_rule& len,
-                        const nc_read_options& more) {
+                        control_emulator& control, const nc_read_options& more) {
   nc_read_options also;
   // `more` first: the cycle time splits every block, and the rules, which ask most blocks
   // only for their letters, then find them exact without a scan of their own.
   if (meet.active()) {  // a machine without envelopes pays nothing per block for the rule
-    also.on_block = [&rules, &meet, &len, more](const nc_block& b) {
+    also.on_block = [&rules, &meet, &len, &control, more](const nc_block& b) {
       if (more.on_block) more.on_block(b);
       rules.block(b);
       meet.block(b);
       len.block(b);
+      control.block(b);
     };
   } else {
-    also.on_block = [&rules, &len, more](const nc_block& b) {
+    also.on_block = [&rules, &len, &control, more](const nc_block& b) {
       if (more.on_block) more.on_block(b);
       rules.block(b);
       len.block(b);
+      control.block(b);
     };
   }
+  also.on_macro = [&control, more](const nc_block& b) {
+    if (more.on_macro) more.on_macro(b);
+    control.block(b);
+  };
   also.on_wait = [&rules, &meet, more](const nc_wait& w) {
     rules.wait(w.channel);
     meet.wait(w);
@@ -697,18 +706,21 @@ sync_result check_nc_resources(const std::vector<nc_source>& files, const machin
   shared_resources rules(m);
   interference_check meet(m);
   length_offset_rule len(m.channels.size());
-  sync_result r = check_nc_files(files, m, feeding(rules, meet, len, more));
-  add_findings(r, rules, meet, len);
+  control_emulator control(m);
+  sync_result r = check_nc_files(files, m, feeding(rules, meet, len, control, more));
+  add_findings(r, rules, meet, len, control);
   fill_source_lines(r.diagnostics, files, m);
   return r;
 }
 
 struct compact_resource_check::impl {
   impl(const machine& m, const nc_read_options& more)
-      : rules(m), meet(m), len(m.channels.size()), compact(m, feeding(rules, meet, len, more)) {}
+      : rules(m), meet(m), len(m.channels.size()), control(m),
+        compact(m, feeding(rules, meet, len, control, more)) {}
   shared_resources rules;
   interference_check meet;
   length_offset_rule len;
+  control_emulator control;
   compact_sync_check compact;
 };
 
@@ -722,7 +734,7 @@ const nc_read_options& compact_resource_check::options() const { return p_->comp
 std::optional<sync_result> compact_resource_check::result(const nc_programs& programs,
                                                           const diagnostic_list& read) {
   std::optional<sync_result> r = p_->compact.result(programs, read);
-  if (r) add_findings(*r, p_->rules, p_->meet, p_->len);
+  if (r) add_findings(*r, p_->rules, p_->meet, p_->len, p_->control);
   return r;
 }
 

@@ -1,6 +1,7 @@
 #include "channels/router.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fmt/format.h>
 #include <limits>
 
@@ -40,6 +41,8 @@ void channel_router::route(const event& e) {
   column_ = e.column;
   // Most events are moves: no head, channel, sync or job-level record, and a block to write.
   if (std::holds_alternative<motion_event>(e.data) && open_both_.empty()) [[likely]] {
+    if (grip_line_ != 0) [[unlikely]]
+      note_cutoff(e);
     for (int ch : active_) {
       busy_[static_cast<std::size_t>(ch)] = true;
       sink_.on_event(ch, e, both_);
@@ -229,6 +232,9 @@ void channel_router::transfer(const event& e, const transfer_event& t) {
                                      grip_line_));
   grip_line_ = t.release ? 0 : e.line;
   grip_column_ = e.column;
+  const int cutoff = t.release ? cutoff_line_ : 0;
+  cutoff_line_ = 0;
+  grip_has_x_ = false;
   if (both_) select({active_.front()}, e.line, false);
   // Every channel: both turrets (and an idle third path) leave the space between the spindles.
   std::vector<int> all;
@@ -241,10 +247,26 @@ void channel_router::transfer(const event& e, const transfer_event& t) {
   for (int ch : all) send(ch, transfer_event::phase::retract);
   const std::string what = fmt::format("{} at line {}", word, e.line);
   rendezvous(all, e.line, what, true);
-  send(m_.transfer.channel, transfer_event::phase::blocks);
+  {
+    event copy = e;
+    copy.data = transfer_event{transfer_event::phase::blocks, t.release, cutoff};
+    sink_.on_event(m_.transfer.channel, copy, false);
+  }
   rendezvous(all, e.line, what, true);
   if (t.release)
     for (int ch : all) send(ch, transfer_event::phase::on_sub);
+}
+
+// A part-off while the sub holds the part: a feed move (no RAPID) whose end is on the centre
+// line (CL x, a radius, within 0.001 mm of 0) or on its other side from the point before it.
+void channel_router::note_cutoff(const event& e) {
+  const auto& mv = std::get<motion_event>(e.data);
+  if (mv.kind == motion_kind::from || mv.kind == motion_kind::home) return;
+  const double x = mv.pos.x;
+  const bool crossed = grip_has_x_ && ((grip_last_x_ > 0 && x < 0) || (grip_last_x_ < 0 && x > 0));
+  if (!mv.rapid && cutoff_line_ == 0 && (std::abs(x) <= 0.001 || crossed)) cutoff_line_ = e.line;
+  grip_last_x_ = x;
+  grip_has_x_ = true;
 }
 
 int channel_router::marker_of(const sync_event& s, int ch) const {

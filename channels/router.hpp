@@ -98,6 +98,12 @@ class channel_router {
   void open_both();
   int grip_line_ = 0;  // the TRANSFER/GRIP not yet released; 0: none
   int grip_column_ = 0;
+  /// Between GRIP and RELEASE: the last point's x (CL radius) and the first feed move that
+  /// reached or crossed the centre line (a part-off), 0: none.
+  double grip_last_x_ = 0;
+  bool grip_has_x_ = false;
+  int cutoff_line_ = 0;
+  void note_cutoff(const event& e);
   std::vector<bool> busy_;                         // per channel: events since its last wait
   std::vector<int> last_partners_;                 // the channels of the last mark
   std::vector<int> job_channels_;                  // the channels the job uses

@@ -677,7 +677,12 @@ class reader {
     }
     if (channel >= 0 && !(channel > 0 && state_[static_cast<std::size_t>(channel - 1)].ended))
       report_jumps(line, words, at);
-    if (words.empty()) return;
+    if (words.empty()) {
+      if (options_.on_macro && channel > 0 && !state_[static_cast<std::size_t>(channel - 1)].ended &&
+          line.find('#') != std::string_view::npos)
+        options_.on_macro(nc_block(channel, f.name, no, line, words_, letters_));
+      return;
+    }
     const block_words b = classify_words(words, channel, at);
     if (channel < 0) return;
     if (channel == 0) {

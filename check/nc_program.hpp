@@ -182,6 +182,11 @@ struct nc_read_options {
   /// wait goes to `on_wait`: the input of the analyses that need more than the waits (cycle
   /// time, shared spindles, the CL-line map). The block comes split, once, for all of them.
   std::function<void(const nc_block&)> on_block;
+  /// When set, every line of a channel's program that has no words but a macro variable
+  /// (`#601=#601+1`, `IF [#500 EQ #0] THEN #3000=1`): not a block of on_block (it moves
+  /// nothing, and the timer and the spindle rules have nothing to read in it), but the control
+  /// emulator's reserved variables are written in such lines. Handed with no words.
+  std::function<void(const nc_block&)> on_macro;
 };
 
 /// Reads `files` as the programs of machine `m`; layout and syntax problems go to `sink`.

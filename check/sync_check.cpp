@@ -398,6 +398,7 @@ struct compact_sync_check::impl {
       if (also.on_wait) also.on_wait(w);
     };
     options.on_block = also.on_block;
+    options.on_macro = also.on_macro;
   }
   static nc_programs one_per_channel(const machine& m) {
     nc_programs p;

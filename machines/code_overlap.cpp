@@ -128,6 +128,8 @@ void control_codes_of(overlap_finder& f, const control_codes& c, const toml::tab
       {"coolant_off", &c.coolant_off},
       {"balance_on", &c.balance_on},
       {"balance_off", &c.balance_off},
+      {"spindle_sync_on", &c.spindle_sync_on},
+      {"spindle_sync_off", &c.spindle_sync_off},
       {"program_stop", &c.program_stop},
       {"optional_stop", &c.optional_stop},
   };
@@ -156,6 +158,8 @@ void spindle_codes(overlap_finder& f, const spindle_def& s, const toml::table& t
   f.blocks(what + " c_off", s.c_axis.off, &t, "c_off");
   f.block(what + " c_clamp", s.c_axis.clamp, t.get("c_clamp"), &t);
   f.block(what + " c_unclamp", s.c_axis.unclamp, t.get("c_unclamp"), &t);
+  f.block(what + " chuck_open", s.chuck_open, t.get("chuck_open"), &t);
+  f.block(what + " chuck_close", s.chuck_close, t.get("chuck_close"), &t);
 }
 
 // The file's [[channel]] table of channel `number` (channels are sorted by number).
@@ -184,6 +188,8 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
     spindle_codes(f, m.spindles[i], *spindles[i]);
   f.blocks("transfer.grip", m.transfer.grip, root.sub_table("transfer"), "grip");
   f.blocks("transfer.release", m.transfer.release, root.sub_table("transfer"), "release");
+  f.blocks("transfer.release_after_cutoff", m.transfer.release_after_cutoff, root.sub_table("transfer"),
+           "release_after_cutoff");
   for (const channel_def& c : m.channels) {
     const toml::table* t = channel_table(root, c.number);
     f.block(fmt::format("channel {}: tool_call", c.number), c.tool_call, key_of(t, "tool_call"), t);

@@ -85,6 +85,11 @@ struct spindle_def {
   bool per_channel = false;
   /// The spindle held as a C axis for live-tool work (machines/millturn_rules.hpp).
   c_axis_codes c_axis;
+  /// The blocks that open and close this spindle's chuck ("M206", "M207"); empty: unknown to
+  /// the post. The control emulator (analysis/control_emulator) refuses an opening while the
+  /// spindle turns unsynchronised and a start with the chuck open.
+  std::string chuck_open;
+  std::string chuck_close;
 };
 
 /// An axis of a channel.
@@ -162,6 +167,10 @@ struct program_format {
   char comment_open = '(';
   char comment_close = ')';
   int comment_max = 0;  ///< longest comment text; 0 = unlimited
+  /// Macro variables the setup owns (#500: the transfer's grip position): a program block that
+  /// writes one is an error. The variables the [transfer] blocks read are reserved as well
+  /// (machines/macro_variables.hpp).
+  std::vector<int> reserved_variables;
   /// Lengths and feeds in millimetres or inches (a US shop programs in inch); the header
   /// must say the same (G21 / G20: checked at load).
   output_unit output_units = output_unit::mm;
@@ -205,6 +214,10 @@ struct control_codes {
   /// Empty: the machine has none and the two heads simply cut together.
   std::string balance_on;
   std::string balance_off;
+  /// Spindle synchronisation on and off (Mazak M511/M513): while on, the main and the sub turn
+  /// together, and a chuck may open on a part the other spindle holds. Empty: none known.
+  std::string spindle_sync_on;
+  std::string spindle_sync_off;
 };
 
 /// A tool of the machine's tool table: what kind of tool a number calls, for CL data that
@@ -235,6 +248,11 @@ struct transfer_def {
   int channel = 0;                   ///< the channel that writes the blocks; 0: no transfer
   std::vector<std::string> grip;     ///< sync on, sub spindle advance, sub chuck close
   std::vector<std::string> release;  ///< main chuck open, sub spindle return, sync off
+  /// The release after a part-off between GRIP and RELEASE (a pick-off from bar stock): the sub
+  /// takes the part away and the main chuck stays closed on the bar. Empty with
+  /// `has_release_after_cutoff` false: a release after a part-off stops the post.
+  std::vector<std::string> release_after_cutoff;
+  bool has_release_after_cutoff = false;
 };
 
 /// Limits the post holds the CL data to.

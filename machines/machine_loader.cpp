@@ -197,11 +197,13 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   const toml::table* t = root.sub_table("program");
   if (!t) return;
   at.program = t;
-  table_reader r(*t, "program", root.source(),
-                 {"extension",     "file_name",        "program_number", "program_line",   "header",
-                  "footer",        "end_code",         "percent_lines",  "section_marker", "sequence_start",
-                  "sequence_step", "sequence_numbers", "comment_open",   "comment_close",  "comment_max",
-                  "output_units",  "decimals_metric",  "decimals_inch",  "trailing_point", "arcs_ijk"});
+  table_reader r(*t, "program", root.source(), {"extension",      "file_name",       "program_number",
+                                                "program_line",   "header",          "footer",
+                                                "end_code",       "percent_lines",   "section_marker",
+                                                "sequence_start", "sequence_step",   "sequence_numbers",
+                                                "comment_open",   "comment_close",   "comment_max",
+                                                "output_units",   "decimals_metric", "decimals_inch",
+                                                "trailing_point", "arcs_ijk",        "reserved_variables"});
   if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
   r.read_template("file_name", p.file_name, template_uses::file);
   if (r.read("program_number", p.program_number)) at.program_number = r.find("program_number");
@@ -221,6 +223,11 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   r.read_char("comment_open", p.comment_open, false);
   r.read_char("comment_close", p.comment_close, false);
   if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
+  if (r.read("reserved_variables", p.reserved_variables))
+    for (int v : p.reserved_variables)
+      if (v < 1)
+        r.fail(*r.find("reserved_variables"),
+               fmt::format("program.reserved_variables: #{} is no variable a program could write (>= 1)", v));
   using unit_name = std::pair<std::string_view, output_unit>;
   read_enum(r, "output_units",
             std::array<unit_name, 2>{{{"mm", output_unit::mm}, {"inch", output_unit::inch}}}, p.output_units);
@@ -287,10 +294,11 @@ std::string dwell_problem(std::string_view t) {
 void read_codes(const table_reader& root, control_codes& c) {
   const toml::table* t = root.sub_table("codes");
   if (!t) return;
-  table_reader r(*t, "codes", root.source(),
-                 {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on", "coolant_off",
-                  "balance_on", "balance_off", "program_stop", "optional_stop", "cutcom_on_rapid",
-                  "coolant_mist", "coolant_through", "coolant_air", "cutcom_offset"});
+  table_reader r(
+      *t, "codes", root.source(),
+      {"css", "rpm", "feed_per_rev", "feed_per_min", "home", "dwell", "coolant_on", "coolant_off",
+       "balance_on", "balance_off", "program_stop", "optional_stop", "cutcom_on_rapid", "coolant_mist",
+       "coolant_through", "coolant_air", "cutcom_offset", "spindle_sync_on", "spindle_sync_off"});
   r.read_fixed("css", c.css);
   r.read_fixed("rpm", c.rpm);
   r.read_fixed("feed_per_rev", c.feed_per_rev);
@@ -302,6 +310,8 @@ void read_codes(const table_reader& root, control_codes& c) {
   r.read_fixed("coolant_off", c.coolant_off);
   r.read_fixed("balance_on", c.balance_on);
   r.read_fixed("balance_off", c.balance_off);
+  r.read_fixed("spindle_sync_on", c.spindle_sync_on);
+  r.read_fixed("spindle_sync_off", c.spindle_sync_off);
   r.read_fixed("program_stop", c.program_stop);
   r.read_fixed("optional_stop", c.optional_stop);
   r.read("cutcom_on_rapid", c.cutcom_on_rapid);
@@ -334,9 +344,10 @@ void read_limits(const table_reader& root, motion_limits& l) {
 // [cycles]: which of the control's own cycles the post writes (docs/machines.md).
 void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
   auto reader = [&](const toml::table& t) {
-    return table_reader(t, "spindle", root.source(),
-                        {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset",
-                         "reverse_z", "per_channel", "c_on", "c_off", "c_clamp", "c_unclamp"});
+    return table_reader(
+        t, "spindle", root.source(),
+        {"name", "cw", "ccw", "stop", "select", "clamp", "max_rpm", "work_offset", "reverse_z", "per_channel",
+         "c_on", "c_off", "c_clamp", "c_unclamp", "chuck_open", "chuck_close"});
   };
   for (const toml::table* t : root.tables("spindle")) {
     const table_reader r = reader(*t);
@@ -355,6 +366,8 @@ void read_spindles(const table_reader& root, std::vector<spindle_def>& out) {
     r.read("reverse_z", s.reverse_z);
     r.read("per_channel", s.per_channel);
     read_c_axis(r, s.c_axis);
+    r.read_fixed("chuck_open", s.chuck_open);
+    r.read_fixed("chuck_close", s.chuck_close);
     out.push_back(std::move(s));
   }
   // Once every spindle is known: no C-axis code is another spindle function's code.
@@ -444,7 +457,7 @@ std::string grip_approach_problem(const std::vector<std::string>& grip) {
 void read_transfer(const table_reader& root, machine& m) {
   const toml::table* t = root.sub_table("transfer");
   if (!t) return;
-  table_reader r(*t, "transfer", root.source(), {"channel", "grip", "release"});
+  table_reader r(*t, "transfer", root.source(), {"channel", "grip", "release", "release_after_cutoff"});
   r.require("channel");
   r.read("channel", m.transfer.channel);
   if (m.transfer.channel < 1 || m.transfer.channel > static_cast<int>(m.channels.size()))
@@ -456,6 +469,7 @@ void read_transfer(const table_reader& root, machine& m) {
   if (const std::string why = grip_approach_problem(m.transfer.grip); !why.empty())
     r.fail(*r.find("grip"), why);
   r.read_fixed("release", m.transfer.release);
+  m.transfer.has_release_after_cutoff = r.read_fixed("release_after_cutoff", m.transfer.release_after_cutoff);
 }
 
 void read_tools(const table_reader& root, machine& m) {

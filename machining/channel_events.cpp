@@ -316,6 +316,7 @@ void channel_writer::user_blocks(event_point p, bool after, template_args a) {
   const std::string where =
       fmt::format("events.{}.{}", event_point_keys[static_cast<std::size_t>(p)], after ? "after" : "before");
   for (const std::string& t : blocks) user_block(t, a, where);
+  restore_modes_after(blocks, where);
 }
 
 void channel_writer::user_program_start() {
@@ -347,6 +348,7 @@ void channel_writer::user_record(const passthrough_event& r, int line) {
   a.text = r.text;
   position_args(a);
   for (const std::string& t : rec->blocks) user_block(t, a, "events.record.blocks");
+  restore_modes_after(rec->blocks, "events.record.blocks");
 }
 
 }  // namespace twinpost

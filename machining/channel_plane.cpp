@@ -161,10 +161,11 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
     }
     if (!plane_comp_off(line)) return true;
     close_plane();
-    // A table machine's tool-tip control is off with the plane: the tables then turn with the
-    // tool at its tool-change height, as after a tool call (reposition_rotaries), never with
-    // the tip left by the part and no length offset in force.
-    if (c.output != multiaxis_output::joints) go_home();
+    // The rotaries turn next: the tool goes to its tool-change height first, as after a tool
+    // call (reposition_rotaries). A table machine's tool-tip control is off with the plane, and
+    // a head swings the tip by its pivot length (400 mm at B20 moves the tip 137 mm), so the
+    // tip is never left by the part while they turn (issue 37, item 7).
+    if (!homed_) go_home();
   }
   // A plane opens at a rapid that turns the tool to a new axis not along the spindle's (feed
   // moves outside a plane return first: no angle computed for them).
@@ -196,10 +197,9 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
   }
   // G43.4/G43.5 do not go with G68.2: the plane's length offset is G43 along its Z.
   if (offset_on_ && c.output != multiaxis_output::joints) cancel_length_offset();
-  // A table machine turns the part under the tool: G53.1 turns the tables with the tool at
-  // its tool-change height, as between two planes (the head machine turns its head where the
-  // tool stands, clear of the part at the CL's rapid point).
-  if (c.output != multiaxis_output::joints && !homed_) go_home();
+  // G53.1 turns the rotaries with the tool at its tool-change height, as between two planes: a
+  // table machine turns the part under the tool, a head swings the tip about its pivot.
+  if (!homed_) go_home();
   double euler[3];
   const std::array<vec3, 3> frame = plane_frame_of(pose.axis, euler);
   for (int i = 0; i < 3; ++i) plane_frame_[i] = frame[i];

@@ -4,6 +4,7 @@
 // Part transfers (TRANSFER/GRIP, RELEASE) move the channel's work to the sub spindle.
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <numbers>
 
 #include "machines/name_template.hpp"
@@ -304,7 +305,6 @@ std::optional<double> channel_writer::tool_rpm(const spindle_event& s, const spi
 }
 
 void channel_writer::transfer(const transfer_event& t, int line) {
-  (void)line;
   switch (t.step) {
     case transfer_event::phase::retract:
       // Out of the space between the spindles: coolant off, home X then Z (once: a channel
@@ -323,9 +323,21 @@ void channel_writer::transfer(const transfer_event& t, int line) {
       // the channel's own mode goes back on at once and its next move writes G and F again,
       // never a feed per revolution read per minute.
       bool mode_set = false;
+      // After a part-off the main chuck holds the bar: the release that opens it would let the
+      // bar go (a pick-off), so the machine's release_after_cutoff is written instead.
+      const bool cut_off = t.release && t.cutoff_line != 0;
+      if (cut_off && !m_.transfer.has_release_after_cutoff)
+        return error(line,
+                     fmt::format("TRANSFER/RELEASE after the part-off at line {}: machine '{}' gives no "
+                                 "[transfer] release_after_cutoff, and its release ({}) would open the "
+                                 "main chuck on the bar; give the blocks that take the part away and "
+                                 "leave the bar clamped",
+                                 t.cutoff_line, m_.name, fmt::join(m_.transfer.release, " / ")));
       if (ev_) [[unlikely]]
         user_blocks(event_point::transfer, false, {});
-      for (const std::string& b : t.release ? m_.transfer.release : m_.transfer.grip) {
+      for (const std::string& b : cut_off     ? m_.transfer.release_after_cutoff
+                                  : t.release ? m_.transfer.release
+                                              : m_.transfer.grip) {
         out_.block(b);
         for (const std::string* g : {&m_.codes.feed_per_min, &m_.codes.feed_per_rev})
           mode_set = mode_set || (!g->empty() && b.find(*g) != std::string::npos);

@@ -181,7 +181,13 @@ void channel_writer::tool(const tool_event& t, int line) {
     if (const tool_def* d = m_.tool(ch_.number, t.tool)) ea.text = d->name;
     user_blocks(event_point::tool_change, false, ea);
   }
-  if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_) {
+  // The tool changer needs the spindle that drives the tool stopped; a workpiece spindle that
+  // another channel shares keeps turning (the other turret may be cutting on it: issue 37,
+  // item 9): the next SPINDL changes it if the new tool wants it otherwise.
+  const bool drives_tool = spindle_ && spindle_->name == ch_.live_spindle;
+  const bool shared = spindle_ && m_.shared_spindle(static_cast<int>(spindle_index(*spindle_)));
+  if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_ &&
+      (drives_tool || !shared)) {
     spindle_block(fmt::format("M{}", spindle_->stop), true);
     spindle_held_ = true;
   }
@@ -191,6 +197,9 @@ void channel_writer::tool(const tool_event& t, int line) {
   motion_g_ = -1;
   out_.block(call, true);
   if (!offset_block.empty()) out_.block(offset_block);
+  // The tool changer may leave an indexing head anywhere (public Integrex posts send B to 0 at
+  // every tool change and index it again): the next tool's angle is written, even the same one.
+  head_angle_.reset();
   // A channel that starts on the sub spindle: its work offset once the tool is there.
   if (offset_due_) {
     out_.block(work_->work_offset);
@@ -217,6 +226,8 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   tool_ = tool;
   tool_line_ = line;
   tool_word_ = word;
+  tool_cam_name_ = cam_tool_;
+  tool_cam_line_ = cam_tool_line_;
   kind_ = next_kind_;
   next_kind_ = tool_kind::unknown;
   table_kind(tool, line);

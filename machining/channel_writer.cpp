@@ -59,6 +59,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   // mode writes no second G99 right after it.
   const std::string plane = header_modal(m.program.header, {"G17", "G18", "G19"});
   if (!plane.empty()) plane_ = (plane[2] - '0') + 10;
+  absolute_code_ = !header_modal(m.program.header, {"G90"}).empty();
   feed_g_ = header_modal(m.program.header, {m.codes.feed_per_rev, m.codes.feed_per_min});
   per_rev_ = !feed_g_.empty() && feed_g_ == m.codes.feed_per_rev;
   spindle_ = work_ = m.spindle(ch.spindle);

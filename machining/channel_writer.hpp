@@ -548,6 +548,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   axis_memory last_x_, last_y_, last_z_;      // axis words written last
   axis_memory last_c_;                        // the C word written last (degrees)
   std::string feed_g_;                        // G99/G98 (G95/G94) in force
+  bool absolute_code_ = false;                // the safe start writes G90 (absolute, not a lathe cycle)
   std::string last_f_;
   text_buffer arc_;  // the block being built, reused (arcs; moves are built in place)
   std::size_t word_start_ = std::string::npos;  // where a block built in place begins
@@ -632,7 +633,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::string cam_tool_;                         ///< the CAM's name of its tool (TOOL PATH, TPRINT)
   int cam_tool_line_ = 0;                        ///< the line that gave it
   std::string cam_tool_record_;                  ///< its major word
-  bool no_tool_said_ = false;                    ///< the error for a move with no tool was given
+  std::string tool_cam_name_;  ///< the CAM's name in force when the tool in the spindle was taken
+  int tool_cam_line_ = 0;      ///< the line that gave that name
+  bool no_tool_said_ = false;  ///< the error for a move with no tool was given
   /// A CAM name came since the last tool call: the tool it names is called before the next
   /// record that needs one, unless a tool call record comes first.
   bool cam_tool_due_ = false;
@@ -704,6 +707,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// The blocks of event `p` (`after` or before the post's own), formatted with `a` (its
   /// channel is set here), each held to the control's word formats like the post's own.
   void user_blocks(event_point p, bool after, template_args a);
+  /// After the user's blocks of one event: the channel's own feed mode, plane and absolute mode
+  /// back on where one of the blocks changed them; a block in the other unit system is an error
+  /// (machining/channel_user_modes.cpp).
+  void restore_modes_after(const std::vector<std::string>& blocks, std::string_view where);
   /// events.program_start, once, before the channel's first block.
   void user_program_start();
   /// A record the machine file turns into blocks ([[events.record]]).

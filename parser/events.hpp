@@ -125,6 +125,9 @@ struct transfer_event {
   };
   phase step = phase::grip;
   bool release = false;  ///< for retract and blocks: whether it is the release
+  /// For the release's blocks: the CL line of a feed move to or past the centre line between
+  /// the GRIP and the RELEASE (a part-off: the bar stays clamped); 0: none.
+  int cutoff_line = 0;
 };
 
 struct delay_event {

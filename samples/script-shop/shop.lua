@@ -29,8 +29,11 @@ function on_block(text, ctx)
   if text:sub(1, 4) == "G28 " then return "G30 " .. text:sub(5) end
 end
 
--- Each tool's uses added to its common variable #5nn (#501 for T01): the control's count,
--- read by a macro that stops the machine when a tool's life is up.
+-- Each tool's uses added to its common variable #6nn (#601 for T01): the control's count,
+-- read by a macro that stops the machine when a tool's life is up. Not #5nn: #500 and #501
+-- are the transfer's grip and approach positions, which the machine file reserves (a script
+-- that writes one is refused; docs/emulator.md). #600-#699 need the control's extended common
+-- variables (Fanuc 0i-D: #500-#999 with that option).
 function on_program_end(ctx)
   local uses = post.vars.uses[ctx.channel]
   if not uses then return end
@@ -38,7 +41,7 @@ function on_program_end(ctx)
   for number in pairs(uses) do tools[#tools + 1] = number end
   table.sort(tools)
   for _, n in ipairs(tools) do
-    post.emit(string.format("#5%02d=#5%02d+%d", n, n, uses[n]))
+    post.emit(string.format("#6%02d=#6%02d+%d", n, n, uses[n]))
   end
 end
 

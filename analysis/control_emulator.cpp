@@ -1,0 +1,256 @@
+#include "analysis/control_emulator.hpp"
+
+#include <fmt/format.h>
+
+#include <string>
+
+#include "analysis/spindle_state.hpp"
+#include "machines/macro_variables.hpp"
+
+namespace twinpost {
+
+namespace {
+
+// A fixed code of the machine file ("M206", "G54.1 P1"), split once: a block gives it when it
+// has every one of its words.
+struct code {
+  std::string text;
+  std::vector<nc_word> words;
+  explicit code(const std::string& t) : text(t), words(split_nc_words(text)) {
+    for (nc_word& w : words) w.value = {};  // the views would die with a moved copy: numbers only
+  }
+  bool empty() const { return words.empty(); }
+  bool in(const std::vector<nc_word>& block) const {
+    if (words.empty()) return false;
+    for (const nc_word& w : words) {
+      bool found = false;
+      for (const nc_word& b : block)
+        if (b.address == w.address && b.numeric == w.numeric && b.number == w.number) {
+          found = true;
+          break;
+        }
+      if (!found) return false;
+    }
+    return true;
+  }
+};
+
+struct chuck_codes {
+  code open, close;
+};
+
+struct chuck_state {
+  bool open = false;
+  int line = 0;  // the block that opened it
+};
+
+struct channel_state {
+  channel_state(const machine& m, int number) : spindles(m, number) {}
+  channel_spindles spindles;
+  bool offset = false;              // a work offset in force
+  int motion = -1;                  // modal G0..G3; -1: unknown
+  bool cycle = false;               // a canned drilling cycle in force
+  bool sync = false;                // spindle synchronisation on
+  std::vector<int> start_line;      // per spindle: the block that started it
+  std::vector<chuck_state> chucks;  // per spindle, as this channel's blocks left it
+  int holder = -1;                  // the spindle that closed its chuck on the part while synchronised
+  int cutoff_line = 0;              // a part-off while `holder` held the part
+  char head = 0;                    // the address of the channel's indexing head (B); 0: none
+  int head_unknown = 0;             // the tool call since which the head has not been indexed; 0: known
+  bool said_offset = false, said_chuck = false, said_start = false, said_cutoff = false, said_head = false;
+};
+
+constexpr std::uint32_t linear_axes =
+    nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') | nc_letter('V') | nc_letter('W');
+
+bool drilling_cycle(double g) {
+  return g == 73 || (g >= 81 && g <= 89 && g == static_cast<int>(g)) || g == 84.2 || g == 84.3;
+}
+
+// G codes whose axis words are no cut: dwell, data setting, reference returns, clamps and
+// coordinate settings, machine coordinates, local frames, the Mazak radius/diameter switch.
+bool not_a_cut(double g) {
+  return g == 4 || g == 10 || g == 10.9 || g == 28 || g == 30 || g == 50 || g == 52 || g == 53 || g == 65 ||
+         g == 68 || g == 68.2 || g == 92 || g == 7.1;
+}
+
+}  // namespace
+
+struct control_emulator::impl {
+  explicit impl(const machine& m)
+      : m(m), sync_on(m.codes.spindle_sync_on), sync_off(m.codes.spindle_sync_off) {
+    for (std::size_t i = 0; i < m.channels.size(); ++i) {
+      channels.emplace_back(m, static_cast<int>(i) + 1);
+      channels.back().start_line.assign(m.spindles.size(), 0);
+      channels.back().chucks.assign(m.spindles.size(), {});
+      if (m.channels[i].head_index.present()) channels.back().head = m.channels[i].head_index.address;
+    }
+    for (const spindle_def& s : m.spindles) chucks.push_back({code(s.chuck_open), code(s.chuck_close)});
+    reserved = reserved_variables(m);
+    for (const chuck_codes& c : chucks) has_chucks = has_chucks || !c.open.empty();
+    // Work offsets are the machine file's word: a machine whose spindles name none (a Swiss-type
+    // whose tool geometry sets the frame) is not held to them.
+    for (const spindle_def& s : m.spindles) offsets_used = offsets_used || !s.work_offset.empty();
+    if (!offsets_used)
+      for (channel_state& c : channels) c.offset = true;
+  }
+  const machine& m;
+  code sync_on, sync_off;
+  std::vector<channel_state> channels;
+  // Per spindle. Each channel is followed on its own (its chucks as its own blocks left them), so
+  // the findings do not depend on how the channels' blocks interleave in the reading.
+  std::vector<chuck_codes> chucks;
+  std::vector<reserved_variable> reserved;
+  bool has_chucks = false;
+  bool offsets_used = false;
+  std::vector<diagnostic> found;
+
+  void say(const nc_block& b, int column, std::string message) {
+    found.push_back({severity::error, b.file, b.line, column, std::move(message), std::string(b.text)});
+  }
+
+  void variables(const nc_block& b) {
+    for (const macro_use& u : macro_uses(b.text)) {
+      if (!u.write) continue;
+      for (const reserved_variable& r : reserved)
+        if (r.number == u.number)
+          say(b, u.column,
+              fmt::format("channel {}: #{} is written here, but machine '{}' reserves it ({}): the setup "
+                          "owns its value; write a variable the machine file does not name",
+                          b.channel, u.number, m.name, r.why));
+    }
+  }
+
+  void block(const nc_block& b) {
+    if (b.channel < 1 || static_cast<std::size_t>(b.channel) > channels.size()) return;
+    channel_state& c = channels[static_cast<std::size_t>(b.channel - 1)];
+    if (!reserved.empty() && b.text.find('#') != std::string_view::npos) variables(b);
+    // Once an offset is in force, only the G, M and S words matter, except while a part is held
+    // by two spindles (a part-off is a move).
+    constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+    // A channel with an indexing head also reads its tool calls (T) and head moves (B).
+    const std::uint32_t mask = c.head ? gms | nc_letter('T') | nc_letter(c.head) : gms;
+    const bool moves_matter = !c.offset || c.holder >= 0 || c.head_unknown;
+    if (!moves_matter && !b.may_have(mask)) return;
+    const std::vector<nc_word>& words = b.words();
+    bool feed_code = false, no_cut = false, sets_offset = false, coordinate_setting = false;
+    bool tool_call = false, head_move = false;
+    int axis_column = 0, x_column = 0;
+    double x = 0;
+    for (const nc_word& w : words) {
+      if (w.address == 'G' && w.numeric) {
+        const double g = w.number;
+        if (g == 0 || g == 1 || g == 2 || g == 3) {
+          c.motion = static_cast<int>(g);
+          c.cycle = false;
+        }
+        if (g == 80) c.cycle = false;
+        if (drilling_cycle(g)) c.cycle = feed_code = true;
+        if ((g >= 54 && g <= 59 && g == static_cast<int>(g)) || g == 54.1) sets_offset = true;
+        if (g == 92 || g == 50) coordinate_setting = true;
+        if (not_a_cut(g)) no_cut = true;
+      } else if (w.address == 'T') {
+        tool_call = true;
+      } else if (c.head && w.address == c.head) {
+        head_move = true;
+      } else if ((nc_letter(w.address) & linear_axes) != 0) {
+        if (!axis_column) axis_column = w.column;
+        if (w.address == 'X' && w.numeric) {
+          x_column = w.column;
+          x = w.number;
+        }
+      }
+    }
+    if (coordinate_setting && axis_column) sets_offset = true;  // G92 X.. Z..: a frame, if not a clamp
+    const bool cut = axis_column && !no_cut && (feed_code || c.cycle || (c.motion >= 1 && c.motion <= 3));
+    if (cut && !c.offset && !sets_offset && !c.said_offset) {
+      c.said_offset = true;
+      say(b, axis_column,
+          fmt::format("channel {}: a feed move with no work offset in force: the program would cut in "
+                      "whatever offset the last program left; set one (G54-G59, G54.1 P..) before the "
+                      "first cut",
+                      b.channel));
+    }
+    if (sets_offset) c.offset = true;
+    if (c.head) {
+      if (tool_call) c.head_unknown = b.line;
+      if (head_move) c.head_unknown = 0;
+      if (cut && c.head_unknown && !c.said_head) {
+        c.said_head = true;
+        const head_index_rules& h = m.channels[static_cast<std::size_t>(b.channel - 1)].head_index;
+        say(b, axis_column,
+            fmt::format(
+                "channel {}: a feed move with the {} head not indexed since the tool call at line {}: "
+                "the tool changer may leave it anywhere; index it ({} {}..) before the cut",
+                b.channel, c.head, c.head_unknown, h.move, c.head));
+      }
+    }
+    if (cut && c.holder >= 0 && x_column && x <= 0 && !c.cutoff_line) c.cutoff_line = b.line;
+    if (!b.may_have(gms)) return;
+    spindles_and_chucks(b, c, words);
+  }
+
+  void spindles_and_chucks(const nc_block& b, channel_state& c, const std::vector<nc_word>& words) {
+    for (const spindle_change& ch : c.spindles.apply(words)) {
+      const auto s = static_cast<std::size_t>(ch.spindle);
+      if (!ch.after.started() || ch.before.started()) continue;
+      c.start_line[s] = b.line;
+      const chuck_codes& k = chucks[s];
+      if (c.chucks[s].open && !c.said_start) {
+        c.said_start = true;
+        say(b, ch.column,
+            fmt::format("channel {}: the {} spindle is started with its chuck open ({} at line {}): close "
+                        "the chuck first{}",
+                        b.channel, m.spindles[s].name, k.open.text, c.chucks[s].line,
+                        k.close.empty() ? "" : fmt::format(" ({})", k.close.text)));
+      }
+    }
+    if (!has_chucks && sync_on.empty()) return;
+    if (sync_on.in(words)) c.sync = true;
+    if (sync_off.in(words)) {
+      c.sync = false;
+      c.holder = -1;
+      c.cutoff_line = 0;
+    }
+    for (std::size_t s = 0; s < chucks.size(); ++s) {
+      const chuck_codes& k = chucks[s];
+      if (k.close.in(words)) {
+        c.chucks[s].open = false;
+        if (c.sync) c.holder = static_cast<int>(s);
+      }
+      if (!k.open.in(words)) continue;
+      const spindle_setting& now = c.spindles.setting(static_cast<int>(s));
+      if (now.started() && !c.sync && !c.said_chuck) {
+        c.said_chuck = true;
+        say(b, 1,
+            fmt::format("channel {}: {} opens the {} spindle's chuck while the spindle turns (started at "
+                        "line {}) and the spindles are not synchronised: stop it first{}",
+                        b.channel, k.open.text, m.spindles[s].name, c.start_line[s],
+                        sync_on.empty() ? "" : fmt::format(", or open it under {}", sync_on.text)));
+      }
+      if (c.cutoff_line && c.holder >= 0 && static_cast<int>(s) != c.holder && !c.said_cutoff) {
+        c.said_cutoff = true;
+        say(b, 1,
+            fmt::format("channel {}: {} opens the {} spindle's chuck after the part-off at line {}: it "
+                        "holds the bar, which would be released; after a part-off the {} spindle takes "
+                        "the part away and the bar stays clamped ([transfer] release_after_cutoff)",
+                        b.channel, k.open.text, m.spindles[s].name, c.cutoff_line,
+                        m.spindles[static_cast<std::size_t>(c.holder)].name));
+      }
+      c.chucks[s] = {true, b.line};
+      if (static_cast<int>(s) == c.holder || c.cutoff_line == 0) {
+        c.holder = -1;
+        c.cutoff_line = 0;
+      }
+    }
+  }
+};
+
+control_emulator::control_emulator(const machine& m) : p_(std::make_unique<impl>(m)) {}
+control_emulator::~control_emulator() = default;
+
+void control_emulator::block(const nc_block& b) { p_->block(b); }
+
+std::vector<diagnostic> control_emulator::finish() { return std::move(p_->found); }
+
+}  // namespace twinpost

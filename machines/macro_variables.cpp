@@ -1,0 +1,59 @@
+#include "machines/macro_variables.hpp"
+
+#include <algorithm>
+
+namespace twinpost {
+
+std::vector<macro_use> macro_uses(std::string_view b) {
+  std::vector<macro_use> out;
+  int depth = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const char c = b[i];
+    if (c == '(') ++depth;
+    if (c == ')' && depth > 0) --depth;
+    if (depth > 0 || c != '#') continue;
+    std::size_t k = i + 1;
+    while (k < b.size() && b[k] == ' ') ++k;
+    if (k >= b.size() || b[k] < '0' || b[k] > '9') continue;  // #[...] or a lone '#'
+    long n = 0;
+    while (k < b.size() && b[k] >= '0' && b[k] <= '9') {
+      if (n < 100'000'000) n = n * 10 + (b[k] - '0');
+      ++k;
+    }
+    std::size_t e = k;
+    while (e < b.size() && b[e] == ' ') ++e;
+    const bool write = e < b.size() && b[e] == '=' && (e + 1 >= b.size() || b[e + 1] != '=');
+    out.push_back({static_cast<int>(n), static_cast<int>(i + 1), write});
+    i = k - 1;
+  }
+  return out;
+}
+
+std::vector<reserved_variable> reserved_variables(const machine& m) {
+  std::vector<reserved_variable> out;
+  auto add = [&](int n, std::string why) {
+    for (const reserved_variable& r : out)
+      if (r.number == n) return;
+    out.push_back({n, std::move(why)});
+  };
+  for (int v : m.program.reserved_variables) add(v, "program.reserved_variables");
+  const std::pair<const char*, const std::vector<std::string>*> lists[] = {
+      {"transfer.grip", &m.transfer.grip},
+      {"transfer.release", &m.transfer.release},
+      {"transfer.release_after_cutoff", &m.transfer.release_after_cutoff}};
+  for (const auto& [name, blocks] : lists) {
+    std::vector<int> written;
+    for (const std::string& b : *blocks)
+      for (const macro_use& u : macro_uses(b))
+        if (u.write) written.push_back(u.number);
+    for (const std::string& b : *blocks)
+      for (const macro_use& u : macro_uses(b))
+        if (!u.write && u.number != 0 && std::find(written.begin(), written.end(), u.number) == written.end())
+          add(u.number, std::string("read by ") + name);
+  }
+  std::sort(out.begin(), out.end(),
+            [](const reserved_variable& a, const reserved_variable& b) { return a.number < b.number; });
+  return out;
+}
+
+}  // namespace twinpost

@@ -1,0 +1,69 @@
+// The modal codes a user's [events] blocks may leave behind (issue 37, item 4): a block such as
+// `G0 G18 G40 G80 G99` after a tool change puts the control in feed per revolution, and the
+// post's next `F150.` for a drill fed per minute would be read as 150 mm/rev. After the user's
+// blocks of one event the channel's own modes go back on: its feed mode, its plane, absolute
+// positions. A block in the other unit system (G20 in a metric program) is refused: every
+// later word would be read in it.
+#include <fmt/format.h>
+
+#include "machining/channel_writer.hpp"
+#include "support/ascii.hpp"
+
+namespace twinpost {
+
+namespace {
+
+// Whether `block` has the G word `code` ("G99", "G95", "G17"): a G at the start or after a
+// non-letter, its number equal (G17 is not G170, G54 not G54.1), outside `(...)` comments.
+bool has_g_code(std::string_view block, std::string_view code) {
+  if (code.size() < 2 || code[0] != 'G') return false;
+  const std::string_view number = code.substr(1);
+  int depth = 0;
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    const char c = block[i];
+    if (c == '(') ++depth;
+    if (c == ')' && depth > 0) --depth;
+    if (depth > 0 || (c != 'G' && c != 'g') || (i > 0 && ascii::is_letter(block[i - 1]))) continue;
+    std::size_t j = i + 1;
+    while (j < block.size() && (ascii::is_digit(block[j]) || block[j] == '.')) ++j;
+    std::string_view n = block.substr(i + 1, j - i - 1);
+    while (n.size() > 1 && n[0] == '0' && n[1] != '.') n.remove_prefix(1);  // G01 is G1
+    std::string_view want = number;
+    while (want.size() > 1 && want[0] == '0' && want[1] != '.') want.remove_prefix(1);
+    if (n == want) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void channel_writer::restore_modes_after(const std::vector<std::string>& blocks, std::string_view where) {
+  // Only a code that differs from the channel's own state is undone: a user block that repeats
+  // the channel's mode changes nothing.
+  bool feed = false, plane = false, incremental = false;
+  const bool inch = m_.program.output_units == output_unit::inch;
+  const std::string own_plane = fmt::format("G{}", plane_);
+  for (const std::string& b : blocks) {
+    for (const std::string* g : {&m_.codes.feed_per_min, &m_.codes.feed_per_rev})
+      feed = feed || (!g->empty() && *g != feed_g_ && has_g_code(b, *g));
+    for (const char* g : {"G17", "G18", "G19"}) plane = plane || (g != own_plane && has_g_code(b, g));
+    // G90/G91 are absolute and incremental only where the safe start says G90 (Fanuc lathe
+    // G-code system A has no G91, and its G90 is a turning cycle): never written elsewhere.
+    if (absolute_code_ && has_g_code(b, "G91")) incremental = true;
+    if (absolute_code_ && has_g_code(b, "G90")) incremental = false;
+    if (has_g_code(b, inch ? "G21" : "G20"))
+      return error(line_,
+                   fmt::format("{} writes \"{}\": {} in a program in {} ({}); every later word would be "
+                               "read in {}",
+                               where, b, inch ? "G21" : "G20", inch ? "inches" : "millimetres",
+                               inch ? "G20" : "G21", inch ? "millimetres" : "inches"));
+  }
+  if (incremental) out_.block("G90");
+  if (plane) out_.block(fmt::format("G{}", plane_));
+  if (feed && !feed_g_.empty()) {
+    out_.block(feed_g_);
+    last_f_.clear();  // the next feed move writes its F again
+  }
+}
+
+}  // namespace twinpost

@@ -1,0 +1,139 @@
+// The control emulator's invariants (analysis/control_emulator.hpp), through the checker's
+// reading (check_nc_resources) of hand-made programs: messages asserted to the letter.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "analysis/shared_resources.hpp"
+#include "check/sync_report.hpp"
+#include "machine_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "machines/macro_variables.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+std::string check_mill(const std::string& program) {
+  return format_sync_text(check_nc_resources({{"P.nc", program}}, load_machine("rotary-4axis")));
+}
+
+// Two paths of the twin-turret lathe: `one` is path 1's body, path 2 only starts and ends;
+// both meet at an M100 before their end.
+std::string check_lathe(const std::string& one) {
+  const std::string head = "%\nO1000\nG0 G18 G21 G40 G54 G80 G99\n";
+  const std::string end = "M100\nM30\n%\n";
+  return format_sync_text(check_nc_resources({{"P_1.nc", head + one + end}, {"P_2.nc", head + end}},
+                                             load_machine("fanuc-0itd-twin")));
+}
+
+const std::string mill_start = "%\nO1000\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS3000 M3\n";
+const std::string mill_cut = "G0 X0. Y0.\nG0 G43 H1 Z50.\nG1 Z-5. F500.\nX20.\nG0 Z50.\nM30\n%\n";
+const std::string clean_mill = "check: 1 channel, 0 waits paired, 0 errors\n";
+const std::string clean_lathe = "check: 2 channels, 2 waits paired, 0 errors\n";
+
+}  // namespace
+
+TEST_CASE("emulator: a feed move with no work offset in force", "[analysis][emulator]") {
+  CHECK(check_mill(mill_start + mill_cut) ==
+        "P.nc:11:4: error: channel 1: a feed move with no work offset in force: the program would cut in "
+        "whatever offset the last program left; set one (G54-G59, G54.1 P..) before the first cut\n"
+        "G1 Z-5. F500.\n   ^\n"
+        "check: 1 channel, 0 waits paired, 1 error\n");
+  // Any work offset before the first cut: G54-G59, G54.1 P.., a G92 coordinate setting.
+  CHECK(check_mill(mill_start + "G54\n" + mill_cut) == clean_mill);
+  CHECK(check_mill(mill_start + "G59\n" + mill_cut) == clean_mill);
+  CHECK(check_mill(mill_start + "G54.1 P12\n" + mill_cut) == clean_mill);
+  CHECK(check_mill(mill_start + "G92 X0. Y0. Z100.\n" + mill_cut) == clean_mill);
+  // A G53 feed (machine coordinates), a dwell's X and a G92 without an axis (a clamp) are no cut
+  // and set nothing; a rapid is no cut.
+  CHECK(check_mill(mill_start + "G1 G53 Z-10. F500.\nG4 X2.\nG0 X10.\nG54\n" + mill_cut) == clean_mill);
+  CHECK(check_mill(mill_start + "G92 S2000\nG1 G53 Z-10. F500.\n" + mill_cut)
+            .find("P.nc:13:4: error: channel 1: a "
+                  "feed move with no work "
+                  "offset") != std::string::npos);
+  // A drilling cycle cuts: G81 with its hole, before any offset.
+  CHECK(check_mill(mill_start + "G0 G43 H1 Z50.\nG98 G81 X10. Y0. Z-5. R2. F100.\nG80\nM30\n%\n") ==
+        "P.nc:10:9: error: channel 1: a feed move with no work offset in force: the program would cut in "
+        "whatever offset the last program left; set one (G54-G59, G54.1 P..) before the first cut\n"
+        "G98 G81 X10. Y0. Z-5. R2. F100.\n        ^\n"
+        "check: 1 channel, 0 waits paired, 1 error\n");
+}
+
+TEST_CASE("emulator: a variable the machine reserves is not written", "[analysis][emulator]") {
+  CHECK(check_lathe("M3 S500\nG0 X50. Z2.\nG1 X40. F0.2\n#501=#501+1\n") ==
+        "P_1.nc:7:1: error: channel 1: #501 is written here, but machine 'fanuc-0itd-twin' reserves it (read "
+        "by "
+        "transfer.grip): the setup owns its value; write a variable the machine file does not name\n"
+        "#501=#501+1\n^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
+  // Read, or another variable written, or #501 in a comment: quiet.
+  CHECK(check_lathe("#601=#501+1\nIF [#500 EQ #0] THEN #3000=1 (#500 NOT SET)\n(#501=1)\n") == clean_lathe);
+}
+
+TEST_CASE("emulator: chucks and spindles", "[analysis][emulator]") {
+  // The main chuck opened with the main spindle turning, unsynchronised.
+  CHECK(
+      check_lathe("G97 S800 M3\nM69\n") ==
+      "P_1.nc:5:1: error: channel 1: M69 opens the main spindle's chuck while the spindle turns (started at "
+      "line 4) and the spindles are not synchronised: stop it first, or open it under M213\nM69\n^\n"
+      "check: 2 channels, 2 waits paired, 1 error\n");
+  // Stopped first, or synchronised with the sub that holds the part: quiet.
+  CHECK(check_lathe("G97 S800 M3\nM5\nM69\n") == clean_lathe);
+  CHECK(check_lathe("G97 S800 M3\nM169\nM213\nM168\nM69\nM205\n") == clean_lathe);
+  // The sub started with its chuck open.
+  CHECK(
+      check_lathe("M169\nG97 S800 M103\n") ==
+      "P_1.nc:5:5: error: channel 1: the sub spindle is started with its chuck open (M169 at line 4): close "
+      "the chuck first (M168)\nG97 S800 M103\n    ^\n"
+      "check: 2 channels, 2 waits paired, 1 error\n");
+  CHECK(check_lathe("M169\nM168\nG97 S800 M103\n") == clean_lathe);
+  // A part-off while the sub holds the part, then the main chuck opened: the bar would go.
+  CHECK(
+      check_lathe("G97 S800 M3\nM169\nM213\nM168\nG0 X30. Z-20.\nG1 X-1. F0.05\nM69\nM205\n") ==
+      "P_1.nc:10:1: error: channel 1: M69 opens the main spindle's chuck after the part-off at line 9: it "
+      "holds the bar, which would be released; after a part-off the sub spindle takes the part away and the "
+      "bar stays clamped ([transfer] release_after_cutoff)\nM69\n^\n"
+      "check: 2 channels, 2 waits paired, 1 error\n");
+  // The same cut short of the centre is no part-off.
+  CHECK(check_lathe("G97 S800 M3\nM169\nM213\nM168\nG0 X30. Z-20.\nG1 X2. F0.05\nM69\nM205\n") ==
+        clean_lathe);
+}
+
+TEST_CASE("macro variables: uses in a block and the machine's reserved ones", "[machines][emulator]") {
+  const std::vector<macro_use> u = macro_uses("IF [#500 EQ #0] THEN #3000=1 (#7=1) #[#1]=2 # 12 = 3 #4==5");
+  REQUIRE(u.size() == 6);
+  CHECK((u[0].number == 500 && !u[0].write && u[0].column == 5));
+  CHECK((u[1].number == 0 && !u[1].write));
+  CHECK((u[2].number == 3000 && u[2].write));
+  CHECK((u[3].number == 1 && !u[3].write));  // inside the indirect #[#1]
+  CHECK((u[4].number == 12 && u[4].write));
+  CHECK((u[5].number == 4 && !u[5].write));
+  const std::vector<reserved_variable> r = reserved_variables(load_machine("integrex-i200st"));
+  REQUIRE(r.size() == 2);
+  CHECK((r[0].number == 500 && r[0].why == "read by transfer.grip"));
+  CHECK((r[1].number == 501 && r[1].why == "read by transfer.grip"));
+  CHECK(test::machine_error_of(test::machine_head + "[program]\nreserved_variables = [500, 0]\n" +
+                               test::two_channels) ==
+        "m.toml:7:22: error: program.reserved_variables: #0 is no variable a program could write (>= 1)");
+}
+
+TEST_CASE("emulator: the B head indexed again after every tool call", "[analysis][emulator]") {
+  auto check = [](const std::string& head_one) {
+    const std::string start = "G21\nG0 G90 G54 G97 G18\n";
+    return format_sync_text(check_nc_resources(
+        {{"P.EIA",
+          "%\nO1000\nG109 L1\n" + start + head_one + "M950\nM30\nG109 L2\n" + start + "M950\nM30\n%\n"}},
+        load_machine("integrex-i200st")));
+  };
+  const std::string first = "T01 M6\nM108\nG0 G53 B90.\nM107\nG94 G0 X54. Z2.\nG1 X40. F100.\n";
+  // The second tool at the same angle, indexed again: quiet.
+  CHECK(check(first + "T02 M6\nM108\nG0 G53 B90.\nM107\nG0 X54. Z2.\nG1 X40. F100.\n") ==
+        "check: 2 channels, 2 waits paired, 0 errors\n");
+  // Not indexed again: the cut after the tool call is refused.
+  CHECK(
+      check(first + "T02 M6\nG0 X54. Z2.\nG1 X40. F100.\n") ==
+      "P.EIA:14:4: error: channel 1: a feed move with the B head not indexed since the tool call at line 12: "
+      "the tool changer may leave it anywhere; index it (G0 G53 B..) before the cut\nG1 X40. F100.\n   ^\n"
+      "check: 2 channels, 2 waits paired, 1 error\n");
+}

@@ -1,0 +1,53 @@
+// A user's [events] blocks that change a modal code (issue 37, item 4): the channel's own mode
+// goes back on after them (machining/channel_user_modes.cpp), and a block in the other unit
+// system stops the post.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+test::posted post_with(const std::string& events, const std::string& cl, const std::string& tag) {
+  const std::string text =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/fanuc-0itd-twin.toml") + "\n" +
+      events;
+  return test::post_in_fresh_dir(cl, parse_machine(text, "twin-modes.toml"), "modes-" + tag);
+}
+
+// Tool 1 feeds per minute (G98), tool 2 is called and feeds per minute again: the control must
+// be in G98 for its F150., whatever the user's block after the tool call said.
+const std::string job =
+    "PARTNO UM\nHEAD/1\nTLDATA/DRILL,8,118\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/MMPM,150\nRAPID\n"
+    "GOTO/0,0,5\nGOTO/0,0,-5\nRAPID\nGOTO/0,0,5\nTLDATA/DRILL,6,118\nTURRET/2,2\nSPINDL/RPM,900,CLW\n"
+    "RAPID\nGOTO/0,0,5\nGOTO/0,0,-5\nRAPID\nGOTO/0,0,5\nEND\nFINI\n";
+
+std::string between(const std::string& text, const std::string& from, const std::string& to) {
+  const std::size_t a = text.find(from);
+  const std::size_t b = text.find(to, a == std::string::npos ? 0 : a);
+  return a == std::string::npos || b == std::string::npos ? "(not found)" : text.substr(a, b - a);
+}
+
+}  // namespace
+
+TEST_CASE("user blocks: the channel's feed mode, plane and G90 back on after them", "[post][events]") {
+  const test::posted p = post_with("[events]\ntool_change.after = [\"G0 G17 G40 G80 G99\"]\n", job, "feed");
+  REQUIRE(p.ok);
+  const std::string& one = p.files.at("UM_1.nc");
+  // After T0202 the user's block (G17, G99), then the channel's G18 and G98 again, and F written.
+  CHECK(between(one, "T0202", "G1 ") == "T0202\nG0 G17 G40 G80 G99\nG18\nG98\nG97 S900 M3\nG0 X0. Z5.\n");
+  CHECK(between(one, "G0 X0. Z5.\nG1", "\n") == "G0 X0. Z5.\nG1 Z-5. F150.");
+}
+
+TEST_CASE("user blocks: a block in the other unit system stops the post", "[post][events]") {
+  const test::posted p = post_with("[events]\ntool_change.after = [\"G20\"]\n", job, "units");
+  CHECK(!p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:4:1: error: events.tool_change.after writes \"G20\": G20 in a program in millimetres (G21); "
+        "every later word would be read in inches\nTURRET/1,1\n^\n");
+}
