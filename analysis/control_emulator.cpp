@@ -56,12 +56,31 @@ struct channel_state {
   int holder = -1;                  // the spindle that closed its chuck on the part while synchronised
   int cutoff_line = 0;              // a part-off while `holder` held the part
   char head = 0;                    // the address of the channel's indexing head (B); 0: none
+  int change_m = -1;                // the M code of its tool change (M6 of "T{tool:02} M6"); -1: a T word
   int head_unknown = 0;             // the tool call since which the head has not been indexed; 0: known
   bool said_offset = false, said_chuck = false, said_start = false, said_cutoff = false, said_head = false;
 };
 
 constexpr std::uint32_t linear_axes =
     nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') | nc_letter('V') | nc_letter('W');
+
+// The M code a tool call template writes ("T{tool:02} M6", "M6 T{tool:02}00"): the tool change
+// proper; a T word alone is then an offset call (the 31i's T0707 after M6 T0700). -1: none.
+int tool_change_code(const std::string& tool_call) {
+  for (std::size_t i = 0; i + 1 < tool_call.size(); ++i) {
+    if (tool_call[i] == '{') {
+      i = tool_call.find('}', i);
+      if (i == std::string::npos) break;
+      continue;
+    }
+    if (tool_call[i] != 'M' || tool_call[i + 1] < '0' || tool_call[i + 1] > '9') continue;
+    int code = 0;
+    for (std::size_t k = i + 1; k < tool_call.size() && tool_call[k] >= '0' && tool_call[k] <= '9'; ++k)
+      code = code * 10 + (tool_call[k] - '0');
+    return code;
+  }
+  return -1;
+}
 
 bool drilling_cycle(double g) {
   return g == 73 || (g >= 81 && g <= 89 && g == static_cast<int>(g)) || g == 84.2 || g == 84.3;
@@ -83,7 +102,10 @@ struct control_emulator::impl {
       channels.emplace_back(m, static_cast<int>(i) + 1);
       channels.back().start_line.assign(m.spindles.size(), 0);
       channels.back().chucks.assign(m.spindles.size(), {});
-      if (m.channels[i].head_index.present()) channels.back().head = m.channels[i].head_index.address;
+      if (m.channels[i].head_index.present()) {
+        channels.back().head = m.channels[i].head_index.address;
+        channels.back().change_m = tool_change_code(m.channels[i].tool_call);
+      }
     }
     for (const spindle_def& s : m.spindles) chucks.push_back({code(s.chuck_open), code(s.chuck_close)});
     reserved = reserved_variables(m);
@@ -150,6 +172,8 @@ struct control_emulator::impl {
         if (g == 92 || g == 50) coordinate_setting = true;
         if (not_a_cut(g)) no_cut = true;
       } else if (w.address == 'T') {
+        tool_call = tool_call || c.change_m < 0;
+      } else if (w.address == 'M' && c.change_m >= 0 && w.numeric && w.number == c.change_m) {
         tool_call = true;
       } else if (c.head && w.address == c.head) {
         head_move = true;

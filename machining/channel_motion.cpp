@@ -232,7 +232,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
     case motion_kind::delta:
       if ((tool_ < 0 || cam_tool_due_) && !start_tool(line)) return no_tool(line);
       if (!selected_) select_spindle(work_);  // a section that moves before its SPINDL
-      if (spindle_held_) resume_spindle(line);
+      if (spindle_held_ || spindle_kept_) resume_spindle(line);
       if (cycle_refused_) {
         // the post has already failed at the CYCLE record
       } else if (cycle_ && cycle_->type == "THREAD") {
@@ -310,7 +310,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
     return error(line, "an arc while THREAD/TURN is on: a threading pass is a straight G32 move");
   }
   if (!selected_) select_spindle(work_);
-  if (spindle_held_) resume_spindle(line);
+  if (spindle_held_ || spindle_kept_) resume_spindle(line);
   // The plane comes from the arc's axis: +-Z G17 (XY), +-Y G18 (ZX, the lathe's), +-X G19 (YZ).
   // In each, counter-clockwise about the positive axis is G3 (Z = X x Y, Y = Z x X, X = Y x Z).
   double nlen = std::sqrt(a.normal.x * a.normal.x + a.normal.y * a.normal.y + a.normal.z * a.normal.z);

@@ -42,6 +42,7 @@ void channel_writer::work_on(const spindle_def& s) {
   motion_g_ = -1;
   restart_blocks_.clear();
   spindle_held_ = false;
+  spindle_kept_ = false;
   if (!s.work_offset.empty()) out_.block(s.work_offset);
 }
 
@@ -146,6 +147,10 @@ std::string channel_writer::off_centre_hole_needs() const {
 
 void channel_writer::spindle(const spindle_event& s, int line) {
   spindle_held_ = false;  // this record says what the spindle does now (or the post has failed)
+  // A shared spindle kept turning through the tool change (channel_words.cpp): stopped here when
+  // the new tool's SPINDL turns another one.
+  const spindle_def* kept = spindle_kept_ ? spindle_ : nullptr;
+  spindle_kept_ = false;
   stopped_by_user_ = nullptr;
   // A SPINDL refused here has failed the post: the cuts after it need no second error.
   struct judge_cuts {
@@ -177,6 +182,8 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     if (!target) return;
   }
   if (!target) return error(line, fmt::format("machine '{}' has no spindle '{}'", m_.name, ch_.spindle));
+  if (kept && target != kept && s.mode != spindle_mode::off)
+    spindle_block(fmt::format("M{}", kept->stop), true);
   // The spindle the section works on is selected first (the Fusion Integrex post: M901/M902,
   // then the C axis); a live tool works on the part held in the workpiece spindle.
   if (s.mode != spindle_mode::on) select_spindle(target->select ? target : work_);

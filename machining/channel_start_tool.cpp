@@ -44,12 +44,12 @@ bool channel_writer::start_tool(int line) {
     // An operation for another tool than the one in the spindle, with no call of its own and a
     // name the machine does not know (post --tool 1 on an NX file of two operations): the drill
     // would be cut with the end mill.
-    error(
-        cam_tool_line_,
-        fmt::format("{} names the tool '{}', but the spindle holds tool {}, taken for '{}' (line {}), and "
-                    "no tool call comes between: give the operation its LOAD/TOOL, or the tool under its "
-                    "[[tool]] in machine '{}' (name = \"{}\")",
-                    cam_tool_record_, cam_tool_, tool_, tool_cam_name_, tool_cam_line_, m_.name, cam_tool_));
+    error(line,
+          fmt::format("{} at line {} names the tool '{}', but the spindle holds tool {}, taken for '{}' "
+                      "(line {}), and no tool call comes between: give the operation its LOAD/TOOL, or "
+                      "the tool under its [[tool]] in machine '{}' (name = \"{}\")",
+                      cam_tool_record_, cam_tool_line_, cam_tool_, tool_, tool_cam_name_, tool_cam_line_,
+                      m_.name, cam_tool_));
     tool_cam_name_ = cam_tool_;  // said once per change of name
     return true;
   } else if (tool_ >= 0) {

@@ -41,7 +41,8 @@ void channel_writer::coolant(const coolant_event& c, int line) {
 }
 
 void channel_writer::resume_spindle(int line) {
-  spindle_held_ = false;
+  const bool restart = spindle_held_;  // a kept spindle turns already
+  spindle_held_ = spindle_kept_ = false;
   stopped_by_user_ = nullptr;  // the post starts it again before the move
   // On a head with a workpiece and a live spindle, the spindle stopped for the tool change
   // turns again only for a tool of the same kind: a milling cutter after a turning tool
@@ -63,7 +64,8 @@ void channel_writer::resume_spindle(int line) {
                                             : " and its kind is unknown (no TLDATA)"));
     }
   }
-  for (const std::string& b : restart_blocks_) spindle_block(b);
+  if (restart)
+    for (const std::string& b : restart_blocks_) spindle_block(b);
 }
 
 void channel_writer::go_home() {
@@ -181,15 +183,25 @@ void channel_writer::tool(const tool_event& t, int line) {
     if (const tool_def* d = m_.tool(ch_.number, t.tool)) ea.text = d->name;
     user_blocks(event_point::tool_change, false, ea);
   }
-  // The tool changer needs the spindle that drives the tool stopped; a workpiece spindle that
-  // another channel shares keeps turning (the other turret may be cutting on it: issue 37,
-  // item 9): the next SPINDL changes it if the new tool wants it otherwise.
-  const bool drives_tool = spindle_ && spindle_->name == ch_.live_spindle;
-  const bool shared = spindle_ && m_.shared_spindle(static_cast<int>(spindle_index(*spindle_)));
-  if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_ &&
-      (drives_tool || !shared)) {
-    spindle_block(fmt::format("M{}", spindle_->stop), true);
-    spindle_held_ = true;
+  // The tool changer needs the spindle that drives the tool stopped. A shared workpiece spindle
+  // (another turret may be cutting on it) keeps turning when the next tool is a turning tool,
+  // which wants that spindle the same way: its SPINDL changes the speed if it asks another
+  // (issue 37, item 9). Any other next tool (a live tool holds the spindle as C, a tool of
+  // unknown kind) has it stopped, as before.
+  if (ch_.tool_change_stops_spindle && spindle_ && !restart_blocks_.empty() && !spindle_held_) {
+    tool_kind next = next_kind_;
+    if (next == tool_kind::unknown) {
+      const std::string_view k = m_.tool_kind(ch_.number, t.tool);
+      next = k == "turn" ? tool_kind::turn : k.empty() ? tool_kind::unknown : tool_kind::mill;
+    }
+    const bool drives_tool = spindle_->name == ch_.live_spindle;
+    const bool shared = m_.shared_spindle(static_cast<int>(spindle_index(*spindle_)));
+    if (!drives_tool && shared && next == tool_kind::turn) {
+      spindle_kept_ = true;
+    } else {
+      spindle_block(fmt::format("M{}", spindle_->stop), true);
+      spindle_held_ = true;
+    }
   }
   if (!coolant_was.empty()) coolant_block(coolant_off_was, true);
   go_home();

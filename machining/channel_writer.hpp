@@ -200,6 +200,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// (docs/machines.md, "Length offset cancel").
   void cancel_length_offset();
   /// The spindle stopped for a tool change turns again (before the first move after it).
+  /// The first move after a tool change that stopped the spindle (spindle_held_) or kept a
+  /// shared one turning (spindle_kept_): the new tool must want the spindle that turned; a held
+  /// one is started again.
   void resume_spindle(int line);
   /// False (with the error) when the spindle a feed move cuts on is not known to turn: this
   /// channel's SPINDL/OFF stopped it, or no SPINDL started it (unless the tool needs none,
@@ -619,6 +622,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// The spindle was stopped for a tool change: restart_blocks_ go out again before the next
   /// move unless a SPINDL comes first.
   bool spindle_held_ = false;
+  bool spindle_kept_ = false;  // a shared workpiece spindle kept turning through the tool change
   /// The spindle this channel's SPINDL/OFF stopped, until a speed is given again.
   const spindle_def* stopped_by_cl_ = nullptr;
   /// The spindle a user block ([events], the script) stopped with its stop code, until the

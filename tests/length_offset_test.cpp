@@ -16,7 +16,7 @@ std::string check(const std::string& program) {
   return format_sync_text(check_nc_resources({{"P.nc", program}}, load_machine("rotary-4axis")));
 }
 
-const std::string start = "%\nO1000\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS3000 M3\n";
+const std::string start = "%\nO1000\nG21\nG54 G90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS3000 M3\n";
 const std::string cut = "G0 X0. Y0.\nG0 G43 H1 Z50.\nG1 Z-5. F500.\nX20.\nG0 Z50.\n";
 const std::string clean = "check: 1 channel, 0 waits paired, 0 errors\n";
 

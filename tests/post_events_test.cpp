@@ -104,8 +104,8 @@ TEST_CASE("a user block leaves the footer's M9 and M5 out unless its M codes may
     return program_1(post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [" + blocks + "]\n", job,
                                "footer-" + tag));
   };
-  CHECK(with("\"(CATCHER)\", \"#501=#501+1\", \"G4 U1.\", \"M9\", \"M5\"", "none") ==
-        body + "(CATCHER)\n#501=#501+1\nG4 U1.\nM9\nM5\nM100\nG28 U0.\nG28 W0.\nM30\n%\n");
+  CHECK(with("\"(CATCHER)\", \"#601=#601+1\", \"G4 U1.\", \"M9\", \"M5\"", "none") ==
+        body + "(CATCHER)\n#601=#601+1\nG4 U1.\nM9\nM5\nM100\nG28 U0.\nG28 W0.\nM30\n%\n");
   CHECK(with("\"M8\"", "coolant") == body + "M8\nM100\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
   // Mist (codes.coolant_mist M138/M139) is turned off by its own code, which the footer lacks.
   CHECK(with("\"M138\"", "mist") == body + "M138\nM100\nM139\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
@@ -447,7 +447,8 @@ section.after = ["(END {name} AT X{x} Y{y} Z{z})"]
   const test::posted p = post_on("rotary-4axis", events, job, "section-mill");
   // The second section: the same tool and operation, the tool axis along -Y from a rapid (A-90.).
   CHECK(program_1(p, "EV.nc") ==
-        "%\nO5003 (EV)\nG21\nG90 G94 G17 G40 G49 G80\n(TOP,TOOL,EM10)\nG91 G28 Z0.\nG90\nT01 M6\nS3000 M3\n"
+        "%\nO5003 (EV)\nG21\nG90 G94 G17 G40 G49 G80\n(TOP,TOOL,EM10)\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS3000 "
+        "M3\n"
         "(SECTION TOP T01)\nG0 A0.\nG0 X10. Y20.\nG0 G43 H1 X10. Y20. Z5. A0.\nG1 Z-1. F500.\nX30.\nG0 Z40.\n"
         "(END TOP AT X30. Y20. Z40.)\n(SECTION TOP T01)\nG0 A-90.\nG0 X10. Y5.\nG1 Z30.\n"
         "(END TOP AT X10. Y5. Z30.)\nM5\nG91 G28 Z0.\nG90\nG49\nT02 M6\nS2000 M3\n(SECTION TOP T02)\n"

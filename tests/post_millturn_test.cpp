@@ -144,7 +144,8 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
         "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG0 G43 H#3020 X10. C5. "
         "Z2.\n"
         "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
-        "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nG0 G43 P1 H#3020 X60. Y0. "
+        "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
+        "X60. Y0. "
         "Z2.\nM950\nM9\nM5\nM205\n"
         "M305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
@@ -449,7 +450,7 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
   INFO(f.diagnostics);
   const std::string nc = f.files.at("D_3.nc");
   CHECK(nc.substr(nc.find("M6 T04")) ==
-        "M6 T0400\nT0404\nG55\nG97 S700 M103\nG0 B90.\nG0 X0. Y0. Z-5.\nG1 Z10. F0.1\nM105\nG28 "
+        "M6 T0400\nT0404\nG55\nG97 S700 M103\nG0 B90.\nG0 X0. Y0. Z-5.\nG1 Z10. F0.1\nG28 "
         "U0.\nG28 W0.\n"
         "M6 T0500\nT0505\nG97 S900 M103\nG0 B0.\nG0 X40. Y0. Z-2.\nM200 P123\nM105\nM9\nG28 U0.\nG28 "
         "W0.\nM30\n%\n");

@@ -461,7 +461,7 @@ TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0",
   REQUIRE(q.ok);
   // B swings to 5 degrees and back (8 sub-moves each way, G93), then G94 for the arc.
   CHECK(q.files.at("MOVES.nc") ==
-        "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS5000 M3\n"
+        "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS5000 M3\n"
         "G0 A0. B0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 "
         "F400.\n"
         "X11.226 Z-0.095 B1.25 F400.\nX16.838 Z-0.214 B1.875 F400.\nX22.448 Z-0.381 B2.5 F400.\n"
@@ -612,7 +612,7 @@ TEST_CASE("multi-axis: the records held with a rapid on the pole keep their orde
       "PARTNO POLE\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
       "GOTO/40,40,5,0,0,1\nPPRINT APPROACH\nSPINDL/RPM,5000,CLW\n";
   const std::string tail = "GOTO/40,40,-5,0,0,1\nGOTO/40,40,-5,0.1736482,0,0.9848078\nFINI\n";
-  const std::string start = "%\nO5002 (POLE)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\n";
+  const std::string start = "%\nO5002 (POLE)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\n";
   const std::string end = "M9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n";
   // A comment and a spindle start are held with it: the rapid takes C90, they follow it.
   const test::posted held = test::post_in_fresh_dir(head + tail, m, "ma-pole-held");
@@ -777,7 +777,8 @@ TEST_CASE("frames: NX MSYS turns the points and tool axes before the kinematics"
   REQUIRE(t.ok);
   const std::string nc = t.files.at("MSYS_DOWN.nc");
   CHECK(nc.substr(nc.find("T01")) ==
-        "T01 M6\nS6000 M3\nG0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z50. A0. C90.\nG1 X10. Z-5. F800.\n"
+        "T01 M6\nG54\nS6000 M3\nG0 A0. C90.\nG0 X0. Y0.\nG0 G43.4 H1 X0. Y0. Z50. A0. C90.\nG1 X10. Z-5. "
+        "F800.\n"
         "X20. A10.\nY-10.\nG0 Z50.\nG0 A0.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
   // On a 3-axis mill the turned axis is along Z: the points post, turned.
   const test::posted flat = test::post_in_fresh_dir(

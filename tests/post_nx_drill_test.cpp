@@ -53,12 +53,12 @@ TEST_CASE("NX: a drilling cycle as the first move after a tool call", "[post][dr
   // the hole's top at Z0), as a GOTO there would; the canned cycle starts from that plane.
   const std::string cl = nx_head + "CYCLE/DRILL,RAPTO,3.0000,FEDTO,-12.0000,MMPM,150.0000\n" + nx_points;
   CHECK(blocks(cl, "rotary-4axis", "std4") ==
-        "T03 M6\nS1200 M3\nG0 A0.\nG0 X20. Y10.\nG0 G43 H3 X20. Y10. Z3. A0.\n"
+        "T03 M6\nG54\nS1200 M3\nG0 A0.\nG0 X20. Y10.\nG0 G43 H3 X20. Y10. Z3. A0.\n"
         "G98 G81 X20. Y10. Z-12. R3. F150.\nG80\nG0 Z3.\nX40.\nG98 G81 X40. Y10. Z-12. R3. F150.\nG80\n"
         "G0 Z3.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\n");
   // The trunnion has no canned cycle ([cycles] drill = "moves"): the same hole as moves.
   CHECK(blocks(cl, "trunnion-5axis", "std5") ==
-        "T03 M6\nS1200 M3\nG0 A0. C0.\nG0 X20. Y10.\nG0 G43.4 H3 X20. Y10. Z3. A0. C0.\nG1 Z-12. F150.\n"
+        "T03 M6\nG54\nS1200 M3\nG0 A0. C0.\nG0 X20. Y10.\nG0 G43.4 H3 X20. Y10. Z3. A0. C0.\nG1 Z-12. F150.\n"
         "G0 Z3.\nX40.\nG1 Z-12.\nG0 Z3.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\n");
 }
 
@@ -66,7 +66,7 @@ TEST_CASE("NX: CYCLE/DRILL,DEEP is the peck cycle, in pecks of STEP", "[post][dr
   const std::string cl =
       nx_head + "CYCLE/DRILL,DEEP,STEP,4.0000,RAPTO,3.0000,FEDTO,-12.0000,MMPM,150.0000\n" + nx_points;
   CHECK(blocks(cl, "rotary-4axis", "deep4") ==
-        "T03 M6\nS1200 M3\nG0 A0.\nG0 X20. Y10.\nG0 G43 H3 X20. Y10. Z3. A0.\n"
+        "T03 M6\nG54\nS1200 M3\nG0 A0.\nG0 X20. Y10.\nG0 G43 H3 X20. Y10. Z3. A0.\n"
         "G98 G83 X20. Y10. Z-12. R3. Q4. F150.\nG80\nG0 Z3.\nX40.\nG98 G83 X40. Y10. Z-12. R3. Q4. F150.\n"
         "G80\nG0 Z3.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\n");
   // As moves: from R3 pecks of 4 to Z-1, -5, -9, back in to 0.5 above each, and the bottom.
@@ -74,7 +74,7 @@ TEST_CASE("NX: CYCLE/DRILL,DEEP is the peck cycle, in pecks of STEP", "[post][dr
                    "CYCLE/DRILL,DEEP,STEP,4.0000,RAPTO,3.0000,FEDTO,-12.0000,MMPM,150.0000\n"
                    "GOTO/20.0000,10.0000,0.0000,0.0000000,0.0000000,1.0000000\nCYCLE/OFF\nEND-OF-PATH\n",
                "trunnion-5axis", "deep5") ==
-        "T03 M6\nS1200 M3\nG0 A0. C0.\nG0 X20. Y10.\nG0 G43.4 H3 X20. Y10. Z3. A0. C0.\nG1 Z-1. F150.\n"
+        "T03 M6\nG54\nS1200 M3\nG0 A0. C0.\nG0 X20. Y10.\nG0 G43.4 H3 X20. Y10. Z3. A0. C0.\nG1 Z-1. F150.\n"
         "G0 Z3.\nZ-0.5\nG1 Z-5.\nG0 Z3.\nZ-4.5\nG1 Z-9.\nG0 Z3.\nZ-8.5\nG1 Z-12.\nG0 Z3.\nM9\nM5\nG91 G28 "
         "Z0.\nG90\nG49\n");
 }

@@ -15,7 +15,7 @@ namespace {
 const std::string side_face_start =
     "MULTAX/ON\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,500\nRAPID\nGOTO/40,0,-10,1,0,0\n";
 const std::string program_start =
-    "G21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS6000 M3\n"
+    "G21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS6000 M3\n"
     "G68.2 X0. Y0. Z0. I90. J90. K-90.\nG53.1\nG0 X10. Y0.\nG43 H1 X10. Y0. Z40.\n";
 
 }  // namespace

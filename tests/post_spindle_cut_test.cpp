@@ -90,8 +90,8 @@ TEST_CASE("a tool the tool table says needs no spindle cuts without one", "[post
   m.tools.push_back({1, 0, "mill"});
   m.tools.back().spindle = false;  // a scribe, a burnishing roller
   CHECK(program_of(no_spindle, m, "ns-table") ==
-        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\n"
-        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nM9\nM5\nG91 G28 "
+        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nG0 A0.\nG0 X0. Y0.\nG0 "
+        "G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nM9\nM5\nG91 G28 "
         "Z0.\nG90\nG49\nM30\n%\n");
   // The key as the machine file gives it.
   const std::string tool = "[[tool]]\nnumber = 4\nkind = \"turn\"\nspindle = false\ndiameter = 12\n";
@@ -114,7 +114,7 @@ TEST_CASE("a surface speed for a rotating tool is its rpm from the diameter", "[
       "FEDRAT/500,MMPM\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n";
   // 1000 x 150 / (pi x 10) = 4774.6: S4775, not S150 (nor G96 on a cutter).
   CHECK(program_of(job, load_machine("rotary-4axis"), "smm-mill") ==
-        "%\nO5003 (SMM)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nS4775 M3\n"
+        "%\nO5003 (SMM)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS4775 M3\n"
         "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nM9\nM5\nG91 G28 "
         "Z0.\nG90\nG49\nM30\n%\n");
   // The Integrex's milling spindle: rpm mode (G97), never G96 on the live tool.
@@ -213,7 +213,7 @@ TEST_CASE("G41/G42 on the mills carry the D register the machine file says", "[p
     CHECK(load_machine(mill).codes.cutcom_offset == "tool");
   // The tool number (Fusion's default diameter offset), on the first move of the compensation.
   CHECK(program_of(job, load_machine("rotary-4axis"), "d-tool") ==
-        "%\nO5003 (CC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT03 M6\nS2000 M3\n"
+        "%\nO5003 (CC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT03 M6\nG54\nS2000 M3\n"
         "G0 A0.\nG0 X0. Y-20.\nG0 G43 H3 X0. Y-20. Z5. A0.\nG1 Z-2. F400.\nG41 D3 X10.\nG40 "
         "X0.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n"
         "%\n");

@@ -45,7 +45,7 @@ const std::string nx_operation =
 // and coolant as the records say).
 std::string nx_program(const std::string& t) {
   return "%\nO5003 (PROGRAM)\nG21\nG90 G94 G17 G40 G49 G80\n(FACE,TOOL,MILL-20MM)\nG91 G28 Z0.\nG90\nT0" + t +
-         " M6\nS1000 M3\nM8\nG0 A0.\nG0 X0. Y0.\nG0 G43 H" + t +
+         " M6\nG54\nS1000 M3\nM8\nG0 A0.\nG0 X0. Y0.\nG0 G43 H" + t +
          " X0. Y0. Z40. A0.\nG1 X10. Z20. F250.\nX20.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n";
 }
 
@@ -95,7 +95,7 @@ TEST_CASE("CATIA's TPRINT names the tool", "[post][tools][start]") {
   const test::posted p =
       post("PARTNO P\nTPRINT/T1 PointeurD10\nSPINDL/RPM,2000,CLW\nRAPID\nGOTO/0,0,10\nFINI\n", m, "tprint");
   REQUIRE(p.ok);
-  CHECK(only_file(p).find("\nT02 M6\nS2000 M3\nG0 ") != std::string::npos);
+  CHECK(only_file(p).find("\nT02 M6\nG54\nS2000 M3\nG0 ") != std::string::npos);
 }
 
 TEST_CASE("a tool name given to two tools of one channel is an error in the machine file",
@@ -177,7 +177,7 @@ TEST_CASE("an operation whose CAM name maps to another tool, with no call of its
            m, "second-operation");
   CHECK(only_file(p) ==
         "%\nO5003 (PROGRAM)\nG21\nG90 G94 G17 G40 G49 G80\n(FACE,TOOL,MILL-20MM)\nG91 G28 Z0.\nG90\nT07 M6\n"
-        "S1000 M3\nM8\nG0 A0.\nG0 X0. Y0.\nG0 G43 H7 X0. Y0. Z40. A0.\nG1 X10. Z20. "
+        "G54\nS1000 M3\nM8\nG0 A0.\nG0 X0. Y0.\nG0 G43 H7 X0. Y0. Z40. A0.\nG1 X10. Z20. "
         "F250.\nX20.\n(DRILL,TOOL,DRILL-8)\nM5\nM9\n"
         "G91 G28 Z0.\nG90\nG49\nT08 M6\nM8\nS1500 M3\nG0 A0.\nG0 X5. Y5.\nG0 G43 H8 X5. Y5. Z10. "
         "A0.\n(OTHER,TOOL,MILL-20MM)\n"

@@ -61,8 +61,8 @@ TEST_CASE("the mill head stops its spindle for the tool change and starts it bef
   CHECK(file_of(p, "TC.EIA") ==
         "%\nO1000(TC)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nM901\n"
-        "G97 S1000 M203\nG1 G43 P1 H#3020 X30. Y0. Z2.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nM901\nM108\nG0 G53 "
+        "B0.\nM107\nG1 G43 P1 H#3020 X30. Y0. Z2.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\nG109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nM950\nM9\nM5\n"
         "M205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
 }
@@ -108,8 +108,8 @@ TEST_CASE("each coolant kind is turned on and off with its own codes", "[post][t
   CHECK(file_of(p, "TC.EIA") ==
         "%\nO1000(TC)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nM8\nM9\nM51\nM108\nG0 G53 B0.\nM107\n"
-        "G0 G43 P1 H#3020 X40. Y0. Z2.\nM205\nM163\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nM51\nM901\n"
-        "G97 S1000 M203\nG0 G43 P1 H#3020 X40. Y0. Z3.\nM163\nM950\nM9\nM5\nM205\nM305\n"
+        "G0 G43 P1 H#3020 X40. Y0. Z2.\nM163\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nM51\nM901\nM108\nG0 "
+        "G53 B0.\nM107\nG0 G43 P1 H#3020 X40. Y0. Z3.\nM163\nM950\nM9\nM5\nM205\nM305\n"
         "G0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\nG0 G90 G54 G97 G18\n"
         "G40 G49 G80 G67 G69\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
 }
@@ -171,7 +171,7 @@ TEST_CASE("an offset the channel's tool call cannot write is an error, never the
   REQUIRE(r.ok);
   const std::string nc = r.files.at("TC.nc");
   CHECK(nc.substr(nc.find("T02")) ==
-        "T02 M6\nS1000 M3\nG0 A0.\nG0 X10. Y0.\nG0 G43 H5 X10. Y0. Z20. A0.\nG1 Z0. "
+        "T02 M6\nG54\nS1000 M3\nG0 A0.\nG0 X10. Y0.\nG0 G43 H5 X10. Y0. Z20. A0.\nG1 Z0. "
         "F300.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\n"
         "M30\n%\n");
 }

@@ -39,15 +39,18 @@ TEST_CASE("user blocks: the channel's feed mode, plane and G90 back on after the
   const test::posted p = post_with("[events]\ntool_change.after = [\"G0 G17 G40 G80 G99\"]\n", job, "feed");
   REQUIRE(p.ok);
   const std::string& one = p.files.at("UM_1.nc");
-  // After T0202 the user's block (G17, G99), then the channel's G18 and G98 again, and F written.
-  CHECK(between(one, "T0202", "G1 ") == "T0202\nG0 G17 G40 G80 G99\nG18\nG98\nG97 S900 M3\nG0 X0. Z5.\n");
-  CHECK(between(one, "G0 X0. Z5.\nG1", "\n") == "G0 X0. Z5.\nG1 Z-5. F150.");
+  // After T0202 the user's block (G17, G99), then the channel's G18 and G98 again, and the next
+  // feed move writes its F again: 150 mm/min, never 150 mm/rev.
+  CHECK(between(one, "T0202", "G0 Z5.") ==
+        "T0202\nG0 G17 G40 G80 G99\nG18\nG98\nG97 S900 M3\nG0 X0. Z5.\nG1 Z-5. F150.\n");
 }
 
 TEST_CASE("user blocks: a block in the other unit system stops the post", "[post][events]") {
   const test::posted p = post_with("[events]\ntool_change.after = [\"G20\"]\n", job, "units");
   CHECK(!p.ok);
   CHECK(p.diagnostics ==
-        "job.cls:4:1: error: events.tool_change.after writes \"G20\": G20 in a program in millimetres (G21); "
-        "every later word would be read in inches\nTURRET/1,1\n^\n");
+        "job.cls:4:1: error: channel 1: events.tool_change.after writes \"G20\": G20 in a program in "
+        "millimetres (G21); every later word would be read in inches\nTURRET/1,1\n^\n"
+        "job.cls:13:1: error: channel 1: events.tool_change.after writes \"G20\": G20 in a program in "
+        "millimetres (G21); every later word would be read in inches\nTURRET/2,2\n^\n");
 }

@@ -292,13 +292,13 @@ TEST_CASE("shared spindles: a hold as the C axis while another channel's start o
           "[analysis]") {
   const machine integrex = load_machine("integrex-i200st");
   const std::string milling =
-      "G109 L1\nG21\nT11 M6\nM950\nM200\nG97 S3000 M3\nG1 X20. Z-5. F300.\nM202\nM951\nM30\n";
-  const std::string turning = "G109 L2\nG21\nT0505\nG96 S180 M203\nG95\nG1 X40. Z-20. F0.2\n";
+      "G109 L1\nG21 G54\nT11 M6\nG0 G53 B0.\nM950\nM200\nG97 S3000 M3\nG1 X20. Z-5. F300.\nM202\nM951\nM30\n";
+  const std::string turning = "G109 L2\nG21 G54\nT0505\nG96 S180 M203\nG95\nG1 X40. Z-20. F0.2\n";
   CHECK(check(integrex, {{"I.EIA", "%\n" + milling + turning + "M950\nM951\nM205\nM30\n%\n"}}) ==
-        "I.EIA:6:1: error: channel 1 holds the shared main spindle as the C axis (M200) while channel 2 may "
-        "still turn it (G96 S180 M203, I.EIA:15); no wait orders a stop of it before the hold\n"
+        "I.EIA:7:1: error: channel 1 holds the shared main spindle as the C axis (M200) while channel 2 may "
+        "still turn it (G96 S180 M203, I.EIA:16); no wait orders a stop of it before the hold\n"
         "M200\n^\n"
-        "I.EIA:15:1: note: channel 2 starts the main spindle here; no stop of it is known to come before the "
+        "I.EIA:16:1: note: channel 2 starts the main spindle here; no stop of it is known to come before the "
         "hold\nG96 S180 M203\n^\n"
         "check: 2 channels, 4 waits paired, 1 error\n");
   // Stopped before the wait that comes before the hold: sound. Stopped between the same waits
@@ -306,14 +306,14 @@ TEST_CASE("shared spindles: a hold as the C axis while another channel's start o
   CHECK(check(integrex, {{"I.EIA", "%\n" + milling + turning + "M205\nM950\nM951\nM30\n%\n"}}) ==
         "check: 2 channels, 4 waits paired, 0 errors\n");
   const std::string late =
-      "%\nG109 L1\nG21\nT11 M6\nM950\nM200\nG97 S3000 M3\nG1 X20. Z-5. F300.\nM202\nM951\n"
-      "M30\nG109 L2\nG21\nT0505\nG96 S180 M203\nG95\nG1 X40. Z-20. F0.2\nM950\nM205\n"
+      "%\nG109 L1\nG21 G54\nT11 M6\nG0 G53 B0.\nM950\nM200\nG97 S3000 M3\nG1 X20. Z-5. F300.\nM202\nM951\n"
+      "M30\nG109 L2\nG21 G54\nT0505\nG96 S180 M203\nG95\nG1 X40. Z-20. F0.2\nM950\nM205\n"
       "M951\nM30\n%\n";
   CHECK(check(integrex, {{"I.EIA", late}}) ==
-        "I.EIA:6:1: error: channel 1 holds the shared main spindle as the C axis (M200) while channel 2 may "
-        "still turn it (G96 S180 M203, I.EIA:15); no wait orders a stop of it before the hold\n"
+        "I.EIA:7:1: error: channel 1 holds the shared main spindle as the C axis (M200) while channel 2 may "
+        "still turn it (G96 S180 M203, I.EIA:16); no wait orders a stop of it before the hold\n"
         "M200\n^\n"
-        "I.EIA:15:1: note: channel 2 starts the main spindle here; no stop of it is known to come before the "
+        "I.EIA:16:1: note: channel 2 starts the main spindle here; no stop of it is known to come before the "
         "hold\nG96 S180 M203\n^\n"
         "check: 2 channels, 4 waits paired, 1 error\n");
 
@@ -323,14 +323,14 @@ TEST_CASE("shared spindles: a hold as the C axis while another channel's start o
   sub_c.spindles[1].c_axis.on = {"M300"};
   sub_c.spindles[1].c_axis.off = {"M302"};
   const std::string sub =
-      "%\nG109 L1\nG21\nT11 M6\nM950\nM902\nM300\nG97 S3000 M3\nG1 X20. Z5. F300.\nM302\n"
-      "M951\nM30\nG109 L2\nG21\nT0505\nG92 S2500 R2\nG96 S180 M303\nG95\nG1 X40. Z20. F0.2\n"
+      "%\nG109 L1\nG21 G54\nT11 M6\nG0 G53 B0.\nM950\nM902\nM300\nG97 S3000 M3\nG1 X20. Z5. F300.\nM302\n"
+      "M951\nM30\nG109 L2\nG21 G54\nT0505\nG92 S2500 R2\nG96 S180 M303\nG95\nG1 X40. Z20. F0.2\n"
       "M950\nM951\nM305\nM30\n%\n";
   CHECK(check(sub_c, {{"S.EIA", sub}}) ==
-        "S.EIA:7:1: error: channel 1 holds the shared sub spindle as the C axis (M300) while channel 2 may "
-        "still turn it (G96 S180 M303, S.EIA:17); no wait orders a stop of it before the hold\n"
+        "S.EIA:8:1: error: channel 1 holds the shared sub spindle as the C axis (M300) while channel 2 may "
+        "still turn it (G96 S180 M303, S.EIA:18); no wait orders a stop of it before the hold\n"
         "M300\n^\n"
-        "S.EIA:17:1: note: channel 2 starts the sub spindle here; no stop of it is known to come before the "
+        "S.EIA:18:1: note: channel 2 starts the sub spindle here; no stop of it is known to come before the "
         "hold\nG96 S180 M303\n^\n"
         "check: 2 channels, 4 waits paired, 1 error\n");
 
@@ -392,8 +392,8 @@ TEST_CASE("shared spindles: the change rule on the Integrex, on the sub spindle,
   // The Integrex: head 2 stops the main spindle (M205) between the same waits as head 1's cut.
   const machine integrex = load_machine("integrex-i200st");
   const std::string stop =
-      "%\nG109 L1\nG21\nT0101\nG96 S180 M203\nG95\nM950\nG1 X40. Z-20. F0.2\nM951\nM30\n"
-      "G109 L2\nG21\nT0505\nM950\nM205\nM951\nM30\n%\n";
+      "%\nG109 L1\nG21 G54\nT0101\nG96 S180 M203\nG95\nM950\nG1 X40. Z-20. F0.2\nM951\nM30\n"
+      "G109 L2\nG21 G54\nT0505\nM950\nM205\nM951\nM30\n%\n";
   CHECK(
       check(integrex, {{"I.EIA", stop}}) ==
       "I.EIA:15:1: error: channel 2 stops the shared main spindle (M205) while channel 1 may still cut on it "

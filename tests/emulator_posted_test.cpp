@@ -1,0 +1,76 @@
+// The control emulator catches each writer fix of issue 37 when it is undone: a program that
+// twinpost posted is edited back to what the writer used to write, and the checker's reading
+// (check_nc_resources, as `twinpost check` and post's self-check run it) names the hazard.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "analysis/shared_resources.hpp"
+#include "check/sync_report.hpp"
+#include "file_test_support.hpp"
+#include "machines/machine_loader.hpp"
+#include "post_test_jobs.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+std::string sample_job(const std::string& name) {
+  return test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/samples/" + name + "/job.cls");
+}
+
+// The posted program `file` of `job` on `machine`, with its first `from` after `after` replaced
+// by `to`, checked as `twinpost check` would.
+std::string edited_check(const std::string& job, const std::string& machine_name, const std::string& file,
+                         const std::string& after, const std::string& from, const std::string& to) {
+  const machine m = load_machine(machine_name);
+  const test::posted p = test::post_in_fresh_dir(job, m, "emulator-" + machine_name);
+  REQUIRE(p.ok);
+  std::vector<nc_source> files;
+  for (const auto& [name, text] : p.files) {
+    std::string t = text;
+    if (name == file) {
+      const std::size_t at = t.find(from, t.find(after));
+      REQUIRE(at != std::string::npos);
+      t.replace(at, from.size(), to);
+    }
+    files.push_back({name, t});
+  }
+  return format_sync_text(check_nc_resources(files, m));
+}
+
+}  // namespace
+
+TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named", "[analysis][emulator]") {
+  // Item 8: the mill's G54 after the first tool call, dropped.
+  CHECK(edited_check(sample_job("four-axis-wrap"), "rotary-4axis", "FOUR_AXIS_WRAP.nc", "T02 M6", "G54\n",
+                     "") ==
+        "FOUR_AXIS_WRAP.nc:16:4: error: channel 1: a feed move with no work offset in force: the program "
+        "would cut in whatever offset the last program left; set one (G54-G59, G54.1 P..) before the first "
+        "cut\nG1 Z30. F800.\n   ^\n"
+        "check: 1 channel, 0 waits paired, 1 error\n");
+  // Item 1: the B index after the second tool call on the Integrex, dropped.
+  CHECK(
+      edited_check(sample_job("drill-tap"), "integrex-i200st", "DRILL-TAP.EIA", "T03 M6",
+                   "M108\nG0 G53 B0.\nM107\n", "") ==
+      "DRILL-TAP.EIA:73:11: error: channel 1: a feed move with the B head not indexed since the tool call at "
+      "line 66: the tool changer may leave it anywhere; index it (G0 G53 B..) before the cut\n"
+      "G98 G84.2 X0. Y0. Z-18. R5. F1.5\n          ^\n"
+      "check: 2 channels, 2 waits paired, 1 error\n");
+  // Item 2: the pick-off's release opening the main chuck on the bar again.
+  CHECK(edited_check(sample_job("pick-off"), "integrex-i200st", "PICK-OFF.EIA", "M952", "G0 G53 W0.\n",
+                     "M206\nG0 G53 W0.\n") ==
+        "PICK-OFF.EIA:59:1: error: channel 1: M206 opens the main spindle's chuck after the part-off at line "
+        "52: "
+        "it holds the bar, which would be released; after a part-off the sub spindle takes the part away and "
+        "the bar stays clamped ([transfer] release_after_cutoff)\nM206\n^\n"
+        "check: 2 channels, 10 waits paired, 1 error\n");
+  // Item 5: a tool counter in the transfer's approach position.
+  CHECK(
+      edited_check(sample_job("pick-off"), "fanuc-0itd-twin", "PICK-OFF_1.nc", "T0303", "M8\n",
+                   "M8\n#501=#501+1\n") ==
+      "PICK-OFF_1.nc:38:1: error: channel 1: #501 is written here, but machine 'fanuc-0itd-twin' reserves it "
+      "(read by transfer.grip): the setup owns its value; write a variable the machine file does not name\n"
+      "#501=#501+1\n^\n"
+      "check: 2 channels, 10 waits paired, 1 error\n");
+}
