@@ -210,7 +210,9 @@ struct control_emulator::impl {
       }
     }
     if (cut && c.holder >= 0 && x_column && x <= 0 && !c.cutoff_line) c.cutoff_line = b.line;
-    if (!b.may_have(gms)) return;
+    // Starts, stops, chucks and synchronisation are M words (each spindle's cw/ccw/stop is its
+    // own code): a block without one changes none of them, and most blocks have none.
+    if (!b.may_have(nc_letter('M'))) return;
     spindles_and_chucks(b, c, words);
   }
 
