@@ -77,6 +77,27 @@ void channel_writer::multiaxis_tool(const tool_event& t, int) {
   for (axis_memory& a : last_ijk_) a.known = false;
 }
 
+void channel_writer::heads_upright() {
+  // A tool changer takes the tool with the heads at 0 (the spindle along its axis): after a tilted
+  // plane (G69 does not turn the heads back) or tilted moves the heads turn back at the tool-change
+  // height before the call. Tables may stay where they are: the part turns, not the spindle.
+  const kinematic_chain& c = *chain_;
+  bool tilted = false;
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+    tilted =
+        tilted || (c.rotaries[i].kind == rotary_kind::head && (!last_rot_[i].known || last_rot_[i].n != 0));
+  if (!tilted) return;
+  text_buffer& b = out_.open_block();
+  word_start_ = b.size();
+  b += "G0";
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+    if (c.rotaries[i].kind == rotary_kind::head)
+      rotary_word(b, c.rotaries[i].address, 0.0, last_rot_[i], rotary_decimals, true);
+  out_.end_block();
+  word_start_ = std::string::npos;
+  motion_g_ = 0;
+}
+
 void channel_writer::multiaxis_off() {
   if (plane_on_) close_plane();
   if (inverse_time_) {

@@ -205,6 +205,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   }
   if (!coolant_was.empty()) coolant_block(coolant_off_was, true);
   go_home();
+  if (chain_ && !ch_.head_index.present()) heads_upright();  // an indexing head turns with its own clamps
   forget_axes();
   motion_g_ = -1;
   out_.block(call, true);

@@ -429,6 +429,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool plane_arc_checked(const arc_event& cl, const arc_event& w, int line);
   /// Before a tool call and at the end: G94 again, and the length offset cancelled.
   void multiaxis_off();
+  /// Before a tool call: the heads of the chain back at 0 if they may be tilted.
+  void heads_upright();
   /// At the end, a length-offset cancel still waiting for the home blocks: the footer's, when it
   /// homes and then cancels, else the home blocks and the cancel before the footer.
   void footer_cancels_length();

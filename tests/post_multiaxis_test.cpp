@@ -460,16 +460,17 @@ TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0",
   INFO(q.diagnostics);
   REQUIRE(q.ok);
   // B swings to 5 degrees and back (8 sub-moves each way, G93), then G94 for the arc.
-  CHECK(q.files.at("MOVES.nc") ==
-        "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS5000 M3\n"
-        "G0 A0. B0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 "
-        "F400.\n"
-        "X11.226 Z-0.095 B1.25 F400.\nX16.838 Z-0.214 B1.875 F400.\nX22.448 Z-0.381 B2.5 F400.\n"
-        "X28.056 Z-0.595 B3.125 F400.\nX33.661 Z-0.856 B3.75 F400.\nX39.264 Z-1.166 B4.375 F400.\n"
-        "X44.862 Z-1.522 B5. F400.\nX41.764 Z-1.166 B4.375 F400.\nX38.661 Z-0.856 B3.75 F400.\n"
-        "X35.556 Z-0.595 B3.125 F400.\nX32.448 Z-0.381 B2.5 F400.\nX29.338 Z-0.214 B1.875 F400.\n"
-        "X26.226 Z-0.095 B1.25 F400.\nX23.113 Z-0.024 B0.625 F400.\nX20. Z0. B0. F400.\nG94\n"
-        "G3 X30. Y10. I0. J10. F500.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
+  CHECK(
+      q.files.at("MOVES.nc") ==
+      "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nG0 B0. A0.\nT01 M6\nG54\nS5000 M3\n"
+      "G0 A0. B0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 "
+      "F400.\n"
+      "X11.226 Z-0.095 B1.25 F400.\nX16.838 Z-0.214 B1.875 F400.\nX22.448 Z-0.381 B2.5 F400.\n"
+      "X28.056 Z-0.595 B3.125 F400.\nX33.661 Z-0.856 B3.75 F400.\nX39.264 Z-1.166 B4.375 F400.\n"
+      "X44.862 Z-1.522 B5. F400.\nX41.764 Z-1.166 B4.375 F400.\nX38.661 Z-0.856 B3.75 F400.\n"
+      "X35.556 Z-0.595 B3.125 F400.\nX32.448 Z-0.381 B2.5 F400.\nX29.338 Z-0.214 B1.875 F400.\n"
+      "X26.226 Z-0.095 B1.25 F400.\nX23.113 Z-0.024 B0.625 F400.\nX20. Z0. B0. F400.\nG94\n"
+      "G3 X30. Y10. I0. J10. F500.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
 }
 
 TEST_CASE("multi-axis: the trunnion writes an arc centre 20 mm away (I J K in the axes' format)",
@@ -593,7 +594,8 @@ TEST_CASE("multi-axis: a rapid onto the pole takes the outer angle of the first 
   REQUIRE(p.ok);
   CHECK(
       p.files.at("POLE.nc") ==
-      "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 B0. C90.\nG0 X-40. Y40.\nG0 G43 H1 X-40. Y40. Z5. "
+      "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nG0 B0.\nT01 M6\nG98\nG0 B0. C90.\nG0 X-40. Y40.\nG0 G43 H1 X-40. "
+      "Y40. Z5. "
       "B0. C90.\n"
       "G1 Z-5. F1000.\n"
       "G93 G1 X-36.182 Z-5.075 B0.625 F1600.\nX-32.366 Z-5.192 B1.25 F1600.\nX-28.551 Z-5.351 B1.875 F1600.\n"
@@ -663,7 +665,7 @@ TEST_CASE("multi-axis: a cut that reaches the pole turns the outer axis there be
   INFO(p.diagnostics);
   REQUIRE(p.ok);
   CHECK(p.files.at("POLE.nc") ==
-        "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 B-10. C0.\nG0 X-20.853 Y40.\n"
+        "%\nO1000 (POLE)\nG28 U0.\nG28 W0.\nG0 B0.\nT01 M6\nG98\nG0 B-10. C0.\nG0 X-20.853 Y40.\n"
         "G0 G43 H1 X-20.853 Y40. Z0.551 B-10. C0.\n"
         "G93 G1 X40. Z-5. B0. F100.\nX31.428 Y47.035 C11.25 F88.889\nX21.648 Y52.263 C22.5 F88.889\n"
         "X11.036 Y55.482 C33.75 F88.889\nX0. Y56.569 C45. F88.889\nX-11.036 Y55.482 C56.25 F88.889\n"
@@ -686,7 +688,7 @@ TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z 
   INFO(p.diagnostics);
   REQUIRE(p.ok);
   CHECK(p.files.at("TILTED.nc") ==
-        "%\nO1000 (TILTED)\nG28 U0.\nG28 W0.\nT01 M6\nG98\nG0 X40. Y0. Z5.\nG1 Z-5. F1000.\n"
+        "%\nO1000 (TILTED)\nG28 U0.\nG28 W0.\nG0 B0.\nT01 M6\nG98\nG0 X40. Y0. Z5.\nG1 Z-5. F1000.\n"
         "G93 G1 G43 H1 X40.554 Y0. Z-5.057 B0.5 C0. F400.\nX41.108 Z-5.141 B1. F400.\n"
         "X41.66 Z-5.251 B1.5 F400.\nX42.212 Z-5.388 B2. F400.\nX36.66 Z-5.251 B1.5 F400.\n"
         "X31.108 Z-5.141 B1. F400.\nX25.554 Z-5.057 B0.5 F400.\nX20. Z-5. B0. F400.\nG98\nG0 Z20.\n"
