@@ -16,6 +16,8 @@ namespace twinpost::scripting {
 /// Why `block` cannot go into a program as one block ("" when it can): a '%' or a NUL or
 /// other control byte, said as "a '%' (...)" / "the control byte \\x1b (...)".
 std::string block_fault(std::string_view block);
+/// Whether `block` holds none of them (nor a line break): one table look-up a byte.
+bool block_clean(std::string_view block);
 
 /// Which budget ran out.
 enum class spent { none, call, job_instructions, job_time };
