@@ -95,18 +95,18 @@ double pattern_steps(std::string_view subject, std::string_view pat) {
     }
     std::size_t ep = p + 1;
     if (c == '%') {
-      if (p + 1 >= pat.size()) return 0;
+      if (p + 1 >= pat.size()) break;
       const char d = pat[p + 1];
       if (d == 'b') {
-        if (p + 3 >= pat.size()) return 0;
+        if (p + 3 >= pat.size()) break;
         linear = true;
         p += 4;
         continue;
       }
       if (d == 'f') {
-        if (p + 2 >= pat.size() || pat[p + 2] != '[') return 0;
+        if (p + 2 >= pat.size() || pat[p + 2] != '[') break;
         const std::size_t e = set_end(pat, p + 2);
-        if (e == std::string_view::npos) return 0;
+        if (e == std::string_view::npos) break;
         p = e + 1;
         continue;
       }
@@ -118,7 +118,7 @@ double pattern_steps(std::string_view subject, std::string_view pat) {
       ep = p + 2;
     } else if (c == '[') {
       const std::size_t e = set_end(pat, p);
-      if (e == std::string_view::npos) return 0;
+      if (e == std::string_view::npos) break;
       ep = e + 1;
     }
     const char q = ep < pat.size() ? pat[ep] : '\0';

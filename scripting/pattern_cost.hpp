@@ -11,7 +11,8 @@ namespace twinpost::scripting {
 /// `subject`: the start positions tried (1 when anchored with '^') times, for every item
 /// repeated with '*', '+' or '-', one more than the longest run of subject bytes the item
 /// matches, times 2 for each '?', times the subject's length when the pattern holds %b or a
-/// back reference. 0 for a malformed pattern (Lua reports it).
+/// back reference. A malformed pattern counts up to the item Lua stops at (the matcher
+/// backtracks through the items before it until it gets there, if it ever does).
 double pattern_steps(std::string_view subject, std::string_view pattern);
 
 }  // namespace twinpost::scripting

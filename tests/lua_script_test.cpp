@@ -439,3 +439,13 @@ TEST_CASE("lua script: reads stay in the machine file's folder, on regular files
   CHECK(error_of([&] { lua_script t(dir + "/real.lua"); }).empty());
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("lua script: a malformed pattern counts the items before its fault", "[scripting]") {
+  // Found by the script fuzz target: the matcher backtracks through '.-.-' for every start
+  // and never reaches the unclosed '[' (the literal before it fails first).
+  CHECK(load_error("local s = string.rep('a', 1e5)\nlocal i = s:find('.-.-x[y')") ==
+        "ev.lua:2: string.find: the pattern '.-.-x[y' may take 3e+15 steps on a subject of 100000 bytes (at "
+        "most "
+        "1e+08): anchor it with '^' or repeat fewer items ('.-', '.*')");
+  CHECK(load_error("local i = ('abc'):find('[a')") == "ev.lua:1: malformed pattern (missing ']')");
+}
