@@ -39,10 +39,18 @@ void read_script(const detail::table_reader& r, std::string_view source, event_t
                              "'\\', ':' or leading '.')",
                              s));
     const std::filesystem::path p = std::filesystem::path(source).parent_path() / s;
+    // Not followed: a symbolic link beside the machine file could name any file (the script
+    // is also opened with O_NOFOLLOW, scripting/confined_file.cpp).
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec))
+    const std::filesystem::file_type t = std::filesystem::symlink_status(p, ec).type();
+    if (t == std::filesystem::file_type::not_found || t == std::filesystem::file_type::none)
       r.fail(*n,
              fmt::format("events.script \"{}\": no such file beside the machine file ('{}')", s, p.string()));
+    if (t != std::filesystem::file_type::regular)
+      r.fail(*n, fmt::format(
+                     "events.script \"{}\": '{}' is not a regular file (a symbolic link, a FIFO, a device "
+                     "or a folder): only a regular file beside the machine file is read",
+                     s, p.string()));
     ev.script_path = p.string();
   }
   r.read("script_records", ev.script_records);

@@ -105,8 +105,10 @@ expect "read_file: a FIFO" 1 "" "shop.lua:2: error: post.read_file: 'fifo' is no
 $note" -- post job.cls -m ./m.toml -o o
 mv shop.lua real.lua
 ln -s real.lua shop.lua
-expect "the script, a symbolic link" 1 "" "shop.lua: error: the script './shop.lua' is a symbolic link (only a regular file beside the machine file is read)
-post: failed with 1 error; no file written" -- post job.cls -m ./m.toml -o o
+expect "the script, a symbolic link" 2 "" "./m.toml:260:10: error: events.script \"shop.lua\": './shop.lua' is not a regular file (a symbolic link, a FIFO, a device or a folder): only a regular file beside the machine file is read" -- post job.cls -m ./m.toml -o o
+rm shop.lua
+mkfifo shop.lua
+expect "the script, a FIFO" 2 "" "./m.toml:260:10: error: events.script \"shop.lua\": './shop.lua' is not a regular file (a symbolic link, a FIFO, a device or a folder): only a regular file beside the machine file is read" -- machines --show ./m.toml
 rm shop.lua
 head -c 4194305 /dev/zero | tr '\0' ' ' > shop.lua
 expect "the script, too large" 1 "" "shop.lua: error: the script './shop.lua' is larger than 4194304 bytes
