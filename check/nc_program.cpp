@@ -775,6 +775,24 @@ class reader {
     if (options_.on_block && is_block) options_.on_block(nc_block(channel, f.name, no, line, words_));
   }
 
+  // Whether a '/' (block delete, /1../9) stands before column `column` (1-based) of `line`,
+  // outside comments: the control skips what follows it when the switch is on.
+  static bool under_block_delete(std::string_view line, int column) {
+    const std::size_t end = std::min(line.size(), static_cast<std::size_t>(std::max(column - 1, 0)));
+    for (std::size_t i = 0; i < end; ++i) {
+      if (line[i] == '(') {
+        const std::size_t close = line.find(')', i);
+        if (close == std::string_view::npos) return false;
+        i = close;
+      } else if (line[i] == ';') {
+        return false;
+      } else if (line[i] == '/') {
+        return true;
+      }
+    }
+    return false;
+  }
+
   // Sorts the words of a block into wait, end and near-waits; a wait given as an expression
   // and a second wait in the block are reported here (not in an unknown channel's section).
   block_words classify_words(const std::vector<nc_word>& words, int channel, const line_place& at) {
@@ -793,6 +811,11 @@ class reader {
       int code = 0;
       if (!to_int(w.value, code)) continue;
       if (w.address == wait_addr_ && wr.is_any_wait(code)) {
+        if (channel >= 0 && under_block_delete(at.line, w.column))
+          report(severity::error, at(w.column),
+                 fmt::format("wait {} is under block delete ('/'): with the block delete switch on the "
+                             "control skips it, and the channels wait for ever or lose this sync point",
+                             name(w)));
         if (!b.wait) {
           b.wait = &w;
           b.wait_code = code;

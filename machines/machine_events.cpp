@@ -39,10 +39,18 @@ void read_script(const detail::table_reader& r, std::string_view source, event_t
                              "'\\', ':' or leading '.')",
                              s));
     const std::filesystem::path p = std::filesystem::path(source).parent_path() / s;
+    // Not followed: a symbolic link beside the machine file could name any file (the script
+    // is also opened with O_NOFOLLOW, scripting/confined_file.cpp).
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(p, ec))
+    const std::filesystem::file_type t = std::filesystem::symlink_status(p, ec).type();
+    if (t == std::filesystem::file_type::not_found || t == std::filesystem::file_type::none)
       r.fail(*n,
              fmt::format("events.script \"{}\": no such file beside the machine file ('{}')", s, p.string()));
+    if (t != std::filesystem::file_type::regular)
+      r.fail(*n, fmt::format(
+                     "events.script \"{}\": '{}' is not a regular file (a symbolic link, a FIFO, a device "
+                     "or a folder): only a regular file beside the machine file is read",
+                     s, p.string()));
     ev.script_path = p.string();
   }
   r.read("script_records", ev.script_records);
@@ -52,6 +60,18 @@ void read_script(const detail::table_reader& r, std::string_view source, event_t
              fmt::format("events.script_records: \"{}\" is not a CL major word", w));
     ascii::upper_in_place(w);
   }
+  // The script's budgets for the whole job (docs/scripting.md, "What a script cannot do"):
+  // 0 keeps the default.
+  if (r.read("script_instructions", ev.script_instructions) &&
+      !(ev.script_instructions >= 1e6 && ev.script_instructions <= 1e13))
+    r.fail(*r.find("script_instructions"),
+           fmt::format("events.script_instructions must be 1e6..1e13, not {}", ev.script_instructions));
+  if (r.read("script_seconds", ev.script_seconds) && !(ev.script_seconds >= 1 && ev.script_seconds <= 86400))
+    r.fail(*r.find("script_seconds"),
+           fmt::format("events.script_seconds must be 1..86400, not {}", ev.script_seconds));
+  if ((ev.script_instructions > 0 || ev.script_seconds > 0) && ev.script.empty())
+    r.fail(*r.find(ev.script_instructions > 0 ? "script_instructions" : "script_seconds"),
+           "events.script_instructions and script_seconds without events.script: no script to hold");
   if (!ev.script_records.empty() && ev.script.empty())
     r.fail(*r.find("script_records"), "events.script_records without events.script: no script to take them");
 }
@@ -91,7 +111,7 @@ void read_events(const table_reader& root, machine& m) {
   table_reader r(*t, "events", root.source(),
                  {"program_start", "program_end", "tool_change", "spindle_start", "spindle_stop",
                   "coolant_on", "coolant_off", "wait", "cycle", "transfer", "operation", "section", "record",
-                  "script", "script_records"});
+                  "script", "script_records", "script_instructions", "script_seconds"});
   read_script(r, root.source(), m.events);
   for (std::size_t i = 0; i < event_point_count; ++i) {
     const toml::table* e = r.sub_table(event_point_keys[i]);

@@ -86,6 +86,9 @@ struct event_templates {
   /// [events] script_records: CL majors (upper case) the script's on_record takes over, even
   /// ones the post knows.
   std::vector<std::string> script_records;
+  /// [events] script_instructions, script_seconds: the script's budgets for the whole job,
+  /// raised from scripting::script_limits' defaults; 0 when the file does not say.
+  double script_instructions = 0, script_seconds = 0;
 
   const event_blocks& operator[](event_point p) const { return at[static_cast<std::size_t>(p)]; }
   bool empty() const {

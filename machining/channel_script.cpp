@@ -111,7 +111,10 @@ void channel_writer::script_record(const passthrough_event& r, int line) {
 void channel_writer::emit(std::string_view block) {
   // Called inside a Lua call: reports, never throws (script_host).
   const std::string b(block);
-  if (!block_fits(b)) return script_block_note(b, "post.emit");  // the error is at the CL record
+  // The same checks as an [events] block's: the control's word formats, the X travel (the
+  // scripting layer has refused a '%', a line break, NUL and control bytes).
+  if (!block_fits(b) || !user_block_in_travel(b))
+    return script_block_note(b, "post.emit");  // at the CL record
   out_.block_as_is(b);
   note_user_block(b, true);
 }
@@ -120,7 +123,8 @@ void channel_writer::script_block_note(std::string_view block, std::string_view 
   diagnostic n;
   n.level = severity::note;
   n.file = script_->lua->name();
-  n.message = fmt::format("channel {}: the block '{}' came from the script ({})", ch_.number, block, how);
+  n.message = fmt::format("channel {}: the block '{}' came from the script ({})", ch_.number,
+                          scripting::escape_controls(block), how);
   diags_.report(std::move(n));
 }
 
@@ -142,7 +146,7 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
   // The block given back as it came (`return text`) is kept: the writer's modal state still holds.
   if (v == scripting::block_verdict::keep || script_->failed || replacement == block)
     return block_writer::verdict::keep;
-  if (!block_fits(replacement)) {  // the error is at the CL record
+  if (!block_fits(replacement) || !user_block_in_travel(replacement)) {  // the error is at the CL record
     script_block_note(replacement, "on_block");
     return block_writer::verdict::drop;
   }

@@ -469,7 +469,11 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
   std::unique_ptr<scripting::lua_script> lua;
   if (!m.events.script_path.empty()) {
     try {
-      lua = std::make_unique<scripting::lua_script>(m.events.script_path);
+      scripting::script_limits limits;
+      if (m.events.script_instructions > 0)
+        limits.instructions_per_job = static_cast<long long>(m.events.script_instructions);
+      if (m.events.script_seconds > 0) limits.seconds_per_job = m.events.script_seconds;
+      lua = std::make_unique<scripting::lua_script>(m.events.script_path, limits);
     } catch (const scripting::script_error& e) {
       sink.report(script_diagnostic(e));
       return sum;

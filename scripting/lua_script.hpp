@@ -64,12 +64,28 @@ struct script_context {
 /// on_block's answer.
 enum class block_verdict { keep, replace, drop };
 
-/// The limits of the sandbox.
+/// The limits of the sandbox (docs/scripting.md, "What a script cannot do"). The job's
+/// instructions and seconds may be raised by the machine file ([events] script_instructions,
+/// script_seconds); the others are fixed.
 struct script_limits {
-  long instructions_per_call = 10'000'000;  ///< Lua VM instructions per hook call
-  std::size_t memory_bytes = 64u << 20;     ///< the whole Lua state
-  std::size_t read_file_bytes = 16u << 20;  ///< one post.read_file()
+  long instructions_per_call = 10'000'000;         ///< Lua VM instructions per hook call
+  long long instructions_per_job = 1'000'000'000;  ///< VM instructions + bytes of C work, whole job
+  double seconds_per_job = 60;                     ///< wall-clock time inside the script, whole job
+  std::size_t memory_bytes = 64u << 20;            ///< the whole Lua state
+  std::size_t read_file_bytes = 16u << 20;         ///< one post.read_file()
+  std::size_t script_bytes = 4u << 20;             ///< the script file itself
+  std::size_t pattern_subject_bytes = 1u << 20;    ///< a subject of string.find/match/gmatch/gsub
+  double pattern_steps = 1e8;                      ///< the matcher's worst case for one call
+  std::size_t emit_bytes = 64u << 20;              ///< post.emit and on_block's growth, whole job
+  long warnings = 1000;                            ///< post.warning calls, whole job
+  std::size_t warning_bytes = 1u << 20;            ///< their text, whole job
 };
+
+/// `text` with every control byte but tab (0x00-0x1f, 0x7f) written as \xHH, so that a
+/// script's message cannot send a terminal escape sequence.
+std::string escape_controls(std::string_view text);
+
+struct script_state;  // scripting/lua_state.hpp
 
 /// A loaded script. Not copyable; one per job (post.vars lives as long as the object).
 class lua_script {
@@ -105,8 +121,7 @@ class lua_script {
                          std::string& replacement);
 
  private:
-  struct impl;
-  std::unique_ptr<impl> impl_;
+  std::unique_ptr<script_state> impl_;
 };
 
 }  // namespace twinpost::scripting

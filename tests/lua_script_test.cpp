@@ -2,7 +2,12 @@
 // and each hook's arguments and answers.
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -227,4 +232,220 @@ TEST_CASE("lua script: post.read_file reads beside the script and nowhere else",
 TEST_CASE("lua script: a missing script file", "[scripting]") {
   CHECK(error_of([] { lua_script s("/nonexistent/ev.lua"); }) ==
         "ev.lua: cannot read the script '/nonexistent/ev.lua'");
+}
+
+// Issue 38: what a script from someone else cannot do to the post.
+
+TEST_CASE("lua script: a strict mode on _ENV neither crashes the load nor hides the hooks", "[scripting]") {
+  lua_script s("/m/ev.lua",
+               "setmetatable(_ENV, {__index = function(_, k) error('undefined ' .. k) end})\n"
+               "function on_block(text)\n"
+               "  return undefined_name\n"
+               "end\n");
+  CHECK(s.has_on_block());
+  CHECK_FALSE(s.has_on_record());
+  recording_host host;
+  std::string r;
+  CHECK(error_of([&] { s.on_block("G0", {}, host, r); }) == "ev.lua:1: undefined undefined_name");
+  CHECK(load_error("setmetatable(_ENV, {__index = function(_, k) error('undefined ' .. k, 2) end})\n"
+                   "local x = y\n") == "ev.lua:2: undefined y");
+}
+
+TEST_CASE("lua script: a metatable with __gc is refused", "[scripting]") {
+  CHECK(load_error("setmetatable({}, {__gc = function() while true do end end})") ==
+        "ev.lua:1: setmetatable: a metatable with __gc is refused (a finalizer runs outside the script's "
+        "budgets)");
+  CHECK(load_error("local t = setmetatable({}, {}); getmetatable(t).__gc = function() end").empty());
+}
+
+TEST_CASE("lua script: the job's budget of instructions and of time", "[scripting]") {
+  script_limits limits;
+  limits.instructions_per_job = 1'000'000;
+  lua_script s("/m/ev.lua",
+               "function on_block(text)\n"
+               "  for i = 1, 30000 do end\n"
+               "end\n",
+               limits);
+  recording_host host;
+  std::string r;
+  std::string e;
+  int calls = 0;
+  while (e.empty() && calls < 1000) {
+    e = error_of([&] { s.on_block("G0", {}, host, r); });
+    ++calls;
+  }
+  CHECK(e ==
+        "ev.lua:2: the job's budget of 1000000 instructions exceeded (bytes of string work count as "
+        "instructions; [events] script_instructions raises it)");
+  // 30 000 instructions a call (one FORLOOP an iteration): the 34th call crosses 10^6.
+  CHECK(calls == 34);
+  // Spent for the job: the next call fails at once.
+  CHECK(error_of([&] { s.on_block("G0", {}, host, r); }) == e);
+
+  script_limits slow;
+  slow.instructions_per_call = 2'000'000'000;
+  slow.instructions_per_job = 1'000'000'000'000;
+  slow.seconds_per_job = 0.2;
+  CHECK(error_of([&] { lua_script t("/m/ev.lua", "local n = 0\nwhile true do n = n + 1 end", slow); }) ==
+        "ev.lua:2: the job's time budget of 0.2 s exceeded ([events] script_seconds raises it)");
+}
+
+TEST_CASE("lua script: C work is bounded before it starts and charged to the job", "[scripting]") {
+  CHECK(
+      load_error("local s = string.rep('a', 1e5)\nlocal i = s:find('.-.-.-.-b')") ==
+      "ev.lua:2: string.find: the pattern '.-.-.-.-b' may take 5e+25 steps on a subject of 100000 bytes (at "
+      "most 1e+08): anchor it with '^' or repeat fewer items ('.-', '.*')");
+  CHECK(load_error("local s = ('a'):rep(2^20 + 1)\nlocal i = s:find('a', 1, true)") ==
+        "ev.lua:2: string.find: a subject of 1048577 bytes is over the limit of 1048576 bytes");
+  CHECK(load_error("local s = string.rep('ab', 1e9)") ==
+        "ev.lua:1: string.rep: a result of 2000000000 bytes is over the memory ceiling of 67108864 bytes");
+  // Ordinary patterns on ordinary subjects pass.
+  CHECK(load_error("local s = string.rep('5;DRILL 8\\n', 20000)\n"
+                   "local n = 0 for a, b in s:gmatch('(%d+);([^\\n]*)\\n') do n = n + 1 end\n"
+                   "assert(n == 20000)\n"
+                   "assert(('N120 G1 X42.512 "
+                   "Z-17.25'):match('^N(%d+)%s*G(%d+)%s*X([%-%d%.]+)%s*Z([%-%d%.]+)') == '120')\n"
+                   "assert(select(2, s:gsub('DRILL', 'MILL')) == 20000)")
+            .empty());
+  // A loop of cheap VM instructions over expensive C calls: the bytes count.
+  script_limits limits;
+  limits.instructions_per_job = 10'000'000;
+  CHECK(error_of([&] {
+          lua_script t("/m/ev.lua",
+                       "local s = string.rep('a', 1e6)\n"
+                       "for i = 1, 100 do local x = s:find('b', 1, true) end\n",
+                       limits);
+        }) ==
+        "ev.lua:2: the job's budget of 10000000 instructions exceeded (bytes of string work count as "
+        "instructions; [events] script_instructions raises it)");
+  CHECK(error_of([&] {
+          lua_script t("/m/ev.lua",
+                       "local s = string.rep('a', 1e6)\nfor i = 1, 100 do local x = s:upper() end\n", limits);
+        }).find("ev.lua:2: the job's budget of 10000000") == 0);
+  CHECK(error_of([&] {
+          lua_script t("/m/ev.lua", "table.move({}, 1, 1e12, 2)", limits);
+        }).find("ev.lua:1: the job's budget of 10000000") == 0);
+}
+
+TEST_CASE("lua script: string.dump is out of reach, also through the strings' metatable", "[scripting]") {
+  CHECK(load_error("assert(string.dump == nil)\n"
+                   "assert(('').dump == nil)\n"
+                   "assert(getmetatable('') == false)\n"
+                   "assert(('x'):upper() == 'X')\n"
+                   "string.twice = function(s) return s .. s end\n"
+                   "assert(('ab'):twice() == 'abab')")
+            .empty());
+  CHECK(load_error("local f = ('').dump(print)") == "ev.lua:1: attempt to call a nil value (field 'dump')");
+}
+
+TEST_CASE("lua script: what a script writes and warns is bounded and gated", "[scripting]") {
+  recording_host host;
+  std::string r;
+  const auto emit_error = [&](const char* src) {
+    return error_of([&] {
+      lua_script t("/m/ev.lua", src);
+      t.on_record({"X", {}, 1}, host);
+    });
+  };
+  CHECK(emit_error("function on_record() post.emit('%') end") ==
+        "ev.lua:1: post.emit: the block has a '%' (the tape mark: the control stops reading the program "
+        "there)");
+  CHECK(emit_error("function on_record() post.emit('G0\\0X1') end") ==
+        "ev.lua:1: post.emit: the block has the control byte \\x00 (no NUL or control byte goes into a "
+        "program)");
+  CHECK(emit_error("function on_record() post.emit('(\\27[2J)') end") ==
+        "ev.lua:1: post.emit: the block has the control byte \\x1b (no NUL or control byte goes into a "
+        "program)");
+  lua_script esc("/m/ev.lua", "function on_block() return 'M30\\27' end");
+  CHECK(error_of([&] { esc.on_block("G0", {}, host, r); }) ==
+        "ev.lua: on_block returned a block with the control byte \\x1b (no NUL or control byte goes into a "
+        "program)");
+  lua_script pct("/m/ev.lua", "function on_block() return '%' end");
+  CHECK(error_of([&] { pct.on_block("G0", {}, host, r); }) ==
+        "ev.lua: on_block returned a block with a '%' (the tape mark: the control stops reading the program "
+        "there)");
+
+  script_limits limits;
+  limits.emit_bytes = 100;
+  limits.warnings = 3;
+  limits.warning_bytes = 50;
+  lua_script s("/m/ev.lua",
+               "function on_record(rec)\n"
+               "  if rec.major == 'EMIT' then for i = 1, 100 do post.emit('G4 X1.') end end\n"
+               "  if rec.major == 'WARN' then for i = 1, 100 do post.warning('w') end end\n"
+               "  if rec.major == 'LONG' then post.warning(string.rep('x', 60)) end\n"
+               "  if rec.major == 'ESC' then post.warning('\\27[2Jgone\\0') end\n"
+               "end\n",
+               limits);
+  CHECK(error_of([&] {
+          s.on_record({"EMIT", {}, 1}, host);
+        }) == "ev.lua:2: post.emit: the script wrote more than 100 bytes in the job (its limit)");
+  CHECK(host.blocks.size() == 16);
+  CHECK(error_of([&] { s.on_record({"ESC", {}, 1}, host); }).empty());
+  CHECK(host.warnings == std::vector<std::string>{"\\x1b[2Jgone\\x00"});
+  CHECK(error_of([&] {
+          s.on_record({"WARN", {}, 1}, host);
+        }) == "ev.lua:3: post.warning: more than 3 warnings in the job (its limit)");
+  lua_script w("/m/ev.lua", "function on_record() post.warning(string.rep('x', 60)) end", limits);
+  CHECK(error_of([&] {
+          w.on_record({"X", {}, 1}, host);
+        }) == "ev.lua:1: post.warning: more than 50 bytes of warnings in the job (its limit)");
+  // An error's text keeps no control byte either.
+  CHECK(load_error("error('\\27[31mred')") == "ev.lua:1: \\x1b[31mred");
+  // A C function's error without a place gets the script's line.
+  CHECK(load_error("\nlocal s = string.rep()") ==
+        "ev.lua:2: bad argument #1 to 'rep' (string expected, got no value)");
+}
+
+TEST_CASE("lua script: reads stay in the machine file's folder, on regular files", "[scripting]") {
+  char tmpl[] = "/tmp/twinpost-lua-XXXXXX";
+  REQUIRE(mkdtemp(tmpl));
+  const std::string dir = tmpl;
+  {
+    std::ofstream(dir + "/tools.csv") << "5;DRILL 8";
+    std::ofstream(dir + "/big.csv") << std::string(100, 'x');
+  }
+  REQUIRE(symlink("/etc/passwd", (dir + "/passwd").c_str()) == 0);
+  REQUIRE(mkfifo((dir + "/fifo").c_str(), 0600) == 0);
+  REQUIRE(mkdir((dir + "/sub").c_str(), 0700) == 0);
+  script_limits limits;
+  limits.read_file_bytes = 50;
+  lua_script s(dir + "/ev.lua", "function on_record(rec) post.emit(post.read_file(rec.major)) end", limits);
+  recording_host host;
+  const auto read = [&](const char* file) { return error_of([&] { s.on_record({file, {}, 1}, host); }); };
+  CHECK(read("tools.csv").empty());
+  CHECK(host.blocks == std::vector<std::string>{"5;DRILL 8"});
+  CHECK(read("passwd") ==
+        "ev.lua:1: post.read_file: 'passwd' is a symbolic link (only a regular file beside the machine file "
+        "is read)");
+  CHECK(read("fifo") ==
+        "ev.lua:1: post.read_file: 'fifo' is not a regular file (a FIFO, a device or a folder)");
+  CHECK(read("sub") ==
+        "ev.lua:1: post.read_file: 'sub' is not a regular file (a FIFO, a device or a folder)");
+  CHECK(read("big.csv") == "ev.lua:1: post.read_file: 'big.csv' is larger than 50 bytes");
+
+  // The script file itself: no symbolic link, no FIFO, a size limit, its name in the error.
+  { std::ofstream(dir + "/real.lua") << "x = 1"; }
+  REQUIRE(symlink((dir + "/real.lua").c_str(), (dir + "/link.lua").c_str()) == 0);
+  CHECK(error_of([&] { lua_script t(dir + "/link.lua"); }) ==
+        "link.lua: the script '" + dir +
+            "/link.lua' is a symbolic link (only a regular file beside the machine file is read)");
+  CHECK(error_of([&] { lua_script t(dir + "/fifo"); }) ==
+        "fifo: the script '" + dir + "/fifo' is not a regular file (a FIFO, a device or a folder)");
+  script_limits small;
+  small.script_bytes = 4;
+  CHECK(error_of([&] { lua_script t(dir + "/real.lua", small); }) ==
+        "real.lua: the script '" + dir + "/real.lua' is larger than 4 bytes");
+  CHECK(error_of([&] { lua_script t(dir + "/real.lua"); }).empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("lua script: a malformed pattern counts the items before its fault", "[scripting]") {
+  // Found by the script fuzz target: the matcher backtracks through '.-.-' for every start
+  // and never reaches the unclosed '[' (the literal before it fails first).
+  CHECK(load_error("local s = string.rep('a', 1e5)\nlocal i = s:find('.-.-x[y')") ==
+        "ev.lua:2: string.find: the pattern '.-.-x[y' may take 3e+15 steps on a subject of 100000 bytes (at "
+        "most "
+        "1e+08): anchor it with '^' or repeat fewer items ('.-', '.*')");
+  CHECK(load_error("local i = ('abc'):find('[a')") == "ev.lua:1: malformed pattern (missing ']')");
 }

@@ -16,7 +16,7 @@ expect() {  # expect NAME STATUS STDOUT_LAST_LINE STDERR -- ARGS...
   local name=$1 status=$2 out=$3 err=$4
   shift 5
   local got_out got_err got_status
-  got_out=$("$tp" "$@" 2>err.txt | tail -n 1)
+  got_out=$(timeout 60 "$tp" "$@" 2>err.txt | tail -n 1)  # a hang is a failure too
   got_status=${PIPESTATUS[0]}
   got_err=$(cat err.txt)
   if [[ $got_out != "$out" || $got_err != "$err" || $got_status != "$status" ]]; then
@@ -76,5 +76,45 @@ M30
 if [[ $(cat o/PP_1.nc 2>&1) != "$want" ]]; then
   echo "script_cli.sh: script_records: PP_1.nc differs"; cat o/PP_1.nc; bad=1
 fi
+cd ..
+
+# Issue 38: reads confined to regular files in the machine file's folder. A symbolic link
+# beside the machine file is refused, not followed; a FIFO is refused, not waited on; the
+# script itself likewise, and bounded in size.
+mkdir confined && cd confined || exit 1
+cp ../m.toml m.toml
+printf 'PARTNO / PP\nUNITS / MM\nLOADTL / 1, 1\nSPINDL / RPM, 1500, CLW\nRAPID\nGOTO / 22, 0, 2\nFINI\n' > job.cls
+ln -s /etc/passwd passwd
+mkfifo fifo
+reader() {  # the script reading file $1 at the tool change
+  printf 'function on_tool_change(tool)\n  post.emit("(" .. post.read_file("%s") .. ")")\nend\n' "$1" > shop.lua
+}
+note='job.cls:3:1: note: channel 1: the script failed while this record was posted
+LOADTL / 1, 1
+^
+post: failed with 1 error; no file written'
+reader passwd
+expect "read_file: a symbolic link" 1 "" "shop.lua:2: error: post.read_file: 'passwd' is a symbolic link (only a regular file beside the machine file is read)
+  post.emit(\"(\" .. post.read_file(\"passwd\") .. \")\")
+  ^
+$note" -- post job.cls -m ./m.toml -o o
+reader fifo
+expect "read_file: a FIFO" 1 "" "shop.lua:2: error: post.read_file: 'fifo' is not a regular file (a FIFO, a device or a folder)
+  post.emit(\"(\" .. post.read_file(\"fifo\") .. \")\")
+  ^
+$note" -- post job.cls -m ./m.toml -o o
+mv shop.lua real.lua
+ln -s real.lua shop.lua
+expect "the script, a symbolic link" 2 "" "./m.toml:260:10: error: events.script \"shop.lua\": './shop.lua' is not a regular file (a symbolic link, a FIFO, a device or a folder): only a regular file beside the machine file is read" -- post job.cls -m ./m.toml -o o
+rm shop.lua
+mkfifo shop.lua
+expect "the script, a FIFO" 2 "" "./m.toml:260:10: error: events.script \"shop.lua\": './shop.lua' is not a regular file (a symbolic link, a FIFO, a device or a folder): only a regular file beside the machine file is read" -- machines --show ./m.toml
+rm shop.lua
+head -c 4194305 /dev/zero | tr '\0' ' ' > shop.lua
+expect "the script, too large" 1 "" "shop.lua: error: the script './shop.lua' is larger than 4194304 bytes
+post: failed with 1 error; no file written" -- post job.cls -m ./m.toml -o o
+# [events] script_seconds and script_instructions: the loader's ranges.
+sed 's/^script = "shop.lua"/script = "shop.lua"\nscript_seconds = 0.5/' m.toml > s.toml
+expect "script_seconds out of range" 2 "" "./s.toml:261:18: error: events.script_seconds must be 1..86400, not 0.5" -- machines --show ./s.toml
 cd ..
 exit $bad
