@@ -362,9 +362,9 @@ void lua_script::on_tool_change(const script_tool& tool, script_host& host) {
   s.run(body, &host);
 }
 
-void lua_script::on_program_start(const script_context& ctx, script_host& host) {
-  auto& s = *impl_;
-  const int ref = s.hook_ref[script_state::h_program_start];
+// on_program_start and on_program_end: the hook `which`, called with the context table.
+static void call_context_hook(script_state& s, int which, const script_context& ctx, script_host& host) {
+  const int ref = s.hook_ref[which];
   if (ref == LUA_NOREF) return;
   auto body = [&](lua_State* L) {
     lua_rawgeti(L, LUA_REGISTRYINDEX, ref);
@@ -374,16 +374,12 @@ void lua_script::on_program_start(const script_context& ctx, script_host& host) 
   s.run(body, &host);
 }
 
+void lua_script::on_program_start(const script_context& ctx, script_host& host) {
+  call_context_hook(*impl_, script_state::h_program_start, ctx, host);
+}
+
 void lua_script::on_program_end(const script_context& ctx, script_host& host) {
-  auto& s = *impl_;
-  const int ref = s.hook_ref[script_state::h_program_end];
-  if (ref == LUA_NOREF) return;
-  auto body = [&](lua_State* L) {
-    lua_rawgeti(L, LUA_REGISTRYINDEX, ref);
-    push_context(L, ctx);
-    lua_call(L, 1, 0);
-  };
-  s.run(body, &host);
+  call_context_hook(*impl_, script_state::h_program_end, ctx, host);
 }
 
 block_verdict lua_script::on_block(std::string_view text, const script_context& ctx, script_host& host,
