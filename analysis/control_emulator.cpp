@@ -134,6 +134,16 @@ struct control_emulator::impl {
   void variables(const nc_block& b) {
     for (const macro_use& u : macro_uses(b.text)) {
       if (!u.write) continue;
+      if (u.number < 0) {
+        std::string names;
+        for (const reserved_variable& r : reserved)
+          names += fmt::format("{}#{}", names.empty() ? "" : ", ", r.number);
+        say(b, u.column,
+            fmt::format("channel {}: #[...] is written here, a variable known only when the block runs, and "
+                        "machine '{}' reserves {}: write a numbered variable the machine file does not name",
+                        b.channel, m.name, names));
+        continue;
+      }
       for (const reserved_variable& r : reserved)
         if (r.number == u.number)
           say(b, u.column,

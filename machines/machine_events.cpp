@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "machines/machine.hpp"
@@ -38,6 +39,9 @@ void read_script(const detail::table_reader& r, std::string_view source, event_t
       r.fail(*n, fmt::format("events.script \"{}\" must be a file name beside the machine file (no '/', "
                              "'\\', ':' or leading '.')",
                              s));
+    if (std::any_of(s.begin(), s.end(),
+                    [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; }))
+      r.fail(*n, "events.script: the name holds a control byte (a NUL, an escape): give a plain file name");
     const std::filesystem::path p = std::filesystem::path(source).parent_path() / s;
     // Not followed: a symbolic link beside the machine file could name any file (the script
     // is also opened with O_NOFOLLOW, scripting/confined_file.cpp).

@@ -14,10 +14,28 @@ std::vector<macro_use> macro_uses(std::string_view b) {
     if (depth > 0 || c != '#') continue;
     std::size_t k = i + 1;
     while (k < b.size() && b[k] == ' ') ++k;
-    if (k >= b.size() || b[k] < '0' || b[k] > '9') continue;  // #[...] or a lone '#'
+    if (k < b.size() && b[k] == '[') {  // #[...]: its number is known at run time only
+      int nest = 0;
+      std::size_t e = k;
+      for (; e < b.size(); ++e) {
+        if (b[e] == '[') ++nest;
+        if (b[e] == ']' && --nest == 0) break;
+      }
+      if (e >= b.size()) break;
+      ++e;
+      while (e < b.size() && b[e] == ' ') ++e;
+      const bool write = e < b.size() && b[e] == '=' && (e + 1 >= b.size() || b[e + 1] != '=');
+      out.push_back({-1, static_cast<int>(i + 1), write});
+      i = k;  // the variables inside are read
+      continue;
+    }
+    if (k >= b.size() || b[k] < '0' || b[k] > '9') continue;  // a lone '#'
+    // A control that skips blanks reads `#5 00` as #500.
     long n = 0;
-    while (k < b.size() && b[k] >= '0' && b[k] <= '9') {
-      if (n < 100'000'000) n = n * 10 + (b[k] - '0');
+    while (k < b.size() &&
+           ((b[k] >= '0' && b[k] <= '9') ||
+            (b[k] == ' ' && k + 1 < b.size() && (b[k + 1] == ' ' || (b[k + 1] >= '0' && b[k + 1] <= '9'))))) {
+      if (b[k] != ' ' && n < 100'000'000) n = n * 10 + (b[k] - '0');
       ++k;
     }
     std::size_t e = k;
@@ -48,7 +66,7 @@ std::vector<reserved_variable> reserved_variables(const machine& m) {
         if (u.write) written.push_back(u.number);
     for (const std::string& b : *blocks)
       for (const macro_use& u : macro_uses(b))
-        if (!u.write && u.number != 0 && std::find(written.begin(), written.end(), u.number) == written.end())
+        if (!u.write && u.number > 0 && std::find(written.begin(), written.end(), u.number) == written.end())
           add(u.number, std::string("read by ") + name);
   }
   std::sort(out.begin(), out.end(),

@@ -16,13 +16,14 @@ namespace twinpost {
 
 /// One use of a numbered variable in a block.
 struct macro_use {
-  int number = 0;      ///< #501 -> 501
+  int number = 0;      ///< #501 -> 501; -1 for #[...], whose number is known at run time only
   int column = 0;      ///< 1-based column of the '#'
   bool write = false;  ///< the variable is assigned (`#501=`), not read
 };
 
-/// The numbered variables a block uses, in order; comments in `(...)` are skipped, and so is an
-/// indirect `#[...]` (its number is known only at run time). `==` is no assignment.
+/// The numbered variables a block uses, in order, read as a control that skips blanks reads them
+/// (`#5 00` is #500); comments in `(...)` are skipped; an indirect `#[...]` is number -1 (its
+/// number is known only at run time). `==` is no assignment.
 std::vector<macro_use> macro_uses(std::string_view block);
 
 /// A variable the machine file reserves, and why (for messages).

@@ -21,50 +21,12 @@ namespace twinpost {
 
 namespace {
 
-// The G codes after which an X word is no position in the work frame: a dwell (G4 X1.5), data
-// or offset setting (G10, G50 X, G92 X), machine coordinates (G53), a macro's argument (G65),
-// incremental (G91).
-bool x_not_a_position(std::string_view b, char comment_open) {
-  for (std::size_t i = 0; i + 1 < b.size() && b[i] != comment_open; ++i) {
-    if (b[i] != 'G' || (i > 0 && ascii::is_letter(b[i - 1]))) continue;
-    std::size_t j = i + 1;
-    int g = 0;
-    while (j < b.size() && ascii::is_digit(b[j]) && g < 1000) g = g * 10 + (b[j++] - '0');
-    if (j < b.size() && b[j] == '.') continue;  // G12.1 and the like
-    if (g == 4 || g == 10 || g == 50 || g == 53 || g == 65 || g == 91 || g == 92) return true;
-  }
-  return false;
-}
-
 // Where the comment opened at b[i] closes; npos when it runs to the end of the block.
 std::size_t comment_close(std::string_view b, std::size_t i, const program_format& f) {
   return b.find(f.comment_close, i + 1);
 }
 
 }  // namespace
-
-bool channel_writer::user_block_in_travel(std::string_view b) {
-  const axis_def* x = ch_.axis('X');
-  if (!x || !x->min || !x->max || x_not_a_position(b, m_.program.comment_open)) return true;
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    if (b[i] == m_.program.comment_open) {
-      if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) break;
-      continue;
-    }
-    if (b[i] != 'X') continue;
-    double v = 0;
-    const char* end = b.data() + b.size();
-    const auto r = std::from_chars(b.data() + i + 1, end, v);
-    if (r.ec != std::errc()) continue;  // X#501: the control's value, not known here
-    if (v < *x->min || v > *x->max) {
-      error(line_, fmt::format("{} is outside channel {}'s X travel {}..{} (channel.axis min/max)",
-                               std::string_view(b.data() + i, r.ptr - (b.data() + i)), ch_.number, *x->min,
-                               *x->max));
-      return false;
-    }
-  }
-  return true;
-}
 
 namespace {
 
@@ -183,7 +145,7 @@ void channel_writer::user_block(const std::string& tpl, const template_args& a, 
   if (!position_given(tpl, a, where)) return;
   const std::string b = format_template(tpl, a);
   // A word past the control's format or an X past the travel: an error at the CL record.
-  if (!block_fits(b) || !user_block_in_travel(b)) return;
+  if (!user_block_passes(b)) return;
   user_writing_ = true;
   out_.block(b);
   user_writing_ = false;

@@ -70,6 +70,7 @@ void channel_writer::script_program(bool start) {
     else
       s.on_program_end(ctx, *this);
   });
+  restore_after_emits();
 }
 
 void channel_writer::script_tool(int tool, int offset) {
@@ -88,6 +89,7 @@ void channel_writer::script_tool(int tool, int offset) {
            : kind_ == tool_kind::drill ? "drill"
                                        : "";
   run_script([&](scripting::lua_script& s) { s.on_tool_change(t, *this); });
+  restore_after_emits();
 }
 
 void channel_writer::script_record(const passthrough_event& r, int line) {
@@ -106,6 +108,16 @@ void channel_writer::script_record(const passthrough_event& r, int line) {
     rest.remove_prefix(comma + 1);
   }
   run_script([&](scripting::lua_script& s) { s.on_record(rec, *this); });
+  restore_after_emits();
+}
+
+void channel_writer::restore_after_emits() {
+  // The blocks of one call are the user's blocks of one event: the channel's modes go back on
+  // after them, as after an [events] block's (channel_user_modes.cpp).
+  if (script_emitted_.empty()) return;
+  std::vector<std::string> blocks;
+  blocks.swap(script_emitted_);
+  if (!script_->failed) restore_modes_after(blocks, "post.emit");
 }
 
 void channel_writer::emit(std::string_view block) {
@@ -113,10 +125,10 @@ void channel_writer::emit(std::string_view block) {
   const std::string b(block);
   // The same checks as an [events] block's: the control's word formats, the X travel (the
   // scripting layer has refused a '%', a line break, NUL and control bytes).
-  if (!block_fits(b) || !user_block_in_travel(b))
-    return script_block_note(b, "post.emit");  // at the CL record
+  if (!user_block_passes(b)) return script_block_note(b, "post.emit");  // at the CL record
   out_.block_as_is(b);
   note_user_block(b, true);
+  script_emitted_.push_back(b);
 }
 
 void channel_writer::script_block_note(std::string_view block, std::string_view how) {
@@ -142,11 +154,15 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
   if (script_->failed) return block_writer::verdict::keep;
   scripting::block_verdict v = scripting::block_verdict::keep;
   run_script([&](scripting::lua_script& s) { v = s.on_block(block, script_context(), *this, replacement); });
+  // What on_block emitted stands among the post's blocks: no block restores a mode after it.
+  for (const std::string& e : script_emitted_)
+    if (!script_->failed && !refuse_mode_changes(e, "post.emit in on_block")) break;
+  script_emitted_.clear();
   if (v == scripting::block_verdict::drop) return block_writer::verdict::drop;
   // The block given back as it came (`return text`) is kept: the writer's modal state still holds.
   if (v == scripting::block_verdict::keep || script_->failed || replacement == block)
     return block_writer::verdict::keep;
-  if (!block_fits(replacement) || !user_block_in_travel(replacement)) {  // the error is at the CL record
+  if (!user_block_passes(replacement) || !refuse_mode_changes(replacement, "on_block")) {  // at the CL record
     script_block_note(replacement, "on_block");
     return block_writer::verdict::drop;
   }

@@ -37,33 +37,54 @@ bool has_g_code(std::string_view block, std::string_view code) {
 
 }  // namespace
 
-void channel_writer::restore_modes_after(const std::vector<std::string>& blocks, std::string_view where) {
-  // Only a code that differs from the channel's own state is undone: a user block that repeats
+bool channel_writer::modes_changed_by(const std::vector<std::string>& blocks, std::string_view where,
+                                      mode_change& c) {
+  // Only a code that differs from the channel's own state counts: a user block that repeats
   // the channel's mode changes nothing.
-  bool feed = false, plane = false, incremental = false;
   const bool inch = m_.program.output_units == output_unit::inch;
   const std::string own_plane = fmt::format("G{}", plane_);
   for (const std::string& b : blocks) {
     for (const std::string* g : {&m_.codes.feed_per_min, &m_.codes.feed_per_rev})
-      feed = feed || (!g->empty() && *g != feed_g_ && has_g_code(b, *g));
-    for (const char* g : {"G17", "G18", "G19"}) plane = plane || (g != own_plane && has_g_code(b, g));
+      c.feed = c.feed || (!g->empty() && *g != feed_g_ && has_g_code(b, *g));
+    for (const char* g : {"G17", "G18", "G19"}) c.plane = c.plane || (g != own_plane && has_g_code(b, g));
     // G90/G91 are absolute and incremental only where the safe start says G90 (Fanuc lathe
     // G-code system A has no G91, and its G90 is a turning cycle): never written elsewhere.
-    if (absolute_code_ && has_g_code(b, "G91")) incremental = true;
-    if (absolute_code_ && has_g_code(b, "G90")) incremental = false;
-    if (has_g_code(b, inch ? "G21" : "G20"))
-      return error(line_,
-                   fmt::format("{} writes \"{}\": {} in a program in {} ({}); every later word would be "
+    if (absolute_code_ && has_g_code(b, "G91")) c.incremental = true;
+    if (absolute_code_ && has_g_code(b, "G90")) c.incremental = false;
+    if (has_g_code(b, inch ? "G21" : "G20")) {
+      error(line_, fmt::format("{} writes \"{}\": {} in a program in {} ({}); every later word would be "
                                "read in {}",
                                where, b, inch ? "G21" : "G20", inch ? "inches" : "millimetres",
                                inch ? "G20" : "G21", inch ? "millimetres" : "inches"));
+      return false;
+    }
   }
-  if (incremental) out_.block("G90");
-  if (plane) out_.block(fmt::format("G{}", plane_));
-  if (feed && !feed_g_.empty()) {
+  return true;
+}
+
+void channel_writer::restore_modes_after(const std::vector<std::string>& blocks, std::string_view where) {
+  mode_change c;
+  if (!modes_changed_by(blocks, where, c)) return;
+  if (c.incremental) out_.block("G90");
+  if (c.plane) out_.block(fmt::format("G{}", plane_));
+  if (c.feed && !feed_g_.empty()) {
     out_.block(feed_g_);
     last_f_.clear();  // the next feed move writes its F again
   }
+}
+
+bool channel_writer::refuse_mode_changes(const std::string& block, std::string_view where) {
+  mode_change c;
+  if (!modes_changed_by({block}, where, c)) return false;
+  if (!c.incremental && !c.plane && !(c.feed && !feed_g_.empty())) return true;
+  error(line_, fmt::format("{} gives back \"{}\": it changes the channel's {} in the middle of the post's "
+                           "blocks, and no block of the post's puts it back (write it from an event, where "
+                           "the post restores the mode after it)",
+                           where, block,
+                           c.incremental ? "absolute positions (G91)"
+                           : c.plane     ? "plane"
+                                         : "feed mode"));
+  return false;
 }
 
 }  // namespace twinpost

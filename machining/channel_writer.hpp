@@ -717,6 +717,16 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// back on where one of the blocks changed them; a block in the other unit system is an error
   /// (machining/channel_user_modes.cpp).
   void restore_modes_after(const std::vector<std::string>& blocks, std::string_view where);
+  struct mode_change {
+    bool feed = false, plane = false, incremental = false;
+  };
+  /// What `blocks` change of the channel's modes; false after the error of a unit change.
+  bool modes_changed_by(const std::vector<std::string>& blocks, std::string_view where, mode_change& c);
+  /// For on_block's replacement, which no later block of the post's follows to restore the
+  /// modes: false, after the error, when it changes one.
+  bool refuse_mode_changes(const std::string& block, std::string_view where);
+  /// The blocks post.emit wrote in the script call running (restore_modes_after them).
+  std::vector<std::string> script_emitted_;
   /// events.program_start, once, before the channel's first block.
   void user_program_start();
   /// A record the machine file turns into blocks ([[events.record]]).
@@ -749,9 +759,11 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   template_args section_args_;                 ///< its tool, offset and operation
   int tool_offset_ = 0;                        ///< the offset of the tool call in force
   std::string op_name_;                        ///< the operation in force (TOOL PATH, OPFEATSTART)
-  /// Whether the X words of user block `b` are within the channel's X travel, as the post's
-  /// own X words are held (axis_word); reports the first that is not.
-  bool user_block_in_travel(std::string_view b);
+  /// Whether user block `b` ([events], post.emit, on_block's) may be written: its words fit
+  /// the control's formats, no blank splits a word, its X words are within the channel's X
+  /// travel as the post's own are held (axis_word), it neither sets the coordinate system nor
+  /// holds a program number (machining/channel_user_gate.cpp). Reports the first fault.
+  bool user_block_passes(const std::string& b);
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
   // The script (machining/channel_script.cpp); null without one (then no script work at all).
   job_script* script_ = nullptr;
@@ -773,6 +785,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void script_program(bool start);
   void script_tool(int tool, int offset);
   void script_record(const passthrough_event& r, int line);
+  /// After a hook other than on_block: restore_modes_after the blocks post.emit wrote in it.
+  void restore_after_emits();
   // script_host and block_filter: post.emit, post.warning, on_block.
   void emit(std::string_view block) override;
   void warning(std::string_view message) override;

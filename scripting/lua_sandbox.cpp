@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include <lualib.h>
 
@@ -36,6 +37,7 @@ bool block_clean(std::string_view block) {
   static constexpr auto bad = [] {
     std::array<bool, 256> t{};
     for (int b = 0; b < 0x20; ++b) t[static_cast<std::size_t>(b)] = true;
+    for (int b = 0x80; b < 0x100; ++b) t[static_cast<std::size_t>(b)] = true;
     t[0x7f] = t[static_cast<unsigned char>('%')] = true;
     return t;
   }();
@@ -51,6 +53,13 @@ std::string block_fault(std::string_view block) {
     if (b < 0x20 || b == 0x7f)
       return "the control byte " + escape_controls(std::string_view(&c, 1)) +
              " (no NUL or control byte goes into a program)";
+    if (b >= 0x80) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02x", b);
+      return std::string("the byte ") + hex +
+             " (a control reads ISO or EIA code, ASCII only; an editor may break the line at a UTF-8 NEL or "
+             "LS)";
+    }
   }
   return {};
 }
@@ -68,9 +77,10 @@ template <class... A>
   __builtin_unreachable();  // luaL_error raises
 }
 
-// string.find/match/gmatch/gsub: the subject's length bounded, its bytes charged, and the
-// matcher's worst case worked out before the one C call the count hook cannot interrupt.
-void guard_pattern(lua_State* L, const char* what, bool may_be_plain) {
+// string.find/match/gmatch/gsub: the subject's length bounded, its bytes and the pattern's
+// charged, and the matcher's worst case worked out before the one C call the count hook
+// cannot interrupt. The runs the estimate scans for are charged before the scan.
+void guard_pattern(lua_State* L, const char* what, bool anchor_works) {
   script_state* self = self_of(L);
   std::size_t n = 0, m = 0;
   const char* s = luaL_checklstring(L, 1, &n);
@@ -78,47 +88,96 @@ void guard_pattern(lua_State* L, const char* what, bool may_be_plain) {
   if (n > self->limits.pattern_subject_bytes)
     error_f(L, "%s: a subject of %zu bytes is over the limit of %zu bytes", what, n,
             self->limits.pattern_subject_bytes);
-  self->charge(L, static_cast<double>(n));
-  if (may_be_plain && lua_toboolean(L, 4)) return;
-  const double steps = pattern_steps({s, n}, {p, m});
+  self->charge(L, static_cast<double>(n) + static_cast<double>(m));
+  const pattern_shape shape = pattern_items({p, m}, anchor_works);
+  self->charge(L, pattern_scan_bytes(shape, n));
+  const double steps = pattern_steps(shape, {s, n}, self->limits.pattern_steps);
   if (steps > self->limits.pattern_steps) {
     const std::string shown = escape_controls(std::string_view(p, std::min<std::size_t>(m, 40)));
-    error_f(L,
-            "%s: the pattern '%s' may take %.3g steps on a subject of %zu bytes (at most %.3g): anchor it "
-            "with '^' or repeat fewer items ('.-', '.*')",
-            what, shown.c_str(), steps, n, self->limits.pattern_steps);
+    error_f(
+        L,
+        "%s: the pattern '%s%s' may take more than %.3g steps on a subject of %zu bytes (the limit of one "
+        "call): %s",
+        what, shown.c_str(), m > 40 ? "..." : "", self->limits.pattern_steps, n,
+        anchor_works ? "anchor it with '^' or repeat fewer items ('.-', '.*')"
+                     : "repeat fewer items ('.-', '.*'); in gmatch '^' is no anchor");
   }
 }
 
+// Lua's own test for a pattern string.find searches for as it is (lstrlib.c, nospecials).
+bool no_specials(std::string_view p) { return p.find_first_of("^$*+?.([%-") == std::string_view::npos; }
+
+// The first `needle` in `hay`: memchr and memcmp while their worst case (hay x needle) is
+// small, else Boyer-Moore, linear in the hay for the first match (Lua's lmemfind is the
+// first way at any size: 'aaa...ab' in 'aaaa...' takes hay x needle steps in one call).
+std::size_t first_of(std::string_view hay, std::string_view needle) {
+  if (static_cast<double>(hay.size()) * static_cast<double>(needle.size()) <= 1e7) return hay.find(needle);
+  const auto it =
+      std::search(hay.begin(), hay.end(), std::boyer_moore_searcher(needle.begin(), needle.end()));
+  return it == hay.end() ? std::string_view::npos : static_cast<std::size_t>(it - hay.begin());
+}
+
 int w_find(lua_State* L) {
-  guard_pattern(L, "string.find", true);
-  return self_of(L)->orig.find(L);
+  std::size_t n = 0, m = 0;
+  const char* s = luaL_checklstring(L, 1, &n);
+  const char* p = luaL_checklstring(L, 2, &m);
+  if (!lua_toboolean(L, 4) && !no_specials({p, m})) {
+    guard_pattern(L, "string.find", true);
+    return self_of(L)->orig.find(L);
+  }
+  // A plain search, as str_find_aux does it (Lua 5.4 lstrlib.c), with the linear search.
+  script_state* self = self_of(L);
+  if (n > self->limits.pattern_subject_bytes)
+    error_f(L, "string.find: a subject of %zu bytes is over the limit of %zu bytes", n,
+            self->limits.pattern_subject_bytes);
+  self->charge(L, static_cast<double>(n) + static_cast<double>(m));
+  lua_Integer init = luaL_optinteger(L, 3, 1);
+  const auto len = static_cast<lua_Integer>(n);
+  if (init == 0 || init < -len)
+    init = 1;
+  else if (init < 0)
+    init = len + init + 1;
+  if (init > len + 1) {
+    luaL_pushfail(L);
+    return 1;
+  }
+  const std::size_t from = static_cast<std::size_t>(init - 1);
+  const std::size_t at = first_of(std::string_view(s + from, n - from), std::string_view(p, m));
+  if (at == std::string_view::npos) {
+    luaL_pushfail(L);
+    return 1;
+  }
+  lua_pushinteger(L, static_cast<lua_Integer>(from + at + 1));
+  lua_pushinteger(L, static_cast<lua_Integer>(from + at + m));
+  return 2;
 }
 int w_match(lua_State* L) {
-  guard_pattern(L, "string.match", false);
+  guard_pattern(L, "string.match", true);
   return self_of(L)->orig.match(L);
 }
-int w_gmatch(lua_State* L) {
+int w_gmatch(lua_State* L) {  // gmatch reads a leading '^' as a byte (Lua 5.4 lstrlib.c)
   guard_pattern(L, "string.gmatch", false);
   return self_of(L)->orig.gmatch(L);
 }
 int w_gsub(lua_State* L) {
-  guard_pattern(L, "string.gsub", false);
+  guard_pattern(L, "string.gsub", true);
   return self_of(L)->orig.gsub(L);
 }
 
-// string.rep: a result past the memory ceiling is refused before it is built.
+// string.rep: a result past the memory ceiling is refused before it is built; charged by its
+// bytes, and by its count (rep('', n) copies nothing n times).
 int w_rep(lua_State* L) {
   script_state* self = self_of(L);
   std::size_t l = 0, lsep = 0;
   luaL_checklstring(L, 1, &l);
   const lua_Integer n = luaL_checkinteger(L, 2);
   luaL_optlstring(L, 3, "", &lsep);
-  const double total = n > 0 ? static_cast<double>(n) * static_cast<double>(l + lsep) : 0;
+  const double count = n > 0 ? static_cast<double>(n) : 0;
+  const double total = count * static_cast<double>(l + lsep);
   if (total > static_cast<double>(self->limits.memory_bytes))
     error_f(L, "string.rep: a result of %.0f bytes is over the memory ceiling of %zu bytes", total,
             self->limits.memory_bytes);
-  self->charge(L, total);
+  self->charge(L, total + count);
   return self->orig.rep(L);
 }
 
@@ -137,24 +196,61 @@ int w_setmetatable(lua_State* L) {
 }
 
 // The other library functions whose work is a loop in C: charged before they run, by the
-// bytes of their string arguments, the length of their table, or table.move's range.
-enum cost_kind { cost_strings, cost_table, cost_sort, cost_range };
+// bytes of their string arguments, the length of their table as they read it (luaL_len, so a
+// __len is asked as the library asks it), their range, or for table.sort n log n comparisons
+// of the table's strings.
+enum cost_kind { cost_strings, cost_table, cost_unpack, cost_concat, cost_sort, cost_range };
+
+// The length of the table argument as the table library takes it; 0 for anything else.
+double table_length(lua_State* L) {
+  if (lua_type(L, 1) != LUA_TTABLE) return 0;
+  return static_cast<double>(luaL_len(L, 1));
+}
+
+// j - i + 1 for the optional range arguments at `i_at` and `i_at + 1` (j defaults to #t).
+double range_of(lua_State* L, int i_at) {
+  const double len = table_length(L);
+  const double i = lua_isnumber(L, i_at) ? lua_tonumber(L, i_at) : 1;
+  const double j = lua_isnumber(L, i_at + 1) ? lua_tonumber(L, i_at + 1) : len;
+  return std::max({0.0, j - i + 1, len});
+}
 
 int w_charged(lua_State* L) {
   const lua_CFunction f = lua_tocfunction(L, lua_upvalueindex(1));
   const auto kind = static_cast<cost_kind>(lua_tointeger(L, lua_upvalueindex(2)));
+  script_state* self = self_of(L);
   double units = 0;
-  if (kind == cost_strings) {
-    for (int i = 1, top = lua_gettop(L); i <= top; ++i)
-      if (lua_type(L, i) == LUA_TSTRING) units += static_cast<double>(lua_rawlen(L, i));
-  } else if (kind == cost_range) {                 // table.move(a1, f, e, t [,a2])
-    if (lua_isnumber(L, 2) && lua_isnumber(L, 3))  // 1e12 is a float: table.move takes it
-      units = std::max(0.0, lua_tonumber(L, 3) - lua_tonumber(L, 2) + 1);
-  } else if (lua_type(L, 1) == LUA_TTABLE) {
-    const double n = static_cast<double>(lua_rawlen(L, 1));
-    units = kind == cost_sort ? n * std::log2(n + 2) : n;
+  switch (kind) {
+    case cost_strings:
+      for (int i = 1, top = lua_gettop(L); i <= top; ++i)
+        if (lua_type(L, i) == LUA_TSTRING) units += static_cast<double>(lua_rawlen(L, i));
+      break;
+    case cost_range:  // table.move(a1, f, e, t [,a2]); 1e12 is a float: table.move takes it
+      if (lua_isnumber(L, 2) && lua_isnumber(L, 3))
+        units = std::max(0.0, lua_tonumber(L, 3) - lua_tonumber(L, 2) + 1);
+      break;
+    case cost_table: units = table_length(L); break;  // insert, remove
+    case cost_unpack: units = range_of(L, 2); break;  // table.unpack(t [,i [,j]])
+    case cost_concat: {                               // table.concat(t [,sep [,i [,j]]])
+      units = range_of(L, 3);
+      if (lua_type(L, 2) == LUA_TSTRING) units *= static_cast<double>(lua_rawlen(L, 2)) + 1;
+      break;
+    }
+    case cost_sort: {
+      const double n = table_length(L);
+      const double log_n = std::log2(n + 2);
+      self->charge(L, n * log_n);  // first: a huge n is refused before the strings are read
+      double bytes = 0;
+      const auto raw = static_cast<lua_Integer>(std::min(n, static_cast<double>(lua_rawlen(L, 1))));
+      for (lua_Integer i = 1; i <= raw; ++i) {
+        if (lua_rawgeti(L, 1, i) == LUA_TSTRING) bytes += static_cast<double>(lua_rawlen(L, -1));
+        lua_pop(L, 1);
+      }
+      units = bytes * log_n;
+      break;
+    }
   }
-  self_of(L)->charge(L, units);
+  self->charge(L, units);
   return f(L);
 }
 
@@ -279,6 +375,8 @@ void script_state::make_env() {
        "xpcall", "rawequal", "rawget", "rawset", "rawlen", "setmetatable", "getmetatable", "_VERSION"});
   const int env = lua_gettop(L);
   wrap_field(L, "setmetatable", w_setmetatable, orig.setmetatable);
+  // tonumber(s, base) reads every byte of s in one C call.
+  charge_field(L, "tonumber", cost_strings);
   lua_getfield(L, g, "string");
   // string.dump is left out: bytecode has no use without load.
   copy_fields(L, lua_gettop(L),
@@ -312,7 +410,9 @@ void script_state::make_env() {
       lua_settable(L, -4);
     }
     if (lib[0] == 't') {
-      for (const char* f : {"concat", "insert", "remove", "unpack"}) charge_field(L, f, cost_table);
+      for (const char* f : {"insert", "remove"}) charge_field(L, f, cost_table);
+      charge_field(L, "unpack", cost_unpack);
+      charge_field(L, "concat", cost_concat);
       charge_field(L, "sort", cost_sort);
       charge_field(L, "move", cost_range);
     } else if (lib[0] == 'u') {

@@ -22,7 +22,15 @@ namespace {
 
 constexpr const char* hook_names[] = {"on_record", "on_tool_change", "on_program_start", "on_program_end",
                                       "on_block"};
-constexpr long long hook_slice = 10'000;  // VM instructions between two looks at the budgets
+// VM instructions between two looks at the budgets. One VM instruction may do C work of the
+// length of a string (comparing two 30 MB strings: about 5 ms), so the slice bounds how far a
+// loop of such instructions runs past the clock: 1 000 of them, about 5 s at 10 000.
+constexpr long long hook_slice = 1'000;
+// An allocation at least this large is C work worth a look at the budgets right away: a
+// concatenation of long strings copies them in one instruction.
+constexpr std::size_t big_allocation = 64u << 10;
+// Of an error's text, at most this much is kept: error(string.rep("\1", 25e6)) is 25 MB.
+constexpr std::size_t error_text_bytes = 1000;
 
 std::string base_name(const std::string& path) {
   auto slash = path.find_last_of("/\\");
@@ -45,6 +53,25 @@ void* alloc(void* ud, void* ptr, std::size_t old_size, std::size_t new_size) {
     return nullptr;
   }
   if (new_size > old_used && self->used - old_used + new_size > self->limits.memory_bytes) return nullptr;
+  // A large growth inside a call is charged by its bytes, and the budgets looked at: one
+  // that is spent refuses the growth, and Lua raises, as for the memory ceiling (fail()
+  // reports the budget).
+  if (new_size >= big_allocation && new_size > old_used && self->running) {
+    if (self->exhausted != spent::none) return nullptr;
+    const auto grown = static_cast<long long>(new_size - old_used);
+    self->job_count += grown;
+    self->call_charged += grown;
+    if (const spent s = self->over(); s != spent::none && s != spent::call) {
+      self->exhausted = s;
+      // Lua calls no message handler for a memory error: the line is read here (lua_getinfo
+      // "l" allocates nothing).
+      lua_Debug ar;
+      for (int level = 0; self->exhausted_line == 0 && lua_getstack(self->L, level, &ar); ++level)
+        if (lua_getinfo(self->L, "l", &ar) && ar.currentline > 0) self->exhausted_line = ar.currentline;
+      lua_sethook(self->L, script_state::budget_hook, LUA_MASKCOUNT, 1);  // a pcall cannot go on
+      return nullptr;
+    }
+  }
   void* p = std::realloc(ptr, new_size);
   if (p) self->used = self->used - old_used + new_size;
   return p;
@@ -63,10 +90,15 @@ int panic(lua_State* L) {
 // function as error(msg, 0) does) gets the line of the innermost script function.
 int message_handler(lua_State* L) {
   script_state* self = script_state::of(L);
-  if (self->exhausted != spent::none || lua_type(L, 1) != LUA_TSTRING) return 1;
+  lua_Debug ar;
+  if (self->exhausted != spent::none) {  // a budget spent in C (an allocation): the line is here
+    for (int level = 1; self->exhausted_line == 0 && lua_getstack(L, level, &ar); ++level)
+      if (lua_getinfo(L, "l", &ar) && ar.currentline > 0) self->exhausted_line = ar.currentline;
+    return 1;
+  }
+  if (lua_type(L, 1) != LUA_TSTRING) return 1;
   const std::string prefix = self->name + ':';
   if (std::string_view(lua_tostring(L, 1)).substr(0, prefix.size()) == prefix) return 1;
-  lua_Debug ar;
   for (int level = 1; lua_getstack(L, level, &ar); ++level) {
     if (lua_getinfo(L, "l", &ar) && ar.currentline > 0) {
       lua_pushfstring(L, "%s:%d: %s", self->name.c_str(), ar.currentline, lua_tostring(L, 1));
@@ -177,9 +209,12 @@ void script_state::fail(int rc) {
   std::string text;
   if (rc == LUA_ERRMEM)
     text = "not enough memory";
-  else if (lua_type(L, -1) == LUA_TSTRING)
-    text = lua_tostring(L, -1);
-  else
+  else if (lua_type(L, -1) == LUA_TSTRING) {
+    std::size_t n = 0;
+    const char* t = lua_tolstring(L, -1, &n);
+    text.assign(t, std::min(n, error_text_bytes));
+    if (n > error_text_bytes) text += "... (" + std::to_string(n) + " bytes in all)";
+  } else
     text = std::string("error object is a ") + luaL_typename(L, -1) + " value";
   lua_settop(L, 0);
   std::string prefix = name + ':';
@@ -204,6 +239,7 @@ void script_state::run(F& body, script_host* h) {
   call_start = job_count;
   call_charged = 0;
   call_began = now();
+  running = true;
   lua_settop(L, 0);
   lua_pushcfunction(L, message_handler);
   lua_pushcfunction(L, [](lua_State* S) -> int {
@@ -212,6 +248,7 @@ void script_state::run(F& body, script_host* h) {
   });
   lua_pushlightuserdata(L, &body);
   const int rc = lua_pcall(L, 1, 0, 1);
+  running = false;
   seconds += now() - call_began;
   host = nullptr;
   if (rc != LUA_OK) fail(rc);
@@ -252,12 +289,16 @@ void script_state::load(std::string_view text) {
   run(body, nullptr);
 }
 
-lua_script::lua_script(const std::string& path, script_limits limits) : impl_(new script_state) {
+lua_script::lua_script(const std::string& path_, script_limits limits) : impl_(new script_state) {
+  // The names go into messages as the terminal may show them (a name may hold ESC).
+  if (path_.find('\0') != std::string::npos)
+    throw script_error(escape_controls(base_name(path_)), 0, "the script's name holds a NUL byte");
+  const std::string path = escape_controls(path_);
   impl_->name = base_name(path);
   impl_->dir = dir_name(path);
   impl_->limits = limits;
   std::string text, why;
-  switch (read_confined(path, limits.script_bytes, text, why)) {
+  switch (read_confined(path_, limits.script_bytes, text, why)) {
     case read_refusal::none: break;
     case read_refusal::missing: throw script_error(impl_->name, 0, "cannot read the script '" + path + "'");
     case read_refusal::symlink:
@@ -279,7 +320,7 @@ lua_script::lua_script(const std::string& path, script_limits limits) : impl_(ne
 
 lua_script::lua_script(const std::string& path, std::string_view source, script_limits limits)
     : impl_(new script_state) {
-  impl_->name = base_name(path);
+  impl_->name = escape_controls(base_name(path));
   impl_->dir = dir_name(path);
   impl_->limits = limits;
   impl_->load(source);

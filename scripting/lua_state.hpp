@@ -13,8 +13,9 @@
 
 namespace twinpost::scripting {
 
-/// Why `block` cannot go into a program as one block ("" when it can): a '%' or a NUL or
-/// other control byte, said as "a '%' (...)" / "the control byte \\x1b (...)".
+/// Why `block` cannot go into a program as one block ("" when it can): a '%', a NUL or other
+/// control byte, or a byte >= 0x80, said as "a '%' (...)" / "the control byte \\x1b (...)" /
+/// "the byte \\xc2 (...)".
 std::string block_fault(std::string_view block);
 /// Whether `block` holds none of them (nor a line break): one table look-up a byte.
 bool block_clean(std::string_view block);
@@ -49,7 +50,7 @@ struct script_state {
   int slice = 0;
   double seconds = 0;  // inside calls, before this one
   double call_began = 0;
-  bool in_call = false;
+  bool running = false;  // inside run(): the allocator charges large growths
   // A budget ran out: from then on every instruction raises again, so a pcall in the script
   // cannot swallow the error and go on. `call` ends with the call; the job's budgets hold.
   spent exhausted = spent::none;

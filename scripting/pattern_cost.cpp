@@ -79,14 +79,11 @@ std::size_t longest_run(std::string_view s, const item& it) {
 
 }  // namespace
 
-double pattern_steps(std::string_view subject, std::string_view pat) {
-  const double n = static_cast<double>(subject.size());
+pattern_shape pattern_items(std::string_view pat, bool anchor_works) {
+  pattern_shape shape;
   std::size_t p = 0;
-  const bool anchored = !pat.empty() && pat[0] == '^';
-  if (anchored) p = 1;
-  std::vector<item> repeated;
-  int optional = 0;
-  bool linear = false;  // %b or a back reference: a scan of the subject per try
+  shape.anchored = anchor_works && !pat.empty() && pat[0] == '^';
+  if (shape.anchored) p = 1;
   while (p < pat.size()) {
     const char c = pat[p];
     if (c == '(' || c == ')' || (c == '$' && p + 1 == pat.size())) {
@@ -99,7 +96,7 @@ double pattern_steps(std::string_view subject, std::string_view pat) {
       const char d = pat[p + 1];
       if (d == 'b') {
         if (p + 3 >= pat.size()) break;
-        linear = true;
+        shape.linear = true;
         p += 4;
         continue;
       }
@@ -107,11 +104,12 @@ double pattern_steps(std::string_view subject, std::string_view pat) {
         if (p + 2 >= pat.size() || pat[p + 2] != '[') break;
         const std::size_t e = set_end(pat, p + 2);
         if (e == std::string_view::npos) break;
+        ++shape.singles;
         p = e + 1;
         continue;
       }
       if (d >= '0' && d <= '9') {
-        linear = true;
+        shape.linear = true;
         p += 2;
         continue;
       }
@@ -123,21 +121,47 @@ double pattern_steps(std::string_view subject, std::string_view pat) {
     }
     const char q = ep < pat.size() ? pat[ep] : '\0';
     if (q == '*' || q == '+' || q == '-') {
-      repeated.push_back({pat.substr(p, ep - p)});
+      shape.repeated.push_back(pat.substr(p, ep - p));
       p = ep + 1;
     } else if (q == '?') {
-      ++optional;
+      ++shape.optional;
       p = ep + 1;
     } else {
+      ++shape.singles;
       p = ep;
     }
   }
-  double steps = (anchored ? 1 : n + 1) * static_cast<double>(repeated.size() + 1) * std::pow(2.0, optional) *
-                 (linear ? n + 1 : 1);
+  return shape;
+}
+
+namespace {
+
+// The bound before the runs are known: every run as long as the subject.
+double base_steps(const pattern_shape& s, double n) {
+  return (s.anchored ? 1 : n + 1) * static_cast<double>(s.repeated.size() + s.singles + 1) *
+         std::pow(2.0, s.optional) * (s.linear ? n + 1 : 1);
+}
+
+constexpr double no_scan_below = 1e6;
+
+}  // namespace
+
+double pattern_scan_bytes(const pattern_shape& shape, std::size_t subject_bytes) {
+  const double n = static_cast<double>(subject_bytes);
+  const double bound = base_steps(shape, n) * std::pow(n + 1, static_cast<double>(shape.repeated.size()));
+  return bound <= no_scan_below ? 0 : n * static_cast<double>(shape.repeated.size());
+}
+
+double pattern_steps(const pattern_shape& shape, std::string_view subject, double cap) {
+  const double n = static_cast<double>(subject.size());
+  double steps = base_steps(shape, n);
   // First with every run as long as the subject: a short subject needs no scan.
-  const double bound = steps * std::pow(n + 1, static_cast<double>(repeated.size()));
-  if (bound <= 1e6) return bound;
-  for (const item& it : repeated) steps *= static_cast<double>(longest_run(subject, it)) + 1;
+  const double bound = steps * std::pow(n + 1, static_cast<double>(shape.repeated.size()));
+  if (bound <= no_scan_below || steps > cap) return bound;
+  for (const std::string_view it : shape.repeated) {
+    steps *= static_cast<double>(longest_run(subject, item{it})) + 1;
+    if (steps > cap) return steps;
+  }
   return steps;
 }
 

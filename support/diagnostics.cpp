@@ -6,7 +6,23 @@
 namespace twinpost {
 
 namespace {
-constexpr std::size_t source_window = 200;  // columns of a source line shown at most
+constexpr std::size_t source_window = 200;   // columns of a source line shown at most
+constexpr std::size_t message_bytes = 4096;  // of a message shown at most
+
+// `text` onto `out` with its control bytes but tab as \xHH: a file name or a message that
+// carries text from a user's file (a script's error, a name) sends no escape sequence to the
+// terminal. Bytes >= 0x80 stay: a UTF-8 file name shows as itself.
+void append_safe(std::string& out, std::string_view text, std::size_t most) {
+  const std::size_t n = std::min(text.size(), most);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if ((c < 0x20 && c != '\t') || c == 0x7f)
+      out += fmt::format("\\x{:02x}", c);
+    else
+      out += static_cast<char>(c);
+  }
+  if (n < text.size()) out += fmt::format("... ({} bytes in all)", text.size());
+}
 }  // namespace
 
 const char* severity_name(severity s) {
@@ -19,11 +35,15 @@ const char* severity_name(severity s) {
 }
 
 std::string format_diagnostic(const diagnostic& d) {
-  std::string out = d.file;
+  std::string out;
+  append_safe(out, d.file, message_bytes);
   if (d.line > 0) out += fmt::format(":{}", d.line);
   if (d.line > 0 && d.column > 0) out += fmt::format(":{}", d.column);
   if (!out.empty()) out += ": ";  // a diagnostic about the run as a whole has no place
-  out += fmt::format("{}: {}\n", severity_name(d.level), d.message);
+  out += severity_name(d.level);
+  out += ": ";
+  append_safe(out, d.message, message_bytes);
+  out += '\n';
   if (!d.source_line.empty()) {
     // The line as a terminal shows it safely: control and non-ASCII bytes as \xHH, and at
     // most source_window columns around the caret (a 16 MB line echoes 200 columns).

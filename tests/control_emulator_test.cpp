@@ -67,6 +67,13 @@ TEST_CASE("emulator: a variable the machine reserves is not written", "[analysis
         "transfer.grip): the setup owns its value; write a variable the machine file does not name\n"
         "#501=#501+1\n^\n"
         "check: 2 channels, 2 waits paired, 1 error\n");
+  // Written through an indirect #[...] or with a blank a control skips: as written.
+  CHECK(
+      check_lathe("#[499+2]=1\n") ==
+      "P_1.nc:4:1: error: channel 1: #[...] is written here, a variable known only when the block runs, and "
+      "machine 'fanuc-0itd-twin' reserves #500, #501: write a numbered variable the machine file does not "
+      "name\n#[499+2]=1\n^\ncheck: 2 channels, 2 waits paired, 1 error\n");
+  CHECK(check_lathe("#5 01=1\n").starts_with("P_1.nc:4:1: error: channel 1: #501 is written here"));
   // Read, or another variable written, or #501 in a comment: quiet.
   CHECK(check_lathe("#601=#501+1\nIF [#500 EQ #0] THEN #3000=1 (#500 NOT SET)\n(#501=1)\n") == clean_lathe);
 }
@@ -101,14 +108,18 @@ TEST_CASE("emulator: chucks and spindles", "[analysis][emulator]") {
 }
 
 TEST_CASE("macro variables: uses in a block and the machine's reserved ones", "[machines][emulator]") {
-  const std::vector<macro_use> u = macro_uses("IF [#500 EQ #0] THEN #3000=1 (#7=1) #[#1]=2 # 12 = 3 #4==5");
-  REQUIRE(u.size() == 6);
+  const std::vector<macro_use> u =
+      macro_uses("IF [#500 EQ #0] THEN #3000=1 (#7=1) #[#1]=2 # 12 = 3 #4==5 #5 00=6 #[499+1] = 7");
+  REQUIRE(u.size() == 9);
   CHECK((u[0].number == 500 && !u[0].write && u[0].column == 5));
   CHECK((u[1].number == 0 && !u[1].write));
   CHECK((u[2].number == 3000 && u[2].write));
-  CHECK((u[3].number == 1 && !u[3].write));  // inside the indirect #[#1]
-  CHECK((u[4].number == 12 && u[4].write));
-  CHECK((u[5].number == 4 && !u[5].write));
+  CHECK((u[3].number == -1 && u[3].write && u[3].column == 37));  // the indirect #[#1]=
+  CHECK((u[4].number == 1 && !u[4].write));                       // inside it
+  CHECK((u[5].number == 12 && u[5].write));
+  CHECK((u[6].number == 4 && !u[6].write));
+  CHECK((u[7].number == 500 && u[7].write));  // a control that skips blanks reads #500
+  CHECK((u[8].number == -1 && u[8].write));
   const std::vector<reserved_variable> r = reserved_variables(load_machine("integrex-i200st"));
   REQUIRE(r.size() == 2);
   CHECK((r[0].number == 500 && r[0].why == "read by transfer.grip"));

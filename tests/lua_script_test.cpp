@@ -293,8 +293,8 @@ TEST_CASE("lua script: the job's budget of instructions and of time", "[scriptin
 TEST_CASE("lua script: C work is bounded before it starts and charged to the job", "[scripting]") {
   CHECK(
       load_error("local s = string.rep('a', 1e5)\nlocal i = s:find('.-.-.-.-b')") ==
-      "ev.lua:2: string.find: the pattern '.-.-.-.-b' may take 5e+25 steps on a subject of 100000 bytes (at "
-      "most 1e+08): anchor it with '^' or repeat fewer items ('.-', '.*')");
+      "ev.lua:2: string.find: the pattern '.-.-.-.-b' may take more than 1e+08 steps on a subject of 100000 "
+      "bytes (the limit of one call): anchor it with '^' or repeat fewer items ('.-', '.*')");
   CHECK(load_error("local s = ('a'):rep(2^20 + 1)\nlocal i = s:find('a', 1, true)") ==
         "ev.lua:2: string.find: a subject of 1048577 bytes is over the limit of 1048576 bytes");
   CHECK(load_error("local s = string.rep('ab', 1e9)") ==
@@ -356,6 +356,9 @@ TEST_CASE("lua script: what a script writes and warns is bounded and gated", "[s
   CHECK(emit_error("function on_record() post.emit('(\\27[2J)') end") ==
         "ev.lua:1: post.emit: the block has the control byte \\x1b (no NUL or control byte goes into a "
         "program)");
+  CHECK(emit_error("function on_record() post.emit('(\\194\\133)') end") ==
+        "ev.lua:1: post.emit: the block has the byte \\xc2 (a control reads ISO or EIA code, ASCII only; an "
+        "editor may break the line at a UTF-8 NEL or LS)");
   lua_script esc("/m/ev.lua", "function on_block() return 'M30\\27' end");
   CHECK(error_of([&] { esc.on_block("G0", {}, host, r); }) ==
         "ev.lua: on_block returned a block with the control byte \\x1b (no NUL or control byte goes into a "
@@ -444,8 +447,92 @@ TEST_CASE("lua script: a malformed pattern counts the items before its fault", "
   // Found by the script fuzz target: the matcher backtracks through '.-.-' for every start
   // and never reaches the unclosed '[' (the literal before it fails first).
   CHECK(load_error("local s = string.rep('a', 1e5)\nlocal i = s:find('.-.-x[y')") ==
-        "ev.lua:2: string.find: the pattern '.-.-x[y' may take 3e+15 steps on a subject of 100000 bytes (at "
-        "most "
-        "1e+08): anchor it with '^' or repeat fewer items ('.-', '.*')");
+        "ev.lua:2: string.find: the pattern '.-.-x[y' may take more than 1e+08 steps on a subject of 100000 "
+        "bytes (the limit of one call): anchor it with '^' or repeat fewer items ('.-', '.*')");
   CHECK(load_error("local i = ('abc'):find('[a')") == "ev.lua:1: malformed pattern (missing ']')");
+}
+
+TEST_CASE("lua script: the second attack's C work is charged or refused before it runs", "[scripting]") {
+  script_limits limits;
+  limits.instructions_per_job = 10'000'000;
+  auto job_error = [&](const char* source) {
+    return error_of([&] { lua_script t("/m/ev.lua", source, limits); });
+  };
+  const std::string spent = "the job's budget of 10000000 instructions exceeded";
+  // rep('', n) copies nothing n times: charged by its count.
+  CHECK(job_error("local s = string.rep('', math.maxinteger)").find("ev.lua:1: " + spent) == 0);
+  // The table library reads the length through __len (luaL_len): so does the charge.
+  CHECK(job_error("local t = setmetatable({}, {__len = function() return 1e15 end})\ntable.insert(t, 1, 'x')")
+            .find("ev.lua:2: " + spent) == 0);
+  CHECK(job_error("local t = setmetatable({}, {__len = function() return 1e15 end})\ntable.remove(t, 1)")
+            .find("ev.lua:2: " + spent) == 0);
+  CHECK(job_error("local t = setmetatable({}, {__index = function() return '' end})\n"
+                  "local s = table.concat(t, '', 1, 1e12)")
+            .find("ev.lua:2: " + spent) == 0);
+  // table.sort compares strings: their bytes count, times log n.
+  CHECK(
+      job_error("local big, t = string.rep('x', 1e6), {} for i = 1, 5 do t[i] = big .. i end\ntable.sort(t)")
+          .find("ev.lua:2: " + spent) == 0);
+  // tonumber(s, base) reads every byte.
+  CHECK(job_error("local s = string.rep('1', 1e6)\nfor i = 1, 20 do local n = tonumber(s, 36) end")
+            .find("ev.lua:2: " + spent) == 0);
+  // A plain search is linear (Boyer-Moore past 10^7 byte pairs) and charged by its bytes.
+  CHECK(job_error("local s, p = string.rep('a', 1e6), string.rep('a', 5000) .. 'b'\n"
+                  "for i = 1, 20 do local x = s:find(p, 1, true) end")
+            .find("ev.lua:2: " + spent) == 0);
+  // A concatenation of long strings is one instruction: its allocation is charged.
+  CHECK(job_error("local a = string.rep('x', 1e6)\nfor i = 1, 100 do local c = a .. i end")
+            .find("ev.lua:2: " + spent) == 0);
+}
+
+TEST_CASE("lua script: a plain search answers as Lua's string.find does", "[scripting]") {
+  CHECK(
+      load_error(
+          "assert(('hello world'):find('o w', 1, true) == 5)\n"
+          "assert(('hello'):find('l') == 3)\n"
+          "assert(('hello'):find('', 10) == nil)\n"
+          "assert(('hello'):find('', 6) == 6)\n"
+          "assert(('hello'):find('lo', -2) == 4)\n"
+          "assert(('hello'):find('lo', -99) == 4)\n"
+          "assert(('a.b'):find('.', 1, true) == 2)\n"
+          "local a, b = ('xx'):find('') assert(a == 1 and b == 0)\n"
+          "local c, d = ('abcabc'):find('cab', 2, true) assert(c == 3 and d == 5)\n"
+          "assert(('abc'):find('d', 1, true) == nil)\n"
+          "local s = string.rep('a', 1e5) .. 'b' local e, f = s:find(string.rep('a', 500) .. 'b', 1, true)\n"
+          "assert(e == 1e5 - 499 and f == 1e5 + 1)")
+          .empty());
+}
+
+TEST_CASE("lua script: the pattern guard's own work is bounded", "[scripting]") {
+  // Long literal patterns compare at every start: the items count.
+  CHECK(
+      load_error("local s = string.rep('a', 1e6)\nlocal x = s:match(string.rep('a', 5000) .. 'b')") ==
+      "ev.lua:2: string.match: the pattern 'aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa...' may take more than "
+      "1e+08 steps on a subject of 1000000 bytes (the limit of one call): anchor it with '^' or repeat fewer "
+      "items ('.-', '.*')");
+  // In gmatch '^' is a byte, not an anchor (Lua 5.4 lstrlib.c).
+  CHECK(
+      load_error("local s = string.rep('a', 1e5)\nfor x in s:gmatch('^.-.-.-b') do end") ==
+      "ev.lua:2: string.gmatch: the pattern '^.-.-.-b' may take more than 1e+08 steps on a subject of 100000 "
+      "bytes (the limit of one call): repeat fewer items ('.-', '.*'); in gmatch '^' is no anchor");
+  // 3 000 repeated items over a megabyte: the scans for their runs are charged before they run.
+  script_limits limits;
+  limits.instructions_per_job = 10'000'000;
+  CHECK(error_of([&] {
+          lua_script t("/m/ev.lua",
+                       "local s = string.rep('1', 1e6)\nlocal x = s:find(string.rep('[a-z]*', 3000))",
+                       limits);
+        }).find("ev.lua:2: the job's budget of 10000000 instructions exceeded") == 0);
+}
+
+TEST_CASE("lua script: an error's text and the script's name reach the terminal bounded and escaped",
+          "[scripting]") {
+  const std::string e = load_error("error(string.rep('\\1', 25e6))");
+  // The first 1 000 bytes of "ev.lua:1: " and the 25 MB, each \x01 shown as 4.
+  CHECK(e.size() == 10 + 990 * 4 + std::string("... (25000010 bytes in all)").size());
+  CHECK(e.substr(e.size() - 27) == "... (25000010 bytes in all)");
+  CHECK(e.substr(0, 18) == "ev.lua:1: \\x01\\x01");
+  CHECK(error_of([] { lua_script s("/m/e\x1b[2Jv.lua", "error('x')"); }) == "e\\x1b[2Jv.lua:1: x");
+  CHECK(error_of([] { lua_script s(std::string("/m/ev.lua\0/etc/passwd", 21)); }) ==
+        "passwd: the script's name holds a NUL byte");
 }

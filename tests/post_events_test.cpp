@@ -248,6 +248,57 @@ TEST_CASE("an event block's X is held to the channel's travel, as the post's own
   }
 }
 
+TEST_CASE("a user block's words are read as a control that skips blanks reads them", "[post][events]") {
+  // channel.axis X of fanuc-0itd-twin: -10..460 (diameter). Each form the gate once let through.
+  const std::pair<const char*, const char*> cases[] = {
+      {"G0 X 9000.",
+       "\"G0 X 9000.\" has a blank inside the word 'X 9000.': a control that skips blanks reads "
+       "one word there"},
+      {"M1 00",
+       "\"M1 00\" has a blank inside the word 'M1 00': a control that skips blanks reads one word there"},
+      {"#5 00=1",
+       "\"#5 00=1\" has a blank inside the word '#5 00=1': a control that skips blanks reads one "
+       "word there"},
+      {"G0 X+9000.", "X+9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"G0 U9000.",
+       "U9000. (incremental) takes X outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"G0 X[9000]",
+       "X[9000] in \"G0 X[9000]\": an X the post cannot hold to channel 1's X travel -10..460 (a "
+       "variable or an expression); write the number"},
+      {"G0 X#100",
+       "X#100 in \"G0 X#100\": an X the post cannot hold to channel 1's X travel -10..460 (a "
+       "variable or an expression); write the number"},
+      {"G50 X-9000.",
+       "\"G50 X-9000.\" sets or shifts the coordinate system (G10, G50, G52 or G92 with an axis "
+       "word): every later position of the post would be off by it"},
+      {"O2000",
+       "\"O2000\" holds a program number: a control that loads the file starts another program there, "
+       "and this one loses the blocks after it"},
+      {":1000",
+       "\":1000\" holds a program number: a control that loads the file starts another program there, "
+       "and this one loses the blocks after it"},
+  };
+  for (const auto& [block, message] : cases) {
+    CAPTURE(block);
+    const test::posted p =
+        post_with(std::string("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"") + block + "\"]\n",
+                  "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics == std::string("job.cls:4:1: error: channel 1: ") + message + "\nCATCHER\n^\n");
+    CHECK(p.files.empty());
+  }
+  SECTION("the shop's own forms post: G28 U0., G50 S2000, a dwell, a counter") {
+    const test::posted q = post_with(
+        "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 U0.\", \"G50 S2000\", \"G4 U1.5\", "
+        "\"#601 = #601 + 1\"]\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate-ok");
+    CHECK(q.diagnostics == "");
+    CHECK(program_1(q) ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG28 U0.\nG50 S2000\nG4 U1.5\n"
+          "#601 = #601 + 1\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+}
+
 TEST_CASE("a wait code an event writes is checked like the post's own: unpaired, nothing is written",
           "[post][events]") {
   // M101 is a wait code of the machine (waits 100..102, no partner list); channel 2 never waits for it.
@@ -366,6 +417,43 @@ TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at
     CHECK(program_1(p, "EV_2.nc") ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 W0.\nT1111\nM100\nM9\n"
           "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+}
+
+TEST_CASE("the channel's modes go back on after a script's blocks and on_block may not change them",
+          "[post][events][script]") {
+  const std::string job = "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n";
+  SECTION("post.emit's G98 in a hook: the post's G99 follows") {
+    const test::posted p =
+        post_with_script("", "function on_tool_change(tool) post.emit('G0 G98') end\n", job, "script-modes");
+    CHECK(p.diagnostics == "");
+    CHECK(program_1(p) ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG0 G98\nG99\n"
+          "M100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+  SECTION("post.emit's G20 in a metric program is refused") {
+    const test::posted p =
+        post_with_script("", "function on_tool_change(tool) post.emit('G20') end\n", job, "script-inch");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics ==
+          "job.cls:3:1: error: channel 1: post.emit writes \"G20\": G20 in a program in millimetres (G21); "
+          "every "
+          "later word would be read in inches\nTURRET/1,1\n^\n");
+    CHECK(p.files.empty());
+  }
+  SECTION("on_block's replacement with another feed mode is refused") {
+    const test::posted p =
+        post_with_script("", "function on_block(text) if text == 'T0101' then return 'T0101 G98' end end\n",
+                         job, "script-g98");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics ==
+          "job.cls:3:1: error: channel 1: on_block gives back \"T0101 G98\": it changes the channel's feed "
+          "mode "
+          "in the middle of the post's blocks, and no block of the post's puts it back (write it from an "
+          "event, "
+          "where the post restores the mode after it)\nTURRET/1,1\n^\n"
+          "t.lua: note: channel 1: the block 'T0101 G98' came from the script (on_block)\n");
+    CHECK(p.files.empty());
   }
 }
 

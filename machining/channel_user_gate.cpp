@@ -1,0 +1,145 @@
+// channel_writer: the gate every user block passes before it is written, whoever wrote it (an
+// [events] template, post.emit, a block on_block gave back; docs/customising.md and
+// docs/scripting.md, "What a script cannot do"). The post's own words are held to the
+// control's formats and the axis travel as it writes them; a user block is text, so its words
+// are read here, as a control that skips blanks would read them:
+// - every word within the control's format (block_fits);
+// - no blank inside a word: `M1 00` is M100, a wait, to a control that skips blanks;
+// - an X within the channel's travel, in whatever form the control reads one: X+9000.,
+//   U9000. (incremental X on a lathe), G91 X, and no X the post cannot read (X#100, X[...]);
+// - no change of the coordinate system under the post's positions (G10, G50, G52, G92 with an
+//   axis word);
+// - no program number (O2000, :2000): a control that loads the file starts another program.
+#include <charconv>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "machining/channel_writer.hpp"
+#include "support/ascii.hpp"
+
+namespace twinpost {
+
+namespace {
+
+// The G codes of block `b` outside comments, whole numbers only (G12.1 and the like skipped).
+template <class F>
+void each_g(std::string_view b, const program_format& f, F&& on_g) {
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b[i] == f.comment_open) {
+      if ((i = b.find(f.comment_close, i + 1)) == std::string_view::npos) return;
+      continue;
+    }
+    if (b[i] != 'G' || (i > 0 && ascii::is_letter(b[i - 1]))) continue;
+    std::size_t j = i + 1;
+    int g = 0;
+    while (j < b.size() && ascii::is_digit(b[j]) && g < 1000) g = g * 10 + (b[j++] - '0');
+    if (j == i + 1 || (j < b.size() && b[j] == '.')) continue;
+    on_g(g);
+  }
+}
+
+bool is_axis_letter(char c) {
+  return c == 'X' || c == 'Y' || c == 'Z' || c == 'U' || c == 'V' || c == 'W' || c == 'A' || c == 'B' ||
+         c == 'C';
+}
+
+}  // namespace
+
+bool channel_writer::user_block_passes(const std::string& b) {
+  if (!block_fits(b)) return false;
+  const program_format& f = m_.program;
+  bool not_a_position = false, incremental = false, sets_frame = false;
+  each_g(b, f, [&](int g) {
+    // After these an X is no position in the work frame: a dwell (G4 X1.5), machine
+    // coordinates (G53), a macro's argument (G65).
+    not_a_position = not_a_position || g == 4 || g == 53 || g == 65;
+    incremental = incremental || (absolute_code_ && g == 91);
+    sets_frame = sets_frame || g == 10 || g == 50 || g == 52 || g == 92;
+  });
+  // First the blanks: a blank inside a word changes what every check below reads.
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const char c = b[i];
+    if (c == f.comment_open) {
+      if ((i = b.find(f.comment_close, i + 1)) == std::string::npos) break;
+      continue;
+    }
+    // A blank inside a word: after an address, or between two digits of a number.
+    if (c == ' ' && i > 0) {
+      std::size_t k = i;
+      while (k < b.size() && b[k] == ' ') ++k;
+      const char before = b[i - 1], after = k < b.size() ? b[k] : '\0';
+      const bool address_before =
+          ascii::is_upper(before) && (i < 2 || !ascii::is_letter(b[i - 2])) && before != f.comment_open;
+      const bool number_after = ascii::is_digit(after) || after == '.';
+      if ((address_before && (number_after || after == '-' || after == '+' || after == '#')) ||
+          ((ascii::is_digit(before) || before == '.' || before == '#') && number_after)) {
+        const std::size_t from = b.rfind(' ', i - 1) == std::string::npos ? 0 : b.rfind(' ', i - 1) + 1;
+        std::size_t to = k;
+        while (to < b.size() && b[to] != ' ') ++to;
+        error(line_, fmt::format("\"{}\" has a blank inside the word '{}': a control that skips blanks reads "
+                                 "one word there",
+                                 b, b.substr(from, to - from)));
+        return false;
+      }
+    }
+  }
+  const axis_def* x = ch_.axis('X');
+  const bool u_is_x = x && !ch_.axis('U') && x_diameter_;  // a lathe's incremental X (G-code system A)
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const char c = b[i];
+    if (c == f.comment_open) {
+      if ((i = b.find(f.comment_close, i + 1)) == std::string::npos) break;
+      continue;
+    }
+    const bool word_start = ascii::is_upper(c) && (i == 0 || !ascii::is_letter(b[i - 1]));
+    if (((word_start && c == 'O') || c == ':') && i + 1 < b.size() && ascii::is_digit(b[i + 1])) {
+      error(line_, fmt::format("\"{}\" holds a program number: a control that loads the file starts another "
+                               "program there, and this one loses the blocks after it",
+                               b));
+      return false;
+    }
+    if (!word_start) continue;
+    if (sets_frame && is_axis_letter(c)) {
+      error(line_,
+            fmt::format("\"{}\" sets or shifts the coordinate system (G10, G50, G52 or G92 with an axis "
+                        "word): every later position of the post would be off by it",
+                        b));
+      return false;
+    }
+    const bool is_x = c == 'X', is_u = c == 'U' && u_is_x;
+    if (!x || !x->min || !x->max || not_a_position || (!is_x && !is_u)) continue;
+    std::size_t j = i + 1;
+    if (j < b.size() && b[j] == '+') ++j;  // X+9000. is X9000.
+    double v = 0;
+    const auto r = std::from_chars(b.data() + j, b.data() + b.size(), v);
+    if (r.ec != std::errc()) {
+      std::size_t e = i + 1;
+      while (e < b.size() && b[e] != ' ') ++e;
+      error(line_, fmt::format("{} in \"{}\": an {} the post cannot hold to channel {}'s X travel {}..{} (a "
+                               "variable or an expression); write the number",
+                               b.substr(i, e - i), b, c, ch_.number, *x->min, *x->max));
+      return false;
+    }
+    const std::string_view word(b.data() + i, static_cast<std::size_t>(r.ptr - (b.data() + i)));
+    if (is_u || incremental) {
+      // An increment: from the X written last, or, with none known, no longer than the travel.
+      const bool in = last_x_.known ? last_x_.value + v >= *x->min && last_x_.value + v <= *x->max
+                                    : std::abs(v) <= *x->max - *x->min;
+      if (!in) {
+        error(line_,
+              fmt::format("{} (incremental) takes X outside channel {}'s X travel {}..{} (channel.axis "
+                          "min/max)",
+                          word, ch_.number, *x->min, *x->max));
+        return false;
+      }
+    } else if (v < *x->min || v > *x->max) {
+      error(line_, fmt::format("{} is outside channel {}'s X travel {}..{} (channel.axis min/max)", word,
+                               ch_.number, *x->min, *x->max));
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace twinpost
