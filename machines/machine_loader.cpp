@@ -409,8 +409,12 @@ void check_units_code(const table_reader& root, const machine& m, const anchors&
 // crashes the jaws into the part at the first error in the grip position. It must be a feed with
 // its own F (G1 or a G31 torque skip), after a rapid to a position short of the part, as the
 // Fusion Doosan post's stock transfer writes it (G0 to the feed position, then G1 or G31 P99 to
-// the chuck position at the cycle's feed). "" when it is; else what is wrong.
-std::string grip_approach_problem(const std::vector<std::string>& grip) {
+// the chuck position at the cycle's feed). On a Fanuc control (`g53_rapid`) a G53 block moves
+// at rapid traverse whatever the motion mode (Fanuc's G53, machine coordinate selection; the
+// Fusion Doosan post's useG53ForXfer: "G53 = in rapid mode with G53, G53.2 = in feed mode (must
+// have G53.2 enabled on control)"), so `G1 G53 B.. F..` is a rapid. "" when it is; else what
+// is wrong.
+std::string grip_approach_problem(const std::vector<std::string>& grip, bool g53_rapid) {
   int motion = -1;  // the G0/G1/G31 in force in the grip (-1: the program's, unknown)
   const std::string* last = nullptr;
   int last_motion = -1;
@@ -423,7 +427,7 @@ std::string grip_approach_problem(const std::vector<std::string>& grip) {
       if (block[i] == ')' && depth > 0) --depth;
     }
     if (b.starts_with("IF") || b.starts_with("#") || b.starts_with("WHILE")) continue;  // macro statements
-    bool axis = false, f = false;
+    bool axis = false, f = false, g53 = false;
     for (std::size_t i = 0; i + 1 < b.size(); ++i) {
       const char c = b[i], n = b[i + 1];
       const bool value = ascii::is_digit(n) || n == '-' || n == '+' || n == '.' || n == '#' || n == '[';
@@ -433,13 +437,14 @@ std::string grip_approach_problem(const std::vector<std::string>& grip) {
         while (k < b.size() && (ascii::is_digit(b[k]) || b[k] == '.')) g += b[k++];
         if (g == "0" || g == "00") motion = 0;
         if (g == "1" || g == "01" || g == "31") motion = 1;
+        if (g == "53") g53 = true;
       }
       if (std::string_view("XYZUVWABC").find(c) != std::string_view::npos && value) axis = true;
       if (c == 'F' && value) f = true;
     }
     if (!axis) continue;
     last = &block;
-    last_motion = motion;
+    last_motion = g53 && g53_rapid ? 2 : motion;  // one block: the modal G1 stays in force
     last_f = f;
   }
   if (!last) return {};
@@ -451,6 +456,8 @@ std::string grip_approach_problem(const std::vector<std::string>& grip) {
       *last,
       last_motion == 0   ? "a rapid"
       : last_motion == 1 ? "a feed with no F of its own"
+      : last_motion == 2 ? "a rapid on a Fanuc control (G53 moves at rapid traverse whatever the motion "
+                           "mode; G53.2 feeds in machine coordinates where the control has it)"
                          : "in the motion the program left in force");
 }
 
@@ -466,7 +473,8 @@ void read_transfer(const table_reader& root, machine& m) {
   if (!m.spindle("sub"))
     r.fail(*r.find("channel"), "[transfer] needs a [[spindle]] named 'sub' to take the part");
   r.read_fixed("grip", m.transfer.grip);
-  if (const std::string why = grip_approach_problem(m.transfer.grip); !why.empty())
+  if (const std::string why = grip_approach_problem(m.transfer.grip, m.control.starts_with("fanuc"));
+      !why.empty())
     r.fail(*r.find("grip"), why);
   r.read_fixed("release", m.transfer.release);
   m.transfer.has_release_after_cutoff = r.read_fixed("release_after_cutoff", m.transfer.release_after_cutoff);

@@ -575,6 +575,20 @@ TEST_CASE("validation: the grip's last move onto the part is a feed with its own
   CHECK(error_of(machine + "grip = [\"G0 G53 B#501\", \"G98 G1 G53 B#500 F500.\", \"M168\"]\n") ==
         "(no error)");
   CHECK(error_of(machine + "grip = [\"G0 B#501\", \"M86\", \"G31 P99 G53 B#500 F300.\"]\n") == "(no error)");
+  // On a Fanuc control G53 moves at rapid whatever the motion mode: the same feed is a rapid.
+  std::string fanuc = machine;
+  fanuc.replace(fanuc.find("name = \"m\"\n"), 11, "name = \"m\"\ncontrol = \"fanuc-0i-td\"\n");
+  CHECK(
+      error_of(fanuc + "grip = [\"G0 G53 B#501\", \"G98 G1 G53 B#500 F500.\", \"M168\"]\n") ==
+      "m.toml:19:8: error: transfer.grip brings the sub spindle onto the part with \"G98 G1 G53 B#500 "
+      "F500.\", "
+      "a rapid on a Fanuc control (G53 moves at rapid traverse whatever the motion mode; G53.2 feeds in "
+      "machine coordinates where the control has it): its chuck is open and the part is there; make the last "
+      "move a feed with its own F (G1 ... F.. or a G31 torque skip), after a rapid to a position short of "
+      "the "
+      "part");
+  CHECK(error_of(fanuc + "grip = [\"G0 G53 B#501\", \"G98 G1 G53.2 B#500 F500.\", \"M168\"]\n") ==
+        "(no error)");
 }
 
 TEST_CASE("validation: a C-axis code is no spindle code, and side-cycle cross holes need their codes",

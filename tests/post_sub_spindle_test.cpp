@@ -126,7 +126,7 @@ TEST_CASE("the part transfer on the Fanuc twin: home, waits, path 1's blocks, th
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\n"
         "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nM9\nG28 U0.\nG28 W0.\nM100\nM169\nM213\nIF [#500 EQ #0] THEN "
         "#3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF [#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH "
-        "POSITION #501 NOT SET)\nG0 G53 B#501\nG98 G1 G53 B#500 F500.\nM168\nG99\nM101\n"
+        "POSITION #501 NOT SET)\nG0 G53 B#501\nG98 G1 G53.2 B#500 F500.\nM168\nG99\nM101\n"
         "M102\nM69\nG28 G53 B0.\nM205\nM100\nG55\nM101\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   CHECK(file_of(p, "XFER_2.nc") ==
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM100\nM101\nM102\nM100\nG55\n"
@@ -157,7 +157,7 @@ TEST_CASE("the part transfer on the 31i: the idle mill head waits and goes home 
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\n"
         "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nM9\nG28 U0.\nG28 W0.\nM200 P123\nM169\nM213\nIF [#500 EQ #0] THEN "
         "#3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF [#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH "
-        "POSITION #501 NOT SET)\nG0 G53 B#501\nG98 G1 G53 B#500 F500.\nM168\nG99\n"
+        "POSITION #501 NOT SET)\nG0 G53 B#501\nG98 G1 G53.2 B#500 F500.\nM168\nG99\n"
         "M201 P123\nM202 P123\nM69\nG28 G53 B0.\nM205\nM204 P123\nG55\nM206 P123\nM9\nG28 U0.\nG28 W0.\n"
         "M30\n%\n");
   CHECK(file_of(p, "XFER_3.nc") ==
@@ -374,6 +374,6 @@ TEST_CASE("the transfer's grip feeds the sub spindle onto the part, and the chan
         "G1 X50. Z2. F0.2\nZ-20.\nG28 U0.\nG28 W0.\nM100\nM169\nM213\n"
         "IF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\n"
         "IF [#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\n"
-        "G0 G53 B#501\nG98 G1 G53 B#500 F500.\nM168\nG99\nM101\nM102\nM69\nG28 G53 B0.\nM205\nM100\nG55\n"
+        "G0 G53 B#501\nG98 G1 G53.2 B#500 F500.\nM168\nG99\nM101\nM102\nM69\nG28 G53 B0.\nM205\nM100\nG55\n"
         "G97 S900 M103\nG1 X50. Z-2. F0.2\nZ5.\nM101\nM105\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
