@@ -60,8 +60,8 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
   // Item 2: the pick-off's release opening the main chuck on the bar again.
   CHECK(edited_check(sample_job("pick-off"), "integrex-i200st", "PICK-OFF.EIA", "M952", "G0 G53 W0.\n",
                      "M206\nG0 G53 W0.\n") ==
-        "PICK-OFF.EIA:59:1: error: channel 1: M206 opens the main spindle's chuck after the part-off at line "
-        "53: "
+        "PICK-OFF.EIA:61:1: error: channel 1: M206 opens the main spindle's chuck after the part-off at line "
+        "55: "
         "it holds the bar, which would be released; after a part-off the sub spindle takes the part away and "
         "the bar stays clamped ([transfer] release_after_cutoff)\nM206\n^\n"
         "check: 2 channels, 10 waits paired, 1 error\n");
