@@ -195,8 +195,11 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
     inverse_time_ = false;
     last_f_.clear();
   }
-  // G43.4/G43.5 do not go with G68.2: the plane's length offset is G43 along its Z.
-  if (offset_on_ && c.output != multiaxis_output::joints) cancel_length_offset();
+  // G43.4/G43.5 do not go with G68.2: the plane's length offset is G43 along its Z, commanded
+  // in the plane. A G43 from before G68.2 stays along the work frame's Z (Fanuc), so a joints
+  // chain's G43 is cancelled too and given again after G53.1 with the first Z move, as the
+  // Autodesk Fanuc posts write G43 Z.. H.. after every retract and new work plane.
+  if (offset_on_) cancel_length_offset();
   // G53.1 turns the rotaries with the tool at its tool-change height, as between two planes: a
   // table machine turns the part under the tool, a head swings the tip about its pivot.
   if (!homed_) go_home();
@@ -228,9 +231,10 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
 
 void channel_writer::close_plane() {
   out_.block(chain_->plane_off);
-  // The plane's G43 is not the chain's tool-tip control: cancelled, so that the next move
-  // turns G43.4 (G43.5) on again with the rotary values (a joints chain keeps its G43).
-  if (offset_on_ && chain_->output != multiaxis_output::joints) cancel_length_offset();
+  // The plane's G43 is along the plane's Z, not the chain's tool-tip control: cancelled, so that
+  // the next move turns G43.4 (G43.5) on again with the rotary values, or a joints chain's G43
+  // along the work frame's Z.
+  if (offset_on_) cancel_length_offset();
   plane_on_ = false;
   forget_axes();
   motion_g_ = -1;
