@@ -9,7 +9,7 @@
 
 namespace {
 struct null_host : twinpost::scripting::script_host {
-  void emit(std::string_view) override {}
+  bool emit(std::string_view) override { return true; }
   void warning(std::string_view) override {}
 };
 }  // namespace

@@ -38,9 +38,10 @@ bool clean(std::string_view s, bool block) {
 
 struct checking_host : script_host {
   std::size_t bytes = 0, warned = 0;
-  void emit(std::string_view b) override {
+  bool emit(std::string_view b) override {
     fuzz::require(clean(b, true), "post.emit passed a block with a line break, '%' or a control byte");
     bytes += b.size();
+    return true;
   }
   void warning(std::string_view m) override {
     fuzz::require(clean(m, false), "post.warning passed a control byte");

@@ -421,10 +421,11 @@ std::string grip_approach_problem(const std::vector<std::string>& grip, bool g53
   bool last_f = false;
   for (const std::string& block : grip) {
     std::string b;
-    for (std::size_t i = 0, depth = 0; i < block.size(); ++i) {  // without comments
-      if (block[i] == '(') ++depth;
-      if (depth == 0) b += ascii::upper(block[i]);
-      if (block[i] == ')' && depth > 0) --depth;
+    bool comment = false;  // without comments, each ended at its first ')' as a control ends it
+    for (const char c : block) {
+      if (c == '(') comment = true;
+      if (!comment) b += ascii::upper(c);
+      if (c == ')') comment = false;
     }
     if (b.starts_with("IF") || b.starts_with("#") || b.starts_with("WHILE")) continue;  // macro statements
     bool axis = false, f = false, g53 = false;

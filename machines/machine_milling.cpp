@@ -35,11 +35,11 @@ namespace {
 // checker's reader take as M functions.
 std::vector<int> m_codes(std::string_view block) {
   std::vector<int> out;
-  int depth = 0;
+  bool comment = false;  // ended at its first ')', as a control ends it
   for (std::size_t i = 0; i < block.size(); ++i) {
-    if (block[i] == '(') ++depth;
-    if (block[i] == ')' && depth > 0) --depth;
-    if (depth > 0 || block[i] != 'M') continue;
+    if (block[i] == '(') comment = true;
+    if (block[i] == ')') comment = false;
+    if (comment || block[i] != 'M') continue;
     std::size_t j = i + 1;
     int v = 0;
     while (j < block.size() && block[j] >= '0' && block[j] <= '9' && v < 100000)

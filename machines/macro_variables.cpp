@@ -6,12 +6,15 @@ namespace twinpost {
 
 std::vector<macro_use> macro_uses(std::string_view b) {
   std::vector<macro_use> out;
-  int depth = 0;
+  bool comment = false;  // a control ends a comment at the first ')': comments do not nest
   for (std::size_t i = 0; i < b.size(); ++i) {
     const char c = b[i];
-    if (c == '(') ++depth;
-    if (c == ')' && depth > 0) --depth;
-    if (depth > 0 || c != '#') continue;
+    if (c == '(') comment = true;
+    if (c == ')') {
+      comment = false;
+      continue;
+    }
+    if (comment || c != '#') continue;
     std::size_t k = i + 1;
     while (k < b.size() && b[k] == ' ') ++k;
     if (k < b.size() && b[k] == '[') {  // #[...]: its number is known at run time only

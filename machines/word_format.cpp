@@ -1,5 +1,6 @@
 #include "machines/word_format.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fmt/format.h>
@@ -134,7 +135,9 @@ std::string check_block_words(std::string_view block, const word_formats& f, cha
     std::string_view value = block.substr(i + 1, (ends ? j : word_end) - i - 1);
     // Digits as written count, padding included: T0101 is four digits, O12345 five.
     const bool number = ends && whole + decimals > 0;
-    if (!number || (wf.whole > 0 && (whole > wf.whole || decimals > wf.decimals))) {
+    // A G code may have one decimal place whatever the format (G54.1, G43.4, G12.1, G84.2).
+    const int decimals_allowed = c == 'G' ? std::max(wf.decimals, 1) : wf.decimals;
+    if (!number || (wf.whole > 0 && (whole > wf.whole || decimals > decimals_allowed))) {
       if (wf.whole == 0) return fmt::format("{} word {} is not a number the control reads", c, value);
       return word_misfit_message(c, value, wf);
     }

@@ -120,15 +120,19 @@ void channel_writer::restore_after_emits() {
   if (!script_->failed) restore_modes_after(blocks, "post.emit");
 }
 
-void channel_writer::emit(std::string_view block) {
+bool channel_writer::emit(std::string_view block) {
   // Called inside a Lua call: reports, never throws (script_host).
   const std::string b(block);
   // The same checks as an [events] block's: the control's word formats, the X travel (the
   // scripting layer has refused a '%', a line break, NUL and control bytes).
-  if (!user_block_passes(b)) return script_block_note(b, "post.emit");  // at the CL record
+  if (!user_block_passes(b)) {
+    script_block_note(b, "post.emit");  // at the CL record
+    return false;
+  }
   out_.block_as_is(b);
   note_user_block(b, true);
   script_emitted_.push_back(b);
+  return true;
 }
 
 void channel_writer::script_block_note(std::string_view block, std::string_view how) {
@@ -156,7 +160,10 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
   run_script([&](scripting::lua_script& s) { v = s.on_block(block, script_context(), *this, replacement); });
   // What on_block emitted stands among the post's blocks: no block restores a mode after it.
   for (const std::string& e : script_emitted_)
-    if (!script_->failed && !refuse_mode_changes(e, "post.emit in on_block")) break;
+    if (!script_->failed && !refuse_mode_changes(e, "post.emit in on_block")) {
+      script_->failed = true;
+      break;
+    }
   script_emitted_.clear();
   if (v == scripting::block_verdict::drop) return block_writer::verdict::drop;
   // The block given back as it came (`return text`) is kept: the writer's modal state still holds.
@@ -164,6 +171,7 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
     return block_writer::verdict::keep;
   if (!user_block_passes(replacement) || !refuse_mode_changes(replacement, "on_block")) {  // at the CL record
     script_block_note(replacement, "on_block");
+    script_->failed = true;  // the post has failed: no more on_block calls, no error per block
     return block_writer::verdict::drop;
   }
   // Its waits are counted as it is written (block_written()); its G and M codes change the modal state.

@@ -44,18 +44,55 @@ bool is_axis_letter(char c) {
          c == 'C';
 }
 
+// Whether block `b` has the word `letter` with one of `values` (L2, L20 of G10).
+bool has_word(std::string_view b, char letter, std::initializer_list<int> values) {
+  for (std::size_t i = 0; i + 1 < b.size(); ++i) {
+    if (b[i] != letter || (i > 0 && ascii::is_letter(b[i - 1]))) continue;
+    int v = 0;
+    const auto r = std::from_chars(b.data() + i + 1, b.data() + b.size(), v);
+    if (r.ec != std::errc()) continue;
+    for (const int want : values)
+      if (v == want) return true;
+  }
+  return false;
+}
+
+// A Fanuc custom macro statement (IF, WHILE, GOTO, END, DO, DPRNT, BPRNT, POPEN, PCLOS, an
+// assignment), after an optional block delete and sequence number: its letters are no words
+// (`#1=#2 XOR #3`, `DPRNT[X#5041[44]]`).
+bool macro_statement(std::string_view b) {
+  std::size_t i = 0;
+  if (i < b.size() && b[i] == '/') ++i;
+  while (i < b.size() && b[i] == ' ') ++i;
+  if (i < b.size() && b[i] == 'N') {
+    ++i;
+    while (i < b.size() && ascii::is_digit(b[i])) ++i;
+    while (i < b.size() && b[i] == ' ') ++i;
+  }
+  const std::string_view rest = b.substr(i);
+  if (rest.starts_with('#')) return true;
+  for (const std::string_view k : {"IF", "WHILE", "GOTO", "END", "DO", "DPRNT", "BPRNT", "POPEN", "PCLOS"})
+    if (rest.starts_with(k) &&
+        (rest.size() == k.size() || !ascii::is_digit(rest[k.size()]) || k == "END" || k == "DO"))
+      return true;
+  return false;
+}
+
 }  // namespace
 
 bool channel_writer::user_block_passes(const std::string& b) {
   if (!block_fits(b)) return false;
   const program_format& f = m_.program;
-  bool not_a_position = false, incremental = false, sets_frame = false;
+  bool not_a_position = macro_statement(b), incremental = false, sets_frame = false, local_frame = false;
   each_g(b, f, [&](int g) {
     // After these an X is no position in the work frame: a dwell (G4 X1.5), machine
-    // coordinates (G53), a macro's argument (G65).
-    not_a_position = not_a_position || g == 4 || g == 53 || g == 65;
+    // coordinates (G53), a macro's arguments (G65, G66).
+    not_a_position = not_a_position || g == 4 || g == 10 || g == 53 || g == 65 || g == 66;
     incremental = incremental || (absolute_code_ && g == 91);
-    sets_frame = sets_frame || g == 10 || g == 50 || g == 52 || g == 92;
+    // G10 sets a work offset with L2 or L20 (with P alone, or L10-L13, a tool offset: a wear
+    // adjustment is a shop's own business); G52 X0. cancels a local frame.
+    sets_frame = sets_frame || g == 50 || g == 92 || (g == 10 && has_word(b, 'L', {2, 20}));
+    local_frame = local_frame || g == 52;
   });
   // First the blanks: a blank inside a word changes what every check below reads.
   for (std::size_t i = 0; i < b.size(); ++i) {
@@ -100,15 +137,22 @@ bool channel_writer::user_block_passes(const std::string& b) {
       return false;
     }
     if (!word_start) continue;
-    if (sets_frame && is_axis_letter(c)) {
+    // An axis name list (Mazak `G17 XC`): no value after the letter.
+    const char next = i + 1 < b.size() ? b[i + 1] : '\0';
+    const bool has_value =
+        ascii::is_digit(next) || next == '-' || next == '+' || next == '.' || next == '#' || next == '[';
+    if (!has_value) continue;
+    double frame_value = 1;
+    if (local_frame) std::from_chars(b.data() + i + 1, b.data() + b.size(), frame_value);
+    if ((sets_frame || (local_frame && frame_value != 0)) && is_axis_letter(c)) {
       error(line_,
-            fmt::format("\"{}\" sets or shifts the coordinate system (G10, G50, G52 or G92 with an axis "
-                        "word): every later position of the post would be off by it",
+            fmt::format("\"{}\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "
+                        "L2/L20, G52 with a shift): every later position of the post would be off by it",
                         b));
       return false;
     }
     const bool is_x = c == 'X', is_u = c == 'U' && u_is_x;
-    if (!x || !x->min || !x->max || not_a_position || (!is_x && !is_u)) continue;
+    if (!x || !x->min || !x->max || not_a_position || (!is_x && !is_u)) continue;  // G10 P U: an offset
     std::size_t j = i + 1;
     if (j < b.size() && b[j] == '+') ++j;  // X+9000. is X9000.
     double v = 0;

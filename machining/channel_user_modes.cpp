@@ -18,12 +18,12 @@ namespace {
 bool has_g_code(std::string_view block, std::string_view code) {
   if (code.size() < 2 || code[0] != 'G') return false;
   const std::string_view number = code.substr(1);
-  int depth = 0;
+  bool comment = false;  // a control ends a comment at the first ')': comments do not nest
   for (std::size_t i = 0; i < block.size(); ++i) {
     const char c = block[i];
-    if (c == '(') ++depth;
-    if (c == ')' && depth > 0) --depth;
-    if (depth > 0 || (c != 'G' && c != 'g') || (i > 0 && ascii::is_letter(block[i - 1]))) continue;
+    if (c == '(') comment = true;
+    if (c == ')') comment = false;
+    if (comment || (c != 'G' && c != 'g') || (i > 0 && ascii::is_letter(block[i - 1]))) continue;
     std::size_t j = i + 1;
     while (j < block.size() && (ascii::is_digit(block[j]) || block[j] == '.')) ++j;
     std::string_view n = block.substr(i + 1, j - i - 1);

@@ -788,7 +788,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// After a hook other than on_block: restore_modes_after the blocks post.emit wrote in it.
   void restore_after_emits();
   // script_host and block_filter: post.emit, post.warning, on_block.
-  void emit(std::string_view block) override;
+  bool emit(std::string_view block) override;
   void warning(std::string_view message) override;
   block_writer::verdict filter(std::string_view block, std::string& replacement) override;
   /// What a user block (template or script) does besides being written: its wait codes are

@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <functional>
+#include <vector>
 
 #include <lualib.h>
 
@@ -21,7 +21,7 @@ std::string escape_controls(std::string_view text) {
   out.reserve(text.size());
   for (const char c : text) {
     const auto b = static_cast<unsigned char>(c);
-    if ((b < 0x20 && b != '\t') || b == 0x7f) {
+    if ((b < 0x20 && b != '\t') || b >= 0x7f) {
       char hex[5];
       std::snprintf(hex, sizeof hex, "\\x%02x", b);
       out += hex;
@@ -77,6 +77,8 @@ template <class... A>
   __builtin_unreachable();  // luaL_error raises
 }
 
+constexpr std::size_t max_set_bytes = 512;
+
 // string.find/match/gmatch/gsub: the subject's length bounded, its bytes and the pattern's
 // charged, and the matcher's worst case worked out before the one C call the count hook
 // cannot interrupt. The runs the estimate scans for are charged before the scan.
@@ -90,6 +92,12 @@ void guard_pattern(lua_State* L, const char* what, bool anchor_works) {
             self->limits.pattern_subject_bytes);
   self->charge(L, static_cast<double>(n) + static_cast<double>(m));
   const pattern_shape shape = pattern_items({p, m}, anchor_works);
+  // The matcher walks a set for every byte it tries: a set names at most 256 bytes, and 512
+  // bytes of set (ranges, classes, escapes) say all of them.
+  if (shape.longest_set > max_set_bytes)
+    error_f(L,
+            "%s: the pattern has a set [...] of %zu bytes (at most %zu): name its bytes once, or by ranges",
+            what, shape.longest_set, max_set_bytes);
   self->charge(L, pattern_scan_bytes(shape, n));
   const double steps = pattern_steps(shape, {s, n}, self->limits.pattern_steps);
   if (steps > self->limits.pattern_steps) {
@@ -108,13 +116,24 @@ void guard_pattern(lua_State* L, const char* what, bool anchor_works) {
 bool no_specials(std::string_view p) { return p.find_first_of("^$*+?.([%-") == std::string_view::npos; }
 
 // The first `needle` in `hay`: memchr and memcmp while their worst case (hay x needle) is
-// small, else Boyer-Moore, linear in the hay for the first match (Lua's lmemfind is the
-// first way at any size: 'aaa...ab' in 'aaaa...' takes hay x needle steps in one call).
+// small, else Knuth-Morris-Pratt, linear in both (Lua's lmemfind is the first way at any size:
+// 'aaa...ab' in 'aaaa...' takes hay x needle steps in one call; libstdc++'s Boyer-Moore builds
+// its table in needle^2 for such a needle).
 std::size_t first_of(std::string_view hay, std::string_view needle) {
+  if (needle.size() > hay.size()) return std::string_view::npos;
   if (static_cast<double>(hay.size()) * static_cast<double>(needle.size()) <= 1e7) return hay.find(needle);
-  const auto it =
-      std::search(hay.begin(), hay.end(), std::boyer_moore_searcher(needle.begin(), needle.end()));
-  return it == hay.end() ? std::string_view::npos : static_cast<std::size_t>(it - hay.begin());
+  std::vector<std::size_t> border(needle.size() + 1, 0);  // border[i]: of needle[0, i)
+  for (std::size_t i = 1, k = 0; i < needle.size(); ++i) {
+    while (k > 0 && needle[i] != needle[k]) k = border[k];
+    if (needle[i] == needle[k]) ++k;
+    border[i + 1] = k;
+  }
+  for (std::size_t i = 0, k = 0; i < hay.size(); ++i) {
+    while (k > 0 && hay[i] != needle[k]) k = border[k];
+    if (hay[i] == needle[k]) ++k;
+    if (k == needle.size()) return i + 1 - k;
+  }
+  return std::string_view::npos;
 }
 
 int w_find(lua_State* L) {
@@ -298,12 +317,13 @@ int post_emit(lua_State* L) {
       return luaL_error(L, "post.emit: one block per call, without a line break");
     return luaL_error(L, "post.emit: the block has %s", block_fault(text).c_str());
   }
-  self->emitted += n;
+  self->emitted += n + 1;  // with its line break: an empty block is a line too
   if (self->emitted > self->limits.emit_bytes)
     error_f(L, "post.emit: the script wrote more than %zu bytes in the job (its limit)",
             self->limits.emit_bytes);
   self->charge(L, static_cast<double>(n));
-  if (script_host* host = self->host) host->emit(text);
+  if (script_host* host = self->host; host && !host->emit(text))
+    return luaL_error(L, "post.emit: the post refused the block (its error is above); the script stops here");
   return 0;
 }
 

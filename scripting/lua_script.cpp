@@ -29,6 +29,11 @@ constexpr long long hook_slice = 1'000;
 // An allocation at least this large is C work worth a look at the budgets right away: a
 // concatenation of long strings copies them in one instruction.
 constexpr std::size_t big_allocation = 64u << 10;
+// While a string at least this long lives, one VM instruction may work on it for a long time:
+// comparing two 30 MB strings of NUL bytes is 30 million strcoll calls, 0.13 s. The hook then
+// fires every big_string_slice instructions instead of hook_slice.
+constexpr std::size_t big_string = 1u << 20;
+constexpr long long big_string_slice = 10;
 // Of an error's text, at most this much is kept: error(string.rep("\1", 25e6)) is 25 MB.
 constexpr std::size_t error_text_bytes = 1000;
 
@@ -44,14 +49,26 @@ std::string dir_name(const std::string& path) {
 
 // The allocator with a ceiling (lua_Alloc): refusing a growth makes Lua raise "not enough
 // memory", which the call reports like any other error.
+void forget_big_string(script_state* self, void* ptr) {
+  auto& v = self->big_strings;
+  const auto at = std::find(v.begin(), v.end(), ptr);
+  if (at == v.end()) return;
+  v.erase(at);
+  if (v.empty() && self->L && self->exhausted == spent::none) self->arm();
+}
+
 void* alloc(void* ud, void* ptr, std::size_t old_size, std::size_t new_size) {
   auto* self = static_cast<script_state*>(ud);
   std::size_t old_used = ptr ? old_size : 0;
   if (new_size == 0) {
+    if (ptr && old_size >= big_string) forget_big_string(self, ptr);
     std::free(ptr);
     self->used -= old_used;
     return nullptr;
   }
+  // A string is made once and freed once (ptr null, old_size the kind: Lua 5.4 manual, lua_Alloc).
+  const bool new_big_string = !ptr && old_size == LUA_TSTRING && new_size >= big_string;
+  if (ptr && old_size >= big_string) forget_big_string(self, ptr);
   if (new_size > old_used && self->used - old_used + new_size > self->limits.memory_bytes) return nullptr;
   // A large growth inside a call is charged by its bytes, and the budgets looked at: one
   // that is spent refuses the growth, and Lua raises, as for the memory ceiling (fail()
@@ -74,6 +91,10 @@ void* alloc(void* ud, void* ptr, std::size_t old_size, std::size_t new_size) {
   }
   void* p = std::realloc(ptr, new_size);
   if (p) self->used = self->used - old_used + new_size;
+  if (p && new_big_string) {
+    self->big_strings.push_back(p);
+    if (self->big_strings.size() == 1 && self->L && self->exhausted == spent::none) self->arm();
+  }
   return p;
 }
 
@@ -128,8 +149,9 @@ spent script_state::over() const {
 
 void script_state::arm() {
   const long long left = std::max(limits.instructions_per_job - job_count, 1LL);
+  const long long every = big_strings.empty() ? hook_slice : big_string_slice;
   slice = static_cast<int>(
-      std::max(std::min({hook_slice, static_cast<long long>(limits.instructions_per_call), left}), 1LL));
+      std::max(std::min({every, static_cast<long long>(limits.instructions_per_call), left}), 1LL));
   lua_sethook(L, budget_hook, LUA_MASKCOUNT, slice);
 }
 

@@ -30,8 +30,10 @@ struct script_error : std::runtime_error {
 class script_host {
  public:
   virtual ~script_host() = default;
-  /// post.emit(text): one block into the current channel, at the current place.
-  virtual void emit(std::string_view block) = 0;
+  /// post.emit(text): one block into the current channel, at the current place. False when the
+  /// post refused it (its checks reported why): the script stops there, so that a loop of
+  /// refused blocks cannot flood the terminal with one error each.
+  virtual bool emit(std::string_view block) = 0;
   /// post.warning(msg): a warning at the CL record being posted.
   virtual void warning(std::string_view message) = 0;
 };
@@ -81,8 +83,9 @@ struct script_limits {
   std::size_t warning_bytes = 1u << 20;            ///< their text, whole job
 };
 
-/// `text` with every control byte but tab (0x00-0x1f, 0x7f) written as \xHH, so that a
-/// script's message cannot send a terminal escape sequence.
+/// `text` with every control byte but tab (0x00-0x1f, 0x7f) and every byte >= 0x80 written as
+/// \xHH, so that a script's message cannot send a terminal escape sequence (C1 controls
+/// included: U+009B is CSI to a terminal, and a bare 0x9B to an 8-bit one).
 std::string escape_controls(std::string_view text);
 
 struct script_state;  // scripting/lua_state.hpp

@@ -4,6 +4,7 @@
 // _ENV, the post table and the guarded library functions.
 #include <ctime>
 #include <string>
+#include <vector>
 
 // Lua built as C++ (liblua5.4-c++, CMakeLists.txt): C++ linkage, no extern "C".
 #include <lauxlib.h>
@@ -50,7 +51,8 @@ struct script_state {
   int slice = 0;
   double seconds = 0;  // inside calls, before this one
   double call_began = 0;
-  bool running = false;  // inside run(): the allocator charges large growths
+  bool running = false;            // inside run(): the allocator charges large growths
+  std::vector<void*> big_strings;  // the live strings of 1 MB or more (lua_script.cpp, alloc)
   // A budget ran out: from then on every instruction raises again, so a pcall in the script
   // cannot swallow the error and go on. `call` ends with the call; the job's budgets hold.
   spent exhausted = spent::none;

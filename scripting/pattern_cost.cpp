@@ -104,6 +104,7 @@ pattern_shape pattern_items(std::string_view pat, bool anchor_works) {
         if (p + 2 >= pat.size() || pat[p + 2] != '[') break;
         const std::size_t e = set_end(pat, p + 2);
         if (e == std::string_view::npos) break;
+        shape.longest_set = std::max(shape.longest_set, e - (p + 2) + 1);
         ++shape.singles;
         p = e + 1;
         continue;
@@ -117,6 +118,7 @@ pattern_shape pattern_items(std::string_view pat, bool anchor_works) {
     } else if (c == '[') {
       const std::size_t e = set_end(pat, p);
       if (e == std::string_view::npos) break;
+      shape.longest_set = std::max(shape.longest_set, e - p + 1);
       ep = e + 1;
     }
     const char q = ep < pat.size() ? pat[ep] : '\0';

@@ -16,6 +16,7 @@ struct pattern_shape {
   std::size_t singles = 0;                 ///< items matched once (a literal byte, a class, a set)
   int optional = 0;                        ///< items with '?'
   bool linear = false;                     ///< %b or a back reference: a scan of the subject per try
+  std::size_t longest_set = 0;             ///< bytes of the longest `[...]` (the matcher walks it per byte)
 };
 
 /// The items of `pattern`. A malformed pattern keeps the items up to the one Lua stops at (the

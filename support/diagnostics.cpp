@@ -9,17 +9,43 @@ namespace {
 constexpr std::size_t source_window = 200;   // columns of a source line shown at most
 constexpr std::size_t message_bytes = 4096;  // of a message shown at most
 
+// The length of the UTF-8 character at text[i] (a byte >= 0x80), or 0 when the bytes there are
+// no valid UTF-8 or are a C1 control (U+0080..U+009F: CSI, OSC, ST to a terminal).
+std::size_t utf8_printable(std::string_view text, std::size_t i) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = b(i);
+  const std::size_t len = lead >= 0xC2 && lead <= 0xDF   ? 2
+                          : lead >= 0xE0 && lead <= 0xEF ? 3
+                          : lead >= 0xF0 && lead <= 0xF4 ? 4
+                                                         : 0;
+  if (len == 0 || i + len > text.size()) return 0;
+  for (std::size_t k = 1; k < len; ++k)
+    if ((b(i + k) & 0xC0) != 0x80) return 0;
+  if (lead == 0xC2 && b(i + 1) < 0xA0) return 0;  // C1
+  return len;
+}
+
 // `text` onto `out` with its control bytes but tab as \xHH: a file name or a message that
 // carries text from a user's file (a script's error, a name) sends no escape sequence to the
-// terminal. Bytes >= 0x80 stay: a UTF-8 file name shows as itself.
+// terminal. A valid UTF-8 character stays (a UTF-8 file name shows as itself, and the §
+// of a message); a C1 control in UTF-8 and any byte of no valid UTF-8 (a bare 0x9B, CSI to an
+// 8-bit terminal) are written as \xHH.
 void append_safe(std::string& out, std::string_view text, std::size_t most) {
   const std::size_t n = std::min(text.size(), most);
   for (std::size_t i = 0; i < n; ++i) {
     const auto c = static_cast<unsigned char>(text[i]);
-    if ((c < 0x20 && c != '\t') || c == 0x7f)
+    if (c >= 0x80) {
+      if (const std::size_t len = utf8_printable(text.substr(0, n), i); len > 0) {
+        out.append(text.substr(i, len));
+        i += len - 1;
+      } else {
+        out += fmt::format("\\x{:02x}", c);
+      }
+    } else if ((c < 0x20 && c != '\t') || c == 0x7f) {
       out += fmt::format("\\x{:02x}", c);
-    else
+    } else {
       out += static_cast<char>(c);
+    }
   }
   if (n < text.size()) out += fmt::format("... ({} bytes in all)", text.size());
 }

@@ -120,6 +120,10 @@ TEST_CASE("macro variables: uses in a block and the machine's reserved ones", "[
   CHECK((u[6].number == 4 && !u[6].write));
   CHECK((u[7].number == 500 && u[7].write));  // a control that skips blanks reads #500
   CHECK((u[8].number == -1 && u[8].write));
+  // A control ends a comment at its first ')': comments do not nest, "(()#500=1" writes #500.
+  const std::vector<macro_use> w = macro_uses("(()#500=1 (#501=2)");
+  REQUIRE(w.size() == 1);
+  CHECK((w[0].number == 500 && w[0].write));
   const std::vector<reserved_variable> r = reserved_variables(load_machine("integrex-i200st"));
   REQUIRE(r.size() == 2);
   CHECK((r[0].number == 500 && r[0].why == "read by transfer.grip"));

@@ -21,7 +21,10 @@ namespace {
 // Records what a script asks of the post.
 struct recording_host : script_host {
   std::vector<std::string> blocks, warnings;
-  void emit(std::string_view b) override { blocks.emplace_back(b); }
+  bool emit(std::string_view b) override {
+    blocks.emplace_back(b);
+    return true;
+  }
   void warning(std::string_view m) override { warnings.emplace_back(m); }
 };
 
@@ -356,6 +359,14 @@ TEST_CASE("lua script: what a script writes and warns is bounded and gated", "[s
   CHECK(emit_error("function on_record() post.emit('(\\27[2J)') end") ==
         "ev.lua:1: post.emit: the block has the control byte \\x1b (no NUL or control byte goes into a "
         "program)");
+  // Empty blocks count their line breaks: a loop of post.emit('') is bounded too.
+  script_limits tight;
+  tight.emit_bytes = 100;
+  CHECK(error_of([&] {
+          lua_script t("/m/ev.lua", "function on_record() for i = 1, 1000 do post.emit('') end end", tight);
+          recording_host empty;
+          t.on_record({"X", {}, 1}, empty);
+        }) == "ev.lua:1: post.emit: the script wrote more than 100 bytes in the job (its limit)");
   CHECK(emit_error("function on_record() post.emit('(\\194\\133)') end") ==
         "ev.lua:1: post.emit: the block has the byte \\xc2 (a control reads ISO or EIA code, ASCII only; an "
         "editor may break the line at a UTF-8 NEL or LS)");
@@ -383,9 +394,14 @@ TEST_CASE("lua script: what a script writes and warns is bounded and gated", "[s
   CHECK(error_of([&] {
           s.on_record({"EMIT", {}, 1}, host);
         }) == "ev.lua:2: post.emit: the script wrote more than 100 bytes in the job (its limit)");
-  CHECK(host.blocks.size() == 16);
+  CHECK(host.blocks.size() == 14);  // 14 blocks of 6 bytes and their line breaks: 98 bytes
   CHECK(error_of([&] { s.on_record({"ESC", {}, 1}, host); }).empty());
   CHECK(host.warnings == std::vector<std::string>{"\\x1b[2Jgone\\x00"});
+  // C1 controls (U+009B, CSI; a bare 0x9B) and every other byte >= 0x80 are escaped too.
+  lua_script c1("/m/ev.lua", "function on_record() post.warning('x\\194\\155' .. '2J\\155') end");
+  host.warnings.clear();
+  CHECK(error_of([&] { c1.on_record({"X", {}, 1}, host); }).empty());
+  CHECK(host.warnings == std::vector<std::string>{"x\\xc2\\x9b2J\\x9b"});
   CHECK(error_of([&] {
           s.on_record({"WARN", {}, 1}, host);
         }) == "ev.lua:3: post.warning: more than 3 warnings in the job (its limit)");
@@ -535,4 +551,18 @@ TEST_CASE("lua script: an error's text and the script's name reach the terminal 
   CHECK(error_of([] { lua_script s("/m/e\x1b[2Jv.lua", "error('x')"); }) == "e\\x1b[2Jv.lua:1: x");
   CHECK(error_of([] { lua_script s(std::string("/m/ev.lua\0/etc/passwd", 21)); }) ==
         "passwd: the script's name holds a NUL byte");
+}
+
+TEST_CASE("lua script: the third attack's patterns and searches are refused or linear", "[scripting]") {
+  // A needle longer than the subject finds nothing at once; a long one is searched in linear time.
+  CHECK(load_error(
+            "local n = string.rep('a', 1e6) .. 'b'\nassert(('aaaa'):find(n, 1, true) == nil)\n"
+            "local s = string.rep('a', 1e6)\nassert(s:find(string.rep('a', 5e5) .. 'b', 1, true) == nil)")
+            .empty());
+  // The matcher walks a set for every byte: a set is at most 512 bytes.
+  CHECK(load_error("local s = string.rep('a', 1e5)\nlocal i = s:find('[' .. string.rep('b', 4000) .. ']')") ==
+        "ev.lua:2: string.find: the pattern has a set [...] of 4002 bytes (at most 512): name its bytes "
+        "once, or "
+        "by ranges");
+  CHECK(load_error("assert(('x1'):find('[%a%d_%-%.]+') == 1)").empty());
 }

@@ -135,3 +135,20 @@ TEST_CASE("a diagnostic echoes at most 200 columns of its line, binary bytes esc
   d.source_line = "\tX\x01Y";
   CHECK(format_diagnostic(d) == "t.cl:1:3: error: m\n\tX\\x01Y\n\t ^\n");
 }
+
+TEST_CASE("a diagnostic's file name and message reach the terminal without control sequences",
+          "[diagnostics]") {
+  diagnostic d;
+  d.file = "e\x1b[2Jv.lua";
+  d.line = 2;
+  // C0, DEL, a UTF-8 C1 control (U+009B, CSI), a bare 0x9B and a cut UTF-8 sequence are escaped;
+  // valid UTF-8 (the section sign, an o umlaut) stays.
+  d.message = std::string("a\x07") + "\x7f" + "\xc2\x9b" + "1m \x9b" + "31m \xc2\xa7" + "4 \xc3\xb6 \xe2\x82";
+  CHECK(format_diagnostic(d) ==
+        "e\\x1b[2Jv.lua:2: error: a\\x07\\x7f\\xc2\\x9b1m \\x9b31m \xc2\xa7"
+        "4 \xc3\xb6 \\xe2\\x82\n");
+  // A message is cut at 4 096 bytes.
+  d.message = std::string(5000, 'x');
+  CHECK(format_diagnostic(d) ==
+        "e\\x1b[2Jv.lua:2: error: " + std::string(4096, 'x') + "... (5000 bytes in all)\n");
+}

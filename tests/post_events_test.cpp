@@ -269,8 +269,8 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
        "X#100 in \"G0 X#100\": an X the post cannot hold to channel 1's X travel -10..460 (a "
        "variable or an expression); write the number"},
       {"G50 X-9000.",
-       "\"G50 X-9000.\" sets or shifts the coordinate system (G10, G50, G52 or G92 with an axis "
-       "word): every later position of the post would be off by it"},
+       "\"G50 X-9000.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 "
+       "with a shift): every later position of the post would be off by it"},
       {"O2000",
        "\"O2000\" holds a program number: a control that loads the file starts another program there, "
        "and this one loses the blocks after it"},
@@ -290,12 +290,14 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
   SECTION("the shop's own forms post: G28 U0., G50 S2000, a dwell, a counter") {
     const test::posted q = post_with(
         "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 U0.\", \"G50 S2000\", \"G4 U1.5\", "
-        "\"#601 = #601 + 1\"]\n",
+        "\"#601 = #601 + 1\", \"G10 P101 U0.1\", \"G52 X0. Z0.\", \"#1=#2 XOR #3\", "
+        "\"DPRNT[X#5041[44]]\"]\n",
         "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate-ok");
     CHECK(q.diagnostics == "");
     CHECK(program_1(q) ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG28 U0.\nG50 S2000\nG4 U1.5\n"
-          "#601 = #601 + 1\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+          "#601 = #601 + 1\nG10 P101 U0.1\nG52 X0. Z0.\n#1=#2 XOR #3\nDPRNT[X#5041[44]]\nM100\nM9\n"
+          "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
 }
 
@@ -429,6 +431,13 @@ TEST_CASE("the channel's modes go back on after a script's blocks and on_block m
     CHECK(p.diagnostics == "");
     CHECK(program_1(p) ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG0 G98\nG99\n"
+          "M100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+  SECTION("a G98 after a nested comment's first ')' is a G98: the post's G99 follows") {
+    const test::posted p =
+        post_with_script("", "function on_tool_change(tool) post.emit('(()G98') end\n", job, "script-nested");
+    CHECK(program_1(p) ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\n(()G98\nG99\n"
           "M100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
   SECTION("post.emit's G20 in a metric program is refused") {
