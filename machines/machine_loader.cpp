@@ -428,7 +428,7 @@ std::string grip_approach_problem(const std::vector<std::string>& grip, bool g53
       if (c == ')') comment = false;
     }
     if (b.starts_with("IF") || b.starts_with("#") || b.starts_with("WHILE")) continue;  // macro statements
-    bool axis = false, f = false, g53 = false;
+    bool axis = false, f = false, g53 = false, dwell = false;
     for (std::size_t i = 0; i + 1 < b.size(); ++i) {
       const char c = b[i], n = b[i + 1];
       const bool value = ascii::is_digit(n) || n == '-' || n == '+' || n == '.' || n == '#' || n == '[';
@@ -439,11 +439,12 @@ std::string grip_approach_problem(const std::vector<std::string>& grip, bool g53
         if (g == "0" || g == "00") motion = 0;
         if (g == "1" || g == "01" || g == "31") motion = 1;
         if (g == "53") g53 = true;
+        if (g == "4" || g == "04") dwell = true;  // G4 U1.: a time, no move
       }
       if (std::string_view("XYZUVWABC").find(c) != std::string_view::npos && value) axis = true;
       if (c == 'F' && value) f = true;
     }
-    if (!axis) continue;
+    if (!axis || dwell) continue;
     last = &block;
     last_motion = g53 && g53_rapid ? 2 : motion;  // one block: the modal G1 stays in force
     last_f = f;

@@ -69,7 +69,7 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
   CHECK(
       edited_check(sample_job("pick-off"), "fanuc-0itd-twin", "PICK-OFF_1.nc", "T0303", "M8\n",
                    "M8\n#501=#501+1\n") ==
-      "PICK-OFF_1.nc:38:1: error: channel 1: #501 is written here, but machine 'fanuc-0itd-twin' reserves it "
+      "PICK-OFF_1.nc:39:1: error: channel 1: #501 is written here, but machine 'fanuc-0itd-twin' reserves it "
       "(read by transfer.grip): the setup owns its value; write a variable the machine file does not name\n"
       "#501=#501+1\n^\n"
       "check: 2 channels, 10 waits paired, 1 error\n");

@@ -26,9 +26,9 @@ expect() {  # expect NAME STATUS STDOUT_LAST_LINE STDERR -- ARGS...
     bad=1
   fi
 }
-expect "missing script" 2 "" "./m.toml:264:10: error: events.script \"shop.lua\": no such file beside the machine file ('./shop.lua')" -- machines --show ./m.toml
-expect "a path" 2 "" "./path.toml:264:10: error: events.script \"sub/shop.lua\" must be a file name beside the machine file (no '/', '\\', ':' or leading '.')" -- machines --show ./path.toml
-expect "a leading dot" 2 "" "./dot.toml:264:10: error: events.script \"..lua\" must be a file name beside the machine file (no '/', '\\', ':' or leading '.')" -- machines --show ./dot.toml
+expect "missing script" 2 "" "./m.toml:265:10: error: events.script \"shop.lua\": no such file beside the machine file ('./shop.lua')" -- machines --show ./m.toml
+expect "a path" 2 "" "./path.toml:265:10: error: events.script \"sub/shop.lua\" must be a file name beside the machine file (no '/', '\\', ':' or leading '.')" -- machines --show ./path.toml
+expect "a leading dot" 2 "" "./dot.toml:265:10: error: events.script \"..lua\" must be a file name beside the machine file (no '/', '\\', ':' or leading '.')" -- machines --show ./dot.toml
 cp "$src/samples/script-shop/shop.lua" shop.lua
 expect "--show" 0 "# [events] script: shop.lua (read from ./shop.lua): copy it beside this file too" "" -- machines --show ./m.toml
 
@@ -105,16 +105,16 @@ expect "read_file: a FIFO" 1 "" "shop.lua:2: error: post.read_file: 'fifo' is no
 $note" -- post job.cls -m ./m.toml -o o
 mv shop.lua real.lua
 ln -s real.lua shop.lua
-expect "the script, a symbolic link" 2 "" "./m.toml:264:10: error: events.script \"shop.lua\": './shop.lua' is not a regular file (a symbolic link, a FIFO, a device or a folder): only a regular file beside the machine file is read" -- post job.cls -m ./m.toml -o o
+expect "the script, a symbolic link" 2 "" "./m.toml:265:10: error: events.script \"shop.lua\": './shop.lua' is not a regular file (a symbolic link, a FIFO, a device or a folder): only a regular file beside the machine file is read" -- post job.cls -m ./m.toml -o o
 rm shop.lua
 mkfifo shop.lua
-expect "the script, a FIFO" 2 "" "./m.toml:264:10: error: events.script \"shop.lua\": './shop.lua' is not a regular file (a symbolic link, a FIFO, a device or a folder): only a regular file beside the machine file is read" -- machines --show ./m.toml
+expect "the script, a FIFO" 2 "" "./m.toml:265:10: error: events.script \"shop.lua\": './shop.lua' is not a regular file (a symbolic link, a FIFO, a device or a folder): only a regular file beside the machine file is read" -- machines --show ./m.toml
 rm shop.lua
 head -c 4194305 /dev/zero | tr '\0' ' ' > shop.lua
 expect "the script, too large" 1 "" "shop.lua: error: the script './shop.lua' is larger than 4194304 bytes
 post: failed with 1 error; no file written" -- post job.cls -m ./m.toml -o o
 # [events] script_seconds and script_instructions: the loader's ranges.
 sed 's/^script = "shop.lua"/script = "shop.lua"\nscript_seconds = 0.5/' m.toml > s.toml
-expect "script_seconds out of range" 2 "" "./s.toml:265:18: error: events.script_seconds must be 1..86400, not 0.5" -- machines --show ./s.toml
+expect "script_seconds out of range" 2 "" "./s.toml:266:18: error: events.script_seconds must be 1..86400, not 0.5" -- machines --show ./s.toml
 cd ..
 exit $bad
