@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "machines/macro_variables.hpp"
 #include "machining/channel_writer.hpp"
 #include "support/ascii.hpp"
 
@@ -22,7 +23,8 @@ namespace twinpost {
 
 namespace {
 
-// The G codes of block `b` outside comments, whole numbers only (G12.1 and the like skipped).
+// The G codes of block `b` outside comments, whole numbers only: G12.1 and the like skipped,
+// G92.0 read as G92 (a control reads it so).
 template <class F>
 void each_g(std::string_view b, const program_format& f, F&& on_g) {
   for (std::size_t i = 0; i < b.size(); ++i) {
@@ -34,33 +36,40 @@ void each_g(std::string_view b, const program_format& f, F&& on_g) {
     std::size_t j = i + 1;
     int g = 0;
     while (j < b.size() && ascii::is_digit(b[j]) && g < 1000) g = g * 10 + (b[j++] - '0');
-    if (j == i + 1 || (j < b.size() && b[j] == '.')) continue;
-    on_g(g);
+    if (j == i + 1) continue;
+    bool whole = true;
+    if (j < b.size() && b[j] == '.')
+      for (++j; j < b.size() && ascii::is_digit(b[j]); ++j) whole = whole && b[j] == '0';
+    if (whole) on_g(g);
   }
 }
 
-bool is_axis_letter(char c) {
+bool is_axis_letter(char c) {  // H: a lathe's incremental C
   return c == 'X' || c == 'Y' || c == 'Z' || c == 'U' || c == 'V' || c == 'W' || c == 'A' || c == 'B' ||
-         c == 'C';
+         c == 'C' || c == 'H';
 }
 
-// Whether block `b` has the word `letter` with one of `values` (L2, L20 of G10).
+// Whether block `b` may have the word `letter` with one of `values` (L2, L20 of G10): a value
+// the post cannot read (L#1, L[2]) may be one of them.
 bool has_word(std::string_view b, char letter, std::initializer_list<int> values) {
   for (std::size_t i = 0; i + 1 < b.size(); ++i) {
     if (b[i] != letter || (i > 0 && ascii::is_letter(b[i - 1]))) continue;
-    int v = 0;
-    const auto r = std::from_chars(b.data() + i + 1, b.data() + b.size(), v);
+    std::size_t j = i + 1;
+    if (b[j] == '+') ++j;
+    if (j < b.size() && (b[j] == '#' || b[j] == '[')) return true;
+    double v = 0;
+    const auto r = std::from_chars(b.data() + j, b.data() + b.size(), v);
     if (r.ec != std::errc()) continue;
     for (const int want : values)
-      if (v == want) return true;
+      if (v == static_cast<double>(want)) return true;
   }
   return false;
 }
 
-// A Fanuc custom macro statement (IF, WHILE, GOTO, END, DO, DPRNT, BPRNT, POPEN, PCLOS, an
-// assignment), after an optional block delete and sequence number: its letters are no words
-// (`#1=#2 XOR #3`, `DPRNT[X#5041[44]]`).
-bool macro_statement(std::string_view b) {
+// A Fanuc custom macro output statement (DPRNT, BPRNT, POPEN, PCLOS), after an optional block
+// delete and sequence number: its letters are text to print (`DPRNT[X#5041[44]]`). Other macro
+// statements (IF, WHILE, an assignment) are read like any block: `IF [..] THEN G0 X9000.` moves.
+bool print_statement(std::string_view b) {
   std::size_t i = 0;
   if (i < b.size() && b[i] == '/') ++i;
   while (i < b.size() && b[i] == ' ') ++i;
@@ -70,12 +79,16 @@ bool macro_statement(std::string_view b) {
     while (i < b.size() && b[i] == ' ') ++i;
   }
   const std::string_view rest = b.substr(i);
-  if (rest.starts_with('#')) return true;
-  for (const std::string_view k : {"IF", "WHILE", "GOTO", "END", "DO", "DPRNT", "BPRNT", "POPEN", "PCLOS"})
-    if (rest.starts_with(k) &&
-        (rest.size() == k.size() || !ascii::is_digit(rest[k.size()]) || k == "END" || k == "DO"))
-      return true;
+  for (const std::string_view k : {"DPRNT[", "BPRNT[", "POPEN", "PCLOS"})
+    if (rest.starts_with(k)) return true;
   return false;
+}
+
+// The system variables of the work offsets and the external shift (Fanuc #5201-#5335 lathe and
+// mill, #7001-#7948 G54.1, #14001-#19988 more of them): a write moves every later position,
+// as G10 L2 does.
+bool work_offset_variable(int n) {
+  return (n >= 5000 && n <= 5999) || (n >= 7000 && n <= 7999) || (n >= 14000 && n <= 19999);
 }
 
 }  // namespace
@@ -83,7 +96,8 @@ bool macro_statement(std::string_view b) {
 bool channel_writer::user_block_passes(const std::string& b) {
   if (!block_fits(b)) return false;
   const program_format& f = m_.program;
-  bool not_a_position = macro_statement(b), incremental = false, sets_frame = false, local_frame = false;
+  if (print_statement(b)) return true;  // text to print: nothing moves
+  bool not_a_position = false, incremental = false, sets_frame = false, local_frame = false;
   each_g(b, f, [&](int g) {
     // After these an X is no position in the work frame: a dwell (G4 X1.5), machine
     // coordinates (G53), a macro's arguments (G65, G66).
@@ -123,13 +137,31 @@ bool channel_writer::user_block_passes(const std::string& b) {
   }
   const axis_def* x = ch_.axis('X');
   const bool u_is_x = x && !ch_.axis('U') && x_diameter_;  // a lathe's incremental X (G-code system A)
+  // A write to a work offset's system variable moves every later position, as G10 L2 does.
+  for (const macro_use& u : macro_uses(b))
+    if (u.write && work_offset_variable(u.number)) {
+      error(line_,
+            fmt::format("\"{}\" writes #{}, a system variable of the work offsets (#5000-#5999, "
+                        "#7000-#7999, #14000-#19999): every later position of the post would be off by it",
+                        b, u.number));
+      return false;
+    }
+  int bracket = 0;  // inside [...] a letter is an operator (XOR) or an expression's, no word
   for (std::size_t i = 0; i < b.size(); ++i) {
     const char c = b[i];
-    if (c == f.comment_open) {
-      if ((i = b.find(f.comment_close, i + 1)) == std::string::npos) break;
+    if (c == f.comment_open && f.comment_close != '\n') {
+      if ((i = b.find(f.comment_close, i + 1)) == std::string::npos) {
+        error(line_,
+              fmt::format("\"{}\" opens a comment it does not close: a control may read on into the next "
+                          "block",
+                          b));
+        return false;
+      }
       continue;
     }
-    const bool word_start = ascii::is_upper(c) && (i == 0 || !ascii::is_letter(b[i - 1]));
+    if (c == '[') ++bracket;
+    if (c == ']' && bracket > 0) --bracket;
+    const bool word_start = bracket == 0 && ascii::is_upper(c) && (i == 0 || !ascii::is_letter(b[i - 1]));
     if (((word_start && c == 'O') || c == ':') && i + 1 < b.size() && ascii::is_digit(b[i + 1])) {
       error(line_, fmt::format("\"{}\" holds a program number: a control that loads the file starts another "
                                "program there, and this one loses the blocks after it",
@@ -143,7 +175,7 @@ bool channel_writer::user_block_passes(const std::string& b) {
         ascii::is_digit(next) || next == '-' || next == '+' || next == '.' || next == '#' || next == '[';
     if (!has_value) continue;
     double frame_value = 1;
-    if (local_frame) std::from_chars(b.data() + i + 1, b.data() + b.size(), frame_value);
+    if (local_frame) std::from_chars(b.data() + i + (next == '+' ? 2 : 1), b.data() + b.size(), frame_value);
     if ((sets_frame || (local_frame && frame_value != 0)) && is_axis_letter(c)) {
       error(line_,
             fmt::format("\"{}\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "

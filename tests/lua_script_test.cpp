@@ -565,4 +565,11 @@ TEST_CASE("lua script: the third attack's patterns and searches are refused or l
         "once, or "
         "by ranges");
   CHECK(load_error("assert(('x1'):find('[%a%d_%-%.]+') == 1)").empty());
+  // table.sort through a metatable reads and compares in C what no charge sees.
+  CHECK(load_error("local t = setmetatable({}, {__index = {'b', 'a'}, __len = function() return 2 end})\n"
+                   "table.sort(t)") ==
+        "ev.lua:2: table.sort: a table with a metatable is refused (its reads and compares would run outside "
+        "the "
+        "budgets); sort a plain table");
+  CHECK(load_error("local t = {'b', 'a'}\ntable.sort(t)\nassert(t[1] == 'a')").empty());
 }

@@ -271,6 +271,26 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
       {"G50 X-9000.",
        "\"G50 X-9000.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 "
        "with a shift): every later position of the post would be off by it"},
+      {"G92.0 X100.",
+       "\"G92.0 X100.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 "
+       "with a shift): every later position of the post would be off by it"},
+      {"G10 L+2 P1 Z-500.",
+       "\"G10 L+2 P1 Z-500.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "
+       "L2/L20, G52 with a shift): every later position of the post would be off by it"},
+      {"G10 L#1 P1 Z-500.",
+       "\"G10 L#1 P1 Z-500.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "
+       "L2/L20, G52 with a shift): every later position of the post would be off by it"},
+      {"G50 H0",
+       "\"G50 H0\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 with "
+       "a shift): every later position of the post would be off by it"},
+      {"#5222=-500.",
+       "\"#5222=-500.\" writes #5222, a system variable of the work offsets (#5000-#5999, "
+       "#7000-#7999, #14000-#19999): every later position of the post would be off by it"},
+      {"IF [#1 EQ 0] THEN G0 X9000.",
+       "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"#1=1 G0 X9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"G0 X100.(",
+       "\"G0 X100.(\" opens a comment it does not close: a control may read on into the next block"},
       {"O2000",
        "\"O2000\" holds a program number: a control that loads the file starts another program there, "
        "and this one loses the blocks after it"},
@@ -290,13 +310,13 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
   SECTION("the shop's own forms post: G28 U0., G50 S2000, a dwell, a counter") {
     const test::posted q = post_with(
         "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 U0.\", \"G50 S2000\", \"G4 U1.5\", "
-        "\"#601 = #601 + 1\", \"G10 P101 U0.1\", \"G52 X0. Z0.\", \"#1=#2 XOR #3\", "
+        "\"#601 = #601 + 1\", \"G10 P101 U0.1\", \"G52 X0. Z+0\", \"#1=#2 XOR #3\", "
         "\"DPRNT[X#5041[44]]\"]\n",
         "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate-ok");
     CHECK(q.diagnostics == "");
     CHECK(program_1(q) ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG28 U0.\nG50 S2000\nG4 U1.5\n"
-          "#601 = #601 + 1\nG10 P101 U0.1\nG52 X0. Z0.\n#1=#2 XOR #3\nDPRNT[X#5041[44]]\nM100\nM9\n"
+          "#601 = #601 + 1\nG10 P101 U0.1\nG52 X0. Z+0\n#1=#2 XOR #3\nDPRNT[X#5041[44]]\nM100\nM9\n"
           "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
 }
