@@ -97,7 +97,8 @@ bool channel_writer::user_block_passes(const std::string& b) {
   if (!block_fits(b)) return false;
   const program_format& f = m_.program;
   if (print_statement(b)) return true;  // text to print: nothing moves
-  bool not_a_position = false, incremental = false, sets_frame = false, local_frame = false;
+  bool not_a_position = false, incremental = false, sets_frame = false, local_frame = false,
+       transforms = false;
   each_g(b, f, [&](int g) {
     // After these an X is no position in the work frame: a dwell (G4 X1.5), machine
     // coordinates (G53), a macro's arguments (G65, G66).
@@ -105,9 +106,25 @@ bool channel_writer::user_block_passes(const std::string& b) {
     incremental = incremental || (absolute_code_ && g == 91);
     // G10 sets a work offset with L2 or L20 (with P alone, or L10-L13, a tool offset: a wear
     // adjustment is a shop's own business); G52 X0. cancels a local frame.
-    sets_frame = sets_frame || g == 50 || g == 92 || (g == 10 && has_word(b, 'L', {2, 20}));
+    // G92 sets the frame where the safe start writes G90 (G-code system B and C, mills); in
+    // Fanuc lathe system A it is the threading cycle (its frame setting is G50).
+    sets_frame =
+        sets_frame || g == 50 || (g == 92 && absolute_code_) || (g == 10 && has_word(b, 'L', {2, 20}));
     local_frame = local_frame || g == 52;
+    transforms = transforms || (g >= 54 && g <= 59) || g == 51 || g == 68;
   });
+  // Another work offset, a scaling or mirror image, a rotation: every later position moves.
+  // (G54.1, G51.1 and G68.2 are decimal codes: each_g skips them, so they are looked for here.)
+  for (const std::string_view code : {"G54.1", "G51.1", "G68.1", "G68.2"})
+    transforms = transforms || b.find(code) != std::string::npos;
+  if (transforms) {
+    error(line_,
+          fmt::format("\"{}\" selects another work offset, a mirror image, a scaling or a rotation "
+                      "(G54-G59, G54.1, G51, G51.1, G68): every later position of the post would be in "
+                      "another frame; the post writes the channel's frame itself",
+                      b));
+    return false;
+  }
   // First the blanks: a blank inside a word changes what every check below reads.
   for (std::size_t i = 0; i < b.size(); ++i) {
     const char c = b[i];
@@ -169,6 +186,15 @@ bool channel_writer::user_block_passes(const std::string& b) {
       return false;
     }
     if (!word_start) continue;
+    // A G or M code given by a variable or an expression (G#1, G[10], M#1, M[100]): the post
+    // cannot say what it does (a work offset, inches, a wait).
+    if ((c == 'G' || c == 'M') && i + 1 < b.size() && (b[i + 1] == '#' || b[i + 1] == '[')) {
+      error(line_,
+            fmt::format("\"{}\" gives a {} code by a variable or an expression: the post cannot say what "
+                        "it does (a frame, a unit, a wait); write the code",
+                        b, c));
+      return false;
+    }
     // An axis name list (Mazak `G17 XC`): no value after the letter.
     const char next = i + 1 < b.size() ? b[i + 1] : '\0';
     const bool has_value =

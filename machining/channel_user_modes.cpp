@@ -28,6 +28,11 @@ bool has_g_code(std::string_view block, std::string_view code) {
     while (j < block.size() && (ascii::is_digit(block[j]) || block[j] == '.')) ++j;
     std::string_view n = block.substr(i + 1, j - i - 1);
     while (n.size() > 1 && n[0] == '0' && n[1] != '.') n.remove_prefix(1);  // G01 is G1
+    // G20.0 is G20 (a control reads zero decimals so): trailing zeros and the point go.
+    if (n.find('.') != std::string_view::npos) {
+      while (n.size() > 1 && n.back() == '0') n.remove_suffix(1);
+      if (n.back() == '.') n.remove_suffix(1);
+    }
     std::string_view want = number;
     while (want.size() > 1 && want[0] == '0' && want[1] != '.') want.remove_prefix(1);
     if (n == want) return true;

@@ -180,6 +180,12 @@ int w_gmatch(lua_State* L) {  // gmatch reads a leading '^' as a byte (Lua 5.4 l
 }
 int w_gsub(lua_State* L) {
   guard_pattern(L, "string.gsub", true);
+  // A string replacement is read at every match, and a match may be empty: `%1` of an empty
+  // capture writes nothing (so no allocation looks at the clock) and costs a step. Charged
+  // before the call: one reading per byte of the subject, and one more.
+  if (lua_type(L, 3) == LUA_TSTRING)
+    self_of(L)->charge(L,
+                       (static_cast<double>(lua_rawlen(L, 1)) + 1) * static_cast<double>(lua_rawlen(L, 3)));
   return self_of(L)->orig.gsub(L);
 }
 

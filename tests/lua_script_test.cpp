@@ -565,6 +565,17 @@ TEST_CASE("lua script: the third attack's patterns and searches are refused or l
         "once, or "
         "by ranges");
   CHECK(load_error("assert(('x1'):find('[%a%d_%-%.]+') == 1)").empty());
+  // gsub reads its replacement at every match, empty ones too: charged before the call.
+  {
+    script_limits limits;
+    limits.instructions_per_job = 10'000'000;
+    CHECK(error_of([&] {
+            lua_script t(
+                "/m/ev.lua",
+                "local s = string.rep('b', 1e6)\nlocal out = s:gsub('b(c*)', string.rep('%1', 3000))",
+                limits);
+          }).find("ev.lua:2: the job's budget of 10000000 instructions exceeded") == 0);
+  }
   // table.sort through a metatable reads and compares in C what no charge sees.
   CHECK(load_error("local t = setmetatable({}, {__index = {'b', 'a'}, __len = function() return 2 end})\n"
                    "table.sort(t)") ==

@@ -271,9 +271,19 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
       {"G50 X-9000.",
        "\"G50 X-9000.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 "
        "with a shift): every later position of the post would be off by it"},
-      {"G92.0 X100.",
-       "\"G92.0 X100.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 "
+      {"G50.0 X100.",
+       "\"G50.0 X100.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 "
        "with a shift): every later position of the post would be off by it"},
+      {"G#1 X100.",
+       "\"G#1 X100.\" gives a G code by a variable or an expression: the post cannot say what it "
+       "does (a frame, a unit, a wait); write the code"},
+      {"M[100]",
+       "\"M[100]\" gives a M code by a variable or an expression: the post cannot say what it does (a "
+       "frame, a unit, a wait); write the code"},
+      {"G55",
+       "\"G55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, "
+       "G51, G51.1, G68): every later position of the post would be in another frame; the post writes the "
+       "channel's frame itself"},
       {"G10 L+2 P1 Z-500.",
        "\"G10 L+2 P1 Z-500.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "
        "L2/L20, G52 with a shift): every later position of the post would be off by it"},
@@ -310,13 +320,15 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
   SECTION("the shop's own forms post: G28 U0., G50 S2000, a dwell, a counter") {
     const test::posted q = post_with(
         "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 U0.\", \"G50 S2000\", \"G4 U1.5\", "
-        "\"#601 = #601 + 1\", \"G10 P101 U0.1\", \"G52 X0. Z+0\", \"#1=#2 XOR #3\", "
+        "\"#601 = #601 + 1\", \"G10 P101 U0.1\", \"G52 X0. Z+0\", \"G92 X29.2 Z-20. F1.5\", \"#1=#2 XOR "
+        "#3\", "
         "\"DPRNT[X#5041[44]]\"]\n",
         "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate-ok");
     CHECK(q.diagnostics == "");
     CHECK(program_1(q) ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG28 U0.\nG50 S2000\nG4 U1.5\n"
-          "#601 = #601 + 1\nG10 P101 U0.1\nG52 X0. Z+0\n#1=#2 XOR #3\nDPRNT[X#5041[44]]\nM100\nM9\n"
+          "#601 = #601 + 1\nG10 P101 U0.1\nG52 X0. Z+0\nG92 X29.2 Z-20. F1.5\n#1=#2 XOR "
+          "#3\nDPRNT[X#5041[44]]\nM100\nM9\n"
           "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
 }
@@ -459,6 +471,14 @@ TEST_CASE("the channel's modes go back on after a script's blocks and on_block m
     CHECK(program_1(p) ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\n(()G98\nG99\n"
           "M100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
+  SECTION("G20.0 is G20: refused as well") {
+    const test::posted p =
+        post_with_script("", "function on_tool_change(tool) post.emit('G20.0') end\n", job, "script-inch-0");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics.starts_with(
+        "job.cls:3:1: error: channel 1: post.emit writes \"G20.0\": G20 in a program in "
+        "millimetres (G21)"));
   }
   SECTION("post.emit's G20 in a metric program is refused") {
     const test::posted p =
