@@ -23,8 +23,8 @@ namespace twinpost {
 
 namespace {
 
-// The G codes of block `b` outside comments, whole numbers only: G12.1 and the like skipped,
-// G92.0 read as G92 (a control reads it so).
+// The G codes of block `b` outside comments, as numbers the way a control reads them: G92.0 is
+// 92, G054.1 is 54.1.
 template <class F>
 void each_g(std::string_view b, const program_format& f, F&& on_g) {
   for (std::size_t i = 0; i < b.size(); ++i) {
@@ -33,16 +33,13 @@ void each_g(std::string_view b, const program_format& f, F&& on_g) {
       continue;
     }
     if (b[i] != 'G' || (i > 0 && ascii::is_letter(b[i - 1]))) continue;
-    std::size_t j = i + 1;
-    int g = 0;
-    while (j < b.size() && ascii::is_digit(b[j]) && g < 1000) g = g * 10 + (b[j++] - '0');
-    if (j == i + 1) continue;
-    bool whole = true;
-    if (j < b.size() && b[j] == '.')
-      for (++j; j < b.size() && ascii::is_digit(b[j]); ++j) whole = whole && b[j] == '0';
-    if (whole) on_g(g);
+    double g = 0;
+    const auto r = std::from_chars(b.data() + i + 1, b.data() + b.size(), g);
+    if (r.ec == std::errc() && g >= 0) on_g(g);
   }
 }
+
+bool is(double g, double code) { return std::abs(g - code) < 1e-9; }
 
 bool is_axis_letter(char c) {  // H: a lathe's incremental C
   return c == 'X' || c == 'Y' || c == 'Z' || c == 'U' || c == 'V' || c == 'W' || c == 'A' || c == 'B' ||
@@ -99,29 +96,47 @@ bool channel_writer::user_block_passes(const std::string& b) {
   if (print_statement(b)) return true;  // text to print: nothing moves
   bool not_a_position = false, incremental = false, sets_frame = false, local_frame = false,
        transforms = false;
-  each_g(b, f, [&](int g) {
-    // After these an X is no position in the work frame: a dwell (G4 X1.5), machine
-    // coordinates (G53), a macro's arguments (G65, G66).
-    not_a_position = not_a_position || g == 4 || g == 10 || g == 53 || g == 65 || g == 66;
-    incremental = incremental || (absolute_code_ && g == 91);
-    // G10 sets a work offset with L2 or L20 (with P alone, or L10-L13, a tool offset: a wear
-    // adjustment is a shop's own business); G52 X0. cancels a local frame.
-    // G92 sets the frame where the safe start writes G90 (G-code system B and C, mills); in
-    // Fanuc lathe system A it is the threading cycle (its frame setting is G50).
-    sets_frame =
-        sets_frame || g == 50 || (g == 92 && absolute_code_) || (g == 10 && has_word(b, 'L', {2, 20}));
-    local_frame = local_frame || g == 52;
-    transforms = transforms || (g >= 54 && g <= 59) || g == 51 || g == 68;
+  bool motion = false, data = false;
+  double modal = -1;  // a mode the post neither writes nor restores
+  each_g(b, f, [&](double g) {
+    // After these an X is no position in the work frame: a dwell (G4 X1.5), data setting
+    // (G10), machine coordinates (G53), a macro's arguments (G65, G66).
+    data = data || is(g, 4) || is(g, 10) || is(g, 65) || is(g, 66);
+    not_a_position = not_a_position || data || is(g, 53);
+    motion = motion || is(g, 0) || is(g, 1) || is(g, 2) || is(g, 3);
+    incremental = incremental || (absolute_code_ && is(g, 91));
+    // G10 sets a work offset with L2 or L20 and the workpiece shift with P0 (with another P, or
+    // L10-L13, a tool offset: a wear adjustment is a shop's own business); G52 X0. cancels a
+    // local frame; G50.3 and G92.1 preset the work frame. G92 sets the frame where the safe
+    // start writes G90 (G-code system B and C, mills); in Fanuc lathe system A it is the
+    // threading cycle (its frame setting is G50).
+    sets_frame = sets_frame || is(g, 50) || (is(g, 92) && absolute_code_) ||
+                 (is(g, 10) && (has_word(b, 'L', {2, 20}) || has_word(b, 'P', {0})));
+    local_frame = local_frame || is(g, 52);
+    transforms = transforms || (g >= 54 && g <= 59 && is(g, std::round(g))) || is(g, 54.1) || is(g, 51) ||
+                 is(g, 51.1) || is(g, 68) || is(g, 68.1) || is(g, 68.2) || is(g, 50.3) || is(g, 92.1);
+    for (const double m : {7.1, 12.1, 112.0, 107.0, 41.0, 42.0, 66.0, 66.1, 51.2, 10.9})
+      if (is(g, m)) modal = m;
   });
+  if (modal >= 0) {
+    error(line_, fmt::format("\"{}\" turns on a mode the post neither writes nor turns off (polar or cylindrical "
+                             "interpolation, nose radius compensation, a modal macro call, polygon turning, radius "
+                             "or diameter input: G{}): every later block of the post would be read in it",
+                             b, modal));
+    return false;
+  }
+  if (data && motion) {
+    error(line_, fmt::format("\"{}\" mixes a motion with a dwell, a data setting or a macro call: its axis words "
+                             "cannot be held to the travel; write them in blocks of their own",
+                             b));
+    return false;
+  }
   // Another work offset, a scaling or mirror image, a rotation: every later position moves.
-  // (G54.1, G51.1 and G68.2 are decimal codes: each_g skips them, so they are looked for here.)
-  for (const std::string_view code : {"G54.1", "G51.1", "G68.1", "G68.2"})
-    transforms = transforms || b.find(code) != std::string::npos;
   if (transforms) {
     error(line_,
           fmt::format("\"{}\" selects another work offset, a mirror image, a scaling or a rotation "
-                      "(G54-G59, G54.1, G51, G51.1, G68): every later position of the post would be in "
-                      "another frame; the post writes the channel's frame itself",
+                      "(G54-G59, G54.1, G51, G51.1, G68, G50.3, G92.1): every later position of the post would be "
+                      "in another frame; the post writes the channel's frame itself",
                       b));
     return false;
   }
