@@ -119,25 +119,28 @@ bool channel_writer::user_block_passes(const std::string& b) {
       if (is(g, m)) modal = m;
   });
   if (modal >= 0) {
-    error(line_, fmt::format("\"{}\" turns on a mode the post neither writes nor turns off (polar or cylindrical "
-                             "interpolation, nose radius compensation, a modal macro call, polygon turning, radius "
-                             "or diameter input: G{}): every later block of the post would be read in it",
-                             b, modal));
+    error(line_,
+          fmt::format("\"{}\" turns on a mode the post neither writes nor turns off (polar or cylindrical "
+                      "interpolation, nose radius compensation, a modal macro call, polygon turning, radius "
+                      "or diameter input: G{}): every later block of the post would be read in it",
+                      b, modal));
     return false;
   }
   if (data && motion) {
-    error(line_, fmt::format("\"{}\" mixes a motion with a dwell, a data setting or a macro call: its axis words "
-                             "cannot be held to the travel; write them in blocks of their own",
-                             b));
+    error(line_,
+          fmt::format("\"{}\" mixes a motion with a dwell, a data setting or a macro call: its axis words "
+                      "cannot be held to the travel; write them in blocks of their own",
+                      b));
     return false;
   }
   // Another work offset, a scaling or mirror image, a rotation: every later position moves.
   if (transforms) {
     error(line_,
-          fmt::format("\"{}\" selects another work offset, a mirror image, a scaling or a rotation "
-                      "(G54-G59, G54.1, G51, G51.1, G68, G50.3, G92.1): every later position of the post would be "
-                      "in another frame; the post writes the channel's frame itself",
-                      b));
+          fmt::format(
+              "\"{}\" selects another work offset, a mirror image, a scaling or a rotation "
+              "(G54-G59, G54.1, G51, G51.1, G68, G50.3, G92.1): every later position of the post would be "
+              "in another frame; the post writes the channel's frame itself",
+              b));
     return false;
   }
   // First the blanks: a blank inside a word changes what every check below reads.

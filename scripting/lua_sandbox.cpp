@@ -181,8 +181,10 @@ int w_gmatch(lua_State* L) {  // gmatch reads a leading '^' as a byte (Lua 5.4 l
 int w_gsub(lua_State* L) {
   guard_pattern(L, "string.gsub", true);
   if (lua_iscfunction(L, 3))
-    return luaL_error(L, "string.gsub: a replacement function written in C is refused (its calls run outside the "
-                         "budgets); give a Lua function, a string or a table");
+    return luaL_error(
+        L,
+        "string.gsub: a replacement function written in C is refused (its calls run outside the "
+        "budgets); give a Lua function, a string or a table");
   // A string replacement is read at every match, and a match may be empty: `%1` of an empty
   // capture writes nothing (so no allocation looks at the clock) and costs a step. Charged
   // before the call: one reading per byte of the subject, and one more.
@@ -268,8 +270,9 @@ int w_charged(lua_State* L) {
       // A comparator in C (pcall, string.char) runs a C call per comparison, out of the count's
       // reach: a sort with `pcall` compared for 271 s against a 60 s budget.
       if (lua_iscfunction(L, 2))
-        return luaL_error(L, "table.sort: a comparator written in C is refused (its calls run outside the "
-                             "budgets); give a Lua function");
+        return luaL_error(L,
+                          "table.sort: a comparator written in C is refused (its calls run outside the "
+                          "budgets); give a Lua function");
       // Through a metatable (__index a table of 20 MB strings) the sort reads and compares in C
       // what no charge here can see: refused.
       if (lua_type(L, 1) == LUA_TTABLE && lua_getmetatable(L, 1))
@@ -409,10 +412,9 @@ void script_state::make_env() {
   lua_pop(L, 5);
   lua_pushglobaltable(L);
   const int g = lua_gettop(L);
-  copy_fields(
-      L, g,
-      {"assert", "error", "ipairs", "next", "pairs", "pcall", "select", "tonumber", "tostring", "type",
-       "rawequal", "rawget", "rawset", "rawlen", "setmetatable", "getmetatable", "_VERSION"});
+  copy_fields(L, g,
+              {"assert", "error", "ipairs", "next", "pairs", "pcall", "select", "tonumber", "tostring",
+               "type", "rawequal", "rawget", "rawset", "rawlen", "setmetatable", "getmetatable", "_VERSION"});
   const int env = lua_gettop(L);
   wrap_field(L, "setmetatable", w_setmetatable, orig.setmetatable);
   // tonumber(s, base) reads every byte of s in one C call.

@@ -580,14 +580,16 @@ TEST_CASE("lua script: the third attack's patterns and searches are refused or l
   CHECK(load_error("assert(xpcall == nil)").empty());
   // C callbacks run outside the count.
   CHECK(load_error("local t = {'b', 'a'}\ntable.sort(t, pcall)") ==
-        "ev.lua:2: table.sort: a comparator written in C is refused (its calls run outside the budgets); give a Lua "
+        "ev.lua:2: table.sort: a comparator written in C is refused (its calls run outside the budgets); "
+        "give a Lua "
         "function");
   CHECK(load_error("local s = ('ab'):gsub('.', pcall)") ==
         "ev.lua:1: string.gsub: a replacement function written in C is refused (its calls run outside the "
         "budgets); give a Lua function, a string or a table");
-  CHECK(load_error("local t = {'b', 'a'}\ntable.sort(t, function(x, y) return x < y end)\nassert(t[1] == 'a')\n"
-                   "assert(('ab'):gsub('.', function(c) return c .. c end) == 'aabb')")
-            .empty());
+  CHECK(
+      load_error("local t = {'b', 'a'}\ntable.sort(t, function(x, y) return x < y end)\nassert(t[1] == 'a')\n"
+                 "assert(('ab'):gsub('.', function(c) return c .. c end) == 'aabb')")
+          .empty());
   // table.sort through a metatable reads and compares in C what no charge sees.
   CHECK(load_error("local t = setmetatable({}, {__index = {'b', 'a'}, __len = function() return 2 end})\n"
                    "table.sort(t)") ==

@@ -280,13 +280,32 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
       {"M[100]",
        "\"M[100]\" gives a M code by a variable or an expression: the post cannot say what it does (a "
        "frame, a unit, a wait); write the code"},
-      {"G55", "\"G55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post writes the channel's frame itself"},
-      {"G054.1 P5", "\"G054.1 P5\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post writes the channel's frame itself"},
-      {"G50.3 P0", "\"G50.3 P0\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post writes the channel's frame itself"},
-      {"G10 P0 X100.", "\"G10 P0 X100.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 with a shift): every later position of the post would be off by it"},
-      {"G10.9 X0", "\"G10.9 X0\" turns on a mode the post neither writes nor turns off (polar or cylindrical interpolation, nose radius compensation, a modal macro call, polygon turning, radius or diameter input: G10.9): every later block of the post would be read in it"},
-      {"G41", "\"G41\" turns on a mode the post neither writes nor turns off (polar or cylindrical interpolation, nose radius compensation, a modal macro call, polygon turning, radius or diameter input: G41): every later block of the post would be read in it"},
-      {"G04 X1 G0 X9000.", "\"G04 X1 G0 X9000.\" mixes a motion with a dwell, a data setting or a macro call: its axis words cannot be held to the travel; write them in blocks of their own"},
+      {"G55",
+       "\"G55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, "
+       "G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
+       "writes the channel's frame itself"},
+      {"G054.1 P5",
+       "\"G054.1 P5\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, "
+       "G51, G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
+       "writes the channel's frame itself"},
+      {"G50.3 P0",
+       "\"G50.3 P0\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, "
+       "G51, G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
+       "writes the channel's frame itself"},
+      {"G10 P0 X100.",
+       "\"G10 P0 X100.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 "
+       "with a shift): every later position of the post would be off by it"},
+      {"G10.9 X0",
+       "\"G10.9 X0\" turns on a mode the post neither writes nor turns off (polar or cylindrical "
+       "interpolation, nose radius compensation, a modal macro call, polygon turning, radius or diameter "
+       "input: G10.9): every later block of the post would be read in it"},
+      {"G41",
+       "\"G41\" turns on a mode the post neither writes nor turns off (polar or cylindrical interpolation, "
+       "nose radius compensation, a modal macro call, polygon turning, radius or diameter input: G41): every "
+       "later block of the post would be read in it"},
+      {"G04 X1 G0 X9000.",
+       "\"G04 X1 G0 X9000.\" mixes a motion with a dwell, a data setting or a macro call: its axis words "
+       "cannot be held to the travel; write them in blocks of their own"},
       {"G10 L+2 P1 Z-500.",
        "\"G10 L+2 P1 Z-500.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "
        "L2/L20, G52 with a shift): every later position of the post would be off by it"},
