@@ -119,8 +119,15 @@ struct channel_data {
   channel_spindles spindles;
   std::vector<segment_data> segments = std::vector<segment_data>(1);
   double x = 0, z = 0;
+  // The second coordinate of the tip in the plane across the spindle axis: C under polar
+  // interpolation (G12.1/G112: X and C a Cartesian plane on the face), else Y. 0 until given.
+  double q = 0;
   bool known_x = false, known_z = false;
+  bool polar = false;  // G12.1 / G112 in force (until G13.1 / G113)
   int motion = 0;
+  // The workpiece spindle the channel works on: the frame of its sweeps. A channel that turns
+  // its live spindle (a milling tool) still works on the part in this one (issue 37, item 3).
+  int work = -1;
   bool cycle = false;    // a drilling cycle is modal (until G80)
   bool balance = false;  // in a balance cut: ordered by its own sync
   // The T words seen, as written ("0505"); [0] is none. `tool` is the one in force.
@@ -143,7 +150,11 @@ struct interference_check::impl {
     for (const channel_def& c : m.channels) {
       channels.emplace_back(m, c.number);
       channels.back().env = m.interference.channel(c.number);
+      if (const spindle_def* live = m.spindle(c.live_spindle))
+        live_spindles.push_back(static_cast<int>(live - m.spindles.data()));
     }
+    for (channel_data& c : channels)
+      if (!is_live(c.spindles.current())) c.work = c.spindles.current();
     active = interference_checked(m);
     const cycle_rules& cy = m.cycles;
     for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
@@ -168,7 +179,12 @@ struct interference_check::impl {
   mutable bool spill_at_end = true;      // its position is its end (no reading since the last write)
   std::vector<channel_data> channels;
   std::vector<double> cycle_codes;
+  std::vector<int> live_spindles;  // the channels' live spindles (indices into machine::spindles)
   std::optional<nc_word> balance_on, balance_off;
+
+  bool is_live(int spindle) const {
+    return std::find(live_spindles.begin(), live_spindles.end(), spindle) != live_spindles.end();
+  }
   std::vector<std::vector<std::vector<int>>> clocks;   // [channel][segment][channel]
   mutable std::vector<interference_meeting> meetings;  // what meet() found, for pictures
 
@@ -179,7 +195,7 @@ struct interference_check::impl {
   // `x`, `z`: the block's point in messages (a drilling cycle's: the hole's bottom).
   void add(channel_data& c, const xz_box& tip, int line, double x, double z) {
     std::vector<sweep>& s = c.segments.back().sweeps;
-    const auto spindle = static_cast<std::uint16_t>(std::max(c.spindles.current(), 0));
+    const auto spindle = static_cast<std::uint16_t>(std::max(c.work, 0));
     if (c.merge_open && !s.empty() && s.back().spindle == spindle && s.back().tool == c.tool) {
       const xz_box u = unite(s.back().tip(), tip);
       if (u.r1 - u.r0 <= merge_size && u.z1 - u.z0 <= merge_size) {
@@ -227,9 +243,12 @@ struct interference_check::impl {
     if (c.file.empty()) c.file = b.file;  // one file per channel (its sections are joined)
     const std::vector<nc_word>& words = b.words();
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-    if (b.letters() & gms) c.spindles.apply(words);
+    if (b.letters() & gms) {
+      c.spindles.apply(words);
+      if (const int s = c.spindles.current(); s >= 0 && !is_live(s)) c.work = s;
+    }
     const nc_word *xw = nullptr, *zw = nullptr, *uw = nullptr, *ww = nullptr, *iw = nullptr, *kw = nullptr,
-                  *rw = nullptr;
+                  *rw = nullptr, *qw = nullptr, *jw = nullptr;
     bool no_move = false, home = false;
     for (const nc_word& w : words) {
       if (!w.numeric) continue;
@@ -247,6 +266,12 @@ struct interference_check::impl {
             home = true;  // to the reference point: the tip is out of the work area
           } else if (v == 4 || v == 10 || v == 50 || v == 92) {
             no_move = true;  // dwell, data, clamp or coordinate setting: no motion
+          } else if (v == 12.1 || v == 112) {
+            c.polar = true;
+            c.q = 0;
+          } else if (v == 13.1 || v == 113) {
+            c.polar = false;
+            c.q = 0;  // the C axis is a rotation again; Y was not moved under polar
           }
           if (is_word(w, balance_on)) c.balance = true;
           if (is_word(w, balance_off)) c.balance = false;
@@ -276,6 +301,13 @@ struct interference_check::impl {
         case 'I': iw = &w; break;
         case 'K': kw = &w; break;
         case 'R': rw = &w; break;
+        case 'J': jw = &w; break;
+        case 'C':
+          if (c.polar) qw = &w;
+          break;
+        case 'Y':
+          if (!c.polar) qw = &w;
+          break;
         default: break;
       }
     }
@@ -284,8 +316,9 @@ struct interference_check::impl {
       c.merge_open = false;
       return;
     }
-    if (no_move || !(xw || zw || uw || ww)) return;
-    const double x0 = c.x, z0 = c.z;
+    if (no_move || !(xw || zw || uw || ww || qw)) return;
+    const double x0 = c.x, z0 = c.z, q0 = c.q;
+    if (qw) c.q = qw->number;
     const bool known = c.known_x && c.known_z;
     if (xw) c.x = xw->number, c.known_x = true;
     if (uw && c.known_x) c.x += uw->number;
@@ -298,15 +331,62 @@ struct interference_check::impl {
     // Where the tip came from: unknown (after a reference return) means only the end point.
     const double rs = known ? x0 / 2 : c.x / 2, zs = known ? z0 : c.z;
     xz_box tip{std::min(rs, c.x / 2), std::max(rs, c.x / 2), std::min(zs, c.z), std::max(zs, c.z)};
+    if (q0 != 0 || c.q != 0) {  // off the XZ plane: the tip's distance from the spindle axis
+      const double qs = known ? q0 : c.q;
+      const bool arc = known && (c.motion == 2 || c.motion == 3) && !c.cycle;
+      planar_span(tip, rs, qs, c.x / 2, c.q, arc ? arc_radius(rs, qs, c.x / 2, c.q, iw, jw, kw, rw) : -1,
+                  c.polar);
+    }
     double shown_z = c.z;
     if (c.cycle && zw) {  // down to the hole's bottom and back
       tip.z0 = std::min(tip.z0, zw->number);
       tip.z1 = std::max(tip.z1, zw->number);
       shown_z = zw->number;
-    } else if (known && (c.motion == 2 || c.motion == 3) && (iw || kw || rw)) {
+    } else if (known && (c.motion == 2 || c.motion == 3) && (iw || kw || rw) && q0 == 0 && c.q == 0) {
       tip = unite(tip, arc_of(x0 / 2, z0, c.x / 2, c.z, iw, kw, rw, c.motion == 2));
     }
     add(c, tip, b.line, c.x, shown_z);
+  }
+
+  // A move from (r0, q0) to (r1, q1) in the plane across the spindle axis (r = X/2, q = C under
+  // polar interpolation or Y): `tip`'s r span becomes the span of the tip's distance from the
+  // axis, on its own side (signed as X; under polar interpolation the X slide never passes the
+  // axis, the part turns instead). `radius` >= 0: an arc of that radius (its points lie within
+  // two radii of its start), -1: a line (its nearest point to the axis).
+  static void planar_span(xz_box& tip, double r0, double q0, double r1, double q1, double radius,
+                          bool polar) {
+    const double d0 = std::hypot(r0, q0), d1 = std::hypot(r1, q1);
+    double near = 0;
+    if (radius >= 0) {
+      near = std::max(0.0, std::min(d0, d1) - 2 * radius);
+    } else {
+      const double dr = r1 - r0, dq = q1 - q0, len2 = dr * dr + dq * dq;
+      const double t = len2 > 0 ? std::clamp(-(r0 * dr + q0 * dq) / len2, 0.0, 1.0) : 0.0;
+      near = std::hypot(r0 + t * dr, q0 + t * dq);
+    }
+    const double far = radius >= 0 ? std::max(d0, d1) + 2 * radius : std::max(d0, d1);
+    if (polar || (r0 >= 0 && r1 >= 0)) {
+      tip.r0 = near;
+      tip.r1 = far;
+    } else if (r0 <= 0 && r1 <= 0) {
+      tip.r0 = -far;
+      tip.r1 = -near;
+    } else {  // across the axis
+      tip.r0 = -far;
+      tip.r1 = far;
+    }
+  }
+
+  // The radius of an arc in the plane across the axis: |R|, else the length of its centre
+  // offset (I, J or K as given), else half its chord (the smallest it can be).
+  static double arc_radius(double r0, double q0, double r1, double q1, const nc_word* iw, const nc_word* jw,
+                           const nc_word* kw, const nc_word* rw) {
+    if (rw) return std::abs(rw->number);
+    if (iw || jw || kw) {
+      const double i = iw ? iw->number : 0, j = jw ? jw->number : 0, k = kw ? kw->number : 0;
+      return std::sqrt(i * i + j * j + k * k);
+    }
+    return std::hypot(r1 - r0, q1 - q0) / 2;
   }
 
   // The box of an arc given by its centre (I, K: radius values from the start) or its radius R.

@@ -2,7 +2,9 @@
 // Turret interference: no two tools in the same place at the same time (docs/interference.md).
 //
 // Each block of a channel that has an envelope ([[interference.channel]]) sweeps its tool tip
-// over a box in the XZ plane of the spindle it works on (a line: the box of its ends; an arc:
+// over a box in the XZ plane of the workpiece spindle it works on (a live tool too: its part is
+// in that spindle; off the XZ plane, under polar interpolation or with Y, r is the tip's
+// distance from the axis) (a line: the box of its ends; an arc:
 // the box of the arc, its quadrant points included; a drilling cycle: from the start down to
 // the hole's Z). The channel's boxes (tool, turret or head body), fixed to the tip, ride along.
 // Two blocks of two channels that may run at the same time (happens-before from the checker's

@@ -142,6 +142,41 @@ TEST_CASE("interference: the rule in check, concurrent and sequenced, to the let
   CHECK(check(load_machine("citizen-2system"), face, drill).find("may meet") == std::string::npos);
 }
 
+TEST_CASE("interference: live-tool work on the part in polar interpolation, in the spindle's frame",
+          "[analysis]") {
+  // Path 3 of the 31i mills across the face of the part in the main spindle with its live
+  // spindle (M33) in polar interpolation, while path 2 parks a drill at X0 Z5 between the same
+  // waits (issue 37, item 3): the live tool's sweeps are in the main spindle's frame, at their
+  // distance from the axis (the X/C line through the centre comes to r 0).
+  const machine three = load_machine("fanuc-31i-3path");
+  const std::string head = "%\nO1000\nG0 G18 G21 G40 G54 G80 G99\n";
+  const std::string idle = head + "M30\n%\n";
+  const std::string park = head + "T0505\nM200 P23\nG0 X0. Z5.\nM201 P23\nM30\n%\n";
+  const auto mill = [&](const std::string& c) {
+    return head + "T1111 M6\nG0 B-90.\nM35\nG97 S3000 M33\nG98\nG17\nG12.1\nG1 X80. C" + c +
+           " Z5. F1500.\nM200 P23\n" + "Z-1. F400.\nX-80.\nZ5.\nG13.1\nG18\nM201 P23\nM30\n%\n";
+  };
+  const auto check3 = [&](const std::string& three_nc) {
+    return format_sync_text(
+        check_nc_resources({{"A_1.nc", idle}, {"A_2.nc", park}, {"A_3.nc", three_nc}}, three));
+  };
+  CHECK(check3(mill("0.")) ==
+        "A_2.nc:6:1: error: channel 2 (T0505 at X0 Z5) may meet channel 3 (T1111 at X-80 Z-1, A_3.nc:14) on "
+        "the "
+        "main spindle, between M200 (A_2.nc:5) and M201 (A_2.nc:7) of channel 2: 0.0 mm apart, 5 mm "
+        "required; no "
+        "wait orders the two blocks\n"
+        "G0 X0. Z5.\n^\n"
+        "A_3.nc:14:1: note: channel 3 is here (T1111 at X-80 Z-1)\n"
+        "X-80.\n^\n"
+        "check: 3 channels, 4 waits paired, 1 error\n");
+  // The same pass 25 mm off the centre (C25.): the end mill keeps 25 mm from the axis, its
+  // envelope 21 mm from the drill's.
+  CHECK(check3(mill("25.")) == "check: 3 channels, 4 waits paired, 0 errors\n");
+  // 5 mm off the centre: 1 mm between the envelopes.
+  CHECK_THAT(check3(mill("5.")), Catch::Contains(": 1.0 mm apart, 5 mm required"));
+}
+
 TEST_CASE("interference: the timeline carries the conflicts and the page marks both lanes", "[analysis]") {
   const machine twin = load_machine("fanuc-0itd-twin");
   const std::string head = "%\nO1000\nG0 G18 G21 G40 G54 G80 G99\n";
