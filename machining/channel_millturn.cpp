@@ -232,7 +232,12 @@ bool channel_writer::index_head(int line) {
                       sub ? fmt::format(" on the {} spindle", work_->name) : ""));
     return false;
   }
-  const std::string& offset = turning ? h.offset_turning : h.offset_live;
+  // The offset follows what turns: a tool that stands still while the part turns (a turning
+  // tool, a drill on the centre line of the workpiece spindle) takes the turning form (Integrex
+  // `G43 P1 H#3020`, as public Integrex posts give a turning section's tool, stationary drills
+  // included); a tool its own spindle turns, the live form (issue 37, item 10).
+  const bool stationary = !live && kind_ != tool_kind::mill;
+  const std::string& offset = stationary ? h.offset_turning : h.offset_live;
   if (head_angle_ && std::abs(*head_angle_ - *want) < 5e-4) {
     if (after_index_) pending_offset_ = offset;  // a new tool at the same angle: its own offset
     after_index_ = false;

@@ -428,7 +428,7 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
   INFO(p.diagnostics);
   CHECK(head1(p, "D.EIA") ==
         "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT04 M6\nG55\n"
-        "M902\nG97 S700 M303\nG95\nM108\nG0 G53 B180.\nM107\nG0 G43 H#3020 X0. Y0. Z-5.\nG1 Z10. F0.1\n"
+        "M902\nG97 S700 M303\nG95\nM108\nG0 G53 B180.\nM107\nG0 G43 P1 H#3020 X0. Y0. Z-5.\nG1 Z10. F0.1\n"
         "M950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
   // A machine file that gives no angle for the sub: the post stops at the move.
   machine m = load_machine("integrex-i200st");

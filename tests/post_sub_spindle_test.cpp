@@ -182,7 +182,7 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
         "Z2.\nM5\nG13.1\n"
         "G18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 G53 "
         "B0.\nM107\n"
-        "G1 G43 H#3020 X0. Y0. Z5.\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "G1 G43 P1 H#3020 X0. Y0. Z5.\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n");
 }
 
