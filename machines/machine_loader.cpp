@@ -594,6 +594,20 @@ void check_across_tables(const table_reader& root, const machine& m, const ancho
 }  // namespace
 
 machine parse_machine(std::string_view toml_text, std::string_view source) {
+  // toml++ follows a dotted key (`a.a.a...`) by one recursion a part: 200 000 parts on one line
+  // overflowed the stack (issue 38, sixth attack). A line of a machine file is short: the
+  // built-ins' longest has 152 bytes, and arrays may span lines.
+  constexpr std::size_t longest_line = 4096;
+  for (std::size_t at = 0, line = 1; at < toml_text.size(); ++line) {
+    const std::size_t end = std::min(toml_text.find('\n', at), toml_text.size());
+    if (end - at > longest_line)
+      throw config_error::at(
+          source, static_cast<long>(line), 1,
+          fmt::format("a line of {} bytes: a machine file's lines have at most {}; break a "
+                      "long array over several lines",
+                      end - at, longest_line));
+    at = end + 1;
+  }
   toml::table doc;
   try {
     doc = toml::parse(toml_text, source);

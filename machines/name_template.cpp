@@ -113,8 +113,66 @@ std::string unknown_placeholder(std::string_view tpl, placeholder_set known) {
   return {};
 }
 
+std::string template_spec_fault(std::string_view tpl, bool placeholders) {
+  for (std::size_t i = 0; i < tpl.size(); ++i) {
+    if (tpl[i] != '{') continue;
+    if (i + 1 < tpl.size() && tpl[i + 1] == '{') {  // "{{" is a literal brace
+      ++i;
+      continue;
+    }
+    std::size_t end = i + 1;
+    while (end < tpl.size() && name_char(tpl[end])) ++end;
+    if (end >= tpl.size() || tpl[end] != ':') continue;
+    // The spec runs to its '}'; a nested "{name}" in it is a width or precision by placeholder.
+    std::size_t j = end + 1;
+    for (; j < tpl.size() && tpl[j] != '}'; ++j) {
+      if (tpl[j] == '{') {
+        if (placeholders) return "a width or precision given by a placeholder; write the number";
+        while (j < tpl.size() && tpl[j] != '}') ++j;
+        if (j == tpl.size()) break;
+        continue;
+      }
+      if (placeholders || !ascii::is_digit(tpl[j])) continue;
+      long n = 0;
+      for (; j < tpl.size() && ascii::is_digit(tpl[j]) && n <= 64; ++j) n = n * 10 + (tpl[j] - '0');
+      if (n > 64) return "a width or precision above 64; a word of the control has at most a few digits";
+      --j;
+    }
+    i = j;
+  }
+  return {};
+}
+
+namespace {
+
+// A value from the CL (an operation's name, a record's text) as a template writes it: a line
+// break would start another NC line, a '%' is the tape mark, a control byte is no text: each
+// becomes a blank, as in the post's own comments (formats/block_writer's safe_comment_text).
+std::string printable(std::string_view v) {
+  std::string out(v);
+  for (char& c : out) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f || c == '%') c = ' ';
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string format_template(std::string_view tpl, const template_args& a) {
   reject_positional(tpl);
+  const auto clean = [](std::string_view v) {
+    return std::none_of(v.begin(), v.end(), [](char c) {
+      const auto u = static_cast<unsigned char>(c);
+      return u < 0x20 || u == 0x7f || c == '%';
+    });
+  };
+  if (!clean(a.name) || !clean(a.text)) {
+    template_args b = a;
+    b.name = printable(a.name);
+    b.text = printable(a.text);
+    return format_template(tpl, b);
+  }
   return fmt::format(fmt::runtime(tpl), fmt::arg("program", a.program), fmt::arg("name", a.name),
                      fmt::arg("channel", a.channel), fmt::arg("max", a.max), fmt::arg("tool", a.tool),
                      fmt::arg("offset", a.offset), fmt::arg("seconds", dwell_seconds{a.seconds}),

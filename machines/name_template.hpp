@@ -92,4 +92,10 @@ std::string format_template(std::string_view tpl, const template_args& a);
 /// format_template, which refuses them.
 std::string unknown_placeholder(std::string_view tpl, placeholder_set known);
 
+/// Why the format specs of template `tpl` are refused, or "": a width or precision above 64 (one
+/// `{tool:>2000000000}` took 6 GB and three minutes) or given by another placeholder
+/// (`{tool:>{max}}`, a width from the job's data).
+/// `placeholders`: the widths given by a placeholder only; else the numbers only.
+std::string template_spec_fault(std::string_view tpl, bool placeholders);
+
 }  // namespace twinpost

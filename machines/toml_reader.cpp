@@ -196,6 +196,18 @@ template_args sample_template_args() {
 
 void table_reader::check_template(std::string_view key, const toml::node& n, placeholder_set known) const {
   const std::string& tpl = n.as_string()->get();
+  // A line break would make one template several NC lines that nothing reads as blocks, a '%'
+  // is the tape mark where a control stops reading (issue 38, sixth attack).
+  for (const char c : tpl) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f || c == '%')
+      fail(n, fmt::format("{}: a template holds {}: a block is one line of printable text", key_path(key),
+                          c == '%' ? std::string("'%', the tape mark where a control stops reading")
+                                   : fmt::format("the control byte 0x{:02x}", u)));
+  }
+  // The widths before the template is formatted with the sample values (a width of 2e9).
+  if (const std::string why = template_spec_fault(tpl, false); !why.empty())
+    fail(n, fmt::format("{}: template \"{}\": {}", key_path(key), tpl, why));
   try {
     (void)format_template(tpl, sample_template_args());
   } catch (const fmt::format_error& e) {
@@ -207,6 +219,8 @@ void table_reader::check_template(std::string_view key, const toml::node& n, pla
     fail(n, fmt::format("{}: template \"{}\" names {{{}}}, which is not known there (it is "
                         "given {})",
                         key_path(key), tpl, name, known.text()));
+  if (const std::string why = template_spec_fault(tpl, true); !why.empty())
+    fail(n, fmt::format("{}: template \"{}\": {}", key_path(key), tpl, why));
 }
 
 bool table_reader::read_template(std::string_view key, std::string& out, placeholder_set known) const {

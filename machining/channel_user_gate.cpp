@@ -64,8 +64,10 @@ bool has_word(std::string_view b, char letter, std::initializer_list<int> values
 }
 
 // A Fanuc custom macro output statement (DPRNT, BPRNT, POPEN, PCLOS), after an optional block
-// delete and sequence number: its letters are text to print (`DPRNT[X#5041[44]]`). Other macro
-// statements (IF, WHILE, an assignment) are read like any block: `IF [..] THEN G0 X9000.` moves.
+// delete and sequence number, and nothing after it but blanks: its letters are text to print
+// (`DPRNT[X#5041[44]]`). Words after the statement (`DPRNT[A] G0 X9000.`, `POPEN G55`) are read
+// like any block's, as are other macro statements (IF, WHILE, an assignment): `IF [..] THEN G0
+// X9000.` moves.
 bool print_statement(std::string_view b) {
   std::size_t i = 0;
   if (i < b.size() && b[i] == '/') ++i;
@@ -76,9 +78,54 @@ bool print_statement(std::string_view b) {
     while (i < b.size() && b[i] == ' ') ++i;
   }
   const std::string_view rest = b.substr(i);
-  for (const std::string_view k : {"DPRNT[", "BPRNT[", "POPEN", "PCLOS"})
-    if (rest.starts_with(k)) return true;
+  const auto blank_after = [&](std::size_t at) {
+    return rest.find_first_not_of(' ', at) == std::string_view::npos;
+  };
+  for (const std::string_view k : {"POPEN", "PCLOS"})
+    if (rest.starts_with(k)) return blank_after(k.size());
+  for (const std::string_view k : {"DPRNT[", "BPRNT["}) {
+    if (!rest.starts_with(k)) continue;
+    int depth = 0;
+    for (std::size_t j = k.size() - 1; j < rest.size(); ++j) {
+      if (rest[j] == '[') ++depth;
+      if (rest[j] == ']' && --depth == 0) return blank_after(j + 1);
+    }
+    return false;
+  }
   return false;
+}
+
+// Block `b` as a control reads its words: letters in upper case outside comments (`g55` is G55;
+// the checker reads lower case too, docs/checker.md).
+std::string upper_outside_comments(std::string_view b, const program_format& f) {
+  std::string out(b);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    if (out[i] == f.comment_open) {
+      if ((i = out.find(f.comment_close, i + 1)) == std::string::npos) break;
+      continue;
+    }
+    out[i] = ascii::upper(out[i]);
+  }
+  return out;
+}
+
+// The first comment of `b` that stands inside a word (`G(C)55`, `X(C)9000.`, `M1(C)00`): a
+// control that skips comments reads the word across it. npos: none.
+std::size_t comment_inside_word(std::string_view b, const program_format& f) {
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b[i] != f.comment_open) continue;
+    const std::size_t close = b.find(f.comment_close, i + 1);
+    if (close == std::string_view::npos) return std::string_view::npos;
+    const char before = i > 0 ? b[i - 1] : ' ';
+    const char after = close + 1 < b.size() ? b[close + 1] : ' ';
+    if ((ascii::is_letter(before) || ascii::is_digit(before) || before == '.' || before == '-' ||
+         before == '+') &&
+        (ascii::is_digit(after) || after == '.' || after == '-' || after == '+' || after == '#' ||
+         after == '['))
+      return i;
+    i = close;
+  }
+  return std::string_view::npos;
 }
 
 // The system variables of the work offsets and the external shift (Fanuc #5201-#5335 lathe and
@@ -90,9 +137,17 @@ bool work_offset_variable(int n) {
 
 }  // namespace
 
-bool channel_writer::user_block_passes(const std::string& b) {
-  if (!block_fits(b)) return false;
+bool channel_writer::user_block_passes(const std::string& given) {
   const program_format& f = m_.program;
+  // Read as the control reads it: a lower-case word is the same word (issue 38, sixth attack).
+  const std::string b = upper_outside_comments(given, f);
+  if (!block_fits(b)) return false;
+  if (const std::size_t at = comment_inside_word(b, f); at != std::string::npos) {
+    error(line_, fmt::format("\"{}\" has a comment inside a word ('{}'): a control that skips comments reads "
+                             "one word across it",
+                             given, b.substr(at == 0 ? 0 : at - 1, b.find(f.comment_close, at) - at + 3)));
+    return false;
+  }
   if (print_statement(b)) return true;  // text to print: nothing moves
   bool not_a_position = false, incremental = false, sets_frame = false, local_frame = false,
        transforms = false;
@@ -204,17 +259,25 @@ bool channel_writer::user_block_passes(const std::string& b) {
       return false;
     }
     if (!word_start) continue;
-    // A G or M code given by a variable or an expression (G#1, G[10], M#1, M[100]): the post
-    // cannot say what it does (a work offset, inches, a wait).
-    if ((c == 'G' || c == 'M') && i + 1 < b.size() && (b[i + 1] == '#' || b[i + 1] == '[')) {
+    // A G or M code given by a variable or an expression (G#1, G[10], M#1, M[100]), or with a
+    // sign (G+55, read as G55 by some controls): the post cannot say what it does (a work offset,
+    // inches, a wait).
+    if ((c == 'G' || c == 'M') && i + 1 < b.size() &&
+        (b[i + 1] == '#' || b[i + 1] == '[' || b[i + 1] == '+' || b[i + 1] == '-')) {
       error(line_,
-            fmt::format("\"{}\" gives a {} code by a variable or an expression: the post cannot say what "
-                        "it does (a frame, a unit, a wait); write the code",
+            fmt::format("\"{}\" gives a {} code by a variable, an expression or with a sign: the post cannot "
+                        "say what it does (a frame, a unit, a wait); write the code",
                         b, c));
       return false;
     }
     // An axis name list (Mazak `G17 XC`): no value after the letter.
     const char next = i + 1 < b.size() ? b[i + 1] : '\0';
+    // A sequence number without its number (`NG55`): what the control makes of the letters
+    // after it is not the post's to guess.
+    if (c == 'N' && !ascii::is_digit(next)) {
+      error(line_, fmt::format("\"{}\" has an N without its number: write N and digits, or no N", b));
+      return false;
+    }
     const bool has_value =
         ascii::is_digit(next) || next == '-' || next == '+' || next == '.' || next == '#' || next == '[';
     if (!has_value) continue;

@@ -204,6 +204,29 @@ TEST_CASE("validation: templates are formatted once at load", "[machines]") {
         "not found");
 }
 
+TEST_CASE("validation: a template is one line of printable text with short widths", "[machines]") {
+  // Issue 38, sixth attack: a line break made one template several NC lines no check read as
+  // blocks; a '%' is the tape mark; a width of 2e9 took 6 GB at load.
+  CHECK(error_of(head + "[program]\nfooter = [\"M5\\nG10 L2 P1 X-500.\"]\n") ==
+        "m.toml:7:11: error: program.footer: a template holds the control byte 0x0a: a block is one line of "
+        "printable text");
+  CHECK(error_of(head + "[program]\nheader = [\"(50%)\"]\n") ==
+        "m.toml:7:11: error: program.header: a template holds '%', the tape mark where a control stops "
+        "reading: a block is one line of printable text");
+  CHECK(error_of(head + "[program]\nprogram_line = \"O{program:>2000000000}\"\n") ==
+        "m.toml:7:16: error: program.program_line: template \"O{program:>2000000000}\": a width or "
+        "precision above 64; a word of the control has at most a few digits");
+  CHECK(error_of(head + "[program]\nsection_marker = \"G109 L{channel:0{channel}}\"\n") ==
+        "m.toml:7:18: error: program.section_marker: template \"G109 L{channel:0{channel}}\": a width or "
+        "precision given by a placeholder; write the number");
+  // A line of more than 4096 bytes (a dotted key of 200 000 parts overflowed toml++'s stack).
+  std::string deep = "a";
+  for (int i = 0; i < 3000; ++i) deep += ".a";
+  CHECK(error_of(head + deep + " = 1\n") ==
+        "m.toml:6:1: error: a line of 6005 bytes: a machine file's lines have at most 4096; break a long "
+        "array over several lines");
+}
+
 TEST_CASE("validation: a template names only what is known where it is used", "[machines]") {
   // A file name is made once for all channels: there is no channel to name.
   CHECK(error_of(head + "[program]\nfile_name = \"{name}_{channel}\"\n") ==

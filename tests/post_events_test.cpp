@@ -275,10 +275,12 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
        "\"G50.0 X100.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 "
        "with a shift): every later position of the post would be off by it"},
       {"G#1 X100.",
-       "\"G#1 X100.\" gives a G code by a variable or an expression: the post cannot say what it "
+       "\"G#1 X100.\" gives a G code by a variable, an expression or with a sign: the post cannot say what "
+       "it "
        "does (a frame, a unit, a wait); write the code"},
       {"M[100]",
-       "\"M[100]\" gives a M code by a variable or an expression: the post cannot say what it does (a "
+       "\"M[100]\" gives a M code by a variable, an expression or with a sign: the post cannot say what it "
+       "does (a "
        "frame, a unit, a wait); write the code"},
       {"G55",
        "\"G55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, "
@@ -329,6 +331,28 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
       {":1000",
        "\":1000\" holds a program number: a control that loads the file starts another program there, "
        "and this one loses the blocks after it"},
+      // The sixth attack: lower case, a print statement with words after it, a signed code, a
+      // comment inside a word, an N without its number.
+      {"g55",
+       "\"G55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, "
+       "G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
+       "writes the channel's frame itself"},
+      {"g0 x9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"DPRNT[A] G0 X9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"POPEN G55",
+       "\"POPEN G55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, "
+       "G51, G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
+       "writes the channel's frame itself"},
+      {"G+55",
+       "\"G+55\" gives a G code by a variable, an expression or with a sign: the post cannot say what it "
+       "does (a frame, a unit, a wait); write the code"},
+      {"G(C)55",
+       "\"G(C)55\" has a comment inside a word ('G(C)5'): a control that skips comments reads one word "
+       "across it"},
+      {"G0 X(C)9000.",
+       "\"G0 X(C)9000.\" has a comment inside a word ('X(C)9'): a control that skips comments reads one "
+       "word across it"},
+      {"NG55", "\"NG55\" has an N without its number: write N and digits, or no N"},
   };
   for (const auto& [block, message] : cases) {
     CAPTURE(block);
@@ -344,13 +368,13 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
         "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 U0.\", \"G50 S2000\", \"G4 U1.5\", "
         "\"#601 = #601 + 1\", \"G10 P101 U0.1\", \"G52 X0. Z+0\", \"G92 X29.2 Z-20. F1.5\", \"#1=#2 XOR "
         "#3\", "
-        "\"DPRNT[X#5041[44]]\"]\n",
+        "\"DPRNT[X#5041[44]]\", \"POPEN\", \"N10 G4 U0.5 (DWELL)\"]\n",
         "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate-ok");
     CHECK(q.diagnostics == "");
     CHECK(program_1(q) ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG28 U0.\nG50 S2000\nG4 U1.5\n"
           "#601 = #601 + 1\nG10 P101 U0.1\nG52 X0. Z+0\nG92 X29.2 Z-20. F1.5\n#1=#2 XOR "
-          "#3\nDPRNT[X#5041[44]]\nM100\nM9\n"
+          "#3\nDPRNT[X#5041[44]]\nPOPEN\nN10 G4 U0.5 (DWELL)\nM100\nM9\n"
           "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
 }
