@@ -472,7 +472,18 @@ void channel_writer::write_dwell(double seconds) {
   a.seconds = seconds;
   a.ms = static_cast<int>(std::lround(seconds * 1000));
   std::string b = format_template(m_.codes.dwell, a);
-  if (block_fits(b)) out_.block(b);
+  if (!block_fits(b)) return;
+  // Under feed per revolution a dwell may count spindle revolutions, not seconds (Fanuc
+  // parameter 3405#1 DWL: "dwell per rotation in the feed per rotation mode"; Mazak alike): the
+  // dwell is written under feed per minute, where it is seconds whatever the parameter, and the
+  // channel's mode follows at once (issue 37, item 10; the Integrex transfer's `G94 G4 P1000`).
+  const control_codes& c = m_.codes;
+  if (!c.feed_per_min.empty() && !c.feed_per_rev.empty() && feed_g_ == c.feed_per_rev) {
+    out_.block(c.feed_per_min + ' ' + b);
+    out_.block(feed_g_);
+    return;
+  }
+  out_.block(b);
 }
 
 void channel_writer::finish() {

@@ -203,7 +203,7 @@ TEST_CASE("a dwell template without an address letter still keeps its millisecon
   m.codes.dwell = "G4 P=#{ms}";
   posted ok = post_text(head + "DELAY/1.5\nFINI\n", m, "dwell-ok");
   CHECK(ok.diagnostics == "");
-  CHECK(ok.files.at("W_1.nc").find("\nG4 P=#1500\n") != std::string::npos);
+  CHECK(ok.files.at("W_1.nc").find("\nG98 G4 P=#1500\nG99\n") != std::string::npos);
   posted big = post_text(head + "DELAY/1e7\nFINI\n", m, "dwell-big");
   CHECK(big.diagnostics ==
         "job.cls:6:1: error: channel 1: DELAY/10000000 is longer than any dwell the control "
@@ -249,10 +249,12 @@ TEST_CASE("an X word past the channel's X travel stops the post at its record", 
 TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point setting", "[post][words]") {
   // A Fanuc reads a dwell word without a point in its least increment (G4 U1 is 1 ms with
   // decimal-point programming off, the default): seconds always carry their point, and
-  // milliseconds (P) are whole numbers, which no setting reads otherwise.
+  // milliseconds (P) are whole numbers, which no setting reads otherwise. Under feed per
+  // revolution (the Fanuc lathes' G99) the dwell is written under G98, where it is seconds
+  // whatever parameter 3405#1 says, and G99 follows.
   const std::map<std::string, std::string> want = {
-      {"fanuc-0itd-twin", "G4 U1."},   {"fanuc-31i-3path", "G4 U1."}, {"integrex-i200st", "G4 P1000"},
-      {"head-head-5axis", "G4 P1000"}, {"rotary-4axis", "G4 P1000"},  {"trunnion-5axis", "G4 P1000"},
+      {"fanuc-0itd-twin", "G98 G4 U1."}, {"fanuc-31i-3path", "G98 G4 U1."}, {"integrex-i200st", "G4 P1000"},
+      {"head-head-5axis", "G4 P1000"},   {"rotary-4axis", "G4 P1000"},      {"trunnion-5axis", "G4 P1000"},
   };
   for (const auto& [name, block] : want) {
     INFO(name);
@@ -260,15 +262,16 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
     CHECK(p.diagnostics == "");
     std::string all;
     for (const auto& [file, text] : p.files) all += text;
-    CHECK(all.find("\n" + block + "\n") != std::string::npos);
-    CHECK(all.find(block.starts_with("G4 U") ? "\nG4 U2.25\n" : "\nG4 P2250\n") != std::string::npos);
+    const bool per_rev = block.starts_with("G98");
+    CHECK(all.find("\n" + block + (per_rev ? "\nG99\n" : "\n")) != std::string::npos);
+    CHECK(all.find(per_rev ? "\nG98 G4 U2.25\nG99\n" : "\nG4 P2250\n") != std::string::npos);
   }
   // A machine file's own template: {seconds} with no spec has its point; with a spec it is fmt's.
   machine m = load_machine("fanuc-0itd-twin");
   m.codes.dwell = "G4 X{seconds}";
   posted x = post_text("PARTNO W\nTURRET/1,1\nDELAY/3\nFINI\n", m, "dwell-x");
-  CHECK(x.files.at("W_1.nc").find("\nG4 X3.\n") != std::string::npos);
+  CHECK(x.files.at("W_1.nc").find("\nG98 G4 X3.\nG99\n") != std::string::npos);
   m.codes.dwell = "G4 U{seconds:.1f}";
   posted spec = post_text("PARTNO W\nTURRET/1,1\nDELAY/3\nFINI\n", m, "dwell-spec");
-  CHECK(spec.files.at("W_1.nc").find("\nG4 U3.0\n") != std::string::npos);
+  CHECK(spec.files.at("W_1.nc").find("\nG98 G4 U3.0\nG99\n") != std::string::npos);
 }
