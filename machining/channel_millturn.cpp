@@ -241,6 +241,7 @@ bool channel_writer::index_head(int line) {
   if (head_angle_ && std::abs(*head_angle_ - *want) < 5e-4) {
     if (after_index_) pending_offset_ = offset;  // a new tool at the same angle: its own offset
     after_index_ = false;
+    write_coolant_due();
     return true;
   }
   if (!homed_) {
@@ -265,6 +266,7 @@ bool channel_writer::index_head(int line) {
   motion_g_ = -1;  // the move block was G0 in machine coordinates
   pending_offset_ = offset;
   after_index_ = false;
+  write_coolant_due();
   return true;
 }
 

@@ -9,6 +9,7 @@ namespace twinpost {
 
 void channel_writer::coolant(const coolant_event& c, int line) {
   if (c.mode == "OFF") {
+    coolant_due_.clear();
     coolant_block(coolant_off_block_.empty() ? m_.codes.coolant_off : coolant_off_block_, true);
     coolant_block_.clear();
     coolant_off_block_.clear();
@@ -33,9 +34,14 @@ void channel_writer::coolant(const coolant_event& c, int line) {
     return error(line, fmt::format("COOLNT/{}: machine '{}' has no coolant-on code", c.mode, m_.name));
   const std::string& on = pair ? (*pair)[0] : k.coolant_on.front();
   const std::string& off = pair ? (*pair)[1] : k.coolant_off;
-  if (coolant_block_ == on) return;                                      // already on
-  if (!coolant_block_.empty()) coolant_block(coolant_off_block_, true);  // another kind: off first
-  coolant_block(on, false);
+  if (coolant_block_ == on) return;  // already on
+  if (!coolant_block_.empty() && coolant_due_.empty())
+    coolant_block(coolant_off_block_, true);  // another kind: off first
+  // A tool whose head is not indexed yet: the coolant waits for the index (index_head).
+  if (ch_.head_index.present() && has_c_ && after_index_)
+    coolant_due_ = on;
+  else
+    coolant_block(on, false);
   coolant_block_ = on;
   coolant_off_block_ = off;
 }
@@ -224,7 +230,12 @@ void channel_writer::tool(const tool_event& t, int line) {
   selected_ = nullptr;
   if (ev_) [[unlikely]]
     user_blocks(event_point::tool_change, true, ea);
-  if (!coolant_was.empty()) coolant_block(coolant_was, false);
+  if (!coolant_was.empty()) {
+    if (ch_.head_index.present() && has_c_)
+      coolant_due_ = coolant_was;  // after the head's index (index_head)
+    else
+      coolant_block(coolant_was, false);
+  }
   tool_call_ = call + offset_block;
   after_index_ = true;
   take_tool(t.tool, line, word);

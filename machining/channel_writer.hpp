@@ -529,7 +529,16 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   double cylinder_c_ = 0;       // the C written last in it, continuous (no wrap at 360)
   bool cylinder_comp_ = false;  // G41/G42 started in it and not yet ended
   std::pair<std::int64_t, std::int64_t> saved_x_limits_{INT64_MIN, INT64_MAX};
-  std::string pending_offset_;             // head_index.offset_* for the next move
+  std::string pending_offset_;  // head_index.offset_* for the next move
+  // A coolant-on block held from the tool call until the indexing head is indexed for the tool
+  // (written then, before the approach): no coolant while the head turns (issue 37, item 10).
+  std::string coolant_due_;
+  /// Writes coolant_due_, if any.
+  void write_coolant_due() {
+    if (coolant_due_.empty()) return;
+    coolant_block(coolant_due_, false);
+    coolant_due_.clear();
+  }
   bool after_index_ = false;               // a tool was called: its offset words are due
   double c_cos_ = 1, c_sin_ = 0;           // of the C angle in force
   std::optional<double> head_angle_;       // the indexing head's angle, once written

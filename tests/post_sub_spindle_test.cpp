@@ -139,7 +139,7 @@ TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then 
   const test::posted p = post_on(transfer_job, "integrex-i200st", "xfer-integrex");
   CHECK(file_of(p, "XFER.EIA") ==
         "%\nO1000(XFER)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT01 M6\nM901\nG92 S2500 R1\nG96 S180 M203\nG95\nM8\nM108\nG0 G53 B0.\nM107\n"
+        "G0 G90 G53 Z0.\nT01 M6\nM901\nG92 S2500 R1\nG96 S180 M203\nG95\nM108\nG0 G53 B0.\nM107\nM8\n"
         "G1 G43 P1 H#3020 X50. Y0. Z2. F0.2\nZ-20.\nM205\nM9\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
         "M950\nM306\nM511\nM540\nIF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF "
         "[#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\nG0 G53 W#501\nG94 G1 G53 W#500 "
