@@ -132,6 +132,13 @@ std::string template_spec_fault(std::string_view tpl, bool placeholders) {
         if (j == tpl.size()) break;
         continue;
       }
+      // A presentation type other than a number's (`{tool:c}` prints the number as a byte).
+      if (!placeholders && ascii::is_letter(tpl[j]) && (j + 1 >= tpl.size() || tpl[j + 1] == '}') &&
+          std::string_view("dfFeEgGs").find(tpl[j]) == std::string_view::npos)
+        return fmt::format(
+            "the presentation type '{}' (a number as a byte, in hex or octal, ...); write {{name}}, "
+            "{{name:d}} or {{name:.3f}}",
+            tpl[j]);
       if (placeholders || !ascii::is_digit(tpl[j])) continue;
       long n = 0;
       for (; j < tpl.size() && ascii::is_digit(tpl[j]) && n <= 64; ++j) n = n * 10 + (tpl[j] - '0');
@@ -146,13 +153,15 @@ std::string template_spec_fault(std::string_view tpl, bool placeholders) {
 namespace {
 
 // A value from the CL (an operation's name, a record's text) as a template writes it: a line
-// break would start another NC line, a '%' is the tape mark, a control byte is no text: each
-// becomes a blank, as in the post's own comments (formats/block_writer's safe_comment_text).
+// break would start another NC line, a '%' is the tape mark, a parenthesis or ';' would end or
+// start a comment (`(OP {name})` with a name `A)G55(`), a control byte or one above ASCII is no
+// text: each becomes a blank, as in the post's own comments (formats/block_writer's
+// safe_comment_text).
 std::string printable(std::string_view v) {
   std::string out(v);
   for (char& c : out) {
     const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f || c == '%') c = ' ';
+    if (u < 0x20 || u >= 0x7f || c == '%' || c == '(' || c == ')' || c == ';') c = ' ';
   }
   return out;
 }
@@ -164,7 +173,7 @@ std::string format_template(std::string_view tpl, const template_args& a) {
   const auto clean = [](std::string_view v) {
     return std::none_of(v.begin(), v.end(), [](char c) {
       const auto u = static_cast<unsigned char>(c);
-      return u < 0x20 || u == 0x7f || c == '%';
+      return u < 0x20 || u >= 0x7f || c == '%' || c == '(' || c == ')' || c == ';';
     });
   };
   if (!clean(a.name) || !clean(a.text)) {

@@ -200,10 +200,13 @@ void table_reader::check_template(std::string_view key, const toml::node& n, pla
   // is the tape mark where a control stops reading (issue 38, sixth attack).
   for (const char c : tpl) {
     const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f || c == '%')
-      fail(n, fmt::format("{}: a template holds {}: a block is one line of printable text", key_path(key),
-                          c == '%' ? std::string("'%', the tape mark where a control stops reading")
-                                   : fmt::format("the control byte 0x{:02x}", u)));
+    if (u < 0x20 || u >= 0x7f || c == '%')
+      fail(n,
+           fmt::format("{}: a template holds {}: a block is one line of printable text", key_path(key),
+                       c == '%' ? std::string("'%', the tape mark where a control stops reading")
+                       : u >= 0x80
+                           ? fmt::format("the byte 0x{:02x}, no ASCII (a 7-bit link strips its top bit)", u)
+                           : fmt::format("the control byte 0x{:02x}", u)));
   }
   // The widths before the template is formatted with the sample values (a width of 2e9).
   if (const std::string why = template_spec_fault(tpl, false); !why.empty())

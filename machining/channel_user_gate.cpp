@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include "machines/code_overlap.hpp"
 #include "machines/macro_variables.hpp"
 #include "machining/channel_writer.hpp"
 #include "support/ascii.hpp"
@@ -32,9 +33,9 @@ void each_g(std::string_view b, const program_format& f, F&& on_g) {
       if ((i = b.find(f.comment_close, i + 1)) == std::string_view::npos) return;
       continue;
     }
-    if (b[i] != 'G' || (i > 0 && ascii::is_letter(b[i - 1]))) continue;
+    if (b[i] != 'G') continue;
     double g = 0;
-    const auto r = std::from_chars(b.data() + i + 1, b.data() + b.size(), g);
+    const auto r = std::from_chars(b.data() + i + 1, b.data() + b.size(), g, std::chars_format::fixed);
     if (r.ec == std::errc() && g >= 0) on_g(g);
   }
 }
@@ -50,12 +51,12 @@ bool is_axis_letter(char c) {  // H: a lathe's incremental C
 // the post cannot read (L#1, L[2]) may be one of them.
 bool has_word(std::string_view b, char letter, std::initializer_list<int> values) {
   for (std::size_t i = 0; i + 1 < b.size(); ++i) {
-    if (b[i] != letter || (i > 0 && ascii::is_letter(b[i - 1]))) continue;
+    if (b[i] != letter) continue;
     std::size_t j = i + 1;
     if (b[j] == '+') ++j;
     if (j < b.size() && (b[j] == '#' || b[j] == '[')) return true;
     double v = 0;
-    const auto r = std::from_chars(b.data() + j, b.data() + b.size(), v);
+    const auto r = std::from_chars(b.data() + j, b.data() + b.size(), v, std::chars_format::fixed);
     if (r.ec != std::errc()) continue;
     for (const int want : values)
       if (v == static_cast<double>(want)) return true;
@@ -81,9 +82,9 @@ bool print_statement(std::string_view b) {
   const auto blank_after = [&](std::size_t at) {
     return rest.find_first_not_of(' ', at) == std::string_view::npos;
   };
-  for (const std::string_view k : {"POPEN", "PCLOS"})
+  for (const std::string_view k : {"popen", "pclos"})
     if (rest.starts_with(k)) return blank_after(k.size());
-  for (const std::string_view k : {"DPRNT[", "BPRNT["}) {
+  for (const std::string_view k : {"dprnt [", "bprnt ["}) {
     if (!rest.starts_with(k)) continue;
     int depth = 0;
     for (std::size_t j = k.size() - 1; j < rest.size(); ++j) {
@@ -95,29 +96,116 @@ bool print_statement(std::string_view b) {
   return false;
 }
 
-// Block `b` as a control reads its words: letters in upper case outside comments (`g55` is G55;
-// the checker reads lower case too, docs/checker.md).
-std::string upper_outside_comments(std::string_view b, const program_format& f) {
-  std::string out(b);
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    if (out[i] == f.comment_open) {
-      if ((i = out.find(f.comment_close, i + 1)) == std::string::npos) break;
+// Block `b` with its comments taken out and its letters in upper case (`g55` is G55; the checker
+// reads lower case too, docs/checker.md); blanks kept.
+std::string without_comments(std::string_view b, const program_format& f) {
+  std::string out;
+  out.reserve(b.size());
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b[i] == f.comment_open && f.comment_close != '\n') {
+      const std::size_t close = b.find(f.comment_close, i + 1);
+      if (close == std::string_view::npos) break;
+      i = close;
       continue;
     }
-    out[i] = ascii::upper(out[i]);
+    if (b[i] == f.comment_open) break;  // a comment to the end of the line (`;`)
+    out += ascii::upper(b[i]);
   }
   return out;
 }
 
-// The first comment of `b` that stands inside a word (`G(C)55`, `X(C)9000.`, `M1(C)00`): a
-// control that skips comments reads the word across it. npos: none.
+// The macro statements' keywords (Fanuc custom macro B): outside [...], a control reads them
+// whatever follows, blanks or not (`IF[#1EQ0]THENG50X100.` is `IF [..] THEN G50 X100.`).
+// `next`: what must follow for the letters to be the keyword ('[' after IF, a digit after DO),
+// 0 for anything.
+constexpr std::pair<std::string_view, char> keywords[] = {
+    {"IF", '['},  {"WHILE", '['}, {"THEN", 0},    {"GOTO", 0},  {"DO", '0'},
+    {"END", '0'}, {"DPRNT", '['}, {"BPRNT", '['}, {"POPEN", 0}, {"PCLOS", 0},
+};
+
+// Block `b` as a control that skips blanks and comments reads it: upper case, no comments, no
+// blanks, each keyword in lower case with a blank on each side. Every upper-case letter outside
+// [...] is then an address (`G0ZX9000.` has the word X9000.), as a control reads it.
+std::string control_reading(std::string_view b, const program_format& f) {
+  const std::string flat = without_comments(b, f);
+  std::string out;
+  out.reserve(flat.size() + 8);
+  int bracket = 0;
+  for (std::size_t i = 0; i < flat.size(); ++i) {
+    const char c = flat[i];
+    if (c == ' ') continue;
+    if (c == '[') ++bracket;
+    if (c == ']' && bracket > 0) --bracket;
+    if (bracket == 0 && ascii::is_upper(c)) {
+      bool matched = false;
+      for (const auto& [k, next] : keywords) {
+        std::size_t j = i, n = 0;  // the keyword's letters, blanks between them skipped
+        while (n < k.size() && j < flat.size()) {
+          if (flat[j] == ' ') {
+            ++j;
+            continue;
+          }
+          if (flat[j] != k[n]) break;
+          ++j, ++n;
+        }
+        if (n < k.size()) continue;
+        std::size_t after = j;
+        while (after < flat.size() && flat[after] == ' ') ++after;
+        const char a = after < flat.size() ? flat[after] : '\0';
+        if ((next == '[' && a != '[') || (next == '0' && !ascii::is_digit(a))) continue;
+        out += ' ';
+        for (const char kc : k) out += static_cast<char>(kc - 'A' + 'a');
+        out += ' ';
+        i = j - 1;
+        matched = true;
+        break;
+      }
+      if (matched) continue;
+    }
+    out += c;
+  }
+  return out;
+}
+
+// The first comment of `b` that stands inside a word (`G(C)55`, `X(C)9000.`, `M1(C)00`, `G (C)
+// 55`, `G(C)(D)55`): a control that skips comments and blanks reads the word across it. npos:
+// none.
 std::size_t comment_inside_word(std::string_view b, const program_format& f) {
   for (std::size_t i = 0; i < b.size(); ++i) {
-    if (b[i] != f.comment_open) continue;
+    if (b[i] != f.comment_open || f.comment_close == '\n') continue;
     const std::size_t close = b.find(f.comment_close, i + 1);
     if (close == std::string_view::npos) return std::string_view::npos;
-    const char before = i > 0 ? b[i - 1] : ' ';
-    const char after = close + 1 < b.size() ? b[close + 1] : ' ';
+    // The characters either side, past blanks and other comments.
+    char before = ' ';
+    for (std::size_t p = i; p > 0;) {
+      const char c = b[--p];
+      if (c == ' ') continue;
+      if (c == f.comment_close) {
+        const std::size_t open = b.rfind(f.comment_open, p);
+        if (open == std::string_view::npos) break;
+        p = open;
+        continue;
+      }
+      before = c;
+      break;
+    }
+    char after = ' ';
+    for (std::size_t q = close + 1; q < b.size();) {
+      const char c = b[q];
+      if (c == ' ') {
+        ++q;
+        continue;
+      }
+      if (c == f.comment_open) {
+        const std::size_t end = b.find(f.comment_close, q + 1);
+        if (end == std::string_view::npos) break;
+        q = end + 1;
+        continue;
+      }
+      after = c;
+      break;
+    }
+
     if ((ascii::is_letter(before) || ascii::is_digit(before) || before == '.' || before == '-' ||
          before == '+') &&
         (ascii::is_digit(after) || after == '.' || after == '-' || after == '+' || after == '#' ||
@@ -139,19 +227,34 @@ bool work_offset_variable(int n) {
 
 bool channel_writer::user_block_passes(const std::string& given) {
   const program_format& f = m_.program;
-  // Read as the control reads it: a lower-case word is the same word (issue 38, sixth attack).
-  const std::string b = upper_outside_comments(given, f);
-  if (!block_fits(b)) return false;
-  if (const std::size_t at = comment_inside_word(b, f); at != std::string::npos) {
-    error(line_, fmt::format("\"{}\" has a comment inside a word ('{}'): a control that skips comments reads "
-                             "one word across it",
-                             given, b.substr(at == 0 ? 0 : at - 1, b.find(f.comment_close, at) - at + 3)));
+  if (!block_fits(given)) return false;
+  if (f.comment_close != '\n')
+    for (std::size_t i = given.find(f.comment_open); i != std::string::npos;
+         i = given.find(f.comment_open, i + 1))
+      if ((i = given.find(f.comment_close, i + 1)) == std::string::npos) {
+        error(line_,
+              fmt::format("\"{}\" opens a comment it does not close: a control may read on into the next "
+                          "block",
+                          given));
+        return false;
+      }
+  if (comment_inside_word(given, f) != std::string::npos) {
+    error(line_,
+          fmt::format("\"{}\" has a comment inside a word: a control that skips comments reads one word "
+                      "across it",
+                      given));
     return false;
   }
+  // Read as the control reads it (issue 38, sixth and seventh attacks): a lower-case word is the
+  // same word, comments and blanks are skipped (`IF[#1EQ0]THENG50X100.`), every letter is an
+  // address. `flat` keeps the blanks for the blank check; `b` is the reading every other check
+  // reads; messages quote the block as given.
+  const std::string flat = without_comments(given, f);
+  const std::string b = control_reading(given, f);
   if (print_statement(b)) return true;  // text to print: nothing moves
   bool not_a_position = false, incremental = false, sets_frame = false, local_frame = false,
        transforms = false;
-  bool motion = false, data = false;
+  bool motion = false, data = false, length = false, absolute = false;
   double modal = -1;  // a mode the post neither writes nor restores
   each_g(b, f, [&](double g) {
     // After these an X is no position in the work frame: a dwell (G4 X1.5), data setting
@@ -160,6 +263,9 @@ bool channel_writer::user_block_passes(const std::string& given) {
     not_a_position = not_a_position || data || is(g, 53);
     motion = motion || is(g, 0) || is(g, 1) || is(g, 2) || is(g, 3);
     incremental = incremental || (absolute_code_ && is(g, 91));
+    absolute = absolute || (absolute_code_ && is(g, 90));
+    // The tool length offset: the post writes it with each tool and cancels it at home.
+    length = length || is(g, 43) || is(g, 43.1) || is(g, 43.4) || is(g, 43.5) || is(g, 44) || is(g, 49);
     // G10 sets a work offset with L2 or L20 and the workpiece shift with P0 (with another P, or
     // L10-L13, a tool offset: a wear adjustment is a shop's own business); G52 X0. cancels a
     // local frame; G50.3 and G92.1 preset the work frame. G92 sets the frame where the safe
@@ -168,24 +274,36 @@ bool channel_writer::user_block_passes(const std::string& given) {
     sets_frame = sets_frame || is(g, 50) || (is(g, 92) && absolute_code_) ||
                  (is(g, 10) && (has_word(b, 'L', {2, 20}) || has_word(b, 'P', {0})));
     local_frame = local_frame || is(g, 52);
-    transforms = transforms || (g >= 54 && g <= 59 && is(g, std::round(g))) || is(g, 54.1) || is(g, 51) ||
-                 is(g, 51.1) || is(g, 68) || is(g, 68.1) || is(g, 68.2) || is(g, 50.3) || is(g, 92.1);
-    for (const double m : {7.1, 12.1, 112.0, 107.0, 41.0, 42.0, 66.0, 66.1, 51.2, 10.9})
+    transforms = transforms || (g >= 54 && g <= 59 && is(g, std::round(g))) || is(g, 54.1) || is(g, 54.2) ||
+                 is(g, 51) || is(g, 51.1) || is(g, 68) || is(g, 68.1) || is(g, 68.2) || is(g, 50.3) ||
+                 is(g, 92.1);
+    for (const double m : {7.1, 12.1, 112.0, 107.0, 41.0, 42.0, 66.0, 66.1, 51.2, 10.9, 16.0, 23.0, 93.0})
       if (is(g, m)) modal = m;
   });
+  // G91 given by an earlier block of the same event holds until the post's G90 after it.
+  incremental = incremental || (user_incremental_ && !absolute);
   if (modal >= 0) {
     error(line_,
           fmt::format("\"{}\" turns on a mode the post neither writes nor turns off (polar or cylindrical "
-                      "interpolation, nose radius compensation, a modal macro call, polygon turning, radius "
-                      "or diameter input: G{}): every later block of the post would be read in it",
-                      b, modal));
+                      "interpolation, polar coordinates, nose radius compensation, a modal macro call, "
+                      "polygon turning, radius or diameter input, the stroke check off, inverse time feed: "
+                      "G{}): every later block of the post would be read in it",
+                      given, modal));
+    return false;
+  }
+  if (length) {
+    error(line_,
+          fmt::format("\"{}\" sets or cancels the tool length offset (G43, G43.4, G44, G49): the post "
+                      "writes each tool's offset itself, and every later Z of the post would be off by "
+                      "a tool length",
+                      given));
     return false;
   }
   if (data && motion) {
     error(line_,
           fmt::format("\"{}\" mixes a motion with a dwell, a data setting or a macro call: its axis words "
                       "cannot be held to the travel; write them in blocks of their own",
-                      b));
+                      given));
     return false;
   }
   // Another work offset, a scaling or mirror image, a rotation: every later position moves.
@@ -195,32 +313,28 @@ bool channel_writer::user_block_passes(const std::string& given) {
               "\"{}\" selects another work offset, a mirror image, a scaling or a rotation "
               "(G54-G59, G54.1, G51, G51.1, G68, G50.3, G92.1): every later position of the post would be "
               "in another frame; the post writes the channel's frame itself",
-              b));
+              given));
     return false;
   }
   // First the blanks: a blank inside a word changes what every check below reads.
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    const char c = b[i];
-    if (c == f.comment_open) {
-      if ((i = b.find(f.comment_close, i + 1)) == std::string::npos) break;
-      continue;
-    }
+  for (std::size_t i = 0; i < flat.size(); ++i) {
+    const char c = flat[i];
     // A blank inside a word: after an address, or between two digits of a number.
     if (c == ' ' && i > 0) {
       std::size_t k = i;
-      while (k < b.size() && b[k] == ' ') ++k;
-      const char before = b[i - 1], after = k < b.size() ? b[k] : '\0';
+      while (k < flat.size() && flat[k] == ' ') ++k;
+      const char before = flat[i - 1], after = k < flat.size() ? flat[k] : '\0';
       const bool address_before =
-          ascii::is_upper(before) && (i < 2 || !ascii::is_letter(b[i - 2])) && before != f.comment_open;
+          ascii::is_upper(before) && (i < 2 || !ascii::is_letter(flat[i - 2])) && before != f.comment_open;
       const bool number_after = ascii::is_digit(after) || after == '.';
       if ((address_before && (number_after || after == '-' || after == '+' || after == '#')) ||
           ((ascii::is_digit(before) || before == '.' || before == '#') && number_after)) {
-        const std::size_t from = b.rfind(' ', i - 1) == std::string::npos ? 0 : b.rfind(' ', i - 1) + 1;
+        const std::size_t from = flat.rfind(' ', i - 1) == std::string::npos ? 0 : flat.rfind(' ', i - 1) + 1;
         std::size_t to = k;
-        while (to < b.size() && b[to] != ' ') ++to;
+        while (to < flat.size() && flat[to] != ' ') ++to;
         error(line_, fmt::format("\"{}\" has a blank inside the word '{}': a control that skips blanks reads "
                                  "one word there",
-                                 b, b.substr(from, to - from)));
+                                 given, flat.substr(from, to - from)));
         return false;
       }
     }
@@ -228,14 +342,28 @@ bool channel_writer::user_block_passes(const std::string& given) {
   const axis_def* x = ch_.axis('X');
   const bool u_is_x = x && !ch_.axis('U') && x_diameter_;  // a lathe's incremental X (G-code system A)
   // A write to a work offset's system variable moves every later position, as G10 L2 does.
-  for (const macro_use& u : macro_uses(b))
+  for (const macro_use& u : macro_uses(b)) {
+    // An indirect write (#[5200+21]=, #[#1]=): its number is known only when the block runs, and
+    // may be a work offset's.
+    if (u.write && u.number < 0) {
+      error(line_,
+            fmt::format("\"{}\" writes a variable by an expression (#[...]=), known only when the block "
+                        "runs: it may be a work offset's (#5000-#5999, #7000-#7999, #14000-#19999); "
+                        "write its number",
+                        given));
+      return false;
+    }
     if (u.write && work_offset_variable(u.number)) {
       error(line_,
             fmt::format("\"{}\" writes #{}, a system variable of the work offsets (#5000-#5999, "
                         "#7000-#7999, #14000-#19999): every later position of the post would be off by it",
-                        b, u.number));
+                        given, u.number));
       return false;
     }
+  }
+  if (last_x_.known) user_x_ = last_x_.value;
+  const std::optional<double> from_x = user_x_;
+  const std::size_t then_at = b.find(" then ");
   int bracket = 0;  // inside [...] a letter is an operator (XOR) or an expression's, no word
   for (std::size_t i = 0; i < b.size(); ++i) {
     const char c = b[i];
@@ -251,11 +379,11 @@ bool channel_writer::user_block_passes(const std::string& given) {
     }
     if (c == '[') ++bracket;
     if (c == ']' && bracket > 0) --bracket;
-    const bool word_start = bracket == 0 && ascii::is_upper(c) && (i == 0 || !ascii::is_letter(b[i - 1]));
+    const bool word_start = bracket == 0 && ascii::is_upper(c);  // keywords are in lower case
     if (((word_start && c == 'O') || c == ':') && i + 1 < b.size() && ascii::is_digit(b[i + 1])) {
       error(line_, fmt::format("\"{}\" holds a program number: a control that loads the file starts another "
                                "program there, and this one loses the blocks after it",
-                               b));
+                               given));
       return false;
     }
     if (!word_start) continue;
@@ -267,27 +395,46 @@ bool channel_writer::user_block_passes(const std::string& given) {
       error(line_,
             fmt::format("\"{}\" gives a {} code by a variable, an expression or with a sign: the post cannot "
                         "say what it does (a frame, a unit, a wait); write the code",
-                        b, c));
+                        given, c));
       return false;
+    }
+    // A G code or a wait under IF [..] THEN: whether the control runs it is known only then (a
+    // unit, a frame, a wait the other channels may wait for in vain).
+    if (then_at != std::string::npos && i > then_at && (c == 'G' || c == m_.waits.address)) {
+      long long code = -1;
+      if (c == m_.waits.address && i + 1 < b.size() && ascii::is_digit(b[i + 1])) {
+        code = 0;
+        for (std::size_t j = i + 1; j < b.size() && ascii::is_digit(b[j]) && code < 1000000000; ++j)
+          code = code * 10 + (b[j] - '0');
+      }
+      if (c == 'G' || is_wait_word(m_.waits, c, code)) {
+        error(line_,
+              fmt::format("\"{}\" gives a {} under IF [..] THEN: whether the control runs it is known only "
+                          "when the block runs; write it unconditionally, or not at all",
+                          given, c == 'G' ? "G code" : "wait"));
+        return false;
+      }
     }
     // An axis name list (Mazak `G17 XC`): no value after the letter.
     const char next = i + 1 < b.size() ? b[i + 1] : '\0';
     // A sequence number without its number (`NG55`): what the control makes of the letters
     // after it is not the post's to guess.
     if (c == 'N' && !ascii::is_digit(next)) {
-      error(line_, fmt::format("\"{}\" has an N without its number: write N and digits, or no N", b));
+      error(line_, fmt::format("\"{}\" has an N without its number: write N and digits, or no N", given));
       return false;
     }
     const bool has_value =
         ascii::is_digit(next) || next == '-' || next == '+' || next == '.' || next == '#' || next == '[';
     if (!has_value) continue;
     double frame_value = 1;
-    if (local_frame) std::from_chars(b.data() + i + (next == '+' ? 2 : 1), b.data() + b.size(), frame_value);
+    if (local_frame)
+      std::from_chars(b.data() + i + (next == '+' ? 2 : 1), b.data() + b.size(), frame_value,
+                      std::chars_format::fixed);
     if ((sets_frame || (local_frame && frame_value != 0)) && is_axis_letter(c)) {
       error(line_,
             fmt::format("\"{}\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "
                         "L2/L20, G52 with a shift): every later position of the post would be off by it",
-                        b));
+                        given));
       return false;
     }
     const bool is_x = c == 'X', is_u = c == 'U' && u_is_x;
@@ -295,20 +442,24 @@ bool channel_writer::user_block_passes(const std::string& given) {
     std::size_t j = i + 1;
     if (j < b.size() && b[j] == '+') ++j;  // X+9000. is X9000.
     double v = 0;
-    const auto r = std::from_chars(b.data() + j, b.data() + b.size(), v);
+    const auto r = std::from_chars(b.data() + j, b.data() + b.size(), v, std::chars_format::fixed);
     if (r.ec != std::errc()) {
       std::size_t e = i + 1;
-      while (e < b.size() && b[e] != ' ') ++e;
+      for (int depth = 0; e < b.size() && b[e] != ' ' && (depth > 0 || !ascii::is_upper(b[e])); ++e)
+        depth += b[e] == '[' ? 1 : b[e] == ']' ? -1 : 0;
       error(line_, fmt::format("{} in \"{}\": an {} the post cannot hold to channel {}'s X travel {}..{} (a "
                                "variable or an expression); write the number",
-                               b.substr(i, e - i), b, c, ch_.number, *x->min, *x->max));
+                               b.substr(i, e - i), given, c, ch_.number, *x->min, *x->max));
       return false;
     }
     const std::string_view word(b.data() + i, static_cast<std::size_t>(r.ptr - (b.data() + i)));
     if (is_u || incremental) {
-      // An increment: from the X written last, or, with none known, no longer than the travel.
-      const bool in = last_x_.known ? last_x_.value + v >= *x->min && last_x_.value + v <= *x->max
-                                    : std::abs(v) <= *x->max - *x->min;
+      // An increment: from the X written last (by the post, or by the event's user blocks before
+      // this one: a G code there makes the post write every axis again, not forget where X is),
+      // or, with none known, no longer than the travel.
+      const bool in =
+          from_x ? *from_x + v >= *x->min && *from_x + v <= *x->max : std::abs(v) <= *x->max - *x->min;
+      if (from_x) user_x_ = *from_x + v;
       if (!in) {
         error(line_,
               fmt::format("{} (incremental) takes X outside channel {}'s X travel {}..{} (channel.axis "
@@ -320,8 +471,14 @@ bool channel_writer::user_block_passes(const std::string& given) {
       error(line_, fmt::format("{} is outside channel {}'s X travel {}..{} (channel.axis min/max)", word,
                                ch_.number, *x->min, *x->max));
       return false;
+    } else {
+      user_x_ = v;
     }
   }
+  if (absolute)
+    user_incremental_ = false;
+  else if (incremental)
+    user_incremental_ = true;
   return true;
 }
 

@@ -71,6 +71,8 @@ void channel_writer::restore_modes_after(const std::vector<std::string>& blocks,
   mode_change c;
   if (!modes_changed_by(blocks, where, c)) return;
   if (c.incremental) out_.block("G90");
+  user_incremental_ = false;
+  user_x_.reset();
   if (c.plane) out_.block(fmt::format("G{}", plane_));
   if (c.feed && !feed_g_.empty()) {
     out_.block(feed_g_);

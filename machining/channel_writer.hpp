@@ -533,6 +533,12 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   // A coolant-on block held from the tool call until the indexing head is indexed for the tool
   // (written then, before the approach): no coolant while the head turns (issue 37, item 10).
   std::string coolant_due_;
+  // A user block of the event being written gave G91 (where the safe start writes G90): the
+  // next user blocks' X are increments until the post's G90 after the event (restore_modes_after).
+  bool user_incremental_ = false;
+  // The X the event's user blocks left, when the post knew it before them: their G codes make the
+  // post forget its axes (to write them all again), not where X is (the gate's increments).
+  std::optional<double> user_x_;
   /// Writes coolant_due_, if any.
   void write_coolant_due() {
     if (coolant_due_.empty()) return;

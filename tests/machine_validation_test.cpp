@@ -219,6 +219,16 @@ TEST_CASE("validation: a template is one line of printable text with short width
   CHECK(error_of(head + "[program]\nsection_marker = \"G109 L{channel:0{channel}}\"\n") ==
         "m.toml:7:18: error: program.section_marker: template \"G109 L{channel:0{channel}}\": a width or "
         "precision given by a placeholder; write the number");
+  // The seventh attack: a number printed as a byte, a byte above ASCII, a file of megabytes.
+  CHECK(error_of(head + "[program]\nprogram_line = \"O{program:c}\"\n") ==
+        "m.toml:7:16: error: program.program_line: template \"O{program:c}\": the presentation type 'c' (a "
+        "number as a byte, in hex or octal, ...); write {name}, {name:d} or {name:.3f}");
+  CHECK(
+      error_of(head + "[program]\nheader = [\"(\u00e5)\"]\n") ==
+      "m.toml:7:11: error: program.header: a template holds the byte 0xc3, no ASCII (a 7-bit link strips its "
+      "top bit): a block is one line of printable text");
+  CHECK(error_of(head + std::string(std::size_t{1} << 20, '#') + "\n") ==
+        "m.toml:1:1: error: a machine file of 1048629 bytes: at most 1048576 (1 MB)");
   // A line of more than 4096 bytes (a dotted key of 200 000 parts overflowed toml++'s stack).
   std::string deep = "a";
   for (int i = 0; i < 3000; ++i) deep += ".a";

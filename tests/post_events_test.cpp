@@ -299,12 +299,14 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
        "with a shift): every later position of the post would be off by it"},
       {"G10.9 X0",
        "\"G10.9 X0\" turns on a mode the post neither writes nor turns off (polar or cylindrical "
-       "interpolation, nose radius compensation, a modal macro call, polygon turning, radius or diameter "
-       "input: G10.9): every later block of the post would be read in it"},
+       "interpolation, polar coordinates, nose radius compensation, a modal macro call, polygon turning, "
+       "radius or diameter input, the stroke check off, inverse time feed: G10.9): every later block of the "
+       "post would be read in it"},
       {"G41",
        "\"G41\" turns on a mode the post neither writes nor turns off (polar or cylindrical interpolation, "
-       "nose radius compensation, a modal macro call, polygon turning, radius or diameter input: G41): every "
-       "later block of the post would be read in it"},
+       "polar coordinates, nose radius compensation, a modal macro call, polygon turning, radius or diameter "
+       "input, the stroke check off, inverse time feed: G41): every later block of the post would be read in "
+       "it"},
       {"G04 X1 G0 X9000.",
        "\"G04 X1 G0 X9000.\" mixes a motion with a dwell, a data setting or a macro call: its axis words "
        "cannot be held to the travel; write them in blocks of their own"},
@@ -321,7 +323,10 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
        "\"#5222=-500.\" writes #5222, a system variable of the work offsets (#5000-#5999, "
        "#7000-#7999, #14000-#19999): every later position of the post would be off by it"},
       {"IF [#1 EQ 0] THEN G0 X9000.",
-       "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+       "\"IF [#1 EQ 0] THEN G0 X9000.\" gives a G code under IF [..] THEN: whether the control runs it is "
+       "known "
+       "only when the block runs; write it unconditionally, or not at all"},
+      {"IF [#1 EQ 0] THEN X9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
       {"#1=1 G0 X9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
       {"G0 X100.(",
        "\"G0 X100.(\" opens a comment it does not close: a control may read on into the next block"},
@@ -334,7 +339,7 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
       // The sixth attack: lower case, a print statement with words after it, a signed code, a
       // comment inside a word, an N without its number.
       {"g55",
-       "\"G55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, "
+       "\"g55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, "
        "G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
        "writes the channel's frame itself"},
       {"g0 x9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
@@ -347,12 +352,41 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
        "\"G+55\" gives a G code by a variable, an expression or with a sign: the post cannot say what it "
        "does (a frame, a unit, a wait); write the code"},
       {"G(C)55",
-       "\"G(C)55\" has a comment inside a word ('G(C)5'): a control that skips comments reads one word "
-       "across it"},
+       "\"G(C)55\" has a comment inside a word: a control that skips comments reads one word across it"},
       {"G0 X(C)9000.",
-       "\"G0 X(C)9000.\" has a comment inside a word ('X(C)9'): a control that skips comments reads one "
-       "word across it"},
-      {"NG55", "\"NG55\" has an N without its number: write N and digits, or no N"},
+       "\"G0 X(C)9000.\" has a comment inside a word: a control that skips comments reads one word across "
+       "it"},
+      {"NG55",
+       "\"NG55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, "
+       "G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
+       "writes the channel's frame itself"},
+      {"NX100.", "\"NX100.\" has an N without its number: write N and digits, or no N"},
+      // The seventh attack: words glued to keywords and letters, comments and blanks around a
+      // comment, exponents, indirect writes, the mills' modes and the tool length.
+      {"IF[#1EQ0]THENG50X100.",
+       "\"IF[#1EQ0]THENG50X100.\" gives a G code under IF [..] THEN: whether the control runs it is known "
+       "only "
+       "when the block runs; write it unconditionally, or not at all"},
+      {"IF [#1 EQ 0] THEN M100",
+       "\"IF [#1 EQ 0] THEN M100\" gives a wait under IF [..] THEN: whether the control runs it is known "
+       "only "
+       "when the block runs; write it unconditionally, or not at all"},
+      {"POPENG55",
+       "\"POPENG55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, "
+       "G51, G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
+       "writes the channel's frame itself"},
+      {"G0 ZX9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"G0 X9000.E-3", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"G (C)55",
+       "\"G (C)55\" has a comment inside a word: a control that skips comments reads one word across it"},
+      {"#[5200+21]=-500.",
+       "\"#[5200+21]=-500.\" writes a variable by an expression (#[...]=), known only when the block runs: "
+       "it "
+       "may be a work offset's (#5000-#5999, #7000-#7999, #14000-#19999); write its number"},
+      {"G43 H99",
+       "\"G43 H99\" sets or cancels the tool length offset (G43, G43.4, G44, G49): the post writes each "
+       "tool's "
+       "offset itself, and every later Z of the post would be off by a tool length"},
   };
   for (const auto& [block, message] : cases) {
     CAPTURE(block);
@@ -668,4 +702,15 @@ TEST_CASE("{x} before the channel's first move and {y} on a channel without Y ar
           "no "
           "Y axis\nTURRET/3,3\n^\n");
   }
+}
+
+TEST_CASE("a CL name in a template cannot end its comment, start a line or stop the tape", "[post][events]") {
+  // Issue 38, sixth and seventh attacks: `(OP {name})` with an operation named `ROUGH 50%)G55(X`
+  // wrote a tape mark, or G55 outside the comment. The name's '%', parentheses and control bytes
+  // become blanks, as in the post's own comments.
+  const test::posted p =
+      post_with("[events]\noperation.before = [\"(OP {name})\"]\n",
+                "PARTNO EV\nHEAD/1\nTURRET/1,1\nOPFEATSTART/ROUGH 50%)G55(X\nFINI\n", "cl-name");
+  CHECK(p.diagnostics == "");
+  CHECK(program_1(p).find("\n(OP ROUGH 50  G55 X)\n") != std::string::npos);
 }
