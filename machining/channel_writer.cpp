@@ -481,6 +481,7 @@ void channel_writer::write_dwell(double seconds) {
   if (!c.feed_per_min.empty() && !c.feed_per_rev.empty() && feed_g_ == c.feed_per_rev) {
     out_.block(c.feed_per_min + ' ' + b);
     out_.block(feed_g_);
+    last_f_.clear();  // the next feed move writes its F again under the mode put back
     return;
   }
   out_.block(b);

@@ -266,6 +266,12 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
     CHECK(all.find("\n" + block + (per_rev ? "\nG99\n" : "\n")) != std::string::npos);
     CHECK(all.find(per_rev ? "\nG98 G4 U2.25\nG99\n" : "\nG4 P2250\n") != std::string::npos);
   }
+  // Between two cuts under G99: the dwell under G98, then G99 and the next cut's F again.
+  posted cut = post_text(
+      "PARTNO W\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,2\n"
+      "GOTO/20,0,-10\nDELAY/2\nGOTO/21,0,-10\nFINI\n",
+      "fanuc-0itd-twin", "dwell-cut");
+  CHECK(cut.files.at("W_1.nc").find("\nG1 Z-10. F0.2\nG98 G4 U2.\nG99\nX42. F0.2\n") != std::string::npos);
   // A machine file's own template: {seconds} with no spec has its point; with a spec it is fmt's.
   machine m = load_machine("fanuc-0itd-twin");
   m.codes.dwell = "G4 X{seconds}";
