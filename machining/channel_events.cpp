@@ -253,7 +253,12 @@ void channel_writer::note_user_block(std::string_view b, bool waits) {
       if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) break;
       continue;
     }
-    if (b[i] == 'G') g = true;
+    // A G code, or an axis word without one (`X20.` moves X in the modal G0/G1): the post no
+    // longer knows where the axes are (issue 38, eighth attack: the next cut left X out).
+    if (const char u = ascii::upper(b[i]); u == 'G' || u == 'X' || u == 'Y' || u == 'Z' || u == 'U' ||
+                                           u == 'V' || u == 'W' || u == 'A' || u == 'B' || u == 'C' ||
+                                           u == 'H')
+      g = true;
     if (b[i] != 'M' || i + 1 >= b.size() || !ascii::is_digit(b[i + 1]) ||
         (i > 0 && ascii::is_letter(b[i - 1])))
       continue;
@@ -278,6 +283,7 @@ void channel_writer::user_blocks(event_point p, bool after, template_args a) {
   const std::string where =
       fmt::format("events.{}.{}", event_point_keys[static_cast<std::size_t>(p)], after ? "after" : "before");
   user_x_.reset();
+  user_dx_ = 0;
   for (const std::string& t : blocks) user_block(t, a, where);
   restore_modes_after(blocks, where);
 }

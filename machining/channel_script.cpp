@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "machining/channel_writer.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost {
 
@@ -165,7 +166,31 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
       break;
     }
   script_emitted_.clear();
-  if (v == scripting::block_verdict::drop) return block_writer::verdict::drop;
+  if (v == scripting::block_verdict::drop) {
+    // A block with a G code or an axis word holds the post's modes and positions (the G90 after
+    // an event's G91, a move the next block's words count from): dropping it is refused (issue
+    // 38, eighth attack).
+    bool holds = false;
+    for (std::size_t i = 0; i < block.size() && !holds; ++i) {
+      if (block[i] == m_.program.comment_open) {
+        if (m_.program.comment_close == '\n' ||
+            (i = block.find(m_.program.comment_close, i + 1)) == std::string_view::npos)
+          break;
+        continue;
+      }
+      holds = std::string_view("GXYZUVWABCH").find(ascii::upper(block[i])) != std::string_view::npos;
+    }
+    if (holds) {
+      error(line_,
+            fmt::format("on_block drops \"{}\": a block with a G code or an axis word holds the modes and "
+                        "positions the post's next blocks rely on; give it back, or replace it with "
+                        "one that does the same",
+                        block));
+      script_->failed = true;
+      return block_writer::verdict::keep;
+    }
+    return block_writer::verdict::drop;
+  }
   // The block given back as it came (`return text`) is kept: the writer's modal state still holds.
   if (v == scripting::block_verdict::keep || script_->failed || replacement == block)
     return block_writer::verdict::keep;

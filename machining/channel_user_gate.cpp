@@ -28,11 +28,15 @@ namespace {
 // 92, G054.1 is 54.1.
 template <class F>
 void each_g(std::string_view b, const program_format& f, F&& on_g) {
+  int bracket = 0;  // a G inside [...] is an expression's letter or text to print, no G code
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b[i] == f.comment_open) {
       if ((i = b.find(f.comment_close, i + 1)) == std::string_view::npos) return;
       continue;
     }
+    if (b[i] == '[') ++bracket;
+    if (b[i] == ']' && bracket > 0) --bracket;
+    if (bracket > 0) continue;
     if (b[i] != 'G') continue;
     double g = 0;
     const auto r = std::from_chars(b.data() + i + 1, b.data() + b.size(), g, std::chars_format::fixed);
@@ -118,6 +122,13 @@ std::string without_comments(std::string_view b, const program_format& f) {
 // whatever follows, blanks or not (`IF[#1EQ0]THENG50X100.` is `IF [..] THEN G50 X100.`).
 // `next`: what must follow for the letters to be the keyword ('[' after IF, a digit after DO),
 // 0 for anything.
+// After an assignment's '=' outside [...], the operators and functions of its expression too
+// (`#1=#2 XOR #3`, `#1=SQRT[#2]`).
+constexpr std::string_view expression_words[] = {
+    "XOR",  "AND",  "OR",   "MOD", "EQ",  "NE",  "GT",    "LT",  "GE",  "LE", "SIN", "COS", "TAN", "ASIN",
+    "ACOS", "ATAN", "SQRT", "ABS", "BIN", "BCD", "ROUND", "FIX", "FUP", "LN", "EXP", "POW", "ADP",
+};
+
 constexpr std::pair<std::string_view, char> keywords[] = {
     {"IF", '['},  {"WHILE", '['}, {"THEN", 0},    {"GOTO", 0},  {"DO", '0'},
     {"END", '0'}, {"DPRNT", '['}, {"BPRNT", '['}, {"POPEN", 0}, {"PCLOS", 0},
@@ -125,18 +136,36 @@ constexpr std::pair<std::string_view, char> keywords[] = {
 
 // Block `b` as a control that skips blanks and comments reads it: upper case, no comments, no
 // blanks, each keyword in lower case with a blank on each side. Every upper-case letter outside
-// [...] is then an address (`G0ZX9000.` has the word X9000.), as a control reads it.
-std::string control_reading(std::string_view b, const program_format& f) {
+// [...] is then an address (`G0ZX9000.` has the word X9000.), as a control reads it. `glued`:
+// a letter outside [...] follows another letter with no blank between them (`PCLOSG20`, `XG20`,
+// `UM100`), other than inside a keyword: the post's other readers (the modes it restores, the
+// waits it counts, the checker) skip a letter after a letter.
+std::string control_reading(std::string_view b, const program_format& f, bool& glued) {
+  glued = false;
   const std::string flat = without_comments(b, f);
   std::string out;
   out.reserve(flat.size() + 8);
   int bracket = 0;
+  bool assignment = false;  // a '=' outside [...] was read
   for (std::size_t i = 0; i < flat.size(); ++i) {
     const char c = flat[i];
     if (c == ' ') continue;
     if (c == '[') ++bracket;
     if (c == ']' && bracket > 0) --bracket;
+    if (c == '=' && bracket == 0) assignment = true;
+    if (bracket == 0 && ascii::is_upper(c) && assignment) {
+      const auto word = std::find_if(std::begin(expression_words), std::end(expression_words),
+                                     [&](std::string_view k) { return flat.compare(i, k.size(), k) == 0; });
+      if (word != std::end(expression_words)) {
+        out += ' ';
+        for (const char kc : *word) out += static_cast<char>(kc - 'A' + 'a');
+        out += ' ';
+        i += word->size() - 1;
+        continue;
+      }
+    }
     if (bracket == 0 && ascii::is_upper(c)) {
+      if (i > 0 && ascii::is_letter(flat[i - 1])) glued = true;
       bool matched = false;
       for (const auto& [k, next] : keywords) {
         std::size_t j = i, n = 0;  // the keyword's letters, blanks between them skipped
@@ -219,8 +248,11 @@ std::size_t comment_inside_word(std::string_view b, const program_format& f) {
 // The system variables of the work offsets and the external shift (Fanuc #5201-#5335 lathe and
 // mill, #7001-#7948 G54.1, #14001-#19988 more of them): a write moves every later position,
 // as G10 L2 does.
+// #2500-#2806: the same offsets in the mills' older numbering (#2501 G54 X, #2601 Y, #2701 Z,
+// #2801 the fourth axis).
 bool work_offset_variable(int n) {
-  return (n >= 5000 && n <= 5999) || (n >= 7000 && n <= 7999) || (n >= 14000 && n <= 19999);
+  return (n >= 2500 && n <= 2806) || (n >= 5000 && n <= 5999) || (n >= 7000 && n <= 7999) ||
+         (n >= 14000 && n <= 19999);
 }
 
 }  // namespace
@@ -250,12 +282,22 @@ bool channel_writer::user_block_passes(const std::string& given) {
   // address. `flat` keeps the blanks for the blank check; `b` is the reading every other check
   // reads; messages quote the block as given.
   const std::string flat = without_comments(given, f);
-  const std::string b = control_reading(given, f);
+  bool glued = false;
+  const std::string b = control_reading(given, f, glued);
+  if (glued) {
+    error(line_,
+          fmt::format("\"{}\" has a word glued to the letters before it (`PCLOSG20`, `XG20`): a control "
+                      "reads the word, the post's checks of modes and waits may not; write a blank "
+                      "between them",
+                      given));
+    return false;
+  }
   if (print_statement(b)) return true;  // text to print: nothing moves
   bool not_a_position = false, incremental = false, sets_frame = false, local_frame = false,
        transforms = false;
-  bool motion = false, data = false, length = false, absolute = false;
-  double modal = -1;  // a mode the post neither writes nor restores
+  bool motion = false, data = false, length = false, absolute = false, parameters = false;
+  bool reference = false, elsewhere = false;  // G28: X at its reference; G30, G53: X unknown
+  double modal = -1;                          // a mode the post neither writes nor restores
   each_g(b, f, [&](double g) {
     // After these an X is no position in the work frame: a dwell (G4 X1.5), data setting
     // (G10), machine coordinates (G53), a macro's arguments (G65, G66).
@@ -264,6 +306,10 @@ bool channel_writer::user_block_passes(const std::string& given) {
     motion = motion || is(g, 0) || is(g, 1) || is(g, 2) || is(g, 3);
     incremental = incremental || (absolute_code_ && is(g, 91));
     absolute = absolute || (absolute_code_ && is(g, 90));
+    reference = reference || is(g, 28);
+    elsewhere = elsewhere || is(g, 30) || is(g, 53);
+    // G10 L50 .. G11: parameters, among them the work offsets and the stroke limits.
+    parameters = parameters || (is(g, 10) && has_word(b, 'L', {50, 52}));
     // The tool length offset: the post writes it with each tool and cancels it at home.
     length = length || is(g, 43) || is(g, 43.1) || is(g, 43.4) || is(g, 43.5) || is(g, 44) || is(g, 49);
     // G10 sets a work offset with L2 or L20 and the workpiece shift with P0 (with another P, or
@@ -289,6 +335,20 @@ bool channel_writer::user_block_passes(const std::string& given) {
                       "polygon turning, radius or diameter input, the stroke check off, inverse time feed: "
                       "G{}): every later block of the post would be read in it",
                       given, modal));
+    return false;
+  }
+  if (parameters) {
+    error(line_, fmt::format("\"{}\" writes parameters (G10 L50): a parameter may hold a work offset or the "
+                             "travel limits; set them on the control, not from the program",
+                             given));
+    return false;
+  }
+  // A jump: the control would skip or repeat the post's blocks between it and its target.
+  if (b.find(" goto ") != std::string::npos) {
+    error(line_,
+          fmt::format("\"{}\" jumps (GOTO): the control would skip or repeat the post's blocks between it "
+                      "and its target",
+                      given));
     return false;
   }
   if (length) {
@@ -453,13 +513,26 @@ bool channel_writer::user_block_passes(const std::string& given) {
       return false;
     }
     const std::string_view word(b.data() + i, static_cast<std::size_t>(r.ptr - (b.data() + i)));
+    // A number without its point is read in the least increment where decimal-point programming
+    // is off (the Fanuc default): X460 is 0.46 mm there, 460 mm elsewhere.
+    if (v != 0 && word.find('.') == std::string_view::npos) {
+      error(line_,
+            fmt::format("{} in \"{}\" has no decimal point: a control without decimal-point programming "
+                        "reads it in its least increment; write {}.",
+                        word, given, word));
+      return false;
+    }
     if (is_u || incremental) {
       // An increment: from the X written last (by the post, or by the event's user blocks before
       // this one: a G code there makes the post write every axis again, not forget where X is),
       // or, with none known, no longer than the travel.
-      const bool in =
-          from_x ? *from_x + v >= *x->min && *from_x + v <= *x->max : std::abs(v) <= *x->max - *x->min;
-      if (from_x) user_x_ = *from_x + v;
+      // With no X known, the increments of the event's blocks together.
+      const bool in = from_x ? *from_x + v >= *x->min && *from_x + v <= *x->max
+                             : std::abs(user_dx_ + v) <= *x->max - *x->min;
+      if (from_x)
+        user_x_ = *from_x + v;
+      else
+        user_dx_ += v;
       if (!in) {
         error(line_,
               fmt::format("{} (incremental) takes X outside channel {}'s X travel {}..{} (channel.axis "
@@ -479,6 +552,15 @@ bool channel_writer::user_block_passes(const std::string& given) {
     user_incremental_ = false;
   else if (incremental)
     user_incremental_ = true;
+  // After a reference return X is at its reference, taken as the top of its travel (where a
+  // lathe's turret retracts to); after G30 or G53 it is not known.
+  if (reference && x && x->max) {
+    user_x_ = *x->max;
+    user_dx_ = 0;
+  } else if (reference || elsewhere) {
+    user_x_.reset();
+    user_dx_ = 0;
+  }
   return true;
 }
 

@@ -73,6 +73,7 @@ void channel_writer::restore_modes_after(const std::vector<std::string>& blocks,
   if (c.incremental) out_.block("G90");
   user_incremental_ = false;
   user_x_.reset();
+  user_dx_ = 0;
   if (c.plane) out_.block(fmt::format("G{}", plane_));
   if (c.feed && !feed_g_.empty()) {
     out_.block(feed_g_);

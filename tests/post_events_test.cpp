@@ -314,8 +314,8 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
        "\"G10 L+2 P1 Z-500.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "
        "L2/L20, G52 with a shift): every later position of the post would be off by it"},
       {"G10 L#1 P1 Z-500.",
-       "\"G10 L#1 P1 Z-500.\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 "
-       "L2/L20, G52 with a shift): every later position of the post would be off by it"},
+       "\"G10 L#1 P1 Z-500.\" writes parameters (G10 L50): a parameter may hold a work offset or the travel "
+       "limits; set them on the control, not from the program"},
       {"G50 H0",
        "\"G50 H0\" sets or shifts the coordinate system (G50 or G92 with an axis word, G10 L2/L20, G52 with "
        "a shift): every later position of the post would be off by it"},
@@ -357,25 +357,31 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
        "\"G0 X(C)9000.\" has a comment inside a word: a control that skips comments reads one word across "
        "it"},
       {"NG55",
-       "\"NG55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, G51, "
-       "G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
-       "writes the channel's frame itself"},
-      {"NX100.", "\"NX100.\" has an N without its number: write N and digits, or no N"},
+       "\"NG55\" has a word glued to the letters before it (`PCLOSG20`, `XG20`): a control reads the word, "
+       "the post's "
+       "checks of modes and waits may not; write a blank between them"},
+      {"NX100.",
+       "\"NX100.\" has a word glued to the letters before it (`PCLOSG20`, `XG20`): a control reads the word, "
+       "the post's "
+       "checks of modes and waits may not; write a blank between them"},
       // The seventh attack: words glued to keywords and letters, comments and blanks around a
       // comment, exponents, indirect writes, the mills' modes and the tool length.
       {"IF[#1EQ0]THENG50X100.",
-       "\"IF[#1EQ0]THENG50X100.\" gives a G code under IF [..] THEN: whether the control runs it is known "
-       "only "
-       "when the block runs; write it unconditionally, or not at all"},
+       "\"IF[#1EQ0]THENG50X100.\" has a word glued to the letters before it (`PCLOSG20`, `XG20`): a control "
+       "reads the word, the post's "
+       "checks of modes and waits may not; write a blank between them"},
       {"IF [#1 EQ 0] THEN M100",
        "\"IF [#1 EQ 0] THEN M100\" gives a wait under IF [..] THEN: whether the control runs it is known "
        "only "
        "when the block runs; write it unconditionally, or not at all"},
       {"POPENG55",
-       "\"POPENG55\" selects another work offset, a mirror image, a scaling or a rotation (G54-G59, G54.1, "
-       "G51, G51.1, G68, G50.3, G92.1): every later position of the post would be in another frame; the post "
-       "writes the channel's frame itself"},
-      {"G0 ZX9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+       "\"POPENG55\" has a word glued to the letters before it (`PCLOSG20`, `XG20`): a control reads the "
+       "word, the post's "
+       "checks of modes and waits may not; write a blank between them"},
+      {"G0 ZX9000.",
+       "\"G0 ZX9000.\" has a word glued to the letters before it (`PCLOSG20`, `XG20`): a control reads the "
+       "word, the post's "
+       "checks of modes and waits may not; write a blank between them"},
       {"G0 X9000.E-3", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
       {"G (C)55",
        "\"G (C)55\" has a comment inside a word: a control that skips comments reads one word across it"},
@@ -383,6 +389,27 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
        "\"#[5200+21]=-500.\" writes a variable by an expression (#[...]=), known only when the block runs: "
        "it "
        "may be a work offset's (#5000-#5999, #7000-#7999, #14000-#19999); write its number"},
+      // The eighth attack: parameters, a jump, a number without its point, the mills' older work
+      // offset variables, a G inside brackets, a word glued to a keyword.
+      {"G10 L50",
+       "\"G10 L50\" writes parameters (G10 L50): a parameter may hold a work offset or the travel limits; "
+       "set "
+       "them on the control, not from the program"},
+      {"IF [#1 EQ 0] GOTO 77",
+       "\"IF [#1 EQ 0] GOTO 77\" jumps (GOTO): the control would skip or repeat the post's blocks between it "
+       "and its target"},
+      {"G0 X460",
+       "X460 in \"G0 X460\" has no decimal point: a control without decimal-point programming reads it in "
+       "its "
+       "least increment; write X460."},
+      {"#2501=-500.",
+       "\"#2501=-500.\" writes #2501, a system variable of the work offsets (#5000-#5999, #7000-#7999, "
+       "#14000-#19999): every later position of the post would be off by it"},
+      {"DPRNT[G4 A]X9000.", "X9000. is outside channel 1's X travel -10..460 (channel.axis min/max)"},
+      {"PCLOSG20",
+       "\"PCLOSG20\" has a word glued to the letters before it (`PCLOSG20`, `XG20`): a control reads the "
+       "word, "
+       "the post's checks of modes and waits may not; write a blank between them"},
       {"G43 H99",
        "\"G43 H99\" sets or cancels the tool length offset (G43, G43.4, G44, G49): the post writes each "
        "tool's "
@@ -396,6 +423,21 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
     CHECK_FALSE(p.ok);
     CHECK(p.diagnostics == std::string("job.cls:4:1: error: channel 1: ") + message + "\nCATCHER\n^\n");
     CHECK(p.files.empty());
+  }
+  SECTION("increments of an event's blocks add up; an X without a G code is a move the post follows") {
+    const test::posted q =
+        post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"U300.\", \"U300.\"]\n",
+                  "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate-sum");
+    CHECK(q.diagnostics ==
+          "job.cls:4:1: error: channel 1: U300. (incremental) takes X outside channel 1's X travel -10..460 "
+          "(channel.axis min/max)\nCATCHER\n^\n");
+    const test::posted r = post_with(
+        "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"X20.\"]\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/22,0,2\nCATCHER\n"
+        "GOTO/22,0,-30\nFINI\n",
+        "gate-x");
+    CHECK(r.diagnostics == "");
+    CHECK(program_1(r).find("\nG0 X44. Z2.\nX20.\nG1 X44. Z-30. F0.2\n") != std::string::npos);
   }
   SECTION("the shop's own forms post: G28 U0., G50 S2000, a dwell, a counter") {
     const test::posted q = post_with(
