@@ -282,8 +282,6 @@ void channel_writer::user_blocks(event_point p, bool after, template_args a) {
   position_args(a);
   const std::string where =
       fmt::format("events.{}.{}", event_point_keys[static_cast<std::size_t>(p)], after ? "after" : "before");
-  user_x_.reset();
-  user_dx_ = 0;
   for (const std::string& t : blocks) user_block(t, a, where);
   restore_modes_after(blocks, where);
 }

@@ -194,6 +194,17 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
   // The block given back as it came (`return text`) is kept: the writer's modal state still holds.
   if (v == scripting::block_verdict::keep || script_->failed || replacement == block)
     return block_writer::verdict::keep;
+  // A block of the post's with a mode code or axis words is replaced only by one that keeps them:
+  // `(G90)` for the G90 after an event's G91 left the program incremental (issue 38, ninth
+  // attack). The codes of the modes the post restores, and each axis word as written.
+  if (const std::string lost = lost_words(block, replacement); !lost.empty()) {
+    error(line_,
+          fmt::format("on_block replaces \"{}\" with \"{}\", which leaves out {}: the post's next blocks "
+                      "rely on it; keep it in the block you give back",
+                      block, replacement, lost));
+    script_->failed = true;
+    return block_writer::verdict::keep;
+  }
   if (!user_block_passes(replacement) || !refuse_mode_changes(replacement, "on_block")) {  // at the CL record
     script_block_note(replacement, "on_block");
     script_->failed = true;  // the post has failed: no more on_block calls, no error per block

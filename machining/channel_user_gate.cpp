@@ -165,7 +165,14 @@ std::string control_reading(std::string_view b, const program_format& f, bool& g
       }
     }
     if (bracket == 0 && ascii::is_upper(c)) {
-      if (i > 0 && ascii::is_letter(flat[i - 1])) glued = true;
+      // (An axis name list, the Mazak `G17 XC`: axis letters with no value after them.)
+      const auto axis = [](char a) {
+        return std::string_view("XYZUVWABC").find(a) != std::string_view::npos;
+      };
+      const char after = i + 1 < flat.size() ? flat[i + 1] : ' ';
+      const bool name_list = axis(c) && i > 0 && axis(flat[i - 1]) && !ascii::is_digit(after) &&
+                             after != '.' && after != '-' && after != '+' && after != '#' && after != '[';
+      if (i > 0 && ascii::is_letter(flat[i - 1]) && !name_list) glued = true;
       bool matched = false;
       for (const auto& [k, next] : keywords) {
         std::size_t j = i, n = 0;  // the keyword's letters, blanks between them skipped
@@ -305,7 +312,7 @@ bool channel_writer::user_block_passes(const std::string& given) {
     not_a_position = not_a_position || data || is(g, 53);
     motion = motion || is(g, 0) || is(g, 1) || is(g, 2) || is(g, 3);
     incremental = incremental || (absolute_code_ && is(g, 91));
-    absolute = absolute || (absolute_code_ && is(g, 90));
+    absolute = absolute || (absolute_code_ && is(g, 90) && !incremental);
     reference = reference || is(g, 28);
     elsewhere = elsewhere || is(g, 30) || is(g, 53);
     // G10 L50 .. G11: parameters, among them the work offsets and the stroke limits.
@@ -326,7 +333,9 @@ bool channel_writer::user_block_passes(const std::string& given) {
     for (const double m : {7.1, 12.1, 112.0, 107.0, 41.0, 42.0, 66.0, 66.1, 51.2, 10.9, 16.0, 23.0, 93.0})
       if (is(g, m)) modal = m;
   });
-  // G91 given by an earlier block of the same event holds until the post's G90 after it.
+  // G90 and G91 in one block: a control takes the last; the gate the worse, G91.
+  if (incremental) absolute = false;
+  // G91 given by an earlier user block holds until the post's G90 after the event.
   incremental = incremental || (user_incremental_ && !absolute);
   if (modal >= 0) {
     error(line_,
@@ -424,7 +433,8 @@ bool channel_writer::user_block_passes(const std::string& given) {
   if (last_x_.known) user_x_ = last_x_.value;
   const std::optional<double> from_x = user_x_;
   const std::size_t then_at = b.find(" then ");
-  int bracket = 0;  // inside [...] a letter is an operator (XOR) or an expression's, no word
+  bool x_named = false;  // the block has an X word (or a lathe's U)
+  int bracket = 0;       // inside [...] a letter is an operator (XOR) or an expression's, no word
   for (std::size_t i = 0; i < b.size(); ++i) {
     const char c = b[i];
     if (c == f.comment_open && f.comment_close != '\n') {
@@ -498,6 +508,7 @@ bool channel_writer::user_block_passes(const std::string& given) {
       return false;
     }
     const bool is_x = c == 'X', is_u = c == 'U' && u_is_x;
+    x_named = x_named || is_x || is_u;
     if (!x || !x->min || !x->max || not_a_position || (!is_x && !is_u)) continue;  // G10 P U: an offset
     std::size_t j = i + 1;
     if (j < b.size() && b[j] == '+') ++j;  // X+9000. is X9000.
@@ -546,6 +557,7 @@ bool channel_writer::user_block_passes(const std::string& given) {
       return false;
     } else {
       user_x_ = v;
+      user_dx_ = 0;
     }
   }
   if (absolute)
@@ -554,10 +566,11 @@ bool channel_writer::user_block_passes(const std::string& given) {
     user_incremental_ = true;
   // After a reference return X is at its reference, taken as the top of its travel (where a
   // lathe's turret retracts to); after G30 or G53 it is not known.
-  if (reference && x && x->max) {
+  // Only when the block names X (`G28 U0.`): `G28 W0.` leaves X where it is.
+  if (reference && x_named && x && x->max) {
     user_x_ = *x->max;
     user_dx_ = 0;
-  } else if (reference || elsewhere) {
+  } else if ((reference || elsewhere) && x_named) {
     user_x_.reset();
     user_dx_ = 0;
   }

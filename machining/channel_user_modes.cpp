@@ -54,8 +54,10 @@ bool channel_writer::modes_changed_by(const std::vector<std::string>& blocks, st
     for (const char* g : {"G17", "G18", "G19"}) c.plane = c.plane || (g != own_plane && has_g_code(b, g));
     // G90/G91 are absolute and incremental only where the safe start says G90 (Fanuc lathe
     // G-code system A has no G91, and its G90 is a turning cycle): never written elsewhere.
-    if (absolute_code_ && has_g_code(b, "G91")) c.incremental = true;
+    // A block with both: a control takes the last of the group; the post takes G91, and puts
+    // G90 back after the event either way.
     if (absolute_code_ && has_g_code(b, "G90")) c.incremental = false;
+    if (absolute_code_ && has_g_code(b, "G91")) c.incremental = true;
     if (has_g_code(b, inch ? "G21" : "G20")) {
       error(line_, fmt::format("{} writes \"{}\": {} in a program in {} ({}); every later word would be "
                                "read in {}",
@@ -72,8 +74,6 @@ void channel_writer::restore_modes_after(const std::vector<std::string>& blocks,
   if (!modes_changed_by(blocks, where, c)) return;
   if (c.incremental) out_.block("G90");
   user_incremental_ = false;
-  user_x_.reset();
-  user_dx_ = 0;
   if (c.plane) out_.block(fmt::format("G{}", plane_));
   if (c.feed && !feed_g_.empty()) {
     out_.block(feed_g_);
@@ -93,6 +93,45 @@ bool channel_writer::refuse_mode_changes(const std::string& block, std::string_v
                            : c.plane     ? "plane"
                                          : "feed mode"));
   return false;
+}
+
+std::string channel_writer::lost_words(std::string_view block, std::string_view replacement) const {
+  std::vector<std::string> codes = {"G17", "G18", "G19", "G20", "G21"};
+  if (absolute_code_) codes.insert(codes.end(), {"G90", "G91"});
+  for (const std::string* g : {&m_.codes.feed_per_min, &m_.codes.feed_per_rev})
+    if (!g->empty()) codes.push_back(*g);
+  for (const std::string& g : codes)
+    if (has_g_code(block, g) && !has_g_code(replacement, g)) return g;
+  // Each axis word of the block, outside comments, found as a word of the replacement.
+  const program_format& f = m_.program;
+  const auto word_at = [](std::string_view text, std::string_view w) {
+    for (std::size_t at = text.find(w); at != std::string_view::npos; at = text.find(w, at + 1)) {
+      const bool start = at == 0 || !ascii::is_letter(text[at - 1]);
+      const std::size_t end = at + w.size();
+      const bool stop = end >= text.size() || !(ascii::is_digit(text[end]) || text[end] == '.');
+      if (start && stop) return true;
+    }
+    return false;
+  };
+  for (std::size_t i = 0; i < block.size(); ++i) {
+    if (block[i] == f.comment_open) {
+      if (f.comment_close == '\n' || (i = block.find(f.comment_close, i + 1)) == std::string_view::npos)
+        break;
+      continue;
+    }
+    if (std::string_view("XYZUVWABCH").find(block[i]) == std::string_view::npos ||
+        (i > 0 && ascii::is_letter(block[i - 1])))
+      continue;
+    std::size_t j = i + 1;
+    while (j < block.size() &&
+           (ascii::is_digit(block[j]) || block[j] == '.' || block[j] == '-' || block[j] == '+'))
+      ++j;
+    if (j == i + 1) continue;
+    const std::string_view w = block.substr(i, j - i);
+    if (!word_at(replacement, w)) return fmt::format("the word {}", w);
+    i = j - 1;
+  }
+  return {};
 }
 
 }  // namespace twinpost

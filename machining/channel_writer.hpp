@@ -741,6 +741,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// For on_block's replacement, which no later block of the post's follows to restore the
   /// modes: false, after the error, when it changes one.
   bool refuse_mode_changes(const std::string& block, std::string_view where);
+  /// What `replacement` leaves out of the post's `block`: a mode code the post restores (G90,
+  /// G91, the feed modes, the planes, the units) or an axis word as written, as "G90" or "the
+  /// word X20."; "" when it keeps them all (machining/channel_user_modes.cpp).
+  std::string lost_words(std::string_view block, std::string_view replacement) const;
   /// The blocks post.emit wrote in the script call running (restore_modes_after them).
   std::vector<std::string> script_emitted_;
   /// events.program_start, once, before the channel's first block.

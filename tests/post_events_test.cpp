@@ -439,6 +439,24 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
     CHECK(r.diagnostics == "");
     CHECK(program_1(r).find("\nG0 X44. Z2.\nX20.\nG1 X44. Z-30. F0.2\n") != std::string::npos);
   }
+  SECTION("the ninth attack: increments across events, G28 of Z alone, G90 and G91 in one block") {
+    // Two records of U380. after X80.: the second starts where the first left X (840 > 460).
+    const test::posted two = post_with(
+        "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"U380.\"]\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/40,0,2\nCATCHER\nCATCHER\nFINI\n",
+        "gate-events");
+    CHECK(two.diagnostics ==
+          "job.cls:8:1: error: channel 1: U380. (incremental) takes X outside channel 1's X travel -10..460 "
+          "(channel.axis min/max)\nCATCHER\n^\n");
+    // G28 W0. moves Z alone: X stays at 80, and U-470. ends at -390.
+    const test::posted w =
+        post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 W0.\", \"U-470.\"]\n",
+                  "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/40,0,2\nCATCHER\nFINI\n",
+                  "gate-g28w");
+    CHECK(w.diagnostics ==
+          "job.cls:7:1: error: channel 1: U-470. (incremental) takes X outside channel 1's X travel -10..460 "
+          "(channel.axis min/max)\nCATCHER\n^\n");
+  }
   SECTION("the shop's own forms post: G28 U0., G50 S2000, a dwell, a counter") {
     const test::posted q = post_with(
         "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 U0.\", \"G50 S2000\", \"G4 U1.5\", "
@@ -524,7 +542,8 @@ TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][e
 
 TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at its CL record",
           "[post][events][script]") {
-  // The first G28 U0. of each channel (its tool change) becomes M101 (a wait code of the machine).
+  // The first G28 U0. of each channel (its tool change) becomes G28 U0. M101 (a wait code of the
+  // machine; the home move kept: on_block may not leave out an axis word of the post's).
   // SYNCTR: the channels run at once, each from its tool change to the mark (M100).
   const std::string job =
       "PARTNO EV\nHEAD/1\nTURRET/1,1\nSYNCTR/NEXT\nHEAD/2\nTURRET/11,11\nSYNCTR/NEXT\nFINI\n";
@@ -532,7 +551,7 @@ TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at
       "function on_block(text, ctx)\n"
       "  if text == 'G28 U0.' and not post.vars[ctx.channel] and ctx.channel <= CHANNELS then\n"
       "    post.vars[ctx.channel] = true\n"
-      "    return 'M101'\n"
+      "    return 'G28 U0. M101'\n"
       "  end\n"
       "end\n";
   const auto with = [&](const std::string& channels, const std::string& tag) {
@@ -547,8 +566,18 @@ TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at
         "job.cls:3:1: error: deadlock: channel 1 waits on M101 at job.cls:3 while channel 2 waits on M100 at "
         "job.cls:7 (different codes, Fanuc PS0160)\nTURRET/1,1\n^\n"));
     CHECK(
-        p.diagnostics.ends_with("/out/EV_1.nc:4:1: note: the wait in the program as it would have been "
-                                "written (no file is written)\nM101\n^\n"));
+        p.diagnostics.ends_with("/out/EV_1.nc:4:9: note: the wait in the program as it would have been "
+                                "written (no file is written)\nG28 U0. M101\n        ^\n"));
+    CHECK(p.files.empty());
+  }
+  SECTION("a replacement that leaves out the post's home move is refused") {
+    const test::posted p = post_with_script(
+        "", "function on_block(text, ctx)\n  if text == 'G28 U0.' then return 'M101' end\nend\n", job,
+        "onblock-lost");
+    CHECK(p.diagnostics.starts_with(
+        "job.cls:3:1: error: channel 1: on_block replaces \"G28 U0.\" with \"M101\", "
+        "which leaves out the word U0.: the post's next blocks rely on it; keep it in "
+        "the block you give back\n"));
     CHECK(p.files.empty());
   }
   SECTION("the post's own wait dropped in one channel is no wait of that channel") {
@@ -568,10 +597,11 @@ TEST_CASE("a wait code an on_block replacement adds is counted by the writer, at
   SECTION("in both: paired, it posts") {
     const test::posted p = with("2", "onblock-paired");
     CHECK(program_1(p) ==
-          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\nG28 W0.\n"
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. M101\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\nG28 "
+          "W0.\n"
           "M5\nM30\n%\n");
     CHECK(program_1(p, "EV_2.nc") ==
-          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 W0.\nT1111\nM100\nM9\n"
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. M101\nG28 W0.\nT1111\nM100\nM9\n"
           "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
 }
