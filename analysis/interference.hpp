@@ -2,14 +2,13 @@
 // Turret interference: no two tools in the same place at the same time (docs/interference.md).
 //
 // Each block of a channel that has an envelope ([[interference.channel]]) sweeps its tool tip
-// over a box in the XZ plane of the workpiece spindle it works on (a live tool too: its part is
-// in that spindle; off the XZ plane, under polar interpolation or with Y, r is the tip's
-// distance from the axis) (a line: the box of its ends; an arc:
-// the box of the arc, its quadrant points included; a drilling cycle: from the start down to
-// the hole's Z). The channel's boxes (tool, turret or head body), fixed to the tip, ride along.
-// Two blocks of two channels that may run at the same time (happens-before from the checker's
-// rendezvous, as for the spindle rules: analysis/shared_resources) on the same spindle must keep
-// the machine's clearance; every block must keep out of its spindle's static zones.
+// over a box in the XZ plane of the workpiece spindle it works on, a live tool's too (its part
+// is in that spindle): a line, the box of its ends; an arc, the box of the arc, its quadrant
+// points included; a drilling cycle, from the start down to the hole's Z. Off the XZ plane
+// (polar interpolation, Y) r is the tip's distance from the spindle axis. The channel's boxes (tool, turret
+// or head body), fixed to the tip, ride along. Two blocks of two channels that may run at the same time
+// (happens-before from the checker's rendezvous, as for the spindle rules: analysis/shared_resources) on the
+// same spindle must keep the machine's clearance; every block must keep out of its spindle's static zones.
 //
 // Streaming: blocks are kept as swept tip boxes, consecutive ones merged while their union stays
 // within a few millimetres, and each wait interval (segment) keeps at most a bounded number of

@@ -96,36 +96,42 @@ std::string placeholder_set::text() const {
   return s.empty() ? "no placeholder" : s;
 }
 
-std::string unknown_placeholder(std::string_view tpl, placeholder_set known) {
+namespace {
+
+// The first non-empty answer of `on_field(open, end)` for each replacement field of `tpl`: `open`
+// at its '{' (a "{{" is a literal brace, no field), `end` just after its name (at ':' or '}').
+// A nested "{width}" in a spec is a field of its own.
+template <class F>
+std::string first_of_fields(std::string_view tpl, F&& on_field) {
   for (std::size_t i = 0; i < tpl.size(); ++i) {
     if (tpl[i] != '{') continue;
-    if (i + 1 < tpl.size() && tpl[i + 1] == '{') {  // "{{" is a literal brace
+    if (i + 1 < tpl.size() && tpl[i + 1] == '{') {
       ++i;
       continue;
     }
-    // The name runs to ':' or '}'; a nested "{width}" in a spec is found as its own.
     std::size_t end = i + 1;
     while (end < tpl.size() && name_char(tpl[end])) ++end;
-    const std::string_view name = tpl.substr(i + 1, end - i - 1);
-    for (const auto& [n, p] : names)
-      if (n == name && !known.has(p)) return std::string(name);
+    if (std::string found = on_field(i, end); !found.empty()) return found;
   }
   return {};
 }
 
+}  // namespace
+
+std::string unknown_placeholder(std::string_view tpl, placeholder_set known) {
+  return first_of_fields(tpl, [&](std::size_t open, std::size_t end) -> std::string {
+    const std::string_view name = tpl.substr(open + 1, end - open - 1);
+    for (const auto& [n, p] : names)
+      if (n == name && !known.has(p)) return std::string(name);
+    return {};
+  });
+}
+
 std::string template_spec_fault(std::string_view tpl, bool placeholders) {
-  for (std::size_t i = 0; i < tpl.size(); ++i) {
-    if (tpl[i] != '{') continue;
-    if (i + 1 < tpl.size() && tpl[i + 1] == '{') {  // "{{" is a literal brace
-      ++i;
-      continue;
-    }
-    std::size_t end = i + 1;
-    while (end < tpl.size() && name_char(tpl[end])) ++end;
-    if (end >= tpl.size() || tpl[end] != ':') continue;
+  return first_of_fields(tpl, [&](std::size_t, std::size_t end) -> std::string {
+    if (end >= tpl.size() || tpl[end] != ':') return {};
     // The spec runs to its '}'; a nested "{name}" in it is a width or precision by placeholder.
-    std::size_t j = end + 1;
-    for (; j < tpl.size() && tpl[j] != '}'; ++j) {
+    for (std::size_t j = end + 1; j < tpl.size() && tpl[j] != '}'; ++j) {
       if (tpl[j] == '{') {
         if (placeholders) return "a width or precision given by a placeholder; write the number";
         while (j < tpl.size() && tpl[j] != '}') ++j;
@@ -145,9 +151,8 @@ std::string template_spec_fault(std::string_view tpl, bool placeholders) {
       if (n > 64) return "a width or precision above 64; a word of the control has at most a few digits";
       --j;
     }
-    i = j;
-  }
-  return {};
+    return {};
+  });
 }
 
 namespace {

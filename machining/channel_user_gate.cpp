@@ -436,17 +436,7 @@ bool channel_writer::user_block_passes(const std::string& given) {
   bool x_named = false;  // the block has an X word (or a lathe's U)
   int bracket = 0;       // inside [...] a letter is an operator (XOR) or an expression's, no word
   for (std::size_t i = 0; i < b.size(); ++i) {
-    const char c = b[i];
-    if (c == f.comment_open && f.comment_close != '\n') {
-      if ((i = b.find(f.comment_close, i + 1)) == std::string::npos) {
-        error(line_,
-              fmt::format("\"{}\" opens a comment it does not close: a control may read on into the next "
-                          "block",
-                          b));
-        return false;
-      }
-      continue;
-    }
+    const char c = b[i];  // the reading has no comments (unclosed ones are refused above)
     if (c == '[') ++bracket;
     if (c == ']' && bracket > 0) --bracket;
     const bool word_start = bracket == 0 && ascii::is_upper(c);  // keywords are in lower case
