@@ -128,6 +128,20 @@ int channel_writer::block_cl_line(std::size_t i) const {
 }
 
 void channel_writer::note_line(std::string_view line) {
+  if (observer_) [[unlikely]] {
+    if (!observed_head_) {
+      observed_head_ = true;
+      std::string_view head = out_.head_written();
+      while (!head.empty()) {
+        const std::size_t end = head.find('\n');
+        std::string_view l = head.substr(0, end);
+        if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+        observer_->line(l);
+        head.remove_prefix(end == std::string_view::npos ? head.size() : end + 1);
+      }
+    }
+    observer_->line(line);
+  }
   if (plain_block_) {  // a move the writer built without G, M or S: nothing here to read
     if (note_every_block_) note_block_cl();
     return;
@@ -424,6 +438,10 @@ void channel_writer::process_event(const event& e, bool both) {
             out_.raw(d.text);
             spindle_ended_.clear();  // the user's text may turn either on again
             coolant_ended_.clear();
+            // It may move an axis or change the motion mode: the next move writes all its words
+            // (the comparison with the CL found `Z-5.` cut at the X of an INSERT's text).
+            forget_axes();
+            motion_g_ = -1;
           } else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint ||
                      d.kind == text_kind::op_start || d.kind == text_kind::toolpath) {
             if (d.kind != text_kind::pprint && d.kind != text_kind::op_start) note_cam_tool(d, e.line);
@@ -446,6 +464,10 @@ void channel_writer::process_event(const event& e, bool both) {
         // FROM-only state, tool data, coordinate systems, comments, ends: no block.
       },
       e.data);
+  // After the channel's first error the post has failed: a refused record wrote nothing the
+  // comparison could follow.
+  if (observer_ && errors_ == 0) [[unlikely]]
+    observer_->record(e, both);
 }
 
 bool channel_writer::dwell_fits(double seconds) {

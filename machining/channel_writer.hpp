@@ -57,6 +57,19 @@ struct job_script {
 /// caret under its first word (machining/channel_script.cpp).
 diagnostic script_diagnostic(const scripting::script_error& e);
 
+/// Sees what a channel writer writes and the records it writes it for (post wires the
+/// comparison with the CL to it: analysis/cl_compare.hpp).
+class write_observer {
+ public:
+  virtual ~write_observer() = default;
+  /// Every line of the program as written, the head's first, without its line end.
+  virtual void line(std::string_view text) = 0;
+  /// The job's units (UNITS record).
+  virtual void units(unit_system u) = 0;
+  /// A record of the channel, after its blocks are written (`both`: a HEAD/BOTH copy).
+  virtual void record(const event& e, bool both) = 0;
+};
+
 class channel_writer : private scripting::script_host, private block_writer::block_filter {
  public:
   /// Writes the channel's blocks to `path`, framed by `frame` (see block_writer).
@@ -65,11 +78,14 @@ class channel_writer : private scripting::script_host, private block_writer::blo
 
   /// The job's units (UNITS record); values are converted to the program's output units.
   void set_units(unit_system u) {
+    if (observer_) observer_->units(u);
     release_held(std::nullopt);  // records held at the pole came in the units before
     cl_mm_ = u == unit_system::inch ? 25.4 : 1.0;
     scale_ = cl_mm_ * out_per_mm_;
   }
   void on_event(const event& e, bool both);
+  /// Shows `o` every line written and every record written (nullptr: none, the default).
+  void set_observer(write_observer* o) { observer_ = o; }
   /// One record of the channel, in order (on_event's work once nothing is held).
   void process_event(const event& e, bool both);
   /// Balance cutting (HEAD/BOTH): `master` is the writer of the channel that serves head 1,
@@ -502,6 +518,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
 
   const machine& m_;
   const channel_def& ch_;
+  write_observer* observer_ = nullptr;
+  bool observed_head_ = false;  // the head's lines shown to observer_
   diagnostic_sink& diags_;
   std::string cl_file_;
   block_writer out_;

@@ -13,6 +13,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "analysis/cl_compare.hpp"
 #include "analysis/interference.hpp"
 #include "analysis/shared_resources.hpp"
 #include "analysis/timeline_report.hpp"
@@ -99,11 +100,26 @@ class passing_sink : public diagnostic_sink {
   counting_sink& to_;
 };
 
+// The comparison of a channel's program with its CL (analysis/cl_compare), shown what its
+// writer writes.
+class compared_writing : public write_observer {
+ public:
+  compared_writing(const machine& m, const channel_def& ch, diagnostic_sink& diags, std::string cl_file)
+      : cmp_(m, ch, diags, std::move(cl_file)) {}
+  void line(std::string_view text) override { cmp_.line(text); }
+  void units(unit_system u) override { cmp_.units(u); }
+  void record(const event& e, bool both) override { cmp_.record(e, both); }
+
+ private:
+  cl_comparison cmp_;
+};
+
 // Routes events to the channel writers; job-level events set the name and units.
 class writers_sink : public channel_sink {
  public:
   std::vector<std::unique_ptr<channel_writer>> writers;  // index = channel - 1
-  job_spindles spindles;                                 // the starts all writers note
+  std::vector<std::unique_ptr<compared_writing>> comparisons;
+  job_spindles spindles;  // the starts all writers note
   std::string partno;
   const machine* m = nullptr;
   diagnostic_sink* diags = nullptr;
@@ -238,6 +254,13 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     for (const auto& [channel, tool] : o.start_tools)
       if (channel == ch.number) start = tool;
     ws.writers[static_cast<std::size_t>(ch.number - 1)]->start_with(start, o.tool_kind);
+  }
+  // Each channel's program held to its CL as it is written; a channel with a kinematic chain
+  // checks every point it writes by the forward transform instead (channel_multiaxis).
+  for (const channel_def& ch : m.channels) {
+    if (m.chain(ch.number)) continue;
+    ws.comparisons.push_back(std::make_unique<compared_writing>(m, ch, sink, o.cl_path));
+    ws.writers[static_cast<std::size_t>(ch.number - 1)]->set_observer(ws.comparisons.back().get());
   }
   ws.spindles.started.assign(m.spindles.size(), std::vector<char>(m.channels.size(), 0));
   for (auto& w : ws.writers) w->share_spindles(&ws.spindles);

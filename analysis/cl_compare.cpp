@@ -1,0 +1,442 @@
+#include "analysis/cl_compare.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "analysis/spindle_state.hpp"
+#include "check/nc_program.hpp"
+
+namespace twinpost {
+
+namespace {
+
+constexpr double tip_tolerance = 0.002;   // mm (issue 37)
+constexpr double feed_tolerance = 0.005;  // of the CL's feed (issue 37)
+
+// A G code as ten times its number: G12.1 is 121, G99 is 990.
+int g10(double number) { return static_cast<int>(std::lround(number * 10)); }
+
+// The G code of a one-word machine code ("G99"); -1 when it is none.
+int code_g10(const std::string& code) {
+  const std::vector<nc_word> w = split_nc_words(code);
+  return w.size() == 1 && w[0].address == 'G' && w[0].numeric ? g10(w[0].number) : -1;
+}
+
+// Half the last written digit of a number as written ("0.15": 0.005; "150.": 0.5).
+double half_digit(std::string_view value) {
+  const std::size_t dot = value.find('.');
+  const std::size_t decimals = dot == std::string_view::npos ? 0 : value.size() - dot - 1;
+  return 0.5 * std::pow(10.0, -static_cast<double>(decimals));
+}
+
+// Where one axis is, as the program has left it.
+struct axis_state {
+  enum class kind : unsigned char {
+    unknown,  // not followed (a cycle, a coordinate setting, an expression): not compared
+    known,    // at `value`, in the program's frame and units
+    away      // at its reference point (G28/G30) or in machine coordinates (G53)
+  } k = kind::unknown;
+  double value = 0;
+  int line = 0;     // the line that sent it away
+  std::string why;  // "G28", "G53"
+};
+
+}  // namespace
+
+struct cl_comparison::impl {
+  impl(const machine& m, const channel_def& ch, diagnostic_sink& d, std::string file)
+      : m(m), ch(ch), diags(d), cl_file(std::move(file)), spindles(m, ch.number) {
+    const axis_def* x = ch.axis('X');
+    x_div = (x && !x->diameter) ? 1.0 : 2.0;  // the writer's rule: X is a diameter unless said
+    if (x && x->mirror) x_div = -x_div;
+    lathe = !x || x->diameter;
+    inch = m.program.output_units == output_unit::inch;
+    out_mm = inch ? 25.4 : 1.0;
+    has_y = ch.axis('Y') != nullptr;
+    u_incremental = lathe && !ch.axis('U');
+    w_incremental = lathe && !ch.axis('W');
+    for (const std::string& b : m.program.header)
+      for (const nc_word& w : split_nc_words(b))
+        if (w.address == 'G' && w.numeric && (g10(w.number) == 900 || g10(w.number) == 910)) g90_modes = true;
+    if (!lathe) g90_modes = true;
+    per_rev_g = code_g10(m.codes.feed_per_rev);
+    per_min_g = code_g10(m.codes.feed_per_min);
+    axis_half = 0.5 * std::pow(10.0, -m.program.axis_decimals()) * out_mm;
+    if (const spindle_def* s = m.spindle(ch.spindle)) work = static_cast<int>(s - m.spindles.data());
+    for (const spindle_def& s : m.spindles) offsets.push_back(split_nc_words(s.work_offset));
+  }
+
+  const machine& m;
+  const channel_def& ch;
+  diagnostic_sink& diags;
+  std::string cl_file;
+  channel_spindles spindles;
+
+  // The machine file's reading of the words.
+  double x_div = 2;  // program X / part-frame x: 2 for a diameter, negative on a mirrored turret
+  bool lathe = true, inch = false, has_y = false, u_incremental = false, w_incremental = false;
+  bool g90_modes = false;  // G90/G91 are the absolute and incremental modes (not lathe cycles)
+  double out_mm = 1, axis_half = 0.0005;
+  int per_rev_g = 990, per_min_g = 980;
+  std::vector<std::vector<nc_word>> offsets;  // each spindle's work offset, split
+
+  // The program as read so far.
+  std::vector<nc_word> words;
+  int lines = 0;
+  axis_state x, y, z;
+  bool absolute = true;
+  int motion = -1;     // modal G0..G3, 32 for threading; -1 unknown
+  bool cycle = false;  // a canned or lathe cycle
+  bool polar = false, cylinder = false, frame = false, polar_coords = false, inverse_time = false;
+  bool rotary = false;        // a rotary-axis word since the last tool call
+  int per_rev = -1;           // feed mode: 1 per revolution, 0 per minute, -1 unknown
+  double f = -1, f_half = 0;  // the F in force (program units), half its last digit
+  std::string f_text;
+  int work = -1;          // the workpiece spindle: its Z may run against the CL's
+  bool moved = false;     // a move since the last record
+  std::string move_text;  // the last block that moved
+  int move_line = 0;
+
+  // The CL as read so far.
+  double cl_mm = 1;
+  double cl_feed = -1;  // mm/min or mm/rev; -1 none
+  bool cl_per_rev = false;
+  bool cl_cycle = false;
+  long compared = 0, passed = 0;
+  // Each kind of finding is reported once per channel (the first is the one to fix; a
+  // systematic error would otherwise repeat at every record of a long job).
+  bool said_tip = false, said_rapid = false, said_feed = false;
+
+  void send_away(axis_state& a, std::string why) {
+    a.k = axis_state::kind::away;
+    a.line = lines;
+    a.why = std::move(why);
+  }
+
+  void set_axis(axis_state& a, const nc_word& w, bool incremental) {
+    if (!w.numeric) {
+      a.k = axis_state::kind::unknown;  // X#500: known when the block runs
+      return;
+    }
+    if (!incremental) {
+      a.k = axis_state::kind::known;
+      a.value = w.number;
+    } else if (a.k == axis_state::kind::known) {
+      a.value += w.number;
+    }
+  }
+
+  bool offset_of(const std::vector<nc_word>& code) const {
+    if (code.empty()) return false;
+    for (const nc_word& c : code) {
+      bool found = false;
+      for (const nc_word& w : words)
+        if (w.address == c.address && w.numeric == c.numeric && w.number == c.number) found = true;
+      if (!found) return false;
+    }
+    return true;
+  }
+
+  void line(std::string_view text) {
+    ++lines;
+    split_nc_words(text, words);
+    if (words.empty()) return;
+    spindles.apply(words);
+    // The workpiece spindle: its work offset (G55 for the sub) or its select code; a live
+    // spindle's select code does not move the part.
+    for (std::size_t i = 0; i < m.spindles.size(); ++i) {
+      const spindle_def& s = m.spindles[i];
+      bool live = false;
+      for (const channel_def& c : m.channels) live = live || c.live_spindle == s.name;
+      if (offset_of(offsets[i])) work = static_cast<int>(i);
+      if (s.select && !live)
+        for (const nc_word& w : words)
+          if (w.address == 'M' && w.numeric && w.number == *s.select) work = static_cast<int>(i);
+    }
+    bool not_a_move = false, home = false, machine = false, setting = false;
+    std::string home_why;
+    for (const nc_word& w : words) {
+      if (w.address == 'T') {
+        // The control applies the new tool's offsets with its next move: the program's
+        // coordinates stay those of the tip.
+        rotary = false;
+        continue;
+      }
+      if (w.address == 'F') {
+        if (w.numeric) {
+          f = w.number;
+          f_half = half_digit(w.value);
+          f_text = fmt::format("F{}", w.value);
+        } else {
+          f = -1;
+        }
+        continue;
+      }
+      if (w.address == 'A' || w.address == 'B' || w.address == 'C') {
+        // A head index `G0 G53 B90.`, a C position, G7.1 C.. : the tip then depends on the
+        // rotary axes, which this comparison does not follow yet.
+        if (!(w.address == 'C' && cylinder)) rotary = true;
+        continue;
+      }
+      if (w.address != 'G' || !w.numeric) continue;
+      const int g = g10(w.number);
+      if (g == per_rev_g || g == per_min_g) {
+        per_rev = g == per_rev_g ? 1 : 0;
+        inverse_time = false;
+      }
+      switch (g) {
+        case 0:
+        case 10:
+        case 20:
+        case 30:
+          motion = g / 10;
+          cycle = false;
+          break;
+        case 320:
+        case 330:
+        case 340:
+          motion = 32;
+          cycle = false;
+          break;
+        case 800: cycle = false; break;
+        case 700:
+        case 710:
+        case 720:
+        case 730:
+        case 740:
+        case 750:
+        case 760:
+        case 810:
+        case 820:
+        case 830:
+        case 840:
+        case 842:
+        case 843:
+        case 850:
+        case 860:
+        case 870:
+        case 880:
+        case 890: cycle = true; break;
+        case 900:
+        case 910:
+          if (g90_modes)
+            absolute = g == 900;
+          else
+            cycle = true;  // a lathe's G90 (G-code system A): the turning cycle
+          break;
+        case 920:
+        case 940:
+          if (!g90_modes)
+            cycle = true;
+          else if (g == 920)
+            setting = true;
+          break;
+        case 121:
+        case 1120: polar = true; break;
+        case 131:
+        case 1130: polar = false; break;
+        case 71:
+        case 1070: {
+          cylinder = false;
+          for (const nc_word& c : words)
+            if (c.address == 'C' && c.numeric && c.number != 0) cylinder = true;
+          not_a_move = true;
+          break;
+        }
+        case 680:
+        case 681:
+        case 682:
+        case 511:
+        case 510:
+          frame = true;
+          not_a_move = true;
+          break;
+        case 690:
+        case 501: frame = false; break;
+        case 160: polar_coords = true; break;
+        case 150: polar_coords = false; break;
+        case 930: inverse_time = true; break;
+        case 280:
+        case 300:
+          home = true;
+          home_why = g == 280 ? "G28" : "G30";
+          break;
+        case 530: machine = true; break;
+        case 500:
+        case 520: setting = true; break;
+        case 40:
+        case 100:
+        case 109:
+        case 650:
+        case 661:
+        case 270:
+        case 290: not_a_move = true; break;
+        default: break;
+      }
+    }
+    // The axis words.
+    bool any = false;
+    for (const nc_word& w : words) {
+      axis_state* a = nullptr;
+      bool incremental = !absolute;
+      switch (w.address) {
+        case 'X': a = &x; break;
+        case 'Y': a = &y; break;
+        case 'Z': a = &z; break;
+        case 'U':
+          if (u_incremental) a = &x, incremental = true;
+          break;
+        case 'W':
+          if (w_incremental) a = &z, incremental = true;
+          break;
+        default: break;
+      }
+      if (!a) continue;
+      any = true;
+      if (not_a_move) continue;
+      if (home)
+        send_away(*a, home_why);
+      else if (machine)
+        send_away(*a, "G53");
+      else if (setting || cycle)
+        a->k = axis_state::kind::unknown;
+      else
+        set_axis(*a, w, incremental);
+    }
+    if (any && !not_a_move && !home && !machine && !setting) {
+      moved = true;
+      move_text = std::string(text);
+      move_line = lines;
+    }
+  }
+
+  // The part-frame coordinate of program axis `a` (`div`: program value per part-frame mm).
+  double part(const axis_state& a, double div) const { return a.value * out_mm / div; }
+
+  void error(const event& e, std::string message) {
+    diagnostic d;
+    d.file = cl_file;
+    d.line = e.line;
+    d.column = e.column;
+    d.message = fmt::format("channel {}: {}", ch.number, message);
+    diags.report(std::move(d));
+  }
+
+  void compare(const event& e, const vec3& pos, bool rapid, bool both) {
+    if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || rotary) {
+      ++passed;
+      return;
+    }
+    ++compared;
+    const double zs = work >= 0 && m.spindles[static_cast<std::size_t>(work)].reverse_z ? -1.0 : 1.0;
+    const double tol = std::max(tip_tolerance, axis_half * 1.001);
+    std::string off;
+    double worst = 0;
+    auto check = [&](char name, const axis_state& a, double div, double want) {
+      if (a.k == axis_state::kind::away) {
+        off += fmt::format("{}{} is where {} at line {} of the program left it, not at the CL's {:.3f}",
+                           off.empty() ? "" : "; ", name, a.why, a.line, want);
+        worst = std::max(worst, 1.0);
+        return;
+      }
+      if (a.k != axis_state::kind::known) return;
+      const double have = part(a, div);
+      const double d = std::abs(have - want);
+      if (d <= tol) return;
+      worst = std::max(worst, d);
+      off += fmt::format("{}{} {:.3f} where the CL has {:.3f} ({:.3f} mm off)", off.empty() ? "" : "; ",
+                         static_cast<char>(name + 'a' - 'A'), have, want, d);
+    };
+    check('X', x, x_div, pos.x * cl_mm);
+    if (has_y) check('Y', y, zs, pos.y * cl_mm);
+    check('Z', z, zs, pos.z * cl_mm);
+    if (!off.empty() && !std::exchange(said_tip, true))
+      error(e,
+            fmt::format("the program does not put the tool tip on this record's point (the part frame, mm): "
+                        "{}{}",
+                        off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+    if (rapid || !moved) return;
+    if (motion == 0)
+      return said_rapid
+                 ? void()
+                 : (said_rapid = true,
+                    error(e, fmt::format(
+                                 "the CL asks for a feed move here, but the program moves in rapid: `{}`",
+                                 move_text)));
+    if (motion == 32 || inverse_time || per_rev < 0 || f < 0 || cl_feed < 0) return;
+    compare_feed(e);
+  }
+
+  void compare_feed(const event& e) {
+    if (said_feed) return;
+    const double f_mm = f * out_mm, half = f_half * out_mm;
+    const bool nc_rev = per_rev == 1;
+    const char* nc_unit = nc_rev ? "mm/rev" : "mm/min";
+    const char* cl_unit = cl_per_rev ? "mm/rev" : "mm/min";
+    const std::string mode =
+        fmt::format("{} under {}", f_text, nc_rev ? m.codes.feed_per_rev : m.codes.feed_per_min);
+    if (nc_rev == cl_per_rev) {
+      if (std::abs(f_mm - cl_feed) <= std::max(feed_tolerance * cl_feed, half * 1.001)) return;
+      return said_feed = true,
+             error(e, fmt::format("the CL feeds at {:g} {} here, the program at {:g} {} ({})", cl_feed,
+                                  cl_unit, f_mm, nc_unit, mode));
+    }
+    // The other mode: through the speed of the spindle the feed follows, at the tip's diameter.
+    const double diameter = x.k == axis_state::kind::known ? std::abs(x.value * 2 / x_div) : 0;
+    const double rpm = spindles.rpm(diameter, inch);
+    if (rpm <= 0) return;  // a speed this channel did not give (another channel's): not followed
+    const double have = nc_rev ? f_mm * rpm : f_mm / rpm;
+    const double slack = nc_rev ? half * rpm : half / rpm;
+    if (std::abs(have - cl_feed) <= std::max(feed_tolerance * cl_feed, slack * 1.001)) return;
+    said_feed = true;
+    error(e, fmt::format("the CL feeds at {:g} {} here, the program at {:g} {} ({} at {:g} rpm)", cl_feed,
+                         cl_unit, have, cl_unit, mode, std::round(rpm)));
+  }
+
+  void record(const event& e, bool both) {
+    std::visit(
+        [&](const auto& d) {
+          using T = std::decay_t<decltype(d)>;
+          if constexpr (std::is_same_v<T, feed_event>) {
+            cl_per_rev = d.mode == feed_mode::per_rev;
+            cl_feed = d.mode == feed_mode::inverse_time
+                          ? -1
+                          : d.value * (d.units == unit_system::inch ? 25.4 : 1.0);
+          } else if constexpr (std::is_same_v<T, cycle_event>) {
+            if (d.type == "OFF")
+              cl_cycle = false;
+            else if (d.type != "INIT")
+              cl_cycle = true;
+          } else if constexpr (std::is_same_v<T, units_event>) {
+            units(d.units);
+          } else if constexpr (std::is_same_v<T, motion_event>) {
+            if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta)
+              compare(e, d.pos, d.rapid, both);
+          } else if constexpr (std::is_same_v<T, arc_event>) {
+            compare(e, d.end, false, both);
+          }
+        },
+        e.data);
+    moved = false;
+  }
+
+  void units(unit_system u) { cl_mm = u == unit_system::inch ? 25.4 : 1.0; }
+};
+
+cl_comparison::cl_comparison(const machine& m, const channel_def& ch, diagnostic_sink& diags,
+                             std::string cl_file)
+    : p_(std::make_unique<impl>(m, ch, diags, std::move(cl_file))) {}
+cl_comparison::~cl_comparison() = default;
+void cl_comparison::line(std::string_view text) { p_->line(text); }
+void cl_comparison::units(unit_system u) { p_->units(u); }
+void cl_comparison::record(const event& e, bool both) { p_->record(e, both); }
+long cl_comparison::compared() const { return p_->compared; }
+long cl_comparison::passed_over() const { return p_->passed; }
+
+}  // namespace twinpost

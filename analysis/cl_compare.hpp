@@ -1,0 +1,53 @@
+#pragma once
+// The comparison of a channel's program with its CL (issue 37; docs/emulator.md, "The
+// comparison with the CL"). Fed the program's lines as they are written (the head's first)
+// and each CL record of the channel once its blocks are written, it follows the program as
+// the control reads it, from the text and the machine file alone (the G90/G91 mode, the
+// incremental U/W of a lathe, the diameter X, a mirrored turret, the sub spindle's reversed Z
+// read from its work offset or select code, the output units, G28/G30/G53, the feed mode and
+// F, the spindle speed and the clamp), and at every CL motion record (GOTO, GODLTA, the end
+// of a CIRCLE) holds what the machine would do to what the CL asked:
+// - the tool tip in the part frame within 0.002 mm (or half the last written digit, when
+//   coarser); an axis at its reference point since a G28/G30/G53 is a finding;
+// - a CL feed move written as a rapid;
+// - the feed: in the same mode, F within 0.5 % (or half its last digit); in the other mode,
+//   F x rpm (or F / rpm) at the spindle's speed, CSS at the tip's diameter under its clamp.
+// Records it cannot follow yet are passed over, not guessed: a HEAD/BOTH copy, CL cycles,
+// and while the program has a canned cycle, polar or cylindrical interpolation, a rotated or
+// tilted frame, polar coordinates, inverse-time feed, a threading cycle, or a rotary-axis word
+// since the last tool call (a C axis, an indexing head) in force. Channels with a kinematic
+// chain are not compared (their writer checks every point by the forward transform).
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "machines/machine.hpp"
+#include "parser/events.hpp"
+#include "support/diagnostics.hpp"
+
+namespace twinpost {
+
+class cl_comparison {
+ public:
+  /// Compares channel `ch` of `m`; findings go to `diags` at the CL record of `cl_file`.
+  cl_comparison(const machine& m, const channel_def& ch, diagnostic_sink& diags, std::string cl_file);
+  ~cl_comparison();
+  cl_comparison(const cl_comparison&) = delete;
+  cl_comparison& operator=(const cl_comparison&) = delete;
+
+  /// The next line of the channel's program as written (head, body), without its line end.
+  void line(std::string_view text);
+  /// The job's units (UNITS record): the CL's lengths after it.
+  void units(unit_system u);
+  /// A record of the channel, after the blocks written for it. `both`: a HEAD/BOTH copy.
+  void record(const event& e, bool both);
+  /// Motion records compared, and those passed over (not followed yet).
+  long compared() const;
+  long passed_over() const;
+
+ private:
+  struct impl;
+  std::unique_ptr<impl> p_;
+};
+
+}  // namespace twinpost

@@ -1,0 +1,150 @@
+// The comparison of a program with its CL (analysis/cl_compare.hpp): hand-made program lines
+// and CL records, findings asserted to the letter.
+#include <catch2/catch.hpp>
+
+#include <string>
+#include <vector>
+
+#include "analysis/cl_compare.hpp"
+#include "machine_test_support.hpp"
+#include "machines/machine_loader.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+// One channel of a machine, fed lines and records; `text()` is what it found.
+struct compared {
+  compared(const std::string& machine_name, int channel)
+      : m(load_machine(machine_name)),
+        cmp(m, m.channels[static_cast<std::size_t>(channel - 1)], diags, "job.cls") {
+    for (const char* l : {"%", "O1000", "G0 G18 G21 G40 G54 G80 G99"}) cmp.line(l);
+  }
+  machine m;
+  diagnostic_list diags;
+  cl_comparison cmp;
+  int next = 10;
+  void lines(std::initializer_list<const char*> ls) {
+    for (const char* l : ls) cmp.line(l);
+  }
+  void feed(double value, feed_mode mode) { cmp.record({next++, feed_event{mode, value}, 1}, false); }
+  void go(double x, double z, bool rapid = false, bool both = false) {
+    motion_event mv;
+    mv.pos = {x, 0, z};
+    mv.rapid = rapid;
+    cmp.record({next++, mv, 1}, both);
+  }
+  std::string text() const {
+    std::string out;
+    for (const diagnostic& d : diags.all()) out += format_diagnostic(d);
+    return out;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("cl comparison: the tool tip of a lathe program against the CL", "[analysis][cl_compare]") {
+  compared c("fanuc-0itd-twin", 1);
+  c.feed(0.2, feed_mode::per_rev);
+  c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2."});
+  c.go(40, 2, true);
+  c.lines({"G1 Z-20. F0.2"});
+  c.go(40, -20);
+  CHECK(c.text().empty());
+  CHECK(c.cmp.compared() == 2);
+  // X is a diameter: X81. puts the tip 0.5 mm off the CL's radius 40.
+  c.lines({"X81. Z-30."});
+  c.go(40, -30);
+  CHECK(c.text() ==
+        "job.cls:13:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part "
+        "frame, mm): x 40.500 where the CL has 40.000 (0.500 mm off), after the block `X81. Z-30.`\n");
+}
+
+TEST_CASE("cl comparison: the lower turret's mirrored X and the sub spindle's reversed Z",
+          "[analysis][cl_compare]") {
+  compared c("fanuc-0itd-twin", 2);
+  c.lines({"T0101", "G55", "G0 X-80. Z-2."});
+  c.go(40, 2, true);
+  CHECK(c.text().empty());
+  c.lines({"G0 X80."});
+  c.go(40, 2, true);
+  CHECK(c.text() ==
+        "job.cls:11:1: error: channel 2: the program does not put the tool tip on this record's point (the "
+        "part "
+        "frame, mm): x -40.000 where the CL has 40.000 (80.000 mm off), after the block `G0 X80.`\n");
+}
+
+TEST_CASE("cl comparison: the feed mode a user block changed", "[analysis][cl_compare]") {
+  // Issue 37, item 4: `G99` from a user block, then the CL's 150 mm/min written as F150.
+  compared c("fanuc-0itd-twin", 1);
+  c.feed(150, feed_mode::per_minute);
+  c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2.", "G98"});
+  c.go(40, 2, true);
+  c.lines({"G99", "G1 Z-20. F150."});
+  c.go(40, -20);
+  CHECK(c.text() ==
+        "job.cls:12:1: error: channel 1: the CL feeds at 150 mm/min here, the program at 150000 mm/min "
+        "(F150. under "
+        "G99 at 1000 rpm)\n");
+  // Under G98 the same F is right; per revolution, F0.15 at 1000 rpm is 150 mm/min.
+  compared d("fanuc-0itd-twin", 1);
+  d.feed(150, feed_mode::per_minute);
+  d.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2.", "G1 Z-20. F0.15"});
+  d.go(40, -20);
+  CHECK(d.text().empty());
+  d.lines({"Z-30. F0.16"});
+  d.go(40, -30);
+  CHECK(d.text() ==
+        "job.cls:12:1: error: channel 1: the CL feeds at 150 mm/min here, the program at 160 mm/min (F0.16 "
+        "under "
+        "G99 at 1000 rpm)\n");
+}
+
+TEST_CASE("cl comparison: a feed move written as a rapid", "[analysis][cl_compare]") {
+  compared c("fanuc-0itd-twin", 1);
+  c.feed(0.2, feed_mode::per_rev);
+  c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2.", "Z-20."});
+  c.go(40, -20);
+  CHECK(c.text() ==
+        "job.cls:11:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: "
+        "`Z-20.`\n");
+}
+
+TEST_CASE("cl comparison: an axis left at its reference point", "[analysis][cl_compare]") {
+  compared c("fanuc-0itd-twin", 1);
+  c.lines({"T0101", "G0 X80. Z2.", "G28 U0.", "G0 Z5."});
+  c.go(40, 5, true);
+  CHECK(
+      c.text() ==
+      "job.cls:10:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+      "part "
+      "frame, mm): X is where G28 at line 6 of the program left it, not at the CL's 40.000, after the block "
+      "`G0 Z5.`\n");
+  // Z named in G28 (as W0.) is at its reference point until a Z word moves it again.
+  compared d("fanuc-0itd-twin", 1);
+  d.lines({"T0101", "G0 X80. Z2.", "G28 W0.", "G0 X40."});
+  d.go(20, 2, true);
+  CHECK(d.text() ==
+        "job.cls:10:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part "
+        "frame, mm): Z is where G28 at line 6 of the program left it, not at the CL's 2.000, after the block "
+        "`G0 "
+        "X40.`\n");
+}
+
+TEST_CASE("cl comparison: what it passes over", "[analysis][cl_compare]") {
+  compared c("fanuc-0itd-twin", 1);
+  c.lines({"T0101", "G0 X80. Z2."});
+  c.go(10, 2, true, true);                // a HEAD/BOTH copy
+  c.lines({"G83 Z-20. R2. Q5000 F0.1"});  // a canned cycle: its end is the cycle's
+  c.go(0, -20);
+  CHECK(c.text().empty());
+  CHECK(c.cmp.compared() == 0);
+  CHECK(c.cmp.passed_over() == 2);
+  // G80 ends the cycle: compared again, from the axes the cycle left unknown.
+  c.lines({"G80", "G0 X80. Z5."});
+  c.go(40, 5, true);
+  CHECK(c.cmp.compared() == 1);
+  CHECK(c.text().empty());
+}
