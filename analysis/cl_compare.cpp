@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <utility>
 #include <variant>
@@ -69,7 +70,15 @@ struct cl_comparison::impl {
     per_min_g = code_g10(m.codes.feed_per_min);
     axis_half = 0.5 * std::pow(10.0, -m.program.axis_decimals()) * out_mm;
     if (const spindle_def* s = m.spindle(ch.spindle)) work = static_cast<int>(s - m.spindles.data());
-    for (const spindle_def& s : m.spindles) offsets.push_back(split_nc_words(s.work_offset));
+    for (const spindle_def& s : m.spindles) {
+      offsets.push_back(split_nc_words(s.work_offset));
+      bool is_live = false;
+      for (const channel_def& c : m.channels) is_live = is_live || c.live_spindle == s.name;
+      live.push_back(is_live);
+    }
+    gms_only = spindles.needs_gms();
+    for (const auto& o : offsets)
+      for (const nc_word& w : o) gms_only = gms_only && (w.address == 'G' || w.address == 'M');
   }
 
   const machine& m;
@@ -85,6 +94,8 @@ struct cl_comparison::impl {
   double out_mm = 1, axis_half = 0.0005;
   int per_rev_g = 990, per_min_g = 980;
   std::vector<std::vector<nc_word>> offsets;  // each spindle's work offset, split
+  std::vector<bool> live;                     // each spindle: some channel's live spindle
+  bool gms_only = true;                       // every code that selects a spindle is a G, M or S word
 
   // The program as read so far.
   std::vector<nc_word> words;
@@ -145,19 +156,20 @@ struct cl_comparison::impl {
 
   void line(std::string_view text) {
     ++lines;
-    split_nc_words(text, words);
+    const std::uint32_t letters = split_nc_words(text, words);
     if (words.empty()) return;
-    spindles.apply(words);
-    // The workpiece spindle: its work offset (G55 for the sub) or its select code; a live
-    // spindle's select code does not move the part.
-    for (std::size_t i = 0; i < m.spindles.size(); ++i) {
-      const spindle_def& s = m.spindles[i];
-      bool live = false;
-      for (const channel_def& c : m.channels) live = live || c.live_spindle == s.name;
-      if (offset_of(offsets[i])) work = static_cast<int>(i);
-      if (s.select && !live)
-        for (const nc_word& w : words)
-          if (w.address == 'M' && w.numeric && w.number == *s.select) work = static_cast<int>(i);
+    constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+    if (!gms_only || (letters & gms)) {
+      spindles.apply(words);
+      // The workpiece spindle: its work offset (G55 for the sub) or its select code; a live
+      // spindle's select code does not move the part.
+      for (std::size_t i = 0; i < m.spindles.size(); ++i) {
+        const spindle_def& s = m.spindles[i];
+        if (offset_of(offsets[i])) work = static_cast<int>(i);
+        if (s.select && !live[i])
+          for (const nc_word& w : words)
+            if (w.address == 'M' && w.numeric && w.number == *s.select) work = static_cast<int>(i);
+      }
     }
     bool not_a_move = false, home = false, machine = false, setting = false;
     std::string home_why;
@@ -172,7 +184,7 @@ struct cl_comparison::impl {
         if (w.numeric) {
           f = w.number;
           f_half = half_digit(w.value);
-          f_text = fmt::format("F{}", w.value);
+          f_text.assign("F").append(w.value);
         } else {
           f = -1;
         }
@@ -311,7 +323,7 @@ struct cl_comparison::impl {
     }
     if (any && !not_a_move && !home && !machine && !setting) {
       moved = true;
-      move_text = std::string(text);
+      move_text.assign(text);
       move_line = lines;
     }
   }
@@ -377,15 +389,9 @@ struct cl_comparison::impl {
     if (said_feed) return;
     const double f_mm = f * out_mm, half = f_half * out_mm;
     const bool nc_rev = per_rev == 1;
-    const char* nc_unit = nc_rev ? "mm/rev" : "mm/min";
-    const char* cl_unit = cl_per_rev ? "mm/rev" : "mm/min";
-    const std::string mode =
-        fmt::format("{} under {}", f_text, nc_rev ? m.codes.feed_per_rev : m.codes.feed_per_min);
     if (nc_rev == cl_per_rev) {
       if (std::abs(f_mm - cl_feed) <= std::max(feed_tolerance * cl_feed, half * 1.001)) return;
-      return said_feed = true,
-             error(e, fmt::format("the CL feeds at {:g} {} here, the program at {:g} {} ({})", cl_feed,
-                                  cl_unit, f_mm, nc_unit, mode));
+      return feed_error(e, f_mm, 0);
     }
     // The other mode: through the speed of the spindle the feed follows, at the tip's diameter.
     const double diameter = x.k == axis_state::kind::known ? std::abs(x.value * 2 / x_div) : 0;
@@ -394,7 +400,19 @@ struct cl_comparison::impl {
     const double have = nc_rev ? f_mm * rpm : f_mm / rpm;
     const double slack = nc_rev ? half * rpm : half / rpm;
     if (std::abs(have - cl_feed) <= std::max(feed_tolerance * cl_feed, slack * 1.001)) return;
+    feed_error(e, have, rpm);
+  }
+
+  // `have`: the program's feed in the CL's unit; `rpm`: the speed it went through (0: none).
+  void feed_error(const event& e, double have, double rpm) {
     said_feed = true;
+    const char* nc_unit = per_rev == 1 ? "mm/rev" : "mm/min";
+    const char* cl_unit = cl_per_rev ? "mm/rev" : "mm/min";
+    const std::string mode =
+        fmt::format("{} under {}", f_text, per_rev == 1 ? m.codes.feed_per_rev : m.codes.feed_per_min);
+    if (rpm <= 0)
+      return error(e, fmt::format("the CL feeds at {:g} {} here, the program at {:g} {} ({})", cl_feed,
+                                  cl_unit, have, nc_unit, mode));
     error(e, fmt::format("the CL feeds at {:g} {} here, the program at {:g} {} ({} at {:g} rpm)", cl_feed,
                          cl_unit, have, cl_unit, mode, std::round(rpm)));
   }
