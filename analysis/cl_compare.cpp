@@ -12,6 +12,7 @@
 
 #include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
+#include "machines/macro_variables.hpp"
 
 namespace twinpost {
 
@@ -57,8 +58,7 @@ struct cl_comparison::impl {
     x_div = (x && !x->diameter) ? 1.0 : 2.0;  // the writer's rule: X is a diameter unless said
     if (x && x->mirror) x_div = -x_div;
     lathe = !x || x->diameter;
-    inch = m.program.output_units == output_unit::inch;
-    out_mm = inch ? 25.4 : 1.0;
+
     has_y = ch.axis('Y') != nullptr;
     u_incremental = lathe && !ch.axis('U');
     w_incremental = lathe && !ch.axis('W');
@@ -68,7 +68,7 @@ struct cl_comparison::impl {
     if (!lathe) g90_modes = true;
     per_rev_g = code_g10(m.codes.feed_per_rev);
     per_min_g = code_g10(m.codes.feed_per_min);
-    axis_half = 0.5 * std::pow(10.0, -m.program.axis_decimals()) * out_mm;
+
     if (const spindle_def* s = m.spindle(ch.spindle)) work = static_cast<int>(s - m.spindles.data());
     for (const spindle_def& s : m.spindles) {
       offsets.push_back(split_nc_words(s.work_offset));
@@ -77,6 +77,10 @@ struct cl_comparison::impl {
       live.push_back(is_live);
     }
     gms_only = spindles.needs_gms();
+    read_tool_call(ch.tool_call);
+    needs_length = tool_m6 && !lathe;
+    units(m.program.output_units == output_unit::inch);
+
     for (const auto& o : offsets)
       for (const nc_word& w : o) gms_only = gms_only && (w.address == 'G' || w.address == 'M');
   }
@@ -91,21 +95,36 @@ struct cl_comparison::impl {
   double x_div = 2;  // program X / part-frame x: 2 for a diameter, negative on a mirrored turret
   bool lathe = true, inch = false, has_y = false, u_incremental = false, w_incremental = false;
   bool g90_modes = false;  // G90/G91 are the absolute and incremental modes (not lathe cycles)
-  double out_mm = 1, axis_half = 0.0005;
+  double out_mm = 1, axis_half = 0.0005, increment = 0.001;
   int per_rev_g = 990, per_min_g = 980;
   std::vector<std::vector<nc_word>> offsets;  // each spindle's work offset, split
   std::vector<bool> live;                     // each spindle: some channel's live spindle
   bool gms_only = true;                       // every code that selects a spindle is a G, M or S word
 
+  // The tool call's T word: T = tool x 10^tool_digits + what follows (the offset's digits or
+  // literal ones: T{tool:02}{offset:02}, M6 T{tool:02}00); -1: not read (a template that
+  // does not say how many digits follow). `tool_m6`: the call changes the tool with M6, a T
+  // alone only preselects it.
+  int tool_digits = -1;
+  bool tool_m6 = false;
+
   // The program as read so far.
   std::vector<nc_word> words;
+  long t_pending = -1, t_active = -1;  // the tool a T word named, and the one in the spindle
+  std::string t_text;                  // the T word that called it
   int lines = 0;
   axis_state x, y, z;
   bool absolute = true;
   int motion = -1;     // modal G0..G3, 32 for threading; -1 unknown
   bool cycle = false;  // a canned or lathe cycle
   bool polar = false, cylinder = false, frame = false, polar_coords = false, inverse_time = false;
-  bool rotary = false;        // a rotary-axis word since the last tool call
+  bool rotary = false;           // a rotary-axis word since the last tool call
+  bool length_on = false;        // a tool length offset in force (G43, G43.4, G43.5, G44)
+  bool needs_length = false;     // a mill head's channel: Z is the gauge line without one
+  bool foreign_offset = false;   // a work offset no spindle names (G56): another part frame
+  bool shifted = false;          // offsets written (G10, #5221=), a coordinate setting: not known
+  bool rapid_in_record = false;  // a block of this record moved in rapid
+  std::string rapid_text;
   int per_rev = -1;           // feed mode: 1 per revolution, 0 per minute, -1 unknown
   double f = -1, f_half = 0;  // the F in force (program units), half its last digit
   std::string f_text;
@@ -115,6 +134,13 @@ struct cl_comparison::impl {
   int move_line = 0;
 
   // The CL as read so far.
+  int cl_tool = -1, cl_tool_line = 0;  // LOADTL / TURRET
+  // The CL's spindle: -1 not given, 0 off, 1 turning; its speed in rpm or (css) m/min.
+  int cl_spin = -1;
+  bool cl_css = false;
+  double cl_speed = 0;
+  rotation cl_dir = rotation::none;
+  int cl_spin_line = 0;
   double cl_mm = 1;
   double cl_feed = -1;  // mm/min or mm/rev; -1 none
   bool cl_per_rev = false;
@@ -122,7 +148,30 @@ struct cl_comparison::impl {
   long compared = 0, passed = 0;
   // Each kind of finding is reported once per channel (the first is the one to fix; a
   // systematic error would otherwise repeat at every record of a long job).
-  bool said_tip = false, said_rapid = false, said_feed = false;
+  bool said_length = false;
+  bool said_tip = false, said_rapid = false, said_feed = false, said_tool = false, said_spindle = false;
+
+  void read_tool_call(const std::string& t) {
+    const std::size_t at = t.find("T{tool");
+    if (at == std::string::npos) return;
+    const std::size_t close = t.find('}', at);
+    if (close == std::string::npos) return;
+    std::size_t i = close + 1;
+    int digits = 0;
+    while (i < t.size() && t[i] >= '0' && t[i] <= '9') ++digits, ++i;
+    if (digits == 0 && t.compare(i, 8, "{offset:") == 0) {
+      const std::size_t end = t.find('}', i);
+      const std::string spec = t.substr(i + 8, end == std::string::npos ? 0 : end - i - 8);
+      if (spec.size() < 2 || spec[0] != '0') return;  // no fixed width: the digits are not known
+      digits = std::atoi(spec.c_str() + 1);
+      i = end + 1;
+    } else if (t.compare(i, 1, "{") == 0) {
+      return;
+    }
+    tool_digits = digits;
+    for (const nc_word& w : split_nc_words(t))
+      if (w.address == 'M' && w.numeric && w.number == 6) tool_m6 = true;
+  }
 
   void send_away(axis_state& a, std::string why) {
     a.k = axis_state::kind::away;
@@ -135,11 +184,13 @@ struct cl_comparison::impl {
       a.k = axis_state::kind::unknown;  // X#500: known when the block runs
       return;
     }
+    // Without a decimal point the control counts least increments (`X44` is 0.044 mm).
+    const double v = w.point ? w.number : w.number * increment;
     if (!incremental) {
       a.k = axis_state::kind::known;
-      a.value = w.number;
+      a.value = v;
     } else if (a.k == axis_state::kind::known) {
-      a.value += w.number;
+      a.value += v;
     }
   }
 
@@ -157,6 +208,12 @@ struct cl_comparison::impl {
   void line(std::string_view text) {
     ++lines;
     const std::uint32_t letters = split_nc_words(text, words);
+    if (text.find('#') != std::string_view::npos)
+      for (const macro_use& u : macro_uses(text))
+        if (u.write && (u.number < 0 || (u.number >= 2500 && u.number <= 2806) ||
+                        (u.number >= 5201 && u.number <= 5335) || (u.number >= 7001 && u.number <= 7999) ||
+                        (u.number >= 14001 && u.number <= 14999)))
+          shifted = true;  // a work offset written through its variable (#5223=-5.)
     if (words.empty()) return;
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (!gms_only || (letters & gms)) {
@@ -178,6 +235,18 @@ struct cl_comparison::impl {
         // The control applies the new tool's offsets with its next move: the program's
         // coordinates stay those of the tip.
         rotary = false;
+        if (tool_digits >= 0 && w.numeric && w.number >= 0) {
+          t_pending =
+              static_cast<long>(w.number) / static_cast<long>(std::lround(std::pow(10.0, tool_digits)));
+          t_text.assign("T").append(w.value);
+          if (!tool_m6) t_active = t_pending;
+        } else {
+          t_pending = t_active = -1;  // T#1, or a template the tool is not read from
+        }
+        continue;
+      }
+      if (w.address == 'M' && w.numeric && w.number == 6 && tool_m6) {
+        t_active = t_pending;
         continue;
       }
       if (w.address == 'F') {
@@ -236,18 +305,37 @@ struct cl_comparison::impl {
         case 880:
         case 890: cycle = true; break;
         case 900:
-        case 910:
           if (g90_modes)
-            absolute = g == 900;
+            absolute = true;
           else
             cycle = true;  // a lathe's G90 (G-code system A): the turning cycle
           break;
+        case 910: absolute = false; break;  // system A has no G91 (an alarm); B and C: increments
+        case 200:
+        case 210: units(g == 200); break;
+        case 430:
+        case 434:
+        case 435:
+        case 440: length_on = true; break;
+        case 490: length_on = false; break;
+        case 540:
+        case 550:
+        case 560:
+        case 570:
+        case 580:
+        case 590:
+        case 541: {
+          bool named = false;
+          for (const auto& o : offsets) named = named || offset_of(o);
+          foreign_offset = !named;  // G56 where the spindles name G54 and G55: another part frame
+          break;
+        }
         case 920:
         case 940:
           if (!g90_modes)
             cycle = true;
           else if (g == 920)
-            setting = true;
+            setting = true, shifted = shifted || any_axis(words);
           break;
         case 121:
         case 1120: polar = true; break;
@@ -281,10 +369,24 @@ struct cl_comparison::impl {
           break;
         case 530: machine = true; break;
         case 500:
-        case 520: setting = true; break;
-        case 40:
+        case 520:
+          setting = true;
+          shifted = shifted || any_axis(words);  // a coordinate setting or a local frame
+          break;
         case 100:
+          // Offset data written (G10 L2 P1 Z-5., a workpiece shift G10 P0 Z..): the part frame
+          // is no longer the setup's.
+          shifted = true;
+          not_a_move = true;
+          break;
         case 109:
+          // Mazak radius input (G10.9 X0) and diameter input (G10.9 X1) of X.
+          for (const nc_word& c : words)
+            if (c.address == 'X' && c.numeric && lathe)
+              x_div = std::copysign(c.number == 0 ? 1.0 : 2.0, x_div);
+          not_a_move = true;
+          break;
+        case 40:
         case 650:
         case 661:
         case 270:
@@ -325,6 +427,10 @@ struct cl_comparison::impl {
       moved = true;
       move_text.assign(text);
       move_line = lines;
+      if (motion == 0 && !cycle && !rapid_in_record) {
+        rapid_in_record = true;
+        rapid_text.assign(text);
+      }
     }
   }
 
@@ -341,7 +447,8 @@ struct cl_comparison::impl {
   }
 
   void compare(const event& e, const vec3& pos, bool rapid, bool both) {
-    if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || rotary) {
+    if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || rotary || foreign_offset ||
+        shifted) {
       ++passed;
       return;
     }
@@ -352,8 +459,9 @@ struct cl_comparison::impl {
     double worst = 0;
     auto check = [&](char name, const axis_state& a, double div, double want) {
       if (a.k == axis_state::kind::away) {
-        off += fmt::format("{}{} is where {} at line {} of the program left it, not at the CL's {:.3f}",
-                           off.empty() ? "" : "; ", name, a.why, a.line, want);
+        off += fmt::format("{}{} is where {} at line {} of the program left it, not at the CL's {:.3f}{}",
+                           off.empty() ? "" : "; ", name, a.why, a.line, want,
+                           absolute ? "" : " (G91 is in force: the axis words after it are increments)");
         worst = std::max(worst, 1.0);
         return;
       }
@@ -367,20 +475,33 @@ struct cl_comparison::impl {
     };
     check('X', x, x_div, pos.x * cl_mm);
     if (has_y) check('Y', y, zs, pos.y * cl_mm);
-    check('Z', z, zs, pos.z * cl_mm);
+    if (needs_length && !length_on && z.k == axis_state::kind::known) {
+      if (!said_length) {
+        said_length = true;
+        error(e,
+              fmt::format("the program moves Z with no tool length offset in force (G43 H..): Z is then the "
+                          "spindle's gauge line, one tool length below the CL's tip; give the channel a "
+                          "length offset (channel.length_offset = \"G43 H{{offset:02}}\"){}",
+                          moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+      }
+    } else {
+      check('Z', z, zs, pos.z * cl_mm);
+    }
     if (!off.empty() && !std::exchange(said_tip, true))
       error(e,
             fmt::format("the program does not put the tool tip on this record's point (the part frame, mm): "
                         "{}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+    compare_tool(e);
     if (rapid || !moved) return;
-    if (motion == 0)
+    compare_spindle(e);
+    if (rapid_in_record)
       return said_rapid
                  ? void()
                  : (said_rapid = true,
                     error(e, fmt::format(
                                  "the CL asks for a feed move here, but the program moves in rapid: `{}`",
-                                 move_text)));
+                                 rapid_text)));
     if (motion == 32 || inverse_time || per_rev < 0 || f < 0 || cl_feed < 0) return;
     compare_feed(e);
   }
@@ -417,11 +538,82 @@ struct cl_comparison::impl {
                          cl_unit, have, cl_unit, mode, std::round(rpm)));
   }
 
+  void cl_spindle(const spindle_event& d, int line) {
+    switch (d.mode) {
+      case spindle_mode::off: cl_spin = 0; break;
+      case spindle_mode::on:
+        if (cl_spin < 0 && cl_speed <= 0) return;  // ON with no speed before: the writer's error
+        cl_spin = 1;
+        if (d.dir != rotation::none) cl_dir = d.dir;
+        break;
+      case spindle_mode::rpm:
+      case spindle_mode::sfm:
+      case spindle_mode::smm:
+        cl_spin = 1;
+        cl_css = d.mode != spindle_mode::rpm;
+        // CSS in the program's unit: m/min with mm output, ft/min with inch output.
+        cl_speed = d.mode == spindle_mode::rpm   ? d.speed
+                   : d.mode == spindle_mode::sfm ? (inch ? d.speed : d.speed * 0.3048)
+                   : inch                        ? d.speed / 0.3048
+                                                 : d.speed;
+        cl_dir = d.dir == rotation::none ? rotation::cw : d.dir;
+        break;
+      default:
+        cl_spin = -1;  // ORIENT, LOCK: not followed
+        return;
+    }
+    cl_spin_line = line;
+  }
+
+  void compare_tool(const event& e) {
+    if (said_tool || cl_tool < 0 || t_active < 0 || t_active == cl_tool) return;
+    said_tool = true;
+    error(e, fmt::format("the CL cuts with tool {} here (the tool call at line {}), the program with tool {} "
+                         "({}, read by the tool call {})",
+                         cl_tool, cl_tool_line, t_active, t_text, ch.tool_call));
+  }
+
+  // At a cut: the spindle the channel commanded last turns as the CL's SPINDL says.
+  void compare_spindle(const event& e) {
+    if (said_spindle || cl_spin != 1) return;
+    const int sp = spindles.current();
+    if (sp < 0) return;
+    const spindle_setting& s = spindles.setting(sp);
+    if (s.turn == spindle_turn::unknown || s.turn == spindle_turn::held) return;  // another channel's
+    const spindle_def& def = m.spindles[static_cast<std::size_t>(sp)];
+    const bool cw = cl_dir != rotation::ccw;
+    std::string wrong;
+    if (s.turn == spindle_turn::stopped) {
+      wrong = "is stopped";
+    } else if ((s.turn == spindle_turn::cw) != cw) {
+      wrong = fmt::format("turns {} (M{})", cw ? "counter-clockwise" : "clockwise", cw ? def.ccw : def.cw);
+    } else if (cl_css && s.mode == speed_mode::rpm) {
+      return;  // a surface speed the writer turned into a rotating tool's rpm (its diameter)
+    } else if (!cl_css && s.mode == speed_mode::css) {
+      wrong = fmt::format("turns under constant surface speed ({} S{:g})", m.codes.css, s.speed);
+    } else if (s.mode != speed_mode::unknown &&
+               std::abs(s.speed - cl_speed) > std::max(0.5, cl_speed * 0.005)) {
+      wrong = fmt::format("turns at S{:g}", s.speed);
+    } else {
+      return;
+    }
+    said_spindle = true;
+    error(e,
+          fmt::format("the CL cuts with the spindle turning {} at {:g} {} here (SPINDL at line {}), but the "
+                      "program's {} spindle {}",
+                      cw ? "clockwise" : "counter-clockwise", cl_speed,
+                      cl_css ? (inch ? "ft/min" : "m/min") : "rpm", cl_spin_line, def.name, wrong));
+  }
+
   void record(const event& e, bool both) {
     std::visit(
         [&](const auto& d) {
           using T = std::decay_t<decltype(d)>;
-          if constexpr (std::is_same_v<T, feed_event>) {
+          if constexpr (std::is_same_v<T, tool_event>) {
+            if (!d.preselect) cl_tool = d.tool, cl_tool_line = e.line;
+          } else if constexpr (std::is_same_v<T, spindle_event>) {
+            cl_spindle(d, e.line);
+          } else if constexpr (std::is_same_v<T, feed_event>) {
             cl_per_rev = d.mode == feed_mode::per_rev;
             cl_feed = d.mode == feed_mode::inverse_time
                           ? -1
@@ -442,9 +634,28 @@ struct cl_comparison::impl {
         },
         e.data);
     moved = false;
+    rapid_in_record = false;
   }
 
   void units(unit_system u) { cl_mm = u == unit_system::inch ? 25.4 : 1.0; }
+
+  // The program's unit (G20: inch), its least increment (what an axis word without a decimal
+  // point counts: `X44` is 0.044 mm where decimal-point programming is off, the Fanuc default)
+  // and half of it in mm.
+  void units(bool in_inch) {
+    inch = in_inch;
+    out_mm = inch ? 25.4 : 1.0;
+    const int decimals = inch ? m.program.decimals_inch : m.program.decimals_metric;
+    increment = std::pow(10.0, -decimals);
+    axis_half = 0.5 * increment * out_mm;
+  }
+
+  static bool any_axis(const std::vector<nc_word>& ws) {
+    for (const nc_word& w : ws)
+      if (w.address == 'X' || w.address == 'Y' || w.address == 'Z' || w.address == 'U' || w.address == 'W')
+        return true;
+    return false;
+  }
 };
 
 cl_comparison::cl_comparison(const machine& m, const channel_def& ch, diagnostic_sink& diags,

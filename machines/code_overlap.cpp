@@ -195,6 +195,9 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
     f.block(fmt::format("channel {}: tool_call", c.number), c.tool_call, key_of(t, "tool_call"), t);
     if (!c.offset_call.empty())
       f.block(fmt::format("channel {}: offset_call", c.number), c.offset_call, key_of(t, "offset_call"), t);
+    if (!c.length_offset.empty())
+      f.block(fmt::format("channel {}: length_offset", c.number), c.length_offset, key_of(t, "length_offset"),
+              t);
     const toml::table* h = t && t->get("head_index") ? t->get("head_index")->as_table() : nullptr;
     for (const auto& [key, block] : {std::pair{"unclamp", &c.head_index.unclamp},
                                      {"move", &c.head_index.move},

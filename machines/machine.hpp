@@ -115,6 +115,11 @@ struct channel_def {
   /// lathe-system B head changes the tool with M6 T0700, then takes its offset with T0707 (the
   /// Fusion Doosan Mill/Turn post). Empty: the tool call does it all.
   std::string offset_call;
+  /// A mill head's tool length offset ({tool}, {offset}): words written in the first move after
+  /// each tool call (`G43 H{offset}`: the Fusion Fanuc mill posts' `G43 Z.. H..` with the first
+  /// move of a section). Only on a channel without a kinematic chain or an indexing head (those
+  /// write their own). Empty: none, and the comparison with the CL holds the program to it.
+  std::string length_offset;
   std::string spindle = "main";  ///< the spindle this channel works on at start
   /// The channel's tool-driving spindle (a mill head's milling spindle): milling tools, and
   /// drills off the centre line, turn it; empty: the channel has none.

@@ -69,6 +69,7 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
   if (!r.read_template("tool_call", c.tool_call, template_uses::tool_call))
     c.tool_call = kind == "turret" ? "T{tool:02}{offset:02}" : "T{tool:02} M6";
   r.read_template("offset_call", c.offset_call, template_uses::tool_call);
+  r.read_template("length_offset", c.length_offset, template_uses::tool_call);
   c.tool_change_stops_spindle = kind == "mill_head";
   r.read("tool_change_stops_spindle", c.tool_change_stops_spindle);
   r.read("offset_zero", c.offset_zero);
@@ -146,11 +147,11 @@ void read_channels(const table_reader& root, machine& m) {
   readers.reserve(tables.size());
   std::vector<read_channel> all;
   for (const toml::table* t : tables) {
-    readers.emplace_back(
-        *t, "channel", root.source(),
-        std::initializer_list<std::string_view>{
-            "number", "heads", "head_names", "kind", "tool_call", "offset_call", "spindle", "file_suffix",
-            "axis", "tool_change_stops_spindle", "live_spindle", "offset_zero", "spindles", "head_index"});
+    readers.emplace_back(*t, "channel", root.source(),
+                         std::initializer_list<std::string_view>{
+                             "number", "heads", "head_names", "kind", "tool_call", "offset_call",
+                             "length_offset", "spindle", "file_suffix", "axis", "tool_change_stops_spindle",
+                             "live_spindle", "offset_zero", "spindles", "head_index"});
     all.push_back({read_channel_table(readers.back(), m), &readers.back()});
   }
   check_numbers_and_heads(all);

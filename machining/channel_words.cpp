@@ -131,7 +131,11 @@ void channel_writer::tool(const tool_event& t, int line) {
   const std::string offset_block =
       ch_.offset_call.empty() ? std::string() : format_template(ch_.offset_call, a);
   const bool names_offset = ch_.tool_call.find("{offset") != std::string::npos ||
-                            ch_.offset_call.find("{offset") != std::string::npos;
+                            ch_.offset_call.find("{offset") != std::string::npos ||
+                            ch_.length_offset.find("{offset") != std::string::npos;
+  // A mill head without a chain or an indexing head takes the tool's length offset with the
+  // first move after the call (channel.length_offset: G43 H..).
+  const bool length_offset = !ch_.length_offset.empty() && !chain_ && !ch_.head_index.present();
   static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL",     "SELECT/TOOL",
                                           "TURRET", "[[tool]] name", "post --tool"};
   const char* word = words[static_cast<int>(t.source)];
@@ -172,6 +176,7 @@ void channel_writer::tool(const tool_event& t, int line) {
       }
       out_.block(block, true);
       tool_call_ = call + offset_block;
+      if (length_offset) pending_offset_ = format_template(ch_.length_offset, a);
     }
     return;
   }
@@ -218,6 +223,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   motion_g_ = -1;
   out_.block(call, true);
   if (!offset_block.empty()) out_.block(offset_block);
+  if (length_offset) pending_offset_ = format_template(ch_.length_offset, a);
   // The tool changer may leave an indexing head anywhere (public Integrex posts send B to 0 at
   // every tool change and index it again): the next tool's angle is written, even the same one.
   head_angle_.reset();

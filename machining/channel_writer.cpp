@@ -439,9 +439,13 @@ void channel_writer::process_event(const event& e, bool both) {
             spindle_ended_.clear();  // the user's text may turn either on again
             coolant_ended_.clear();
             // It may move an axis or change the motion mode: the next move writes all its words
-            // (the comparison with the CL found `Z-5.` cut at the X of an INSERT's text).
+            // (the comparison with the CL found `Z-5.` cut at the X of an INSERT's text), the
+            // next feed move its F, and the channel's modes go back on as after a user's block
+            // (a G20 in a metric program is refused).
             forget_axes();
             motion_g_ = -1;
+            last_f_.clear();
+            restore_modes_after({d.text}, "INSERT");
           } else if (d.kind == text_kind::pprint || d.kind == text_kind::tprint ||
                      d.kind == text_kind::op_start || d.kind == text_kind::toolpath) {
             if (d.kind != text_kind::pprint && d.kind != text_kind::op_start) note_cam_tool(d, e.line);

@@ -90,13 +90,15 @@ TEST_CASE("cl comparison: the feed mode a user block changed", "[analysis][cl_co
   // Under G98 the same F is right; per revolution, F0.15 at 1000 rpm is 150 mm/min.
   compared d("fanuc-0itd-twin", 1);
   d.feed(150, feed_mode::per_minute);
-  d.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2.", "G1 Z-20. F0.15"});
+  d.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2."});
+  d.go(40, 2, true);
+  d.lines({"G1 Z-20. F0.15"});
   d.go(40, -20);
   CHECK(d.text().empty());
   d.lines({"Z-30. F0.16"});
   d.go(40, -30);
   CHECK(d.text() ==
-        "job.cls:12:1: error: channel 1: the CL feeds at 150 mm/min here, the program at 160 mm/min (F0.16 "
+        "job.cls:13:1: error: channel 1: the CL feeds at 150 mm/min here, the program at 160 mm/min (F0.16 "
         "under "
         "G99 at 1000 rpm)\n");
 }
@@ -104,11 +106,24 @@ TEST_CASE("cl comparison: the feed mode a user block changed", "[analysis][cl_co
 TEST_CASE("cl comparison: a feed move written as a rapid", "[analysis][cl_compare]") {
   compared c("fanuc-0itd-twin", 1);
   c.feed(0.2, feed_mode::per_rev);
-  c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2.", "Z-20."});
+  c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2."});
+  c.go(40, 2, true);
+  c.lines({"Z-20."});
   c.go(40, -20);
   CHECK(c.text() ==
-        "job.cls:11:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: "
+        "job.cls:12:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: "
         "`Z-20.`\n");
+  // A rapid among the blocks of one feed move (a user block plunging to just short of the end):
+  // the record ends where the CL says, in G1, but most of the cut was a rapid.
+  compared d("fanuc-0itd-twin", 1);
+  d.feed(0.2, feed_mode::per_rev);
+  d.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2."});
+  d.go(40, 2, true);
+  d.lines({"G0 Z-29.", "G1 Z-30. F0.2"});
+  d.go(40, -30);
+  CHECK(d.text() ==
+        "job.cls:12:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: "
+        "`G0 Z-29.`\n");
 }
 
 TEST_CASE("cl comparison: an axis left at its reference point", "[analysis][cl_compare]") {

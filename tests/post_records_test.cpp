@@ -176,10 +176,11 @@ TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "
   CHECK(n.message == "the block in the program");
   REQUIRE(apt.files.count("W_1.nc") == 1);
   // APT: the text goes out as it stands, information text included (the CAM user's business);
-  // the next move writes all its words again (the text may have moved an axis: here X).
+  // the next move writes all its words and its F again (the text may have moved an axis, here
+  // X, or given another F).
   CHECK(apt.files.at("W_1.nc") ==
         "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\n"
-        "G1 X40. Z0. F0.2\nStock Size X144. Y25. Z30.\nM98 P9101\nG1 X40. Z0.\nZ-5.\nM100\nM9\n"
+        "G1 X40. Z0. F0.2\nStock Size X144. Y25. Z30.\nM98 P9101\nG1 X40. Z0. F0.2\nZ-5.\nM100\nM9\n"
         "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   // UNIT/MM marks a SolidWorks CAM file (parser/dialect.cpp).
   posted sw =
