@@ -325,9 +325,9 @@ struct cl_comparison::impl {
         case 580:
         case 590:
         case 541: {
-          bool named = false;
-          for (const auto& o : offsets) named = named || offset_of(o);
-          foreign_offset = !named;  // G56 where the spindles name G54 and G55: another part frame
+          bool named = false, any = false;
+          for (const auto& o : offsets) named = named || offset_of(o), any = any || !o.empty();
+          foreign_offset = any && !named;  // G56 where the spindles name G54 and G55: another part frame
           break;
         }
         case 920:

@@ -163,3 +163,105 @@ TEST_CASE("cl comparison: what it passes over", "[analysis][cl_compare]") {
   CHECK(c.cmp.compared() == 1);
   CHECK(c.text().empty());
 }
+
+TEST_CASE("cl comparison: the tool and the spindle at a cut", "[analysis][cl_compare]") {
+  compared c("fanuc-0itd-twin", 1);
+  c.cmp.record({c.next++, tool_event{tool_source::loadtl, 3, 3}, 1}, false);
+  spindle_event s;
+  s.speed = 1000;
+  s.dir = rotation::cw;
+  c.cmp.record({c.next++, s, 1}, false);
+  c.feed(0.2, feed_mode::per_rev);
+  // T0505 on the template T{tool:02}{offset:02}: tool 5 where the CL loaded tool 3.
+  c.lines({"T0505", "G97 S1000 M3", "G0 X80. Z2."});
+  c.go(40, 2, true);
+  CHECK(c.text() ==
+        "job.cls:13:1: error: channel 1: the CL cuts with tool 3 here (the tool call at line 10), the "
+        "program with "
+        "tool 5 (T0505, read by the tool call T{tool:02}{offset:02})\n");
+  // The spindle at a cut: M4 where the CL says CLW.
+  compared d("fanuc-0itd-twin", 1);
+  d.cmp.record({d.next++, s, 1}, false);
+  d.feed(0.2, feed_mode::per_rev);
+  d.lines({"T0101", "G97 S1000 M4", "G0 X80. Z2."});
+  d.go(40, 2, true);
+  d.lines({"G1 Z-20. F0.2"});
+  d.go(40, -20);
+  CHECK(d.text() ==
+        "job.cls:13:1: error: channel 1: the CL cuts with the spindle turning clockwise at 1000 rpm here "
+        "(SPINDL at "
+        "line 10), but the program's main spindle turns counter-clockwise (M4)\n");
+  // 1200 rpm where the CL says 1000.
+  compared e("fanuc-0itd-twin", 1);
+  e.cmp.record({e.next++, s, 1}, false);
+  e.feed(0.2, feed_mode::per_rev);
+  e.lines({"T0101", "G97 S1200 M3", "G0 X80. Z2."});
+  e.go(40, 2, true);
+  e.lines({"G1 Z-20. F0.2"});
+  e.go(40, -20);
+  CHECK(e.text() ==
+        "job.cls:13:1: error: channel 1: the CL cuts with the spindle turning clockwise at 1000 rpm here "
+        "(SPINDL at "
+        "line 10), but the program's main spindle turns at S1200\n");
+}
+
+TEST_CASE("cl comparison: units, decimal points and the G91 a home block leaves", "[analysis][cl_compare]") {
+  // G20 in a metric program: every word in inches.
+  compared c("fanuc-0itd-twin", 1);
+  c.lines({"T0101", "G20", "G0 X44. Z2."});
+  c.go(22, 2, true);
+  CHECK(c.text() ==
+        "job.cls:10:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part "
+        "frame, mm): x 558.800 where the CL has 22.000 (536.800 mm off); z 50.800 where the CL has 2.000 "
+        "(48.800 mm "
+        "off), after the block `G0 X44. Z2.`\n");
+  // X44 without a point is 44 least increments: 0.044 mm of diameter.
+  compared d("fanuc-0itd-twin", 1);
+  d.lines({"T0101", "G0 X44 Z2."});
+  d.go(22, 2, true);
+  CHECK(d.text() ==
+        "job.cls:10:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part "
+        "frame, mm): x 0.022 where the CL has 22.000 (21.978 mm off), after the block `G0 X44 Z2.`\n");
+  // A home block that leaves G91: the next move's words are increments from the reference point.
+  compared e("fanuc-0itd-twin", 1);
+  e.lines({"G91 G28 U0. W0.", "T0101", "G0 X44. Z2."});
+  e.go(22, 2, true);
+  CHECK(
+      e.text() ==
+      "job.cls:10:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+      "part "
+      "frame, mm): X is where G28 at line 4 of the program left it, not at the CL's 22.000 (G91 is in force: "
+      "the "
+      "axis words after it are increments); Z is where G28 at line 4 of the program left it, not at the CL's "
+      "2.000 (G91 is in force: the axis words after it are increments), after the block `G0 X44. Z2.`\n");
+}
+
+TEST_CASE("cl comparison: a mill's tool length offset", "[analysis][cl_compare]") {
+  const std::string mill = std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml";
+  compared c(mill, 1);
+  c.lines({"G90 G17 G40 G49 G80", "T01 M6", "S1000 M3", "G0 X0. Y0. Z5."});
+  c.go(0, 5, true);
+  CHECK(c.text() ==
+        "job.cls:10:1: error: channel 1: the program moves Z with no tool length offset in force (G43 H..): "
+        "Z is "
+        "then the spindle's gauge line, one tool length below the CL's tip; give the channel a length offset "
+        "(channel.length_offset = \"G43 H{offset:02}\"), after the block `G0 X0. Y0. Z5.`\n");
+  compared d(mill, 1);
+  d.lines({"G90 G17 G40 G49 G80", "T01 M6", "S1000 M3", "G0 G43 H01 X0. Y0. Z5."});
+  d.go(0, 5, true);
+  CHECK(d.text().empty());
+  CHECK(d.cmp.compared() == 1);
+}
+
+TEST_CASE("cl comparison: a part frame it does not know is passed over", "[analysis][cl_compare]") {
+  // Offset data written (G10, #5223), a work offset no spindle names (G56): not followed.
+  for (const char* frame : {"G10 L2 P1 Z-5.", "#5223=-5.", "G56"}) {
+    compared c("fanuc-0itd-twin", 1);
+    c.lines({"T0101", frame, "G0 X80. Z2."});
+    c.go(10, 2, true);
+    CHECK(c.text().empty());
+    CHECK(c.cmp.passed_over() == 1);
+  }
+}
