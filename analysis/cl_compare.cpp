@@ -149,6 +149,7 @@ struct cl_comparison::impl {
   // Each kind of finding is reported once per channel (the first is the one to fix; a
   // systematic error would otherwise repeat at every record of a long job).
   bool said_length = false;
+  bool spindle_fine = false;  // the spindle held to the CL's since either last changed
   bool said_tip = false, said_rapid = false, said_feed = false, said_tool = false, said_spindle = false;
 
   void read_tool_call(const std::string& t) {
@@ -218,6 +219,7 @@ struct cl_comparison::impl {
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (!gms_only || (letters & gms)) {
       spindles.apply(words);
+      spindle_fine = false;
       // The workpiece spindle: its work offset (G55 for the sub) or its select code; a live
       // spindle's select code does not move the part.
       for (std::size_t i = 0; i < m.spindles.size(); ++i) {
@@ -455,6 +457,15 @@ struct cl_comparison::impl {
     ++compared;
     const double zs = work >= 0 && m.spindles[static_cast<std::size_t>(work)].reverse_z ? -1.0 : 1.0;
     const double tol = std::max(tip_tolerance, axis_half * 1.001);
+    // Most records are right: the words are read for a message only when one is not.
+    const auto fine = [&](const axis_state& a, double div, double want) {
+      return a.k == axis_state::kind::unknown ||
+             (a.k == axis_state::kind::known && std::abs(part(a, div) - want) <= tol);
+    };
+    const bool gauge = needs_length && !length_on && z.k == axis_state::kind::known;
+    if (fine(x, x_div, pos.x * cl_mm) && (!has_y || fine(y, zs, pos.y * cl_mm)) && !gauge &&
+        fine(z, zs, pos.z * cl_mm))
+      return compare_rest(e, rapid);
     std::string off;
     double worst = 0;
     auto check = [&](char name, const axis_state& a, double div, double want) {
@@ -475,7 +486,7 @@ struct cl_comparison::impl {
     };
     check('X', x, x_div, pos.x * cl_mm);
     if (has_y) check('Y', y, zs, pos.y * cl_mm);
-    if (needs_length && !length_on && z.k == axis_state::kind::known) {
+    if (gauge) {
       if (!said_length) {
         said_length = true;
         error(e,
@@ -492,6 +503,11 @@ struct cl_comparison::impl {
             fmt::format("the program does not put the tool tip on this record's point (the part frame, mm): "
                         "{}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+    compare_rest(e, rapid);
+  }
+
+  // The tool, and at a cut the spindle, rapid against feed and the feed.
+  void compare_rest(const event& e, bool rapid) {
     compare_tool(e);
     if (rapid || !moved) return;
     compare_spindle(e);
@@ -539,6 +555,7 @@ struct cl_comparison::impl {
   }
 
   void cl_spindle(const spindle_event& d, int line) {
+    spindle_fine = false;
     switch (d.mode) {
       case spindle_mode::off: cl_spin = 0; break;
       case spindle_mode::on:
@@ -575,7 +592,7 @@ struct cl_comparison::impl {
 
   // At a cut: the spindle the channel commanded last turns as the CL's SPINDL says.
   void compare_spindle(const event& e) {
-    if (said_spindle || cl_spin != 1) return;
+    if (said_spindle || cl_spin != 1 || spindle_fine) return;
     const int sp = spindles.current();
     if (sp < 0) return;
     const spindle_setting& s = spindles.setting(sp);
@@ -588,13 +605,15 @@ struct cl_comparison::impl {
     } else if ((s.turn == spindle_turn::cw) != cw) {
       wrong = fmt::format("turns {} (M{})", cw ? "counter-clockwise" : "clockwise", cw ? def.ccw : def.cw);
     } else if (cl_css && s.mode == speed_mode::rpm) {
-      return;  // a surface speed the writer turned into a rotating tool's rpm (its diameter)
+      spindle_fine = true;  // a surface speed the writer turned into a rotating tool's rpm (its diameter)
+      return;
     } else if (!cl_css && s.mode == speed_mode::css) {
       wrong = fmt::format("turns under constant surface speed ({} S{:g})", m.codes.css, s.speed);
     } else if (s.mode != speed_mode::unknown &&
                std::abs(s.speed - cl_speed) > std::max(0.5, cl_speed * 0.005)) {
       wrong = fmt::format("turns at S{:g}", s.speed);
     } else {
+      spindle_fine = true;
       return;
     }
     said_spindle = true;

@@ -4,18 +4,24 @@
 // and each CL record of the channel once its blocks are written, it follows the program as
 // the control reads it, from the text and the machine file alone (the G90/G91 mode, the
 // incremental U/W of a lathe, the diameter X, a mirrored turret, the sub spindle's reversed Z
-// read from its work offset or select code, the output units, G28/G30/G53, the feed mode and
-// F, the spindle speed and the clamp), and at every CL motion record (GOTO, GODLTA, the end
-// of a CIRCLE) holds what the machine would do to what the CL asked:
+// read from its work offset or select code, G20/G21 and the output units, words without a
+// decimal point in least increments, G28/G30/G53, a mill's length offset, the tool through the
+// channel's tool-call template, the feed mode and F, the spindles), and at every CL motion
+// record (GOTO, GODLTA, the end of a CIRCLE) holds what the machine would do to what the CL
+// asked:
 // - the tool tip in the part frame within 0.002 mm (or half the last written digit, when
-//   coarser); an axis at its reference point since a G28/G30/G53 is a finding;
-// - a CL feed move written as a rapid;
+//   coarser); an axis at its reference point since a G28/G30/G53 is a finding, and so is a
+//   mill's Z with no length offset in force (the gauge line);
+// - the tool the T word called;
+// - a rapid among the blocks of a CL feed move;
+// - at a cut, the spindle's direction and speed (rpm or CSS);
 // - the feed: in the same mode, F within 0.5 % (or half its last digit); in the other mode,
 //   F x rpm (or F / rpm) at the spindle's speed, CSS at the tip's diameter under its clamp.
 // Records it cannot follow yet are passed over, not guessed: a HEAD/BOTH copy, CL cycles,
 // and while the program has a canned cycle, polar or cylindrical interpolation, a rotated or
-// tilted frame, polar coordinates, inverse-time feed, a threading cycle, or a rotary-axis word
-// since the last tool call (a C axis, an indexing head) in force. Channels with a kinematic
+// tilted frame, polar coordinates, inverse-time feed, a threading cycle, a rotary-axis word
+// since the last tool call (a C axis, an indexing head), offsets written (G10, #5221=), a
+// coordinate setting or a work offset no spindle names in force. Channels with a kinematic
 // chain are not compared (their writer checks every point by the forward transform).
 #include <memory>
 #include <string>
