@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+
 #include <cstdint>
 #include <cstdlib>
 #include <utility>
@@ -115,6 +117,7 @@ struct cl_comparison::impl {
   int lines = 0;
   axis_state x, y, z;
   bool absolute = true;
+  int plane = 0;       // G17, G18, G19; 0 unknown
   int motion = -1;     // modal G0..G3, 32 for threading; -1 unknown
   bool cycle = false;  // a canned or lathe cycle
   bool polar = false, cylinder = false, frame = false, polar_coords = false, inverse_time = false;
@@ -148,7 +151,7 @@ struct cl_comparison::impl {
   long compared = 0, passed = 0;
   // Each kind of finding is reported once per channel (the first is the one to fix; a
   // systematic error would otherwise repeat at every record of a long job).
-  bool said_length = false;
+  bool said_length = false, said_arc = false;
   bool spindle_fine = false;  // the spindle held to the CL's since either last changed
   bool said_tip = false, said_rapid = false, said_feed = false, said_tool = false, said_spindle = false;
 
@@ -281,6 +284,9 @@ struct cl_comparison::impl {
           motion = g / 10;
           cycle = false;
           break;
+        case 170:
+        case 180:
+        case 190: plane = g / 10; break;
         case 320:
         case 330:
         case 340:
@@ -396,7 +402,10 @@ struct cl_comparison::impl {
         default: break;
       }
     }
-    // The axis words.
+    // The axis words (an arc's centre is measured from where the block starts).
+    const double start[3] = {x.value, y.value, z.value};
+    const bool start_known = x.k == axis_state::kind::known && z.k == axis_state::kind::known &&
+                             (!has_y || y.k == axis_state::kind::known || plane == 18);
     bool any = false;
     for (const nc_word& w : words) {
       axis_state* a = nullptr;
@@ -433,7 +442,57 @@ struct cl_comparison::impl {
         rapid_in_record = true;
         rapid_text.assign(text);
       }
+      note_arc(start, start_known);
     }
+  }
+
+  // The last arc block of a record: its sense and centre in the part frame.
+  struct nc_arc {
+    bool valid = false;
+    bool ccw = false;  // G3
+    int plane = 18;
+    double centre[3] = {0, 0, 0};  // part frame, mm; the plane's normal axis not used
+    bool centre_known = false;
+    double r = 0;  // R word (program units), 0: I/J/K given
+  } arc;
+
+  void note_arc(const double* start, bool start_known) {
+    arc.valid = (motion == 2 || motion == 3) && !cycle;
+    if (!arc.valid) return;
+    arc.ccw = motion == 3;
+    arc.plane = plane;
+    arc.r = 0;
+    double off[3] = {0, 0, 0};
+    bool given = false;
+    for (const nc_word& w : words) {
+      const int i = w.address == 'I'   ? 0
+                    : w.address == 'J' ? 1
+                    : w.address == 'K' ? 2
+                    : w.address == 'R' ? 3
+                                       : -1;
+      if (i < 0) continue;
+      if (!w.numeric) return void(arc.valid = false);
+      const double v = w.point ? w.number : w.number * increment;
+      if (i == 3) {
+        arc.r = v;
+      } else {
+        off[i] = v;
+        given = true;
+      }
+    }
+    arc.centre_known = given && start_known;
+    if (!arc.centre_known) return;
+    // I is a radius along the program's X even where X is a diameter: the centre in the part
+    // frame is the start plus the offsets, each turned as its axis is.
+    const double zs = z_sign();
+    const double sx = x_div < 0 ? -1.0 : 1.0;
+    arc.centre[0] = start[0] * out_mm / x_div + off[0] * out_mm * sx;
+    arc.centre[1] = (start[1] + off[1]) * out_mm * zs;
+    arc.centre[2] = (start[2] + off[2]) * out_mm * zs;
+  }
+
+  double z_sign() const {
+    return work >= 0 && m.spindles[static_cast<std::size_t>(work)].reverse_z ? -1.0 : 1.0;
   }
 
   // The part-frame coordinate of program axis `a` (`div`: program value per part-frame mm).
@@ -448,14 +507,15 @@ struct cl_comparison::impl {
     diags.report(std::move(d));
   }
 
-  void compare(const event& e, const vec3& pos, bool rapid, bool both) {
+  // Returns false when the record is passed over.
+  bool compare(const event& e, const vec3& pos, bool rapid, bool both) {
     if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || rotary || foreign_offset ||
         shifted) {
       ++passed;
-      return;
+      return false;
     }
     ++compared;
-    const double zs = work >= 0 && m.spindles[static_cast<std::size_t>(work)].reverse_z ? -1.0 : 1.0;
+    const double zs = z_sign();
     const double tol = std::max(tip_tolerance, axis_half * 1.001);
     // Most records are right: the words are read for a message only when one is not.
     const auto fine = [&](const axis_state& a, double div, double want) {
@@ -464,8 +524,10 @@ struct cl_comparison::impl {
     };
     const bool gauge = needs_length && !length_on && z.k == axis_state::kind::known;
     if (fine(x, x_div, pos.x * cl_mm) && (!has_y || fine(y, zs, pos.y * cl_mm)) && !gauge &&
-        fine(z, zs, pos.z * cl_mm))
-      return compare_rest(e, rapid);
+        fine(z, zs, pos.z * cl_mm)) {
+      compare_rest(e, rapid);
+      return true;
+    }
     std::string off;
     double worst = 0;
     auto check = [&](char name, const axis_state& a, double div, double want) {
@@ -504,6 +566,71 @@ struct cl_comparison::impl {
                         "{}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
     compare_rest(e, rapid);
+    return true;
+  }
+
+  // The last arc block of a CIRCLE record: its sense about the CL's circle axis, its centre (or
+  // its R: the radius, and negative for more than half a turn) within the tip's tolerance.
+  void compare_arc(const event& e, const arc_event& a) {
+    if (said_arc || !arc.valid || arc.plane == 0) return;
+    const double sx = x_div < 0 ? -1.0 : 1.0, zs = z_sign();
+    // The program's axis of turning in the part frame: det(M) M (sense x normal), M the
+    // diagonal (sx, zs, zs) from the program's frame to the part's.
+    const int axis = arc.plane == 17 ? 2 : arc.plane == 19 ? 0 : 1;
+    const double turn = (arc.ccw ? 1.0 : -1.0) * sx * (axis == 0 ? sx : zs);
+    const double sense = a.ccw ? 1.0 : -1.0;
+    const vec3 cl_axis{a.normal.x * sense, a.normal.y * sense, a.normal.z * sense};
+    const double along = axis == 0 ? cl_axis.x : axis == 1 ? cl_axis.y : cl_axis.z;
+    const double len = std::sqrt(cl_axis.x * cl_axis.x + cl_axis.y * cl_axis.y + cl_axis.z * cl_axis.z);
+    const char* g = arc.ccw ? "G3" : "G2";
+    if (len <= 0 || std::abs(along) < 0.999 * len) {
+      said_arc = true;
+      return error(
+          e, fmt::format("the CL's arc turns about ({:g},{:g},{:g}) here, the program's {} in G{} about "
+                         "its {} axis: `{}`",
+                         a.normal.x, a.normal.y, a.normal.z, g, arc.plane, "XYZ"[axis], move_text));
+    }
+    if (along * turn < 0) {
+      said_arc = true;
+      return error(
+          e, fmt::format("the CL's arc turns {} about ({:g},{:g},{:g}) here, the program's {} the other "
+                         "way round: `{}`",
+                         a.ccw ? "counter-clockwise" : "clockwise", a.normal.x, a.normal.y, a.normal.z, g,
+                         move_text));
+    }
+    const double tol = std::max(tip_tolerance, axis_half * 2.001);
+    const double c[3] = {a.center.x * cl_mm, a.center.y * cl_mm, a.center.z * cl_mm};
+    if (arc.r != 0) {
+      // The sweep about the CL's axis, from the start to the end (a whole turn when they meet).
+      const vec3 u{a.start.x - a.center.x, a.start.y - a.center.y, a.start.z - a.center.z};
+      const vec3 v{a.end.x - a.center.x, a.end.y - a.center.y, a.end.z - a.center.z};
+      const vec3 n{cl_axis.x / len, cl_axis.y / len, cl_axis.z / len};
+      const vec3 uxv{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+      double sweep = std::atan2(uxv.x * n.x + uxv.y * n.y + uxv.z * n.z, u.x * v.x + u.y * v.y + u.z * v.z);
+      if (sweep <= 1e-9) sweep += 2 * std::numbers::pi;
+      const double r = std::abs(arc.r) * out_mm, want = a.radius * cl_mm;
+      const bool major = sweep > std::numbers::pi + 1e-9;
+      if (std::abs(r - want) <= tol && (arc.r < 0) == major) return;
+      said_arc = true;
+      return error(
+          e, fmt::format("the CL's arc has a radius of {:.3f} mm over {:.1f} degrees here, the program's R "
+                         "{:g} ({}): `{}`",
+                         want, sweep * 180 / std::numbers::pi, arc.r,
+                         std::abs(r - want) > tol ? "another radius"
+                         : major                  ? "the short way round: more than half a turn needs R < 0"
+                                                  : "the long way round: R < 0 is more than half a turn",
+                         move_text));
+    }
+    if (!arc.centre_known) return;
+    double worst = 0;
+    for (int i = 0; i < 3; ++i)
+      if (i != axis) worst = std::max(worst, std::abs(arc.centre[i] - c[i]));
+    if (worst <= tol) return;
+    said_arc = true;
+    error(e, fmt::format(
+                 "the program's arc centre is {:.3f} mm from the CL's (x {:.3f} y {:.3f} z {:.3f} where the "
+                 "CL has x {:.3f} y {:.3f} z {:.3f}, the part frame in mm): `{}`",
+                 worst, arc.centre[0], arc.centre[1], arc.centre[2], c[0], c[1], c[2], move_text));
   }
 
   // The tool, and at a cut the spindle, rapid against feed and the feed.
@@ -648,12 +775,13 @@ struct cl_comparison::impl {
             if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta)
               compare(e, d.pos, d.rapid, both);
           } else if constexpr (std::is_same_v<T, arc_event>) {
-            compare(e, d.end, false, both);
+            if (compare(e, d.end, false, both)) compare_arc(e, d);
           }
         },
         e.data);
     moved = false;
     rapid_in_record = false;
+    arc.valid = false;
   }
 
   void units(unit_system u) { cl_mm = u == unit_system::inch ? 25.4 : 1.0; }

@@ -15,6 +15,7 @@
 // - the tool the T word called;
 // - a rapid among the blocks of a CL feed move;
 // - at a cut, the spindle's direction and speed (rpm or CSS);
+// - a CIRCLE's last arc block: its sense about the CL's axis, its centre or its R;
 // - the feed: in the same mode, F within 0.5 % (or half its last digit); in the other mode,
 //   F x rpm (or F / rpm) at the spindle's speed, CSS at the tip's diameter under its clamp.
 // Records it cannot follow yet are passed over, not guessed: a HEAD/BOTH copy, CL cycles,

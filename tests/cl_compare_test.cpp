@@ -265,3 +265,44 @@ TEST_CASE("cl comparison: a part frame it does not know is passed over", "[analy
     CHECK(c.cmp.passed_over() == 1);
   }
 }
+
+TEST_CASE("cl comparison: an arc's sense, centre and R", "[analysis][cl_compare]") {
+  // A quarter turn from x22 z-30 to x27 z-35 about x27 z-30, counter-clockwise about -Y: G2 on
+  // the upper turret in G18 (the Fanuc ZX plane, whose normal is +Y).
+  auto run = [](const char* block) {
+    compared c("fanuc-0itd-twin", 1);
+    c.feed(0.2, feed_mode::per_rev);
+    c.lines({"T0101", "G97 S1000 M3", "G0 X44. Z2."});
+    c.go(22, 2, true);
+    c.lines({"G1 Z-30. F0.2"});
+    c.go(22, -30);
+    c.lines({block});
+    arc_event a;
+    a.start = {22, 0, -30};
+    a.end = {27, 0, -35};
+    a.center = {27, 0, -30};
+    a.normal = {0, -1, 0};
+    a.radius = 5;
+    a.ccw = true;
+    c.cmp.record({c.next++, a, 1}, false);
+    return c.text();
+  };
+  CHECK(run("G2 X54. Z-35. I5. K0.").empty());
+  CHECK(run("G2 X54. Z-35. R5.").empty());
+  CHECK(run("G3 X54. Z-35. I5. K0.") ==
+        "job.cls:13:1: error: channel 1: the CL's arc turns counter-clockwise about (0,-1,0) here, the "
+        "program's G3 "
+        "the other way round: `G3 X54. Z-35. I5. K0.`\n");
+  CHECK(run("G2 X54. Z-35. I6. K0.") ==
+        "job.cls:13:1: error: channel 1: the program's arc centre is 1.000 mm from the CL's (x 28.000 y "
+        "0.000 z "
+        "-30.000 where the CL has x 27.000 y 0.000 z -30.000, the part frame in mm): `G2 X54. Z-35. I6. "
+        "K0.`\n");
+  CHECK(run("G2 X54. Z-35. R-5.") ==
+        "job.cls:13:1: error: channel 1: the CL's arc has a radius of 5.000 mm over 90.0 degrees here, the "
+        "program's R -5 (the long way round: R < 0 is more than half a turn): `G2 X54. Z-35. R-5.`\n");
+  CHECK(run("G17 G2 X54. Z-35. I5. J0.") ==
+        "job.cls:13:1: error: channel 1: the CL's arc turns about (0,-1,0) here, the program's G2 in G17 "
+        "about its "
+        "Z axis: `G17 G2 X54. Z-35. I5. J0.`\n");
+}
