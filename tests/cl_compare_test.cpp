@@ -179,30 +179,30 @@ TEST_CASE("cl comparison: the tool and the spindle at a cut", "[analysis][cl_com
         "job.cls:13:1: error: channel 1: the CL cuts with tool 3 here (the tool call at line 10), the "
         "program with "
         "tool 5 (T0505, read by the tool call T{tool:02}{offset:02})\n");
-  // The spindle at a cut: M4 where the CL says CLW.
-  compared d("fanuc-0itd-twin", 1);
-  d.cmp.record({d.next++, s, 1}, false);
-  d.feed(0.2, feed_mode::per_rev);
-  d.lines({"T0101", "G97 S1000 M4", "G0 X80. Z2."});
-  d.go(40, 2, true);
-  d.lines({"G1 Z-20. F0.2"});
-  d.go(40, -20);
-  CHECK(d.text() ==
+  // The spindle at a cut, the CL's SPINDL/RPM,1000,CLW against the program's spindle block.
+  auto cut_under = [&s](const char* spindle_block) {
+    compared d("fanuc-0itd-twin", 1);
+    d.cmp.record({d.next++, s, 1}, false);
+    d.feed(0.2, feed_mode::per_rev);
+    d.lines({"T0101", spindle_block, "G0 X80. Z2."});
+    d.go(40, 2, true);
+    d.lines({"G1 Z-20. F0.2"});
+    d.go(40, -20);
+    return d.text();
+  };
+  CHECK(cut_under("G97 S1000 M3").empty());
+  CHECK(cut_under("G97 S1000 M4") ==
         "job.cls:13:1: error: channel 1: the CL cuts with the spindle turning clockwise at 1000 rpm here "
         "(SPINDL at "
         "line 10), but the program's main spindle turns counter-clockwise (M4)\n");
-  // 1200 rpm where the CL says 1000.
-  compared e("fanuc-0itd-twin", 1);
-  e.cmp.record({e.next++, s, 1}, false);
-  e.feed(0.2, feed_mode::per_rev);
-  e.lines({"T0101", "G97 S1200 M3", "G0 X80. Z2."});
-  e.go(40, 2, true);
-  e.lines({"G1 Z-20. F0.2"});
-  e.go(40, -20);
-  CHECK(e.text() ==
+  CHECK(cut_under("G97 S1200 M3") ==
         "job.cls:13:1: error: channel 1: the CL cuts with the spindle turning clockwise at 1000 rpm here "
         "(SPINDL at "
         "line 10), but the program's main spindle turns at S1200\n");
+  CHECK(cut_under("G96 S1000 M3") ==
+        "job.cls:13:1: error: channel 1: the CL cuts with the spindle turning clockwise at 1000 rpm here "
+        "(SPINDL at "
+        "line 10), but the program's main spindle turns under constant surface speed (G96 S1000)\n");
 }
 
 TEST_CASE("cl comparison: units, decimal points and the G91 a home block leaves", "[analysis][cl_compare]") {
