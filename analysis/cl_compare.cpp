@@ -32,13 +32,6 @@ int code_g10(const std::string& code) {
   return w.size() == 1 && w[0].address == 'G' && w[0].numeric ? g10(w[0].number) : -1;
 }
 
-// Half the last written digit of a number as written ("0.15": 0.005; "150.": 0.5).
-double half_digit(std::string_view value) {
-  const std::size_t dot = value.find('.');
-  const std::size_t decimals = dot == std::string_view::npos ? 0 : value.size() - dot - 1;
-  return 0.5 * std::pow(10.0, -static_cast<double>(decimals));
-}
-
 // Where one axis is, as the program has left it.
 struct axis_state {
   enum class kind : unsigned char {
@@ -80,6 +73,23 @@ struct cl_comparison::impl {
     }
     gms_only = spindles.needs_gms();
     read_tool_call(ch.tool_call);
+    // The coolant codes, each kind's on and off: flood is codes.coolant_on (each block of it
+    // turns it on) and coolant_off, the others their [on, off] pairs.
+    for (const std::string& b : m.codes.coolant_on) coolant_codes.push_back({split_nc_words(b), 1});
+    coolant_codes.push_back({split_nc_words(m.codes.coolant_off), 0});
+    int kind = 2;
+    for (const auto* pair : {&m.codes.coolant_mist, &m.codes.coolant_through, &m.codes.coolant_air}) {
+      if (pair->size() == 2) {
+        coolant_codes.push_back({split_nc_words((*pair)[0]), kind});
+        coolant_codes.push_back({split_nc_words((*pair)[1]), 0});
+      }
+      ++kind;
+    }
+    for (auto& c : coolant_codes) {
+      for (nc_word& w : c.words) w.value = {};  // numbers only: the text they were split from is gone
+      for (const nc_word& w : c.words) coolant_letters |= nc_letter(w.address);
+    }
+
     needs_length = tool_m6 && !lathe;
     units(m.program.output_units == output_unit::inch);
 
@@ -109,6 +119,18 @@ struct cl_comparison::impl {
   // alone only preselects it.
   int tool_digits = -1;
   bool tool_m6 = false;
+  bool offset_in_call = false, offset_in_offset_call = false;  // {offset} after {tool}
+
+  // The coolant's codes and what each turns on (0: off; 1 flood, 2 mist, 3 through, 4 air).
+  struct coolant_code {
+    std::vector<nc_word> words;
+    int kind = 0;
+  };
+  std::vector<coolant_code> coolant_codes;
+  std::uint32_t coolant_letters = 0;
+  int nc_coolant = -1, cl_coolant = -1;  // -1: not given yet
+  int cl_coolant_line = 0;
+  std::string coolant_text;
 
   // The program as read so far.
   std::vector<nc_word> words;
@@ -128,8 +150,11 @@ struct cl_comparison::impl {
   bool shifted = false;          // offsets written (G10, #5221=), a coordinate setting: not known
   bool rapid_in_record = false;  // a block of this record moved in rapid
   std::string rapid_text;
-  int per_rev = -1;           // feed mode: 1 per revolution, 0 per minute, -1 unknown
-  double f = -1, f_half = 0;  // the F in force (program units), half its last digit
+  int per_rev = -1;    // feed mode: 1 per revolution, 0 per minute, -1 unknown
+  double f = -1;       // the F in force (program units)
+  long t_offset = -1;  // the offset the last T word gave (its digits after the tool's); -1 unknown
+  std::string s_expression, f_expression;  // S or F in force given as an expression (S[900*3])
+  std::string skip_text;                   // a block under block delete since the last record
   std::string f_text;
   int work = -1;          // the workpiece spindle: its Z may run against the CL's
   bool moved = false;     // a move since the last record
@@ -138,6 +163,9 @@ struct cl_comparison::impl {
 
   // The CL as read so far.
   int cl_tool = -1, cl_tool_line = 0;  // LOADTL / TURRET
+  int cl_offset = -1;                  // its offset (LOADTL/n,adj; the tool's number when none)
+  double cl_lead = -1;                 // THREAD/TURN's lead in mm while it is on; -1 off
+  double cl_clamp = 0;                 // SPINDL/...,MAXRPM under CSS; 0 none
   // The CL's spindle: -1 not given, 0 off, 1 turning; its speed in rpm or (css) m/min.
   int cl_spin = -1;
   bool cl_css = false;
@@ -151,7 +179,10 @@ struct cl_comparison::impl {
   long compared = 0, passed = 0;
   // Each kind of finding is reported once per channel (the first is the one to fix; a
   // systematic error would otherwise repeat at every record of a long job).
-  bool said_length = false, said_arc = false;
+  bool said_length = false, said_arc = false, said_coolant = false, said_skip = false,
+       said_expression = false;
+  bool said_offset = false, said_clamp = false;
+  bool coolant_fine = false;  // the coolant held to the CL's since either last changed
   bool spindle_fine = false;  // the spindle held to the CL's since either last changed
   bool said_tip = false, said_rapid = false, said_feed = false, said_tool = false, said_spindle = false;
 
@@ -173,6 +204,8 @@ struct cl_comparison::impl {
       return;
     }
     tool_digits = digits;
+    offset_in_call = t.find("{offset") != std::string::npos;
+    offset_in_offset_call = ch.offset_call.find("{offset") != std::string::npos;
     for (const nc_word& w : split_nc_words(t))
       if (w.address == 'M' && w.numeric && w.number == 6) tool_m6 = true;
   }
@@ -212,6 +245,14 @@ struct cl_comparison::impl {
   void line(std::string_view text) {
     ++lines;
     const std::uint32_t letters = split_nc_words(text, words);
+    // A block under block delete (`/G0 X44. Z2.`) runs or not as the operator's switch says (a
+    // wait or another M code under it is the checker's).
+    constexpr std::uint32_t skip_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
+                                           nc_letter('W') | nc_letter('G') | nc_letter('F') | nc_letter('S') |
+                                           nc_letter('T');
+    if (const std::size_t at = text.find_first_not_of(" \t");
+        at != std::string_view::npos && text[at] == '/' && skip_text.empty() && (letters & skip_letters) != 0)
+      skip_text.assign(text);
     if (text.find('#') != std::string_view::npos)
       for (const macro_use& u : macro_uses(text))
         if (u.write && (u.number < 0 || (u.number >= 2500 && u.number <= 2806) ||
@@ -233,7 +274,14 @@ struct cl_comparison::impl {
             if (w.address == 'M' && w.numeric && w.number == *s.select) work = static_cast<int>(i);
       }
     }
-    bool not_a_move = false, home = false, machine = false, setting = false;
+    if (letters & coolant_letters)
+      for (const coolant_code& c : coolant_codes)
+        if (offset_of(c.words)) {
+          nc_coolant = c.kind;
+          coolant_text.assign(text);
+          coolant_fine = false;
+        }
+    bool not_a_move = false, home = false, machine = false, setting = false, m6 = false;
     std::string home_why;
     for (const nc_word& w : words) {
       if (w.address == 'T') {
@@ -241,26 +289,46 @@ struct cl_comparison::impl {
         // coordinates stay those of the tip.
         rotary = false;
         if (tool_digits >= 0 && w.numeric && w.number >= 0) {
-          t_pending =
-              static_cast<long>(w.number) / static_cast<long>(std::lround(std::pow(10.0, tool_digits)));
+          const long scale = std::lround(std::pow(10.0, tool_digits));
+          const long t = static_cast<long>(w.number);
+          // The offset: the digits after the tool's, where the call writes them ({offset}), or
+          // a T alone where the channel's offset call does (M6 T0700, then T0707).
+          const bool change = !tool_m6 || has_word(words, 'M', 6);
+          if (change) {
+            t_pending = t / scale;
+            t_offset = offset_in_call ? t % scale : -1;
+          } else if (offset_in_offset_call) {
+            t_offset = t % scale;
+          } else {
+            t_pending = t / scale;  // a preselection: the tool changes at M6
+          }
           t_text.assign("T").append(w.value);
           if (!tool_m6) t_active = t_pending;
         } else {
-          t_pending = t_active = -1;  // T#1, or a template the tool is not read from
+          t_pending = t_active = t_offset = -1;  // T#1, or a template the tool is not read from
         }
         continue;
       }
       if (w.address == 'M' && w.numeric && w.number == 6 && tool_m6) {
-        t_active = t_pending;
+        m6 = true;  // the block's T, wherever it stands in the block, is the tool changed to
+        continue;
+      }
+      if (w.address == 'S') {
+        // An expression's speed is known only when the block runs.
+        if (w.numeric)
+          s_expression.clear();
+        else
+          s_expression.assign("S").append(w.value);
         continue;
       }
       if (w.address == 'F') {
         if (w.numeric) {
           f = w.number;
-          f_half = half_digit(w.value);
           f_text.assign("F").append(w.value);
+          f_expression.clear();
         } else {
           f = -1;
+          f_expression.assign("F").append(w.value);  // the feed is known only when the block runs
         }
         continue;
       }
@@ -402,6 +470,7 @@ struct cl_comparison::impl {
         default: break;
       }
     }
+    if (m6) t_active = t_pending;
     // The axis words (an arc's centre is measured from where the block starts).
     const double start[3] = {x.value, y.value, z.value};
     const bool start_known = x.k == axis_state::kind::known && z.k == axis_state::kind::known &&
@@ -636,8 +705,30 @@ struct cl_comparison::impl {
   // The tool, and at a cut the spindle, rapid against feed and the feed.
   void compare_rest(const event& e, bool rapid) {
     compare_tool(e);
+    if (!skip_text.empty() && !said_skip) {
+      said_skip = true;
+      error(e, fmt::format("the program has a block under block delete before this record (`{}`): the "
+                           "operator's switch decides whether it runs, so where the tool is here depends "
+                           "on it; write it without the '/'",
+                           skip_text));
+    }
     if (rapid || !moved) return;
     compare_spindle(e);
+    compare_coolant(e);
+    for (const std::string* x : {&s_expression, &f_expression})
+      if (!x->empty() && !said_expression) {
+        said_expression = true;
+        error(e, fmt::format("the program cuts here under {}, a value known only when the block runs: the "
+                             "comparison with the CL cannot hold it to the CL's {}; write the number",
+                             *x, x == &s_expression ? "spindle speed" : "feed"));
+      }
+    // A threading pass (G32): its F is the lead, which THREAD/TURN gives.
+    if (motion == 32 && cl_lead > 0 && f > 0 && !said_feed &&
+        std::abs(f * out_mm - cl_lead) > std::max(1e-4 * out_mm, cl_lead * 1e-4)) {
+      said_feed = true;
+      error(e, fmt::format("the CL threads with a lead of {:g} mm here, the program's G32 with {:g} mm ({})",
+                           cl_lead, f * out_mm, f_text));
+    }
     if (rapid_in_record)
       return said_rapid
                  ? void()
@@ -651,8 +742,11 @@ struct cl_comparison::impl {
 
   void compare_feed(const event& e) {
     if (said_feed) return;
-    const double f_mm = f * out_mm, half = f_half * out_mm;
     const bool nc_rev = per_rev == 1;
+    // The slack: half the last digit the post writes a feed with (4 decimals per revolution, 1
+    // per minute, one more in inches), not the digits a block happens to have: F1. for 0.5.
+    const double f_mm = f * out_mm,
+                 half = 0.5 * std::pow(10.0, -((nc_rev ? 4 : 1) + (inch ? 1 : 0))) * out_mm;
     if (nc_rev == cl_per_rev) {
       if (std::abs(f_mm - cl_feed) <= std::max(feed_tolerance * cl_feed, half * 1.001)) return;
       return feed_error(e, f_mm, 0);
@@ -701,6 +795,7 @@ struct cl_comparison::impl {
                    : inch                        ? d.speed / 0.3048
                                                  : d.speed;
         cl_dir = d.dir == rotation::none ? rotation::cw : d.dir;
+        cl_clamp = d.max_rpm.value_or(0);
         break;
       default:
         cl_spin = -1;  // ORIENT, LOCK: not followed
@@ -709,12 +804,40 @@ struct cl_comparison::impl {
     cl_spin_line = line;
   }
 
+  void compare_coolant(const event& e) {
+    if (said_coolant || coolant_fine || cl_coolant < 0 || nc_coolant < 0) return;
+    if (cl_coolant == nc_coolant) {
+      coolant_fine = true;
+      return;
+    }
+    said_coolant = true;
+    static constexpr const char* kinds[] = {"off", "flood", "mist", "through the tool", "air"};
+    error(e, fmt::format(
+                 "the CL cuts with the coolant {} here (COOLNT at line {}), the program with it {} (`{}`)",
+                 kinds[cl_coolant], cl_coolant_line, kinds[nc_coolant], coolant_text));
+  }
+
   void compare_tool(const event& e) {
-    if (said_tool || cl_tool < 0 || t_active < 0 || t_active == cl_tool) return;
-    said_tool = true;
-    error(e, fmt::format("the CL cuts with tool {} here (the tool call at line {}), the program with tool {} "
+    if (cl_tool < 0 || t_active < 0) return;
+    if (t_active != cl_tool) {
+      if (said_tool) return;
+      said_tool = true;
+      return error(
+          e, fmt::format("the CL cuts with tool {} here (the tool call at line {}), the program with tool {} "
                          "({}, read by the tool call {})",
                          cl_tool, cl_tool_line, t_active, t_text, ch.tool_call));
+    }
+    // The offset the T word gave: 0 cancels the tool's geometry (the tip runs at the turret's
+    // reference point) unless the machine's tool table applies it (channel.offset_zero).
+    if (said_offset || t_offset < 0 || t_offset == cl_offset || (t_offset == 0 && ch.offset_zero)) return;
+    said_offset = true;
+    error(e, fmt::format(
+                 "the CL cuts with tool {} on offset {} here (the tool call at line {}), the program on "
+                 "offset {} ({}){}",
+                 cl_tool, cl_offset, cl_tool_line, t_offset, t_text,
+                 t_offset == 0 ? ": offset 0 cancels the tool's offset, and the tip runs where the turret's "
+                                 "reference point is"
+                               : ""));
   }
 
   // At a cut: the spindle the channel commanded last turns as the CL's SPINDL says.
@@ -736,9 +859,17 @@ struct cl_comparison::impl {
       return;
     } else if (!cl_css && s.mode == speed_mode::css) {
       wrong = fmt::format("turns under constant surface speed ({} S{:g})", m.codes.css, s.speed);
-    } else if (s.mode != speed_mode::unknown &&
+    } else if ((s.mode != speed_mode::unknown || (!cl_css && m.codes.rpm.empty() && m.codes.css.empty())) &&
                std::abs(s.speed - cl_speed) > std::max(0.5, cl_speed * 0.005)) {
+      // (A machine without speed-mode codes turns at the S it was given: an rpm.)
       wrong = fmt::format("turns at S{:g}", s.speed);
+    } else if (cl_css && s.mode == speed_mode::css && (cl_clamp > 0 || def.max_rpm > 0) &&
+               (s.clamp <= 0 || s.clamp > (cl_clamp > 0 ? cl_clamp : def.max_rpm) + 0.5)) {
+      // Under CSS the clamp holds the rpm near the centre: the CL's MAXRPM, else the spindle's.
+      const double want = cl_clamp > 0 ? cl_clamp : def.max_rpm;
+      wrong = s.clamp <= 0
+                  ? fmt::format("has no clamp, where the CL holds it to {:g} rpm", want)
+                  : fmt::format("is clamped at {:g} rpm, where the CL holds it to {:g}", s.clamp, want);
     } else {
       spindle_fine = true;
       return;
@@ -756,18 +887,31 @@ struct cl_comparison::impl {
         [&](const auto& d) {
           using T = std::decay_t<decltype(d)>;
           if constexpr (std::is_same_v<T, tool_event>) {
-            if (!d.preselect) cl_tool = d.tool, cl_tool_line = e.line;
+            if (!d.preselect) cl_tool = d.tool, cl_tool_line = e.line, cl_offset = d.offset.value_or(d.tool);
           } else if constexpr (std::is_same_v<T, spindle_event>) {
             cl_spindle(d, e.line);
+          } else if constexpr (std::is_same_v<T, thread_event>) {
+            cl_lead = d.on ? d.lead * cl_mm : -1;
+          } else if constexpr (std::is_same_v<T, coolant_event>) {
+            const std::string& k = d.mode;
+            cl_coolant = k == "OFF"                  ? 0
+                         : k == "ON" || k == "FLOOD" ? 1
+                         : k == "MIST"               ? 2
+                         : k == "THRU"               ? 3
+                         : k == "AIR"                ? 4
+                                                     : -1;
+            cl_coolant_line = e.line;
+            coolant_fine = false;
           } else if constexpr (std::is_same_v<T, feed_event>) {
             cl_per_rev = d.mode == feed_mode::per_rev;
             cl_feed = d.mode == feed_mode::inverse_time
                           ? -1
                           : d.value * (d.units == unit_system::inch ? 25.4 : 1.0);
           } else if constexpr (std::is_same_v<T, cycle_event>) {
+            // The writer starts a cycle at its type and ends it at OFF; ON and INIT change nothing.
             if (d.type == "OFF")
               cl_cycle = false;
-            else if (d.type != "INIT")
+            else if (d.type != "INIT" && d.type != "ON")
               cl_cycle = true;
           } else if constexpr (std::is_same_v<T, units_event>) {
             units(d.units);
@@ -793,8 +937,18 @@ struct cl_comparison::impl {
     inch = in_inch;
     out_mm = inch ? 25.4 : 1.0;
     const int decimals = inch ? m.program.decimals_inch : m.program.decimals_metric;
-    increment = std::pow(10.0, -decimals);
-    axis_half = 0.5 * increment * out_mm;
+    axis_half = 0.5 * std::pow(10.0, -decimals) * out_mm;
+    // A machine file that writes whole numbers without their point (trailing_point = false)
+    // is for a control that reads them as whole units (Fanuc parameter 3401#0 DPI = 1,
+    // calculator-type input); elsewhere a number without a point counts the control's least
+    // increment, 0.001 mm or 0.0001 inch (increment system IS-B), whatever the post's decimals.
+    increment = !m.program.trailing_point ? 1.0 : inch ? 1e-4 : 1e-3;
+  }
+
+  static bool has_word(const std::vector<nc_word>& ws, char address, double number) {
+    for (const nc_word& w : ws)
+      if (w.address == address && w.numeric && w.number == number) return true;
+    return false;
   }
 
   static bool any_axis(const std::vector<nc_word>& ws) {
