@@ -842,7 +842,7 @@ struct cl_comparison::impl {
 
   // At a cut: the spindle the channel commanded last turns as the CL's SPINDL says.
   void compare_spindle(const event& e) {
-    if (said_spindle || cl_spin != 1 || spindle_fine) return;
+    if (said_spindle || cl_spin != 1 || spindle_fine || !s_expression.empty()) return;
     const int sp = spindles.current();
     if (sp < 0) return;
     const spindle_setting& s = spindles.setting(sp);

@@ -306,3 +306,81 @@ TEST_CASE("cl comparison: an arc's sense, centre and R", "[analysis][cl_compare]
         "about its "
         "Z axis: `G17 G2 X54. Z-35. I5. J0.`\n");
 }
+
+TEST_CASE("cl comparison: the second attack's ways past it", "[analysis][cl_compare]") {
+  spindle_event s;
+  s.speed = 1000;
+  s.dir = rotation::cw;
+  // A cut after `lines`, on tool 3 offset 3 at 1000 rpm, coolant flood, 0.2 mm/rev.
+  auto cut_after = [&s](std::initializer_list<const char*> lines, const char* machine = "fanuc-0itd-twin") {
+    compared c(machine, 1);
+    c.cmp.record({c.next++, tool_event{tool_source::loadtl, 3, 3}, 1}, false);
+    c.cmp.record({c.next++, s, 1}, false);
+    c.cmp.record({c.next++, coolant_event{"FLOOD", ""}, 1}, false);
+    c.feed(0.2, feed_mode::per_rev);
+    c.lines(lines);
+    c.go(40, 2, true);
+    c.lines({"G1 Z-20. F0.2"});
+    c.go(40, -20);
+    return c.text();
+  };
+  CHECK(cut_after({"T0303", "G97 S1000 M3", "M8", "G0 X80. Z2."}).empty());
+  CHECK(
+      cut_after({"T0300", "G97 S1000 M3", "M8", "G0 X80. Z2."}) ==
+      "job.cls:14:1: error: channel 1: the CL cuts with tool 3 on offset 3 here (the tool call at line 10), "
+      "the "
+      "program on offset 0 (T0300): offset 0 cancels the tool's offset, and the tip runs where the turret's "
+      "reference point is\n");
+  CHECK(cut_after({"T0303", "G97 S1000 M3", "G0 X80. Z2."}).empty());  // no coolant code yet: not known
+  CHECK(cut_after({"T0303", "G97 S1000 M3", "M8", "M9", "G0 X80. Z2."}) ==
+        "job.cls:15:1: error: channel 1: the CL cuts with the coolant flood here (COOLNT at line 12), the "
+        "program "
+        "with it off (`M9`)\n");
+  CHECK(cut_after({"T0303", "G97 S[1000] M3", "M8", "G0 X80. Z2."}) ==
+        "job.cls:15:1: error: channel 1: the program cuts here under S[1000], a value known only when the "
+        "block "
+        "runs: the comparison with the CL cannot hold it to the CL's spindle speed; write the number\n");
+  CHECK(cut_after({"T0303", "G97 S1000 M3", "M8", "/G0 X80. Z2."}) ==
+        "job.cls:14:1: error: channel 1: the program has a block under block delete before this record (`/G0 "
+        "X80. "
+        "Z2.`): the operator's switch decides whether it runs, so where the tool is here depends on it; "
+        "write it "
+        "without the '/'\n");
+}
+
+TEST_CASE("cl comparison: the CSS clamp, a thread's lead, M6 T in one block", "[analysis][cl_compare]") {
+  compared c("fanuc-0itd-twin", 1);
+  spindle_event css;
+  css.mode = spindle_mode::smm;
+  css.speed = 200;
+  css.dir = rotation::cw;
+  css.max_rpm = 1500;
+  c.cmp.record({c.next++, css, 1}, false);
+  c.feed(0.2, feed_mode::per_rev);
+  c.lines({"T0101", "G50 S1500", "G96 S200 M3", "G0 X80. Z2.", "G50 S4000"});
+  c.go(40, 2, true);
+  c.lines({"G1 Z-20. F0.2"});
+  c.go(40, -20);
+  CHECK(c.text() ==
+        "job.cls:13:1: error: channel 1: the CL cuts with the spindle turning clockwise at 200 m/min here "
+        "(SPINDL at "
+        "line 10), but the program's main spindle is clamped at 4000 rpm, where the CL holds it to 1500\n");
+  // THREAD/TURN,LEAD,1.5: the G32 pass's F is the lead.
+  compared t("fanuc-0itd-twin", 1);
+  t.cmp.record({t.next++, thread_event{true, 1.5, 1}, 1}, false);
+  t.lines({"T0101", "G0 X80. Z2."});
+  t.go(40, 2, true);
+  t.lines({"G32 Z-20. F2."});
+  t.go(40, -20);
+  CHECK(t.text() ==
+        "job.cls:12:1: error: channel 1: the CL threads with a lead of 1.5 mm here, the program's G32 with 2 "
+        "mm "
+        "(F2.)\n");
+  // `M6 T02`: the control changes to tool 2, wherever the T stands in the block.
+  const std::string mill = std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml";
+  compared m(mill, 1);
+  m.cmp.record({m.next++, tool_event{tool_source::loadtl, 2, 2}, 1}, false);
+  m.lines({"G90 G17 G40 G49 G80", "M6 T02", "G0 G43 H02 X0. Y0. Z5."});
+  m.go(0, 5, true);
+  CHECK(m.text().empty());
+}
