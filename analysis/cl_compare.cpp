@@ -108,6 +108,7 @@ struct cl_comparison::impl {
   bool lathe = true, inch = false, has_y = false, u_incremental = false, w_incremental = false;
   bool g90_modes = false;  // G90/G91 are the absolute and incremental modes (not lathe cycles)
   double out_mm = 1, axis_half = 0.0005, increment = 0.001;
+  double feed_half[2] = {0.05, 0.00005};  // half the feed's last digit, per minute and per revolution, in mm
   int per_rev_g = 990, per_min_g = 980;
   std::vector<std::vector<nc_word>> offsets;  // each spindle's work offset, split
   std::vector<bool> live;                     // each spindle: some channel's live spindle
@@ -250,8 +251,9 @@ struct cl_comparison::impl {
     constexpr std::uint32_t skip_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
                                            nc_letter('W') | nc_letter('G') | nc_letter('F') | nc_letter('S') |
                                            nc_letter('T');
-    if (const std::size_t at = text.find_first_not_of(" \t");
-        at != std::string_view::npos && text[at] == '/' && skip_text.empty() && (letters & skip_letters) != 0)
+    std::size_t at = 0;
+    while (at < text.size() && (text[at] == ' ' || text[at] == '\t')) ++at;
+    if (at < text.size() && text[at] == '/' && skip_text.empty() && (letters & skip_letters) != 0)
       skip_text.assign(text);
     if (text.find('#') != std::string_view::npos)
       for (const macro_use& u : macro_uses(text))
@@ -745,8 +747,7 @@ struct cl_comparison::impl {
     const bool nc_rev = per_rev == 1;
     // The slack: half the last digit the post writes a feed with (4 decimals per revolution, 1
     // per minute, one more in inches), not the digits a block happens to have: F1. for 0.5.
-    const double f_mm = f * out_mm,
-                 half = 0.5 * std::pow(10.0, -((nc_rev ? 4 : 1) + (inch ? 1 : 0))) * out_mm;
+    const double f_mm = f * out_mm, half = feed_half[nc_rev ? 1 : 0];
     if (nc_rev == cl_per_rev) {
       if (std::abs(f_mm - cl_feed) <= std::max(feed_tolerance * cl_feed, half * 1.001)) return;
       return feed_error(e, f_mm, 0);
@@ -938,6 +939,8 @@ struct cl_comparison::impl {
     out_mm = inch ? 25.4 : 1.0;
     const int decimals = inch ? m.program.decimals_inch : m.program.decimals_metric;
     axis_half = 0.5 * std::pow(10.0, -decimals) * out_mm;
+    for (int rev = 0; rev < 2; ++rev)
+      feed_half[rev] = 0.5 * std::pow(10.0, -((rev ? 4 : 1) + (inch ? 1 : 0))) * out_mm;
     // A machine file that writes whole numbers without their point (trailing_point = false)
     // is for a control that reads them as whole units (Fanuc parameter 3401#0 DPI = 1,
     // calculator-type input); elsewhere a number without a point counts the control's least
