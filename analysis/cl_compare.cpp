@@ -61,6 +61,16 @@ struct cl_comparison::impl {
       for (const nc_word& w : split_nc_words(b))
         if (w.address == 'G' && w.numeric && (g10(w.number) == 900 || g10(w.number) == 910)) g90_modes = true;
     if (!lathe) g90_modes = true;
+    // G-code system C names its units G70/G71: a header that gives one of them and not G20/G21.
+    bool g7071 = false, g2021 = false;
+    for (const std::string& b : m.program.header)
+      for (const nc_word& w : split_nc_words(b))
+        if (w.address == 'G' && w.numeric) {
+          const int g = g10(w.number);
+          g7071 = g7071 || g == 700 || g == 710;
+          g2021 = g2021 || g == 200 || g == 210;
+        }
+    system_c = g7071 && !g2021;
     per_rev_g = code_g10(m.codes.feed_per_rev);
     per_min_g = code_g10(m.codes.feed_per_min);
 
@@ -91,6 +101,8 @@ struct cl_comparison::impl {
     }
 
     needs_length = tool_m6 && !lathe;
+    if (ch.length_offset.find("H{offset") != std::string::npos) h_from = 1;
+    if (ch.length_offset.find("H{tool") != std::string::npos) h_from = 0;
     units(m.program.output_units == output_unit::inch);
 
     for (const auto& o : offsets)
@@ -151,9 +163,13 @@ struct cl_comparison::impl {
   bool shifted = false;          // offsets written (G10, #5221=), a coordinate setting: not known
   bool rapid_in_record = false;  // a block of this record moved in rapid
   std::string rapid_text;
-  int per_rev = -1;    // feed mode: 1 per revolution, 0 per minute, -1 unknown
-  double f = -1;       // the F in force (program units)
-  long t_offset = -1;  // the offset the last T word gave (its digits after the tool's); -1 unknown
+  int per_rev = -1;  // feed mode: 1 per revolution, 0 per minute, -1 unknown
+  double f = -1;     // the F in force (program units)
+  int h_from = -1;   // the length offset's H is the CL's offset (1) or tool (0); -1 unknown
+  long h_word = -1;  // a mill's last H word (its length offset's register); -1 none read
+  std::string h_text;
+  bool system_c = false;  // G-code system C: G70/G71 are the units, G20/G21 cycles
+  long t_offset = -1;     // the offset the last T word gave (its digits after the tool's); -1 unknown
   std::string s_expression, f_expression;  // S or F in force given as an expression (S[900*3])
   std::string skip_text;                   // a block under block delete since the last record
   std::string f_text;
@@ -167,6 +183,7 @@ struct cl_comparison::impl {
   int cl_offset = -1;                  // its offset (LOADTL/n,adj; the tool's number when none)
   double cl_lead = -1;                 // THREAD/TURN's lead in mm while it is on; -1 off
   double cl_clamp = 0;                 // SPINDL/...,MAXRPM under CSS; 0 none
+  int cl_spin_index = -1;              // the spindle SPINDL names (MAIN, SUB, LIVE); -1 none
   // The CL's spindle: -1 not given, 0 off, 1 turning; its speed in rpm or (css) m/min.
   int cl_spin = -1;
   bool cl_css = false;
@@ -323,6 +340,11 @@ struct cl_comparison::impl {
           s_expression.assign("S").append(w.value);
         continue;
       }
+      if (w.address == 'H' && needs_length) {
+        h_word = w.numeric ? static_cast<long>(w.number) : -1;
+        h_text.assign("H").append(w.value);
+        continue;
+      }
       if (w.address == 'F') {
         if (w.numeric) {
           f = w.number;
@@ -366,6 +388,16 @@ struct cl_comparison::impl {
         case 800: cycle = false; break;
         case 700:
         case 710:
+          // G-code system C: G70 inch, G71 metric (its lathe cycles are G72-G78).
+          if (system_c)
+            units(g == 700);
+          else
+            cycle = true;
+          break;
+        case 770:
+        case 780:
+          if (system_c) cycle = true;
+          break;
         case 720:
         case 730:
         case 740:
@@ -390,11 +422,16 @@ struct cl_comparison::impl {
           break;
         case 910: absolute = false; break;  // system A has no G91 (an alarm); B and C: increments
         case 200:
-        case 210: units(g == 200); break;
+        case 210:
+          if (system_c)
+            cycle = true;  // system C's G20, G21: the OD and threading cycles
+          else
+            units(g == 200);
+          break;
         case 430:
         case 434:
-        case 435:
-        case 440: length_on = true; break;
+        case 435: length_on = true; break;
+        case 440: length_on = false; break;  // G44 subtracts the offset: never the tip
         case 490: length_on = false; break;
         case 540:
         case 550:
@@ -464,11 +501,16 @@ struct cl_comparison::impl {
               x_div = std::copysign(c.number == 0 ? 1.0 : 2.0, x_div);
           not_a_move = true;
           break;
+        case 270:
+        case 290:
+          // A reference point check or a return from it: the named axes rapid to the point,
+          // then where the control leaves them (G29 moves on from the reference point).
+          home = true;
+          home_why = g == 270 ? "G27" : "G29";
+          break;
         case 40:
         case 650:
-        case 661:
-        case 270:
-        case 290: not_a_move = true; break;
+        case 661: not_a_move = true; break;
         default: break;
       }
     }
@@ -504,6 +546,12 @@ struct cl_comparison::impl {
         a->k = axis_state::kind::unknown;
       else
         set_axis(*a, w, incremental);
+    }
+    // A reference return, check or machine-coordinate block moves its axes at rapid: inside a
+    // feed move that is a rapid through the cut (G28 Z-30. passes its intermediate point).
+    if (any && !not_a_move && (home || machine) && !rapid_in_record) {
+      rapid_in_record = true;
+      rapid_text.assign(text);
     }
     if (any && !not_a_move && !home && !machine && !setting) {
       moved = true;
@@ -593,7 +641,7 @@ struct cl_comparison::impl {
       return a.k == axis_state::kind::unknown ||
              (a.k == axis_state::kind::known && std::abs(part(a, div) - want) <= tol);
     };
-    const bool gauge = needs_length && !length_on && z.k == axis_state::kind::known;
+    const bool gauge = needs_length && (!length_on || h_word == 0) && z.k == axis_state::kind::known;
     if (fine(x, x_div, pos.x * cl_mm) && (!has_y || fine(y, zs, pos.y * cl_mm)) && !gauge &&
         fine(z, zs, pos.z * cl_mm)) {
       compare_rest(e, rapid);
@@ -797,6 +845,12 @@ struct cl_comparison::impl {
                                                  : d.speed;
         cl_dir = d.dir == rotation::none ? rotation::cw : d.dir;
         cl_clamp = d.max_rpm.value_or(0);
+        cl_spin_index = -1;
+        if (!d.spindle.empty()) {
+          const spindle_def* named =
+              m.spindle(d.spindle == "live" ? std::string_view(ch.live_spindle) : d.spindle);
+          if (named) cl_spin_index = static_cast<int>(named - m.spindles.data());
+        }
         break;
       default:
         cl_spin = -1;  // ORIENT, LOCK: not followed
@@ -828,6 +882,18 @@ struct cl_comparison::impl {
                          "({}, read by the tool call {})",
                          cl_tool, cl_tool_line, t_active, t_text, ch.tool_call));
     }
+    // A mill's length offset register against the CL's, as the channel's length_offset writes
+    // it (G43 H{offset:02}: the CL's offset; H{tool}: its tool).
+    if (length_on && h_word > 0 && !said_offset && h_from >= 0) {
+      const long want = h_from == 1 ? cl_offset : cl_tool;
+      if (want >= 0 && h_word != want) {
+        said_offset = true;
+        return error(e,
+                     fmt::format("the CL cuts with tool {} on offset {} here (the tool call at line {}), the "
+                                 "program with the length offset {} (channel.length_offset {})",
+                                 cl_tool, cl_offset, cl_tool_line, h_text, ch.length_offset));
+      }
+    }
     // The offset the T word gave: 0 cancels the tool's geometry (the tip runs at the turret's
     // reference point) unless the machine's tool table applies it (channel.offset_zero).
     if (said_offset || t_offset < 0 || t_offset == cl_offset || (t_offset == 0 && ch.offset_zero)) return;
@@ -844,7 +910,8 @@ struct cl_comparison::impl {
   // At a cut: the spindle the channel commanded last turns as the CL's SPINDL says.
   void compare_spindle(const event& e) {
     if (said_spindle || cl_spin != 1 || spindle_fine || !s_expression.empty()) return;
-    const int sp = spindles.current();
+    // The spindle the CL names (SPINDL/...,MAIN), else the one the channel commanded last.
+    const int sp = cl_spin_index >= 0 ? cl_spin_index : spindles.current();
     if (sp < 0) return;
     const spindle_setting& s = spindles.setting(sp);
     if (s.turn == spindle_turn::unknown || s.turn == spindle_turn::held) return;  // another channel's
@@ -935,8 +1002,11 @@ struct cl_comparison::impl {
   // point counts: `X44` is 0.044 mm where decimal-point programming is off, the Fanuc default)
   // and half of it in mm.
   void units(bool in_inch) {
+    // The control keeps where the axes are: their values are said again in the new unit.
+    const double was = out_mm;
     inch = in_inch;
     out_mm = inch ? 25.4 : 1.0;
+    for (axis_state* a : {&x, &y, &z}) a->value *= was / out_mm;
     const int decimals = inch ? m.program.decimals_inch : m.program.decimals_metric;
     axis_half = 0.5 * std::pow(10.0, -decimals) * out_mm;
     for (int rev = 0; rev < 2; ++rev)

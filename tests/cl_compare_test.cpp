@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "analysis/cl_compare.hpp"
+#include "file_test_support.hpp"
 #include "machine_test_support.hpp"
 #include "machines/machine_loader.hpp"
 
@@ -383,4 +384,70 @@ TEST_CASE("cl comparison: the CSS clamp, a thread's lead, M6 T in one block", "[
   m.lines({"G90 G17 G40 G49 G80", "M6 T02", "G0 G43 H02 X0. Y0. Z5."});
   m.go(0, 5, true);
   CHECK(m.text().empty());
+}
+
+TEST_CASE("cl comparison: the third attack's ways past it", "[analysis][cl_compare]") {
+  // A mill's H00 in G43 mode: no offset, Z is the gauge line.
+  const std::string mill = std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml";
+  compared h(mill, 1);
+  h.cmp.record({h.next++, tool_event{tool_source::loadtl, 3, 3}, 1}, false);
+  h.lines({"G90 G17 G40 G49 G80", "T03 M6", "G0 G43 H03 X0. Y0. Z5."});
+  h.go(0, 5, true);
+  CHECK(h.text().empty());
+  h.lines({"H00", "G0 Z2."});
+  h.go(0, 2, true);
+  CHECK(h.text() ==
+        "job.cls:12:1: error: channel 1: the program moves Z with no tool length offset in force (G43 H..): "
+        "Z is "
+        "then the spindle's gauge line, one tool length below the CL's tip; give the channel a length offset "
+        "(channel.length_offset = \"G43 H{offset:02}\"), after the block `G0 Z2.`\n");
+  // The spindle the CL names: MAIN stopped while the sub turns.
+  compared s("fanuc-0itd-twin", 1);
+  spindle_event main;
+  main.speed = 1500;
+  main.dir = rotation::cw;
+  main.spindle = "main";
+  s.cmp.record({s.next++, main, 1}, false);
+  s.feed(0.2, feed_mode::per_rev);
+  s.lines({"T0101", "G97 S1500 M3", "G0 X44. Z2."});
+  s.go(22, 2, true);
+  s.lines({"M5", "S1500 M103", "G1 Z-30. F0.2"});
+  s.go(22, -30);
+  CHECK(s.text() ==
+        "job.cls:13:1: error: channel 1: the CL cuts with the spindle turning clockwise at 1500 rpm here "
+        "(SPINDL at "
+        "line 10), but the program's main spindle is stopped\n");
+}
+
+TEST_CASE("cl comparison: G-code system C's units are G70 and G71", "[analysis][cl_compare]") {
+  std::string text =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/fanuc-0itd-twin.toml");
+  const std::string header = "header = [\"G0 G18 G21 G40 G54 G80 G99\"]";
+  REQUIRE(text.find(header) != std::string::npos);
+  text.replace(text.find(header), header.size(), "header = [\"G0 G18 G71 G40 G54 G80 G90 G99\"]");
+  const machine m = parse_machine(text, "sysc.toml");
+  diagnostic_list diags;
+  cl_comparison cmp(m, m.channels[0], diags, "job.cls");
+  cmp.record({8, feed_event{feed_mode::per_rev, 0.2}, 1}, false);
+  for (const char* l : {"%", "O1000", "G0 G18 G71 G40 G54 G80 G90 G99", "T0101", "G0 X44. Z2."}) cmp.line(l);
+  motion_event mv;
+  mv.pos = {22, 0, 2};
+  mv.rapid = true;
+  cmp.record({9, mv, 1}, false);
+  CHECK(diags.all().empty());
+  // G70 is inch in system C (G20 is its OD turning cycle): the next words are inches.
+  cmp.line("G70");
+  cmp.line("G1 X44. Z-30. F0.2");
+  mv.pos = {22, 0, -30};
+  mv.rapid = false;
+  cmp.record({10, mv, 1}, false);
+  REQUIRE(diags.all().size() == 2);
+  CHECK(diags.all()[0].message ==
+        "channel 1: the program does not put the tool tip on this record's point (the part frame, mm): x "
+        "558.800 "
+        "where the CL has 22.000 (536.800 mm off); z -762.000 where the CL has -30.000 (732.000 mm off), "
+        "after the "
+        "block `G1 X44. Z-30. F0.2`");
+  CHECK(diags.all()[1].message ==
+        "channel 1: the CL feeds at 0.2 mm/rev here, the program at 5.08 mm/rev (F0.2 under G99)");
 }
