@@ -12,12 +12,14 @@
 // - the tool tip in the part frame within 0.002 mm (or half the last written digit, when
 //   coarser); an axis at its reference point since a G28/G30/G53 is a finding, and so is a
 //   mill's Z with no length offset in force (the gauge line);
-// - the tool the T word called;
-// - a rapid among the blocks of a CL feed move;
-// - at a cut, the spindle's direction and speed (rpm or CSS);
+// - the tool the T word called and its offset (a mill's H);
+// - a rapid among the blocks of a CL feed move (G0, or a G27-G30/G53 block);
+// - at a cut, the spindle's direction, speed (rpm or CSS) and clamp, and the coolant;
 // - a CIRCLE's last arc block: its sense about the CL's axis, its centre or its R;
-// - the feed: in the same mode, F within 0.5 % (or half its last digit); in the other mode,
-//   F x rpm (or F / rpm) at the spindle's speed, CSS at the tip's diameter under its clamp.
+// - a G32 pass's lead against THREAD/TURN;
+// - the feed: in the same mode, F within 0.5 % (or half the post's last digit); in the other
+//   mode, F x rpm (or F / rpm) at the spindle's speed, CSS at the tip's diameter under its clamp;
+// - S or F given as an expression, and a block under block delete, before a cut.
 // Records it cannot follow yet are passed over, not guessed: a HEAD/BOTH copy, CL cycles,
 // and while the program has a canned cycle, polar or cylindrical interpolation, a rotated or
 // tilted frame, polar coordinates, inverse-time feed, a threading cycle, a rotary-axis word
