@@ -147,6 +147,7 @@ struct cl_comparison::impl {
 
   // The program as read so far.
   std::vector<nc_word> words;
+  const std::vector<nc_word> no_words;
   long t_pending = -1, t_active = -1;  // the tool a T word named, and the one in the spindle
   std::string t_text;                  // the T word that called it
   int lines = 0;
@@ -197,6 +198,8 @@ struct cl_comparison::impl {
   long compared = 0, passed = 0;
   // Each kind of finding is reported once per channel (the first is the one to fix; a
   // systematic error would otherwise repeat at every record of a long job).
+  unsigned version = 0, fine_version = ~0u;  // changes seen; the state of the last right cut
+  long reported = 0;                         // findings so far
   bool said_length = false, said_arc = false, said_coolant = false, said_skip = false,
        said_expression = false;
   bool said_offset = false, said_clamp = false;
@@ -279,6 +282,11 @@ struct cl_comparison::impl {
                         (u.number >= 14001 && u.number <= 14999)))
           shifted = true;  // a work offset written through its variable (#5223=-5.)
     if (words.empty()) return;
+    // Any word but an axis's (a G, M, S, T, F ...) may change what a cut is held to.
+    constexpr std::uint32_t axis_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
+                                           nc_letter('W') | nc_letter('I') | nc_letter('J') | nc_letter('K') |
+                                           nc_letter('R') | nc_letter('N');
+    if (letters & ~axis_letters) ++version;
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (!gms_only || (letters & gms)) {
       spindles.apply(words);
@@ -302,7 +310,12 @@ struct cl_comparison::impl {
         }
     bool not_a_move = false, home = false, machine = false, setting = false, m6 = false;
     std::string home_why;
-    for (const nc_word& w : words) {
+    // Most lines are moves with axis words and an F: only the F is read before the axes.
+    const bool plain = (letters & ~(axis_letters | nc_letter('F'))) == 0;
+    if (plain)
+      for (const nc_word& w : words)
+        if (w.address == 'F') take_feed(w);
+    for (const nc_word& w : plain ? no_words : words) {
       if (w.address == 'T') {
         // The control applies the new tool's offsets with its next move: the program's
         // coordinates stay those of the tip.
@@ -346,14 +359,7 @@ struct cl_comparison::impl {
         continue;
       }
       if (w.address == 'F') {
-        if (w.numeric) {
-          f = w.number;
-          f_text.assign("F").append(w.value);
-          f_expression.clear();
-        } else {
-          f = -1;
-          f_expression.assign("F").append(w.value);  // the feed is known only when the block runs
-        }
+        take_feed(w);
         continue;
       }
       if (w.address == 'A' || w.address == 'B' || w.address == 'C') {
@@ -618,6 +624,7 @@ struct cl_comparison::impl {
   double part(const axis_state& a, double div) const { return a.value * out_mm / div; }
 
   void error(const event& e, std::string message) {
+    ++reported;
     diagnostic d;
     d.file = cl_file;
     d.line = e.line;
@@ -754,6 +761,11 @@ struct cl_comparison::impl {
 
   // The tool, and at a cut the spindle, rapid against feed and the feed.
   void compare_rest(const event& e, bool rapid) {
+    // A cut with nothing changed since the last cut found right (only axis words read, only
+    // motion records) is right again: the tool, spindle, coolant and feed are the same.
+    const bool cut = !rapid && moved;
+    if (cut && version == fine_version && !rapid_in_record && skip_text.empty()) return;
+    const long findings = reported;
     compare_tool(e);
     if (!skip_text.empty() && !said_skip) {
       said_skip = true;
@@ -786,8 +798,10 @@ struct cl_comparison::impl {
                     error(e, fmt::format(
                                  "the CL asks for a feed move here, but the program moves in rapid: `{}`",
                                  rapid_text)));
-    if (motion == 32 || inverse_time || per_rev < 0 || f < 0 || cl_feed < 0) return;
-    compare_feed(e);
+    const bool feed_known = !(motion == 32 || inverse_time || per_rev < 0 || f < 0 || cl_feed < 0);
+    if (feed_known) compare_feed(e);
+    // The feed through the spindle's speed depends on X under CSS: not kept.
+    if (cut && reported == findings && (!feed_known || (per_rev == 1) == cl_per_rev)) fine_version = version;
   }
 
   void compare_feed(const event& e) {
@@ -951,6 +965,8 @@ struct cl_comparison::impl {
   }
 
   void record(const event& e, bool both) {
+    if (!std::holds_alternative<motion_event>(e.data) && !std::holds_alternative<arc_event>(e.data))
+      ++version;
     std::visit(
         [&](const auto& d) {
           using T = std::decay_t<decltype(d)>;
@@ -1016,6 +1032,17 @@ struct cl_comparison::impl {
     // calculator-type input); elsewhere a number without a point counts the control's least
     // increment, 0.001 mm or 0.0001 inch (increment system IS-B), whatever the post's decimals.
     increment = !m.program.trailing_point ? 1.0 : inch ? 1e-4 : 1e-3;
+  }
+
+  void take_feed(const nc_word& w) {
+    if (w.numeric) {
+      f = w.number;
+      f_text.assign("F").append(w.value);
+      f_expression.clear();
+    } else {
+      f = -1;
+      f_expression.assign("F").append(w.value);  // the feed is known only when the block runs
+    }
   }
 
   static bool has_word(const std::vector<nc_word>& ws, char address, double number) {
