@@ -18,6 +18,7 @@
 #include "machines/code_overlap.hpp"
 #include "machines/macro_variables.hpp"
 #include "machining/channel_writer.hpp"
+#include "machining/user_block_form.hpp"
 #include "support/ascii.hpp"
 
 namespace twinpost {
@@ -549,6 +550,15 @@ bool channel_writer::user_block_passes(const std::string& given) {
       user_x_ = v;
       user_dx_ = 0;
     }
+  }
+  // Last, the whitelist: a form none of the checks above names is refused too.
+  std::string increments;  // a lathe's increments in G-code system A (U for X, W for Z, H for C)
+  if (x_diameter_ && !absolute_code_)
+    for (const char l : {'U', 'V', 'W', 'H'})
+      if (!ch_.axis(l)) increments += l;
+  if (std::string why = user_block_form_error(b, given, {incremental, increments}); !why.empty()) {
+    error(line_, why);
+    return false;
   }
   if (absolute)
     user_incremental_ = false;

@@ -473,6 +473,72 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
   }
 }
 
+TEST_CASE("a user block is held to the forms the post reads: a whitelist, not a list of bad forms",
+          "[post][events]") {
+  // Each form refused by the last step of the gate (machining/user_block_form.cpp), not by a
+  // check of its own: a canned cycle stays on, a subprogram and a macro statement are not read,
+  // a value by a variable cannot be checked, G28 through a point moves there first.
+  const std::pair<const char*, const char*> cases[] = {
+      {"G81 X0. Z-10. R2. F100.",
+       "\"G81 X0. Z-10. R2. F100.\" gives G81, a code the post does not follow in a user block: what it does "
+       "to the post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the "
+       "post cannot see). A user block may give G0-G4, G9, G10 (a tool offset), G17-G21, G28, G30, G40, G50, "
+       "G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+      {"G27 X0.",
+       "\"G27 X0.\" gives G27, a code the post does not follow in a user block: what it does to the post's "
+       "later blocks is not known (a cycle stays on, a macro call or a skip moves where the post cannot "
+       "see). A user block may give G0-G4, G9, G10 (a tool offset), G17-G21, G28, G30, G40, G50, G52 X0., "
+       "G53, G61, G64, G80, G90-G92, G94-G99"},
+      {"G65 P9010 A1.",
+       "\"G65 P9010 A1.\" gives G65, a code the post does not follow in a user block: what it does to the "
+       "post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the post "
+       "cannot see). A user block may give G0-G4, G9, G10 (a tool offset), G17-G21, G28, G30, G40, G50, G52 "
+       "X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+      {"M98 P1000",
+       "\"M98 P1000\" calls a subprogram or returns from one (M98): what the subprogram moves and the waits "
+       "in it are not the post's to read, and M99 in the main program starts it again"},
+      {"M99",
+       "\"M99\" calls a subprogram or returns from one (M99): what the subprogram moves and the waits in it "
+       "are not the post's to read, and M99 in the main program starts it again"},
+      {"IF [#1 EQ 0] THEN X20.",
+       "\"IF [#1 EQ 0] THEN X20.\" is a macro statement (IF, WHILE, DO, END, GOTO): the post does not follow "
+       "a program's branches and loops; write the blocks it stands for"},
+      {"WHILE [#1 LT 3] DO1",
+       "\"WHILE [#1 LT 3] DO1\" is a macro statement (IF, WHILE, DO, END, GOTO): the post does not follow a "
+       "program's branches and loops; write the blocks it stands for"},
+      {"#1=1 G0 X20.",
+       "\"#1=1 G0 X20.\" has more than an assignment after its `=` (words, a comparison, a second "
+       "statement): the control reads all of it as one expression or stops with an alarm; write the "
+       "assignment in a block of its own"},
+      {"#1",
+       "\"#1\" uses a variable outside an assignment `#<number>=...` and outside a word's value: the post "
+       "reads neither; write the number"},
+      {"S#100 M3",
+       "\"S#100 M3\" gives S by a variable or an expression: the post cannot read the value; write the "
+       "number"},
+      {"G28 X100.",
+       "\"G28 X100.\" returns to the reference position through the intermediate point X100.: G28 and G30 go "
+       "there first, at rapid, and the post cannot follow it; give no move on the way (G28 U0. or G28 W0.)"},
+      {"G28 W10.",
+       "\"G28 W10.\" returns to the reference position through the intermediate point W10.: G28 and G30 go "
+       "there first, at rapid, and the post cannot follow it; give no move on the way (G28 U0. or G28 W0.)"},
+      {"G1 X20. ,C1.",
+       "\"G1 X20. ,C1.\" has ',' where the post reads a word (an address and a number), an assignment "
+       "(#1=...) or a print statement: a form the post cannot read is refused"},
+      {"G0 X20. Z",
+       "\"G0 X20. Z\" has the address Z without its number: write Z and a number, or leave it out"},
+  };
+  for (const auto& [block, message] : cases) {
+    CAPTURE(block);
+    const test::posted p =
+        post_with(std::string("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"") + block + "\"]\n",
+                  "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "whitelist");
+    CHECK_FALSE(p.ok);
+    CHECK(p.diagnostics == std::string("job.cls:4:1: error: channel 1: ") + message + "\nCATCHER\n^\n");
+    CHECK(p.files.empty());
+  }
+}
+
 TEST_CASE("a wait code an event writes is checked like the post's own: unpaired, nothing is written",
           "[post][events]") {
   // M101 is a wait code of the machine (waits 100..102, no partner list); channel 2 never waits for it.

@@ -54,3 +54,28 @@ TEST_CASE("user blocks: a block in the other unit system stops the post", "[post
         "job.cls:13:1: error: channel 1: events.tool_change.after writes \"G20\": G20 in a program in "
         "millimetres (G21); every later word would be read in inches\nTURRET/2,2\n^\n");
 }
+
+TEST_CASE("user blocks: G28 on a mill only through no intermediate point", "[post][events]") {
+  // G28 Z0. under G90 goes to Z0 of the work offset first, at rapid, through the part; G91 G28
+  // Z0. goes straight up (machining/user_block_form.cpp). The user's block, the post's G90 after
+  // it, then the tool change's own home.
+  const std::string mill = test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml");
+  const std::string cl =
+      "PARTNO UM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/MMPM,200\nRAPID\nGOTO/0,0,5\nGOTO/0,0,-2\nRAPID\n"
+      "GOTO/0,0,5\nEND\nFINI\n";
+  const test::posted bad = test::post_in_fresh_dir(
+      cl, parse_machine(mill + "\n[events]\ntool_change.before = [\"G28 Z0.\"]\n", "mill.toml"), "g28-abs");
+  CHECK(!bad.ok);
+  CHECK(
+      bad.diagnostics ==
+      "job.cls:2:1: error: channel 1: \"G28 Z0.\" returns to the reference position through the "
+      "intermediate point Z0.: G28 and G30 go there first, at rapid, and the post cannot follow it; give no "
+      "move on the way (G91 G28 Z0.)\nLOADTL/1\n^\n");
+  CHECK(bad.files.empty());
+  const test::posted good = test::post_in_fresh_dir(
+      cl, parse_machine(mill + "\n[events]\ntool_change.before = [\"G91 G28 Z0.\"]\n", "mill.toml"),
+      "g28-inc");
+  CHECK(good.diagnostics == "");
+  REQUIRE(good.ok);
+  CHECK(between(good.files.begin()->second, "G91 G28 Z0.", "T") == "G91 G28 Z0.\nG90\nG91 G28 Z0\nG90\n");
+}

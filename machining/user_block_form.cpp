@@ -1,0 +1,197 @@
+// machining/user_block_form.hpp: the whitelist of a user block's forms.
+#include "machining/user_block_form.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "support/ascii.hpp"
+
+namespace twinpost {
+
+namespace {
+
+// The G codes a user block may give: those whose effect on the post's later blocks the post
+// follows or undoes.
+// - G0-G3 motion (the post writes its own motion code again after a user block's G code);
+// - G4 dwell, G9 exact stop (one block), G61 and G64 (exact stop and cutting mode: how corners
+//   are run, not where);
+// - G10 (the gate refuses work offsets, the workpiece shift and parameters: what is left is
+//   a tool offset, a shop's wear adjustment);
+// - G17-G19 plane, G94/G95/G98/G99 feed mode, G90/G91 (put back after the event,
+//   channel_user_modes), G20/G21 (the other unit is refused there);
+// - G28 and G30 reference returns (below: through no intermediate point), G53 machine
+//   coordinates;
+// - G40 and G80 (cancels), G96/G97 (surface speed on or off; the S and the spindle the CL asks
+//   for are compared at every cut), G50 and G92 (the gate refuses them with an axis word: a
+//   speed clamp, or a lathe's thread cycle in G-code system A, cancelled by the post's next
+//   motion code), G52 (only its cancel, X0.).
+constexpr double known_g[] = {0,  1,  2,  3,  4,  9,  10, 17, 18, 19, 20, 21, 28, 30, 40,
+                              50, 52, 53, 61, 64, 80, 90, 91, 92, 94, 95, 96, 97, 98, 99};
+
+// The arithmetic of an assignment (Fanuc custom macro B), as control_reading writes it: in lower
+// case between blanks. The comparisons (EQ, NE, ...) belong to IF and WHILE.
+constexpr std::string_view functions[] = {"sin", "cos", "tan", "asin",  "acos", "atan", "sqrt",
+                                          "abs", "bin", "bcd", "round", "fix",  "fup",  "ln",
+                                          "exp", "pow", "adp", "and",   "or",   "xor",  "mod"};
+
+bool is_axis(char c) { return std::string_view("XYZUVWABC").find(c) != std::string_view::npos; }
+
+std::string refusal(std::string_view given, std::string_view why) {
+  return fmt::format("\"{}\" {}", given, why);
+}
+
+std::string assignment_error(std::string_view r, std::size_t i, std::string_view given) {
+  // `#` and the variable's number, then `=`.
+  std::size_t j = i + 1;
+  while (j < r.size() && ascii::is_digit(r[j])) ++j;
+  if (j == i + 1 || j >= r.size() || r[j] != '=')
+    return refusal(given,
+                   "uses a variable outside an assignment `#<number>=...` and outside a word's value: "
+                   "the post reads neither; write the number");
+  int depth = 0;
+  for (std::size_t k = j + 1; k < r.size(); ++k) {
+    const char c = r[k];
+    if (c == '[') ++depth;
+    if (c == ']' && --depth < 0) break;
+    if (ascii::is_digit(c) || c == '#' || c == '.' || c == '+' || c == '-' || c == '*' || c == '/' ||
+        c == '[' || c == ']' || c == ' ')
+      continue;
+    if (ascii::is_letter(c) && !ascii::is_upper(c)) {
+      std::size_t e = k;
+      while (e < r.size() && ascii::is_letter(r[e]) && !ascii::is_upper(r[e])) ++e;
+      const std::string_view w = r.substr(k, e - k);
+      if (std::find(std::begin(functions), std::end(functions), w) != std::end(functions)) {
+        k = e - 1;
+        continue;
+      }
+    }
+    return refusal(given,
+                   "has more than an assignment after its `=` (words, a comparison, a second "
+                   "statement): the control reads all of it as one expression or stops with an alarm; "
+                   "write the assignment in a block of its own");
+  }
+  if (depth != 0)
+    return refusal(given, "has an assignment whose brackets do not pair: the control stops with an alarm");
+  if (r.find_first_not_of(' ', j + 1) == std::string_view::npos)
+    return refusal(given, "assigns nothing after its `=`: write the value");
+  return {};
+}
+
+struct word {
+  char letter;
+  double value;
+  bool number;            // a value was given (an axis letter of a name list has none)
+  std::string_view text;  // as the control reads it
+};
+
+}  // namespace
+
+std::string user_block_form_error(std::string_view r, std::string_view given, const user_block_context& c) {
+  std::size_t i = 0;
+  const auto blanks = [&] {
+    while (i < r.size() && r[i] == ' ') ++i;
+  };
+  blanks();
+  if (i < r.size() && r[i] == '/') {  // block delete, with its switch's number on some controls
+    ++i;
+    if (i < r.size() && ascii::is_digit(r[i])) ++i;
+  }
+  blanks();
+  if (i + 1 < r.size() && r[i] == 'N' && ascii::is_digit(r[i + 1])) {
+    ++i;
+    while (i < r.size() && ascii::is_digit(r[i])) ++i;
+  }
+  blanks();
+  if (i < r.size() && r[i] == '#') return assignment_error(r, i, given);
+  std::vector<word> words;
+  while (blanks(), i < r.size()) {
+    const char a = r[i];
+    if (ascii::is_letter(a) && !ascii::is_upper(a))  // control_reading's keywords are in lower case
+      return refusal(given,
+                     "is a macro statement (IF, WHILE, DO, END, GOTO): the post does not follow a "
+                     "program's branches and loops; write the blocks it stands for");
+    if (!ascii::is_upper(a) || a == 'O') {
+      return refusal(given,
+                     fmt::format("has '{}' where the post reads a word (an address and a number), an "
+                                 "assignment (#1=...) or a print statement: a form the post cannot read "
+                                 "is refused",
+                                 r.substr(i, 1)));
+    }
+    const std::size_t at = i++;
+    const std::size_t digits_from = i + (i < r.size() && (r[i] == '+' || r[i] == '-') ? 1 : 0);
+    std::size_t e = digits_from;
+    bool digit = false, point = false;
+    for (; e < r.size(); ++e) {
+      if (ascii::is_digit(r[e]))
+        digit = true;
+      else if (r[e] == '.' && !point)
+        point = true;
+      else
+        break;
+    }
+    if (!digit) {
+      const char next = digits_from < r.size() ? r[digits_from] : ' ';
+      if (next == '#' || next == '[')
+        return refusal(given, fmt::format("gives {} by a variable or an expression: the post cannot read "
+                                          "the value; write the number",
+                                          a));
+      // An axis name list (Mazak `G17 XC`): axis letters side by side, with no value.
+      const bool listed =
+          is_axis(a) && e == i && ((i < r.size() && is_axis(r[i])) || (at > 0 && is_axis(r[at - 1])));
+      if (!listed)
+        return refusal(given, fmt::format("has the address {} without its number: write {} and a number, "
+                                          "or leave it out",
+                                          a, a));
+      words.push_back({a, 0, false, r.substr(at, 1)});
+      continue;
+    }
+    double v = 0;
+    std::from_chars(r.data() + digits_from, r.data() + e, v, std::chars_format::fixed);
+    if (digits_from > i && r[i] == '-') v = -v;
+    words.push_back({a, v, true, r.substr(at, e - at)});
+    i = e;
+  }
+  bool reference = false, machine = false, incremental = c.incremental;
+  for (const word& w : words) {
+    if (w.letter == 'G') {
+      if (std::none_of(std::begin(known_g), std::end(known_g),
+                       [&](double g) { return std::abs(w.value - g) < 1e-9; }))
+        return refusal(
+            given,
+            fmt::format("gives {}, a code the post does not follow in a user block: what it does to the "
+                        "post's later blocks is not known (a cycle stays on, a macro call or a skip moves "
+                        "where the post cannot see). A user block may give G0-G4, G9, G10 (a tool offset), "
+                        "G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99",
+                        w.text));
+      reference = reference || std::abs(w.value - 28) < 1e-9 || std::abs(w.value - 30) < 1e-9;
+      machine = machine || std::abs(w.value - 53) < 1e-9;
+      incremental = incremental || std::abs(w.value - 91) < 1e-9;
+    }
+    if (w.letter == 'M' && (w.value == 98 || w.value == 99 || w.value == 198))
+      return refusal(given,
+                     fmt::format("calls a subprogram or returns from one ({}): what the subprogram moves "
+                                 "and the waits in it are not the post's to read, and M99 in the main "
+                                 "program starts it again",
+                                 w.text));
+  }
+  // G28 and G30 move every named axis to the intermediate point first, at rapid: a point other
+  // than where the tool is (`G28 X100.`, `G28 Z0.` under G90) is a move the post cannot follow.
+  if (reference && !machine)
+    for (const word& w : words) {
+      if (!is_axis(w.letter) || !w.number) continue;
+      const bool increment = incremental || c.increment_letters.find(w.letter) != std::string_view::npos;
+      if (!increment || w.value != 0)
+        return refusal(
+            given, fmt::format("returns to the reference position through the intermediate point "
+                               "{}: G28 and G30 go there first, at rapid, and the post cannot follow "
+                               "it; give no move on the way ({})",
+                               w.text, c.increment_letters.empty() ? "G91 G28 Z0." : "G28 U0. or G28 W0."));
+    }
+  return {};
+}
+
+}  // namespace twinpost
