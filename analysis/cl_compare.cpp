@@ -1,5 +1,4 @@
 #include "analysis/cl_compare.hpp"
-
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -12,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "analysis/program_units.hpp"
 #include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
 #include "machines/macro_variables.hpp"
@@ -61,16 +61,7 @@ struct cl_comparison::impl {
       for (const nc_word& w : split_nc_words(b))
         if (w.address == 'G' && w.numeric && (g10(w.number) == 900 || g10(w.number) == 910)) g90_modes = true;
     if (!lathe) g90_modes = true;
-    // G-code system C names its units G70/G71: a header that gives one of them and not G20/G21.
-    bool g7071 = false, g2021 = false;
-    for (const std::string& b : m.program.header)
-      for (const nc_word& w : split_nc_words(b))
-        if (w.address == 'G' && w.numeric) {
-          const int g = g10(w.number);
-          g7071 = g7071 || g == 700 || g == 710;
-          g2021 = g2021 || g == 200 || g == 210;
-        }
-    system_c = g7071 && !g2021;
+    system_c = units_of(m).system_c;  // G70/G71 the units, G20/G21 cycles
     per_rev_g = code_g10(m.codes.feed_per_rev);
     per_min_g = code_g10(m.codes.feed_per_min);
 

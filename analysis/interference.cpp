@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "analysis/program_units.hpp"
 #include "analysis/shared_resources.hpp"
 #include "analysis/spindle_state.hpp"
 #include "support/errors.hpp"
@@ -123,6 +124,9 @@ struct channel_data {
   // interpolation (G12.1/G112: X and C a Cartesian plane on the face), else Y. 0 until given.
   double q = 0;
   bool known_x = false, known_z = false;
+  // Millimetres per program unit (25.4 after G20): x, z and q are in program units, the sweeps'
+  // boxes, the envelopes and the clearance in millimetres.
+  double scale = 1;
   bool polar = false;  // G12.1 / G112 in force (until G13.1 / G113)
   int motion = 0;
   // The workpiece spindle the channel works on: the frame of its sweeps. A channel that turns
@@ -153,8 +157,10 @@ struct interference_check::impl {
       if (const spindle_def* live = m.spindle(c.live_spindle))
         live_spindles.push_back(static_cast<int>(live - m.spindles.data()));
     }
-    for (channel_data& c : channels)
+    for (channel_data& c : channels) {
       if (!is_live(c.spindles.current())) c.work = c.spindles.current();
+      c.scale = units.inch ? 25.4 : 1.0;
+    }
     active = interference_checked(m);
     const cycle_rules& cy = m.cycles;
     for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
@@ -170,6 +176,7 @@ struct interference_check::impl {
   }
 
   const machine& m;
+  const program_units units = units_of(m);
   bool active = false;
   static constexpr std::size_t spill_buffer_size = std::size_t{1} << 16;
   std::unique_ptr<char[]> spill_buffer;  // the spill's stdio buffer (closed with it in ~impl)
@@ -193,7 +200,8 @@ struct interference_check::impl {
   }
 
   // `x`, `z`: the block's point in messages (a drilling cycle's: the hole's bottom).
-  void add(channel_data& c, const xz_box& tip, int line, double x, double z) {
+  void add(channel_data& c, xz_box tip, int line, double x, double z) {
+    tip = {tip.r0 * c.scale, tip.r1 * c.scale, tip.z0 * c.scale, tip.z1 * c.scale};
     std::vector<sweep>& s = c.segments.back().sweeps;
     const auto spindle = static_cast<std::uint16_t>(std::max(c.work, 0));
     if (c.merge_open && !s.empty() && s.back().spindle == spindle && s.back().tool == c.tool) {
@@ -266,6 +274,11 @@ struct interference_check::impl {
             home = true;  // to the reference point: the tip is out of the work area
           } else if (v == 4 || v == 10 || v == 50 || v == 92) {
             no_move = true;  // dwell, data, clamp or coordinate setting: no motion
+          } else if (const std::optional<bool> inch = units.selected_by(v)) {
+            // The control keeps where the axes are: their values are said again in the new unit.
+            const double to = *inch ? 25.4 : 1.0;
+            c.x *= c.scale / to, c.z *= c.scale / to, c.q *= c.scale / to;
+            c.scale = to;
           } else if (v == 12.1 || v == 112) {
             c.polar = true;
             c.q = 0;

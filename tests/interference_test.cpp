@@ -138,6 +138,16 @@ TEST_CASE("interference: the rule in check, concurrent and sequenced, to the let
   const std::string near =
       head + "T0101\nG97 S1000 M3\nG0 X16. Z2.\nM100\nG1 Z-40. F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
   CHECK_THAT(check(twin, near, drill), Catch::Contains(": 4.0 mm apart, 5 mm required"));
+  // Channel 1 in inches (G20): its positions are held to the envelopes in millimetres. X2.4
+  // (r 30.48 mm) is clear of the drill; X0.64 (r 8.128 mm) is 4.1 mm from it. Read as
+  // millimetres, both were 0.0 mm apart.
+  const std::string head_inch = "%\nO1000\nG0 G18 G20 G40 G54 G80 G99\n";
+  const std::string od_inch =
+      head_inch + "T0101\nG97 S1000 M3\nG0 X2.4 Z0.08\nM100\nG1 Z-1.6 F0.006\nG0 X4. Z4.\nM101\nM30\n%\n";
+  CHECK(check(twin, od_inch, drill) == "check: 2 channels, 4 waits paired, 0 errors\n");
+  const std::string near_inch =
+      head_inch + "T0101\nG97 S1000 M3\nG0 X0.64 Z0.08\nM100\nG1 Z-1.6 F0.006\nG0 X4. Z4.\nM101\nM30\n%\n";
+  CHECK_THAT(check(twin, near_inch, drill), Catch::Contains(": 4.1 mm apart, 5 mm required"));
   // A machine without envelopes: the rule is off.
   CHECK(check(load_machine("citizen-2system"), face, drill).find("may meet") == std::string::npos);
 }
