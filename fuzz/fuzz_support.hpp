@@ -26,6 +26,23 @@ void require(bool ok, std::string_view what);
 /// The whole content of a file ("" if it cannot be read).
 std::string read_all(const std::string& path);
 
+/// What one post gave: ok (exit 0) or a config_error (exit 2), the files it wrote and their
+/// bytes.
+struct post_outcome {
+  bool ok = false;
+  bool config = false;
+  std::vector<std::string> files;
+  std::vector<std::string> contents;
+};
+
+/// Posts the CL file `job` into the folder `out` for `m` and holds the properties of every post
+/// (a finding aborts): post_job returns or throws config_error; every error has a file and a
+/// line; a failed post leaves no file; a post that succeeds wrote exactly the files it names,
+/// each to its own path, `check` finds them sound, and (unless `has_insert`: INSERT text goes
+/// out verbatim) no number outside comments is unreadable (inf, nan, more than ten digits).
+post_outcome post_checked(const std::string& job, const std::string& out, const machine& m,
+                          layout_kind layout, bool has_insert);
+
 /// Writes `text` to `path` (aborts on failure: the scratch folder must work).
 void write_all(const std::string& path, std::string_view text);
 
