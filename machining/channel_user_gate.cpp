@@ -552,11 +552,7 @@ bool channel_writer::user_block_passes(const std::string& given) {
     }
   }
   // Last, the whitelist: a form none of the checks above names is refused too.
-  std::string increments;  // a lathe's increments in G-code system A (U for X, W for Z, H for C)
-  if (x_diameter_ && !absolute_code_)
-    for (const char l : {'U', 'V', 'W', 'H'})
-      if (!ch_.axis(l)) increments += l;
-  if (std::string why = user_block_form_error(b, given, {incremental, increments}); !why.empty()) {
+  if (std::string why = user_block_form_error(b, given, {incremental, increment_letters()}); !why.empty()) {
     error(line_, why);
     return false;
   }
@@ -575,6 +571,23 @@ bool channel_writer::user_block_passes(const std::string& given) {
     user_dx_ = 0;
   }
   return true;
+}
+
+std::string channel_writer::increment_letters() const {
+  std::string out;  // a lathe's increments in G-code system A (U for X, W for Z, H for C)
+  if (x_diameter_ && !absolute_code_)
+    for (const char l : {'U', 'V', 'W', 'H'})
+      if (!ch_.axis(l)) out += l;
+  return out;
+}
+
+bool channel_writer::insert_passes(const std::string& text, int line) {
+  bool glued = false;
+  const std::string reading = control_reading(text, m_.program, glued);
+  const std::string why = insert_return_error(reading, text, {false, increment_letters()});
+  if (why.empty()) return true;
+  error(line, "INSERT " + why);
+  return false;
 }
 
 }  // namespace twinpost

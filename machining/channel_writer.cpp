@@ -435,6 +435,7 @@ void channel_writer::process_event(const event& e, bool both) {
           coolant_ended_.clear();
         } else if constexpr (std::is_same_v<T, text_event>) {
           if (d.kind == text_kind::insert) {
+            if (!insert_passes(d.text, e.line)) return;
             out_.raw(d.text);
             spindle_ended_.clear();  // the user's text may turn either on again
             coolant_ended_.clear();

@@ -802,6 +802,13 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// travel as the post's own are held (axis_word), it neither sets the coordinate system nor
   /// holds a program number (machining/channel_user_gate.cpp). Reports the first fault.
   bool user_block_passes(const std::string& b);
+  /// INSERT text is the CAM user's NC, written as given; only a return to the reference
+  /// position along a path the post cannot follow (G27, G29, G28/G30 through a point) stops the
+  /// post at record `line` (machining/user_block_form.hpp, insert_return_error).
+  bool insert_passes(const std::string& text, int line);
+  /// The addresses that are increments whatever the mode: a lathe's U, V, W, H in G-code
+  /// system A where the channel has no axis of that name.
+  std::string increment_letters() const;
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
   // The script (machining/channel_script.cpp); null without one (then no script work at all).
   job_script* script_ = nullptr;

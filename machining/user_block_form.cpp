@@ -88,6 +88,23 @@ struct word {
   std::string_view text;  // as the control reads it
 };
 
+// G28 and G30 move every named axis to the intermediate point first, at rapid: a point other
+// than where the tool is (`G28 X100.`, `G28 Z0.` under G90) is a move the post cannot follow.
+std::string through_a_point(const std::vector<word>& words, std::string_view given, bool incremental,
+                            const user_block_context& c) {
+  for (const word& w : words) {
+    if (!is_axis(w.letter) || !w.number) continue;
+    const bool increment = incremental || c.increment_letters.find(w.letter) != std::string_view::npos;
+    if (!increment || w.value != 0)
+      return refusal(given,
+                     fmt::format("returns to the reference position through the intermediate point "
+                                 "{}: G28 and G30 go there first, at rapid, and the post cannot follow "
+                                 "it; give no move on the way ({})",
+                                 w.text, c.increment_letters.empty() ? "G91 G28 Z0." : "G28 U0. or G28 W0."));
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string user_block_form_error(std::string_view r, std::string_view given, const user_block_context& c) {
@@ -178,20 +195,50 @@ std::string user_block_form_error(std::string_view r, std::string_view given, co
                                  "program starts it again",
                                  w.text));
   }
-  // G28 and G30 move every named axis to the intermediate point first, at rapid: a point other
-  // than where the tool is (`G28 X100.`, `G28 Z0.` under G90) is a move the post cannot follow.
-  if (reference && !machine)
-    for (const word& w : words) {
-      if (!is_axis(w.letter) || !w.number) continue;
-      const bool increment = incremental || c.increment_letters.find(w.letter) != std::string_view::npos;
-      if (!increment || w.value != 0)
-        return refusal(
-            given, fmt::format("returns to the reference position through the intermediate point "
-                               "{}: G28 and G30 go there first, at rapid, and the post cannot follow "
-                               "it; give no move on the way ({})",
-                               w.text, c.increment_letters.empty() ? "G91 G28 Z0." : "G28 U0. or G28 W0."));
-    }
+  if (reference && !machine) return through_a_point(words, given, incremental, c);
   return {};
+}
+
+std::string insert_return_error(std::string_view r, std::string_view given, const user_block_context& c) {
+  // The words a control reads, loosely: an upper-case letter outside [...] and the number after
+  // it; anything else (a macro statement, an expression) is the user's and not read here.
+  std::vector<word> words;
+  bool reference = false, machine = false, incremental = c.incremental, unread_axis = false;
+  int depth = 0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (r[i] == '[') ++depth;
+    if (r[i] == ']' && depth > 0) --depth;
+    if (depth > 0 || !ascii::is_upper(r[i])) continue;
+    const std::size_t at = i;
+    std::size_t e = i + 1;
+    if (e < r.size() && (r[e] == '+' || r[e] == '-')) ++e;
+    const std::size_t from = e;
+    while (e < r.size() && (ascii::is_digit(r[e]) || r[e] == '.')) ++e;
+    if (e == from) {
+      unread_axis = unread_axis || (is_axis(r[at]) && from < r.size() && (r[from] == '#' || r[from] == '['));
+      continue;
+    }
+    double v = 0;
+    std::from_chars(r.data() + from, r.data() + e, v, std::chars_format::fixed);
+    if (r[at + 1] == '-') v = -v;
+    words.push_back({r[at], v, true, r.substr(at, e - at)});
+    i = e - 1;
+    if (r[at] != 'G') continue;
+    if (std::abs(v - 27) < 1e-9 || std::abs(v - 29) < 1e-9)
+      return refusal(given, fmt::format("gives {}: it moves at rapid through the reference position or the "
+                                        "last G28's intermediate point, a path the post cannot follow; write "
+                                        "the moves, or G28 with no move on the way",
+                                        words.back().text));
+    reference = reference || std::abs(v - 28) < 1e-9 || std::abs(v - 30) < 1e-9;
+    machine = machine || std::abs(v - 53) < 1e-9;
+    incremental = incremental || std::abs(v - 91) < 1e-9;
+  }
+  if (!reference || machine) return {};
+  if (unread_axis)
+    return refusal(given,
+                   "returns to the reference position through an intermediate point given by a variable "
+                   "or an expression: G28 and G30 go there first, at rapid, and the post cannot follow it");
+  return through_a_point(words, given, incremental, c);
 }
 
 }  // namespace twinpost

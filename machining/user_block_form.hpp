@@ -27,4 +27,10 @@ struct user_block_context {
 std::string user_block_form_error(std::string_view reading, std::string_view given,
                                   const user_block_context& c);
 
+/// For INSERT text (the CAM user's NC, written as given): empty unless it returns to the
+/// reference position along a path the post cannot follow: G27 or G29, or G28/G30 through an
+/// intermediate point other than where the tool is (an increment of 0). `reading` as above.
+std::string insert_return_error(std::string_view reading, std::string_view given,
+                                const user_block_context& c);
+
 }  // namespace twinpost

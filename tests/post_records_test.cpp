@@ -194,6 +194,40 @@ TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "
         "M9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
+TEST_CASE("INSERT text that returns home along a path the post cannot follow stops the post",
+          "[post][records]") {
+  // G29 Z-30. between the approach and the cut: from the G28 point down to Z-30 at rapid, through
+  // the part (the third attack on issue 37's comparison). G28 U0. goes straight home; G65
+  // (a probing macro) is the CAM user's business.
+  const std::pair<const char*, const char*> cases[] = {
+      {"G29 Z-30.",
+       "INSERT \"G29 Z-30.\" gives G29: it moves at rapid through the reference position or the last "
+       "G28's intermediate point, a path the post cannot follow; write the moves, or G28 with no move on the "
+       "way"},
+      {"G28 X100.",
+       "INSERT \"G28 X100.\" returns to the reference position through the intermediate point X100.: G28 "
+       "and G30 go there first, at rapid, and the post cannot follow it; give no move on the way (G28 U0. "
+       "or G28 W0.)"},
+      {"G28 U#1",
+       "INSERT \"G28 U#1\" returns to the reference position through an intermediate point given by a "
+       "variable or an expression: G28 and G30 go there first, at rapid, and the post cannot follow it"},
+  };
+  for (const auto& [text, message] : cases) {
+    CAPTURE(text);
+    posted p = post_text(head + "GOTO/20,0,2\nINSERT/" + text + "\n" + cut + "FINI\n", "insert-home");
+    CHECK(p.diagnostics ==
+          std::string("job.cls:7:1: error: channel 1: ") + message + "\nINSERT/" + text + "\n^\n");
+    CHECK(p.files.empty());
+  }
+  for (const char* text : {"G28 U0.", "G65 P9810 Z-5."}) {
+    CAPTURE(text);
+    posted p = post_text(head + "GOTO/20,0,2\nINSERT/" + text + "\n" + cut + "FINI\n", "insert-home-ok");
+    // (G65: the checker's warning that it does not read the macro, no error.)
+    CHECK(p.ok);
+    CHECK(p.files.count("W_1.nc") == 1);
+  }
+}
+
 TEST_CASE("a tool axis along Z posts and any other stops the post at the first move under it",
           "[post][records]") {
   // MULTAX points with the axis +Z (as NX writes them on a lathe face) post as 3-axis points.
