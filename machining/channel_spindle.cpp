@@ -236,6 +236,7 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     if (sp.max_rpm > 0 && clamp > sp.max_rpm)
       return error(line, fmt::format("MAXRPM {} exceeds the {} spindle's limit of {} rpm", clamp, sp.name,
                                      sp.max_rpm));
+    cl_clamp_ = clamp;
     template_args a;  // template_uses::clamp
     a.max = clamp;
     a.rpm = clamp;

@@ -10,6 +10,7 @@
 // - no change of the coordinate system under the post's positions (G10, G50, G52, G92 with an
 //   axis word);
 // - no program number (O2000, :2000): a control that loads the file starts another program.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -263,6 +264,23 @@ bool work_offset_variable(int n) {
          (n >= 14000 && n <= 19999);
 }
 
+// The system variables a user block may not write, with what they hold (Fanuc custom macro B;
+// the eleventh round wrote each of them): the tool offsets (#2001-#2999 on a lathe's and the
+// older mills' numbering, #10001-#13999 the larger sets; a geometry or wear value off by any
+// amount moves every later cut of that tool, and the control keeps it for the next job), the
+// outputs to the machine's logic (#1100-#1199), and the settings that take feed hold, the feed
+// override and single block away from the operator (#3003, #3004). nullptr: none of them.
+const char* control_variable(int n) {
+  if ((n >= 2000 && n <= 2999) || (n >= 10000 && n <= 13999))
+    return "a tool offset (#2001-#2999, #10001-#13999): every later cut of that tool would be off by it, and "
+           "the control keeps it for the next job";
+  if (n >= 1100 && n <= 1199) return "an output to the machine's own logic (#1100-#1199)";
+  if (n == 3003 || n == 3004)
+    return "a control setting that takes single block (#3003) or feed hold and the feed override (#3004) "
+           "away from the operator";
+  return nullptr;
+}
+
 }  // namespace
 
 bool channel_writer::user_block_passes(const std::string& given) {
@@ -430,6 +448,68 @@ bool channel_writer::user_block_passes(const std::string& given) {
                         given, u.number));
       return false;
     }
+    if (u.write && control_variable(u.number)) {
+      error(line_,
+            fmt::format("\"{}\" writes #{}, {}: set it at the machine, not from a machine file's block",
+                        given, u.number, control_variable(u.number)));
+      return false;
+    }
+  }
+  // A rotary axis word (a C axis, a trunnion's A) within its travel, as an X (the eleventh round
+  // wrote `B500.` on a head of -30..210); no word of an indexing head at all: the post indexes
+  // it for each tool, where the tool must point, and a turn between (`G0 G53 B90.`) left the
+  // next turning cut at B90.
+  for (std::size_t i = 0, depth = 0; i < b.size(); ++i) {
+    if (b[i] == '[') ++depth;
+    if (b[i] == ']' && depth > 0) --depth;
+    if (depth > 0) continue;
+    if (ch_.head_index.present() && b[i] == ch_.head_index.address) {
+      error(line_,
+            fmt::format("\"{}\" turns the indexing head ({}): the post indexes it for each tool, where "
+                        "the tool must point, and the next cut would run at the angle this block leaves",
+                        given, b[i]));
+      return false;
+    }
+    if ((b[i] != 'A' && b[i] != 'B' && b[i] != 'C') || incremental) continue;
+    const axis_def* r = ch_.axis(b[i]);
+    if (!r || !r->min || !r->max) continue;
+    double v = 0;
+    const std::size_t from = i + 1 + (i + 1 < b.size() && b[i + 1] == '+' ? 1 : 0);
+    const auto got = std::from_chars(b.data() + from, b.data() + b.size(), v, std::chars_format::fixed);
+    if (got.ec != std::errc() || (v >= *r->min && v <= *r->max)) continue;
+    error(line_, fmt::format("{} is outside channel {}'s {} travel {}..{} (channel.axis min/max)",
+                             b.substr(i, static_cast<std::size_t>(got.ptr - b.data()) - i), ch_.number, b[i],
+                             *r->min, *r->max));
+    return false;
+  }
+  // A speed clamp (the G codes of a spindle's clamp block with an S): no higher than the CL's
+  // MAXRPM in force or the spindle's limit (the eleventh round raised the Integrex's to
+  // `G92 S9999 R1` before a face to X0 under G96, where the comparison with the CL is off).
+  for (const spindle_def& sp : m_.spindles) {
+    if (sp.clamp.empty()) continue;
+    std::vector<double> want, have;
+    each_g(sp.clamp, f, [&](double g) { want.push_back(g); });
+    each_g(b, f, [&](double g) { have.push_back(g); });
+    const bool clamp = !want.empty() && std::all_of(want.begin(), want.end(), [&](double g) {
+      return std::any_of(have.begin(), have.end(), [&](double h) { return is(g, h); });
+    });
+    const std::size_t at = b.find('S');
+    double v = 0;
+    if (!clamp || at == std::string::npos ||
+        std::from_chars(b.data() + at + 1, b.data() + b.size(), v, std::chars_format::fixed).ec !=
+            std::errc())
+      continue;
+    double limit = sp.max_rpm > 0 ? sp.max_rpm : 0;
+    if (cl_clamp_ > 0 && (limit <= 0 || cl_clamp_ < limit)) limit = cl_clamp_;
+    if (limit <= 0 || v <= limit) continue;
+    const std::string above =
+        limit == cl_clamp_
+            ? fmt::format("the CL's MAXRPM of {:g}", limit)
+            : fmt::format("the {} spindle's limit of {:g} rpm ([[spindle]] max_rpm)", sp.name, limit);
+    error(line_, fmt::format("\"{}\" clamps the spindle at {:g} rpm, above {}: under constant surface speed "
+                             "the spindle would run up to it near the centre",
+                             given, v, above));
+    return false;
   }
   if (last_x_.known) user_x_ = last_x_.value;
   const std::optional<double> from_x = user_x_;
@@ -552,7 +632,9 @@ bool channel_writer::user_block_passes(const std::string& given) {
     }
   }
   // Last, the whitelist: a form none of the checks above names is refused too.
-  if (std::string why = user_block_form_error(b, given, {incremental, increment_letters()}); !why.empty()) {
+  if (std::string why =
+          user_block_form_error(b, given, {incremental, increment_letters(), x_diameter_ && !absolute_code_});
+      !why.empty()) {
     error(line_, why);
     return false;
   }

@@ -564,10 +564,11 @@ class channel_writer : private scripting::script_host, private block_writer::blo
     coolant_block(coolant_due_, false);
     coolant_due_.clear();
   }
-  bool after_index_ = false;               // a tool was called: its offset words are due
-  double c_cos_ = 1, c_sin_ = 0;           // of the C angle in force
-  std::optional<double> head_angle_;       // the indexing head's angle, once written
-  bool axes_free_ = false;                 // B and C unclamped for tilted (multi-axis) moves
+  bool after_index_ = false;          // a tool was called: its offset words are due
+  double c_cos_ = 1, c_sin_ = 0;      // of the C angle in force
+  std::optional<double> head_angle_;  // the indexing head's angle, once written
+  double cl_clamp_ = 0;               // the speed clamp of the CL's last SPINDL under CSS (rpm); 0: none yet
+  bool axes_free_ = false;            // B and C unclamped for tilted (multi-axis) moves
   const spindle_def* spindle_ = nullptr;   // the spindle SPINDL codes go to (workpiece or live)
   const spindle_def* work_ = nullptr;      // the workpiece spindle the channel works on (main, sub)
   double z_sign_ = 1.0;                    // -1 on a spindle with reverse_z

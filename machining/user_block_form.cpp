@@ -19,18 +19,20 @@ namespace {
 // - G0-G3 motion (the post writes its own motion code again after a user block's G code);
 // - G4 dwell, G9 exact stop (one block), G61 and G64 (exact stop and cutting mode: how corners
 //   are run, not where);
-// - G10 (the gate refuses work offsets, the workpiece shift and parameters: what is left is
-//   a tool offset, a shop's wear adjustment);
 // - G17-G19 plane, G94/G95/G98/G99 feed mode, G90/G91 (put back after the event,
 //   channel_user_modes), G20/G21 (the other unit is refused there);
 // - G28 and G30 reference returns (below: through no intermediate point), G53 machine
 //   coordinates;
 // - G40 and G80 (cancels), G96/G97 (surface speed on or off; the S and the spindle the CL asks
 //   for are compared at every cut), G50 and G92 (the gate refuses them with an axis word: a
-//   speed clamp, or a lathe's thread cycle in G-code system A, cancelled by the post's next
-//   motion code), G52 (only its cancel, X0.).
-constexpr double known_g[] = {0,  1,  2,  3,  4,  9,  10, 17, 18, 19, 20, 21, 28, 30, 40,
-                              50, 52, 53, 61, 64, 80, 90, 91, 92, 94, 95, 96, 97, 98, 99};
+//   speed clamp), G52 (only its cancel, X0.).
+// Not G10 (data setting: work and tool offsets, parameters, tool life; the eleventh round wrote
+// a geometry offset with `G10 P10001 X100. Z500.` and cleared the tool life data with G10 L3),
+// and on a lathe in G-code system A not G90, G92 and G94: there they are the turning, threading
+// and facing cycles, whose taper R takes X where the gate does not look (`G90 X50. Z-20.
+// R-300.` starts at X-550.).
+constexpr double known_g[] = {0,  1,  2,  3,  4,  9,  17, 18, 19, 20, 21, 28, 30, 40, 50,
+                              52, 53, 61, 64, 80, 90, 91, 92, 94, 95, 96, 97, 98, 99};
 
 // The arithmetic of an assignment (Fanuc custom macro B), as control_reading writes it: in lower
 // case between blanks. The comparisons (EQ, NE, ...) belong to IF and WHILE.
@@ -181,13 +183,27 @@ std::string user_block_form_error(std::string_view r, std::string_view given, co
             given,
             fmt::format("gives {}, a code the post does not follow in a user block: what it does to the "
                         "post's later blocks is not known (a cycle stays on, a macro call or a skip moves "
-                        "where the post cannot see). A user block may give G0-G4, G9, G10 (a tool offset), "
-                        "G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99",
+                        "where the post cannot see; G10 sets offsets, parameters or tool life data). A user "
+                        "block may give G0-G4, G9, G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, "
+                        "G80, G90-G92, G94-G99",
                         w.text));
+      const bool cycle =
+          std::abs(w.value - 90) < 1e-9 || std::abs(w.value - 92) < 1e-9 || std::abs(w.value - 94) < 1e-9;
+      if (c.lathe_cycles && cycle)
+        return refusal(given, fmt::format("gives {}, on this lathe (G-code system A) a turning, threading or "
+                                          "facing cycle: its passes and its taper (R) take the tool where "
+                                          "the post does not follow it; let the CL cut them",
+                                          w.text));
       reference = reference || std::abs(w.value - 28) < 1e-9 || std::abs(w.value - 30) < 1e-9;
       machine = machine || std::abs(w.value - 53) < 1e-9;
       incremental = incremental || std::abs(w.value - 91) < 1e-9;
     }
+    // An M code is a whole number: `M100.` is an alarm on a Fanuc, and the post's counters of
+    // waits, spindles and coolant would not read it as M100 while another control might.
+    if (w.letter == 'M' && w.text.find('.') != std::string_view::npos)
+      return refusal(given, fmt::format("gives {}, an M code with a decimal point: write the code as a whole "
+                                        "number",
+                                        w.text));
     if (w.letter == 'M' && (w.value == 98 || w.value == 99 || w.value == 198))
       return refusal(given,
                      fmt::format("calls a subprogram or returns from one ({}): what the subprogram moves "
@@ -195,7 +211,13 @@ std::string user_block_form_error(std::string_view r, std::string_view given, co
                                  "program starts it again",
                                  w.text));
   }
-  if (reference && !machine) return through_a_point(words, given, incremental, c);
+  // G28 or G30 with G53: two codes of one group in one block, and which the control takes is
+  // its own (`G53 G28 X-9000.` passed the eleventh round unbounded).
+  if (reference && machine)
+    return refusal(given,
+                   "gives G53 with G28 or G30: two codes of one group in one block; write them in blocks "
+                   "of their own");
+  if (reference) return through_a_point(words, given, incremental, c);
   return {};
 }
 

@@ -12,6 +12,8 @@ namespace twinpost {
 struct user_block_context {
   bool incremental = false;            ///< G91 in force for this block (given by it or before it)
   std::string_view increment_letters;  ///< addresses that are increments in any mode (a lathe's U, W, H)
+  /// G90, G92 and G94 are a lathe's turning, threading and facing cycles (Fanuc G-code system A)
+  bool lathe_cycles = false;
 };
 
 /// Empty when `reading` (the block as a control reads it: upper case, no comments or blanks,

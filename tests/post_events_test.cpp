@@ -10,6 +10,7 @@
 #include "file_test_support.hpp"
 #include "machine_test_support.hpp"
 #include "machines/machine_loader.hpp"
+#include "machines/machine_search.hpp"
 #include "post_test_jobs.hpp"
 
 using namespace twinpost;
@@ -458,16 +459,18 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
           "(channel.axis min/max)\nCATCHER\n^\n");
   }
   SECTION("the shop's own forms post: G28 U0., G50 S2000, a dwell, a counter") {
+    // (G10 P101 U0.1, a wear adjustment, and G92 X29.2 Z-20. F1.5, system A's thread cycle,
+    // posted until the eleventh round: the whitelist refuses both now.)
     const test::posted q = post_with(
         "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 U0.\", \"G50 S2000\", \"G4 U1.5\", "
-        "\"#601 = #601 + 1\", \"G10 P101 U0.1\", \"G52 X0. Z+0\", \"G92 X29.2 Z-20. F1.5\", \"#1=#2 XOR "
+        "\"#601 = #601 + 1\", \"G52 X0. Z+0\", \"#1=#2 XOR "
         "#3\", "
         "\"DPRNT[X#5041[44]]\", \"POPEN\", \"N10 G4 U0.5 (DWELL)\"]\n",
         "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate-ok");
     CHECK(q.diagnostics == "");
     CHECK(program_1(q) ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG28 U0.\nG50 S2000\nG4 U1.5\n"
-          "#601 = #601 + 1\nG10 P101 U0.1\nG52 X0. Z+0\nG92 X29.2 Z-20. F1.5\n#1=#2 XOR "
+          "#601 = #601 + 1\nG52 X0. Z+0\n#1=#2 XOR "
           "#3\nDPRNT[X#5041[44]]\nPOPEN\nN10 G4 U0.5 (DWELL)\nM100\nM9\n"
           "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
@@ -482,18 +485,18 @@ TEST_CASE("a user block is held to the forms the post reads: a whitelist, not a 
       {"G81 X0. Z-10. R2. F100.",
        "\"G81 X0. Z-10. R2. F100.\" gives G81, a code the post does not follow in a user block: what it does "
        "to the post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the "
-       "post cannot see). A user block may give G0-G4, G9, G10 (a tool offset), G17-G21, G28, G30, G40, G50, "
-       "G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+       "post cannot see; G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, "
+       "G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
       {"G27 X0.",
        "\"G27 X0.\" gives G27, a code the post does not follow in a user block: what it does to the post's "
-       "later blocks is not known (a cycle stays on, a macro call or a skip moves where the post cannot "
-       "see). A user block may give G0-G4, G9, G10 (a tool offset), G17-G21, G28, G30, G40, G50, G52 X0., "
-       "G53, G61, G64, G80, G90-G92, G94-G99"},
+       "later blocks is not known (a cycle stays on, a macro call or a skip moves where the post cannot see; "
+       "G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, G17-G21, G28, G30, "
+       "G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
       {"G65 P9010 A1.",
        "\"G65 P9010 A1.\" gives G65, a code the post does not follow in a user block: what it does to the "
        "post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the post "
-       "cannot see). A user block may give G0-G4, G9, G10 (a tool offset), G17-G21, G28, G30, G40, G50, G52 "
-       "X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+       "cannot see; G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, "
+       "G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
       {"M98 P1000",
        "\"M98 P1000\" calls a subprogram or returns from one (M98): what the subprogram moves and the waits "
        "in it are not the post's to read, and M99 in the main program starts it again"},
@@ -527,6 +530,41 @@ TEST_CASE("a user block is held to the forms the post reads: a whitelist, not a 
        "(#1=...) or a print statement: a form the post cannot read is refused"},
       {"G0 X20. Z",
        "\"G0 X20. Z\" has the address Z without its number: write Z and a number, or leave it out"},
+      // The eleventh round: a lathe cycle's taper, offsets and control settings written, an M
+      // code with a point, G53 with G28.
+      {"G90 X50. Z-20. R-300. F0.2",
+       "\"G90 X50. Z-20. R-300. F0.2\" gives G90, on this lathe (G-code system A) a turning, threading or "
+       "facing cycle: its passes and its taper (R) take the tool where the post does not follow it; let the "
+       "CL cut them"},
+      {"G92 X29.2 Z-20. F1.5",
+       "\"G92 X29.2 Z-20. F1.5\" gives G92, on this lathe (G-code system A) a turning, threading or facing "
+       "cycle: its passes and its taper (R) take the tool where the post does not follow it; let the CL cut "
+       "them"},
+      {"G10 P101 U0.1",
+       "\"G10 P101 U0.1\" gives G10, a code the post does not follow in a user block: what it does to the "
+       "post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the post "
+       "cannot see; G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, "
+       "G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+      {"G10 L3",
+       "\"G10 L3\" gives G10, a code the post does not follow in a user block: what it does to the post's "
+       "later blocks is not known (a cycle stays on, a macro call or a skip moves where the post cannot see; "
+       "G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, G17-G21, G28, G30, "
+       "G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+      {"#2101=-100.",
+       "\"#2101=-100.\" writes #2101, a tool offset (#2001-#2999, #10001-#13999): every later cut of that "
+       "tool would be off by it, and the control keeps it for the next job: set it at the machine, not from "
+       "a machine file's block"},
+      {"#3004=3",
+       "\"#3004=3\" writes #3004, a control setting that takes single block (#3003) or feed hold and the "
+       "feed override (#3004) away from the operator: set it at the machine, not from a machine file's "
+       "block"},
+      {"#1100=1",
+       "\"#1100=1\" writes #1100, an output to the machine's own logic (#1100-#1199): set it at the machine, "
+       "not from a machine file's block"},
+      {"M100.", "\"M100.\" gives M100., an M code with a decimal point: write the code as a whole number"},
+      {"G53 G28 X-9000.",
+       "\"G53 G28 X-9000.\" gives G53 with G28 or G30: two codes of one group in one block; write them in "
+       "blocks of their own"},
   };
   for (const auto& [block, message] : cases) {
     CAPTURE(block);
@@ -851,4 +889,39 @@ TEST_CASE("a CL name in a template cannot end its comment, start a line or stop 
                 "PARTNO EV\nHEAD/1\nTURRET/1,1\nOPFEATSTART/ROUGH 50%)G55(X\nFINI\n", "cl-name");
   CHECK(p.diagnostics == "");
   CHECK(program_1(p).find("\n(OP ROUGH 50  G55 X)\n") != std::string::npos);
+}
+
+TEST_CASE("a user block may not raise the speed clamp above the CL's, nor turn the indexing head",
+          "[post][events]") {
+  // The eleventh round: `G92 S9999 R1` on the Integrex (its own clamp block) before a face to X0
+  // under G96 with MAXRPM 3000, and `G0 G53 B90.` before a turning cut.
+  const std::string css_job =
+      "PARTNO "
+      "EV\nHEAD/1\nTLDATA/TURN\nLOADTL/1\nSPINDL/SMM,200,CLW,MAXRPM,3000\nRAPID\nGOTO/40,0,2\nCATCHER\n"
+      "FEDRAT/0.2,MMPR\nGOTO/40,0,-10\nGOTO/0,0,-10\nRAPID\nGOTO/45,0,5\nFINI\n";
+  const auto integrex = [&](const std::string& block, const std::string& tag) {
+    const std::string text = std::string(*builtin_machine_text("integrex-i200st")) +
+                             "\n[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"" + block + "\"]\n";
+    return test::post_in_fresh_dir(css_job, parse_machine(text, "integrex-events.toml"), "events-" + tag);
+  };
+  const test::posted clamp = integrex("G92 S9999 R1", "clamp");
+  CHECK(
+      clamp.diagnostics ==
+      "job.cls:8:1: error: channel 1: \"G92 S9999 R1\" clamps the spindle at 9999 rpm, above the CL's MAXRPM "
+      "of 3000: under constant surface speed the spindle would run up to it near the centre\nCATCHER\n^\n");
+  CHECK(clamp.files.empty());
+  // At or under the CL's clamp it posts.
+  CHECK(integrex("G92 S2500 R1", "clamp-ok").ok);
+  const test::posted head = integrex("G0 G53 B90.", "head");
+  CHECK(head.diagnostics ==
+        "job.cls:8:1: error: channel 1: \"G0 G53 B90.\" turns the indexing head (B): the post indexes it for "
+        "each tool, where the tool must point, and the next cut would run at the angle this block leaves\n"
+        "CATCHER\n^\n");
+  CHECK(head.files.empty());
+  // On the lathe, its G50 clamp over the spindle's limit with no CL clamp in force.
+  const test::posted lathe = post_with("[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G50 S9999\"]\n",
+                                       "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "clamp-lathe");
+  CHECK_THAT(lathe.diagnostics,
+             Catch::StartsWith("job.cls:4:1: error: channel 1: \"G50 S9999\" clamps the spindle "
+                               "at 9999 rpm, above the main spindle's limit of "));
 }
