@@ -274,10 +274,14 @@ const char* control_variable(int n) {
   if ((n >= 2000 && n <= 2999) || (n >= 10000 && n <= 13999))
     return "a tool offset (#2001-#2999, #10001-#13999): every later cut of that tool would be off by it, and "
            "the control keeps it for the next job";
+  if (n >= 200000 && n <= 299999)
+    return "a tool offset of a larger offset table (#200001-, a 30i's; UNVERIFIED range): every later cut of "
+           "that tool would be off by it";
   if (n >= 1100 && n <= 1199) return "an output to the machine's own logic (#1100-#1199)";
   if (n == 3003 || n == 3004)
     return "a control setting that takes single block (#3003) or feed hold and the feed override (#3004) "
            "away from the operator";
+  if (n == 3005) return "the control's settings (#3005: among them inch input and the mirror image)";
   return nullptr;
 }
 
@@ -494,9 +498,11 @@ bool channel_writer::user_block_passes(const std::string& given) {
       return std::any_of(have.begin(), have.end(), [&](double h) { return is(g, h); });
     });
     const std::size_t at = b.find('S');
+    const std::size_t digits =
+        at == std::string::npos ? at : at + 1 + (at + 1 < b.size() && b[at + 1] == '+');
     double v = 0;
     if (!clamp || at == std::string::npos ||
-        std::from_chars(b.data() + at + 1, b.data() + b.size(), v, std::chars_format::fixed).ec !=
+        std::from_chars(b.data() + digits, b.data() + b.size(), v, std::chars_format::fixed).ec !=
             std::errc())
       continue;
     double limit = sp.max_rpm > 0 ? sp.max_rpm : 0;
@@ -511,7 +517,10 @@ bool channel_writer::user_block_passes(const std::string& given) {
                              given, v, above));
     return false;
   }
-  if (last_x_.known) user_x_ = last_x_.value;
+  if (last_x_.known) {
+    user_x_ = last_x_.value;
+    user_x_lost_ = false;
+  }
   const std::optional<double> from_x = user_x_;
   const std::size_t then_at = b.find(" then ");
   bool x_named = false;  // the block has an X word (or a lathe's U)
@@ -604,6 +613,14 @@ bool channel_writer::user_block_passes(const std::string& given) {
                         word, given, word));
       return false;
     }
+    if ((is_u || incremental) && !from_x && user_x_lost_ && v != 0) {
+      // After G30 or G53 in this event X is where the control's parameters put it: an increment
+      // from there is bounded by nothing (`G30 U0.` then `U460.`, the twelfth round).
+      error(line_, fmt::format("{} in \"{}\" is an increment of X where G30 or G53 of this event left X at a "
+                               "position the post does not know; write an absolute X",
+                               word, given));
+      return false;
+    }
     if (is_u || incremental) {
       // An increment: from the X written last (by the post, or by the event's user blocks before
       // this one: a G code there makes the post write every axis again, not forget where X is),
@@ -631,9 +648,40 @@ bool channel_writer::user_block_passes(const std::string& given) {
       user_dx_ = 0;
     }
   }
+  // G40 while the CL's cutter compensation is on: the rest of the contour would run on the
+  // tool's centre, with a cancel move that gouges the wall (the twelfth round, mid-contour).
+  bool cancels = false;
+  each_g(b, f, [&](double g) { cancels = cancels || is(g, 40); });
+  if (cancels && comp_cl_on_) {
+    error(line_,
+          fmt::format("\"{}\" cancels the cutter compensation (G40) while the CL's CUTCOM is on: the rest "
+                      "of the contour would run on the tool's centre",
+                      given));
+    return false;
+  }
+  // The machine's own codes for what the post does itself: a chuck opened (from another path
+  // while this one's spindle turns, or under synchronisation with nothing holding the part: the
+  // twelfth round), a C axis or an indexing head clamped or unclamped.
+  for (const auto& [code, what] : reserved_m_codes()) {
+    for (std::size_t i = 0, depth = 0; i < b.size(); ++i) {
+      if (b[i] == '[') ++depth;
+      if (b[i] == ']' && depth > 0) --depth;
+      if (depth > 0 || b[i] != 'M') continue;
+      long long v = 0;
+      std::size_t j = i + 1;
+      for (; j < b.size() && ascii::is_digit(b[j]) && v < 1000000000; ++j) v = v * 10 + (b[j] - '0');
+      if (j == i + 1 || v != code) continue;
+      error(line_, fmt::format("\"{}\" gives M{}, the machine's {}: the post gives it itself where the part "
+                               "and the spindles allow it",
+                               given, code, what));
+      return false;
+    }
+  }
   // Last, the whitelist: a form none of the checks above names is refused too.
-  if (std::string why =
-          user_block_form_error(b, given, {incremental, increment_letters(), x_diameter_ && !absolute_code_});
+  std::string axis_letters;
+  for (const axis_def& a : ch_.axes) axis_letters += a.address;
+  if (std::string why = user_block_form_error(
+          b, given, {incremental, increment_letters(), x_diameter_ && !absolute_code_, axis_letters});
       !why.empty()) {
     error(line_, why);
     return false;
@@ -651,8 +699,31 @@ bool channel_writer::user_block_passes(const std::string& given) {
   } else if ((reference || elsewhere) && x_named) {
     user_x_.reset();
     user_dx_ = 0;
+    user_x_lost_ = true;
   }
   return true;
+}
+
+std::vector<std::pair<long long, std::string>> channel_writer::reserved_m_codes() const {
+  std::vector<std::pair<long long, std::string>> out;
+  const auto add = [&out](const std::string& block, std::string what) {
+    for (std::size_t i = 0; i + 1 < block.size(); ++i) {
+      if (block[i] != 'M' || !ascii::is_digit(block[i + 1]) || (i > 0 && ascii::is_letter(block[i - 1])))
+        continue;
+      long long v = 0;
+      for (std::size_t j = i + 1; j < block.size() && ascii::is_digit(block[j]) && v < 1000000000; ++j)
+        v = v * 10 + (block[j] - '0');
+      out.emplace_back(v, what);
+    }
+  };
+  for (const spindle_def& s : m_.spindles) {
+    add(s.chuck_open, fmt::format("chuck open of the {} spindle", s.name));
+    add(s.c_axis.clamp, fmt::format("C axis clamp of the {} spindle", s.name));
+    add(s.c_axis.unclamp, fmt::format("C axis unclamp of the {} spindle", s.name));
+  }
+  add(ch_.head_index.unclamp, "indexing head unclamp");
+  add(ch_.head_index.clamp, "indexing head clamp");
+  return out;
 }
 
 std::string channel_writer::increment_letters() const {
@@ -666,7 +737,8 @@ std::string channel_writer::increment_letters() const {
 bool channel_writer::insert_passes(const std::string& text, int line) {
   bool glued = false;
   const std::string reading = control_reading(text, m_.program, glued);
-  const std::string why = insert_return_error(reading, text, {false, increment_letters()});
+  const std::string increments = increment_letters();
+  const std::string why = insert_return_error(reading, text, {false, increments, false, {}});
   if (why.empty()) return true;
   error(line, "INSERT " + why);
   return false;

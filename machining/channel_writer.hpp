@@ -557,7 +557,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   // The X the event's user blocks left, when the post knew it before them: their G codes make the
   // post forget its axes (to write them all again), not where X is (the gate's increments).
   std::optional<double> user_x_;
-  double user_dx_ = 0;  // the increments of the event's user blocks while no X is known
+  bool user_x_lost_ = false;  // G30 or G53 of a user block left X where the post cannot know
+  double user_dx_ = 0;        // the increments of the event's user blocks while no X is known
   /// Writes coolant_due_, if any.
   void write_coolant_due() {
     if (coolant_due_.empty()) return;
@@ -810,6 +811,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// The addresses that are increments whatever the mode: a lathe's U, V, W, H in G-code
   /// system A where the channel has no axis of that name.
   std::string increment_letters() const;
+  /// The M codes of what the post does itself, with what each is: the spindles' chuck open, C
+  /// axis clamp and unclamp, the indexing head's clamp and unclamp (refused in user blocks).
+  std::vector<std::pair<long long, std::string>> reserved_m_codes() const;
   int line_ = 0, column_ = 0;  // the event being written: where its errors point
   // The script (machining/channel_script.cpp); null without one (then no script work at all).
   job_script* script_ = nullptr;

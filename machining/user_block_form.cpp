@@ -16,7 +16,9 @@ namespace {
 
 // The G codes a user block may give: those whose effect on the post's later blocks the post
 // follows or undoes.
-// - G0-G3 motion (the post writes its own motion code again after a user block's G code);
+// - G0 and G1 motion (the post writes its own motion code again after a user block's G code);
+//   not G2 and G3: an arc's path is not held to the travel (`G2 I-500.` is a full circle that
+//   reaches X-980 on a mill of +-400, the twelfth round);
 // - G4 dwell, G9 exact stop (one block), G61 and G64 (exact stop and cutting mode: how corners
 //   are run, not where);
 // - G17-G19 plane, G94/G95/G98/G99 feed mode, G90/G91 (put back after the event,
@@ -31,8 +33,8 @@ namespace {
 // and on a lathe in G-code system A not G90, G92 and G94: there they are the turning, threading
 // and facing cycles, whose taper R takes X where the gate does not look (`G90 X50. Z-20.
 // R-300.` starts at X-550.).
-constexpr double known_g[] = {0,  1,  2,  3,  4,  9,  17, 18, 19, 20, 21, 28, 30, 40, 50,
-                              52, 53, 61, 64, 80, 90, 91, 92, 94, 95, 96, 97, 98, 99};
+constexpr double known_g[] = {0,  1,  4,  9,  17, 18, 19, 20, 21, 28, 30, 40, 50, 52,
+                              53, 61, 64, 80, 90, 91, 92, 94, 95, 96, 97, 98, 99};
 
 // The arithmetic of an assignment (Fanuc custom macro B), as control_reading writes it: in lower
 // case between blanks. The comparisons (EQ, NE, ...) belong to IF and WHILE.
@@ -126,6 +128,24 @@ std::string user_block_form_error(std::string_view r, std::string_view given, co
   }
   blanks();
   if (i < r.size() && r[i] == '#') return assignment_error(r, i, given);
+  // A condition that sets a variable (`IF [#100 GT 10] THEN #3000=1`: a parts counter's alarm):
+  // the condition in brackets, then an assignment the rules above hold.
+  if (r.compare(i, 3, "if ") == 0) {
+    std::size_t k = i + 3;
+    while (k < r.size() && r[k] == ' ') ++k;
+    const std::size_t then = r.find(" then ", k);
+    if (k < r.size() && r[k] == '[' && then != std::string_view::npos) {
+      std::size_t e = k;
+      for (int depth = 0; e < then; ++e) {
+        if (r[e] == '[') ++depth;
+        if (r[e] == ']' && --depth == 0) break;
+      }
+      std::size_t q = then + 6;
+      while (q < r.size() && r[q] == ' ') ++q;
+      if (e < then && r.find_first_not_of(' ', e + 1) == then + 1 && q < r.size() && r[q] == '#')
+        return assignment_error(r, q, given);
+    }
+  }
   std::vector<word> words;
   while (blanks(), i < r.size()) {
     const char a = r[i];
@@ -181,12 +201,14 @@ std::string user_block_form_error(std::string_view r, std::string_view given, co
                        [&](double g) { return std::abs(w.value - g) < 1e-9; }))
         return refusal(
             given,
-            fmt::format("gives {}, a code the post does not follow in a user block: what it does to the "
-                        "post's later blocks is not known (a cycle stays on, a macro call or a skip moves "
-                        "where the post cannot see; G10 sets offsets, parameters or tool life data). A user "
-                        "block may give G0-G4, G9, G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, "
-                        "G80, G90-G92, G94-G99",
-                        w.text));
+            fmt::format(
+                "gives {}, a code the post does not follow in a user block: what it does to the "
+                "post's later blocks is not known (a cycle stays on, a macro call or a skip moves "
+                "where the post cannot see; G10 sets offsets, parameters or tool life data; an arc's path is "
+                "not held to the travel). A user block may give G0, G1, G4, G9, G17-G21, G28, G30, G40, G50, "
+                "G52 X0., G53, G61, G64, "
+                "G80, G90-G92, G94-G99",
+                w.text));
       const bool cycle =
           std::abs(w.value - 90) < 1e-9 || std::abs(w.value - 92) < 1e-9 || std::abs(w.value - 94) < 1e-9;
       if (c.lathe_cycles && cycle)
@@ -210,6 +232,36 @@ std::string user_block_form_error(std::string_view r, std::string_view given, co
                                  "and the waits in it are not the post's to read, and M99 in the main "
                                  "program starts it again",
                                  w.text));
+  }
+  for (const word& w : words) {
+    // The tool length offset number (in G43 a new H changes the offset: every later Z is off by
+    // the two tools' difference) and the cutter compensation's (a new D mid-contour): the post
+    // writes each tool's. H is a lathe's incremental C where G-code system A makes it one.
+    if ((w.letter == 'H' && c.increment_letters.find('H') == std::string_view::npos) || w.letter == 'D')
+      return refusal(given, fmt::format("gives {}, a {} offset number: the post writes each tool's own, and "
+                                        "every later cut would take this one",
+                                        w.text, w.letter == 'H' ? "tool length" : "cutter compensation"));
+    // An axis the channel does not have: on a Fanuc lathe A is the angle of direct drawing
+    // dimension programming (`G1 A150. W-100.` moves X too), elsewhere an alarm at best.
+    if (is_axis(w.letter) && w.number && c.axes.find(w.letter) == std::string_view::npos &&
+        c.increment_letters.find(w.letter) == std::string_view::npos)
+      return refusal(given, fmt::format("gives {}, a word of an axis this channel does not have: a Fanuc "
+                                        "lathe reads A as the angle of a direct drawing move",
+                                        w.text));
+    // The custom macro interrupt (Fanuc's default M96/M97, parameters 6033/6034): a jump to a
+    // subprogram on a signal, anywhere in the post's later blocks.
+    if (w.letter == 'M' && (w.value == 96 || w.value == 97))
+      return refusal(given, fmt::format("gives {}, the custom macro interrupt on a Fanuc (a jump to a "
+                                        "subprogram on a signal): what it runs is not the post's to read",
+                                        w.text));
+    // G53 moves in machine coordinates; with an increment (G91, or a lathe's U, W) some controls
+    // move by it (Mitsubishi M700, Mazak SmoothX's base), others ignore G53: unbounded either way.
+    if (machine && is_axis(w.letter) && w.number &&
+        (incremental || c.increment_letters.find(w.letter) != std::string_view::npos))
+      return refusal(given, fmt::format("gives G53 with the increment {}: some controls move by it in "
+                                        "machine coordinates, others ignore G53; write an absolute "
+                                        "machine position",
+                                        w.text));
   }
   // G28 or G30 with G53: two codes of one group in one block, and which the control takes is
   // its own (`G53 G28 X-9000.` passed the eleventh round unbounded).

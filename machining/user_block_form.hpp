@@ -14,6 +14,7 @@ struct user_block_context {
   std::string_view increment_letters;  ///< addresses that are increments in any mode (a lathe's U, W, H)
   /// G90, G92 and G94 are a lathe's turning, threading and facing cycles (Fanuc G-code system A)
   bool lathe_cycles = false;
+  std::string_view axes;  ///< the channel's axis letters ("XZCB"): a word of another is refused
 };
 
 /// Empty when `reading` (the block as a control reads it: upper case, no comments or blanks,

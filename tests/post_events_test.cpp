@@ -440,6 +440,15 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
     CHECK(r.diagnostics == "");
     CHECK(program_1(r).find("\nG0 X44. Z2.\nX20.\nG1 X44. Z-30. F0.2\n") != std::string::npos);
   }
+  SECTION("the twelfth round: no increment of X after G30 or G53 has left it where the post cannot know") {
+    const test::posted g30 = post_with(
+        "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G30 U0.\", \"U460.\"]\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nRAPID\nGOTO/40,0,2\nCATCHER\nFINI\n", "gate-g30");
+    CHECK(g30.diagnostics ==
+          "job.cls:7:1: error: channel 1: U460. in \"U460.\" is an increment of X where G30 or G53 of this "
+          "event "
+          "left X at a position the post does not know; write an absolute X\nCATCHER\n^\n");
+  }
   SECTION("the ninth attack: increments across events, G28 of Z alone, G90 and G91 in one block") {
     // Two records of U380. after X80.: the second starts where the first left X (840 > 460).
     const test::posted two = post_with(
@@ -463,14 +472,14 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
     // posted until the eleventh round: the whitelist refuses both now.)
     const test::posted q = post_with(
         "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G28 U0.\", \"G50 S2000\", \"G4 U1.5\", "
-        "\"#601 = #601 + 1\", \"G52 X0. Z+0\", \"#1=#2 XOR "
+        "\"#601 = #601 + 1\", \"IF [#601 GT 10] THEN #3000=1 (LIMIT)\", \"G52 X0. Z+0\", \"#1=#2 XOR "
         "#3\", "
         "\"DPRNT[X#5041[44]]\", \"POPEN\", \"N10 G4 U0.5 (DWELL)\"]\n",
         "PARTNO EV\nHEAD/1\nTURRET/1,1\nCATCHER\nFINI\n", "gate-ok");
     CHECK(q.diagnostics == "");
     CHECK(program_1(q) ==
           "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG28 U0.\nG50 S2000\nG4 U1.5\n"
-          "#601 = #601 + 1\nG52 X0. Z+0\n#1=#2 XOR "
+          "#601 = #601 + 1\nIF [#601 GT 10] THEN #3000=1 (LIMIT)\nG52 X0. Z+0\n#1=#2 XOR "
           "#3\nDPRNT[X#5041[44]]\nPOPEN\nN10 G4 U0.5 (DWELL)\nM100\nM9\n"
           "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   }
@@ -485,18 +494,21 @@ TEST_CASE("a user block is held to the forms the post reads: a whitelist, not a 
       {"G81 X0. Z-10. R2. F100.",
        "\"G81 X0. Z-10. R2. F100.\" gives G81, a code the post does not follow in a user block: what it does "
        "to the post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the "
-       "post cannot see; G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, "
-       "G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+       "post cannot see; G10 sets offsets, parameters or tool life data; an arc's path is not held to the "
+       "travel). A user block may give G0, G1, G4, G9, G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, "
+       "G80, G90-G92, G94-G99"},
       {"G27 X0.",
        "\"G27 X0.\" gives G27, a code the post does not follow in a user block: what it does to the post's "
        "later blocks is not known (a cycle stays on, a macro call or a skip moves where the post cannot see; "
-       "G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, G17-G21, G28, G30, "
-       "G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+       "G10 sets offsets, parameters or tool life data; an arc's path is not held to the travel). A user "
+       "block may give G0, G1, G4, G9, G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, "
+       "G94-G99"},
       {"G65 P9010 A1.",
        "\"G65 P9010 A1.\" gives G65, a code the post does not follow in a user block: what it does to the "
        "post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the post "
-       "cannot see; G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, "
-       "G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+       "cannot see; G10 sets offsets, parameters or tool life data; an arc's path is not held to the "
+       "travel). A user block may give G0, G1, G4, G9, G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, "
+       "G80, G90-G92, G94-G99"},
       {"M98 P1000",
        "\"M98 P1000\" calls a subprogram or returns from one (M98): what the subprogram moves and the waits "
        "in it are not the post's to read, and M99 in the main program starts it again"},
@@ -543,13 +555,15 @@ TEST_CASE("a user block is held to the forms the post reads: a whitelist, not a 
       {"G10 P101 U0.1",
        "\"G10 P101 U0.1\" gives G10, a code the post does not follow in a user block: what it does to the "
        "post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the post "
-       "cannot see; G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, "
-       "G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+       "cannot see; G10 sets offsets, parameters or tool life data; an arc's path is not held to the "
+       "travel). A user block may give G0, G1, G4, G9, G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, "
+       "G80, G90-G92, G94-G99"},
       {"G10 L3",
        "\"G10 L3\" gives G10, a code the post does not follow in a user block: what it does to the post's "
        "later blocks is not known (a cycle stays on, a macro call or a skip moves where the post cannot see; "
-       "G10 sets offsets, parameters or tool life data). A user block may give G0-G4, G9, G17-G21, G28, G30, "
-       "G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, G94-G99"},
+       "G10 sets offsets, parameters or tool life data; an arc's path is not held to the travel). A user "
+       "block may give G0, G1, G4, G9, G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, G80, G90-G92, "
+       "G94-G99"},
       {"#2101=-100.",
        "\"#2101=-100.\" writes #2101, a tool offset (#2001-#2999, #10001-#13999): every later cut of that "
        "tool would be off by it, and the control keeps it for the next job: set it at the machine, not from "
@@ -562,6 +576,32 @@ TEST_CASE("a user block is held to the forms the post reads: a whitelist, not a 
        "\"#1100=1\" writes #1100, an output to the machine's own logic (#1100-#1199): set it at the machine, "
        "not from a machine file's block"},
       {"M100.", "\"M100.\" gives M100., an M code with a decimal point: write the code as a whole number"},
+      // The twelfth round: arcs, offset numbers, an axis the channel lacks (the lathe's direct
+      // drawing angle), G53 with an increment, the macro interrupt, the settings word.
+      {"G2 I-200. F0.2",
+       "\"G2 I-200. F0.2\" gives G2, a code the post does not follow in a user block: what it does to the "
+       "post's later blocks is not known (a cycle stays on, a macro call or a skip moves where the post "
+       "cannot see; G10 sets offsets, parameters or tool life data; an arc's path is not held to the "
+       "travel). A user block may give G0, G1, G4, G9, G17-G21, G28, G30, G40, G50, G52 X0., G53, G61, G64, "
+       "G80, G90-G92, G94-G99"},
+      {"D50",
+       "\"D50\" gives D50, a cutter compensation offset number: the post writes each tool's own, and every "
+       "later cut would take this one"},
+      {"G1 A150. W-100. F0.2",
+       "\"G1 A150. W-100. F0.2\" gives A150., a word of an axis this channel does not have: a Fanuc lathe "
+       "reads A as the angle of a direct drawing move"},
+      {"G53 U500.",
+       "\"G53 U500.\" gives G53 with the increment U500.: some controls move by it in machine coordinates, "
+       "others ignore G53; write an absolute machine position"},
+      {"M96 P9000",
+       "\"M96 P9000\" gives M96, the custom macro interrupt on a Fanuc (a jump to a subprogram on a signal): "
+       "what it runs is not the post's to read"},
+      {"#3005=4",
+       "\"#3005=4\" writes #3005, the control's settings (#3005: among them inch input and the mirror "
+       "image): set it at the machine, not from a machine file's block"},
+      {"M69",
+       "\"M69\" gives M69, the machine's chuck open of the main spindle: the post gives it itself where the "
+       "part and the spindles allow it"},
       {"G53 G28 X-9000.",
        "\"G53 G28 X-9000.\" gives G53 with G28 or G30: two codes of one group in one block; write them in "
        "blocks of their own"},
@@ -910,8 +950,16 @@ TEST_CASE("a user block may not raise the speed clamp above the CL's, nor turn t
       "job.cls:8:1: error: channel 1: \"G92 S9999 R1\" clamps the spindle at 9999 rpm, above the CL's MAXRPM "
       "of 3000: under constant surface speed the spindle would run up to it near the centre\nCATCHER\n^\n");
   CHECK(clamp.files.empty());
+  // A sign on the S is the same S (the twelfth round).
+  CHECK_THAT(
+      integrex("G92 S+9999 R1", "clamp-sign").diagnostics,
+      Catch::StartsWith("job.cls:8:1: error: channel 1: \"G92 S+9999 R1\" clamps the spindle at 9999 rpm"));
   // At or under the CL's clamp it posts.
   CHECK(integrex("G92 S2500 R1", "clamp-ok").ok);
+  // A bare H in G43: another tool's length for every later Z.
+  CHECK(integrex("H2", "h-word").diagnostics ==
+        "job.cls:8:1: error: channel 1: \"H2\" gives H2, a tool length offset number: the post writes each "
+        "tool's own, and every later cut would take this one\nCATCHER\n^\n");
   const test::posted head = integrex("G0 G53 B90.", "head");
   CHECK(head.diagnostics ==
         "job.cls:8:1: error: channel 1: \"G0 G53 B90.\" turns the indexing head (B): the post indexes it for "

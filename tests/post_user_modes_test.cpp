@@ -79,3 +79,37 @@ TEST_CASE("user blocks: G28 on a mill only through no intermediate point", "[pos
   REQUIRE(good.ok);
   CHECK(between(good.files.begin()->second, "G91 G28 Z0.", "T") == "G91 G28 Z0.\nG90\nG91 G28 Z0\nG90\n");
 }
+
+TEST_CASE("user blocks: no G40 while the CL's cutter compensation is on, no G53 with an increment",
+          "[post][events]") {
+  // The twelfth round on issue 38: a G40 mid-contour runs the rest on the tool's centre.
+  const std::string mill = test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml");
+  const std::string comp =
+      "PARTNO "
+      "CMP\nTLDATA/MILL,10,0,50\nLOADTL/1\nSPINDL/2000,RPM,CLW\nRAPID\nGOTO/20,10,30\nFEDRAT/200,MMPM\n"
+      "GOTO/20,10,-1\nCUTCOM/LEFT\nGOTO/40,10,-1\nCATCHER\nGOTO/40,30,-1\nCUTCOM/OFF\nGOTO/20,30,-1\nRAPID\n"
+      "GOTO/20,30,30\nFINI\n";
+  const auto with = [&](const std::string& block, const std::string& tag) {
+    return test::post_in_fresh_dir(
+        comp,
+        parse_machine(mill + "\n[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"" + block + "\"]\n",
+                      "mill.toml"),
+        tag);
+  };
+  CHECK(with("G40", "g40").diagnostics ==
+        "job.cls:11:1: error: channel 1: \"G40\" cancels the cutter compensation (G40) while the CL's CUTCOM "
+        "is "
+        "on: the rest of the contour would run on the tool's centre\nCATCHER\n^\n");
+  CHECK(with("G91 G53 X900.", "g53-inc").diagnostics ==
+        "job.cls:11:1: error: channel 1: \"G91 G53 X900.\" gives G53 with the increment X900.: some controls "
+        "move "
+        "by it in machine coordinates, others ignore G53; write an absolute machine position\nCATCHER\n^\n");
+  // G40 with no compensation on (a safe-start block) posts.
+  CHECK(test::post_in_fresh_dir(
+            "PARTNO CMP\nTLDATA/MILL,10,0,50\nLOADTL/1\nSPINDL/2000,RPM,CLW\nRAPID\nGOTO/20,10,30\nCATCHER\n"
+            "FEDRAT/200,MMPM\nGOTO/20,10,-1\nRAPID\nGOTO/20,10,30\nFINI\n",
+            parse_machine(mill + "\n[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"G80 G40\"]\n",
+                          "mill.toml"),
+            "g40-ok")
+            .ok);
+}
