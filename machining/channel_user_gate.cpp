@@ -332,7 +332,9 @@ bool channel_writer::user_block_passes(const std::string& given) {
     // After these an X is no position in the work frame: a dwell (G4 X1.5), data setting
     // (G10), machine coordinates (G53), a macro's arguments (G65, G66).
     data = data || is(g, 4) || is(g, 10) || is(g, 65) || is(g, 66);
-    not_a_position = not_a_position || data || is(g, 53);
+    // G52 X0. cancels a local frame and moves nothing (the thirteenth round took its X for a
+    // position, and the next increment counted from 0).
+    not_a_position = not_a_position || data || is(g, 53) || is(g, 52);
     motion = motion || is(g, 0) || is(g, 1) || is(g, 2) || is(g, 3);
     incremental = incremental || (absolute_code_ && is(g, 91));
     absolute = absolute || (absolute_code_ && is(g, 90) && !incremental);
@@ -517,10 +519,7 @@ bool channel_writer::user_block_passes(const std::string& given) {
                              given, v, above));
     return false;
   }
-  if (last_x_.known) {
-    user_x_ = last_x_.value;
-    user_x_lost_ = false;
-  }
+  if (last_x_.known) user_x_ = last_x_.value;
   const std::optional<double> from_x = user_x_;
   const std::size_t then_at = b.find(" then ");
   bool x_named = false;  // the block has an X word (or a lathe's U)
@@ -613,25 +612,22 @@ bool channel_writer::user_block_passes(const std::string& given) {
                         word, given, word));
       return false;
     }
-    if ((is_u || incremental) && !from_x && user_x_lost_ && v != 0) {
-      // After G30 or G53 in this event X is where the control's parameters put it: an increment
-      // from there is bounded by nothing (`G30 U0.` then `U460.`, the twelfth round).
-      error(line_, fmt::format("{} in \"{}\" is an increment of X where G30 or G53 of this event left X at a "
-                               "position the post does not know; write an absolute X",
-                               word, given));
+    if ((is_u || incremental) && !from_x && v != 0) {
+      // Where X is not known (after the post's home return, or a G30 or G53 it cannot follow) an
+      // increment is bounded by nothing (`G30 U0.` then `U460.`, the twelfth round; `U460.` right
+      // after the post's `G28 U0.`, the thirteenth).
+      error(line_,
+            fmt::format("{} in \"{}\" is an increment of X where the post does not know where X is (after "
+                        "a home return, G30 or G53); write an absolute X",
+                        word, given));
       return false;
     }
     if (is_u || incremental) {
       // An increment: from the X written last (by the post, or by the event's user blocks before
-      // this one: a G code there makes the post write every axis again, not forget where X is),
-      // or, with none known, no longer than the travel.
-      // With no X known, the increments of the event's blocks together.
-      const bool in = from_x ? *from_x + v >= *x->min && *from_x + v <= *x->max
-                             : std::abs(user_dx_ + v) <= *x->max - *x->min;
-      if (from_x)
-        user_x_ = *from_x + v;
-      else
-        user_dx_ += v;
+      // this one: a G code there makes the post write every axis again, not forget where X is).
+      // With none known only an increment of 0 comes here (above).
+      const bool in = !from_x || (*from_x + v >= *x->min && *from_x + v <= *x->max);
+      if (from_x) user_x_ = *from_x + v;
       if (!in) {
         error(line_,
               fmt::format("{} (incremental) takes X outside channel {}'s X travel {}..{} (channel.axis "
@@ -645,7 +641,6 @@ bool channel_writer::user_block_passes(const std::string& given) {
       return false;
     } else {
       user_x_ = v;
-      user_dx_ = 0;
     }
   }
   // G40 while the CL's cutter compensation is on: the rest of the contour would run on the
@@ -693,14 +688,10 @@ bool channel_writer::user_block_passes(const std::string& given) {
   // After a reference return X is at its reference, taken as the top of its travel (where a
   // lathe's turret retracts to); after G30 or G53 it is not known.
   // Only when the block names X (`G28 U0.`): `G28 W0.` leaves X where it is.
-  if (reference && x_named && x && x->max) {
+  if (reference && x_named && x && x->max)
     user_x_ = *x->max;
-    user_dx_ = 0;
-  } else if ((reference || elsewhere) && x_named) {
+  else if ((reference || elsewhere) && x_named)
     user_x_.reset();
-    user_dx_ = 0;
-    user_x_lost_ = true;
-  }
   return true;
 }
 

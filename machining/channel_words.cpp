@@ -76,8 +76,7 @@ void channel_writer::resume_spindle(int line) {
 
 void channel_writer::go_home() {
   user_x_.reset();  // the user blocks' X (the gate's) is the post's home from here
-  user_dx_ = 0;
-  leave_polar();  // no reference return inside polar interpolation or a turned frame
+  leave_polar();    // no reference return inside polar interpolation or a turned frame
   leave_radial_frame();
   for (const std::string& b : m_.codes.home) out_.block(b);
   homed_ = true;

@@ -557,8 +557,6 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   // The X the event's user blocks left, when the post knew it before them: their G codes make the
   // post forget its axes (to write them all again), not where X is (the gate's increments).
   std::optional<double> user_x_;
-  bool user_x_lost_ = false;  // G30 or G53 of a user block left X where the post cannot know
-  double user_dx_ = 0;        // the increments of the event's user blocks while no X is known
   /// Writes coolant_due_, if any.
   void write_coolant_due() {
     if (coolant_due_.empty()) return;
