@@ -491,6 +491,7 @@ bool channel_writer::user_block_passes(const std::string& given) {
   // A speed clamp (the G codes of a spindle's clamp block with an S): no higher than the CL's
   // MAXRPM in force or the spindle's limit (the eleventh round raised the Integrex's to
   // `G92 S9999 R1` before a face to X0 under G96, where the comparison with the CL is off).
+  bool clamp_block = false;  // the block is a spindle's clamp (its S a limit, not a speed)
   for (const spindle_def& sp : m_.spindles) {
     if (sp.clamp.empty()) continue;
     std::vector<double> want, have;
@@ -499,6 +500,7 @@ bool channel_writer::user_block_passes(const std::string& given) {
     const bool clamp = !want.empty() && std::all_of(want.begin(), want.end(), [&](double g) {
       return std::any_of(have.begin(), have.end(), [&](double h) { return is(g, h); });
     });
+    clamp_block = clamp_block || clamp;
     const std::size_t at = b.find('S');
     const std::size_t digits =
         at == std::string::npos ? at : at + 1 + (at + 1 < b.size() && b[at + 1] == '+');
@@ -641,6 +643,34 @@ bool channel_writer::user_block_passes(const std::string& given) {
       return false;
     } else {
       user_x_ = v;
+    }
+  }
+  // A channel with a kinematic chain is not compared with the CL (its writer holds every point
+  // to the forward transform instead, docs/emulator.md): nothing would see a user block set a
+  // spindle's speed or direction there (the thirteenth round turned the Integrex's main spindle
+  // backwards at 4000 rpm under a turning cut).
+  if (m_.chain(ch_.number) && !clamp_block) {
+    bool speed = false;
+    each_g(b, f, [&](double g) { speed = speed || is(g, 96) || is(g, 97); });
+    for (std::size_t i = 0, depth = 0; i + 1 < b.size() && !speed; ++i) {
+      if (b[i] == '[') ++depth;
+      if (b[i] == ']' && depth > 0) --depth;
+      if (depth > 0) continue;
+      if (b[i] == 'S' && (ascii::is_digit(b[i + 1]) || b[i + 1] == '+' || b[i + 1] == '.' || b[i + 1] == '#'))
+        speed = true;
+      if (b[i] != 'M' || !ascii::is_digit(b[i + 1])) continue;
+      long long v = 0;
+      for (std::size_t j = i + 1; j < b.size() && ascii::is_digit(b[j]) && v < 1000000000; ++j)
+        v = v * 10 + (b[j] - '0');
+      for (const spindle_def& sp : m_.spindles) speed = speed || v == sp.cw || v == sp.ccw;
+    }
+    if (speed) {
+      error(line_,
+            fmt::format("\"{}\" sets a spindle's speed or direction on channel {}, whose program is not "
+                        "compared with the CL (a kinematic chain): the post writes the spindle from the "
+                        "CL's SPINDL there",
+                        given, ch_.number));
+      return false;
     }
   }
   // G40 while the CL's cutter compensation is on: the rest of the contour would run on the

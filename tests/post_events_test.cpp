@@ -967,6 +967,13 @@ TEST_CASE("a user block may not raise the speed clamp above the CL's, nor turn t
       Catch::StartsWith("job.cls:8:1: error: channel 1: \"G92 S+9999 R1\" clamps the spindle at 9999 rpm"));
   // At or under the CL's clamp it posts.
   CHECK(integrex("G92 S2500 R1", "clamp-ok").ok);
+  // The Integrex's upper head has a kinematic chain: its program is not compared with the CL,
+  // so no user block sets a spindle there (the thirteenth round).
+  CHECK(
+      integrex("M204 S4000", "spindle").diagnostics ==
+      "job.cls:8:1: error: channel 1: \"M204 S4000\" sets a spindle's speed or direction on channel 1, whose "
+      "program is not compared with the CL (a kinematic chain): the post writes the spindle from the CL's "
+      "SPINDL there\nCATCHER\n^\n");
   // A bare H in G43: another tool's length for every later Z.
   CHECK(integrex("H2", "h-word").diagnostics ==
         "job.cls:8:1: error: channel 1: \"H2\" gives H2, a tool length offset number: the post writes each "
