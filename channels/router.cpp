@@ -12,9 +12,119 @@ namespace twinpost {
 channel_router::channel_router(const machine& m, sync_policy policy, channel_sink& sink,
                                diagnostic_sink& diags, std::string file, std::vector<int> job_channels)
     : m_(m), policy_(policy), sink_(sink), diags_(diags), file_(std::move(file)), codes_(m.waits),
-      busy_(m.channels.size() + 1, false), job_channels_(std::move(job_channels)) {
+      busy_(m.channels.size() + 1, false), job_channels_(std::move(job_channels)),
+      side_(m.channels.size() + 1, -1), started_(m.channels.size() + 1, false),
+      op_wrote_(m.channels.size() + 1, false), waits_sent_(m.channels.size() + 1, 0) {
   const channel_def* first = m_.channel_for_head(1);
   active_ = {first ? first->number : 1};
+  if (job_channels_.size() == 2) {
+    ops_.a = std::min(job_channels_[0], job_channels_[1]);
+    ops_.b = std::max(job_channels_[0], job_channels_[1]);
+    if (ops_.a >= 1 && ops_.b < static_cast<int>(side_.size()) && ops_.a != ops_.b) {
+      side_[static_cast<std::size_t>(ops_.a)] = 0;
+      side_[static_cast<std::size_t>(ops_.b)] = 1;
+      ops_.sections.emplace_back();
+    } else {
+      ops_.a = ops_.b = 0;
+    }
+  }
+}
+
+// A record that begins an operation inside a head's stretch: a tool change, a spindle stop.
+static bool opens_operation(const event& e) {
+  if (std::holds_alternative<tool_event>(e.data)) return true;
+  const auto* s = std::get_if<spindle_event>(&e.data);
+  return s && s->mode == spindle_mode::off;
+}
+
+void channel_router::deliver(int ch, const event& e, bool both, bool writes) {
+  const auto c = static_cast<std::size_t>(ch);
+  if (!started_[c]) [[unlikely]] {
+    start_op(ch, e.line);
+  } else if (op_wrote_[c] && !both && side_[c] >= 0 && !std::holds_alternative<motion_event>(e.data) &&
+             opens_operation(e)) [[unlikely]] {
+    if (op_waits_) {
+      rendezvous({ops_.a, ops_.b}, e.line, "an operation", true);
+      ++ops_.operation_waits;
+    }
+    start_op(ch, e.line);
+  }
+  if (writes) op_wrote_[c] = true;
+  if (const int side = side_[c]; side >= 0) ops_.sections.back().ops[side].back().last_line = e.line;
+  sink_.on_event(ch, e, both);
+}
+
+void channel_router::send_wait(int ch, const wait_mark& w) {
+  ++waits_sent_[static_cast<std::size_t>(ch)];
+  sink_.on_wait(ch, w);
+}
+
+void channel_router::start_op(int ch, int line) {
+  const auto c = static_cast<std::size_t>(ch);
+  started_[c] = true;
+  op_wrote_[c] = false;
+  const int side = side_[c];
+  if (side < 0) return;
+  std::vector<channel_op>& ops = ops_.sections.back().ops[side];
+  if (plan_) plan_waits_at(side, ops.size(), line);
+  ops.push_back({line, line, waits_sent_[c]});
+}
+
+void channel_router::plan_fault(int line, const std::string& what) {
+  if (plan_failed_) return;
+  plan_failed_ = true;
+  error(line, fmt::format("--sync optimise: the wait plan does not fit the job ({}): an optimiser fault, "
+                          "nothing is written; post the job with --sync sequential",
+                          what));
+}
+
+void channel_router::plan_waits_at(int side, std::size_t count, int line) {
+  const std::size_t section = ops_.sections.size() - 1;
+  if (section >= plan_->sections.size())
+    return plan_fault(line, fmt::format("section {} not planned", section + 1));
+  const std::vector<twinpost::rendezvous>& waits = plan_->sections[section].waits;
+  const int ch = side == 0 ? ops_.a : ops_.b;
+  for (std::size_t& next = plan_next_[side]; next < waits.size(); ++next) {
+    const int at = side == 0 ? waits[next].a : waits[next].b;
+    if (at < 0 || static_cast<std::size_t>(at) > count) return;
+    if (static_cast<std::size_t>(at) < count)
+      return plan_fault(
+          line, fmt::format("section {}: channel {} passed the place of wait {}", section + 1, ch, next + 1));
+    auto it = plan_codes_.find({section, next});
+    if (it == plan_codes_.end()) {
+      auto code = next_code(line, "a planned wait");
+      if (!code) return;
+      it = plan_codes_.emplace(std::make_pair(section, next), *code).first;
+      ++rendezvous_;
+    }
+    wait_mark w;
+    w.code = it->second;
+    w.partners = {ops_.a, ops_.b};
+    w.partner_text = partner_list(w.partners, m_.waits.partners);
+    w.cl_line = line;
+    send_wait(ch, w);
+    last_partners_ = w.partners;
+  }
+}
+
+void channel_router::section_break(int line) {
+  if (ops_.a == 0) return;
+  if (plan_) {
+    const std::size_t section = ops_.sections.size() - 1;
+    for (int side = 0; side < 2; ++side) {
+      plan_waits_at(side, ops_.sections.back().ops[side].size(), line);
+      if (section < plan_->sections.size()) {
+        const plan_section& p = plan_->sections[section];
+        if (plan_next_[side] != p.waits.size() || p.ops[side].size() != ops_.sections.back().ops[side].size())
+          plan_fault(line, fmt::format("section {}: channel {} has {} operations, the plan {}", section + 1,
+                                       side == 0 ? ops_.a : ops_.b, ops_.sections.back().ops[side].size(),
+                                       p.ops[side].size()));
+      }
+    }
+  }
+  ops_.sections.emplace_back();
+  plan_next_[0] = plan_next_[1] = 0;
+  std::fill(started_.begin(), started_.end(), false);
 }
 
 void channel_router::error(int line, std::string message) {
@@ -45,7 +155,7 @@ void channel_router::route(const event& e) {
       note_cutoff(e);
     for (int ch : active_) {
       busy_[static_cast<std::size_t>(ch)] = true;
-      sink_.on_event(ch, e, both_);
+      deliver(ch, e, both_, true);
     }
     return;
   }
@@ -88,7 +198,7 @@ void channel_router::route(const event& e) {
     // both); anything else opens the section.
     if (std::holds_alternative<spindle_event>(e.data)) {
       busy_[static_cast<std::size_t>(both_master_)] = true;
-      return sink_.on_event(both_master_, e, false);
+      return deliver(both_master_, e, false, true);
     }
     if (!std::holds_alternative<comment_event>(e.data) && !std::holds_alternative<text_event>(e.data))
       open_both();
@@ -100,8 +210,8 @@ void channel_router::route(const event& e) {
       std::holds_alternative<passthrough_event>(e.data) || std::holds_alternative<tool_data_event>(e.data) ||
       std::holds_alternative<coordsys_event>(e.data) || std::holds_alternative<multax_event>(e.data));
   for (int ch : active_) {
+    deliver(ch, e, both_, writes);
     if (writes) busy_[static_cast<std::size_t>(ch)] = true;
-    sink_.on_event(ch, e, both_);
   }
 }
 
@@ -119,9 +229,11 @@ void channel_router::select(std::vector<int> channels, int line, bool both) {
     open_both_line_ = line;
   } else if (both_) {
     open_both();
+    section_break(line);
     rendezvous(all, line, "the end of HEAD/BOTH", true, wait_mark::section::closes_both);
   } else if (policy_ == sync_policy::sequential && all.size() > 1)
     rendezvous(all, line, "a head switch");
+  for (int c : channels) started_[static_cast<std::size_t>(c)] = false;
   active_ = std::move(channels);
   both_ = both;
 }
@@ -142,7 +254,7 @@ void channel_router::rendezvous(const std::vector<int>& channels, int line, cons
   w.cl_line = line;
   w.both = both;
   for (int c : channels) {
-    sink_.on_wait(c, w);
+    send_wait(c, w);
     busy_[static_cast<std::size_t>(c)] = false;
   }
   last_partners_ = channels;
@@ -153,12 +265,21 @@ void channel_router::open_both() {
   if (open_both_.empty()) return;
   const std::vector<int> all = std::move(open_both_);
   open_both_.clear();
+  section_break(open_both_line_);
   rendezvous(all, open_both_line_, "HEAD/BOTH", true, wait_mark::section::opens_both);
 }
 
 void channel_router::explicit_sync(const sync_event& s, int line) {
   open_both();
   ++explicit_;
+  if (policy_ == sync_policy::optimise) {
+    if (!warned_ignored_)
+      error(line,
+            "--sync optimise places every wait itself, and this job has sync records of its own: post it "
+            "with --sync explicit (or sequential)");
+    warned_ignored_ = true;
+    return;
+  }
   if (policy_ != sync_policy::explicit_marks) {
     if (!warned_ignored_) {
       diagnostic d;
@@ -205,7 +326,7 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
     w.partners = partners;
     w.partner_text = partner_list(partners, m_.waits.partners);
     w.cl_line = line;
-    sink_.on_wait(ch, w);
+    send_wait(ch, w);
     busy_[static_cast<std::size_t>(ch)] = false;
     last_sync_channel_ = ch;
     last_sync_index_ = index;
@@ -246,12 +367,14 @@ void channel_router::transfer(const event& e, const transfer_event& t) {
   };
   for (int ch : all) send(ch, transfer_event::phase::retract);
   const std::string what = fmt::format("{} at line {}", word, e.line);
+  section_break(e.line);
   rendezvous(all, e.line, what, true);
   {
     event copy = e;
     copy.data = transfer_event{transfer_event::phase::blocks, t.release, cutoff};
     sink_.on_event(m_.transfer.channel, copy, false);
   }
+  section_break(e.line);
   rendezvous(all, e.line, what, true);
   if (t.release)
     for (int ch : all) send(ch, transfer_event::phase::on_sub);
@@ -309,6 +432,14 @@ void channel_router::finish(int last_line) {
           "held by both spindles");
   }
   if (both_) select({active_.front()}, last_line, false);
+  if (plan_) {
+    // The last section's waits, and a plan of no more sections than the job has.
+    section_break(last_line);
+    ops_.sections.pop_back();
+    if (plan_->sections.size() != ops_.sections.size())
+      plan_fault(last_line, fmt::format("the job has {} sections, the plan {}", ops_.sections.size(),
+                                        plan_->sections.size()));
+  }
   // A last rendezvous of every channel before the programs' footers: a channel that ends
   // first must not stop the spindle or the coolant another channel is still cutting with.
   std::vector<int> all;

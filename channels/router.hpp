@@ -9,9 +9,12 @@
 //   goes to the master alone, before the opening wait (so the spindle turns before either
 //   channel cuts); a later one goes to both, and the copy writes no spindle code
 //   (channel_writer::set_balance_master).
-// - Waits come from explicit sync records (CATIA SYNC, ICAM SYNCTR, MANUSpost UDE) or, under
-//   the sequential policy, from every head switch. A wait's code comes from the machine's
-//   range in turn; the k-th explicit sync of a channel gets the code of that sync number.
+// - Waits come from explicit sync records (CATIA SYNC, ICAM SYNCTR, MANUSpost UDE), under
+//   the sequential policy from every head switch, or under optimise from a plan
+//   (channels/wait_plan.hpp): the router finds the job's operations and sections for a
+//   two-channel job under any policy (operations()), and places a plan's waits between them. A wait's code
+//   comes from the machine's range in turn; the k-th explicit sync of a channel gets the code of that sync
+//   number.
 // - Job-level events (PARTNO, UNITS, MACHIN) go to channel 0.
 #include <map>
 #include <optional>
@@ -21,6 +24,7 @@
 
 #include "channels/sync_policy.hpp"
 #include "channels/wait_allocator.hpp"
+#include "channels/wait_plan.hpp"
 #include "machines/machine.hpp"
 #include "parser/events.hpp"
 #include "support/diagnostics.hpp"
@@ -49,7 +53,8 @@ class channel_sink {
 
 class channel_router {
  public:
-  /// `policy` must be explicit_marks or sequential here (automatic is resolved by the caller).
+  /// `policy` must be explicit_marks, sequential or optimise here (automatic is resolved by the
+  /// caller); optimise needs set_plan before the first event.
   /// `job_channels`: the channels the job uses (a sync naming no channels means these).
   channel_router(const machine& m, sync_policy policy, channel_sink& sink, diagnostic_sink& diags,
                  std::string file, std::vector<int> job_channels);
@@ -62,6 +67,15 @@ class channel_router {
   int rendezvous() const { return rendezvous_; }
   /// Explicit sync records seen.
   int explicit_marks() const { return explicit_; }
+  /// The job's operations and sections as routed (a job of two channels; a = b = 0 otherwise),
+  /// each operation with the channel's waits before it.
+  const job_operations& operations() const { return ops_; }
+  /// The waits to place under the optimise policy: a plan made from operations() of an earlier
+  /// routing of the same job. One that does not fit the job is an error (an optimiser fault).
+  void set_plan(const job_operations* plan) { plan_ = plan; }
+  /// A rendezvous at every operation boundary inside a head's stretch too (a tool change, a
+  /// spindle stop): the sequential post that times each operation on its own.
+  void set_operation_waits(bool on) { op_waits_ = on; }
 
  private:
   void select(std::vector<int> channels, int line, bool both);
@@ -78,6 +92,16 @@ class channel_router {
   /// channel's last marker plus one. The router is the one owner of this numbering.
   int marker_of(const sync_event& s, int ch) const;
   void error(int line, std::string message);
+  /// An event for channel `ch`: the first of a stretch starts an operation, and so does a tool
+  /// change or a spindle stop after a record that wrote (`writes`: this one writes a block).
+  void deliver(int ch, const event& e, bool both, bool writes);
+  void send_wait(int ch, const wait_mark& w);
+  void start_op(int ch, int line);
+  /// The plan's waits of side `side` placed after `count` operations of the section.
+  void plan_waits_at(int side, std::size_t count, int line);
+  /// A barrier: the section ends (its remaining planned waits placed), the next begins.
+  void section_break(int line);
+  void plan_fault(int line, const std::string& what);
   int column_line_ = 0, column_ = 0;  // the event being routed: where its errors point
   std::optional<int> next_code(int line, const std::string& what);
   const channel_def* head_channel(const head_event& h) const;
@@ -115,6 +139,17 @@ class channel_router {
   int explicit_ = 0;
   bool warned_ignored_ = false;
   bool exhausted_ = false;
+  // Operations (a two-channel job): side_[ch] 0 for ops_.a, 1 for ops_.b, -1 for any other.
+  job_operations ops_;
+  std::vector<int> side_;
+  std::vector<bool> started_;   // per channel: its current stretch has started an operation
+  std::vector<bool> op_wrote_;  // per channel: its current operation has a record that writes
+  bool op_waits_ = false;
+  std::vector<int> waits_sent_;  // per channel: waits written so far
+  const job_operations* plan_ = nullptr;
+  std::size_t plan_next_[2] = {0, 0};                              // per side: the next planned wait to place
+  std::map<std::pair<std::size_t, std::size_t>, int> plan_codes_;  // (section, wait) -> code
+  bool plan_failed_ = false;
 };
 
 }  // namespace twinpost

@@ -1,6 +1,6 @@
 #pragma once
 // Where the channels of a post wait for each other, and the one table of its names
-// (`--sync explicit|sequential|auto`, the post summary's "waits (explicit)").
+// (`--sync explicit|sequential|optimise|auto`, the post summary's "waits (explicit)").
 #include <array>
 #include <optional>
 #include <string_view>
@@ -8,8 +8,9 @@
 namespace twinpost {
 
 /// explicit_marks: at the job's sync records; sequential: at every head switch;
+/// optimise: where the wait schedule puts them for the shortest cycle (channels/wait_plan.hpp);
 /// automatic: explicit when the job has sync records, else sequential.
-enum class sync_policy { explicit_marks, sequential, automatic };
+enum class sync_policy { explicit_marks, sequential, optimise, automatic };
 
 struct sync_policy_name {
   sync_policy policy;
@@ -17,9 +18,10 @@ struct sync_policy_name {
 };
 
 /// In the order messages list them.
-inline constexpr std::array<sync_policy_name, 3> sync_policy_names{{
+inline constexpr std::array<sync_policy_name, 4> sync_policy_names{{
     {sync_policy::explicit_marks, "explicit"},
     {sync_policy::sequential, "sequential"},
+    {sync_policy::optimise, "optimise"},
     {sync_policy::automatic, "auto"},
 }};
 

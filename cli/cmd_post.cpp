@@ -2,6 +2,7 @@
 #include <boost/program_options.hpp>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <optional>
@@ -157,6 +158,15 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
              s.channels == 1 ? "" : "s", s.blocks, waits, sink.warnings(), sink.warnings() == 1 ? "" : "s");
   fmt::print("  machine {} ({})\n", found.def.name, found.origin);
   for (const std::string& f : s.files) fmt::print("  wrote {}\n", f);
+  if (s.timing && s.sequential_cycle) {
+    const double seq = *s.sequential_cycle, now = s.timing->cycle;
+    const double percent = seq > 0 ? (seq - now) / seq * 100 : 0.0;
+    fmt::print(
+        "  waits placed for the shortest cycle: {:.3f} s against {:.3f} s sequential ({}), {} post{}\n", now,
+        seq, percent >= 0.05 ? fmt::format("-{:.1f} %", percent) : std::string("no shorter"), s.passes,
+        s.passes == 1 ? "" : "s");
+    for (const std::string& k : s.kept_apart) fmt::print("    kept in the CL's order: {}\n", k);
+  }
   if (s.timing)
     fmt::print("{}", format_timeline_text(*s.timing, "  "));
   else

@@ -23,9 +23,11 @@ const std::array<command_entry, 6> table{{
      "post a CL job to NC programs",
      "Posts a CL job for machine M into the folder DIR (made if missing): one program per "
      "channel, or one merged program, as the machine's control expects (--layout split, "
-     "merged-appended or merged-sections overrides it). --sync explicit|sequential|auto says "
+     "merged-appended or merged-sections overrides it). --sync explicit|sequential|optimise|auto says "
      "where the channels wait for each other (auto: at the job's SYNC records if it has any, "
-     "else at every head switch). The programs are written to temporary names, checked as "
+     "else at every head switch; optimise: where the post places them for the shortest cycle "
+     "of a two-channel job without SYNC records, docs/wait-placement.md). The programs are written to "
+     "temporary names, checked as "
      "'twinpost check' would, and committed as a set only when everything is sound: a failed "
      "run writes nothing and changes nothing in DIR. A major word twinpost does not know stops "
      "the post with an error; --permissive makes it a warning and passes over the record. A "

@@ -30,6 +30,7 @@
 #include "post/output_names.hpp"
 #include "post/reader_thread.hpp"
 #include "post/sync_at_cl.hpp"
+#include "post/sync_optimise.hpp"
 #include "post/user_records.hpp"
 #include "support/ascii.hpp"
 #include "support/errors.hpp"
@@ -453,6 +454,121 @@ std::string safe_file_stem(std::string_view partno) {
   return s.empty() ? "PROGRAM" : s;
 }
 
+// How a pass is set up: the policy, decided by the first pass from the job's scan (made while
+// its reader reads ahead) unless given.
+struct pass_setup {
+  std::optional<sync_policy> policy;
+  bool operation_waits = false;  ///< channel_router::set_operation_waits
+};
+
+// One posting of the job: the programs written into a stage of their own, checked, timed, and
+// committed with `commit` when sound. `plan`: the waits under the optimise policy. Returns the
+// job's operations as the router found them (channels/wait_plan.hpp).
+job_operations post_pass(const post_options& o, const machine& m, pass_setup& setup,
+                         const job_operations* waits, bool commit, diagnostic_sink& diags,
+                         post_summary& sum) {
+  counting_sink sink(diags);
+  // The machine's script, once per job, before the reader: on_record decides what it reads.
+  // It runs on this thread only, in the writers (machining/channel_script.cpp).
+  std::unique_ptr<scripting::lua_script> lua;
+  if (!m.events.script_path.empty()) {
+    try {
+      scripting::script_limits limits;
+      if (m.events.script_instructions > 0)
+        limits.instructions_per_job = static_cast<long long>(m.events.script_instructions);
+      if (m.events.script_seconds > 0) limits.seconds_per_job = m.events.script_seconds;
+      lua = std::make_unique<scripting::lua_script>(m.events.script_path, limits);
+    } catch (const scripting::script_error& e) {
+      sink.report(script_diagnostic(e));
+      return {};
+    }
+  }
+  job_script script{lua.get()};
+  file_ptr in = open_job(o.cl_path);
+  // On two threads the reader starts at once, and reads ahead while the scan below runs; a
+  // 5-axis job's moves are worked out by a third thread between the two.
+  file_source src(in.get());
+  passing_sink as_is(sink);
+  std::optional<kin_lookahead> ahead;  // before the reader, whose thread uses it
+  const post_threads plan = plan_threads(o, m);
+  if (plan.look_ahead) ahead.emplace(m, m.channels.front().number);
+  job_events reader(src, posting_reader(o, m, lua.get()), sink, as_is, plan.reader,
+                    ahead ? &*ahead : nullptr);  // to the end: messages quote it
+  // Everything is written into a stage inside the output folder and committed as a set.
+  output_stage stage(o.out_dir);
+  const job_scan scan = scan_for_sync(o, m);
+  if (!setup.policy) setup.policy = choose_policy(o, m, scan, sink);
+  sum.policy = *setup.policy;
+
+  writers_sink ws;
+  ws.m = &m;
+  ws.diags = &sink;
+  ws.file = o.cl_path;
+  const frame_request req = staged_request(o, m, stage.dir());
+  for (const auto& [channel, tool] : o.start_tools)
+    if (channel < 1 || channel > static_cast<int>(m.channels.size()))
+      throw config_error(fmt::format("--tool {}:{}: machine '{}' has no channel {} (it has {})", channel,
+                                     tool, m.name, channel, m.channels.size()));
+  open_writers(o, m, req, ws, sink);
+  if (ahead) ws.writers.front()->set_lookahead(&*ahead);
+  if (lua)
+    for (auto& w : ws.writers) w->use_script(&script);
+  channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
+  router.set_plan(waits);
+  router.set_operation_waits(setup.operation_waits);
+  timeline_options to;
+  to.keep_blocks = !o.timeline_file.empty();
+  std::optional<timeline_feed> feed;  // the cycle time, fed by the self-check's reading
+  if (has_timing(m) && m.channels.size() <= 64) feed.emplace(m, to);
+  std::optional<concurrent_check> during;  // after `feed`: its thread feeds it
+  if (plan.check) {
+    during.emplace(m, feed ? &*feed : nullptr);
+    relay_writers(o, req, ws, *during);
+  }
+
+  sink.reader = &reader;
+  sink.file = o.cl_path;
+  ws.spindles.quote = [&reader](int line) { return std::string(reader.source_line(line)); };
+  const stream_totals t = stream_job(o, reader, router);
+  router.finish(t.last_line);
+  for (auto& w : ws.writers) w->finish();
+  sum.records = static_cast<long>(reader.records());
+  sum.channels = static_cast<int>(m.channels.size());
+  sum.waits = router.rendezvous();
+  for (auto& w : ws.writers) sum.blocks += w->blocks();
+  if (t.statements == 0) report_empty_job(o, sink);
+  if (sink.counts.errors > 0) return router.operations();
+
+  const std::vector<framed_file> files = frame_files(named_request(req, ws), ws);
+  if (!o.timeline_file.empty())
+    if (std::string why = timeline_name_problem(o, files); !why.empty()) {
+      sink.report({severity::error, o.cl_path, 0, 0, std::move(why), {}});
+      return router.operations();
+    }
+  std::optional<sync_result> done;
+  if (during) {
+    std::vector<std::string> names(m.channels.size());
+    std::vector<bool> rewritten;
+    for (const framed_file& f : files) {
+      names[static_cast<std::size_t>(f.channel - 1)] = (fs::path(o.out_dir) / f.name).string();
+      rewritten.push_back(f.rewritten);
+    }
+    done = during->finish(names, rewritten);
+    if (!done && feed) {  // checked again after the fact: a fresh feed for that reading
+      feed.reset();
+      feed.emplace(m, to);
+    }
+  }
+  std::vector<std::uint64_t> rendezvous;
+  if (!self_check(o, m, files, ws, t.last_line, sink, feed ? &*feed : nullptr, std::move(done), rendezvous))
+    return router.operations();
+  std::optional<staged_file> page;
+  if (feed) page = time_programs(o, m, stage.dir(), *feed, rendezvous, sum);
+  if (commit) sum.files = commit_files(stage, files, page);
+  sum.ok = true;
+  return router.operations();
+}
+
 post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& diags) {
   post_summary sum;
   counting_sink sink(diags);
@@ -487,101 +603,20 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
          {}});
     return sum;
   }
-  // The machine's script, once per job, before the reader: on_record decides what it reads.
-  // It runs on this thread only, in the writers (machining/channel_script.cpp).
-  std::unique_ptr<scripting::lua_script> lua;
-  if (!m.events.script_path.empty()) {
-    try {
-      scripting::script_limits limits;
-      if (m.events.script_instructions > 0)
-        limits.instructions_per_job = static_cast<long long>(m.events.script_instructions);
-      if (m.events.script_seconds > 0) limits.seconds_per_job = m.events.script_seconds;
-      lua = std::make_unique<scripting::lua_script>(m.events.script_path, limits);
-    } catch (const scripting::script_error& e) {
-      sink.report(script_diagnostic(e));
-      return sum;
-    }
-  }
-  job_script script{lua.get()};
-  file_ptr in = open_job(o.cl_path);
-  // On two threads the reader starts at once, and reads ahead while the scan below runs; a
-  // 5-axis job's moves are worked out by a third thread between the two.
-  file_source src(in.get());
-  passing_sink as_is(sink);
-  std::optional<kin_lookahead> ahead;  // before the reader, whose thread uses it
-  const post_threads plan = plan_threads(o, m);
-  if (plan.look_ahead) ahead.emplace(m, m.channels.front().number);
-  job_events reader(src, posting_reader(o, m, lua.get()), sink, as_is, plan.reader,
-                    ahead ? &*ahead : nullptr);  // to the end: messages quote it
-  // Everything is written into a stage inside the output folder and committed as a set.
-  output_stage stage(o.out_dir);
-  const job_scan scan = scan_for_sync(o, m);
-  sum.policy = choose_policy(o, m, scan, sink);
-
-  writers_sink ws;
-  ws.m = &m;
-  ws.diags = &sink;
-  ws.file = o.cl_path;
-  const frame_request req = staged_request(o, m, stage.dir());
-  for (const auto& [channel, tool] : o.start_tools)
-    if (channel < 1 || channel > static_cast<int>(m.channels.size()))
-      throw config_error(fmt::format("--tool {}:{}: machine '{}' has no channel {} (it has {})", channel,
-                                     tool, m.name, channel, m.channels.size()));
-  open_writers(o, m, req, ws, sink);
-  if (ahead) ws.writers.front()->set_lookahead(&*ahead);
-  if (lua)
-    for (auto& w : ws.writers) w->use_script(&script);
-  channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
-  timeline_options to;
-  to.keep_blocks = !o.timeline_file.empty();
-  std::optional<timeline_feed> feed;  // the cycle time, fed by the self-check's reading
-  if (has_timing(m) && m.channels.size() <= 64) feed.emplace(m, to);
-  std::optional<concurrent_check> during;  // after `feed`: its thread feeds it
-  if (plan.check) {
-    during.emplace(m, feed ? &*feed : nullptr);
-    relay_writers(o, req, ws, *during);
-  }
-
-  sink.reader = &reader;
-  sink.file = o.cl_path;
-  ws.spindles.quote = [&reader](int line) { return std::string(reader.source_line(line)); };
-  const stream_totals t = stream_job(o, reader, router);
-  router.finish(t.last_line);
-  for (auto& w : ws.writers) w->finish();
-  sum.records = static_cast<long>(reader.records());
-  sum.channels = static_cast<int>(m.channels.size());
-  sum.waits = router.rendezvous();
-  for (auto& w : ws.writers) sum.blocks += w->blocks();
-  if (t.statements == 0) report_empty_job(o, sink);
-  if (sink.counts.errors > 0) return sum;
-
-  const std::vector<framed_file> files = frame_files(named_request(req, ws), ws);
-  if (!o.timeline_file.empty())
-    if (std::string why = timeline_name_problem(o, files); !why.empty()) {
-      sink.report({severity::error, o.cl_path, 0, 0, std::move(why), {}});
-      return sum;
-    }
-  std::optional<sync_result> done;
-  if (during) {
-    std::vector<std::string> names(m.channels.size());
-    std::vector<bool> rewritten;
-    for (const framed_file& f : files) {
-      names[static_cast<std::size_t>(f.channel - 1)] = (fs::path(o.out_dir) / f.name).string();
-      rewritten.push_back(f.rewritten);
-    }
-    done = during->finish(names, rewritten);
-    if (!done && feed) {  // checked again after the fact: a fresh feed for that reading
-      feed.reset();
-      feed.emplace(m, to);
-    }
-  }
-  std::vector<std::uint64_t> rendezvous;
-  if (!self_check(o, m, files, ws, t.last_line, sink, feed ? &*feed : nullptr, std::move(done), rendezvous))
-    return sum;
-  std::optional<staged_file> page;
-  if (feed) page = time_programs(o, m, stage.dir(), *feed, rendezvous, sum);
-  sum.files = commit_files(stage, files, page);
-  sum.ok = true;
+  if (o.policy == sync_policy::optimise)
+    return post_optimised(
+        o, m, sink, [&](optimise_step step, const job_operations* plan, diagnostic_sink& to) {
+          optimise_attempt a;
+          pass_setup setup;
+          setup.policy = step == optimise_step::planned ? sync_policy::optimise : sync_policy::sequential;
+          setup.operation_waits = step == optimise_step::timing;
+          post_options each = o;
+          if (step == optimise_step::timing) each.timeline_file.clear();  // the page only of programs written
+          a.ops = post_pass(each, m, setup, plan, step != optimise_step::timing, to, a.sum);
+          return a;
+        });
+  pass_setup setup;
+  post_pass(o, m, setup, nullptr, true, sink, sum);
   return sum;
 }
 

@@ -58,6 +58,13 @@ struct post_summary {
   /// The cycle time of the written programs (per operation and wait, no block kept); empty
   /// when the machine file has no [timing].
   std::optional<timeline> timing;
+  /// --sync optimise: the cycle of the same job posted sequentially, and the posts it took
+  /// (the sequential one first; post/sync_optimise.hpp).
+  std::optional<double> sequential_cycle;
+  int passes = 1;
+  /// --sync optimise: each pair of operations the self-check made keep the CL's order, with
+  /// the finding that did ("channel 1 (job.cls:12-20) before channel 2 (job.cls:21-30): ...").
+  std::vector<std::string> kept_apart;
 };
 
 /// The threads a post runs besides its own, with post_options::threads of two or more (with

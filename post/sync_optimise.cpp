@@ -1,0 +1,148 @@
+#include "post/sync_optimise.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "analysis/cycle_time.hpp"
+
+namespace twinpost {
+
+namespace {
+
+void replay(const diagnostic_list& from, diagnostic_sink& to) {
+  for (const diagnostic& d : from.all()) to.report(d);
+}
+
+void report(diagnostic_sink& to, severity level, const std::string& file, std::string message) {
+  diagnostic d;
+  d.level = level;
+  d.file = file;
+  d.message = std::move(message);
+  to.report(std::move(d));
+}
+
+// The CL lines of each error and its notes, one list per error.
+std::vector<std::vector<int>> finding_lines(const diagnostic_list& got, const std::string& cl_file) {
+  std::vector<std::vector<int>> out;
+  bool in_error = false;
+  for (const diagnostic& d : got.all()) {
+    if (d.level != severity::note) {
+      in_error = d.level == severity::error;
+      if (in_error) out.emplace_back();
+    }
+    if (in_error && d.file == cl_file && d.line > 0) out.back().push_back(d.line);
+  }
+  return out;
+}
+
+// The errors, one per finding_lines entry.
+std::vector<std::string> finding_messages(const diagnostic_list& got) {
+  std::vector<std::string> out;
+  for (const diagnostic& d : got.all())
+    if (d.level == severity::error) out.push_back(d.message);
+  return out;
+}
+
+// "channel 1 (job.cls:12-20) before channel 2 (job.cls:21-30): why".
+std::string pair_text(const job_operations& ops, const plan_pair& p, const std::string& file,
+                      const std::string& why) {
+  const channel_op& a = ops.sections[p.section].ops[0][static_cast<std::size_t>(p.pair.a)];
+  const channel_op& b = ops.sections[p.section].ops[1][static_cast<std::size_t>(p.pair.b)];
+  const std::string ta = fmt::format("channel {} ({}:{}-{})", ops.a, file, a.first_line, a.last_line);
+  const std::string tb = fmt::format("channel {} ({}:{}-{})", ops.b, file, b.first_line, b.last_line);
+  const bool a_first = p.pair.rule == pair_rule::a_first;
+  return fmt::format("{} before {}: {}", a_first ? ta : tb, a_first ? tb : ta, why);
+}
+
+std::string first_error(const diagnostic_list& got) {
+  for (const diagnostic& d : got.all())
+    if (d.level == severity::error) return d.message;
+  return "no error";
+}
+
+}  // namespace
+
+post_summary post_optimised(const post_options& o, const machine& m, diagnostic_sink& diags,
+                            const post_attempt& attempt) {
+  if (!has_timing(m)) {
+    report(diags, severity::error, m.source,
+           fmt::format("--sync optimise: machine '{}' has no [timing] table, and the waits are placed by "
+                       "the operations' times (docs/wait-placement.md)",
+                       m.name));
+    return {};
+  }
+  // The sequential post: the operations and their times.
+  diagnostic_list first;
+  optimise_attempt seq = attempt(optimise_step::timing, nullptr, first);
+  if (!seq.sum.ok) {
+    replay(first, diags);
+    return seq.sum;
+  }
+  job_operations ops = seq.ops;
+  auto fall_back = [&](const std::string& why) {
+    report(diags, severity::warning, o.cl_path,
+           fmt::format("--sync optimise: {}; the channels wait for each other at every head switch "
+                       "(sequential)",
+                       why));
+    diagnostic_list last;
+    optimise_attempt r = attempt(optimise_step::fallback, nullptr, last);
+    replay(last, diags);
+    return r.sum;
+  };
+  if (ops.a == 0) return fall_back("it places waits between two channels, and this job does not use two");
+  if (!seq.sum.timing || !seq.sum.timing->ok) return fall_back("the sequential programs could not be timed");
+  const timeline& t = *seq.sum.timing;
+  time_operations(ops, [&](int side, int segment) {
+    const int ch = side == 0 ? ops.a : ops.b;
+    double s = 0;
+    for (const channel_times& c : t.channels)
+      if (c.channel == ch)
+        for (const tool_operation& op : c.operations)
+          if (op.segment == segment) s += op.seconds;
+    return s;
+  });
+  const double handshake = std::max(m.channels[static_cast<std::size_t>(ops.a - 1)].timing.wait,
+                                    m.channels[static_cast<std::size_t>(ops.b - 1)].timing.wait);
+  const auto handshake_us = static_cast<std::int64_t>(std::llround(std::max(0.0, handshake) * 1e6));
+
+  std::vector<plan_pair> pairs;
+  std::vector<std::string> reasons;  // per pair
+  std::string why;
+  for (int post = 2; post <= optimise_max_posts; ++post) {
+    if (!plan_waits(ops, pairs, handshake_us)) {
+      why = "the operations the self-check kept apart cannot be ordered";
+      break;
+    }
+    diagnostic_list got;
+    optimise_attempt r = attempt(optimise_step::planned, &ops, got);
+    if (r.sum.ok) {
+      replay(got, diags);
+      // The timing post's cycle less the waits it placed inside the heads' stretches: the
+      // sequential post's (each of its waits is on the critical path).
+      r.sum.sequential_cycle = t.cycle - seq.ops.operation_waits * handshake;
+      r.sum.passes = post;
+      r.sum.kept_apart = std::move(reasons);
+      return r.sum;
+    }
+    const std::size_t known = pairs.size();
+    const std::vector<std::vector<int>> lines = finding_lines(got, o.cl_path);
+    const std::vector<std::string> messages = finding_messages(got);
+    for (std::size_t f = 0; f < lines.size(); ++f)
+      for (const plan_pair& p : pairs_for_lines(ops, lines[f]))
+        if (std::find(pairs.begin(), pairs.end(), p) == pairs.end()) {
+          pairs.push_back(p);
+          reasons.push_back(pair_text(ops, p, o.cl_path, f < messages.size() ? messages[f] : ""));
+        }
+    if (pairs.size() == known) {
+      why = fmt::format("the post's self-check refused a schedule at no pair of operations ({})",
+                        first_error(got));
+      break;
+    }
+    if (post == optimise_max_posts)
+      why = fmt::format("no schedule the self-check passes after {} posts", optimise_max_posts);
+  }
+  return fall_back(why);
+}
+
+}  // namespace twinpost
