@@ -272,7 +272,7 @@ void channel_router::open_both() {
 void channel_router::explicit_sync(const sync_event& s, int line) {
   open_both();
   ++explicit_;
-  if (policy_ == sync_policy::optimise) {
+  if (policy_ == sync_policy::optimise || op_waits_) {  // op_waits_: the optimiser's timing post
     if (!warned_ignored_)
       error(line,
             "--sync optimise places every wait itself, and this job has sync records of its own: post it "

@@ -1,0 +1,249 @@
+// The operations of a two-channel job as the router finds them, the waits a plan places between
+// them (channels/router, under --sync optimise), and channels/wait_plan's timing, planning and
+// pairs from a finding's lines, each asserted exactly.
+#include <catch2/catch.hpp>
+
+#include <fmt/format.h>
+
+#include <string>
+
+#include "channels/router.hpp"
+#include "channels/wait_plan.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+machine twin() {
+  machine m;
+  m.name = "twin";
+  for (int c = 1; c <= 2; ++c) {
+    channel_def ch;
+    ch.number = c;
+    ch.heads = {c};
+    m.channels.push_back(ch);
+  }
+  m.waits.first = 100;
+  m.waits.last = 109;
+  return m;
+}
+
+struct trace_sink : channel_sink {
+  std::string trace;
+  void on_event(int ch, const event& e, bool) override { trace += fmt::format("c{}:{}\n", ch, e.line); }
+  void on_wait(int ch, const wait_mark& w) override { trace += fmt::format("c{}:M{}\n", ch, w.code); }
+};
+
+event go(int line) { return {line, motion_event{}}; }
+event tool(int line) { return {line, tool_event{}}; }
+event stop(int line) {
+  spindle_event s;
+  s.mode = spindle_mode::off;
+  return {line, s};
+}
+event head(int n, int line) { return {line, head_event{head_select::number, n}}; }
+event grip(int line, bool release) {
+  transfer_event t;
+  t.release = release;
+  return {line, t};
+}
+
+// Head 1: lines 1-3 (a tool change at 3 after a move: two operations); head 2: 5-6; head 1:
+// 8; head 2: 10, then a spindle stop at 11 (an operation of its own).
+std::vector<event> job() {
+  return {go(1), go(2),      tool(3), go(3),      head(2, 4), go(5),
+          go(6), head(1, 7), go(8),   head(2, 9), go(10),     stop(11)};
+}
+
+struct routed {
+  std::string trace;
+  job_operations ops;
+};
+
+routed route(const std::vector<event>& events, sync_policy p, const job_operations* plan, bool op_waits,
+             diagnostic_list& d) {
+  trace_sink sink;
+  static const machine m = twin();  // the router keeps a reference
+  channel_router r(m, p, sink, d, "job.cls", {1, 2});
+  r.set_plan(plan);
+  r.set_operation_waits(op_waits);
+  for (const event& e : events) r.route(e);
+  r.finish(99);
+  return {sink.trace, r.operations()};
+}
+
+std::string ops_text(const job_operations& ops) {
+  std::string s;
+  for (std::size_t i = 0; i < ops.sections.size(); ++i)
+    for (int side = 0; side < 2; ++side) {
+      s += fmt::format("s{} c{}:", i, side == 0 ? ops.a : ops.b);
+      for (const channel_op& op : ops.sections[i].ops[side])
+        s += fmt::format(" {}-{}@{}", op.first_line, op.last_line, op.segment);
+      s += "\n";
+    }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("the router finds each head's operations, split at tool changes and spindle stops", "[wait_plan]") {
+  diagnostic_list d;
+  const routed r = route(job(), sync_policy::sequential, nullptr, false, d);
+  CHECK(d.all().empty());
+  // Segments: the channel's waits before the operation under the sequential policy.
+  CHECK(ops_text(r.ops) ==
+        "s0 c1: 1-2@0 3-3@0 8-8@2\n"
+        "s0 c2: 5-6@1 10-10@3 11-11@3\n");
+}
+
+TEST_CASE("the timing post waits at every operation, so that each is a segment of its own", "[wait_plan]") {
+  diagnostic_list d;
+  const routed r = route(job(), sync_policy::sequential, nullptr, true, d);
+  CHECK(d.all().empty());
+  CHECK(ops_text(r.ops) ==
+        "s0 c1: 1-2@0 3-3@1 8-8@3\n"
+        "s0 c2: 5-6@2 10-10@4 11-11@5\n");
+  CHECK(r.ops.operation_waits == 2);
+}
+
+TEST_CASE("a plan's waits go between the operations it names, one code per rendezvous", "[wait_plan]") {
+  diagnostic_list d;
+  job_operations plan = route(job(), sync_policy::sequential, nullptr, false, d).ops;
+  // Channel 2 waits at its start for channel 1's first operation; channel 1 waits after its
+  // three operations for channel 2's second (its stop after channel 1's cutting).
+  plan.sections[0].waits = {{1, 0}, {3, 2}};
+  const routed r = route(job(), sync_policy::optimise, &plan, false, d);
+  CHECK(d.all().empty());
+  CHECK(r.trace ==
+        "c1:1\nc1:2\n"
+        "c1:M100\nc1:3\nc1:3\n"  // after the first operation, before the tool change
+        "c2:M100\nc2:5\nc2:6\n"
+        "c1:8\n"
+        "c2:10\n"
+        "c2:M101\nc2:11\n"      // the stop after channel 1's last operation
+        "c1:M101\n"             // placed at the end of channel 1's operations
+        "c1:M102\nc2:M102\n");  // the last rendezvous before the footers
+}
+
+TEST_CASE("a plan that does not fit the job stops the post", "[wait_plan]") {
+  diagnostic_list d;
+  job_operations plan = route(job(), sync_policy::sequential, nullptr, false, d).ops;
+  plan.sections[0].ops[1].pop_back();
+  plan.sections[0].waits = {{1, 0}};
+  route(job(), sync_policy::optimise, &plan, false, d);
+  REQUIRE(d.errors() == 1);
+  CHECK(format_diagnostic(d.all().front()) ==
+        "job.cls:99: error: --sync optimise: the wait plan does not fit the job (section 1: channel 2 has 3 "
+        "operations, the plan 2): an optimiser fault, nothing is written; post the job with --sync "
+        "sequential\n");
+}
+
+TEST_CASE("sync records are refused under optimise", "[wait_plan]") {
+  diagnostic_list d;
+  job_operations plan = route(job(), sync_policy::sequential, nullptr, false, d).ops;
+  std::vector<event> events = job();
+  sync_event s;
+  s.index = 1;
+  events.insert(events.begin() + 1, event{2, s});
+  route(events, sync_policy::optimise, &plan, false, d);
+  REQUIRE(d.errors() >= 1);
+  CHECK(
+      format_diagnostic(d.all().front()) ==
+      "job.cls:2: error: --sync optimise places every wait itself, and this job has sync records of its own: "
+      "post it with --sync explicit (or sequential)\n");
+}
+
+TEST_CASE("a part transfer is a barrier: the operations after it are a section of their own", "[wait_plan]") {
+  machine m = twin();
+  diagnostic_list d;
+  std::vector<event> events = {go(1),         head(2, 2), go(3),      grip(4, false),
+                               grip(5, true), go(6),      head(1, 7), go(8)};
+  // The router needs a sub spindle and a transfer channel for TRANSFER.
+  spindle_def sub;
+  sub.name = "sub";
+  m.spindles.push_back(sub);
+  m.transfer.channel = 1;
+  trace_sink sink;
+  channel_router r(m, sync_policy::sequential, sink, d, "job.cls", {1, 2});
+  for (const event& e : events) r.route(e);
+  r.finish(99);
+  CHECK(d.all().empty());
+  // Five sections: before the grip; between the grip's two rendezvous (its blocks); between the
+  // grip and the release (a part-off goes there); between the release's two; after.
+  CHECK(ops_text(r.operations()) ==
+        "s0 c1: 1-1@0\n"
+        "s0 c2: 3-3@1\n"
+        "s1 c1:\n"
+        "s1 c2:\n"
+        "s2 c1:\n"
+        "s2 c2:\n"
+        "s3 c1:\n"
+        "s3 c2:\n"
+        "s4 c1: 8-8@6\n"
+        "s4 c2: 6-6@5\n");
+}
+
+TEST_CASE("operations are timed by their segments; the last of a shared segment takes it", "[wait_plan]") {
+  job_operations ops;
+  ops.a = 1;
+  ops.b = 2;
+  ops.sections.resize(1);
+  ops.sections[0].ops[0] = {{1, 1, 0}, {2, 2, 0}, {5, 5, 2}};
+  ops.sections[0].ops[1] = {{3, 3, 1}};
+  time_operations(ops, [](int side, int segment) { return side * 100 + segment + 0.5; });
+  CHECK(ops.sections[0].ops[0][0].us == 0);
+  CHECK(ops.sections[0].ops[0][1].us == 500000);
+  CHECK(ops.sections[0].ops[0][2].us == 2500000);
+  CHECK(ops.sections[0].ops[1][0].us == 101500000);
+}
+
+TEST_CASE("a finding's lines become pairs in the CL's order", "[wait_plan]") {
+  job_operations ops;
+  ops.a = 1;
+  ops.b = 2;
+  ops.sections.resize(1);
+  ops.sections[0].ops[0] = {{1, 4, 0}, {10, 12, 0}};
+  ops.sections[0].ops[1] = {{5, 9, 0}, {13, 20, 0}};
+  SECTION("an error in channel 2's second operation, its note in channel 1's first") {
+    const std::vector<plan_pair> p = pairs_for_lines(ops, {15, 2});
+    REQUIRE(p.size() == 1);
+    CHECK(p[0] == plan_pair{0, {0, 1, pair_rule::a_first}});
+  }
+  SECTION("channel 2's first before channel 1's second") {
+    const std::vector<plan_pair> p = pairs_for_lines(ops, {11, 6});
+    REQUIRE(p.size() == 1);
+    CHECK(p[0] == plan_pair{0, {1, 0, pair_rule::b_first}});
+  }
+  SECTION("no partner: the operation keeps the CL's order with the other channel's whole section") {
+    const std::vector<plan_pair> p = pairs_for_lines(ops, {11});
+    REQUIRE(p.size() == 2);
+    CHECK(p[0] == plan_pair{0, {1, 0, pair_rule::b_first}});
+    CHECK(p[1] == plan_pair{0, {1, 1, pair_rule::a_first}});
+  }
+  SECTION("a line in no operation gives nothing") { CHECK(pairs_for_lines(ops, {99}).empty()); }
+}
+
+TEST_CASE("the plan is the shortest schedule of each section", "[wait_plan]") {
+  job_operations ops;
+  ops.a = 1;
+  ops.b = 2;
+  ops.sections.resize(2);
+  // Section 1: A 10 s, 10 s; B 10 s with B's after A's first: B waits for A's first (one wait).
+  ops.sections[0].ops[0] = {{1, 1, 0, 10000000}, {3, 3, 0, 10000000}};
+  ops.sections[0].ops[1] = {{2, 2, 0, 10000000}};
+  // Section 2: A 5 s, B 7 s, nothing kept apart: no wait.
+  ops.sections[1].ops[0] = {{5, 5, 0, 5000000}};
+  ops.sections[1].ops[1] = {{6, 6, 0, 7000000}};
+  const std::vector<plan_pair> pairs = {{0, {0, 0, pair_rule::a_first}}};
+  const std::optional<std::int64_t> cycle = plan_waits(ops, pairs, 100000);
+  REQUIRE(cycle);
+  // 10 s, a handshake, 10 s (B's beside A's second); a handshake at the barrier; 7 s.
+  CHECK(*cycle == 20100000 + 100000 + 7000000);
+  CHECK(ops.sections[0].waits == std::vector<rendezvous>{{1, 0}});
+  CHECK(ops.sections[1].waits.empty());
+  SECTION("contradicting pairs give no plan") {
+    // A's second before B's, and B's before A's first: A's own order forbids it.
+    const std::vector<plan_pair> both = {{0, {1, 0, pair_rule::a_first}}, {0, {0, 0, pair_rule::b_first}}};
+    CHECK_FALSE(plan_waits(ops, both, 100000));
+  }
+}
