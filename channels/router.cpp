@@ -14,7 +14,8 @@ channel_router::channel_router(const machine& m, sync_policy policy, channel_sin
     : m_(m), policy_(policy), sink_(sink), diags_(diags), file_(std::move(file)), codes_(m.waits),
       busy_(m.channels.size() + 1, false), job_channels_(std::move(job_channels)),
       side_(m.channels.size() + 1, -1), started_(m.channels.size() + 1, false),
-      op_wrote_(m.channels.size() + 1, false), waits_sent_(m.channels.size() + 1, 0) {
+      op_wrote_(m.channels.size() + 1, false), tracks_(m.channels.size() + 1),
+      waits_sent_(m.channels.size() + 1, 0) {
   const channel_def* first = m_.channel_for_head(1);
   active_ = {first ? first->number : 1};
   if (job_channels_.size() == 2) {
@@ -50,7 +51,11 @@ void channel_router::deliver(int ch, const event& e, bool both, bool writes) {
     start_op(ch, e.line);
   }
   if (writes) op_wrote_[c] = true;
-  if (const int side = side_[c]; side >= 0) ops_.sections.back().ops[side].back().last_line = e.line;
+  if (const int side = side_[c]; side >= 0) {
+    channel_op& op = ops_.sections.back().ops[side].back();
+    op.last_line = e.line;
+    note_operation_event(op, tracks_[c], e);
+  }
   sink_.on_event(ch, e, both);
 }
 
@@ -192,7 +197,11 @@ void channel_router::route(const event& e) {
   if (const auto* t = std::get_if<text_event>(&e.data)) job_level = t->kind == text_kind::partno;
   if (std::holds_alternative<units_event>(e.data) || std::holds_alternative<machin_event>(e.data))
     job_level = true;
-  if (job_level) return sink_.on_event(0, e, false);
+  if (job_level) {
+    if (const auto* u = std::get_if<units_event>(&e.data))
+      for (channel_track& t : tracks_) t.mm = u->units == unit_system::inch ? 25.4 : 1;
+    return sink_.on_event(0, e, false);
+  }
   if (!open_both_.empty()) {
     // Before the balance cut's opening wait: the master sets the spindle (and comments go to
     // both); anything else opens the section.
@@ -377,7 +386,10 @@ void channel_router::transfer(const event& e, const transfer_event& t) {
   section_break(e.line);
   rendezvous(all, e.line, what, true);
   if (t.release)
-    for (int ch : all) send(ch, transfer_event::phase::on_sub);
+    for (int ch : all) {
+      send(ch, transfer_event::phase::on_sub);
+      tracks_[static_cast<std::size_t>(ch)].part = 2;
+    }
 }
 
 // A part-off while the sub holds the part: a feed move (no RAPID) whose end is on the centre

@@ -142,8 +142,9 @@ class channel_router {
   // Operations (a two-channel job): side_[ch] 0 for ops_.a, 1 for ops_.b, -1 for any other.
   job_operations ops_;
   std::vector<int> side_;
-  std::vector<bool> started_;   // per channel: its current stretch has started an operation
-  std::vector<bool> op_wrote_;  // per channel: its current operation has a record that writes
+  std::vector<bool> started_;          // per channel: its current stretch has started an operation
+  std::vector<bool> op_wrote_;         // per channel: its current operation has a record that writes
+  std::vector<channel_track> tracks_;  // per channel: what its operations are noted with
   bool op_waits_ = false;
   std::vector<int> waits_sent_;  // per channel: waits written so far
   const job_operations* plan_ = nullptr;

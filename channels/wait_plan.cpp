@@ -2,10 +2,150 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 #include <map>
 #include <utility>
 
 namespace twinpost {
+
+namespace {
+
+// Widens op's region by the |x| range of [xa, xb] and the z range of [za, zb] (CL units).
+void sweep(channel_op& op, const channel_track& t, double xa, double xb, double za, double zb) {
+  double lo = std::min(xa, xb), hi = std::max(xa, xb);
+  double r0 = lo <= 0 && hi >= 0 ? 0 : std::min(std::abs(lo), std::abs(hi));
+  double r1 = std::max(std::abs(lo), std::abs(hi));
+  op.r0 = std::min(op.r0, r0 * t.mm);
+  op.r1 = std::max(op.r1, r1 * t.mm);
+  op.z0 = std::min(op.z0, std::min(za, zb) * t.mm);
+  op.z1 = std::max(op.z1, std::max(za, zb) * t.mm);
+  op.reach = std::max(op.reach, t.reach);
+  op.parts |= t.part;
+  if (t.css) op.css = true;
+}
+
+// A TLDATA's reach past the tip: half the diameter of a drill or mill, the nose radius (the
+// first value) of a turning tool; nothing known: -1.
+double tool_reach(const tool_data_event& d) {
+  if (d.values.empty()) return -1;
+  bool diameter = d.major == "CUTTER";
+  for (const std::string& w : d.words)
+    if (w == "DRILL" || w == "MILL") diameter = true;
+  return std::abs(d.values.front()) * (diameter ? 0.5 : 1.0);
+}
+
+}  // namespace
+
+void note_operation_event(channel_op& op, channel_track& t, const event& e) {
+  if (const auto* m = std::get_if<motion_event>(&e.data)) {
+    if (m->kind == motion_kind::home) {
+      t.has_last = false;
+      return;
+    }
+    if (t.cycle >= 0 && m->kind != motion_kind::from) {
+      // A hole of a canned cycle: its depth and retract within the cycle's largest distance.
+      const double d = t.cycle / t.mm;
+      sweep(op, t, m->pos.x - d, m->pos.x + d, m->pos.z - d, m->pos.z + d);
+    } else if (!m->rapid && m->kind != motion_kind::from) {
+      const vec3 from = t.has_last ? t.last : m->pos;
+      sweep(op, t, from.x, m->pos.x, from.z, m->pos.z);
+      const bool crosses = (from.x > 0 && m->pos.x < 0) || (from.x < 0 && m->pos.x > 0);
+      if (std::abs(from.x) * t.mm > 1 && (crosses || std::abs(m->pos.x) * t.mm <= 0.5)) op.severs = true;
+    }
+    t.last = m->pos;
+    t.has_last = true;
+    return;
+  }
+  if (const auto* a = std::get_if<arc_event>(&e.data)) {
+    // The whole circle's box: conservative, and independent of the plane it is in.
+    const double r = std::abs(a->radius);
+    sweep(op, t, a->center.x - r, a->center.x + r, a->center.z - r, a->center.z + r);
+    t.last = a->end;
+    t.has_last = true;
+    return;
+  }
+  if (const auto* s = std::get_if<spindle_event>(&e.data)) {
+    if (s->spindle == "main") t.part = 1;
+    if (s->spindle == "sub") t.part = 2;
+    if (s->mode == spindle_mode::smm || s->mode == spindle_mode::sfm) t.css = true;
+    if (s->mode == spindle_mode::rpm || s->mode == spindle_mode::off) t.css = false;
+    return;
+  }
+  if (const auto* d = std::get_if<tool_data_event>(&e.data)) {
+    t.pending = tool_reach(*d);
+    return;
+  }
+  if (const auto* tl = std::get_if<tool_event>(&e.data)) {
+    if (tl->preselect) return;
+    t.reach = t.pending >= 0 ? t.pending * t.mm : 10;
+    t.pending = -1;
+    return;
+  }
+  if (const auto* c = std::get_if<cycle_event>(&e.data)) {
+    if (c->type == "OFF") {
+      t.cycle = -1;
+    } else {
+      double d = 0;
+      for (const auto& [name, value] : c->params) d = std::max(d, std::abs(value));
+      for (double v : c->positional) d = std::max(d, std::abs(v));
+      t.cycle = d * t.mm;
+    }
+    return;
+  }
+  if (std::holds_alternative<stop_event>(e.data) || std::holds_alternative<aux_event>(e.data) ||
+      std::holds_alternative<passthrough_event>(e.data)) {
+    op.exclusive = true;
+    return;
+  }
+  if (const auto* x = std::get_if<text_event>(&e.data); x && x->kind == text_kind::insert)
+    op.exclusive = true;
+}
+
+std::vector<std::pair<plan_pair, std::string>> fixed_pairs(const job_operations& ops, double clearance_mm) {
+  std::vector<std::pair<plan_pair, std::string>> out;
+  for (std::size_t s = 0; s < ops.sections.size(); ++s) {
+    const plan_section& sec = ops.sections[s];
+    for (std::size_t i = 0; i < sec.ops[0].size(); ++i)
+      for (std::size_t j = 0; j < sec.ops[1].size(); ++j) {
+        const channel_op& a = sec.ops[0][i];
+        const channel_op& b = sec.ops[1][j];
+        std::string why;
+        const unsigned shared = a.parts & b.parts;
+        const char* part = shared & 1 ? "main" : "sub";
+        if (a.exclusive || b.exclusive) {
+          why = "a program stop, an M or G code or a record passed through runs alone";
+        } else if (shared != 0 && (a.severs || b.severs)) {
+          why = fmt::format(
+              "one of them cuts to the centre line (a part-off or a face): nothing else cuts the part in the "
+              "{} "
+              "spindle meanwhile",
+              part);
+        } else if (shared != 0) {
+          const double near = a.reach + b.reach + clearance_mm;
+          const double gap_r = std::max(a.r0 - b.r1, b.r0 - a.r1);
+          const double gap_z = std::max(a.z0 - b.z1, b.z0 - a.z1);
+          if (gap_r < near && gap_z < near)
+            why = fmt::format(
+                "they cut closer than {:.1f} mm to each other on the part in the {} spindle (radius "
+                "{:.1f}-{:.1f}, "
+                "z {:.1f}-{:.1f}; radius {:.1f}-{:.1f}, z {:.1f}-{:.1f}): the same material, or tools that "
+                "meet",
+                near, part, a.r0, a.r1, a.z0, a.z1, b.r0, b.r1, b.z0, b.z1);
+          else if (a.css && b.css)
+            why = fmt::format(
+                "both cut under constant surface speed on the part in the {} spindle: each clamps the "
+                "spindle's rpm",
+                part);
+        }
+        if (why.empty()) continue;
+        const bool a_first = a.first_line < b.first_line;
+        out.push_back({plan_pair{s, op_pair{static_cast<int>(i), static_cast<int>(j),
+                                            a_first ? pair_rule::a_first : pair_rule::b_first}},
+                       std::move(why)});
+      }
+  }
+  return out;
+}
 
 void time_operations(job_operations& ops, const std::function<double(int side, int segment)>& seconds) {
   for (int side = 0; side < 2; ++side) {
@@ -34,8 +174,25 @@ std::optional<std::int64_t> plan_waits(job_operations& ops, const std::vector<pl
       if (p.section == i) here.push_back(p.pair);
     const std::optional<two_channel_schedule> best = schedule_two_channels(a, b, here, handshake_us);
     if (!best) return std::nullopt;
-    s.waits = best->waits;
-    cycle += best->makespan_us + (i > 0 ? handshake_us : 0);
+    std::vector<rendezvous> waits = best->waits;
+    // Every ordered pair by a rendezvous: A has done its operation (x > a) while B has not
+    // started its own (y <= b), or the other way round. In a schedule that keeps the pair, no
+    // wait is on the wrong side of it, so the one added fits the chain of the others.
+    for (const op_pair& p : here) {
+      const rendezvous need =
+          p.rule == pair_rule::a_first ? rendezvous{p.a + 1, p.b} : rendezvous{p.a, p.b + 1};
+      const bool covered = std::any_of(waits.begin(), waits.end(), [&](const rendezvous& w) {
+        return p.rule == pair_rule::a_first ? w.a >= need.a && w.b <= need.b : w.b >= need.b && w.a <= need.a;
+      });
+      if (covered || p.rule == pair_rule::apart) continue;
+      waits.insert(std::upper_bound(waits.begin(), waits.end(), need,
+                                    [](const rendezvous& x, const rendezvous& y) {
+                                      return x.a < y.a || (x.a == y.a && x.b < y.b);
+                                    }),
+                   need);
+    }
+    s.waits = waits;
+    cycle += run_with_waits(a, b, waits, handshake_us).makespan_us + (i > 0 ? handshake_us : 0);
   }
   return cycle;
 }

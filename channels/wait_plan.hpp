@@ -10,10 +10,14 @@
 // operations and B's first `b`).
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "channels/wait_schedule.hpp"
+#include "parser/events.hpp"
 
 namespace twinpost {
 
@@ -22,7 +26,32 @@ struct channel_op {
   int first_line = 0, last_line = 0;  ///< its CL records
   int segment = 0;                    ///< the channel's waits before it (as the pass wrote them)
   std::int64_t us = 0;                ///< its time (time_operations)
+  // What it does to the part (note_operation_event), in mm in the part frame of its spindle:
+  // the region its feed moves, arcs and cycle holes sweep (r: |CL x|, z), and the reach of the
+  // tool that sweeps it.
+  double r0 = std::numeric_limits<double>::infinity(), r1 = -std::numeric_limits<double>::infinity();
+  double z0 = std::numeric_limits<double>::infinity(), z1 = -std::numeric_limits<double>::infinity();
+  double reach = 0;
+  unsigned parts = 0;      ///< bit 0: it cuts the part in the main spindle, bit 1: in the sub
+  bool css = false;        ///< it cuts under constant surface speed
+  bool severs = false;     ///< a feed move from off the axis to the centre line (a face, a part-off)
+  bool exclusive = false;  ///< STOP, OPSTOP, AUXFUN, PREFUN, INSERT or a record passed through
 };
+
+/// What a channel's operations are noted with: where its tool is, which part it works on.
+struct channel_track {
+  double mm = 1;  ///< mm per CL unit
+  vec3 last;
+  bool has_last = false;
+  unsigned part = 1;    ///< the part's spindle bit: 1 main, 2 sub
+  bool css = false;     ///< the spindle in constant surface speed
+  double reach = 10;    ///< the tool's reach past its tip (mm): 10 until TLDATA says
+  double pending = -1;  ///< a TLDATA's reach for the next tool call
+  double cycle = -1;    ///< a canned cycle's largest distance (mm) while one is on; -1: none
+};
+
+/// Notes event `e` of channel track `t` in its operation `op`.
+void note_operation_event(channel_op& op, channel_track& t, const event& e);
 
 struct plan_section {
   /// [0]: channel A's operations, [1]: channel B's.
@@ -53,9 +82,20 @@ struct plan_pair {
 /// last one.
 void time_operations(job_operations& ops, const std::function<double(int side, int segment)>& seconds);
 
+/// The pairs every schedule keeps in the CL's order, each with why (docs/wait-placement.md):
+/// an operation that stops the program or writes codes the checks do not read runs alone;
+/// an operation that cuts to the centre line from off it (a part-off, a face) is the only one
+/// on its part; two operations on one part whose swept regions come within their tools' reach and
+/// `clearance_mm` of each other may cut the same material (a finish after its rough, a
+/// part-off) or meet; two operations on one part under constant surface speed each clamp the
+/// spindle's rpm.
+std::vector<std::pair<plan_pair, std::string>> fixed_pairs(const job_operations& ops, double clearance_mm);
+
 /// The waits of every section for the shortest cycle that keeps `pairs`
-/// (schedule_two_channels), into `ops`. Returns the predicted cycle (the sections' makespans
-/// and a handshake per barrier between them), or nullopt when the pairs contradict each other.
+/// (schedule_two_channels), into `ops`, with a rendezvous that orders every pair (a pair the
+/// schedule keeps only by the operations' times gets one: the times are estimates, the order
+/// must not depend on them). Returns the predicted cycle (the sections' makespans and a
+/// handshake per barrier between them), or nullopt when the pairs contradict each other.
 std::optional<std::int64_t> plan_waits(job_operations& ops, const std::vector<plan_pair>& pairs,
                                        std::int64_t handshake_us);
 

@@ -108,6 +108,10 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
 
   std::vector<plan_pair> pairs;
   std::vector<std::string> reasons;  // per pair
+  for (auto& [p, reason] : fixed_pairs(ops, m.interference.clearance)) {
+    reasons.push_back(pair_text(ops, p, o.cl_path, reason));
+    pairs.push_back(p);
+  }
   std::string why;
   for (int post = 2; post <= optimise_max_posts; ++post) {
     if (!plan_waits(ops, pairs, handshake_us)) {

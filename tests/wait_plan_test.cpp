@@ -183,7 +183,7 @@ TEST_CASE("a part transfer is a barrier: the operations after it are a section o
         "s4 c2: 6-6@5\n");
 }
 
-TEST_CASE("operations are timed by their segments; the last of a shared segment takes it", "[wait_plan]") {
+TEST_CASE("operations are timed by their segments, the last of a shared segment takes it", "[wait_plan]") {
   job_operations ops;
   ops.a = 1;
   ops.b = 2;
@@ -246,4 +246,138 @@ TEST_CASE("the plan is the shortest schedule of each section", "[wait_plan]") {
     const std::vector<plan_pair> both = {{0, {1, 0, pair_rule::a_first}}, {0, {0, 0, pair_rule::b_first}}};
     CHECK_FALSE(plan_waits(ops, both, 100000));
   }
+}
+
+namespace {
+
+// One channel's events noted into one operation.
+channel_op noted(const std::vector<event>& events, channel_track t = {}) {
+  channel_op op;
+  for (const event& e : events) note_operation_event(op, t, e);
+  return op;
+}
+
+event at(double x, double z, bool rapid = false) {
+  motion_event m;
+  m.pos = {x, 0, z};
+  m.rapid = rapid;
+  return {0, m};
+}
+
+event tldata(std::string kind, double value) {
+  tool_data_event d;
+  d.major = "TLDATA";
+  d.words = {std::move(kind)};
+  d.values = {value};
+  return {0, d};
+}
+
+event speed(spindle_mode mode, std::string spindle = "") {
+  spindle_event s;
+  s.mode = mode;
+  s.spindle = std::move(spindle);
+  return {0, s};
+}
+
+}  // namespace
+
+TEST_CASE("an operation is noted with the region its feed moves sweep, its tool and its part",
+          "[wait_plan]") {
+  SECTION("a turning pass on the lower turret (x < 0): |x|, from the rapid's end") {
+    const channel_op op = noted({tldata("TURN", 0.8), tool(1), speed(spindle_mode::rpm, "main"),
+                                 at(-31, 2, true), at(-29.5, 2), at(-29.5, -40), at(-31, -40)});
+    CHECK(op.r0 == 29.5);
+    CHECK(op.r1 == 31);
+    CHECK(op.z0 == -40);
+    CHECK(op.z1 == 2);
+    CHECK(op.reach == 0.8);
+    CHECK(op.parts == 1u);
+    CHECK_FALSE(op.css);
+    CHECK_FALSE(op.severs);
+  }
+  SECTION("a drill: half its diameter; a tool without TLDATA reaches 10 mm; inches in mm") {
+    CHECK(noted({tldata("DRILL", 16), tool(1), at(0, 5, true), at(0, -30)}).reach == 8);
+    channel_track inch;
+    inch.mm = 25.4;
+    const channel_op op = noted({tool(1), at(1, 0, true), at(1, -1)}, inch);
+    CHECK(op.reach == 10);
+    CHECK(op.z0 == -25.4);
+    CHECK(op.r1 == 25.4);
+  }
+  SECTION("a face to the centre line severs; a drill on the centre does not") {
+    CHECK(noted({at(32, 0, true), at(-0.8, 0)}).severs);
+    CHECK(noted({at(20, -40, true), at(0, -40)}).severs);
+    CHECK_FALSE(noted({at(0, 5, true), at(0, -30)}).severs);
+  }
+  SECTION("constant surface speed, the sub spindle, a stop") {
+    const channel_op op = noted({speed(spindle_mode::smm, "sub"), at(10, 0, true), at(10, -5)});
+    CHECK(op.css);
+    CHECK(op.parts == 2u);
+    CHECK(noted({event{0, stop_event{}}}).exclusive);
+    CHECK(noted({event{0, aux_event{}}}).exclusive);
+    CHECK_FALSE(noted({at(10, 0, true), at(10, -5)}).exclusive);
+  }
+}
+
+TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
+  job_operations ops;
+  ops.a = 1;
+  ops.b = 2;
+  ops.sections.resize(1);
+  auto op = [](int line, double r0, double r1, double z0, double z1) {
+    channel_op o;
+    o.first_line = line;
+    o.r0 = r0;
+    o.r1 = r1;
+    o.z0 = z0;
+    o.z1 = z1;
+    o.reach = 1;
+    o.parts = 1;
+    return o;
+  };
+  // Channel 1: a rough of the outside (line 10), channel 2: a drill (line 20) far from it, a
+  // finish of the same outside (line 30).
+  ops.sections[0].ops[0] = {op(10, 28, 31, -40, 2)};
+  ops.sections[0].ops[1] = {op(20, 0, 8, -30, 5), op(30, 27.5, 29, -40, 2)};
+  auto pairs = fixed_pairs(ops, 5);
+  REQUIRE(pairs.size() == 1);
+  CHECK(pairs[0].first == plan_pair{0, {0, 1, pair_rule::a_first}});
+  CHECK(pairs[0].second ==
+        "they cut closer than 7.0 mm to each other on the part in the main spindle (radius 28.0-31.0, z "
+        "-40.0-2.0; radius 27.5-29.0, z -40.0-2.0): the same material, or tools that meet");
+  SECTION("on different parts nothing is kept apart") {
+    ops.sections[0].ops[1][1].parts = 2;
+    CHECK(fixed_pairs(ops, 5).empty());
+  }
+  SECTION("both under CSS") {
+    ops.sections[0].ops[0][0].css = ops.sections[0].ops[1][0].css = true;
+    pairs = fixed_pairs(ops, 5);
+    REQUIRE(pairs.size() == 2);
+    CHECK(pairs[0].first == plan_pair{0, {0, 0, pair_rule::a_first}});
+    CHECK(pairs[0].second ==
+          "both cut under constant surface speed on the part in the main spindle: each clamps the spindle's "
+          "rpm");
+  }
+  SECTION("a stop runs alone") {
+    ops.sections[0].ops[1][0].exclusive = true;
+    pairs = fixed_pairs(ops, 5);
+    REQUIRE(pairs.size() == 2);
+    CHECK(pairs[0].second == "a program stop, an M or G code or a record passed through runs alone");
+  }
+}
+
+TEST_CASE("a pair the schedule keeps only by the operations' times gets a rendezvous", "[wait_plan]") {
+  job_operations ops;
+  ops.a = 1;
+  ops.b = 2;
+  ops.sections.resize(1);
+  // A: 10 s then 1 s; B: 20 s then 1 s. B's second after A's second: with these times B's
+  // second starts at 20 s, long after A's second ended at 11 s, and no wait is needed for the
+  // times; the order must not rest on them: a rendezvous A after 2, B after 1.
+  ops.sections[0].ops[0] = {{1, 1, 0, 10000000}, {2, 2, 0, 1000000}};
+  ops.sections[0].ops[1] = {{3, 3, 0, 20000000}, {4, 4, 0, 1000000}};
+  const std::optional<std::int64_t> cycle = plan_waits(ops, {{0, {1, 1, pair_rule::a_first}}}, 100000);
+  REQUIRE(cycle);
+  CHECK(ops.sections[0].waits == std::vector<rendezvous>{{2, 1}});
+  CHECK(*cycle == 21100000);  // B's 20 s, the handshake, B's 1 s
 }
