@@ -39,6 +39,7 @@ static bool opens_operation(const event& e) {
 }
 
 void channel_router::deliver(int ch, const event& e, bool both, bool writes) {
+  if (!track_) return sink_.on_event(ch, e, both);
   const auto c = static_cast<std::size_t>(ch);
   if (!started_[c]) [[unlikely]] {
     start_op(ch, e.line);
@@ -113,7 +114,7 @@ void channel_router::plan_waits_at(int side, std::size_t count, int line) {
 }
 
 void channel_router::section_break(int line) {
-  if (ops_.a == 0) return;
+  if (ops_.a == 0 || !track_) return;
   if (plan_) {
     const std::size_t section = ops_.sections.size() - 1;
     for (int side = 0; side < 2; ++side) {
@@ -160,7 +161,10 @@ void channel_router::route(const event& e) {
       note_cutoff(e);
     for (int ch : active_) {
       busy_[static_cast<std::size_t>(ch)] = true;
-      deliver(ch, e, both_, true);
+      if (track_) [[unlikely]]
+        deliver(ch, e, both_, true);
+      else
+        sink_.on_event(ch, e, both_);
     }
     return;
   }

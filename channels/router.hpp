@@ -72,10 +72,19 @@ class channel_router {
   const job_operations& operations() const { return ops_; }
   /// The waits to place under the optimise policy: a plan made from operations() of an earlier
   /// routing of the same job. One that does not fit the job is an error (an optimiser fault).
-  void set_plan(const job_operations* plan) { plan_ = plan; }
+  void set_plan(const job_operations* plan) {
+    plan_ = plan;
+    track_ = track_ || plan;
+  }
   /// A rendezvous at every operation boundary inside a head's stretch too (a tool change, a
   /// spindle stop): the sequential post that times each operation on its own.
-  void set_operation_waits(bool on) { op_waits_ = on; }
+  void set_operation_waits(bool on) {
+    op_waits_ = on;
+    track_ = track_ || on;
+  }
+  /// Whether operations() is kept (set_plan and set_operation_waits keep it): off, the router
+  /// does no work per event for it.
+  void track_operations(bool on) { track_ = on; }
 
  private:
   void select(std::vector<int> channels, int line, bool both);
@@ -146,6 +155,7 @@ class channel_router {
   std::vector<bool> op_wrote_;         // per channel: its current operation has a record that writes
   std::vector<channel_track> tracks_;  // per channel: what its operations are noted with
   bool op_waits_ = false;
+  bool track_ = false;
   std::vector<int> waits_sent_;  // per channel: waits written so far
   const job_operations* plan_ = nullptr;
   std::size_t plan_next_[2] = {0, 0};                              // per side: the next planned wait to place

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <map>
+#include <tuple>
 #include <utility>
 
 namespace twinpost {
@@ -101,50 +102,67 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
     op.exclusive = true;
 }
 
-std::vector<std::pair<plan_pair, std::string>> fixed_pairs(const job_operations& ops, double clearance_mm) {
-  std::vector<std::pair<plan_pair, std::string>> out;
+namespace {
+
+enum class fixed_rule { none, alone, severs, near, css };
+
+fixed_rule fixed_between(const channel_op& a, const channel_op& b, double clearance_mm) {
+  const unsigned shared = a.parts & b.parts;
+  if (a.exclusive || b.exclusive) return fixed_rule::alone;
+  if (shared == 0) return fixed_rule::none;
+  if (a.severs || b.severs) return fixed_rule::severs;
+  const double near = a.reach + b.reach + clearance_mm;
+  const double gap_r = std::max(a.r0 - b.r1, b.r0 - a.r1);
+  const double gap_z = std::max(a.z0 - b.z1, b.z0 - a.z1);
+  if (gap_r < near && gap_z < near) return fixed_rule::near;
+  if (a.css && b.css) return fixed_rule::css;
+  return fixed_rule::none;
+}
+
+}  // namespace
+
+std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_mm) {
+  std::vector<plan_pair> out;
   for (std::size_t s = 0; s < ops.sections.size(); ++s) {
     const plan_section& sec = ops.sections[s];
     for (std::size_t i = 0; i < sec.ops[0].size(); ++i)
       for (std::size_t j = 0; j < sec.ops[1].size(); ++j) {
         const channel_op& a = sec.ops[0][i];
         const channel_op& b = sec.ops[1][j];
-        std::string why;
-        const unsigned shared = a.parts & b.parts;
-        const char* part = shared & 1 ? "main" : "sub";
-        if (a.exclusive || b.exclusive) {
-          why = "a program stop, an M or G code or a record passed through runs alone";
-        } else if (shared != 0 && (a.severs || b.severs)) {
-          why = fmt::format(
-              "one of them cuts to the centre line (a part-off or a face): nothing else cuts the part in the "
-              "{} "
-              "spindle meanwhile",
-              part);
-        } else if (shared != 0) {
-          const double near = a.reach + b.reach + clearance_mm;
-          const double gap_r = std::max(a.r0 - b.r1, b.r0 - a.r1);
-          const double gap_z = std::max(a.z0 - b.z1, b.z0 - a.z1);
-          if (gap_r < near && gap_z < near)
-            why = fmt::format(
-                "they cut closer than {:.1f} mm to each other on the part in the {} spindle (radius "
-                "{:.1f}-{:.1f}, "
-                "z {:.1f}-{:.1f}; radius {:.1f}-{:.1f}, z {:.1f}-{:.1f}): the same material, or tools that "
-                "meet",
-                near, part, a.r0, a.r1, a.z0, a.z1, b.r0, b.r1, b.z0, b.z1);
-          else if (a.css && b.css)
-            why = fmt::format(
-                "both cut under constant surface speed on the part in the {} spindle: each clamps the "
-                "spindle's rpm",
-                part);
-        }
-        if (why.empty()) continue;
+        if (fixed_between(a, b, clearance_mm) == fixed_rule::none) continue;
         const bool a_first = a.first_line < b.first_line;
-        out.push_back({plan_pair{s, op_pair{static_cast<int>(i), static_cast<int>(j),
-                                            a_first ? pair_rule::a_first : pair_rule::b_first}},
-                       std::move(why)});
+        out.push_back(plan_pair{s, op_pair{static_cast<int>(i), static_cast<int>(j),
+                                           a_first ? pair_rule::a_first : pair_rule::b_first}});
       }
   }
   return out;
+}
+
+std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, double clearance_mm) {
+  const channel_op& a = ops.sections[p.section].ops[0][static_cast<std::size_t>(p.pair.a)];
+  const channel_op& b = ops.sections[p.section].ops[1][static_cast<std::size_t>(p.pair.b)];
+  const char* part = (a.parts & b.parts & 1) != 0 ? "main" : "sub";
+  switch (fixed_between(a, b, clearance_mm)) {
+    case fixed_rule::none: return {};
+    case fixed_rule::alone: return "a program stop, an M or G code or a record passed through runs alone";
+    case fixed_rule::severs:
+      return fmt::format(
+          "one of them cuts to the centre line (a part-off or a face): nothing else cuts the part in the {} "
+          "spindle meanwhile",
+          part);
+    case fixed_rule::near:
+      return fmt::format(
+          "they cut closer than {:.1f} mm to each other on the part in the {} spindle (radius {:.1f}-{:.1f}, "
+          "z "
+          "{:.1f}-{:.1f}; radius {:.1f}-{:.1f}, z {:.1f}-{:.1f}): the same material, or tools that meet",
+          a.reach + b.reach + clearance_mm, part, a.r0, a.r1, a.z0, a.z1, b.r0, b.r1, b.z0, b.z1);
+    case fixed_rule::css:
+      return fmt::format(
+          "both cut under constant surface speed on the part in the {} spindle: each clamps the spindle's "
+          "rpm",
+          part);
+  }
+  return {};
 }
 
 void time_operations(job_operations& ops, const std::function<double(int side, int segment)>& seconds) {
@@ -159,6 +177,41 @@ void time_operations(job_operations& ops, const std::function<double(int side, i
     for (auto& [segment, op] : last)
       op->us = static_cast<std::int64_t>(std::llround(std::max(0.0, seconds(side, segment)) * 1e6));
   }
+}
+
+std::vector<std::size_t> minimal_pairs(const std::vector<plan_pair>& pairs) {
+  // Per section and rule: A-first pairs by A's operation descending (B's ascending), kept when
+  // B's operation is before every one kept so far; B-first the same with the roles swapped.
+  std::vector<std::size_t> order(pairs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto key = [&](std::size_t i) {
+    const plan_pair& p = pairs[i];
+    const bool a_first = p.pair.rule == pair_rule::a_first;
+    const int lead = a_first ? p.pair.a : p.pair.b, follow = a_first ? p.pair.b : p.pair.a;
+    return std::make_tuple(p.section, static_cast<int>(p.pair.rule), -lead, follow);
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return key(x) < key(y); });
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const plan_pair& p = pairs[order[k]];
+    if (p.pair.rule == pair_rule::apart) {
+      kept.push_back(order[k]);
+      continue;
+    }
+    const bool a_first = p.pair.rule == pair_rule::a_first;
+    const int follow = a_first ? p.pair.b : p.pair.a;
+    // The kept pairs of this section and rule all lead by as much or more, and each follows
+    // earlier than the one kept before it: the last one kept follows earliest.
+    bool implied = false;
+    if (!kept.empty()) {
+      const plan_pair& q = pairs[kept.back()];
+      implied =
+          q.section == p.section && q.pair.rule == p.pair.rule && (a_first ? q.pair.b : q.pair.a) <= follow;
+    }
+    if (!implied) kept.push_back(order[k]);
+  }
+  std::sort(kept.begin(), kept.end());
+  return kept;
 }
 
 std::optional<std::int64_t> plan_waits(job_operations& ops, const std::vector<plan_pair>& pairs,

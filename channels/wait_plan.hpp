@@ -89,7 +89,14 @@ void time_operations(job_operations& ops, const std::function<double(int side, i
 /// `clearance_mm` of each other may cut the same material (a finish after its rough, a
 /// part-off) or meet; two operations on one part under constant surface speed each clamp the
 /// spindle's rpm.
-std::vector<std::pair<plan_pair, std::string>> fixed_pairs(const job_operations& ops, double clearance_mm);
+std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_mm);
+
+/// Why fixed_pairs keeps pair `p` (a sentence; empty when it does not).
+std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, double clearance_mm);
+
+/// Of `pairs`, the indices of those no other implies (A's i before B's j is implied by A's i'
+/// before B's j' with i' >= i and j' <= j: the channels keep their own order), in order.
+std::vector<std::size_t> minimal_pairs(const std::vector<plan_pair>& pairs);
 
 /// The waits of every section for the shortest cycle that keeps `pairs`
 /// (schedule_two_channels), into `ops`, with a rendezvous that orders every pair (a pair the

@@ -165,7 +165,12 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
         "  waits placed for the shortest cycle: {:.3f} s against {:.3f} s sequential ({}), {} post{}\n", now,
         seq, percent >= 0.05 ? fmt::format("-{:.1f} %", percent) : std::string("no shorter"), s.passes,
         s.passes == 1 ? "" : "s");
-    for (const std::string& k : s.kept_apart) fmt::print("    kept in the CL's order: {}\n", k);
+    // The first few: a long job's list is long (all of it in the same order every post).
+    constexpr std::size_t shown = 12;
+    for (std::size_t i = 0; i < s.kept_apart.size() && i < shown; ++i)
+      fmt::print("    kept in the CL's order: {}\n", s.kept_apart[i]);
+    if (s.kept_apart.size() > shown)
+      fmt::print("    ... and {} more pairs kept in the CL's order\n", s.kept_apart.size() - shown);
   }
   if (s.timing)
     fmt::print("{}", format_timeline_text(*s.timing, "  "));

@@ -106,15 +106,16 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
                                     m.channels[static_cast<std::size_t>(ops.b - 1)].timing.wait);
   const auto handshake_us = static_cast<std::int64_t>(std::llround(std::max(0.0, handshake) * 1e6));
 
-  std::vector<plan_pair> pairs;
-  std::vector<std::string> reasons;  // per pair
-  for (auto& [p, reason] : fixed_pairs(ops, m.interference.clearance)) {
-    reasons.push_back(pair_text(ops, p, o.cl_path, reason));
-    pairs.push_back(p);
-  }
+  const double clearance = m.interference.clearance;
+  std::vector<plan_pair> pairs = fixed_pairs(ops, clearance);
+  std::vector<std::string> reasons(pairs.size());  // per pair; a fixed pair's made when shown
   std::string why;
   for (int post = 2; post <= optimise_max_posts; ++post) {
-    if (!plan_waits(ops, pairs, handshake_us)) {
+    // The pairs no other implies: the schedule's rectangles, and the summary's lines.
+    const std::vector<std::size_t> needed = minimal_pairs(pairs);
+    std::vector<plan_pair> kept;
+    for (std::size_t i : needed) kept.push_back(pairs[i]);
+    if (!plan_waits(ops, kept, handshake_us)) {
       why = "the operations the self-check kept apart cannot be ordered";
       break;
     }
@@ -126,7 +127,11 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
       // sequential post's (each of its waits is on the critical path).
       r.sum.sequential_cycle = t.cycle - seq.ops.operation_waits * handshake;
       r.sum.passes = post;
-      r.sum.kept_apart = std::move(reasons);
+      for (std::size_t i : needed)
+        r.sum.kept_apart.push_back(
+            !reasons[i].empty()
+                ? std::move(reasons[i])
+                : pair_text(ops, pairs[i], o.cl_path, fixed_pair_reason(ops, pairs[i], clearance)));
       return r.sum;
     }
     const std::size_t known = pairs.size();

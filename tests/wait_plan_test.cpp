@@ -65,6 +65,7 @@ routed route(const std::vector<event>& events, sync_policy p, const job_operatio
   trace_sink sink;
   static const machine m = twin();  // the router keeps a reference
   channel_router r(m, p, sink, d, "job.cls", {1, 2});
+  r.track_operations(true);
   r.set_plan(plan);
   r.set_operation_waits(op_waits);
   for (const event& e : events) r.route(e);
@@ -165,6 +166,7 @@ TEST_CASE("a part transfer is a barrier: the operations after it are a section o
   m.transfer.channel = 1;
   trace_sink sink;
   channel_router r(m, sync_policy::sequential, sink, d, "job.cls", {1, 2});
+  r.track_operations(true);
   for (const event& e : events) r.route(e);
   r.finish(99);
   CHECK(d.all().empty());
@@ -341,8 +343,8 @@ TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
   ops.sections[0].ops[1] = {op(20, 0, 8, -30, 5), op(30, 27.5, 29, -40, 2)};
   auto pairs = fixed_pairs(ops, 5);
   REQUIRE(pairs.size() == 1);
-  CHECK(pairs[0].first == plan_pair{0, {0, 1, pair_rule::a_first}});
-  CHECK(pairs[0].second ==
+  CHECK(pairs[0] == plan_pair{0, {0, 1, pair_rule::a_first}});
+  CHECK(fixed_pair_reason(ops, pairs[0], 5) ==
         "they cut closer than 7.0 mm to each other on the part in the main spindle (radius 28.0-31.0, z "
         "-40.0-2.0; radius 27.5-29.0, z -40.0-2.0): the same material, or tools that meet");
   SECTION("on different parts nothing is kept apart") {
@@ -353,8 +355,8 @@ TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
     ops.sections[0].ops[0][0].css = ops.sections[0].ops[1][0].css = true;
     pairs = fixed_pairs(ops, 5);
     REQUIRE(pairs.size() == 2);
-    CHECK(pairs[0].first == plan_pair{0, {0, 0, pair_rule::a_first}});
-    CHECK(pairs[0].second ==
+    CHECK(pairs[0] == plan_pair{0, {0, 0, pair_rule::a_first}});
+    CHECK(fixed_pair_reason(ops, pairs[0], 5) ==
           "both cut under constant surface speed on the part in the main spindle: each clamps the spindle's "
           "rpm");
   }
@@ -362,7 +364,8 @@ TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
     ops.sections[0].ops[1][0].exclusive = true;
     pairs = fixed_pairs(ops, 5);
     REQUIRE(pairs.size() == 2);
-    CHECK(pairs[0].second == "a program stop, an M or G code or a record passed through runs alone");
+    CHECK(fixed_pair_reason(ops, pairs[0], 5) ==
+          "a program stop, an M or G code or a record passed through runs alone");
   }
 }
 
@@ -380,4 +383,13 @@ TEST_CASE("a pair the schedule keeps only by the operations' times gets a rendez
   REQUIRE(cycle);
   CHECK(ops.sections[0].waits == std::vector<rendezvous>{{2, 1}});
   CHECK(*cycle == 21100000);  // B's 20 s, the handshake, B's 1 s
+}
+
+TEST_CASE("pairs another implies are left out", "[wait_plan]") {
+  // A's 2 before B's 1 implies A's 1 before B's 1 and A's 2 before B's 3; B's 0 before A's 0
+  // implies nothing of A-first pairs; a pair of another section is its own.
+  const std::vector<plan_pair> pairs = {{0, {1, 1, pair_rule::a_first}}, {0, {2, 1, pair_rule::a_first}},
+                                        {0, {2, 3, pair_rule::a_first}}, {0, {0, 0, pair_rule::b_first}},
+                                        {0, {0, 2, pair_rule::b_first}}, {1, {0, 3, pair_rule::a_first}}};
+  CHECK(minimal_pairs(pairs) == std::vector<std::size_t>{1, 4, 5});
 }
