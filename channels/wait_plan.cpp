@@ -70,6 +70,10 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
     if (s->spindle == "sub") t.part = 2;
     if (s->mode == spindle_mode::smm || s->mode == spindle_mode::sfm) t.css = true;
     if (s->mode == spindle_mode::rpm || s->mode == spindle_mode::off) t.css = false;
+    if (s->mode == spindle_mode::off) {
+      op.stops = true;
+      op.parts |= t.part;
+    }
     return;
   }
   if (const auto* d = std::get_if<tool_data_event>(&e.data)) {
@@ -104,13 +108,14 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
 
 namespace {
 
-enum class fixed_rule { none, alone, severs, near, css };
+enum class fixed_rule { none, alone, severs, stops, near, css };
 
 fixed_rule fixed_between(const channel_op& a, const channel_op& b, double clearance_mm) {
   const unsigned shared = a.parts & b.parts;
   if (a.exclusive || b.exclusive) return fixed_rule::alone;
   if (shared == 0) return fixed_rule::none;
   if (a.severs || b.severs) return fixed_rule::severs;
+  if (a.stops || b.stops) return fixed_rule::stops;
   const double near = a.reach + b.reach + clearance_mm;
   const double gap_r = std::max(a.r0 - b.r1, b.r0 - a.r1);
   const double gap_z = std::max(a.z0 - b.z1, b.z0 - a.z1);
@@ -150,6 +155,8 @@ std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, dou
           "one of them cuts to the centre line (a part-off or a face): nothing else cuts the part in the {} "
           "spindle meanwhile",
           part);
+    case fixed_rule::stops:
+      return fmt::format("one of them stops the {} spindle: nothing else cuts its part meanwhile", part);
     case fixed_rule::near:
       return fmt::format(
           "they cut closer than {:.1f} mm to each other on the part in the {} spindle (radius {:.1f}-{:.1f}, "

@@ -35,6 +35,7 @@ struct channel_op {
   unsigned parts = 0;      ///< bit 0: it cuts the part in the main spindle, bit 1: in the sub
   bool css = false;        ///< it cuts under constant surface speed
   bool severs = false;     ///< a feed move from off the axis to the centre line (a face, a part-off)
+  bool stops = false;      ///< SPINDL/OFF: it stops the spindle of its part
   bool exclusive = false;  ///< STOP, OPSTOP, AUXFUN, PREFUN, INSERT or a record passed through
 };
 
@@ -85,9 +86,9 @@ void time_operations(job_operations& ops, const std::function<double(int side, i
 /// The pairs every schedule keeps in the CL's order, each with why (docs/wait-placement.md):
 /// an operation that stops the program or writes codes the checks do not read runs alone;
 /// an operation that cuts to the centre line from off it (a part-off, a face) is the only one
-/// on its part; two operations on one part whose swept regions come within their tools' reach and
-/// `clearance_mm` of each other may cut the same material (a finish after its rough, a
-/// part-off) or meet; two operations on one part under constant surface speed each clamp the
+/// on its part, and so is one that stops the spindle; two operations on one part whose swept regions come
+/// within their tools' reach and `clearance_mm` of each other may cut the same material (a finish after its
+/// rough, a part-off) or meet; two operations on one part under constant surface speed each clamp the
 /// spindle's rpm.
 std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_mm);
 

@@ -316,6 +316,9 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
     CHECK(op.css);
     CHECK(op.parts == 2u);
     CHECK(noted({event{0, stop_event{}}}).exclusive);
+    const channel_op off = noted({speed(spindle_mode::off)});
+    CHECK(off.stops);
+    CHECK(off.parts == 1u);
     CHECK(noted({event{0, aux_event{}}}).exclusive);
     CHECK_FALSE(noted({at(10, 0, true), at(10, -5)}).exclusive);
   }
@@ -359,6 +362,13 @@ TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
     CHECK(fixed_pair_reason(ops, pairs[0], 5) ==
           "both cut under constant surface speed on the part in the main spindle: each clamps the spindle's "
           "rpm");
+  }
+  SECTION("a spindle stop on the part") {
+    ops.sections[0].ops[1][0].stops = true;
+    pairs = fixed_pairs(ops, 5);
+    REQUIRE(pairs.size() == 2);
+    CHECK(fixed_pair_reason(ops, pairs[0], 5) ==
+          "one of them stops the main spindle: nothing else cuts its part meanwhile");
   }
   SECTION("a stop runs alone") {
     ops.sections[0].ops[1][0].exclusive = true;
