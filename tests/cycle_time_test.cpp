@@ -293,6 +293,7 @@ TEST_CASE("timeline: programs read from files have every block timed, not only t
   // The reader skips runs of plain blocks when only the waits matter; the timeline needs each.
   const machine m = load_machine("fanuc-0itd-twin");
   const std::string dir = test::fresh_temp_dir("timeline");
+  const test::removed_at_end cleanup{dir};
   std::vector<nc_source> job = hand_job();
   for (nc_source& s : job) {
     REQUIRE(test::write_file(dir + "/" + s.name, s.text));

@@ -42,6 +42,15 @@ inline std::string fresh_temp_dir(const std::string& tag) {
   return dir;
 }
 
+/// Removes a folder and what is in it when it goes out of scope (a test's fresh_temp_dir).
+struct removed_at_end {
+  std::string dir;
+  ~removed_at_end() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+};
+
 /// Every file of a folder: name -> contents (empty when there is no folder).
 inline std::map<std::string, std::string> read_dir_files(const std::string& dir) {
   std::map<std::string, std::string> files;

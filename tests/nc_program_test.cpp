@@ -465,6 +465,7 @@ TEST_CASE("on_block hands over every block of a channel in program order", "[che
 
 TEST_CASE("on_block sees every plain block of a streamed file, runs of them included", "[check]") {
   const std::string dir = test::fresh_temp_dir("on_block");
+  const test::removed_at_end cleanup{dir};
   const std::string p1 = dir + "/A_1.nc", p2 = dir + "/A_2.nc";
   REQUIRE(test::write_file(p1, "%\nO1000\nG0 X10.\nG1 X5. F0.1\n\nG1 Z-3.\nM100\nG0 X20.\nM30\n%\n"));
   REQUIRE(test::write_file(p2, "%\nO1000\nG0 X30.\nM100\nM30\n%\n"));

@@ -37,6 +37,7 @@ namespace {
 // In a folder of this process's own: a fixed name would be shared by tests run side by side.
 std::string write_temp(const std::string& text) {
   static const std::string dir = test::fresh_temp_dir("scan");
+  static const test::removed_at_end cleanup{dir};  // at the test program's exit
   static int written = 0;
   const std::string path = dir + "/job" + std::to_string(++written) + ".cls";
   REQUIRE(test::write_file(path, text));
@@ -109,7 +110,8 @@ TEST_CASE("the job scan reads a head or a sync wherever its line falls in the fi
   CHECK(two.head_words == std::vector<std::string>{"MAIN"});
   CHECK(two.channels == std::vector<int>{4});
   CHECK(two.explicit_sync);
-  const std::string fifo = test::fresh_temp_dir("scan-fifo") + "/job.cls";
+  const test::removed_at_end fifo_dir{test::fresh_temp_dir("scan-fifo")};
+  const std::string fifo = fifo_dir.dir + "/job.cls";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   std::thread feed([&] { test::write_file(fifo, "GOTO/1,2,3\nHEAD/2\nSYNC/1,1,2\n"); });
   const job_scan piped = scan_job(fifo);
