@@ -23,6 +23,7 @@ void sweep(channel_op& op, const channel_track& t, double xa, double xb, double 
   op.reach = std::max(op.reach, t.reach);
   op.parts |= t.part;
   if (t.css) op.css = true;
+  if (!t.reach_known) op.unknown_tool = true;
 }
 
 // A TLDATA's reach past the tip: half the diameter of a drill or mill, the nose radius (the
@@ -44,15 +45,23 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
       return;
     }
     if (t.cycle >= 0 && m->kind != motion_kind::from) {
-      // A hole of a canned cycle: its depth and retract within the cycle's largest distance.
       const double d = t.cycle / t.mm;
-      sweep(op, t, m->pos.x - d, m->pos.x + d, m->pos.z - d, m->pos.z + d);
+      const vec3 from = t.has_last ? t.last : m->pos;
+      if (t.cycle_kind == 1) {
+        // A hole along the axis: its depth and retract within the cycle's largest distance.
+        sweep(op, t, m->pos.x, m->pos.x, m->pos.z - d, m->pos.z + d);
+      } else {
+        // Grooving, threading and the rest: from where the tool stood to the point, down to
+        // the centre line (a groove's or a thread's depth is not read: the whole radius counts),
+        // and the cycle's largest distance along z.
+        sweep(op, t, 0, std::max(std::abs(from.x), std::abs(m->pos.x)), std::min(from.z, m->pos.z) - d,
+              std::max(from.z, m->pos.z) + d);
+      }
     } else if (!m->rapid && m->kind != motion_kind::from) {
       const vec3 from = t.has_last ? t.last : m->pos;
       sweep(op, t, from.x, m->pos.x, from.z, m->pos.z);
-      const bool crosses = (from.x > 0 && m->pos.x < 0) || (from.x < 0 && m->pos.x > 0);
-      if (std::abs(from.x) * t.mm > 1 && (crosses || std::abs(m->pos.x) * t.mm <= 0.5)) op.severs = true;
     }
+    t.moved = true;
     t.last = m->pos;
     t.has_last = true;
     return;
@@ -77,19 +86,34 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
     return;
   }
   if (const auto* d = std::get_if<tool_data_event>(&e.data)) {
-    t.pending = tool_reach(*d);
+    // Before the tool call (NX, the samples) it is the next tool's; after it and before a move
+    // (Creo, `$$-> CUTTER` after LOADTL), the tool's in use.
+    const double reach = tool_reach(*d);
+    if (reach < 0) return;
+    if (t.called && !t.moved) {
+      t.reach = reach * t.mm;
+      t.reach_known = true;
+    } else {
+      t.pending = reach;
+    }
     return;
   }
   if (const auto* tl = std::get_if<tool_event>(&e.data)) {
     if (tl->preselect) return;
-    t.reach = t.pending >= 0 ? t.pending * t.mm : 10;
+    t.reach_known = t.pending >= 0;
+    t.reach = t.reach_known ? t.pending * t.mm : 10;
     t.pending = -1;
+    t.called = true;
+    t.moved = false;
     return;
   }
   if (const auto* c = std::get_if<cycle_event>(&e.data)) {
     if (c->type == "OFF") {
       t.cycle = -1;
     } else {
+      const bool axial = c->type == "DRILL" || c->type == "DEEP" || c->type == "DEEP2" || c->type == "TAP" ||
+                         c->type == "BORE" || c->type == "BRKCHP" || c->type == "REAM";
+      t.cycle_kind = axial ? 1 : 2;
       double d = 0;
       for (const auto& [name, value] : c->params) d = std::max(d, std::abs(value));
       for (double v : c->positional) d = std::max(d, std::abs(v));
@@ -108,14 +132,15 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
 
 namespace {
 
-enum class fixed_rule { none, alone, severs, stops, near, css };
+enum class fixed_rule { none, alone, severs, stops, unknown, near, css };
 
 fixed_rule fixed_between(const channel_op& a, const channel_op& b, double clearance_mm) {
   const unsigned shared = a.parts & b.parts;
   if (a.exclusive || b.exclusive) return fixed_rule::alone;
   if (shared == 0) return fixed_rule::none;
-  if (a.severs || b.severs) return fixed_rule::severs;
+  if (severs_part(a) || severs_part(b)) return fixed_rule::severs;
   if (a.stops || b.stops) return fixed_rule::stops;
+  if (a.unknown_tool || b.unknown_tool) return fixed_rule::unknown;
   const double near = a.reach + b.reach + clearance_mm;
   const double gap_r = std::max(a.r0 - b.r1, b.r0 - a.r1);
   const double gap_z = std::max(a.z0 - b.z1, b.z0 - a.z1);
@@ -125,6 +150,8 @@ fixed_rule fixed_between(const channel_op& a, const channel_op& b, double cleara
 }
 
 }  // namespace
+
+bool severs_part(const channel_op& op) { return op.r0 <= 1 && op.r1 - op.r0 > 2; }
 
 std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_mm) {
   std::vector<plan_pair> out;
@@ -157,6 +184,11 @@ std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, dou
           part);
     case fixed_rule::stops:
       return fmt::format("one of them stops the {} spindle: nothing else cuts its part meanwhile", part);
+    case fixed_rule::unknown:
+      return fmt::format(
+          "one of them cuts the part in the {} spindle with a tool of unknown size (no TLDATA or CUTTER): "
+          "nothing else cuts the part meanwhile",
+          part);
     case fixed_rule::near:
       return fmt::format(
           "they cut closer than {:.1f} mm to each other on the part in the {} spindle (radius {:.1f}-{:.1f}, "

@@ -32,11 +32,11 @@ struct channel_op {
   double r0 = std::numeric_limits<double>::infinity(), r1 = -std::numeric_limits<double>::infinity();
   double z0 = std::numeric_limits<double>::infinity(), z1 = -std::numeric_limits<double>::infinity();
   double reach = 0;
-  unsigned parts = 0;      ///< bit 0: it cuts the part in the main spindle, bit 1: in the sub
-  bool css = false;        ///< it cuts under constant surface speed
-  bool severs = false;     ///< a feed move from off the axis to the centre line (a face, a part-off)
-  bool stops = false;      ///< SPINDL/OFF: it stops the spindle of its part
-  bool exclusive = false;  ///< STOP, OPSTOP, AUXFUN, PREFUN, INSERT or a record passed through
+  unsigned parts = 0;         ///< bit 0: it cuts the part in the main spindle, bit 1: in the sub
+  bool css = false;           ///< it cuts under constant surface speed
+  bool unknown_tool = false;  ///< it cuts with a tool whose size no TLDATA or CUTTER gives
+  bool stops = false;         ///< SPINDL/OFF: it stops the spindle of its part
+  bool exclusive = false;     ///< STOP, OPSTOP, AUXFUN, PREFUN, INSERT or a record passed through
 };
 
 /// What a channel's operations are noted with: where its tool is, which part it works on.
@@ -44,15 +44,25 @@ struct channel_track {
   double mm = 1;  ///< mm per CL unit
   vec3 last;
   bool has_last = false;
-  unsigned part = 1;    ///< the part's spindle bit: 1 main, 2 sub
-  bool css = false;     ///< the spindle in constant surface speed
-  double reach = 10;    ///< the tool's reach past its tip (mm): 10 until TLDATA says
-  double pending = -1;  ///< a TLDATA's reach for the next tool call
-  double cycle = -1;    ///< a canned cycle's largest distance (mm) while one is on; -1: none
+  unsigned part = 1;         ///< the part's spindle bit: 1 main, 2 sub
+  bool css = false;          ///< the spindle in constant surface speed
+  double reach = 10;         ///< the tool's reach past its tip (mm): 10 until TLDATA says
+  bool reach_known = false;  ///< a TLDATA or CUTTER gave the tool in use its size
+  bool called = false;       ///< a tool call has been made
+  bool moved = false;        ///< a move since the last tool call (a TLDATA then is the next tool's)
+  double pending = -1;       ///< a TLDATA's reach for the next tool call
+  double cycle = -1;         ///< a canned cycle's largest distance (mm) while one is on; -1: none
+  /// 1: along the axis (drilling, tapping, boring); 2: grooving, threading and the rest
+  int cycle_kind = 0;
 };
 
 /// Notes event `e` of channel track `t` in its operation `op`.
 void note_operation_event(channel_op& op, channel_track& t, const event& e);
+
+/// Whether an operation severs its part: its region reaches within 1 mm of the centre line
+/// across more than 2 mm of radius (a part-off to the centre, slowing down or leaving a pip, a
+/// groove cycle to the centre, an arc that ends there, a face). A drill on the axis does not.
+bool severs_part(const channel_op& op);
 
 struct plan_section {
   /// [0]: channel A's operations, [1]: channel B's.
@@ -86,10 +96,10 @@ void time_operations(job_operations& ops, const std::function<double(int side, i
 /// The pairs every schedule keeps in the CL's order, each with why (docs/wait-placement.md):
 /// an operation that stops the program or writes codes the checks do not read runs alone;
 /// an operation that cuts to the centre line from off it (a part-off, a face) is the only one
-/// on its part, and so is one that stops the spindle; two operations on one part whose swept regions come
-/// within their tools' reach and `clearance_mm` of each other may cut the same material (a finish after its
-/// rough, a part-off) or meet; two operations on one part under constant surface speed each clamp the
-/// spindle's rpm.
+/// on its part, and so is one that stops the spindle or cuts with a tool of unknown size; two operations on
+/// one part whose swept regions come within their tools' reach and `clearance_mm` of each other may cut the
+/// same material (a finish after its rough, a part-off) or meet; two operations on one part under constant
+/// surface speed each clamp the spindle's rpm.
 std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_mm);
 
 /// Why fixed_pairs keeps pair `p` (a sentence; empty when it does not).

@@ -295,7 +295,7 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
     CHECK(op.reach == 0.8);
     CHECK(op.parts == 1u);
     CHECK_FALSE(op.css);
-    CHECK_FALSE(op.severs);
+    CHECK_FALSE(severs_part(op));
   }
   SECTION("a drill: half its diameter; a tool without TLDATA reaches 10 mm; inches in mm") {
     CHECK(noted({tldata("DRILL", 16), tool(1), at(0, 5, true), at(0, -30)}).reach == 8);
@@ -303,16 +303,45 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
     inch.mm = 25.4;
     const channel_op op = noted({tool(1), at(1, 0, true), at(1, -1)}, inch);
     CHECK(op.reach == 10);
+    CHECK(op.unknown_tool);
     CHECK(op.z0 == -25.4);
     CHECK(op.r1 == 25.4);
   }
   SECTION("a face to the centre line severs; a drill on the centre does not") {
-    CHECK(noted({at(32, 0, true), at(-0.8, 0)}).severs);
-    CHECK(noted({at(20, -40, true), at(0, -40)}).severs);
-    CHECK_FALSE(noted({at(0, 5, true), at(0, -30)}).severs);
+    CHECK(severs_part(noted({at(32, 0, true), at(-0.8, 0)})));
+    CHECK(severs_part(noted({at(20, -40, true), at(0, -40)})));
+    // A part-off that slows down for the last millimetre, one that leaves a pip.
+    CHECK(severs_part(noted({at(20, -40, true), at(1, -40), at(0, -40)})));
+    CHECK(severs_part(noted({at(20, -40, true), at(0.75, -40)})));
+    CHECK_FALSE(severs_part(noted({at(0, 5, true), at(0, -30)})));
+  }
+  SECTION("a groove cycle sweeps to the centre line, a drilling cycle along the axis") {
+    cycle_event groove;
+    groove.type = "GROOVE";
+    groove.params = {{"FEDTO", 0.0}, {"RAPTO", 1.0}};
+    const channel_op g = noted({at(22, -55, true), event{0, groove}, at(22, -55)});
+    CHECK(severs_part(g));
+    CHECK(g.z0 == -56);
+    cycle_event drill;
+    drill.type = "DEEP";
+    drill.params = {{"FEDTO", -20.0}, {"STEP", 6.0}};
+    const channel_op h = noted({at(0, 5, true), event{0, drill}, at(0, 2)});
+    CHECK_FALSE(severs_part(h));
+    CHECK(h.z0 == -18);
+  }
+  SECTION("a TLDATA after the tool call (Creo) is that tool's; none at all: unknown") {
+    const channel_op creo = noted({tool(1), tldata("DRILL", 30), at(0, 5, true), at(0, -30)});
+    CHECK(creo.reach == 15);
+    CHECK_FALSE(creo.unknown_tool);
+    CHECK(noted({tool(1), at(0, 5, true), at(0, -30)}).unknown_tool);
+    // The next tool's TLDATA after the first tool's moves is not the first tool's.
+    const channel_op nx =
+        noted({tldata("TURN", 0.8), tool(1), at(30, 2, true), at(30, -10), tldata("DRILL", 30)});
+    CHECK(nx.reach == 0.8);
   }
   SECTION("constant surface speed, the sub spindle, a stop") {
     const channel_op op = noted({speed(spindle_mode::smm, "sub"), at(10, 0, true), at(10, -5)});
+    CHECK(op.unknown_tool);
     CHECK(op.css);
     CHECK(op.parts == 2u);
     CHECK(noted({event{0, stop_event{}}}).exclusive);
@@ -343,7 +372,7 @@ TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
   // Channel 1: a rough of the outside (line 10), channel 2: a drill (line 20) far from it, a
   // finish of the same outside (line 30).
   ops.sections[0].ops[0] = {op(10, 28, 31, -40, 2)};
-  ops.sections[0].ops[1] = {op(20, 0, 8, -30, 5), op(30, 27.5, 29, -40, 2)};
+  ops.sections[0].ops[1] = {op(20, 0, 0, -30, 5), op(30, 27.5, 29, -40, 2)};
   auto pairs = fixed_pairs(ops, 5);
   REQUIRE(pairs.size() == 1);
   CHECK(pairs[0] == plan_pair{0, {0, 1, pair_rule::a_first}});
