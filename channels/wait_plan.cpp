@@ -60,6 +60,12 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
     } else if (!m->rapid && m->kind != motion_kind::from) {
       const vec3 from = t.has_last ? t.last : m->pos;
       sweep(op, t, from.x, m->pos.x, from.z, m->pos.z);
+      t.last_dr = (std::abs(m->pos.x) - std::abs(from.x)) * t.mm;
+      t.fed = true;
+    } else if (m->rapid) {
+      op.rapid_r0 = std::min(op.rapid_r0, std::abs(m->pos.x) * t.mm);
+      if (t.fed && t.last_dr < -0.5) op.retracts_inward = true;
+      t.fed = false;
     }
     t.moved = true;
     t.last = m->pos;
@@ -142,7 +148,9 @@ fixed_rule fixed_between(const channel_op& a, const channel_op& b, double cleara
   if (a.stops || b.stops) return fixed_rule::stops;
   if (a.unknown_tool || b.unknown_tool) return fixed_rule::unknown;
   const double near = a.reach + b.reach + clearance_mm;
-  const double gap_r = std::max(a.r0 - b.r1, b.r0 - a.r1);
+  // A tool working inside fills the bore down to the centre line with its body.
+  const double a0 = works_inside(a) ? 0 : a.r0, b0 = works_inside(b) ? 0 : b.r0;
+  const double gap_r = std::max(a0 - b.r1, b0 - a.r1);
   const double gap_z = std::max(a.z0 - b.z1, b.z0 - a.z1);
   if (gap_r < near && gap_z < near) return fixed_rule::near;
   if (a.css && b.css) return fixed_rule::css;
@@ -152,6 +160,10 @@ fixed_rule fixed_between(const channel_op& a, const channel_op& b, double cleara
 }  // namespace
 
 bool severs_part(const channel_op& op) { return op.r0 <= 1 && op.r1 - op.r0 > 2; }
+
+bool works_inside(const channel_op& op) {
+  return op.retracts_inward && op.rapid_r0 <= op.r0 + 0.001 && op.rapid_r0 < op.r1 - 0.1;
+}
 
 std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_mm) {
   std::vector<plan_pair> out;
@@ -189,12 +201,16 @@ std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, dou
           "one of them cuts the part in the {} spindle with a tool of unknown size (no TLDATA or CUTTER): "
           "nothing else cuts the part meanwhile",
           part);
-    case fixed_rule::near:
+    case fixed_rule::near: {
+      const bool inside = works_inside(a) || works_inside(b);
       return fmt::format(
           "they cut closer than {:.1f} mm to each other on the part in the {} spindle (radius {:.1f}-{:.1f}, "
           "z "
-          "{:.1f}-{:.1f}; radius {:.1f}-{:.1f}, z {:.1f}-{:.1f}): the same material, or tools that meet",
-          a.reach + b.reach + clearance_mm, part, a.r0, a.r1, a.z0, a.z1, b.r0, b.r1, b.z0, b.z1);
+          "{:.1f}-{:.1f}; radius {:.1f}-{:.1f}, z {:.1f}-{:.1f}{}): the same material, or tools that meet",
+          a.reach + b.reach + clearance_mm, part, works_inside(a) ? 0 : a.r0, a.r1, a.z0, a.z1,
+          works_inside(b) ? 0 : b.r0, b.r1, b.z0, b.z1,
+          inside ? "; a tool working inside fills its bore to the centre line" : "");
+    }
     case fixed_rule::css:
       return fmt::format(
           "both cut under constant surface speed on the part in the {} spindle: each clamps the spindle's "

@@ -35,8 +35,12 @@ struct channel_op {
   unsigned parts = 0;         ///< bit 0: it cuts the part in the main spindle, bit 1: in the sub
   bool css = false;           ///< it cuts under constant surface speed
   bool unknown_tool = false;  ///< it cuts with a tool whose size no TLDATA or CUTTER gives
-  bool stops = false;         ///< SPINDL/OFF: it stops the spindle of its part
-  bool exclusive = false;     ///< STOP, OPSTOP, AUXFUN, PREFUN, INSERT or a record passed through
+  /// The least radius a rapid took the tool to: a tool that comes to its cut from nearer the
+  /// centre line works inside (a boring bar, whose shank lies across the bore: inside()).
+  double rapid_r0 = std::numeric_limits<double>::infinity();
+  bool retracts_inward = false;  ///< a cut that ends by feeding towards the centre line before a rapid
+  bool stops = false;            ///< SPINDL/OFF: it stops the spindle of its part
+  bool exclusive = false;        ///< STOP, OPSTOP, AUXFUN, PREFUN, INSERT or a record passed through
 };
 
 /// What a channel's operations are noted with: where its tool is, which part it works on.
@@ -54,6 +58,8 @@ struct channel_track {
   double cycle = -1;         ///< a canned cycle's largest distance (mm) while one is on; -1: none
   /// 1: along the axis (drilling, tapping, boring); 2: grooving, threading and the rest
   int cycle_kind = 0;
+  double last_dr = 0;  ///< the last feed move's change of radius (mm), until the next rapid
+  bool fed = false;    ///< a feed move since the last rapid
 };
 
 /// Notes event `e` of channel track `t` in its operation `op`.
@@ -63,6 +69,13 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e);
 /// across more than 2 mm of radius (a part-off to the centre, slowing down or leaving a pip, a
 /// groove cycle to the centre, an arc that ends there, a face). A drill on the axis does not.
 bool severs_part(const channel_op& op);
+
+/// Whether an operation works inside the part: a rapid took its tool no farther from the centre
+/// line than its cuts begin, its cuts reach farther out, and a cut ends by
+/// feeding back towards the centre line before the tool rapids away (a boring bar, an inside
+/// chamfer; an outside finish with a lead-in retracts outwards). Its tool's body then fills
+/// the bore down to the centre line (fixed_pairs counts its region from r = 0).
+bool works_inside(const channel_op& op);
 
 struct plan_section {
   /// [0]: channel A's operations, [1]: channel B's.

@@ -315,6 +315,35 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
     CHECK(severs_part(noted({at(20, -40, true), at(0.75, -40)})));
     CHECK_FALSE(severs_part(noted({at(0, 5, true), at(0, -30)})));
   }
+  SECTION("a boring bar works inside: it comes to its cut from nearer the centre line") {
+    const channel_op bore = noted({tldata("TURN", 0.4), tool(1), at(7, 2, true), at(15.5, 0), at(15.5, -20),
+                                   at(7, -20), at(7, 30, true)});
+    CHECK(works_inside(bore));
+    CHECK_FALSE(severs_part(bore));
+    const channel_op od = noted({tldata("TURN", 0.8), tool(1), at(31, 2, true), at(29.5, 2), at(29.5, -40),
+                                 at(31, -40), at(40, 20, true)});
+    CHECK_FALSE(works_inside(od));
+    // An outside finish with a lead-in from a smaller radius retracts outwards.
+    const channel_op finish = noted({tldata("TURN", 0.4), tool(1), at(26, 2, true), at(28, 0), at(28, -40),
+                                     at(31, -40), at(40, 20, true)});
+    CHECK_FALSE(works_inside(finish));
+    // Its body meets a drill on the axis of its bore, 10 mm from its cutting edge.
+    job_operations ops;
+    ops.a = 1;
+    ops.b = 2;
+    ops.sections.resize(1);
+    channel_op drill = noted({tldata("DRILL", 8), tool(2), at(0, 5, true), at(0, -50)});
+    drill.first_line = 2;
+    ops.sections[0].ops[0] = {bore};
+    ops.sections[0].ops[1] = {drill};
+    const std::vector<plan_pair> pairs = fixed_pairs(ops, 5);
+    REQUIRE(pairs.size() == 1);
+    CHECK(fixed_pair_reason(ops, pairs[0], 5) ==
+          "they cut closer than 9.4 mm to each other on the part in the main spindle (radius 0.0-15.5, z "
+          "-20.0-2.0; "
+          "radius 0.0-0.0, z -50.0-5.0; a tool working inside fills its bore to the centre line): the same "
+          "material, or tools that meet");
+  }
   SECTION("a groove cycle sweeps to the centre line, a drilling cycle along the axis") {
     cycle_event groove;
     groove.type = "GROOVE";
