@@ -462,7 +462,7 @@ struct pass_setup {
 };
 
 // One posting of the job: the programs written into a stage of their own, checked, timed, and
-// committed with `commit` when sound. `plan`: the waits under the optimise policy. Returns the
+// committed with `commit` when sound. `waits`: the plan under the optimise policy. Returns the
 // job's operations as the router found them (channels/wait_plan.hpp).
 job_operations post_pass(const post_options& o, const machine& m, pass_setup& setup,
                          const job_operations* waits, bool commit, diagnostic_sink& diags,
