@@ -279,6 +279,7 @@ void channel_router::open_both() {
   const std::vector<int> all = std::move(open_both_);
   open_both_.clear();
   section_break(open_both_line_);
+  if (ops_.a != 0 && track_) ops_.sections.back().together = true;  // section_break made it
   rendezvous(all, open_both_line_, "HEAD/BOTH", true, wait_mark::section::opens_both);
 }
 

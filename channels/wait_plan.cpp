@@ -169,6 +169,7 @@ std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_m
   std::vector<plan_pair> out;
   for (std::size_t s = 0; s < ops.sections.size(); ++s) {
     const plan_section& sec = ops.sections[s];
+    if (sec.together) continue;
     for (std::size_t i = 0; i < sec.ops[0].size(); ++i)
       for (std::size_t j = 0; j < sec.ops[1].size(); ++j) {
         const channel_op& a = sec.ops[0][i];
@@ -313,7 +314,7 @@ std::vector<plan_pair> pairs_for_lines(const job_operations& ops, const std::vec
   std::vector<place> found;
   for (int line : lines)
     for (std::size_t s = 0; s < ops.sections.size(); ++s)
-      for (int side = 0; side < 2; ++side) {
+      for (int side = 0; side < 2 && !ops.sections[s].together; ++side) {
         const std::vector<channel_op>& v = ops.sections[s].ops[side];
         for (std::size_t k = 0; k < v.size(); ++k)
           if (v[k].first_line <= line && line <= v[k].last_line)

@@ -82,6 +82,10 @@ struct plan_section {
   std::vector<channel_op> ops[2];
   /// Where the two meet inside the section (none at its start or end).
   std::vector<rendezvous> waits;
+  /// HEAD/BOTH's frame: one operation cut by both heads at once (a balance cut), which the
+  /// control keeps in step. No pair of it is ever kept apart: waits inside it would stop one
+  /// head of the pair.
+  bool together = false;
 };
 
 /// The job's sections, in order, for channels `a` < `b`.

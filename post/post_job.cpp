@@ -174,8 +174,10 @@ job_scan scan_for_sync(const post_options& o, const machine& m) {
   return scan_job(o.cl_path, [&](const job_scan& s) { return scan_settled(s, m, policy_given); });
 }
 
-// The policy `auto` stands for: the job's sync records if it has any, else a rendezvous at
-// every head switch (said in a warning, since the channels then never cut at once).
+// The policy `auto` stands for: the job's sync records if it has any; else, on a machine with
+// [timing] whose job uses two channels, the waits placed for the shortest cycle (optimise,
+// docs/wait-placement.md); else a rendezvous at every head switch (said in a warning, since the
+// channels then never cut at once).
 sync_policy choose_policy(const post_options& o, const machine& m, const job_scan& scan,
                           diagnostic_sink& sink) {
   if (o.policy != sync_policy::automatic) return o.policy;
@@ -186,12 +188,16 @@ sync_policy choose_policy(const post_options& o, const machine& m, const job_sca
   std::sort(heads.begin(), heads.end());
   heads.erase(std::unique(heads.begin(), heads.end()), heads.end());
   if (heads.size() + scan.head_words.size() + scan.channels.size() <= 1) return sync_policy::sequential;
+  const std::size_t used = used_channels(scan, m).size();
+  if (has_timing(m) && used == 2) return sync_policy::optimise;
   diagnostic d;
   d.level = severity::warning;
   d.file = o.cl_path;
-  d.message =
-      "no sync records in the job: channels wait for each other at every head switch "
-      "(sequential); concurrent machining needs SYNC/SYNCTR records";
+  d.message = fmt::format(
+      "no sync records in the job: channels wait for each other at every head switch (sequential), "
+      "since {}; concurrent machining needs SYNC/SYNCTR records",
+      !has_timing(m) ? fmt::format("machine '{}' has no [timing] table to place waits by", m.name)
+                     : fmt::format("waits are placed between two channels and the job uses {}", used));
   sink.report(std::move(d));
   return sync_policy::sequential;
 }
@@ -458,6 +464,7 @@ std::string safe_file_stem(std::string_view partno) {
 // its reader reads ahead) unless given.
 struct pass_setup {
   std::optional<sync_policy> policy;
+  std::optional<job_scan> scan;  ///< made once by post_job when it chose the policy
   bool operation_waits = false;  ///< channel_router::set_operation_waits
 };
 
@@ -496,7 +503,7 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
                     ahead ? &*ahead : nullptr);  // to the end: messages quote it
   // Everything is written into a stage inside the output folder and committed as a set.
   output_stage stage(o.out_dir);
-  const job_scan scan = scan_for_sync(o, m);
+  const job_scan scan = setup.scan ? *setup.scan : scan_for_sync(o, m);
   if (!setup.policy) setup.policy = choose_policy(o, m, scan, sink);
   sum.policy = *setup.policy;
 
@@ -603,19 +610,28 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
          {}});
     return sum;
   }
-  if (o.policy == sync_policy::optimise)
+  // `auto` on a machine of several channels is decided here, once: optimise posts the job
+  // several times.
+  pass_setup setup;
+  if (o.policy == sync_policy::automatic && m.channels.size() > 1) {
+    (void)open_job(o.cl_path);  // a FIFO, a folder or a missing job: refused before the scan opens it
+    setup.scan = scan_for_sync(o, m);
+    setup.policy = choose_policy(o, m, *setup.scan, sink);
+  }
+  if (setup.policy.value_or(o.policy) == sync_policy::optimise)
     return post_optimised(
         o, m, sink, [&](optimise_step step, const job_operations* plan, diagnostic_sink& to) {
           optimise_attempt a;
-          pass_setup setup;
-          setup.policy = step == optimise_step::planned ? sync_policy::optimise : sync_policy::sequential;
-          setup.operation_waits = step == optimise_step::timing;
+          pass_setup each_setup;
+          each_setup.scan = setup.scan;
+          each_setup.policy =
+              step == optimise_step::planned ? sync_policy::optimise : sync_policy::sequential;
+          each_setup.operation_waits = step == optimise_step::timing;
           post_options each = o;
           if (step == optimise_step::timing) each.timeline_file.clear();  // the page only of programs written
-          a.ops = post_pass(each, m, setup, plan, step != optimise_step::timing, to, a.sum);
+          a.ops = post_pass(each, m, each_setup, plan, step != optimise_step::timing, to, a.sum);
           return a;
         });
-  pass_setup setup;
   post_pass(o, m, setup, nullptr, true, sink, sum);
   return sum;
 }

@@ -23,8 +23,11 @@ std::string twin_with(const std::string& events) {
          events;
 }
 
-test::posted post_with(const std::string& events, const std::string& cl, const std::string& tag) {
-  return test::post_in_fresh_dir(cl, parse_machine(twin_with(events), "twin-events.toml"), "events-" + tag);
+// `policy`: sequential where a test of two heads is about the events, not where the waits go.
+test::posted post_with(const std::string& events, const std::string& cl, const std::string& tag,
+                       sync_policy policy = sync_policy::automatic) {
+  return test::post_in_fresh_dir(cl, parse_machine(twin_with(events), "twin-events.toml"), "events-" + tag,
+                                 {}, {}, [&](post_options& o) { o.policy = policy; });
 }
 
 // The same machine with [events] script = "t.lua", the script `lua` beside it.
@@ -150,7 +153,7 @@ TEST_CASE("a HEAD/BOTH copy writes no spindle event, as it writes no spindle blo
                 "PARTNO EV\nHEAD/1\nTURRET/1,1\nHEAD/2\nTURRET/11,11\nHEAD/BOTH\n"
                 "SPINDL/RPM,800,CLW\nRAPID\nGOTO/36,0,2\nSPINDL/RPM,900,CLW\nRAPID\nGOTO/36,0,3\n"
                 "HEAD/1\nFINI\n",
-                "both");
+                "both", sync_policy::sequential);
   CHECK(
       program_1(p) ==
       "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nM100\nG97 S800 M3\n(SPINDLE 1)\n"
@@ -858,7 +861,7 @@ TEST_CASE(
       "GOTO/30,0,2\nFEDRAT/0.2,MMPR\nGOTO/30,0,-20\nTOOL PATH/FINISH_OD,TOOL,OD ROUGH\nGOTO/29,0,-20\n"
       "GOTO/29,0,2\nTOOL PATH/DRILL_1,TOOL,DRILL 8\nTURRET/3,3\nRAPID\nGOTO/0,0,5\nHEAD/2\n"
       "TOOL PATH/BACK_OD,TOOL,OD LOWER\nTURRET/11,11\nRAPID\nGOTO/-20,0,3\nFINI\n";
-  const test::posted p = post_with(section_events, job, "section");
+  const test::posted p = post_with(section_events, job, "section", sync_policy::sequential);
   CHECK(
       program_1(p) ==
       "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\n(ROUGH_OD,TOOL,OD ROUGH)\n(OPERATION ROUGH_OD)\n"

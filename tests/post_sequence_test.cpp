@@ -91,12 +91,34 @@ TEST_CASE("the machine file's numbering is checked at load", "[machines][sequenc
         "m.toml:7:20: error: program.sequence_numbers must be all or tool_change, not 'some'");
 }
 
-TEST_CASE("the sequential-policy warning is given only to a job that switches heads", "[post][sync]") {
+TEST_CASE("auto: the job's own sync records, else waits placed where the machine is timed, else sequential",
+          "[post][sync]") {
   const machine m = load_machine("fanuc-0itd-twin");
   const std::string one = "PARTNO ONE\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/20,0,5\nFINI\n";
   CHECK(test::post_in_fresh_dir(one, m, "one-head").diagnostics == "");
   CHECK(test::post_in_fresh_dir(one_head_job, m, "one-head-late").diagnostics == "");
-  CHECK(test::post_in_fresh_dir(two_head_job, m, "two-heads").diagnostics ==
+  // Two heads, no sync records, a machine with [timing]: optimise, without a word.
+  const std::string dir = test::fresh_temp_dir("two-heads");
+  diagnostic_list d;
+  const post_summary placed = test::post_text(dir, "job.cls", two_head_job, m, dir + "/out", d);
+  std::filesystem::remove_all(dir);
+  CHECK(placed.ok);
+  CHECK(d.all().empty());
+  CHECK(placed.policy == sync_policy::optimise);
+  CHECK(placed.passes == 2);
+  // Without [timing] the waits cannot be placed by time: sequential, and why.
+  machine untimed = m;
+  for (channel_def& c : untimed.channels) c.timing.given = false;
+  CHECK(test::post_in_fresh_dir(two_head_job, untimed, "two-heads-untimed").diagnostics ==
         "job.cls: warning: no sync records in the job: channels wait for each other at every head switch "
-        "(sequential); concurrent machining needs SYNC/SYNCTR records\n");
+        "(sequential), since machine 'fanuc-0itd-twin' has no [timing] table to place waits by; concurrent "
+        "machining needs SYNC/SYNCTR records\n");
+  // Three channels: the placement is between two.
+  const std::string three =
+      two_head_job.substr(0, two_head_job.find("PARTNO")) +
+      "HEAD/3\nTLDATA/TURN\nTURRET/21,21\nSPINDL/RPM,600,CLW\nRAPID\nGOTO/30,0,5\nFINI\n";
+  CHECK(test::post_in_fresh_dir(three, load_machine("fanuc-31i-3path"), "three-heads").diagnostics ==
+        "job.cls: warning: no sync records in the job: channels wait for each other at every head switch "
+        "(sequential), since waits are placed between two channels and the job uses 3; concurrent machining "
+        "needs SYNC/SYNCTR records\n");
 }

@@ -461,3 +461,28 @@ TEST_CASE("pairs another implies are left out", "[wait_plan]") {
                                         {0, {0, 2, pair_rule::b_first}}, {1, {0, 3, pair_rule::a_first}}};
   CHECK(minimal_pairs(pairs) == std::vector<std::size_t>{1, 4, 5});
 }
+
+TEST_CASE("HEAD/BOTH is one operation cut by both heads: its section keeps no pair apart", "[wait_plan]") {
+  diagnostic_list d;
+  const event both{4, head_event{head_select::both, 0}};
+  const routed r = route({go(1), head(2, 2), go(3), both, go(5), go(6), head(1, 7), go(8)},
+                         sync_policy::sequential, nullptr, false, d);
+  CHECK(d.all().empty());
+  CHECK(ops_text(r.ops) ==
+        "s0 c1: 1-1@0\n"
+        "s0 c2: 3-3@1\n"
+        "s1 c1: 5-6@2\n"
+        "s1 c2: 5-6@2\n"
+        "s2 c1: 8-8@3\n"
+        "s2 c2:\n");
+  REQUIRE(r.ops.sections.size() == 3);
+  CHECK(!r.ops.sections[0].together);
+  CHECK(r.ops.sections[1].together);
+  CHECK(!r.ops.sections[2].together);
+  // Its operations are of unknown tools: outside the frame they would be kept in the CL's order.
+  const std::vector<plan_pair> pairs = fixed_pairs(r.ops, 5);
+  REQUIRE(pairs.size() == 1);
+  CHECK(pairs[0] == plan_pair{0, {0, 0, pair_rule::a_first}});
+  // A finding inside the frame names no pair of it either.
+  CHECK(pairs_for_lines(r.ops, {5, 6}).empty());
+}
