@@ -256,6 +256,11 @@ void channel_writer::check_side(double x_nc, double x_cl, int line) {
 
 void channel_writer::on_wait(const wait_mark& w) {
   release_held(std::nullopt);
+  // A balance cut pairs the two channels' moves (G68, M562): a head index of the new tool
+  // (Integrex M108 G0 G53 B0. M107) goes before its opening wait, not as extra blocks inside it.
+  // Its error (no angle for the tool) is reported there; the wait is written all the same.
+  if (w.both == wait_mark::section::opens_both && has_c_ && ch_.head_index.present() && tool_ >= 0)
+    (void)index_head(w.cl_line);
   // Balance cutting: wait, G68 ... cut ... G69, wait, in both channels.
   if (w.both == wait_mark::section::closes_both && !m_.codes.balance_off.empty())
     out_.block(m_.codes.balance_off);
