@@ -285,12 +285,14 @@ void channel_router::open_both() {
 
 void channel_router::explicit_sync(const sync_event& s, int line) {
   open_both();
+  if (aside_sync_) return;
   ++explicit_;
   if (policy_ == sync_policy::optimise || op_waits_) {  // op_waits_: the optimiser's timing post
     if (!warned_ignored_)
       error(line,
             "--sync optimise places every wait itself, and this job has sync records of its own: post it "
-            "with --sync explicit (or sequential)");
+            "with --sync explicit (or sequential), and --compare-optimum says what the placed waits would "
+            "give");
     warned_ignored_ = true;
     return;
   }

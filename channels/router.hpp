@@ -82,6 +82,9 @@ class channel_router {
     op_waits_ = on;
     track_ = track_ || on;
   }
+  /// The job's sync records set aside, without a word: the posts that work out what the
+  /// optimise policy would give a job that has its own (post --compare-optimum).
+  void set_aside_sync(bool on) { aside_sync_ = on; }
   /// Whether operations() is kept (set_plan and set_operation_waits keep it): off, the router
   /// does no work per event for it.
   void track_operations(bool on) { track_ = on; }
@@ -155,6 +158,7 @@ class channel_router {
   std::vector<bool> op_wrote_;         // per channel: its current operation has a record that writes
   std::vector<channel_track> tracks_;  // per channel: what its operations are noted with
   bool op_waits_ = false;
+  bool aside_sync_ = false;
   bool track_ = false;
   std::vector<int> waits_sent_;  // per channel: waits written so far
   const job_operations* plan_ = nullptr;

@@ -19,6 +19,7 @@ const std::array<command_entry, 6> table{{
      &run_parse},
     {"post",
      "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--permissive] [--timeline FILE]"
+     " [--compare-optimum]"
      " [--tool [C:]N]... [--tool-kind K] [--threads N]",
      "post a CL job to NC programs",
      "Posts a CL job for machine M into the folder DIR (made if missing): one program per "
@@ -35,7 +36,9 @@ const std::array<command_entry, 6> table{{
      "known record the post cannot carry out (STOP is posted, THREAD is not: see 'twinpost "
      "parse --records') stays an error. The summary gives the cycle time and each channel's "
      "idle at its waits when the machine file has [timing]; --timeline FILE writes the "
-     "timeline page of the programs into DIR with them. A job that moves before any tool call "
+     "timeline page of the programs into DIR with them; --compare-optimum also says the cycle "
+     "--sync optimise would give the job with its own sync records set aside (nothing more is "
+     "written). A job that moves before any tool call "
      "starts with the tool the machine's [[tool]] table names by the CAM's name of it (NX TOOL "
      "PATH, CATIA TPRINT), else with --tool N (C:N for channel C), called as a tool call record "
      "would be; --tool-kind K is the kind of every tool neither TLDATA nor [[tool]] gives. "

@@ -466,6 +466,7 @@ struct pass_setup {
   std::optional<sync_policy> policy;
   std::optional<job_scan> scan;  ///< made once by post_job when it chose the policy
   bool operation_waits = false;  ///< channel_router::set_operation_waits
+  bool aside_sync = false;       ///< channel_router::set_aside_sync
 };
 
 // One posting of the job: the programs written into a stage of their own, checked, timed, and
@@ -523,6 +524,7 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   channel_router router(m, sum.policy, ws, sink, o.cl_path, used_channels(scan, m));
   router.set_plan(waits);
   router.set_operation_waits(setup.operation_waits);
+  router.set_aside_sync(setup.aside_sync);
   timeline_options to;
   to.keep_blocks = !o.timeline_file.empty();
   std::optional<timeline_feed> feed;  // the cycle time, fed by the self-check's reading
@@ -599,17 +601,18 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     sink.report({severity::error, m.source, 0, 0, std::move(why), {}});
     return sum;
   }
-  if (!o.timeline_file.empty() && !has_timing(m)) {
-    sink.report(
-        {severity::error,
-         m.source,
-         0,
-         0,
-         fmt::format("--timeline: machine '{}' has no [timing] table (docs/machines.md, \"[timing]\")",
-                     m.name),
-         {}});
-    return sum;
-  }
+  for (const auto& [given, option] :
+       {std::pair{!o.timeline_file.empty(), "--timeline"}, std::pair{o.compare_optimum, "--compare-optimum"}})
+    if (given && !has_timing(m)) {
+      sink.report({severity::error,
+                   m.source,
+                   0,
+                   0,
+                   fmt::format("{}: machine '{}' has no [timing] table (docs/machines.md, \"[timing]\")",
+                               option, m.name),
+                   {}});
+      return sum;
+    }
   // `auto` on a machine of several channels is decided here, once: optimise posts the job
   // several times.
   pass_setup setup;
@@ -618,21 +621,36 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     setup.scan = scan_for_sync(o, m);
     setup.policy = choose_policy(o, m, *setup.scan, sink);
   }
+  // The optimiser's posts; `compare`: the job's sync records set aside and nothing written.
+  auto attempts = [&](bool compare) {
+    return [&o, &m, &setup, compare](optimise_step step, const job_operations* plan, diagnostic_sink& to) {
+      optimise_attempt a;
+      pass_setup each_setup;
+      each_setup.scan = setup.scan;
+      each_setup.policy = step == optimise_step::planned ? sync_policy::optimise : sync_policy::sequential;
+      each_setup.operation_waits = step == optimise_step::timing;
+      each_setup.aside_sync = compare;
+      post_options each = o;
+      if (step == optimise_step::timing || compare)
+        each.timeline_file.clear();  // the page only of programs written
+      a.ops = post_pass(each, m, each_setup, plan, step != optimise_step::timing && !compare, to, a.sum);
+      return a;
+    };
+  };
   if (setup.policy.value_or(o.policy) == sync_policy::optimise)
-    return post_optimised(
-        o, m, sink, [&](optimise_step step, const job_operations* plan, diagnostic_sink& to) {
-          optimise_attempt a;
-          pass_setup each_setup;
-          each_setup.scan = setup.scan;
-          each_setup.policy =
-              step == optimise_step::planned ? sync_policy::optimise : sync_policy::sequential;
-          each_setup.operation_waits = step == optimise_step::timing;
-          post_options each = o;
-          if (step == optimise_step::timing) each.timeline_file.clear();  // the page only of programs written
-          a.ops = post_pass(each, m, each_setup, plan, step != optimise_step::timing, to, a.sum);
-          return a;
-        });
+    return post_optimised(o, m, sink, attempts(false));
   post_pass(o, m, setup, nullptr, true, sink, sum);
+  // What the optimiser would make of the job, its sync records set aside: said, never written.
+  if (o.compare_optimum && sum.ok && sum.channels > 1) {
+    diagnostic_list unused;
+    const post_summary best = post_optimised(o, m, unused, attempts(true), true);
+    if (best.ok && best.timing) {
+      sum.optimum_cycle = best.timing->cycle;
+      sum.optimum_passes = best.passes;
+    } else {
+      sum.optimum_unknown = best.optimum_unknown.empty() ? "no schedule was found" : best.optimum_unknown;
+    }
+  }
   return sum;
 }
 

@@ -31,6 +31,10 @@ struct post_options {
   /// When set, the timeline page of the posted programs (analysis/timeline_report.hpp) is
   /// written into the output folder under this plain file name, as one of the set.
   std::string timeline_file;
+  /// post --compare-optimum: the job is also posted under the optimise policy with its own sync
+  /// records set aside, nothing of it written, and the summary gives that cycle
+  /// (post_summary::optimum_cycle).
+  bool compare_optimum = false;
   /// post --tool [C:]N: tool N is in the spindle of channel C (1 unless given) when the job
   /// moves before any tool call (machining/channel_start_tool.cpp); one per channel.
   std::vector<std::pair<int, int>> start_tools;
@@ -65,6 +69,11 @@ struct post_summary {
   /// --sync optimise: each pair of operations the self-check made keep the CL's order, with
   /// the finding that did ("channel 1 (job.cls:12-20) before channel 2 (job.cls:21-30): ...").
   std::vector<std::string> kept_apart;
+  /// --compare-optimum: the cycle the optimise policy gives the job with its sync records set
+  /// aside (nothing of it written), and its posts; or why it could not be worked out.
+  std::optional<double> optimum_cycle;
+  int optimum_passes = 0;
+  std::string optimum_unknown;
 };
 
 /// The threads a post runs besides its own, with post_options::threads of two or more (with

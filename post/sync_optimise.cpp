@@ -64,7 +64,7 @@ std::string first_error(const diagnostic_list& got) {
 }  // namespace
 
 post_summary post_optimised(const post_options& o, const machine& m, diagnostic_sink& diags,
-                            const post_attempt& attempt) {
+                            const post_attempt& attempt, bool compare) {
   if (!has_timing(m)) {
     report(diags, severity::error, m.source,
            fmt::format("--sync optimise: machine '{}' has no [timing] table, and the waits are placed by "
@@ -76,11 +76,22 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
   diagnostic_list first;
   optimise_attempt seq = attempt(optimise_step::timing, nullptr, first);
   if (!seq.sum.ok) {
+    if (compare) {
+      post_summary none;
+      none.optimum_unknown =
+          fmt::format("the job does not post with a wait at every operation ({})", first_error(first));
+      return none;
+    }
     replay(first, diags);
     return seq.sum;
   }
   job_operations ops = seq.ops;
   auto fall_back = [&](const std::string& why) {
+    if (compare) {
+      post_summary none;
+      none.optimum_unknown = why;
+      return none;
+    }
     report(diags, severity::warning, o.cl_path,
            fmt::format("--sync optimise: {}; the channels wait for each other at every head switch "
                        "(sequential)",
@@ -122,7 +133,7 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
     diagnostic_list got;
     optimise_attempt r = attempt(optimise_step::planned, &ops, got);
     if (r.sum.ok) {
-      replay(got, diags);
+      if (!compare) replay(got, diags);
       // The timing post's cycle less the waits it placed inside the heads' stretches: the
       // sequential post's (each of its waits is on the critical path).
       r.sum.sequential_cycle = t.cycle - seq.ops.operation_waits * handshake;

@@ -37,7 +37,9 @@ constexpr int optimise_max_posts = 8;
 
 /// `--sync optimise` for `o`'s job on machine `m`, posting with `attempt`; what reaches `diags`
 /// is what the post that is kept said (and the optimiser's own errors and warnings).
+/// `compare`: only the optimum is wanted (post --compare-optimum): nothing reaches `diags`, no
+/// sequential post is made where none is found, and post_summary::optimum_unknown says why.
 post_summary post_optimised(const post_options& o, const machine& m, diagnostic_sink& diags,
-                            const post_attempt& attempt);
+                            const post_attempt& attempt, bool compare = false);
 
 }  // namespace twinpost

@@ -122,3 +122,57 @@ TEST_CASE("auto: the job's own sync records, else waits placed where the machine
         "(sequential), since waits are placed between two channels and the job uses 3; concurrent machining "
         "needs SYNC/SYNCTR records\n");
 }
+
+TEST_CASE("post --compare-optimum: the cycle of the placed waits beside the job's own, nothing more written",
+          "[post][sync]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  // Head 1 then head 2 on tools of unknown size: the optimiser keeps them in the CL's order, so
+  // the job's own waits (none between the two: they overlap) give the shorter cycle.
+  const std::string job =
+      "PARTNO CMP\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\n"
+      "GOTO/20,0,5\nSYNC/1,1,2\nGOTO/20,0,-10\nHEAD/2\nTURRET/4,4\nFEDRAT/0.1,MMPR\n"
+      "RAPID\nGOTO/-10,0,5\nSYNC/1,1,2\nGOTO/-10,0,-3\nFINI\n";
+  const auto compared = [](post_options& o) { o.compare_optimum = true; };
+  const std::string dir = test::fresh_temp_dir("compare-optimum");
+  diagnostic_list d;
+  const post_summary with = test::post_text(dir, "job.cls", job, m, dir + "/with", d, {}, compared);
+  const post_summary without = test::post_text(dir, "job.cls", job, m, dir + "/without", d);
+  const auto with_files = test::read_dir_files(dir + "/with");
+  const auto without_files = test::read_dir_files(dir + "/without");
+  std::filesystem::remove_all(dir);
+  std::string said;
+  for (const diagnostic& x : d.all()) said += format_diagnostic(x);
+  CHECK(said == "");
+  REQUIRE(with.ok);
+  CHECK(with.policy == sync_policy::explicit_marks);
+  REQUIRE(with.optimum_cycle);
+  REQUIRE(with.timing);
+  CHECK(*with.optimum_cycle > with.timing->cycle);
+  CHECK(with.optimum_passes == 2);
+  CHECK(with.optimum_unknown.empty());
+  CHECK_FALSE(without.optimum_cycle);
+  CHECK(with_files == without_files);
+  CHECK(with_files.size() == 2);
+  // Three channels (posted sequentially): no cycle to compare, and why.
+  const std::string three =
+      "PARTNO CMP3\nHEAD/1\nTLDATA/TURN\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nRAPID\n"
+      "GOTO/20,0,5\nHEAD/2\nTLDATA/TURN\nTURRET/4,4\nRAPID\nGOTO/-10,0,5\n"
+      "HEAD/3\nTLDATA/TURN\nTURRET/21,21\nSPINDL/RPM,600,CLW\nRAPID\nGOTO/30,0,5\nFINI\n";
+  const std::string dir3 = test::fresh_temp_dir("compare-optimum-3");
+  const post_summary s3 = test::post_text(dir3, "job.cls", three, load_machine("fanuc-31i-3path"),
+                                          dir3 + "/out", d, {}, [](post_options& o) {
+                                            o.compare_optimum = true;
+                                            o.policy = sync_policy::sequential;
+                                          });
+  std::filesystem::remove_all(dir3);
+  CHECK(s3.ok);
+  CHECK_FALSE(s3.optimum_cycle);
+  CHECK(s3.optimum_unknown == "it places waits between two channels, and this job does not use two");
+  // A machine without [timing]: refused, as --timeline is.
+  machine untimed = m;
+  for (channel_def& c : untimed.channels) c.timing.given = false;
+  CHECK(test::post_in_fresh_dir(job, untimed, "compare-untimed", {}, {}, compared).diagnostics ==
+        untimed.source +
+            ": error: --compare-optimum: machine 'fanuc-0itd-twin' has no [timing] table "
+            "(docs/machines.md, \"[timing]\")\n");
+}

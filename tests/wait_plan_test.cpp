@@ -151,7 +151,8 @@ TEST_CASE("sync records are refused under optimise", "[wait_plan]") {
   CHECK(
       format_diagnostic(d.all().front()) ==
       "job.cls:2: error: --sync optimise places every wait itself, and this job has sync records of its own: "
-      "post it with --sync explicit (or sequential)\n");
+      "post it with --sync explicit (or sequential), and --compare-optimum says what the placed waits would "
+      "give\n");
 }
 
 TEST_CASE("a part transfer is a barrier: the operations after it are a section of their own", "[wait_plan]") {
