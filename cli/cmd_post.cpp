@@ -153,6 +153,16 @@ void show_progress_on_terminal(post_options& o, bool& shown) {
   };
 }
 
+// The pairs of operations the optimiser kept in the CL's order, and why: the first few (a long
+// job's list is long, and the same every post).
+void print_kept_apart(const std::vector<std::string>& pairs) {
+  constexpr std::size_t shown = 12;
+  for (std::size_t i = 0; i < pairs.size() && i < shown; ++i)
+    fmt::print("    kept in the CL's order: {}\n", pairs[i]);
+  if (pairs.size() > shown)
+    fmt::print("    ... and {} more pairs kept in the CL's order\n", pairs.size() - shown);
+}
+
 void print_summary(const post_summary& s, const printing_sink& sink, const located_machine& found) {
   // One channel waits for nobody: no policy to report.
   const std::string waits = s.channels == 1 ? "no waits (one channel)"
@@ -169,12 +179,7 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
         "  waits placed for the shortest cycle: {:.3f} s against {:.3f} s sequential ({}), {} post{}\n", now,
         seq, percent >= 0.05 ? fmt::format("-{:.1f} %", percent) : std::string("no shorter"), s.passes,
         s.passes == 1 ? "" : "s");
-    // The first few: a long job's list is long (all of it in the same order every post).
-    constexpr std::size_t shown = 12;
-    for (std::size_t i = 0; i < s.kept_apart.size() && i < shown; ++i)
-      fmt::print("    kept in the CL's order: {}\n", s.kept_apart[i]);
-    if (s.kept_apart.size() > shown)
-      fmt::print("    ... and {} more pairs kept in the CL's order\n", s.kept_apart.size() - shown);
+    print_kept_apart(s.kept_apart);
   }
   if (s.timing && s.optimum_cycle) {
     const double best = *s.optimum_cycle, now = s.timing->cycle;
@@ -189,6 +194,7 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
         : percent <= -0.05 ? fmt::format("+{:.1f} %: the job's own waits give the shorter cycle", -percent)
                            : std::string("the same"),
         s.optimum_passes, s.optimum_passes == 1 ? "" : "s");
+    print_kept_apart(s.optimum_kept_apart);
   } else if (!s.optimum_unknown.empty()) {
     fmt::print("  --sync optimise (the job's sync records set aside) gives no cycle to compare: {}\n",
                s.optimum_unknown);

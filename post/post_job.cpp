@@ -647,6 +647,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     if (best.ok && best.timing) {
       sum.optimum_cycle = best.timing->cycle;
       sum.optimum_passes = best.passes;
+      sum.optimum_kept_apart = best.kept_apart;
     } else {
       sum.optimum_unknown = best.optimum_unknown.empty() ? "no schedule was found" : best.optimum_unknown;
     }

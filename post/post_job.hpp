@@ -73,6 +73,7 @@ struct post_summary {
   /// aside (nothing of it written), and its posts; or why it could not be worked out.
   std::optional<double> optimum_cycle;
   int optimum_passes = 0;
+  std::vector<std::string> optimum_kept_apart;  ///< its pairs kept in the CL's order, as kept_apart
   std::string optimum_unknown;
 };
 
