@@ -92,10 +92,12 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
       none.optimum_unknown = why;
       return none;
     }
-    report(diags, severity::warning, o.cl_path,
-           fmt::format("--sync optimise: {}; the channels wait for each other at every head switch "
-                       "(sequential)",
-                       why));
+    report(
+        diags, severity::warning, o.cl_path,
+        fmt::format("{}: {}; the channels wait for each other at every head switch "
+                    "(sequential)",
+                    // The policy asked for: `auto` chose optimise for a job without sync records.
+                    o.policy == sync_policy::automatic ? "--sync auto (optimise)" : "--sync optimise", why));
     diagnostic_list last;
     optimise_attempt r = attempt(optimise_step::fallback, nullptr, last);
     replay(last, diags);

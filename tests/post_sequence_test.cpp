@@ -176,3 +176,13 @@ TEST_CASE("post --compare-optimum: the cycle of the placed waits beside the job'
             ": error: --compare-optimum: machine 'fanuc-0itd-twin' has no [timing] table "
             "(docs/machines.md, \"[timing]\")\n");
 }
+
+TEST_CASE("--sync optimise on a job of one head: sequential, and why", "[post][sync]") {
+  const std::string one = "PARTNO ONE\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/20,0,5\nFINI\n";
+  CHECK(test::post_in_fresh_dir(one, load_machine("fanuc-0itd-twin"), "optimise-one-head", {}, {},
+                                [](post_options& o) { o.policy = sync_policy::optimise; })
+            .diagnostics ==
+        "job.cls: warning: --sync optimise: it places waits between two channels, and this job does not use "
+        "two; "
+        "the channels wait for each other at every head switch (sequential)\n");
+}
