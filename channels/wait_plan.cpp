@@ -23,6 +23,7 @@ void sweep(channel_op& op, const channel_track& t, double xa, double xb, double 
   op.reach = std::max(op.reach, t.reach);
   op.parts |= t.part;
   if (t.css) op.css = true;
+  if ((t.speed_parts & t.part) == 0) op.borrows_speed = true;
   if (!t.reach_known) op.unknown_tool = true;
 }
 
@@ -85,6 +86,8 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
     if (s->spindle == "sub") t.part = 2;
     if (s->mode == spindle_mode::smm || s->mode == spindle_mode::sfm) t.css = true;
     if (s->mode == spindle_mode::rpm || s->mode == spindle_mode::off) t.css = false;
+    if (s->mode == spindle_mode::rpm || s->mode == spindle_mode::smm || s->mode == spindle_mode::sfm)
+      t.speed_parts |= t.part;
     if (s->mode == spindle_mode::off) {
       op.stops = true;
       op.parts |= t.part;
@@ -138,7 +141,7 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
 
 namespace {
 
-enum class fixed_rule { none, alone, severs, stops, unknown, near, css };
+enum class fixed_rule { none, alone, severs, stops, unknown, near, css, borrowed };
 
 fixed_rule fixed_between(const channel_op& a, const channel_op& b, double clearance_mm) {
   const unsigned shared = a.parts & b.parts;
@@ -154,6 +157,7 @@ fixed_rule fixed_between(const channel_op& a, const channel_op& b, double cleara
   const double gap_z = std::max(a.z0 - b.z1, b.z0 - a.z1);
   if (gap_r < near && gap_z < near) return fixed_rule::near;
   if (a.css && b.css) return fixed_rule::css;
+  if ((a.css && b.borrows_speed) || (b.css && a.borrows_speed)) return fixed_rule::borrowed;
   return fixed_rule::none;
 }
 
@@ -216,6 +220,11 @@ std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, dou
       return fmt::format(
           "both cut under constant surface speed on the part in the {} spindle: each clamps the spindle's "
           "rpm",
+          part);
+    case fixed_rule::borrowed:
+      return fmt::format(
+          "one of them cuts the part in the {} spindle at a speed its CL never gives (no SPINDL of its own), "
+          "the other under constant surface speed: its rpm would follow the other's diameter",
           part);
   }
   return {};

@@ -32,8 +32,11 @@ struct channel_op {
   double r0 = std::numeric_limits<double>::infinity(), r1 = -std::numeric_limits<double>::infinity();
   double z0 = std::numeric_limits<double>::infinity(), z1 = -std::numeric_limits<double>::infinity();
   double reach = 0;
-  unsigned parts = 0;         ///< bit 0: it cuts the part in the main spindle, bit 1: in the sub
-  bool css = false;           ///< it cuts under constant surface speed
+  unsigned parts = 0;  ///< bit 0: it cuts the part in the main spindle, bit 1: in the sub
+  bool css = false;    ///< it cuts under constant surface speed
+  /// It cuts on a spindle whose speed its channel never gave: at the other channel's setting
+  /// (a drill without a SPINDL of its own beside a turning tool's G96).
+  bool borrows_speed = false;
   bool unknown_tool = false;  ///< it cuts with a tool whose size no TLDATA or CUTTER gives
   /// The least radius a rapid took the tool to: a tool that comes to its cut from nearer the
   /// centre line works inside (a boring bar, whose shank lies across the bore: inside()).
@@ -50,6 +53,7 @@ struct channel_track {
   bool has_last = false;
   unsigned part = 1;         ///< the part's spindle bit: 1 main, 2 sub
   bool css = false;          ///< the spindle in constant surface speed
+  unsigned speed_parts = 0;  ///< the parts' spindle bits whose speed (rpm or CSS) this channel gave
   double reach = 10;         ///< the tool's reach past its tip (mm): 10 until TLDATA says
   bool reach_known = false;  ///< a TLDATA or CUTTER gave the tool in use its size
   bool called = false;       ///< a tool call has been made

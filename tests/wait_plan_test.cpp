@@ -296,10 +296,18 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
     CHECK(op.reach == 0.8);
     CHECK(op.parts == 1u);
     CHECK_FALSE(op.css);
+    CHECK_FALSE(op.borrows_speed);
     CHECK_FALSE(severs_part(op));
   }
   SECTION("a drill: half its diameter; a tool without TLDATA reaches 10 mm; inches in mm") {
     CHECK(noted({tldata("DRILL", 16), tool(1), at(0, 5, true), at(0, -30)}).reach == 8);
+    // Without a SPINDL of its own it cuts at the other channel's speed; a speed on the other
+    // spindle (the sub) is not this part's.
+    CHECK(noted({tool(1), at(0, 5, true), at(0, -30)}).borrows_speed);
+    CHECK(noted({tool(1), speed(spindle_mode::rpm, "sub"), speed(spindle_mode::off, "main"), at(0, 5, true),
+                 at(0, -30)})
+              .borrows_speed);
+    CHECK_FALSE(noted({tool(1), speed(spindle_mode::smm), at(0, 5, true), at(0, -30)}).borrows_speed);
     channel_track inch;
     inch.mm = 25.4;
     const channel_op op = noted({tool(1), at(1, 0, true), at(1, -1)}, inch);
@@ -421,6 +429,20 @@ TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
     CHECK(fixed_pair_reason(ops, pairs[0], 5) ==
           "both cut under constant surface speed on the part in the main spindle: each clamps the spindle's "
           "rpm");
+  }
+  SECTION("a cut at the speed the other sets under CSS") {
+    ops.sections[0].ops[0][0].css = true;
+    ops.sections[0].ops[1][0].borrows_speed = true;
+    pairs = fixed_pairs(ops, 5);
+    REQUIRE(pairs.size() == 2);
+    CHECK(pairs[0] == plan_pair{0, {0, 0, pair_rule::a_first}});
+    CHECK(
+        fixed_pair_reason(ops, pairs[0], 5) ==
+        "one of them cuts the part in the main spindle at a speed its CL never gives (no SPINDL of its own), "
+        "the other under constant surface speed: its rpm would follow the other's diameter");
+    // At an rpm the other gives (G97), its speed does not follow anything.
+    ops.sections[0].ops[0][0].css = false;
+    CHECK(fixed_pairs(ops, 5).size() == 1);
   }
   SECTION("a spindle stop on the part") {
     ops.sections[0].ops[1][0].stops = true;
