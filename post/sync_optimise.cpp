@@ -105,6 +105,12 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
   };
   if (ops.a == 0) return fall_back("it places waits between two channels, and this job does not use two");
   if (!seq.sum.timing || !seq.sum.timing->ok) return fall_back("the sequential programs could not be timed");
+  for (const plan_section& s : ops.sections)
+    if (s.ops[0].size() * s.ops[1].size() > optimise_max_section_pairs)
+      return fall_back(
+          fmt::format("the job has {} and {} operations between two barriers, more than the {} pairs "
+                      "of them it weighs",
+                      s.ops[0].size(), s.ops[1].size(), optimise_max_section_pairs));
   const timeline& t = *seq.sum.timing;
   time_operations(ops, [&](int side, int segment) {
     const int ch = side == 0 ? ops.a : ops.b;

@@ -35,6 +35,12 @@ using post_attempt =
 /// The most posts the optimiser makes before it falls back to sequential.
 constexpr int optimise_max_posts = 8;
 
+/// The most pairs of operations (channel A's times channel B's, in one section) the optimiser
+/// weighs: its pairs and its schedule grow with that product, and a job beyond it (thousands of
+/// head switches or tool changes between two barriers) is posted sequentially, with a warning,
+/// in the memory and time of any post. 1000 operations a channel solve in about 0.2 s.
+constexpr std::size_t optimise_max_section_pairs = 1'000'000;
+
 /// `--sync optimise` for `o`'s job on machine `m`, posting with `attempt`; what reaches `diags`
 /// is what the post that is kept said (and the optimiser's own errors and warnings).
 /// `compare`: only the optimum is wanted (post --compare-optimum): nothing reaches `diags`, no

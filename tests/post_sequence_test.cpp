@@ -186,3 +186,21 @@ TEST_CASE("--sync optimise on a job of one head: sequential, and why", "[post][s
         "two; "
         "the channels wait for each other at every head switch (sequential)\n");
 }
+
+TEST_CASE("a job of more operations than the optimiser weighs is posted sequentially, and why",
+          "[post][sync]") {
+  // 1001 head switches: 1001 operations a channel, 1002001 pairs, one more stretch than the limit.
+  std::string job = "PARTNO MANY\n";
+  for (int i = 0; i < 1001; ++i)
+    job +=
+        "HEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/30,0,2\nGOTO/30,0,-10\n"
+        "HEAD/2\nTURRET/11,11\nFEDRAT/0.1,MMPR\nRAPID\nGOTO/-20,0,2\nGOTO/-20,0,-5\n";
+  job += "FINI\n";
+  const test::posted p = test::post_in_fresh_dir(job, load_machine("fanuc-0itd-twin"), "optimise-many");
+  CHECK(p.ok);
+  CHECK(
+      p.diagnostics ==
+      "job.cls: warning: --sync auto (optimise): the job has 1001 and 1001 operations between two barriers, "
+      "more than the 1000000 pairs of them it weighs; the channels wait for each other at every head switch "
+      "(sequential)\n");
+}
