@@ -150,14 +150,20 @@ output_stage::~output_stage() {
   set_live(stage_, false);
 }
 
-std::vector<std::string> output_stage::commit(const std::vector<staged_file>& files) {
+std::vector<std::string> output_stage::commit(const std::vector<staged_file>& files,
+                                              const std::string& keep) {
   signals_held held;
   folder_lock lock(out_);
   if (!lock.ok()) fail("cannot open", out_, lock.error());
   // Everything that can be known before the first rename is checked before it.
+  struct stat kept {};
+  const bool keeping = !keep.empty() && ::stat(keep.c_str(), &kept) == 0;
   for (const staged_file& f : files) {
     const std::string target = join(out_, f.name);
     struct stat st {};
+    if (keeping && ::stat(target.c_str(), &st) == 0 && st.st_dev == kept.st_dev && st.st_ino == kept.st_ino)
+      throw config_error(fmt::format(
+          "cannot replace '{}': it is the job being posted (give another output folder)", target));
     if (::lstat(target.c_str(), &st) != 0) continue;
     if (S_ISDIR(st.st_mode)) throw config_error(fmt::format("cannot replace '{}': it is a folder", target));
     if (!S_ISREG(st.st_mode) && !S_ISLNK(st.st_mode))

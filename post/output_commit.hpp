@@ -39,7 +39,9 @@ class output_stage {
   /// Moves `files` into the output folder as a set, under the folder's lock: either every
   /// one is in place, or (config_error) the folder holds exactly what it held before.
   /// Returns the written paths (output folder / name), in order.
-  std::vector<std::string> commit(const std::vector<staged_file>& files);
+  /// `keep`: a file no output may replace (the job being posted: `-o` its own folder and a
+  /// program or the page named as it is), refused like a folder in the way.
+  std::vector<std::string> commit(const std::vector<staged_file>& files, const std::string& keep = {});
 
  private:
   /// The constructor's work: the folders, the stage, its registration.

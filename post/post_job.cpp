@@ -385,11 +385,11 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
 }
 
 std::vector<std::string> commit_files(output_stage& stage, const std::vector<framed_file>& files,
-                                      const std::optional<staged_file>& page) {
+                                      const std::optional<staged_file>& page, const std::string& job) {
   std::vector<staged_file> staged;
   for (const framed_file& f : files) staged.push_back({f.tmp_path, f.name});
   if (page) staged.push_back(*page);
-  return stage.commit(staged);
+  return stage.commit(staged, job);
 }
 
 // --timeline: a plain name in the output folder that no program takes; "" when it is one.
@@ -573,7 +573,7 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
     return router.operations();
   std::optional<staged_file> page;
   if (feed) page = time_programs(o, m, stage.dir(), *feed, rendezvous, sum);
-  if (commit) sum.files = commit_files(stage, files, page);
+  if (commit) sum.files = commit_files(stage, files, page, o.cl_path);
   sum.ok = true;
   return router.operations();
 }

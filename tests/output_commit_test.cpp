@@ -60,6 +60,24 @@ TEST_CASE("a folder in the way of the second file: the old set stays, untouched"
   fs::remove_all(dir);
 }
 
+TEST_CASE("the job is never replaced by an output of its own name in its own folder", "[post][commit]") {
+  const std::string dir = test::fresh_temp_dir("commit-job");
+  const machine m = load_machine("fanuc-0itd-twin");
+  diagnostic_list d;
+  // -o the job's folder, and a program named as the job; then the page named as it.
+  const std::string job = test::race_job('A');
+  CHECK(config_error_of([&] { test::post_text(dir, "RACE_2.nc", job, m, dir, d); }) ==
+        "cannot replace '" + dir + "/RACE_2.nc': it is the job being posted (give another output folder)");
+  CHECK(test::list_dir(dir) == "RACE_2.nc");
+  CHECK(test::read_file(dir + "/RACE_2.nc") == job);
+  CHECK(config_error_of([&] {
+          test::post_text(dir, "a.cls", job, m, dir, d, {},
+                          [](post_options& o) { o.timeline_file = "a.cls"; });
+        }) == "cannot replace '" + dir + "/a.cls': it is the job being posted (give another output folder)");
+  CHECK(test::read_file(dir + "/a.cls") == job);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a rename that fails half-way puts every old file back", "[post][commit]") {
   // The renames alone, past the checks that would have refused: the second target is a folder.
   const std::string dir = test::fresh_temp_dir("commit-rollback");
