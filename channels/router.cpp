@@ -309,6 +309,14 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
     }
     return;
   }
+  // A balance cut keeps its two heads in step (G68, M562), framed by waits of its own: a wait
+  // inside it would hold one head while the control waits for it to move.
+  if (both_)
+    return error(line,
+                 fmt::format("a sync record inside HEAD/BOTH (line {}): the balance cut is framed by waits "
+                             "of its own, and one inside it would hold one head of the pair; give it before "
+                             "HEAD/BOTH or after the HEAD that ends it",
+                             open_both_line_));
   // No channel list: every channel the job uses (an idle third path is left out).
   std::vector<int> partners = s.channels.empty() ? job_channels_ : s.channels;
   for (int ch : active_) partners.push_back(ch);

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fcntl.h>
 #include <filesystem>
 #include <fmt/format.h>
@@ -641,15 +642,21 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
     return post_optimised(o, m, sink, attempts(false));
   post_pass(o, m, setup, nullptr, true, sink, sum);
   // What the optimiser would make of the job, its sync records set aside: said, never written.
+  // The programs are written by now: what goes wrong after is said in the summary, never the
+  // post's failure (the job changed or gone, the memory short).
   if (o.compare_optimum && sum.ok && sum.channels > 1) {
-    diagnostic_list unused;
-    const post_summary best = post_optimised(o, m, unused, attempts(true), true);
-    if (best.ok && best.timing) {
-      sum.optimum_cycle = best.timing->cycle;
-      sum.optimum_passes = best.passes;
-      sum.optimum_kept_apart = best.kept_apart;
-    } else {
-      sum.optimum_unknown = best.optimum_unknown.empty() ? "no schedule was found" : best.optimum_unknown;
+    try {
+      diagnostic_list unused;
+      const post_summary best = post_optimised(o, m, unused, attempts(true), true);
+      if (best.ok && best.timing) {
+        sum.optimum_cycle = best.timing->cycle;
+        sum.optimum_passes = best.passes;
+        sum.optimum_kept_apart = best.kept_apart;
+      } else {
+        sum.optimum_unknown = best.optimum_unknown.empty() ? "no schedule was found" : best.optimum_unknown;
+      }
+    } catch (const std::exception& e) {
+      sum.optimum_unknown = e.what();
     }
   }
   return sum;

@@ -177,7 +177,7 @@ TEST_CASE("post --compare-optimum: the cycle of the placed waits beside the job'
             "(docs/machines.md, \"[timing]\")\n");
 }
 
-TEST_CASE("--sync optimise on a job of one head: sequential, and why", "[post][sync]") {
+TEST_CASE("post --sync optimise on a job of one head: sequential, and why", "[post][sync]") {
   const std::string one = "PARTNO ONE\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/20,0,5\nFINI\n";
   CHECK(test::post_in_fresh_dir(one, load_machine("fanuc-0itd-twin"), "optimise-one-head", {}, {},
                                 [](post_options& o) { o.policy = sync_policy::optimise; })
