@@ -187,7 +187,7 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
     // Longer where the job's own waits let operations overlap that the optimiser keeps in the
     // CL's order (tools of unknown size, cuts close together): said as such.
     fmt::print(
-        "  with the waits placed by --sync optimise (the job's sync records set aside): {:.3f} s against "
+        "  with the waits placed by --sync optimise (its sync records, if any, set aside): {:.3f} s against "
         "{:.3f} s ({}), {} post{}, not written\n",
         best, now,
         percent >= 0.05    ? fmt::format("-{:.1f} %", percent)
@@ -196,7 +196,7 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
         s.optimum_passes, s.optimum_passes == 1 ? "" : "s");
     print_kept_apart(s.optimum_kept_apart);
   } else if (!s.optimum_unknown.empty()) {
-    fmt::print("  --sync optimise (the job's sync records set aside) gives no cycle to compare: {}\n",
+    fmt::print("  --sync optimise (its sync records, if any, set aside) gives no cycle to compare: {}\n",
                s.optimum_unknown);
   }
   if (s.timing)
