@@ -69,10 +69,12 @@ bool channel_writer::cycle_supported(const cycle_event& c, int line) {
     const bool dialect_word = (name == "RTRCTO" && !mean.rtrcto_above_top) ||
                               (name == "DWELL" && !mean.dwell_seconds) ||
                               ((name == "1STPECK" || name == "SUBPECK") && !mean.first_and_later_pecks);
-    error(line,
-          fmt::format(
-              "CYCLE/{}: {} is not carried out by the post ({}{})", c.type, name, knows,
-              dialect_word ? "; the meaning of this word is known only in the SolidWorks dialect" : ""));
+    error(line, fmt::format("CYCLE/{}: {} is not carried out by the post ({}{})", c.type, name, knows,
+                            !dialect_word      ? ""
+                            : name == "RTRCTO" ? "; the meaning of this word is known only in the SolidWorks "
+                                                 "and NX dialects"
+                                               : "; the meaning of this word is known only in the SolidWorks "
+                                                 "dialect"));
     return false;
   }
   for (const std::string& w : c.words) {
@@ -148,7 +150,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   vec3 at = p;
   const bool cross = has_c_ && c_mode_ && std::abs(axis_.z) <= 1e-4;
   const bool side = cross && side_holes();
-  if (cross && !c.meaning.fedto_is_depth && cycle_param(c, "FEDTO"))
+  if (cross && c.meaning.fedto_absolute() && cycle_param(c, "FEDTO"))
     return error(line, fmt::format("CYCLE/{} across the spindle axis with an absolute FEDTO: give the depth "
                                    "(DEPTH) of a cross hole",
                                    c.type));
@@ -158,7 +160,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   const bool tilted = chain_ && plane_on_;
   if (tilted) {
     if (!plane_takes(line)) return;
-    if (!c.meaning.fedto_is_depth && cycle_param(c, "FEDTO"))
+    if (c.meaning.fedto_absolute() && cycle_param(c, "FEDTO"))
       return error(line, fmt::format("CYCLE/{} in a tilted working plane ({}) with an absolute FEDTO: a Z of "
                                      "the part frame is no depth along the tilted tool; give the depth "
                                      "(DEPTH)",
@@ -197,16 +199,29 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   h.clear = top - h.into * cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
   const std::optional<double> fedto = cycle_param(c, "FEDTO");
   std::optional<double> bottom;
-  if (fedto) bottom = c.meaning.fedto_is_depth ? top + h.into * *fedto : *fedto;
+  // FEDTO: a depth (SolidWorks), a distance along the tool axis, negative into the part (NX),
+  // or a Z (the others).
+  if (fedto)
+    bottom = c.meaning.fedto_is_depth     ? top + h.into * *fedto
+             : c.meaning.fedto_along_axis ? top - h.into * *fedto
+                                          : *fedto;
   if (!bottom && cycle_param(c, "DEPTH")) bottom = top + h.into * *cycle_param(c, "DEPTH");
   if (!bottom) return error(line, fmt::format("CYCLE/{} needs FEDTO or DEPTH", c.type));
   h.bottom = *bottom;
+  // A hole deeper than the tool is long: the holder would drive into the part (a FEDTO read
+  // in the wrong sense, or a CAM error). The length is TLDATA's, where the CL gives one.
+  if (const double deep = (h.bottom - top) * h.into * cl_mm_; reach_ && deep > *reach_ + 1e-6)
+    return error(
+        line, fmt::format("CYCLE/{}: the hole goes {} mm below its top (the GOTO point, Z {}) to Z {}, "
+                          "but tool {} is {} mm long (TLDATA): its holder would drive into the part",
+                          c.type, kin::number_text(deep), kin::number_text(top), kin::number_text(h.bottom),
+                          tool_, kin::number_text(*reach_)));
   if ((h.bottom - h.clear) * h.into <= 0)
     return error(line,
                  fmt::format("CYCLE/{}: the bottom Z {} is not beyond the clearance plane Z {} in the "
                              "drilling direction: the tool would feed away from the part{}",
                              c.type, h.bottom, h.clear,
-                             c.meaning.fedto_is_depth || !fedto ? "" : " (is FEDTO a depth in this CL?)"));
+                             !c.meaning.fedto_absolute() || !fedto ? "" : " (is FEDTO a depth in this CL?)"));
   h.initial = h.clear;
   if (auto r = cycle_param(c, "RTRCTO")) {
     h.initial = top - h.into * *r;

@@ -58,6 +58,8 @@ void channel_writer::tool_data(const tool_data_event& t) {
   // NX TLDATA/MILL or DRILL, diameter, ...: the diameter a surface speed needs.
   if (const std::optional<double> d = tldata_diameter(t))
     (after_call_ ? diameter_ : next_diameter_) = *d * cl_mm_;
+  // Its length: how deep a hole the tool can drill before its holder meets the part.
+  if (const std::optional<double> l = tldata_length(t)) (after_call_ ? reach_ : next_reach_) = *l * cl_mm_;
   const tool_kind k = w == "MILL"                                       ? tool_kind::mill
                       : w == "DRILL"                                    ? tool_kind::drill
                       : (w == "TURN" || w == "GROOVE" || w == "THREAD") ? tool_kind::turn

@@ -254,6 +254,8 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   unstarted_judged_ = false;
   diameter_ = next_diameter_;
   next_diameter_.reset();
+  reach_ = next_reach_;
+  next_reach_.reset();
   tool_ = tool;
   tool_line_ = line;
   tool_word_ = word;

@@ -651,6 +651,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   int errors_ = 0;            ///< errors this writer reported
   /// Tool diameters (mm) from TLDATA/MILL or CUTTER: of the tool in the spindle, of the next.
   std::optional<double> diameter_, next_diameter_;
+  /// Tool lengths (mm) from TLDATA/MILL or DRILL: the deepest hole the tool can drill.
+  std::optional<double> reach_, next_reach_;
   /// The rpm a surface speed gives a rotating tool of the machine's tool or the CL's diameter;
   /// nullopt after the error.
   std::optional<double> tool_rpm(const spindle_event& s, const spindle_def& sp, int line);

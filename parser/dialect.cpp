@@ -36,9 +36,16 @@ bool circle_is_ccw(dialect d) { return d != dialect::nx && d != dialect::makino;
 cycle_word_meaning cycle_meaning(dialect d) {
   // SolidWorks CAM: holes at z = 0 drilled with `CYCLE/DRILL,FEDTO,7.85788,...,RAPTO,3.,
   // RTRCTO,25.,DWELL,0` after a rapid to z = 25 (the shared SolidWorks CL files): FEDTO is a
-  // depth, RAPTO and RTRCTO heights above the hole's top. The other dialects keep FEDTO as a
-  // Z, and their RTRCTO, DWELL and pecks stay errors until a source says what they mean.
+  // depth, RAPTO and RTRCTO heights above the hole's top.
   if (d == dialect::solidworks) return {true, true, true, true};
+  // NX: its posts place the cycle's planes from the hole's point along the tool axis,
+  // feed_to_pos = pos + mom_cycle_feed_to × axis and the same for rapid_to and retract_to
+  // (Siemens' Post Builder posts, Unigraphics/PostBuilder on GitHub: `mom_cycle_feed_to_pos`);
+  // NX's CLSF writes those values as FEDTO, RAPTO and RTRCTO (HumMan/CLSFProcessor's samples:
+  // `FEDTO,-72`; `RAPTO,3.0000,FEDTO,0.0000` over holes at Z240).
+  if (d == dialect::nx) return {.rtrcto_above_top = true, .fedto_along_axis = true};
+  // The other dialects keep FEDTO as a Z, and their RTRCTO, DWELL and pecks stay errors until
+  // a source says what they mean.
   return {};
 }
 

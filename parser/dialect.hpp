@@ -51,6 +51,11 @@ struct cycle_word_meaning {
   bool dwell_seconds = false;
   /// DEEP2 with 1STPECK,a,SUBPECK,b: chip-breaking pecks, a first, then b.
   bool first_and_later_pecks = false;
+  /// FEDTO,d: a signed distance from the hole's top (the GOTO point) along the tool axis,
+  /// negative into the part (NX: the feed-to position is the point + d × the tool axis).
+  bool fedto_along_axis = false;
+  /// FEDTO,d is a Z of the part frame (neither a depth nor a distance along the tool).
+  bool fedto_absolute() const { return !fedto_is_depth && !fedto_along_axis; }
 };
 
 /// The meaning of the cycle words in dialect `d`.

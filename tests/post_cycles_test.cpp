@@ -53,7 +53,7 @@ TEST_CASE("a cycle word the writer would drop stops the post", "[post][cycles]")
   CHECK(errors_of("CYCLE/DRILL,FEDTO,-10,RAPTO,3,RTRCTO,25,MMPR,0.1\nGOTO/0,0,0\nFINI\n", "rtrcto") ==
         "job.cls:6:1: error: channel 1: CYCLE/DRILL: RTRCTO is not carried out by the post (it knows FEDTO, "
         "DEPTH, RAPTO, CLEAR, STEP and the feed; the meaning of this word is known only in the SolidWorks "
-        "dialect)\n"
+        "and NX dialects)\n"
         "CYCLE/DRILL,FEDTO,-10,RAPTO,3,RTRCTO,25,MMPR,0.1\n^\n");
   CHECK(errors_of("CYCLE/DRILL,FEDTO,-10,STEP,2,RAPTO,3,MMPR,0.1\nGOTO/0,0,0\nFINI\n", "step")
             .starts_with("job.cls:6:1: error: channel 1: CYCLE/DRILL: STEP is not carried out by the post"));

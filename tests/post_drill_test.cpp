@@ -198,7 +198,7 @@ TEST_CASE("dialect words: RTRCTO below RAPTO, DEEP2 without SUBPECK, RTRCTO outs
   CHECK(p.diagnostics ==
         "job.cls:7:1: error: channel 1: CYCLE/DRILL: RTRCTO is not carried out by the post (it knows FEDTO, "
         "DEPTH, RAPTO, CLEAR, STEP and the feed; the meaning of this word is known only in the SolidWorks "
-        "dialect)\nCYCLE/DRILL,FEDTO,7.5,MMPM,120.,RAPTO,3.,RTRCTO,25.,DWELL,0\n^\n");
+        "and NX dialects)\nCYCLE/DRILL,FEDTO,7.5,MMPM,120.,RAPTO,3.,RTRCTO,25.,DWELL,0\n^\n");
 }
 
 TEST_CASE("[cycles] in a machine file: the choices and the codes each needs", "[post][drill][machines]") {

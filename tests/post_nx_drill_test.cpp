@@ -99,3 +99,39 @@ TEST_CASE("a peck cycle without STEP, and positional cycle values, stop the post
         "which is the depth (it knows FEDTO, DEPTH, RAPTO, CLEAR, STEP and the feed, each with its value)\n"
         "CYCLE/DRILL,    3.000000,    5.000000\n^\n");
 }
+
+TEST_CASE("NX: FEDTO is a distance from the hole's point along the tool axis", "[post][drill][nx]") {
+  // HumMan/CLSFProcessor's "standard drill" form: a countersink over holes whose points lie at
+  // Z240, RAPTO 3 and FEDTO 0. NX's posts place the feed-to point at the hole's point + FEDTO
+  // along the tool axis: the bottom is Z240, not Z0 (read as a Z, the 30 mm tool plunged 243 mm).
+  const std::string head =
+      "TOOL PATH/DRILLING,TOOL,COUNTERSINKING_TOOL\n"
+      "TLDATA/MILL,30.0000,0.0000,30.0000,0.0000,45.0000\nLOAD/TOOL,5\n"
+      "SPINDL/RPM,900,CLW\n";
+  const std::string holes =
+      "GOTO/66.0000,0.0000,240.0000,0.0000000,0.0000000,1.0000000\n"
+      "GOTO/-55.0000,0.0000,238.5000\nCYCLE/OFF\nEND-OF-PATH\n";
+  CHECK(blocks(head + "CYCLE/DRILL,RAPTO,3.0000,FEDTO,-1.5000,RTRCTO,10.0000,MMPM,250.0000\n" + holes,
+               "rotary-4axis", "csink") ==
+        "T05 M6\nG54\nS900 M3\nG0 A0.\nG0 X66. Y0.\nG0 G43 H5 X66. Y0. Z250. A0.\n"
+        "G98 G81 X66. Y0. Z238.5 R243. F250.\nG80\nG0 Z250.\nX-55. Z248.5\n"
+        "G98 G81 X-55. Y0. Z237. R241.5 F250.\nG80\nG0 Z248.5\nM9\nM5\nG91 G28 Z0.\nG90\nG49\n");
+  // A hole deeper than the tool is long (TLDATA's third number) is refused at each hole.
+  CHECK(
+      errors_of(head + "CYCLE/DRILL,RAPTO,3.0000,FEDTO,-33.0000,MMPM,250.0000\n" + holes, "rotary-4axis",
+                "reach") ==
+      "job.cls:6:1: error: channel 1: CYCLE/DRILL: the hole goes 33 mm below its top (the GOTO point, Z 240) "
+      "to Z 207, but tool 5 is 30 mm long (TLDATA): its holder would drive into the part\n"
+      "GOTO/66.0000,0.0000,240.0000,0.0000000,0.0000000,1.0000000\n^\n"
+      "job.cls:7:1: error: channel 1: CYCLE/DRILL: the hole goes 33 mm below its top (the GOTO point, Z "
+      "238.5) to Z 205.5, but tool 5 is 30 mm long (TLDATA): its holder would drive into the part\n"
+      "GOTO/-55.0000,0.0000,238.5000\n^\n");
+  // The same record in a generic APT file reads FEDTO as a Z: Z-1.5, 241.5 mm below the top.
+  CHECK(errors_of("PARTNO P\nTLDATA/MILL,30.0000,0.0000,30.0000,0.0000,45.0000\nLOADTL/5\n"
+                  "SPINDL/RPM,900,CLW\nCYCLE/DRILL,RAPTO,3.0000,FEDTO,-1.5000,MMPM,250.0000\n"
+                  "GOTO/66.0000,0.0000,240.0000,0.0000000,0.0000000,1.0000000\nCYCLE/OFF\nFINI\n",
+                  "rotary-4axis", "generic") ==
+        "job.cls:6:1: error: channel 1: CYCLE/DRILL: the hole goes 241.5 mm below its top (the GOTO point, Z "
+        "240) to Z -1.5, but tool 5 is 30 mm long (TLDATA): its holder would drive into the part\n"
+        "GOTO/66.0000,0.0000,240.0000,0.0000000,0.0000000,1.0000000\n^\n");
+}
