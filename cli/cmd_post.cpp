@@ -39,7 +39,10 @@ po::options_description post_option_descriptions() {
       "layout", po::value<std::string>(), layouts.c_str())(
       "sync", po::value<std::string>()->default_value("auto"), policies.c_str())(
       "dialect", po::value<std::string>(), "CL dialect (default: detect)")(
-      "permissive", "an unknown major word is a warning, not an error")(
+      "cl-frame", po::value<std::string>(),
+      "mcs|absolute: write NX MSYS points in the CL's MCS or turned into the absolute frame "
+      "(default: the machine's [program] cl_frame, mcs)")("permissive",
+                                                          "an unknown major word is a warning, not an error")(
       "timeline", po::value<std::string>(), "also write the timeline page (HTML) into DIR under this name")(
       "compare-optimum",
       "also work out the cycle of --sync optimise, the job's own sync records set aside, and say it "
@@ -127,6 +130,14 @@ std::optional<post_options> read_post_options(const po::variables_map& vm) {
       fmt::print(stderr, "twinpost post: --threads must be 1 or more, not {}\n", o.threads);
       return std::nullopt;
     }
+  }
+  if (vm.count("cl-frame")) {
+    const std::string f = vm["cl-frame"].as<std::string>();
+    if (f != "mcs" && f != "absolute") {
+      fmt::print(stderr, "twinpost post: --cl-frame must be mcs or absolute, not '{}'\n", f);
+      return std::nullopt;
+    }
+    o.frame = f == "mcs" ? cl_frame::mcs : cl_frame::absolute;
   }
   if (vm.count("dialect")) {
     o.forced_dialect = dialect_from_name(vm["dialect"].as<std::string>());

@@ -18,7 +18,8 @@ const std::array<command_entry, 6> table{{
      "(posted, ignored, or an error), with the reason, as a Markdown table.",
      &run_parse},
     {"post",
-     "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--permissive] [--timeline FILE]"
+     "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--cl-frame F] [--permissive] [--timeline "
+     "FILE]"
      " [--compare-optimum]"
      " [--tool [C:]N]... [--tool-kind K] [--threads N]",
      "post a CL job to NC programs",
@@ -28,7 +29,9 @@ const std::array<command_entry, 6> table{{
      "where the channels wait for each other (optimise: where the post places them for the "
      "shortest cycle of a two-channel job without SYNC records, docs/wait-placement.md; auto: at "
      "the job's SYNC records if it has any, else optimise on a machine with [timing] when the "
-     "job uses two channels, else at every head switch). The programs are written to "
+     "job uses two channels, else at every head switch). --cl-frame mcs|absolute says whether "
+     "the points of a turned NX MSYS are written in the CL's MCS or in the absolute frame "
+     "(default: the machine's [program] cl_frame, mcs). The programs are written to "
      "temporary names, checked as "
      "'twinpost check' would, and committed as a set only when everything is sound: a failed "
      "run writes nothing and changes nothing in DIR. A major word twinpost does not know stops "

@@ -149,6 +149,9 @@ enum class layout_kind { split, merged_appended, merged_sections };
 
 /// The units of the program's words: millimetres (G21) or inches (G20).
 enum class output_unit { mm, inch };
+/// The frame the program is written in when the CL's frame is turned (NX MSYS): the CL's own
+/// (its MCS, where the machinist sets the work offset) or the absolute frame MSYS maps to.
+enum class cl_frame { mcs, absolute };
 
 /// Which blocks get an N number (when program.sequence_start > 0).
 enum class sequence_mode { all, tool_change };
@@ -179,6 +182,9 @@ struct program_format {
   /// Lengths and feeds in millimetres or inches (a US shop programs in inch); the header
   /// must say the same (G21 / G20: checked at load).
   output_unit output_units = output_unit::mm;
+  /// NX MSYS: the points as the CL gives them, in its MCS (the default: NX's posts write
+  /// mom_mcs_goto), or turned into the absolute frame (docs/records.md, "Frames").
+  cl_frame frame = cl_frame::mcs;
   int decimals_metric = 3;  ///< decimals of linear axes in mm output
   int decimals_inch = 4;    ///< decimals of linear axes in inch output
   /// Decimals of linear axis words in the output units.

@@ -203,7 +203,8 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
                                                 "sequence_start", "sequence_step",   "sequence_numbers",
                                                 "comment_open",   "comment_close",   "comment_max",
                                                 "output_units",   "decimals_metric", "decimals_inch",
-                                                "trailing_point", "arcs_ijk",        "reserved_variables"});
+                                                "trailing_point", "arcs_ijk",        "reserved_variables",
+                                                "cl_frame"});
   if (r.read("extension", p.extension)) check_file_part(r, "extension", p.extension);
   r.read_template("file_name", p.file_name, template_uses::file);
   if (r.read("program_number", p.program_number)) at.program_number = r.find("program_number");
@@ -237,6 +238,9 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
       r.fail(*r.find(key), fmt::format("program.{} must be in 0..6, not {}", key, *decimals));
   r.read("trailing_point", p.trailing_point);
   r.read("arcs_ijk", p.arcs_ijk);
+  using frame_name = std::pair<std::string_view, cl_frame>;
+  read_enum(r, "cl_frame",
+            std::array<frame_name, 2>{{{"mcs", cl_frame::mcs}, {"absolute", cl_frame::absolute}}}, p.frame);
 }
 
 // [format]: one key per address letter, "5.3" (digits before and after the point) or 4.

@@ -59,8 +59,17 @@ void channel_writer::frame(const coordsys_event& c, int line) {
     if (!why.empty())
       return error(line, fmt::format("MSYS/{}: {}; only a rigid turn of the points is posted",
                                      fmt::join(v, ","), why));
+    // Written in the MCS ([program] cl_frame, post --cl-frame): the points as given; the work
+    // offset is the MCS's origin, and where the MCS lies is the setup's business.
+    if (frame_ == cl_frame::mcs) return;
+    // The tool axis a move without one keeps is the CL's, in the CL's frame: the MCS's +Z
+    // until a record gives another. Turned with the points, or a file that gives no axis
+    // would be cut from below (the post's frame's +Z where the MCS's Z points down).
+    if (!msys_) cl_axis_ = axis_;
     if (is_identity(x, y, z)) {
-      msys_.reset();
+      // Back to the absolute frame: the axis in force is the CL's again, written on the next
+      // move by the identity turn, which costs only the files that turn back.
+      if (msys_) msys_ = std::array<vec3, 3>{x, y, z};
       return;
     }
     // A lathe's CL frame is its own (x the radius, z along the spindle): what a turned MCS means
@@ -128,16 +137,20 @@ bool channel_writer::turn_to_msys(event& e) {
         using T = std::decay_t<decltype(d)>;
         if constexpr (std::is_same_v<T, motion_event>) {
           turn(d.pos);
-          if (d.axis) turn(*d.axis);
+          if (d.axis) cl_axis_ = *d.axis;
+          // The axis every move carries: the one in force, turned (the lookahead sees it too).
+          d.axis = cl_axis_;
+          turn(*d.axis);
         } else if constexpr (std::is_same_v<T, arc_event>) {
           turn(d.start);
           turn(d.end);
           turn(d.center);
           turn(d.normal);
         } else if constexpr (std::is_same_v<T, tool_axis_event>) {
+          cl_axis_ = d.axis;
           turn(d.axis);
         } else if constexpr (std::is_same_v<T, cycle_event>) {
-          if (d.type != "OFF" && d.type != "ON" && d.type != "INIT") {
+          if (d.type != "OFF" && d.type != "ON" && d.type != "INIT" && !is_identity(r[0], r[1], r[2])) {
             line_ = e.line;
             column_ = e.column;
             error(e.line,

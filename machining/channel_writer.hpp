@@ -100,6 +100,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// CAM's name of it comes first. `kind` ("turn", "mill", "drill" or empty) is the kind of
   /// every tool the CL and the [[tool]] table leave without one (post --tool-kind).
   void start_with(std::optional<int> tool, std::string_view kind);
+  /// The frame NX MSYS points are written in (post --cl-frame), instead of the machine's.
+  void write_in(cl_frame f) { frame_ = f; }
   /// The job's record of spindle starts, shared by all its writers (see job_spindles); without
   /// one a cut on a spindle this channel has not started is an error at once.
   void share_spindles(job_spindles* j) { job_spindles_ = j; }
@@ -610,7 +612,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// the identity.
   std::optional<std::array<vec3, 3>> msys_;
   int msys_line_ = 0;
-  std::optional<vec3> csys_axis_;  ///< a turned SolidWorks CSYS's Z: the tool axis of its moves
+  cl_frame frame_ = m_.program.frame;  ///< MSYS: the CL's MCS, or turned into the absolute frame
+  vec3 cl_axis_{0, 0, 1};              ///< under MSYS: the tool axis in force, in the CL's (MCS) frame
+  std::optional<vec3> csys_axis_;      ///< a turned SolidWorks CSYS's Z: the tool axis of its moves
   int csys_line_ = 0;
   bool csys_refused_ = false;                ///< the error for a move under another axis was given
   std::optional<vec3> refused_axis_;         // the tool axis tool_along_z last refused

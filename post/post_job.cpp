@@ -262,6 +262,7 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     for (const auto& [channel, tool] : o.start_tools)
       if (channel == ch.number) start = tool;
     ws.writers[static_cast<std::size_t>(ch.number - 1)]->start_with(start, o.tool_kind);
+    if (o.frame) ws.writers[static_cast<std::size_t>(ch.number - 1)]->write_in(*o.frame);
   }
   // Each channel's program held to its CL as it is written; a channel with a kinematic chain
   // checks every point it writes by the forward transform instead (channel_multiaxis).

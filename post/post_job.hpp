@@ -26,6 +26,9 @@ struct post_options {
   std::optional<layout_kind> layout;  ///< the machine's layout unless given
   sync_policy policy = sync_policy::automatic;
   std::optional<dialect> forced_dialect;
+  /// post --cl-frame: the frame NX MSYS points are written in, instead of the machine's
+  /// [program] cl_frame.
+  std::optional<cl_frame> frame;
   /// An unknown major word is a warning, not an error (a refused known word stays an error).
   bool permissive = false;
   /// When set, the timeline page of the posted programs (analysis/timeline_report.hpp) is

@@ -748,6 +748,16 @@ TEST_CASE("multi-axis: a head machine posts a tool of unknown length while no he
       "file\nGOTO/10,0,0,0,0.1736482,0.9848078\n^\n");
 }
 
+namespace {
+// A built-in machine that writes NX MSYS points turned into the absolute frame
+// ([program] cl_frame = "absolute"; the default writes them in the CL's MCS).
+machine absolute(const std::string& name) {
+  machine m = load_machine(name);
+  m.program.frame = cl_frame::absolute;
+  return m;
+}
+}  // namespace
+
 TEST_CASE("frames: NX MSYS turns the points and tool axes before the kinematics",
           "[post][multiaxis][frames]") {
   // An MCS with Z down (its Y is the absolute -Y, so Z = X x Y = -Z): the CL's tool axis
@@ -760,7 +770,7 @@ TEST_CASE("frames: NX MSYS turns the points and tool axes before the kinematics"
       "GOTO/20,10,-50,0,0,-1\nFINI\n";
   for (const char* name : {"head-head-5axis", "trunnion-5axis"}) {
     INFO(name);
-    const machine m = load_machine(name);
+    const machine m = absolute(name);
     const round_trip r = read_back(job, m, std::string("fr-msys-") + name);
     CHECK(r.cl_points == 5);
     CHECK(r.worst_tip <= m.chain(1)->tolerance);
@@ -769,13 +779,13 @@ TEST_CASE("frames: NX MSYS turns the points and tool axes before the kinematics"
   // The sample (an arc and a tilt about X under the turned MCS) on the three mills.
   for (const char* name : {"head-head-5axis", "trunnion-5axis", "rotary-4axis"}) {
     INFO(name);
-    const machine m = load_machine(name);
+    const machine m = absolute(name);
     const round_trip r = read_back(sample_job("nx-msys-z-down"), m, std::string("fr-msys-sample-") + name);
     CHECK(r.cl_points == 9);
     CHECK(r.worst_tip <= m.chain(1)->tolerance);
     CHECK(r.worst_axis <= m.chain(1)->angle_tolerance);
   }
-  const test::posted t = test::post_in_fresh_dir(job, load_machine("trunnion-5axis"), "fr-msys-exact");
+  const test::posted t = test::post_in_fresh_dir(job, absolute("trunnion-5axis"), "fr-msys-exact");
   REQUIRE(t.ok);
   const std::string nc = t.files.at("MSYS_DOWN.nc");
   CHECK(nc.substr(nc.find("T01")) ==
@@ -786,18 +796,57 @@ TEST_CASE("frames: NX MSYS turns the points and tool axes before the kinematics"
   const test::posted flat = test::post_in_fresh_dir(
       "PARTNO MSYS FLAT\nMSYS/5,0,0,0,1,0,1,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\n"
       "RAPID\nGOTO/0,0,-50,0,0,-1\nGOTO/10,20,3\nFINI\n",
-      load_machine("rotary-4axis"), "fr-msys-flat");
+      absolute("rotary-4axis"), "fr-msys-flat");
   INFO(flat.diagnostics);
   REQUIRE(flat.ok);
   const std::string f = flat.files.at("MSYS_FLAT.nc");
   // X = (0,1,0), Y = (1,0,0): (10,20,3) is the absolute (20,10,-3); the origin (5,0,0) is where
   // the MCS sits in the model, and the work offset stays on it.
   CHECK(f.find("G1 X20. Y10. Z-3. F800.") != std::string::npos);
+  // A file that gives no tool axis: the axis in force is the MCS's +Z, turned with the points
+  // (here the absolute -Z, which the trunnion cannot reach; before, the points were turned and
+  // the axis left at +Z, and the tool fed up into the cut from below).
+  const std::string bare =
+      "PARTNO BARE\nMSYS/0,0,0,1,0,0,0,-1,0\nTLDATA/MILL,10,0,100,0,0\nLOADTL/1\n"
+      "SPINDL/RPM,6000,CLW\nRAPID\nGOTO/10,10,50\nFEDRAT/MMPM,800\nGOTO/10,10,-3\nFINI\n";
+  CHECK(
+      test::post_in_fresh_dir(bare, absolute("trunnion-5axis"), "fr-msys-bare",
+                              [](const diagnostic& d) { return d.level == severity::error; })
+          .diagnostics ==
+      "job.cls:7:1: error: channel 1: machine 'trunnion-5axis' cannot reach this point: tool axis (0, 0, -1) "
+      "needs A180 C0 (A beyond -120..120)\nGOTO/10,10,50\n^\n"
+      "job.cls:9:1: error: channel 1: machine 'trunnion-5axis' cannot reach this point: tool axis (0, 0, -1) "
+      "needs A180 C0 (A beyond -120..120)\nGOTO/10,10,-3\n^\n");
+}
+
+TEST_CASE("frames: by default NX MSYS points are written in the CL's MCS", "[post][multiaxis][frames]") {
+  // [program] cl_frame = "mcs" (the default): the work offset is the MCS's origin and the points
+  // and tool axes go out as the CL gives them, whatever MSYS says of where the MCS lies.
+  const std::string flat =
+      "PARTNO MSYS FLAT\nMSYS/5,0,0,0,1,0,1,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\n"
+      "FEDRAT/MMPM,800\nRAPID\nGOTO/0,0,50,0,0,1\nGOTO/10,20,3\nFINI\n";
+  const test::posted p = test::post_in_fresh_dir(flat, load_machine("rotary-4axis"), "fr-mcs-flat");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  CHECK(p.files.at("MSYS_FLAT.nc").find("G1 X10. Y20. Z3. F800.") != std::string::npos);
+  // post --cl-frame absolute turns them for this post: (10,20,3) is the absolute (20,10,-3).
+  // (Its tool axis is the MCS's -Z, the absolute +Z.)
+  std::string turned = flat;
+  turned.replace(turned.find("GOTO/0,0,50,0,0,1"), 17, "GOTO/0,0,-50,0,0,-1");
+  const test::posted q = test::post_in_fresh_dir(turned, load_machine("rotary-4axis"), "fr-abs-flat", {}, {},
+                                                 [](post_options& o) { o.frame = cl_frame::absolute; });
+  REQUIRE(q.ok);
+  CHECK(q.files.at("MSYS_FLAT.nc").find("G1 X20. Y10. Z-3. F800.") != std::string::npos);
+  // On a lathe in the MCS: posted (turned, a lathe's MSYS is refused).
+  const std::string lathe =
+      "PARTNO L\nMSYS/0,0,0,1,0,0,0,-1,0\nTURRET/1,1\nSPINDL/RPM,1000,CLW\n"
+      "FEDRAT/0.2,MMPR\nGOTO/20,0,0\nGOTO/20,0,-5\nFINI\n";
+  CHECK(test::post_in_fresh_dir(lathe, load_machine("fanuc-0itd-twin"), "fr-mcs-lathe").ok);
 }
 
 TEST_CASE("frames: MSYS and CSYS that are not rigid, or whose meaning is not known, stop the post",
           "[post][frames]") {
-  const machine mill = load_machine("rotary-4axis");
+  const machine mill = absolute("rotary-4axis");
   const std::string start = "LOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\nRAPID\nGOTO/0,0,50\n";
   CHECK(test::post_in_fresh_dir("PARTNO F\nMSYS/0,0,0,2,0,0,0,1,0\n" + start + "FINI\n", mill, "fr-bad1")
             .diagnostics ==
@@ -818,7 +867,7 @@ TEST_CASE("frames: MSYS and CSYS that are not rigid, or whose meaning is not kno
   // A lathe's CL frame is its own: a turned MCS there is not guessed at.
   CHECK(test::post_in_fresh_dir("PARTNO L\nMSYS/0,0,0,1,0,0,0,-1,0\nTURRET/1,1\nSPINDL/RPM,1000,CLW\n"
                                 "FEDRAT/0.2,MMPR\nGOTO/20,0,0\nGOTO/20,0,-5\nFINI\n",
-                                load_machine("fanuc-0itd-twin"), "fr-lathe")
+                                absolute("fanuc-0itd-twin"), "fr-lathe")
             .diagnostics ==
         "job.cls:2:1: error: channel 1: MSYS/0,0,0,1,0,0,0,-1,0: a turned MCS on a lathe channel (X in "
         "diameter), "
