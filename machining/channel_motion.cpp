@@ -344,7 +344,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
       return fail(
           fmt::format("CIRCLE TIMES {}: the move must end where it starts, or above or below it along the "
                       "circle's axis, to be written as full turns (it ends {} mm away in the circle's plane)",
-                      a.turns, gap));
+                      a.turns, kin::number_text(gap)));
     // In polar interpolation (G12.1) the arc is in the X-C plane the control builds; whether it
     // takes a Z word into a helix there is not verified in a control's manual.
     if (polar_ && std::max({std::abs(rise.x), std::abs(rise.y), std::abs(rise.z)}) * scale_ > y_tolerance)
