@@ -251,6 +251,12 @@ struct tool_def {
   /// False: the tool cuts with no spindle turning (a burnishing roller, a scribe, a probe
   /// moved at feed): a feed move with no spindle started is no error for it.
   bool spindle = true;
+  /// The speed the tool cuts at when the CL gives no SPINDL between its call and its first
+  /// move (NX writes its speeds into its own post, not the CLSF): rpm, or a surface speed
+  /// (m/min, G96 on a lathe's turning tool, rpm from the diameter for a rotating one).
+  std::optional<double> rpm{};
+  std::optional<double> surface_speed{};
+  bool ccw = false;  ///< direction = "ccw" (M4); "cw" (M3) by default
 };
 
 /// The part transfer from the main to the sub spindle (CL TRANSFER/GRIP, TRANSFER/RELEASE):

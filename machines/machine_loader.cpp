@@ -486,10 +486,40 @@ void read_transfer(const table_reader& root, machine& m) {
   m.transfer.has_release_after_cutoff = r.read_fixed("release_after_cutoff", m.transfer.release_after_cutoff);
 }
 
+// [[tool]] rpm or surface_speed, and direction: the speed a CL without SPINDL cuts at.
+void read_tool_speed(const table_reader& r, tool_def& d) {
+  double v = 0;
+  if (r.read("rpm", v)) {
+    if (!(v > 0)) r.fail(*r.find("rpm"), fmt::format("tool.rpm must be > 0, not {}", v));
+    d.rpm = v;
+  }
+  if (r.read("surface_speed", v)) {
+    if (!(v > 0)) r.fail(*r.find("surface_speed"), fmt::format("tool.surface_speed must be > 0, not {}", v));
+    if (d.rpm)
+      r.fail(*r.find("surface_speed"),
+             fmt::format("tool {}: give rpm or surface_speed, not both (which would the spindle run at?)",
+                         d.number));
+    d.surface_speed = v;
+  }
+  std::string direction;
+  if (r.read("direction", direction)) {
+    if (direction != "cw" && direction != "ccw")
+      r.fail(*r.find("direction"), fmt::format("tool.direction must be cw or ccw, not '{}'", direction));
+    if (!d.rpm && !d.surface_speed)
+      r.fail(*r.find("direction"),
+             fmt::format("tool {}: a direction without a speed (rpm or surface_speed)", d.number));
+    d.ccw = direction == "ccw";
+  }
+  if ((d.rpm || d.surface_speed) && !d.spindle)
+    r.fail(*r.find(d.rpm ? "rpm" : "surface_speed"),
+           fmt::format("tool {}: a speed for a tool marked spindle = false", d.number));
+}
+
 void read_tools(const table_reader& root, machine& m) {
   for (const toml::table* t : root.tables("tool")) {
     table_reader r(*t, "tool", root.source(),
-                   {"number", "channel", "kind", "name", "length", "diameter", "diameter_offset", "spindle"});
+                   {"number", "channel", "kind", "name", "length", "diameter", "diameter_offset", "spindle",
+                    "rpm", "surface_speed", "direction"});
     tool_def d;
     r.require("number");
     r.read("number", d.number);
@@ -521,6 +551,7 @@ void read_tools(const table_reader& root, machine& m) {
       d.diameter_offset = d_register;
     }
     r.read("spindle", d.spindle);
+    read_tool_speed(r, d);
     for (const tool_def& earlier : m.tools)
       if (earlier.number == d.number && earlier.channel == d.channel)
         r.fail(*r.find("number"),

@@ -190,6 +190,17 @@ void channel_writer::cycle_point(const vec3& p, int line) {
       !(c_mode_ && has_y_))
     return error(line, fmt::format("CYCLE/{} at X {} Y {}: off the spindle centre line; {}", c.type, p.x, p.y,
                                    off_centre_hole_needs()));
+  // A tool pointing -Z drills towards +Z: on a machining centre without rotary axes, on the
+  // main spindle and on a spindle whose CL Z is its own (reverse_z) that is away from the part,
+  // and the planes (R, retract) would lie inside it. Only a spindle the CL sees in the machine's
+  // Z facing the other way (a sub spindle without reverse_z) is drilled so.
+  if (axis_.z < 0 && !cross && !tilted &&
+      ((!chain_ && part_stands_still()) ||
+       (work_ && (work_->reverse_z || (!m_.spindles.empty() && work_ == &m_.spindles.front())))))
+    return error(line,
+                 fmt::format("CYCLE/{} with the tool axis ({:g},{:g},{:g}): the tool would drill towards +Z, "
+                             "away from the {} spindle's part; a hole is drilled down the tool towards -Z",
+                             c.type, axis_.x, axis_.y, axis_.z, work_ ? work_->name : "workpiece"));
   hole h;
   h.x = at.x;
   h.y = at.y;

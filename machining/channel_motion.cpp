@@ -35,7 +35,24 @@ void channel_writer::cut_feed(text_buffer& out, int line) {
 }
 
 bool channel_writer::tool_along_z(int line) {
-  if (std::abs(axis_.z) >= 0.9999) return true;  // the drilling cycles' rule too
+  if (axis_.z >= 0.9999) return true;  // the drilling cycles' rule too
+  // A machining centre without rotary axes holds its tool pointing down: a CL axis of -Z is a
+  // tool pointing up, and every point written for it lies on the wrong side of the cut (an
+  // MCS with Z down turned into the absolute frame, a CAM frame upside down). A lathe's tool
+  // axis says nothing of the turret: it passes.
+  if (axis_.z <= -0.9999 && (chain_ || !part_stands_still())) return true;
+  if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y &&
+      refused_axis_->z == axis_.z)
+    return false;
+  if (axis_.z <= -0.9999) {
+    refused_axis_ = axis_;
+    error(line,
+          fmt::format("tool axis ({:g},{:g},{:g}) points the tool up, and machine '{}' gives channel {} "
+                      "no rotary axes to turn it: the points were written for a tool coming from "
+                      "below (is the CL's frame turned? NX MSYS: [program] cl_frame, post --cl-frame)",
+                      axis_.x, axis_.y, axis_.z, m_.name, ch_.number));
+    return false;
+  }
   if (refused_axis_ && refused_axis_->x == axis_.x && refused_axis_->y == axis_.y &&
       refused_axis_->z == axis_.z)
     return false;
@@ -208,8 +225,9 @@ bool channel_writer::spindle_turning(int line) {
 std::string channel_writer::not_started(const spindle_def& s, bool job) const {
   return fmt::format(
       "feed move with the {} spindle not started: {} (a turning tool would be driven into a still "
-      "part, a still cutter into the work); a tool that cuts with no spindle turning is marked "
-      "spindle = false in the machine's [[tool]] table",
+      "part, a still cutter into the work); give the tool's speed in the machine's [[tool]] table "
+      "(rpm or surface_speed) when the CL has none, or mark a tool that cuts with no spindle turning "
+      "spindle = false there",
       s.name,
       job ? "no channel gives a SPINDL with a speed for it in this job"
           : "no SPINDL with a speed in this channel before the cut");
@@ -231,6 +249,8 @@ void channel_writer::motion(const motion_event& mv, int line) {
     case motion_kind::go_to:
     case motion_kind::delta:
       if ((tool_ < 0 || cam_tool_due_) && !start_tool(line)) return no_tool(line);
+      if (table_speed_due_) [[unlikely]]
+        table_speed(line);
       if (!selected_) select_spindle(work_);  // a section that moves before its SPINDL
       if (spindle_held_ || spindle_kept_) resume_spindle(line);
       if (cycle_refused_) {
@@ -276,6 +296,8 @@ void channel_writer::motion(const motion_event& mv, int line) {
 
 void channel_writer::arc(const arc_event& cl, int line) {
   if ((tool_ < 0 || cam_tool_due_) && !start_tool(line)) return no_tool(line);
+  if (table_speed_due_) [[unlikely]]
+    table_speed(line);
   // In a tilted working plane the arc is written in the plane's frame (G17 there when its
   // axis is the plane's Z); pos_ and the pose stay the CL's.
   const bool in_plane = chain_ && plane_on_;

@@ -52,6 +52,41 @@ void channel_writer::select_spindle(const spindle_def* s) {
   selected_ = s;  // also one without a code: the moves need not ask again
 }
 
+void channel_writer::spindle_record(const spindle_event& d, int line) {
+  if (ev_) [[unlikely]] {
+    const event_point p =
+        d.mode == spindle_mode::off ? event_point::spindle_stop : event_point::spindle_start;
+    // The copy of a balance cut writes no spindle block (spindle_block): no event either.
+    const bool around = d.mode != spindle_mode::orient && d.mode != spindle_mode::lock && !balance_copy_;
+    template_args a;
+    a.rpm = d.speed;
+    if (around) user_blocks(p, false, a);
+    spindle(d, line);
+    if (around) user_blocks(p, true, a);
+  } else
+    spindle(d, line);
+}
+
+void channel_writer::table_speed(int line) {
+  // The tool's first move, and the CL gave no SPINDL since its call (NX operation files carry
+  // none): the speed of the machine's [[tool]] table, as if the CL had given it right before
+  // this move, so the comparison with the CL and every later check read the same start.
+  table_speed_due_ = false;
+  const tool_def* t = m_.tool(ch_.number, tool_);
+  if (!t || !(t->rpm || t->surface_speed)) return;
+  event e;
+  e.line = line;
+  e.column = line == line_ ? column_ : 0;
+  spindle_event s;
+  s.mode = t->rpm ? spindle_mode::rpm : spindle_mode::smm;
+  s.speed = t->rpm ? *t->rpm : *t->surface_speed;
+  s.dir = t->ccw ? rotation::ccw : rotation::cw;
+  spindle_record(s, line);
+  e.data = std::move(s);
+  if (observer_ && errors_ == 0) [[unlikely]]
+    observer_->record(e, false);
+}
+
 void channel_writer::tool_data(const tool_data_event& t) {
   if (t.major != "TLDATA" || t.words.empty()) return;
   const std::string& w = t.words.front();

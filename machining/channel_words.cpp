@@ -256,6 +256,8 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   next_diameter_.reset();
   reach_ = next_reach_;
   next_reach_.reset();
+  const tool_def* table = m_.tool(ch_.number, tool);
+  table_speed_due_ = table && (table->rpm || table->surface_speed);
   tool_ = tool;
   tool_line_ = line;
   tool_word_ = word;

@@ -353,19 +353,8 @@ void channel_writer::process_event(const event& e, bool both) {
           arc(d, e.line);
         } else if constexpr (std::is_same_v<T, spindle_event>) {
           if (tool_ < 0 || cam_tool_due_) start_tool(e.line);  // a job that starts without a tool call
-          if (ev_) [[unlikely]] {
-            const event_point p =
-                d.mode == spindle_mode::off ? event_point::spindle_stop : event_point::spindle_start;
-            // The copy of a balance cut writes no spindle block (spindle_block): no event either.
-            const bool around =
-                d.mode != spindle_mode::orient && d.mode != spindle_mode::lock && !balance_copy_;
-            template_args a;
-            a.rpm = d.speed;
-            if (around) user_blocks(p, false, a);
-            spindle(d, e.line);
-            if (around) user_blocks(p, true, a);
-          } else
-            spindle(d, e.line);
+          table_speed_due_ = false;                            // the CL gives the tool's speed itself
+          spindle_record(d, e.line);
         } else if constexpr (std::is_same_v<T, feed_event>)
           feed(d, e.line);
         else if constexpr (std::is_same_v<T, tool_event>) {

@@ -150,6 +150,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void motion(const motion_event& m, int line);
   void arc(const arc_event& a, int line);
   void spindle(const spindle_event& s, int line);
+  /// A SPINDL of the CL (or of the tool table), with the [events] blocks around it.
+  void spindle_record(const spindle_event& s, int line);
+  /// At a tool's first move without a SPINDL since its call: the [[tool]] table's speed.
+  void table_speed(int line);
   /// The spindle a SPINDL without a spindle word turns: the workpiece spindle, or the live one
   /// for a milling tool or an off-centre drill (machining/channel_spindle.cpp); nullptr after an
   /// error.
@@ -655,6 +659,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   int errors_ = 0;            ///< errors this writer reported
   /// Tool diameters (mm) from TLDATA/MILL or CUTTER: of the tool in the spindle, of the next.
   std::optional<double> diameter_, next_diameter_;
+  /// The tool in the spindle has a [[tool]] speed and the CL gave no SPINDL since its call.
+  bool table_speed_due_ = false;
   /// Tool lengths (mm) from TLDATA/MILL or DRILL: the deepest hole the tool can drill.
   std::optional<double> reach_, next_reach_;
   /// The rpm a surface speed gives a rotating tool of the machine's tool or the CL's diameter;

@@ -915,3 +915,26 @@ TEST_CASE("frames: a turned SolidWorks CSYS posts its world points, each move al
       "the tool along its Z; a point under another axis is in a frame twinpost cannot tell\n"
       "GOTO/78.,35,-12,0,0,1\n^\n");
 }
+
+TEST_CASE("frames: a tool axis of -Z on a machining centre without rotary axes is refused",
+          "[post][multiaxis][frames]") {
+  // The machine holds its tool pointing down: points written for a tool pointing up (an MCS with
+  // Z down turned into the absolute frame, its implied axis with it) would be cut from below.
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/vmc3.toml");
+  m.program.frame = cl_frame::absolute;
+  const std::string bare =
+      "PARTNO BARE\nMSYS/0,0,0,1,0,0,0,-1,0\nTLDATA/MILL,10,0,100,0,0\nLOADTL/1\n"
+      "SPINDL/RPM,6000,CLW\nRAPID\nGOTO/10,10,-50\nFEDRAT/MMPM,800\nGOTO/10,10,2\nFINI\n";
+  CHECK(test::post_in_fresh_dir(bare, m, "fr-vmc-up",
+                                [](const diagnostic& d) { return d.level == severity::error; })
+            .diagnostics ==
+        "job.cls:7:1: error: channel 1: tool axis (0,0,-1) points the tool up, and machine 'vmc3' gives "
+        "channel 1 "
+        "no rotary axes to turn it: the points were written for a tool coming from below (is the CL's frame "
+        "turned? NX MSYS: [program] cl_frame, post --cl-frame)\nGOTO/10,10,-50\n^\n");
+  // In the MCS (the default) the same file is a tool along +Z, from above.
+  m.program.frame = cl_frame::mcs;
+  const test::posted p = test::post_in_fresh_dir(bare, m, "fr-vmc-mcs");
+  INFO(p.diagnostics);
+  CHECK(p.ok);
+}

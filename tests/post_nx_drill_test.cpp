@@ -135,3 +135,18 @@ TEST_CASE("NX: FEDTO is a distance from the hole's point along the tool axis", "
         "240) to Z -1.5, but tool 5 is 30 mm long (TLDATA): its holder would drive into the part\n"
         "GOTO/66.0000,0.0000,240.0000,0.0000000,0.0000000,1.0000000\n^\n");
 }
+
+TEST_CASE("a hole drilled towards +Z on the main spindle or a machining centre is refused",
+          "[post][drill][nx]") {
+  // The tool axis 0,0,-1 would put the R and retract planes inside the part (NX reads them along
+  // the tool): refused where the tool can only drill towards -Z.
+  const std::string lathe =
+      "TOOL PATH/CENTRE_DRILL,TOOL,DRILL-10\nTLDATA/DRILL,10.0000,0.0000,90.0000,118.0000,60.0000\n"
+      "LOAD/TOOL,3\nSPINDL/RPM,1000,CLW\nCYCLE/DRILL,RAPTO,2.0000,FEDTO,-30.0000,MMPR,0.1000\n"
+      "GOTO/0.0000,0.0000,5.0000,0.0000000,0.0000000,-1.0000000\nCYCLE/OFF\nEND-OF-PATH\n";
+  CHECK(errors_of(lathe, "fanuc-0itd-twin", "up-lathe") ==
+        "job.cls:6:1: error: channel 1: CYCLE/DRILL with the tool axis (0,0,-1): the tool would drill "
+        "towards +Z, "
+        "away from the main spindle's part; a hole is drilled down the tool towards -Z\n"
+        "GOTO/0.0000,0.0000,5.0000,0.0000000,0.0000000,-1.0000000\n^\n");
+}

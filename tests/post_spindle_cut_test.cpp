@@ -35,13 +35,15 @@ const std::string no_spindle =
 
 const std::string not_started_in_channel =
     "feed move with the main spindle not started: no SPINDL with a speed in this channel before the cut (a "
-    "turning tool would be driven into a still part, a still cutter into the work); a tool that cuts with no "
-    "spindle turning is marked spindle = false in the machine's [[tool]] table";
+    "turning tool would be driven into a still part, a still cutter into the work); give the tool's speed in "
+    "the machine's [[tool]] table (rpm or surface_speed) when the CL has none, or mark a tool that cuts with "
+    "no "
+    "spindle turning spindle = false there";
 const std::string not_started_in_job =
     "feed move with the main spindle not started: no channel gives a SPINDL with a speed for it in this job "
-    "(a "
-    "turning tool would be driven into a still part, a still cutter into the work); a tool that cuts with no "
-    "spindle turning is marked spindle = false in the machine's [[tool]] table";
+    "(a turning tool would be driven into a still part, a still cutter into the work); give the tool's speed "
+    "in the machine's [[tool]] table (rpm or surface_speed) when the CL has none, or mark a tool that cuts "
+    "with no spindle turning spindle = false there";
 
 }  // namespace
 
@@ -106,6 +108,54 @@ TEST_CASE("a tool the tool table says needs no spindle cuts without one", "[post
   CHECK(
       test::machine_error_of(test::machine_head + "[codes]\ncutcom_offset = \"d\"\n" + test::two_channels) ==
       "m.toml:7:17: error: codes.cutcom_offset must be \"tool\", \"cutcom\" or \"table\", not \"d\"");
+}
+
+TEST_CASE("a CL without SPINDL cuts at the tool table's speed", "[post][spindle]") {
+  // NX writes its speeds into its own post, not the CLSF: [[tool]] rpm or surface_speed (with
+  // direction) starts the spindle before the tool's first move when the CL gives no SPINDL
+  // since the tool call; a SPINDL of the CL wins.
+  machine m = load_machine("rotary-4axis");
+  m.tools.push_back({1, 0, "mill"});
+  m.tools.back().rpm = 2400;
+  CHECK(
+      program_of(no_spindle, m, "ts-rpm") ==
+      "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS2400 M3\nG0 A0.\n"
+      "G0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
+  // 120 m/min on a 10 mm cutter (TLDATA), turning CCW: S3820 M4.
+  m.tools.back().rpm.reset();
+  m.tools.back().surface_speed = 120;
+  m.tools.back().ccw = true;
+  const std::string with_tldata =
+      "PARTNO NS\nUNITS/MM\nTLDATA/MILL,10,0,75,0,0\nLOADTL/1\nFEDRAT/500,MMPM\n"
+      "RAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n";
+  CHECK(program_of(with_tldata, m, "ts-smm").find("\nG54\nS3820 M4\nG0 A0.\n") != std::string::npos);
+  // The CL's own SPINDL after the tool call wins.
+  const std::string own = program_of(
+      "PARTNO NS\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/500,MMPM\n"
+      "RAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n",
+      m, "ts-own");
+  CHECK(own.find("S1000 M3") != std::string::npos);
+  CHECK(own.find("S3820") == std::string::npos);
+  // The keys as the machine file gives them, and what is refused.
+  const std::string tool = "[[tool]]\nnumber = 4\nkind = \"mill\"\n";
+  const machine read = parse_machine(
+      test::machine_head + test::two_channels + tool + "surface_speed = 90\ndirection = \"ccw\"\n", "t.toml");
+  REQUIRE(read.tools.size() == 1);
+  CHECK(read.tools[0].surface_speed == 90.0);
+  CHECK(read.tools[0].ccw);
+  CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool +
+                               "rpm = 800\nsurface_speed = 90\n") ==
+        "m.toml:16:17: error: tool 4: give rpm or surface_speed, not both (which would the spindle run at?)");
+  CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool + "rpm = 0\n") ==
+        "m.toml:15:7: error: tool.rpm must be > 0, not 0");
+  CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool + "direction = \"cw\"\n") ==
+        "m.toml:15:13: error: tool 4: a direction without a speed (rpm or surface_speed)");
+  CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool +
+                               "rpm = 800\ndirection = \"up\"\n") ==
+        "m.toml:16:13: error: tool.direction must be cw or ccw, not 'up'");
+  CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool +
+                               "spindle = false\nrpm = 800\n") ==
+        "m.toml:16:7: error: tool 4: a speed for a tool marked spindle = false");
 }
 
 TEST_CASE("a surface speed for a rotating tool is its rpm from the diameter", "[post][spindle]") {
