@@ -29,6 +29,7 @@ constexpr double peck_clearance = 0.5;
 /// units along the spindle axis, `into` the direction of drilling.
 struct channel_writer::hole {
   double x = 0, y = 0;
+  double top = 0;           // the hole's point (the GOTO) along Z
   double into = -1;         // -1: drilling towards -Z
   double clear = 0;         // the R plane (RAPTO, CLEAR above the top)
   double initial = 0;       // the retract plane (RTRCTO above the top; else the R plane)
@@ -207,6 +208,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   // The tool looks down -Z (axis +Z): it drills towards -Z (in a plane: its Z is the tool's).
   h.into = axis_.z < 0 && !cross && !tilted ? 1.0 : -1.0;
   const double top = at.z;
+  h.top = top;
   h.clear = top - h.into * cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
   const std::optional<double> fedto = cycle_param(c, "FEDTO");
   std::optional<double> bottom;
@@ -298,10 +300,39 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   expanded_hole(h, line);
 }
 
+void channel_writer::to_hole(const hole& h, int line) {
+  // From the last hole's retract plane to this one's: a rapid that climbs or drops while it
+  // travels cuts the corner of whatever stands between (a boss, a clamp, the step between two
+  // holes' tops). Up first when this hole's plane lies further out, across at the higher of the
+  // two, down last, as NX's and Fusion's posts move between G98 cycles. In a turned frame
+  // (cross holes, tilted planes) the points are not the CL's: one move, as before.
+  // Between two holes, where the tool surely stands on the last one's retract plane (the CL's
+  // position is then that hole's point). Before the first hole the CL's own moves bring the
+  // tool (or the tool call's approach does).
+  const bool plain = !radial_ok_ && !side_hole_ && !plane_hole_;
+  const bool after_hole = hole_exit_ && kin::distance(pos_, hole_point_) <= 1e-9;
+  const vec3 from = after_hole ? *hole_exit_ : pos_;
+  if (after_hole && !homed_ && pending_offset_.empty() && plain &&
+      (std::abs(from.x - h.x) > 1e-9 || std::abs(from.y - h.y) > 1e-9)) {
+    const double out = (from.z - h.initial) * h.into;  // > 0: this hole's plane lies further out
+    if (out > 1e-9)
+      linear(true, from.x, from.y, h.initial, line);
+    else if (out < -1e-9)
+      linear(true, h.x, h.y, from.z, line);
+  }
+  linear(true, h.x, h.y, h.initial, line);
+  // Every hole ends on its retract plane.
+  if (plain) {
+    hole_exit_ = vec3{h.x, h.y, h.initial};
+    hole_point_ = {h.x, h.y, h.top};
+  } else
+    hole_exit_.reset();
+}
+
 void channel_writer::expanded_hole(const hole& h, int line) {
   // Rapid to the retract plane and the R plane, feed to depth (in pecks), rapid back out to
   // the retract plane: moves every control reads.
-  linear(true, h.x, h.y, h.initial, line);
+  to_hole(h, line);
   if (h.initial != h.clear) linear(true, h.x, h.y, h.clear, line);
   const double back = peck_clearance / cl_mm_;
   if (h.first > 0) {
@@ -375,7 +406,7 @@ void channel_writer::cycle_block(const hole& h, const std::string& code, double 
 void channel_writer::canned_hole(const hole& h, const std::string& code, int line) {
   if (h.dwell > 0 && !fits('P', std::round(h.dwell * 1000), 0)) return;
   if (h.first > 0 && !fits('Q', h.first * scale_, axis_style_.decimals)) return;
-  linear(true, h.x, h.y, h.initial, line);  // the cycle starts on the initial level
+  to_hole(h, line);  // the cycle starts on the initial level
   cycle_block(h, code, h.first, 0, line);
 }
 
@@ -400,7 +431,7 @@ void channel_writer::tap_hole(const hole& h, int line) {
     const bool ccw = last_speed_->dir == rotation::ccw;
     const int forward = ccw ? spindle_->ccw : spindle_->cw;
     const int reverse = ccw ? spindle_->cw : spindle_->ccw;
-    linear(true, h.x, h.y, h.initial, line);
+    to_hole(h, line);
     if (h.initial != h.clear) linear(true, h.x, h.y, h.clear, line);
     for (const auto& [z, m] : {std::pair{h.bottom, reverse}, std::pair{h.clear, forward}}) {
       text_buffer& b = out_.open_block();
@@ -428,7 +459,7 @@ void channel_writer::tap_hole(const hole& h, int line) {
                                    "machine '{}' gives no left-hand tapping cycle (cycles.tap_left_code)",
                                    m_.name));
   const bool was_per_rev = per_rev_;
-  linear(true, h.x, h.y, h.initial, line);
+  to_hole(h, line);
   feed_mode(true);
   if (k.tap == "rigid" && !k.rigid_code.empty())
     out_.block(fmt::format("{} S{}", k.rigid_code, format_nc_number(last_speed_->speed, {0, false})));

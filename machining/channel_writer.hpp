@@ -202,6 +202,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// not the CSYS's Z.
   bool csys_axis_fits(const event& e);
   struct hole;
+  /// To the hole's retract plane: up first, across, down last.
+  void to_hole(const hole& h, int line);
   /// Plain moves: rapid to the retract and R planes, feed (in pecks), dwell, rapid out.
   void expanded_hole(const hole& h, int line);
   /// The machine's canned cycle `code` ([cycles]) for a drilled hole.
@@ -661,6 +663,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::optional<double> diameter_, next_diameter_;
   /// The tool in the spindle has a [[tool]] speed and the CL gave no SPINDL since its call.
   bool table_speed_due_ = false;
+  /// After a hole: the retract plane the tool stands on, and the hole's CL point (pos_ then).
+  std::optional<vec3> hole_exit_;
+  vec3 hole_point_{};
   /// Tool lengths (mm) from TLDATA/MILL or DRILL: the deepest hole the tool can drill.
   std::optional<double> reach_, next_reach_;
   /// The rpm a surface speed gives a rotating tool of the machine's tool or the CL's diameter;

@@ -114,7 +114,7 @@ TEST_CASE("NX: FEDTO is a distance from the hole's point along the tool axis", "
   CHECK(blocks(head + "CYCLE/DRILL,RAPTO,3.0000,FEDTO,-1.5000,RTRCTO,10.0000,MMPM,250.0000\n" + holes,
                "rotary-4axis", "csink") ==
         "T05 M6\nG54\nS900 M3\nG0 A0.\nG0 X66. Y0.\nG0 G43 H5 X66. Y0. Z250. A0.\n"
-        "G98 G81 X66. Y0. Z238.5 R243. F250.\nG80\nG0 Z250.\nX-55. Z248.5\n"
+        "G98 G81 X66. Y0. Z238.5 R243. F250.\nG80\nG0 Z250.\nX-55.\nZ248.5\n"
         "G98 G81 X-55. Y0. Z237. R241.5 F250.\nG80\nG0 Z248.5\nM9\nM5\nG91 G28 Z0.\nG90\nG49\n");
   // A hole deeper than the tool is long (TLDATA's third number) is refused at each hole.
   CHECK(
@@ -149,4 +149,25 @@ TEST_CASE("a hole drilled towards +Z on the main spindle or a machining centre i
         "towards +Z, "
         "away from the main spindle's part; a hole is drilled down the tool towards -Z\n"
         "GOTO/0.0000,0.0000,5.0000,0.0000000,0.0000000,-1.0000000\n^\n");
+}
+
+TEST_CASE("between holes at different heights the tool goes up, across, then down", "[post][drill][nx]") {
+  // Holes at Z0, on a boss at Z50, and at Z0 again, each with its retract plane 10 above its
+  // point: a rapid that climbed while it travelled would cut the boss's corner.
+  const std::string cl = nx_head +
+                         "CYCLE/DRILL,RAPTO,3.0000,FEDTO,-10.0000,RTRCTO,10.0000,MMPM,250.0000\n"
+                         "GOTO/0.0000,0.0000,0.0000,0.0000000,0.0000000,1.0000000\n"
+                         "GOTO/100.0000,0.0000,50.0000\nGOTO/200.0000,0.0000,0.0000\nCYCLE/OFF\n"
+                         "END-OF-PATH\n";
+  CHECK(blocks(cl, "rotary-4axis", "steps4") ==
+        "T03 M6\nG54\nS1200 M3\nG0 A0.\nG0 X0. Y0.\nG0 G43 H3 X0. Y0. Z10. A0.\n"
+        "G98 G81 X0. Y0. Z-10. R3. F250.\nG80\nG0 Z10.\nZ60.\nX100.\nG98 G81 X100. Y0. Z40. R53. F250.\nG80\n"
+        "G0 Z60.\nX200.\nZ10.\nG98 G81 X200. Y0. Z-10. R3. F250.\nG80\nG0 Z10.\nM9\nM5\nG91 G28 "
+        "Z0.\nG90\nG49\n");
+  // As moves on the trunnion: the same order.
+  CHECK(
+      blocks(cl, "trunnion-5axis", "steps5") ==
+      "T03 M6\nG54\nS1200 M3\nG0 A0. C0.\nG0 X0. Y0.\nG0 G43.4 H3 X0. Y0. Z10. A0. C0.\nZ3.\nG1 Z-10. F250.\n"
+      "G0 Z10.\nZ60.\nX100.\nZ53.\nG1 Z40.\nG0 Z60.\nX200.\nZ10.\nZ3.\nG1 Z-10.\nG0 Z10.\nM9\nM5\nG91 G28 "
+      "Z0.\nG90\nG49\n");
 }
