@@ -59,6 +59,26 @@ void channel_writer::frame(const coordsys_event& c, int line) {
     if (!why.empty())
       return error(line, fmt::format("MSYS/{}: {}; only a rigid turn of the points is posted",
                                      fmt::join(v, ","), why));
+    // One program has one work offset. A second MCS elsewhere (another setup face, a datum on
+    // a boss) would be cut in the first one's offset: which offset the machinist gives it the
+    // CL does not say. In the absolute frame the MCS may turn (3+2 setups about one origin).
+    if (!first_msys_) {
+      first_msys_ = v;
+      first_msys_line_ = line;
+    } else {
+      double moved = 0, turned = 0;
+      for (std::size_t i = 0; i < 3; ++i) moved = std::max(moved, std::abs(v[i] - (*first_msys_)[i]));
+      for (std::size_t i = 3; i < 9; ++i) turned = std::max(turned, std::abs(v[i] - (*first_msys_)[i]));
+      if (moved > 1e-4 || (frame_ == cl_frame::mcs && turned > 1e-6))
+        return error(
+            line, fmt::format("MSYS/{}: a second MCS, {} the one of line {}: the program has one work "
+                              "offset, and which offset the machinist gives this MCS the CL does not "
+                              "say; post its operations as a job of their own{}",
+                              fmt::join(v, ","), moved > 1e-4 ? "away from" : "turned from", first_msys_line_,
+                              moved > 1e-4 ? ""
+                                           : " (or write the program in the absolute frame, "
+                                             "[program] cl_frame = \"absolute\", where an MCS may turn)"));
+    }
     // Written in the MCS ([program] cl_frame, post --cl-frame): the points as given; the work
     // offset is the MCS's origin, and where the MCS lies is the setup's business.
     if (frame_ == cl_frame::mcs) return;
@@ -79,6 +99,13 @@ void channel_writer::frame(const coordsys_event& c, int line) {
                    fmt::format("MSYS/{}: a turned MCS on a lathe channel (X in diameter), whose CL frame "
                                "is the lathe's own; twinpost turns the points of an MCS on a mill only",
                                fmt::join(v, ",")));
+    // The holes of a cycle in force were read in the frame before (the cycle's levels with them).
+    if (cycle_)
+      return error(line,
+                   fmt::format("MSYS/{} turns the MCS while CYCLE/{} (line {}) is in force: whether the "
+                               "cycle's levels turn with the points is not known (UNVERIFIED); end the "
+                               "cycle (CYCLE/OFF) before the MSYS",
+                               fmt::join(v, ","), cycle_->type, cycle_line_));
     msys_ = std::array<vec3, 3>{x, y, z};
     msys_line_ = line;
     return;

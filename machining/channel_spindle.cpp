@@ -94,7 +94,13 @@ void channel_writer::tool_data(const tool_data_event& t) {
   if (const std::optional<double> d = tldata_diameter(t))
     (after_call_ ? diameter_ : next_diameter_) = *d * cl_mm_;
   // Its length: how deep a hole the tool can drill before its holder meets the part.
-  if (const std::optional<double> l = tldata_length(t)) (after_call_ ? reach_ : next_reach_) = *l * cl_mm_;
+  if (const std::optional<double> l = tldata_length(t)) {
+    if (after_call_) {
+      reach_ = *l * cl_mm_;
+      if (tool_ >= 0) reach_of_[tool_] = *reach_;
+    } else
+      next_reach_ = *l * cl_mm_;
+  }
   const tool_kind k = w == "MILL"                                       ? tool_kind::mill
                       : w == "DRILL"                                    ? tool_kind::drill
                       : (w == "TURN" || w == "GROOVE" || w == "THREAD") ? tool_kind::turn

@@ -254,7 +254,13 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   unstarted_judged_ = false;
   diameter_ = next_diameter_;
   next_diameter_.reset();
-  reach_ = next_reach_;
+  // A TLDATA before the call describes the tool; a tool called again without one keeps the
+  // length it had (NX writes TLDATA once per operation, a reload may come without).
+  if (next_reach_) reach_of_[tool] = *next_reach_;
+  if (const auto known = reach_of_.find(tool); known != reach_of_.end())
+    reach_ = known->second;
+  else
+    reach_.reset();
   next_reach_.reset();
   const tool_def* table = m_.tool(ch_.number, tool);
   table_speed_due_ = table && (table->rpm || table->surface_speed);

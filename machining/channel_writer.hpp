@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -618,6 +619,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// the identity.
   std::optional<std::array<vec3, 3>> msys_;
   int msys_line_ = 0;
+  std::optional<std::vector<double>> first_msys_;  ///< the job's first MSYS: its MCS is the work offset
+  int first_msys_line_ = 0;
   cl_frame frame_ = m_.program.frame;  ///< MSYS: the CL's MCS, or turned into the absolute frame
   vec3 cl_axis_{0, 0, 1};              ///< under MSYS: the tool axis in force, in the CL's (MCS) frame
   std::optional<vec3> csys_axis_;      ///< a turned SolidWorks CSYS's Z: the tool axis of its moves
@@ -668,6 +671,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   vec3 hole_point_{};
   /// Tool lengths (mm) from TLDATA/MILL or DRILL: the deepest hole the tool can drill.
   std::optional<double> reach_, next_reach_;
+  std::map<int, double> reach_of_;  ///< the TLDATA length each tool number was given
   /// The rpm a surface speed gives a rotating tool of the machine's tool or the CL's diameter;
   /// nullopt after the error.
   std::optional<double> tool_rpm(const spindle_event& s, const spindle_def& sp, int line);

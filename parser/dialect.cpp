@@ -10,7 +10,9 @@ dialect detect_dialect(std::string_view head) {
   if (has(head, "Pro/CLfile")) return dialect::creo;
   if (has(head, "$$*CATIA0") || has(head, "CATIA APT")) return dialect::catia;
   if (has(head, "APTCL-SPEC,MAKINO")) return dialect::makino;
-  if (has(head, "TOOL PATH/")) return dialect::nx;
+  // NX's record, at the start of a line: the words in a comment or a PPRINT ("$$ ops exported
+  // per TOOL PATH/ ...") must not make a generic file NX, whose FEDTO is read another way.
+  if (head.starts_with("TOOL PATH/") || has(head, "\nTOOL PATH/")) return dialect::nx;
   // UNIT/ (not UNITS/) is SolidWorks CAM's own spelling, in mm and in inch: an inch job with
   // no CSI_SET_ in its head would otherwise read FEDTO as a Z (a depth of .5 below a top at
   // Z2 drilled to Z.5).

@@ -938,3 +938,46 @@ TEST_CASE("frames: a tool axis of -Z on a machining centre without rotary axes i
   INFO(p.diagnostics);
   CHECK(p.ok);
 }
+
+TEST_CASE("frames: a second MCS in one job, and an MCS turned under a cycle, stop the post",
+          "[post][frames]") {
+  auto errors = [](const std::string& cl, const machine& m, const std::string& tag) {
+    return test::post_in_fresh_dir(cl, m, tag, [](const diagnostic& d) { return d.level == severity::error; })
+        .diagnostics;
+  };
+  const std::string op =
+      "LOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\nRAPID\nGOTO/0,0,5,0,0,1\nGOTO/0,0,-1\n";
+  // A datum on a boss at X50 Y50 Z40: its points would be cut in the first MCS's offset.
+  const std::string boss =
+      "PARTNO M\nMSYS/0,0,0,1,0,0,0,1,0\n" + op + "MSYS/50,50,40,1,0,0,0,1,0\n" + op + "FINI\n";
+  for (const cl_frame f : {cl_frame::mcs, cl_frame::absolute}) {
+    machine m = load_machine("trunnion-5axis");
+    m.program.frame = f;
+    CHECK(
+        errors(boss, m, "fr-second") ==
+        "job.cls:9:1: error: channel 1: MSYS/50,50,40,1,0,0,0,1,0: a second MCS, away from the one of line "
+        "2: "
+        "the program has one work offset, and which offset the machinist gives this MCS the CL does not say; "
+        "post its operations as a job of their own\nMSYS/50,50,40,1,0,0,0,1,0\n^\n");
+  }
+  // A side face's MCS (turned, same origin): an error in the MCS, turned in the absolute frame.
+  const std::string side =
+      "PARTNO M\nMSYS/0,0,0,1,0,0,0,1,0\n" + op + "MSYS/0,0,0,1,0,0,0,0,1\n" + op + "FINI\n";
+  CHECK(errors(side, load_machine("trunnion-5axis"), "fr-side") ==
+        "job.cls:9:1: error: channel 1: MSYS/0,0,0,1,0,0,0,0,1: a second MCS, turned from the one of line 2: "
+        "the "
+        "program has one work offset, and which offset the machinist gives this MCS the CL does not say; "
+        "post its "
+        "operations as a job of their own (or write the program in the absolute frame, [program] cl_frame = "
+        "\"absolute\", where an MCS may turn)\nMSYS/0,0,0,1,0,0,0,0,1\n^\n");
+  CHECK(errors(side, absolute("trunnion-5axis"), "fr-side-abs").empty());
+  // The holes of a cycle were read in the frame before the MSYS.
+  CHECK(
+      errors("PARTNO M\nLOADTL/1\nTLDATA/DRILL,8,0,75,118,40\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,20,0,0,1\n"
+             "CYCLE/DRILL,FEDTO,-5,RAPTO,3,MMPM,100\nGOTO/0,0,0\nMSYS/0,0,0,1,0,0,0,0,1\nGOTO/10,0,0\n"
+             "CYCLE/OFF\nFINI\n",
+             absolute("trunnion-5axis"), "fr-cycle") ==
+      "job.cls:9:1: error: channel 1: MSYS/0,0,0,1,0,0,0,0,1 turns the MCS while CYCLE/DRILL (line 7) is in "
+      "force: whether the cycle's levels turn with the points is not known (UNVERIFIED); end the cycle "
+      "(CYCLE/OFF) before the MSYS\nMSYS/0,0,0,1,0,0,0,0,1\n^\n");
+}

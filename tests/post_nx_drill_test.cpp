@@ -171,3 +171,36 @@ TEST_CASE("between holes at different heights the tool goes up, across, then dow
       "G0 Z10.\nZ60.\nX100.\nZ53.\nG1 Z40.\nG0 Z60.\nX200.\nZ10.\nZ3.\nG1 Z-10.\nG0 Z10.\nM9\nM5\nG91 G28 "
       "Z0.\nG90\nG49\n");
 }
+
+TEST_CASE("a tool called again keeps its TLDATA length", "[post][drill][nx]") {
+  // Tool 2 is 20 mm long (its TLDATA before its first call); called again with no TLDATA, the
+  // 50 mm hole is still too deep for it.
+  const std::string cl =
+      "TOOL "
+      "PATH/A,TOOL,D2\nTLDATA/DRILL,8.0000,0.0000,20.0000,118.0000,15.0000\nLOAD/TOOL,2\nSPINDL/"
+      "RPM,1200,CLW\n"
+      "CYCLE/DRILL,RAPTO,3.0000,FEDTO,-10.0000,MMPM,150.0000\nGOTO/0.0000,0.0000,0.0000,0.0000000,0.0000000,"
+      "1.0000000\nCYCLE/OFF\nEND-OF-PATH\nTOOL PATH/B,TOOL,D1\nTLDATA/DRILL,8.0000,0.0000,100.0000,118.0000,"
+      "80.0000\nLOAD/TOOL,1\nSPINDL/RPM,1200,CLW\nCYCLE/DRILL,RAPTO,3.0000,FEDTO,-50.0000,MMPM,150.0000\n"
+      "GOTO/50.0000,0.0000,0.0000,0.0000000,0.0000000,1.0000000\nCYCLE/OFF\nEND-OF-PATH\nTOOL "
+      "PATH/C,TOOL,D2\n"
+      "LOAD/TOOL,2\nSPINDL/RPM,1200,CLW\nCYCLE/DRILL,RAPTO,3.0000,FEDTO,-50.0000,MMPM,150.0000\n"
+      "GOTO/150.0000,0.0000,0.0000,0.0000000,0.0000000,1.0000000\nCYCLE/OFF\nEND-OF-PATH\n";
+  CHECK(errors_of(cl, "rotary-4axis", "reload") ==
+        "job.cls:21:1: error: channel 1: CYCLE/DRILL: the hole goes 50 mm below its top (the GOTO point, Z "
+        "0) to "
+        "Z -50, but tool 2 is 20 mm long (TLDATA): its holder would drive into the part\n"
+        "GOTO/150.0000,0.0000,0.0000,0.0000000,0.0000000,1.0000000\n^\n");
+  // "TOOL PATH/" in a comment does not make a generic file NX: FEDTO stays a Z there.
+  CHECK(errors_of(
+            "PARTNO P\n$$ ops exported per TOOL PATH/ from the CAM\nTLDATA/DRILL,8,0,100,118,80\nLOADTL/1\n"
+            "SPINDL/RPM,1200,CLW\nRAPID\nGOTO/10,10,20,0,0,1\nCYCLE/DRILL,FEDTO,-30,RAPTO,3,MMPM,100\n"
+            "GOTO/10,10,-10\nCYCLE/OFF\nFINI\n",
+            "rotary-4axis", "comment-nx") == "(posted)");
+  CHECK(
+      blocks("PARTNO P\n$$ ops exported per TOOL PATH/ from the CAM\nTLDATA/DRILL,8,0,100,118,80\nLOADTL/1\n"
+             "SPINDL/RPM,1200,CLW\nRAPID\nGOTO/10,10,20,0,0,1\nCYCLE/DRILL,FEDTO,-30,RAPTO,3,MMPM,100\n"
+             "GOTO/10,10,-10\nCYCLE/OFF\nFINI\n",
+             "rotary-4axis", "comment-nx-blocks")
+          .find("G98 G81 X10. Y10. Z-30. R-7. F100.") != std::string::npos);
+}
