@@ -3,6 +3,7 @@
 // machines/machine_kinematics.cpp): the linear axes, then up to two rotary axes, each a head
 // or a table. Plain structs; the geometry that uses them is kinematics/ (docs/kinematics.md
 // gives the frames and signs).
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,6 +54,10 @@ enum class multiaxis_output {
 };
 
 /// Which GOTOs of the channel the multi-axis writer takes.
+/// Whose tool length joints output uses when the CL's TLDATA and the machine's [[tool]] length
+/// differ: none (`agree`: the post stops), the tool table's, or the CL's (docs/machines.md).
+enum class length_source : unsigned char { agree, table, cl };
+
 enum class multiaxis_moves {
   all,     ///< every move (a 5-axis mill: the length offset and rotary words from the first)
   tilted,  ///< only under a tool axis off the tool direction, or with a rotary axis off 0 (a
@@ -75,6 +80,8 @@ struct kinematic_chain {
   /// How the post writes the channel's moves under a tool axis not along Z.
   multiaxis_output output = multiaxis_output::joints;
   multiaxis_moves moves = multiaxis_moves::all;
+  /// [[kinematics]] tool_length: which length wins when TLDATA and [[tool]] differ.
+  length_source tool_length = length_source::agree;
   /// The code that turns tool-tip control on (G43.4 or G43.5, written with H and the tool's
   /// offset) and the one that cancels it (and the length offset of joints output).
   std::string tool_tip_on = "G43.4", tool_tip_off = "G49";
@@ -90,5 +97,19 @@ struct kinematic_chain {
   /// none; the code that turns the rotary axes to it (G53.1) and the one that cancels it (G69).
   std::string plane, plane_index = "G53.1", plane_off = "G69";
 };
+
+/// Whether the CL's and the table's tool lengths (mm) differ beyond the chain's tolerance.
+inline bool lengths_differ(const kinematic_chain& c, std::optional<double> table, std::optional<double> cl) {
+  return table && cl && std::abs(*table - *cl) > c.tolerance;
+}
+
+/// The tool length joints output uses: whichever of the table's and the CL's is given; both
+/// given and differing, the one `tool_length` names (under `agree` the table's, for a caller
+/// that has refused the tool already).
+inline std::optional<double> chosen_length(const kinematic_chain& c, std::optional<double> table,
+                                           std::optional<double> cl) {
+  if (table && cl) return c.tool_length == length_source::cl ? cl : table;
+  return table ? table : cl;
+}
 
 }  // namespace twinpost

@@ -73,6 +73,8 @@ constexpr std::pair<std::string_view, multiaxis_output> output_names[] = {
     {"vector", multiaxis_output::vector}};
 constexpr std::pair<std::string_view, multiaxis_moves> moves_names[] = {{"all", multiaxis_moves::all},
                                                                         {"tilted", multiaxis_moves::tilted}};
+constexpr std::pair<std::string_view, length_source> length_names[] = {
+    {"agree", length_source::agree}, {"table", length_source::table}, {"cl", length_source::cl}};
 constexpr std::pair<std::string_view, preferred_sign> prefer_names[] = {
     {"none", preferred_sign::none},
     {"positive", preferred_sign::positive},
@@ -137,7 +139,7 @@ void read_kinematics(const table_reader& root, machine& m) {
     table_reader r(*t, "kinematics", root.source(),
                    {"channel", "linear", "tool_direction", "tolerance", "angle_tolerance", "rotary", "output",
                     "tool_tip_on", "tool_tip_off", "length_on", "inverse_time", "chordal_tolerance", "plane",
-                    "moves", "plane_index", "plane_off"});
+                    "moves", "plane_index", "plane_off", "tool_length"});
     kinematic_chain c;
     r.require("channel");
     r.read("channel", c.channel);
@@ -159,6 +161,7 @@ void read_kinematics(const table_reader& root, machine& m) {
     read_vec3(r, "tool_direction", c.tool_direction, true);
     read_name(r, "output", output_names, c.output);
     read_name(r, "moves", moves_names, c.moves);
+    read_name(r, "tool_length", length_names, c.tool_length);
     if (c.output == multiaxis_output::vector) c.tool_tip_on = "G43.5";
     r.read("tool_tip_on", c.tool_tip_on);
     r.read("tool_tip_off", c.tool_tip_off);

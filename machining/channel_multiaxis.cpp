@@ -123,14 +123,25 @@ bool channel_writer::tool_length_known(int line) {
   if (length_known_ || length_free_) return true;
   if (length_refused_) return false;  // one error per tool
   const std::optional<double> table = m_.tool_length(ch_.number, tool_);
-  if (table && length_cl_ && std::abs(*table - *length_cl_) > chain_->tolerance) {
-    length_refused_ = true;
-    error(line,
-          fmt::format("tool {} ({} at line {}): the CL's TLDATA gives a length of {} mm, machine '{}' lists "
-                      "{} mm ([[tool]] length): which tool is in the spindle?",
-                      tool_, tool_word_, tool_line_, kin::number_text(*length_cl_), m_.name,
-                      kin::number_text(*table)));
-    return false;
+  if (lengths_differ(*chain_, table, length_cl_)) {
+    const std::string both = fmt::format(
+        "tool {} ({} at line {}): the CL's TLDATA gives a length of {} mm, machine '{}' lists {} mm "
+        "([[tool]] length)",
+        tool_, tool_word_, tool_line_, kin::number_text(*length_cl_), m_.name, kin::number_text(*table));
+    if (chain_->tool_length == length_source::agree) {
+      length_refused_ = true;
+      error(line, both +
+                      ": which tool is in the spindle? ([[kinematics]] tool_length = \"table\" or \"cl\" "
+                      "says which wins)");
+      return false;
+    }
+    // The machine file says which wins; the other is said, for the tip moves with the length on
+    // a tilted head (docs/machines.md, "Multi-axis output").
+    const bool table_wins = chain_->tool_length == length_source::table;
+    warning(
+        fmt::format("{}: the {} is used ([[kinematics]] tool_length = \"{}\"); on a tilted head the tip "
+                    "lies where that length puts it",
+                    both, table_wins ? "table's" : "CL's", table_wins ? "table" : "cl"));
   }
   if (!table && !length_cl_) {
     // With every head that tilts the tool at 0 the tip is the linear values whatever the
@@ -140,7 +151,7 @@ bool channel_writer::tool_length_known(int line) {
     length_free_ = true;
     return true;
   }
-  tool_length_ = table ? *table : *length_cl_;
+  tool_length_ = *chosen_length(*chain_, table, length_cl_);
   length_known_ = true;
   return true;
 }

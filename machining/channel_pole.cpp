@@ -38,10 +38,10 @@ std::optional<double> channel_writer::pole_target(const vec3& pos, const vec3& a
     // a target that tilts it is refused by the move itself.
     if (length_known_)
       length = tool_length_;
-    else if (table && length_cl_ && std::abs(*table - *length_cl_) > c.tolerance)
+    else if (lengths_differ(c, table, length_cl_) && c.tool_length == length_source::agree)
       return std::nullopt;
     else if (table || length_cl_)
-      length = table ? *table : *length_cl_;
+      length = *chosen_length(c, table, length_cl_);
   }
   const double len = kin::norm(axis);
   const kin::tool_pose pose{{pos.x * cl_mm_, pos.y * cl_mm_, pos.z * cl_mm_}, (1 / len) * axis};

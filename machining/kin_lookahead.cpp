@@ -55,7 +55,7 @@ void kin_lookahead::look(std::span<const event> events, notes& out) {
             const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
             const kin::tool_pose pose{{d.pos.x * cl_mm_, d.pos.y * cl_mm_, d.pos.z * cl_mm_},
                                       len > 0 ? vec3{axis_.x / len, axis_.y / len, axis_.z / len} : axis_};
-            const double length = !joints ? 0 : table_length_ ? *table_length_ : length_cl_ ? *length_cl_ : 0;
+            const double length = !joints ? 0 : chosen_length(c, table_length_, length_cl_).value_or(0);
             solution s;
             s.start = joints_;
             s.length = length;

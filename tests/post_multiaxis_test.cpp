@@ -514,8 +514,29 @@ TEST_CASE("multi-axis: the tool length from TLDATA or the tool table, never gues
   m.tools.back().length = 120;
   CHECK(post_moves(m, tilt, "ma-len3").diagnostics ==
         "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 4): the CL's TLDATA gives a length of 100 mm, "
-        "machine 'head-head-5axis' lists 120 mm ([[tool]] length): which tool is in the spindle?\n"
-        "GOTO/0,0,50,0,0,1\n^\n");
+        "machine 'head-head-5axis' lists 120 mm ([[tool]] length): which tool is in the spindle? "
+        "([[kinematics]] tool_length = \"table\" or \"cl\" says which wins)\nGOTO/0,0,50,0,0,1\n^\n");
+  // The machine file says which wins ([[kinematics]] tool_length): a warning, and the program of
+  // that length (the table's 120 mm: as the table alone gives it; the CL's: as TLDATA alone).
+  machine by_table = m;
+  by_table.kinematics.front().tool_length = length_source::table;
+  const test::posted t120 = post_moves(by_table, tilt, "ma-len4");
+  REQUIRE(t120.ok);
+  CHECK(
+      t120.diagnostics ==
+      "job.cls:8:1: warning: channel 1: tool 1 (LOADTL at line 4): the CL's TLDATA gives a length of 100 mm, "
+      "machine 'head-head-5axis' lists 120 mm ([[tool]] length): the table's is used ([[kinematics]] "
+      "tool_length = \"table\"); on a tilted head the tip lies where that length puts it\n"
+      "GOTO/0,0,50,0,0,1\n^\n");
+  const test::posted only_table = post_moves(by_table, tilt, "ma-len5", "");
+  REQUIRE(only_table.ok);
+  CHECK(t120.files == only_table.files);
+  CHECK(t120.files != cl.files);
+  machine by_cl = m;
+  by_cl.kinematics.front().tool_length = length_source::cl;
+  const test::posted c100 = post_moves(by_cl, tilt, "ma-len6");
+  REQUIRE(c100.ok);
+  CHECK(c100.files == cl.files);
 }
 
 TEST_CASE("multi-axis: no feed per revolution and no 2-D compensation under a tilted tool",
