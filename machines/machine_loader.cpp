@@ -489,12 +489,17 @@ void read_transfer(const table_reader& root, machine& m) {
 // [[tool]] rpm or surface_speed, and direction: the speed a CL without SPINDL cuts at.
 void read_tool_speed(const table_reader& r, tool_def& d) {
   double v = 0;
+  // A speed no spindle reaches (inf, 1e300) is a typing error: refused here, naming the key.
+  constexpr double most = 1e6;
   if (r.read("rpm", v)) {
-    if (!(v > 0)) r.fail(*r.find("rpm"), fmt::format("tool.rpm must be > 0, not {}", v));
+    if (!(v >= 1 && v <= most))
+      r.fail(*r.find("rpm"), fmt::format("tool.rpm must be in 1..{}, not {}", most, v));
     d.rpm = v;
   }
   if (r.read("surface_speed", v)) {
-    if (!(v > 0)) r.fail(*r.find("surface_speed"), fmt::format("tool.surface_speed must be > 0, not {}", v));
+    if (!(v > 0 && v <= most))
+      r.fail(*r.find("surface_speed"),
+             fmt::format("tool.surface_speed must be in 0..{} (m/min, above 0), not {}", most, v));
     if (d.rpm)
       r.fail(*r.find("surface_speed"),
              fmt::format("tool {}: give rpm or surface_speed, not both (which would the spindle run at?)",

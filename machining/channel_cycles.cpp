@@ -222,13 +222,14 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   if (!bottom) return error(line, fmt::format("CYCLE/{} needs FEDTO or DEPTH", c.type));
   h.bottom = *bottom;
   // A hole deeper than the tool is long: the holder would drive into the part (a FEDTO read
-  // in the wrong sense, or a CAM error). The length is TLDATA's, where the CL gives one.
+  // in the wrong sense, or a CAM error). The length is TLDATA's or the tool table's, the shorter.
   if (const double deep = (h.bottom - top) * h.into * cl_mm_; reach_ && deep > *reach_ + 1e-6)
     return error(
-        line, fmt::format("CYCLE/{}: the hole goes {} mm below its top (the GOTO point, Z {}) to Z {}, "
-                          "but tool {} is {} mm long (TLDATA): its holder would drive into the part",
-                          c.type, kin::number_text(deep), kin::number_text(top), kin::number_text(h.bottom),
-                          tool_, kin::number_text(*reach_)));
+        line,
+        fmt::format("CYCLE/{}: the hole goes {} mm below its top (the GOTO point, Z {}) to Z {}, "
+                    "but tool {} is {} mm long ({}): its holder would drive into the part",
+                    c.type, kin::number_text(deep), kin::number_text(top), kin::number_text(h.bottom), tool_,
+                    kin::number_text(*reach_), reach_from_table_ ? "[[tool]] length" : "TLDATA"));
   if ((h.bottom - h.clear) * h.into <= 0)
     return error(line,
                  fmt::format("CYCLE/{}: the bottom Z {} is not beyond the clearance plane Z {} in the "
@@ -306,13 +307,13 @@ void channel_writer::to_hole(const hole& h, int line) {
   // holes' tops). Up first when this hole's plane lies further out, across at the higher of the
   // two, down last, as NX's and Fusion's posts move between G98 cycles. In a turned frame
   // (cross holes, tilted planes) the points are not the CL's: one move, as before.
-  // Between two holes, where the tool surely stands on the last one's retract plane (the CL's
-  // position is then that hole's point). Before the first hole the CL's own moves bring the
-  // tool (or the tool call's approach does).
+  // Between two holes the tool stands on the last one's retract plane (the CL's position is
+  // then that hole's point); after a GOTO or an arc at the CL's point. After a tool call the
+  // tool call's approach brings it (the tool's position is not the CL's).
   const bool plain = !radial_ok_ && !side_hole_ && !plane_hole_;
   const bool after_hole = hole_exit_ && kin::distance(pos_, hole_point_) <= 1e-9;
   const vec3 from = after_hole ? *hole_exit_ : pos_;
-  if (after_hole && !homed_ && pending_offset_.empty() && plain &&
+  if ((after_hole || at_pos_) && !homed_ && pending_offset_.empty() && plain &&
       (std::abs(from.x - h.x) > 1e-9 || std::abs(from.y - h.y) > 1e-9)) {
     const double out = (from.z - h.initial) * h.into;  // > 0: this hole's plane lies further out
     if (out > 1e-9)

@@ -62,6 +62,8 @@ void channel_writer::frame(const coordsys_event& c, int line) {
     // One program has one work offset. A second MCS elsewhere (another setup face, a datum on
     // a boss) would be cut in the first one's offset: which offset the machinist gives it the
     // CL does not say. In the absolute frame the MCS may turn (3+2 setups about one origin).
+    // Moves before the first MSYS were in the absolute frame: that is the first MCS then.
+    if (!first_msys_ && cl_moved_) first_msys_ = std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0};
     if (!first_msys_) {
       first_msys_ = v;
       first_msys_line_ = line;
@@ -71,13 +73,16 @@ void channel_writer::frame(const coordsys_event& c, int line) {
       for (std::size_t i = 3; i < 9; ++i) turned = std::max(turned, std::abs(v[i] - (*first_msys_)[i]));
       if (moved > 1e-4 || (frame_ == cl_frame::mcs && turned > 1e-6))
         return error(
-            line, fmt::format("MSYS/{}: a second MCS, {} the one of line {}: the program has one work "
-                              "offset, and which offset the machinist gives this MCS the CL does not "
-                              "say; post its operations as a job of their own{}",
-                              fmt::join(v, ","), moved > 1e-4 ? "away from" : "turned from", first_msys_line_,
-                              moved > 1e-4 ? ""
-                                           : " (or write the program in the absolute frame, "
-                                             "[program] cl_frame = \"absolute\", where an MCS may turn)"));
+            line,
+            fmt::format("MSYS/{}: a second MCS, {} {}: the program has one work "
+                        "offset, and which offset the machinist gives this MCS the CL does not "
+                        "say; post its operations as a job of their own{}",
+                        fmt::join(v, ","), moved > 1e-4 ? "away from" : "turned from",
+                        first_msys_line_ ? fmt::format("the one of line {}", first_msys_line_)
+                                         : std::string("the absolute frame the job's first moves were in"),
+                        moved > 1e-4 ? ""
+                                     : " (or write the program in the absolute frame, "
+                                       "[program] cl_frame = \"absolute\", where an MCS may turn)"));
     }
     // Written in the MCS ([program] cl_frame, post --cl-frame): the points as given; the work
     // offset is the MCS's origin, and where the MCS lies is the setup's business.

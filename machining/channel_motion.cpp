@@ -238,8 +238,12 @@ void channel_writer::motion(const motion_event& mv, int line) {
     case motion_kind::from:
       pos_ = mv.pos;
       pose_known_ = false;  // where the tool is, but not the joints that put it there
+      at_pos_ = false;
+      hole_exit_.reset();
       return;
     case motion_kind::home:
+      at_pos_ = false;
+      hole_exit_.reset();
       go_home();
       forget_axes();
       motion_g_ = -1;
@@ -256,9 +260,13 @@ void channel_writer::motion(const motion_event& mv, int line) {
       if (cycle_refused_) {
         // the post has already failed at the CYCLE record
       } else if (cycle_ && cycle_->type == "THREAD") {
+        at_pos_ = false;
+        hole_exit_.reset();
         thread_cycle_point(mv.pos, line);
         return;  // the control ends the cycle where it started (pos_)
       } else if (cycle_ && cycle_->type == "GROOVE") {
+        at_pos_ = false;
+        hole_exit_.reset();
         groove_cycle_point(mv.pos, line);
         return;
       } else if (cycle_) {
@@ -274,6 +282,9 @@ void channel_writer::motion(const motion_event& mv, int line) {
              plane_due()))
           multiaxis_move(true, cycle_approach(mv.pos), line);
         if (!chain_ || !multiaxis_takes() || multiaxis_arc(line)) cycle_point(mv.pos, line);
+        pos_ = mv.pos;
+        cl_moved_ = true;
+        return;
       } else if (threading_ && !mv.rapid) {
         thread_pass(mv.pos, line);
       } else if (chain_ && multiaxis_takes()) {
@@ -289,7 +300,10 @@ void channel_writer::motion(const motion_event& mv, int line) {
           pose_known_ = true;
         }
       }
+      // The tool stands at the CL's point (the next hole starts from it); no hole left it.
       pos_ = mv.pos;
+      cl_moved_ = at_pos_ = true;
+      hole_exit_.reset();
       return;
   }
 }
@@ -409,6 +423,8 @@ void channel_writer::arc(const arc_event& cl, int line) {
   homed_ = false;
   out_.block(arc_.view().substr(1));
   pos_ = cl.end;
+  cl_moved_ = at_pos_ = true;
+  hole_exit_.reset();
   pose_mm_.tip = {cl.end.x * cl_mm_, cl.end.y * cl_mm_, cl.end.z * cl_mm_};
   // The rotary axes stand at 0 (multiaxis_arc): joints = tip; in a plane G53.1 holds them.
   if (!in_plane) joints_.linear = pose_mm_.tip;

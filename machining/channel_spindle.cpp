@@ -201,6 +201,12 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     int errors;
     ~judge_cuts() { w.unstarted_judged_ = w.unstarted_ok_ = w.errors_ > errors; }
   } judge{*this, errors_};
+  // A speed that writes S0 turns nothing, yet the cuts after it would count it as turning.
+  if ((s.mode == spindle_mode::rpm || s.mode == spindle_mode::smm || s.mode == spindle_mode::sfm) &&
+      !(s.speed >= 0.5))
+    return error(line, fmt::format("SPINDL with a speed of {}: written S0, the spindle would not turn; give "
+                                   "SPINDL/OFF to stop it, or a speed",
+                                   kin::number_text(s.speed)));
   const spindle_def* target = spindle_;
   if (s.spindle == "main" || s.spindle == "sub") {
     const spindle_def* sel = m_.spindle(s.spindle);

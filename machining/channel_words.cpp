@@ -254,6 +254,8 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   unstarted_judged_ = false;
   diameter_ = next_diameter_;
   next_diameter_.reset();
+  at_pos_ = false;  // the tool change moved the tool
+  hole_exit_.reset();
   // A TLDATA before the call describes the tool; a tool called again without one keeps the
   // length it had (NX writes TLDATA once per operation, a reload may come without).
   if (next_reach_) reach_of_[tool] = *next_reach_;
@@ -261,6 +263,13 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
     reach_ = known->second;
   else
     reach_.reset();
+  // The tool table's length (measured on the machine) limits the hole as well: the shorter.
+  reach_from_table_ = false;
+  if (const std::optional<double> table = m_.tool_length(ch_.number, tool);
+      table && (!reach_ || *table < *reach_)) {
+    reach_ = *table;
+    reach_from_table_ = true;
+  }
   next_reach_.reset();
   const tool_def* table = m_.tool(ch_.number, tool);
   table_speed_due_ = table && (table->rpm || table->surface_speed);

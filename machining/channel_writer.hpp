@@ -669,9 +669,12 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// After a hole: the retract plane the tool stands on, and the hole's CL point (pos_ then).
   std::optional<vec3> hole_exit_;
   vec3 hole_point_{};
+  bool at_pos_ = false;    ///< the tool stands at pos_ (a GOTO or an arc brought it there)
+  bool cl_moved_ = false;  ///< the CL has moved the channel (a first MSYS after moves is a second MCS)
   /// Tool lengths (mm) from TLDATA/MILL or DRILL: the deepest hole the tool can drill.
   std::optional<double> reach_, next_reach_;
   std::map<int, double> reach_of_;  ///< the TLDATA length each tool number was given
+  bool reach_from_table_ = false;   ///< reach_ is the [[tool]] length (shorter than TLDATA's)
   /// The rpm a surface speed gives a rotating tool of the machine's tool or the CL's diameter;
   /// nullopt after the error.
   std::optional<double> tool_rpm(const spindle_event& s, const spindle_def& sp, int line);

@@ -1002,3 +1002,17 @@ TEST_CASE("frames: a second MCS in one job, and an MCS turned under a cycle, sto
       "force: whether the cycle's levels turn with the points is not known (UNVERIFIED); end the cycle "
       "(CYCLE/OFF) before the MSYS\nMSYS/0,0,0,1,0,0,0,0,1\n^\n");
 }
+
+TEST_CASE("frames: an MSYS after the job has moved is a second MCS", "[post][frames]") {
+  // The first operation's moves were in the absolute frame; an MCS 100 mm away after them.
+  const std::string cl =
+      "PARTNO M\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\nRAPID\nGOTO/0,0,5,0,0,1\n"
+      "GOTO/0,0,-1\nMSYS/100,0,0,1,0,0,0,1,0\nGOTO/10,0,-1\nFINI\n";
+  CHECK(test::post_in_fresh_dir(cl, load_machine("trunnion-5axis"), "fr-after-moves",
+                                [](const diagnostic& d) { return d.level == severity::error; })
+            .diagnostics ==
+        "job.cls:8:1: error: channel 1: MSYS/100,0,0,1,0,0,0,1,0: a second MCS, away from the "
+        "absolute frame the job's first moves were in: the program has one work offset, and which "
+        "offset the machinist gives this MCS the CL does not say; post its operations as a job of "
+        "their own\nMSYS/100,0,0,1,0,0,0,1,0\n^\n");
+}

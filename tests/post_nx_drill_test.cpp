@@ -204,3 +204,41 @@ TEST_CASE("a tool called again keeps its TLDATA length", "[post][drill][nx]") {
              "rotary-4axis", "comment-nx-blocks")
           .find("G98 G81 X10. Y10. Z-30. R-7. F100.") != std::string::npos);
 }
+
+TEST_CASE("to a hole from a GOTO, and a new tool's first hole, straight down from above it",
+          "[post][drill]") {
+  // From the rapid at Z50: across, then down to the R plane (one rapid would descend 47 mm while
+  // it travelled). After a tool change the next tool's first hole is approached by the tool
+  // call, never by way of the last tool's hole.
+  const std::string cl =
+      "PARTNO H\nTLDATA/DRILL,8,0,100,118,80\nLOADTL/3\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/0,0,50,0,0,1\n"
+      "CYCLE/DRILL,FEDTO,-40.0,RAPTO,2.0,MMPM,120.0\nGOTO/80,20,-30\nCYCLE/OFF\nTLDATA/DRILL,8,0,100,118,80\n"
+      "LOADTL/4\nSPINDL/RPM,500,CLW\nCYCLE/DRILL,FEDTO,-32.0,RAPTO,3.0,MMPM,100.0\nGOTO/15,20,-20\nCYCLE/"
+      "OFF\n"
+      "FINI\n";
+  const test::posted p = test::post_in_fresh_dir(cl, load_machine("rotary-4axis"), "hole-approach");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  const std::string nc = p.files.begin()->second;
+  CHECK(nc.substr(nc.find("T03 M6")) ==
+        "T03 M6\nG54\nS1000 M3\nG0 A0.\nG0 X0. Y0.\nG0 G43 H3 X0. Y0. Z50. A0.\nX80. Y20.\nZ-28.\n"
+        "G98 G81 X80. Y20. Z-40. R-28. F120.\nG80\nG0 Z-28.\nM5\nG91 G28 Z0.\nG90\nG49\nT04 M6\nS500 M3\n"
+        "G0 A0.\nG0 X15. Y20.\nG0 G43 H4 X15. Y20. Z-17. A0.\nG98 G81 X15. Y20. Z-32. R-17. F100.\nG80\n"
+        "G0 Z-17.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
+  // The tool table's length limits a hole as TLDATA's does (the shorter of the two).
+  machine m = load_machine("rotary-4axis");
+  m.tools.push_back({4, 0, "drill"});
+  m.tools.back().length = 10;
+  CHECK(test::post_in_fresh_dir(cl, m, "hole-table-reach",
+                                [](const diagnostic& d) { return d.level == severity::error; })
+            .diagnostics ==
+        "job.cls:14:1: error: channel 1: CYCLE/DRILL: the hole goes 12 mm below its top (the GOTO "
+        "point, Z -20) to Z -32, but tool 4 is 10 mm long ([[tool]] length): its holder would "
+        "drive into the part\nGOTO/15,20,-20\n^\n");
+  // A speed that writes S0 turns nothing.
+  CHECK(errors_of("PARTNO S\nLOADTL/1\nSPINDL/RPM,0.4,CLW\nFEDRAT/MMPM,100\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n",
+                  "rotary-4axis", "s0") ==
+        "job.cls:3:1: error: channel 1: SPINDL with a speed of 0.4: written S0, the spindle would not turn; "
+        "give "
+        "SPINDL/OFF to stop it, or a speed\nSPINDL/RPM,0.4,CLW\n^\n");
+}

@@ -147,7 +147,7 @@ TEST_CASE("a CL without SPINDL cuts at the tool table's speed", "[post][spindle]
                                "rpm = 800\nsurface_speed = 90\n") ==
         "m.toml:16:17: error: tool 4: give rpm or surface_speed, not both (which would the spindle run at?)");
   CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool + "rpm = 0\n") ==
-        "m.toml:15:7: error: tool.rpm must be > 0, not 0");
+        "m.toml:15:7: error: tool.rpm must be in 1..1000000, not 0");
   CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool + "direction = \"cw\"\n") ==
         "m.toml:15:13: error: tool 4: a direction without a speed (rpm or surface_speed)");
   CHECK(test::machine_error_of(test::machine_head + test::two_channels + tool +
