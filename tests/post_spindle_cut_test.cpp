@@ -128,14 +128,17 @@ TEST_CASE("a CL without SPINDL cuts at the tool table's speed", "[post][spindle]
   const std::string with_tldata =
       "PARTNO NS\nUNITS/MM\nTLDATA/MILL,10,0,75,0,0\nLOADTL/1\nFEDRAT/500,MMPM\n"
       "RAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n";
-  CHECK(program_of(with_tldata, m, "ts-smm").find("\nG54\nS3820 M4\nG0 A0.\n") != std::string::npos);
+  CHECK(program_of(with_tldata, m, "ts-smm") ==
+        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS3820 M4\nG0 A0.\n"
+        "G0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
   // The CL's own SPINDL after the tool call wins.
   const std::string own = program_of(
       "PARTNO NS\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/500,MMPM\n"
       "RAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n",
       m, "ts-own");
-  CHECK(own.find("S1000 M3") != std::string::npos);
-  CHECK(own.find("S3820") == std::string::npos);
+  CHECK(own ==
+        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS1000 M3\nG0 A0.\n"
+        "G0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
   // The keys as the machine file gives them, and what is refused.
   const std::string tool = "[[tool]]\nnumber = 4\nkind = \"mill\"\n";
   const machine read = parse_machine(
