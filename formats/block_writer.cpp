@@ -133,7 +133,7 @@ void block_writer::comment(std::string_view text) {
   std::string s;
   s += fmt_.comment_open;
   s += safe_comment_text(text, fmt_);
-  s += fmt_.comment_close;
+  if (fmt_.comment_close != '\n') s += fmt_.comment_close;  // '\n': to the end of the line
   put(s);
 }
 

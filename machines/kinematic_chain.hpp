@@ -3,9 +3,11 @@
 // machines/machine_kinematics.cpp): the linear axes, then up to two rotary axes, each a head
 // or a table. Plain structs; the geometry that uses them is kinematics/ (docs/kinematics.md
 // gives the frames and signs).
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/vec3.hpp"
@@ -51,6 +53,14 @@ enum class multiaxis_output {
   joints,    ///< full inverse kinematics: X Y Z and the rotary values, linearised, G93 on rotary moves
   tool_tip,  ///< tool-tip control (G43.4 H..): X Y Z the tip in the part frame, with the rotary values
   vector,    ///< tool-tip control with the tool axis (G43.5 H.. I J K): X Y Z the tip, I J K the axis
+  pivot,     ///< no tool-tip control: X Y Z the head's pivot in the part frame for a fixed programmed
+             ///< tool length, with the rotary values, linearised, G93 on rotary moves
+};
+
+/// The order of the rotary words in a block.
+enum class rotary_word_order : unsigned char {
+  address,  ///< by address (A, B, C), as most controls list them
+  chain,    ///< as the [[kinematics.rotary]] tables list them (C before A on a C/A head)
 };
 
 /// Which GOTOs of the channel the multi-axis writer takes.
@@ -80,6 +90,9 @@ struct kinematic_chain {
   /// How the post writes the channel's moves under a tool axis not along Z.
   multiaxis_output output = multiaxis_output::joints;
   multiaxis_moves moves = multiaxis_moves::all;
+  rotary_word_order rotary_order = rotary_word_order::address;
+  /// Pivot output: the tool length (mm) every point is written for, whatever the tool.
+  double programmed_length = 0;
   /// [[kinematics]] tool_length: which length wins when TLDATA and [[tool]] differ.
   length_source tool_length = length_source::agree;
   /// The code that turns tool-tip control on (G43.4 or G43.5, written with H and the tool's
@@ -98,6 +111,37 @@ struct kinematic_chain {
   std::string plane, plane_index = "G53.1", plane_off = "G69";
 };
 
+/// Whether the post solves the joints itself (joints and pivot output) rather than leaving the
+/// tip to the control's tool-tip control.
+inline bool solves_joints(const kinematic_chain& c) {
+  return c.output == multiaxis_output::joints || c.output == multiaxis_output::pivot;
+}
+
+/// The code that turns the channel's length offset on: joints and pivot output's `length_on`,
+/// tool-tip control's `tool_tip_on`.
+inline const std::string& offset_code(const kinematic_chain& c) {
+  return solves_joints(c) ? c.length_on : c.tool_tip_on;
+}
+
+/// Pivot output: the pivot's place from the linear values (the tip at the home pose, kinematics.md):
+/// the programmed length up the tool direction, then the outer head's point from the gauge point.
+inline vec3 pivot_shift(const kinematic_chain& c) {
+  vec3 p = c.tool_direction;
+  p = {p.x * c.programmed_length, p.y * c.programmed_length, p.z * c.programmed_length};
+  for (const rotary_axis_def& a : c.rotaries)
+    if (a.kind == rotary_kind::head) return {p.x + a.point.x, p.y + a.point.y, p.z + a.point.z};
+  return p;
+}
+
+/// The rotary axes' indices in the order their words are written.
+inline std::array<std::size_t, 2> rotary_words(const kinematic_chain& c) {
+  std::array<std::size_t, 2> order{0, 1};
+  if (c.rotary_order == rotary_word_order::address && c.rotaries.size() == 2 &&
+      c.rotaries[1].address < c.rotaries[0].address)
+    std::swap(order[0], order[1]);
+  return order;
+}
+
 /// Whether the CL's and the table's tool lengths (mm) differ beyond the chain's tolerance.
 inline bool lengths_differ(const kinematic_chain& c, std::optional<double> table, std::optional<double> cl) {
   return table && cl && std::abs(*table - *cl) > c.tolerance;
@@ -105,9 +149,10 @@ inline bool lengths_differ(const kinematic_chain& c, std::optional<double> table
 
 /// The tool length joints output uses: whichever of the table's and the CL's is given; both
 /// given and differing, the one `tool_length` names (under `agree` the table's, for a caller
-/// that has refused the tool already).
+/// that has refused the tool already). Pivot output: the programmed length, whatever the tool.
 inline std::optional<double> chosen_length(const kinematic_chain& c, std::optional<double> table,
                                            std::optional<double> cl) {
+  if (c.output == multiaxis_output::pivot) return c.programmed_length;
   if (table && cl) return c.tool_length == length_source::cl ? cl : table;
   return table ? table : cl;
 }

@@ -70,7 +70,10 @@ constexpr std::pair<std::string_view, rotary_rollover> rollover_names[] = {
 constexpr std::pair<std::string_view, multiaxis_output> output_names[] = {
     {"joints", multiaxis_output::joints},
     {"tool_tip", multiaxis_output::tool_tip},
-    {"vector", multiaxis_output::vector}};
+    {"vector", multiaxis_output::vector},
+    {"pivot", multiaxis_output::pivot}};
+constexpr std::pair<std::string_view, rotary_word_order> order_names[] = {
+    {"address", rotary_word_order::address}, {"chain", rotary_word_order::chain}};
 constexpr std::pair<std::string_view, multiaxis_moves> moves_names[] = {{"all", multiaxis_moves::all},
                                                                         {"tilted", multiaxis_moves::tilted}};
 constexpr std::pair<std::string_view, length_source> length_names[] = {
@@ -132,6 +135,38 @@ void check_geometry(const table_reader& r, const toml::table& last, const kinema
             fmt::format("rotary axis {} lies along the tool: it cannot tilt it", inner.address));
 }
 
+// Pivot output: the pivot for a fixed tool length, on a chain whose every move it writes (the
+// 3-axis writer and the tilted plane write the tip).
+void check_pivot(const table_reader& r, kinematic_chain& c) {
+  const bool pivot = c.output == multiaxis_output::pivot;
+  if (!r.read("programmed_length", c.programmed_length)) {
+    if (pivot)
+      r.fail_here(
+          "kinematics.output = \"pivot\" needs programmed_length (mm): the tool length the "
+          "pivot points are written for");
+    return;
+  }
+  if (!pivot)
+    r.fail(*r.find("programmed_length"), "kinematics.programmed_length is read only with output = \"pivot\"");
+  if (!(c.programmed_length > 0 && c.programmed_length < 1e4))
+    r.fail(*r.find("programmed_length"),
+           fmt::format("kinematics.programmed_length must be > 0 and < 10000 (mm), not {}",
+                       c.programmed_length));
+  if (std::none_of(c.rotaries.begin(), c.rotaries.end(),
+                   [](const rotary_axis_def& a) { return a.kind == rotary_kind::head; }))
+    r.fail(*r.find("output"),
+           "kinematics.output = \"pivot\" needs a head: no pivot turns the tool (use "
+           "\"joints\")");
+  if (c.moves != multiaxis_moves::all)
+    r.fail(*r.find("moves"),
+           "kinematics.output = \"pivot\" needs moves = \"all\": the lathe's moves write "
+           "the tip, not the pivot");
+  if (!c.plane.empty())
+    r.fail(*r.find("plane"),
+           "kinematics.output = \"pivot\" takes no plane: a tilted working plane "
+           "positions the tip, not the pivot");
+}
+
 }  // namespace
 
 void read_kinematics(const table_reader& root, machine& m) {
@@ -139,7 +174,7 @@ void read_kinematics(const table_reader& root, machine& m) {
     table_reader r(*t, "kinematics", root.source(),
                    {"channel", "linear", "tool_direction", "tolerance", "angle_tolerance", "rotary", "output",
                     "tool_tip_on", "tool_tip_off", "length_on", "inverse_time", "chordal_tolerance", "plane",
-                    "moves", "plane_index", "plane_off", "tool_length"});
+                    "moves", "plane_index", "plane_off", "tool_length", "rotary_order", "programmed_length"});
     kinematic_chain c;
     r.require("channel");
     r.read("channel", c.channel);
@@ -162,7 +197,11 @@ void read_kinematics(const table_reader& root, machine& m) {
     read_name(r, "output", output_names, c.output);
     read_name(r, "moves", moves_names, c.moves);
     read_name(r, "tool_length", length_names, c.tool_length);
+    read_name(r, "rotary_order", order_names, c.rotary_order);
     if (c.output == multiaxis_output::vector) c.tool_tip_on = "G43.5";
+    // Pivot output gives the control the pivot itself: no length offset unless the machine names
+    // one that makes up a tool's difference from the programmed length (docs/machines.md).
+    if (c.output == multiaxis_output::pivot) c.length_on.clear();
     r.read("tool_tip_on", c.tool_tip_on);
     r.read("tool_tip_off", c.tool_tip_off);
     r.read("length_on", c.length_on);
@@ -188,6 +227,7 @@ void read_kinematics(const table_reader& root, machine& m) {
       c.rotaries.push_back(read_rotary(ar, c));
     }
     if (!rotaries.empty()) check_geometry(r, *rotaries.back(), c);
+    check_pivot(r, c);
     m.kinematics.push_back(std::move(c));
   }
 }

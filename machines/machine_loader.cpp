@@ -222,7 +222,18 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
                 {{"all", sequence_mode::all}, {"tool_change", sequence_mode::tool_change}}},
             p.sequence_numbers);
   r.read_char("comment_open", p.comment_open, false);
-  r.read_char("comment_close", p.comment_close, false);
+  // A comment to the end of the line (Sinumerik's and Heidenhain's `;`): comment_close = "",
+  // or no comment_close under comment_open = ";". Held as '\n', which no block contains.
+  std::string close;
+  if (r.read("comment_close", close) && close.empty())
+    p.comment_close = '\n';
+  else if (r.find("comment_close"))
+    r.read_char("comment_close", p.comment_close, false);
+  else if (p.comment_open == ';')
+    p.comment_close = '\n';
+  if (p.comment_close == p.comment_open)
+    r.fail(*r.find("comment_close"),
+           fmt::format("program.comment_close must differ from comment_open ('{}')", p.comment_open));
   if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
   if (r.read("reserved_variables", p.reserved_variables))
     for (int v : p.reserved_variables)

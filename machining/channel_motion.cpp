@@ -275,11 +275,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
         // GOTO there would; the canned cycle starts from that plane.
         // On a chain with a tilted working plane, a hole under a new tilted tool axis opens
         // its plane by that rapid too (the cycle is then written in the plane).
-        if (chain_ && multiaxis_takes() &&
-            ((!offset_on_ &&
-              !(chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on)
-                   .empty()) ||
-             plane_due()))
+        if (chain_ && multiaxis_takes() && ((!offset_on_ && !(offset_code(*chain_)).empty()) || plane_due()))
           multiaxis_move(true, cycle_approach(mv.pos), line);
         if (!chain_ || !multiaxis_takes() || multiaxis_arc(line)) cycle_point(mv.pos, line);
         pos_ = mv.pos;

@@ -91,8 +91,10 @@ void channel_writer::heads_upright() {
   word_start_ = b.size();
   b += "G0";
   for (std::size_t i = 0; i < c.rotaries.size(); ++i)
-    if (c.rotaries[i].kind == rotary_kind::head)
+    if (c.rotaries[i].kind == rotary_kind::head) {
       rotary_word(b, c.rotaries[i].address, 0.0, last_rot_[i], rotary_decimals, true);
+      joints_.rotary[i] = 0;  // the next tool's first point is solved from there
+    }
   out_.end_block();
   word_start_ = std::string::npos;
   motion_g_ = 0;
@@ -123,6 +125,7 @@ bool channel_writer::tool_length_known(int line) {
   if (length_known_ || length_free_) return true;
   if (length_refused_) return false;  // one error per tool
   const std::optional<double> table = m_.tool_length(ch_.number, tool_);
+  if (chain_->output == multiaxis_output::pivot) return pivot_length_fits(table, line);
   if (lengths_differ(*chain_, table, length_cl_)) {
     const std::string both = fmt::format(
         "tool {} ({} at line {}): the CL's TLDATA gives a length of {} mm, machine '{}' lists {} mm "
@@ -156,6 +159,43 @@ bool channel_writer::tool_length_known(int line) {
   return true;
 }
 
+bool channel_writer::pivot_length_fits(std::optional<double> table, int line) {
+  // Every point is the pivot for the programmed length: a tool the CL or the table says is
+  // another length has its tip that much off along the tool, unless the machine's length code
+  // makes up the difference (docs/machines.md, "Pivot output").
+  const kinematic_chain& c = *chain_;
+  tool_length_ = c.programmed_length;
+  length_known_ = true;
+  // The lengths that count: both under `agree`, else the one tool_length names (or the other
+  // where it is not given).
+  const bool table_counts = table && !(c.tool_length == length_source::cl && length_cl_);
+  const bool cl_counts = length_cl_ && !(c.tool_length == length_source::table && table);
+  const auto off = [&](const std::optional<double>& v, bool counts) {
+    return counts && std::abs(*v - c.programmed_length) > c.tolerance;
+  };
+  const bool table_off = off(table, table_counts);
+  if (!table_off && !off(length_cl_, cl_counts)) return true;
+  const double own = table_off ? *table : *length_cl_;
+  const std::string what = fmt::format(
+      "tool {} ({} at line {}) is {} mm long ({}), and machine '{}' writes the pivot for a {} mm tool "
+      "([[kinematics]] programmed_length)",
+      tool_, tool_word_, tool_line_, kin::number_text(own), table_off ? "[[tool]] length" : "the CL's TLDATA",
+      m_.name, kin::number_text(c.programmed_length));
+  if (c.length_on.empty()) {
+    length_known_ = false;
+    length_refused_ = true;
+    error(line,
+          what + fmt::format(
+                     ": its tip would be {} mm off along the tool; post it with a tool of that length, or "
+                     "name the control's length code ([[kinematics]] length_on) that makes up the difference",
+                     kin::number_text(std::abs(own - c.programmed_length))));
+    return false;
+  }
+  warning(what + fmt::format(": {} H{} must make up {} mm along the tool", c.length_on, offset_,
+                             kin::number_text(own - c.programmed_length)));
+  return true;
+}
+
 bool channel_writer::untilted_without_length(const joint_values& read, int line) {
   std::string tilt;
   for (std::size_t i = 0; i < chain_->rotaries.size(); ++i)
@@ -170,6 +210,20 @@ bool channel_writer::untilted_without_length(const joint_values& read, int line)
                             tool_, tool_word_, tool_line_, tilt.substr(1), m_.name));
   length_refused_ = true;  // one error per tool; its later tilted moves are left out silently
   return false;
+}
+
+bool channel_writer::upright() {
+  // Every table at 0 (the part frame is the machine's), and the heads where they leave the tip
+  // on the linear values with the tool along Z: all at 0, or a head about the tool's own axis (a
+  // C head over an A tilt at 0) at any angle. X Y Z then are the tip, as the 3-axis writer
+  // writes them.
+  const kinematic_chain& c = *chain_;
+  joint_values j = joints_;
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+    if (c.rotaries[i].kind == rotary_kind::table && std::abs(j.rotary[i]) > still) return false;
+  j.linear = {};
+  const tool_pose at = kin::forward(plan(), j, tool_length_);
+  return kin::norm(at.tip) <= 1e-6 && at.axis.z >= 1 - 1e-12;
 }
 
 bool channel_writer::multiaxis_takes() {
@@ -197,9 +251,13 @@ bool channel_writer::multiaxis_takes() {
 
 bool channel_writer::multiaxis_arc(int line) {
   if (plane_on_) return plane_takes(line);  // G17 of the tilted working plane (channel_plane.cpp)
-  const bool at_zero = std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
-                                   [](double v) { return std::abs(v) <= still; });
-  if (!at_zero || std::abs(axis_.z) < 0.9999) {
+  if (chain_->output == multiaxis_output::pivot) {
+    error(line,
+          "an arc or a drilling cycle under pivot output: the control would run it with the pivot "
+          "where the tip belongs; output the move as GOTO points");
+    return false;
+  }
+  if (!upright() || std::abs(axis_.z) < 0.9999) {
     std::string where;
     for (std::size_t i = 0; i < chain_->rotaries.size(); ++i)
       where += fmt::format(" {}{}", chain_->rotaries[i].address, kin::number_text(joints_.rotary[i]));
@@ -210,8 +268,7 @@ bool channel_writer::multiaxis_arc(int line) {
                       axis_.x, axis_.y, axis_.z, where));
     return false;
   }
-  const std::string& on =
-      chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on;
+  const std::string& on = offset_code(*chain_);
   if (!offset_on_ && !on.empty()) {
     error(line,
           "an arc or a drilling cycle as the first move after a tool call: the length offset goes out "
@@ -233,7 +290,7 @@ bool channel_writer::turn_at_pole(const tool_pose& at, const tool_pose& to, doub
   const vec3& pole = c.rotaries[f.outer].direction;
   const auto on_pole = [&](const vec3& k) { return kin::norm(kin::cross(pole, k)) < 1e-9; };
   if (!on_pole(at.axis) || on_pole(to.axis)) return true;
-  const bool joints = c.output == multiaxis_output::joints;
+  const bool joints = solves_joints(c);
   const kin::ik_result end =
       kin::inverse(plan_, to, length, joints_, joints ? kin::ik_need::joints : kin::ik_need::angles);
   if (!end.ok()) return true;  // the move itself says why
@@ -341,8 +398,8 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
     return error(line, fmt::format("cutter compensation ({}) under the tool axis ({:g},{:g},{:g}): twinpost "
                                    "writes no 3-D compensation (G41.2/G42.2)",
                                    pending_g_, axis_.x, axis_.y, axis_.z));
-  const bool joints = c.output == multiaxis_output::joints;
-  if (joints && chain_heads_ && !tool_length_known(line)) return;
+  const bool joints = solves_joints(c);
+  if (joints && (chain_heads_ || c.output == multiaxis_output::pivot) && !tool_length_known(line)) return;
   // Tool-tip control: the control holds the length (H); the rotary values do not depend on it.
   const double length = joints ? tool_length_ : 0;
   if (!rapid && had_from && !turn_at_pole(from, pose, length, line)) return;
@@ -517,9 +574,7 @@ bool channel_writer::reposition_rotaries(const joint_values& j, const tool_pose&
         any = rotary_word(b, "IJK"[i], v[i], last_ijk_[i], vector_decimals, false) || any;
       return any;
     }
-    std::size_t order[2] = {0, 1};
-    if (c.rotaries.size() == 2 && c.rotaries[1].address < c.rotaries[0].address)
-      std::swap(order[0], order[1]);
+    const std::array<std::size_t, 2> order = rotary_words(c);
     for (std::size_t n = 0; n < c.rotaries.size(); ++n) {
       const std::size_t i = order[n];
       any = rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, force) || any;
@@ -539,10 +594,13 @@ bool channel_writer::reposition_rotaries(const joint_values& j, const tool_pose&
 bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_pose& pose, double inverse_f,
                                  int line) {
   const kinematic_chain& c = *chain_;
-  const bool joints = c.output == multiaxis_output::joints;
+  const bool joints = solves_joints(c);
   const bool vector = c.output == multiaxis_output::vector;
-  // The linear words: the joints, or under tool-tip control the tip itself in the part frame.
-  const vec3 lin = joints ? j.linear : pose.tip;
+  // The linear words: the joints, the pivot, or under tool-tip control the tip itself in the
+  // part frame.
+  const bool pivot = c.output == multiaxis_output::pivot;
+  const vec3 shift = pivot ? pivot_shift(c) : vec3{};
+  const vec3 lin = joints ? vec3{j.linear.x + shift.x, j.linear.y + shift.y, j.linear.z + shift.z} : pose.tip;
   const double factor[3] = {x_factor_ * side_ * out_per_mm_, z_sign_ * out_per_mm_, z_sign_ * out_per_mm_};
   const double nc[3] = {lin.x * factor[0], lin.y * factor[1], lin.z * factor[2]};
   const int dec = axis_style_.decimals;
@@ -559,7 +617,7 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   if (length_free_ && joints && !untilted_without_length(read, line)) [[unlikely]]
     return false;
   if (joints) {
-    read.linear = lin_read;
+    read.linear = {lin_read.x - shift.x, lin_read.y - shift.y, lin_read.z - shift.z};
     back = kin::forward(plan(), read, tool_length_);
   } else {
     back.tip = lin_read;
@@ -621,10 +679,9 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     for (int i = 0; i < 3; ++i)
       moved = rotary_word(b, "IJK"[i], v[i], last_ijk_[i], vector_decimals, offset_block) || moved;
   } else {
-    // The rotary words in the order of their addresses (A, B, C), as the control lists them.
-    std::size_t order[2] = {0, 1};
-    if (c.rotaries.size() == 2 && c.rotaries[1].address < c.rotaries[0].address)
-      std::swap(order[0], order[1]);
+    // The rotary words in the order of their addresses (A, B, C), as most controls list them, or
+    // in the chain's ([[kinematics]] rotary_order).
+    const std::array<std::size_t, 2> order = rotary_words(c);
     for (std::size_t k = 0; k < c.rotaries.size(); ++k) {
       const std::size_t i = order[k];
       moved = rotary_word(b, c.rotaries[i].address, j.rotary[i], last_rot_[i], rotary_decimals, offset_block,

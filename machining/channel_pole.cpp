@@ -29,7 +29,7 @@ bool channel_writer::on_outer_pole(const vec3& axis) const {
 
 std::optional<double> channel_writer::pole_target(const vec3& pos, const vec3& axis) const {
   const kinematic_chain& c = *chain_;
-  const bool joints = c.output == multiaxis_output::joints;
+  const bool joints = solves_joints(c);
   double length = 0;
   if (joints) {
     // The length as tool_length_known() will take it, without its errors (the move gives them).

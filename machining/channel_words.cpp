@@ -153,8 +153,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   // code of the first move after the call (G43 H<offset>, G43.4 H<offset>).
   const bool chain_offset = [&] {
     if (!chain_ || chain_->moves != multiaxis_moves::all) return false;
-    const std::string& on =
-        chain_->output == multiaxis_output::joints ? chain_->length_on : chain_->tool_tip_on;
+    const std::string& on = offset_code(*chain_);
     return !on.empty() && on.find('H') == std::string::npos;
   }();
   if (t.offset && *t.offset != t.tool && !chain_offset && !names_offset) {

@@ -402,6 +402,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// With the length unknown: false (with the error naming the tool, once per tool) when the
   /// head values `read` (as the control reads them) tilt the tool.
   bool untilted_without_length(const kin::joint_values& read, int line);
+  bool pivot_length_fits(std::optional<double> table, int line);
+  bool upright();
   /// TLDATA/MILL's length (NX: diameter, lower radius, length, ...) for the next or this tool.
   void tool_data_length(const tool_data_event& t, bool after_call);
   /// A tool call on a chain channel: the new tool's offset register and length.

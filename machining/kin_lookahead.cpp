@@ -38,7 +38,7 @@ void kin_lookahead::look(std::span<const event> events, notes& out) {
   out.clear();
   out.of_event.assign(events.size(), -1);
   const kinematic_chain& c = *chain_;
-  const bool joints = c.output == multiaxis_output::joints;
+  const bool joints = solves_joints(c);
   for (std::size_t i = 0; i < events.size(); ++i) {
     const event& e = events[i];
     const bool after_call = after_call_;  // as the writer

@@ -89,7 +89,7 @@ TEST_CASE("errors in [[kinematics]] are reported at their place", "[kinematics][
   CHECK(machine_error_of(k + "chordal_tolerance = -1\n") ==
         "m.toml:11:21: error: kinematics.chordal_tolerance must be > 0, not -1");
   CHECK(machine_error_of(k + "output = \"tcp\"\n") ==
-        "m.toml:11:10: error: kinematics.output must be joints, tool_tip or vector, not 'tcp'");
+        "m.toml:11:10: error: kinematics.output must be joints, tool_tip, vector or pivot, not 'tcp'");
   CHECK(machine_error_of(b) ==
         "m.toml:11:1: error: rotary axis B needs min and max (degrees), or continuous = true");
   CHECK(machine_error_of(b + "min = 10\nmax = -10\n") ==
@@ -120,4 +120,52 @@ TEST_CASE("errors in [[kinematics]] are reported at their place", "[kinematics][
         "m.toml:21:1: error: channel 1 has more than two rotary axes (the most twinpost solves)");
   CHECK(machine_error_of(c + "direction = [0, 0, 1]\ncontinuous = true\naddress2 = 1\n") ==
         "m.toml:21:1: error: unknown key 'kinematics.rotary.address2'");
+}
+
+TEST_CASE("pivot output and the rotary word order are read, and their errors reported at their place",
+          "[kinematics][machines]") {
+  const std::string k = one_channel + "[[kinematics]]\nchannel = 1\n";  // lines 9-10
+  const std::string heads =
+      "[[kinematics.rotary]]\naddress = \"C\"\nkind = \"head\"\ndirection = [0, 0, 1]\npoint = [0, 0, 20]\n"
+      "min = -360\nmax = 360\n[[kinematics.rotary]]\naddress = \"A\"\nkind = \"head\"\n"
+      "direction = [1, 0, 0]\npoint = [0, 0, 20]\nmin = -110\nmax = 110\n";
+  const machine m = parse_machine(
+      k + "output = \"pivot\"\nprogrammed_length = 150\nrotary_order = \"chain\"\n" + heads, "m.toml");
+  const kinematic_chain& c = m.kinematics[0];
+  CHECK(c.output == multiaxis_output::pivot);
+  CHECK(c.programmed_length == 150);
+  CHECK(c.rotary_order == rotary_word_order::chain);
+  CHECK(c.length_on.empty());  // no length offset unless the machine names one
+  CHECK(solves_joints(c));
+  CHECK(offset_code(c).empty());
+  // The pivot: 150 mm up the tool from the tip, then the outer head's point from the nose.
+  CHECK(pivot_shift(c) == vec3{0, 0, 170});
+  CHECK(rotary_words(c) == std::array<std::size_t, 2>{0, 1});  // C, then A
+  // By address (the default): A before C.
+  const machine by_address = parse_machine(k + heads, "m.toml");
+  CHECK(rotary_words(by_address.kinematics[0]) == std::array<std::size_t, 2>{1, 0});
+  CHECK(chosen_length(c, 100.0, 120.0) == 150.0);  // pivot output: the programmed length
+
+  CHECK(machine_error_of(k + "output = \"pivot\"\n" + heads) ==
+        "m.toml:9:1: error: kinematics.output = \"pivot\" needs programmed_length (mm): the tool length the "
+        "pivot points are written for");
+  CHECK(machine_error_of(k + "programmed_length = 150\n" + heads) ==
+        "m.toml:11:21: error: kinematics.programmed_length is read only with output = \"pivot\"");
+  CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 0\n" + heads) ==
+        "m.toml:12:21: error: kinematics.programmed_length must be > 0 and < 10000 (mm), not 0");
+  CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\n"
+                             "[[kinematics.rotary]]\naddress = \"C\"\nkind = \"table\"\n"
+                             "direction = [0, 0, 1]\ncontinuous = true\n") ==
+        "m.toml:11:10: error: kinematics.output = \"pivot\" needs a head: no pivot turns the tool (use "
+        "\"joints\")");
+  CHECK(
+      machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\nmoves = \"tilted\"\n" + heads) ==
+      "m.toml:13:9: error: kinematics.output = \"pivot\" needs moves = \"all\": the lathe's moves write the "
+      "tip, not the pivot");
+  CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\nplane = \"G68.2\"\n" + heads) ==
+        "m.toml:13:9: error: kinematics.output = \"pivot\" takes no plane: a tilted working plane positions "
+        "the "
+        "tip, not the pivot");
+  CHECK(machine_error_of(k + "rotary_order = \"ca\"\n" + heads) ==
+        "m.toml:11:16: error: kinematics.rotary_order must be address or chain, not 'ca'");
 }

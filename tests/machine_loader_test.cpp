@@ -232,3 +232,22 @@ TEST_CASE("format_template formats the named placeholders", "[machines]") {
   CHECK_THROWS_AS(format_template("G50 S{}", a), fmt::format_error);
   CHECK_THROWS_AS(format_template("T{tol}", a), fmt::format_error);
 }
+
+TEST_CASE("a comment to the end of the line: comment_open = \";\" with no comment_close, or \"\"",
+          "[machines]") {
+  const auto program = [](const std::string& keys) {
+    return parse_machine(test::machine_head + "[program]\n" + keys + test::two_channels, "m.toml").program;
+  };
+  CHECK(program("").comment_open == '(');
+  CHECK(program("").comment_close == ')');
+  CHECK(program("comment_open = \";\"\n").comment_close == '\n');
+  CHECK(program("comment_open = \"*\"\ncomment_close = \"\"\n").comment_close == '\n');
+  CHECK(program("comment_open = \"[\"\ncomment_close = \"]\"\n").comment_close == ']');
+  CHECK(test::machine_error_of(test::machine_head +
+                               "[program]\ncomment_open = \";\"\ncomment_close = \";\"\n" +
+                               test::two_channels) ==
+        "m.toml:8:17: error: program.comment_close must differ from comment_open (';')");
+  CHECK(test::machine_error_of(test::machine_head + "[program]\ncomment_close = \"))\"\n" +
+                               test::two_channels) ==
+        "m.toml:7:17: error: program.comment_close must be one character, not '))'");
+}

@@ -102,7 +102,9 @@ std::vector<nc_point> nc_points(const std::string& nc, const kinematic_chain& c)
   vec3 frame[3];
   std::istringstream in(nc);
   for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '(' || line[0] == '%' || line[0] == 'O') continue;
+    if (line.empty() || line[0] == '(' || line[0] == ';' || line[0] == '%' || line[0] == 'O') continue;
+    // Without a length code (pivot output) the points start after the tool call.
+    if (offset_code(c).empty() && line.find(" M6") != std::string::npos) started = true;
     if (line.find("G28") != std::string::npos || line == "G53.1") continue;
     if (line.rfind("G68.2 X0. Y0. Z0. I", 0) == 0) {
       // Z-X-Z Euler angles: the plane's axes are Rz(I) Rx(J) Rz(K) applied to the part's.
@@ -138,6 +140,8 @@ std::vector<nc_point> nc_points(const std::string& nc, const kinematic_chain& c)
     p.rapid = rapid;
     p.text = line;
     p.joints.linear = {words[c.linear[0]], words[c.linear[1]], words[c.linear[2]]};
+    if (c.output == multiaxis_output::pivot)
+      p.joints.linear = kin::operator-(p.joints.linear, pivot_shift(c));
     for (std::size_t i = 0; i < c.rotaries.size(); ++i) p.joints.rotary[i] = words[c.rotaries[i].address];
     p.ijk = {words['I'], words['J'], words['K']};
     p.in_plane = in_plane;
@@ -157,7 +161,8 @@ kin::tool_pose pose_of(const kinematic_chain& c, const nc_point& p, double lengt
             p.frame[2]};
   }
   switch (c.output) {
-    case multiaxis_output::joints: return kin::forward(c, p.joints, length);
+    case multiaxis_output::joints:
+    case multiaxis_output::pivot: return kin::forward(c, p.joints, length);
     case multiaxis_output::tool_tip: return {p.joints.linear, kin::tool_axis(c, p.joints)};
     case multiaxis_output::vector: break;
   }
@@ -189,7 +194,9 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
   double length = 0;
   const std::vector<cl_point> cl_pts = cl_points(cl, length);
   const std::vector<nc_point> nc = nc_points(p.files.begin()->second, c);
-  const double len = c.output == multiaxis_output::joints ? length : 0;
+  const double len = c.output == multiaxis_output::pivot ? c.programmed_length
+                     : solves_joints(c)                  ? length
+                                                         : 0;
   round_trip r;
   r.blocks = static_cast<int>(nc.size());
   std::size_t next = 0;  // the CL point the blocks are heading for
@@ -220,7 +227,7 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
         CHECK(kin::distance(b.joints.linear, prev->joints.linear) < 1e-9);
       }
     }
-    if (feed && prev && c.output == multiaxis_output::joints) {
+    if (feed && prev && solves_joints(c)) {
       // The control interpolates the joints: the tip stays near the segment all the way.
       for (int k = 1; k < 50; ++k) {
         const kin::joint_values j = kin::interpolate(c, prev->joints, b.joints, k / 50.0);
@@ -231,7 +238,7 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
     if (tip <= c.tolerance && axis <= c.angle_tolerance) {
       r.worst_tip = std::max(r.worst_tip, tip);
       r.worst_axis = std::max(r.worst_axis, axis);
-      if (at_block && feed && c.output == multiaxis_output::joints) {
+      if (at_block && feed && solves_joints(c)) {
         for (std::size_t i = 0; i < c.rotaries.size(); ++i)
           r.largest_swing =
               std::max(r.largest_swing, std::abs(b.joints.rotary[i] - at_block->joints.rotary[i]));
@@ -1015,4 +1022,74 @@ TEST_CASE("frames: an MSYS after the job has moved is a second MCS", "[post][fra
         "absolute frame the job's first moves were in: the program has one work offset, and which "
         "offset the machinist gives this MCS the CL does not say; post its operations as a job of "
         "their own\nMSYS/100,0,0,1,0,0,0,1,0\n^\n");
+}
+
+TEST_CASE("multi-axis: pivot output on the C/A gantry reads back to the CL through the forward transform",
+          "[post][multiaxis]") {
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-pivot/gantry-ca-pivot.toml");
+  m.program.frame = cl_frame::absolute;  // as the sample's post.args
+  const round_trip r = read_back(sample_job("nx-ca-pivot"), m, "ma-pivot");
+  CHECK(r.cl_points == 9);
+  CHECK(r.sub_points > 60);  // the corners turn C by 90 degrees, cut to the chordal tolerance
+  CHECK(r.worst_tip <= 0.004);
+  CHECK(r.worst_axis <= 0.002);
+  CHECK(r.worst_chord <= 0.01 + 0.004);
+  // The words themselves: no length offset, X Y Z the pivot 150 mm up the tilted tool from the
+  // tip (the MCS turned 90 degrees: the CL's (-20,-30,2) leaning -Y is (30,-20,2) leaning +X).
+  const test::posted p = test::post_in_fresh_dir(sample_job("nx-ca-pivot"), m, "ma-pivot-words");
+  REQUIRE(p.ok);
+  const std::string& nc = p.files.at("PROGRAM.nc");
+  CHECK(nc.find("G43") == std::string::npos);
+  CHECK(nc.find(
+            "S6000 M3\nG0 C90. A0.\nG0 X30. Y-20.\nZ190.\nG0 A20.\nG0 X81.303\nZ142.954\nG1 Z132.954 F1000.\n"
+            "Y20.\nG93 G1 X80.408 Y20.991 Z133.218 C90.945 A19.703 F4525.483\n") != std::string::npos);
+}
+
+TEST_CASE("multi-axis: pivot output refuses a tool of another length, or warns where the control makes it up",
+          "[post][multiaxis]") {
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-pivot/gantry-ca-pivot.toml");
+  m.tools.clear();  // the CL's TLDATA alone
+  const std::string job =
+      "PARTNO PIVOT\nTLDATA/MILL,10,0,120,0,0\nMULTAX/ON\nLOADTL/1\nSPINDL/RPM,5000,CLW\n"
+      "FEDRAT/MMPM,500\nRAPID\nGOTO/0,0,50,0,0,1\nGOTO/0,0,0,0,0,1\nFINI\n";
+  const test::posted refused = test::post_in_fresh_dir(job, m, "ma-pivot-len");
+  CHECK(!refused.ok);
+  CHECK(refused.diagnostics ==
+        "job.cls:8:1: error: channel 1: tool 1 (LOADTL at line 4) is 120 mm long (the CL's TLDATA), and "
+        "machine "
+        "'gantry-ca-pivot' writes the pivot for a 150 mm tool ([[kinematics]] programmed_length): its tip "
+        "would "
+        "be 30 mm off along the tool; post it with a tool of that length, or name the control's length code "
+        "([[kinematics]] length_on) that makes up the difference\nGOTO/0,0,50,0,0,1\n^\n");
+  m.kinematics[0].length_on = "G43.1";
+  const test::posted made_up = test::post_in_fresh_dir(job, m, "ma-pivot-len-on");
+  INFO(made_up.diagnostics);
+  REQUIRE(made_up.ok);
+  CHECK(made_up.diagnostics.find("G43.1 H1 must make up -30 mm along the tool") != std::string::npos);
+  CHECK(made_up.files.at("PIVOT.nc").find("G0 G43.1 H1 X0. Y0. Z200. C0. A0.\nG1 Z150. F500.\n") !=
+        std::string::npos);
+}
+
+TEST_CASE("multi-axis: the C/A gantry writes C before A and ; comments, and drills with C turned",
+          "[post][multiaxis]") {
+  const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/gantry-ca.toml");
+  // A cut leaning towards +X (C90 A15), back upright with C left at 90, then a hole with the
+  // same tool: C about the tool's own axis leaves X Y Z the tip, so the canned cycle is written.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO LEAN\nTLDATA/MILL,12,0,150,0,0\nMULTAX/ON\nLOADTL/1\nPPRINT/LEAN (15 "
+      "DEG)\nSPINDL/RPM,5000,CLW\nFEDRAT/MMPM,500\n"
+      "RAPID\nGOTO/0,0,50,0.2588190,0,0.9659258\nGOTO/0,0,0,0.2588190,0,0.9659258\nRAPID\n"
+      "GOTO/0,0,50,0,0,1\nCYCLE/DRILL,DEPTH,5,CLEAR,2,MMPM,100\nGOTO/20,0,0,0,0,1\nCYCLE/OFF\nFINI\n",
+      m, "ma-ca-lean");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  const std::string& nc = p.files.at("LEAN.nc");
+  // A comment runs from ';' to the end of the line, its parentheses blanked.
+  CHECK(nc.find("\n;LEAN  15 DEG\n") != std::string::npos);
+  // The tip 150 mm below the nose, the nose over X38.823 (150 sin 15): X Y Z the tip with the
+  // heads at 0, C then A in every block.
+  CHECK(nc.find(
+            "S5000 M3\nG0 C90. A15.\nG0 X38.823 Y0.\nG0 G43 H1 X38.823 Y0. Z44.889 C90. A15.\n"
+            "G1 Z-5.111 F500.\nG0 Z50.\nG0 A0.\nG0 X0.\nX20.\nZ2.\nG98 G81 X20. Y0. Z-5. R2. F100.\nG80\n") !=
+        std::string::npos);
 }
