@@ -233,7 +233,7 @@ TEST_CASE("format_template formats the named placeholders", "[machines]") {
   CHECK_THROWS_AS(format_template("T{tol}", a), fmt::format_error);
 }
 
-TEST_CASE("a comment to the end of the line: comment_open = \";\" with no comment_close, or \"\"",
+TEST_CASE("a comment to the end of the line: a semicolon comment_open with no comment_close, or an empty one",
           "[machines]") {
   const auto program = [](const std::string& keys) {
     return parse_machine(test::machine_head + "[program]\n" + keys + test::two_channels, "m.toml").program;

@@ -1070,7 +1070,7 @@ TEST_CASE("multi-axis: pivot output refuses a tool of another length, or warns w
         std::string::npos);
 }
 
-TEST_CASE("multi-axis: the C/A gantry writes C before A and ; comments, and drills with C turned",
+TEST_CASE("multi-axis: the C/A gantry writes C before A and semicolon comments, and drills with C turned",
           "[post][multiaxis]") {
   const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/gantry-ca.toml");
   // A cut leaning towards +X (C90 A15), back upright with C left at 90, then a hole with the
