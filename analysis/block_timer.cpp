@@ -126,6 +126,8 @@ block_timer::block_timer(const machine& m, int channel)
   target_.resize(axes_.size());
   add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
   add_codes(feed_min_, m.codes.feed_per_min, 'G');
+  // Inverse-time feed (G93) of a channel whose chain writes it: F is 1/min, the block takes 1/F.
+  if (const kinematic_chain* c = m.chain(ch_->number)) add_codes(feed_inverse_, c->inverse_time, 'G');
   for (const int g : {g_code("0"), g_code("1"), g_code("2"), g_code("3")})
     plain_motion_codes_ = plain_motion_codes_ && !among(feed_rev_, g) && !among(feed_min_, g);
   // The tool call's address and how a number splits into tool and offset (T0303: tool 3).
@@ -199,10 +201,13 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     else if (g == g_code("17") || g == g_code("18") || g == g_code("19"))
       plane_ = g / 10;
     if (among(feed_rev_, g))
-      per_rev_ = true;
+      per_rev_ = true, inverse_time_ = false;
     else if (among(feed_min_, g))
-      per_rev_ = false;
-    else if (g == g_code("98") || g == g_code("99"))
+      per_rev_ = false, inverse_time_ = false;
+    else if (among(feed_inverse_, g)) {
+      per_rev_ = false, inverse_time_ = true;
+      continue;
+    } else if (g == g_code("98") || g == g_code("99"))
       cyc_.return_r = g == g_code("99");  // where they are not feed modes: the drilling cycles' return level
     if (lathe_a_ && (g == g_code("90") || g == g_code("92") || g == g_code("94"))) {
       if (cycle_ != g) end_cycle();
@@ -440,6 +445,7 @@ double block_timer::feed_time(double length, double x0, double x1, block_timing&
     return 0;
   }
   const bool thread = sync || std::string_view(code) == "G32";
+  if (inverse_time_ && !thread) return 60 / feed_;  // F moves a block in 1/F minutes, whatever its length
   if (!per_rev_ && !thread) return length / feed_ * 60;
   // Per revolution: F units per turn at the spindle's rpm; under CSS the rpm follows the
   // diameter, so the move is summed in steps at each step's middle diameter.

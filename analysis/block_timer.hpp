@@ -116,8 +116,9 @@ class block_timer {
   char tool_address_ = 'T';
   long tool_divisor_ = 1;  // T0303 with {tool:02}{offset:02}: the tool is T / 100
   char dwell_address_ = 0;
-  double dwell_unit_ = 1;                 // seconds per unit of the dwell word
-  std::vector<int> feed_rev_, feed_min_;  // g_code
+  double dwell_unit_ = 1;                                // seconds per unit of the dwell word
+  std::vector<int> feed_rev_, feed_min_, feed_inverse_;  // g_code
+  bool inverse_time_ = false;                            // G93: F is 1/min
   // Mill/turn modes ([milling]): X in radius while the spindle is a C axis, and C a linear
   // axis (the plane's second one, mm) in polar interpolation.
   bool radius_x_ = false, polar_ = false;

@@ -63,6 +63,13 @@ class timeline_builder {
     const std::vector<nc_word>& words = b.words();  // first: split, the letters come exact
     const block_timing t = r.timer.time(words, b.letters());
     ++c.blocks;
+    if (m_.limits.blocks_per_second > 0 && !t.rapid && t.motion > 0 &&
+        t.motion * m_.limits.blocks_per_second < 1) [[unlikely]] {
+      if (c.short_blocks++ == 0 || t.motion < c.shortest) {
+        c.shortest = t.motion;
+        c.shortest_at = {file, line, 1, std::string(text)};
+      }
+    }
     if (!t.untimed.empty()) {
       ++c.untimed;
       note_untimed(r.untimed, t.untimed, file, line, text);

@@ -81,6 +81,11 @@ struct channel_times {
   double end = 0;   ///< busy + idle: when it reaches its end
   long blocks = 0;
   long untimed = 0;
+  /// Feed blocks shorter than the control reads them (limits.blocks_per_second), and the
+  /// shortest of them.
+  long short_blocks = 0;
+  double shortest = 0;
+  nc_place shortest_at;
   std::vector<tool_operation> operations;
   std::vector<wait_stop> waits;
   std::vector<timed_block> kept;  ///< with timeline_options::keep_blocks (none past the cap)

@@ -275,6 +275,8 @@ struct transfer_def {
 /// Limits the post holds the CL data to.
 struct motion_limits {
   double max_feed = 0;  ///< highest feed per minute in mm/min; 0 = none
+  /// The most blocks a second the control reads while it keeps the feed; 0 = no limit known.
+  double blocks_per_second = 0;
 };
 
 /// [cycles]: the drilling and tapping cycles the control runs itself, with their codes

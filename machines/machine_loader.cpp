@@ -352,8 +352,12 @@ void read_positive(const table_reader& r, std::string_view key, double& out, boo
 void read_limits(const table_reader& root, motion_limits& l) {
   const toml::table* t = root.sub_table("limits");
   if (!t) return;
-  table_reader r(*t, "limits", root.source(), {"max_feed"});
+  table_reader r(*t, "limits", root.source(), {"max_feed", "blocks_per_second"});
   read_positive(r, "max_feed", l.max_feed, false);
+  read_positive(r, "blocks_per_second", l.blocks_per_second, false);
+  if (l.blocks_per_second > 1e5)
+    r.fail(*r.find("blocks_per_second"),
+           fmt::format("limits.blocks_per_second must be at most 100000, not {}", l.blocks_per_second));
 }
 
 // [cycles]: which of the control's own cycles the post writes (docs/machines.md).

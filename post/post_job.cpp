@@ -405,14 +405,37 @@ std::string timeline_name_problem(const post_options& o, const std::vector<frame
   return "";
 }
 
+// Feed blocks the control cannot read as fast as they go by (limits.blocks_per_second): one
+// warning per channel, at its shortest block. The control would slow the feed down there (it
+// starves), or jerk; the fix is the CAM's (a coarser tolerance) or the chain's chordal_tolerance.
+void report_short_blocks(const timeline& t, const machine& m, diagnostic_sink& sink) {
+  for (const channel_times& c : t.channels) {
+    if (c.short_blocks == 0) continue;
+    const double per_block = 1000 / m.limits.blocks_per_second;
+    sink.report(
+        {severity::warning, c.shortest_at.file, c.shortest_at.line, c.shortest_at.column,
+         fmt::format("channel {}: {} feed block{} take{} less than the {:.3g} ms a block the control "
+                     "reads (limits.blocks_per_second = {:g}); this one, the shortest, {:.3g} ms at its "
+                     "feed: the control would slow the feed down there (a coarser chordal_tolerance or "
+                     "CAM tolerance gives fewer, longer blocks)",
+                     c.channel, c.short_blocks, c.short_blocks == 1 ? "" : "s",
+                     c.short_blocks == 1 ? "s" : "", per_block, m.limits.blocks_per_second,
+                     c.shortest * 1000),
+         c.shortest_at.source_line});
+  }
+}
+
 // The cycle time of the staged programs (fed by the self-check's reading, checked sound) and,
 // with --timeline, the page staged beside them. Blocks are kept only for the page, and
 // dropped once it is written.
 std::optional<staged_file> time_programs(const post_options& o, const machine& m,
                                          const std::string& stage_dir, timeline_feed& feed,
-                                         const std::vector<std::uint64_t>& rendezvous, post_summary& sum) {
+                                         const std::vector<std::uint64_t>& rendezvous, post_summary& sum,
+                                         diagnostic_sink& sink) {
   timeline t = feed.finish(rendezvous);
   if (!t.ok) return std::nullopt;
+  report_short_blocks(t, m, sink);
+  if (!has_timing(m)) return std::nullopt;  // read for the block rate alone
   std::optional<staged_file> page;
   if (!o.timeline_file.empty()) {
     const std::string path = (fs::path(stage_dir) / "timeline-page.tmp").string();
@@ -530,7 +553,7 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   timeline_options to;
   to.keep_blocks = !o.timeline_file.empty();
   std::optional<timeline_feed> feed;  // the cycle time, fed by the self-check's reading
-  if (has_timing(m) && m.channels.size() <= 64) feed.emplace(m, to);
+  if ((has_timing(m) || m.limits.blocks_per_second > 0) && m.channels.size() <= 64) feed.emplace(m, to);
   std::optional<concurrent_check> during;  // after `feed`: its thread feeds it
   if (plan.check) {
     during.emplace(m, feed ? &*feed : nullptr);
@@ -574,7 +597,7 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   if (!self_check(o, m, files, ws, t.last_line, sink, feed ? &*feed : nullptr, std::move(done), rendezvous))
     return router.operations();
   std::optional<staged_file> page;
-  if (feed) page = time_programs(o, m, stage.dir(), *feed, rendezvous, sum);
+  if (feed) page = time_programs(o, m, stage.dir(), *feed, rendezvous, sum, sink);
   if (commit) sum.files = commit_files(stage, files, page, o.cl_path);
   sum.ok = true;
   return router.operations();

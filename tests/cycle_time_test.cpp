@@ -439,3 +439,17 @@ TEST_CASE("block timer: C in cylindrical interpolation is arc length on the cyli
         "27.0000\n"  // C alone again: 90 degrees at F read as degrees per minute
   );
 }
+
+TEST_CASE("block timer: inverse-time feed (G93) takes 1/F minutes a block, whatever its length",
+          "[analysis][timeline]") {
+  const machine m = load_machine("head-head-5axis");
+  CHECK(times(m, 1,
+              {"G90 G94 G17", "G0 X0. Y0. Z50. A0. B0.", "G93 G1 X1. B5. F600.", "X3. B10. F60.",
+               "G94 G1 X13. F600.", "G1 X14. F600."}) ==
+        "0.0000\n"
+        "0.0000|G0 from an unknown position\n"
+        "0.1000\n"  // 1/600 min
+        "1.0000\n"  // 1/60 min, 2 mm and 5 degrees
+        "1.0000\n"  // G94 again: 10 mm at 600 mm/min
+        "0.1000\n");
+}

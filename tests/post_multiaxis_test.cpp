@@ -1093,3 +1093,25 @@ TEST_CASE("multi-axis: the C/A gantry writes C before A and semicolon comments, 
             "G1 Z-5.111 F500.\nG0 Z50.\nG0 A0.\nG0 X0.\nX20.\nZ2.\nG98 G81 X20. Y0. Z-5. R2. F100.\nG80\n") !=
         std::string::npos);
 }
+
+TEST_CASE("multi-axis: feed blocks faster than the control reads them are counted and named",
+          "[post][multiaxis]") {
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-pivot/gantry-ca-pivot.toml");
+  m.program.frame = cl_frame::absolute;
+  m.limits.blocks_per_second = 50;  // 20 ms a block: the sub-moves of the corners take 13.3 ms
+  const test::posted p = test::post_in_fresh_dir(sample_job("nx-ca-pivot"), m, "ma-rate");
+  REQUIRE(p.ok);
+  const std::size_t out = p.diagnostics.find("out/PROGRAM.nc");  // the test's own folder before it
+  REQUIRE(out != std::string::npos);
+  CHECK(
+      p.diagnostics.substr(out) ==
+      "out/PROGRAM.nc:21:1: warning: channel 1: 128 feed blocks take less than the 20 ms a block the control "
+      "reads (limits.blocks_per_second = 50); this one, the shortest, 13.3 ms at its feed: the control would "
+      "slow the feed down there (a coarser chordal_tolerance or CAM tolerance gives fewer, longer blocks)\n"
+      "G93 G1 X80.408 Y20.991 Z133.218 C90.945 A19.703 F4525.483\n^\n");
+  m.limits.blocks_per_second = 70;  // 14.3 ms
+  CHECK(test::post_in_fresh_dir(sample_job("nx-ca-pivot"), m, "ma-rate-70")
+            .diagnostics.find("128 feed blocks") != std::string::npos);
+  m.limits.blocks_per_second = 76;  // 13.16 ms a block, the sub-moves 60/4525.483 = 13.26 ms: none counted
+  CHECK(test::post_in_fresh_dir(sample_job("nx-ca-pivot"), m, "ma-rate-76").diagnostics.empty());
+}
