@@ -165,6 +165,16 @@ void check_pivot(const table_reader& r, kinematic_chain& c) {
     r.fail(*r.find("plane"),
            "kinematics.output = \"pivot\" takes no plane: a tilted working plane "
            "positions the tip, not the pivot");
+  // The length code of pivot output makes up a tool's difference from the programmed length along
+  // the tool; G43/G44 apply it along Z, which at A20 puts the tip sin 20 of it sideways.
+  const std::string code = c.length_on.substr(0, c.length_on.find(' '));
+  if (code == "G43" || code == "G44")
+    r.fail(*r.find("length_on"),
+           fmt::format(
+               "kinematics.length_on = \"{}\" under pivot output: {} applies the length along Z, and a "
+               "tilted tool needs it along the tool (Fanuc's G43.1, tool length compensation in the tool "
+               "axis direction), or none",
+               c.length_on, code));
 }
 
 }  // namespace

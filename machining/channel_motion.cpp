@@ -9,7 +9,11 @@ namespace twinpost {
 
 namespace {
 constexpr double y_tolerance = 1e-4;
-}
+// How far the end of an arc may lie off the circle of its start (output units): the CAM's
+// rounding of its points (4 decimals) is far below it, and a control's own tolerance (Fanuc's
+// arc radius error parameter) is of its order.
+constexpr double arc_radius_tolerance = 0.01;
+}  // namespace
 
 void channel_writer::append_feed(text_buffer& out) {
   // The F word is modal: formatted once per feed value, written when it changes.
@@ -361,6 +365,23 @@ void channel_writer::arc(const arc_event& cl, int line) {
     return fail(fmt::format("arc in the {} plane on a channel without a Y axis", plane == 17 ? "XY" : "YZ"));
   if (!has_y_ && !polar_ && std::abs(a.end.y * cl_mm_) > y_tolerance)
     return fail(fmt::format("Y {} on a channel without a Y axis", a.end.y));
+  {
+    // The start and the end on one circle about the centre (in its plane): a control whose arc
+    // ends off its circle alarms at best, or spirals to it (Fanuc's arc radius tolerance).
+    const auto in_plane_radius = [&](const vec3& p) {
+      const vec3 d{p.x - a.center.x, p.y - a.center.y, p.z - a.center.z};
+      const double h = (d.x * a.normal.x + d.y * a.normal.y + d.z * a.normal.z) / (nlen * nlen);
+      const vec3 r{d.x - a.normal.x * h, d.y - a.normal.y * h, d.z - a.normal.z * h};
+      return std::sqrt(r.x * r.x + r.y * r.y + r.z * r.z);
+    };
+    const double r0 = in_plane_radius(a.start), r1 = in_plane_radius(a.end);
+    if (std::abs(r1 - r0) * scale_ > arc_radius_tolerance)
+      return fail(fmt::format(
+          "the arc ends {} mm from its centre ({}, {}, {}) and starts {} mm from it: no "
+          "circle about that centre goes through both",
+          kin::number_text(r1 * scale_), kin::number_text(a.center.x), kin::number_text(a.center.y),
+          kin::number_text(a.center.z), kin::number_text(r0 * scale_)));
+  }
   // TIMES,n (NX): n full turns about the axis; a GOTO at another depth along the axis makes
   // them a helix (NX's CLSF: "a tool path arc ... or a helical motion", x,y,z "the center of
   // the curve or helix"). Each turn is one block whose axis word moves 1/n of the depth: the

@@ -166,6 +166,28 @@ bool channel_writer::pivot_length_fits(std::optional<double> table, int line) {
   const kinematic_chain& c = *chain_;
   tool_length_ = c.programmed_length;
   length_known_ = true;
+  if (!table && !length_cl_) {
+    // Even upright the written Z is the tip + the programmed length: a tool of no known length
+    // would cut air, or run its tip into the part by what it is longer.
+    length_known_ = false;
+    length_refused_ = true;
+    error(line,
+          fmt::format("tool {} ({} at line {}) has no length, and machine '{}' writes every point for a "
+                      "{} mm tool ([[kinematics]] programmed_length); give TLDATA/MILL with the length, or "
+                      "length = ... under the tool's [[tool]] in the machine file",
+                      tool_, tool_word_, tool_line_, m_.name, kin::number_text(c.programmed_length)));
+    return false;
+  }
+  // The CL and the table disagree, and the machine file says which counts: said, as joints
+  // output says it (tool_length_known).
+  if (lengths_differ(c, table, length_cl_) && c.tool_length != length_source::agree)
+    warning(fmt::format(
+        "tool {} ({} at line {}): the CL's TLDATA gives a length of {} mm, machine '{}' lists "
+        "{} mm ([[tool]] length): the {} is compared with the programmed {} mm "
+        "([[kinematics]] tool_length = \"{}\")",
+        tool_, tool_word_, tool_line_, kin::number_text(*length_cl_), m_.name, kin::number_text(*table),
+        c.tool_length == length_source::table ? "table's" : "CL's", kin::number_text(c.programmed_length),
+        c.tool_length == length_source::table ? "table" : "cl"));
   // The lengths that count: both under `agree`, else the one tool_length names (or the other
   // where it is not given).
   const bool table_counts = table && !(c.tool_length == length_source::cl && length_cl_);
@@ -261,11 +283,12 @@ bool channel_writer::multiaxis_arc(int line) {
     std::string where;
     for (std::size_t i = 0; i < chain_->rotaries.size(); ++i)
       where += fmt::format(" {}{}", chain_->rotaries[i].address, kin::number_text(joints_.rotary[i]));
-    error(line,
-          fmt::format("an arc or a drilling cycle with the tool axis ({:g},{:g},{:g}) and the rotary axes "
-                      "at{}: twinpost writes them only with every rotary axis at 0 and the tool along Z; "
-                      "output the move as GOTO points",
-                      axis_.x, axis_.y, axis_.z, where));
+    error(line, fmt::format(
+                    "an arc or a drilling cycle with the tool axis ({:g},{:g},{:g}) and the rotary axes "
+                    "at{}: twinpost writes them only with the tool along Z, every table and every head that "
+                    "tilts the tool at 0 (a head about the tool's own axis may stand anywhere); "
+                    "output the move as GOTO points",
+                    axis_.x, axis_.y, axis_.z, where));
     return false;
   }
   const std::string& on = offset_code(*chain_);

@@ -166,6 +166,15 @@ TEST_CASE("pivot output and the rotary word order are read, and their errors rep
         "m.toml:13:9: error: kinematics.output = \"pivot\" takes no plane: a tilted working plane positions "
         "the "
         "tip, not the pivot");
+  CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\nlength_on = \"G43\"\n" + heads) ==
+        "m.toml:13:13: error: kinematics.length_on = \"G43\" under pivot output: G43 applies the length "
+        "along Z, "
+        "and a tilted tool needs it along the tool (Fanuc's G43.1, tool length compensation in the tool axis "
+        "direction), or none");
+  CHECK(parse_machine(k + "output = \"pivot\"\nprogrammed_length = 150\nlength_on = \"G43.1\"\n" + heads,
+                      "m.toml")
+            .kinematics[0]
+            .length_on == "G43.1");
   CHECK(machine_error_of(k + "rotary_order = \"ca\"\n" + heads) ==
         "m.toml:11:16: error: kinematics.rotary_order must be address or chain, not 'ca'");
 }

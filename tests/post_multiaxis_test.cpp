@@ -456,9 +456,9 @@ TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0",
   CHECK(p.diagnostics ==
         "job.cls:12:1: error: channel 1: an arc or a drilling cycle with the tool axis (0,0,1) and the "
         "rotary axes "
-        "at A0 C90: twinpost writes them only with every rotary axis at 0 and the tool along Z; output the "
-        "move as "
-        "GOTO points\nGOTO/10,10,0\n^\n");
+        "at A0 C90: twinpost writes them only with the tool along Z, every table and every head that tilts "
+        "the tool at 0 (a head about the tool's own axis may stand anywhere); output the move as GOTO points"
+        "\nGOTO/10,10,0\n^\n");
   // With the axes at 0 the arc is the 3-axis one, after G94 where G93 was in force.
   const test::posted q = post_moves(load_machine("head-head-5axis"),
                                     "GOTO/0,0,0,0,0,1\nGOTO/10,0,0,0.0871557,0,0.9961947\nGOTO/20,0,0,0,0,1\n"
@@ -1061,6 +1061,28 @@ TEST_CASE("multi-axis: pivot output refuses a tool of another length, or warns w
         "would "
         "be 30 mm off along the tool; post it with a tool of that length, or name the control's length code "
         "([[kinematics]] length_on) that makes up the difference\nGOTO/0,0,50,0,0,1\n^\n");
+  // No length at all: even upright the written Z is the tip + 150 mm.
+  std::string no_length = job;
+  no_length.replace(no_length.find("TLDATA/MILL,10,0,120,0,0\n"), 25, "");
+  CHECK(
+      test::post_in_fresh_dir(no_length, m, "ma-pivot-nolen").diagnostics ==
+      "job.cls:7:1: error: channel 1: tool 1 (LOADTL at line 3) has no length, and machine 'gantry-ca-pivot' "
+      "writes every point for a 150 mm tool ([[kinematics]] programmed_length); give TLDATA/MILL with the "
+      "length, or length = ... under the tool's [[tool]] in the machine file\nGOTO/0,0,50,0,0,1\n^\n");
+  // The table says 150, the CL 120, and the table counts: said, and posted.
+  m.tools =
+      load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-pivot/gantry-ca-pivot.toml").tools;
+  m.kinematics[0].tool_length = length_source::table;
+  const test::posted table_wins = test::post_in_fresh_dir(job, m, "ma-pivot-table");
+  REQUIRE(table_wins.ok);
+  CHECK(
+      table_wins.diagnostics ==
+      "job.cls:8:1: warning: channel 1: tool 1 (LOADTL at line 4): the CL's TLDATA gives a length of 120 mm, "
+      "machine "
+      "'gantry-ca-pivot' lists 150 mm ([[tool]] length): the table's is compared with the programmed 150 mm "
+      "([[kinematics]] tool_length = \"table\")\n");
+  m.tools.clear();
+  m.kinematics[0].tool_length = length_source::agree;
   m.kinematics[0].length_on = "G43.1";
   const test::posted made_up = test::post_in_fresh_dir(job, m, "ma-pivot-len-on");
   INFO(made_up.diagnostics);

@@ -226,13 +226,24 @@ TEST_CASE("NX helix in YZ and ZX: the axis word is X or Y", "[post][arc][nx]") {
 TEST_CASE("TIMES: a GOTO off the circle's axis is refused, the same depth stays full circles",
           "[post][arc][nx]") {
   const test::posted off =
-      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {29, 20, -6}, 2), "rotary-4axis", "off");
+      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {25, 25, -6}, 2), "rotary-4axis", "off");
   CHECK_FALSE(off.ok);
   CHECK(
       off.diagnostics ==
       "job.cls:11:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts, or above or below "
-      "it along the circle's axis, to be written as full turns (it ends 1 mm away in the circle's plane)\n"
-      "GOTO/29,20,-6\n^\n");
+      "it along the circle's axis, to be written as full turns (it ends 5 mm away in the circle's plane)\n"
+      "GOTO/25,25,-6\n^\n");
+  // An end off the circle is no arc at all, with or without TIMES.
+  for (const int turns : {0, 2}) {
+    std::string job = helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {29, 20, -6}, turns);
+    if (turns == 0) job.replace(job.find(",TIMES,0"), 8, "");  // a plain arc
+    const test::posted wide = post(job, "rotary-4axis", "wide" + std::to_string(turns));
+    CHECK_FALSE(wide.ok);
+    CHECK(
+        wide.diagnostics ==
+        "job.cls:11:1: error: channel 1: the arc ends 4 mm from its centre (25, 20, -6) and starts 5 mm from "
+        "it: no circle about that centre goes through both\nGOTO/29,20,-6\n^\n");
+  }
   const test::posted flat =
       post(helix_job("0,0,1", {30, 20, 2}, {25, 20, 2}, {30, 20, 2}, 2), "rotary-4axis", "flat");
   REQUIRE(flat.ok);
