@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "kinematics/forward.hpp"
+#include "kinematics/linearise.hpp"
 #include "kinematics/vec3_ops.hpp"
 #include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
@@ -528,6 +529,41 @@ bool channel_writer::rotary_word(text_buffer& out, char address, double value, a
   return true;
 }
 
+double channel_writer::head_turn_dip(const joint_values& j, const tool_pose& pose, const double factor[3]) {
+  // A head turns the tool about its pivot: a rapid that turns it with the linear axes held
+  // swings the tip on an arc, which may pass below both points (A+30 to A-30 on a 150 mm tool
+  // dips the tip 20 mm at A0). How far (mm, along the tool direction) it would pass below the
+  // higher of the tip where the turn starts and the point the rapid goes to; 0 where it does
+  // not, under tool-tip control (the control holds the tip), or where a table turns too (the
+  // part moves under the tool: no one height says clear).
+  const kinematic_chain& c = *chain_;
+  if (!solves_joints(c) || !offset_on_) return 0;
+  joint_values a = j;
+  axis_memory* mem[3] = {&last_x_, &last_y_, &last_z_};
+  double lin[3];
+  for (int i = 0; i < 3; ++i) {
+    if (!mem[i]->known) return 0;
+    lin[i] = mem[i]->value / factor[i];
+  }
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
+    if (c.rotaries[i].kind != rotary_kind::head || !last_rot_[i].known) return 0;
+    a.rotary[i] = last_rot_[i].value;
+  }
+  const vec3 shift = c.output == multiaxis_output::pivot ? pivot_shift(c) : vec3{};
+  a.linear = {lin[0] - shift.x, lin[1] - shift.y, lin[2] - shift.z};
+  joint_values b = a;
+  b.rotary = j.rotary;
+  const auto height = [&](const joint_values& at) {
+    return kin::dot(kin::forward(plan(), at, tool_length_).tip, c.tool_direction);
+  };
+  const double top = std::max(height(a), kin::dot(pose.tip, c.tool_direction));
+  double low = top;
+  constexpr int steps = 64;
+  for (int n = 1; n <= steps; ++n) low = std::min(low, height(kin::interpolate(c, a, b, double(n) / steps)));
+  const double dip = top - low;
+  return dip > 0.001 ? dip : 0;
+}
+
 bool channel_writer::reposition_rotaries(const joint_values& j, const tool_pose& pose, const double nc[3],
                                          bool force) {
   // The Autodesk Fusion multi-axis posts (positionABC, initialPositioning: the Fanuc and Mazak
@@ -588,6 +624,14 @@ bool channel_writer::reposition_rotaries(const joint_values& j, const tool_pose&
           ? kin::dot(pose.tip, c.tool_direction) - kin::dot(*approach_from_, c.tool_direction) > 1e-6
           : false;
   if (!home && higher) block([&](text_buffer& b) { return axis_word(b, c.linear[k], nc[k], *mem[k], true); });
+  // Then higher still by what the tip would dip while the heads turn there (head_turn_dip).
+  if (!home) {
+    const double dip = head_turn_dip(j, pose, factor);
+    if (dip > 0) {
+      const double lifted = mem[k]->value + dip * dir[k] * factor[k];
+      block([&](text_buffer& b) { return axis_word(b, c.linear[k], lifted, *mem[k], true); });
+    }
+  }
   // The rotary axes alone. Before G43.5 is on its I J K mean nothing: the machine's own axes.
   block([&](text_buffer& b) {
     bool any = false;

@@ -404,6 +404,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool untilted_without_length(const kin::joint_values& read, int line);
   bool pivot_length_fits(std::optional<double> table, int line);
   bool upright();
+  double head_turn_dip(const kin::joint_values& j, const kin::tool_pose& pose, const double factor[3]);
   /// TLDATA/MILL's length (NX: diameter, lower radius, length, ...) for the next or this tool.
   void tool_data_length(const tool_data_event& t, bool after_call);
   /// A tool call on a chain channel: the new tool's offset register and length.

@@ -93,19 +93,24 @@ struct nc_point {
   /// the tip in it.
   bool in_plane = false;
   vec3 frame[3];
+  bool after_home = false;  ///< a reference return (G28) came between it and the point before
 };
 
 std::vector<nc_point> nc_points(const std::string& nc, const kinematic_chain& c) {
   std::vector<nc_point> out;
   std::map<char, double> words;
-  bool rapid = true, started = false, in_plane = false;
+  bool rapid = true, started = false, in_plane = false, homed = false;
   vec3 frame[3];
   std::istringstream in(nc);
   for (std::string line; std::getline(in, line);) {
     if (line.empty() || line[0] == '(' || line[0] == ';' || line[0] == '%' || line[0] == 'O') continue;
     // Without a length code (pivot output) the points start after the tool call.
     if (offset_code(c).empty() && line.find(" M6") != std::string::npos) started = true;
-    if (line.find("G28") != std::string::npos || line == "G53.1") continue;
+    if (line.find("G28") != std::string::npos) {
+      homed = true;
+      continue;
+    }
+    if (line == "G53.1") continue;
     if (line.rfind("G68.2 X0. Y0. Z0. I", 0) == 0) {
       // Z-X-Z Euler angles: the plane's axes are Rz(I) Rx(J) Rz(K) applied to the part's.
       double e[3];
@@ -139,6 +144,8 @@ std::vector<nc_point> nc_points(const std::string& nc, const kinematic_chain& c)
     nc_point p;
     p.rapid = rapid;
     p.text = line;
+    p.after_home = homed;
+    homed = false;
     p.joints.linear = {words[c.linear[0]], words[c.linear[1]], words[c.linear[2]]};
     if (c.output == multiaxis_output::pivot)
       p.joints.linear = kin::operator-(p.joints.linear, pivot_shift(c));
@@ -225,6 +232,16 @@ round_trip read_back(const std::string& cl, const machine& m, const std::string&
       if (turns) {
         ++r.rapid_turns;
         CHECK(kin::distance(b.joints.linear, prev->joints.linear) < 1e-9);
+        // Turning heads swing the tip about their pivot: it never passes below the higher of the
+        // CL point the machine was at and the one the rapid goes to (the tool rises first).
+        const bool heads = std::all_of(c.rotaries.begin(), c.rotaries.end(),
+                                       [](const rotary_axis_def& a) { return a.kind == rotary_kind::head; });
+        if (solves_joints(c) && heads && !b.after_home) {
+          const auto up = [&](const kin::joint_values& j) { return kin::forward(c, j, len).tip.z; };
+          const double top = std::max(at.tip.z, target.tip.z);
+          for (int k = 1; k < 50; ++k)
+            CHECK(up(kin::interpolate(c, prev->joints, b.joints, k / 50.0)) >= top - 0.002);
+        }
       }
     }
     if (feed && prev && solves_joints(c)) {
@@ -1109,11 +1126,13 @@ TEST_CASE("multi-axis: the C/A gantry writes C before A and semicolon comments, 
   // A comment runs from ';' to the end of the line, its parentheses blanked.
   CHECK(nc.find("\n;LEAN  15 DEG\n") != std::string::npos);
   // The tip 150 mm below the nose, the nose over X38.823 (150 sin 15): X Y Z the tip with the
-  // heads at 0, C then A in every block.
-  CHECK(nc.find(
-            "S5000 M3\nG0 C90. A15.\nG0 X38.823 Y0.\nG0 G43 H1 X38.823 Y0. Z44.889 C90. A15.\n"
-            "G1 Z-5.111 F500.\nG0 Z50.\nG0 A0.\nG0 X0.\nX20.\nZ2.\nG98 G81 X20. Y0. Z-5. R2. F100.\nG80\n") !=
-        std::string::npos);
+  // heads at 0, C then A in every block. Back upright the tip would swing down 150 (1 - cos 15)
+  // = 5.111 mm below where it stood (Z55.111, tilted at Z50): it rises that much first.
+  CHECK(
+      nc.find(
+          "S5000 M3\nG0 C90. A15.\nG0 X38.823 Y0.\nG0 G43 H1 X38.823 Y0. Z44.889 C90. A15.\n"
+          "G1 Z-5.111 F500.\nG0 Z50.\nG0 Z55.111\nG0 A0.\nG0 X0.\nZ50.\nX20.\nZ2.\nG98 G81 X20. Y0. Z-5. R2. "
+          "F100.\nG80\n") != std::string::npos);
 }
 
 TEST_CASE("multi-axis: feed blocks faster than the control reads them are counted and named",
