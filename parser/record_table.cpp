@@ -67,7 +67,9 @@ const event_builder::rule_index& event_builder::rules() {
       posted("CIRCLE", &b::circle,
              "with the GOTO after it: a G2/G3 arc with I and K, its sense as the dialect gives it; NX's "
              "TIMES,n: n full turns, one block each, a helix (the axis word 1/n of the depth a turn) when "
-             "the GOTO lies along the circle's axis at another depth"),
+             "the GOTO lies along the circle's axis at another depth. A GOTO whose distance from the centre "
+             "(in the circle's plane) differs from the start's by more than 0.01 mm is an error: no circle "
+             "about that centre goes through both"),
       refused("CLAMP",
               "it clamps or unclamps an axis with the machine's own codes, which no machine file "
               "names yet; a dropped clamp or unclamp changes what the axis can do"),

@@ -25,12 +25,12 @@ machine inch_lathe() {
 // A diameter of 50.8 mm (2 in), CSS 200 m/min, 0.2 mm/rev, an arc of 10 mm radius, 500 mm/min.
 const std::string mm_job =
     "PARTNO INCH\nUNITS/MM\nTURRET/1,1\nSPINDL/SMM,200,MAXRPM,3000,CLW\nFEDRAT/0.2,MMPR\nRAPID\n"
-    "GOTO/25.4,0,2.54\nGOTO/25.4,0,-50.8\nCIRCLE/0,0,-60.8,0,1,0,10\nGOTO/35.4,0,-60.8\n"
+    "GOTO/25.4,0,2.54\nGOTO/25.4,0,-50.8\nCIRCLE/25.4,0,-60.8,0,1,0,10\nGOTO/35.4,0,-60.8\n"
     "FEDRAT/500,MMPM\nGOTO/40,0,-60.8\nFINI\n";
 
 const std::string inch_program =
     "%\nO1000 (INCH)\nG0 G18 G20 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S3000\nG96 S656 M3\n"
-    "G0 X2. Z0.1\nG1 Z-2. F0.00787\nG3 X2.7874 Z-2.3937 I-1. K-0.3937\nG98\nG1 X3.1496 F19.69\nM100\nM9\n"
+    "G0 X2. Z0.1\nG1 Z-2. F0.00787\nG3 X2.7874 Z-2.3937 I0. K-0.3937\nG98\nG1 X3.1496 F19.69\nM100\nM9\n"
     "G28 U0.\nG28 W0.\nM5\nM30\n%\n";
 
 std::string program_of(const std::string& cl, const machine& m, const std::string& tag) {
@@ -50,7 +50,7 @@ TEST_CASE("inch output writes lengths, feeds and surface speed in inches", "[pos
 TEST_CASE("an inch CL posted in inch gives the same program as its mm twin", "[post][units]") {
   const std::string inch_job =
       "PARTNO INCH\nUNITS/INCHES\nTURRET/1,1\nSPINDL/SFM,656.168,MAXRPM,3000,CLW\nFEDRAT/0.00787402,IPR\n"
-      "RAPID\nGOTO/1,0,0.1\nGOTO/1,0,-2\nCIRCLE/0,0,-2.3937008,0,1,0,0.3937008\nGOTO/1.3937008,0,-2.3937008\n"
+      "RAPID\nGOTO/1,0,0.1\nGOTO/1,0,-2\nCIRCLE/1,0,-2.3937008,0,1,0,0.3937008\nGOTO/1.3937008,0,-2.3937008\n"
       "FEDRAT/19.685039,IPM\nGOTO/1.5748031,0,-2.3937008\nFINI\n";
   CHECK(program_of(inch_job, inch_lathe(), "inch-cl") == inch_program);
 }
