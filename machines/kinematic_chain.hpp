@@ -91,8 +91,10 @@ struct kinematic_chain {
   multiaxis_output output = multiaxis_output::joints;
   multiaxis_moves moves = multiaxis_moves::all;
   rotary_word_order rotary_order = rotary_word_order::address;
-  /// Pivot output: the tool length (mm) every point is written for, whatever the tool.
+  /// Pivot output: the tool length (mm) every point is written for, whatever the tool, and the
+  /// pivot, where the heads' axes cross on the tool's axis (from the gauge point, home pose).
   double programmed_length = 0;
+  vec3 pivot_point{};
   /// [[kinematics]] tool_length: which length wins when TLDATA and [[tool]] differ.
   length_source tool_length = length_source::agree;
   /// The code that turns tool-tip control on (G43.4 or G43.5, written with H and the tool's
@@ -124,13 +126,11 @@ inline const std::string& offset_code(const kinematic_chain& c) {
 }
 
 /// Pivot output: the pivot's place from the linear values (the tip at the home pose, kinematics.md):
-/// the programmed length up the tool direction, then the outer head's point from the gauge point.
+/// the programmed length up the tool direction to the gauge point, then the pivot from there.
 inline vec3 pivot_shift(const kinematic_chain& c) {
-  vec3 p = c.tool_direction;
-  p = {p.x * c.programmed_length, p.y * c.programmed_length, p.z * c.programmed_length};
-  for (const rotary_axis_def& a : c.rotaries)
-    if (a.kind == rotary_kind::head) return {p.x + a.point.x, p.y + a.point.y, p.z + a.point.z};
-  return p;
+  const vec3& t = c.tool_direction;
+  const double l = c.programmed_length;
+  return {t.x * l + c.pivot_point.x, t.y * l + c.pivot_point.y, t.z * l + c.pivot_point.z};
 }
 
 /// The rotary axes' indices in the order their words are written.

@@ -148,9 +148,9 @@ void check_pivot(const table_reader& r, kinematic_chain& c) {
   }
   if (!pivot)
     r.fail(*r.find("programmed_length"), "kinematics.programmed_length is read only with output = \"pivot\"");
-  if (!(c.programmed_length > 0 && c.programmed_length < 1e4))
+  if (!(c.programmed_length >= 1 && c.programmed_length < 1e4))
     r.fail(*r.find("programmed_length"),
-           fmt::format("kinematics.programmed_length must be > 0 and < 10000 (mm), not {}",
+           fmt::format("kinematics.programmed_length must be >= 1 and < 10000 (mm), not {}",
                        c.programmed_length));
   if (std::none_of(c.rotaries.begin(), c.rotaries.end(),
                    [](const rotary_axis_def& a) { return a.kind == rotary_kind::head; }))
@@ -166,15 +166,58 @@ void check_pivot(const table_reader& r, kinematic_chain& c) {
            "kinematics.output = \"pivot\" takes no plane: a tilted working plane "
            "positions the tip, not the pivot");
   // The length code of pivot output makes up a tool's difference from the programmed length along
-  // the tool; G43/G44 apply it along Z, which at A20 puts the tip sin 20 of it sideways.
-  const std::string code = c.length_on.substr(0, c.length_on.find(' '));
-  if (code == "G43" || code == "G44")
-    r.fail(*r.find("length_on"),
+  // the tool; G43/G44 apply it along Z, which at A20 puts the tip sin 20 of it sideways, and
+  // G43.4/G43.5 take X Y Z as the tip. Every G word of it, however written (G043, g43, G43.0).
+  const std::string& on = c.length_on;
+  for (std::size_t i = 0; i < on.size(); ++i) {
+    if (on[i] != 'G' && on[i] != 'g') continue;
+    std::size_t e = i + 1;
+    while (e < on.size() && (ascii::is_digit(on[e]) || on[e] == '.')) ++e;
+    const std::string number = on.substr(i + 1, e - i - 1);
+    const double g = number.empty() ? -1 : std::atof(number.c_str());
+    if (g == 43 || g == 44 || g == 43.4 || g == 43.5)
+      r.fail(*r.find("length_on"),
+             fmt::format(
+                 "kinematics.length_on = \"{}\" under pivot output: G{} {}, and a tilted tool needs the "
+                 "length along the tool (Fanuc's G43.1, tool length compensation in the tool axis "
+                 "direction), or none",
+                 on, number, g == 43 || g == 44 ? "applies the length along Z" : "takes X Y Z as the tip"));
+  }
+  // The pivot: where the heads' axes cross (one head: where its axis crosses the tool's), on the
+  // tool's axis through the gauge point. Any point of an axis describes the same machine, so
+  // the crossing, not a listed point, is what the control positions.
+  struct line {
+    vec3 p, d;
+  };
+  std::vector<line> lines;
+  for (const rotary_axis_def& a : c.rotaries)
+    if (a.kind == rotary_kind::head) lines.push_back({a.point, a.direction});
+  if (lines.size() == 1) lines.push_back({{0, 0, 0}, c.tool_direction});
+  const auto dot = [](const vec3& a, const vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; };
+  const line &l1 = lines[0], &l2 = lines[1];
+  const vec3 w{l1.p.x - l2.p.x, l1.p.y - l2.p.y, l1.p.z - l2.p.z};
+  const double a = dot(l1.d, l1.d), b = dot(l1.d, l2.d), cc = dot(l2.d, l2.d), d = dot(l1.d, w),
+               e = dot(l2.d, w);
+  const double denom = a * cc - b * b;
+  if (denom < 1e-12)
+    r.fail(*r.find("output"),
+           "kinematics.output = \"pivot\": the head's axis lies along the tool, so no pivot "
+           "turns it (use \"joints\")");
+  const double s = (b * e - cc * d) / denom, t = (a * e - b * d) / denom;
+  const vec3 q1{l1.p.x + s * l1.d.x, l1.p.y + s * l1.d.y, l1.p.z + s * l1.d.z};
+  const vec3 q2{l2.p.x + t * l2.d.x, l2.p.y + t * l2.d.y, l2.p.z + t * l2.d.z};
+  const vec3 gap{q1.x - q2.x, q1.y - q2.y, q1.z - q2.z};
+  const vec3& t0 = c.tool_direction;
+  const double along = dot(q1, t0);
+  const vec3 off{q1.x - along * t0.x, q1.y - along * t0.y, q1.z - along * t0.z};
+  const double miss = std::sqrt(dot(gap, gap)), aside = std::sqrt(dot(off, off));
+  if (miss > 1e-6 || aside > 1e-6)
+    r.fail(*r.find("output"),
            fmt::format(
-               "kinematics.length_on = \"{}\" under pivot output: {} applies the length along Z, and a "
-               "tilted tool needs it along the tool (Fanuc's G43.1, tool length compensation in the tool "
-               "axis direction), or none",
-               c.length_on, code));
+               "kinematics.output = \"pivot\" needs the heads' axes to cross on the tool's axis: {} ({:g} "
+               "mm); the control positions that one point",
+               miss > 1e-6 ? "they pass each other" : "they cross off it", miss > 1e-6 ? miss : aside));
+  c.pivot_point = q1;
 }
 
 }  // namespace
@@ -219,6 +262,31 @@ void read_kinematics(const table_reader& root, machine& m) {
     r.read("plane", c.plane);
     r.read("plane_index", c.plane_index);
     r.read("plane_off", c.plane_off);
+    // Each code goes in front of the post's own words in a block: a comment character, a line
+    // break or a tape mark in it would swallow the block's words or end the program there.
+    for (const auto& [key, code] :
+         {std::pair<std::string_view, const std::string*>{"tool_tip_on", &c.tool_tip_on},
+          {"tool_tip_off", &c.tool_tip_off},
+          {"length_on", &c.length_on},
+          {"inverse_time", &c.inverse_time},
+          {"plane", &c.plane},
+          {"plane_index", &c.plane_index},
+          {"plane_off", &c.plane_off}}) {
+      const program_format& f = m.program;
+      for (const char ch : *code)
+        if (static_cast<unsigned char>(ch) < ' ' || static_cast<unsigned char>(ch) >= 0x7f || ch == '%' ||
+            ch == '(' || ch == ')' || ch == ';' || ch == f.comment_open || ch == f.comment_close)
+          r.fail(*r.find(key),
+                 fmt::format("{} must hold codes only: '{}' would {} the block it begins", r.key_path(key),
+                             ch == '%'                    ? "%"
+                             : std::string(1, ch) == "\n" ? "\\n"
+                                                          : std::string(1, ch),
+                             ch == '%' || ch < ' ' ? "end or break" : "make a comment of"));
+    }
+    if (solves_joints(c) && c.inverse_time.empty())
+      r.fail(*r.find("inverse_time"),
+             "kinematics.inverse_time must name the inverse-time feed code (G93): joints "
+             "and pivot output write F as 1/min on the moves that turn a rotary axis");
     for (std::string_view key : {"tolerance", "angle_tolerance", "chordal_tolerance"}) {
       double& v = key == "tolerance"         ? c.tolerance
                   : key == "angle_tolerance" ? c.angle_tolerance

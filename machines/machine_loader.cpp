@@ -231,9 +231,28 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
     r.read_char("comment_close", p.comment_close, false);
   else if (p.comment_open == ';')
     p.comment_close = '\n';
-  if (p.comment_close == p.comment_open)
+  // A comment character that is also a word's (a letter, a digit, a sign, a point), a block's
+  // own (%, /, #, [, ], =) or a blank would turn the comments' text into code, or code into
+  // comments, for the control and the post's own readers alike.
+  const auto unfit = [](char ch) {
+    return static_cast<unsigned char>(ch) <= ' ' || static_cast<unsigned char>(ch) >= 0x7f ||
+           ascii::is_letter(ch) || (ch >= '0' && ch <= '9') ||
+           std::string_view("%/#[]=+-.,*").find(ch) != std::string_view::npos;
+  };
+  if (unfit(p.comment_open))
+    r.fail(*r.find("comment_open"),
+           "program.comment_open must be a character no block word uses, such as ( or ;");
+  if (p.comment_close != '\n' && unfit(p.comment_close))
     r.fail(*r.find("comment_close"),
+           "program.comment_close must be a character no block word uses, such as ), "
+           "or \"\" (to the end of the line)");
+  const toml::node* close_at = r.find("comment_close") ? r.find("comment_close") : r.find("comment_open");
+  if (p.comment_close == p.comment_open)
+    r.fail(*close_at,
            fmt::format("program.comment_close must differ from comment_open ('{}')", p.comment_open));
+  if (p.comment_open == '(' && p.comment_close != ')')
+    r.fail(*close_at,
+           "program.comment_open = \"(\" is closed by \")\": a control reads a ( comment on until its )");
   if (r.read("comment_max", p.comment_max)) check_min(r, "comment_max", p.comment_max, 0);
   if (r.read("reserved_variables", p.reserved_variables))
     for (int v : p.reserved_variables)

@@ -91,8 +91,9 @@ void channel_writer::heads_upright() {
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
   b += "G0";
-  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
-    if (c.rotaries[i].kind == rotary_kind::head) {
+  const std::array<std::size_t, 2> order = rotary_words(c);
+  for (std::size_t n = 0; n < c.rotaries.size(); ++n)
+    if (const std::size_t i = order[n]; c.rotaries[i].kind == rotary_kind::head) {
       rotary_word(b, c.rotaries[i].address, 0.0, last_rot_[i], rotary_decimals, true);
       joints_.rotary[i] = 0;  // the next tool's first point is solved from there
     }

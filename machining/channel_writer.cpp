@@ -22,10 +22,24 @@ namespace {
 // The last of `codes` (whole words, "" ignored) the header blocks give, in order; "" if none.
 // A word is an address letter and the digits and point after it ("G18G21" holds G18, G170
 // does not).
-std::string header_modal(const std::vector<std::string>& header,
+// Comments are no words: neither `(...)`, nor the machine's own, nor `;` to the end of the line.
+std::string header_modal(const std::vector<std::string>& header, const program_format& f,
                          std::initializer_list<std::string_view> codes) {
   std::string found;
-  for (const std::string& block : header)
+  for (const std::string& given : header) {
+    std::string block;
+    for (std::size_t i = 0; i < given.size(); ++i) {
+      const char c = given[i];
+      if (c == ';' || (c == f.comment_open && f.comment_close == '\n')) break;
+      const char close = c == f.comment_open ? f.comment_close : c == '(' ? ')' : '\0';
+      if (close) {
+        i = given.find(close, i + 1);
+        if (i == std::string::npos) break;
+        block += ' ';
+        continue;
+      }
+      block += c;
+    }
     for (std::size_t at = 0; at < block.size();) {
       std::size_t end = at + 1;
       while (end < block.size() && ((block[end] >= '0' && block[end] <= '9') || block[end] == '.')) ++end;
@@ -34,6 +48,7 @@ std::string header_modal(const std::vector<std::string>& header,
         if (!c.empty() && word == c) found = c;
       at = end;
     }
+  }
   return found;
 }
 }  // namespace
@@ -57,10 +72,10 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   // The plane in force after the header (G18 on a lathe, G17 on a mill), and its feed mode
   // (the Fanuc lathes' safe start ends in G99, the mills' has G94): the first FEDRAT in that
   // mode writes no second G99 right after it.
-  const std::string plane = header_modal(m.program.header, {"G17", "G18", "G19"});
+  const std::string plane = header_modal(m.program.header, m.program, {"G17", "G18", "G19"});
   if (!plane.empty()) plane_ = (plane[2] - '0') + 10;
-  absolute_code_ = !header_modal(m.program.header, {"G90"}).empty();
-  feed_g_ = header_modal(m.program.header, {m.codes.feed_per_rev, m.codes.feed_per_min});
+  absolute_code_ = !header_modal(m.program.header, m.program, {"G90"}).empty();
+  feed_g_ = header_modal(m.program.header, m.program, {m.codes.feed_per_rev, m.codes.feed_per_min});
   per_rev_ = !feed_g_.empty() && feed_g_ == m.codes.feed_per_rev;
   spindle_ = work_ = m.spindle(ch.spindle);
   if (work_) {

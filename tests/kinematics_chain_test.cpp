@@ -152,7 +152,7 @@ TEST_CASE("pivot output and the rotary word order are read, and their errors rep
   CHECK(machine_error_of(k + "programmed_length = 150\n" + heads) ==
         "m.toml:11:21: error: kinematics.programmed_length is read only with output = \"pivot\"");
   CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 0\n" + heads) ==
-        "m.toml:12:21: error: kinematics.programmed_length must be > 0 and < 10000 (mm), not 0");
+        "m.toml:12:21: error: kinematics.programmed_length must be >= 1 and < 10000 (mm), not 0");
   CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\n"
                              "[[kinematics.rotary]]\naddress = \"C\"\nkind = \"table\"\n"
                              "direction = [0, 0, 1]\ncontinuous = true\n") ==
@@ -169,8 +169,42 @@ TEST_CASE("pivot output and the rotary word order are read, and their errors rep
   CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\nlength_on = \"G43\"\n" + heads) ==
         "m.toml:13:13: error: kinematics.length_on = \"G43\" under pivot output: G43 applies the length "
         "along Z, "
-        "and a tilted tool needs it along the tool (Fanuc's G43.1, tool length compensation in the tool axis "
-        "direction), or none");
+        "and a tilted tool needs the length along the tool (Fanuc's G43.1, tool length compensation in the "
+        "tool "
+        "axis direction), or none");
+  for (const std::string spelling : {"G043 H", "g43", "G49 G44.0"})
+    CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\nlength_on = \"" + spelling +
+                           "\"\n" + heads)
+              .find("under pivot output: G") != std::string::npos);
+  CHECK(
+      machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\nlength_on = \"G43.4\"\n" + heads) ==
+      "m.toml:13:13: error: kinematics.length_on = \"G43.4\" under pivot output: G43.4 takes X Y Z as the "
+      "tip, "
+      "and a tilted tool needs the length along the tool (Fanuc's G43.1, tool length compensation in the "
+      "tool "
+      "axis direction), or none");
+  // The pivot is where the axes cross, whichever points the file gives on them.
+  const std::string apart =
+      "[[kinematics.rotary]]\naddress = \"C\"\nkind = \"head\"\ndirection = [0, 0, 1]\n"
+      "min = -360\nmax = 360\n[[kinematics.rotary]]\naddress = \"A\"\nkind = \"head\"\n"
+      "direction = [1, 0, 0]\npoint = [0, 50, 100]\nmin = -110\nmax = 110\n";
+  CHECK(machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\n" + apart) ==
+        "m.toml:11:10: error: kinematics.output = \"pivot\" needs the heads' axes to cross on the tool's "
+        "axis: they "
+        "pass each other (50 mm); the control positions that one point");
+  std::string crossing = apart;
+  crossing.replace(crossing.find("[0, 50, 100]"), 12, "[7, 0, 100]");  // on the A axis, 100 mm up
+  CHECK(pivot_shift(parse_machine(k + "output = \"pivot\"\nprogrammed_length = 150\n" + crossing, "m.toml")
+                        .kinematics[0]) == vec3{0, 0, 250});
+  // Codes that would begin a block with a comment, a line break or a tape mark.
+  CHECK(machine_error_of(k + "inverse_time = \"G93 ;\"\n" + heads) ==
+        "m.toml:11:16: error: kinematics.inverse_time must hold codes only: ';' would make a comment of the "
+        "block "
+        "it begins");
+  CHECK(machine_error_of(k + "inverse_time = \"\"\n" + heads) ==
+        "m.toml:11:16: error: kinematics.inverse_time must name the inverse-time feed code (G93): joints and "
+        "pivot "
+        "output write F as 1/min on the moves that turn a rotary axis");
   CHECK(parse_machine(k + "output = \"pivot\"\nprogrammed_length = 150\nlength_on = \"G43.1\"\n" + heads,
                       "m.toml")
             .kinematics[0]

@@ -241,8 +241,26 @@ TEST_CASE("a comment to the end of the line: a semicolon comment_open with no co
   CHECK(program("").comment_open == '(');
   CHECK(program("").comment_close == ')');
   CHECK(program("comment_open = \";\"\n").comment_close == '\n');
-  CHECK(program("comment_open = \"*\"\ncomment_close = \"\"\n").comment_close == '\n');
-  CHECK(program("comment_open = \"[\"\ncomment_close = \"]\"\n").comment_close == ']');
+  CHECK(program("comment_open = \"<\"\ncomment_close = \"\"\n").comment_close == '\n');
+  CHECK(program("comment_open = \"<\"\ncomment_close = \">\"\n").comment_close == '>');
+  // A character of the block's own words, or a ( that does not close with ), is refused.
+  const auto error_of = [](const std::string& keys) {
+    return test::machine_error_of(test::machine_head + "[program]\n" + keys + test::two_channels);
+  };
+  CHECK(error_of("comment_open = \"X\"\n") ==
+        "m.toml:7:16: error: program.comment_open must be a character no block word uses, such as ( or ;");
+  CHECK(error_of("comment_open = \"%\"\ncomment_close = \";\"\n") ==
+        "m.toml:7:16: error: program.comment_open must be a character no block word uses, such as ( or ;");
+  CHECK(error_of("comment_open = \";\"\ncomment_close = \"1\"\n") ==
+        "m.toml:8:17: error: program.comment_close must be a character no block word uses, such as ), or "
+        "\"\" (to "
+        "the end of the line)");
+  CHECK(error_of("comment_open = \")\"\n") ==  // the default close: once a crash (attack 44)
+        "m.toml:7:16: error: program.comment_close must differ from comment_open (')')");
+  CHECK(error_of("comment_close = \"\"\n") ==
+        "m.toml:7:17: error: program.comment_open = \"(\" is closed by \")\": a control reads a ( comment on "
+        "until "
+        "its )");
   CHECK(test::machine_error_of(test::machine_head +
                                "[program]\ncomment_open = \";\"\ncomment_close = \";\"\n" +
                                test::two_channels) ==

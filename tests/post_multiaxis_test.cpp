@@ -486,7 +486,7 @@ TEST_CASE("multi-axis: arcs and drilling cycles only with the rotary axes at 0",
   // B swings to 5 degrees and back (8 sub-moves each way, G93), then G94 for the arc.
   CHECK(
       q.files.at("MOVES.nc") ==
-      "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nG0 B0. A0.\nT01 M6\nG54\nS5000 M3\n"
+      "%\nO5001 (MOVES)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nG0 A0. B0.\nT01 M6\nG54\nS5000 M3\n"
       "G0 A0. B0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z50. A0. B0.\nG1 Z0. F500.\nG93 G1 X5.613 Z-0.024 B0.625 "
       "F400.\n"
       "X11.226 Z-0.095 B1.25 F400.\nX16.838 Z-0.214 B1.875 F400.\nX22.448 Z-0.381 B2.5 F400.\n"
