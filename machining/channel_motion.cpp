@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 
 #include "machining/channel_writer.hpp"
 
@@ -384,20 +385,40 @@ void channel_writer::arc(const arc_event& cl, int line) {
   }
   // TIMES,n (NX): n full turns about the axis; a GOTO at another depth along the axis makes
   // them a helix (NX's CLSF: "a tool path arc ... or a helical motion", x,y,z "the center of
-  // the curve or helix"). Each turn is one block whose axis word moves 1/n of the depth: the
-  // control's helical interpolation at a constant pitch goes down the same helix.
-  vec3 rise{0, 0, 0};  // the whole helix's travel along the axis, CL units
+  // the curve or helix"). A GOTO elsewhere on the circle (a helical entry that ends where the
+  // pocket's first cut starts) adds the arc on to it after the n turns. The depth is spread over
+  // the whole sweep at one pitch: each full turn is one block whose axis word moves 2pi/sweep of
+  // the depth, the last block the part turn to the GOTO. Of the two readings of TIMES (whole
+  // turns, or every turn begun), whole turns is the longer sweep and so the shallower ramp.
+  vec3 rise{0, 0, 0};      // the whole helix's travel along the axis, CL units
+  double turn_share = 0;   // the part of the rise one full turn takes
+  bool part_turn = false;  // a last block that ends away from the start in the plane
   if (a.turns > 0) {
     const vec3 d{a.end.x - a.start.x, a.end.y - a.start.y, a.end.z - a.start.z};
     const double along = (d.x * a.normal.x + d.y * a.normal.y + d.z * a.normal.z) / (nlen * nlen);
     rise = {a.normal.x * along, a.normal.y * along, a.normal.z * along};
     const double gap =
         std::max({std::abs(d.x - rise.x), std::abs(d.y - rise.y), std::abs(d.z - rise.z)}) * scale_;
-    if (gap > y_tolerance)
-      return fail(
-          fmt::format("CIRCLE TIMES {}: the move must end where it starts, or above or below it along the "
-                      "circle's axis, to be written as full turns (it ends {} mm away in the circle's plane)",
-                      a.turns, kin::number_text(gap)));
+    part_turn = gap > y_tolerance;
+    turn_share = 1.0 / a.turns;
+    if (part_turn) {
+      // The angle from the start to the end in the arc's sense, in (0, 2pi): the two radii in
+      // the plane, their cross product along the axis gives the counter-clockwise angle.
+      const vec3 n{a.normal.x / nlen, a.normal.y / nlen, a.normal.z / nlen};
+      const auto radial = [&](const vec3& p) {
+        const vec3 r{p.x - a.center.x, p.y - a.center.y, p.z - a.center.z};
+        const double h = r.x * n.x + r.y * n.y + r.z * n.z;
+        return vec3{r.x - n.x * h, r.y - n.y * h, r.z - n.z * h};
+      };
+      const vec3 r0 = radial(a.start), r1 = radial(a.end);
+      const vec3 c{r0.y * r1.z - r0.z * r1.y, r0.z * r1.x - r0.x * r1.z, r0.x * r1.y - r0.y * r1.x};
+      double ccw_angle =
+          std::atan2(c.x * n.x + c.y * n.y + c.z * n.z, r0.x * r1.x + r0.y * r1.y + r0.z * r1.z);
+      const double two_pi = 2 * std::numbers::pi;
+      if (ccw_angle < 0) ccw_angle += two_pi;
+      const double part = a.ccw ? ccw_angle : two_pi - ccw_angle;
+      turn_share = two_pi / (a.turns * two_pi + part);
+    }
     // In polar interpolation (G12.1) the arc is in the X-C plane the control builds; whether it
     // takes a Z word into a helix there is not verified in a control's manual.
     if (polar_ && std::max({std::abs(rise.x), std::abs(rise.y), std::abs(rise.z)}) * scale_ > y_tolerance)
@@ -421,10 +442,11 @@ void channel_writer::arc(const arc_event& cl, int line) {
   }
   arc_ += g == 3 ? " G3" : " G2";
   if (feed_value_ <= 0) error(line, "arc with no feed rate (FEDRAT) in force");
-  const int blocks = std::max(1, a.turns);
+  const int blocks = std::max(1, a.turns + (part_turn ? 1 : 0));
   for (int turn = 1; turn <= blocks; ++turn) {
-    // Full turns (TIMES): each block ends 1/n further along the axis, the last at the GOTO.
-    const double k = static_cast<double>(turn) / blocks;
+    // Full turns (TIMES): each block ends a turn's share further along the axis, the last at
+    // the GOTO (the end of the last full turn, or of the part turn after them).
+    const double k = turn * turn_share;
     const vec3 end =
         turn == blocks ? a.end : vec3{a.start.x + rise.x * k, a.start.y + rise.y * k, a.start.z + rise.z * k};
     if (!arc_block(a, end, plane, axis_sign, mirror, line)) return fail_quietly();

@@ -137,7 +137,8 @@ void event_builder::circle(const cl_record& r, int line, event_queue&, build_iss
     else if (word_is(a.word, "COUNTERCLOCKWISE") || word_is(a.word, "CCLW"))
       c.ccw = true;
     else if (word_is(a.word, "TIMES")) {
-      // NX: CIRCLE/...,TIMES,n: the GOTO after it goes n full turns round the circle.
+      // NX: CIRCLE/...,TIMES,n: the GOTO after it goes n full turns round the circle (and on to
+      // the GOTO when it lies elsewhere on it).
       const bool count = i + 1 < r.args.size() && r.args[i + 1].kind == arg_kind::number;
       const double t = count ? r.args[i + 1].number : 0;
       if (!count || t != std::floor(t) || t < 1 || t > max_circle_turns) {

@@ -32,7 +32,8 @@ struct arc_event {
   double radius = 0;     ///< as written, or computed from the start point
   bool ccw = true;       ///< counter-clockwise about `normal` (dialect convention applied)
   bool continued = false;
-  int turns = 0;  ///< NX `CIRCLE/...,TIMES,n`: n full turns (the end is the start); 0: an arc
+  int turns = 0;  ///< NX `CIRCLE/...,TIMES,n`: n full turns, then the arc on to the end if it is elsewhere on
+                  ///< the circle; 0: an arc
 };
 
 /// The most full turns one CIRCLE/...,TIMES,n may ask for.

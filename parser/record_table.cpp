@@ -66,8 +66,10 @@ const event_builder::rule_index& event_builder::rules() {
       posted("CHANNL", &b::on_channel, "as CHANNEL (ICAM)"),
       posted("CIRCLE", &b::circle,
              "with the GOTO after it: a G2/G3 arc with I and K, its sense as the dialect gives it; NX's "
-             "TIMES,n: n full turns, one block each, a helix (the axis word 1/n of the depth a turn) when "
-             "the GOTO lies along the circle's axis at another depth. A GOTO whose distance from the centre "
+             "TIMES,n: n full turns, one block each, a helix when the GOTO lies at another depth; a GOTO "
+             "elsewhere on the circle (a helical entry) adds the part turn on to it, one block more, the "
+             "depth spread over the whole sweep at one pitch (whole turns: the shallower of the two "
+             "readings of TIMES). A GOTO whose distance from the centre "
              "(in the circle's plane) differs from the start's by more than 0.01 mm is an error: no circle "
              "about that centre goes through both"),
       refused("CLAMP",

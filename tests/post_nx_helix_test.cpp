@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "file_test_support.hpp"
+#include "kinematics/forward.hpp"
 #include "machines/machine_loader.hpp"
 #include "post_test_jobs.hpp"
 #include "support/diagnostics.hpp"
@@ -62,7 +63,7 @@ std::vector<nc_arc> arcs_of(const std::string& program) {
     std::istringstream words(line);
     std::string word;
     while (words >> word) {
-      if (word.size() < 2 || word[0] == '(') break;
+      if (word.size() < 2 || word[0] == '(' || word[0] == ';') break;
       w[word[0]] = std::stod(word.substr(1));
     }
     if (w.count('G')) {
@@ -82,9 +83,10 @@ std::vector<nc_arc> arcs_of(const std::string& program) {
   return out;
 }
 
-// The largest distance between the control's path through `arcs` (72 points a turn) and the
+// The largest distance between the control's path through `arcs` (72 points a block) and the
 // CL helix about `axis` (a unit vector along X, Y or Z) through `start` with centre `centre`,
-// clockwise about the axis (NX), reaching `end` after `turns` turns.
+// clockwise about the axis (NX), reaching `end` after `turns` full turns and, when `end` is
+// elsewhere on the circle, the part turn on to it: one pitch over the whole sweep.
 double worst_distance(const std::vector<nc_arc>& arcs, char axis, const p3& start, const p3& centre,
                       const p3& end, int turns) {
   // Plane coordinates (u, v) with axis = u x v, and the axis coordinate w.
@@ -94,28 +96,37 @@ double worst_distance(const std::vector<nc_arc>& arcs, char axis, const p3& star
   const double two_pi = 2 * std::numbers::pi;
   const double r = std::hypot(u(start) - u(centre), v(start) - v(centre));
   const double a0 = std::atan2(v(start) - v(centre), u(start) - u(centre));
-  double worst = 0;
-  for (std::size_t b = 0; b < arcs.size(); ++b) {
-    const nc_arc& a = arcs[b];
+  // The CL's sweep, clockwise: n turns and the clockwise angle from the start to the end.
+  double part = a0 - std::atan2(v(end) - v(centre), u(end) - u(centre));
+  while (part < -1e-12) part += two_pi;
+  while (part >= two_pi - 1e-12) part -= two_pi;
+  const double sweep = two_pi * turns + part;
+  double worst = 0, done = 0;  // done: the CL angle the blocks before this one swept
+  for (const nc_arc& a : arcs) {
     const p3 c{a.from.x + a.offset.x, a.from.y + a.offset.y, a.from.z + a.offset.z};
     const double rn = std::hypot(u(a.from) - u(c), v(a.from) - v(c));
     const double s0 = std::atan2(v(a.from) - v(c), u(a.from) - u(c));
+    // The block's own sweep in its sense: a full turn when it ends where it starts in the plane.
+    double block = (a.cw ? 1 : -1) * (s0 - std::atan2(v(a.to) - v(c), u(a.to) - u(c)));
+    while (block <= 1e-9) block += two_pi;
+    while (block > two_pi + 1e-9) block -= two_pi;
     for (int i = 0; i <= 72; ++i) {
       const double t = i / 72.0;
-      // The control: a full turn (start = end in the plane) in the block's sense, the axis
-      // word reached linearly with the angle.
-      const double ang = s0 + (a.cw ? -1 : 1) * two_pi * t;
+      // The control: the block's arc in its sense, the axis word reached linearly with the angle.
+      const double ang = s0 + (a.cw ? -1 : 1) * block * t;
       const double nu = u(c) + rn * std::cos(ang), nv = v(c) + rn * std::sin(ang);
       const double nw = w(a.from) + (w(a.to) - w(a.from)) * t;
       // The CL helix at the same total angle: clockwise about the axis.
-      const double phi = two_pi * (static_cast<double>(b) + t);
+      const double phi = done + block * t;
       const double cu = u(centre) + r * std::cos(a0 - phi), cv = v(centre) + r * std::sin(a0 - phi);
-      const double cw = w(start) + (w(end) - w(start)) * phi / (two_pi * turns);
+      const double cw = w(start) + (w(end) - w(start)) * phi / sweep;
       worst =
           std::max(worst, std::sqrt((nu - cu) * (nu - cu) + (nv - cv) * (nv - cv) + (nw - cw) * (nw - cw)));
     }
+    done += block;
   }
-  return worst;
+  // Every block together goes the CL's whole way round.
+  return std::max(worst, std::abs(done - sweep) * r);
 }
 
 // LinuxCNC's rs274 as an independent reader of a G17 program (optional: empty when rs274 is
@@ -223,16 +234,45 @@ TEST_CASE("NX helix in YZ and ZX: the axis word is X or Y", "[post][arc][nx]") {
   }
 }
 
-TEST_CASE("TIMES: a GOTO off the circle's axis is refused, the same depth stays full circles",
+TEST_CASE("TIMES with the GOTO elsewhere on the circle: the turns, then the part turn, at one pitch",
           "[post][arc][nx]") {
-  const test::posted off =
-      post(helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {25, 25, -6}, 2), "rotary-4axis", "off");
-  CHECK_FALSE(off.ok);
-  CHECK(
-      off.diagnostics ==
-      "job.cls:11:1: error: channel 1: CIRCLE TIMES 2: the move must end where it starts, or above or below "
-      "it along the circle's axis, to be written as full turns (it ends 5 mm away in the circle's plane)\n"
-      "GOTO/25,25,-6\n^\n");
+  // A helical entry: two turns down about +Z and three quarters more (clockwise from +X to +Y),
+  // 8 mm in 990 degrees: 2.909 mm a turn, 6.061 mm after two.
+  const p3 start{30, 20, 2}, centre{25, 20, -6}, end{25, 25, -6};
+  const std::string cl = helix_job("0,0,1", start, centre, end, 2);
+  for (const char* machine : {"rotary-4axis", "head-head-5axis"}) {
+    INFO(machine);
+    const test::posted p = post(cl, machine, std::string("part-") + machine);
+    REQUIRE(p.ok);
+    const std::vector<nc_arc> arcs = arcs_of(p.files.begin()->second);
+    REQUIRE(arcs.size() == 3);
+    CHECK(arcs[0].text == "G2 X30. Y20. Z-0.909 I-5. J0. F400.");
+    CHECK(arcs[1].text == "G2 X30. Y20. Z-3.818 I-5. J0.");
+    CHECK(arcs[2].text == "G2 X25. Y25. Z-6. I-5. J0.");
+    // Against the CL's helix; 0.0005 mm: the written axis words keep three decimals.
+    CHECK(worst_distance(arcs, 'Z', start, centre, end, 2) < 5e-4);
+    const std::string dir = test::fresh_temp_dir(std::string("nxhelix-part-rs274-") + machine);
+    if (const auto read = rs274_arcs(p.files.begin()->second, dir)) {
+      REQUIRE(read->size() == 3);
+      CHECK(worst_distance(*read, 'Z', start, centre, end, 2) < 5e-4);
+    } else {
+      WARN("rs274 not installed: the helix is not read by LinuxCNC");
+    }
+    std::filesystem::remove_all(dir);
+  }
+  // Counter-clockwise about +X (G19, G3): one turn and a half from Y15 round to Y5, X down 6.
+  const p3 s2{8, 15, 0}, c2{2, 10, 0}, e2{2, 5, 0};
+  std::string ccw = helix_job("1,0,0", s2, c2, e2, 1);
+  ccw.replace(ccw.find(",TIMES,"), 7, ",CCLW,TIMES,");
+  const test::posted p = post(ccw, "rotary-4axis", "part-yz");
+  REQUIRE(p.ok);
+  const std::vector<nc_arc> arcs = arcs_of(p.files.begin()->second);
+  REQUIRE(arcs.size() == 2);
+  CHECK(arcs[0].text == "G19 G3 X4. Y15. Z0. J-5. K0. F400.");
+  CHECK(arcs[1].text == "G3 X2. Y5. Z0. J-5. K0.");
+}
+
+TEST_CASE("TIMES: an end off the circle is refused, the same depth stays full circles", "[post][arc][nx]") {
   // An end off the circle is no arc at all, with or without TIMES.
   for (const int turns : {0, 2}) {
     std::string job = helix_job("0,0,1", {30, 20, 2}, {25, 20, -6}, {29, 20, -6}, turns);
@@ -262,4 +302,28 @@ TEST_CASE("a helix in polar interpolation is refused", "[post][arc][nx]") {
             "job.cls:11:1: error: channel 1: CIRCLE TIMES 4: a helix in polar interpolation "
             "(G12.1) is not written: helical interpolation in that mode is not verified; give the "
             "ramp as GOTO points\nGOTO/30,20,-6\n^\n") != std::string::npos);
+}
+
+TEST_CASE(
+    "the C/A gantry's helical entry (samples/nx-ca-head): on the CL's helix through the forward transform",
+    "[post][arc][nx]") {
+  // POCKET_HELIX: from (128, 60, 1) about (120, 60) clockwise, TIMES,2, to (120, 68, -5). The
+  // MCS is the work offset's origin (program.cl_frame = "mcs", the default): the CL's numbers go out.
+  const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/gantry-ca.toml");
+  const test::posted p = test::post_in_fresh_dir(
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/job.cls"), m, "nxhelix-ca");
+  REQUIRE(p.ok);
+  const std::string& nc = p.files.begin()->second;
+  const std::vector<nc_arc> arcs = arcs_of(nc);
+  REQUIRE(arcs.size() == 3);
+  CHECK(arcs[2].text == "G2 X120. Y68. Z-5. I-8. J0.");
+  // The heads stand at C0 A0 for the tool: the tip is where the forward transform puts it for the
+  // written X Y Z with the table's 150 mm tool.
+  CHECK(nc.find("G0 G43 H1 X128. Y60. Z50. C0. A0.\nZ1.\nG2 ") != std::string::npos);
+  const kinematic_chain& c = *m.chain(1);
+  for (const nc_arc& a : arcs) {
+    const vec3 tip = kin::forward(c, {{a.to.x, a.to.y, a.to.z}, {0, 0}}, 150).tip;
+    CHECK(std::abs(tip.x - a.to.x) + std::abs(tip.y - a.to.y) + std::abs(tip.z - a.to.z) < 1e-9);
+  }
+  CHECK(worst_distance(arcs, 'Z', {128, 60, 1}, {120, 60, -5}, {120, 68, -5}, 2) < 5e-4);
 }
