@@ -55,6 +55,49 @@ long long first_wait_word(std::string_view block, const wait_rules& w, char open
   return -1;
 }
 
+std::string code_text_fault(std::string_view text, char open, char close, code_use use) {
+  const bool line_comment = close == '\n';
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '{') {  // a placeholder
+      const std::size_t e = text.find('}', i + 1);
+      if (e == std::string_view::npos) return {};  // the template's own check names it
+      i = e;
+      continue;
+    }
+    if (c == open) {
+      if (line_comment) {
+        if (use == code_use::part)
+          return fmt::format(
+              "'{}' makes a comment of the rest of the block: the words twinpost writes after this code "
+              "would not be read (a comment to the end of the line belongs in a block of its own)",
+              open);
+        return {};
+      }
+      const std::size_t e = text.find(close, i + 1);
+      if (e == std::string_view::npos)
+        return fmt::format("'{}' opens a comment that no '{}' closes: the words after it would not be read",
+                           open, close);
+      i = e;
+      continue;
+    }
+    // M2, M30, M99 (and M02, M030 ...): the program's end, or a jump back to its start.
+    if ((c == 'M' || c == 'm') && (i == 0 || !ascii::is_letter(text[i - 1])) && use != code_use::end) {
+      std::size_t j = i + 1;
+      while (j < text.size() && ascii::is_digit(text[j])) ++j;
+      long long code = -1;
+      if (j > i + 1 && !(j < text.size() && text[j] == '.'))
+        std::from_chars(text.data() + i + 1, text.data() + j, code);
+      if (code == 2 || code == 30 || code == 99)
+        return fmt::format(
+            "M{} ends the program (M99 goes back to its start) there: only program.end_code and the footer "
+            "may end it",
+            code);
+    }
+  }
+  return {};
+}
+
 namespace detail {
 
 namespace {
@@ -71,17 +114,24 @@ class overlap_finder {
 
   // A block (fixed or a template) stored as `text`; `node` is its value in the file, or
   // null when the key is absent and `text` is the default, reported at `table`.
-  void block(std::string_view what, std::string_view text, const toml::node* node, const toml::node* table) {
+  void block(std::string_view what, std::string_view text, const toml::node* node, const toml::node* table,
+             code_use use = code_use::part) {
     const long long code = first_wait_word(text, m_.waits, m_.program.comment_open, m_.program.comment_close);
     if (code >= 0) add(what, code, node, table);
+    if (std::string fault = code_text_fault(text, m_.program.comment_open, m_.program.comment_close, use);
+        !fault.empty())
+      found.push_back({node    ? node
+                       : table ? table
+                               : &waits_,
+                       fmt::format("{} \"{}\": {}", what, text, fault)});
   }
 
   // The array of blocks `key` of `table`, stored as `texts`.
   void blocks(std::string_view what, const std::vector<std::string>& texts, const toml::table* table,
-              std::string_view key) {
+              std::string_view key, code_use use = code_use::part) {
     const toml::array* values = table && table->get(key) ? table->get(key)->as_array() : nullptr;
     for (std::size_t i = 0; i < texts.size(); ++i)
-      block(what, texts[i], values ? values->get(i) : nullptr, table);
+      block(what, texts[i], values ? values->get(i) : nullptr, table, use);
   }
 
   // An M code given as a number (spindle codes).
@@ -111,11 +161,11 @@ class overlap_finder {
 const toml::node* key_of(const toml::table* t, std::string_view key) { return t ? t->get(key) : nullptr; }
 
 void program_codes(overlap_finder& f, const program_format& p, const toml::table* t) {
-  f.block("program.program_line", p.program_line, key_of(t, "program_line"), t);
-  f.blocks("program.header", p.header, t, "header");
-  f.blocks("program.footer", p.footer, t, "footer");
-  f.block("program.end_code", p.end_code, key_of(t, "end_code"), t);
-  f.block("program.section_marker", p.section_marker, key_of(t, "section_marker"), t);
+  f.block("program.program_line", p.program_line, key_of(t, "program_line"), t, code_use::line);
+  f.blocks("program.header", p.header, t, "header", code_use::line);
+  f.blocks("program.footer", p.footer, t, "footer", code_use::end);
+  f.block("program.end_code", p.end_code, key_of(t, "end_code"), t, code_use::end);
+  f.block("program.section_marker", p.section_marker, key_of(t, "section_marker"), t, code_use::line);
 }
 
 void control_codes_of(overlap_finder& f, const control_codes& c, const toml::table* t) {
@@ -214,6 +264,18 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
                                     {"cylindrical_on", &m.milling.cylindrical_on},
                                     {"cylindrical_off", &m.milling.cylindrical_off}})
     f.blocks(fmt::format("milling.{}", key), *blocks, g, key);
+  const std::vector<const toml::table*> chains = root.tables("kinematics");
+  for (std::size_t i = 0; i < m.kinematics.size() && i < chains.size(); ++i) {
+    const kinematic_chain& c = m.kinematics[i];
+    for (const auto& [key, code] : {std::pair{"tool_tip_on", &c.tool_tip_on},
+                                    {"tool_tip_off", &c.tool_tip_off},
+                                    {"length_on", &c.length_on},
+                                    {"inverse_time", &c.inverse_time},
+                                    {"plane", &c.plane},
+                                    {"plane_index", &c.plane_index},
+                                    {"plane_off", &c.plane_off}})
+      f.block(fmt::format("kinematics.{}", key), *code, key_of(chains[i], key), chains[i]);
+  }
   // The first in the file, as a reader goes through it.
   const finding* first = nullptr;
   for (const finding& x : f.found)

@@ -232,12 +232,13 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   else if (p.comment_open == ';')
     p.comment_close = '\n';
   // A comment character that is also a word's (a letter, a digit, a sign, a point), a block's
-  // own (%, /, #, [, ], =) or a blank would turn the comments' text into code, or code into
-  // comments, for the control and the post's own readers alike.
+  // own (%, /, #, [, ], =), a program number's (ISO's :), a system's or a wait's mark (Citizen's
+  // $ and !) or a blank would turn the comments' text into code, or code into comments, for the
+  // control and the post's own readers alike.
   const auto unfit = [](char ch) {
     return static_cast<unsigned char>(ch) <= ' ' || static_cast<unsigned char>(ch) >= 0x7f ||
            ascii::is_letter(ch) || (ch >= '0' && ch <= '9') ||
-           std::string_view("%/#[]=+-.,*").find(ch) != std::string_view::npos;
+           std::string_view("%/#[]=+-.,*:$!").find(ch) != std::string_view::npos;
   };
   if (unfit(p.comment_open))
     r.fail(*r.find("comment_open"),

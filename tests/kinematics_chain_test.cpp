@@ -201,6 +201,10 @@ TEST_CASE("pivot output and the rotary word order are read, and their errors rep
         "m.toml:11:16: error: kinematics.inverse_time must hold codes only: ';' would make a comment of the "
         "block "
         "it begins");
+  // A program end in a code the post writes mid-program (attack 44: inverse_time = "M30").
+  CHECK(machine_error_of(k + "inverse_time = \"M30\"\n" + heads) ==
+        "m.toml:11:16: error: kinematics.inverse_time \"M30\": M30 ends the program (M99 goes back to its "
+        "start) there: only program.end_code and the footer may end it");
   CHECK(machine_error_of(k + "inverse_time = \"\"\n" + heads) ==
         "m.toml:11:16: error: kinematics.inverse_time must name the inverse-time feed code (G93): joints and "
         "pivot "

@@ -233,6 +233,33 @@ TEST_CASE("format_template formats the named placeholders", "[machines]") {
   CHECK_THROWS_AS(format_template("T{tol}", a), fmt::format_error);
 }
 
+TEST_CASE("a code that would make the control read something else is refused at its key", "[machines]") {
+  const auto error_of = [](const std::string& tables) {
+    return test::machine_error_of(test::machine_head + tables + test::two_channels);
+  };
+  // The post writes X Y Z R F after the cycle code: a comment to the end of the line takes them.
+  CHECK(error_of("[program]\ncomment_open = \";\"\n[cycles]\ndrill_code = \"G81 ;\"\n") ==
+        "m.toml:9:14: error: cycles.drill_code \"G81 ;\": ';' makes a comment of the rest of the block: the "
+        "words "
+        "twinpost writes after this code would not be read (a comment to the end of the line belongs in a "
+        "block of its own)");
+  CHECK(error_of("[cycles]\ndrill_code = \"G81 (DRILL\"\n") ==
+        "m.toml:7:14: error: cycles.drill_code \"G81 (DRILL\": '(' opens a comment that no ')' closes: the "
+        "words "
+        "after it would not be read");
+  CHECK(error_of("[codes]\ncoolant_on = [\"M8\", \"M30\"]\n") ==
+        "m.toml:7:21: error: codes.coolant_on \"M30\": M30 ends the program (M99 goes back to its start) "
+        "there: only program.end_code and the footer may end it");
+  // A comment that closes, a comment line of the header, the end codes where they belong, and
+  // M98 and M300 (no end) are codes as given.
+  CHECK(error_of("[program]\ncomment_open = \";\"\nheader = [\";PART ONE\", \"G90\"]\nfooter = "
+                 "[\"M99\"]\nend_code = \"M02\"\n[cycles]\ndrill_code = "
+                 "\"M98 M300 G81\"\n") == "(no error)");
+  CHECK(error_of("[cycles]\ndrill_code = \"G81 (PECK 2)\"\n") == "(no error)");
+  CHECK(error_of("[program]\ncomment_open = \":\"\n") ==
+        "m.toml:7:16: error: program.comment_open must be a character no block word uses, such as ( or ;");
+}
+
 TEST_CASE("a comment to the end of the line: a semicolon comment_open with no comment_close, or an empty one",
           "[machines]") {
   const auto program = [](const std::string& keys) {
