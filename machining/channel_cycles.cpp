@@ -359,7 +359,10 @@ void channel_writer::cycle_block(const hole& h, const std::string& code, double 
                    : k.r_from_initial ? (h.clear - h.initial) * scale_ * z_sign_
                                       : nc_z(h.clear);
   if (!fits('R', r, axis_style_.decimals)) return;
-  if (!k.plane.empty()) out_.block(k.plane);
+  if (!k.plane.empty())
+    out_.block(k.plane);
+  else if (!c_mode_)
+    restore_plane();  // a G18 arc before: the cycle would drill along Y (Fanuc FXY = 1)
   text_buffer& b = out_.open_block();
   word_start_ = b.size();
   if (!k.return_initial.empty()) b += k.return_initial, b += ' ';

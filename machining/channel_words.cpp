@@ -221,6 +221,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   motion_g_ = -1;
   out_.block(call, true);
   if (!offset_block.empty()) out_.block(offset_block);
+  restore_plane();
   if (length_offset) pending_offset_ = format_template(ch_.length_offset, a);
   // The tool changer may leave an indexing head anywhere (public Integrex posts send B to 0 at
   // every tool change and index it again): the next tool's angle is written, even the same one.
@@ -247,6 +248,15 @@ void channel_writer::tool(const tool_event& t, int line) {
   take_tool(t.tool, line, word);
   if (script_) [[unlikely]]
     script_tool(t.tool, a.offset);
+}
+
+void channel_writer::restore_plane() {
+  // An arc in G18 or G19 (a CIRCLE about Y or X) leaves that plane in force: the next tool's
+  // G43 and a canned cycle would take Y (or X) as the tool's axis (Fanuc: length offset type
+  // B, FXY = 1), the hole drilled along Y.
+  if (header_plane_ == 0 || plane_ == header_plane_) return;
+  out_.block(fmt::format("G{}", header_plane_));
+  plane_ = header_plane_;
 }
 
 void channel_writer::take_tool(int tool, int line, const char* word) {

@@ -73,7 +73,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
   // (the Fanuc lathes' safe start ends in G99, the mills' has G94): the first FEDRAT in that
   // mode writes no second G99 right after it.
   const std::string plane = header_modal(m.program.header, m.program, {"G17", "G18", "G19"});
-  if (!plane.empty()) plane_ = (plane[2] - '0') + 10;
+  if (!plane.empty()) plane_ = header_plane_ = (plane[2] - '0') + 10;
   absolute_code_ = !header_modal(m.program.header, m.program, {"G90"}).empty();
   feed_g_ = header_modal(m.program.header, m.program, {m.codes.feed_per_rev, m.codes.feed_per_min});
   per_rev_ = !feed_g_.empty() && feed_g_ == m.codes.feed_per_rev;

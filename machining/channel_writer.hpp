@@ -459,6 +459,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void multiaxis_off();
   /// Before a tool call: the heads of the chain back at 0 if they may be tilted.
   void heads_upright();
+  /// The header's plane again (G17 on a mill) when an arc left another in force: after a
+  /// tool call, and before a canned cycle on a machine whose cycles name no plane.
+  void restore_plane();
   /// At the end, a length-offset cancel still waiting for the home blocks: the footer's, when it
   /// homes and then cancels, else the home blocks and the cancel before the footer.
   void footer_cancels_length();
@@ -596,6 +599,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::string tool_word_;                     // its major word (LOADTL, TURRET ...)
   int motion_g_ = -1;                         // last G0/G1/G2/G3
   int plane_ = 18;                            // G17/G18/G19 in force (lathe headers set G18)
+  int header_plane_ = 0;                      // the header's G17/G18/G19, 0: it sets none
   axis_memory last_x_, last_y_, last_z_;      // axis words written last
   axis_memory last_c_;                        // the C word written last (degrees)
   std::string feed_g_;                        // G99/G98 (G95/G94) in force

@@ -92,3 +92,32 @@ TEST_CASE("a peck count past any real hole stops the post instead of writing mov
       "pecks\n"
       "GOTO/0,0,0\n^\n");
 }
+
+TEST_CASE("an arc in G18 leaves the mill's G17 in force again before a cycle and after a tool call",
+          "[post][cycles]") {
+  // Review 45: after a CIRCLE about Y (G18) the next hole's G81 and the next tool's G43 ran in
+  // G18: a Fanuc with FXY = 1 drills along Y, length offset type B applies H along Y.
+  const std::string arc =
+      "LOADTL/1\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,400\nRAPID\nGOTO/0,0,50,0,0,1\n"
+      "GOTO/0,0,0\nCIRCLE/10,0,0,0,1,0,10\nGOTO/10,0,-10\nGOTO/20,0,-10\nRAPID\nGOTO/20,0,10\n";
+  const std::string hole = "CYCLE/DRILL,DEPTH,5,CLEAR,2,MMPM,100\nGOTO/20,10,0\nCYCLE/OFF\n";
+  const machine m = load_machine("rotary-4axis");
+  // The same tool drills next: G17 before the cycle.
+  const test::posted same =
+      test::post_in_fresh_dir("PARTNO SAME\n" + arc + hole + "FINI\n", m, "cy-planes-1");
+  INFO(same.diagnostics);
+  REQUIRE(same.ok);
+  CHECK(same.files.at("SAME.nc").find("G1 Z0. F400.\nG18 G3 X10. Z-10. I10. K0.\nG1 X20.\nG0 Z10.\n"
+                                      "Y10.\nZ2.\nG17\nG98 G81 X20. Y10. Z-5. R2. F100.\n") !=
+        std::string::npos);
+  // The next tool: G17 after its call, before its G43; its own arc about Y names G18 again.
+  const test::posted next =
+      test::post_in_fresh_dir("PARTNO NEXT\n" + arc + "LOADTL/2\nSPINDL/RPM,3000,CLW\n" + hole +
+                                  "RAPID\nGOTO/0,0,50\nCIRCLE/10,0,50,0,1,0,10\nGOTO/20,0,50\nFINI\n",
+                              m, "cy-planes-2");
+  INFO(next.diagnostics);
+  REQUIRE(next.ok);
+  const std::string& nc = next.files.at("NEXT.nc");
+  CHECK(nc.find("T02 M6\nG17\nS3000 M3\n") != std::string::npos);
+  CHECK(nc.find("G18 G3 X20. Z50.") != std::string::npos);
+}
