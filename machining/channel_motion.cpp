@@ -399,7 +399,10 @@ void channel_writer::arc(const arc_event& cl, int line) {
     rise = {a.normal.x * along, a.normal.y * along, a.normal.z * along};
     const double gap =
         std::max({std::abs(d.x - rise.x), std::abs(d.y - rise.y), std::abs(d.z - rise.z)}) * scale_;
-    part_turn = gap > y_tolerance;
+    // An end within one unit of the written words of the start is the start (the CL's print
+    // rounding): a part turn there would be written as a whole extra turn, or as an arc whose
+    // end is its start, which the control runs as a full circle.
+    part_turn = gap > std::max(y_tolerance, std::pow(10.0, -axis_style_.decimals));
     turn_share = 1.0 / a.turns;
     if (part_turn) {
       // The angle from the start to the end in the arc's sense, in (0, 2pi): the two radii in

@@ -536,9 +536,10 @@ double channel_writer::head_turn_dip(const joint_values& j, const tool_pose& pos
   // dips the tip 20 mm at A0). How far (mm, along the tool direction) it would pass below the
   // higher of the tip where the turn starts and the point the rapid goes to; 0 where it does
   // not, under tool-tip control (the control holds the tip), or where a table turns too (the
-  // part moves under the tool: no one height says clear).
+  // part moves under the tool: no one height says clear). Before the length offset is on the
+  // words are no tip's; pivot output (and joints without length_on) writes none: they are.
   const kinematic_chain& c = *chain_;
-  if (!solves_joints(c) || !offset_on_) return 0;
+  if (!solves_joints(c) || (!offset_on_ && !c.length_on.empty())) return 0;
   joint_values a = j;
   axis_memory* mem[3] = {&last_x_, &last_y_, &last_z_};
   double lin[3];

@@ -260,6 +260,17 @@ TEST_CASE("TIMES with the GOTO elsewhere on the circle: the turns, then the part
     }
     std::filesystem::remove_all(dir);
   }
+  // An end within print rounding of the start is the start (review 45): no flat full circle at
+  // the bottom, no extra turn; two turns at 4 mm.
+  for (const double y : {19.9996, 20.0004}) {
+    INFO(y);
+    const test::posted p = post(helix_job("0,0,1", start, centre, {30, y, -6}, 2), "rotary-4axis", "near");
+    REQUIRE(p.ok);
+    const std::vector<nc_arc> arcs = arcs_of(p.files.begin()->second);
+    REQUIRE(arcs.size() == 2);
+    CHECK(arcs[0].text == "G2 X30. Y20. Z-2. I-5. J0. F400.");
+    CHECK(arcs[1].text == "G2 X30. Y20. Z-6. I-5. J0.");
+  }
   // Counter-clockwise about +X (G19, G3): one turn and a half from Y15 round to Y5, X down 6.
   const p3 s2{8, 15, 0}, c2{2, 10, 0}, e2{2, 5, 0};
   std::string ccw = helix_job("1,0,0", s2, c2, e2, 1);
