@@ -58,7 +58,10 @@ std::optional<fitted> fit(const rotary_axis_def& a, double v, double prev) {
   // Within the limits and less than half a turn from the previous value: itself (what the
   // search below gives there, k = 0).
   if (v >= *a.min && v <= *a.max && std::abs(prev - v) < 180.0) return fitted{v, std::abs(v - prev)};
-  constexpr double slack = 1e-9;  // a value on a limit, give or take the rounding of the solve
+  // A value on a limit, give or take the rounding of the solve and of the CL's axis vector: NX
+  // prints 7 decimals, which puts B20 at 20.00000018 (review 45, refused before); the value is
+  // clamped onto the limit.
+  constexpr double slack = 1e-5;
   const double kmin = std::ceil((*a.min - slack - v) / 360.0);
   const double kmax = std::floor((*a.max + slack - v) / 360.0);
   if (kmin > kmax) return std::nullopt;

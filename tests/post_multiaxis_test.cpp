@@ -1156,3 +1156,15 @@ TEST_CASE("multi-axis: feed blocks faster than the control reads them are counte
   m.limits.blocks_per_second = 76;  // 13.16 ms a block, the sub-moves 60/4525.483 = 13.26 ms: none counted
   CHECK(test::post_in_fresh_dir(sample_job("nx-ca-pivot"), m, "ma-rate-76").diagnostics.empty());
 }
+
+TEST_CASE("multi-axis: an axis on its limit within the CL's print rounding is on it", "[post][multiaxis]") {
+  // Review 45: B20 A-10 in NX's 7 decimals solves to B20.00000018 on head-head-5axis (B -20..20),
+  // refused as beyond the limit though B20.000 is what the block says.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO LIMIT\nLOADTL/1\nTLDATA/MILL,10,0,100,0,0\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/0,0,60,0.3368241,0.1736482,0.9254166\nGOTO/0,0,50,0.3368241,0.1736482,0.9254166\nFINI\n",
+      load_machine("head-head-5axis"), "ma-on-limit");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  CHECK(p.files.at("LIMIT.nc").find("G68.2 X0. Y0. Z0. I117.273 J22.269 K-117.273\n") != std::string::npos);
+}
