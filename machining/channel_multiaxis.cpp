@@ -74,6 +74,7 @@ void channel_writer::multiaxis_tool(const tool_event& t, int) {
   length_known_ = length_refused_ = length_free_ = false;
   offset_on_ = false;
   pose_known_ = false;  // the tool change moved the machine
+  clear_height_ = -std::numeric_limits<double>::infinity();
   for (axis_memory& a : last_rot_) a.known = false;
   for (axis_memory& a : last_ijk_) a.known = false;
 }
@@ -409,6 +410,12 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
                        len > 0 ? vec3{axis_.x / len, axis_.y / len, axis_.z / len} : axis_};
   approach_from_ = last_cl_tip_;  // where the CL last put the tip, also across a plane's end
   last_cl_tip_ = pose.tip;
+  {
+    const double h = kin::dot(pose.tip, c.tool_direction);
+    const double was = approach_from_ ? kin::dot(*approach_from_, c.tool_direction) : h;
+    turn_clear_ = std::max(h, was) >= clear_height_ - c.tolerance;
+    clear_height_ = std::max(clear_height_, h);
+  }
   if (!c.plane.empty() && (rapid || plane_on_) && plane_move(rapid, pose, line)) {
     pose_mm_ = pose;
     return;
@@ -566,6 +573,35 @@ double channel_writer::head_turn_dip(const joint_values& j, const tool_pose& pos
   return dip > 0.001 ? dip : 0;
 }
 
+double channel_writer::turn_sweep(const joint_values& j, const double factor[3]) {
+  const kinematic_chain& c = *chain_;
+  if (!solves_joints(c) || (!offset_on_ && !c.length_on.empty())) return 0;
+  joint_values a = j;
+  axis_memory* mem[3] = {&last_x_, &last_y_, &last_z_};
+  for (int i = 0; i < 3; ++i)
+    if (!mem[i]->known) return 0;
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
+    if (!last_rot_[i].known) return 0;
+    a.rotary[i] = last_rot_[i].value;
+  }
+  const vec3 shift = c.output == multiaxis_output::pivot ? pivot_shift(c) : vec3{};
+  a.linear = {mem[0]->value / factor[0] - shift.x, mem[1]->value / factor[1] - shift.y,
+              mem[2]->value / factor[2] - shift.z};
+  joint_values b = a;  // the heads turned, the tables held: what moves the tip in the machine
+  for (std::size_t i = 0; i < c.rotaries.size(); ++i)
+    if (c.rotaries[i].kind == rotary_kind::head) b.rotary[i] = j.rotary[i];
+  const vec3 from = kin::forward(plan(), a, tool_length_).tip;
+  double sweep = 0;
+  constexpr int steps = 64;
+  for (int n = 1; n <= steps; ++n) {
+    const vec3 d = kin::operator-(
+        kin::forward(plan(), kin::interpolate(c, a, b, double(n) / steps), tool_length_).tip, from);
+    const double up = std::max(0.0, kin::dot(d, c.tool_direction));
+    sweep = std::max(sweep, kin::norm(kin::operator-(d, kin::operator*(up, c.tool_direction))));
+  }
+  return sweep;
+}
+
 bool channel_writer::reposition_rotaries(const joint_values& j, const tool_pose& pose, const double nc[3],
                                          bool force) {
   // The Autodesk Fusion multi-axis posts (positionABC, initialPositioning: the Fanuc and Mazak
@@ -707,6 +743,18 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     return false;
   }
 
+  // A rapid that would swing the tip sideways while a head turns about its pivot, and that
+  // neither starts nor ends as high as the CL has had the tip since the tool call (the CAM's
+  // clearance), turns the heads at the tool-change height, as after a tool call and between
+  // two tilted planes: the CL's RAPID is a straight line for the tip, and below the clearance
+  // the swing is through space the CAM did not check (review 45: a 10 degree turn at the
+  // bottom of a slot put a 150 mm tool 6 mm into its end wall). A C about the tool's own axis
+  // moves no tip; a table turns the part about its own axis: both in place, as before.
+  if (rapid && !homed_ && joints && !turn_clear_ && turn_sweep(j, factor) > c.tolerance) [[unlikely]] {
+    if (offset_on_) cancel_length_offset();
+    go_home();
+    forget_axes();
+  }
   const std::string& on = joints ? c.length_on : c.tool_tip_on;
   const bool offset_block = !offset_on_ && !on.empty();  // "": the control's offset is not the post's
   const bool repositioned = rapid && reposition_rotaries(j, pose, nc, offset_block);

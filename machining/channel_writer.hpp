@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -405,6 +406,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool pivot_length_fits(std::optional<double> table, int line);
   bool upright();
   double head_turn_dip(const kin::joint_values& j, const kin::tool_pose& pose, const double factor[3]);
+  /// How far (mm) the tip would move in the part, other than straight up the tool, if the
+  /// rotary axes turned to `j`'s with the linear axes where the words left them (joints and
+  /// pivot output); 0 when not known.
+  double turn_sweep(const kin::joint_values& j, const double factor[3]);
   /// TLDATA/MILL's length (NX: diameter, lower radius, length, ...) for the next or this tool.
   void tool_data_length(const tool_data_event& t, bool after_call);
   /// A tool call on a chain channel: the new tool's offset register and length.
@@ -732,6 +737,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool pose_known_ = false;                 ///< false until the first GOTO (or FROM)
   std::optional<vec3> last_cl_tip_;         ///< the tip of the last GOTO on the chain (mm, part frame)
   std::optional<vec3> approach_from_;       ///< the one before it: where the move being written starts
+  /// The highest the CL has put the tip (along the tool direction, mm) since the tool call: the
+  /// CAM's clearance, where its approach came down from.
+  double clear_height_ = -std::numeric_limits<double>::infinity();
+  bool turn_clear_ = true;                            ///< the move being written starts or ends that high
   std::optional<double> length_cl_, next_length_cl_;  ///< TLDATA's length (mm) of the tool, of the next
   double tool_length_ = 0;                            ///< the length in use (mm)
   /// A record held (at the pole, or until a cut shows 3+2 or not), with its CL line for its

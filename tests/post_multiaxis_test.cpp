@@ -1168,3 +1168,26 @@ TEST_CASE("multi-axis: an axis on its limit within the CL's print rounding is on
   REQUIRE(p.ok);
   CHECK(p.files.at("LIMIT.nc").find("G68.2 X0. Y0. Z0. I117.273 J22.269 K-117.273\n") != std::string::npos);
 }
+
+TEST_CASE(
+    "multi-axis: a rapid that turns the head below the CAM's clearance turns it at the tool-change height",
+    "[post][multiaxis]") {
+  // Review 45: a slot at Z-5, a RAPID up to Z-3 and on to a point 10 degrees over: turned in
+  // place at Z-3 the 150 mm tool's tip swung 26 mm sideways, 6 mm into the slot's end wall.
+  // Neither end is as high as the approach came down from (Z50): home, turn, over, down.
+  const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/gantry-ca.toml");
+  const std::string slot =
+      "PARTNO LOW\nTLDATA/MILL,12,0,150,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/0,0,50,0,0,1\nRAPID\nGOTO/0,0,2\nGOTO/0,0,-5\nGOTO/20,0,-5\nRAPID\nGOTO/20,0,";
+  const std::string tilt =
+      "\nRAPID\nGOTO/25,0,-3,0.1736482,0,0.9848078\nGOTO/40,0,-5,0.1736482,0,0.9848078\nFINI\n";
+  const test::posted low = test::post_in_fresh_dir(slot + "-3" + tilt, m, "ma-low-turn");
+  INFO(low.diagnostics);
+  REQUIRE(low.ok);
+  CHECK(low.files.at("LOW.nc").find("X20.\nG0 Z-3.\nG91 G28 Z0.\nG90\nG49\nG0 C90. A10.\nG0 X51.047 Y0.\n"
+                                    "G0 G43 H1 X51.047 Y0. Z-5.279 C90. A10.\n") != std::string::npos);
+  // Up at the approach's height first: the head turns there, after rising by its dip.
+  const test::posted clear = test::post_in_fresh_dir(slot + "50" + tilt, m, "ma-clear-turn");
+  REQUIRE(clear.ok);
+  CHECK(clear.files.at("LOW.nc").find("X20.\nG0 Z50.\nG0 A10.\nG0 X51.047\nZ-5.279\n") != std::string::npos);
+}
