@@ -1,6 +1,7 @@
 #include "machines/toml_reader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <utility>
 
@@ -105,6 +106,9 @@ bool table_reader::read(std::string_view key, double& out) const {
     out = static_cast<double>(i->get());
   else
     wrong_type(key, *n, "a number");
+  // TOML's nan and inf are floats: a limit of nan compares false both ways and switches its
+  // check off (attack 45: rotary max = nan wrote A150. on a head that stops at 110).
+  if (!std::isfinite(out)) fail(*n, fmt::format("{} must be a finite number, not {}", key_path(key), out));
   return true;
 }
 

@@ -233,6 +233,15 @@ TEST_CASE("format_template formats the named placeholders", "[machines]") {
   CHECK_THROWS_AS(format_template("T{tol}", a), fmt::format_error);
 }
 
+TEST_CASE("a number of the machine file is finite", "[machines]") {
+  // Attack 45: TOML's nan passed every comparison with a limit (a rotary max = nan wrote A150.
+  // on a head that stops at 110, max_feed = nan switched the feed check off).
+  CHECK(test::machine_error_of(test::machine_head + "[limits]\nmax_feed = nan\n" + test::two_channels) ==
+        "m.toml:7:12: error: limits.max_feed must be a finite number, not nan");
+  CHECK(test::machine_error_of(test::machine_head + "[limits]\nmax_feed = -inf\n" + test::two_channels) ==
+        "m.toml:7:12: error: limits.max_feed must be a finite number, not -inf");
+}
+
 TEST_CASE("a code that would make the control read something else is refused at its key", "[machines]") {
   const auto error_of = [](const std::string& tables) {
     return test::machine_error_of(test::machine_head + tables + test::two_channels);
