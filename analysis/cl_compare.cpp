@@ -633,7 +633,9 @@ struct cl_comparison::impl {
     }
     ++compared;
     const double zs = z_sign();
-    const double tol = std::max(tip_tolerance, axis_half * 1.001);
+    // Three half units: a full circle ends on its start's words, which may stand a unit and a
+    // half from the CL's end (within a unit of the start, channel_motion.cpp).
+    const double tol = std::max(tip_tolerance, axis_half * 3.001);
     // Most records are right: the words are read for a message only when one is not.
     const auto fine = [&](const axis_state& a, double div, double want) {
       return a.k == axis_state::kind::unknown ||

@@ -382,6 +382,13 @@ void channel_writer::arc(const arc_event& cl, int line) {
           "circle about that centre goes through both",
           kin::number_text(r1 * scale_), kin::number_text(a.center.x), kin::number_text(a.center.y),
           kin::number_text(a.center.z), kin::number_text(r0 * scale_)));
+    // A radius under one unit of the written words is no arc a control makes (its start and
+    // end radius differ by the rounding, or it is 0: an alarm, or a spiral).
+    if (r0 * scale_ < std::pow(10.0, -axis_style_.decimals))
+      return fail(
+          fmt::format("the arc's radius, {} mm, is under one unit of the written words: give the "
+                      "move as a GOTO",
+                      kin::number_text(r0 * scale_)));
   }
   // TIMES,n (NX): n full turns about the axis; a GOTO at another depth along the axis makes
   // them a helix (NX's CLSF: "a tool path arc ... or a helical motion", x,y,z "the center of
@@ -390,23 +397,26 @@ void channel_writer::arc(const arc_event& cl, int line) {
   // the whole sweep at one pitch: each full turn is one block whose axis word moves 2pi/sweep of
   // the depth, the last block the part turn to the GOTO. Of the two readings of TIMES (whole
   // turns, or every turn begun), whole turns is the longer sweep and so the shallower ramp.
-  vec3 rise{0, 0, 0};      // the whole helix's travel along the axis, CL units
-  double turn_share = 0;   // the part of the rise one full turn takes
-  bool part_turn = false;  // a last block that ends away from the start in the plane
-  if (a.turns > 0) {
+  vec3 rise{0, 0, 0};     // the travel along the axis from the start to the end, CL units
+  double turn_share = 1;  // the part of the rise one full turn takes
+  bool part_turn = true;  // a last block that ends away from the start in the plane
+  {
     const vec3 d{a.end.x - a.start.x, a.end.y - a.start.y, a.end.z - a.start.z};
     const double along = (d.x * a.normal.x + d.y * a.normal.y + d.z * a.normal.z) / (nlen * nlen);
     rise = {a.normal.x * along, a.normal.y * along, a.normal.z * along};
     const double gap =
         std::max({std::abs(d.x - rise.x), std::abs(d.y - rise.y), std::abs(d.z - rise.z)}) * scale_;
     // An end within one unit of the written words of the start is the start (the CL's print
-    // rounding): a part turn there would be written as a whole extra turn, or as an arc whose
-    // end is its start, which the control runs as a full circle.
-    part_turn = gap > std::max(y_tolerance, std::pow(10.0, -axis_style_.decimals));
-    turn_share = 1.0 / a.turns;
-    if (part_turn) {
-      // The angle from the start to the end in the arc's sense, in (0, 2pi): the two radii in
-      // the plane, their cross product along the axis gives the counter-clockwise angle.
+    // rounding): its in-plane words are written as the start's, never rounded apart from them
+    // (a 0.001 mm arc that drops a turn's depth is a plunge), nor together where a part turn
+    // was meant (the control runs an arc whose end is its start as a full circle).
+    const double unit = std::pow(10.0, -axis_style_.decimals);
+    part_turn = gap > std::max(y_tolerance, unit);
+    // The angle from the start to the end in the arc's sense, in [0, 2pi): the two radii in the
+    // plane, their cross product along the axis gives the counter-clockwise angle.
+    const double two_pi = 2 * std::numbers::pi;
+    double part = 0;
+    if (gap > y_tolerance) {
       const vec3 n{a.normal.x / nlen, a.normal.y / nlen, a.normal.z / nlen};
       const auto radial = [&](const vec3& p) {
         const vec3 r{p.x - a.center.x, p.y - a.center.y, p.z - a.center.z};
@@ -417,14 +427,25 @@ void channel_writer::arc(const arc_event& cl, int line) {
       const vec3 c{r0.y * r1.z - r0.z * r1.y, r0.z * r1.x - r0.x * r1.z, r0.x * r1.y - r0.y * r1.x};
       double ccw_angle =
           std::atan2(c.x * n.x + c.y * n.y + c.z * n.z, r0.x * r1.x + r0.y * r1.y + r0.z * r1.z);
-      const double two_pi = 2 * std::numbers::pi;
       if (ccw_angle < 0) ccw_angle += two_pi;
-      const double part = a.ccw ? ccw_angle : two_pi - ccw_angle;
-      turn_share = two_pi / (a.turns * two_pi + part);
+      part = a.ccw ? ccw_angle : two_pi - ccw_angle;
     }
+    if (a.turns == 0 && !part_turn && gap > y_tolerance && part < std::numbers::pi) {
+      // A few microns on round the circle (attack 45: written as a full 100 mm circle): the
+      // tool is there within a unit of the words; an axis move with it would be a plunge.
+      if (std::max({std::abs(rise.x), std::abs(rise.y), std::abs(rise.z)}) * scale_ > unit)
+        return fail(
+            fmt::format("the arc goes {} mm round its circle, under one unit of the written words, "
+                        "and {} mm along its axis: give the move as a GOTO",
+                        kin::number_text(gap), kin::number_text(kin::norm(rise) * scale_)));
+      pos_ = cl.end;
+      return;
+    }
+    if (a.turns > 0) turn_share = part_turn ? two_pi / (a.turns * two_pi + part) : 1.0 / a.turns;
     // In polar interpolation (G12.1) the arc is in the X-C plane the control builds; whether it
     // takes a Z word into a helix there is not verified in a control's manual.
-    if (polar_ && std::max({std::abs(rise.x), std::abs(rise.y), std::abs(rise.z)}) * scale_ > y_tolerance)
+    if (a.turns > 0 && polar_ &&
+        std::max({std::abs(rise.x), std::abs(rise.y), std::abs(rise.z)}) * scale_ > y_tolerance)
       return fail(
           fmt::format("CIRCLE TIMES {}: a helix in polar interpolation (G12.1) is not written: "
                       "helical interpolation in that mode is not verified; give the ramp as GOTO points",
@@ -445,13 +466,15 @@ void channel_writer::arc(const arc_event& cl, int line) {
   }
   arc_ += g == 3 ? " G3" : " G2";
   if (feed_value_ <= 0) error(line, "arc with no feed rate (FEDRAT) in force");
-  const int blocks = std::max(1, a.turns + (part_turn ? 1 : 0));
+  const int blocks = std::max(1, a.turns + (part_turn && a.turns > 0 ? 1 : 0));
   for (int turn = 1; turn <= blocks; ++turn) {
     // Full turns (TIMES): each block ends a turn's share further along the axis, the last at
-    // the GOTO (the end of the last full turn, or of the part turn after them).
-    const double k = turn * turn_share;
-    const vec3 end =
-        turn == blocks ? a.end : vec3{a.start.x + rise.x * k, a.start.y + rise.y * k, a.start.z + rise.z * k};
+    // the GOTO (the end of the last full turn, or of the part turn after them). A full circle's
+    // end is its start in the plane.
+    const double k = std::min(1.0, turn * turn_share);
+    const vec3 end = turn == blocks && part_turn
+                         ? a.end
+                         : vec3{a.start.x + rise.x * k, a.start.y + rise.y * k, a.start.z + rise.z * k};
     if (!arc_block(a, end, plane, axis_sign, mirror, line)) return fail_quietly();
     if (turn < blocks) {
       out_.block(arc_.view().substr(1));
@@ -507,7 +530,9 @@ bool channel_writer::arc_block(const arc_event& a, const vec3& end, int plane, d
     // The long way round (over 180 degrees) takes a negative R.
     bool short_way_ccw = su * ev - sv * eu > 0;
     bool over_half = short_way_ccw != (a.ccw == (axis_sign > 0));
-    const double r = (over_half ? -1 : 1) * a.radius * scale_;
+    // The radius the points lie on, not the record's (attack 45: R60. written for a circle of
+    // 50 through the same two points).
+    const double r = (over_half ? -1 : 1) * std::hypot(su, sv) * scale_;
     if (!fits('R', r, axis_style_.decimals)) return false;
     arc_ += " R";
     append_number(arc_, r, axis_style_);

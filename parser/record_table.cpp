@@ -69,7 +69,9 @@ const event_builder::rule_index& event_builder::rules() {
              "TIMES,n: n full turns, one block each, a helix when the GOTO lies at another depth; a GOTO "
              "elsewhere on the circle (a helical entry) adds the part turn on to it, one block more, the "
              "depth spread over the whole sweep at one pitch (whole turns: the shallower of the two "
-             "readings of TIMES). A GOTO whose distance from the centre "
+             "readings of TIMES). An end within one unit of the written words of the start is the start "
+             "(its words written as the start's); an arc shorter than that writes no block, one whose "
+             "radius is under it is an error. R arcs take the radius the points lie on. A GOTO whose distance from the centre "
              "(in the circle's plane) differs from the start's by more than 0.01 mm is an error: no circle "
              "about that centre goes through both"),
       refused("CLAMP",

@@ -338,3 +338,39 @@ TEST_CASE(
   }
   CHECK(worst_distance(arcs, 'Z', {128, 60, 1}, {120, 60, -5}, {120, 68, -5}, 2) < 5e-4);
 }
+
+TEST_CASE("arcs as the control reads their words: a tiny arc, a helix ending by its start, R from the points",
+          "[post][arc]") {
+  // Attack 45. A CIRCLE whose GOTO is 0.0004 mm round from its start: the same words, which a
+  // control runs as a full 100 mm circle. The tool is there within a unit: no block.
+  const std::string head =
+      "PARTNO TINY\nLOADTL/1\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,600\nRAPID\nGOTO/80,0,5,0,0,1\nGOTO/80,0,-5\n";
+  const test::posted tiny = post(head + "CIRCLE/30,0,-5,0,0,1,50\nGOTO/80,0.0004,-5\nGOTO/80,10,-5\nFINI\n",
+                                 "rotary-4axis", "tiny");
+  INFO(tiny.diagnostics);
+  REQUIRE(tiny.ok);
+  CHECK(tiny.files.at("TINY.nc").find("G1 Z-5. F600.\nY10.\n") != std::string::npos);
+  // A helix whose GOTO is 0.0001 mm from the start, the two either side of a rounding step: the
+  // last turn ends on the start's words (Y25.001), not on a 0.001 mm arc that drops 4 mm.
+  const test::posted near = post(
+      helix_job("0,0,1", {36, 25.0006, 1}, {30, 25.0006, -7}, {36, 25.0005, -7}, 2), "rotary-4axis", "near");
+  REQUIRE(near.ok);
+  const std::vector<nc_arc> arcs = arcs_of(near.files.begin()->second);
+  REQUIRE(arcs.size() == 2);
+  CHECK(arcs[1].text == "G2 X36. Y25.001 Z-7. I-6. J0.");
+  // A radius under one unit of the words is no arc.
+  const test::posted zero =
+      post(head + "CIRCLE/80,0,-5,0,0,1,0\nGOTO/80,0,-5\nFINI\n", "rotary-4axis", "zero");
+  CHECK(zero.diagnostics ==
+        "job.cls:9:1: error: channel 1: the arc's radius, 0 mm, is under one unit of the written words: give "
+        "the "
+        "move as a GOTO\nGOTO/80,0,-5\n^\n");
+  // R is the radius the points lie on (50), not the record's (60).
+  machine r = load_machine("rotary-4axis");
+  r.program.arcs_ijk = false;
+  const test::posted rf =
+      test::post_in_fresh_dir(head + "CIRCLE/30,0,-5,0,0,1,60\nGOTO/30,50,-5\nFINI\n", r, "nxhelix-r");
+  INFO(rf.diagnostics);
+  REQUIRE(rf.ok);
+  CHECK(rf.files.at("TINY.nc").find("G3 X30. Y50. R50.") != std::string::npos);
+}
