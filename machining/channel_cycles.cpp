@@ -262,7 +262,7 @@ void channel_writer::cycle_point(const vec3& p, int line) {
     if (auto f = cycle_param(c, unit)) {
       const bool per_rev = std::string_view(unit).back() == 'R';
       const double value = *f * ((unit[0] == 'I') ? 25.4 : 1.0) * out_per_mm_;
-      if (!fits('F', value, feed_decimals(per_rev))) return;
+      if (!feed_writable(value, per_rev, "CYCLE", line)) return;
       feed_value_ = value;
       feed_mode(per_rev);
     }
@@ -359,6 +359,8 @@ void channel_writer::cycle_block(const hole& h, const std::string& code, double 
                    : k.r_from_initial ? (h.clear - h.initial) * scale_ * z_sign_
                                       : nc_z(h.clear);
   if (!fits('R', r, axis_style_.decimals)) return;
+  if (pitch <= 0 && !(feed_value_ > 0))
+    return error(line, "a drilling cycle with no feed rate in force (the CYCLE's MMPM/MMPR or a FEDRAT)");
   if (!k.plane.empty())
     out_.block(k.plane);
   else if (!c_mode_)

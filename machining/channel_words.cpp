@@ -97,7 +97,7 @@ void channel_writer::feed(const feed_event& f, int line) {
   const double mm = f.value * (f.units == unit_system::inch ? 25.4 : 1.0);
   const double value = mm * out_per_mm_;  // in the output units
   // F is written with 4 decimals per revolution, 1 per minute in mm (append_feed).
-  if (!fits('F', value, feed_decimals(f.mode == feed_mode::per_rev))) return;
+  if (value != 0 && !feed_writable(value, f.mode == feed_mode::per_rev, "FEDRAT", line)) return;
   // A feed per revolution depends on the spindle speed: only per-minute feeds are held to it.
   const double max_feed = m_.limits.max_feed;
   if (f.mode == feed_mode::per_minute && max_feed > 0 && mm > max_feed)
@@ -106,6 +106,20 @@ void channel_writer::feed(const feed_event& f, int line) {
                                    mm, max_feed));
   feed_value_ = value;
   feed_mode(f.mode == feed_mode::per_rev);
+}
+
+bool channel_writer::feed_writable(double value, bool per_rev, std::string_view record, int line) {
+  const int decimals = feed_decimals(per_rev);
+  if (!(value > 0)) {
+    error(line, fmt::format("{}: a feed of {} is no feed (above 0)", record, kin::number_text(value)));
+    return false;
+  }
+  if (value < 0.5 * std::pow(10.0, -decimals)) {
+    error(line, fmt::format("{}: a feed of {} is written F0 (F keeps {} decimal{}): no control moves at it",
+                            record, kin::number_text(value), decimals, decimals == 1 ? "" : "s"));
+    return false;
+  }
+  return fits('F', value, decimals);
 }
 
 void channel_writer::feed_mode(bool per_rev) {

@@ -549,6 +549,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   double out_per_mm_ = 1.0;  // mm -> output units (1/25.4 in inch output)
   /// Decimals of the F word: 4 per revolution and 1 per minute in mm, 5 and 2 in inch.
   int feed_decimals(bool per_rev) const { return (per_rev ? 4 : 1) + (out_per_mm_ < 1 ? 1 : 0); }
+  /// A feed (output units) above 0 that stays above 0 written, and fits the F word; else an
+  /// error at `line`, naming `record` (a control alarms on F0 or a negative F).
+  bool feed_writable(double value, bool per_rev, std::string_view record, int line);
   double x_factor_ = 2.0;    // diameter (2) or radius (1), negative when mirrored
   double side_ = 1.0;        // -1 while a HEAD/BOTH copy runs on the opposite side
   bool x_mirror_ = false;    // the channel's X axis is mirrored (a lower turret)

@@ -71,7 +71,8 @@ const event_builder::rule_index& event_builder::rules() {
              "depth spread over the whole sweep at one pitch (whole turns: the shallower of the two "
              "readings of TIMES). An end within one unit of the written words of the start is the start "
              "(its words written as the start's); an arc shorter than that writes no block, one whose "
-             "radius is under it is an error. R arcs take the radius the points lie on. A GOTO whose distance from the centre "
+             "radius is under it is an error. R arcs take the radius the points lie on. A GOTO whose "
+             "distance from the centre "
              "(in the circle's plane) differs from the start's by more than 0.01 mm is an error: no circle "
              "about that centre goes through both"),
       refused("CLAMP",

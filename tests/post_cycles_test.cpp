@@ -121,3 +121,24 @@ TEST_CASE("an arc in G18 leaves the mill's G17 in force again before a cycle and
   CHECK(nc.find("T02 M6\nG17\nS3000 M3\n") != std::string::npos);
   CHECK(nc.find("G18 G3 X20. Z50.") != std::string::npos);
 }
+
+TEST_CASE("a feed that is 0 or below or written F0 is refused at its record", "[post][cycles]") {
+  // Attack 45: G81 ... F0. and F-100. were written; FEDRAT/MMPM,0.04 became F0.
+  const auto diags = [](const std::string& body, const std::string& tag) {
+    return test::post_in_fresh_dir(
+               "PARTNO F\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,0,50,0,0,1\n" + body + "FINI\n",
+               load_machine("rotary-4axis"), "cy-feed-" + tag)
+        .diagnostics;
+  };
+  CHECK(diags("CYCLE/DRILL,DEPTH,5,CLEAR,2,MMPM,-100\nGOTO/20,10,0\nCYCLE/OFF\n", "neg") ==
+        "job.cls:7:1: error: channel 1: CYCLE: a feed of -100 is no feed (above 0)\nGOTO/20,10,0\n^\n");
+  CHECK(diags("CYCLE/DRILL,DEPTH,5,CLEAR,2\nGOTO/20,10,0\nCYCLE/OFF\n", "none") ==
+        "job.cls:7:1: error: channel 1: a drilling cycle with no feed rate in force (the CYCLE's MMPM/MMPR "
+        "or a "
+        "FEDRAT)\nGOTO/20,10,0\n^\n");
+  CHECK(diags("FEDRAT/MMPM,0.04\nGOTO/0,0,-5\n", "tiny") ==
+        "job.cls:6:1: error: channel 1: FEDRAT: a feed of 0.04 is written F0 (F keeps 1 decimal): no control "
+        "moves at it\nFEDRAT/MMPM,0.04\n^\njob.cls:7:1: error: channel 1: feed move with no feed rate "
+        "(FEDRAT) in "
+        "force\nGOTO/0,0,-5\n^\n");
+}
