@@ -209,7 +209,15 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   h.into = axis_.z < 0 && !cross && !tilted ? 1.0 : -1.0;
   const double top = at.z;
   h.top = top;
-  h.clear = top - h.into * cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
+  const double rapto = cycle_param(c, "RAPTO").value_or(cycle_param(c, "CLEAR").value_or(0));
+  // The R plane is where the rapid down ends: below the hole's top it is inside the part
+  // (attack 45: RAPTO,-50 wrote G0 ... Z-50., a rapid 50 mm into the material).
+  if (rapto < 0)
+    return error(line, fmt::format("CYCLE/{}: {} {} puts the clearance plane {} mm below the hole's top: the "
+                                   "tool would rapid into the part",
+                                   c.type, cycle_param(c, "RAPTO") ? "RAPTO" : "CLEAR",
+                                   kin::number_text(rapto), kin::number_text(-rapto * cl_mm_)));
+  h.clear = top - h.into * rapto;
   const std::optional<double> fedto = cycle_param(c, "FEDTO");
   std::optional<double> bottom;
   // FEDTO: a depth (SolidWorks), a distance along the tool axis, negative into the part (NX),

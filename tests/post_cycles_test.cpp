@@ -142,3 +142,14 @@ TEST_CASE("a feed that is 0 or below or written F0 is refused at its record", "[
         "(FEDRAT) in "
         "force\nGOTO/0,0,-5\n^\n");
 }
+
+TEST_CASE("a clearance plane below the hole's top is refused", "[post][cycles]") {
+  // Attack 45: NX's RAPTO,-50 put R 50 mm inside the part and rapided to it.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO R\nLOADTL/1\nSPINDL/RPM,3000,CLW\nRAPID\nGOTO/0,0,50,0,0,1\nCYCLE/DRILL,DEPTH,5,CLEAR,-2,MMPM,"
+      "100\nGOTO/20,10,0\nCYCLE/OFF\nFINI\n",
+      load_machine("rotary-4axis"), "cy-rapto");
+  CHECK(p.diagnostics ==
+        "job.cls:7:1: error: channel 1: CYCLE/DRILL: CLEAR -2 puts the clearance plane 2 mm below the hole's "
+        "top: the tool would rapid into the part\nGOTO/20,10,0\n^\n");
+}
