@@ -325,6 +325,14 @@ void channel_writer::arc(const arc_event& cl, int line) {
                  "a CIRCLE with the tool across the spindle axis: twinpost writes no arcs on the cylinder "
                  "(G2/G3 in cylindrical interpolation); give the path as GOTO points");
   }
+  if (cl.turns_axis) [[unlikely]] {
+    // An arc is written with the tool's axis held: the turn would move to the next cut, the
+    // tool and holder not where the CAM checked them (attack 45).
+    pos_ = cl.end;
+    return error(line,
+                 "the CIRCLE's GOTO turns the tool axis: an arc holds the tool's axis; give the move "
+                 "as GOTO points");
+  }
   if (chain_ && multiaxis_takes() ? !multiaxis_arc(line) : !tool_along_z(line)) {
     pos_ = cl.end;
     return;

@@ -91,9 +91,15 @@ void event_builder::point(std::span<const double> n, bool continued, motion_kind
                           event_queue& out) {
   vec3 p{n[0], n[1], n[2]};
   if (kind == motion_kind::delta) p = {pos_.x + p.x, pos_.y + p.y, pos_.z + p.z};
-  if (n.size() == 6) axis_ = vec3{n[3], n[4], n[5]};  // modal: NX repeats it only on change
+  bool turned = false;
+  if (n.size() == 6) {  // modal: NX repeats it only on change
+    const vec3 was = axis_.value_or(vec3{0, 0, 1});
+    turned = std::abs(n[3] - was.x) + std::abs(n[4] - was.y) + std::abs(n[5] - was.z) > 1e-7;
+    axis_ = vec3{n[3], n[4], n[5]};
+  }
   if (kind == motion_kind::go_to && circle_) {
     arc_event a;
+    a.turns_axis = turned;
     a.start = pos_;
     a.end = p;
     a.center = circle_->center;

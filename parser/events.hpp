@@ -32,6 +32,7 @@ struct arc_event {
   double radius = 0;     ///< as written, or computed from the start point
   bool ccw = true;       ///< counter-clockwise about `normal` (dialect convention applied)
   bool continued = false;
+  bool turns_axis = false;  ///< its GOTO gives a tool axis other than the one in force
   int turns = 0;  ///< NX `CIRCLE/...,TIMES,n`: n full turns, then the arc on to the end if it is elsewhere on
                   ///< the circle; 0: an arc
 };

@@ -374,3 +374,15 @@ TEST_CASE("arcs as the control reads their words: a tiny arc, a helix ending by 
   REQUIRE(rf.ok);
   CHECK(rf.files.at("TINY.nc").find("G3 X30. Y50. R50.") != std::string::npos);
 }
+
+TEST_CASE("a CIRCLE whose GOTO turns the tool axis is refused at that GOTO", "[post][arc]") {
+  // Attack 45: the arc was written upright and the 15 degree tilt moved into the next cut.
+  const test::posted p = post(
+      "PARTNO TILT\nLOADTL/1\nTLDATA/MILL,12,0,150,0,0\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,600\nRAPID\n"
+      "GOTO/80,0,5,0,0,1\nGOTO/80,0,-5\nCIRCLE/30,0,-5,0,0,1,50\nGOTO/30,50,-5,0.258819,0,0.9659258\nFINI\n",
+      "head-head-5axis", "tilt");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:10:1: error: channel 1: the CIRCLE's GOTO turns the tool axis: an arc holds the tool's axis; "
+      "give the move as GOTO points\nGOTO/30,50,-5,0.258819,0,0.9659258\n^\n");
+}
