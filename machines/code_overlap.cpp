@@ -2,12 +2,16 @@
 // code a machine file names.
 #include "machines/code_overlap.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "machines/kinematic_chain.hpp"
 #include "machines/toml_reader.hpp"
 #include "support/ascii.hpp"
 
@@ -53,6 +57,87 @@ long long first_wait_word(std::string_view block, const wait_rules& w, char open
     i = j;
   }
   return -1;
+}
+
+std::string squeeze_blanks(std::string_view text, char open, char close) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    const char end = c == open ? close : c == '{' ? '}' : '\0';
+    if (end != '\0') {  // a comment or a placeholder, as it stands
+      const std::size_t e = end == '\n' ? std::string_view::npos : text.find(end, i + 1);
+      const std::size_t stop = e == std::string_view::npos ? text.size() : e + 1;
+      out.append(text.substr(i, stop - i));
+      i = stop - 1;
+      continue;
+    }
+    if (c != ' ' && c != '\t') out += c;
+  }
+  return out;
+}
+
+// The last of the words G90 and G91 in `text` (not G90.1/G91.1, the arc centre's modes), or 0.
+int distance_mode(std::string_view text, char open, char close) {
+  int mode = 0;
+  const std::string t = squeeze_blanks(text, open, close);
+  for (std::size_t i = 0; i + 2 < t.size(); ++i) {
+    const char c = t[i];
+    if (c == open || c == '{') {
+      const std::size_t e =
+          c == open && close == '\n' ? std::string::npos : t.find(c == open ? close : '}', i + 1);
+      if (e == std::string::npos) break;
+      i = e;
+      continue;
+    }
+    if ((c != 'G' && c != 'g') || (i > 0 && ascii::is_letter(t[i - 1]))) continue;
+    std::size_t j = i + 1;
+    while (j < t.size() && ascii::is_digit(t[j])) ++j;
+    if (j < t.size() && t[j] == '.') continue;
+    long long g = -1;
+    std::from_chars(t.data() + i + 1, t.data() + j, g);
+    if (g == 90 || g == 91) mode = static_cast<int>(g);
+  }
+  return mode;
+}
+
+// The words of `text` as a control reads them: a letter and its number (blanks dropped,
+// comments and placeholders skipped); a letter followed by no number gets NaN.
+std::vector<std::pair<char, double>> words_of(std::string_view text, char open, char close) {
+  std::vector<std::pair<char, double>> out;
+  const std::string t = squeeze_blanks(text, open, close);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const char c = t[i];
+    if (c == open || c == '{') {
+      const std::size_t e =
+          c == open && close == '\n' ? std::string::npos : t.find(c == open ? close : '}', i + 1);
+      if (e == std::string::npos) break;
+      i = e;
+      continue;
+    }
+    if (!ascii::is_letter(c)) continue;
+    std::size_t j = i + 1;
+    while (j < t.size() && (ascii::is_digit(t[j]) || t[j] == '.' || t[j] == '-' || t[j] == '+')) ++j;
+    double v = std::numeric_limits<double>::quiet_NaN();
+    if (j > i + 1) v = std::strtod(std::string(t.substr(i + 1, j - i - 1)).c_str(), nullptr);
+    out.push_back({static_cast<char>(ascii::is_upper(c) ? c : c - 'a' + 'A'), v});
+    i = j - 1;
+  }
+  return out;
+}
+
+const char* reserved_m_code(long long code) {
+  switch (code) {
+    case 0: return "the program stop";
+    case 1: return "the optional stop";
+    case 2:
+    case 30: return "the program's end";
+    case 6: return "the tool change";
+    case 98:
+    case 198: return "a subprogram call";
+    case 99: return "a subprogram's return (a main program's jump back to its start)";
+    default: return code < 0 ? "no M code (below 0)" : nullptr;
+  }
 }
 
 std::string code_text_fault(std::string_view text, char open, char close, code_use use) {
@@ -114,29 +199,44 @@ class overlap_finder {
 
   // A block (fixed or a template) stored as `text`; `node` is its value in the file, or
   // null when the key is absent and `text` is the default, reported at `table`.
+  // Words are read as a control reads them, blanks inside them dropped (a Fanuc reads `M 30` as
+  // M30, attack 45).
   void block(std::string_view what, std::string_view text, const toml::node* node, const toml::node* table,
-             code_use use = code_use::part) {
-    const long long code = first_wait_word(text, m_.waits, m_.program.comment_open, m_.program.comment_close);
+             code_use use = code_use::part, bool mode_checked = true) {
+    const char open = m_.program.comment_open, close = m_.program.comment_close;
+    const std::string words = squeeze_blanks(text, open, close);
+    const long long code = first_wait_word(words, m_.waits, open, close);
     if (code >= 0) add(what, code, node, table);
-    if (std::string fault = code_text_fault(text, m_.program.comment_open, m_.program.comment_close, use);
-        !fault.empty())
-      found.push_back({node    ? node
-                       : table ? table
-                               : &waits_,
-                       fmt::format("{} \"{}\": {}", what, text, fault)});
+    std::string fault = code_text_fault(words, open, close, use);
+    if (fault.empty() && mode_checked && use != code_use::end && distance_mode(words, open, close) == 91)
+      fault =
+          "it leaves G91 (incremental) in force, and the post writes every move after it as absolute "
+          "positions: end it with G90";
+    if (!fault.empty()) found.push_back({at(node, table), fmt::format("{} \"{}\": {}", what, text, fault)});
   }
 
-  // The array of blocks `key` of `table`, stored as `texts`.
+  // The array of blocks `key` of `table`, stored as `texts`: the mode they leave is the last's.
   void blocks(std::string_view what, const std::vector<std::string>& texts, const toml::table* table,
               std::string_view key, code_use use = code_use::part) {
     const toml::array* values = table && table->get(key) ? table->get(key)->as_array() : nullptr;
-    for (std::size_t i = 0; i < texts.size(); ++i)
-      block(what, texts[i], values ? values->get(i) : nullptr, table, use);
+    int mode = 0;
+    for (std::size_t i = 0; i < texts.size(); ++i) {
+      block(what, texts[i], values ? values->get(i) : nullptr, table, use, false);
+      if (const int m = distance_mode(texts[i], m_.program.comment_open, m_.program.comment_close)) mode = m;
+    }
+    if (use != code_use::end && mode == 91)
+      found.push_back(
+          {at(values, table),
+           fmt::format("{}: its blocks leave G91 (incremental) in force, and the post writes every "
+                       "move after them as absolute positions: end them with G90",
+                       what)});
   }
 
   // An M code given as a number (spindle codes).
   void m_code(std::string_view what, int code, const toml::node* node, const toml::node* table) {
     if (is_wait_word(m_.waits, 'M', code)) add(what, code, node, table);
+    if (const char* is = reserved_m_code(code))
+      found.push_back({at(node, table), fmt::format("{} M{} is {}, no spindle code", what, code, is)});
   }
 
   std::vector<finding> found;
@@ -152,6 +252,10 @@ class overlap_finder {
                      m_.waits.fixed_wait_of(static_cast<int>(code))
                          ? std::string("is a fixed wait ([[waits.fixed]])")
                          : fmt::format("lies in the wait range {} ([waits])", wait_range_text(m_.waits)))});
+  }
+
+  const toml::node* at(const toml::node* node, const toml::node* table) const {
+    return node ? node : table ? table : &waits_;
   }
 
   const machine& m_;
@@ -276,6 +380,58 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
                                     {"plane_off", &c.plane_off}})
       f.block(fmt::format("kinematics.{}", key), *code, key_of(chains[i], key), chains[i]);
   }
+  // What the chains' codes do: inverse time must be ended by a feed-per-minute code and must not
+  // be one, and a joints chain's length code is a length offset along Z (attack 45: feed_per_min
+  // = "" left G93 on, inverse_time = "G94" read 1/min values as mm/min, length_on = "G49" ran
+  // the tip a tool length low).
+  const char open = m.program.comment_open, close = m.program.comment_close;
+  const auto g_in = [&](const std::string& code, std::initializer_list<double> gs) -> double {
+    for (const auto& [letter, v] : words_of(code, open, close))
+      if (letter == 'G')
+        for (const double g : gs)
+          if (std::abs(v - g) < 1e-9) return g;
+    return -1;
+  };
+  const auto m_in = [&](const std::string& code) {
+    const auto w = words_of(code, open, close);
+    return std::any_of(w.begin(), w.end(), [](const auto& x) { return x.first == 'M'; });
+  };
+  const toml::table* codes = root.sub_table("codes");
+  for (std::size_t i = 0; i < m.kinematics.size() && i < chains.size(); ++i) {
+    const kinematic_chain& c = m.kinematics[i];
+    if (!solves_joints(c)) continue;
+    const toml::node* where =
+        key_of(chains[i], "inverse_time") ? key_of(chains[i], "inverse_time") : chains[i];
+    if (const double g = g_in(c.inverse_time, {0, 1, 2, 3, 94, 95}); g >= 0 || m_in(c.inverse_time))
+      f.found.push_back(
+          {where, fmt::format("kinematics.inverse_time \"{}\" holds {}: it must be the inverse-time "
+                              "feed code alone (G93), the F of the moves after it 1/min",
+                              c.inverse_time, g >= 0 ? fmt::format("G{}", g) : "an M code")});
+    const std::string& per_min = m.codes.feed_per_min;
+    if (per_min.empty() || g_in(per_min, {93}) >= 0 ||
+        (!c.inverse_time.empty() &&
+         squeeze_blanks(per_min, open, close) == squeeze_blanks(c.inverse_time, open, close)))
+      f.found.push_back({key_of(codes, "feed_per_min") ? key_of(codes, "feed_per_min") : where,
+                         fmt::format("codes.feed_per_min \"{}\" must end inverse time ({}): the feed moves "
+                                     "after a turning move would keep reading F as 1/min",
+                                     per_min, c.inverse_time)});
+    if (c.output == multiaxis_output::joints && !c.length_on.empty())
+      if (const double g = g_in(c.length_on, {49, 44, 43.4, 43.5}); g >= 0 || m_in(c.length_on))
+        f.found.push_back(
+            {key_of(chains[i], "length_on") ? key_of(chains[i], "length_on") : chains[i],
+             fmt::format("kinematics.length_on \"{}\" under joints output holds {}: the joints "
+                         "are solved for the tool's length made up along Z by a length offset (G43)",
+                         c.length_on, g >= 0 ? fmt::format("G{}", g) : "an M code")});
+  }
+  // A wait range over the codes every control gives a meaning of its own (M30 taken for a wait
+  // would end the program at the meeting).
+  if (m.waits.address == 'M' && m.waits.syntax != wait_syntax::bang)
+    for (const long long code : {0, 1, 2, 6, 30, 98, 99, 198})
+      if (m.waits.is_any_wait(static_cast<int>(code)))
+        f.found.push_back(
+            {waits ? static_cast<const toml::node*>(waits) : &root.table(),
+             fmt::format("the waits take M{}, which is {}: a wait code must have no other meaning", code,
+                         reserved_m_code(code))});
   // The first in the file, as a reader goes through it.
   const finding* first = nullptr;
   for (const finding& x : f.found)

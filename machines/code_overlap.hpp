@@ -20,6 +20,10 @@ bool is_wait_word(const wait_rules& w, char address, long long code);
 /// "M200-M299", "M200-M298 step 2", "M200-M998, M82, M83": the wait codes as messages name them.
 std::string wait_range_text(const wait_rules& w);
 
+/// `text` with the blanks outside comments and `{placeholders}` dropped: its words as a control
+/// reads them (a Fanuc reads `G 43` as G43).
+std::string squeeze_blanks(std::string_view text, char open, char close);
+
 /// How a code is written: `part` of a block, the post's own words after it (a cycle, a spindle
 /// or coolant code); a `line` of its own (the program line, the header); or at the `end`
 /// (the footer, the end code), where M2/M30/M99 belong.

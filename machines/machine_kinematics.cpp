@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "machines/code_overlap.hpp"
 #include "machines/machine.hpp"
 #include "machines/toml_reader.hpp"
 #include "support/ascii.hpp"
@@ -168,20 +169,28 @@ void check_pivot(const table_reader& r, kinematic_chain& c) {
   // The length code of pivot output makes up a tool's difference from the programmed length along
   // the tool; G43/G44 apply it along Z, which at A20 puts the tip sin 20 of it sideways, and
   // G43.4/G43.5 take X Y Z as the tip. Every G word of it, however written (G043, g43, G43.0).
-  const std::string& on = c.length_on;
+  const std::string on = squeeze_blanks(c.length_on, '(', ')');
   for (std::size_t i = 0; i < on.size(); ++i) {
+    if (on[i] == 'M' || on[i] == 'm')
+      r.fail(*r.find("length_on"),
+             fmt::format("kinematics.length_on = \"{}\" under pivot output holds an M code: "
+                         "it must be the length code alone",
+                         c.length_on));
     if (on[i] != 'G' && on[i] != 'g') continue;
     std::size_t e = i + 1;
     while (e < on.size() && (ascii::is_digit(on[e]) || on[e] == '.')) ++e;
     const std::string number = on.substr(i + 1, e - i - 1);
     const double g = number.empty() ? -1 : std::atof(number.c_str());
-    if (g == 43 || g == 44 || g == 43.4 || g == 43.5)
-      r.fail(*r.find("length_on"),
-             fmt::format(
-                 "kinematics.length_on = \"{}\" under pivot output: G{} {}, and a tilted tool needs the "
-                 "length along the tool (Fanuc's G43.1, tool length compensation in the tool axis "
-                 "direction), or none",
-                 on, number, g == 43 || g == 44 ? "applies the length along Z" : "takes X Y Z as the tip"));
+    if (g == 43 || g == 44 || g == 43.4 || g == 43.5 || g == 49)
+      r.fail(
+          *r.find("length_on"),
+          fmt::format("kinematics.length_on = \"{}\" under pivot output: G{} {}, and a tilted tool needs the "
+                      "length along the tool (Fanuc's G43.1, tool length compensation in the tool axis "
+                      "direction), or none",
+                      c.length_on, number,
+                      g == 49              ? "cancels the length offset"
+                      : g == 43 || g == 44 ? "applies the length along Z"
+                                           : "takes X Y Z as the tip"));
   }
   // The pivot: where the heads' axes cross (one head: where its axis crosses the tool's), on the
   // tool's axis through the gauge point. Any point of an axis describes the same machine, so

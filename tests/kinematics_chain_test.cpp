@@ -205,6 +205,24 @@ TEST_CASE("pivot output and the rotary word order are read, and their errors rep
   CHECK(machine_error_of(k + "inverse_time = \"M30\"\n" + heads) ==
         "m.toml:11:16: error: kinematics.inverse_time \"M30\": M30 ends the program (M99 goes back to its "
         "start) there: only program.end_code and the footer may end it");
+  // What the codes do (attack 45): inverse time is no per-minute or motion code, a joints
+  // length code is a G43 (not its cancel, G44 or tool-tip control), blanks inside words count.
+  CHECK(
+      machine_error_of(k + "inverse_time = \"G94\"\n" + heads) ==
+      "m.toml:11:16: error: kinematics.inverse_time \"G94\" holds G94: it must be the inverse-time feed code "
+      "alone (G93), the F of the moves after it 1/min");
+  CHECK(machine_error_of(k + "length_on = \"G49\"\n" + heads) ==
+        "m.toml:11:13: error: kinematics.length_on \"G49\" under joints output holds G49: the joints are "
+        "solved "
+        "for the tool's length made up along Z by a length offset (G43)");
+  CHECK(
+      machine_error_of(k + "output = \"pivot\"\nprogrammed_length = 150\nlength_on = \"G 43\"\n" + heads) ==
+      "m.toml:13:13: error: kinematics.length_on = \"G 43\" under pivot output: G43 applies the length along "
+      "Z, and a tilted tool needs the length along the tool (Fanuc's G43.1, tool length compensation in the "
+      "tool axis direction), or none");
+  CHECK(machine_error_of(k + heads + "[codes]\nfeed_per_min = \"\"\n") ==
+        "m.toml:26:16: error: codes.feed_per_min \"\" must end inverse time (G93): the feed moves after a "
+        "turning move would keep reading F as 1/min");
   CHECK(machine_error_of(k + "inverse_time = \"\"\n" + heads) ==
         "m.toml:11:16: error: kinematics.inverse_time must name the inverse-time feed code (G93): joints and "
         "pivot "

@@ -265,6 +265,24 @@ TEST_CASE("a code that would make the control read something else is refused at 
                  "[\"M99\"]\nend_code = \"M02\"\n[cycles]\ndrill_code = "
                  "\"M98 M300 G81\"\n") == "(no error)");
   CHECK(error_of("[cycles]\ndrill_code = \"G81 (PECK 2)\"\n") == "(no error)");
+  // Blanks inside a word are dropped, as a control reads it (attack 45: "M 30" passed).
+  CHECK(
+      error_of("[codes]\ndwell = \"G4 M 3 0\"\n") ==
+      "m.toml:7:9: error: codes.dwell \"G4 M 3 0\": M30 ends the program (M99 goes back to its start) there: "
+      "only program.end_code and the footer may end it");
+  // A spindle code given as a number that is a stop, an end, a tool change or a call.
+  CHECK(error_of("[[spindle]]\nname = \"main\"\ncw = 30\n") ==
+        "m.toml:8:6: error: spindle 'main': cw M30 is the program's end, no spindle code");
+  // A home or a code that leaves G91 in force: every later move would be an increment.
+  CHECK(
+      error_of("[codes]\nhome = [\"G91 G28 Z0.\"]\n") ==
+      "m.toml:7:8: error: codes.home: its blocks leave G91 (incremental) in force, and the post writes every "
+      "move after them as absolute positions: end them with G90");
+  CHECK(error_of("[codes]\nhome = [\"G91 G28 Z0.\", \"G90\"]\n") == "(no error)");
+  CHECK(
+      error_of("[codes]\ndwell = \"G91 G4\"\n") ==
+      "m.toml:7:9: error: codes.dwell \"G91 G4\": it leaves G91 (incremental) in force, and the post writes "
+      "every move after it as absolute positions: end it with G90");
   CHECK(error_of("[program]\ncomment_open = \":\"\n") ==
         "m.toml:7:16: error: program.comment_open must be a character no block word uses, such as ( or ;");
 }

@@ -322,7 +322,7 @@ TEST_CASE("overlap: every spindle code inside the wait range is refused", "[mach
   CHECK(error_of(head + "[[spindle]]\nname = \"main\"\nclamp = \"G50 S{max} M103\"\n" + two_channels) ==
         "m.toml:8:9: error: spindle 'main': clamp M103" + lies);
   // Codes outside the range, and the same codes in another address, are fine.
-  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\ncw = 203\nccw = 99\nstop = 104\nselect = 902\n" +
+  CHECK(error_of(head + "[[spindle]]\nname = \"sub\"\ncw = 203\nccw = 97\nstop = 104\nselect = 902\n" +
                  main_spindle + two_channels) == "(no error)");
 }
 
@@ -379,16 +379,16 @@ TEST_CASE("overlap: a default code the range swallows is reported where it is le
         "m.toml:3:1: error: codes.coolant_off M9 (the default) lies in the wait range M1-M9 ([waits]); a "
         "program could not tell it from a wait");
   // A spindle without codes: its default cw M3, at its table.
-  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 2\nlast = 7\n[[spindle]]\nname = \"main\"\n" +
+  CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 3\nlast = 5\n[[spindle]]\nname = \"main\"\n" +
                  two_channels) ==
-        "m.toml:6:1: error: spindle 'main': cw M3 (the default) lies in the wait range M2-M7 ([waits]); a "
+        "m.toml:6:1: error: spindle 'main': cw M3 (the default) lies in the wait range M3-M5 ([waits]); a "
         "program could not tell it from a wait");
-  // A mill head's default tool call T.. M6, at its channel.
+  // A range over M6 (a mill head's default tool call T.. M6): the tool change is no wait.
   CHECK(error_of("[machine]\nname = \"m\"\n[waits]\nfirst = 6\nlast = 7\n[[channel]]\nnumber = 1\n"
                  "kind = \"mill_head\"\n" +
                  xz) ==
-        "m.toml:6:1: error: channel 1: tool_call M6 (the default) lies in the wait range M6-M7 ([waits]); a "
-        "program could not tell it from a wait");
+        "m.toml:3:1: error: the waits take M6, which is the tool change: a wait code must have no other "
+        "meaning");
 }
 
 TEST_CASE("overlap: the first offending value in the file is reported", "[machines][overlap]") {
