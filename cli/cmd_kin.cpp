@@ -110,6 +110,8 @@ int run_kin(const args& a) {
       if (arg == "--tool-length") tool_length = (*n)[0];
       if (arg == "--linearise") tolerance = (*n)[0];
       if (arg == "--linearise" && !(tolerance > 0)) return usage_error("--linearise takes a tolerance > 0");
+      if (arg == "--tool-length" && !(tool_length >= 0 && tool_length < 1e4))
+        return usage_error(fmt::format("--tool-length takes a length from 0 to 10000 mm, not '{}'", v));
     }
   }
   if (machine_name.empty()) return usage_error("missing --machine");

@@ -426,7 +426,7 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
   // A wait range over the codes every control gives a meaning of its own (M30 taken for a wait
   // would end the program at the meeting).
   if (m.waits.address == 'M' && m.waits.syntax != wait_syntax::bang)
-    for (const long long code : {0, 1, 2, 6, 30, 98, 99, 198})
+    for (const long long code : {0, 1, 2, 6, 30, 98, 99})
       if (m.waits.is_any_wait(static_cast<int>(code)))
         f.found.push_back(
             {waits ? static_cast<const toml::node*>(waits) : &root.table(),

@@ -300,8 +300,11 @@ void read_kinematics(const table_reader& root, machine& m) {
       double& v = key == "tolerance"         ? c.tolerance
                   : key == "angle_tolerance" ? c.angle_tolerance
                                              : c.chordal_tolerance;
-      if (r.read(key, v) && !(v > 0))
-        r.fail(*r.find(key), fmt::format("{} must be > 0, not {}", r.key_path(key), v));
+      // Above 0, and no coarser than a check that still checks: 1 mm, 1 degree (attack 45:
+      // tolerance = 1e308 switched the forward check off).
+      if (r.read(key, v) && !(v > 0 && v <= 1))
+        r.fail(*r.find(key), fmt::format("{} must be > 0 and at most 1 ({}), not {}", r.key_path(key),
+                                         key == "angle_tolerance" ? "degree" : "mm", v));
     }
     const std::vector<const toml::table*> rotaries = r.tables("rotary");
     for (const toml::table* rt : rotaries) {

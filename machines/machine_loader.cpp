@@ -573,7 +573,10 @@ void read_tools(const table_reader& root, machine& m) {
       r.fail(*r.find("kind"), fmt::format("tool.kind must be turn, drill or mill, not '{}'", d.kind));
     double length = 0;
     if (r.read("length", length)) {
-      if (!(length > 0)) r.fail(*r.find("length"), fmt::format("tool.length must be > 0, not {}", length));
+      // A tool is at least a millimetre and less than 10 m long (attack 45: 1e-300 posted as a tool
+      // of 0 mm, every tilted point 150 mm off).
+      if (!(length >= 1 && length < 1e4))
+        r.fail(*r.find("length"), fmt::format("tool.length must be >= 1 and < 10000 (mm), not {}", length));
       d.length = length;
     }
     double diameter = 0;

@@ -85,9 +85,9 @@ TEST_CASE("errors in [[kinematics]] are reported at their place", "[kinematics][
   CHECK(machine_error_of(k + "tool_direction = [0, 0, 0]\n") ==
         "m.toml:11:18: error: kinematics.tool_direction must not be the zero vector");
   CHECK(machine_error_of(k + "tolerance = 0\n") ==
-        "m.toml:11:13: error: kinematics.tolerance must be > 0, not 0");
+        "m.toml:11:13: error: kinematics.tolerance must be > 0 and at most 1 (mm), not 0");
   CHECK(machine_error_of(k + "chordal_tolerance = -1\n") ==
-        "m.toml:11:21: error: kinematics.chordal_tolerance must be > 0, not -1");
+        "m.toml:11:21: error: kinematics.chordal_tolerance must be > 0 and at most 1 (mm), not -1");
   CHECK(machine_error_of(k + "output = \"tcp\"\n") ==
         "m.toml:11:10: error: kinematics.output must be joints, tool_tip, vector or pivot, not 'tcp'");
   CHECK(machine_error_of(b) ==
