@@ -166,6 +166,9 @@ std::string code_text_fault(std::string_view text, char open, char close, code_u
       i = e;
       continue;
     }
+    // A ( is a comment's start on every ISO control, whatever comment the post writes.
+    if (c == '(' && text.find(')', i + 1) == std::string_view::npos)
+      return "'(' opens a comment on the control that no ')' closes: the words after it would not be read";
     // M2, M30, M99 (and M02, M030 ...): the program's end, or a jump back to its start.
     if ((c == 'M' || c == 'm') && (i == 0 || !ascii::is_letter(text[i - 1])) && use != code_use::end) {
       std::size_t j = i + 1;
@@ -423,6 +426,15 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
                          "are solved for the tool's length made up along Z by a length offset (G43)",
                          c.length_on, g >= 0 ? fmt::format("G{}", g) : "an M code")});
   }
+  // A cycle code that is a motion code: the control would move to the hole's bottom as the code
+  // says (attack 45: drill_code = "G0" rapided to the bottom).
+  const toml::table* cycles = root.sub_table("cycles");
+  for (const auto& [key, field] : cycle_rules::code_keys)
+    if (const double g = g_in(m.cycles.*field, {0, 1, 2, 3}); g >= 0)
+      f.found.push_back({key_of(cycles, key) ? key_of(cycles, key) : &root.table(),
+                         fmt::format("cycles.{} \"{}\" holds G{}, a motion code: the hole's words would move "
+                                     "the tool to its bottom at that motion",
+                                     key, m.cycles.*field, g)});
   // A wait range over the codes every control gives a meaning of its own (M30 taken for a wait
   // would end the program at the meeting).
   if (m.waits.address == 'M' && m.waits.syntax != wait_syntax::bang)

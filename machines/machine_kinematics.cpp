@@ -284,13 +284,16 @@ void read_kinematics(const table_reader& root, machine& m) {
       const program_format& f = m.program;
       for (const char ch : *code)
         if (static_cast<unsigned char>(ch) < ' ' || static_cast<unsigned char>(ch) >= 0x7f || ch == '%' ||
-            ch == '(' || ch == ')' || ch == ';' || ch == f.comment_open || ch == f.comment_close)
-          r.fail(*r.find(key),
-                 fmt::format("{} must hold codes only: '{}' would {} the block it begins", r.key_path(key),
-                             ch == '%'                    ? "%"
-                             : std::string(1, ch) == "\n" ? "\\n"
-                                                          : std::string(1, ch),
-                             ch == '%' || ch < ' ' ? "end or break" : "make a comment of"));
+            ch == '(' || ch == ')' || ch == ';' || ch == f.comment_open || ch == f.comment_close ||
+            ch == '{' || ch == '}' || ch == '"' || ch == '\'' || ch == '\\')
+          r.fail(*r.find(key), fmt::format("{} must hold codes only: '{}' would {}", r.key_path(key),
+                                           ch == '%'                    ? "%"
+                                           : std::string(1, ch) == "\n" ? "\\n"
+                                                                        : std::string(1, ch),
+                                           ch == '%' || ch < ' ' ? "end or break the block it begins"
+                                           : std::string_view("{}\"'\\").find(ch) != std::string_view::npos
+                                               ? "be written as it stands, no word of a block"
+                                               : "make a comment of the block it begins"));
     }
     if (solves_joints(c) && c.inverse_time.empty())
       r.fail(*r.find("inverse_time"),

@@ -251,6 +251,10 @@ void read_program(const table_reader& root, program_format& p, anchors& at) {
   if (p.comment_close == p.comment_open)
     r.fail(*close_at,
            fmt::format("program.comment_close must differ from comment_open ('{}')", p.comment_open));
+  if (p.comment_open == ')' || p.comment_close == '(')
+    r.fail(*(p.comment_open == ')' ? r.find("comment_open") : close_at),
+           "program.comment_open may not be ) nor comment_close (: every control reads ( as a comment's "
+           "start and ) as its end");
   if (p.comment_open == '(' && p.comment_close != ')')
     r.fail(*close_at,
            "program.comment_open = \"(\" is closed by \")\": a control reads a ( comment on until its )");

@@ -37,8 +37,9 @@ struct arc_event {
                   ///< the circle; 0: an arc
 };
 
-/// The most full turns one CIRCLE/...,TIMES,n may ask for.
-inline constexpr int max_circle_turns = 9999;
+/// The most full turns one CIRCLE/...,TIMES,n may ask for: a helical entry makes a few (attack
+/// 45: 200 records of TIMES,9999 wrote a 42 MB program).
+inline constexpr int max_circle_turns = 100;
 
 /// `cam_name` and `option` are no CL record: the post's own call of the tool a job moves with
 /// before any tool call, named by the CAM in the machine's [[tool]] table or given by

@@ -207,6 +207,10 @@ TEST_CASE("pivot output and the rotary word order are read, and their errors rep
         "start) there: only program.end_code and the footer may end it");
   // What the codes do (attack 45): inverse time is no per-minute or motion code, a joints
   // length code is a G43 (not its cancel, G44 or tool-tip control), blanks inside words count.
+  CHECK(machine_error_of(k + "inverse_time = \"G93 {\"\n" + heads) ==
+        "m.toml:11:16: error: kinematics.inverse_time must hold codes only: '{' would be written as it "
+        "stands, no "
+        "word of a block");
   CHECK(
       machine_error_of(k + "inverse_time = \"G94\"\n" + heads) ==
       "m.toml:11:16: error: kinematics.inverse_time \"G94\" holds G94: it must be the inverse-time feed code "

@@ -283,6 +283,20 @@ TEST_CASE("a code that would make the control read something else is refused at 
       error_of("[codes]\ndwell = \"G91 G4\"\n") ==
       "m.toml:7:9: error: codes.dwell \"G91 G4\": it leaves G91 (incremental) in force, and the post writes "
       "every move after it as absolute positions: end it with G90");
+  // A ( is a comment on the control whatever the post's comments; ) opens none, ( closes none.
+  CHECK(
+      error_of("[program]\ncomment_open = \";\"\n[codes]\ndwell = \"G4 (X\"\n") ==
+      "m.toml:9:9: error: codes.dwell \"G4 (X\": '(' opens a comment on the control that no ')' closes: the "
+      "words after it would not be read");
+  CHECK(
+      error_of("[program]\ncomment_open = \"<\"\ncomment_close = \"(\"\n") ==
+      "m.toml:8:17: error: program.comment_open may not be ) nor comment_close (: every control reads ( as a "
+      "comment's start and ) as its end");
+  // A cycle code that moves (attack 45: drill_code = "G0" rapided to the bottom).
+  CHECK(
+      error_of("[cycles]\ndrill_code = \"G0\"\n") ==
+      "m.toml:7:14: error: cycles.drill_code \"G0\" holds G0, a motion code: the hole's words would move the "
+      "tool to its bottom at that motion");
   CHECK(error_of("[program]\ncomment_open = \":\"\n") ==
         "m.toml:7:16: error: program.comment_open must be a character no block word uses, such as ( or ;");
 }

@@ -111,7 +111,7 @@ TEST_CASE("NX CIRCLE ... TIMES,n carries its turns", "[parser][limits]") {
   CHECK(r.events ==
         lines{"1\tfrom x=10 y=0 z=0", "3\tarc x=10 y=0 z=0 cx=0 cy=0 cz=0 i=0 j=0 k=1 r=10 dir=cw turns=3"});
   CHECK(read_cl("CIRCLE/0,0,0,0,0,1,10,0.06,0.5,4,0,TIMES,2.5\n", dialect::nx).diagnostics ==
-        "t.cl:1:42: error: CIRCLE TIMES 2.5 is not a whole number of turns from 1 to 9999\n"
+        "t.cl:1:42: error: CIRCLE TIMES 2.5 is not a whole number of turns from 1 to 100\n"
         "CIRCLE/0,0,0,0,0,1,10,0.06,0.5,4,0,TIMES,2.5\n"
         "                                         ^\n");
 }
