@@ -325,6 +325,15 @@ void channel_writer::arc(const arc_event& cl, int line) {
                  "a CIRCLE with the tool across the spindle axis: twinpost writes no arcs on the cylinder "
                  "(G2/G3 in cylindrical interpolation); give the path as GOTO points");
   }
+  if (comp_starting() || pending_g_.starts_with("G40")) [[unlikely]] {
+    // Fanuc PS0034 (and the others): compensation starts and ends on a linear move, where the
+    // control builds the offset path's first or last vector.
+    pos_ = cl.end;
+    return error(line, fmt::format("cutter compensation would {} on an arc ({}): the control starts and ends "
+                                   "it on a straight move; give a straight lead-in or lead-out between the "
+                                   "CUTCOM and the CIRCLE",
+                                   comp_starting() ? "start" : "end", pending_g_));
+  }
   if (cl.turns_axis) [[unlikely]] {
     // An arc is written with the tool's axis held: the turn would move to the next cut, the
     // tool and holder not where the CAM checked them (attack 45).

@@ -386,3 +386,16 @@ TEST_CASE("a CIRCLE whose GOTO turns the tool axis is refused at that GOTO", "[p
       "job.cls:10:1: error: channel 1: the CIRCLE's GOTO turns the tool axis: an arc holds the tool's axis; "
       "give the move as GOTO points\nGOTO/30,50,-5,0.258819,0,0.9659258\n^\n");
 }
+
+TEST_CASE("cutter compensation does not start or end on an arc", "[post][arc]") {
+  // Attack 45: G41 D2 G2 ... and G40 G2 ... were written (Fanuc PS0034).
+  const std::string head =
+      "PARTNO COMP\nLOADTL/2\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,600\nRAPID\nGOTO/80,0,5,0,0,1\nGOTO/80,0,-5\n";
+  CHECK(
+      post(head + "CUTCOM/LEFT,2\nCIRCLE/30,0,-5,0,0,1,50\nGOTO/30,50,-5\nFINI\n", "rotary-4axis", "comp-on")
+          .diagnostics ==
+      "job.cls:10:1: error: channel 1: cutter compensation would start on an arc (G41 D2): the control "
+      "starts "
+      "and ends it on a straight move; give a straight lead-in or lead-out between the CUTCOM and the "
+      "CIRCLE\nGOTO/30,50,-5\n^\n");
+}
