@@ -414,6 +414,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
   // the whole sweep at one pitch: each full turn is one block whose axis word moves 2pi/sweep of
   // the depth, the last block the part turn to the GOTO. Of the two readings of TIMES (whole
   // turns, or every turn begun), whole turns is the longer sweep and so the shallower ramp.
+  double sweep = 0;       // radians round the circle, all blocks together
   vec3 rise{0, 0, 0};     // the travel along the axis from the start to the end, CL units
   double turn_share = 1;  // the part of the rise one full turn takes
   bool part_turn = true;  // a last block that ends away from the start in the plane
@@ -459,6 +460,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
       return;
     }
     if (a.turns > 0) turn_share = part_turn ? two_pi / (a.turns * two_pi + part) : 1.0 / a.turns;
+    sweep = a.turns * two_pi + (part_turn ? part : a.turns == 0 ? two_pi : 0);
     // In polar interpolation (G12.1) the arc is in the X-C plane the control builds; whether it
     // takes a Z word into a helix there is not verified in a control's manual.
     if (a.turns > 0 && polar_ &&
@@ -469,6 +471,18 @@ void channel_writer::arc(const arc_event& cl, int line) {
                       a.turns));
   }
   check_side(nc_x(a.end.x), a.end.x, line);
+  if (x_diameter_ && plane == 18 && !warned_side_) [[unlikely]] {
+    // A lathe arc may pass the centre line between its ends (attack 45: a three-quarter arc to
+    // X-16 on the diameter): its X along the way, 64 points a turn.
+    const double r = std::hypot(a.start.x - a.center.x, a.start.z - a.center.z);
+    const double a0 = std::atan2(a.start.x - a.center.x, a.start.z - a.center.z);  // about +Y: z to x
+    const double s = (a.ccw == (a.normal.y > 0)) ? 1.0 : -1.0;
+    const int steps = std::max(8, static_cast<int>(std::ceil(sweep / (2 * std::numbers::pi) * 64)));
+    double low = a.end.x;
+    for (int i = 1; i < steps; ++i)
+      low = std::min(low, a.center.x + r * std::sin(a0 + s * sweep * i / steps));
+    check_side(nc_x(low), low, line);
+  }
   double axis_sign = plane == 17 ? a.normal.z : plane == 18 ? a.normal.y : a.normal.x;
   bool ccw = a.ccw == (axis_sign > 0);
   const double mirror = mirrored() ? -1.0 : 1.0;

@@ -279,3 +279,13 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
   posted spec = post_text("PARTNO W\nTURRET/1,1\nDELAY/3\nFINI\n", m, "dwell-spec");
   CHECK(spec.files.at("W_1.nc").find("\nG98 G4 U3.0\nG99\n") != std::string::npos);
 }
+
+TEST_CASE("a lathe arc that passes the centre line between its ends is warned about", "[post][words]") {
+  // Attack 45: a three-quarter arc about X2 (diameter 4) of radius 10 reaches X-16 on the way to
+  // its end at X4; only the end was checked.
+  posted p = post_text(head + "GOTO/12,0,-20\nCIRCLE/2,0,-20,0,-1,0,10\nGOTO/2,0,-30\nFINI\n",
+                       "fanuc-0itd-twin", "arc-centre");
+  CHECK(p.diagnostics ==
+        "job.cls:8:1: warning: channel 1: X-16. is past the spindle centre line (CL x = -8)\n"
+        "GOTO/2,0,-30\n^\n");
+}
