@@ -154,6 +154,13 @@ void event_builder::circle(const cl_record& r, int line, event_queue&, build_iss
                                 : std::string("CIRCLE TIMES needs a number of turns")});
         return;
       }
+      if (c.turns != 0 && c.turns != static_cast<int>(t)) {
+        issues.push_back(
+            {severity::error, a.offset,
+             fmt::format("CIRCLE TIMES is given twice, {} and {}: which one is meant is not known", c.turns,
+                         format_number(t))});
+        return;
+      }
       c.turns = static_cast<int>(t);
       ++i;
     } else

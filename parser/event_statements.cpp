@@ -71,8 +71,8 @@ void event_builder::on_cutcom(const cl_record& r, int line, event_queue& out, bu
   out.push_back({line, detail::read_cutcom(r, issues)});
 }
 
-void event_builder::on_cycle(const cl_record& r, int line, event_queue& out, build_issues&) {
-  cycle_event c = detail::read_cycle(r);
+void event_builder::on_cycle(const cl_record& r, int line, event_queue& out, build_issues& issues) {
+  cycle_event c = detail::read_cycle(r, issues);
   c.meaning = cycle_meaning(dialect_);
   out.push_back({line, std::move(c)});
 }

@@ -230,7 +230,7 @@ cutcom_event read_cutcom(const cl_record& r, build_issues& issues) {
   return e;
 }
 
-cycle_event read_cycle(const cl_record& r) {
+cycle_event read_cycle(const cl_record& r, build_issues& issues) {
   cycle_event e;
   std::size_t i = 0;
   if (is_word(r, 0)) e.type = upper(r.args[0].word), i = 1;
@@ -242,7 +242,16 @@ cycle_event read_cycle(const cl_record& r) {
   for (; i < r.args.size(); ++i) {
     const cl_arg& a = r.args[i];
     if (a.kind == arg_kind::word && is_num(r, i + 1)) {
-      e.params.emplace_back(upper(a.word), r.args[i + 1].number);
+      // A word given twice with its value (FEDTO,-10 ... FEDTO,-200): which the CAM meant is not
+      // known, and the one not taken is never checked (attack 45).
+      std::string name = upper(a.word);
+      for (const auto& [seen, value] : e.params)
+        if (seen == name && value != r.args[i + 1].number)
+          issues.push_back(
+              {severity::error, a.offset,
+               fmt::format("CYCLE/{}: {} is given twice, {} and {}: which one is meant is not known", e.type,
+                           name, format_number(value), format_number(r.args[i + 1].number))});
+      e.params.emplace_back(std::move(name), r.args[i + 1].number);
       ++i;
     } else if (a.kind == arg_kind::word) {
       e.words.push_back(upper(a.word));

@@ -116,6 +116,19 @@ TEST_CASE("NX CIRCLE ... TIMES,n carries its turns", "[parser][limits]") {
         "                                         ^\n");
 }
 
+TEST_CASE("a word given twice with two values is an error at the second", "[parser][limits]") {
+  // Attack 45: TIMES,2,TIMES,3 posted three turns, FEDTO,-10 ... FEDTO,-200 drilled to -10.
+  CHECK(read_cl("CIRCLE/0,0,0,0,0,1,10,0.06,0.5,4,0,TIMES,2,TIMES,3\n", dialect::nx).diagnostics ==
+        "t.cl:1:44: error: CIRCLE TIMES is given twice, 2 and 3: which one is meant is not known\n"
+        "CIRCLE/0,0,0,0,0,1,10,0.06,0.5,4,0,TIMES,2,TIMES,3\n"
+        "                                           ^\n");
+  CHECK(read_cl("CYCLE/DRILL,FEDTO,-10,RAPTO,3,FEDTO,-200\n", dialect::nx).diagnostics ==
+        "t.cl:1:31: error: CYCLE/DRILL: FEDTO is given twice, -10 and -200: which one is meant is not known\n"
+        "CYCLE/DRILL,FEDTO,-10,RAPTO,3,FEDTO,-200\n"
+        "                              ^\n");
+  CHECK(read_cl("CYCLE/DRILL,FEDTO,-10,FEDTO,-10\n", dialect::nx).diagnostics.empty());
+}
+
 TEST_CASE("a diagnostic echoes at most 200 columns of its line, binary bytes escaped", "[parser][limits]") {
   std::string source(1000, 'A');
   source[299] = '\0';

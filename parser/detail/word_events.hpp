@@ -15,7 +15,7 @@ spindle_event read_spindl(const cl_record& r, build_issues& issues);
 feed_event read_fedrat(const cl_record& r, unit_system units, build_issues& issues);
 coolant_event read_coolnt(const cl_record& r, build_issues& issues);
 cutcom_event read_cutcom(const cl_record& r, build_issues& issues);
-cycle_event read_cycle(const cl_record& r);
+cycle_event read_cycle(const cl_record& r, build_issues& issues);
 /// THREAD/TURN,LEAD,l|PITCH,p[,STARTS,n] and THREAD/OFF; anything else is an error.
 std::optional<thread_event> read_thread(const cl_record& r, build_issues& issues);
 std::optional<delay_event> read_delay(const cl_record& r, build_issues& issues);
