@@ -261,6 +261,22 @@ void channel_writer::cycle_point(const vec3& p, int line) {
     if (auto f = cycle_param(c, "MMPR"); f && pitch == 0) pitch = *f;
     if (auto f = cycle_param(c, "IPR"); f && pitch == 0) pitch = *f * 25.4;
     if (!(pitch > 0)) return error(line, fmt::format("CYCLE/TAP: the pitch {} is not a lead", pitch));
+    // ISO 261's coarsest metric pitch is 6 mm (M64 and over); a lead past 10 mm is a unit or
+    // value the CAM did not mean (attack 45: PITCH,500).
+    if (pitch > 10)
+      return error(line,
+                   fmt::format("CYCLE/TAP: a lead of {} mm is no tap's (ISO 261's coarsest pitch is 6 mm)",
+                               kin::number_text(pitch)));
+    // The tap feeds its lead a turn: at the speed in force that is a feed per minute the machine
+    // must make (attack 45: a 500 mm lead at 500 rpm was written, 250 m/min).
+    if (const double max_feed = m_.limits.max_feed; max_feed > 0 && last_speed_ &&
+                                                    last_speed_->mode == spindle_mode::rpm &&
+                                                    pitch * last_speed_->speed > max_feed)
+      return error(line,
+                   fmt::format("CYCLE/TAP: a lead of {} mm at {} rpm feeds {} mm/min, over the machine's {} "
+                               "mm/min (limits.max_feed)",
+                               kin::number_text(pitch), kin::number_text(last_speed_->speed),
+                               kin::number_text(pitch * last_speed_->speed), kin::number_text(max_feed)));
     if (!fits('F', pitch, 4)) return;
     h.pitch = pitch;
     h.left = has_word(c, "LEFT") || (last_speed_ && last_speed_->dir == rotation::ccw);

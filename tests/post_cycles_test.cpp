@@ -153,3 +153,22 @@ TEST_CASE("a clearance plane below the hole's top is refused", "[post][cycles]")
         "job.cls:7:1: error: channel 1: CYCLE/DRILL: CLEAR -2 puts the clearance plane 2 mm below the hole's "
         "top: the tool would rapid into the part\nGOTO/20,10,0\n^\n");
 }
+
+TEST_CASE("a tap lead past any tap's, or faster than the machine feeds, is refused", "[post][cycles]") {
+  // Attack 45: PITCH,500 at 500 rpm wrote G84 ... F500. (250 m/min).
+  const auto diags = [](const std::string& cycle, machine m, const std::string& tag) {
+    return test::post_in_fresh_dir("PARTNO T\nLOADTL/1\nSPINDL/RPM,500,CLW\nRAPID\nGOTO/0,0,50,0,0,1\n" +
+                                       cycle + "\nGOTO/20,10,0\nCYCLE/OFF\nFINI\n",
+                                   m, "cy-tap-" + tag)
+        .diagnostics;
+  };
+  machine m = load_machine("rotary-4axis");
+  CHECK(
+      diags("CYCLE/TAP,DEPTH,10,CLEAR,2,PITCH,500", m, "lead") ==
+      "job.cls:7:1: error: channel 1: CYCLE/TAP: a lead of 500 mm is no tap's (ISO 261's coarsest pitch is 6 "
+      "mm)\nGOTO/20,10,0\n^\n");
+  m.limits.max_feed = 1000;
+  CHECK(diags("CYCLE/TAP,DEPTH,10,CLEAR,2,PITCH,2.5", m, "feed") ==
+        "job.cls:7:1: error: channel 1: CYCLE/TAP: a lead of 2.5 mm at 500 rpm feeds 1250 mm/min, over the "
+        "machine's 1000 mm/min (limits.max_feed)\nGOTO/20,10,0\n^\n");
+}
