@@ -79,6 +79,8 @@ chain_plan::chain_plan(const kinematic_chain& c) : chain(&c), form(orientation_o
 }
 
 std::string number_text(double v) {
+  // Past a billion (or not finite) the exponent form: a CL's 1e300 is not 301 digits (attack 45).
+  if (!(std::abs(v) < 1e9)) return fmt::format("{:g}", v);
   std::string s = fmt::format("{:.4f}", v);
   while (s.back() == '0') s.pop_back();
   if (s.back() == '.') s.pop_back();
