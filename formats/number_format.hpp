@@ -27,6 +27,11 @@ bool round_fixed_tie(double a, double scale, double p);
 inline constexpr double pow10[] = {1, 10, 100, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
 }  // namespace number_detail
 
+/// One unit of a word written with `decimals` decimals (0 to 9): 10^-decimals.
+inline double decimal_unit(int decimals) {
+  return 1.0 / number_detail::pow10[decimals < 0 ? 0 : decimals > 9 ? 9 : decimals];
+}
+
 inline bool round_fixed(double v, int decimals, std::int64_t& n) {
   if (decimals < 0 || decimals > 9) return false;
   const double a = std::fabs(v);

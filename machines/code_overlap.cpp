@@ -174,7 +174,8 @@ std::string code_text_fault(std::string_view text, char open, char close, code_u
       std::size_t j = i + 1;
       while (j < text.size() && ascii::is_digit(text[j])) ++j;
       long long code = -1;
-      if (j > i + 1 && !(j < text.size() && text[j] == '.'))
+      // M2=70 (Sinumerik: spindle 2's M70) is an address extension, no M2.
+      if (j > i + 1 && !(j < text.size() && (text[j] == '.' || text[j] == '=')))
         std::from_chars(text.data() + i + 1, text.data() + j, code);
       if (code == 2 || code == 30 || code == 99)
         return fmt::format(
@@ -405,13 +406,17 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
     if (!solves_joints(c)) continue;
     const toml::node* where =
         key_of(chains[i], "inverse_time") ? key_of(chains[i], "inverse_time") : chains[i];
-    if (const double g = g_in(c.inverse_time, {0, 1, 2, 3, 94, 95}); g >= 0 || m_in(c.inverse_time))
+    if (const double g = g_in(c.inverse_time, {0, 1, 2, 3, 94, 95});
+        g >= 0 || m_in(c.inverse_time) || g_in(c.inverse_time, {93}) < 0)
       f.found.push_back(
           {where, fmt::format("kinematics.inverse_time \"{}\" holds {}: it must be the inverse-time "
                               "feed code alone (G93), the F of the moves after it 1/min",
-                              c.inverse_time, g >= 0 ? fmt::format("G{}", g) : "an M code")});
+                              c.inverse_time,
+                              g >= 0                 ? fmt::format("G{}", g)
+                              : m_in(c.inverse_time) ? std::string("an M code")
+                                                     : std::string("no G93"))});
     const std::string& per_min = m.codes.feed_per_min;
-    if (per_min.empty() || g_in(per_min, {93}) >= 0 ||
+    if (per_min.empty() || g_in(per_min, {93}) >= 0 || g_in(per_min, {94, 98}) < 0 ||
         (!c.inverse_time.empty() &&
          squeeze_blanks(per_min, open, close) == squeeze_blanks(c.inverse_time, open, close)))
       f.found.push_back({key_of(codes, "feed_per_min") ? key_of(codes, "feed_per_min") : where,
@@ -419,12 +424,16 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
                                      "after a turning move would keep reading F as 1/min",
                                      per_min, c.inverse_time)});
     if (c.output == multiaxis_output::joints && !c.length_on.empty())
-      if (const double g = g_in(c.length_on, {49, 44, 43.4, 43.5}); g >= 0 || m_in(c.length_on))
+      if (const double g = g_in(c.length_on, {49, 44, 43.4, 43.5});
+          g >= 0 || m_in(c.length_on) || g_in(c.length_on, {43}) < 0)
         f.found.push_back(
             {key_of(chains[i], "length_on") ? key_of(chains[i], "length_on") : chains[i],
              fmt::format("kinematics.length_on \"{}\" under joints output holds {}: the joints "
                          "are solved for the tool's length made up along Z by a length offset (G43)",
-                         c.length_on, g >= 0 ? fmt::format("G{}", g) : "an M code")});
+                         c.length_on,
+                         g >= 0              ? fmt::format("G{}", g)
+                         : m_in(c.length_on) ? std::string("an M code")
+                                             : std::string("no G43"))});
   }
   // A cycle code that is a motion code: the control would move to the hole's bottom as the code
   // says (attack 45: drill_code = "G0" rapided to the bottom).

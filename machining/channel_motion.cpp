@@ -401,7 +401,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
           kin::number_text(a.center.z), kin::number_text(r0 * scale_)));
     // A radius under one unit of the written words is no arc a control makes (its start and
     // end radius differ by the rounding, or it is 0: an alarm, or a spiral).
-    if (r0 * scale_ < std::pow(10.0, -axis_style_.decimals))
+    if (r0 * scale_ < decimal_unit(axis_style_.decimals))
       return fail(
           fmt::format("the arc's radius, {} mm, is under one unit of the written words: give the "
                       "move as a GOTO",
@@ -414,7 +414,23 @@ void channel_writer::arc(const arc_event& cl, int line) {
   // the whole sweep at one pitch: each full turn is one block whose axis word moves 2pi/sweep of
   // the depth, the last block the part turn to the GOTO. Of the two readings of TIMES (whole
   // turns, or every turn begun), whole turns is the longer sweep and so the shallower ramp.
-  double sweep = 0;       // radians round the circle, all blocks together
+  // The angle from the start to the end in the arc's sense, in [0, 2pi): the two radii in the
+  // plane, their cross product along the axis gives the counter-clockwise angle.
+  const auto part_angle = [&]() {
+    const double two_pi = 2 * std::numbers::pi;
+    const vec3 n{a.normal.x / nlen, a.normal.y / nlen, a.normal.z / nlen};
+    const auto radial = [&](const vec3& p) {
+      const vec3 r{p.x - a.center.x, p.y - a.center.y, p.z - a.center.z};
+      const double h = r.x * n.x + r.y * n.y + r.z * n.z;
+      return vec3{r.x - n.x * h, r.y - n.y * h, r.z - n.z * h};
+    };
+    const vec3 r0 = radial(a.start), r1 = radial(a.end);
+    const vec3 c{r0.y * r1.z - r0.z * r1.y, r0.z * r1.x - r0.x * r1.z, r0.x * r1.y - r0.y * r1.x};
+    double ccw_angle = std::atan2(c.x * n.x + c.y * n.y + c.z * n.z, r0.x * r1.x + r0.y * r1.y + r0.z * r1.z);
+    if (ccw_angle < 0) ccw_angle += two_pi;
+    return a.ccw ? ccw_angle : two_pi - ccw_angle;
+  };
+  double sweep = 0;       // radians round the circle, all blocks together (a plain arc's: 0, not needed)
   vec3 rise{0, 0, 0};     // the travel along the axis from the start to the end, CL units
   double turn_share = 1;  // the part of the rise one full turn takes
   bool part_turn = true;  // a last block that ends away from the start in the plane
@@ -428,26 +444,13 @@ void channel_writer::arc(const arc_event& cl, int line) {
     // rounding): its in-plane words are written as the start's, never rounded apart from them
     // (a 0.001 mm arc that drops a turn's depth is a plunge), nor together where a part turn
     // was meant (the control runs an arc whose end is its start as a full circle).
-    const double unit = std::pow(10.0, -axis_style_.decimals);
+    const double unit = decimal_unit(axis_style_.decimals);
     part_turn = gap > std::max(y_tolerance, unit);
     // The angle from the start to the end in the arc's sense, in [0, 2pi): the two radii in the
     // plane, their cross product along the axis gives the counter-clockwise angle.
     const double two_pi = 2 * std::numbers::pi;
     double part = 0;
-    if (gap > y_tolerance) {
-      const vec3 n{a.normal.x / nlen, a.normal.y / nlen, a.normal.z / nlen};
-      const auto radial = [&](const vec3& p) {
-        const vec3 r{p.x - a.center.x, p.y - a.center.y, p.z - a.center.z};
-        const double h = r.x * n.x + r.y * n.y + r.z * n.z;
-        return vec3{r.x - n.x * h, r.y - n.y * h, r.z - n.z * h};
-      };
-      const vec3 r0 = radial(a.start), r1 = radial(a.end);
-      const vec3 c{r0.y * r1.z - r0.z * r1.y, r0.z * r1.x - r0.x * r1.z, r0.x * r1.y - r0.y * r1.x};
-      double ccw_angle =
-          std::atan2(c.x * n.x + c.y * n.y + c.z * n.z, r0.x * r1.x + r0.y * r1.y + r0.z * r1.z);
-      if (ccw_angle < 0) ccw_angle += two_pi;
-      part = a.ccw ? ccw_angle : two_pi - ccw_angle;
-    }
+    if (gap > y_tolerance && (a.turns > 0 || !part_turn)) part = part_angle();
     if (a.turns == 0 && !part_turn && gap > y_tolerance && part < std::numbers::pi) {
       // A few microns on round the circle (attack 45: written as a full 100 mm circle): the
       // tool is there within a unit of the words; an axis move with it would be a plunge.
@@ -460,7 +463,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
       return;
     }
     if (a.turns > 0) turn_share = part_turn ? two_pi / (a.turns * two_pi + part) : 1.0 / a.turns;
-    sweep = a.turns * two_pi + (part_turn ? part : a.turns == 0 ? two_pi : 0);
+    sweep = a.turns * two_pi + (part_turn ? part : a.turns == 0 ? two_pi : 0);  // part: 0 on a plain arc
     // In polar interpolation (G12.1) the arc is in the X-C plane the control builds; whether it
     // takes a Z word into a helix there is not verified in a control's manual.
     if (a.turns > 0 && polar_ &&
@@ -471,12 +474,15 @@ void channel_writer::arc(const arc_event& cl, int line) {
                       a.turns));
   }
   check_side(nc_x(a.end.x), a.end.x, line);
-  if (x_diameter_ && plane == 18 && !warned_side_) [[unlikely]] {
+  if (const double r = std::hypot(a.start.x - a.center.x, a.start.z - a.center.z);
+      x_diameter_ && plane == 18 && !warned_side_ &&
+      std::min(nc_x(a.center.x - r), nc_x(a.center.x + r)) < -5.0) [[unlikely]] {
     // A lathe arc may pass the centre line between its ends (attack 45: a three-quarter arc to
-    // X-16 on the diameter): its X along the way, 64 points a turn.
-    const double r = std::hypot(a.start.x - a.center.x, a.start.z - a.center.z);
+    // X-16 on the diameter): its X along the way, 64 points a turn, where its circle reaches
+    // past the centre (check_side's 5 mm on the diameter).
     const double a0 = std::atan2(a.start.x - a.center.x, a.start.z - a.center.z);  // about +Y: z to x
     const double s = (a.ccw == (a.normal.y > 0)) ? 1.0 : -1.0;
+    if (a.turns == 0 && part_turn) sweep = part_angle();
     const int steps = std::max(8, static_cast<int>(std::ceil(sweep / (2 * std::numbers::pi) * 64)));
     double low = a.end.x;
     for (int i = 1; i < steps; ++i)

@@ -580,10 +580,13 @@ double channel_writer::turn_sweep(const joint_values& j, const double factor[3])
   axis_memory* mem[3] = {&last_x_, &last_y_, &last_z_};
   for (int i = 0; i < 3; ++i)
     if (!mem[i]->known) return 0;
+  bool turns = false;  // a head that turns (most rapids turn none: nothing to follow)
   for (std::size_t i = 0; i < c.rotaries.size(); ++i) {
     if (!last_rot_[i].known) return 0;
     a.rotary[i] = last_rot_[i].value;
+    turns = turns || (c.rotaries[i].kind == rotary_kind::head && std::abs(j.rotary[i] - a.rotary[i]) > 1e-9);
   }
+  if (!turns) return 0;
   const vec3 shift = c.output == multiaxis_output::pivot ? pivot_shift(c) : vec3{};
   a.linear = {mem[0]->value / factor[0] - shift.x, mem[1]->value / factor[1] - shift.y,
               mem[2]->value / factor[2] - shift.z};
@@ -751,9 +754,16 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   // bottom of a slot put a 150 mm tool 6 mm into its end wall). A C about the tool's own axis
   // moves no tip; a table turns the part about its own axis: both in place, as before.
   if (rapid && !homed_ && joints && !turn_clear_ && turn_sweep(j, factor) > c.tolerance) [[unlikely]] {
+    if (m_.codes.home.empty()) {
+      error(line,
+            "the heads would turn below the CAM's clearance, swinging the tip sideways, and the machine "
+            "has no home blocks (codes.home) to lift the tool first: give the rapid at the clearance");
+      return false;
+    }
     if (offset_on_) cancel_length_offset();
     go_home();
     forget_axes();
+    restore_plane();
   }
   const std::string& on = joints ? c.length_on : c.tool_tip_on;
   const bool offset_block = !offset_on_ && !on.empty();  // "": the control's offset is not the post's

@@ -201,8 +201,10 @@ bool channel_writer::plane_move(bool rapid, const kin::tool_pose& pose, int line
   // Autodesk Fanuc posts write G43 Z.. H.. after every retract and new work plane.
   if (offset_on_) cancel_length_offset();
   // G53.1 turns the rotaries with the tool at its tool-change height, as between two planes: a
-  // table machine turns the part under the tool, a head swings the tip about its pivot.
+  // table machine turns the part under the tool, a head swings the tip about its pivot. The
+  // plane's words are X Y Z in G17 (an arc about Y before left G18: verify 46).
   if (!homed_) go_home();
+  restore_plane();
   double euler[3];
   const std::array<vec3, 3> frame = plane_frame_of(pose.axis, euler);
   for (int i = 0; i < 3; ++i) plane_frame_[i] = frame[i];

@@ -114,7 +114,7 @@ bool channel_writer::feed_writable(double value, bool per_rev, std::string_view 
     error(line, fmt::format("{}: a feed of {} is no feed (above 0)", record, kin::number_text(value)));
     return false;
   }
-  if (value < 0.5 * std::pow(10.0, -decimals)) {
+  if (value < 0.5 * decimal_unit(decimals)) {
     error(line, fmt::format("{}: a feed of {} is written F0 (F keeps {} decimal{}): no control moves at it",
                             record, kin::number_text(value), decimals, decimals == 1 ? "" : "s"));
     return false;

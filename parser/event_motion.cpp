@@ -93,8 +93,10 @@ void event_builder::point(std::span<const double> n, bool continued, motion_kind
   if (kind == motion_kind::delta) p = {pos_.x + p.x, pos_.y + p.y, pos_.z + p.z};
   bool turned = false;
   if (n.size() == 6) {  // modal: NX repeats it only on change
-    const vec3 was = axis_.value_or(vec3{0, 0, 1});
-    turned = std::abs(n[3] - was.x) + std::abs(n[4] - was.y) + std::abs(n[5] - was.z) > 1e-7;
+    if (circle_) [[unlikely]] {
+      const vec3 was = axis_.value_or(vec3{0, 0, 1});
+      turned = std::abs(n[3] - was.x) + std::abs(n[4] - was.y) + std::abs(n[5] - was.z) > 1e-7;
+    }
     axis_ = vec3{n[3], n[4], n[5]};
   }
   if (kind == motion_kind::go_to && circle_) {

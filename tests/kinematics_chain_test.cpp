@@ -207,6 +207,14 @@ TEST_CASE("pivot output and the rotary word order are read, and their errors rep
         "start) there: only program.end_code and the footer may end it");
   // What the codes do (attack 45): inverse time is no per-minute or motion code, a joints
   // length code is a G43 (not its cancel, G44 or tool-tip control), blanks inside words count.
+  // Whitelists (verify 46): inverse time holds G93, a joints length code G43, feed_per_min G94 or G98.
+  CHECK(machine_error_of(k + "inverse_time = \"G98\"\n" + heads) ==
+        "m.toml:11:16: error: kinematics.inverse_time \"G98\" holds no G93: it must be the inverse-time feed "
+        "code alone (G93), the F of the moves after it 1/min");
+  CHECK(
+      machine_error_of(k + "length_on = \"G43.1\"\n" + heads) ==
+      "m.toml:11:13: error: kinematics.length_on \"G43.1\" under joints output holds no G43: the joints are "
+      "solved for the tool's length made up along Z by a length offset (G43)");
   CHECK(machine_error_of(k + "inverse_time = \"G93 {\"\n" + heads) ==
         "m.toml:11:16: error: kinematics.inverse_time must hold codes only: '{' would be written as it "
         "stands, no "

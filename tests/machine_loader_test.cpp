@@ -265,6 +265,7 @@ TEST_CASE("a code that would make the control read something else is refused at 
                  "[\"M99\"]\nend_code = \"M02\"\n[cycles]\ndrill_code = "
                  "\"M98 M300 G81\"\n") == "(no error)");
   CHECK(error_of("[cycles]\ndrill_code = \"G81 (PECK 2)\"\n") == "(no error)");
+  CHECK(error_of("[codes]\ncoolant_on = [\"M2=70 M8\"]\n") == "(no error)");  // Sinumerik: spindle 2's M70
   // Blanks inside a word are dropped, as a control reads it (attack 45: "M 30" passed).
   CHECK(
       error_of("[codes]\ndwell = \"G4 M 3 0\"\n") ==

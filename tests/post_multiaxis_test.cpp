@@ -1191,3 +1191,19 @@ TEST_CASE(
   REQUIRE(clear.ok);
   CHECK(clear.files.at("LOW.nc").find("X20.\nG0 Z50.\nG0 A10.\nG0 X51.047\nZ-5.279\n") != std::string::npos);
 }
+
+TEST_CASE("multi-axis: a low head turn on a machine with no home blocks is refused", "[post][multiaxis]") {
+  // Verify 46: with home = [] the fallback lifted nothing and turned the head at the cut's depth.
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/gantry-ca.toml");
+  m.codes.home.clear();
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO LOW\nTLDATA/MILL,12,0,150,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/0,0,50,0,0,1\nRAPID\nGOTO/0,0,2\nGOTO/0,0,-5\nGOTO/20,0,-5\nRAPID\nGOTO/20,0,-3\nRAPID\n"
+      "GOTO/25,0,-3,0.1736482,0,0.9848078\nFINI\n",
+      m, "ma-low-no-home");
+  CHECK(
+      p.diagnostics.find("job.cls:15:1: error: channel 1: the heads would turn below the CAM's clearance, "
+                         "swinging the tip sideways, and the machine has no home blocks (codes.home) to lift "
+                         "the tool first: give the rapid at the clearance\n") != std::string::npos);
+  CHECK_FALSE(p.ok);
+}
