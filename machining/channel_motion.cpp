@@ -129,6 +129,9 @@ void channel_writer::cutcom(const cutcom_event& c, int line) {
   // The plane the compensation works in: the CUTCOM's, else the one in force. A frame that
   // turns it over (a mirrored turret, the Z-reversed sub) puts the tool's left on its right,
   // as it turns G2 into G3.
+  // Without a plane of its own, the header's (G17 on a mill) again: an arc about Y before would
+  // leave the compensation in G18, no offset in X Y (verify 46).
+  if (c.plane.empty() && !c_mode_) restore_plane();
   const int plane = c.plane == "XYPLAN" ? 17 : c.plane == "ZXPLAN" ? 18 : c.plane == "YZPLAN" ? 19 : plane_;
   std::string g = left != sense_reversed(plane) ? "G41" : "G42";
   // The D register (codes.cutcom_offset): without one the control compensates with whatever
@@ -450,8 +453,11 @@ void channel_writer::arc(const arc_event& cl, int line) {
     // plane, their cross product along the axis gives the counter-clockwise angle.
     const double two_pi = 2 * std::numbers::pi;
     double part = 0;
-    if (gap > y_tolerance && (a.turns > 0 || !part_turn)) part = part_angle();
-    if (a.turns == 0 && !part_turn && gap > y_tolerance && part < std::numbers::pi) {
+    // The end on the start itself, in mm (not in the words' units: an inch word's 0.0001 is
+    // 0.00254 mm, verify 46): a full circle as the CL gives it.
+    const bool on_start = gap / out_per_mm_ <= y_tolerance;
+    if (!on_start && (a.turns > 0 || !part_turn)) part = part_angle();
+    if (a.turns == 0 && !part_turn && !on_start && part < std::numbers::pi) {
       // A few microns on round the circle (attack 45: written as a full 100 mm circle): the
       // tool is there within a unit of the words; an axis move with it would be a plunge.
       if (std::max({std::abs(rise.x), std::abs(rise.y), std::abs(rise.z)}) * scale_ > unit)

@@ -172,3 +172,14 @@ TEST_CASE("a tap lead past any tap's, or faster than the machine feeds, is refus
         "job.cls:7:1: error: channel 1: CYCLE/TAP: a lead of 2.5 mm at 500 rpm feeds 1250 mm/min, over the "
         "machine's 1000 mm/min (limits.max_feed)\nGOTO/20,10,0\n^\n");
 }
+
+TEST_CASE("cutter compensation after an arc about Y starts in the mill's G17", "[post][cycles]") {
+  // Verify 46: G41 D1 after a G18 arc compensated in the ZX plane.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO COMP\nLOADTL/1\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,400\nRAPID\nGOTO/0,0,50,0,0,1\nGOTO/0,0,0\n"
+      "CIRCLE/10,0,0,0,1,0,10\nGOTO/10,0,-10\nCUTCOM/LEFT,1\nGOTO/20,0,-10\nFINI\n",
+      load_machine("rotary-4axis"), "cy-comp-plane");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  CHECK(p.files.at("COMP.nc").find("G18 G3 X10. Z-10. I10. K0.\nG17\nG41 D1 G1 X20.\n") != std::string::npos);
+}
