@@ -77,30 +77,6 @@ std::string squeeze_blanks(std::string_view text, char open, char close) {
   return out;
 }
 
-// The last of the words G90 and G91 in `text` (not G90.1/G91.1, the arc centre's modes), or 0.
-int distance_mode(std::string_view text, char open, char close) {
-  int mode = 0;
-  const std::string t = squeeze_blanks(text, open, close);
-  for (std::size_t i = 0; i + 2 < t.size(); ++i) {
-    const char c = t[i];
-    if (c == open || c == '{') {
-      const std::size_t e =
-          c == open && close == '\n' ? std::string::npos : t.find(c == open ? close : '}', i + 1);
-      if (e == std::string::npos) break;
-      i = e;
-      continue;
-    }
-    if ((c != 'G' && c != 'g') || (i > 0 && ascii::is_letter(t[i - 1]))) continue;
-    std::size_t j = i + 1;
-    while (j < t.size() && ascii::is_digit(t[j])) ++j;
-    if (j < t.size() && t[j] == '.') continue;
-    long long g = -1;
-    std::from_chars(t.data() + i + 1, t.data() + j, g);
-    if (g == 90 || g == 91) mode = static_cast<int>(g);
-  }
-  return mode;
-}
-
 // The words of `text` as a control reads them: a letter and its number (blanks dropped,
 // comments and placeholders skipped); a letter followed by no number gets NaN.
 std::vector<std::pair<char, double>> words_of(std::string_view text, char open, char close) {
@@ -124,6 +100,14 @@ std::vector<std::pair<char, double>> words_of(std::string_view text, char open, 
     i = j - 1;
   }
   return out;
+}
+
+// The last of the words G90 and G91 in `text` (not G90.1/G91.1, the arc centre's modes), or 0.
+int distance_mode(std::string_view text, char open, char close) {
+  int mode = 0;
+  for (const auto& [letter, v] : words_of(text, open, close))
+    if (letter == 'G' && (v == 90 || v == 91)) mode = static_cast<int>(v);
+  return mode;
 }
 
 const char* reserved_m_code(long long code) {

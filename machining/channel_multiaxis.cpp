@@ -412,8 +412,10 @@ void channel_writer::multiaxis_move(bool rapid, const vec3& p, int line) {
   last_cl_tip_ = pose.tip;
   {
     const double h = kin::dot(pose.tip, c.tool_direction);
-    const double was = approach_from_ ? kin::dot(*approach_from_, c.tool_direction) : h;
-    turn_clear_ = std::max(h, was) >= clear_height_ - c.tolerance;
+    if (rapid) {  // only a rapid reads it (write_point)
+      const double was = approach_from_ ? kin::dot(*approach_from_, c.tool_direction) : h;
+      turn_clear_ = std::max(h, was) >= clear_height_ - c.tolerance;
+    }
     clear_height_ = std::max(clear_height_, h);
   }
   if (!c.plane.empty() && (rapid || plane_on_) && plane_move(rapid, pose, line)) {
