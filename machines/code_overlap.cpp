@@ -110,6 +110,12 @@ int distance_mode(std::string_view text, char open, char close) {
   return mode;
 }
 
+bool cancels_length_offset(std::string_view block, char open, char close) {
+  for (const auto& [letter, v] : words_of(block, open, close))
+    if ((letter == 'G' && v == 49) || ((letter == 'D' || letter == 'H') && v == 0)) return true;
+  return false;
+}
+
 const char* reserved_m_code(long long code) {
   switch (code) {
     case 0: return "the program stop";

@@ -24,6 +24,10 @@ std::string wait_range_text(const wait_rules& w);
 /// reads them (a Fanuc reads `G 43` as G43).
 std::string squeeze_blanks(std::string_view text, char open, char close);
 
+/// Whether `block` (a code of the machine file) cancels a tool length offset: a G49, or a D or H
+/// word of offset 0 (Fanuc's `H0`, Sinumerik's `D0`), comments and placeholders skipped.
+bool cancels_length_offset(std::string_view block, char open, char close);
+
 /// How a code is written: `part` of a block, the post's own words after it (a cycle, a spindle
 /// or coolant code); a `line` of its own (the program line, the header); or at the `end`
 /// (the footer, the end code), where M2/M30/M99 belong.

@@ -11,6 +11,7 @@
 #include "kinematics/forward.hpp"
 #include "kinematics/linearise.hpp"
 #include "kinematics/vec3_ops.hpp"
+#include "machines/code_overlap.hpp"
 #include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
 
@@ -762,6 +763,20 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
             "has no home blocks (codes.home) to lift the tool first: give the rapid at the clearance");
       return false;
     }
+    // The control's own length offset (length_on = "": the tool call gives it, `T1 D1 M6`) is
+    // gone after home blocks that cancel it (`SUPA G0 Z0 D0`), and the post has no code to give
+    // it back: the tip would run a tool length low (verify 46).
+    if (c.output == multiaxis_output::joints && c.length_on.empty())
+      for (const std::string& h : m_.codes.home)
+        if (cancels_length_offset(h, m_.program.comment_open, m_.program.comment_close)) {
+          error(line,
+                fmt::format("the heads would turn below the CAM's clearance, swinging the tip sideways, "
+                            "and the home blocks that lift the tool first cancel the tool's length "
+                            "offset (\"{}\"), which the tool call gives on this machine "
+                            "(kinematics.length_on = \"\"): give the rapid at the clearance",
+                            h));
+          return false;
+        }
     if (offset_on_) cancel_length_offset();
     go_home();
     forget_axes();

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fmt/format.h>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -1206,4 +1207,34 @@ TEST_CASE("multi-axis: a low head turn on a machine with no home blocks is refus
                          "swinging the tip sideways, and the machine has no home blocks (codes.home) to lift "
                          "the tool first: give the rapid at the clearance\n") != std::string::npos);
   CHECK_FALSE(p.ok);
+}
+
+TEST_CASE("multi-axis: a low head turn whose home blocks cancel the control's own length offset is refused",
+          "[post][multiaxis]") {
+  // Verify 46: a Sinumerik-style gantry whose tool call gives the offset (`T1 D1 M6`, length_on
+  // = "") and whose home is `SUPA G0 Z0 D0`: after the low turn's home the Z words were the
+  // spindle nose's, the tip 150 mm below them.
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/gantry-ca.toml");
+  m.kinematics.at(0).length_on.clear();
+  const std::string job =
+      "PARTNO LOW\nTLDATA/MILL,12,0,150,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/0,0,50,0,0,1\nRAPID\nGOTO/0,0,2\nGOTO/0,0,-5\nGOTO/20,0,-5\nRAPID\nGOTO/20,0,-3\nRAPID\n"
+      "GOTO/25,0,-3,0.1736482,0,0.9848078\nFINI\n";
+  for (const char* home : {"SUPA G0 Z0 D0", "G91 G28 Z0. G49", "G53 Z0 H00"}) {
+    m.codes.home = {home};
+    const test::posted p = test::post_in_fresh_dir(job, m, "ma-low-d0");
+    CHECK(p.diagnostics.find(fmt::format(
+              "job.cls:15:1: error: channel 1: the heads would turn below the CAM's clearance, swinging the "
+              "tip sideways, and the home blocks that lift the tool first cancel the tool's length offset "
+              "(\"{}\"), which the tool call gives on this machine (kinematics.length_on = \"\"): give the "
+              "rapid at the clearance\n",
+              home)) != std::string::npos);
+    CHECK_FALSE(p.ok);
+  }
+  // A home that leaves the offset alone (a G28 return, which keeps G43 on a Fanuc) still turns
+  // the head up there.
+  m.codes.home = {"G91 G28 Z0.", "G90"};
+  const test::posted up = test::post_in_fresh_dir(job, m, "ma-low-g28");
+  INFO(up.diagnostics);
+  CHECK(up.ok);
 }
