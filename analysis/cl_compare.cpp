@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "analysis/cl_compare_arc.hpp"
 #include "analysis/program_units.hpp"
 #include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
@@ -562,22 +563,15 @@ struct cl_comparison::impl {
     }
   }
 
-  // The last arc block of a record: its sense and centre in the part frame.
-  struct nc_arc {
-    bool valid = false;
-    bool ccw = false;  // G3
-    int plane = 18;
-    double centre[3] = {0, 0, 0};  // part frame, mm; the plane's normal axis not used
-    bool centre_known = false;
-    double r = 0;  // R word (program units), 0: I/J/K given
-  } arc;
+  // The record's arc blocks so far: their sense, centre and ends in the part frame.
+  std::vector<nc_arc_block> arcs;
 
   void note_arc(const double* start, bool start_known) {
-    arc.valid = (motion == 2 || motion == 3) && !cycle;
-    if (!arc.valid) return;
+    if ((motion != 2 && motion != 3) || cycle) return;
+    nc_arc_block& arc = arcs.emplace_back();
     arc.ccw = motion == 3;
     arc.plane = plane;
-    arc.r = 0;
+    arc.text = move_text;
     double off[3] = {0, 0, 0};
     bool given = false;
     for (const nc_word& w : words) {
@@ -587,7 +581,7 @@ struct cl_comparison::impl {
                     : w.address == 'R' ? 3
                                        : -1;
       if (i < 0) continue;
-      if (!w.numeric) return void(arc.valid = false);
+      if (!w.numeric) return void(arc.plane = 0);  // I#100: not known until it runs
       const double v = w.point ? w.number : w.number * increment;
       if (i == 3) {
         arc.r = v;
@@ -596,15 +590,18 @@ struct cl_comparison::impl {
         given = true;
       }
     }
-    arc.centre_known = given && start_known;
-    if (!arc.centre_known) return;
     // I is a radius along the program's X even where X is a diameter: the centre in the part
     // frame is the start plus the offsets, each turned as its axis is.
     const double zs = z_sign();
     const double sx = x_div < 0 ? -1.0 : 1.0;
-    arc.centre[0] = start[0] * out_mm / x_div + off[0] * out_mm * sx;
-    arc.centre[1] = (start[1] + off[1]) * out_mm * zs;
-    arc.centre[2] = (start[2] + off[2]) * out_mm * zs;
+    const auto known = [](const axis_state& a) { return a.k == axis_state::kind::known; };
+    arc.centre_known = given && start_known;
+    arc.ends_known = start_known && known(x) && known(z) && (!has_y || known(y) || plane == 18);
+    arc.start = {start[0] * out_mm / x_div, start[1] * out_mm * zs, start[2] * out_mm * zs};
+    arc.end = {part(x, x_div), has_y ? part(y, zs) : 0.0, part(z, zs)};
+    if (!has_y) arc.start.y = 0;
+    arc.centre = {arc.start.x + off[0] * out_mm * sx, arc.start.y + off[1] * out_mm * zs,
+                  arc.start.z + off[2] * out_mm * zs};
   }
 
   double z_sign() const {
@@ -688,68 +685,20 @@ struct cl_comparison::impl {
     return true;
   }
 
-  // The last arc block of a CIRCLE record: its sense about the CL's circle axis, its centre (or
-  // its R: the radius, and negative for more than half a turn) within the tip's tolerance.
+  // A CIRCLE record's arc blocks against its arc (analysis/cl_compare_arc): each block's sense
+  // and centre (or R), its end on the circle, how far round they go and their pitch.
   void compare_arc(const event& e, const arc_event& a) {
-    if (said_arc || !arc.valid || arc.plane == 0) return;
-    const double sx = x_div < 0 ? -1.0 : 1.0, zs = z_sign();
-    // The program's axis of turning in the part frame: det(M) M (sense x normal), M the
-    // diagonal (sx, zs, zs) from the program's frame to the part's.
-    const int axis = arc.plane == 17 ? 2 : arc.plane == 19 ? 0 : 1;
-    const double turn = (arc.ccw ? 1.0 : -1.0) * sx * (axis == 0 ? sx : zs);
-    const double sense = a.ccw ? 1.0 : -1.0;
-    const vec3 cl_axis{a.normal.x * sense, a.normal.y * sense, a.normal.z * sense};
-    const double along = axis == 0 ? cl_axis.x : axis == 1 ? cl_axis.y : cl_axis.z;
-    const double len = std::sqrt(cl_axis.x * cl_axis.x + cl_axis.y * cl_axis.y + cl_axis.z * cl_axis.z);
-    const char* g = arc.ccw ? "G3" : "G2";
-    if (len <= 0 || std::abs(along) < 0.999 * len) {
-      said_arc = true;
-      return error(
-          e, fmt::format("the CL's arc turns about ({:g},{:g},{:g}) here, the program's {} in G{} about "
-                         "its {} axis: `{}`",
-                         a.normal.x, a.normal.y, a.normal.z, g, arc.plane, "XYZ"[axis], move_text));
-    }
-    if (along * turn < 0) {
-      said_arc = true;
-      return error(
-          e, fmt::format("the CL's arc turns {} about ({:g},{:g},{:g}) here, the program's {} the other "
-                         "way round: `{}`",
-                         a.ccw ? "counter-clockwise" : "clockwise", a.normal.x, a.normal.y, a.normal.z, g,
-                         move_text));
-    }
-    const double tol = std::max(tip_tolerance, axis_half * 2.001);
-    const double c[3] = {a.center.x * cl_mm, a.center.y * cl_mm, a.center.z * cl_mm};
-    if (arc.r != 0) {
-      // The sweep about the CL's axis, from the start to the end (a whole turn when they meet).
-      const vec3 u{a.start.x - a.center.x, a.start.y - a.center.y, a.start.z - a.center.z};
-      const vec3 v{a.end.x - a.center.x, a.end.y - a.center.y, a.end.z - a.center.z};
-      const vec3 n{cl_axis.x / len, cl_axis.y / len, cl_axis.z / len};
-      const vec3 uxv{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-      double sweep = std::atan2(uxv.x * n.x + uxv.y * n.y + uxv.z * n.z, u.x * v.x + u.y * v.y + u.z * v.z);
-      if (sweep <= 1e-9) sweep += 2 * std::numbers::pi;
-      const double r = std::abs(arc.r) * out_mm, want = a.radius * cl_mm;
-      const bool major = sweep > std::numbers::pi + 1e-9;
-      if (std::abs(r - want) <= tol && (arc.r < 0) == major) return;
-      said_arc = true;
-      return error(
-          e, fmt::format("the CL's arc has a radius of {:.3f} mm over {:.1f} degrees here, the program's R "
-                         "{:g} ({}): `{}`",
-                         want, sweep * 180 / std::numbers::pi, arc.r,
-                         std::abs(r - want) > tol ? "another radius"
-                         : major                  ? "the short way round: more than half a turn needs R < 0"
-                                                  : "the long way round: R < 0 is more than half a turn",
-                         move_text));
-    }
-    if (!arc.centre_known) return;
-    double worst = 0;
-    for (int i = 0; i < 3; ++i)
-      if (i != axis) worst = std::max(worst, std::abs(arc.centre[i] - c[i]));
-    if (worst <= tol) return;
+    if (said_arc) return;
+    arc_frame f;
+    f.sx = x_div < 0 ? -1.0 : 1.0;
+    f.zs = z_sign();
+    f.out_mm = out_mm;
+    f.cl_mm = cl_mm;
+    f.tol = std::max(tip_tolerance, axis_half * 3.001);
+    std::string fault = arc_blocks_fault(arcs, a, f);
+    if (fault.empty()) return;
     said_arc = true;
-    error(e, fmt::format(
-                 "the program's arc centre is {:.3f} mm from the CL's (x {:.3f} y {:.3f} z {:.3f} where the "
-                 "CL has x {:.3f} y {:.3f} z {:.3f}, the part frame in mm): `{}`",
-                 worst, arc.centre[0], arc.centre[1], arc.centre[2], c[0], c[1], c[2], move_text));
+    error(e, std::move(fault));
   }
 
   // The tool, and at a cut the spindle, rapid against feed and the feed.
@@ -1002,7 +951,7 @@ struct cl_comparison::impl {
         e.data);
     moved = false;
     rapid_in_record = false;
-    arc.valid = false;
+    arcs.clear();
   }
 
   void units(unit_system u) { cl_mm = u == unit_system::inch ? 25.4 : 1.0; }

@@ -15,7 +15,8 @@
 // - the tool the T word called and its offset (a mill's H);
 // - a rapid among the blocks of a CL feed move (G0, or a G27-G30/G53 block);
 // - at a cut, the spindle's direction, speed (rpm or CSS) and clamp, and the coolant;
-// - a CIRCLE's last arc block: its sense about the CL's axis, its centre or its R;
+// - a CIRCLE's arc blocks: each one's sense about the CL's axis, its centre or its R and its end
+//   on the circle; together the CL's sweep (TIMES) at its one pitch (analysis/cl_compare_arc);
 // - a G32 pass's lead against THREAD/TURN;
 // - the feed: in the same mode, F within 0.5 % (or half the post's last digit); in the other
 //   mode, F x rpm (or F / rpm) at the spindle's speed, CSS at the tip's diameter under its clamp;

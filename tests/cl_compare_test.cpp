@@ -451,3 +451,69 @@ TEST_CASE("cl comparison: G-code system C's units are G70 and G71", "[analysis][
   CHECK(diags.all()[1].message ==
         "channel 1: the CL feeds at 0.2 mm/rev here, the program at 5.08 mm/rev (F0.2 under G99)");
 }
+
+TEST_CASE("cl comparison: the arc blocks of a helix, each against the CL's circle",
+          "[analysis][cl_compare]") {
+  // CIRCLE TIMES,2 ending a quarter turn on, 5 mm down from Z0: two full turns and the quarter,
+  // 2.25 turns at one pitch (2.222 mm a turn), as the post writes it on bench-mill.
+  const machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml");
+  auto run = [&](std::initializer_list<const char*> arc_blocks) {
+    diagnostic_list diags;
+    cl_comparison cmp(m, m.channels[0], diags, "job.cls");
+    int line = 10;
+    for (const char* l : {"%", "O1000 (HELIX)", "G21", "G90 G17 G40 G49 G80", "T01 M6", "S3000 M3", "G94"})
+      cmp.line(l);
+    cmp.record({line++, tool_event{tool_source::loadtl, 1, 1}, 1}, false);
+    spindle_event s;
+    s.speed = 3000;
+    s.dir = rotation::cw;
+    cmp.record({line++, s, 1}, false);
+    cmp.record({line++, feed_event{feed_mode::per_minute, 600}, 1}, false);
+    cmp.line("G0 G43 H01 X110. Y50. Z5.");
+    motion_event mv;
+    mv.pos = {110, 50, 5};
+    mv.rapid = true;
+    cmp.record({line++, mv, 1}, false);
+    cmp.line("G1 Z0. F600.");
+    mv.pos = {110, 50, 0};
+    mv.rapid = false;
+    cmp.record({line++, mv, 1}, false);
+    for (const char* b : arc_blocks) cmp.line(b);
+    arc_event a;
+    a.start = {110, 50, 0};
+    a.end = {100, 60, -5};
+    a.center = {100, 50, -5};
+    a.normal = {0, 0, 1};
+    a.radius = 10;
+    a.ccw = true;
+    a.turns = 2;
+    cmp.record({line++, a, 1}, false);
+    std::string out;
+    for (const diagnostic& d : diags.all()) out += format_diagnostic(d);
+    return out;
+  };
+  CHECK(run({"G3 X110. Y50. Z-2.222 I-10. J0.", "G3 X110. Y50. Z-4.444 I-10. J0.",
+             "G3 X100. Y60. Z-5. I-10. J0."})
+            .empty());
+  // A turn dropped: the same depth in 1.25 turns, a ramp nearly twice as steep.
+  CHECK(
+      run({"G3 X110. Y50. Z-4. I-10. J0.", "G3 X100. Y60. Z-5. I-10. J0."}) ==
+      "job.cls:15:1: error: channel 1: the program's arc blocks go 450.0 degrees round the CL's circle here, "
+      "the CL's arc 810.0 degrees (TIMES,2: full turns, then on to its end): `G3 X100. Y60. Z-5. I-10. "
+      "J0.`\n");
+  // The whole depth in the first turn, the rest flat: the first turn plunges.
+  CHECK(run({"G3 X110. Y50. Z-5. I-10. J0.", "G3 X110. Y50. I-10. J0.", "G3 X100. Y60. I-10. J0."}) ==
+        "job.cls:15:1: error: channel 1: the program's helix does not keep the CL's pitch: this block goes "
+        "-5.000 mm along the circle's axis over 360.0 degrees, where the CL's -5.000 mm over 810.0 degrees "
+        "gives -2.222 mm: `G3 X110. Y50. Z-5. I-10. J0.`\n");
+  // A block between that ends off the circle (its centre right, its end 1 mm out).
+  CHECK(run({"G3 X111. Y50. Z-2.222 I-10. J0.", "G3 X110. Y50. Z-4.444 I-11. J0.",
+             "G3 X100. Y60. Z-5. I-10. J0."}) ==
+        "job.cls:15:1: error: channel 1: the program's arc block ends 1.000 mm off the CL's circle (radius "
+        "10.000 mm, the part frame): `G3 X111. Y50. Z-2.222 I-10. J0.`\n");
+  // A block between turning the other way.
+  CHECK(run({"G3 X110. Y50. Z-2.222 I-10. J0.", "G2 X110. Y50. Z-4.444 I-10. J0.",
+             "G3 X100. Y60. Z-5. I-10. J0."}) ==
+        "job.cls:15:1: error: channel 1: the CL's arc turns counter-clockwise about (0,0,1) here, the "
+        "program's G2 the other way round: `G2 X110. Y50. Z-4.444 I-10. J0.`\n");
+}
