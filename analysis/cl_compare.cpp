@@ -74,6 +74,19 @@ struct cl_comparison::impl {
       live.push_back(is_live);
     }
     gms_only = spindles.needs_gms();
+    if (ch.head_index.present()) {
+      head_address = ch.head_index.address;
+      head_offset = !ch.head_index.offset_turning.empty() || !ch.head_index.offset_live.empty();
+    }
+    has_c = ch.axis('C') != nullptr;
+    if (has_c)
+      for (const spindle_def& s : m.spindles) {
+        for (const std::string& b : s.c_axis.on) c_on_codes.push_back(split_nc_words(b));
+        for (const std::string& b : s.c_axis.off) c_off_codes.push_back(split_nc_words(b));
+      }
+    for (auto* list : {&c_on_codes, &c_off_codes})
+      for (auto& c : *list)
+        for (nc_word& w : c) w.value = {};  // numbers only: the text they were split from is gone
     read_tool_call(ch.tool_call);
     // The coolant codes, each kind's on and off: flood is codes.coolant_on (each block of it
     // turns it on) and coolant_off, the others their [on, off] pairs.
@@ -149,7 +162,19 @@ struct cl_comparison::impl {
   int motion = -1;     // modal G0..G3, 32 for threading; -1 unknown
   bool cycle = false;  // a canned or lathe cycle
   bool polar = false, cylinder = false, frame = false, polar_coords = false, inverse_time = false;
-  bool rotary = false;           // a rotary-axis word since the last tool call
+  bool rotary = false;  // a rotary-axis word since the last tool call
+  // An indexing head ([channel.head_index], the B head of a mill/turn): its angle word turns
+  // the tool, and the tip stays the program's X Y Z once the head's length offset is given
+  // again (`G43 P1 H#3020` on the Integrex; none on a head whose T word's offset holds it).
+  char head_address = 0;
+  bool head_offset = false;  // the head has offset codes: after an index, the tip waits for G43
+  bool head_due = false;     // indexed, its offset not given since
+  // The C axis of a channel that has one: the part turned under X and Y (the writer's frame:
+  // the program's X, Y are the part's turned by -C about Z).
+  bool has_c = false;
+  bool c_known = true;  // C at 0 until the spindle becomes a C axis
+  double c_deg = 0;
+  std::vector<std::vector<nc_word>> c_on_codes, c_off_codes;
   bool length_on = false;        // a tool length offset in force (G43, G43.4, G43.5, G44)
   bool needs_length = false;     // a mill head's channel: Z is the gauge line without one
   bool foreign_offset = false;   // a work offset no spindle names (G56): another part frame
@@ -300,6 +325,14 @@ struct cl_comparison::impl {
           coolant_text.assign(text);
           coolant_fine = false;
         }
+    if (has_c) {
+      // The spindle held as a C axis: where C stands is not known until a C word (or its
+      // reference return) says; back to a turning spindle, the part frame is the program's.
+      for (const auto& c : c_on_codes)
+        if (offset_of(c)) c_known = false;
+      for (const auto& c : c_off_codes)
+        if (offset_of(c)) c_known = true, c_deg = 0;
+    }
     bool not_a_move = false, home = false, machine = false, setting = false, m6 = false;
     std::string home_why;
     // Most lines are moves with axis words and an F: only the F is read before the axes.
@@ -354,9 +387,32 @@ struct cl_comparison::impl {
         take_feed(w);
         continue;
       }
+      if (w.address == head_address) {
+        // A head index `G0 G53 B90.`: the tool turned; its tip is X Y Z again once the head's
+        // length offset is given (the writer's first move after the index).
+        head_due = head_offset;
+        continue;
+      }
+      if (w.address == 'C' && has_c) {
+        // A C position turns the part under X and Y; in polar or cylindrical interpolation C
+        // is no angle of the part frame (and where it stands after them is not known).
+        if (!w.numeric || polar || cylinder || has_word(words, 'G', 7.1) || has_word(words, 'G', 107))
+          c_known = false;
+        else if (absolute)
+          c_deg = w.number, c_known = true;
+        else
+          c_deg += w.number;
+        continue;
+      }
+      if (w.address == 'H' && has_c && !needs_length) {
+        // Fanuc's incremental C (G-code system A), or the head's offset register (G43 H#3020).
+        if (!has_word(words, 'G', 43))
+          c_known = has_word(words, 'G', 28) && w.numeric && w.number == 0, c_deg = 0;
+        continue;
+      }
       if (w.address == 'A' || w.address == 'B' || w.address == 'C') {
-        // A head index `G0 G53 B90.`, a C position, G7.1 C.. : the tip then depends on the
-        // rotary axes, which this comparison does not follow yet.
+        // An A or B that is no indexing head's, a C of a channel without one: the tip then
+        // depends on rotary axes this comparison does not follow.
         if (!(w.address == 'C' && cylinder)) rotary = true;
         continue;
       }
@@ -427,6 +483,9 @@ struct cl_comparison::impl {
             units(g == 200);
           break;
         case 430:
+          head_due = false;
+          length_on = true;
+          break;
         case 434:
         case 435: length_on = true; break;
         case 440: length_on = false; break;  // G44 subtracts the offset: never the tip
@@ -624,12 +683,28 @@ struct cl_comparison::impl {
   // Returns false when the record is passed over.
   bool compare(const event& e, const vec3& pos, bool rapid, bool both) {
     if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || rotary || foreign_offset ||
-        shifted) {
+        shifted || head_due || !c_known) {
       ++passed;
       return false;
     }
-    ++compared;
     const double zs = z_sign();
+    // Under a C angle the part's x, y are the program's turned by +C about Z.
+    axis_state x = this->x, y = this->y;
+    bool with_y = has_y;  // y is compared: the channel has Y, or C turned x into it
+    if (const double c = std::remainder(c_deg, 360.0); c != 0) {
+      const bool y_known = !has_y || y.k == axis_state::kind::known;
+      if (x.k != axis_state::kind::known || !y_known) {
+        ++passed;
+        return false;
+      }
+      const double a = part(x, x_div), b = has_y ? part(y, zs) : 0.0;
+      const double t = c * std::numbers::pi / 180, ct = std::cos(t), st = std::sin(t);
+      x.value = (a * ct - b * st) * x_div / out_mm;
+      y.value = (a * st + b * ct) * zs / out_mm;
+      y.k = axis_state::kind::known;
+      with_y = true;
+    }
+    ++compared;
     // Three half units: a full circle ends on its start's words, which may stand a unit and a
     // half from the CL's end (within a unit of the start, channel_motion.cpp).
     const double tol = std::max(tip_tolerance, axis_half * 3.001);
@@ -639,7 +714,7 @@ struct cl_comparison::impl {
              (a.k == axis_state::kind::known && std::abs(part(a, div) - want) <= tol);
     };
     const bool gauge = needs_length && (!length_on || h_word == 0) && z.k == axis_state::kind::known;
-    if (fine(x, x_div, pos.x * cl_mm) && (!has_y || fine(y, zs, pos.y * cl_mm)) && !gauge &&
+    if (fine(x, x_div, pos.x * cl_mm) && (!with_y || fine(y, zs, pos.y * cl_mm)) && !gauge &&
         fine(z, zs, pos.z * cl_mm)) {
       compare_rest(e, rapid);
       return true;
@@ -663,7 +738,7 @@ struct cl_comparison::impl {
                          static_cast<char>(name + 'a' - 'A'), have, want, d);
     };
     check('X', x, x_div, pos.x * cl_mm);
-    if (has_y) check('Y', y, zs, pos.y * cl_mm);
+    if (with_y) check('Y', y, zs, pos.y * cl_mm);
     if (gauge) {
       if (!said_length) {
         said_length = true;

@@ -24,9 +24,11 @@
 // Records it cannot follow yet are passed over, not guessed: a HEAD/BOTH copy, CL cycles,
 // and while the program has a canned cycle, polar or cylindrical interpolation, a rotated or
 // tilted frame, polar coordinates, inverse-time feed, a threading cycle, a rotary-axis word
-// since the last tool call (a C axis, an indexing head), offsets written (G10, #5221=), a
+// since the last tool call that no indexing head or C axis explains, an indexing head's index until its
+// length offset is given again, a C axis whose angle is not known, offsets written (G10, #5221=), a
 // coordinate setting or a work offset no spindle names in force. Channels with a kinematic
-// chain are not compared (their writer checks every point by the forward transform).
+// chain are not compared (their writer checks every point by the forward transform), but for a
+// mill/turn's indexing head: X Y Z are the tip at each index, in the frame C turned the part to.
 #include <memory>
 #include <string>
 #include <string_view>

@@ -517,3 +517,36 @@ TEST_CASE("cl comparison: the arc blocks of a helix, each against the CL's circl
         "job.cls:15:1: error: channel 1: the CL's arc turns counter-clockwise about (0,0,1) here, the "
         "program's G2 the other way round: `G2 X110. Y50. Z-4.444 I-10. J0.`\n");
 }
+
+TEST_CASE("cl comparison: an indexing head's channel, and the part turned by C", "[analysis][cl_compare]") {
+  // The Integrex's upper head (a kinematic chain and [channel.head_index]): X Y Z are the tip
+  // once the head's offset is given after its index, in the frame C has turned the part to
+  // (the program's x, y are the part's turned by -C). The second of three holes on a 40 mm
+  // pitch circle, at 120 degrees: C120., then X20. Y0. (X a radius after G10.9 X0).
+  auto run = [](const char* c_block, const char* move, bool with_c_mode = true) {
+    compared c("integrex-i200st", 1);
+    c.lines({"T12 M6", "M901"});
+    if (with_c_mode) c.lines({"M200", "G10.9 X0"});
+    c.lines({"G97 S2500 M3", "G94", "M108", "G0 G53 B0.", "M107", c_block, move});
+    motion_event mv;
+    mv.pos = {-10, 17.3205081, 10};
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return std::pair{c.text(), c.cmp.compared()};
+  };
+  CHECK(run("G0 C120.", "G0 G43 H#3020 X20. Y0. Z10.") == std::pair{std::string(), 1L});
+  CHECK(run("G0 C0.", "G0 G43 H#3020 X20. Y0. Z10.").first ==
+        "job.cls:10:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part "
+        "frame, mm): x 20.000 where the CL has -10.000 (30.000 mm off); y 0.000 where the CL has 17.321 "
+        "(17.321 "
+        "mm off), after the block `G0 G43 H#3020 X20. Y0. Z10.`\n");
+  // C given in G91 adds to where it stood: C120. then C0. leaves it at 120.
+  CHECK(run("G0 C120. G91 C0. G90", "G0 G43 H#3020 X20. Y0. Z10.") == std::pair{std::string(), 1L});
+  // The head indexed and no offset given since: not followed (the tip is not the words yet).
+  CHECK(run("G0 C120.", "G0 X20. Y0. Z10.") == std::pair{std::string(), 0L});
+  // The spindle made a C axis and no C word since: where the part stands is not known.
+  CHECK(run("M9", "G0 G43 H#3020 X20. Y0. Z10.") == std::pair{std::string(), 0L});
+  // Without M200 no C word came: the frame is the program's, and X a diameter (no G10.9 X0).
+  CHECK(run("M9", "G0 G43 H#3020 X-20. Y17.321 Z10.", false) == std::pair{std::string(), 1L});
+}
