@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include <cstdint>
 #include <cstdlib>
@@ -77,6 +78,16 @@ struct cl_comparison::impl {
     if (ch.head_index.present()) {
       head_address = ch.head_index.address;
       head_offset = !ch.head_index.offset_turning.empty() || !ch.head_index.offset_live.empty();
+    }
+    const cycle_rules& cy = m.cycles;
+    for (const std::string* code :
+         {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code, &cy.tap_code, &cy.tap_left_code,
+          &cy.side_drill_code, &cy.side_dwell_code, &cy.side_peck_code, &cy.side_tap_code}) {
+      const bool side = code == &cy.side_drill_code || code == &cy.side_dwell_code ||
+                        code == &cy.side_peck_code || code == &cy.side_tap_code;
+      for (const nc_word& w : split_nc_words(*code))
+        if (w.address == 'G' && w.numeric && g10(w.number) >= 730 && g10(w.number) <= 890)
+          (side ? side_g : hole_g).push_back(g10(w.number));
     }
     has_c = ch.axis('C') != nullptr;
     if (has_c)
@@ -175,6 +186,18 @@ struct cl_comparison::impl {
   bool c_known = true;  // C at 0 until the spindle becomes a C axis
   double c_deg = 0;
   std::vector<std::vector<nc_word>> c_on_codes, c_off_codes;
+  // Canned hole cycles: the G codes of the machine's [cycles] drilling and tapping codes (G81,
+  // G83, G84 ...), along Z, and of its side cycles (G87, G88), along X.
+  std::vector<int> hole_g, side_g;
+  int hole_cycle = 0;  // the hole cycle in force: 1 along Z, 2 a side cycle; 0 none
+  // The last hole a cycle block drilled since the last record: where the block's words put the
+  // axes (the axis along the drill is the hole's bottom).
+  struct nc_hole {
+    bool valid = false, side = false;
+    axis_state x, y, z;
+    std::string text;
+  } hole;
+  bool said_hole = false;
   bool length_on = false;        // a tool length offset in force (G43, G43.4, G43.5, G44)
   bool needs_length = false;     // a mill head's channel: Z is the gauge line without one
   bool foreign_offset = false;   // a work offset no spindle names (G56): another part frame
@@ -333,6 +356,17 @@ struct cl_comparison::impl {
       for (const auto& c : c_off_codes)
         if (offset_of(c)) c_known = true, c_deg = 0;
     }
+    if (letters & nc_letter('G'))
+      for (const nc_word& w : words) {
+        if (w.address != 'G' || !w.numeric) continue;
+        const int g = g10(w.number);
+        if (std::find(side_g.begin(), side_g.end(), g) != side_g.end())
+          hole_cycle = 2;
+        else if (std::find(hole_g.begin(), hole_g.end(), g) != hole_g.end())
+          hole_cycle = 1;
+        else if (g == 0 || g == 10 || g == 20 || g == 30 || g == 800)
+          hole_cycle = 0;
+      }
     bool not_a_move = false, home = false, machine = false, setting = false, m6 = false;
     std::string home_why;
     // Most lines are moves with axis words and an F: only the F is read before the axes.
@@ -577,6 +611,7 @@ struct cl_comparison::impl {
     const bool start_known = x.k == axis_state::kind::known && z.k == axis_state::kind::known &&
                              (!has_y || y.k == axis_state::kind::known || plane == 18);
     bool any = false;
+    axis_state hx = x, hy = y, hz = z;  // where a hole cycle's block puts the axes
     for (const nc_word& w : words) {
       axis_state* a = nullptr;
       bool incremental = !absolute;
@@ -599,10 +634,17 @@ struct cl_comparison::impl {
         send_away(*a, home_why);
       else if (machine)
         send_away(*a, "G53");
-      else if (setting || cycle)
+      else if (setting || cycle) {
+        if (hole_cycle && !setting) set_axis(a == &x ? hx : a == &y ? hy : hz, w, incremental);
         a->k = axis_state::kind::unknown;
-      else
+      } else
         set_axis(*a, w, incremental);
+    }
+    if (any && hole_cycle && cycle && !not_a_move && !home && !machine && !setting) {
+      hole.valid = true;
+      hole.side = hole_cycle == 2;
+      hole.x = hx, hole.y = hy, hole.z = hz;
+      hole.text.assign(text);
     }
     // A reference return, check or machine-coordinate block moves its axes at rapid: inside a
     // feed move that is a rapid through the cut (G28 Z-30. passes its intermediate point).
@@ -758,6 +800,62 @@ struct cl_comparison::impl {
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
     compare_rest(e, rapid);
     return true;
+  }
+
+  // A point of the program (its X and Y axes) in the part frame, mm: the diameter, a mirror or
+  // a reversed Z undone, then turned by the C angle; none when an axis it needs is not known.
+  std::optional<std::pair<double, double>> part_xy(const axis_state& px, const axis_state& py) const {
+    const double c = std::remainder(c_deg, 360.0);
+    if (px.k != axis_state::kind::known || (has_y && py.k != axis_state::kind::known)) return std::nullopt;
+    const double a = part(px, x_div), b = has_y ? part(py, z_sign()) : 0.0;
+    if (c == 0) return std::pair{a, b};
+    const double t = c * std::numbers::pi / 180, ct = std::cos(t), st = std::sin(t);
+    return std::pair{a * ct - b * st, a * st + b * ct};
+  }
+
+  // A CL cycle's hole (a GOTO between CYCLE/type and CYCLE/OFF) against the cycle block the
+  // program drilled it with since the last record: along Z, its X and Y (turned by C) are the
+  // hole's; a side cycle (along X) drills at the hole's Z, on the side C turned to it.
+  void compare_hole(const event& e, const vec3& pos) {
+    if (!hole.valid || polar || cylinder || frame || polar_coords || rotary || foreign_offset || shifted ||
+        head_due || !c_known) {
+      ++passed;
+      return;
+    }
+    const double tol = std::max(tip_tolerance, axis_half * 3.001);
+    const double px = pos.x * cl_mm, py = pos.y * cl_mm, pz = pos.z * cl_mm;
+    std::string off;
+    if (!hole.side) {
+      const auto at = part_xy(hole.x, hole.y);
+      if (!at) {
+        ++passed;
+        return;
+      }
+      ++compared;
+      const double d = std::hypot(at->first - px, at->second - py);
+      if (d > tol)
+        off = fmt::format("x {:.3f} y {:.3f} where the CL has x {:.3f} y {:.3f} ({:.3f} mm off)", at->first,
+                          at->second, px, py, d);
+    } else {
+      if (hole.z.k != axis_state::kind::known || (has_y && hole.y.k != axis_state::kind::known)) {
+        ++passed;
+        return;
+      }
+      ++compared;
+      // The CL's hole turned back by C: its y is the program's Y (0 on a lathe without Y).
+      const double t = -std::remainder(c_deg, 360.0) * std::numbers::pi / 180;
+      const double y_turned = px * std::sin(t) + py * std::cos(t);
+      const double zs = z_sign();
+      const double z_have = part(hole.z, zs), y_have = has_y ? part(hole.y, zs) : 0.0;
+      const double d = std::max(std::abs(z_have - pz), std::abs(y_have - y_turned));
+      if (d > tol)
+        off = fmt::format("z {:.3f} where the CL has {:.3f}, and {:.3f} mm across the drill's line at C{:g}",
+                          z_have, pz, std::abs(y_have - y_turned), c_deg);
+    }
+    if (off.empty() || std::exchange(said_hole, true)) return;
+    error(e, fmt::format("the program drills this record's hole elsewhere (the part frame, mm): {}, in the "
+                         "block `{}`",
+                         off, hole.text));
   }
 
   // A CIRCLE record's arc blocks against its arc (analysis/cl_compare_arc): each block's sense
@@ -1017,8 +1115,12 @@ struct cl_comparison::impl {
           } else if constexpr (std::is_same_v<T, units_event>) {
             units(d.units);
           } else if constexpr (std::is_same_v<T, motion_event>) {
-            if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta)
-              compare(e, d.pos, d.rapid, both);
+            if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta) {
+              if (cl_cycle && !both)
+                compare_hole(e, d.pos);
+              else
+                compare(e, d.pos, d.rapid, both);
+            }
           } else if constexpr (std::is_same_v<T, arc_event>) {
             if (compare(e, d.end, false, both)) compare_arc(e, d);
           }
@@ -1027,6 +1129,7 @@ struct cl_comparison::impl {
     moved = false;
     rapid_in_record = false;
     arcs.clear();
+    hole.valid = false;
   }
 
   void units(unit_system u) { cl_mm = u == unit_system::inch ? 25.4 : 1.0; }

@@ -21,7 +21,9 @@
 // - the feed: in the same mode, F within 0.5 % (or half the post's last digit); in the other
 //   mode, F x rpm (or F / rpm) at the spindle's speed, CSS at the tip's diameter under its clamp;
 // - S or F given as an expression, and a block under block delete, before a cut.
-// Records it cannot follow yet are passed over, not guessed: a HEAD/BOTH copy, CL cycles,
+// - a CL cycle's hole: the canned cycle block's X, Y (turned by C), or a side cycle's Z;
+// Records it cannot follow yet are passed over, not guessed: a HEAD/BOTH copy, a CL cycle's
+// hole drilled with moves,
 // and while the program has a canned cycle, polar or cylindrical interpolation, a rotated or
 // tilted frame, polar coordinates, inverse-time feed, a threading cycle, a rotary-axis word
 // since the last tool call that no indexing head or C axis explains, an indexing head's index until its

@@ -550,3 +550,50 @@ TEST_CASE("cl comparison: an indexing head's channel, and the part turned by C",
   // Without M200 no C word came: the frame is the program's, and X a diameter (no G10.9 X0).
   CHECK(run("M9", "G0 G43 H#3020 X-20. Y17.321 Z10.", false) == std::pair{std::string(), 1L});
 }
+
+TEST_CASE("cl comparison: a CL cycle's holes against the program's cycle blocks", "[analysis][cl_compare]") {
+  // Each GOTO between CYCLE/DRILL and CYCLE/OFF is a hole: along Z its x, y are the cycle
+  // block's X, Y turned by C; a side cycle (G87, along X) drills at its Z, on the line C turns
+  // to the tool. Checked in the writer by turning its C frame the wrong way: both built-ins'
+  // mill/turn samples then stopped at their second hole.
+  auto run = [](const char* machine_name, int channel, std::initializer_list<const char*> program,
+                const vec3& hole) {
+    compared c(machine_name, channel);
+    cycle_event drill;
+    drill.type = "DRILL";
+    c.cmp.record({c.next++, drill, 1}, false);
+    c.lines(program);  // the writer writes the cycle block at the hole's GOTO
+    motion_event mv;
+    mv.pos = hole;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return std::pair{c.text(), c.cmp.compared()};
+  };
+  // The Integrex: the hole at 120 degrees on the 40 mm pitch circle, C120. then X20. Y0.
+  const auto integrex = [&](const char* c_block, const vec3& hole) {
+    return run("integrex-i200st", 1,
+               {"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "M108", "G0 G53 B0.", "M107", "G0 C0.",
+                "G0 G43 H#3020 X20. Y0. Z10.", "M212", c_block, "M210", "X20. Y0. Z2.", "G17",
+                "G98 G81 X20. Y0. Z-12. R2. F150."},
+               hole);
+  };
+  CHECK(integrex("G0 C120.", {-10, 17.3205081, 0}) == std::pair{std::string(), 1L});
+  CHECK(
+      integrex("G0 C240.", {-10, 17.3205081, 0}).first ==
+      "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
+      "x -10.000 y -17.321 where the CL has x -10.000 y 17.321 (34.641 mm off), in the block `G98 G81 X20. "
+      "Y0. Z-12. R2. F150.`\n");
+  // The 31i's path 3: a cross hole at 90 degrees with the side cycle G87, X the bottom's diameter.
+  const auto side = [&](const char* c_block, const vec3& hole) {
+    return run("fanuc-31i-3path", 3,
+               {"M6 T1400", "T1414", "G97 S2000 M33", "G0 B0.", "M90", c_block, "X80. Y0. Z-20.", "M89",
+                "X66.", "G87 X30. Z-20. R0. F120."},
+               hole);
+  };
+  CHECK(side("G0 C90.", {0, 33, -20}) == std::pair{std::string(), 1L});
+  CHECK(
+      side("G0 C0.", {0, 33, -22}).first ==
+      "job.cls:11:1: error: channel 3: the program drills this record's hole elsewhere (the part frame, mm): "
+      "z -20.000 where the CL has -22.000, and 33.000 mm across the drill's line at C0, in the block `G87 "
+      "X30. "
+      "Z-20. R0. F120.`\n");
+}
