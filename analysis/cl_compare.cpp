@@ -42,8 +42,8 @@ struct axis_state {
     away      // at its reference point (G28/G30) or in machine coordinates (G53)
   } k = kind::unknown;
   double value = 0;
-  int line = 0;     // the line that sent it away
-  std::string why;  // "G28", "G53"
+  int line = 0;          // the line that sent it away
+  const char* why = "";  // "G28", "G53"
 };
 
 }  // namespace
@@ -97,7 +97,10 @@ struct cl_comparison::impl {
       }
     for (auto* list : {&c_on_codes, &c_off_codes})
       for (auto& c : *list)
-        for (nc_word& w : c) w.value = {};  // numbers only: the text they were split from is gone
+        for (nc_word& w : c) {
+          w.value = {};  // numbers only: the text they were split from is gone
+          c_letters |= nc_letter(w.address);
+        }
     read_tool_call(ch.tool_call);
     // The coolant codes, each kind's on and off: flood is codes.coolant_on (each block of it
     // turns it on) and coolant_off, the others their [on, off] pairs.
@@ -186,6 +189,7 @@ struct cl_comparison::impl {
   bool c_known = true;  // C at 0 until the spindle becomes a C axis
   double c_deg = 0;
   std::vector<std::vector<nc_word>> c_on_codes, c_off_codes;
+  std::uint32_t c_letters = 0;  // the letters of those codes
   // Canned hole cycles: the G codes of the machine's [cycles] drilling and tapping codes (G81,
   // G83, G84 ...), along Z, and of its side cycles (G87, G88), along X.
   std::vector<int> hole_g, side_g;
@@ -271,10 +275,10 @@ struct cl_comparison::impl {
       if (w.address == 'M' && w.numeric && w.number == 6) tool_m6 = true;
   }
 
-  void send_away(axis_state& a, std::string why) {
+  void send_away(axis_state& a, const char* why) {
     a.k = axis_state::kind::away;
     a.line = lines;
-    a.why = std::move(why);
+    a.why = why;
   }
 
   void set_axis(axis_state& a, const nc_word& w, bool incremental) {
@@ -348,7 +352,7 @@ struct cl_comparison::impl {
           coolant_text.assign(text);
           coolant_fine = false;
         }
-    if (has_c) {
+    if (letters & c_letters) {
       // The spindle held as a C axis: where C stands is not known until a C word (or its
       // reference return) says; back to a turning spindle, the part frame is the program's.
       for (const auto& c : c_on_codes)
@@ -356,19 +360,8 @@ struct cl_comparison::impl {
       for (const auto& c : c_off_codes)
         if (offset_of(c)) c_known = true, c_deg = 0;
     }
-    if (letters & nc_letter('G'))
-      for (const nc_word& w : words) {
-        if (w.address != 'G' || !w.numeric) continue;
-        const int g = g10(w.number);
-        if (std::find(side_g.begin(), side_g.end(), g) != side_g.end())
-          hole_cycle = 2;
-        else if (std::find(hole_g.begin(), hole_g.end(), g) != hole_g.end())
-          hole_cycle = 1;
-        else if (g == 0 || g == 10 || g == 20 || g == 30 || g == 800)
-          hole_cycle = 0;
-      }
     bool not_a_move = false, home = false, machine = false, setting = false, m6 = false;
-    std::string home_why;
+    const char* home_why = "";
     // Most lines are moves with axis words and an F: only the F is read before the axes.
     const bool plain = (letters & ~(axis_letters | nc_letter('F'))) == 0;
     if (plain)
@@ -452,6 +445,14 @@ struct cl_comparison::impl {
       }
       if (w.address != 'G' || !w.numeric) continue;
       const int g = g10(w.number);
+      if (g >= 730 && g <= 890) {
+        if (std::find(side_g.begin(), side_g.end(), g) != side_g.end())
+          hole_cycle = 2;
+        else if (std::find(hole_g.begin(), hole_g.end(), g) != hole_g.end())
+          hole_cycle = 1;
+      } else if (g == 0 || g == 10 || g == 20 || g == 30 || g == 800) {
+        hole_cycle = 0;
+      }
       if (g == per_rev_g || g == per_min_g) {
         per_rev = g == per_rev_g ? 1 : 0;
         inverse_time = false;
@@ -611,7 +612,8 @@ struct cl_comparison::impl {
     const bool start_known = x.k == axis_state::kind::known && z.k == axis_state::kind::known &&
                              (!has_y || y.k == axis_state::kind::known || plane == 18);
     bool any = false;
-    axis_state hx = x, hy = y, hz = z;  // where a hole cycle's block puts the axes
+    axis_state hx, hy, hz;  // where a hole cycle's block puts the axes
+    if (hole_cycle) hx = x, hy = y, hz = z;
     for (const nc_word& w : words) {
       axis_state* a = nullptr;
       bool incremental = !absolute;
@@ -664,12 +666,16 @@ struct cl_comparison::impl {
     }
   }
 
-  // The record's arc blocks so far: their sense, centre and ends in the part frame.
+  // The record's arc blocks so far (the first `n_arcs`; the rest kept for their strings'
+  // room): their sense, centre and ends in the part frame.
   std::vector<nc_arc_block> arcs;
+  std::size_t n_arcs = 0;
 
   void note_arc(const double* start, bool start_known) {
     if ((motion != 2 && motion != 3) || cycle) return;
-    nc_arc_block& arc = arcs.emplace_back();
+    if (n_arcs == arcs.size()) arcs.emplace_back();
+    nc_arc_block& arc = arcs[n_arcs++];
+    arc.r = 0;
     arc.ccw = motion == 3;
     arc.plane = plane;
     arc.text = move_text;
@@ -731,21 +737,25 @@ struct cl_comparison::impl {
     }
     const double zs = z_sign();
     // Under a C angle the part's x, y are the program's turned by +C about Z.
-    axis_state x = this->x, y = this->y;
+    axis_state turned_x, turned_y;  // x and y turned by C, when it is
+    const axis_state* xp = &this->x;
+    const axis_state* yp = &this->y;
     bool with_y = has_y;  // y is compared: the channel has Y, or C turned x into it
-    if (const double c = std::remainder(c_deg, 360.0); c != 0) {
-      const bool y_known = !has_y || y.k == axis_state::kind::known;
-      if (x.k != axis_state::kind::known || !y_known) {
+    if (c_deg != 0) {
+      const auto at = part_xy(x, y);
+      if (!at) {
         ++passed;
         return false;
       }
-      const double a = part(x, x_div), b = has_y ? part(y, zs) : 0.0;
-      const double t = c * std::numbers::pi / 180, ct = std::cos(t), st = std::sin(t);
-      x.value = (a * ct - b * st) * x_div / out_mm;
-      y.value = (a * st + b * ct) * zs / out_mm;
-      y.k = axis_state::kind::known;
+      turned_x = x, turned_y = y;
+      turned_x.value = at->first * x_div / out_mm;
+      turned_y.value = at->second * zs / out_mm;
+      turned_y.k = axis_state::kind::known;
+      xp = &turned_x, yp = &turned_y;
       with_y = true;
     }
+    const axis_state& x = *xp;
+    const axis_state& y = *yp;
     ++compared;
     // Three half units: a full circle ends on its start's words, which may stand a unit and a
     // half from the CL's end (within a unit of the start, channel_motion.cpp).
@@ -802,10 +812,13 @@ struct cl_comparison::impl {
     return true;
   }
 
+  // The C angle in force in (-180, 180] degrees (0 without one).
+  double c_turn() const { return c_deg == 0 ? 0.0 : std::remainder(c_deg, 360.0); }
+
   // A point of the program (its X and Y axes) in the part frame, mm: the diameter, a mirror or
   // a reversed Z undone, then turned by the C angle; none when an axis it needs is not known.
   std::optional<std::pair<double, double>> part_xy(const axis_state& px, const axis_state& py) const {
-    const double c = std::remainder(c_deg, 360.0);
+    const double c = c_turn();
     if (px.k != axis_state::kind::known || (has_y && py.k != axis_state::kind::known)) return std::nullopt;
     const double a = part(px, x_div), b = has_y ? part(py, z_sign()) : 0.0;
     if (c == 0) return std::pair{a, b};
@@ -843,7 +856,7 @@ struct cl_comparison::impl {
       }
       ++compared;
       // The CL's hole turned back by C: its y is the program's Y (0 on a lathe without Y).
-      const double t = -std::remainder(c_deg, 360.0) * std::numbers::pi / 180;
+      const double t = -c_turn() * std::numbers::pi / 180;
       const double y_turned = px * std::sin(t) + py * std::cos(t);
       const double zs = z_sign();
       const double z_have = part(hole.z, zs), y_have = has_y ? part(hole.y, zs) : 0.0;
@@ -868,7 +881,7 @@ struct cl_comparison::impl {
     f.out_mm = out_mm;
     f.cl_mm = cl_mm;
     f.tol = std::max(tip_tolerance, axis_half * 3.001);
-    std::string fault = arc_blocks_fault(arcs, a, f);
+    std::string fault = arc_blocks_fault(std::span(arcs.data(), n_arcs), a, f);
     if (fault.empty()) return;
     said_arc = true;
     error(e, std::move(fault));
@@ -1128,7 +1141,7 @@ struct cl_comparison::impl {
         e.data);
     moved = false;
     rapid_in_record = false;
-    arcs.clear();
+    n_arcs = 0;
     hole.valid = false;
   }
 

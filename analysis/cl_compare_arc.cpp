@@ -33,8 +33,7 @@ double degrees(double radians) { return radians * 180 / std::numbers::pi; }
 
 }  // namespace
 
-std::string arc_blocks_fault(const std::vector<nc_arc_block>& blocks, const arc_event& a,
-                             const arc_frame& f) {
+std::string arc_blocks_fault(std::span<const nc_arc_block> blocks, const arc_event& a, const arc_frame& f) {
   if (blocks.empty()) return {};
   const double sense = a.ccw ? 1.0 : -1.0;
   const vec3 cl_axis = scaled(a.normal, sense);  // the CL's arc turns counter-clockwise about it
@@ -82,7 +81,19 @@ std::string arc_blocks_fault(const std::vector<nc_arc_block>& blocks, const arc_
   // The CL's: TIMES,n full turns, then on to its end; an end on its start is a full circle. An
   // end within the tolerance of the start is either (the CL's print rounding).
   const vec3 u0 = radial(scaled(a.start, f.cl_mm), c, n), u1 = radial(scaled(a.end, f.cl_mm), c, n);
-  const bool end_on_start = length(minus(u0, u1)) <= f.tol;
+  const double cl_gap = length(minus(u0, u1));
+  const bool end_on_start = cl_gap <= f.tol;
+  if (blocks.size() == 1 && a.turns == 0 && blocks[0].r == 0 && blocks[0].ends_known) {
+    // One I/J/K block for a plain arc (most arcs): its sense, centre and end are held above and
+    // at the record; it goes the CL's way round unless one of the two is a full circle and the
+    // other is not (no angle needed for that).
+    const nc_arc_block& b = blocks[0];
+    const bool nc_full = length(minus(radial(b.start, c, n), radial(b.end, c, n))) < 1e-9;
+    if (nc_full == (cl_gap < 1e-9) || end_on_start) {
+      const double off = std::abs(length(radial(b.end, c, n)) - cl_r);
+      if (off <= f.tol) return {};
+    }
+  }
   const double cl_part = ccw_angle(u0, u1, n);
   const double cl_sweep =
       a.turns * two_pi + (length(minus(u0, u1)) < 1e-9 && a.turns == 0 ? two_pi : cl_part);
@@ -123,7 +134,9 @@ std::string arc_blocks_fault(const std::vector<nc_arc_block>& blocks, const arc_
         degrees(sweep), degrees(cl_sweep),
         a.turns > 0 ? fmt::format(" (TIMES,{}: full turns, then on to its end)", a.turns) : "",
         blocks.back().text);
-  // Along the axis, each block its share of the CL's travel: one pitch over the whole sweep.
+  // Along the axis, each block its share of the CL's travel: one pitch over the whole sweep
+  // (a single block's share is all of it, and its ends are the records').
+  if (blocks.size() == 1) return {};
   for (const nc_arc_block& b : blocks) {
     const double s = block_sweep(b);
     const double want = cl_travel * s / sweep, have = dot(minus(b.end, b.start), n);

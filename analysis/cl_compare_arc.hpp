@@ -6,8 +6,8 @@
 // circle; the blocks together go as far round as the CL's arc (TIMES,n full turns and on to
 // its end); and along the axis each block goes its share of the CL's travel: one pitch over
 // the whole sweep, as docs/records.md reads CIRCLE TIMES.
+#include <span>
 #include <string>
-#include <vector>
 
 #include "parser/events.hpp"
 
@@ -36,6 +36,6 @@ struct arc_frame {
 
 /// What is wrong with the record's arc blocks (`blocks`, in the order written) against the CL's
 /// arc `a`, or "" when they follow it.
-std::string arc_blocks_fault(const std::vector<nc_arc_block>& blocks, const arc_event& a, const arc_frame& f);
+std::string arc_blocks_fault(std::span<const nc_arc_block> blocks, const arc_event& a, const arc_frame& f);
 
 }  // namespace twinpost
