@@ -78,6 +78,8 @@ struct cl_comparison::impl {
     if (ch.head_index.present()) {
       head_address = ch.head_index.address;
       head_offset = !ch.head_index.offset_turning.empty() || !ch.head_index.offset_live.empty();
+      for (const std::string* code : {&ch.head_index.offset_turning, &ch.head_index.offset_live})
+        if (!code->empty()) head_codes.push_back(split_nc_words(*code));
     }
     const cycle_rules& cy = m.cycles;
     for (const std::string* code :
@@ -183,6 +185,11 @@ struct cl_comparison::impl {
   char head_address = 0;
   bool head_offset = false;  // the head has offset codes: after an index, the tip waits for G43
   bool head_due = false;     // indexed, its offset not given since
+  // The head's offset codes split (their words' text is the machine file's), and the block
+  // that left another offset in force than theirs (G49, G44, G43 H5); "" while theirs is.
+  std::vector<std::vector<nc_word>> head_codes;
+  std::string head_wrong;
+  bool said_head = false;
   // The C axis of a channel that has one: the part turned under X and Y (the writer's frame:
   // the program's X, Y are the part's turned by -C about Z).
   bool has_c = false;
@@ -307,6 +314,43 @@ struct cl_comparison::impl {
     return true;
   }
 
+  // A G43 on an indexing head's channel: the head's own offset (one of its codes, every word
+  // as the machine file writes it: `G43 P1 H#3020`), or another register (`G43 P1 H5`).
+  void note_head_offset(std::string_view text) {
+    for (const auto& code : head_codes) {
+      bool all = true;
+      for (const nc_word& c : code) {
+        bool found = false;
+        for (const nc_word& w : words)
+          found = found || (w.address == c.address && w.numeric == c.numeric &&
+                            (c.numeric ? w.number == c.number : w.value == c.value));
+        all = all && found;
+      }
+      if (all) return head_wrong.clear();
+    }
+    head_wrong.assign(text);
+  }
+
+  // The head's offset is another than its codes give: X Y Z are not the tip (once per channel).
+  bool head_offset_wrong(const event& e) {
+    if (head_wrong.empty()) return false;
+    if (!std::exchange(said_head, true))
+      error(e, fmt::format(
+                   "the head's tool length offset is not the machine's here: `{}` left {} in force where "
+                   "the head's offset codes give {}: X Y Z are not the tool tip",
+                   head_wrong, head_wrong.find("G43") != std::string::npos ? "another offset" : "none",
+                   head_code_text()));
+    ++passed;
+    return true;
+  }
+
+  std::string head_code_text() const {
+    std::string out;
+    for (const std::string* code : {&ch.head_index.offset_turning, &ch.head_index.offset_live})
+      if (!code->empty()) out += fmt::format("{}`{}`", out.empty() ? "" : " or ", *code);
+    return out;
+  }
+
   void line(std::string_view text) {
     ++lines;
     const std::uint32_t letters = split_nc_words(text, words);
@@ -421,20 +465,33 @@ struct cl_comparison::impl {
         continue;
       }
       if (w.address == 'C' && has_c) {
-        // A C position turns the part under X and Y; in polar or cylindrical interpolation C
-        // is no angle of the part frame (and where it stands after them is not known).
-        if (!w.numeric || polar || cylinder || has_word(words, 'G', 7.1) || has_word(words, 'G', 107))
+        // A C position turns the part under X and Y. In a G28 block C goes to its reference
+        // point (the word is the intermediate point's); after G30, G27, G29 or G53, and in polar
+        // or cylindrical interpolation (C no angle of the part frame), where it stands is not
+        // known. Without a decimal point the word counts least increments (`C120` is 0.12
+        // degrees where decimal-point programming is off), as X, Y and Z do.
+        if (has_word(words, 'G', 28)) {
+          c_deg = 0, c_known = true;
+        } else if (!w.numeric || polar || cylinder || has_word(words, 'G', 7.1) ||
+                   has_word(words, 'G', 107) || has_word(words, 'G', 30) || has_word(words, 'G', 27) ||
+                   has_word(words, 'G', 29) || has_word(words, 'G', 53)) {
           c_known = false;
-        else if (absolute)
-          c_deg = w.number, c_known = true;
-        else
-          c_deg += w.number;
+        } else {
+          const double v = w.point ? w.number : w.number * (m.program.trailing_point ? 0.001 : 1.0);
+          if (absolute)
+            c_deg = v, c_known = true;
+          else
+            c_deg += v;
+        }
         continue;
       }
       if (w.address == 'H' && has_c && !needs_length) {
-        // Fanuc's incremental C (G-code system A), or the head's offset register (G43 H#3020).
-        if (!has_word(words, 'G', 43))
-          c_known = has_word(words, 'G', 28) && w.numeric && w.number == 0, c_deg = 0;
+        // Fanuc's incremental C (G-code system A; `G28 H0.` its reference return), or the
+        // head's offset register (G43 H#3020: the head's length offset, below).
+        if (has_word(words, 'G', 28))
+          c_deg = 0, c_known = true;
+        else if (!has_word(words, 'G', 43) && !has_word(words, 'G', 44))
+          c_known = false;
         continue;
       }
       if (w.address == 'A' || w.address == 'B' || w.address == 'C') {
@@ -520,11 +577,15 @@ struct cl_comparison::impl {
         case 430:
           head_due = false;
           length_on = true;
+          if (head_offset) note_head_offset(text);
           break;
         case 434:
         case 435: length_on = true; break;
-        case 440: length_on = false; break;  // G44 subtracts the offset: never the tip
-        case 490: length_on = false; break;
+        case 440:  // G44 subtracts the offset: never the tip
+        case 490:
+          length_on = false;
+          if (head_offset) head_wrong.assign(text);
+          break;
         case 540:
         case 550:
         case 560:
@@ -735,6 +796,7 @@ struct cl_comparison::impl {
       ++passed;
       return false;
     }
+    if (head_offset_wrong(e)) return false;
     const double zs = z_sign();
     // Under a C angle the part's x, y are the program's turned by +C about Z.
     axis_state turned_x, turned_y;  // x and y turned by C, when it is
@@ -835,6 +897,7 @@ struct cl_comparison::impl {
       ++passed;
       return;
     }
+    if (head_offset_wrong(e)) return;
     const double tol = std::max(tip_tolerance, axis_half * 3.001);
     const double px = pos.x * cl_mm, py = pos.y * cl_mm, pz = pos.z * cl_mm;
     std::string off;
@@ -858,12 +921,21 @@ struct cl_comparison::impl {
       // The CL's hole turned back by C: its y is the program's Y (0 on a lathe without Y).
       const double t = -c_turn() * std::numbers::pi / 180;
       const double y_turned = px * std::sin(t) + py * std::cos(t);
+      // ... and on the tool's side of the axis (C 180 degrees round gives the same line: the
+      // hole through the opposite wall).
+      const double x_turned = px * std::cos(t) - py * std::sin(t);
+      const bool other_side = std::abs(x_turned) > tol && (x_turned > 0) != (x_div > 0);
       const double zs = z_sign();
       const double z_have = part(hole.z, zs), y_have = has_y ? part(hole.y, zs) : 0.0;
       const double d = std::max(std::abs(z_have - pz), std::abs(y_have - y_turned));
       if (d > tol)
         off = fmt::format("z {:.3f} where the CL has {:.3f}, and {:.3f} mm across the drill's line at C{:g}",
                           z_have, pz, std::abs(y_have - y_turned), c_deg);
+      else if (other_side)
+        off = fmt::format(
+            "at C{:g} the drill comes from the other side of the part than the CL's hole at x "
+            "{:.3f} y {:.3f}",
+            c_deg, px, py);
     }
     if (off.empty() || std::exchange(said_hole, true)) return;
     error(e, fmt::format("the program drills this record's hole elsewhere (the part frame, mm): {}, in the "

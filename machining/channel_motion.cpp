@@ -464,7 +464,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
         return fail(
             fmt::format("the arc goes {} mm round its circle, under one unit of the written words, "
                         "and {} mm along its axis: give the move as a GOTO",
-                        kin::number_text(gap), kin::number_text(kin::norm(rise) * scale_)));
+                        kin::number_text(gap / out_per_mm_), kin::number_text(kin::norm(rise) * cl_mm_)));
       pos_ = cl.end;
       return;
     }

@@ -749,6 +749,14 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     return false;
   }
 
+  if (length_lost_) [[unlikely]] {
+    length_lost_ = false;  // said once
+    error(line,
+          "the home blocks written before this move (GOHOME) cancel the tool's length offset, which "
+          "the tool call gives on this machine (kinematics.length_on = \"\"): the move would run the "
+          "tip a tool length low; call the tool again (LOADTL) after GOHOME");
+    return false;
+  }
   // A rapid that would swing the tip sideways while a head turns about its pivot, and that
   // neither starts nor ends as high as the CL has had the tip since the tool call (the CAM's
   // clearance), turns the heads at the tool-change height, as after a tool call and between

@@ -80,6 +80,19 @@ void channel_writer::go_home() {
   leave_radial_frame();
   for (const std::string& b : m_.codes.home) out_.block(b);
   homed_ = true;
+  // Home blocks that cancel the tool's length offset (`G49`, `D0`; attack 47: a GOHOME in the
+  // middle of an operation, and the cuts after it ran a tool length low): the next move gives
+  // it again (`G43 H..`, the chain's length or tool-tip code), or, where the tool call gives it
+  // and the post has no code for it, the next move of the same tool is an error.
+  if (home_cancels_length_) [[unlikely]] {
+    if (chain_) {
+      const std::string& on = solves_joints(*chain_) ? chain_->length_on : chain_->tool_tip_on;
+      offset_on_ = false;
+      length_lost_ = on.empty() && chain_->output != multiaxis_output::pivot;
+    } else if (!length_offset_text_.empty()) {
+      pending_offset_ = length_offset_text_;
+    }
+  }
   // (A length offset turned on again since, the same tool called again, needs no cancel.)
   if (length_cancel_due_ && !offset_on_) out_.block(chain_->tool_tip_off);
   length_cancel_due_ = false;
@@ -188,7 +201,7 @@ void channel_writer::tool(const tool_event& t, int line) {
       }
       out_.block(block, true);
       tool_call_ = call + offset_block;
-      if (length_offset) pending_offset_ = format_template(ch_.length_offset, a);
+      if (length_offset) pending_offset_ = length_offset_text_ = format_template(ch_.length_offset, a);
     }
     return;
   }
@@ -230,13 +243,14 @@ void channel_writer::tool(const tool_event& t, int line) {
   }
   if (!coolant_was.empty()) coolant_block(coolant_off_was, true);
   go_home();
+  length_lost_ = false;                                      // the tool call gives the offset
   if (chain_ && !ch_.head_index.present()) heads_upright();  // an indexing head turns with its own clamps
   forget_axes();
   motion_g_ = -1;
   out_.block(call, true);
   if (!offset_block.empty()) out_.block(offset_block);
   restore_plane();
-  if (length_offset) pending_offset_ = format_template(ch_.length_offset, a);
+  if (length_offset) pending_offset_ = length_offset_text_ = format_template(ch_.length_offset, a);
   // The tool changer may leave an indexing head anywhere (public Integrex posts send B to 0 at
   // every tool change and index it again): the next tool's angle is written, even the same one.
   head_angle_.reset();

@@ -86,6 +86,9 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
     for (const std::string& block : m.program.header)
       if (block.find(work_->work_offset) != std::string::npos) offset_due_ = false;
   }
+  for (const std::string& b : m.codes.home)
+    home_cancels_length_ =
+        home_cancels_length_ || cancels_length_offset(b, m.program.comment_open, m.program.comment_close);
   last_x_.max = m.formats['X'].max_count(axis_style_.decimals);
   if (x && x->min && x->max) {
     const double scale = std::pow(10.0, axis_style_.decimals);

@@ -570,7 +570,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   double cylinder_c_ = 0;       // the C written last in it, continuous (no wrap at 360)
   bool cylinder_comp_ = false;  // G41/G42 started in it and not yet ended
   std::pair<std::int64_t, std::int64_t> saved_x_limits_{INT64_MIN, INT64_MAX};
-  std::string pending_offset_;  // head_index.offset_* for the next move
+  std::string pending_offset_;        // head_index.offset_* for the next move
+  std::string length_offset_text_;    // channel.length_offset as the last tool call wrote it
+  bool home_cancels_length_ = false;  // a block of codes.home cancels the length offset (G49, D0)
+  bool length_lost_ = false;          // home cancelled the control's own offset, which no code gives back
   // A coolant-on block held from the tool call until the indexing head is indexed for the tool
   // (written then, before the approach): no coolant while the head turns (issue 37, item 10).
   std::string coolant_due_;

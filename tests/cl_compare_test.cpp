@@ -1,6 +1,7 @@
 // The comparison of a program with its CL (analysis/cl_compare.hpp): hand-made program lines
 // and CL records, findings asserted to the letter.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <string>
 #include <vector>
@@ -596,4 +597,64 @@ TEST_CASE("cl comparison: a CL cycle's holes against the program's cycle blocks"
       "z -20.000 where the CL has -22.000, and 33.000 mm across the drill's line at C0, in the block `G87 "
       "X30. "
       "Z-20. R0. F120.`\n");
+}
+
+TEST_CASE("cl comparison: the fourth attack's ways past the C axis, the holes and the head",
+          "[analysis][cl_compare]") {
+  // Attack 47. The Integrex's hole at 120 degrees (C120., then X20. Y0.), with what a user
+  // block or INSERT may put before it.
+  auto integrex = [](std::initializer_list<const char*> before, const char* cycle) {
+    compared c("integrex-i200st", 1);
+    cycle_event drill;
+    drill.type = "DRILL";
+    c.cmp.record({c.next++, drill, 1}, false);
+    c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "M108", "G0 G53 B0.", "M107", "G0 C120.",
+             "G0 G43 P1 H#3020 X20. Y0. Z10."});
+    c.lines(before);
+    c.lines({"X20. Y0. Z2.", cycle});
+    motion_event mv;
+    mv.pos = {-10, 17.3205081, 0};
+    c.cmp.record({c.next++, mv, 1}, false);
+    return c.text();
+  };
+  const char* g81 = "G98 G81 X20. Y0. Z-12. R2. F150.";
+  CHECK(integrex({}, g81).empty());
+  // G91 G28 C0.: C goes to its reference point, whatever the increment says.
+  CHECK(
+      integrex({"G91 G28 C0.", "G90"}, g81) ==
+      "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
+      "x 20.000 y 0.000 where the CL has x -10.000 y 17.321 (34.641 mm off), in the block `G98 G81 X20. Y0. "
+      "Z-12. R2. F150.`\n");
+  // C120 without a decimal point is 0.12 degrees on a control with decimal-point programming off.
+  CHECK(
+      integrex({"G0 C120"}, g81) ==
+      "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
+      "x 20.000 y 0.042 where the CL has x -10.000 y 17.321 (34.620 mm off), in the block `G98 G81 X20. Y0. "
+      "Z-12. R2. F150.`\n");
+  // After G30 C.. where C stands is not known: passed over.
+  CHECK(integrex({"G30 C0."}, g81).empty());
+  // The head's length offset changed: another register, G44, G49.
+  for (const char* offset : {"G43 P1 H5", "G44 P1 H#3020", "G49"})
+    CHECK(integrex({offset}, g81) ==
+          fmt::format(
+              "job.cls:11:1: error: channel 1: the head's tool length offset is not the machine's here: "
+              "`{}` left {} in force where the head's offset codes give `G43 P1 H#3020` or `G43 "
+              "H#3020`: X Y Z are not the tool tip\n",
+              offset, offset[2] == '3' ? "another offset" : "none"));
+  // The 31i's cross hole at 90 degrees drilled from C270: the same line, the other wall.
+  compared side("fanuc-31i-3path", 3);
+  cycle_event drill;
+  drill.type = "DRILL";
+  side.cmp.record({side.next++, drill, 1}, false);
+  side.lines({"M6 T1400", "T1414", "G97 S2000 M33", "G0 B0.", "M90", "G0 C270.", "X80. Y0. Z-20.", "M89",
+              "X66.", "G87 X30. Z-20. R0. F120."});
+  motion_event mv;
+  mv.pos = {0, 33, -20};
+  side.cmp.record({side.next++, mv, 1}, false);
+  CHECK(side.text() ==
+        "job.cls:11:1: error: channel 3: the program drills this record's hole elsewhere (the part frame, "
+        "mm): at "
+        "C270 the drill comes from the other side of the part than the CL's hole at x 0.000 y 33.000, in the "
+        "block "
+        "`G87 X30. Z-20. R0. F120.`\n");
 }

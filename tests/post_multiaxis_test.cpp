@@ -1238,3 +1238,29 @@ TEST_CASE("multi-axis: a low head turn whose home blocks cancel the control's ow
   INFO(up.diagnostics);
   CHECK(up.ok);
 }
+
+TEST_CASE("multi-axis: GOHOME whose home blocks cancel the length offset gives it back, or is refused",
+          "[post][multiaxis]") {
+  // Attack 47: a GOHOME in the middle of an operation on gantry-ca with `G49` in its home
+  // blocks; the plunge after it ran 150 mm low. With length_on = "G43" the next move gives
+  // `G43 H1` again; with the control's own offset (length_on = "") the post has no code for it.
+  machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/gantry-ca.toml");
+  m.codes.home = {"G91 G28 Z0.", "G90", "G49"};
+  const std::string job =
+      "PARTNO GOHOME\nTLDATA/MILL,12,0,150,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,1000\nRAPID\n"
+      "GOTO/0,0,50,0,0,1\nGOTO/0,0,-5\nGOHOME\nRAPID\nGOTO/20,0,50\nGOTO/20,0,-5\nFINI\n";
+  const test::posted g43 = test::post_in_fresh_dir(job, m, "ma-gohome-g43");
+  INFO(g43.diagnostics);
+  REQUIRE(g43.ok);
+  CHECK(g43.files.at("GOHOME.nc")
+            .find("G1 Z-5. F1000.\nG91 G28 Z0.\nG90\nG49\nG0 C0. A0.\nG0 X20. Y0.\n"
+                  "G0 G43 H1 X20. Y0. Z50. C0. A0.\nG1 Z-5.\n") != std::string::npos);
+  m.kinematics.at(0).length_on.clear();
+  const test::posted own = test::post_in_fresh_dir(job, m, "ma-gohome-own");
+  CHECK(own.diagnostics ==
+        "job.cls:11:1: error: channel 1: the home blocks written before this move (GOHOME) cancel the tool's "
+        "length offset, which the tool call gives on this machine (kinematics.length_on = \"\"): the move "
+        "would "
+        "run the tip a tool length low; call the tool again (LOADTL) after GOHOME\nGOTO/20,0,50\n^\n");
+  CHECK_FALSE(own.ok);
+}
