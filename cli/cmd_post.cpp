@@ -18,6 +18,7 @@
 #include "machines/layout_names.hpp"
 #include "machines/layout_rules.hpp"
 #include "post/post_job.hpp"
+#include "support/json.hpp"
 
 namespace twinpost::cli {
 
@@ -44,6 +45,7 @@ po::options_description post_option_descriptions() {
       "(default: the machine's [program] cl_frame, mcs)")("permissive",
                                                           "an unknown major word is a warning, not an error")(
       "timeline", po::value<std::string>(), "also write the timeline page (HTML) into DIR under this name")(
+      "json", "print the summary as one JSON object (with --sync optimise, the schedule)")(
       "compare-optimum",
       "also work out the cycle of --sync optimise, the job's own sync records set aside, and say it "
       "(nothing more is written)")(
@@ -216,6 +218,89 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
     fmt::print("  cycle time not known: machine {} has no [timing] table\n", found.def.name);
 }
 
+// The summary as one JSON object (docs/wait-placement.md, "post --json"): what was written,
+// the cycle, and under --sync optimise the schedule the programs follow.
+void print_json_summary(const post_summary& s, const printing_sink& sink, const located_machine& found) {
+  std::string out = "{";
+  const auto key = [&](std::string_view k) {
+    if (out.size() > 1) out += ',';
+    append_json_string(out, k);
+    out += ':';
+  };
+  const auto seconds = [](double v) { return fmt::format("{:.3f}", v); };
+  key("machine");
+  append_json_string(out, found.def.name);
+  key("records");
+  out += fmt::format("{}", s.records);
+  key("channels");
+  out += fmt::format("{}", s.channels);
+  key("blocks");
+  out += fmt::format("{}", s.blocks);
+  key("waits");
+  out += fmt::format("{}", s.waits);
+  key("policy");
+  append_json_string(out, sync_policy_to_name(s.policy));
+  key("warnings");
+  out += fmt::format("{}", sink.warnings());
+  key("files");
+  out += '[';
+  for (std::size_t i = 0; i < s.files.size(); ++i) {
+    if (i) out += ',';
+    append_json_string(out, s.files[i]);
+  }
+  out += ']';
+  key("cycle");
+  out += s.timing ? seconds(s.timing->cycle) : std::string("null");
+  if (s.schedule) {
+    const job_operations& ops = *s.schedule;
+    key("schedule");
+    out +=
+        fmt::format("{{\"channels\":[{},{}],\"sequential_cycle\":{},\"posts\":{},\"sections\":[", ops.a,
+                    ops.b, s.sequential_cycle ? seconds(*s.sequential_cycle) : std::string("null"), s.passes);
+    for (std::size_t i = 0; i < ops.sections.size(); ++i) {
+      const plan_section& sec = ops.sections[i];
+      out += fmt::format("{}{{\"together\":{},\"operations\":[", i ? "," : "", sec.together);
+      for (int side = 0; side < 2; ++side) {
+        out += side ? ",[" : "[";
+        for (std::size_t k = 0; k < sec.ops[side].size(); ++k) {
+          const channel_op& op = sec.ops[side][k];
+          out += fmt::format("{}{{\"cl_lines\":[{},{}],\"seconds\":{}}}", k ? "," : "", op.first_line,
+                             op.last_line, fmt::format("{:.6f}", static_cast<double>(op.us) / 1e6));
+        }
+        out += ']';
+      }
+      out += "],\"waits\":[";
+      for (std::size_t w = 0; w < sec.waits.size(); ++w)
+        out += fmt::format("{}{{\"after\":[{},{}]}}", w ? "," : "", sec.waits[w].a, sec.waits[w].b);
+      out += "]}";
+    }
+    out += "],\"kept_apart\":[";
+    for (std::size_t i = 0; i < s.kept_apart.size(); ++i) {
+      if (i) out += ',';
+      append_json_string(out, s.kept_apart[i]);
+    }
+    out += "]}";
+  }
+  if (s.optimum_cycle || !s.optimum_unknown.empty()) {
+    key("optimum");
+    if (s.optimum_cycle) {
+      out += fmt::format("{{\"cycle\":{},\"posts\":{},\"kept_apart\":[", seconds(*s.optimum_cycle),
+                         s.optimum_passes);
+      for (std::size_t i = 0; i < s.optimum_kept_apart.size(); ++i) {
+        if (i) out += ',';
+        append_json_string(out, s.optimum_kept_apart[i]);
+      }
+      out += "]}";
+    } else {
+      out += "{\"unknown\":";
+      append_json_string(out, s.optimum_unknown);
+      out += '}';
+    }
+  }
+  out += "}\n";
+  fmt::print("{}", out);
+}
+
 }  // namespace
 
 int run_post(const args& a) {
@@ -244,7 +329,10 @@ int run_post(const args& a) {
                sink.errors() == 1 ? "" : "s");
     return 1;
   }
-  print_summary(s, sink, found);
+  if (vm.count("json"))
+    print_json_summary(s, sink, found);
+  else
+    print_summary(s, sink, found);
   return 0;
 }
 

@@ -20,7 +20,7 @@ const std::array<command_entry, 6> table{{
     {"post",
      "JOB --machine M -o DIR [--layout L] [--sync P] [--dialect D] [--cl-frame F] [--permissive] [--timeline "
      "FILE]"
-     " [--compare-optimum]"
+     " [--compare-optimum] [--json]"
      " [--tool [C:]N]... [--tool-kind K] [--threads N]",
      "post a CL job to NC programs",
      "Posts a CL job for machine M into the folder DIR (made if missing): one program per "
@@ -41,7 +41,8 @@ const std::array<command_entry, 6> table{{
      "idle at its waits when the machine file has [timing]; --timeline FILE writes the "
      "timeline page of the programs into DIR with them; --compare-optimum also says the cycle "
      "--sync optimise would give the job with its own sync records set aside (nothing more is "
-     "written). A job that moves before any tool call "
+     "written); --json prints the summary as one JSON object, with --sync optimise the schedule "
+     "(docs/wait-placement.md). A job that moves before any tool call "
      "starts with the tool the machine's [[tool]] table names by the CAM's name of it (NX TOOL "
      "PATH, CATIA TPRINT), else with --tool N (C:N for channel C), called as a tool call record "
      "would be; --tool-kind K is the kind of every tool neither TLDATA nor [[tool]] gives. "

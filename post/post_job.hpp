@@ -13,6 +13,7 @@
 
 #include "analysis/cycle_time.hpp"
 #include "channels/router.hpp"
+#include "channels/wait_plan.hpp"
 #include "machines/machine.hpp"
 #include "parser/dialect.hpp"
 #include "support/diagnostics.hpp"
@@ -72,6 +73,9 @@ struct post_summary {
   /// --sync optimise: each pair of operations the self-check made keep the CL's order, with
   /// the finding that did ("channel 1 (job.cls:12-20) before channel 2 (job.cls:21-30): ...").
   std::vector<std::string> kept_apart;
+  /// --sync optimise: the schedule the written programs follow (each section's operations of
+  /// the two channels with their times, and where the channels meet), for `post --json`.
+  std::optional<job_operations> schedule;
   /// --compare-optimum: the cycle the optimise policy gives the job with its sync records set
   /// aside (nothing of it written), and its posts; or why it could not be worked out.
   std::optional<double> optimum_cycle;

@@ -146,6 +146,7 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
       // sequential post's (each of its waits is on the critical path).
       r.sum.sequential_cycle = t.cycle - seq.ops.operation_waits * handshake;
       r.sum.passes = post;
+      r.sum.schedule = ops;
       for (std::size_t i : needed)
         r.sum.kept_apart.push_back(
             !reasons[i].empty()
