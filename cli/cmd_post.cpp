@@ -176,7 +176,30 @@ void print_kept_apart(const std::vector<std::string>& pairs) {
     fmt::print("    ... and {} more pairs kept in the CL's order\n", pairs.size() - shown);
 }
 
-void print_summary(const post_summary& s, const printing_sink& sink, const located_machine& found) {
+// Where a schedule's channels meet, as the CL's lines a SYNC record would go after (or before,
+// at a section's start): "channel 1 after job.cls:26, channel 2 before job.cls:30".
+std::vector<std::string> meeting_points(const job_operations& ops, const std::string& file) {
+  std::vector<std::string> out;
+  for (const plan_section& sec : ops.sections)
+    for (const rendezvous& w : sec.waits) {
+      std::string at;
+      for (int side = 0; side < 2; ++side) {
+        const std::vector<channel_op>& list = sec.ops[side];
+        const int n = side == 0 ? w.a : w.b;
+        if (list.empty()) continue;
+        if (!at.empty()) at += ", ";
+        at += n == 0 ? fmt::format("channel {} before {}:{}", side == 0 ? ops.a : ops.b, file,
+                                   list[0].first_line)
+                     : fmt::format("channel {} after {}:{}", side == 0 ? ops.a : ops.b, file,
+                                   list[static_cast<std::size_t>(n - 1)].last_line);
+      }
+      out.push_back(std::move(at));
+    }
+  return out;
+}
+
+void print_summary(const post_summary& s, const printing_sink& sink, const located_machine& found,
+                   const std::string& cl_file) {
   // One channel waits for nobody: no policy to report.
   const std::string waits = s.channels == 1 ? "no waits (one channel)"
                                             : fmt::format("{} wait{} ({})", s.waits, s.waits == 1 ? "" : "s",
@@ -207,6 +230,13 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
         : percent <= -0.05 ? fmt::format("+{:.1f} %: the job's own waits give the shorter cycle", -percent)
                            : std::string("the same"),
         s.optimum_passes, s.optimum_passes == 1 ? "" : "s");
+    // Where its waits would go: the SYNC records that give that cycle (the first few).
+    if (s.optimum_schedule) {
+      const std::vector<std::string> at = meeting_points(*s.optimum_schedule, cl_file);
+      constexpr std::size_t shown = 12;
+      for (std::size_t i = 0; i < at.size() && i < shown; ++i) fmt::print("    it meets at: {}\n", at[i]);
+      if (at.size() > shown) fmt::print("    ... and {} more meetings\n", at.size() - shown);
+    }
     print_kept_apart(s.optimum_kept_apart);
   } else if (!s.optimum_unknown.empty()) {
     fmt::print("  --sync optimise (its sync records, if any, set aside) gives no cycle to compare: {}\n",
@@ -216,6 +246,37 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
     fmt::print("{}", format_timeline_text(*s.timing, "  "));
   else
     fmt::print("  cycle time not known: machine {} has no [timing] table\n", found.def.name);
+}
+
+// A schedule as JSON: the two channels, per section each one's operations (CL lines, seconds)
+// and where they meet, and the pairs kept in the CL's order.
+void append_schedule_json(std::string& out, const job_operations& ops, std::optional<double> sequential,
+                          int posts, const std::vector<std::string>& kept_apart) {
+  out += fmt::format("{{\"channels\":[{},{}],\"sequential_cycle\":{},\"posts\":{},\"sections\":[", ops.a,
+                     ops.b, sequential ? fmt::format("{:.3f}", *sequential) : std::string("null"), posts);
+  for (std::size_t i = 0; i < ops.sections.size(); ++i) {
+    const plan_section& sec = ops.sections[i];
+    out += fmt::format("{}{{\"together\":{},\"operations\":[", i ? "," : "", sec.together);
+    for (int side = 0; side < 2; ++side) {
+      out += side ? ",[" : "[";
+      for (std::size_t k = 0; k < sec.ops[side].size(); ++k) {
+        const channel_op& op = sec.ops[side][k];
+        out += fmt::format("{}{{\"cl_lines\":[{},{}],\"seconds\":{:.6f}}}", k ? "," : "", op.first_line,
+                           op.last_line, static_cast<double>(op.us) / 1e6);
+      }
+      out += ']';
+    }
+    out += "],\"waits\":[";
+    for (std::size_t w = 0; w < sec.waits.size(); ++w)
+      out += fmt::format("{}{{\"after\":[{},{}]}}", w ? "," : "", sec.waits[w].a, sec.waits[w].b);
+    out += "]}";
+  }
+  out += "],\"kept_apart\":[";
+  for (std::size_t i = 0; i < kept_apart.size(); ++i) {
+    if (i) out += ',';
+    append_json_string(out, kept_apart[i]);
+  }
+  out += "]}";
 }
 
 // The summary as one JSON object (docs/wait-placement.md, "post --json"): what was written,
@@ -252,45 +313,18 @@ void print_json_summary(const post_summary& s, const printing_sink& sink, const 
   key("cycle");
   out += s.timing ? seconds(s.timing->cycle) : std::string("null");
   if (s.schedule) {
-    const job_operations& ops = *s.schedule;
     key("schedule");
-    out +=
-        fmt::format("{{\"channels\":[{},{}],\"sequential_cycle\":{},\"posts\":{},\"sections\":[", ops.a,
-                    ops.b, s.sequential_cycle ? seconds(*s.sequential_cycle) : std::string("null"), s.passes);
-    for (std::size_t i = 0; i < ops.sections.size(); ++i) {
-      const plan_section& sec = ops.sections[i];
-      out += fmt::format("{}{{\"together\":{},\"operations\":[", i ? "," : "", sec.together);
-      for (int side = 0; side < 2; ++side) {
-        out += side ? ",[" : "[";
-        for (std::size_t k = 0; k < sec.ops[side].size(); ++k) {
-          const channel_op& op = sec.ops[side][k];
-          out += fmt::format("{}{{\"cl_lines\":[{},{}],\"seconds\":{}}}", k ? "," : "", op.first_line,
-                             op.last_line, fmt::format("{:.6f}", static_cast<double>(op.us) / 1e6));
-        }
-        out += ']';
-      }
-      out += "],\"waits\":[";
-      for (std::size_t w = 0; w < sec.waits.size(); ++w)
-        out += fmt::format("{}{{\"after\":[{},{}]}}", w ? "," : "", sec.waits[w].a, sec.waits[w].b);
-      out += "]}";
-    }
-    out += "],\"kept_apart\":[";
-    for (std::size_t i = 0; i < s.kept_apart.size(); ++i) {
-      if (i) out += ',';
-      append_json_string(out, s.kept_apart[i]);
-    }
-    out += "]}";
+    append_schedule_json(out, *s.schedule, s.sequential_cycle, s.passes, s.kept_apart);
   }
   if (s.optimum_cycle || !s.optimum_unknown.empty()) {
     key("optimum");
     if (s.optimum_cycle) {
-      out += fmt::format("{{\"cycle\":{},\"posts\":{},\"kept_apart\":[", seconds(*s.optimum_cycle),
-                         s.optimum_passes);
-      for (std::size_t i = 0; i < s.optimum_kept_apart.size(); ++i) {
-        if (i) out += ',';
-        append_json_string(out, s.optimum_kept_apart[i]);
+      out += fmt::format("{{\"cycle\":{},\"posts\":{}", seconds(*s.optimum_cycle), s.optimum_passes);
+      if (s.optimum_schedule) {
+        out += ",\"schedule\":";
+        append_schedule_json(out, *s.optimum_schedule, std::nullopt, s.optimum_passes, s.optimum_kept_apart);
       }
-      out += "]}";
+      out += '}';
     } else {
       out += "{\"unknown\":";
       append_json_string(out, s.optimum_unknown);
@@ -332,7 +366,7 @@ int run_post(const args& a) {
   if (vm.count("json"))
     print_json_summary(s, sink, found);
   else
-    print_summary(s, sink, found);
+    print_summary(s, sink, found, o->cl_path);
   return 0;
 }
 

@@ -678,6 +678,7 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
         sum.optimum_cycle = best.timing->cycle;
         sum.optimum_passes = best.passes;
         sum.optimum_kept_apart = best.kept_apart;
+        sum.optimum_schedule = best.schedule;
       } else {
         sum.optimum_unknown = best.optimum_unknown.empty() ? "no schedule was found" : best.optimum_unknown;
       }

@@ -80,7 +80,8 @@ struct post_summary {
   /// aside (nothing of it written), and its posts; or why it could not be worked out.
   std::optional<double> optimum_cycle;
   int optimum_passes = 0;
-  std::vector<std::string> optimum_kept_apart;  ///< its pairs kept in the CL's order, as kept_apart
+  std::vector<std::string> optimum_kept_apart;     ///< its pairs kept in the CL's order, as kept_apart
+  std::optional<job_operations> optimum_schedule;  ///< its schedule: where its waits would go
   std::string optimum_unknown;
 };
 
