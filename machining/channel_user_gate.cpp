@@ -588,6 +588,23 @@ bool channel_writer::user_block_passes(const std::string& given) {
                         given));
       return false;
     }
+    // A rotary axis's number without its point is read in the least increment too (`C120` is
+    // 0.12 degrees where decimal-point programming is off: attack 47).
+    if ((c == 'A' || c == 'B' || c == 'C') && ch_.axis(c) && !not_a_position && m_.program.trailing_point &&
+        next != '#' && next != '[') {
+      std::size_t j = i + 1;
+      if (j < b.size() && (b[j] == '-' || b[j] == '+')) ++j;
+      while (j < b.size() && (ascii::is_digit(b[j]) || b[j] == '.')) ++j;
+      const std::string_view word(b.data() + i, j - i);
+      if (word.find('.') == std::string_view::npos &&
+          word.find_first_not_of("0-+", 1) != std::string_view::npos) {
+        error(line_,
+              fmt::format("{} in \"{}\" has no decimal point: a control without decimal-point programming "
+                          "reads it in its least increment (0.001 degree); write {}.",
+                          word, given, word));
+        return false;
+      }
+    }
     const bool is_x = c == 'X', is_u = c == 'U' && u_is_x;
     x_named = x_named || is_x || is_u;
     if (!x || !x->min || !x->max || not_a_position || (!is_x && !is_u)) continue;  // G10 P U: an offset

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <fmt/format.h>
 
 #include <string>
 
@@ -993,4 +994,32 @@ TEST_CASE("a user block may not raise the speed clamp above the CL's, nor turn t
   CHECK_THAT(lathe.diagnostics,
              Catch::StartsWith("job.cls:4:1: error: channel 1: \"G50 S9999\" clamps the spindle "
                                "at 9999 rpm, above the main spindle's limit of "));
+}
+
+TEST_CASE("events: a rotary word without its decimal point is refused", "[post][events]") {
+  // Attack 47: `G0 C120` in a record's block on the 31i's path 3 (a C axis) is 0.12 degrees on
+  // a control with decimal-point programming off; the comparison then found the next hole 52 mm
+  // off. The gate says so at the block, as it does for X460.
+  const std::string machine_text =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/fanuc-31i-3path.toml") +
+      "\n[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"BLOCK\"]\n";
+  for (const auto& [block, word] :
+       std::vector<std::pair<std::string, std::string>>{{"G0 C120", "C120"}, {"G0 C-90", "C-90"}}) {
+    std::string text = machine_text;
+    text.replace(text.find("BLOCK"), 5, block);
+    const test::posted p = test::post_in_fresh_dir("PARTNO EV\nHEAD/3\nLOADTL/12\nCATCHER\nFINI\n",
+                                                   parse_machine(text, "m31.toml"), "events-rotary-point");
+    CHECK(p.diagnostics ==
+          fmt::format("job.cls:4:1: error: channel 3: {} in \"{}\" has no decimal point: a control "
+                      "without decimal-point programming reads it in its least increment (0.001 "
+                      "degree); write {}.\nCATCHER\n^\n",
+                      word, block, word));
+    CHECK_FALSE(p.ok);
+  }
+  // With its point, and C0 (the same either way), it passes the gate.
+  std::string text = machine_text;
+  text.replace(text.find("BLOCK"), 5, "G0 C0");
+  CHECK(test::post_in_fresh_dir("PARTNO EV\nHEAD/3\nLOADTL/12\nCATCHER\nFINI\n",
+                                parse_machine(text, "m31.toml"), "events-rotary-zero")
+            .diagnostics.find("decimal point") == std::string::npos);
 }
