@@ -80,6 +80,10 @@ struct cl_comparison::impl {
       head_offset = !ch.head_index.offset_turning.empty() || !ch.head_index.offset_live.empty();
       for (const std::string* code : {&ch.head_index.offset_turning, &ch.head_index.offset_live})
         if (!code->empty()) head_codes.push_back(split_nc_words(*code));
+      // A tilted tool's tool-tip control (the chain's G43.4 H#3020) is the head's too: its
+      // records are a G68.2 frame's, passed over.
+      if (const kinematic_chain* k = m.chain(ch.number); k && !k->tool_tip_on.empty())
+        head_codes.push_back(split_nc_words(k->tool_tip_on));
     }
     const cycle_rules& cy = m.cycles;
     for (const std::string* code :
@@ -326,6 +330,15 @@ struct cl_comparison::impl {
                             (c.numeric ? w.number == c.number : w.value == c.value));
         all = all && found;
       }
+      // ... and the block's P and H are the code's own (`G43 P2 H#3020` is neither code).
+      for (const nc_word& w : words) {
+        if (w.address != 'P' && w.address != 'H') continue;
+        bool in_code = false;
+        for (const nc_word& c : code)
+          in_code = in_code || (w.address == c.address && w.numeric == c.numeric &&
+                                (c.numeric ? w.number == c.number : w.value == c.value));
+        all = all && in_code;
+      }
       if (all) return head_wrong.clear();
     }
     head_wrong.assign(text);
@@ -474,11 +487,18 @@ struct cl_comparison::impl {
           c_deg = 0, c_known = true;
         } else if (!w.numeric || polar || cylinder || has_word(words, 'G', 7.1) ||
                    has_word(words, 'G', 107) || has_word(words, 'G', 30) || has_word(words, 'G', 27) ||
-                   has_word(words, 'G', 29) || has_word(words, 'G', 53)) {
+                   has_word(words, 'G', 29) || has_word(words, 'G', 53) || has_word(words, 'G', 50) ||
+                   has_word(words, 'G', 92) || has_word(words, 'G', 52)) {
+          // (G50, G92, G52 with C set C's origin: a coordinate setting, the records after it
+          // passed over.)
           c_known = false;
         } else {
           const double v = w.point ? w.number : w.number * (m.program.trailing_point ? 0.001 : 1.0);
-          if (absolute)
+          // The block's G90/G91 holds for its C wherever it stands in the block.
+          const bool block_absolute = has_word(words, 'G', 91)                ? false
+                                      : g90_modes && has_word(words, 'G', 90) ? true
+                                                                              : absolute;
+          if (block_absolute)
             c_deg = v, c_known = true;
           else
             c_deg += v;
@@ -488,9 +508,14 @@ struct cl_comparison::impl {
       if (w.address == 'H' && has_c && !needs_length) {
         // Fanuc's incremental C (G-code system A; `G28 H0.` its reference return), or the
         // head's offset register (G43 H#3020: the head's length offset, below).
+        // On a head whose offset codes name an H register, an H is the offset's (G49 H0, G43.4
+        // H5, a bare H5 in G43 mode: attack 48), held to the head's codes.
         if (has_word(words, 'G', 28))
           c_deg = 0, c_known = true;
-        else if (!has_word(words, 'G', 43) && !has_word(words, 'G', 44))
+        else if (head_offset && !has_word(words, 'G', 43) && !has_word(words, 'G', 43.4) &&
+                 !has_word(words, 'G', 43.5) && !has_word(words, 'G', 44) && !has_word(words, 'G', 49))
+          head_wrong.assign(text);
+        else if (!head_offset && !has_word(words, 'G', 43) && !has_word(words, 'G', 44))
           c_known = false;
         continue;
       }
@@ -580,7 +605,10 @@ struct cl_comparison::impl {
           if (head_offset) note_head_offset(text);
           break;
         case 434:
-        case 435: length_on = true; break;
+        case 435:
+          length_on = true;
+          if (head_offset) note_head_offset(text);
+          break;
         case 440:  // G44 subtracts the offset: never the tip
         case 490:
           length_on = false;
@@ -791,12 +819,13 @@ struct cl_comparison::impl {
 
   // Returns false when the record is passed over.
   bool compare(const event& e, const vec3& pos, bool rapid, bool both) {
+    // The head's offset first: a G49 H0 also makes C unknown, and would pass everything after.
+    if (!head_due && head_offset_wrong(e)) return false;
     if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || rotary || foreign_offset ||
         shifted || head_due || !c_known) {
       ++passed;
       return false;
     }
-    if (head_offset_wrong(e)) return false;
     const double zs = z_sign();
     // Under a C angle the part's x, y are the program's turned by +C about Z.
     axis_state turned_x, turned_y;  // x and y turned by C, when it is
@@ -892,12 +921,12 @@ struct cl_comparison::impl {
   // program drilled it with since the last record: along Z, its X and Y (turned by C) are the
   // hole's; a side cycle (along X) drills at the hole's Z, on the side C turned to it.
   void compare_hole(const event& e, const vec3& pos) {
+    if (!head_due && head_offset_wrong(e)) return;
     if (!hole.valid || polar || cylinder || frame || polar_coords || rotary || foreign_offset || shifted ||
         head_due || !c_known) {
       ++passed;
       return;
     }
-    if (head_offset_wrong(e)) return;
     const double tol = std::max(tip_tolerance, axis_half * 3.001);
     const double px = pos.x * cl_mm, py = pos.y * cl_mm, pz = pos.z * cl_mm;
     std::string off;
@@ -1258,7 +1287,8 @@ struct cl_comparison::impl {
 
   static bool any_axis(const std::vector<nc_word>& ws) {
     for (const nc_word& w : ws)
-      if (w.address == 'X' || w.address == 'Y' || w.address == 'Z' || w.address == 'U' || w.address == 'W')
+      if (w.address == 'X' || w.address == 'Y' || w.address == 'Z' || w.address == 'U' || w.address == 'W' ||
+          w.address == 'A' || w.address == 'B' || w.address == 'C' || w.address == 'H')
         return true;
     return false;
   }

@@ -413,6 +413,25 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
                          fmt::format("codes.feed_per_min \"{}\" must end inverse time ({}): the feed moves "
                                      "after a turning move would keep reading F as 1/min",
                                      per_min, c.inverse_time)});
+    // The post homes in the middle of a tool (a 3+2 plane opened or closed, a head turned below
+    // the CAM's clearance, GOHOME): home blocks that cancel the length offset where the post has
+    // no code to give it back (the control's own offset, length_on = "") leave the tip a tool
+    // length low after them (verify 46, attacks 47 and 48).
+    if (const std::string& on = c.output == multiaxis_output::joints ? c.length_on : c.tool_tip_on;
+        c.output != multiaxis_output::pivot && on.empty())
+      for (const std::string& h : m.codes.home)
+        if (cancels_length_offset(h, open, close)) {
+          f.found.push_back(
+              {key_of(codes, "home") ? key_of(codes, "home") : chains[i],
+               fmt::format(
+                   "codes.home \"{}\" cancels the tool length offset, and kinematics.{} is \"\": the post "
+                   "goes home in the middle of a tool (a 3+2 plane, a head turned low, GOHOME) and has "
+                   "no code to give the offset back; give kinematics.{} (G43), or home blocks that "
+                   "keep the offset",
+                   h, c.output == multiaxis_output::joints ? "length_on" : "tool_tip_on",
+                   c.output == multiaxis_output::joints ? "length_on" : "tool_tip_on")});
+          break;
+        }
     if (c.output == multiaxis_output::joints && !c.length_on.empty())
       if (const double g = g_in(c.length_on, {49, 44, 43.4, 43.5});
           g >= 0 || m_in(c.length_on) || g_in(c.length_on, {43}) < 0)

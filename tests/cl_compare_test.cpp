@@ -542,8 +542,10 @@ TEST_CASE("cl comparison: an indexing head's channel, and the part turned by C",
         "frame, mm): x 20.000 where the CL has -10.000 (30.000 mm off); y 0.000 where the CL has 17.321 "
         "(17.321 "
         "mm off), after the block `G0 G43 H#3020 X20. Y0. Z10.`\n");
-  // C given in G91 adds to where it stood: C120. then C0. leaves it at 120.
-  CHECK(run("G0 C120. G91 C0. G90", "G0 G43 H#3020 X20. Y0. Z10.") == std::pair{std::string(), 1L});
+  // C given in G91 adds to where it stood: from C unknown (M200 with no C word yet) it stays
+  // unknown, whichever way the block's G91 and C stand.
+  CHECK(run("G91 G0 C120.", "G0 G43 H#3020 X20. Y0. Z10.") == std::pair{std::string(), 0L});
+  CHECK(run("G0 C120. G91", "G0 G43 H#3020 X20. Y0. Z10.") == std::pair{std::string(), 0L});
   // The head indexed and no offset given since: not followed (the tip is not the words yet).
   CHECK(run("G0 C120.", "G0 X20. Y0. Z10.") == std::pair{std::string(), 0L});
   // The spindle made a C axis and no C word since: where the part stands is not known.
@@ -634,13 +636,21 @@ TEST_CASE("cl comparison: the fourth attack's ways past the C axis, the holes an
   // After G30 C.. where C stands is not known: passed over.
   CHECK(integrex({"G30 C0."}, g81).empty());
   // The head's length offset changed: another register, G44, G49.
-  for (const char* offset : {"G43 P1 H5", "G44 P1 H#3020", "G49"})
-    CHECK(integrex({offset}, g81) ==
+  // Attack 48: an H in the block (G49 H0) made C unknown and passed everything after; G43.4,
+  // a bare H and another P got past the codes.
+  for (const std::string offset :
+       {"G43 P1 H5", "G44 P1 H#3020", "G49", "G49 H0", "G43.4 H5", "H5", "G43 P2 H#3020"})
+    CHECK(integrex({offset.c_str()}, g81) ==
           fmt::format(
               "job.cls:11:1: error: channel 1: the head's tool length offset is not the machine's here: "
               "`{}` left {} in force where the head's offset codes give `G43 P1 H#3020` or `G43 "
               "H#3020`: X Y Z are not the tool tip\n",
-              offset, offset[2] == '3' ? "another offset" : "none"));
+              offset, offset.find("G43") != std::string::npos ? "another offset" : "none"));
+  // The head's codes with their words in another order and the move's words: its own offset.
+  CHECK(integrex({"G0 H#3020 P1 G43 X20. Y0. Z2."}, g81).empty());
+  // A coordinate setting of C (G92 C0.: C's origin moved, not C): the records after it are
+  // passed over, not read as C at 0 (attack 48: a right program was refused).
+  CHECK(integrex({"G92 C0."}, g81).empty());
   // The 31i's cross hole at 90 degrees drilled from C270: the same line, the other wall.
   compared side("fanuc-31i-3path", 3);
   cycle_event drill;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "file_test_support.hpp"
 #include "kinematics/forward.hpp"
 #include "kinematics/linearise.hpp"
 #include "kinematics/vec3_ops.hpp"
@@ -1263,4 +1264,27 @@ TEST_CASE("multi-axis: GOHOME whose home blocks cancel the length offset gives i
         "would "
         "run the tip a tool length low; call the tool again (LOADTL) after GOHOME\nGOTO/20,0,50\n^\n");
   CHECK_FALSE(own.ok);
+}
+
+TEST_CASE("multi-axis: a machine whose home cancels the control's own length offset is refused at load",
+          "[machine][multiaxis]") {
+  // Attack 48: with length_on = "" the tool call gives the offset, and the post goes home in
+  // the middle of a tool (a 3+2 plane, a low head turn, GOHOME) with no code to give it back.
+  std::string text = test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/samples/nx-ca-head/gantry-ca.toml");
+  const std::size_t home = text.find("\nhome = ");
+  REQUIRE(home != std::string::npos);
+  text.replace(home + 1, text.find('\n', home + 1) - home - 1, "home = [\"G91 G28 Z0.\", \"G90\", \"G49\"]");
+  const std::size_t on = text.find("length_on = ");
+  REQUIRE(on != std::string::npos);
+  text.replace(on, text.find('\n', on) - on, "length_on = \"\"");
+  try {
+    (void)parse_machine(text, "g.toml");
+    FAIL("loaded");
+  } catch (const config_error& e) {
+    CHECK(std::string(e.what()).find(
+              "codes.home \"G49\" cancels the tool length offset, and kinematics.length_on "
+              "is \"\": the post goes home in the middle of a tool (a 3+2 plane, a head "
+              "turned low, GOHOME) and has no code to give the offset back; give "
+              "kinematics.length_on (G43), or home blocks that keep the offset") != std::string::npos);
+  }
 }
