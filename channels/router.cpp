@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <limits>
 
 #include "machines/partner_list.hpp"
@@ -53,7 +54,7 @@ void channel_router::deliver(int ch, const event& e, bool both, bool writes) {
   }
   if (writes) op_wrote_[c] = true;
   if (const int side = side_[c]; side >= 0) {
-    channel_op& op = ops_.sections.back().ops[side].back();
+    channel_op& op = ops_.sections[sec_[side]].ops[side].back();
     op.last_line = e.line;
     note_operation_event(op, tracks_[c], e);
   }
@@ -71,7 +72,7 @@ void channel_router::start_op(int ch, int line) {
   op_wrote_[c] = false;
   const int side = side_[c];
   if (side < 0) return;
-  std::vector<channel_op>& ops = ops_.sections.back().ops[side];
+  std::vector<channel_op>& ops = ops_.sections[sec_[side]].ops[side];
   if (plan_) plan_waits_at(side, ops.size(), line);
   ops.push_back({line, line, waits_sent_[c]});
 }
@@ -85,7 +86,7 @@ void channel_router::plan_fault(int line, const std::string& what) {
 }
 
 void channel_router::plan_waits_at(int side, std::size_t count, int line) {
-  const std::size_t section = ops_.sections.size() - 1;
+  const std::size_t section = sec_[side];
   if (section >= plan_->sections.size())
     return plan_fault(line, fmt::format("section {} not planned", section + 1));
   const std::vector<twinpost::rendezvous>& waits = plan_->sections[section].waits;
@@ -113,23 +114,44 @@ void channel_router::plan_waits_at(int side, std::size_t count, int line) {
   }
 }
 
-void channel_router::section_break(int line) {
-  if (ops_.a == 0 || !track_) return;
+void channel_router::side_break(int side, int line) {
+  const std::size_t section = sec_[side];
+  const std::size_t count = ops_.sections[section].ops[side].size();
+  const int ch = side == 0 ? ops_.a : ops_.b;
   if (plan_) {
-    const std::size_t section = ops_.sections.size() - 1;
-    for (int side = 0; side < 2; ++side) {
-      plan_waits_at(side, ops_.sections.back().ops[side].size(), line);
-      if (section < plan_->sections.size()) {
-        const plan_section& p = plan_->sections[section];
-        if (plan_next_[side] != p.waits.size() || p.ops[side].size() != ops_.sections.back().ops[side].size())
-          plan_fault(line, fmt::format("section {}: channel {} has {} operations, the plan {}", section + 1,
-                                       side == 0 ? ops_.a : ops_.b, ops_.sections.back().ops[side].size(),
-                                       p.ops[side].size()));
-      }
+    plan_waits_at(side, count, line);
+    if (section < plan_->sections.size()) {
+      const plan_section& p = plan_->sections[section];
+      if (plan_next_[side] != p.waits.size() || p.ops[side].size() != count)
+        plan_fault(line, fmt::format("section {}: channel {} has {} operations, the plan {}", section + 1, ch,
+                                     count, p.ops[side].size()));
     }
   }
-  ops_.sections.emplace_back();
-  plan_next_[0] = plan_next_[1] = 0;
+  ++sec_[side];
+  if (ops_.sections.size() <= sec_[side]) ops_.sections.emplace_back();
+  plan_next_[side] = 0;
+  started_[static_cast<std::size_t>(ch)] = false;
+}
+
+bool channel_router::unmet_sync(int line, bool at_end) {
+  if (bind_failed_ || bound_[0].size() == bound_[1].size()) return false;
+  // A bound sync record one channel has passed and the other has not: the barrier here would
+  // meet the one while it waits for the other (a deadlock in the programs too).
+  const int ahead = bound_[0].size() > bound_[1].size() ? 0 : 1;
+  const bound_record& r = bound_[ahead][bound_[1 - ahead].size()];
+  error(line,
+        fmt::format("sync {} of channel {} (line {}) is not met by channel {} {}: each sync record of the "
+                    "one channel needs its partner in the other before the programs meet again",
+                    r.key.first, ahead == 0 ? ops_.a : ops_.b, r.line, ahead == 0 ? ops_.b : ops_.a,
+                    at_end ? "by the end of the job" : "before the programs meet here"));
+  return true;
+}
+
+void channel_router::section_break(int line) {
+  if (ops_.a == 0 || !track_) return;
+  if (unmet_sync(line, false)) return;
+  side_break(0, line);
+  side_break(1, line);
   std::fill(started_.begin(), started_.end(), false);
 }
 
@@ -279,7 +301,7 @@ void channel_router::open_both() {
   const std::vector<int> all = std::move(open_both_);
   open_both_.clear();
   section_break(open_both_line_);
-  if (ops_.a != 0 && track_) ops_.sections.back().together = true;  // section_break made it
+  if (ops_.a != 0 && track_) ops_.sections[sec_[0]].together = true;  // section_break made it
   rendezvous(all, open_both_line_, "HEAD/BOTH", true, wait_mark::section::opens_both);
 }
 
@@ -287,16 +309,9 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   open_both();
   if (aside_sync_) return;
   ++explicit_;
-  if (policy_ == sync_policy::optimise || op_waits_) {  // op_waits_: the optimiser's timing post
-    if (!warned_ignored_)
-      error(line,
-            "--sync optimise places every wait itself, and this job has sync records of its own: post it "
-            "with --sync explicit (or sequential), and --compare-optimum says what the placed waits would "
-            "give");
-    warned_ignored_ = true;
-    return;
-  }
-  if (policy_ != sync_policy::explicit_marks) {
+  // optimise's posts (op_waits_: its timing post) keep the job's sync records and place the rest.
+  const bool bind = policy_ == sync_policy::optimise || op_waits_;
+  if (policy_ != sync_policy::explicit_marks && !bind) {
     if (!warned_ignored_) {
       diagnostic d;
       d.level = severity::warning;
@@ -329,6 +344,7 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
       return error(line, fmt::format("sync {} names channel {}, machine '{}' has {} channels", shown, p,
                                      m_.name, m_.channels.size()));
   if (partners.size() < 2) return error(line, fmt::format("sync {} has no partner channel", shown));
+  if (bind) return bound_sync(s, line, partners);
   for (int ch : active_) {
     const int index = marker_of(s, ch);
     if (s.source == sync_source::icam) auto_marker_[ch] = index;
@@ -356,6 +372,69 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
     last_sync_index_ = index;
   }
   last_sync_line_ = line;
+  last_partners_ = partners;
+}
+
+void channel_router::bound_sync(const sync_event& s, int line, const std::vector<int>& partners) {
+  // Not a job of two channels: the optimiser says so and falls back. After a refused record,
+  // the rest are not bound (the post has failed).
+  if (ops_.a == 0 || bind_failed_) return;
+  const int ch = active_.front();
+  const int index = marker_of(s, ch);
+  if (partners != std::vector<int>{ops_.a, ops_.b}) {
+    bind_failed_ = true;
+    return error(line,
+                 fmt::format("sync {} names channels {}: under --sync optimise a sync record of the job "
+                             "binds its two channels, {} and {}",
+                             index, fmt::join(partners, ", "), ops_.a, ops_.b));
+  }
+  if (s.source == sync_source::icam) auto_marker_[ch] = index;
+  // The same sync record twice in a row in one channel is one wait.
+  if (last_sync_line_ >= 0 && last_sync_index_ == index && last_sync_channel_ == ch &&
+      !busy_[static_cast<std::size_t>(ch)])
+    return;
+  last_sync_line_ = line;
+  last_sync_channel_ = ch;
+  last_sync_index_ = index;
+  const int side = side_[static_cast<std::size_t>(ch)];
+  const std::pair<int, int> key{index, seen_[{ch, index}]++};
+  std::vector<bound_record>& mine = bound_[side];
+  const std::vector<bound_record>& theirs = bound_[1 - side];
+  const std::size_t k = mine.size();
+  mine.push_back({key, line});
+  // Each channel's k-th sync record meets the other's k-th: crossed, the programs would wait
+  // for each other.
+  if (k < theirs.size() && theirs[k].key != key) {
+    bind_failed_ = true;
+    return error(
+        line,
+        fmt::format("sync {} is channel {}'s sync record number {}, where channel {} has sync {} "
+                    "(line {}): the two channels would wait for each other; give the sync "
+                    "records in the same order in both",
+                    index, ch, k + 1, side == 0 ? ops_.b : ops_.a, theirs[k].key.first, theirs[k].line));
+  }
+  if (k < theirs.size()) ++ops_.kept_syncs;
+  // The timing post: a rendezvous here too, so that each operation is timed on its own. Not
+  // counted among its operation waits: one at a head switch stands for the sequential post's
+  // own wait there (one in the middle of a head's work makes the sequential cycle a handshake
+  // longer than it is).
+  if (op_waits_) rendezvous({ops_.a, ops_.b}, line, "a sync record");
+  side_break(side, line);
+  if (!plan_) return;
+  auto it = sync_codes_.find(key);
+  if (it == sync_codes_.end()) {
+    auto code = next_code(line, fmt::format("sync {}", index));
+    if (!code) return;
+    it = sync_codes_.emplace(key, *code).first;
+    ++rendezvous_;
+  }
+  wait_mark w;
+  w.code = it->second;
+  w.partners = partners;
+  w.partner_text = partner_list(partners, m_.waits.partners);
+  w.cl_line = line;
+  send_wait(ch, w);
+  busy_[static_cast<std::size_t>(ch)] = false;
   last_partners_ = partners;
 }
 
@@ -459,6 +538,7 @@ void channel_router::finish(int last_line) {
           "held by both spindles");
   }
   if (both_) select({active_.front()}, last_line, false);
+  if (ops_.a != 0 && track_ && unmet_sync(last_line, true)) return;
   if (plan_) {
     // The last section's waits, and a plan of no more sections than the job has.
     section_break(last_line);

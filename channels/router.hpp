@@ -14,7 +14,8 @@
 //   (channels/wait_plan.hpp): the router finds the job's operations and sections for a
 //   two-channel job under any policy (operations()), and places a plan's waits between them. A wait's code
 //   comes from the machine's range in turn; the k-th explicit sync of a channel gets the code of that sync
-//   number.
+//   number. Under optimise the job's own sync records bind: each is a barrier of the two channels at its
+//   place in each (a section ends there), and the plan's waits go between them.
 // - Job-level events (PARTNO, UNITS, MACHIN) go to channel 0.
 #include <map>
 #include <optional>
@@ -96,6 +97,13 @@ class channel_router {
   void rendezvous(const std::vector<int>& channels, int line, const std::string& what, bool force = false,
                   wait_mark::section both = wait_mark::section::none);
   void explicit_sync(const sync_event& s, int line);
+  /// A sync record under --sync optimise (its timing post and its planned post): it binds, a
+  /// barrier of the two channels at its own place in each; the plan's waits go between.
+  void bound_sync(const sync_event& s, int line, const std::vector<int>& partners);
+  /// The section of side `side` ends here (its remaining planned waits placed), its next begins.
+  void side_break(int side, int line);
+  /// A bound sync record one channel has passed and the other not (said as an error): true.
+  bool unmet_sync(int line, bool at_end);
   /// TRANSFER/GRIP or RELEASE: every channel retracts, a rendezvous of all, the machine's
   /// transfer channel writes its blocks, a rendezvous of all; after a release every channel
   /// works on the sub spindle.
@@ -162,7 +170,15 @@ class channel_router {
   bool track_ = false;
   std::vector<int> waits_sent_;  // per channel: waits written so far
   const job_operations* plan_ = nullptr;
-  std::size_t plan_next_[2] = {0, 0};                              // per side: the next planned wait to place
+  std::size_t plan_next_[2] = {0, 0};  // per side: the next planned wait to place
+  std::size_t sec_[2] = {0, 0};        // per side: its section (a bound sync record moves one side on)
+  /// Per side: its bound sync records in order.
+  struct bound_record {
+    std::pair<int, int> key;  ///< (sync number, occurrence)
+    int line = 0;
+  };
+  std::vector<bound_record> bound_[2];
+  bool bind_failed_ = false;  // a sync record refused: the rest are not bound
   std::map<std::pair<std::size_t, std::size_t>, int> plan_codes_;  // (section, wait) -> code
   bool plan_failed_ = false;
 };

@@ -97,6 +97,9 @@ struct job_operations {
   int a = 0, b = 0;
   std::vector<plan_section> sections;
   int operation_waits = 0;  ///< rendezvous placed inside stretches (channel_router::set_operation_waits)
+  /// The job's own sync records kept (under optimise they bind: a section ends at each), counted
+  /// once per pair.
+  int kept_syncs = 0;
 };
 
 /// A pair of operations of one section kept apart (wait_schedule's op_pair, in a section).

@@ -198,6 +198,11 @@ std::vector<std::string> meeting_points(const job_operations& ops, const std::st
   return out;
 }
 
+// ", the job's 2 sync records kept": the job's own waits, which bind under optimise.
+std::string kept_syncs(int n) {
+  return n == 0 ? std::string() : fmt::format(", the job's {} sync record{} kept", n, n == 1 ? "" : "s");
+}
+
 void print_summary(const post_summary& s, const printing_sink& sink, const located_machine& found,
                    const std::string& cl_file) {
   // One channel waits for nobody: no policy to report.
@@ -212,9 +217,9 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
     const double seq = *s.sequential_cycle, now = s.timing->cycle;
     const double percent = seq > 0 ? (seq - now) / seq * 100 : 0.0;
     fmt::print(
-        "  waits placed for the shortest cycle: {:.3f} s against {:.3f} s sequential ({}), {} post{}\n", now,
-        seq, percent >= 0.05 ? fmt::format("-{:.1f} %", percent) : std::string("no shorter"), s.passes,
-        s.passes == 1 ? "" : "s");
+        "  waits placed for the shortest cycle: {:.3f} s against {:.3f} s sequential ({}), {} post{}{}\n",
+        now, seq, percent >= 0.05 ? fmt::format("-{:.1f} %", percent) : std::string("no shorter"), s.passes,
+        s.passes == 1 ? "" : "s", kept_syncs(s.schedule ? s.schedule->kept_syncs : 0));
     print_kept_apart(s.kept_apart);
   }
   if (s.timing && s.optimum_cycle) {
@@ -252,8 +257,11 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
 // and where they meet, and the pairs kept in the CL's order.
 void append_schedule_json(std::string& out, const job_operations& ops, std::optional<double> sequential,
                           int posts, const std::vector<std::string>& kept_apart) {
-  out += fmt::format("{{\"channels\":[{},{}],\"sequential_cycle\":{},\"posts\":{},\"sections\":[", ops.a,
-                     ops.b, sequential ? fmt::format("{:.3f}", *sequential) : std::string("null"), posts);
+  out += fmt::format(
+      "{{\"channels\":[{},{}],\"sequential_cycle\":{},\"posts\":{},\"kept_syncs\":{},"
+      "\"sections\":[",
+      ops.a, ops.b, sequential ? fmt::format("{:.3f}", *sequential) : std::string("null"), posts,
+      ops.kept_syncs);
   for (std::size_t i = 0; i < ops.sections.size(); ++i) {
     const plan_section& sec = ops.sections[i];
     out += fmt::format("{}{{\"together\":{},\"operations\":[", i ? "," : "", sec.together);

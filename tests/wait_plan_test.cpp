@@ -139,20 +139,80 @@ TEST_CASE("a plan that does not fit the job stops the post", "[wait_plan]") {
         "sequential\n");
 }
 
-TEST_CASE("sync records are refused under optimise", "[wait_plan]") {
-  diagnostic_list d;
-  job_operations plan = route(job(), sync_policy::sequential, nullptr, false, d).ops;
-  std::vector<event> events = job();
+event sync(int n, int line) {
   sync_event s;
-  s.index = 1;
-  events.insert(events.begin() + 1, event{2, s});
-  route(events, sync_policy::optimise, &plan, false, d);
-  REQUIRE(d.errors() >= 1);
+  s.index = n;
+  return {line, s};
+}
+
+// Head 1 cuts at 1, meets sync 1 at 2 and cuts at 3; head 2 cuts at 5, meets sync 1 at 6 and
+// cuts at 7 and 8 (a tool change at 8: two operations).
+std::vector<event> synced_job() {
+  return {go(1), sync(1, 2), go(3), head(2, 4), go(5), sync(1, 6), go(7), tool(8), go(8)};
+}
+
+TEST_CASE("under optimise the job's sync records bind: each ends its channel's section", "[wait_plan]") {
+  diagnostic_list d;
+  // The timing post: a section a side of each sync record, and a rendezvous at each, so that
+  // each operation is timed on its own.
+  const routed timing = route(synced_job(), sync_policy::sequential, nullptr, true, d);
+  CHECK(d.all().empty());
+  CHECK(ops_text(timing.ops) ==
+        "s0 c1: 1-1@0\n"
+        "s0 c2: 5-5@2\n"  // after the sync record's rendezvous and the head switch's
+        "s1 c1: 3-3@1\n"
+        "s1 c2: 7-7@3 8-8@4\n");
+  CHECK(timing.ops.kept_syncs == 1);
+  // The plan: after the sync record, channel 1 waits after its operation for channel 2's first.
+  job_operations plan = timing.ops;
+  plan.sections[1].waits = {{1, 1}};
+  const routed r = route(synced_job(), sync_policy::optimise, &plan, false, d);
+  CHECK(d.all().empty());
+  CHECK(r.trace ==
+        "c1:1\n"
+        "c1:M100\n"  // the job's sync 1
+        "c1:3\n"
+        "c2:5\n"
+        "c2:M100\n"
+        "c2:7\n"
+        "c2:M101\nc2:8\nc2:8\n"  // the planned wait, before the tool change
+        "c1:M101\n"              // placed at the end of channel 1's operations
+        "c1:M102\nc2:M102\n");   // the last rendezvous before the footers
+}
+
+TEST_CASE("under optimise, sync records that cross or find no partner stop the post", "[wait_plan]") {
+  diagnostic_list crossed;
+  route({go(1), sync(1, 2), sync(2, 3), head(2, 4), go(5), sync(2, 6), sync(1, 7)}, sync_policy::optimise,
+        nullptr, false, crossed);
+  REQUIRE(crossed.errors() == 1);
+  CHECK(format_diagnostic(crossed.all().front()) ==
+        "job.cls:6: error: sync 2 is channel 2's sync record number 1, where channel 1 has sync 1 (line 2): "
+        "the "
+        "two channels would wait for each other; give the sync records in the same order in both\n");
+  diagnostic_list unmet;
+  route({go(1), sync(1, 2), go(3), head(2, 4), go(5)}, sync_policy::sequential, nullptr, true, unmet);
+  REQUIRE(unmet.errors() == 1);
+  CHECK(format_diagnostic(unmet.all().front()) ==
+        "job.cls:99: error: sync 1 of channel 1 (line 2) is not met by channel 2 by the end of the job: each "
+        "sync record of the one channel needs its partner in the other before the programs meet again\n");
+  // A part transfer meets every channel: channel 2's sync 1 after it would never meet channel 1's.
+  machine m = twin();
+  spindle_def sub;
+  sub.name = "sub";
+  m.spindles.push_back(sub);
+  m.transfer.channel = 1;
+  trace_sink sink;
+  diagnostic_list before_transfer;
+  channel_router r(m, sync_policy::optimise, sink, before_transfer, "job.cls", {1, 2});
+  r.track_operations(true);
+  for (const event& e : {go(1), sync(1, 2), head(2, 3), go(4), grip(5, false), grip(6, true), sync(1, 7)})
+    r.route(e);
+  r.finish(99);
+  REQUIRE(before_transfer.errors() >= 1);
   CHECK(
-      format_diagnostic(d.all().front()) ==
-      "job.cls:2: error: --sync optimise places every wait itself, and this job has sync records of its own: "
-      "post it with --sync explicit (or sequential), and --compare-optimum says what the placed waits would "
-      "give\n");
+      format_diagnostic(before_transfer.all().front()) ==
+      "job.cls:5: error: sync 1 of channel 1 (line 2) is not met by channel 2 before the programs meet here: "
+      "each sync record of the one channel needs its partner in the other before the programs meet again\n");
 }
 
 TEST_CASE("a part transfer is a barrier: the operations after it are a section of their own", "[wait_plan]") {
