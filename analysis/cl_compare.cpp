@@ -17,6 +17,7 @@
 #include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
 #include "machines/macro_variables.hpp"
+#include "parser/cycle_words.hpp"
 
 namespace twinpost {
 
@@ -250,6 +251,7 @@ struct cl_comparison::impl {
   double cl_feed = -1;  // mm/min or mm/rev; -1 none
   bool cl_per_rev = false;
   bool cl_cycle = false;
+  cycle_event cl_cycle_record;  // the CL cycle in force: its FEDTO or DEPTH gives each hole's bottom
   long compared = 0, passed = 0;
   // Each kind of finding is reported once per channel (the first is the one to fix; a
   // systematic error would otherwise repeat at every record of a long job).
@@ -941,6 +943,8 @@ struct cl_comparison::impl {
       if (d > tol)
         off = fmt::format("x {:.3f} y {:.3f} where the CL has x {:.3f} y {:.3f} ({:.3f} mm off)", at->first,
                           at->second, px, py, d);
+      else
+        off = hole_depth_fault(e, pos, tol);
     } else {
       if (hole.z.k != axis_state::kind::known || (has_y && hole.y.k != axis_state::kind::known)) {
         ++passed;
@@ -970,6 +974,21 @@ struct cl_comparison::impl {
     error(e, fmt::format("the program drills this record's hole elsewhere (the part frame, mm): {}, in the "
                          "block `{}`",
                          off, hole.text));
+  }
+
+  // An axial hole's bottom: the cycle block's Z against the CL's, FEDTO or DEPTH from the GOTO
+  // point along a tool axis on Z (a tool looking down +Z drills towards -Z). A tool off Z (a
+  // cross hole in a turned frame) or a Z the block does not give is passed over. Empty: right.
+  std::string hole_depth_fault(const event& e, const vec3& pos, double tol) const {
+    const std::optional<vec3>& axis = std::get<motion_event>(e.data).axis;
+    if (hole.z.k != axis_state::kind::known || (axis && std::abs(axis->z) < 0.9999)) return {};
+    const double into = axis && axis->z < 0 ? 1.0 : -1.0;
+    const std::optional<double> bottom = cycle_bottom(cl_cycle_record, pos.z, into);
+    if (!bottom) return {};
+    const double want = *bottom * cl_mm, have = part(hole.z, z_sign());
+    if (std::abs(have - want) <= tol) return {};
+    return fmt::format("its bottom at z {:.3f} where the CL's is z {:.3f} ({:.3f} mm {})", have, want,
+                       std::abs(have - want), (have - want) * into > 0 ? "deeper" : "short of it");
   }
 
   // A CIRCLE record's arc blocks against its arc (analysis/cl_compare_arc): each block's sense
@@ -1224,8 +1243,10 @@ struct cl_comparison::impl {
             // The writer starts a cycle at its type and ends it at OFF; ON and INIT change nothing.
             if (d.type == "OFF")
               cl_cycle = false;
-            else if (d.type != "INIT" && d.type != "ON")
+            else if (d.type != "INIT" && d.type != "ON") {
               cl_cycle = true;
+              cl_cycle_record = d;
+            }
           } else if constexpr (std::is_same_v<T, units_event>) {
             units(d.units);
           } else if constexpr (std::is_same_v<T, motion_event>) {

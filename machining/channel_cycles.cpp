@@ -6,7 +6,7 @@
 
 #include "kinematics/vec3_ops.hpp"
 #include "machining/channel_writer.hpp"
-#include "machining/cycle_words.hpp"
+#include "parser/cycle_words.hpp"
 
 namespace twinpost {
 
@@ -219,14 +219,9 @@ void channel_writer::cycle_point(const vec3& p, int line) {
                                    kin::number_text(rapto), kin::number_text(-rapto * cl_mm_)));
   h.clear = top - h.into * rapto;
   const std::optional<double> fedto = cycle_param(c, "FEDTO");
-  std::optional<double> bottom;
   // FEDTO: a depth (SolidWorks), a distance along the tool axis, negative into the part (NX),
   // or a Z (the others).
-  if (fedto)
-    bottom = c.meaning.fedto_is_depth     ? top + h.into * *fedto
-             : c.meaning.fedto_along_axis ? top - h.into * *fedto
-                                          : *fedto;
-  if (!bottom && cycle_param(c, "DEPTH")) bottom = top + h.into * *cycle_param(c, "DEPTH");
+  const std::optional<double> bottom = cycle_bottom(c, top, h.into);
   if (!bottom) return error(line, fmt::format("CYCLE/{} needs FEDTO or DEPTH", c.type));
   h.bottom = *bottom;
   // A hole deeper than the tool is long: the holder would drive into the part (a FEDTO read

@@ -7,7 +7,7 @@
 #include <numbers>
 
 #include "machining/channel_writer.hpp"
-#include "machining/cycle_words.hpp"
+#include "parser/cycle_words.hpp"
 
 namespace twinpost {
 

@@ -12,7 +12,7 @@
 #include <span>
 
 #include "machining/channel_writer.hpp"
-#include "machining/cycle_words.hpp"
+#include "parser/cycle_words.hpp"
 
 namespace twinpost {
 

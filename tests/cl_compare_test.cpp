@@ -601,6 +601,39 @@ TEST_CASE("cl comparison: a CL cycle's holes against the program's cycle blocks"
       "Z-20. R0. F120.`\n");
 }
 
+TEST_CASE("cl comparison: an axial hole's bottom against the CL's FEDTO or DEPTH", "[analysis][cl_compare]") {
+  // The cycle block's Z is the hole's bottom: the CL's FEDTO (a Z in this dialect) or DEPTH
+  // below the GOTO point, drilled towards -Z by a tool looking down +Z.
+  auto run = [](std::initializer_list<std::pair<const char*, double>> params, const char* block,
+                std::optional<vec3> axis = std::nullopt) {
+    compared c("fanuc-0itd-twin", 1);
+    cycle_event drill;
+    drill.type = "DRILL";
+    for (const auto& [k, v] : params) drill.params.emplace_back(k, v);
+    c.cmp.record({c.next++, drill, 1}, false);
+    c.lines({"T0505", "G97 S1200 M3", "G0 X0. Z5.", block});
+    motion_event mv;
+    mv.pos = {0, 0, 2};
+    mv.axis = axis;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return std::pair{c.text(), c.cmp.compared()};
+  };
+  CHECK(run({{"FEDTO", -30}}, "G83 X0. Z-30. R-3. F0.1") == std::pair{std::string(), 1L});
+  CHECK(run({{"DEPTH", 32}}, "G83 X0. Z-30. R-3. F0.1") == std::pair{std::string(), 1L});
+  CHECK(
+      run({{"FEDTO", -30}}, "G83 X0. Z-25. R-3. F0.1").first ==
+      "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
+      "its bottom at z -25.000 where the CL's is z -30.000 (5.000 mm short of it), in the block `G83 X0. "
+      "Z-25. R-3. F0.1`\n");
+  CHECK(
+      run({{"DEPTH", 20}}, "G83 X0. Z-30. R-3. F0.1").first ==
+      "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
+      "its bottom at z -30.000 where the CL's is z -18.000 (12.000 mm deeper), in the block `G83 X0. Z-30. "
+      "R-3. F0.1`\n");
+  // A tool off Z (a cross hole in a turned frame): the depth is passed over.
+  CHECK(run({{"FEDTO", -30}}, "G83 X0. Z-25. R-3. F0.1", vec3{1, 0, 0}).first == "");
+}
+
 TEST_CASE("cl comparison: the fourth attack's ways past the C axis, the holes and the head",
           "[analysis][cl_compare]") {
   // Attack 47. The Integrex's hole at 120 degrees (C120., then X20. Y0.), with what a user
