@@ -13,10 +13,10 @@ namespace twinpost {
 channel_router::channel_router(const machine& m, sync_policy policy, channel_sink& sink,
                                diagnostic_sink& diags, std::string file, std::vector<int> job_channels)
     : m_(m), policy_(policy), sink_(sink), diags_(diags), file_(std::move(file)), codes_(m.waits),
-      busy_(m.channels.size() + 1, false), job_channels_(std::move(job_channels)),
-      side_(m.channels.size() + 1, -1), started_(m.channels.size() + 1, false),
-      op_wrote_(m.channels.size() + 1, false), tracks_(m.channels.size() + 1),
-      waits_sent_(m.channels.size() + 1, 0) {
+      busy_(m.channels.size() + 1, false), worked_(m.channels.size() + 1, false),
+      job_channels_(std::move(job_channels)), side_(m.channels.size() + 1, -1),
+      started_(m.channels.size() + 1, false), op_wrote_(m.channels.size() + 1, false),
+      tracks_(m.channels.size() + 1), waits_sent_(m.channels.size() + 1, 0) {
   const channel_def* first = m_.channel_for_head(1);
   active_ = {first ? first->number : 1};
   if (job_channels_.size() == 2) {
@@ -139,7 +139,10 @@ bool channel_router::unmet_sync(int line, bool at_end) {
   // meet the one while it waits for the other (a deadlock in the programs too).
   const int ahead = bound_[0].size() > bound_[1].size() ? 0 : 1;
   const bound_record& r = bound_[ahead][bound_[1 - ahead].size()];
-  error(line,
+  bind_failed_ = true;  // said once
+  // Where the programs meet: the record being routed (a transfer; the first record of a
+  // balance cut, whose opening wait goes before it), or the job's last.
+  error(at_end ? line : column_line_,
         fmt::format("sync {} of channel {} (line {}) is not met by channel {} {}: each sync record of the "
                     "one channel needs its partner in the other before the programs meet again",
                     r.key.first, ahead == 0 ? ops_.a : ops_.b, r.line, ahead == 0 ? ops_.b : ops_.a,
@@ -183,6 +186,7 @@ void channel_router::route(const event& e) {
       note_cutoff(e);
     for (int ch : active_) {
       busy_[static_cast<std::size_t>(ch)] = true;
+      worked_[static_cast<std::size_t>(ch)] = true;
       if (track_) [[unlikely]]
         deliver(ch, e, both_, true);
       else
@@ -233,6 +237,7 @@ void channel_router::route(const event& e) {
     // both); anything else opens the section.
     if (std::holds_alternative<spindle_event>(e.data)) {
       busy_[static_cast<std::size_t>(both_master_)] = true;
+      worked_[static_cast<std::size_t>(both_master_)] = true;
       return deliver(both_master_, e, false, true);
     }
     if (!std::holds_alternative<comment_event>(e.data) && !std::holds_alternative<text_event>(e.data))
@@ -246,7 +251,7 @@ void channel_router::route(const event& e) {
       std::holds_alternative<coordsys_event>(e.data) || std::holds_alternative<multax_event>(e.data));
   for (int ch : active_) {
     deliver(ch, e, both_, writes);
-    if (writes) busy_[static_cast<std::size_t>(ch)] = true;
+    if (writes) busy_[static_cast<std::size_t>(ch)] = worked_[static_cast<std::size_t>(ch)] = true;
   }
 }
 
@@ -309,6 +314,7 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   open_both();
   if (aside_sync_) return;
   ++explicit_;
+  ops_.has_sync_records = true;
   // optimise's posts (op_waits_: its timing post) keep the job's sync records and place the rest.
   const bool bind = policy_ == sync_policy::optimise || op_waits_;
   if (policy_ != sync_policy::explicit_marks && !bind) {
@@ -324,14 +330,19 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
     }
     return;
   }
+  // A record refused here is not bound: no later error about its partner (attack 49).
+  const auto refuse = [&](std::string message) {
+    bind_failed_ = bind_failed_ || bind;
+    error(line, std::move(message));
+  };
   // A balance cut keeps its two heads in step (G68, M562), framed by waits of its own: a wait
   // inside it would hold one head while the control waits for it to move.
   if (both_)
-    return error(line,
-                 fmt::format("a sync record inside HEAD/BOTH (line {}): the balance cut is framed by waits "
-                             "of its own, and one inside it would hold one head of the pair; give it before "
-                             "HEAD/BOTH or after the HEAD that ends it",
-                             open_both_line_));
+    return refuse(
+        fmt::format("a sync record inside HEAD/BOTH (line {}): the balance cut is framed by waits "
+                    "of its own, and one inside it would hold one head of the pair; give it before "
+                    "HEAD/BOTH or after the HEAD that ends it",
+                    open_both_line_));
   // No channel list: every channel the job uses (an idle third path is left out).
   std::vector<int> partners = s.channels.empty() ? job_channels_ : s.channels;
   for (int ch : active_) partners.push_back(ch);
@@ -341,9 +352,9 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
   const int shown = marker_of(s, active_.front());
   for (int p : partners)
     if (p < 1 || p > static_cast<int>(m_.channels.size()))
-      return error(line, fmt::format("sync {} names channel {}, machine '{}' has {} channels", shown, p,
-                                     m_.name, m_.channels.size()));
-  if (partners.size() < 2) return error(line, fmt::format("sync {} has no partner channel", shown));
+      return refuse(fmt::format("sync {} names channel {}, machine '{}' has {} channels", shown, p, m_.name,
+                                m_.channels.size()));
+  if (partners.size() < 2) return refuse(fmt::format("sync {} has no partner channel", shown));
   if (bind) return bound_sync(s, line, partners);
   for (int ch : active_) {
     const int index = marker_of(s, ch);
@@ -389,10 +400,13 @@ void channel_router::bound_sync(const sync_event& s, int line, const std::vector
                              index, fmt::join(partners, ", "), ops_.a, ops_.b));
   }
   if (s.source == sync_source::icam) auto_marker_[ch] = index;
-  // The same sync record twice in a row in one channel is one wait.
+  // The same sync record twice in a row in one channel is one wait: nothing worked between
+  // (worked_, not busy_: the timing post's head-switch waits clear busy_, the planned post has
+  // none, and both must bind the same records; attack 49).
   if (last_sync_line_ >= 0 && last_sync_index_ == index && last_sync_channel_ == ch &&
-      !busy_[static_cast<std::size_t>(ch)])
+      !worked_[static_cast<std::size_t>(ch)])
     return;
+  worked_[static_cast<std::size_t>(ch)] = false;
   last_sync_line_ = line;
   last_sync_channel_ = ch;
   last_sync_index_ = index;

@@ -149,6 +149,7 @@ class channel_router {
   int cutoff_line_ = 0;
   void note_cutoff(const event& e);
   std::vector<bool> busy_;                         // per channel: events since its last wait
+  std::vector<bool> worked_;                       // per channel: events since its last bound sync record
   std::vector<int> last_partners_;                 // the channels of the last mark
   std::vector<int> job_channels_;                  // the channels the job uses
   std::map<int, int> auto_marker_;                 // per channel: the last ICAM marker number

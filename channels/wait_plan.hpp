@@ -100,6 +100,9 @@ struct job_operations {
   /// The job's own sync records kept (under optimise they bind: a section ends at each), counted
   /// once per pair.
   int kept_syncs = 0;
+  /// The job has sync records of its own (any number of channels): a post that cannot place
+  /// waits falls back to them (explicit), never to sequential, which would set them aside.
+  bool has_sync_records = false;
 };
 
 /// A pair of operations of one section kept apart (wait_schedule's op_pair, in a section).

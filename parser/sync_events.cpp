@@ -11,6 +11,12 @@ namespace twinpost::detail {
 
 namespace {
 std::size_t where(const cl_record& r) { return r.args.empty() ? r.major_offset : r.args.front().offset; }
+
+// A sync or channel number: a whole number an int holds. 1.5 would be read as 1 and pair with
+// SYNC/1, 3000000000 and 4000000000 both as the largest int (attack 49).
+bool whole_number(double v) {
+  return std::floor(v) == v && std::abs(v) <= static_cast<double>(std::numeric_limits<int>::max());
+}
 }  // namespace
 
 std::optional<head_event> read_head(const cl_record& r, build_issues& issues) {
@@ -43,6 +49,13 @@ std::optional<sync_event> read_sync(const cl_record& r, build_issues& issues) {
     issues.push_back({severity::error, where(r), "SYNC needs a sync number and two channels"});
     return std::nullopt;
   }
+  for (double v : n)
+    if (!whole_number(v)) {
+      issues.push_back(
+          {severity::error, where(r),
+           fmt::format("SYNC: {} is no sync or channel number: a whole number up to 2147483647 is", v)});
+      return std::nullopt;
+    }
   sync_event e;
   e.source = sync_source::catia;
   e.index = as_int(n[0]);
@@ -60,6 +73,14 @@ std::optional<sync_event> read_synctr(const cl_record& r, build_issues& issues) 
   e.source = sync_source::icam;
   std::size_t i = 1;
   // A marker left out is the channel's previous one plus one: the router counts per channel.
+  for (std::size_t k = i; k < r.args.size(); ++k)
+    if (r.args[k].kind == arg_kind::number && !whole_number(r.args[k].number)) {
+      issues.push_back(
+          {severity::error, r.args[k].offset,
+           fmt::format("SYNCTR: {} is no marker or channel number: a whole number up to 2147483647 is",
+                       r.args[k].number)});
+      return std::nullopt;
+    }
   if (i < r.args.size() && r.args[i].kind == arg_kind::number) {
     e.index = as_int(r.args[i].number);
     ++i;

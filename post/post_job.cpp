@@ -654,7 +654,9 @@ post_summary post_job(const post_options& o, const machine& m, diagnostic_sink& 
       optimise_attempt a;
       pass_setup each_setup;
       each_setup.scan = setup.scan;
-      each_setup.policy = step == optimise_step::planned ? sync_policy::optimise : sync_policy::sequential;
+      each_setup.policy = step == optimise_step::planned             ? sync_policy::optimise
+                          : step == optimise_step::fallback_explicit ? sync_policy::explicit_marks
+                                                                     : sync_policy::sequential;
       each_setup.operation_waits = step == optimise_step::timing;
       each_setup.aside_sync = compare;
       post_options each = o;

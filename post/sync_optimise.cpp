@@ -92,14 +92,18 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
       none.optimum_unknown = why;
       return none;
     }
-    report(
-        diags, severity::warning, o.cl_path,
-        fmt::format("{}: {}; the channels wait for each other at every head switch "
-                    "(sequential)",
-                    // The policy asked for: `auto` chose optimise for a job without sync records.
-                    o.policy == sync_policy::automatic ? "--sync auto (optimise)" : "--sync optimise", why));
+    // A job with sync records of its own keeps them: sequential would set them aside and run
+    // the heads in an order they may forbid (attack 49).
+    const bool own = seq.ops.has_sync_records;
+    report(diags, severity::warning, o.cl_path,
+           fmt::format("{}: {}; {}",
+                       // The policy asked for: `auto` chose optimise for a job without sync records.
+                       o.policy == sync_policy::automatic ? "--sync auto (optimise)" : "--sync optimise", why,
+                       own ? "the channels wait at the job's sync records alone (explicit)"
+                           : "the channels wait for each other at every head switch (sequential)"));
     diagnostic_list last;
-    optimise_attempt r = attempt(optimise_step::fallback, nullptr, last);
+    optimise_attempt r =
+        attempt(own ? optimise_step::fallback_explicit : optimise_step::fallback, nullptr, last);
     replay(last, diags);
     return r.sum;
   };

@@ -23,9 +23,10 @@ struct optimise_attempt {
 
 /// The posts the optimiser makes.
 enum class optimise_step {
-  timing,    ///< sequential, with a wait at every operation (each timed alone); nothing written
-  planned,   ///< with the plan's waits; written when the programs check sound
-  fallback,  ///< sequential, written
+  timing,             ///< sequential, with a wait at every operation (each timed alone); nothing written
+  planned,            ///< with the plan's waits; written when the programs check sound
+  fallback,           ///< sequential, written
+  fallback_explicit,  ///< the job's sync records alone (explicit), written: a job that has any
 };
 
 /// Posts the job once as `step` says (`plan`: the waits of a planned post); diagnostics to `diags`.

@@ -46,6 +46,20 @@ TEST_CASE("CATIA SYNC/k,c1,c2[,master] with its trailing comma", "[parser][chann
         "t.cl:1:6: error: SYNC needs a sync number and two channels\n"
         "SYNC/1,2\n"
         "     ^\n");
+  // A number that is not whole, or beyond an int: read as one, it would pair with another sync
+  // (1.5 as 1; 3000000000 and 4000000000 both as the largest int).
+  CHECK(read_cl("SYNC/1.5,1,2\n", dialect::catia).diagnostics ==
+        "t.cl:1:6: error: SYNC: 1.5 is no sync or channel number: a whole number up to 2147483647 is\n"
+        "SYNC/1.5,1,2\n"
+        "     ^\n");
+  CHECK(read_cl("SYNC/3000000000,1,2\n", dialect::catia).diagnostics ==
+        "t.cl:1:6: error: SYNC: 3000000000 is no sync or channel number: a whole number up to 2147483647 is\n"
+        "SYNC/3000000000,1,2\n"
+        "     ^\n");
+  CHECK(read_cl("SYNCTR/NEXT,5,1.5\n", dialect::generic).diagnostics ==
+        "t.cl:1:15: error: SYNCTR: 1.5 is no marker or channel number: a whole number up to 2147483647 is\n"
+        "SYNCTR/NEXT,5,1.5\n"
+        "              ^\n");
 }
 
 TEST_CASE("ICAM SYNCTR/NEXT leaves a marker left out to the router", "[parser][channels]") {
@@ -67,9 +81,14 @@ TEST_CASE("ICAM SYNCTR/NEXT leaves a marker left out to the router", "[parser][c
 TEST_CASE("huge numbers in integer fields saturate instead of overflowing", "[parser][channels]") {
   // Regression: integer fields cast any double to int. (A tool number out of range is an
   // error now: tests/post_words_test.cpp; SYNCTR/NEXT after marker INT_MAX:
-  // tests/router_test.cpp.)
-  CHECK(events_of("SYNCTR/NEXT,1e300\nAUXFUN/1e300\n") ==
-        lines{"1\tsync from=icam index=2147483647", "2\tauxfun code=2147483647"});
+  // tests/router_test.cpp. A sync marker out of range is an error since attack 49: saturated,
+  // two of them paired as one.)
+  CHECK(events_of("AUXFUN/1e300\n") == lines{"1\tauxfun code=2147483647"});
+  CHECK(
+      read_cl("SYNCTR/NEXT,1e300\n", dialect::generic).diagnostics ==
+      "t.cl:1:13: error: SYNCTR: 1e+300 is no marker or channel number: a whole number up to 2147483647 is\n"
+      "SYNCTR/NEXT,1e300\n"
+      "            ^\n");
 }
 
 TEST_CASE("a MANUSpost sync number too big for an int stays a UDE comment", "[parser][channels]") {

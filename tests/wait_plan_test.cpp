@@ -180,6 +180,22 @@ TEST_CASE("under optimise the job's sync records bind: each ends its channel's s
         "c1:M102\nc2:M102\n");   // the last rendezvous before the footers
 }
 
+TEST_CASE("a sync record after work is bound in the timing post and the planned post alike", "[wait_plan]") {
+  // Channel 2 meets sync 1, cuts, then the job goes to head 1 and straight back: the timing
+  // post's head-switch waits must not make its second sync 1 look like the first again
+  // (attack 49: the two posts bound different records, and the plan did not fit).
+  const std::vector<event> events = {head(2, 1),  go(2),       sync(1, 3),  go(4),  head(1, 5),  head(2, 6),
+                                     sync(1, 7),  go(8),       head(1, 9),  go(10), sync(1, 11), go(12),
+                                     head(2, 13), head(1, 14), sync(1, 15), go(16)};
+  diagnostic_list d;
+  const routed timing = route(events, sync_policy::sequential, nullptr, true, d);
+  CHECK(d.all().empty());
+  CHECK(timing.ops.kept_syncs == 2);
+  const routed planned = route(events, sync_policy::optimise, &timing.ops, false, d);
+  CHECK(d.all().empty());
+  CHECK(planned.ops.kept_syncs == 2);
+}
+
 TEST_CASE("under optimise, sync records that cross or find no partner stop the post", "[wait_plan]") {
   diagnostic_list crossed;
   route({go(1), sync(1, 2), sync(2, 3), head(2, 4), go(5), sync(2, 6), sync(1, 7)}, sync_policy::optimise,
