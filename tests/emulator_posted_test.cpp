@@ -53,15 +53,15 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
   CHECK(
       edited_check(sample_job("drill-tap"), "integrex-i200st", "DRILL-TAP.EIA", "T03 M6",
                    "M108\nG0 G53 B0.\nM107\n", "") ==
-      "DRILL-TAP.EIA:73:11: error: channel 1: a feed move with the B head not indexed since the tool call at "
-      "line 66: the tool changer may leave it anywhere; index it (G0 G53 B..) before the cut\n"
+      "DRILL-TAP.EIA:74:11: error: channel 1: a feed move with the B head not indexed since the tool call at "
+      "line 67: the tool changer may leave it anywhere; index it (G0 G53 B..) before the cut\n"
       "G98 G84.2 X0. Y0. Z-18. R5. F1.5\n          ^\n"
       "check: 2 channels, 2 waits paired, 1 error\n");
   // Item 2: the pick-off's release opening the main chuck on the bar again.
   CHECK(edited_check(sample_job("pick-off"), "integrex-i200st", "PICK-OFF.EIA", "M952", "G0 G53 W0.\n",
                      "M206\nG0 G53 W0.\n") ==
-        "PICK-OFF.EIA:61:1: error: channel 1: M206 opens the main spindle's chuck after the part-off at line "
-        "55: "
+        "PICK-OFF.EIA:62:1: error: channel 1: M206 opens the main spindle's chuck after the part-off at line "
+        "56: "
         "it holds the bar, which would be released; after a part-off the sub spindle takes the part away and "
         "the bar stays clamped ([transfer] release_after_cutoff)\nM206\n^\n"
         "check: 2 channels, 10 waits paired, 1 error\n");

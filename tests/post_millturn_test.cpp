@@ -138,16 +138,17 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "hold");
   // Polar interpolation for the axial end mill (X a radius, the CL's Y as C, arcs in I/J), off
   // before the reference return; turning mode (G10.9 X1, M202) before the turning spindle starts.
-  CHECK(head1(p, "E.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 "
-        "M6\nM901\nM200\n"
-        "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG0 G43 H#3020 X10. C5. "
-        "Z2.\n"
-        "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
-        "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
-        "X60. Y0. "
-        "Z2.\nM950\nM9\nM5\nM205\n"
-        "M305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  CHECK(
+      head1(p, "E.EIA") ==
+      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 "
+      "M6\nM901\nM200\n"
+      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG0 G43 H#3020 X10. C5. "
+      "Z2.\n"
+      "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
+      "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
+      "X60. Y0. "
+      "Z2.\nM950\nM9\nM5\nM205\n"
+      "M305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("the B head turns only at home: a cross hole after face work goes home first", "[post][millturn]") {
@@ -155,13 +156,14 @@ TEST_CASE("the B head turns only at home: a cross hole after face work goes home
       "PARTNO E\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2000,CLW,LIVE\nRAPID\n"
       "GOTO/20,0,5,0,0,1\nRAPID\nGOTO/40,0,-10,1,0,0\nFINI\n";
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "index");
-  CHECK(head1(p, "E.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT12 "
-        "M6\nM901\nM200\n"
-        "G10.9 X0\nG97 S2000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z5.\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nM108\nG0 G53 B90.\nM107\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\n"
-        "G0 G43 H#3020 X10. Y0. Z40.\nM950\nG69\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nM30\n");
+  CHECK(
+      head1(p, "E.EIA") ==
+      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT12 "
+      "M6\nM901\nM200\n"
+      "G10.9 X0\nG97 S2000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z5.\nG0 G90 G53 X0.\n"
+      "G0 G90 G53 Z0.\nM108\nG0 G53 B90.\nM107\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\n"
+      "G0 G43 H#3020 X10. Y0. Z40.\nM950\nG69\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+      "G0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("a cross hole on a machine without a turned frame, and a feed across the axis, stop the post",
@@ -190,14 +192,15 @@ TEST_CASE("a tilted tool on the Integrex head goes to the chain: B and C unclamp
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "tilted");
   // B45 tilts the tool from +Z towards +X; C90 turns the point at +Y onto the head. X Y Z are
   // the tip in the part frame (tool-tip control), X in radius.
-  CHECK(head1(p, "E.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT14 "
-        "M6\nM901\nM200\n"
-        "G10.9 X0\nG97 S4000 M3\nG94\nM108\nM212\nG0 B45. C0.\nG0 X40. Y0.\nG0 G43.4 H#3020 X40. Y0. Z10. "
-        "B45. C0.\nG1 X29. Z-1. F300.\n"
-        "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nG49\nG10.9 "
-        "X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nM30\n");
+  CHECK(
+      head1(p, "E.EIA") ==
+      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT14 "
+      "M6\nM901\nM200\n"
+      "G10.9 X0\nG97 S4000 M3\nG94\nM108\nM212\nG0 B45. C0.\nG0 X40. Y0.\nG0 G43.4 H#3020 X40. Y0. Z10. "
+      "B45. C0.\nG1 X29. Z-1. F300.\n"
+      "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nG49\nG10.9 "
+      "X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+      "G0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("the Integrex chain agrees with the mill/turn writer's B and C", "[post][millturn]") {
@@ -296,13 +299,13 @@ TEST_CASE("a cut on the diameter: plunge, G7.1 at the tip's radius, C on past 36
   // The plunge in the turned frame with C clamped; C unclamped before the mode; the cut at C330
   // + 30 = 360 and on to 390 (no wrap); the plunge to radius 19 inside, then the mode again at
   // 19; the retract inside; off before the rapid (no G0 in the mode).
-  CHECK(
-      head1(p, "E.EIA") ==
-      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT21 M6\nM901\n"
-      "M200\nG10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B90.\nM107\nG0 C330.\nM210\n"
-      "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X10. Y0. Z25.\nG1 Z20. F200.\nM212\nG17\nG7.1 C20.\n"
-      "G1 C360.\nX15. C390.\nZ19.\nG7.1 C0\nG18\nG17\nG7.1 C19.\nG1 C360.\nZ25.\nG7.1 C0\nG18\nG0 Z30.\n"
-      "M950\nG69\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  CHECK(head1(p, "E.EIA") ==
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "Z0.\nT21 M6\nM901\n"
+        "M200\nG10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B90.\nM107\nG0 C330.\nM210\n"
+        "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X10. Y0. Z25.\nG1 Z20. F200.\nM212\nG17\nG7.1 C20.\n"
+        "G1 C360.\nX15. C390.\nZ19.\nG7.1 C0\nG18\nG17\nG7.1 C19.\nG1 C360.\nZ25.\nG7.1 C0\nG18\nG0 Z30.\n"
+        "M950\nG69\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("milling on the diameter refuses what cylindrical interpolation cannot do, by name",
@@ -381,15 +384,15 @@ TEST_CASE(
   // The live spindle taps (M3, then M4 for the left-hand tap: G84.3), feed per revolution at
   // the pitch (G95 F1.), the spindle's speed and feed mode (G94) again after each rigid tap; C
   // unclamped only to turn to the next hole (C180: the point at -X).
-  CHECK(
-      head1(p, "E.EIA") ==
-      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT23 M6\nM901\n"
-      "M200\nG10.9 X0\nG97 S500 M3\nM108\nG0 G53 B90.\nM107\nG0 C90.\nM210\n"
-      "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X20. Y0. Z35.\nZ28.\nG95\nG17\n"
-      "G98 G84.2 X20. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M3\nG94\nZ35.\nG97 S500 M4\nG69\n"
-      "M212\nG0 C180.\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 X30. Y0. Z28.\nG95\nG17\n"
-      "G98 G84.3 X30. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M4\nG94\nM950\nG69\nM212\nG10.9 X1\n"
-      "M202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  CHECK(head1(p, "E.EIA") ==
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "Z0.\nT23 M6\nM901\n"
+        "M200\nG10.9 X0\nG97 S500 M3\nM108\nG0 G53 B90.\nM107\nG0 C90.\nM210\n"
+        "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X20. Y0. Z35.\nZ28.\nG95\nG17\n"
+        "G98 G84.2 X20. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M3\nG94\nZ35.\nG97 S500 M4\nG69\n"
+        "M212\nG0 C180.\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 X30. Y0. Z28.\nG95\nG17\n"
+        "G98 G84.3 X30. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M4\nG94\nM950\nG69\nM212\nG10.9 X1\n"
+        "M202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
   // A machine whose taps are written as moves (G32 with the spindle reversed) cannot tap with a
   // live tool: G32 follows the workpiece spindle.
   machine expanded = load_machine("integrex-i200st");
@@ -427,7 +430,8 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
   const test::posted p = post_on(drill, load_machine("integrex-i200st"), "sub-b180");
   INFO(p.diagnostics);
   CHECK(head1(p, "D.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT04 M6\nG55\n"
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "Z0.\nT04 M6\nG55\n"
         "M902\nG97 S700 M303\nG95\nM108\nG0 G53 B180.\nM107\nG0 G43 P1 H#3020 X0. Y0. Z-5.\nG1 Z10. F0.1\n"
         "M950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
   // A machine file that gives no angle for the sub: the post stops at the move.

@@ -71,15 +71,15 @@ TEST_CASE("tool_change numbers only the tool calls, offset changes included", "[
 TEST_CASE("each section of a merged program counts from the start, also under a late PARTNO",
           "[post][sequence]") {
   CHECK(file_of(two_head_job, numbered("integrex-i200st", sequence_mode::all), "LATE.EIA", "merged") ==
-        "%\nO1000(LATE)\nG109 L1\nN10 G21\nN20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\n"
-        "N40 G0 G90 G53 X0.\nN50 G0 G90 G53 Z0.\nN60 T01 M6\nN70 M901\nN80 G97 S1000 M203\nN90 G95\n"
-        "N100 M108\nN110 G0 G53 B0.\nN120 M107\nN130 G0 G43 P1 H#3020 X40. Y0. Z5.\n"
-        "N140 G1 Z-10. F0.2\nN150 M950\nN160 M951\nN170 M9\nN180 M5\nN190 M205\nN200 M305\n"
-        "N210 G0 G90 G53 X0.\nN220 G0 G90 G53 Z0.\nN230 M30\nG109 L2\nN10 G21\n"
-        "N20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\nN40 M950\nN50 G0 G90 G53 X0.\n"
-        "N60 G0 G90 G53 Z0.\nN70 T0404\nN80 M901\nN90 G97 S800 M203\nN100 G95\nN110 G0 X20. Z5.\n"
-        "N120 G1 Z-3. F0.1\nN130 M951\nN140 M9\nN150 M5\nN160 M205\nN170 M305\n"
-        "N180 G0 G90 G53 X0.\nN190 G0 G90 G53 Z0.\nN200 M30\n%\n");
+        "%\nO1000(LATE)\nG109 L1\nN10 G21\nN20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\nN40 G10.9 X1\n"
+        "N50 G0 G90 G53 X0.\nN60 G0 G90 G53 Z0.\nN70 T01 M6\nN80 M901\nN90 G97 S1000 M203\nN100 G95\n"
+        "N110 M108\nN120 G0 G53 B0.\nN130 M107\nN140 G0 G43 P1 H#3020 X40. Y0. Z5.\n"
+        "N150 G1 Z-10. F0.2\nN160 M950\nN170 M951\nN180 M9\nN190 M5\nN200 M205\nN210 M305\n"
+        "N220 G0 G90 G53 X0.\nN230 G0 G90 G53 Z0.\nN240 M30\nG109 L2\nN10 G21\n"
+        "N20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\nN40 G10.9 X1\nN50 M950\nN60 G0 G90 G53 X0.\n"
+        "N70 G0 G90 G53 Z0.\nN80 T0404\nN90 M901\nN100 G97 S800 M203\nN110 G95\nN120 G0 X20. Z5.\n"
+        "N130 G1 Z-3. F0.1\nN140 M951\nN150 M9\nN160 M5\nN170 M205\nN180 M305\n"
+        "N190 G0 G90 G53 X0.\nN200 G0 G90 G53 Z0.\nN210 M30\n%\n");
 }
 
 TEST_CASE("the machine file's numbering is checked at load", "[machines][sequence]") {

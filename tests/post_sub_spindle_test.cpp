@@ -66,7 +66,8 @@ TEST_CASE("sub-spindle work on the Integrex: M902, G92 S.. R2, M303, in G55", "[
   const test::posted p = post_on(sub_job, "integrex-i200st", "integrex");
   const std::string f = file_of(p, "SUB.EIA");
   CHECK(f.substr(f.find("G109 L2")) ==
-        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT0303\nG55\n"
+        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "Z0.\nT0303\nG55\n"
         "M902\nG92 S3000 R2\nG96 S200 M303\nG95\nG1 X54. Z-2. F0.2\nX50. Z1.\nZ14.\nG3 X52. Z15. I1. K0.\n"
         "M305\nM950\nM9\nM5\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
 }
@@ -138,14 +139,14 @@ TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then 
           "[post][sub]") {
   const test::posted p = post_on(transfer_job, "integrex-i200st", "xfer-integrex");
   CHECK(file_of(p, "XFER.EIA") ==
-        "%\nO1000(XFER)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
+        "%\nO1000(XFER)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG92 S2500 R1\nG96 S180 M203\nG95\nM108\nG0 G53 B0.\nM107\nM8\n"
         "G1 G43 P1 H#3020 X50. Y0. Z2. F0.2\nZ-20.\nM205\nM9\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
         "M950\nM306\nM511\nM540\nIF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF "
         "[#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\nG0 G53 W#501\nG94 G1 G53 W#500 "
         "F500.\nM541\nM307\nG4 P1000\nG95\nM951\nM952\nM206\nG94 G4 P1000\nG0 G53 W0.\nM513\nM305\nG95\n"
         "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
-        "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
+        "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
         "M952\nM953\nG55\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT0303\nM902\nG97 S800 M303\nG95\n"
         "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
         "M30\n%\n");
@@ -175,7 +176,7 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
       "integrex-i200st", "tools");
   const std::string f = file_of(p, "TOOLS.EIA");
   CHECK(f.substr(0, f.find("G109 L2")) ==
-        "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
+        "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
         "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
         "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. "
@@ -215,10 +216,12 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
   const test::posted css = post_on("PARTNO E\nHEAD/1\nLOADTL/1\nSPINDL/SMM,150,MAXRPM,2000,CLW\nFINI\n",
                                    "integrex-i200st", "unknown-css");
   CHECK(file_of(css, "E.EIA") ==
-        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 "
+        "G90 G53 Z0.\n"
         "T01 M6\nM901\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 "
         "Z0.\nM30\n"
-        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nM950\nM9\nM5\nM205\nM305\nG0 G90 "
+        "G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n%\n");
 }
 
@@ -292,7 +295,7 @@ TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[p
   const std::string f = file_of(p, "E.EIA");
   CHECK(
       f.substr(0, f.find("M950")) ==
-      "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
+      "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
       "G0 G90 G53 Z0.\nT06 M6\nM901\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
       "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
       "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2.\n");
@@ -354,7 +357,7 @@ TEST_CASE("every section on the Integrex selects the spindle it works on, M901 o
       "integrex-i200st", "select");
   const std::string f = file_of(p, "S.EIA");
   CHECK(f.substr(0, f.find("M950")) ==
-        "%\nO1000(S)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG0 G90 G53 X0.\n"
+        "%\nO1000(S)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nG55\nM902\nG97 S800 M303\nG95\nM108\nG0 G53 B180.\nM107\n"
         "G1 G43 P1 H#3020 X40. Y0. Z-2. F0.2\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nG54\nM305\nM901\n"
         "G97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X40. Y0. Z2.\nG0 G90 G53 X0.\n"

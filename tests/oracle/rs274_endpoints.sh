@@ -9,7 +9,8 @@
 # 3. strips what rs274 does not read or what is not motion: waits and other M words, G109,
 #    G92 S R / G50 S, T words and M6, G96/G97 S, G94/G95/G98/G99, G4, G28 U0 W0 lines,
 #    G40-G42, G54-G59, G49/G67/G69/G80, % and O lines, comments; prefixes G18 G21 G90 G7
-#    (G7: X in diameter; G8 for a radius channel) and runs `rs274 -g`;
+#    (G7: X in diameter; G8 for a radius channel; Mazak's G10.9 X1 / X0 are read as G7 / G8)
+#    and runs `rs274 -g`;
 # 4. takes STRAIGHT_TRAVERSE / STRAIGHT_FEED / ARC_FEED from the canonical output (X as a
 #    radius, Z, and for arcs the centre and the sense) and compares them, within 0.001 mm,
 #    with the CL moves of the heads that channel serves, from `twinpost parse --json JOB`:
@@ -219,6 +220,12 @@ def clean(lines):
         codes = [(a, float(v)) for a, v in words]
         if any(a == "M" and int(v) in (2, 30, 99) for a, v in codes):
             break  # the channel's program ends here
+        # Mazak G10.9: X in diameter (X1) or radius (X0) from here on, LinuxCNC's G7 and G8.
+        if any(a == "G" and abs(v - 10.9) < 1e-9 for a, v in codes):
+            x_mode = [v for a, v in codes if a == "X"]
+            if x_mode:
+                out.append("G7" if x_mode[0] == 1 else "G8")
+            continue
         if any(a == "G" and int(round(v)) in DROP_BLOCK_G for a, v in codes):
             continue
         if cycles and canned(codes, words, z_now, out):
