@@ -140,6 +140,7 @@ vec3 channel_writer::cycle_approach(const vec3& p) const {
 
 void channel_writer::cycle_point(const vec3& p, int line) {
   const cycle_event& c = *cycle_;
+  c_hole_deg_.reset();
   // Only along the spindle axis: a radial or tilted tool (cross drilling with a live tool)
   // would be fed along Z, through the side of the part.
   if (has_c_ && !index_head(line)) return;
@@ -320,6 +321,11 @@ void channel_writer::cycle_point(const vec3& p, int line) {
   expanded_hole(h, line);
 }
 
+void channel_writer::turn_c_to_hole(double degrees) {
+  position_c(degrees);
+  clamp_c();
+}
+
 void channel_writer::to_hole(const hole& h, int line) {
   // From the last hole's retract plane to this one's: a rapid that climbs or drops while it
   // travels cuts the corner of whatever stands between (a boss, a clamp, the step between two
@@ -332,13 +338,17 @@ void channel_writer::to_hole(const hole& h, int line) {
   const bool plain = !radial_ok_ && !side_hole_ && !plane_hole_;
   const bool after_hole = hole_exit_ && kin::distance(pos_, hole_point_) <= 1e-9;
   const vec3 from = after_hole ? *hole_exit_ : pos_;
+  const std::optional<double> c_turn = std::exchange(c_hole_deg_, std::nullopt);
   if ((after_hole || at_pos_) && !homed_ && pending_offset_.empty() && plain &&
       (std::abs(from.x - h.x) > 1e-9 || std::abs(from.y - h.y) > 1e-9)) {
     const double out = (from.z - h.initial) * h.into;  // > 0: this hole's plane lies further out
-    if (out > 1e-9)
-      linear(true, from.x, from.y, h.initial, line);
-    else if (out < -1e-9)
-      linear(true, h.x, h.y, from.z, line);
+    if (out > 1e-9) linear(true, from.x, from.y, h.initial, line);
+    // A face hole at a C position: the part turns once the tool stands on the higher plane
+    // (C at the last hole's angle until then), and C is clamped for the cycle.
+    if (c_turn) turn_c_to_hole(*c_turn);
+    if (out < -1e-9) linear(true, h.x, h.y, from.z, line);
+  } else if (c_turn) {
+    turn_c_to_hole(*c_turn);
   }
   linear(true, h.x, h.y, h.initial, line);
   // Every hole ends on its retract plane.

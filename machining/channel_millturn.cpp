@@ -282,8 +282,7 @@ bool channel_writer::c_axis_hole(const vec3& p) {
   if (std::hypot(p.x, p.y) * cl_mm_ <= 1e-3) return false;  // on the centre line: as always
   leave_polar();
   leave_radial_frame();
-  position_c(std::atan2(p.y, p.x) * deg);
-  clamp_c();
+  c_hole_deg_ = std::atan2(p.y, p.x) * deg;
   return true;
 }
 

@@ -206,6 +206,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   struct hole;
   /// To the hole's retract plane: up first, across, down last.
   void to_hole(const hole& h, int line);
+  /// C to a face hole's angle and clamped (to_hole, at the plane it turns on).
+  void turn_c_to_hole(double degrees);
   /// Plain moves: rapid to the retract and R planes, feed (in pecks), dwell, rapid out.
   void expanded_hole(const hole& h, int line);
   /// The machine's canned cycle `code` ([cycles]) for a drilled hole.
@@ -324,8 +326,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
     if (!c_mode_ || radial_frame_) return {x, y};
     return {x * c_cos_ + y * c_sin_, -x * c_sin_ + y * c_cos_};
   }
-  /// An axial hole off centre at a C position (milling.face_holes = "c_axis"): C turned onto it
-  /// and clamped; false when the hole is not one.
+  /// An axial hole off centre at a C position (milling.face_holes = "c_axis"): C is turned onto
+  /// it and clamped by to_hole (c_hole_deg_), once the tool is out of the last hole; false when
+  /// the hole is not one.
   bool c_axis_hole(const vec3& p);
   /// Cross holes: C to `degrees` and clamped, the frame turned (milling.radial_frame_on);
   /// false, with the error, where the machine gives no frame.
@@ -686,6 +689,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool table_speed_due_ = false;
   /// After a hole: the retract plane the tool stands on, and the hole's CL point (pos_ then).
   std::optional<vec3> hole_exit_;
+  /// The C angle of the hole cycle_point works on, turned to by to_hole: at the higher of the
+  /// two holes' retract planes, not in the last hole's (attack 50: C swung the drill through
+  /// the step between two faces, then turned back to climb).
+  std::optional<double> c_hole_deg_;
   vec3 hole_point_{};
   bool at_pos_ = false;    ///< the tool stands at pos_ (a GOTO or an arc brought it there)
   bool cl_moved_ = false;  ///< the CL has moved the channel (a first MSYS after moves is a second MCS)

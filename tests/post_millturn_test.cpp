@@ -166,6 +166,26 @@ TEST_CASE("the B head turns only at home: a cross hole after face work goes home
       "G0 G90 G53 Z0.\nM30\n");
 }
 
+TEST_CASE("face holes on a stepped face: the drill climbs to the higher plane before C turns",
+          "[post][millturn]") {
+  // Attack 50: C was turned to the next hole while the drill stood on the last one's R plane,
+  // 13 mm below the next hole's top, then turned back to climb there and forward again, and
+  // the second hole was drilled with C unclamped. Now: up, unclamp, turn, clamp, drill.
+  const std::string cl =
+      "PARTNO S\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2500,CLW,LIVE\nRAPID\n"
+      "GOTO/20,0,20,0,0,1\nCYCLE/DRILL,DEPTH,10,RAPTO,2,MMPM,150\nGOTO/20,0,-15\nGOTO/0,20,0\n"
+      "GOTO/-20,0,-15\nCYCLE/OFF\nRAPID\nGOTO/-20,0,50\nSPINDL/OFF\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "stepped-holes");
+  const std::string h = head1(p, "S.EIA");
+  const std::size_t from = h.find("G98 G81");
+  REQUIRE(from != std::string::npos);
+  CHECK(h.substr(from) ==
+        "G98 G81 X20. Y0. Z-25. R-13. F150.\nG80\nG18\nG0 Z-13.\nZ2.\nM212\nG0 C90.\nM210\nX20. Y0. Z2.\n"
+        "G17\nG98 G81 X20. Y0. Z-10. R2. F150.\nG80\nG18\nG0 Z2.\nM212\nG0 C180.\nM210\nX20. Y0. Z2.\n"
+        "Z-13.\nG17\nG98 G81 X20. Y0. Z-25. R-13. F150.\nG80\nG18\nG0 Z-13.\nZ50.\nM5\nM950\nM212\n"
+        "G10.9 X1\nM202\nM9\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+}
+
 TEST_CASE("a cross hole on a machine without a turned frame, and a feed across the axis, stop the post",
           "[post][millturn]") {
   machine m = load_machine("integrex-i200st");
