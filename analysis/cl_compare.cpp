@@ -214,6 +214,13 @@ struct cl_comparison::impl {
     std::string text;
   } hole;
   bool said_hole = false;
+  // A hole the program drilled with moves (a cycle the machine writes expanded, pecks): the
+  // record's feed blocks that went deepest each way along Z while a CL cycle is on.
+  struct fed_point {
+    bool valid = false;
+    axis_state x, y, z;
+    std::string text;
+  } fed_low, fed_high;
   bool length_on = false;        // a tool length offset in force (G43, G43.4, G43.5, G44)
   bool needs_length = false;     // a mill head's channel: Z is the gauge line without one
   bool foreign_offset = false;   // a work offset no spindle names (G56): another part frame
@@ -252,6 +259,7 @@ struct cl_comparison::impl {
   bool cl_per_rev = false;
   bool cl_cycle = false;
   cycle_event cl_cycle_record;  // the CL cycle in force: its FEDTO or DEPTH gives each hole's bottom
+  bool cl_drilling = false;     // it drills along the tool (DRILL, DEEP, DEEP2, TAP), not a lathe cycle
   long compared = 0, passed = 0;
   // Each kind of finding is reported once per channel (the first is the one to fix; a
   // systematic error would otherwise repeat at every record of a long job).
@@ -749,11 +757,25 @@ struct cl_comparison::impl {
       moved = true;
       move_text.assign(text);
       move_line = lines;
+      if (cl_cycle && cl_drilling && motion == 1 && !cycle) [[unlikely]]
+        note_fed(text);
       if (motion == 0 && !cycle && !rapid_in_record) {
         rapid_in_record = true;
         rapid_text.assign(text);
       }
       note_arc(start, start_known);
+    }
+  }
+
+  // A feed block while a CL cycle is on: the deepest each way along Z so far in the record.
+  void note_fed(std::string_view text) {
+    if (z.k != axis_state::kind::known) return;
+    for (fed_point* f : {&fed_low, &fed_high}) {
+      const bool further = !f->valid || (f == &fed_low ? z.value < f->z.value : z.value > f->z.value);
+      if (!further) continue;
+      f->valid = true;
+      f->x = x, f->y = y, f->z = z;
+      f->text.assign(text);
     }
   }
 
@@ -924,8 +946,13 @@ struct cl_comparison::impl {
   // hole's; a side cycle (along X) drills at the hole's Z, on the side C turned to it.
   void compare_hole(const event& e, const vec3& pos) {
     if (!head_due && head_offset_wrong(e)) return;
-    if (!hole.valid || polar || cylinder || frame || polar_coords || rotary || foreign_offset || shifted ||
-        head_due || !c_known) {
+    if (polar || cylinder || frame || polar_coords || rotary || foreign_offset || shifted || head_due ||
+        !c_known) {
+      ++passed;
+      return;
+    }
+    if (!hole.valid) {
+      if (cl_drilling) return compare_fed_hole(e, pos);
       ++passed;
       return;
     }
@@ -944,7 +971,7 @@ struct cl_comparison::impl {
         off = fmt::format("x {:.3f} y {:.3f} where the CL has x {:.3f} y {:.3f} ({:.3f} mm off)", at->first,
                           at->second, px, py, d);
       else
-        off = hole_depth_fault(e, pos, tol);
+        off = depth_fault(e, pos, tol, hole.z, "its bottom");
     } else {
       if (hole.z.k != axis_state::kind::known || (has_y && hole.y.k != axis_state::kind::known)) {
         ++passed;
@@ -976,18 +1003,51 @@ struct cl_comparison::impl {
                          off, hole.text));
   }
 
+  // A hole drilled with moves: the feed block that went deepest into the part (towards -Z for a
+  // tool looking down +Z) stands on the hole's x, y and at the CL's bottom. A record with no
+  // feed block, or a tool off Z, is passed over.
+  void compare_fed_hole(const event& e, const vec3& pos) {
+    const std::optional<vec3>& axis = std::get<motion_event>(e.data).axis;
+    const bool down = !(axis && axis->z < 0);
+    const fed_point& f = down == (z_sign() > 0) ? fed_low : fed_high;
+    if (!f.valid || (axis && std::abs(axis->z) < 0.9999)) {
+      ++passed;
+      return;
+    }
+    const auto at = part_xy(f.x, f.y);
+    if (!at) {
+      ++passed;
+      return;
+    }
+    ++compared;
+    const double tol = std::max(tip_tolerance, axis_half * 3.001);
+    const double px = pos.x * cl_mm, py = pos.y * cl_mm;
+    std::string off;
+    if (const double d = std::hypot(at->first - px, at->second - py); d > tol)
+      off = fmt::format(
+          "its deepest feed at x {:.3f} y {:.3f} where the CL has x {:.3f} y {:.3f} ({:.3f} mm off)",
+          at->first, at->second, px, py, d);
+    else
+      off = depth_fault(e, pos, tol, f.z, "its deepest feed");
+    if (off.empty() || std::exchange(said_hole, true)) return;
+    error(e, fmt::format("the program drills this record's hole elsewhere (the part frame, mm): {}, in the "
+                         "block `{}`",
+                         off, f.text));
+  }
+
   // An axial hole's bottom: the cycle block's Z against the CL's, FEDTO or DEPTH from the GOTO
   // point along a tool axis on Z (a tool looking down +Z drills towards -Z). A tool off Z (a
   // cross hole in a turned frame) or a Z the block does not give is passed over. Empty: right.
-  std::string hole_depth_fault(const event& e, const vec3& pos, double tol) const {
+  std::string depth_fault(const event& e, const vec3& pos, double tol, const axis_state& bottom_z,
+                          std::string_view what) const {
     const std::optional<vec3>& axis = std::get<motion_event>(e.data).axis;
-    if (hole.z.k != axis_state::kind::known || (axis && std::abs(axis->z) < 0.9999)) return {};
+    if (bottom_z.k != axis_state::kind::known || (axis && std::abs(axis->z) < 0.9999)) return {};
     const double into = axis && axis->z < 0 ? 1.0 : -1.0;
     const std::optional<double> bottom = cycle_bottom(cl_cycle_record, pos.z, into);
     if (!bottom) return {};
-    const double want = *bottom * cl_mm, have = part(hole.z, z_sign());
+    const double want = *bottom * cl_mm, have = part(bottom_z, z_sign());
     if (std::abs(have - want) <= tol) return {};
-    return fmt::format("its bottom at z {:.3f} where the CL's is z {:.3f} ({:.3f} mm {})", have, want,
+    return fmt::format("{} at z {:.3f} where the CL's bottom is z {:.3f} ({:.3f} mm {})", what, have, want,
                        std::abs(have - want), (have - want) * into > 0 ? "deeper" : "short of it");
   }
 
@@ -1246,6 +1306,7 @@ struct cl_comparison::impl {
             else if (d.type != "INIT" && d.type != "ON") {
               cl_cycle = true;
               cl_cycle_record = d;
+              cl_drilling = d.type == "DRILL" || d.type == "DEEP" || d.type == "DEEP2" || d.type == "TAP";
             }
           } else if constexpr (std::is_same_v<T, units_event>) {
             units(d.units);
@@ -1265,6 +1326,7 @@ struct cl_comparison::impl {
     rapid_in_record = false;
     n_arcs = 0;
     hole.valid = false;
+    fed_low.valid = fed_high.valid = false;
   }
 
   void units(unit_system u) { cl_mm = u == unit_system::inch ? 25.4 : 1.0; }

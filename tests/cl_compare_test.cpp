@@ -623,15 +623,50 @@ TEST_CASE("cl comparison: an axial hole's bottom against the CL's FEDTO or DEPTH
   CHECK(
       run({{"FEDTO", -30}}, "G83 X0. Z-25. R-3. F0.1").first ==
       "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
-      "its bottom at z -25.000 where the CL's is z -30.000 (5.000 mm short of it), in the block `G83 X0. "
+      "its bottom at z -25.000 where the CL's bottom is z -30.000 (5.000 mm short of it), in the block `G83 "
+      "X0. "
       "Z-25. R-3. F0.1`\n");
   CHECK(
       run({{"DEPTH", 20}}, "G83 X0. Z-30. R-3. F0.1").first ==
       "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
-      "its bottom at z -30.000 where the CL's is z -18.000 (12.000 mm deeper), in the block `G83 X0. Z-30. "
+      "its bottom at z -30.000 where the CL's bottom is z -18.000 (12.000 mm deeper), in the block `G83 X0. "
+      "Z-30. "
       "R-3. F0.1`\n");
   // A tool off Z (a cross hole in a turned frame): the depth is passed over.
   CHECK(run({{"FEDTO", -30}}, "G83 X0. Z-25. R-3. F0.1", vec3{1, 0, 0}).first == "");
+}
+
+TEST_CASE("cl comparison: a hole drilled with moves, its deepest feed against the CL's bottom",
+          "[analysis][cl_compare]") {
+  // A machine that writes the cycle as moves (pecks, a chip-break the control has no cycle
+  // for): the feed block that went deepest stands on the hole and at the CL's bottom (attack 50).
+  auto run = [](std::initializer_list<const char*> program, const char* type = "DEEP") {
+    compared c("fanuc-0itd-twin", 1);
+    cycle_event drill;
+    drill.type = type;
+    drill.params = {{"FEDTO", -30}};
+    c.cmp.record({c.next++, drill, 1}, false);
+    c.lines({"T0505", "G97 S1200 M3"});
+    c.lines(program);
+    motion_event mv;
+    mv.pos = {0, 0, 2};
+    c.cmp.record({c.next++, mv, 1}, false);
+    return std::pair{c.text(), c.cmp.compared()};
+  };
+  CHECK(run({"G0 X0. Z2.", "G1 Z-15. F0.1", "G0 Z2.", "Z-14.5", "G1 Z-30.", "G0 Z2."}) ==
+        std::pair{std::string(), 1L});
+  CHECK(
+      run({"G0 X0. Z2.", "G1 Z-15. F0.1", "G0 Z2.", "Z-14.5", "G1 Z-28.", "G0 Z2."}).first ==
+      "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
+      "its deepest feed at z -28.000 where the CL's bottom is z -30.000 (2.000 mm short of it), in the block "
+      "`G1 Z-28.`\n");
+  CHECK(
+      run({"G0 X4. Z2.", "G1 Z-30. F0.1", "G0 Z2."}).first ==
+      "job.cls:11:1: error: channel 1: the program drills this record's hole elsewhere (the part frame, mm): "
+      "its deepest feed at x 2.000 y 0.000 where the CL has x 0.000 y 0.000 (2.000 mm off), in the block "
+      "`G1 Z-30. F0.1`\n");
+  // A lathe cycle (a groove) is no hole: its moves are not held to a bottom.
+  CHECK(run({"G0 X4. Z2.", "G1 Z-30. F0.1", "G0 Z2."}, "GROOVE").first == "");
 }
 
 TEST_CASE("cl comparison: the fourth attack's ways past the C axis, the holes and the head",
