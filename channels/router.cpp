@@ -416,16 +416,16 @@ void channel_router::bound_sync(const sync_event& s, int line, const std::vector
   const std::vector<bound_record>& theirs = bound_[1 - side];
   const std::size_t k = mine.size();
   mine.push_back({key, line});
-  // Each channel's k-th sync record meets the other's k-th: crossed, the programs would wait
-  // for each other.
+  // Each channel's k-th sync record meets the other's k-th: crossed (1, 3, 2 against 1, 2, 3)
+  // or different (1 against 2), the programs would wait at different codes, each for the other.
   if (k < theirs.size() && theirs[k].key != key) {
     bind_failed_ = true;
     return error(
-        line,
-        fmt::format("sync {} is channel {}'s sync record number {}, where channel {} has sync {} "
-                    "(line {}): the two channels would wait for each other; give the sync "
-                    "records in the same order in both",
-                    index, ch, k + 1, side == 0 ? ops_.b : ops_.a, theirs[k].key.first, theirs[k].line));
+        line, fmt::format(
+                  "sync {} is channel {}'s sync record number {}, where channel {}'s number {} is sync {} "
+                  "(line {}): the two would wait at different codes, each for the other; give both "
+                  "channels the same sync records in the same order",
+                  index, ch, k + 1, side == 0 ? ops_.b : ops_.a, k + 1, theirs[k].key.first, theirs[k].line));
   }
   if (k < theirs.size()) ++ops_.kept_syncs;
   // The timing post: a rendezvous here too, so that each operation is timed on its own. Not

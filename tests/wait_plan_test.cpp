@@ -202,9 +202,9 @@ TEST_CASE("under optimise, sync records that cross or find no partner stop the p
         nullptr, false, crossed);
   REQUIRE(crossed.errors() == 1);
   CHECK(format_diagnostic(crossed.all().front()) ==
-        "job.cls:6: error: sync 2 is channel 2's sync record number 1, where channel 1 has sync 1 (line 2): "
-        "the "
-        "two channels would wait for each other; give the sync records in the same order in both\n");
+        "job.cls:6: error: sync 2 is channel 2's sync record number 1, where channel 1's number 1 is sync 1 "
+        "(line 2): the two would wait at different codes, each for the other; give both channels the same "
+        "sync records in the same order\n");
   diagnostic_list unmet;
   route({go(1), sync(1, 2), go(3), head(2, 4), go(5)}, sync_policy::sequential, nullptr, true, unmet);
   REQUIRE(unmet.errors() == 1);
