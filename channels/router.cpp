@@ -363,22 +363,7 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
     if (last_sync_line_ >= 0 && last_sync_index_ == index && last_sync_channel_ == ch &&
         !busy_[static_cast<std::size_t>(ch)])
       continue;
-    int nth = seen_[{ch, index}]++;
-    auto key = std::make_pair(index, nth);
-    auto it = sync_codes_.find(key);
-    if (it == sync_codes_.end()) {
-      auto code = next_code(line, fmt::format("sync {}", index));
-      if (!code) return;
-      it = sync_codes_.emplace(key, *code).first;
-      ++rendezvous_;
-    }
-    wait_mark w;
-    w.code = it->second;
-    w.partners = partners;
-    w.partner_text = partner_list(partners, m_.waits.partners);
-    w.cl_line = line;
-    send_wait(ch, w);
-    busy_[static_cast<std::size_t>(ch)] = false;
+    if (!sync_wait(ch, {index, seen_[{ch, index}]++}, partners, line)) return;
     last_sync_channel_ = ch;
     last_sync_index_ = index;
   }
@@ -434,11 +419,14 @@ void channel_router::bound_sync(const sync_event& s, int line, const std::vector
   // longer than it is).
   if (op_waits_) rendezvous({ops_.a, ops_.b}, line, "a sync record");
   side_break(side, line);
-  if (!plan_) return;
+  if (plan_ && sync_wait(ch, key, partners, line)) last_partners_ = partners;
+}
+
+bool channel_router::sync_wait(int ch, std::pair<int, int> key, const std::vector<int>& partners, int line) {
   auto it = sync_codes_.find(key);
   if (it == sync_codes_.end()) {
-    auto code = next_code(line, fmt::format("sync {}", index));
-    if (!code) return;
+    auto code = next_code(line, fmt::format("sync {}", key.first));
+    if (!code) return false;
     it = sync_codes_.emplace(key, *code).first;
     ++rendezvous_;
   }
@@ -449,7 +437,7 @@ void channel_router::bound_sync(const sync_event& s, int line, const std::vector
   w.cl_line = line;
   send_wait(ch, w);
   busy_[static_cast<std::size_t>(ch)] = false;
-  last_partners_ = partners;
+  return true;
 }
 
 void channel_router::transfer(const event& e, const transfer_event& t) {

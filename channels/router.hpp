@@ -100,6 +100,9 @@ class channel_router {
   /// A sync record under --sync optimise (its timing post and its planned post): it binds, a
   /// barrier of the two channels at its own place in each; the plan's waits go between.
   void bound_sync(const sync_event& s, int line, const std::vector<int>& partners);
+  /// The wait of sync record `key` (sync number, occurrence) in channel `ch`: the code of that
+  /// key, allocated at its first record; false when no code is left (said).
+  bool sync_wait(int ch, std::pair<int, int> key, const std::vector<int>& partners, int line);
   /// The section of side `side` ends here (its remaining planned waits placed), its next begins.
   void side_break(int side, int line);
   /// A bound sync record one channel has passed and the other not (said as an error): true.
