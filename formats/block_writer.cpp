@@ -113,10 +113,10 @@ void block_writer::filtered(std::string_view words, bool restart) {
 }
 
 void block_writer::block(std::string_view words, bool restart) {
+  if (!started_) [[unlikely]]
+    start();  // the head's blocks take the first numbers, and the filter sees them first
   if (filter_ && !filtering_) [[unlikely]]
     return filtered(words, restart);
-  if (!started_) [[unlikely]]
-    start();  // the head's blocks take the first numbers
   ++blocks_;
   if (fmt_.sequence_start > 0) {
     std::string line = seq_.next(restart);

@@ -63,6 +63,11 @@ class block_writer {
     block(words);
     filtering_ = was;
   }
+  /// Writes the head now, if it is not written yet (before a filter that must see its blocks
+  /// first is called for anything else).
+  void begin() {
+    if (!started_) start();
+  }
   /// Every block of block() and end_block() passes `f` first; nullptr (the default): none.
   void set_filter(block_filter* f) { filter_ = f; }
   /// Whether blocks pass a filter (which may replace them with other words).

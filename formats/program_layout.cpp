@@ -33,6 +33,14 @@ void add_block(std::string& out, const program_format& p, sequence_numbers& seq,
   add_line(out, s);
 }
 
+// A header or footer block as the section's edit makes it (frame_request::edit_block).
+void add_edited(std::string& out, const frame_request& r, const channel_def& ch, sequence_numbers& seq,
+                const std::string& b, bool header) {
+  const program_format& p = r.machine_def->program;
+  if (!r.edit_block || b.empty() || b.front() == p.comment_open) return add_block(out, p, seq, b);
+  for (const std::string& e : r.edit_block(ch, b, header)) add_block(out, p, seq, e);
+}
+
 void put(std::FILE* f, std::string_view s) { std::fwrite(s.data(), 1, s.size(), f); }
 
 [[noreturn]] void write_failed(const frame_request& r, const std::string& name, int err) {
@@ -93,7 +101,7 @@ std::string section_head(const frame_request& r, const channel_def& ch, sequence
   if (merged(r))
     add_line(s, format_template(
                     r.layout == layout_kind::merged_sections ? "${channel}" : m.program.section_marker, a));
-  for (const std::string& h : m.program.header) add_block(s, m.program, seq, format_template(h, a));
+  for (const std::string& h : m.program.header) add_edited(s, r, ch, seq, format_template(h, a), true);
   return s;
 }
 
@@ -110,7 +118,7 @@ std::string section_tail(const frame_request& r, const channel_def& ch, sequence
       in_force.erase(done);
       continue;
     }
-    add_block(s, m.program, seq, b);
+    add_edited(s, r, ch, seq, b, false);
   }
   add_block(s, m.program, seq, m.program.end_code);
   return s;

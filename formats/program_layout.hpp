@@ -9,6 +9,7 @@
 // sections (marker, header, blocks, footer) to a body file on disk, and finish_frames
 // appends them after the first one's. Header and footer blocks are numbered in the count
 // of the channel's blocks (formats/sequence_numbers).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,12 @@ struct frame_request {
   std::string name;     ///< safe program name (from PARTNO), as far as it is known
   std::string tmp_dir;  ///< the program files and spilled bodies are written here
   std::string out_dir;  ///< the folder the files go to (named in messages)
+  /// What becomes of each header and footer block of a channel's section (the machine's
+  /// script's on_block, docs/scripting.md): the blocks written in its place, in order (none:
+  /// dropped). Not given: each as it is. Not for the program line, the section marker, a
+  /// comment line or the end code: they frame the program.
+  std::function<std::vector<std::string>(const channel_def&, const std::string& block, bool header)>
+      edit_block;
 };
 
 /// Where a channel's blocks go.

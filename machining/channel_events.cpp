@@ -160,9 +160,14 @@ void channel_writer::count_wait(int cl_line) {
 }
 
 void channel_writer::count_waits_in(std::string_view b, int cl_line) {
+  for (int n = wait_words_in(b); n > 0; --n) count_wait(cl_line);
+}
+
+int channel_writer::wait_words_in(std::string_view b) const {
   // The wait words as the self-check reads them: the wait address and digits, outside comments.
   // Most blocks (moves) have no word of the wait address at all: one memchr says so.
-  if (b.find(m_.waits.address) == std::string_view::npos) return;
+  int n = 0;
+  if (b.find(m_.waits.address) == std::string_view::npos) return n;
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b[i] == m_.program.comment_open) {
       if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) break;
@@ -172,9 +177,10 @@ void channel_writer::count_waits_in(std::string_view b, int cl_line) {
     long long code = 0;
     std::size_t j = i + 1;
     for (; j < b.size() && ascii::is_digit(b[j]) && code < 1000000000; ++j) code = code * 10 + (b[j] - '0');
-    if (is_wait_word(m_.waits, m_.waits.address, code)) count_wait(cl_line);
+    if (is_wait_word(m_.waits, m_.waits.address, code)) ++n;
     i = j - 1;
   }
+  return n;
 }
 
 namespace {

@@ -130,10 +130,49 @@ bool channel_writer::emit(std::string_view block) {
     script_block_note(b, "post.emit");  // at the CL record
     return false;
   }
-  out_.block_as_is(b);
-  note_user_block(b, true);
+  if (frame_out_)
+    frame_out_->push_back(b);  // in on_block of a header or footer block: before it, in the frame
+  else
+    out_.block_as_is(b);
+  note_user_block(b, !frame_out_);
   script_emitted_.push_back(b);
   return true;
+}
+
+std::vector<std::string> channel_writer::frame_block(const std::string& b, bool header) {
+  if (!filtered_) return {b};
+  for (const frame_edit& e : frame_edits_)
+    if (e.header == header && e.in == b) return e.out;
+  std::vector<std::string> out;
+  std::string replacement;
+  block_writer::verdict v = block_writer::verdict::keep;
+  frame_out_ = &out;
+  block_part_ = header ? "header" : "footer";
+  try {
+    v = filter(b, replacement);
+  } catch (...) {
+    frame_out_ = nullptr;
+    block_part_ = "body";
+    throw;
+  }
+  frame_out_ = nullptr;
+  block_part_ = "body";
+  if (v != block_writer::verdict::drop) out.push_back(v == block_writer::verdict::replace ? replacement : b);
+  // The channels meet in the body, where the post counts and places its waits: a wait the
+  // script puts into the frame would pair with none of the other channel's.
+  if (!script_->failed)
+    for (const std::string& w : out)
+      if (wait_words_in(w) > 0) {
+        error(line_, fmt::format("on_block puts \"{}\" into the program's {}, with a wait code: the post "
+                                 "places, counts and proves the waits of the body only; give a wait from an "
+                                 "event or by the CL's SYNC records",
+                                 w, header ? "header" : "footer"));
+        script_block_note(w, "on_block");
+        script_->failed = true;
+        break;
+      }
+  frame_edits_.push_back({b, header, out});
+  return out;
 }
 
 void channel_writer::script_block_note(std::string_view block, std::string_view how) {
@@ -158,7 +197,11 @@ void channel_writer::warning(std::string_view message) {
 block_writer::verdict channel_writer::filter(std::string_view block, std::string& replacement) {
   if (script_->failed) return block_writer::verdict::keep;
   scripting::block_verdict v = scripting::block_verdict::keep;
-  run_script([&](scripting::lua_script& s) { v = s.on_block(block, script_context(), *this, replacement); });
+  run_script([&](scripting::lua_script& s) {
+    scripting::script_context ctx = script_context();
+    ctx.part = block_part_;
+    v = s.on_block(block, ctx, *this, replacement);
+  });
   // What on_block emitted stands among the post's blocks: no block restores a mode after it.
   for (const std::string& e : script_emitted_)
     if (!script_->failed && !refuse_mode_changes(e, "post.emit in on_block")) {
@@ -205,7 +248,8 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
     script_->failed = true;
     return block_writer::verdict::keep;
   }
-  if (!user_block_passes(replacement) || !refuse_mode_changes(replacement, "on_block")) {  // at the CL record
+  if (!user_block_passes(replacement, block) ||
+      !refuse_mode_changes(replacement, "on_block")) {  // at the CL record
     script_block_note(replacement, "on_block");
     script_->failed = true;  // the post has failed: no more on_block calls, no error per block
     return block_writer::verdict::drop;

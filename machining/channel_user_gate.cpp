@@ -287,7 +287,7 @@ const char* control_variable(int n) {
 
 }  // namespace
 
-bool channel_writer::user_block_passes(const std::string& given) {
+bool channel_writer::user_block_passes(const std::string& given, std::string_view own) {
   const program_format& f = m_.program;
   if (!block_fits(given)) return false;
   if (f.comment_close != '\n')
@@ -328,7 +328,15 @@ bool channel_writer::user_block_passes(const std::string& given) {
   bool motion = false, data = false, length = false, absolute = false, parameters = false;
   bool reference = false, elsewhere = false;  // G28: X at its reference; G30, G53: X unknown
   double modal = -1;                          // a mode the post neither writes nor restores
+  // The codes of the post's block that `b` replaces: its work offset (a header's G54), G49,
+  // G10.9 are the post's, kept, not the user's doing.
+  std::vector<double> post_codes;
+  if (!own.empty()) {
+    bool own_glued = false;
+    each_g(control_reading(std::string(own), f, own_glued), f, [&](double g) { post_codes.push_back(g); });
+  }
   each_g(b, f, [&](double g) {
+    const bool posts = std::any_of(post_codes.begin(), post_codes.end(), [&](double p) { return is(g, p); });
     // After these an X is no position in the work frame: a dwell (G4 X1.5), data setting
     // (G10), machine coordinates (G53), a macro's arguments (G65, G66).
     data = data || is(g, 4) || is(g, 10) || is(g, 65) || is(g, 66);
@@ -341,22 +349,24 @@ bool channel_writer::user_block_passes(const std::string& given) {
     reference = reference || is(g, 28);
     elsewhere = elsewhere || is(g, 30) || is(g, 53);
     // G10 L50 .. G11: parameters, among them the work offsets and the stroke limits.
-    parameters = parameters || (is(g, 10) && has_word(b, 'L', {50, 52}));
+    parameters = parameters || (!posts && is(g, 10) && has_word(b, 'L', {50, 52}));
     // The tool length offset: the post writes it with each tool and cancels it at home.
-    length = length || is(g, 43) || is(g, 43.1) || is(g, 43.4) || is(g, 43.5) || is(g, 44) || is(g, 49);
+    length = length ||
+             (!posts && (is(g, 43) || is(g, 43.1) || is(g, 43.4) || is(g, 43.5) || is(g, 44) || is(g, 49)));
     // G10 sets a work offset with L2 or L20 and the workpiece shift with P0 (with another P, or
     // L10-L13, a tool offset: a wear adjustment is a shop's own business); G52 X0. cancels a
     // local frame; G50.3 and G92.1 preset the work frame. G92 sets the frame where the safe
     // start writes G90 (G-code system B and C, mills); in Fanuc lathe system A it is the
     // threading cycle (its frame setting is G50).
-    sets_frame = sets_frame || is(g, 50) || (is(g, 92) && absolute_code_) ||
-                 (is(g, 10) && (has_word(b, 'L', {2, 20}) || has_word(b, 'P', {0})));
-    local_frame = local_frame || is(g, 52);
-    transforms = transforms || (g >= 54 && g <= 59 && is(g, std::round(g))) || is(g, 54.1) || is(g, 54.2) ||
-                 is(g, 51) || is(g, 51.1) || is(g, 68) || is(g, 68.1) || is(g, 68.2) || is(g, 50.3) ||
-                 is(g, 92.1);
+    sets_frame =
+        sets_frame || (!posts && (is(g, 50) || (is(g, 92) && absolute_code_) ||
+                                  (is(g, 10) && (has_word(b, 'L', {2, 20}) || has_word(b, 'P', {0})))));
+    local_frame = local_frame || (!posts && is(g, 52));
+    transforms = transforms || (!posts && ((g >= 54 && g <= 59 && is(g, std::round(g))) || is(g, 54.1) ||
+                                           is(g, 54.2) || is(g, 51) || is(g, 51.1) || is(g, 68) ||
+                                           is(g, 68.1) || is(g, 68.2) || is(g, 50.3) || is(g, 92.1)));
     for (const double m : {7.1, 12.1, 112.0, 107.0, 41.0, 42.0, 66.0, 66.1, 51.2, 10.9, 16.0, 23.0, 93.0})
-      if (is(g, m)) modal = m;
+      if (is(g, m) && !posts) modal = m;
   });
   // G90 and G91 in one block: a control takes the last; the gate the worse, G91.
   if (incremental) absolute = false;
@@ -723,7 +733,8 @@ bool channel_writer::user_block_passes(const std::string& given) {
   std::string axis_letters;
   for (const axis_def& a : ch_.axes) axis_letters += a.address;
   if (std::string why = user_block_form_error(
-          b, given, {incremental, increment_letters(), x_diameter_ && !absolute_code_, axis_letters});
+          b, given,
+          {incremental, increment_letters(), x_diameter_ && !absolute_code_, axis_letters, &post_codes});
       !why.empty()) {
     error(line_, why);
     return false;

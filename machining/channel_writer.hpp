@@ -108,8 +108,14 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// one a cut on a spindle this channel has not started is an error at once.
   void share_spindles(job_spindles* j) { job_spindles_ = j; }
   /// The job's script ([events] script; machining/channel_script.cpp): its hooks run at the
-  /// writer's event points, its on_block (when it has one) sees every body block.
+  /// writer's event points, its on_block (when it has one) sees every block, the header's
+  /// and the footer's too (frame_block).
   void use_script(job_script* s);
+  /// A header (`header`) or footer block of the program's frame through the script's on_block:
+  /// the blocks written in its place, in order (post.emit's, then the block kept or replaced;
+  /// none: dropped). Each block is asked once: the frame written again under the program's
+  /// name (formats/program_layout) gets the same answer. frame_request::edit_block.
+  std::vector<std::string> frame_block(const std::string& b, bool header);
   void on_wait(const wait_mark& w);
   /// Ends the body: coolant and spindle off are the footer's job; closes the file.
   void finish();
@@ -818,6 +824,15 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::string lost_words(std::string_view block, std::string_view replacement) const;
   /// The blocks post.emit wrote in the script call running (restore_modes_after them).
   std::vector<std::string> script_emitted_;
+  // A frame block's answers (frame_block), and where post.emit writes while one is asked.
+  struct frame_edit {
+    std::string in;
+    bool header = false;
+    std::vector<std::string> out;
+  };
+  std::vector<frame_edit> frame_edits_;
+  std::vector<std::string>* frame_out_ = nullptr;
+  const char* block_part_ = "body";  // on_block's ctx.part
   /// events.program_start, once, before the channel's first block.
   void user_program_start();
   /// A record the machine file turns into blocks ([[events.record]]).
@@ -854,7 +869,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// the control's formats, no blank splits a word, its X words are within the channel's X
   /// travel as the post's own are held (axis_word), it neither sets the coordinate system nor
   /// holds a program number (machining/channel_user_gate.cpp). Reports the first fault.
-  bool user_block_passes(const std::string& b);
+  /// `own`: the post's block that `b` replaces (on_block); a frame, length-offset or mode code
+  /// it has is the post's own, not the user's.
+  bool user_block_passes(const std::string& b, std::string_view own = {});
   /// INSERT text is the CAM user's NC, written as given; only a return to the reference
   /// position along a path the post cannot follow (G27, G29, G28/G30 through a point) stops the
   /// post at record `line` (machining/user_block_form.hpp, insert_return_error).
@@ -873,6 +890,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   template <class F>
   void run_script(F&& call) {
     if (script_->failed) return;
+    out_.begin();  // on_block sees the header's blocks before any the script writes
     try {
       call(*script_->lua);
     } catch (const scripting::script_error& e) {
@@ -904,6 +922,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void count_wait(int cl_line);
   /// count_wait for each wait code in block `b` (outside comments), as the checker reads it.
   void count_waits_in(std::string_view b, int cl_line);
+  /// The wait words of block `b` as the self-check reads them (outside comments).
+  int wait_words_in(std::string_view b) const;
   /// block_filter: a block the filter saw went out as `block` (kept or replaced); its waits
   /// are counted here, the post's own as a replacement's (the writer then counts none itself).
   void block_written(std::string_view block, bool replaced) override;

@@ -197,8 +197,9 @@ std::string user_block_form_error(std::string_view r, std::string_view given, co
   bool reference = false, machine = false, incremental = c.incremental;
   for (const word& w : words) {
     if (w.letter == 'G') {
-      if (std::none_of(std::begin(known_g), std::end(known_g),
-                       [&](double g) { return std::abs(w.value - g) < 1e-9; }))
+      const auto same = [&](double g) { return std::abs(w.value - g) < 1e-9; };
+      if (std::none_of(std::begin(known_g), std::end(known_g), same) &&
+          !(c.post_codes && std::any_of(c.post_codes->begin(), c.post_codes->end(), same)))
         return refusal(
             given,
             fmt::format(

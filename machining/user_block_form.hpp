@@ -6,6 +6,7 @@
 // "the gate").
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace twinpost {
 
@@ -15,6 +16,8 @@ struct user_block_context {
   /// G90, G92 and G94 are a lathe's turning, threading and facing cycles (Fanuc G-code system A)
   bool lathe_cycles = false;
   std::string_view axes;  ///< the channel's axis letters ("XZCB"): a word of another is refused
+  /// The G codes of the post's block this one replaces (on_block): the post's own, allowed.
+  const std::vector<double>* post_codes = nullptr;
 };
 
 /// Empty when `reading` (the block as a control reads it: upper case, no comments or blanks,

@@ -539,7 +539,12 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   ws.m = &m;
   ws.diags = &sink;
   ws.file = o.cl_path;
-  const frame_request req = staged_request(o, m, stage.dir());
+  frame_request req = staged_request(o, m, stage.dir());
+  // The header and footer blocks through the script's on_block, as the body's blocks.
+  if (lua && lua->has_on_block())
+    req.edit_block = [&ws](const channel_def& ch, const std::string& b, bool header) {
+      return ws.writers[static_cast<std::size_t>(ch.number - 1)]->frame_block(b, header);
+    };
   for (const auto& [channel, tool] : o.start_tools)
     if (channel < 1 || channel > static_cast<int>(m.channels.size()))
       throw config_error(fmt::format("--tool {}:{}: machine '{}' has no channel {} (it has {})", channel,
@@ -576,6 +581,7 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   if (sink.counts.errors > 0) return router.operations();
 
   const std::vector<framed_file> files = frame_files(named_request(req, ws), ws);
+  if (sink.counts.errors > 0) return router.operations();  // a header written again, refused by on_block
   if (!o.timeline_file.empty())
     if (std::string why = timeline_name_problem(o, files); !why.empty()) {
       sink.report({severity::error, o.cl_path, 0, 0, std::move(why), {}});

@@ -367,13 +367,17 @@ bool lua_script::has_on_block() const { return impl_->hook_ref[script_state::h_b
 namespace {
 
 void push_context(lua_State* L, const script_context& ctx) {
-  lua_createtable(L, 0, 3);
+  lua_createtable(L, 0, 4);
   lua_pushinteger(L, ctx.channel);
   lua_setfield(L, -2, "channel");
   lua_pushlstring(L, ctx.program.data(), ctx.program.size());
   lua_setfield(L, -2, "program");
   lua_pushinteger(L, ctx.cl_line);
   lua_setfield(L, -2, "line");
+  if (ctx.part) {
+    lua_pushstring(L, ctx.part);
+    lua_setfield(L, -2, "part");
+  }
 }
 
 }  // namespace

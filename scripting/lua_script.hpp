@@ -61,6 +61,8 @@ struct script_context {
   int channel = 0;
   std::string_view program;  ///< the program's name or number as written
   int cl_line = 0;           ///< the CL record being posted (0: none)
+  /// on_block's: where the block stands, "header", "body" or "footer"; null: not given.
+  const char* part = nullptr;
 };
 
 /// on_block's answer.

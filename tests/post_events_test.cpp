@@ -1023,3 +1023,67 @@ TEST_CASE("events: a rotary word without its decimal point is refused", "[post][
                                 parse_machine(text, "m31.toml"), "events-rotary-zero")
             .diagnostics.find("decimal point") == std::string::npos);
 }
+
+TEST_CASE("on_block sees the header and footer blocks, each once, with ctx.part", "[post][events][script]") {
+  // Each frame block announced by a comment before it (post.emit), the footer's return home
+  // moved to G30; the count of header calls written at the end (one header block a channel).
+  const std::string lua =
+      "function on_block(text, ctx)\n"
+      "  if ctx.part ~= 'body' then post.emit('(' .. string.upper(ctx.part) .. ')') end\n"
+      "  if ctx.part == 'header' then post.vars.n = (post.vars.n or 0) + 1 end\n"
+      "  if ctx.part == 'footer' and text:sub(1, 4) == 'G28 ' then return 'G30 ' .. text:sub(5) end\n"
+      "  if ctx.part == 'footer' and text == 'M5' then return 'M5 (HEADERS ' .. post.vars.n .. ')' end\n"
+      "  if ctx.part == 'header' then return text .. ' (' .. string.upper(ctx.part .. ' of ' .. ctx.program) "
+      ".. ')' end\n"
+      "end\n";
+  const std::string ev1 =
+      "%\nO1000 (EV)\n(HEADER)\nG0 G18 G21 G40 G54 G80 G99 (HEADER OF EV_1.NC)\nG28 U0.\nG28 W0.\nT0101\n"
+      "M100\n(FOOTER)\nM9\n(FOOTER)\nG30 U0.\n(FOOTER)\nG30 W0.\n(FOOTER)\nM5 (HEADERS 2)\nM30\n%\n";
+  SECTION("header, body and footer") {
+    const test::posted p = post_with_script("", lua, "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame");
+    CHECK(program_1(p) == ev1);
+    CHECK(program_1(p, "EV_2.nc") ==
+          "%\nO1000 (EV)\n(HEADER)\nG0 G18 G21 G40 G54 G80 G99 (HEADER OF EV_2.NC)\nM100\n(FOOTER)\nM9\n"
+          "(FOOTER)\nG30 U0.\n(FOOTER)\nG30 W0.\n(FOOTER)\nM5 (HEADERS 2)\nM30\n%\n");
+  }
+  SECTION("a late PARTNO: the header written again under the name gets the same answer") {
+    // ctx.program is the name the program had when the block was asked for, as in the body.
+    const test::posted p = post_with_script("", lua, "HEAD/1\nTURRET/1,1\nPARTNO EV\nFINI\n", "frame-late");
+    std::string late = ev1;
+    late.replace(late.find("EV_1.NC"), 7, "PROGRAM_1.NC");
+    CHECK(program_1(p) == late);
+  }
+  SECTION("a wait put into the header is refused") {
+    const test::posted p = post_with_script(
+        "", "function on_block(text, ctx)\n  if ctx.part == 'header' then return text .. ' M101' end\nend\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame-wait");
+    CHECK(
+        p.diagnostics ==
+        "job.cls:3:1: error: channel 1: on_block puts \"G0 G18 G21 G40 G54 G80 G99 M101\" into the program's "
+        "header, with a wait code: the post places, counts and proves the waits of the body only; give a "
+        "wait from an event or by the CL's SYNC records\nTURRET/1,1\n^\n"
+        "t.lua: note: channel 1: the block 'G0 G18 G21 G40 G54 G80 G99 M101' came from the script "
+        "(on_block)\n");
+    CHECK(p.files.empty());
+  }
+  SECTION("the header's codes are the post's, another work offset is not") {
+    const test::posted p = post_with_script(
+        "", "function on_block(text, ctx)\n  if ctx.part == 'header' then return text .. ' G55' end\nend\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame-g55");
+    CHECK(
+        p.diagnostics.starts_with("job.cls:3:1: error: channel 1: \"G0 G18 G21 G40 G54 G80 G99 G55\" selects "
+                                  "another work offset"));
+    CHECK(p.files.empty());
+  }
+  SECTION("a header block with a G code is not dropped") {
+    const test::posted p = post_with_script(
+        "", "function on_block(text, ctx)\n  if ctx.part == 'header' then return false end\nend\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame-drop");
+    CHECK(
+        p.diagnostics ==
+        "job.cls:3:1: error: channel 1: on_block drops \"G0 G18 G21 G40 G54 G80 G99\": a block with a G code "
+        "or an axis word holds the modes and positions the post's next blocks rely on; give it back, or "
+        "replace it with one that does the same\nTURRET/1,1\n^\n");
+    CHECK(p.files.empty());
+  }
+}

@@ -24,9 +24,10 @@ function on_tool_change(tool)
 end
 
 -- Tool changes at the second reference point (G30, the tool-change position of parameter
--- 1241) instead of the machine zero; the program's end (its footer) still goes to G28.
+-- 1241) instead of the machine zero; the program's end (its footer, which on_block sees as
+-- ctx.part "footer") still goes to G28, where the operator unloads the part.
 function on_block(text, ctx)
-  if text:sub(1, 4) == "G28 " then return "G30 " .. text:sub(5) end
+  if ctx.part == "body" and text:sub(1, 4) == "G28 " then return "G30 " .. text:sub(5) end
 end
 
 -- Each tool's uses added to its common variable #6nn (#601 for T01): the control's count,
