@@ -221,10 +221,14 @@ struct cl_comparison::impl {
     axis_state x, y, z;
     std::string text;
   } fed_low, fed_high;
-  bool length_on = false;        // a tool length offset in force (G43, G43.4, G43.5, G44)
-  bool needs_length = false;     // a mill head's channel: Z is the gauge line without one
-  bool foreign_offset = false;   // a work offset no spindle names (G56): another part frame
-  bool shifted = false;          // offsets written (G10, #5221=), a coordinate setting: not known
+  bool length_on = false;       // a tool length offset in force (G43, G43.4, G43.5, G44)
+  bool needs_length = false;    // a mill head's channel: Z is the gauge line without one
+  bool foreign_offset = false;  // a work offset no spindle names (G56): another part frame
+  bool shifted = false;         // offsets written (G10, #5221=), a coordinate setting: not known
+  std::string shift_text;       // the block that set it, and its line in the program
+  int shift_line = 0;
+  bool said_shift = false;
+  bool mirrored = false;         // under G51 or G51.1 (part of `frame`)
   bool rapid_in_record = false;  // a block of this record moved in rapid
   std::string rapid_text;
   int per_rev = -1;  // feed mode: 1 per revolution, 0 per minute, -1 unknown
@@ -375,6 +379,15 @@ struct cl_comparison::impl {
   }
 
   void line(std::string_view text) {
+    const bool was = shifted, was_mirrored = mirrored;
+    read_line(text);
+    if ((shifted && !was) || (mirrored && !was_mirrored && !shifted)) {
+      shift_text.assign(text);
+      shift_line = lines;
+    }
+  }
+
+  void read_line(std::string_view text) {
     ++lines;
     const std::uint32_t letters = split_nc_words(text, words);
     // A block under block delete (`/G0 X44. Z2.`) runs or not as the operator's switch says (a
@@ -655,16 +668,18 @@ struct cl_comparison::impl {
           not_a_move = true;
           break;
         }
+        case 511:
+        case 510:
+          mirrored = true;  // the post writes neither: a user's mirror image or scaling
+          [[fallthrough]];
         case 680:
         case 681:
         case 682:
-        case 511:
-        case 510:
           frame = true;
           not_a_move = true;
           break;
         case 690:
-        case 501: frame = false; break;
+        case 501: frame = mirrored = false; break;
         case 160: polar_coords = true; break;
         case 150: polar_coords = false; break;
         case 930: inverse_time = true; break;
@@ -831,6 +846,29 @@ struct cl_comparison::impl {
   // The part-frame coordinate of program axis `a` (`div`: program value per part-frame mm).
   double part(const axis_state& a, double div) const { return a.value * out_mm / div; }
 
+  // Once a channel: the records from `e` on are passed over, the part frame being the
+  // program's own (attack 50 F3: a G52 Z-5. or G51.1 Z0. from INSERT silenced the comparison
+  // without a word). Said as a warning: the program is written, not verified from here.
+  void said_passed_shift(const event& e) {
+    if (said_shift) return;
+    said_shift = true;
+    diagnostic d;
+    d.level = severity::warning;
+    d.file = cl_file;
+    d.line = e.line;
+    d.column = e.column;
+    d.message = shifted
+                    ? fmt::format(
+                          "channel {}: this record and the channel's later ones are not held to the CL: the "
+                          "program sets the part frame itself at line {} of its program (`{}`)",
+                          ch.number, shift_line, shift_text)
+                    : fmt::format(
+                          "channel {}: the records under a mirror image or a scaling are not held to the CL, "
+                          "from this one on: the program sets it at line {} of its program (`{}`)",
+                          ch.number, shift_line, shift_text);
+    diags.report(std::move(d));
+  }
+
   void error(const event& e, std::string message) {
     ++reported;
     diagnostic d;
@@ -847,6 +885,7 @@ struct cl_comparison::impl {
     if (!head_due && head_offset_wrong(e)) return false;
     if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || rotary || foreign_offset ||
         shifted || head_due || !c_known) {
+      if (shifted || mirrored) said_passed_shift(e);
       ++passed;
       return false;
     }
@@ -948,6 +987,7 @@ struct cl_comparison::impl {
     if (!head_due && head_offset_wrong(e)) return;
     if (polar || cylinder || frame || polar_coords || rotary || foreign_offset || shifted || head_due ||
         !c_known) {
+      if (shifted || mirrored) said_passed_shift(e);
       ++passed;
       return;
     }

@@ -258,14 +258,39 @@ TEST_CASE("cl comparison: a mill's tool length offset", "[analysis][cl_compare]"
 }
 
 TEST_CASE("cl comparison: a part frame it does not know is passed over", "[analysis][cl_compare]") {
-  // Offset data written (G10, #5223), a work offset no spindle names (G56): not followed.
-  for (const char* frame : {"G10 L2 P1 Z-5.", "#5223=-5.", "G56"}) {
+  // Offset data written (G10, #5223), a coordinate setting (G52 Z-5. from an INSERT, attack 50
+  // F3), a work offset no spindle names (G56): not followed. Passed over with a warning once a
+  // channel where the program set the frame itself; G56 is a setup's other part.
+  for (const char* frame : {"G10 L2 P1 Z-5.", "#5223=-5.", "G52 Z-5.", "G56"}) {
     compared c("fanuc-0itd-twin", 1);
     c.lines({"T0101", frame, "G0 X80. Z2."});
     c.go(10, 2, true);
-    CHECK(c.text().empty());
-    CHECK(c.cmp.passed_over() == 1);
+    c.go(20, 2, true);
+    CHECK(c.text() ==
+          (std::string(frame) == "G56"
+               ? std::string()
+               : fmt::format("job.cls:10:1: warning: channel 1: this record and the channel's later "
+                             "ones are not held to the CL: the program sets the part frame itself at "
+                             "line 5 of its program (`{}`)\n",
+                             frame)));
+    CHECK(c.cmp.passed_over() == 2);
   }
+}
+
+TEST_CASE("cl comparison: the records under a user's mirror image are passed over with a warning",
+          "[analysis][cl_compare]") {
+  compared c("fanuc-0itd-twin", 1);
+  c.lines({"T0101", "G51.1 Z0.", "G0 X80. Z2."});
+  c.go(10, 2, true);
+  c.go(20, 2, true);
+  c.lines({"G50.1 Z0.", "G0 X80. Z5."});
+  c.go(40, 5, true);
+  CHECK(c.text() ==
+        "job.cls:10:1: warning: channel 1: the records under a mirror image or a scaling are not held to the "
+        "CL, "
+        "from this one on: the program sets it at line 5 of its program (`G51.1 Z0.`)\n");
+  CHECK(c.cmp.passed_over() == 2);
+  CHECK(c.cmp.compared() == 1);
 }
 
 TEST_CASE("cl comparison: an arc's sense, centre and R", "[analysis][cl_compare]") {
@@ -717,8 +742,11 @@ TEST_CASE("cl comparison: the fourth attack's ways past the C axis, the holes an
   // The head's codes with their words in another order and the move's words: its own offset.
   CHECK(integrex({"G0 H#3020 P1 G43 X20. Y0. Z2."}, g81).empty());
   // A coordinate setting of C (G92 C0.: C's origin moved, not C): the records after it are
-  // passed over, not read as C at 0 (attack 48: a right program was refused).
-  CHECK(integrex({"G92 C0."}, g81).empty());
+  // passed over, not read as C at 0 (attack 48: a right program was refused), with a warning.
+  CHECK(integrex({"G92 C0."}, g81) ==
+        "job.cls:11:1: warning: channel 1: this record and the channel's later ones are not held to the CL: "
+        "the "
+        "program sets the part frame itself at line 14 of its program (`G92 C0.`)\n");
   // The 31i's cross hole at 90 degrees drilled from C270: the same line, the other wall.
   compared side("fanuc-31i-3path", 3);
   cycle_event drill;

@@ -252,3 +252,15 @@ TEST_CASE("a tool axis along Z posts and any other stops the post at the first m
       "posted\nGOTO/20,0,-6,1,0,0\n^\n");
   CHECK(tilted.files.empty());
 }
+
+TEST_CASE("INSERT text that sets the part frame is written, and the comparison says it stops there",
+          "[post][records]") {
+  // Attack 50 F3: `INSERT/G52 Z-5.` moved every later cut 5 mm and the comparison with the CL
+  // passed the records over without a word.
+  posted p = post_text(head + "GOTO/20,0,2\nINSERT/G52 Z-5.\n" + cut + "FINI\n", "insert-g52");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:8:1: warning: channel 1: this record and the channel's later ones are not held to the CL: the "
+      "program sets the part frame itself at line 9 of its program (`G52 Z-5.`)\nGOTO/20,0,0\n^\n");
+  CHECK(p.files.count("W_1.nc") == 1);
+}
