@@ -35,10 +35,10 @@ void add_block(std::string& out, const program_format& p, sequence_numbers& seq,
 
 // A header or footer block as the section's edit makes it (frame_request::edit_block).
 void add_edited(std::string& out, const frame_request& r, const channel_def& ch, sequence_numbers& seq,
-                const std::string& b, bool header) {
+                const std::string& b, bool header, std::size_t index) {
   const program_format& p = r.machine_def->program;
   if (!r.edit_block || b.empty() || b.front() == p.comment_open) return add_block(out, p, seq, b);
-  for (const std::string& e : r.edit_block(ch, b, header)) add_block(out, p, seq, e);
+  for (const std::string& e : r.edit_block(ch, b, header, index)) add_block(out, p, seq, e);
 }
 
 void put(std::FILE* f, std::string_view s) { std::fwrite(s.data(), 1, s.size(), f); }
@@ -101,7 +101,8 @@ std::string section_head(const frame_request& r, const channel_def& ch, sequence
   if (merged(r))
     add_line(s, format_template(
                     r.layout == layout_kind::merged_sections ? "${channel}" : m.program.section_marker, a));
-  for (const std::string& h : m.program.header) add_edited(s, r, ch, seq, format_template(h, a), true);
+  for (std::size_t i = 0; i < m.program.header.size(); ++i)
+    add_edited(s, r, ch, seq, format_template(m.program.header[i], a), true, i);
   return s;
 }
 
@@ -110,15 +111,15 @@ std::string section_tail(const frame_request& r, const channel_def& ch, sequence
   const machine& m = *r.machine_def;
   const template_args a = args_for(r, &ch);
   std::string s;
-  for (const std::string& f : m.program.footer) {
-    std::string b = format_template(f, a);
+  for (std::size_t i = 0; i < m.program.footer.size(); ++i) {
+    std::string b = format_template(m.program.footer[i], a);
     // The channel's own last M9 or M5, still in force: the same block again would only say twice
     // that the coolant is off.
     if (auto done = std::find(in_force.begin(), in_force.end(), b); done != in_force.end()) {
       in_force.erase(done);
       continue;
     }
-    add_edited(s, r, ch, seq, b, false);
+    add_edited(s, r, ch, seq, b, false, i);
   }
   add_block(s, m.program, seq, m.program.end_code);
   return s;

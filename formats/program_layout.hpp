@@ -29,7 +29,9 @@ struct frame_request {
   /// script's on_block, docs/scripting.md): the blocks written in its place, in order (none:
   /// dropped). Not given: each as it is. Not for the program line, the section marker, a
   /// comment line or the end code: they frame the program.
-  std::function<std::vector<std::string>(const channel_def&, const std::string& block, bool header)>
+  /// `index`: the block's place in the machine file's header or footer list.
+  std::function<std::vector<std::string>(const channel_def&, const std::string& block, bool header,
+                                         std::size_t index)>
       edit_block;
 };
 

@@ -139,10 +139,14 @@ bool channel_writer::emit(std::string_view block) {
   return true;
 }
 
-std::vector<std::string> channel_writer::frame_block(const std::string& b, bool header) {
+std::vector<std::string> channel_writer::frame_block(const std::string& b, bool header, std::size_t index) {
   if (!filtered_) return {b};
+  // Asked before: the same answer, so that the head written again numbers its blocks as the
+  // first one did (the body's numbers follow them). A block whose text the program's name
+  // changed ({name} in it) and that was kept as it was is kept in its new text.
   for (const frame_edit& e : frame_edits_)
-    if (e.header == header && e.in == b) return e.out;
+    if (e.header == header && e.index == index)
+      return e.out.size() == 1 && e.out[0] == e.in ? std::vector<std::string>{b} : e.out;
   std::vector<std::string> out;
   std::string replacement;
   block_writer::verdict v = block_writer::verdict::keep;
@@ -162,7 +166,7 @@ std::vector<std::string> channel_writer::frame_block(const std::string& b, bool 
   // script puts into the frame would pair with none of the other channel's.
   if (!script_->failed)
     for (const std::string& w : out)
-      if (wait_words_in(w) > 0) {
+      if (!frame_waits(w).empty()) {
         error(line_, fmt::format("on_block puts \"{}\" into the program's {}, with a wait code: the post "
                                  "places, counts and proves the waits of the body only; give a wait from an "
                                  "event or by the CL's SYNC records",
@@ -171,7 +175,7 @@ std::vector<std::string> channel_writer::frame_block(const std::string& b, bool 
         script_->failed = true;
         break;
       }
-  frame_edits_.push_back({b, header, out});
+  frame_edits_.push_back({b, header, index, out});
   return out;
 }
 
@@ -209,6 +213,17 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
       break;
     }
   script_emitted_.clear();
+  const bool frame = frame_out_ != nullptr;  // a header or footer block (frame_block)
+  if (v == scripting::block_verdict::drop && frame && !frame_words(block).empty()) {
+    // The header sets the modes, the footer stops the spindle and the coolant and sends the
+    // axes home (attack 51: the footer's M5 and M9 dropped, M30 with both still on).
+    error(line_,
+          fmt::format("on_block drops the {} block \"{}\": the header and the footer set the modes and "
+                      "end the program safely; give it back, or add to it",
+                      block_part_, block));
+    script_->failed = true;
+    return block_writer::verdict::keep;
+  }
   if (v == scripting::block_verdict::drop) {
     // A block with a G code or an axis word holds the post's modes and positions (the G90 after
     // an event's G91, a move the next block's words count from): dropping it is refused (issue
@@ -240,16 +255,29 @@ block_writer::verdict channel_writer::filter(std::string_view block, std::string
   // A block of the post's with a mode code or axis words is replaced only by one that keeps them:
   // `(G90)` for the G90 after an event's G91 left the program incremental (issue 38, ninth
   // attack). The codes of the modes the post restores, and each axis word as written.
-  if (const std::string lost = lost_words(block, replacement); !lost.empty()) {
-    error(line_,
-          fmt::format("on_block replaces \"{}\" with \"{}\", which leaves out {}: the post's next blocks "
-                      "rely on it; keep it in the block you give back",
-                      block, replacement, lost));
+  // A header or footer block keeps every word as the control reads it (G28 may become G30);
+  // when it only gains M codes, the codes it had are the post's own (its G54, G49, G50 S..)
+  // and its modes stay the post's (attack 51: G50 S3000 given X and Z, G54 given P7, a
+  // G68.2's angle changed, an X1 kept in a comment).
+  bool kept = false;
+  const std::string lost =
+      frame ? frame_words_lost(block, replacement, kept) : lost_words(block, replacement);
+  if (!lost.empty()) {
+    error(
+        line_,
+        frame
+            ? fmt::format("on_block replaces the {} block \"{}\" with \"{}\", which leaves out {}: the "
+                          "header and the footer set the modes and end the program safely; keep each of its "
+                          "words (G28 may become G30) and add to them",
+                          block_part_, block, replacement, lost)
+            : fmt::format("on_block replaces \"{}\" with \"{}\", which leaves out {}: the post's next blocks "
+                          "rely on it; keep it in the block you give back",
+                          block, replacement, lost));
     script_->failed = true;
     return block_writer::verdict::keep;
   }
-  if (!user_block_passes(replacement, block) ||
-      !refuse_mode_changes(replacement, "on_block")) {  // at the CL record
+  if (!user_block_passes(replacement, kept ? block : std::string_view()) ||
+      (!kept && !refuse_mode_changes(replacement, "on_block"))) {  // at the CL record
     script_block_note(replacement, "on_block");
     script_->failed = true;  // the post has failed: no more on_block calls, no error per block
     return block_writer::verdict::drop;

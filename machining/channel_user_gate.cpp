@@ -287,6 +287,51 @@ const char* control_variable(int n) {
 
 }  // namespace
 
+std::vector<std::string> channel_writer::frame_words(std::string_view b) const {
+  // The words as a control reads them (upper case, no comments or blanks): each from its
+  // address to the next; a G or M code by its number (G00 is G0).
+  bool glued = false;
+  const std::string r = control_reading(b, m_.program, glued);
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < r.size();) {
+    if (!ascii::is_upper(r[i])) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < r.size() && !ascii::is_upper(r[j]) && r[j] != ' ') ++j;
+    std::string w = r.substr(i, j - i);
+    if ((w[0] == 'G' || w[0] == 'M') && w.size() > 1) {
+      double v = 0;
+      const auto [end, ec] = std::from_chars(w.data() + 1, w.data() + w.size(), v, std::chars_format::fixed);
+      if (ec == std::errc() && end == w.data() + w.size()) w = fmt::format("{}{:g}", w[0], v);
+    }
+    out.push_back(std::move(w));
+    i = j;
+  }
+  return out;
+}
+
+std::string channel_writer::frame_words_lost(std::string_view block, std::string_view reply,
+                                             bool& kept) const {
+  kept = false;
+  std::vector<std::string> more = frame_words(reply);
+  for (const std::string& w : frame_words(block)) {
+    auto at = std::find(more.begin(), more.end(), w);
+    if (at == more.end() && w == "G28") at = std::find(more.begin(), more.end(), "G30");  // the shop's G30
+    if (at == more.end()) return fmt::format("the word {}", w);
+    more.erase(at);
+  }
+  kept = std::all_of(more.begin(), more.end(), [](const std::string& w) { return w[0] == 'M'; });
+  return {};
+}
+
+std::string channel_writer::frame_waits(std::string_view b) const {
+  for (const std::string& w : frame_words(b))
+    if (wait_words_in(w) > 0) return w;
+  return {};
+}
+
 bool channel_writer::user_block_passes(const std::string& given, std::string_view own) {
   const program_format& f = m_.program;
   if (!block_fits(given)) return false;

@@ -113,9 +113,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void use_script(job_script* s);
   /// A header (`header`) or footer block of the program's frame through the script's on_block:
   /// the blocks written in its place, in order (post.emit's, then the block kept or replaced;
-  /// none: dropped). Each block is asked once: the frame written again under the program's
-  /// name (formats/program_layout) gets the same answer. frame_request::edit_block.
-  std::vector<std::string> frame_block(const std::string& b, bool header);
+  /// none: dropped). Each block (`index`: its place in the machine file's list) is asked
+  /// once: the frame written again under the program's name (formats/program_layout) gets the
+  /// same answer, the block's new text where it was kept as it was. frame_request::edit_block.
+  std::vector<std::string> frame_block(const std::string& b, bool header, std::size_t index);
   void on_wait(const wait_mark& w);
   /// Ends the body: coolant and spindle off are the footer's job; closes the file.
   void finish();
@@ -828,6 +829,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   struct frame_edit {
     std::string in;
     bool header = false;
+    std::size_t index = 0;  // of the block among the machine file's header or footer
     std::vector<std::string> out;
   };
   std::vector<frame_edit> frame_edits_;
@@ -924,6 +926,14 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void count_waits_in(std::string_view b, int cl_line);
   /// The wait words of block `b` as the self-check reads them (outside comments).
   int wait_words_in(std::string_view b) const;
+  /// Block `b`'s words as a control reads them (upper case, without comments; G00 as G0).
+  std::vector<std::string> frame_words(std::string_view b) const;
+  /// A header or footer block's reply to on_block: the first word of `block` it leaves out
+  /// ("the word G54"; a G28 may be a G30), "" when it keeps them all; `kept`: and it adds M
+  /// codes only.
+  std::string frame_words_lost(std::string_view block, std::string_view reply, bool& kept) const;
+  /// The first wait word of `b` in any case (`m101`), "" for none.
+  std::string frame_waits(std::string_view b) const;
   /// block_filter: a block the filter saw went out as `block` (kept or replaced); its waits
   /// are counted here, the post's own as a replacement's (the writer then counts none itself).
   void block_written(std::string_view block, bool replaced) override;

@@ -227,6 +227,13 @@ std::string user_block_form_error(std::string_view r, std::string_view given, co
       return refusal(given, fmt::format("gives {}, an M code with a decimal point: write the code as a whole "
                                         "number",
                                         w.text));
+    // M2, M30: the program ends there, before the post's later blocks and the footer's returns
+    // home (attack 51: an M30 emitted in the footer).
+    if (w.letter == 'M' && (w.value == 2 || w.value == 30))
+      return refusal(given, fmt::format("gives {}, the program's end: the blocks after it (the post's, the "
+                                        "footer's returns home) would not run; the program ends with the "
+                                        "machine's end code",
+                                        w.text));
     if (w.letter == 'M' && (w.value == 98 || w.value == 99 || w.value == 198))
       return refusal(given,
                      fmt::format("calls a subprogram or returns from one ({}): what the subprogram moves "

@@ -542,8 +542,8 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   frame_request req = staged_request(o, m, stage.dir());
   // The header and footer blocks through the script's on_block, as the body's blocks.
   if (lua && lua->has_on_block())
-    req.edit_block = [&ws](const channel_def& ch, const std::string& b, bool header) {
-      return ws.writers[static_cast<std::size_t>(ch.number - 1)]->frame_block(b, header);
+    req.edit_block = [&ws](const channel_def& ch, const std::string& b, bool header, std::size_t index) {
+      return ws.writers[static_cast<std::size_t>(ch.number - 1)]->frame_block(b, header, index);
     };
   for (const auto& [channel, tool] : o.start_tools)
     if (channel < 1 || channel > static_cast<int>(m.channels.size()))

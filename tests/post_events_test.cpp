@@ -1075,15 +1075,64 @@ TEST_CASE("on_block sees the header and footer blocks, each once, with ctx.part"
                                   "another work offset"));
     CHECK(p.files.empty());
   }
+  SECTION("a footer block keeps its words, in the control's reading") {
+    // Attack 51: the footer's M9 dropped (the coolant on at M30), a home return's U0. kept only
+    // in a comment (Z home before X), a lower-case wait, an M30 before the footer's returns.
+    const std::pair<const char*, const char*> cases[] = {
+        {"if ctx.part == 'footer' and text == 'M9' then return false end",
+         "job.cls:4:1: error: channel 1: on_block drops the footer block \"M9\": the header and the footer "
+         "set "
+         "the modes and end the program safely; give it back, or add to it\nFINI\n^\n"},
+        {"if ctx.part == 'footer' and text == 'G28 U0.' then return 'G28 W0. (U0.)' end",
+         "job.cls:4:1: error: channel 1: on_block replaces the footer block \"G28 U0.\" with \"G28 W0. "
+         "(U0.)\", "
+         "which leaves out the word U0.: the header and the footer set the modes and end the program safely; "
+         "keep each of its words (G28 may become G30) and add to them\nFINI\n^\n"},
+        {"if ctx.part == 'footer' and text == 'M9' then return 'M9 m101' end",
+         "job.cls:4:1: error: channel 1: on_block puts \"M9 m101\" into the program's footer, with a wait "
+         "code: "
+         "the post places, counts and proves the waits of the body only; give a wait from an event or by the "
+         "CL's SYNC records\nFINI\n^\nt.lua: note: channel 1: the block 'M9 m101' came from the script "
+         "(on_block)\n"},
+        {"if ctx.part == 'footer' and text == 'M9' then post.emit('M30') end",
+         "job.cls:4:1: error: channel 1: \"M30\" gives M30, the program's end: the blocks after it (the "
+         "post's, "
+         "the footer's returns home) would not run; the program ends with the machine's end code\nFINI\n^\n"},
+    };
+    for (const auto& [line, message] : cases) {
+      const test::posted p =
+          post_with_script("", std::string("function on_block(text, ctx)\n  ") + line + "\nend\n",
+                           "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame-footer");
+      CHECK(p.diagnostics.starts_with(message));
+      CHECK(p.files.empty());
+    }
+  }
+  SECTION("a header block's own codes pass the gate with M codes added, not with other words") {
+    // Attack 51: a code counted as the post's by its number alone (G54 given P2).
+    const test::posted p = post_with_script(
+        "", "function on_block(text, ctx)\n  if ctx.part == 'header' then return text .. ' P2' end\nend\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame-p2");
+    CHECK(
+        p.diagnostics.starts_with("job.cls:3:1: error: channel 1: \"G0 G18 G21 G40 G54 G80 G99 P2\" selects "
+                                  "another work offset"));
+    const test::posted m8 = post_with_script(
+        "", "function on_block(text, ctx)\n  if ctx.part == 'header' then return text .. ' M1' end\nend\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame-m8");
+    CHECK(m8.diagnostics == "");
+    CHECK(program_1(m8) ==
+          "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99 M1\nG28 U0.\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\nG28 "
+          "W0.\nM5\n"
+          "M30\n%\n");
+  }
   SECTION("a header block with a G code is not dropped") {
     const test::posted p = post_with_script(
         "", "function on_block(text, ctx)\n  if ctx.part == 'header' then return false end\nend\n",
         "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame-drop");
     CHECK(
         p.diagnostics ==
-        "job.cls:3:1: error: channel 1: on_block drops \"G0 G18 G21 G40 G54 G80 G99\": a block with a G code "
-        "or an axis word holds the modes and positions the post's next blocks rely on; give it back, or "
-        "replace it with one that does the same\nTURRET/1,1\n^\n");
+        "job.cls:3:1: error: channel 1: on_block drops the header block \"G0 G18 G21 G40 G54 G80 G99\": the "
+        "header and the footer set the modes and end the program safely; give it back, or add to it\n"
+        "TURRET/1,1\n^\n");
     CHECK(p.files.empty());
   }
 }
