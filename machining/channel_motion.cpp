@@ -264,7 +264,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
       if (table_speed_due_) [[unlikely]]
         table_speed(line);
       if (!selected_) select_spindle(work_);  // a section that moves before its SPINDL
-      if (spindle_held_ || spindle_kept_) resume_spindle(line);
+      if (spindle_held_ || spindle_kept_ || restate_spindle_) resume_spindle(line);
       if (cycle_refused_) {
         // the post has already failed at the CYCLE record
       } else if (cycle_ && cycle_->type == "THREAD") {
@@ -367,7 +367,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
     return error(line, "an arc while THREAD/TURN is on: a threading pass is a straight G32 move");
   }
   if (!selected_) select_spindle(work_);
-  if (spindle_held_ || spindle_kept_) resume_spindle(line);
+  if (spindle_held_ || spindle_kept_ || restate_spindle_) resume_spindle(line);
   // The plane comes from the arc's axis: +-Z G17 (XY), +-Y G18 (ZX, the lathe's), +-X G19 (YZ).
   // In each, counter-clockwise about the positive axis is G3 (Z = X x Y, Y = Z x X, X = Y x Z).
   double nlen = std::sqrt(a.normal.x * a.normal.x + a.normal.y * a.normal.y + a.normal.z * a.normal.z);

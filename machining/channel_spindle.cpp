@@ -189,7 +189,8 @@ std::string channel_writer::off_centre_hole_needs() const {
 }
 
 void channel_writer::spindle(const spindle_event& s, int line) {
-  spindle_held_ = false;  // this record says what the spindle does now (or the post has failed)
+  // This record says what the spindle does now (or the post has failed).
+  spindle_held_ = restate_spindle_ = transfer_since_speed_ = false;
   // A shared spindle kept turning through the tool change (channel_words.cpp): stopped here when
   // the new tool's SPINDL turns another one.
   const spindle_def* kept = spindle_kept_ ? spindle_ : nullptr;
@@ -404,6 +405,7 @@ void channel_writer::transfer(const transfer_event& t, int line) {
         user_blocks(event_point::transfer, true, {});
       last_f_.clear();
       motion_g_ = -1;
+      transfer_since_speed_ = true;
       spindle_ended_.clear();  // the transfer's own codes synchronise and start spindles: the footer's
       coolant_ended_.clear();  // stops are not known to be in force any more
       return;

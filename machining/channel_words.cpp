@@ -47,7 +47,9 @@ void channel_writer::coolant(const coolant_event& c, int line) {
 }
 
 void channel_writer::resume_spindle(int line) {
-  const bool restart = spindle_held_;  // a kept spindle turns already
+  // A held spindle turns again; one that turned on through the call is said again.
+  const bool restart = spindle_held_ || restate_spindle_;
+  restate_spindle_ = false;
   spindle_held_ = spindle_kept_ = false;
   stopped_by_user_ = nullptr;  // the post starts it again before the move
   // On a head with a workpiece and a live spindle, the spindle stopped for the tool change
@@ -273,6 +275,10 @@ void channel_writer::tool(const tool_event& t, int line) {
   }
   tool_call_ = call + offset_block;
   after_index_ = true;
+  // A restart at this tool call finds its speed and its feed: both written again before its
+  // first cut, where the CL gives no SPINDL (resume_spindle) and however the last F read.
+  restate_spindle_ = spindle_ && !restart_blocks_.empty() && !spindle_held_ && !transfer_since_speed_;
+  last_f_.clear();
   take_tool(t.tool, line, word);
   if (script_) [[unlikely]]
     script_tool(t.tool, a.offset);

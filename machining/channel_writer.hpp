@@ -715,6 +715,15 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// move unless a SPINDL comes first.
   bool spindle_held_ = false;
   bool spindle_kept_ = false;  // a shared workpiece spindle kept turning through the tool change
+  // The spindle turned on through the tool call (a turret's index, a kept shared spindle): its
+  // speed and direction are written again before the new tool's first move, where the CL gives
+  // no SPINDL, so that a restart at the tool call finds them (machinist's review 49, M4: the
+  // Fusion Integrex post's onSection writes S and M3 at every tool).
+  bool restate_spindle_ = false;
+  // A transfer's blocks since the channel's last SPINDL: they synchronise and start the
+  // spindles (M213), and a speed said again under the synchronisation would be the channel's
+  // old one, not theirs: not restated until the CL gives SPINDL.
+  bool transfer_since_speed_ = false;
   /// The spindle this channel's SPINDL/OFF stopped, until a speed is given again.
   const spindle_def* stopped_by_cl_ = nullptr;
   /// The spindle a user block ([events], the script) stopped with its stop code, until the

@@ -180,10 +180,10 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
         "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
         "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. "
-        "Z2.\nM5\nG13.1\n"
+        "Z2. F0.2\nM5\nG13.1\n"
         "G18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 G53 "
         "B0.\nM107\n"
-        "G1 G43 P1 H#3020 X0. Y0. Z5.\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "G1 G43 P1 H#3020 X0. Y0. Z5. F0.2\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n");
 }
 
@@ -293,12 +293,12 @@ TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[p
       "SPINDL/RPM,3000,CLW\nGOTO/20,0,2\nFINI\n",
       m, "table");
   const std::string f = file_of(p, "E.EIA");
-  CHECK(
-      f.substr(0, f.find("M950")) ==
-      "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
-      "G0 G90 G53 Z0.\nT06 M6\nM901\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-      "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
-      "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2.\n");
+  CHECK(f.substr(0, f.find("M950")) ==
+        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nT06 M6\nM901\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
+        "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2. "
+        "F0.2\n");
   const test::posted clash =
       post_on("PARTNO E\nHEAD/1\nTLDATA/TURN\nLOADTL/5\nSPINDL/RPM,800,CLW\nFINI\n", m, "table-clash");
   CHECK_FALSE(clash.ok);
@@ -360,8 +360,9 @@ TEST_CASE("every section on the Integrex selects the spindle it works on, M901 o
         "%\nO1000(S)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nG55\nM902\nG97 S800 M303\nG95\nM108\nG0 G53 B180.\nM107\n"
         "G1 G43 P1 H#3020 X40. Y0. Z-2. F0.2\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nG54\nM305\nM901\n"
-        "G97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X40. Y0. Z2.\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT03 M6\nM901\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X50. Y0. Z2.\n");
+        "G97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nT03 M6\nM901\nG97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X50. Y0. Z2. "
+        "F0.2\n");
 }
 
 TEST_CASE("the transfer's grip feeds the sub spindle onto the part, and the channel's feed mode comes back",
