@@ -200,6 +200,9 @@ void channel_writer::warning(std::string_view message) {
 
 block_writer::verdict channel_writer::filter(std::string_view block, std::string& replacement) {
   if (script_->failed) return block_writer::verdict::keep;
+  // The header may be asked for before on_program_start (a channel that goes home before its
+  // first wait): ctx.program is the file's name there too.
+  if (program_name_.empty()) program_name_ = std::filesystem::path(out_.name()).filename().string();
   scripting::block_verdict v = scripting::block_verdict::keep;
   run_script([&](scripting::lua_script& s) {
     scripting::script_context ctx = script_context();

@@ -244,8 +244,8 @@ void channel_writer::tool(const tool_event& t, int line) {
     }
   }
   if (!coolant_was.empty()) coolant_block(coolant_off_was, true);
-  go_home();
-  length_lost_ = false;                                      // the tool call gives the offset
+  if (!(homed_ && tool_ < 0)) go_home();  // the first call after a wait that went home (on_wait): once
+  length_lost_ = false;                   // the tool call gives the offset
   if (chain_ && !ch_.head_index.present()) heads_upright();  // an indexing head turns with its own clamps
   forget_axes();
   motion_g_ = -1;
@@ -276,8 +276,12 @@ void channel_writer::tool(const tool_event& t, int line) {
   tool_call_ = call + offset_block;
   after_index_ = true;
   // A restart at this tool call finds its speed and its feed: both written again before its
-  // first cut, where the CL gives no SPINDL (resume_spindle) and however the last F read.
-  restate_spindle_ = spindle_ && !restart_blocks_.empty() && !spindle_held_ && !transfer_since_speed_;
+  // first cut, where the CL gives no SPINDL (resume_spindle) and however the last F read. Not
+  // on a spindle another channel may command: what it turns at then is the two channels'
+  // (the review of this change, H1: a speed said again over the other channel's M5 or S600
+  // turned the spindle on, or back to this channel's speed, in an uninterrupted run).
+  restate_spindle_ = spindle_ && !restart_blocks_.empty() && !spindle_held_ && !transfer_since_speed_ &&
+                     !m_.shared_spindle(static_cast<int>(spindle_index(*spindle_)));
   last_f_.clear();
   take_tool(t.tool, line, word);
   if (script_) [[unlikely]]

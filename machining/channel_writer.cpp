@@ -274,6 +274,17 @@ void channel_writer::check_side(double x_nc, double x_cl, int line) {
 
 void channel_writer::on_wait(const wait_mark& w) {
   release_held(std::nullopt);
+  // A channel that meets the others before its first tool call goes home first: a head left in
+  // the work zone (an aborted program) would stand in the way of the channels cutting meanwhile
+  // (the machinist's review of the thirtieth session, M2: the 31i's path 3 waited out the whole
+  // cycle wherever it stood). After the program's start events, as any block of the body.
+  if (ev_ && !program_started_) [[unlikely]]
+    user_program_start();
+  if (tool_ < 0 && !homed_ && !balance_copy_) {
+    go_home();
+    forget_axes();
+    motion_g_ = -1;
+  }
   // A balance cut pairs the two channels' moves (G68, M562): a head index of the new tool
   // (Integrex M108 G0 G53 B0. M107) goes before its opening wait, not as extra blocks inside it.
   // Its error (no angle for the tool) is reported there; the wait is written all the same.

@@ -160,7 +160,7 @@ TEST_CASE("a HEAD/BOTH copy writes no spindle event, as it writes no spindle blo
       "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nM100\nG97 S800 M3\n(SPINDLE 1)\n"
       "M101\nG68\nG0 X72. Z2.\nG97 S900 M3\n(SPINDLE 1)\nZ3.\nG69\nM102\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   CHECK(program_1(p, "EV_2.nc") ==
-        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM100\nG28 U0.\nG28 W0.\nT1111\nM101\nG68\nG0 X72. "
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM100\nT1111\nM101\nG68\nG0 X72. "
         "Z2.\nZ3.\n"
         "G69\nM102\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
@@ -658,7 +658,8 @@ TEST_CASE("an event wait paired in both channels posts", "[post][events]") {
         "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 U0.\nG28 W0.\nT0101\nM100\nM9\nG28 U0.\n"
         "G28 W0.\nM5\nM30\n%\n");
   CHECK(program_1(p, "EV_2.nc") ==
-        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM101\nG28 U0.\nG28 W0.\nM100\nM9\nG28 U0.\nG28 "
+        "W0.\nM5\nM30\n%\n");
 }
 
 TEST_CASE("[events] in the machine file: what the loader refuses", "[machines][events]") {
@@ -870,11 +871,11 @@ TEST_CASE(
       "G0 X60. Z2.\nG1 Z-20. F0.2\n(END ROUGH_OD T01 AT X60. Z-20.)\n(FINISH_OD,TOOL,OD ROUGH)\n"
       "(OPERATION FINISH_OD)\n(SECTION FINISH_OD T01 OFFSET 1)\nX58.\nZ2.\n(END FINISH_OD T01 AT X58. Z2.)\n"
       "(DRILL_1,TOOL,DRILL 8)\n(OPERATION DRILL_1)\nG28 U0.\nG28 W0.\nT0303\n(T03 DRILL 8)\n"
-      "(SECTION DRILL_1 T03 OFFSET 3)\nG97 S800 M3\nG0 X0. Z5.\nM100\nM101\n(END DRILL_1 T03 AT X0. Z5.)\n"
+      "(SECTION DRILL_1 T03 OFFSET 3)\nG0 X0. Z5.\nM100\nM101\n(END DRILL_1 T03 AT X0. Z5.)\n"
       "(PROGRAM END AT X0. Z5.)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   CHECK(program_1(p, "EV_2.nc") ==
-        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nM100\n(BACK_OD,TOOL,OD LOWER)\n(OPERATION BACK_OD)\n"
-        "G28 U0.\nG28 W0.\nT1111\n(T11 OD LOWER)\n(SECTION BACK_OD T11 OFFSET 11)\nG0 X40. Z3.\nM101\n"
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM100\n(BACK_OD,TOOL,OD LOWER)\n"
+        "(OPERATION BACK_OD)\nT1111\n(T11 OD LOWER)\n(SECTION BACK_OD T11 OFFSET 11)\nG0 X40. Z3.\nM101\n"
         "(END BACK_OD T11 AT X40. Z3.)\n(PROGRAM END AT X40. Z3.)\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
@@ -1043,7 +1044,8 @@ TEST_CASE("on_block sees the header and footer blocks, each once, with ctx.part"
     const test::posted p = post_with_script("", lua, "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame");
     CHECK(program_1(p) == ev1);
     CHECK(program_1(p, "EV_2.nc") ==
-          "%\nO1000 (EV)\n(HEADER)\nG0 G18 G21 G40 G54 G80 G99 (HEADER OF EV_2.NC)\nM100\n(FOOTER)\nM9\n"
+          "%\nO1000 (EV)\n(HEADER)\nG0 G18 G21 G40 G54 G80 G99 (HEADER OF EV_2.NC)\nG28 U0.\nG28 "
+          "W0.\nM100\n(FOOTER)\nM9\n"
           "(FOOTER)\nG30 U0.\n(FOOTER)\nG30 W0.\n(FOOTER)\nM5 (HEADERS 2)\nM30\n%\n");
   }
   SECTION("a late PARTNO: the header written again under the name gets the same answer") {

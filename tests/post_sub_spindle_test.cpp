@@ -131,7 +131,7 @@ TEST_CASE("the part transfer on the Fanuc twin: home, waits, path 1's blocks, th
         "M102\nM69\nG98 G4 U1.\nG28 G53 B0.\nM205\nG99\nM100\nG55\nM101\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
   CHECK(file_of(p, "XFER_2.nc") ==
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM100\nM101\nM102\nM100\nG55\n"
-        "G28 U0.\nG28 W0.\nT0303\nG97 S800 M103\nG1 X50. Z-2. F0.15\nZ10.\nM105\nM101\nM9\nG28 U0.\n"
+        "T0303\nG97 S800 M103\nG1 X50. Z-2. F0.15\nZ10.\nM105\nM101\nM9\nG28 U0.\n"
         "G28 W0.\nM5\nM30\n%\n");
 }
 
@@ -147,7 +147,7 @@ TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then 
         "F500.\nM541\nM307\nG4 P1000\nG95\nM951\nM952\nM206\nG94 G4 P1000\nG0 G53 W0.\nM513\nM305\nG95\n"
         "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
         "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
-        "M952\nM953\nG55\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT0303\nM902\nG97 S800 M303\nG95\n"
+        "M952\nM953\nG55\nT0303\nM902\nG97 S800 M303\nG95\n"
         "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
         "M30\n%\n");
 }
@@ -220,7 +220,8 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
         "G90 G53 Z0.\n"
         "T01 M6\nM901\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 "
         "Z0.\nM30\n"
-        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nM950\nM9\nM5\nM205\nM305\nG0 G90 "
+        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "Z0.\nM950\nM9\nM5\nM205\nM305\nG0 G90 "
         "G53 X0.\n"
         "G0 G90 G53 Z0.\nM30\n%\n");
 }
@@ -361,7 +362,7 @@ TEST_CASE("every section on the Integrex selects the spindle it works on, M901 o
         "G0 G90 G53 Z0.\nT01 M6\nG55\nM902\nG97 S800 M303\nG95\nM108\nG0 G53 B180.\nM107\n"
         "G1 G43 P1 H#3020 X40. Y0. Z-2. F0.2\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nG54\nM305\nM901\n"
         "G97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT03 M6\nM901\nG97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X50. Y0. Z2. "
+        "G0 G90 G53 Z0.\nT03 M6\nM901\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X50. Y0. Z2. "
         "F0.2\n");
 }
 

@@ -35,7 +35,7 @@ TEST_CASE("a turret's tool change turns the coolant off, homes X then Z, and tur
       "fanuc-0itd-twin", "turret");
   CHECK(file_of(p, "TC_1.nc") ==
         "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\n"
-        "G1 X40. Z2. F0.2\nZ-10.\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG97 S1000 M3\nG1 X30. Z2. "
+        "G1 X40. Z2. F0.2\nZ-10.\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG1 X30. Z2. "
         "F0.2\nM100\nM9\nG28 U0.\n"
         "G28 W0.\nM5\nM30\n%\n");
 }
@@ -47,7 +47,7 @@ TEST_CASE("COOLNT/ON after the tool change writes no second M8", "[post][tools]"
       "fanuc-0itd-twin", "again");
   CHECK(file_of(p, "TC_1.nc") ==
         "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\nM8\n"
-        "G1 X40. Z2. F0.2\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG97 S1000 M3\nG1 X30. Z2. F0.2\nM100\nM9\nG28 "
+        "G1 X40. Z2. F0.2\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG1 X30. Z2. F0.2\nM100\nM9\nG28 "
         "U0.\nG28 W0.\n"
         "M5\nM30\n%\n");
 }
@@ -64,10 +64,10 @@ TEST_CASE("the mill head stops its spindle for the tool change and starts it bef
   CHECK(file_of(p, "TC.EIA") ==
         "%\nO1000(TC)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nM901\nG97 S1000 "
-        "M203\nM108\nG0 G53 "
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nM901\nM108\nG0 G53 "
         "B0.\nM107\nG1 G43 P1 H#3020 X30. Y0. Z2. F0.2\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nM30\nG109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nM950\nM9\nM5\n"
+        "G0 G90 G53 Z0.\nM30\nG109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 "
+        "X0.\nG0 G90 G53 Z0.\nM950\nM9\nM5\n"
         "M205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
 }
 
@@ -114,11 +114,11 @@ TEST_CASE("each coolant kind is turned on and off with its own codes", "[post][t
   CHECK(file_of(p, "TC.EIA") ==
         "%\nO1000(TC)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nM108\nG0 G53 B0.\nM107\nM51\n"
-        "G0 G43 P1 H#3020 X40. Y0. Z2.\nM163\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nM901\nG97 S1000 "
-        "M203\nM108\nG0 "
+        "G0 G43 P1 H#3020 X40. Y0. Z2.\nM163\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nM901\nM108\nG0 "
         "G53 B0.\nM107\nM51\nG0 G43 P1 H#3020 X40. Y0. Z3.\nM163\nM950\nM9\nM5\nM205\nM305\n"
         "G0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\nG0 G90 G54 G97 G18\n"
-        "G40 G49 G80 G67 G69\nG10.9 X1\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
+        "G40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 "
+        "X0.\nG0 G90 G53 Z0.\nM30\n%\n");
 }
 
 TEST_CASE("G41/G42 on a rapid stops the post where the machine takes them only on a feed move",

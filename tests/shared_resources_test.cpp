@@ -173,7 +173,7 @@ TEST_CASE("post: under HEAD/BOTH only head 1's channel commands the spindle", "[
   CHECK(p.diagnostics.empty());
   REQUIRE(p.ok);
   CHECK(p.files.at("BOTHSUB_1.nc") ==
-        "%\nO1000 (BOTHSUB)\nG0 G18 G21 G40 G54 G80 G99\nM200 P12\nG28 U0.\nG28 W0.\nT0101\nG50 S2000\n"
+        "%\nO1000 (BOTHSUB)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM200 P12\nT0101\nG50 S2000\n"
         "G96 S200 M3\nM201 P12\nG68 P12\nG0 X72. Z2.\nG1 Z-30. F0.3\nG69\nM202 P12\nM5\nM204 P123\nM9\n"
         "G28 U0.\nG28 W0.\nM30\n%\n");
   // Path 2: no S, M3, M103 or G96 in its copy, and G54: it cuts on the master's main spindle.
