@@ -47,9 +47,14 @@ void channel_writer::coolant(const coolant_event& c, int line) {
 }
 
 void channel_writer::resume_spindle(int line) {
-  // A held spindle turns again; one that turned on through the call is said again.
+  // A held spindle turns again; one that turned on through the call is said again, then the
+  // coolant.
   const bool restart = spindle_held_ || restate_spindle_;
   restate_spindle_ = false;
+  struct coolant_after {
+    channel_writer& w;
+    ~coolant_after() { w.coolant_after_speed(); }
+  } after{*this};
   spindle_held_ = spindle_kept_ = false;
   stopped_by_user_ = nullptr;  // the post starts it again before the move
   // On a head with a workpiece and a live spindle, the spindle stopped for the tool change
@@ -74,6 +79,13 @@ void channel_writer::resume_spindle(int line) {
   }
   if (restart)
     for (const std::string& b : restart_blocks_) spindle_block(b);
+}
+
+void channel_writer::coolant_after_speed() {
+  if (coolant_after_speed_.empty()) return;
+  std::string b;
+  b.swap(coolant_after_speed_);
+  coolant_block(b, false);
 }
 
 void channel_writer::go_home() {
@@ -267,14 +279,6 @@ void channel_writer::tool(const tool_event& t, int line) {
   selected_ = nullptr;
   if (ev_) [[unlikely]]
     user_blocks(event_point::tool_change, true, ea);
-  if (!coolant_was.empty()) {
-    if (ch_.head_index.present() && has_c_)
-      coolant_due_ = coolant_was;  // after the head's index (index_head)
-    else
-      coolant_block(coolant_was, false);
-  }
-  tool_call_ = call + offset_block;
-  after_index_ = true;
   // A restart at this tool call finds its speed and its feed: both written again before its
   // first cut, where the CL gives no SPINDL (resume_spindle) and however the last F read. Not
   // on a spindle another channel may command: what it turns at then is the two channels'
@@ -283,6 +287,16 @@ void channel_writer::tool(const tool_event& t, int line) {
   restate_spindle_ = spindle_ && !restart_blocks_.empty() && !spindle_held_ && !transfer_since_speed_ &&
                      !m_.shared_spindle(static_cast<int>(spindle_index(*spindle_)));
   last_f_.clear();
+  if (!coolant_was.empty()) {
+    if (ch_.head_index.present() && has_c_)
+      coolant_due_ = coolant_was;  // after the head's index (index_head)
+    else if (restate_spindle_)
+      coolant_after_speed_ = coolant_was;  // after the speed, as at the first call (review 52, L1)
+    else
+      coolant_block(coolant_was, false);
+  }
+  tool_call_ = call + offset_block;
+  after_index_ = true;
   take_tool(t.tool, line, word);
   if (script_) [[unlikely]]
     script_tool(t.tool, a.offset);

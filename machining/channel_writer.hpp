@@ -724,6 +724,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   // spindles (M213), and a speed said again under the synchronisation would be the channel's
   // old one, not theirs: not restated until the CL gives SPINDL.
   bool transfer_since_speed_ = false;
+  // The coolant block a tool call holds back until the speed is said again (the spindle
+  // first, as at the first call), and writes it: after resume_spindle or the CL's SPINDL.
+  std::string coolant_after_speed_;
+  void coolant_after_speed();
   /// The spindle this channel's SPINDL/OFF stopped, until a speed is given again.
   const spindle_def* stopped_by_cl_ = nullptr;
   /// The spindle a user block ([events], the script) stopped with its stop code, until the

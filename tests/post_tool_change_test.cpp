@@ -198,6 +198,8 @@ TEST_CASE("a coolant kind still on at the end is turned off with its own code be
 TEST_CASE("a turret's own spindle is said again after a tool call that gives no SPINDL", "[post][tools]") {
   // Review 49, M4: a restart at T0303 finds the speed and the feed. On the built-in twin the
   // main spindle is both turrets' (not said again, the test above); here each channel's own.
+  // The spindle before the coolant, as at the first call, also where the CL's SPINDL gives the
+  // speed (review 52, L1).
   machine m = load_machine("fanuc-0itd-twin");
   for (spindle_def& s : m.spindles) s.per_channel = true;
   const test::posted p = test::post_in_fresh_dir(
@@ -207,7 +209,7 @@ TEST_CASE("a turret's own spindle is said again after a tool call that gives no 
       m, "tool-change-own", [](const diagnostic& d) { return d.level == severity::error; });
   CHECK(file_of(p, "TC_1.nc") ==
         "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S3000\nG96 S200 M3\nM8\n"
-        "G1 X40. Z2. F0.2\nZ-10.\nM9\nG28 U0.\nG28 W0.\nT0303\nM8\nG50 S3000\nG96 S200 M3\n"
-        "G1 X30. Z2. F0.2\nM9\nG28 U0.\nG28 W0.\nT0505\nM8\nG97 S900 M3\nG1 X20. Z2. F0.2\nM100\nM9\n"
+        "G1 X40. Z2. F0.2\nZ-10.\nM9\nG28 U0.\nG28 W0.\nT0303\nG50 S3000\nG96 S200 M3\nM8\n"
+        "G1 X30. Z2. F0.2\nM9\nG28 U0.\nG28 W0.\nT0505\nG97 S900 M3\nM8\nG1 X20. Z2. F0.2\nM100\nM9\n"
         "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
