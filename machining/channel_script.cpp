@@ -50,7 +50,12 @@ void channel_writer::script_failed(const scripting::script_error& e) {
   n.file = cl_file_;
   n.line = line_;
   n.column = line_ > 0 ? column_ : 0;
-  n.message = fmt::format("channel {}: the script failed while this record was posted", ch_.number);
+  // In a header or footer block's on_block the record is the one being posted when the frame
+  // was asked for (none for a footer of a channel that had no record of its own).
+  n.message = std::string_view(block_part_) != "body"
+                  ? fmt::format("channel {}: the script failed on a block of the program's {}{}", ch_.number,
+                                block_part_, line_ > 0 ? ", asked for while this record was posted" : "")
+                  : fmt::format("channel {}: the script failed while this record was posted", ch_.number);
   diags_.report(std::move(n));
 }
 

@@ -1109,6 +1109,15 @@ TEST_CASE("on_block sees the header and footer blocks, each once, with ctx.part"
       CHECK(p.files.empty());
     }
   }
+  SECTION("a script error on a footer block says so") {
+    const test::posted p = post_with_script(
+        "", "function on_block(text, ctx)\n  if ctx.part == 'footer' then post.error('no footer') end\nend\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", "frame-error");
+    CHECK(
+        p.diagnostics.ends_with("job.cls:4:1: note: channel 1: the script failed on a block of the program's "
+                                "footer, asked for while this record was posted\nFINI\n^\n"));
+    CHECK(p.files.empty());
+  }
   SECTION("a header block's own codes pass the gate with M codes added, not with other words") {
     // Attack 51: a code counted as the post's by its number alone (G54 given P2).
     const test::posted p = post_with_script(
