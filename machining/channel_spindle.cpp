@@ -62,9 +62,12 @@ void channel_writer::spindle_record(const spindle_event& d, int line) {
     a.rpm = d.speed;
     if (around) user_blocks(p, false, a);
     spindle(d, line);
+    coolant_after_speed();  // the coolant a tool call held back for the speed (tool())
     if (around) user_blocks(p, true, a);
-  } else
+  } else {
     spindle(d, line);
+    coolant_after_speed();
+  }
 }
 
 void channel_writer::table_speed(int line) {
@@ -202,11 +205,6 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     int errors;
     ~judge_cuts() { w.unstarted_judged_ = w.unstarted_ok_ = w.errors_ > errors; }
   } judge{*this, errors_};
-  // The coolant a tool call left for after the restated speed: after this record's blocks.
-  struct coolant_after {
-    channel_writer& w;
-    ~coolant_after() { w.coolant_after_speed(); }
-  } after{*this};
   // A speed that writes S0 turns nothing, yet the cuts after it would count it as turning.
   if ((s.mode == spindle_mode::rpm || s.mode == spindle_mode::smm || s.mode == spindle_mode::sfm) &&
       !(s.speed >= 0.5))

@@ -51,10 +51,6 @@ void channel_writer::resume_spindle(int line) {
   // coolant.
   const bool restart = spindle_held_ || restate_spindle_;
   restate_spindle_ = false;
-  struct coolant_after {
-    channel_writer& w;
-    ~coolant_after() { w.coolant_after_speed(); }
-  } after{*this};
   spindle_held_ = spindle_kept_ = false;
   stopped_by_user_ = nullptr;  // the post starts it again before the move
   // On a head with a workpiece and a live spindle, the spindle stopped for the tool change
@@ -79,6 +75,7 @@ void channel_writer::resume_spindle(int line) {
   }
   if (restart)
     for (const std::string& b : restart_blocks_) spindle_block(b);
+  coolant_after_speed();
 }
 
 void channel_writer::coolant_after_speed() {
