@@ -378,6 +378,7 @@ void channel_writer::transfer(const transfer_event& t, int line) {
       go_home();
       forget_axes();
       motion_g_ = -1;
+      start_home_ = tool_ < 0;  // as a wait's home before the first tool call (on_wait)
       return;
     case transfer_event::phase::blocks: {
       // The blocks may set the feed mode, F and the motion (the grip's G98/G94 G1 approach):
@@ -399,6 +400,7 @@ void channel_writer::transfer(const transfer_event& t, int line) {
       for (const std::string& b : cut_off     ? m_.transfer.release_after_cutoff
                                   : t.release ? m_.transfer.release
                                               : m_.transfer.grip) {
+        start_home_ = false;  // a shop's grip may move this channel's axes too
         out_.block(b);
         for (const std::string* g : {&m_.codes.feed_per_min, &m_.codes.feed_per_rev})
           mode_set = mode_set || (!g->empty() && b.find(*g) != std::string::npos);

@@ -253,8 +253,10 @@ void channel_writer::tool(const tool_event& t, int line) {
     }
   }
   if (!coolant_was.empty()) coolant_block(coolant_off_was, true);
-  if (!(homed_ && tool_ < 0)) go_home();  // the first call after a wait that went home (on_wait): once
-  length_lost_ = false;                   // the tool call gives the offset
+  // The first call after a wait that sent the channel home (on_wait), nothing moved since: once.
+  if (!(start_home_ && homed_ && tool_ < 0)) go_home();
+  start_home_ = false;
+  length_lost_ = false;                                      // the tool call gives the offset
   if (chain_ && !ch_.head_index.present()) heads_upright();  // an indexing head turns with its own clamps
   forget_axes();
   motion_g_ = -1;

@@ -284,6 +284,7 @@ void channel_writer::on_wait(const wait_mark& w) {
     go_home();
     forget_axes();
     motion_g_ = -1;
+    start_home_ = true;
   }
   // A balance cut pairs the two channels' moves (G68, M562): a head index of the new tool
   // (Integrex M108 G0 G53 B0. M107) goes before its opening wait, not as extra blocks inside it.
@@ -454,12 +455,14 @@ void channel_writer::process_event(const event& e, bool both) {
                                              wait_range_text(m_.waits)));
           std::string b = fmt::format("{}{}", address, d.code);
           if (block_fits(b)) out_.block(b);
+          start_home_ = false;     // what the code moves is not known
           spindle_ended_.clear();  // what the code does to the spindle or the coolant is not known
           coolant_ended_.clear();
         } else if constexpr (std::is_same_v<T, text_event>) {
           if (d.kind == text_kind::insert) {
             if (!insert_passes(d.text, e.line)) return;
             out_.raw(d.text);
+            start_home_ = false;
             spindle_ended_.clear();  // the user's text may turn either on again
             coolant_ended_.clear();
             // It may move an axis or change the motion mode: the next move writes all its words

@@ -727,6 +727,11 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   // The coolant block a tool call holds back until the speed is said again (the spindle
   // first, as at the first call), and writes it: after resume_spindle or the CL's SPINDL.
   std::string coolant_after_speed_;
+  // At home since on_wait sent the channel there before its first tool call, with nothing
+  // written since that may have moved it (a user block, INSERT text, an AUXFUN, a transfer's
+  // blocks): the first tool call then need not home again (helper 40: an INSERT/G0 W-250.
+  // before the first TURRET had the turret index where the text left it).
+  bool start_home_ = false;
   void coolant_after_speed();
   /// The spindle this channel's SPINDL/OFF stopped, until a speed is given again.
   const spindle_def* stopped_by_cl_ = nullptr;

@@ -213,3 +213,22 @@ TEST_CASE("a turret's own spindle is said again after a tool call that gives no 
         "G1 X30. Z2. F0.2\nM9\nG28 U0.\nG28 W0.\nT0505\nG97 S900 M3\nM8\nG1 X20. Z2. F0.2\nM100\nM9\n"
         "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
+
+TEST_CASE("a channel that waits before its first tool goes home first, and again after text that may move it",
+          "[post][tools]") {
+  // Review 49, M2: head 2 waits at M100 from home. Helper 40: INSERT text between that home and
+  // the first tool call (G0 W-250.) had the turret index where the text left it.
+  const std::string head1 =
+      "PARTNO TC\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n";
+  const test::posted plain = post_on(head1 + "HEAD/2\nTURRET/13,13\nFEDRAT/0.2,MMPR\nGOTO/-30,0,2\nFINI\n",
+                                     "fanuc-0itd-twin", "home-first");
+  CHECK(file_of(plain, "TC_2.nc") ==
+        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM100\nT1313\nG1 X60. Z2. F0.2\nM101\n"
+        "M9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  const test::posted moved =
+      post_on(head1 + "HEAD/2\nINSERT/G0 W-250.\nTURRET/13,13\nFEDRAT/0.2,MMPR\nGOTO/-30,0,2\nFINI\n",
+              "fanuc-0itd-twin", "home-after-insert");
+  CHECK(file_of(moved, "TC_2.nc") ==
+        "%\nO1000 (TC)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM100\nG0 W-250.\nG28 U0.\nG28 W0.\n"
+        "T1313\nG1 X60. Z2. F0.2\nM101\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+}
