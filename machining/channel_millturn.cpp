@@ -80,8 +80,20 @@ void channel_writer::set_x_radius(bool radius) {
 }
 
 void channel_writer::enter_polar() {
-  // The C axis at 0 first: the polar frame's X is the part's X (UNVERIFIED in a Mazak manual;
-  // the Fusion Integrex post positions C before G12.1 as well).
+  // Y on the centre line first: the polar frame is the X-C plane through the spindle's axis,
+  // and a Y left off it by an earlier tool (a flat, a hole off the centre line) would shift
+  // every move of the mode by that much. Then the C axis at 0: the polar frame's X is the
+  // part's X (UNVERIFIED in a Mazak manual; the Fusion Integrex post positions C before G12.1
+  // as well).
+  if (has_y_ && !(last_y_.known && last_y_.n == 0)) {
+    text_buffer& b = out_.open_block();
+    word_start_ = b.size();
+    b += "G0";
+    motion_g_ = 0;
+    axis_word(b, 'Y', 0.0, last_y_, true);
+    out_.end_block();
+    word_start_ = std::string::npos;
+  }
   position_c(0);
   for (const std::string& b : m_.milling.polar_on) {
     out_.block(b);

@@ -35,10 +35,12 @@ using test::word;
 // the Y value addressed as C (radius); G0 C.. turning the part (the point at angle C comes onto
 // +X), G28 H0. bringing C to 0; face cycles G83/G84 X Y Z drilling along Z to Z at (X/2, Y);
 // side cycles G87/G88 X Z drilling along X to the radius X/2. G28 U/W (home) and the head's
-// G0 B.. are no tool tips. Returns the part-frame tips of the moves and the hole bottoms.
+// G0 B.. are no tool tips, and neither is a move while X or Z is unknown (after a home, until
+// the program gives both: Y to the centre line before G12.1). Returns the part-frame tips of
+// the moves and the hole bottoms.
 std::vector<vec3> tips(const std::string& program) {
   std::vector<vec3> out;
-  bool polar = false;
+  bool polar = false, x_known = false, z_known = false;
   double c = 0, x = 0, y = 0, z = 0;
   const double deg = std::numbers::pi / 180;
   auto part = [&](double px, double py, double pz) {
@@ -52,6 +54,10 @@ std::vector<vec3> tips(const std::string& program) {
     if (b.empty() || b[0] == '(' || b[0] == '%' || b[0] == 'O') continue;
     if (has(b, "G28")) {
       if (word(b, 'H', 1) == 0) c = 0;
+      bool gu = false, gw = false;
+      (void)word(b, 'U', 0, &gu), (void)word(b, 'W', 0, &gw);
+      if (gu) x_known = false;
+      if (gw) z_known = false;
       continue;
     }
     if (has(b, "G12.1")) polar = true;
@@ -77,7 +83,8 @@ std::vector<vec3> tips(const std::string& program) {
       continue;
     }
     x = nx, y = ny, z = nz;
-    out.push_back(part(x, y, z));
+    x_known = x_known || gx, z_known = z_known || gz;
+    if (x_known && z_known) out.push_back(part(x, y, z));
   }
   return out;
 }

@@ -44,10 +44,12 @@ using test::word;
 // +X), G17 drilling cycles G81 X Y Z R along the frame's Z. Cylindrical interpolation as the
 // Integrex shop program and Fanuc's manuals write it: G7.1 C<r> on, G7.1 C0 off, C in degrees
 // turning the part inside it while X and Z stay the turned frame's. Returns the part-frame tool
-// tips of the moves and the hole bottoms, in order (machine-coordinate G53 blocks are skipped).
+// tips of the moves and the hole bottoms, in order (machine-coordinate G53 blocks are skipped,
+// and leave their axes unknown: a move while X or Z is unknown, Y to the centre line before
+// G12.1, is no tool tip).
 std::vector<vec3> tips(const std::string& program) {
   std::vector<vec3> out;
-  bool radius = false, polar = false, turned = false, cylinder = false;
+  bool radius = false, polar = false, turned = false, cylinder = false, x_known = false, z_known = false;
   double c = 0, x = 0, y = 0, z = 0;
   const double deg = std::numbers::pi / 180;
   auto part = [&](double px, double py, double pz) {
@@ -60,7 +62,14 @@ std::vector<vec3> tips(const std::string& program) {
   std::istringstream in(program);
   std::string b;
   while (std::getline(in, b)) {
-    if (b.empty() || b[0] == '(' || has(b, "G53")) continue;
+    if (b.empty() || b[0] == '(') continue;
+    if (has(b, "G53")) {
+      bool gx = false, gz = false;
+      (void)word(b, 'X', 0, &gx), (void)word(b, 'Z', 0, &gz);
+      if (gx) x_known = false;
+      if (gz) z_known = false;
+      continue;
+    }
     if (has(b, "G10.9")) {  // a mode, not a move
       radius = word(b, 'X', 1) == 0;
       continue;
@@ -88,6 +97,8 @@ std::vector<vec3> tips(const std::string& program) {
     }
     if (!(gx || gy || gz || gc)) continue;
     x = radius || turned || polar ? nx : nx / 2, y = ny, z = nz;
+    x_known = x_known || gx, z_known = z_known || gz;
+    if (!(x_known && z_known)) continue;
     if (has(b, "G81")) {  // a hole: its bottom; the tool stays at the initial level
       out.push_back(part(x, y, z));
       continue;
@@ -142,7 +153,8 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
       head1(p, "E.EIA") ==
       "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 "
       "M6\nM901\nM200\n"
-      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG17 XC\nG12.1\nG0 G43 H#3020 X10. C5. "
+      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 Y0.\nG0 C0.\nG17 XC\nG12.1\nG0 G43 H#3020 "
+      "X10. C5. "
       "Z2.\n"
       "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
       "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
