@@ -5,6 +5,7 @@
 #include <bit>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <unordered_map>
 
@@ -29,6 +30,11 @@ struct problem {
   /// side of an operation in a pair (between them the channel's work only shifts times, and a
   /// meeting as far on as it may go, or as early as its news allows, is never worse).
   std::vector<std::vector<int>> cand;
+  /// [c][j]: the first of c's operations from j on that is in a pair (n: none); the others may
+  /// always run.
+  std::vector<std::vector<int>> next_ref;
+  /// The pairs, for the lower bound (when there are few enough to walk at every node).
+  std::vector<channel_pair> pairs;
   std::int64_t h = 0;
   std::int64_t work(int c, int from, int to) const {
     return prefix[static_cast<std::size_t>(c)][static_cast<std::size_t>(to)] -
@@ -62,7 +68,8 @@ bool op_ok(const problem& p, const node& s, int c, int j) {
 // The first operation from its position that channel c may not run before it learns more.
 int block_of(const problem& p, const node& s, int c) {
   const auto cu = static_cast<std::size_t>(c);
-  for (int j = s.pos[cu]; j < p.n[cu]; ++j)
+  const std::vector<int>& nr = p.next_ref[cu];
+  for (int j = nr[static_cast<std::size_t>(s.pos[cu])]; j < p.n[cu]; j = nr[static_cast<std::size_t>(j) + 1])
     if (!op_ok(p, s, c, j)) return j;
   return p.n[cu];
 }
@@ -72,7 +79,8 @@ bool segments_apart(const problem& p, const node& s, unsigned mask, const std::a
   for (int c = 0; c < p.channels; ++c) {
     if (!(mask >> c & 1u)) continue;
     const auto cu = static_cast<std::size_t>(c);
-    for (int j = s.pos[cu]; j < to[cu]; ++j)
+    const std::vector<int>& nr = p.next_ref[cu];
+    for (int j = nr[static_cast<std::size_t>(s.pos[cu])]; j < to[cu]; j = nr[static_cast<std::size_t>(j) + 1])
       for (const pair_ref& r : p.refs[cu][static_cast<std::size_t>(j)])
         if (r.q > c && (mask >> r.q & 1u) && r.k >= s.pos[static_cast<std::size_t>(r.q)] &&
             r.k < to[static_cast<std::size_t>(r.q)])
@@ -89,7 +97,85 @@ std::int64_t bound_of(const problem& p, const node& s, const std::array<int, K>&
     if (block[cu] < p.n[cu]) v += p.h;  // it has to meet someone again
     lb = std::max(lb, v);
   }
+  // A pair neither of whose operations has run: the second starts a handshake (a meeting) after
+  // the first ends at the earliest, and its channel's work from there follows.
+  auto after = [&](int a, int i, int b, int j) {
+    const auto au = static_cast<std::size_t>(a), bu = static_cast<std::size_t>(b);
+    return s.release[au] + p.work(a, s.pos[au], i + 1) + p.h + p.work(b, j, p.n[bu]);
+  };
+  for (const channel_pair& x : p.pairs) {
+    if (x.i < s.pos[static_cast<std::size_t>(x.p)] || x.j < s.pos[static_cast<std::size_t>(x.q)]) continue;
+    const std::int64_t v = x.ordered ? after(x.p, x.i, x.q, x.j)
+                                     : std::min(after(x.p, x.i, x.q, x.j), after(x.q, x.j, x.p, x.i));
+    lb = std::max(lb, v);
+  }
   return lb;
+}
+
+// The state after the channels `members` meet at `to` (each its segment from its position run
+// first); false when it teaches no channel that has work left anything (a wait for nothing).
+bool apply_meeting(const problem& p, const node& s, const std::vector<int>& members,
+                   const std::array<int, K>& to, node& out, bool only_useful = true) {
+  std::array<int, K> merged{};
+  for (int c : members)
+    for (int r = 0; r < p.channels; ++r)
+      merged[static_cast<std::size_t>(r)] =
+          std::max(merged[static_cast<std::size_t>(r)],
+                   r == c ? to[static_cast<std::size_t>(c)]
+                          : s.clock[static_cast<std::size_t>(c)][static_cast<std::size_t>(r)]);
+  bool useful = false;
+  for (int c : members) {
+    const auto cu = static_cast<std::size_t>(c);
+    if (to[cu] == p.n[cu]) continue;
+    for (int r = 0; r < p.channels; ++r)
+      if (r != c && merged[static_cast<std::size_t>(r)] > s.clock[cu][static_cast<std::size_t>(r)])
+        useful = true;
+  }
+  if (!useful && only_useful) return false;
+  out = s;
+  std::int64_t arrive = 0;
+  for (int c : members) {
+    const auto cu = static_cast<std::size_t>(c);
+    arrive = std::max(arrive, s.release[cu] + p.work(c, s.pos[cu], to[cu]));
+  }
+  for (int c : members) {
+    const auto cu = static_cast<std::size_t>(c);
+    out.pos[cu] = to[cu];
+    out.clock[cu] = merged;
+    out.release[cu] = arrive + p.h;
+  }
+  out.waits = s.waits + 1;
+  return true;
+}
+
+// The cycle of a sequence of meetings, or none when it leaves a pair unkept or takes a channel
+// back (the same rules as the search, for the pass that drops waits).
+std::optional<std::int64_t> evaluate(const problem& p, const std::vector<meeting>& seq) {
+  node s;
+  for (const meeting& m : seq) {
+    unsigned mask = 0;
+    std::array<int, K> to = s.pos;
+    std::vector<int> members;
+    for (const meeting::at& a : m.channels) {
+      const auto cu = static_cast<std::size_t>(a.channel);
+      if (a.position < s.pos[cu] || block_of(p, s, a.channel) < a.position) return std::nullopt;
+      mask |= 1u << a.channel;
+      to[cu] = a.position;
+      members.push_back(a.channel);
+    }
+    if (!segments_apart(p, s, mask, to)) return std::nullopt;
+    node next;
+    apply_meeting(p, s, members, to, next, false);
+    s = next;
+  }
+  std::int64_t mk = 0;
+  for (int c = 0; c < p.channels; ++c) {
+    const auto cu = static_cast<std::size_t>(c);
+    if (block_of(p, s, c) < p.n[cu]) return std::nullopt;
+    mk = std::max(mk, s.release[cu] + p.work(c, s.pos[cu], p.n[cu]));
+  }
+  if (!segments_apart(p, s, (1u << p.channels) - 1, p.n)) return std::nullopt;
+  return mk;
 }
 
 struct child {
@@ -117,20 +203,21 @@ struct search {
   }
 
   // A finished schedule from `s` (every channel runs to its end), if it holds every pair.
-  void try_end(const node& s, const std::array<int, K>& block, const std::vector<meeting>& path) {
+  // Whether it is shorter (or as short with fewer waits) than the best so far, which it becomes;
+  // the caller then keeps its meetings.
+  bool try_end(const node& s, const std::array<int, K>& block) {
     for (int c = 0; c < p.channels; ++c)
-      if (block[static_cast<std::size_t>(c)] < p.n[static_cast<std::size_t>(c)]) return;
-    if (!segments_apart(p, s, (1u << p.channels) - 1, p.n)) return;
+      if (block[static_cast<std::size_t>(c)] < p.n[static_cast<std::size_t>(c)]) return false;
+    if (!segments_apart(p, s, (1u << p.channels) - 1, p.n)) return false;
     std::int64_t mk = 0;
     for (int c = 0; c < p.channels; ++c) {
       const auto cu = static_cast<std::size_t>(c);
       mk = std::max(mk, s.release[cu] + p.work(c, s.pos[cu], p.n[cu]));
     }
-    if (best < 0 || mk < best || (mk == best && s.waits < best_waits)) {
-      best = mk;
-      best_waits = s.waits;
-      best_path = path;
-    }
+    if (best >= 0 && !(mk < best || (mk == best && s.waits < best_waits))) return false;
+    best = mk;
+    best_waits = s.waits;
+    return true;
   }
 
   // Every useful next meeting from `s`: two or more channels, each at a candidate position it may
@@ -181,37 +268,9 @@ struct search {
       return;
     }
     if (!segments_apart(p, s, mask, to)) return;
-    std::array<int, K> merged{};
-    for (int c : members)
-      for (int r = 0; r < p.channels; ++r)
-        merged[static_cast<std::size_t>(r)] =
-            std::max(merged[static_cast<std::size_t>(r)],
-                     r == c ? to[static_cast<std::size_t>(c)]
-                            : s.clock[static_cast<std::size_t>(c)][static_cast<std::size_t>(r)]);
-    bool useful = false;
-    for (int c : members) {
-      const auto cu = static_cast<std::size_t>(c);
-      if (to[cu] == p.n[cu]) continue;
-      for (int r = 0; r < p.channels; ++r)
-        if (r != c && merged[static_cast<std::size_t>(r)] > s.clock[cu][static_cast<std::size_t>(r)])
-          useful = true;
-    }
-    if (!useful) return;
     child ch;
-    ch.s = s;
-    std::int64_t arrive = 0;
-    for (int c : members) {
-      const auto cu = static_cast<std::size_t>(c);
-      arrive = std::max(arrive, s.release[cu] + p.work(c, s.pos[cu], to[cu]));
-      ch.m.channels.push_back({c, to[cu]});
-    }
-    for (int c : members) {
-      const auto cu = static_cast<std::size_t>(c);
-      ch.s.pos[cu] = to[cu];
-      ch.s.clock[cu] = merged;
-      ch.s.release[cu] = arrive + p.h;
-    }
-    ch.s.waits = s.waits + 1;
+    if (!apply_meeting(p, s, members, to, ch.s)) return;
+    for (int c : members) ch.m.channels.push_back({c, to[static_cast<std::size_t>(c)]});
     ch.lb = bound_of(p, ch.s, blocks(ch.s));
     out.push_back(std::move(ch));
   }
@@ -253,7 +312,7 @@ struct search {
   void dfs(const node& s, std::vector<meeting>& path) {
     if (stopped) return;
     const std::array<int, K> block = blocks(s);
-    try_end(s, block, path);
+    if (try_end(s, block)) best_path = path;
     if (budget.max_waits >= 0 && s.waits >= budget.max_waits) return;
     std::vector<child> next = children(s, block, SIZE_MAX);
     if (stopped) return;
@@ -268,40 +327,69 @@ struct search {
     }
   }
 
-  // A first schedule: level by level, the `beam` most promising states kept.
+  // A first schedule: level by level, the `beam` most promising states kept. The meetings are a
+  // tree of (parent, meeting), each state its leaf, so no level copies a path.
   void beam(const node& root) {
-    std::vector<std::pair<node, std::vector<meeting>>> level{{root, {}}};
+    std::vector<std::pair<int, meeting>> tree;
+    auto path_of = [&](int leaf) {
+      std::vector<meeting> out;
+      for (int at = leaf; at >= 0; at = tree[static_cast<std::size_t>(at)].first)
+        out.push_back(tree[static_cast<std::size_t>(at)].second);
+      std::reverse(out.begin(), out.end());
+      return out;
+    };
+    std::vector<std::pair<node, int>> level{{root, -1}};
     int total = 0;
     for (int c = 0; c < p.channels; ++c) total += p.n[static_cast<std::size_t>(c)];
+    const auto width = static_cast<std::size_t>(std::max(1, budget.beam));
     for (int depth = 0; !level.empty() && depth <= 2 * total + 2; ++depth) {
-      std::vector<std::tuple<std::int64_t, node, std::vector<meeting>>> next;
+      struct entry {
+        std::int64_t lb;
+        node s;
+        int parent;
+        meeting m;
+      };
+      std::vector<entry> next;
       std::unordered_map<std::string, std::size_t> where;
-      for (auto& [s, path] : level) {
+      for (auto& [s, leaf] : level) {
         const std::array<int, K> block = blocks(s);
-        try_end(s, block, path);
+        if (try_end(s, block)) best_path = path_of(leaf);
         if (budget.max_waits >= 0 && s.waits >= budget.max_waits) continue;
         for (child& c : children(s, block, 4)) {
           if (pruned(c.lb, c.s.waits)) continue;
           const std::string k = key(c.s);
-          std::vector<meeting> np = path;
-          np.push_back(c.m);
           if (auto it = where.find(k); it != where.end()) {
-            auto& [lb, old, op] = next[it->second];
-            if (c.lb < lb) next[it->second] = {c.lb, c.s, std::move(np)};
+            if (c.lb < next[it->second].lb) next[it->second] = {c.lb, c.s, leaf, std::move(c.m)};
             continue;
           }
           where.emplace(k, next.size());
-          next.emplace_back(c.lb, c.s, std::move(np));
+          next.push_back({c.lb, c.s, leaf, std::move(c.m)});
         }
       }
-      std::stable_sort(next.begin(), next.end(), [](const auto& a, const auto& b) {
-        return std::get<0>(a) != std::get<0>(b) ? std::get<0>(a) < std::get<0>(b)
-                                                : std::get<1>(a).waits < std::get<1>(b).waits;
+      std::stable_sort(next.begin(), next.end(), [](const entry& a, const entry& b) {
+        return a.lb != b.lb ? a.lb < b.lb : a.s.waits < b.s.waits;
       });
-      if (next.size() > static_cast<std::size_t>(std::max(1, budget.beam)))
-        next.resize(static_cast<std::size_t>(std::max(1, budget.beam)));
+      if (next.size() > width) next.resize(width);
       level.clear();
-      for (auto& [lb, s, path] : next) level.emplace_back(std::move(s), std::move(path));
+      for (entry& e : next) {
+        tree.emplace_back(e.parent, std::move(e.m));
+        level.emplace_back(e.s, static_cast<int>(tree.size() - 1));
+      }
+    }
+  }
+
+  // Drops each wait whose removal keeps every pair and makes the cycle no longer (the last
+  // first): the beam's schedules carry meetings the search needed on its way.
+  void drop_waits() {
+    for (std::size_t i = best_path.size(); i-- > 0;) {
+      std::vector<meeting> fewer = best_path;
+      fewer.erase(fewer.begin() + static_cast<std::ptrdiff_t>(i));
+      const std::optional<std::int64_t> mk = evaluate(p, fewer);
+      if (mk && *mk <= best) {
+        best = *mk;
+        best_path = std::move(fewer);
+        best_waits = static_cast<int>(best_path.size());
+      }
     }
   }
 };
@@ -342,6 +430,16 @@ std::optional<channels_schedule> schedule_channels(const std::vector<std::vector
     std::sort(v.begin(), v.end());
     v.erase(std::unique(v.begin(), v.end()), v.end());
   }
+  p.next_ref.resize(us.size());
+  for (std::size_t c = 0; c < us.size(); ++c) {
+    auto& nr = p.next_ref[c];
+    nr.assign(static_cast<std::size_t>(p.n[c]) + 1, p.n[c]);
+    for (int j = p.n[c] - 1; j >= 0; --j)
+      nr[static_cast<std::size_t>(j)] =
+          p.refs[c][static_cast<std::size_t>(j)].empty() ? nr[static_cast<std::size_t>(j) + 1] : j;
+  }
+  // Walking the pairs at every node pays where the search may prove the optimum.
+  if (pairs.size() <= 256) p.pairs = pairs;
   search s(p, budget);
   const node root;
   s.limit = std::numeric_limits<long>::max();
@@ -352,15 +450,16 @@ std::optional<channels_schedule> schedule_channels(const std::vector<std::vector
   std::vector<meeting> path;
   s.dfs(root, path);
   s.nodes += beam_nodes;
+  if (s.stopped && s.best >= 0) s.drop_waits();
   if (s.best < 0) return std::nullopt;
   channels_schedule out;
   out.makespan_us = s.best;
   out.waits = s.best_path;
   out.exact = !s.stopped;
   out.nodes = s.nodes;
-  std::int64_t lb = 0;
-  for (int c = 0; c < p.channels; ++c) lb = std::max(lb, p.work(c, 0, p.n[static_cast<std::size_t>(c)]));
-  out.lower_bound_us = out.exact ? s.best : lb;
+  // The root's bound: the longest channel's work, or a pair's two operations and the handshake
+  // between them with their channels' work before and after.
+  out.lower_bound_us = out.exact ? s.best : bound_of(p, root, s.blocks(root));
   return out;
 }
 
