@@ -7,7 +7,7 @@
 // the search's lower bound (the longest channel's work, or a pair's two operations with the
 // handshake between them and their channels' work around them; the cycle itself when exact), the
 // longest channel's work, and the sequential cycle. Run:
-//   build/wait_schedule_n_bench [density] [nodes]
+//   build/wait_schedule_n_bench [density] [nodes] [beam]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   const int density = argc > 1 ? std::atoi(argv[1]) : 1;
   schedule_budget budget;
   if (argc > 2) budget.nodes = std::atol(argv[2]);
+  if (argc > 3) budget.beam = std::atoi(argv[3]);
   std::printf(
       "ops/channel  pairs  solve_ms  exact    nodes  waits  cycle_s  bound_s  gap_%%  longest_s  "
       "sequential_s\n");

@@ -1,5 +1,7 @@
 #include "channels/wait_schedule_n.hpp"
 
+#include "channels/wait_schedule.hpp"
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -366,8 +368,20 @@ struct search {
           next.push_back({c.lb, c.s, leaf, std::move(c.m)});
         }
       }
-      std::stable_sort(next.begin(), next.end(), [](const entry& a, const entry& b) {
-        return a.lb != b.lb ? a.lb < b.lb : a.s.waits < b.s.waits;
+      // The lowest bound first; among equal bounds (the longest channel's end), the least time
+      // all channels together still need (the idle time spread over the others), then the
+      // fewest waits.
+      auto total = [&](const node& x) {
+        std::int64_t t = 0;
+        for (int c = 0; c < p.channels; ++c)
+          t += x.release[static_cast<std::size_t>(c)] +
+               p.work(c, x.pos[static_cast<std::size_t>(c)], p.n[static_cast<std::size_t>(c)]);
+        return t;
+      };
+      std::stable_sort(next.begin(), next.end(), [&](const entry& a, const entry& b) {
+        if (a.lb != b.lb) return a.lb < b.lb;
+        const std::int64_t ta = total(a.s), tb = total(b.s);
+        return ta != tb ? ta < tb : a.s.waits < b.s.waits;
       });
       if (next.size() > width) next.resize(width);
       level.clear();
@@ -457,9 +471,28 @@ std::optional<channels_schedule> schedule_channels(const std::vector<std::vector
   out.waits = s.best_path;
   out.exact = !s.stopped;
   out.nodes = s.nodes;
-  // The root's bound: the longest channel's work, or a pair's two operations and the handshake
-  // between them with their channels' work before and after.
-  out.lower_bound_us = out.exact ? s.best : bound_of(p, root, s.blocks(root));
+  // Not proved: the best of the root's bound (the longest channel's work, or a pair's two
+  // operations and the handshake between them with their channels' work before and after) and,
+  // for each two channels, the shortest cycle of their work alone with no handshake (Akers'
+  // path, exact: any schedule of all the channels, seen from two, is such a path).
+  out.lower_bound_us = s.best;
+  if (!out.exact) {
+    std::int64_t lb = bound_of(p, root, s.blocks(root));
+    for (int a = 0; a < p.channels; ++a)
+      for (int b = a + 1; b < p.channels; ++b) {
+        std::vector<op_pair> two;
+        for (const channel_pair& x : pairs) {
+          if (x.p == a && x.q == b)
+            two.push_back({x.i, x.j, x.ordered ? pair_rule::a_first : pair_rule::apart});
+          else if (x.p == b && x.q == a)
+            two.push_back({x.j, x.i, x.ordered ? pair_rule::b_first : pair_rule::apart});
+        }
+        if (const auto t = schedule_two_channels(us[static_cast<std::size_t>(a)],
+                                                 us[static_cast<std::size_t>(b)], two, 0))
+          lb = std::max(lb, t->makespan_us);
+      }
+    out.lower_bound_us = std::min(lb, s.best);
+  }
   return out;
 }
 

@@ -49,7 +49,7 @@ struct channels_schedule {
 struct schedule_budget {
   long nodes = 2'000'000;  ///< the exact search's nodes before it stops (about a second)
   int max_waits = -1;      ///< the most meetings a schedule may have (-1: no limit; for tests)
-  int beam = 32;           ///< the beam search's width (the first schedule)
+  int beam = 64;           ///< the beam search's width (the first schedule)
 };
 
 /// The most channels the search takes.
