@@ -183,6 +183,13 @@ struct cl_comparison::impl {
   int motion = -1;     // modal G0..G3, 32 for threading; -1 unknown
   bool cycle = false;  // a canned or lathe cycle
   bool polar = false, cylinder = false, frame = false, polar_coords = false, inverse_time = false;
+  // Polar interpolation (G12.1, G112) followed: it began with C known at 0, so its X and C are
+  // the part's x and y on the face; `polar_c` is that C (in the Y axis's units). The tool is on
+  // the line through the spindle's axis only where the Y axis stands at 0: the control turns the
+  // part and moves X for the programmed point, and a Y left elsewhere shifts every move of the
+  // mode across that line.
+  bool polar_follow = false;
+  axis_state polar_c;
   bool rotary = false;  // a rotary-axis word since the last tool call
   // An indexing head ([channel.head_index], the B head of a mill/turn): its angle word turns
   // the tool, and the tip stays the program's X Y Z once the head's length offset is given
@@ -506,7 +513,12 @@ struct cl_comparison::impl {
         // or cylindrical interpolation (C no angle of the part frame), where it stands is not
         // known. Without a decimal point the word counts least increments (`C120` is 0.12
         // degrees where decimal-point programming is off), as X, Y and Z do.
-        if (has_word(words, 'G', 28)) {
+        if (polar && polar_follow) {
+          // In polar interpolation C is the face's second coordinate (the block's G90/G91 as
+          // for any axis word); where the C axis stands after the mode is not known.
+          set_axis(polar_c, w, has_word(words, 'G', 91) || (!has_word(words, 'G', 90) && !absolute));
+          c_known = false;
+        } else if (has_word(words, 'G', 28)) {
           c_deg = 0, c_known = true;
         } else if (!w.numeric || polar || cylinder || has_word(words, 'G', 7.1) ||
                    has_word(words, 'G', 107) || has_word(words, 'G', 30) || has_word(words, 'G', 27) ||
@@ -657,9 +669,13 @@ struct cl_comparison::impl {
             setting = true, shifted = shifted || any_axis(words);
           break;
         case 121:
-        case 1120: polar = true; break;
+        case 1120:
+          polar = true;
+          polar_follow = has_c && c_known && std::abs(c_turn()) < 1e-6;
+          polar_c = axis_state{};
+          break;
         case 131:
-        case 1130: polar = false; break;
+        case 1130: polar = polar_follow = false; break;
         case 71:
         case 1070: {
           cylinder = false;
@@ -728,6 +744,10 @@ struct cl_comparison::impl {
     bool any = false;
     axis_state hx, hy, hz;  // where a hole cycle's block puts the axes
     if (hole_cycle) hx = x, hy = y, hz = z;
+    bool repeats = false;  // a cycle block's repeat count (K or L) above 1
+    if (cycle)
+      for (const nc_word& w : words)
+        if ((w.address == 'K' || w.address == 'L') && (!w.numeric || w.number > 1)) repeats = true;
     for (const nc_word& w : words) {
       axis_state* a = nullptr;
       bool incremental = !absolute;
@@ -752,7 +772,14 @@ struct cl_comparison::impl {
         send_away(*a, "G53");
       else if (setting || cycle) {
         if (hole_cycle && !setting) set_axis(a == &x ? hx : a == &y ? hy : hz, w, incremental);
-        a->k = axis_state::kind::unknown;
+        // A hole cycle leaves the axes across its drill at the hole (G81 X20. Y8.: Y stays at 8
+        // after G80), unless it repeats (K, L: the holes step on); the axis along the drill
+        // ends at the R or initial level.
+        const bool across = hole_cycle == 1 ? a != &z : hole_cycle == 2 ? a != &x : false;
+        if (across && !setting && !repeats)
+          set_axis(*a, w, incremental);
+        else
+          a->k = axis_state::kind::unknown;
       } else
         set_axis(*a, w, incremental);
     }
@@ -774,7 +801,11 @@ struct cl_comparison::impl {
       move_line = lines;
       if (cl_cycle && cl_drilling && motion == 1 && !cycle) [[unlikely]]
         note_fed(text);
-      if (motion == 0 && !cycle && !rapid_in_record) {
+      // A rapid with X or Z still at its reference point or machine position (the Y set to the
+      // centre line at the tool-change position before polar interpolation) is far from the
+      // part: no rapid through the cut.
+      if (motion == 0 && !cycle && !rapid_in_record && x.k != axis_state::kind::away &&
+          z.k != axis_state::kind::away) {
         rapid_in_record = true;
         rapid_text.assign(text);
       }
@@ -883,8 +914,9 @@ struct cl_comparison::impl {
   bool compare(const event& e, const vec3& pos, bool rapid, bool both) {
     // The head's offset first: a G49 H0 also makes C unknown, and would pass everything after.
     if (!head_due && head_offset_wrong(e)) return false;
-    if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || rotary || foreign_offset ||
-        shifted || head_due || !c_known) {
+    const bool followed_polar = polar && polar_follow;
+    if (both || cl_cycle || cycle || (polar && !polar_follow) || cylinder || frame || polar_coords ||
+        rotary || foreign_offset || shifted || head_due || (!c_known && !followed_polar)) {
       if (shifted || mirrored) said_passed_shift(e);
       ++passed;
       return false;
@@ -895,7 +927,23 @@ struct cl_comparison::impl {
     const axis_state* xp = &this->x;
     const axis_state* yp = &this->y;
     bool with_y = has_y;  // y is compared: the channel has Y, or C turned x into it
-    if (c_deg != 0) {
+    if (followed_polar) {
+      // The programmed point (X, C) on the face, the tool where the control puts it: turned to
+      // the point's angle at its distance from the axis, and off that line by where Y stands.
+      if (x.k != axis_state::kind::known || polar_c.k != axis_state::kind::known ||
+          (has_y && y.k != axis_state::kind::known)) {
+        ++passed;
+        return false;
+      }
+      const double px = part(x, x_div), py = part(polar_c, zs), y0 = has_y ? part(y, zs) : 0.0;
+      const double r = std::hypot(px, py);
+      const double ct = r > 0 ? px / r : 1.0, st = r > 0 ? py / r : 0.0;
+      turned_x = x, turned_y = polar_c;
+      turned_x.value = (px - y0 * st) * x_div / out_mm;
+      turned_y.value = (py + y0 * ct) * zs / out_mm;
+      xp = &turned_x, yp = &turned_y;
+      with_y = true;
+    } else if (c_deg != 0) {
       const auto at = part_xy(x, y);
       if (!at) {
         ++passed;
@@ -1358,7 +1406,7 @@ struct cl_comparison::impl {
                 compare(e, d.pos, d.rapid, both);
             }
           } else if constexpr (std::is_same_v<T, arc_event>) {
-            if (compare(e, d.end, false, both)) compare_arc(e, d);
+            if (compare(e, d.end, false, both) && !polar) compare_arc(e, d);
           }
         },
         e.data);

@@ -764,3 +764,48 @@ TEST_CASE("cl comparison: the fourth attack's ways past the C axis, the holes an
         "block "
         "`G87 X30. Z-20. R0. F120.`\n");
 }
+
+TEST_CASE("cl comparison: polar interpolation, and a Y left off the centre line", "[analysis][cl_compare]") {
+  // The Integrex's flat 25 mm off centre in polar interpolation (X a radius after G10.9 X0, the
+  // CL's y as C in mm): the tool stands on the programmed point only with Y at 0. Before
+  // G12.1 the program puts Y at `y_block` (empty: Y never given on this channel).
+  auto run = [](std::vector<const char*> y_blocks, const char* c_block = "G0 C0.") {
+    compared c("integrex-i200st", 1);
+    c.lines({"T11 M6", "M901", "M200", "G10.9 X0", "G97 S3000 M3", "G94", "M108", "G0 G53 B0.", "M107"});
+    for (const char* b : y_blocks) c.cmp.line(b);
+    c.lines({c_block, "G17 XC", "G12.1", "G0 G43 H#3020 X40. C25. Z5."});
+    motion_event mv;
+    mv.pos = {40, 25, 5};
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    c.lines({"G1 Z-8. F400.", "X-40."});
+    c.feed(400, feed_mode::per_minute);
+    mv.pos = {-40, 25, -8};
+    mv.rapid = false;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return std::pair{c.text(), c.cmp.compared()};
+  };
+  CHECK(run({"G0 Y0."}) == std::pair{std::string(), 2L});
+  // Y at 8 (a cross hole's or a flat's, an earlier tool's): every point is off by 8 across the
+  // line from the axis to the programmed point.
+  const double r = std::hypot(40.0, 25.0);
+  const std::string first = fmt::format(
+      "x {:.3f} where the CL has 40.000 ({:.3f} mm off); y {:.3f} where the CL has 25.000 ({:.3f} mm off)",
+      40 - 8 * 25 / r, 8 * 25 / r, 25 + 8 * 40 / r, 8 * 40 / r);
+  const std::string off_by_8 =
+      "job.cls:10:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+      "part "
+      "frame, mm): " +
+      first + ", after the block `G0 G43 H#3020 X40. C25. Z5.`\n";
+  CHECK(run({"G0 Y8."}) == std::pair{off_by_8, 2L});
+  // A drilling cycle leaves Y at its hole (a cross hole 8 mm off its radial line, an earlier
+  // tool's); one that repeats (K3) steps on, and where it ends is not followed.
+  CHECK(run({"G98 G81 X20. Y8. Z15. R33. F120.", "G80", "G0 Z40."}) == std::pair{off_by_8, 2L});
+  CHECK(run({"G91 G98 G81 X20. Y8. Z15. R33. F120. K3", "G80", "G90 G0 Z40."}) ==
+        std::pair{std::string(), 0L});
+  // Y never given: where it stands is not known, and nothing is compared.
+  CHECK(run({}) == std::pair{std::string(), 0L});
+  // The mode begun with C not at 0 (or not known): its frame is not followed.
+  CHECK(run({"G0 Y0."}, "G0 C30.") == std::pair{std::string(), 0L});
+  CHECK(run({"G0 Y0."}, "M9") == std::pair{std::string(), 0L});
+}
