@@ -210,6 +210,14 @@ void channel_writer::tool(const tool_event& t, int line) {
         section_end();
         tool_offset_ = a.offset;
       }
+      // Not inside polar or cylindrical interpolation or a turned frame (a T code there is no
+      // offset change the control takes: review 54), and every axis said again at its next
+      // move: the control applies the new offset to each axis as it next moves, and a Y left
+      // where the old offset put it would shift a polar cut (the next one sets Y0 again).
+      leave_polar();
+      leave_cylinder();
+      leave_radial_frame();
+      forget_axes();
       out_.block(block, true);
       tool_call_ = call + offset_block;
       if (length_offset) pending_offset_ = length_offset_text_ = format_template(ch_.length_offset, a);

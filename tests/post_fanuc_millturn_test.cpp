@@ -229,3 +229,22 @@ TEST_CASE("milling on the diameter on the Fanuc: G7.1 on the lathe's Z and C, X 
         "G0 B0.\nG0 C0.\nX60. Y0. Z-10.\nM89\nG1 X46. F200.\nM90\nG18 W0 H0\nG7.1 C23.\nG1 Z-12.5 C15.\n"
         "Z-15. C30.\nX60.\nG7.1 C0\nG0 X80.\n");
 }
+
+TEST_CASE("an offset change of the polar tool leaves polar interpolation and starts it again from Y0 and C0",
+          "[post][millturn]") {
+  // Review 54: `T1127` was written inside G12.1 (no offset change the control takes there), and
+  // the Y the old offset stood at was kept. The offset is changed outside the mode, and every
+  // axis is given again with the next move.
+  const std::string job =
+      "PARTNO E\nUNITS/MM\nHEAD/3\nTLDATA/MILL,10.0\nLOADTL/11\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,400\n"
+      "RAPID\nGOTO/40,25,5,0,0,1\nGOTO/40,25,-3\nGOTO/-40,25,-3\nRAPID\nGOTO/-40,25,5\nLOADTL/11,27\n"
+      "RAPID\nGOTO/40,-25,5\nGOTO/40,-25,-3\nGOTO/-40,-25,-3\nEND\nFINI\n";
+  const test::posted p = post_on(job, "polar-offset");
+  INFO(p.diagnostics);
+  REQUIRE(p.ok);
+  CHECK(p.files.at("E_3.nc") ==
+        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM6 T1100\nT1111\nM35\nG0 G28 H0.\n"
+        "G97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X80. C25. Z5. F1500.\nZ-3. F400.\n"
+        "X-80.\nZ5. F1500.\nG13.1\nG18\nT1127\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X80. C-25. Z5.\nZ-3. F400.\n"
+        "X-80.\nM200 P123\nM37\nG13.1\nG18\nM34\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+}

@@ -495,7 +495,9 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
 TEST_CASE("the 31i's B head changes the tool with M6 T0700 and takes its offset with T0707",
           "[post][millturn]") {
   // The Fusion Doosan Mill/Turn (31i) post: the tool change carries offset 00, the offset comes
-  // by the T code after it, as on the turrets; a new offset for the same tool is that T alone.
+  // by the T code after it, as on the turrets; a new offset for the same tool is that T alone,
+  // and the next move gives every axis again (the control applies the new offset to each axis
+  // as it next moves).
   const test::posted p = post_on(
       "PARTNO E\nHEAD/3\nTLDATA/TURN\nLOADTL/7\nSPINDL/RPM,900,CLW\nFEDRAT/0.2,MMPR\nGOTO/20,0,2\n"
       "LOADTL/7,27\nGOTO/20,0,1\nFINI\n",
@@ -504,5 +506,5 @@ TEST_CASE("the 31i's B head changes the tool with M6 T0700 and takes its offset 
   const std::string nc = p.files.at("E_3.nc");
   CHECK(nc.substr(0, nc.find("M200")) ==
         "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM6 T0700\nT0707\nG97 S900 M3\n"
-        "G0 B0.\nG1 X40. Y0. Z2. F0.2\nT0727\nZ1.\n");
+        "G0 B0.\nG1 X40. Y0. Z2. F0.2\nT0727\nX40. Y0. Z1.\n");
 }

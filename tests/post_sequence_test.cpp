@@ -49,7 +49,7 @@ machine numbered(const std::string& name, sequence_mode mode, int n_digits = 5) 
 TEST_CASE("header, blocks, footer and end code are numbered in one count", "[post][sequence]") {
   CHECK(file_of(one_head_job, numbered("fanuc-0itd-twin", sequence_mode::all), "LATE_1.nc", "all") ==
         "%\nO1000 (LATE)\nN10 G0 G18 G21 G40 G54 G80 G99\nN20 G28 U0.\nN30 G28 W0.\nN40 T0101\n"
-        "N50 G97 S1000 M3\nN60 G0 X40. Z5.\nN70 G1 Z-10. F0.2\nN80 T0121\nN90 X36.\nN100 M100\n"
+        "N50 G97 S1000 M3\nN60 G0 X40. Z5.\nN70 G1 Z-10. F0.2\nN80 T0121\nN90 X36. Z-10.\nN100 M100\n"
         "N110 M9\nN120 G28 U0.\nN130 G28 W0.\nN140 M5\nN150 M30\n%\n");
 }
 
@@ -57,7 +57,7 @@ TEST_CASE("past the largest number of the N format the count starts again", "[po
   // N2: N10 ... N90, then N10 again (the Fusion posts restart past 99999 the same way).
   CHECK(file_of(one_head_job, numbered("fanuc-0itd-twin", sequence_mode::all, 2), "LATE_1.nc", "wrap") ==
         "%\nO1000 (LATE)\nN10 G0 G18 G21 G40 G54 G80 G99\nN20 G28 U0.\nN30 G28 W0.\nN40 T0101\n"
-        "N50 G97 S1000 M3\nN60 G0 X40. Z5.\nN70 G1 Z-10. F0.2\nN80 T0121\nN90 X36.\nN10 M100\n"
+        "N50 G97 S1000 M3\nN60 G0 X40. Z5.\nN70 G1 Z-10. F0.2\nN80 T0121\nN90 X36. Z-10.\nN10 M100\n"
         "N20 M9\nN30 G28 U0.\nN40 G28 W0.\nN50 M5\nN60 M30\n%\n");
 }
 
@@ -65,7 +65,7 @@ TEST_CASE("tool_change numbers only the tool calls, offset changes included", "[
   CHECK(
       file_of(one_head_job, numbered("fanuc-0itd-twin", sequence_mode::tool_change), "LATE_1.nc", "tools") ==
       "%\nO1000 (LATE)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nN10 T0101\nG97 S1000 M3\n"
-      "G0 X40. Z5.\nG1 Z-10. F0.2\nN20 T0121\nX36.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+      "G0 X40. Z5.\nG1 Z-10. F0.2\nN20 T0121\nX36. Z-10.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
 TEST_CASE("each section of a merged program counts from the start, also under a late PARTNO",
