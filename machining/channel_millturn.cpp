@@ -85,16 +85,26 @@ void channel_writer::enter_polar() {
   // every move of the mode by that much. Then the C axis at 0: the polar frame's X is the
   // part's X (UNVERIFIED in a Mazak manual; the Fusion Integrex post positions C before G12.1
   // as well).
-  if (has_y_ && !(last_y_.known && last_y_.n == 0)) {
+  // A head's length offset due (the Integrex's `G43 H#3020` after its index) goes with it,
+  // outside the mode: Fanuc's list of what G12.1 takes has no G43, and the Fusion Integrex post
+  // gives the offset before G12.1 (review 54).
+  if (has_y_ && (!(last_y_.known && last_y_.n == 0) || !pending_offset_.empty())) {
     text_buffer& b = out_.open_block();
     word_start_ = b.size();
     b += "G0";
     motion_g_ = 0;
+    add_offset_words(b);
+    pending_offset_.clear();
     axis_word(b, 'Y', 0.0, last_y_, true);
     out_.end_block();
     word_start_ = std::string::npos;
   }
   position_c(0);
+  // C free before the mode turns it (after a clamped hole, C may already stand at 0).
+  if (c_clamped_) {
+    out_.block(work_->c_axis.unclamp);
+    c_clamped_ = false;
+  }
   for (const std::string& b : m_.milling.polar_on) {
     out_.block(b);
     for (const char* g : {"G17", "G18", "G19"})
