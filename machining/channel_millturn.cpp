@@ -79,7 +79,7 @@ void channel_writer::set_x_radius(bool radius) {
   last_x_.known = false;
 }
 
-void channel_writer::enter_polar() {
+void channel_writer::enter_polar(const vec3& first, bool rapid) {
   // Y on the centre line first: the polar frame is the X-C plane through the spindle's axis,
   // and a Y left off it by an earlier tool (a flat, a hole off the centre line) would shift
   // every move of the mode by that much. Then the C axis at 0: the polar frame's X is the
@@ -88,16 +88,26 @@ void channel_writer::enter_polar() {
   // A head's length offset due (the Integrex's `G43 H#3020` after its index) goes with it,
   // outside the mode: Fanuc's list of what G12.1 takes has no G43, and the Fusion Integrex post
   // gives the offset before G12.1 (review 54).
-  if (has_y_ && (!(last_y_.known && last_y_.n == 0) || !pending_offset_.empty())) {
+  // With the offset the block moves Z too (on a Fanuc-type control a G43 with no Z word moves Z
+  // by the tool's length from where it stands, at home past its travel: review 55, M1): the
+  // first point's height, and its radius at C0, so that the mode turns only C to reach it. A
+  // first move the CL feeds keeps the offset (its block is a cut, not a rapid to its end).
+  const bool offset = rapid && !pending_offset_.empty();
+  if (has_y_ && (!(last_y_.known && last_y_.n == 0) || offset)) {
     text_buffer& b = out_.open_block();
     word_start_ = b.size();
     b += "G0";
     motion_g_ = 0;
-    add_offset_words(b);
-    pending_offset_.clear();
+    if (offset) {
+      add_offset_words(b);
+      pending_offset_.clear();
+      axis_word(b, 'X', nc_x(std::hypot(first.x, first.y)), last_x_, true);
+    }
     axis_word(b, 'Y', 0.0, last_y_, true);
+    if (offset) axis_word(b, 'Z', nc_z(first.z), last_z_, true);
     out_.end_block();
     word_start_ = std::string::npos;
+    if (offset) homed_ = false;
   }
   position_c(0);
   // C free before the mode turns it (after a clamped hole, C may already stand at 0).
@@ -113,6 +123,7 @@ void channel_writer::enter_polar() {
   polar_ = true;
   motion_g_ = -1;
   last_y_.known = false;
+  polar_entry_z_ = polar_z_ = first.z * (axis_.z < 0 ? -1.0 : 1.0);
 }
 
 void channel_writer::leave_polar() {
@@ -160,7 +171,8 @@ bool channel_writer::face_polar() const {
 }
 
 void channel_writer::polar_linear(bool rapid, const vec3& p, int line) {
-  if (!polar_) enter_polar();
+  if (!polar_) enter_polar(p, rapid);
+  polar_z_ = p.z * (axis_.z < 0 ? -1.0 : 1.0);
   if (c_clamped_) {
     out_.block(work_->c_axis.unclamp);
     c_clamped_ = false;

@@ -352,7 +352,7 @@ void channel_writer::arc(const arc_event& cl, int line) {
   if (has_c_ && !index_head(line)) return;
   // In C mode: in polar interpolation (the CL's Y as C), or in XY with C at 0.
   if (c_mode_ && face_polar() && live_tool()) {
-    if (!polar_) enter_polar();
+    if (!polar_) enter_polar(pos_, false);
   } else if (c_mode_) {
     if (!last_c_.known) position_c(0);
     if (c_sin_ != 0 || c_cos_ != 1) {

@@ -312,7 +312,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// Polar interpolation off, C unclamped, X in diameter, the spindle a turning spindle again.
   void leave_c_axis();
   void set_x_radius(bool radius);
-  void enter_polar();
+  /// Polar interpolation on, for a first move to `first` (CL units): Y to the centre line, with
+  /// a length offset due and a `rapid` first move the tool at `first`'s radius and height at C0
+  /// (the Fusion Integrex post's `G0 G43 X.. Y0. Z.. H#3020`), C at 0 and free, the mode's codes.
+  void enter_polar(const vec3& first, bool rapid);
   void leave_polar();
   /// G0 C<degrees>, unclamping first; the C frame's rotation follows it.
   void position_c(double degrees);
@@ -567,10 +570,13 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool x_mirror_ = false;    // the channel's X axis is mirrored (a lower turret)
   bool x_diameter_ = false;  // and programmed in diameter (a lathe's)
   bool has_y_ = false;
-  bool has_c_ = false;          // the channel has a C axis (mill/turn)
-  bool c_mode_ = false;         // the workpiece spindle is held as the C axis
-  bool c_clamped_ = false;      // and clamped (spindle.c_clamp)
-  bool polar_ = false;          // polar interpolation is on
+  bool has_c_ = false;      // the channel has a C axis (mill/turn)
+  bool c_mode_ = false;     // the workpiece spindle is held as the C axis
+  bool c_clamped_ = false;  // and clamped (spindle.c_clamp)
+  bool polar_ = false;      // polar interpolation is on
+  /// The CL height (along the tool axis) of the mode's first point and of its last move: an
+  /// offset change in the mode leaves it, and the C axis turns back to 0, only from that high.
+  double polar_entry_z_ = 0, polar_z_ = 0;
   bool side_hole_ = false;      // that cross hole is drilled with the side cycles (G87/G88)
   bool radial_ok_ = false;      // a cross hole is being written: its points are in the turned frame
   bool plane_hole_ = false;     // a hole in a tilted working plane: its points are in the plane's frame

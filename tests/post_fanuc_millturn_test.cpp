@@ -248,3 +248,18 @@ TEST_CASE("an offset change of the polar tool leaves polar interpolation and sta
         "X-80.\nZ5. F1500.\nG13.1\nG18\nT1127\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X80. C-25. Z5.\nZ-3. F400.\n"
         "X-80.\nM200 P123\nM37\nG13.1\nG18\nM34\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
 }
+
+TEST_CASE("an offset change of the polar tool below where the mode began is refused", "[post][millturn]") {
+  // Review 55, H1: leaving the mode for the offset change and starting it again turns C back
+  // to 0, which with the cutter 3 mm into the face turns the part round it.
+  const std::string job =
+      "PARTNO E\nUNITS/MM\nHEAD/3\nTLDATA/MILL,10.0\nLOADTL/11\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,400\n"
+      "RAPID\nGOTO/40,25,5,0,0,1\nGOTO/40,25,-3\nLOADTL/11,27\nRAPID\nGOTO/40,25,5\nEND\nFINI\n";
+  const test::posted p = post_on(job, "polar-offset-low");
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:11:1: error: channel 3: LOADTL changes tool 11's offset inside polar interpolation with the "
+        "tool 8 mm below where the mode began: the offset is changed outside the mode, and C turns back to 0 "
+        "to start it again, which would turn the part round the cutter; retract the tool first\n"
+        "LOADTL/11,27\n^\n");
+}

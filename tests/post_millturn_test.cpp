@@ -123,8 +123,10 @@ TEST_CASE("the mill/turn sample's head 1 reaches every CL point and hole bottom 
   // The CL points of head 1 in order: the flat's two passes (polar), the approach and the three
   // face holes (bottom 12 below each top), the cross holes (3 above the OD, bottom 15 deep
   // along -axis), the retracts. A point the model reads twice (the initial level before and
-  // after a cycle) is listed twice.
+  // after a cycle) is listed twice. First, before G12.1, the flat's first point's radius at C0
+  // and its height (the length offset's block: 47.17 = hypot(40, 25)).
   CHECK(seen ==
+        "(47.170, 0.000, 5.000)\n"
         "(40.000, 25.000, 5.000)\n(40.000, 25.000, -8.000)\n(-40.000, 25.000, -8.000)\n(-40.000, 25.000, "
         "5.000)\n"
         "(-40.000, -25.000, 5.000)\n(-40.000, -25.000, -8.000)\n(40.000, -25.000, -8.000)\n"
@@ -153,7 +155,8 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
       head1(p, "E.EIA") ==
       "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 "
       "M6\nM901\nM200\n"
-      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 G43 H#3020 Y0.\nG0 C0.\nG17 XC\nG12.1\nG0 "
+      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 G43 H#3020 X11.18 Y0. Z2.\nG0 C0.\nG17 "
+      "XC\nG12.1\nG0 "
       "X10. C5. "
       "Z2.\n"
       "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
