@@ -93,6 +93,10 @@ void channel_writer::enter_polar(const vec3& first, bool rapid) {
   // first point's height, and its radius at C0, so that the mode turns only C to reach it. A
   // first move the CL feeds keeps the offset (its block is a cut, not a rapid to its end).
   const bool offset = rapid && !pending_offset_.empty();
+  // That block takes the tool to the first point's height: C turns to 0 before it, where the
+  // tool stands (at home after the tool call and the head's index), not at that height
+  // (review 56, M1: a first point 1 mm deep, and the part turned round the cutter).
+  if (offset && has_y_) position_c(0);
   if (has_y_ && (!(last_y_.known && last_y_.n == 0) || offset)) {
     text_buffer& b = out_.open_block();
     word_start_ = b.size();
@@ -123,7 +127,6 @@ void channel_writer::enter_polar(const vec3& first, bool rapid) {
   polar_ = true;
   motion_g_ = -1;
   last_y_.known = false;
-  polar_entry_z_ = polar_z_ = first.z * (axis_.z < 0 ? -1.0 : 1.0);
 }
 
 void channel_writer::leave_polar() {
@@ -172,7 +175,6 @@ bool channel_writer::face_polar() const {
 
 void channel_writer::polar_linear(bool rapid, const vec3& p, int line) {
   if (!polar_) enter_polar(p, rapid);
-  polar_z_ = p.z * (axis_.z < 0 ? -1.0 : 1.0);
   if (c_clamped_) {
     out_.block(work_->c_axis.unclamp);
     c_clamped_ = false;

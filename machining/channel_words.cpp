@@ -206,15 +206,17 @@ void channel_writer::tool(const tool_event& t, int line) {
     // turret stays where it is and only the offset changes, so the call goes out alone.
     const std::string& block = offset_block.empty() ? call : offset_block;
     if (call + offset_block != tool_call_ && block_fits(block)) {
-      // Leaving polar interpolation turns C back to 0 for the next start: not with the cutter
-      // below where the mode began (review 55, H1: the part turned round a cutter in the face).
-      if (polar_ && polar_z_ < polar_entry_z_ - 1e-3 / cl_mm_) {
-        return error(line, fmt::format("{} changes tool {}'s offset inside polar interpolation with the tool "
-                                       "{:g} mm below where the mode began: the offset is changed outside "
-                                       "the mode, and C turns back to 0 to start it again, which would turn "
-                                       "the part round the cutter; retract the tool first",
-                                       word, t.tool, (polar_entry_z_ - polar_z_) * cl_mm_));
-      }
+      // Not inside polar interpolation: the control takes no offset change in the mode, and
+      // leaving it turns C back to 0 where the tool stands for the next start, which in the
+      // face (or at a height a helix or a lead-in from outside reached) turns the part round
+      // the cutter (reviews 55 and 56). After a GOHOME the mode is off.
+      if (polar_)
+        return error(line,
+                     fmt::format("{} changes tool {}'s offset inside polar interpolation: the control "
+                                 "takes no offset change in the mode, and leaving it turns C back to 0 "
+                                 "where the tool stands, which may turn the part round the cutter; give "
+                                 "a GOHOME before the offset change",
+                                 word, t.tool));
       if (ev_) [[unlikely]] {  // the same tool on another offset: a section of its own
         section_end();
         tool_offset_ = a.offset;

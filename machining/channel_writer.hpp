@@ -574,9 +574,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool c_mode_ = false;     // the workpiece spindle is held as the C axis
   bool c_clamped_ = false;  // and clamped (spindle.c_clamp)
   bool polar_ = false;      // polar interpolation is on
-  /// The CL height (along the tool axis) of the mode's first point and of its last move: an
-  /// offset change in the mode leaves it, and the C axis turns back to 0, only from that high.
-  double polar_entry_z_ = 0, polar_z_ = 0;
+
   bool side_hole_ = false;      // that cross hole is drilled with the side cycles (G87/G88)
   bool radial_ok_ = false;      // a cross hole is being written: its points are in the turned frame
   bool plane_hole_ = false;     // a hole in a tilted working plane: its points are in the plane's frame

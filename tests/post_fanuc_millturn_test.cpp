@@ -230,14 +230,15 @@ TEST_CASE("milling on the diameter on the Fanuc: G7.1 on the lathe's Z and C, X 
         "Z-15. C30.\nX60.\nG7.1 C0\nG0 X80.\n");
 }
 
-TEST_CASE("an offset change of the polar tool leaves polar interpolation and starts it again from Y0 and C0",
-          "[post][millturn]") {
+TEST_CASE(
+    "an offset change of the polar tool is made after a GOHOME and starts the mode again from Y0 and C0",
+    "[post][millturn]") {
   // Review 54: `T1127` was written inside G12.1 (no offset change the control takes there), and
-  // the Y the old offset stood at was kept. The offset is changed outside the mode, and every
-  // axis is given again with the next move.
+  // the Y the old offset stood at was kept. After a GOHOME (the mode off, the axes home) the
+  // offset changes, and polar interpolation starts again from Y0 and C0.
   const std::string job =
       "PARTNO E\nUNITS/MM\nHEAD/3\nTLDATA/MILL,10.0\nLOADTL/11\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,400\n"
-      "RAPID\nGOTO/40,25,5,0,0,1\nGOTO/40,25,-3\nGOTO/-40,25,-3\nRAPID\nGOTO/-40,25,5\nLOADTL/11,27\n"
+      "RAPID\nGOTO/40,25,5,0,0,1\nGOTO/40,25,-3\nGOTO/-40,25,-3\nRAPID\nGOTO/-40,25,5\nGOHOME\nLOADTL/11,27\n"
       "RAPID\nGOTO/40,-25,5\nGOTO/40,-25,-3\nGOTO/-40,-25,-3\nEND\nFINI\n";
   const test::posted p = post_on(job, "polar-offset");
   INFO(p.diagnostics);
@@ -245,21 +246,25 @@ TEST_CASE("an offset change of the polar tool leaves polar interpolation and sta
   CHECK(p.files.at("E_3.nc") ==
         "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM6 T1100\nT1111\nM35\nG0 G28 H0.\n"
         "G97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X80. C25. Z5. F1500.\nZ-3. F400.\n"
-        "X-80.\nZ5. F1500.\nG13.1\nG18\nT1127\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X80. C-25. Z5.\nZ-3. F400.\n"
-        "X-80.\nM200 P123\nM37\nG13.1\nG18\nM34\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+        "X-80.\nZ5. F1500.\nG13.1\nG18\nG28 U0.\nG28 W0.\nT1127\nG0 Y0.\nG0 C0.\nG17\nG12.1\n"
+        "G1 X80. C-25. Z5.\nZ-3. F400.\nX-80.\nM200 P123\nM37\nG13.1\nG18\nM34\nM9\nG28 U0.\nG28 "
+        "W0.\nM30\n%\n");
 }
 
-TEST_CASE("an offset change of the polar tool below where the mode began is refused", "[post][millturn]") {
-  // Review 55, H1: leaving the mode for the offset change and starting it again turns C back
-  // to 0, which with the cutter 3 mm into the face turns the part round it.
+TEST_CASE("an offset change of the polar tool inside the mode is refused", "[post][millturn]") {
+  // Reviews 55 and 56: leaving the mode for the offset change and starting it again turns C
+  // back to 0 where the tool stands; with the cutter 3 mm into the face (or at a depth a helix
+  // or a lead-in from outside reached) that turns the part round it.
   const std::string job =
       "PARTNO E\nUNITS/MM\nHEAD/3\nTLDATA/MILL,10.0\nLOADTL/11\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,400\n"
       "RAPID\nGOTO/40,25,5,0,0,1\nGOTO/40,25,-3\nLOADTL/11,27\nRAPID\nGOTO/40,25,5\nEND\nFINI\n";
   const test::posted p = post_on(job, "polar-offset-low");
   CHECK_FALSE(p.ok);
-  CHECK(p.diagnostics ==
-        "job.cls:11:1: error: channel 3: LOADTL changes tool 11's offset inside polar interpolation with the "
-        "tool 8 mm below where the mode began: the offset is changed outside the mode, and C turns back to 0 "
-        "to start it again, which would turn the part round the cutter; retract the tool first\n"
-        "LOADTL/11,27\n^\n");
+  CHECK(
+      p.diagnostics ==
+      "job.cls:11:1: error: channel 3: LOADTL changes tool 11's offset inside polar interpolation: the "
+      "control "
+      "takes no offset change in the mode, and leaving it turns C back to 0 where the tool stands, which may "
+      "turn the part round the cutter; give a GOHOME before the offset change\n"
+      "LOADTL/11,27\n^\n");
 }

@@ -155,10 +155,8 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
       head1(p, "E.EIA") ==
       "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 "
       "M6\nM901\nM200\n"
-      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 G43 H#3020 X11.18 Y0. Z2.\nG0 C0.\nG17 "
-      "XC\nG12.1\nG0 "
-      "X10. C5. "
-      "Z2.\n"
+      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X11.18 Y0. Z2.\nG17 "
+      "XC\nG12.1\nG0 X10. C5.\n"
       "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
       "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
       "X60. Y0. "
