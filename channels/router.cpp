@@ -19,16 +19,19 @@ channel_router::channel_router(const machine& m, sync_policy policy, channel_sin
       tracks_(m.channels.size() + 1), waits_sent_(m.channels.size() + 1, 0) {
   const channel_def* first = m_.channel_for_head(1);
   active_ = {first ? first->number : 1};
-  if (job_channels_.size() == 2) {
-    ops_.a = std::min(job_channels_[0], job_channels_[1]);
-    ops_.b = std::max(job_channels_[0], job_channels_[1]);
-    if (ops_.a >= 1 && ops_.b < static_cast<int>(side_.size()) && ops_.a != ops_.b) {
-      side_[static_cast<std::size_t>(ops_.a)] = 0;
-      side_[static_cast<std::size_t>(ops_.b)] = 1;
-      ops_.sections.emplace_back();
-    } else {
-      ops_.a = ops_.b = 0;
-    }
+  std::vector<int> chs = job_channels_;
+  std::sort(chs.begin(), chs.end());
+  chs.erase(std::unique(chs.begin(), chs.end()), chs.end());
+  const bool valid = std::all_of(chs.begin(), chs.end(),
+                                 [&](int c) { return c >= 1 && c < static_cast<int>(side_.size()); });
+  if (valid && chs.size() >= 2 && chs.size() <= static_cast<std::size_t>(schedule_max_channels)) {
+    ops_.channels = chs;
+    for (std::size_t k = 0; k < chs.size(); ++k)
+      side_[static_cast<std::size_t>(chs[k])] = static_cast<int>(k);
+    plan_next_.assign(chs.size(), 0);
+    sec_.assign(chs.size(), 0);
+    bound_.assign(chs.size(), {});
+    ops_.add_section();
   }
 }
 
@@ -47,7 +50,7 @@ void channel_router::deliver(int ch, const event& e, bool both, bool writes) {
   } else if (op_wrote_[c] && !both && side_[c] >= 0 && !std::holds_alternative<motion_event>(e.data) &&
              opens_operation(e)) [[unlikely]] {
     if (op_waits_) {
-      rendezvous({ops_.a, ops_.b}, e.line, "an operation", true);
+      rendezvous(ops_.channels, e.line, "an operation", true);
       ++ops_.operation_waits;
     }
     start_op(ch, e.line);
@@ -89,10 +92,14 @@ void channel_router::plan_waits_at(int side, std::size_t count, int line) {
   const std::size_t section = sec_[side];
   if (section >= plan_->sections.size())
     return plan_fault(line, fmt::format("section {} not planned", section + 1));
-  const std::vector<twinpost::rendezvous>& waits = plan_->sections[section].waits;
-  const int ch = side == 0 ? ops_.a : ops_.b;
-  for (std::size_t& next = plan_next_[side]; next < waits.size(); ++next) {
-    const int at = side == 0 ? waits[next].a : waits[next].b;
+  const std::vector<meeting>& waits = plan_->sections[section].waits;
+  const int ch = ops_.channels[static_cast<std::size_t>(side)];
+  for (std::size_t& next = plan_next_[static_cast<std::size_t>(side)]; next < waits.size(); ++next) {
+    // The meetings that do not name this side are passed over.
+    const auto mine = std::find_if(waits[next].channels.begin(), waits[next].channels.end(),
+                                   [&](const meeting::at& a) { return a.channel == side; });
+    if (mine == waits[next].channels.end()) continue;
+    const int at = mine->position;
     if (at < 0 || static_cast<std::size_t>(at) > count) return;
     if (static_cast<std::size_t>(at) < count)
       return plan_fault(
@@ -106,7 +113,10 @@ void channel_router::plan_waits_at(int side, std::size_t count, int line) {
     }
     wait_mark w;
     w.code = it->second;
-    w.partners = {ops_.a, ops_.b};
+    for (const meeting::at& a : waits[next].channels)
+      if (a.channel >= 0 && static_cast<std::size_t>(a.channel) < ops_.channels.size())
+        w.partners.push_back(ops_.channels[static_cast<std::size_t>(a.channel)]);
+    std::sort(w.partners.begin(), w.partners.end());
     w.partner_text = partner_list(w.partners, m_.waits.partners);
     w.cl_line = line;
     send_wait(ch, w);
@@ -115,46 +125,52 @@ void channel_router::plan_waits_at(int side, std::size_t count, int line) {
 }
 
 void channel_router::side_break(int side, int line) {
-  const std::size_t section = sec_[side];
-  const std::size_t count = ops_.sections[section].ops[side].size();
-  const int ch = side == 0 ? ops_.a : ops_.b;
+  const auto s = static_cast<std::size_t>(side);
+  const std::size_t section = sec_[s];
+  const std::size_t count = ops_.sections[section].ops[s].size();
+  const int ch = ops_.channels[s];
   if (plan_) {
     plan_waits_at(side, count, line);
     if (section < plan_->sections.size()) {
       const plan_section& p = plan_->sections[section];
-      if (plan_next_[side] != p.waits.size() || p.ops[side].size() != count)
+      const std::size_t planned = s < p.ops.size() ? p.ops[s].size() : 0;
+      if (plan_next_[s] != p.waits.size() || planned != count)
         plan_fault(line, fmt::format("section {}: channel {} has {} operations, the plan {}", section + 1, ch,
-                                     count, p.ops[side].size()));
+                                     count, planned));
     }
   }
-  ++sec_[side];
-  if (ops_.sections.size() <= sec_[side]) ops_.sections.emplace_back();
-  plan_next_[side] = 0;
+  ++sec_[s];
+  if (ops_.sections.size() <= sec_[s]) ops_.add_section();
+  plan_next_[s] = 0;
   started_[static_cast<std::size_t>(ch)] = false;
 }
 
 bool channel_router::unmet_sync(int line, bool at_end) {
-  if (bind_failed_ || bound_[0].size() == bound_[1].size()) return false;
-  // A bound sync record one channel has passed and the other has not: the barrier here would
+  if (bind_failed_ || bound_.empty()) return false;
+  // A bound sync record one channel has passed and another has not: the barrier here would
   // meet the one while it waits for the other (a deadlock in the programs too).
-  const int ahead = bound_[0].size() > bound_[1].size() ? 0 : 1;
-  const bound_record& r = bound_[ahead][bound_[1 - ahead].size()];
+  std::size_t ahead = 0, behind = 0;
+  for (std::size_t k = 1; k < bound_.size(); ++k) {
+    if (bound_[k].size() > bound_[ahead].size()) ahead = k;
+    if (bound_[k].size() < bound_[behind].size()) behind = k;
+  }
+  if (bound_[ahead].size() == bound_[behind].size()) return false;
+  const bound_record& r = bound_[ahead][bound_[behind].size()];
   bind_failed_ = true;  // said once
   // Where the programs meet: the record being routed (a transfer; the first record of a
   // balance cut, whose opening wait goes before it), or the job's last.
   error(at_end ? line : column_line_,
         fmt::format("sync {} of channel {} (line {}) is not met by channel {} {}: each sync record of the "
                     "one channel needs its partner in the other before the programs meet again",
-                    r.key.first, ahead == 0 ? ops_.a : ops_.b, r.line, ahead == 0 ? ops_.b : ops_.a,
+                    r.key.first, ops_.channels[ahead], r.line, ops_.channels[behind],
                     at_end ? "by the end of the job" : "before the programs meet here"));
   return true;
 }
 
 void channel_router::section_break(int line) {
-  if (ops_.a == 0 || !track_) return;
+  if (ops_.channels.empty() || !track_) return;
   if (unmet_sync(line, false)) return;
-  side_break(0, line);
-  side_break(1, line);
+  for (std::size_t side = 0; side < ops_.channels.size(); ++side) side_break(static_cast<int>(side), line);
   std::fill(started_.begin(), started_.end(), false);
 }
 
@@ -306,7 +322,7 @@ void channel_router::open_both() {
   const std::vector<int> all = std::move(open_both_);
   open_both_.clear();
   section_break(open_both_line_);
-  if (ops_.a != 0 && track_) ops_.sections[sec_[0]].together = true;  // section_break made it
+  if (!ops_.channels.empty() && track_) ops_.sections[sec_[0]].together = true;  // section_break made it
   rendezvous(all, open_both_line_, "HEAD/BOTH", true, wait_mark::section::opens_both);
 }
 
@@ -372,17 +388,20 @@ void channel_router::explicit_sync(const sync_event& s, int line) {
 }
 
 void channel_router::bound_sync(const sync_event& s, int line, const std::vector<int>& partners) {
-  // Not a job of two channels: the optimiser says so and falls back. After a refused record,
-  // the rest are not bound (the post has failed).
-  if (ops_.a == 0 || bind_failed_) return;
+  // Not a job of two to four channels: the optimiser says so and falls back. After a refused
+  // record, the rest are not bound (the post has failed).
+  if (ops_.channels.empty() || bind_failed_) return;
   const int ch = active_.front();
   const int index = marker_of(s, ch);
-  if (partners != std::vector<int>{ops_.a, ops_.b}) {
+  if (partners != ops_.channels) {
     bind_failed_ = true;
-    return error(line,
-                 fmt::format("sync {} names channels {}: under --sync optimise a sync record of the job "
-                             "binds its two channels, {} and {}",
-                             index, fmt::join(partners, ", "), ops_.a, ops_.b));
+    return error(line, ops_.channels.size() == 2
+                           ? fmt::format("sync {} names channels {}: under --sync optimise a sync record of "
+                                         "the job binds its two channels, {} and {}",
+                                         index, fmt::join(partners, ", "), ops_.channels[0], ops_.channels[1])
+                           : fmt::format("sync {} names channels {}: under --sync optimise a sync record of "
+                                         "the job binds all its channels, {}; post it with --sync explicit",
+                                         index, fmt::join(partners, ", "), fmt::join(ops_.channels, ", ")));
   }
   if (s.source == sync_source::icam) auto_marker_[ch] = index;
   // The same sync record twice in a row in one channel is one wait: nothing worked between
@@ -397,27 +416,35 @@ void channel_router::bound_sync(const sync_event& s, int line, const std::vector
   last_sync_index_ = index;
   const int side = side_[static_cast<std::size_t>(ch)];
   const std::pair<int, int> key{index, seen_[{ch, index}]++};
-  std::vector<bound_record>& mine = bound_[side];
-  const std::vector<bound_record>& theirs = bound_[1 - side];
+  std::vector<bound_record>& mine = bound_[static_cast<std::size_t>(side)];
   const std::size_t k = mine.size();
   mine.push_back({key, line});
-  // Each channel's k-th sync record meets the other's k-th: crossed (1, 3, 2 against 1, 2, 3)
+  // Each channel's k-th sync record meets the others' k-th: crossed (1, 3, 2 against 1, 2, 3)
   // or different (1 against 2), the programs would wait at different codes, each for the other.
-  if (k < theirs.size() && theirs[k].key != key) {
-    bind_failed_ = true;
-    return error(
-        line, fmt::format(
-                  "sync {} is channel {}'s sync record number {}, where channel {}'s number {} is sync {} "
-                  "(line {}): the two would wait at different codes, each for the other; give both "
-                  "channels the same sync records in the same order",
-                  index, ch, k + 1, side == 0 ? ops_.b : ops_.a, k + 1, theirs[k].key.first, theirs[k].line));
+  bool last = true;  // the last channel to reach its k-th: the record is kept
+  for (std::size_t o = 0; o < bound_.size(); ++o) {
+    if (o == static_cast<std::size_t>(side)) continue;
+    const std::vector<bound_record>& theirs = bound_[o];
+    if (k >= theirs.size()) {
+      last = false;
+      continue;
+    }
+    if (theirs[k].key != key) {
+      bind_failed_ = true;
+      return error(line,
+                   fmt::format("sync {} is channel {}'s sync record number {}, where channel {}'s number {} "
+                               "is sync {} (line {}): the two would wait at different codes, each for the "
+                               "other; give {} channels the same sync records in the same order",
+                               index, ch, k + 1, ops_.channels[o], k + 1, theirs[k].key.first, theirs[k].line,
+                               bound_.size() == 2 ? "both" : "all"));
+    }
   }
-  if (k < theirs.size()) ++ops_.kept_syncs;
+  if (last) ++ops_.kept_syncs;
   // The timing post: a rendezvous here too, so that each operation is timed on its own. Not
   // counted among its operation waits: one at a head switch stands for the sequential post's
   // own wait there (one in the middle of a head's work makes the sequential cycle a handshake
   // longer than it is).
-  if (op_waits_) rendezvous({ops_.a, ops_.b}, line, "a sync record");
+  if (op_waits_) rendezvous(ops_.channels, line, "a sync record");
   side_break(side, line);
   if (plan_ && sync_wait(ch, key, partners, line)) last_partners_ = partners;
 }
@@ -540,7 +567,7 @@ void channel_router::finish(int last_line) {
           "held by both spindles");
   }
   if (both_) select({active_.front()}, last_line, false);
-  if (ops_.a != 0 && track_ && unmet_sync(last_line, true)) return;
+  if (!ops_.channels.empty() && track_ && unmet_sync(last_line, true)) return;
   if (plan_) {
     // The last section's waits, and a plan of no more sections than the job has.
     section_break(last_line);

@@ -98,14 +98,14 @@ class channel_router {
                   wait_mark::section both = wait_mark::section::none);
   void explicit_sync(const sync_event& s, int line);
   /// A sync record under --sync optimise (its timing post and its planned post): it binds, a
-  /// barrier of the two channels at its own place in each; the plan's waits go between.
+  /// barrier of the job's channels at its own place in each; the plan's waits go between.
   void bound_sync(const sync_event& s, int line, const std::vector<int>& partners);
   /// The wait of sync record `key` (sync number, occurrence) in channel `ch`: the code of that
   /// key, allocated at its first record; false when no code is left (said).
   bool sync_wait(int ch, std::pair<int, int> key, const std::vector<int>& partners, int line);
   /// The section of side `side` ends here (its remaining planned waits placed), its next begins.
   void side_break(int side, int line);
-  /// A bound sync record one channel has passed and the other not (said as an error): true.
+  /// A bound sync record one channel has passed and another not (said as an error): true.
   bool unmet_sync(int line, bool at_end);
   /// TRANSFER/GRIP or RELEASE: every channel retracts, a rendezvous of all, the machine's
   /// transfer channel writes its blocks, a rendezvous of all; after a release every channel
@@ -163,7 +163,7 @@ class channel_router {
   int explicit_ = 0;
   bool warned_ignored_ = false;
   bool exhausted_ = false;
-  // Operations (a two-channel job): side_[ch] 0 for ops_.a, 1 for ops_.b, -1 for any other.
+  // Operations (a job of two to four channels): side_[ch] its index in ops_.channels, -1 for any other.
   job_operations ops_;
   std::vector<int> side_;
   std::vector<bool> started_;          // per channel: its current stretch has started an operation
@@ -174,14 +174,14 @@ class channel_router {
   bool track_ = false;
   std::vector<int> waits_sent_;  // per channel: waits written so far
   const job_operations* plan_ = nullptr;
-  std::size_t plan_next_[2] = {0, 0};  // per side: the next planned wait to place
-  std::size_t sec_[2] = {0, 0};        // per side: its section (a bound sync record moves one side on)
+  std::vector<std::size_t> plan_next_;  // per side: the next planned wait to place
+  std::vector<std::size_t> sec_;        // per side: its section (a bound sync record moves one side on)
   /// Per side: its bound sync records in order.
   struct bound_record {
     std::pair<int, int> key;  ///< (sync number, occurrence)
     int line = 0;
   };
-  std::vector<bound_record> bound_[2];
+  std::vector<std::vector<bound_record>> bound_;
   bool bind_failed_ = false;  // a sync record refused: the rest are not bound
   std::map<std::pair<std::size_t, std::size_t>, int> plan_codes_;  // (section, wait) -> code
   bool plan_failed_ = false;

@@ -174,22 +174,27 @@ std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_m
   for (std::size_t s = 0; s < ops.sections.size(); ++s) {
     const plan_section& sec = ops.sections[s];
     if (sec.together) continue;
-    for (std::size_t i = 0; i < sec.ops[0].size(); ++i)
-      for (std::size_t j = 0; j < sec.ops[1].size(); ++j) {
-        const channel_op& a = sec.ops[0][i];
-        const channel_op& b = sec.ops[1][j];
-        if (fixed_between(a, b, clearance_mm) == fixed_rule::none) continue;
-        const bool a_first = a.first_line < b.first_line;
-        out.push_back(plan_pair{s, op_pair{static_cast<int>(i), static_cast<int>(j),
-                                           a_first ? pair_rule::a_first : pair_rule::b_first}});
-      }
+    for (std::size_t p = 0; p < sec.ops.size(); ++p)
+      for (std::size_t q = p + 1; q < sec.ops.size(); ++q)
+        for (std::size_t i = 0; i < sec.ops[p].size(); ++i)
+          for (std::size_t j = 0; j < sec.ops[q].size(); ++j) {
+            const channel_op& a = sec.ops[p][i];
+            const channel_op& b = sec.ops[q][j];
+            if (fixed_between(a, b, clearance_mm) == fixed_rule::none) continue;
+            const bool a_first = a.first_line < b.first_line;
+            out.push_back(plan_pair{s,
+                                    op_pair{static_cast<int>(i), static_cast<int>(j),
+                                            a_first ? pair_rule::a_first : pair_rule::b_first},
+                                    static_cast<int>(p), static_cast<int>(q)});
+          }
   }
   return out;
 }
 
 std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, double clearance_mm) {
-  const channel_op& a = ops.sections[p.section].ops[0][static_cast<std::size_t>(p.pair.a)];
-  const channel_op& b = ops.sections[p.section].ops[1][static_cast<std::size_t>(p.pair.b)];
+  const plan_section& sec = ops.sections[p.section];
+  const channel_op& a = sec.ops[static_cast<std::size_t>(p.p)][static_cast<std::size_t>(p.pair.a)];
+  const channel_op& b = sec.ops[static_cast<std::size_t>(p.q)][static_cast<std::size_t>(p.pair.b)];
   const char* part = (a.parts & b.parts & 1) != 0 ? "main" : "sub";
   switch (fixed_between(a, b, clearance_mm)) {
     case fixed_rule::none: return {};
@@ -231,7 +236,7 @@ std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, dou
 }
 
 void time_operations(job_operations& ops, const std::function<double(int side, int segment)>& seconds) {
-  for (int side = 0; side < 2; ++side) {
+  for (std::size_t side = 0; side < ops.channels.size(); ++side) {
     // The last operation of each segment takes its time.
     std::map<int, channel_op*> last;
     for (plan_section& s : ops.sections)
@@ -240,20 +245,22 @@ void time_operations(job_operations& ops, const std::function<double(int side, i
         last[op.segment] = &op;
       }
     for (auto& [segment, op] : last)
-      op->us = static_cast<std::int64_t>(std::llround(std::max(0.0, seconds(side, segment)) * 1e6));
+      op->us = static_cast<std::int64_t>(
+          std::llround(std::max(0.0, seconds(static_cast<int>(side), segment)) * 1e6));
   }
 }
 
 std::vector<std::size_t> minimal_pairs(const std::vector<plan_pair>& pairs) {
-  // Per section and rule: A-first pairs by A's operation descending (B's ascending), kept when
-  // B's operation is before every one kept so far; B-first the same with the roles swapped.
+  // Per section, pair of sides and rule: p-first pairs by p's operation descending (q's
+  // ascending), kept when q's operation is before every one kept so far; q-first the same with
+  // the roles swapped.
   std::vector<std::size_t> order(pairs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   auto key = [&](std::size_t i) {
     const plan_pair& p = pairs[i];
     const bool a_first = p.pair.rule == pair_rule::a_first;
     const int lead = a_first ? p.pair.a : p.pair.b, follow = a_first ? p.pair.b : p.pair.a;
-    return std::make_tuple(p.section, static_cast<int>(p.pair.rule), -lead, follow);
+    return std::make_tuple(p.section, p.p, p.q, static_cast<int>(p.pair.rule), -lead, follow);
   };
   std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return key(x) < key(y); });
   std::vector<std::size_t> kept;
@@ -265,13 +272,13 @@ std::vector<std::size_t> minimal_pairs(const std::vector<plan_pair>& pairs) {
     }
     const bool a_first = p.pair.rule == pair_rule::a_first;
     const int follow = a_first ? p.pair.b : p.pair.a;
-    // The kept pairs of this section and rule all lead by as much or more, and each follows
+    // The kept pairs of this section, sides and rule all lead by as much or more, and each follows
     // earlier than the one kept before it: the last one kept follows earliest.
     bool implied = false;
     if (!kept.empty()) {
       const plan_pair& q = pairs[kept.back()];
-      implied =
-          q.section == p.section && q.pair.rule == p.pair.rule && (a_first ? q.pair.b : q.pair.a) <= follow;
+      implied = q.section == p.section && q.p == p.p && q.q == p.q && q.pair.rule == p.pair.rule &&
+                (a_first ? q.pair.b : q.pair.a) <= follow;
     }
     if (!implied) kept.push_back(order[k]);
   }
@@ -279,38 +286,72 @@ std::vector<std::size_t> minimal_pairs(const std::vector<plan_pair>& pairs) {
   return kept;
 }
 
+namespace {
+
+// Two channels: Akers' plane, and a rendezvous for every ordered pair.
+std::optional<std::int64_t> plan_two(plan_section& s, std::size_t i, const std::vector<plan_pair>& pairs,
+                                     std::int64_t handshake_us) {
+  std::vector<std::int64_t> a, b;
+  for (const channel_op& op : s.ops[0]) a.push_back(op.us);
+  for (const channel_op& op : s.ops[1]) b.push_back(op.us);
+  std::vector<op_pair> here;
+  for (const plan_pair& p : pairs)
+    if (p.section == i) here.push_back(p.pair);
+  const std::optional<two_channel_schedule> best = schedule_two_channels(a, b, here, handshake_us);
+  if (!best) return std::nullopt;
+  std::vector<rendezvous> waits = best->waits;
+  // Every ordered pair by a rendezvous: A has done its operation (x > a) while B has not
+  // started its own (y <= b), or the other way round. In a schedule that keeps the pair, no
+  // wait is on the wrong side of it, so the one added fits the chain of the others.
+  for (const op_pair& p : here) {
+    const rendezvous need =
+        p.rule == pair_rule::a_first ? rendezvous{p.a + 1, p.b} : rendezvous{p.a, p.b + 1};
+    const bool covered = std::any_of(waits.begin(), waits.end(), [&](const rendezvous& w) {
+      return p.rule == pair_rule::a_first ? w.a >= need.a && w.b <= need.b : w.b >= need.b && w.a <= need.a;
+    });
+    if (covered || p.rule == pair_rule::apart) continue;
+    waits.insert(std::upper_bound(waits.begin(), waits.end(), need,
+                                  [](const rendezvous& x, const rendezvous& y) {
+                                    return x.a < y.a || (x.a == y.a && x.b < y.b);
+                                  }),
+                 need);
+  }
+  s.waits.clear();
+  for (const rendezvous& w : waits) s.waits.push_back(meeting{{{0, w.a}, {1, w.b}}});
+  return run_with_waits(a, b, waits, handshake_us).makespan_us;
+}
+
+// Three or four: the meetings' search, which keeps each pair by its waits alone.
+std::optional<std::int64_t> plan_many(plan_section& s, std::size_t i, const std::vector<plan_pair>& pairs,
+                                      std::int64_t handshake_us, const schedule_budget& budget) {
+  std::vector<std::vector<std::int64_t>> us(s.ops.size());
+  for (std::size_t side = 0; side < s.ops.size(); ++side)
+    for (const channel_op& op : s.ops[side]) us[side].push_back(op.us);
+  std::vector<channel_pair> here;
+  for (const plan_pair& p : pairs) {
+    if (p.section != i) continue;
+    if (p.pair.rule == pair_rule::b_first)
+      here.push_back({p.q, p.pair.b, p.p, p.pair.a, true});
+    else
+      here.push_back({p.p, p.pair.a, p.q, p.pair.b, p.pair.rule == pair_rule::a_first});
+  }
+  const std::optional<channels_schedule> best = schedule_channels(us, here, handshake_us, budget);
+  if (!best) return std::nullopt;
+  s.waits = best->waits;
+  return best->makespan_us;
+}
+
+}  // namespace
+
 std::optional<std::int64_t> plan_waits(job_operations& ops, const std::vector<plan_pair>& pairs,
-                                       std::int64_t handshake_us) {
+                                       std::int64_t handshake_us, const schedule_budget& budget) {
   std::int64_t cycle = 0;
   for (std::size_t i = 0; i < ops.sections.size(); ++i) {
     plan_section& s = ops.sections[i];
-    std::vector<std::int64_t> a, b;
-    for (const channel_op& op : s.ops[0]) a.push_back(op.us);
-    for (const channel_op& op : s.ops[1]) b.push_back(op.us);
-    std::vector<op_pair> here;
-    for (const plan_pair& p : pairs)
-      if (p.section == i) here.push_back(p.pair);
-    const std::optional<two_channel_schedule> best = schedule_two_channels(a, b, here, handshake_us);
-    if (!best) return std::nullopt;
-    std::vector<rendezvous> waits = best->waits;
-    // Every ordered pair by a rendezvous: A has done its operation (x > a) while B has not
-    // started its own (y <= b), or the other way round. In a schedule that keeps the pair, no
-    // wait is on the wrong side of it, so the one added fits the chain of the others.
-    for (const op_pair& p : here) {
-      const rendezvous need =
-          p.rule == pair_rule::a_first ? rendezvous{p.a + 1, p.b} : rendezvous{p.a, p.b + 1};
-      const bool covered = std::any_of(waits.begin(), waits.end(), [&](const rendezvous& w) {
-        return p.rule == pair_rule::a_first ? w.a >= need.a && w.b <= need.b : w.b >= need.b && w.a <= need.a;
-      });
-      if (covered || p.rule == pair_rule::apart) continue;
-      waits.insert(std::upper_bound(waits.begin(), waits.end(), need,
-                                    [](const rendezvous& x, const rendezvous& y) {
-                                      return x.a < y.a || (x.a == y.a && x.b < y.b);
-                                    }),
-                   need);
-    }
-    s.waits = waits;
-    cycle += run_with_waits(a, b, waits, handshake_us).makespan_us + (i > 0 ? handshake_us : 0);
+    const std::optional<std::int64_t> span = s.ops.size() == 2 ? plan_two(s, i, pairs, handshake_us)
+                                                               : plan_many(s, i, pairs, handshake_us, budget);
+    if (!span) return std::nullopt;
+    cycle += *span + (i > 0 ? handshake_us : 0);
   }
   return cycle;
 }
@@ -323,17 +364,19 @@ std::vector<plan_pair> pairs_for_lines(const job_operations& ops, const std::vec
   std::vector<place> found;
   for (int line : lines)
     for (std::size_t s = 0; s < ops.sections.size(); ++s)
-      for (int side = 0; side < 2 && !ops.sections[s].together; ++side) {
-        const std::vector<channel_op>& v = ops.sections[s].ops[side];
+      for (int side = 0; side < static_cast<int>(ops.sections[s].ops.size()) && !ops.sections[s].together;
+           ++side) {
+        const std::vector<channel_op>& v = ops.sections[s].ops[static_cast<std::size_t>(side)];
         for (std::size_t k = 0; k < v.size(); ++k)
           if (v[k].first_line <= line && line <= v[k].last_line)
             found.push_back({s, side, static_cast<int>(k)});
       }
-  auto ordered = [&](std::size_t s, int a, int b) {
+  // Side p's operation a and side q's b (p < q), in the CL's order.
+  auto ordered = [&](std::size_t s, int p, int a, int q, int b) {
     const plan_section& sec = ops.sections[s];
-    const bool a_first = sec.ops[0][static_cast<std::size_t>(a)].first_line <
-                         sec.ops[1][static_cast<std::size_t>(b)].first_line;
-    return plan_pair{s, op_pair{a, b, a_first ? pair_rule::a_first : pair_rule::b_first}};
+    const bool a_first = sec.ops[static_cast<std::size_t>(p)][static_cast<std::size_t>(a)].first_line <
+                         sec.ops[static_cast<std::size_t>(q)][static_cast<std::size_t>(b)].first_line;
+    return plan_pair{s, op_pair{a, b, a_first ? pair_rule::a_first : pair_rule::b_first}, p, q};
   };
   std::vector<plan_pair> out;
   auto add = [&](const plan_pair& p) {
@@ -342,17 +385,20 @@ std::vector<plan_pair> pairs_for_lines(const job_operations& ops, const std::vec
   for (std::size_t i = 0; i < found.size(); ++i)
     for (std::size_t j = i + 1; j < found.size(); ++j)
       if (found[i].section == found[j].section && found[i].side != found[j].side) {
-        const place& a = found[i].side == 0 ? found[i] : found[j];
-        const place& b = found[i].side == 0 ? found[j] : found[i];
-        add(ordered(a.section, a.index, b.index));
+        const place& a = found[i].side < found[j].side ? found[i] : found[j];
+        const place& b = found[i].side < found[j].side ? found[j] : found[i];
+        add(ordered(a.section, a.side, a.index, b.side, b.index));
       }
   if (!out.empty()) return out;
-  // No partner: each operation found keeps the CL's order with the other channel's whole section.
+  // No partner: each operation found keeps the CL's order with the other channels' whole section.
   for (const place& p : found) {
-    const std::size_t others = ops.sections[p.section].ops[1 - p.side].size();
-    for (std::size_t k = 0; k < others; ++k)
-      add(p.side == 0 ? ordered(p.section, p.index, static_cast<int>(k))
-                      : ordered(p.section, static_cast<int>(k), p.index));
+    const plan_section& sec = ops.sections[p.section];
+    for (int other = 0; other < static_cast<int>(sec.ops.size()); ++other) {
+      if (other == p.side) continue;
+      for (std::size_t k = 0; k < sec.ops[static_cast<std::size_t>(other)].size(); ++k)
+        add(p.side < other ? ordered(p.section, p.side, p.index, other, static_cast<int>(k))
+                           : ordered(p.section, other, static_cast<int>(k), p.side, p.index));
+    }
   }
   return out;
 }

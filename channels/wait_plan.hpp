@@ -1,13 +1,15 @@
 #pragma once
-// The operations of a two-channel job as the router finds them, and the waits the schedule puts
-// between them (`--sync optimise`, issue 39, docs/wait-placement.md).
+// The operations of a job of two to four channels as the router finds them, and the waits the
+// schedule puts between them (`--sync optimise`, issue 39, docs/wait-placement.md).
 //
 // An operation is a stretch of the CL that one head works alone: from a head switch to the
 // next. A section is the part of the job between two barriers, which every channel meets
 // whatever the policy: a part transfer (its two rendezvous) and the frame of a HEAD/BOTH
 // section. Inside a section each channel runs its operations in the CL's order, and the plan
-// says where the two channels meet (channels/wait_schedule.hpp: after A's first `a`
-// operations and B's first `b`).
+// says where the channels meet: each wait a meeting (channels/wait_schedule_n.hpp) of two or
+// more of them, each after its first so many operations. Two channels meet at a rendezvous of
+// both (channels/wait_schedule.hpp); three or four at waits that name the channels concerned
+// (the 31i's `M200 P12`).
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "channels/wait_schedule.hpp"
+#include "channels/wait_schedule_n.hpp"
 #include "parser/events.hpp"
 
 namespace twinpost {
@@ -82,20 +85,28 @@ bool severs_part(const channel_op& op);
 bool works_inside(const channel_op& op);
 
 struct plan_section {
-  /// [0]: channel A's operations, [1]: channel B's.
-  std::vector<channel_op> ops[2];
-  /// Where the two meet inside the section (none at its start or end).
-  std::vector<rendezvous> waits;
+  /// Per side (job_operations::channels, in order): its operations.
+  std::vector<std::vector<channel_op>> ops;
+  /// Where the channels meet inside the section (none at its start or end), in an order each
+  /// channel meets them in; a meeting names sides, not channel numbers.
+  std::vector<meeting> waits;
   /// HEAD/BOTH's frame: one operation cut by both heads at once (a balance cut), which the
   /// control keeps in step. No pair of it is ever kept apart: waits inside it would stop one
   /// head of the pair.
   bool together = false;
 };
 
-/// The job's sections, in order, for channels `a` < `b`.
+/// The job's sections, in order, for its channels.
 struct job_operations {
-  int a = 0, b = 0;
+  /// The job's channels in order (two to schedule_max_channels); empty when it has no
+  /// operations to plan (one channel, or more than the schedule takes). Its sides index this.
+  std::vector<int> channels;
   std::vector<plan_section> sections;
+  /// A new last section, with an empty list of operations per side.
+  void add_section() {
+    sections.emplace_back();
+    sections.back().ops.resize(channels.size());
+  }
   int operation_waits = 0;  ///< rendezvous placed inside stretches (channel_router::set_operation_waits)
   /// The job's own sync records kept (under optimise they bind: a section ends at each), counted
   /// once per pair.
@@ -105,17 +116,20 @@ struct job_operations {
   bool has_sync_records = false;
 };
 
-/// A pair of operations of one section kept apart (wait_schedule's op_pair, in a section).
+/// A pair of operations of one section kept apart (wait_schedule's op_pair, in a section):
+/// `pair.a` is side `p`'s operation, `pair.b` side `q`'s (p < q; a_first: p's first).
 struct plan_pair {
   std::size_t section = 0;
   op_pair pair;
+  int p = 0, q = 1;
   bool operator==(const plan_pair& o) const {
-    return section == o.section && pair.a == o.pair.a && pair.b == o.pair.b && pair.rule == o.pair.rule;
+    return section == o.section && pair.a == o.pair.a && pair.b == o.pair.b && pair.rule == o.pair.rule &&
+           p == o.p && q == o.q;
   }
 };
 
 /// Each operation's time: `seconds(side, segment)` is the time of that segment of the
-/// channel's program as a sequential pass wrote it (side 0: channel a). Operations that share
+/// channel's program as a sequential pass wrote it (side k: channels[k]). Operations that share
 /// a segment (a stretch that wrote no block, with no wait after it) take nothing of it but the
 /// last one.
 void time_operations(job_operations& ops, const std::function<double(int side, int segment)>& seconds);
@@ -132,22 +146,24 @@ std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_m
 /// Why fixed_pairs keeps pair `p` (a sentence; empty when it does not).
 std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, double clearance_mm);
 
-/// Of `pairs`, the indices of those no other implies (A's i before B's j is implied by A's i'
-/// before B's j' with i' >= i and j' <= j: the channels keep their own order), in order.
+/// Of `pairs`, the indices of those no other implies (p's i before q's j is implied by p's i'
+/// before q's j' with i' >= i and j' <= j: the channels keep their own order), in order.
 std::vector<std::size_t> minimal_pairs(const std::vector<plan_pair>& pairs);
 
-/// The waits of every section for the shortest cycle that keeps `pairs`
-/// (schedule_two_channels), into `ops`, with a rendezvous that orders every pair (a pair the
+/// The waits of every section for the shortest cycle that keeps `pairs`, into `ops`. Two
+/// channels: schedule_two_channels, with a rendezvous that orders every pair (a pair the
 /// schedule keeps only by the operations' times gets one: the times are estimates, the order
-/// must not depend on them). Returns the predicted cycle (the sections' makespans and a
-/// handshake per barrier between them), or nullopt when the pairs contradict each other.
+/// must not depend on them). Three or four: schedule_channels, whose meetings keep every pair
+/// whatever the times (`budget`: its search's). Returns the predicted cycle (the sections'
+/// makespans and a handshake per barrier between them), or nullopt when the pairs contradict
+/// each other or the search found no schedule.
 std::optional<std::int64_t> plan_waits(job_operations& ops, const std::vector<plan_pair>& pairs,
-                                       std::int64_t handshake_us);
+                                       std::int64_t handshake_us, const schedule_budget& budget = {});
 
 /// The pairs that keep the CL's order between the operations holding the CL lines `lines`
-/// (a finding's error and notes): two operations of the two channels in one section give one
+/// (a finding's error and notes): two operations of two channels in one section give one
 /// pair; an operation whose partner is not among them keeps the CL's order with every
-/// operation of the other channel in its section. Empty when no line is in an operation.
+/// operation of the other channels in its section. Empty when no line is in an operation.
 std::vector<plan_pair> pairs_for_lines(const job_operations& ops, const std::vector<int>& lines);
 
 }  // namespace twinpost

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <optional>
 #include <unistd.h>
 
@@ -181,16 +182,16 @@ void print_kept_apart(const std::vector<std::string>& pairs) {
 std::vector<std::string> meeting_points(const job_operations& ops, const std::string& file) {
   std::vector<std::string> out;
   for (const plan_section& sec : ops.sections)
-    for (const rendezvous& w : sec.waits) {
+    for (const meeting& w : sec.waits) {
       std::string at;
-      for (int side = 0; side < 2; ++side) {
+      for (const meeting::at& a : w.channels) {
+        const auto side = static_cast<std::size_t>(a.channel);
         const std::vector<channel_op>& list = sec.ops[side];
-        const int n = side == 0 ? w.a : w.b;
+        const int n = a.position;
         if (list.empty()) continue;
         if (!at.empty()) at += ", ";
-        at += n == 0 ? fmt::format("channel {} before {}:{}", side == 0 ? ops.a : ops.b, file,
-                                   list[0].first_line)
-                     : fmt::format("channel {} after {}:{}", side == 0 ? ops.a : ops.b, file,
+        at += n == 0 ? fmt::format("channel {} before {}:{}", ops.channels[side], file, list[0].first_line)
+                     : fmt::format("channel {} after {}:{}", ops.channels[side], file,
                                    list[static_cast<std::size_t>(n - 1)].last_line);
       }
       out.push_back(std::move(at));
@@ -253,19 +254,20 @@ void print_summary(const post_summary& s, const printing_sink& sink, const locat
     fmt::print("  cycle time not known: machine {} has no [timing] table\n", found.def.name);
 }
 
-// A schedule as JSON: the two channels, per section each one's operations (CL lines, seconds)
-// and where they meet, and the pairs kept in the CL's order.
+// A schedule as JSON: the channels, per section each one's operations (CL lines, seconds) and
+// where they meet (each wait the operations each channel has done before it, null for a channel
+// it does not name), and the pairs kept in the CL's order.
 void append_schedule_json(std::string& out, const job_operations& ops, std::optional<double> sequential,
                           int posts, const std::vector<std::string>& kept_apart) {
   out += fmt::format(
-      "{{\"channels\":[{},{}],\"sequential_cycle\":{},\"posts\":{},\"kept_syncs\":{},"
+      "{{\"channels\":[{}],\"sequential_cycle\":{},\"posts\":{},\"kept_syncs\":{},"
       "\"sections\":[",
-      ops.a, ops.b, sequential ? fmt::format("{:.3f}", *sequential) : std::string("null"), posts,
-      ops.kept_syncs);
+      fmt::join(ops.channels, ","), sequential ? fmt::format("{:.3f}", *sequential) : std::string("null"),
+      posts, ops.kept_syncs);
   for (std::size_t i = 0; i < ops.sections.size(); ++i) {
     const plan_section& sec = ops.sections[i];
     out += fmt::format("{}{{\"together\":{},\"operations\":[", i ? "," : "", sec.together);
-    for (int side = 0; side < 2; ++side) {
+    for (std::size_t side = 0; side < sec.ops.size(); ++side) {
       out += side ? ",[" : "[";
       for (std::size_t k = 0; k < sec.ops[side].size(); ++k) {
         const channel_op& op = sec.ops[side][k];
@@ -275,8 +277,13 @@ void append_schedule_json(std::string& out, const job_operations& ops, std::opti
       out += ']';
     }
     out += "],\"waits\":[";
-    for (std::size_t w = 0; w < sec.waits.size(); ++w)
-      out += fmt::format("{}{{\"after\":[{},{}]}}", w ? "," : "", sec.waits[w].a, sec.waits[w].b);
+    for (std::size_t w = 0; w < sec.waits.size(); ++w) {
+      std::vector<std::string> after(sec.ops.size(), "null");
+      for (const meeting::at& a : sec.waits[w].channels)
+        if (a.channel >= 0 && static_cast<std::size_t>(a.channel) < after.size())
+          after[static_cast<std::size_t>(a.channel)] = std::to_string(a.position);
+      out += fmt::format("{}{{\"after\":[{}]}}", w ? "," : "", fmt::join(after, ","));
+    }
     out += "]}";
   }
   out += "],\"kept_apart\":[";

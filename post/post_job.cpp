@@ -176,7 +176,7 @@ job_scan scan_for_sync(const post_options& o, const machine& m) {
 }
 
 // The policy `auto` stands for: the job's sync records if it has any; else, on a machine with
-// [timing] whose job uses two channels, the waits placed for the shortest cycle (optimise,
+// [timing] whose job uses two to four channels, the waits placed for the shortest cycle (optimise,
 // docs/wait-placement.md); else a rendezvous at every head switch (said in a warning, since the
 // channels then never cut at once).
 sync_policy choose_policy(const post_options& o, const machine& m, const job_scan& scan,
@@ -190,7 +190,8 @@ sync_policy choose_policy(const post_options& o, const machine& m, const job_sca
   heads.erase(std::unique(heads.begin(), heads.end()), heads.end());
   if (heads.size() + scan.head_words.size() + scan.channels.size() <= 1) return sync_policy::sequential;
   const std::size_t used = used_channels(scan, m).size();
-  if (has_timing(m) && used == 2) return sync_policy::optimise;
+  if (has_timing(m) && used >= 2 && used <= static_cast<std::size_t>(schedule_max_channels))
+    return sync_policy::optimise;
   diagnostic d;
   d.level = severity::warning;
   d.file = o.cl_path;
@@ -198,7 +199,8 @@ sync_policy choose_policy(const post_options& o, const machine& m, const job_sca
       "no sync records in the job: channels wait for each other at every head switch (sequential), "
       "since {}; concurrent machining needs SYNC/SYNCTR records",
       !has_timing(m) ? fmt::format("machine '{}' has no [timing] table to place waits by", m.name)
-                     : fmt::format("waits are placed between two channels and the job uses {}", used));
+                     : fmt::format("waits are placed between two to {} channels and the job uses {}",
+                                   schedule_max_channels, used));
   sink.report(std::move(d));
   return sync_policy::sequential;
 }

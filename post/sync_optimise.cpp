@@ -47,10 +47,14 @@ std::vector<std::string> finding_messages(const diagnostic_list& got) {
 // "channel 1 (job.cls:12-20) before channel 2 (job.cls:21-30): why".
 std::string pair_text(const job_operations& ops, const plan_pair& p, const std::string& file,
                       const std::string& why) {
-  const channel_op& a = ops.sections[p.section].ops[0][static_cast<std::size_t>(p.pair.a)];
-  const channel_op& b = ops.sections[p.section].ops[1][static_cast<std::size_t>(p.pair.b)];
-  const std::string ta = fmt::format("channel {} ({}:{}-{})", ops.a, file, a.first_line, a.last_line);
-  const std::string tb = fmt::format("channel {} ({}:{}-{})", ops.b, file, b.first_line, b.last_line);
+  const plan_section& sec = ops.sections[p.section];
+  const auto sp = static_cast<std::size_t>(p.p), sq = static_cast<std::size_t>(p.q);
+  const channel_op& a = sec.ops[sp][static_cast<std::size_t>(p.pair.a)];
+  const channel_op& b = sec.ops[sq][static_cast<std::size_t>(p.pair.b)];
+  const std::string ta =
+      fmt::format("channel {} ({}:{}-{})", ops.channels[sp], file, a.first_line, a.last_line);
+  const std::string tb =
+      fmt::format("channel {} ({}:{}-{})", ops.channels[sq], file, b.first_line, b.last_line);
   const bool a_first = p.pair.rule == pair_rule::a_first;
   return fmt::format("{} before {}: {}", a_first ? ta : tb, a_first ? tb : ta, why);
 }
@@ -107,17 +111,22 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
     replay(last, diags);
     return r.sum;
   };
-  if (ops.a == 0) return fall_back("it places waits between two channels, and this job does not use two");
+  if (ops.channels.empty())
+    return fall_back(
+        fmt::format("it places waits between two to {0} channels, and this job does not use two to {0}",
+                    schedule_max_channels));
   if (!seq.sum.timing || !seq.sum.timing->ok) return fall_back("the sequential programs could not be timed");
   for (const plan_section& s : ops.sections)
-    if (s.ops[0].size() * s.ops[1].size() > optimise_max_section_pairs)
-      return fall_back(
-          fmt::format("the job has {} and {} operations between two barriers, more than the {} pairs "
-                      "of them it weighs",
-                      s.ops[0].size(), s.ops[1].size(), optimise_max_section_pairs));
+    for (std::size_t p = 0; p < s.ops.size(); ++p)
+      for (std::size_t q = p + 1; q < s.ops.size(); ++q)
+        if (s.ops[p].size() * s.ops[q].size() > optimise_max_section_pairs)
+          return fall_back(
+              fmt::format("the job has {} and {} operations between two barriers, more than the {} pairs "
+                          "of them it weighs",
+                          s.ops[p].size(), s.ops[q].size(), optimise_max_section_pairs));
   const timeline& t = *seq.sum.timing;
   time_operations(ops, [&](int side, int segment) {
-    const int ch = side == 0 ? ops.a : ops.b;
+    const int ch = ops.channels[static_cast<std::size_t>(side)];
     double s = 0;
     for (const channel_times& c : t.channels)
       if (c.channel == ch)
@@ -125,8 +134,9 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
           if (op.segment == segment) s += op.seconds;
     return s;
   });
-  const double handshake = std::max(m.channels[static_cast<std::size_t>(ops.a - 1)].timing.wait,
-                                    m.channels[static_cast<std::size_t>(ops.b - 1)].timing.wait);
+  double handshake = 0;
+  for (int ch : ops.channels)
+    handshake = std::max(handshake, m.channels[static_cast<std::size_t>(ch - 1)].timing.wait);
   const auto handshake_us = static_cast<std::int64_t>(std::llround(std::max(0.0, handshake) * 1e6));
 
   const double clearance = m.interference.clearance;

@@ -73,11 +73,18 @@ routed route(const std::vector<event>& events, sync_policy p, const job_operatio
   return {sink.trace, r.operations()};
 }
 
+// Two channels' rendezvous as the meetings of sides 0 and 1.
+std::vector<meeting> meets(const std::vector<rendezvous>& r) {
+  std::vector<meeting> out;
+  for (const rendezvous& w : r) out.push_back(meeting{{{0, w.a}, {1, w.b}}});
+  return out;
+}
+
 std::string ops_text(const job_operations& ops) {
   std::string s;
   for (std::size_t i = 0; i < ops.sections.size(); ++i)
     for (int side = 0; side < 2; ++side) {
-      s += fmt::format("s{} c{}:", i, side == 0 ? ops.a : ops.b);
+      s += fmt::format("s{} c{}:", i, ops.channels[static_cast<std::size_t>(side)]);
       for (const channel_op& op : ops.sections[i].ops[side])
         s += fmt::format(" {}-{}@{}", op.first_line, op.last_line, op.segment);
       s += "\n";
@@ -112,7 +119,7 @@ TEST_CASE("a plan's waits go between the operations it names, one code per rende
   job_operations plan = route(job(), sync_policy::sequential, nullptr, false, d).ops;
   // Channel 2 waits at its start for channel 1's first operation; channel 1 waits after its
   // three operations for channel 2's second (its stop after channel 1's cutting).
-  plan.sections[0].waits = {{1, 0}, {3, 2}};
+  plan.sections[0].waits = meets({{1, 0}, {3, 2}});
   const routed r = route(job(), sync_policy::optimise, &plan, false, d);
   CHECK(d.all().empty());
   CHECK(r.trace ==
@@ -130,7 +137,7 @@ TEST_CASE("a plan that does not fit the job stops the post", "[wait_plan]") {
   diagnostic_list d;
   job_operations plan = route(job(), sync_policy::sequential, nullptr, false, d).ops;
   plan.sections[0].ops[1].pop_back();
-  plan.sections[0].waits = {{1, 0}};
+  plan.sections[0].waits = meets({{1, 0}});
   route(job(), sync_policy::optimise, &plan, false, d);
   REQUIRE(d.errors() == 1);
   CHECK(format_diagnostic(d.all().front()) ==
@@ -165,7 +172,7 @@ TEST_CASE("under optimise the job's sync records bind: each ends its channel's s
   CHECK(timing.ops.kept_syncs == 1);
   // The plan: after the sync record, channel 1 waits after its operation for channel 2's first.
   job_operations plan = timing.ops;
-  plan.sections[1].waits = {{1, 1}};
+  plan.sections[1].waits = meets({{1, 1}});
   const routed r = route(synced_job(), sync_policy::optimise, &plan, false, d);
   CHECK(d.all().empty());
   CHECK(r.trace ==
@@ -264,9 +271,8 @@ TEST_CASE("a part transfer is a barrier: the operations after it are a section o
 
 TEST_CASE("operations are timed by their segments, the last of a shared segment takes it", "[wait_plan]") {
   job_operations ops;
-  ops.a = 1;
-  ops.b = 2;
-  ops.sections.resize(1);
+  ops.channels = {1, 2};
+  for (int k = 0; k < 1; ++k) ops.add_section();
   ops.sections[0].ops[0] = {{1, 1, 0}, {2, 2, 0}, {5, 5, 2}};
   ops.sections[0].ops[1] = {{3, 3, 1}};
   time_operations(ops, [](int side, int segment) { return side * 100 + segment + 0.5; });
@@ -278,9 +284,8 @@ TEST_CASE("operations are timed by their segments, the last of a shared segment 
 
 TEST_CASE("a finding's lines become pairs in the CL's order", "[wait_plan]") {
   job_operations ops;
-  ops.a = 1;
-  ops.b = 2;
-  ops.sections.resize(1);
+  ops.channels = {1, 2};
+  for (int k = 0; k < 1; ++k) ops.add_section();
   ops.sections[0].ops[0] = {{1, 4, 0}, {10, 12, 0}};
   ops.sections[0].ops[1] = {{5, 9, 0}, {13, 20, 0}};
   SECTION("an error in channel 2's second operation, its note in channel 1's first") {
@@ -304,9 +309,8 @@ TEST_CASE("a finding's lines become pairs in the CL's order", "[wait_plan]") {
 
 TEST_CASE("the plan is the shortest schedule of each section", "[wait_plan]") {
   job_operations ops;
-  ops.a = 1;
-  ops.b = 2;
-  ops.sections.resize(2);
+  ops.channels = {1, 2};
+  for (int k = 0; k < 2; ++k) ops.add_section();
   // Section 1: A 10 s, 10 s; B 10 s with B's after A's first: B waits for A's first (one wait).
   ops.sections[0].ops[0] = {{1, 1, 0, 10000000}, {3, 3, 0, 10000000}};
   ops.sections[0].ops[1] = {{2, 2, 0, 10000000}};
@@ -318,7 +322,7 @@ TEST_CASE("the plan is the shortest schedule of each section", "[wait_plan]") {
   REQUIRE(cycle);
   // 10 s, a handshake, 10 s (B's beside A's second); a handshake at the barrier; 7 s.
   CHECK(*cycle == 20100000 + 100000 + 7000000);
-  CHECK(ops.sections[0].waits == std::vector<rendezvous>{{1, 0}});
+  CHECK(ops.sections[0].waits == meets({{1, 0}}));
   CHECK(ops.sections[1].waits.empty());
   SECTION("contradicting pairs give no plan") {
     // A's second before B's, and B's before A's first: A's own order forbids it.
@@ -414,9 +418,8 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
     CHECK_FALSE(works_inside(finish));
     // Its body meets a drill on the axis of its bore, 10 mm from its cutting edge.
     job_operations ops;
-    ops.a = 1;
-    ops.b = 2;
-    ops.sections.resize(1);
+    ops.channels = {1, 2};
+    ops.add_section();
     channel_op drill = noted({tldata("DRILL", 8), tool(2), at(0, 5, true), at(0, -50)});
     drill.first_line = 2;
     ops.sections[0].ops[0] = {bore};
@@ -469,9 +472,8 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
 
 TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
   job_operations ops;
-  ops.a = 1;
-  ops.b = 2;
-  ops.sections.resize(1);
+  ops.channels = {1, 2};
+  for (int k = 0; k < 1; ++k) ops.add_section();
   auto op = [](int line, double r0, double r1, double z0, double z1) {
     channel_op o;
     o.first_line = line;
@@ -538,9 +540,8 @@ TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
 
 TEST_CASE("a pair the schedule keeps only by the operations' times gets a rendezvous", "[wait_plan]") {
   job_operations ops;
-  ops.a = 1;
-  ops.b = 2;
-  ops.sections.resize(1);
+  ops.channels = {1, 2};
+  for (int k = 0; k < 1; ++k) ops.add_section();
   // A: 10 s then 1 s; B: 20 s then 1 s. B's second after A's second: with these times B's
   // second starts at 20 s, long after A's second ended at 11 s, and no wait is needed for the
   // times; the order must not rest on them: a rendezvous A after 2, B after 1.
@@ -548,7 +549,7 @@ TEST_CASE("a pair the schedule keeps only by the operations' times gets a rendez
   ops.sections[0].ops[1] = {{3, 3, 0, 20000000}, {4, 4, 0, 1000000}};
   const std::optional<std::int64_t> cycle = plan_waits(ops, {{0, {1, 1, pair_rule::a_first}}}, 100000);
   REQUIRE(cycle);
-  CHECK(ops.sections[0].waits == std::vector<rendezvous>{{2, 1}});
+  CHECK(ops.sections[0].waits == meets({{2, 1}}));
   CHECK(*cycle == 21100000);  // B's 20 s, the handshake, B's 1 s
 }
 

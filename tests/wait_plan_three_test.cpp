@@ -1,0 +1,160 @@
+// Three channels under --sync optimise: the router places meetings that name only the paths
+// concerned, and the plan of a section of three channels (channels/wait_schedule_n) keeps each
+// pair by its meetings, each asserted exactly.
+#include <catch2/catch.hpp>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <string>
+
+#include "channels/router.hpp"
+#include "channels/wait_plan.hpp"
+
+using namespace twinpost;
+
+namespace {
+
+machine three_paths() {
+  machine m;
+  m.name = "three";
+  for (int c = 1; c <= 3; ++c) {
+    channel_def ch;
+    ch.number = c;
+    ch.heads = {c};
+    m.channels.push_back(ch);
+  }
+  m.waits.first = 100;
+  m.waits.last = 109;
+  return m;
+}
+
+// Each event as "c<channel>:<line>", each wait as "c<channel>:M<code>/<its partners>".
+struct trace_sink : channel_sink {
+  std::string trace;
+  void on_event(int ch, const event& e, bool) override { trace += fmt::format("c{}:{}\n", ch, e.line); }
+  void on_wait(int ch, const wait_mark& w) override {
+    trace += fmt::format("c{}:M{}/{}\n", ch, w.code, fmt::join(w.partners, ""));
+  }
+};
+
+event go(int line) { return {line, motion_event{}}; }
+event tool(int line) { return {line, tool_event{}}; }
+event head(int n, int line) { return {line, head_event{head_select::number, n}}; }
+
+// Head 1: lines 1-2, then a tool change at 8 (its second operation); head 2: 4; head 3: 6.
+std::vector<event> job() { return {go(1), go(2), head(2, 3), go(4), head(3, 5), go(6), head(1, 7), tool(8)}; }
+
+struct routed {
+  std::string trace;
+  job_operations ops;
+};
+
+routed route(const job_operations* plan, diagnostic_list& d) {
+  trace_sink sink;
+  static const machine m = three_paths();  // the router keeps a reference
+  channel_router r(m, plan ? sync_policy::optimise : sync_policy::sequential, sink, d, "job.cls", {1, 2, 3});
+  r.track_operations(true);
+  r.set_plan(plan);
+  for (const event& e : job()) r.route(e);
+  r.finish(99);
+  return {sink.trace, r.operations()};
+}
+
+}  // namespace
+
+TEST_CASE("three channels: the router finds each one's operations", "[wait_plan]") {
+  diagnostic_list d;
+  const routed r = route(nullptr, d);
+  CHECK(d.all().empty());
+  REQUIRE(r.ops.channels == std::vector<int>{1, 2, 3});
+  REQUIRE(r.ops.sections.size() == 1);
+  const plan_section& s = r.ops.sections[0];
+  REQUIRE(s.ops.size() == 3);
+  CHECK(s.ops[0].size() == 2);
+  CHECK(s.ops[1].size() == 1);
+  CHECK(s.ops[2].size() == 1);
+  CHECK(s.ops[0][1].first_line == 8);
+}
+
+TEST_CASE("three channels: a plan's meetings name only the paths they concern", "[wait_plan]") {
+  diagnostic_list d;
+  job_operations plan = route(nullptr, d).ops;
+  // Path 3 starts when path 1 has done its first operation (P13); path 2 waits at its start
+  // for path 3's operation (P23).
+  plan.sections[0].waits = {meeting{{{0, 1}, {2, 0}}}, meeting{{{1, 0}, {2, 1}}}};
+  const routed r = route(&plan, d);
+  CHECK(d.all().empty());
+  CHECK(r.trace ==
+        "c1:1\nc1:2\n"
+        "c2:M100/23\nc2:4\n"  // the second meeting's code is the first one written
+        "c3:M101/13\nc3:6\n"
+        "c1:M101/13\nc1:8\n"                         // after path 1's first operation, before its tool change
+        "c3:M100/23\n"                               // after path 3's operation, at the end of the section
+        "c1:M102/123\nc2:M102/123\nc3:M102/123\n");  // the last rendezvous before the footers
+}
+
+TEST_CASE("three channels: a meeting out of a channel's order stops the post", "[wait_plan]") {
+  diagnostic_list d;
+  job_operations plan = route(nullptr, d).ops;
+  // Path 1 would meet after its second operation first, then after its first.
+  plan.sections[0].waits = {meeting{{{0, 2}, {1, 1}}}, meeting{{{0, 1}, {2, 0}}}};
+  route(&plan, d);
+  REQUIRE(d.errors() == 1);
+  CHECK(d.all()[0].message ==
+        "--sync optimise: the wait plan does not fit the job (section 1: channel 1 passed the place of wait "
+        "2): "
+        "an optimiser fault, nothing is written; post the job with --sync sequential");
+}
+
+TEST_CASE("three channels: the plan keeps each pair by its meetings, in the pair's order", "[wait_plan]") {
+  job_operations ops;
+  ops.channels = {1, 2, 3};
+  ops.add_section();
+  // A 10 s, B 12 s, C 5 s; A's and C's operations kept apart; B free.
+  ops.sections[0].ops[0] = {{1, 1, 0, 10000000}};
+  ops.sections[0].ops[1] = {{2, 2, 0, 12000000}};
+  ops.sections[0].ops[2] = {{3, 3, 0, 5000000}};
+  SECTION("A's first: C waits at its start for A's end") {
+    const std::optional<std::int64_t> cycle =
+        plan_waits(ops, {{0, {0, 0, pair_rule::a_first}, 0, 2}}, 100000);
+    REQUIRE(cycle);
+    CHECK(*cycle == 15100000);  // 10 s, the handshake, 5 s; B's 12 s beside them
+    CHECK(ops.sections[0].waits == std::vector<meeting>{meeting{{{0, 1}, {2, 0}}}});
+  }
+  SECTION("C's first: A waits at its start for C's end") {
+    const std::optional<std::int64_t> cycle =
+        plan_waits(ops, {{0, {0, 0, pair_rule::b_first}, 0, 2}}, 100000);
+    REQUIRE(cycle);
+    CHECK(*cycle == 15100000);
+    CHECK(ops.sections[0].waits == std::vector<meeting>{meeting{{{0, 0}, {2, 1}}}});
+  }
+  SECTION("contradicting orders give no plan") {
+    CHECK_FALSE(plan_waits(ops,
+                           {{0, {0, 0, pair_rule::a_first}, 0, 2},
+                            {0, {0, 0, pair_rule::a_first}, 2, 1},
+                            {0, {0, 0, pair_rule::a_first}, 1, 0}},
+                           100000));
+  }
+}
+
+TEST_CASE("three channels: a finding's lines give the pair of the two paths it names", "[wait_plan]") {
+  job_operations ops;
+  ops.channels = {1, 2, 3};
+  ops.add_section();
+  ops.sections[0].ops[0] = {{1, 4, 0}};
+  ops.sections[0].ops[1] = {{5, 9, 0}};
+  ops.sections[0].ops[2] = {{10, 12, 0}, {13, 20, 0}};
+  SECTION("an error in path 3's second operation, its note in path 1's") {
+    const std::vector<plan_pair> p = pairs_for_lines(ops, {15, 2});
+    REQUIRE(p.size() == 1);
+    CHECK(p[0] == plan_pair{0, {0, 1, pair_rule::a_first}, 0, 2});
+  }
+  SECTION("no partner: the operation keeps the CL's order with the other paths' operations") {
+    const std::vector<plan_pair> p = pairs_for_lines(ops, {6});
+    REQUIRE(p.size() == 3);
+    CHECK(p[0] == plan_pair{0, {0, 0, pair_rule::a_first}, 0, 1});
+    CHECK(p[1] == plan_pair{0, {0, 0, pair_rule::a_first}, 1, 2});
+    CHECK(p[2] == plan_pair{0, {0, 1, pair_rule::a_first}, 1, 2});
+  }
+}
