@@ -17,6 +17,9 @@ channel_router::channel_router(const machine& m, sync_policy policy, channel_sin
       job_channels_(std::move(job_channels)), side_(m.channels.size() + 1, -1),
       started_(m.channels.size() + 1, false), op_wrote_(m.channels.size() + 1, false),
       tracks_(m.channels.size() + 1), waits_sent_(m.channels.size() + 1, 0) {
+  for (const channel_def& c : m_.channels)
+    if (c.number >= 1 && static_cast<std::size_t>(c.number) < tracks_.size())
+      tracks_[static_cast<std::size_t>(c.number)].own_is_part = c.live_spindle.empty();
   const channel_def* first = m_.channel_for_head(1);
   active_ = {first ? first->number : 1};
   std::vector<int> chs = job_channels_;

@@ -22,6 +22,11 @@ void sweep(channel_op& op, const channel_track& t, double xa, double xb, double 
   op.z1 = std::max(op.z1, std::max(za, zb) * t.mm);
   op.reach = std::max(op.reach, t.reach);
   op.parts |= t.part;
+  const std::size_t k = t.part == 2 ? 1 : 0;
+  if (t.rpm[k] != 0) {
+    if (op.rpm[k] == 0) op.rpm[k] = t.rpm[k];
+    if (op.rpm[k] != t.rpm[k]) op.rpm[k] = std::numeric_limits<double>::quiet_NaN();
+  }
   if (t.css) op.css = true;
   if ((t.speed_parts & t.part) == 0) op.borrows_speed = true;
   if (!t.reach_known) op.unknown_tool = true;
@@ -88,6 +93,13 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
     if (s->mode == spindle_mode::rpm || s->mode == spindle_mode::off) t.css = false;
     if (s->mode == spindle_mode::rpm || s->mode == spindle_mode::smm || s->mode == spindle_mode::sfm)
       t.speed_parts |= t.part;
+    // The part spindle's speed: a named main or sub, or the channel's own on a turret.
+    const bool part_spindle =
+        s->spindle == "main" || s->spindle == "sub" || (s->spindle.empty() && t.own_is_part);
+    if (part_spindle) {
+      const std::size_t k = t.part == 2 ? 1 : 0;
+      t.rpm[k] = s->mode == spindle_mode::rpm ? (s->dir == rotation::ccw ? -s->speed : s->speed) : 0;
+    }
     if (s->mode == spindle_mode::off) {
       op.stops = true;
       op.parts |= t.part;
@@ -141,7 +153,13 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
 
 namespace {
 
-enum class fixed_rule { none, alone, severs, stops, unknown, near, css, borrowed };
+enum class fixed_rule { none, alone, severs, stops, unknown, near, css, borrowed, speeds };
+
+// Part `k`'s spindle at different speeds (or directions) in a and b: both known, and not the same.
+bool speeds_differ(const channel_op& a, const channel_op& b, std::size_t k) {
+  if (a.rpm[k] == 0 || b.rpm[k] == 0) return false;
+  return std::isnan(a.rpm[k]) || std::isnan(b.rpm[k]) || a.rpm[k] != b.rpm[k];
+}
 
 fixed_rule fixed_between(const channel_op& a, const channel_op& b, double clearance_mm) {
   const unsigned shared = a.parts & b.parts;
@@ -158,6 +176,8 @@ fixed_rule fixed_between(const channel_op& a, const channel_op& b, double cleara
   if (gap_r < near && gap_z < near) return fixed_rule::near;
   if (a.css && b.css) return fixed_rule::css;
   if ((a.css && b.borrows_speed) || (b.css && a.borrows_speed)) return fixed_rule::borrowed;
+  if (((shared & 1) != 0 && speeds_differ(a, b, 0)) || ((shared & 2) != 0 && speeds_differ(a, b, 1)))
+    return fixed_rule::speeds;
   return fixed_rule::none;
 }
 
@@ -231,6 +251,9 @@ std::string fixed_pair_reason(const job_operations& ops, const plan_pair& p, dou
           "one of them cuts the part in the {} spindle at a speed its CL never gives (no SPINDL of its own), "
           "the other under constant surface speed: its rpm would follow the other's diameter",
           part);
+    case fixed_rule::speeds:
+      return fmt::format(
+          "they turn the {} spindle at different speeds or directions: each would change the other's", part);
   }
   return {};
 }

@@ -46,7 +46,11 @@ struct channel_op {
   double rapid_r0 = std::numeric_limits<double>::infinity();
   bool retracts_inward = false;  ///< a cut that ends by feeding towards the centre line before a rapid
   bool stops = false;            ///< SPINDL/OFF: it stops the spindle of its part
-  bool exclusive = false;        ///< STOP, OPSTOP, AUXFUN, PREFUN, INSERT or a record passed through
+  /// Per part (main, sub): the speed its channel set that spindle to where the operation cuts
+  /// the part, in rpm, negative counter-clockwise; 0: none known (constant surface speed, or
+  /// not set by its channel); NaN: more than one.
+  double rpm[2] = {0, 0};
+  bool exclusive = false;  ///< STOP, OPSTOP, AUXFUN, PREFUN, INSERT or a record passed through
 };
 
 /// What a channel's operations are noted with: where its tool is, which part it works on.
@@ -54,8 +58,14 @@ struct channel_track {
   double mm = 1;  ///< mm per CL unit
   vec3 last;
   bool has_last = false;
-  unsigned part = 1;         ///< the part's spindle bit: 1 main, 2 sub
-  bool css = false;          ///< the spindle in constant surface speed
+  unsigned part = 1;  ///< the part's spindle bit: 1 main, 2 sub
+  bool css = false;   ///< the spindle in constant surface speed
+  /// Per part (main, sub): the rpm this channel last set that spindle to (negative
+  /// counter-clockwise), 0: none, or constant surface speed.
+  double rpm[2] = {0, 0};
+  /// An unnamed SPINDL sets the part's spindle: false on a channel with a live-tool spindle
+  /// of its own (a mill head), where it may be the tool's.
+  bool own_is_part = true;
   unsigned speed_parts = 0;  ///< the parts' spindle bits whose speed (rpm or CSS) this channel gave
   double reach = 10;         ///< the tool's reach past its tip (mm): 10 until TLDATA says
   bool reach_known = false;  ///< a TLDATA or CUTTER gave the tool in use its size
@@ -140,7 +150,8 @@ void time_operations(job_operations& ops, const std::function<double(int side, i
 /// on its part, and so is one that stops the spindle or cuts with a tool of unknown size; two operations on
 /// one part whose swept regions come within their tools' reach and `clearance_mm` of each other may cut the
 /// same material (a finish after its rough, a part-off) or meet; two operations on one part under constant
-/// surface speed each clamp the spindle's rpm.
+/// surface speed each clamp the spindle's rpm; two on one part at different speeds (or
+/// directions) that their channels set would each change the other's.
 std::vector<plan_pair> fixed_pairs(const job_operations& ops, double clearance_mm);
 
 /// Why fixed_pairs keeps pair `p` (a sentence; empty when it does not).

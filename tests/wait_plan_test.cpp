@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "channels/router.hpp"
@@ -379,6 +381,38 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
     CHECK_FALSE(op.borrows_speed);
     CHECK_FALSE(severs_part(op));
   }
+  SECTION("the speed its channel set the part's spindle to, where it cuts") {
+    auto rpm = [](double v, rotation dir, std::string spindle = "") {
+      spindle_event s;
+      s.mode = spindle_mode::rpm;
+      s.speed = v;
+      s.dir = dir;
+      s.spindle = std::move(spindle);
+      return event{0, s};
+    };
+    const std::vector<event> cut = {at(31, 2, true), at(29.5, 2), at(29.5, -40)};
+    auto with = [&](std::vector<event> first, channel_track t = {}) {
+      first.insert(first.end(), cut.begin(), cut.end());
+      return noted(first, t);
+    };
+    CHECK(with({rpm(1000, rotation::cw)}).rpm[0] == 1000);
+    CHECK(with({rpm(1000, rotation::ccw)}).rpm[0] == -1000);
+    const channel_op sub = with({rpm(800, rotation::cw, "sub")});
+    CHECK(sub.rpm[0] == 0);
+    CHECK(sub.rpm[1] == 800);
+    CHECK(with({speed(spindle_mode::smm)}).rpm[0] == 0);  // constant surface speed: no one rpm
+    // On a mill head an unnamed SPINDL may be its tool's spindle: not the part's.
+    channel_track head;
+    head.own_is_part = false;
+    CHECK(with({rpm(3000, rotation::cw)}, head).rpm[0] == 0);
+    CHECK(with({rpm(600, rotation::cw, "main")}, head).rpm[0] == 600);
+    // Two speeds in one operation: more than one.
+    std::vector<event> twice = {rpm(1000, rotation::cw)};
+    twice.insert(twice.end(), cut.begin(), cut.end());
+    twice.push_back(rpm(1200, rotation::cw));
+    twice.push_back(at(29.5, -50));
+    CHECK(std::isnan(noted(twice).rpm[0]));
+  }
   SECTION("a drill: half its diameter; a tool without TLDATA reaches 10 mm; inches in mm") {
     CHECK(noted({tldata("DRILL", 16), tool(1), at(0, 5, true), at(0, -30)}).reach == 8);
     // Without a SPINDL of its own it cuts at the other channel's speed; a speed on the other
@@ -520,6 +554,26 @@ TEST_CASE("fixed pairs: each kept in the CL's order, with why", "[wait_plan]") {
         "the other under constant surface speed: its rpm would follow the other's diameter");
     // At an rpm the other gives (G97), its speed does not follow anything.
     ops.sections[0].ops[0][0].css = false;
+    CHECK(fixed_pairs(ops, 5).size() == 1);
+  }
+  SECTION("the part's spindle at different speeds or directions") {
+    ops.sections[0].ops[0][0].rpm[0] = 1000;
+    ops.sections[0].ops[1][0].rpm[0] = 800;
+    pairs = fixed_pairs(ops, 5);
+    REQUIRE(pairs.size() == 2);
+    CHECK(pairs[0] == plan_pair{0, {0, 0, pair_rule::a_first}});
+    CHECK(fixed_pair_reason(ops, pairs[0], 5) ==
+          "they turn the main spindle at different speeds or directions: each would change the other's");
+    ops.sections[0].ops[1][0].rpm[0] = -1000;  // counter-clockwise
+    CHECK(fixed_pairs(ops, 5).size() == 2);
+    ops.sections[0].ops[1][0].rpm[0] = 1000;  // the same: they may cut at once
+    CHECK(fixed_pairs(ops, 5).size() == 1);
+    ops.sections[0].ops[1][0].rpm[0] = 0;  // not set by its channel
+    CHECK(fixed_pairs(ops, 5).size() == 1);
+    ops.sections[0].ops[1][0].rpm[0] = std::numeric_limits<double>::quiet_NaN();  // it changes it
+    CHECK(fixed_pairs(ops, 5).size() == 2);
+    ops.sections[0].ops[1][0].rpm[0] = 800;
+    ops.sections[0].ops[1][0].parts = 2;  // on the sub spindle's part
     CHECK(fixed_pairs(ops, 5).size() == 1);
   }
   SECTION("a spindle stop on the part") {
