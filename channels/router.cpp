@@ -290,6 +290,7 @@ void channel_router::select(std::vector<int> channels, int line, bool both) {
     open_both();
     section_break(line);
     rendezvous(all, line, "the end of HEAD/BOTH", true, wait_mark::section::closes_both);
+    barrier_beside(all, line, "the end of HEAD/BOTH");
   } else if (policy_ == sync_policy::sequential && all.size() > 1)
     rendezvous(all, line, "a head switch");
   for (int c : channels) started_[static_cast<std::size_t>(c)] = false;
@@ -306,6 +307,10 @@ void channel_router::rendezvous(const std::vector<int>& channels, int line, cons
   if (!any_busy && !force) return;
   auto code = next_code(line, what);
   if (!code) return;
+  // Every channel of the job meets here: the waits before are all done.
+  if (!live_codes_.empty() &&
+      std::includes(channels.begin(), channels.end(), ops_.channels.begin(), ops_.channels.end()))
+    live_codes_ = {*code};
   wait_mark w;
   w.code = *code;
   w.partners = channels;
@@ -325,8 +330,18 @@ void channel_router::open_both() {
   const std::vector<int> all = std::move(open_both_);
   open_both_.clear();
   section_break(open_both_line_);
+  barrier_beside(all, open_both_line_, "HEAD/BOTH");
   if (!ops_.channels.empty() && track_) ops_.sections[sec_[0]].together = true;  // section_break made it
   rendezvous(all, open_both_line_, "HEAD/BOTH", true, wait_mark::section::opens_both);
+}
+
+void channel_router::barrier_beside(const std::vector<int>& pair, int line, const std::string& what) {
+  if (ops_.channels.empty() || !track_ || !(policy_ == sync_policy::optimise || op_waits_)) return;
+  std::vector<int> all = ops_.channels;
+  all.insert(all.end(), pair.begin(), pair.end());
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  if (all != pair) rendezvous(all, line, what, true);
 }
 
 void channel_router::explicit_sync(const sync_event& s, int line) {
@@ -398,13 +413,16 @@ void channel_router::bound_sync(const sync_event& s, int line, const std::vector
   const int index = marker_of(s, ch);
   if (partners != ops_.channels) {
     bind_failed_ = true;
-    return error(line, ops_.channels.size() == 2
-                           ? fmt::format("sync {} names channels {}: under --sync optimise a sync record of "
-                                         "the job binds its two channels, {} and {}",
-                                         index, fmt::join(partners, ", "), ops_.channels[0], ops_.channels[1])
-                           : fmt::format("sync {} names channels {}: under --sync optimise a sync record of "
-                                         "the job binds all its channels, {}; post it with --sync explicit",
-                                         index, fmt::join(partners, ", "), fmt::join(ops_.channels, ", ")));
+    return error(
+        line, ops_.channels.size() == 2
+                  ? fmt::format("sync {} names channels {}: under --sync optimise a sync record of "
+                                "the job binds its two channels, {} and {}",
+                                index, fmt::join(partners, ", "), ops_.channels[0], ops_.channels[1])
+                  : fmt::format(
+                        "sync {} names channels {}: under --sync optimise a sync record of "
+                        "the job binds all its channels, {} (a sync record that names none, as SYNCTR/NEXT); "
+                        "post it with --sync explicit",
+                        index, fmt::join(partners, ", "), fmt::join(ops_.channels, ", ")));
   }
   if (s.source == sync_source::icam) auto_marker_[ch] = index;
   // The same sync record twice in a row in one channel is one wait: nothing worked between
@@ -551,6 +569,25 @@ std::optional<int> channel_router::next_code(int line, const std::string& what) 
     return std::nullopt;
   }
   auto code = codes_.next();
+  if (code && plan_ && ops_.channels.size() > 2) {
+    // Waits that name some of three or four channels may be pending at once: a code is given
+    // again only after every channel of the job has met since its last use (attack 57: `M209 P12`
+    // in paths 1 and 2 while path 3 waits at `M209 P13` for path 1).
+    for (std::size_t tries = 0; code && live_codes_.count(*code) != 0 && tries <= live_codes_.size(); ++tries)
+      code = codes_.next();
+    if (code && live_codes_.count(*code) != 0) {
+      if (!exhausted_)
+        error(line,
+              fmt::format("no wait code left for {}: the codes {}{}-{}{} are all held by waits of some of "
+                          "the job's {} channels that may be pending at once (a code is given again only "
+                          "after all of them have met)",
+                          what, m_.waits.address, m_.waits.first, m_.waits.address, m_.waits.last,
+                          ops_.channels.size()));
+      exhausted_ = true;
+      return std::nullopt;
+    }
+    if (code) live_codes_.insert(*code);
+  }
   if (!code && !exhausted_) {
     // Said once: every later mark would repeat it.
     error(line,

@@ -19,6 +19,7 @@
 // - Job-level events (PARTNO, UNITS, MACHIN) go to channel 0.
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -143,6 +144,11 @@ class channel_router {
   int both_master_ = 0;  // the channel of head 1 in HEAD/BOTH
   /// Writes the opening wait of HEAD/BOTH held back by select().
   void open_both();
+  /// Under optimise (its posts), the job's channels outside a HEAD/BOTH `pair` meet the pair
+  /// where its balance cut opens and closes: the cut is a section, a barrier that every
+  /// channel's plan starts and ends at, and a channel not held there would run its work of
+  /// the sections before or after beside the cut, ordered by nothing (attack 57).
+  void barrier_beside(const std::vector<int>& pair, int line, const std::string& what);
   int grip_line_ = 0;  // the TRANSFER/GRIP not yet released; 0: none
   int grip_column_ = 0;
   /// Between GRIP and RELEASE: the last point's x (CL radius) and the first feed move that
@@ -184,6 +190,9 @@ class channel_router {
   std::vector<std::vector<bound_record>> bound_;
   bool bind_failed_ = false;  // a sync record refused: the rest are not bound
   std::map<std::pair<std::size_t, std::size_t>, int> plan_codes_;  // (section, wait) -> code
+  /// Under a plan of three or four channels: the codes given since all the job's channels
+  /// last met, which may still be pending (next_code gives none of them again).
+  std::set<int> live_codes_;
   bool plan_failed_ = false;
 };
 

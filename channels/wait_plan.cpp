@@ -368,11 +368,18 @@ std::optional<std::int64_t> plan_many(plan_section& s, std::size_t i, const std:
 
 std::optional<std::int64_t> plan_waits(job_operations& ops, const std::vector<plan_pair>& pairs,
                                        std::int64_t handshake_us, const schedule_budget& budget) {
+  // The search's nodes shared by the sections of three or four channels (a job of many part
+  // transfers would otherwise spend the whole budget on each; attack 57), each given at least
+  // 50,000 (a few operations a channel are proved within that).
+  std::size_t searched = 0;
+  for (const plan_section& s : ops.sections) searched += s.ops.size() > 2 ? 1 : 0;
+  schedule_budget each = budget;
+  if (searched > 1) each.nodes = std::max<long>(50'000, budget.nodes / static_cast<long>(searched));
   std::int64_t cycle = 0;
   for (std::size_t i = 0; i < ops.sections.size(); ++i) {
     plan_section& s = ops.sections[i];
-    const std::optional<std::int64_t> span = s.ops.size() == 2 ? plan_two(s, i, pairs, handshake_us)
-                                                               : plan_many(s, i, pairs, handshake_us, budget);
+    const std::optional<std::int64_t> span =
+        s.ops.size() == 2 ? plan_two(s, i, pairs, handshake_us) : plan_many(s, i, pairs, handshake_us, each);
     if (!span) return std::nullopt;
     cycle += *span + (i > 0 ? handshake_us : 0);
   }

@@ -121,9 +121,10 @@ post_summary post_optimised(const post_options& o, const machine& m, diagnostic_
       for (std::size_t q = p + 1; q < s.ops.size(); ++q)
         if (s.ops[p].size() * s.ops[q].size() > optimise_max_section_pairs)
           return fall_back(
-              fmt::format("the job has {} and {} operations between two barriers, more than the {} pairs "
-                          "of them it weighs",
-                          s.ops[p].size(), s.ops[q].size(), optimise_max_section_pairs));
+              fmt::format("channels {} and {} have {} and {} operations between two barriers, more than "
+                          "the {} pairs of them it weighs",
+                          ops.channels[p], ops.channels[q], s.ops[p].size(), s.ops[q].size(),
+                          optimise_max_section_pairs));
   const timeline& t = *seq.sum.timing;
   time_operations(ops, [&](int side, int segment) {
     const int ch = ops.channels[static_cast<std::size_t>(side)];

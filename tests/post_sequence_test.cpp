@@ -207,7 +207,8 @@ TEST_CASE("a job of more operations than the optimiser weighs is posted sequenti
   CHECK(p.ok);
   CHECK(
       p.diagnostics ==
-      "job.cls: warning: --sync auto (optimise): the job has 1001 and 1001 operations between two barriers, "
+      "job.cls: warning: --sync auto (optimise): channels 1 and 2 have 1001 and 1001 operations between two "
+      "barriers, "
       "more than the 1000000 pairs of them it weighs; the channels wait for each other at every head switch "
       "(sequential)\n");
 }

@@ -50,15 +50,19 @@ struct routed {
   job_operations ops;
 };
 
-routed route(const job_operations* plan, diagnostic_list& d) {
+routed route(const job_operations* plan, diagnostic_list& d, const machine& m) {
   trace_sink sink;
-  static const machine m = three_paths();  // the router keeps a reference
   channel_router r(m, plan ? sync_policy::optimise : sync_policy::sequential, sink, d, "job.cls", {1, 2, 3});
   r.track_operations(true);
   r.set_plan(plan);
   for (const event& e : job()) r.route(e);
   r.finish(99);
   return {sink.trace, r.operations()};
+}
+
+routed route(const job_operations* plan, diagnostic_list& d) {
+  static const machine m = three_paths();  // the router keeps a reference
+  return route(plan, d, m);
 }
 
 }  // namespace
@@ -157,4 +161,62 @@ TEST_CASE("three channels: a finding's lines give the pair of the two paths it n
     CHECK(p[1] == plan_pair{0, {0, 0, pair_rule::a_first}, 1, 2});
     CHECK(p[2] == plan_pair{0, {0, 1, pair_rule::a_first}, 1, 2});
   }
+}
+
+TEST_CASE("three channels: a code is given again only after every channel has met", "[wait_plan]") {
+  diagnostic_list d;
+  job_operations plan = route(nullptr, d).ops;
+  plan.sections[0].waits = {meeting{{{0, 1}, {2, 0}}}, meeting{{{1, 0}, {2, 1}}}};
+  // Two codes, given again in turn: the last rendezvous would take M100 while path 2 may still
+  // wait at M100 P23 for path 3 (and path 1 at M101 P13): no code is free.
+  machine two_codes = three_paths();
+  two_codes.waits.last = 101;
+  two_codes.waits.reuse = true;
+  route(&plan, d, two_codes);
+  REQUIRE(d.errors() == 1);
+  CHECK(d.all()[0].message ==
+        "no wait code left for the end of the programs: the codes M100-M101 are all held by waits of some of "
+        "the job's 3 channels that may be pending at once (a code is given again only after all of them have "
+        "met)");
+  // Three codes: the last rendezvous takes the third.
+  machine three_codes = two_codes;
+  three_codes.waits.last = 102;
+  diagnostic_list ok;
+  const routed r = route(&plan, ok, three_codes);
+  CHECK(ok.all().empty());
+  CHECK(r.trace.substr(r.trace.size() - 36) == "c1:M102/123\nc2:M102/123\nc3:M102/123\n");
+}
+
+TEST_CASE("three channels: the channel outside a balance cut meets the pair where it opens and closes",
+          "[wait_plan]") {
+  // Paths 3 and 1 work (lines 2, 4), paths 1 and 2 cut together (6), paths 1 and 3 work again
+  // (8, 10). The balance cut's own waits name paths 1 and 2 alone.
+  const std::vector<event> events = {
+      head(3, 1), go(2),      head(1, 3), go(4),      {5, head_event{head_select::both, 0}},
+      go(6),      head(1, 7), go(8),      head(3, 9), go(10)};
+  static const machine m = three_paths();
+  auto run = [&](const job_operations* plan, diagnostic_list& d) {
+    trace_sink sink;
+    channel_router r(m, plan ? sync_policy::optimise : sync_policy::sequential, sink, d, "job.cls",
+                     {1, 2, 3});
+    r.track_operations(true);
+    r.set_plan(plan);
+    for (const event& e : events) r.route(e);
+    r.finish(99);
+    return routed{sink.trace, r.operations()};
+  };
+  diagnostic_list d;
+  const job_operations plan = run(nullptr, d).ops;
+  REQUIRE(plan.sections.size() == 3);
+  const routed r = run(&plan, d);
+  CHECK(d.all().empty());
+  CHECK(r.trace ==
+        "c3:2\nc1:4\n"
+        "c1:M100/123\nc2:M100/123\nc3:M100/123\n"  // path 3's work before the cut is done
+        "c1:M101/12\nc2:M101/12\n"                 // the balance cut opens
+        "c1:6\nc2:6\n"
+        "c1:M102/12\nc2:M102/12\n"                 // and closes
+        "c1:M103/123\nc2:M103/123\nc3:M103/123\n"  // before path 3 works again
+        "c1:8\nc3:10\n"
+        "c1:M104/123\nc2:M104/123\nc3:M104/123\n");
 }
