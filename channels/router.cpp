@@ -291,8 +291,17 @@ void channel_router::select(std::vector<int> channels, int line, bool both) {
     section_break(line);
     rendezvous(all, line, "the end of HEAD/BOTH", true, wait_mark::section::closes_both);
     barrier_beside(all, line, "the end of HEAD/BOTH");
-  } else if (policy_ == sync_policy::sequential && all.size() > 1)
+  } else if (policy_ == sync_policy::sequential && all.size() > 1) {
+    // On a job of three or four channels every channel of the job meets at a head switch: one
+    // head works at a time, and a wait that left a path out could be pending, with a code given
+    // again, while two others meet at the same code (attack 57).
+    if (job_channels_.size() > 2)
+      for (int c : job_channels_)
+        if (c >= 1 && c <= static_cast<int>(m_.channels.size())) all.push_back(c);
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
     rendezvous(all, line, "a head switch");
+  }
   for (int c : channels) started_[static_cast<std::size_t>(c)] = false;
   active_ = std::move(channels);
   both_ = both;

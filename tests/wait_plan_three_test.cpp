@@ -220,3 +220,15 @@ TEST_CASE("three channels: the channel outside a balance cut meets the pair wher
         "c1:8\nc3:10\n"
         "c1:M104/123\nc2:M104/123\nc3:M104/123\n");
 }
+
+TEST_CASE("three channels: under sequential every path meets at each head switch", "[wait_plan]") {
+  diagnostic_list d;
+  // A wait of two paths could be pending, its code given again, while the other two meet at it.
+  CHECK(route(nullptr, d).trace ==
+        "c1:1\nc1:2\n"
+        "c1:M100/123\nc2:M100/123\nc3:M100/123\nc2:4\n"
+        "c1:M101/123\nc2:M101/123\nc3:M101/123\nc3:6\n"
+        "c1:M102/123\nc2:M102/123\nc3:M102/123\nc1:8\n"
+        "c1:M103/123\nc2:M103/123\nc3:M103/123\n");
+  CHECK(d.all().empty());
+}
