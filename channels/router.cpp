@@ -345,8 +345,15 @@ void channel_router::open_both() {
 }
 
 void channel_router::barrier_beside(const std::vector<int>& pair, int line, const std::string& what) {
-  if (ops_.channels.empty() || !track_ || !(policy_ == sync_policy::optimise || op_waits_)) return;
-  std::vector<int> all = ops_.channels;
+  const bool planned = !ops_.channels.empty() && track_ && (policy_ == sync_policy::optimise || op_waits_);
+  // Sequential on three or four channels: every wait of a head switch names them all, and so
+  // must the waits beside a balance cut, or a path left out of its P12 could sit at a code
+  // given again (review 58).
+  const bool sequential = policy_ == sync_policy::sequential && job_channels_.size() > 2;
+  if (!planned && !sequential) return;
+  std::vector<int> all;
+  for (int c : job_channels_)
+    if (c >= 1 && c <= static_cast<int>(m_.channels.size())) all.push_back(c);
   all.insert(all.end(), pair.begin(), pair.end());
   std::sort(all.begin(), all.end());
   all.erase(std::unique(all.begin(), all.end()), all.end());

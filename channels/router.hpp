@@ -144,7 +144,8 @@ class channel_router {
   int both_master_ = 0;  // the channel of head 1 in HEAD/BOTH
   /// Writes the opening wait of HEAD/BOTH held back by select().
   void open_both();
-  /// Under optimise (its posts), the job's channels outside a HEAD/BOTH `pair` meet the pair
+  /// Under optimise (its posts) and under sequential on three or four channels, the job's
+  /// channels outside a HEAD/BOTH `pair` meet the pair
   /// where its balance cut opens and closes: the cut is a section, a barrier that every
   /// channel's plan starts and ends at, and a channel not held there would run its work of
   /// the sections before or after beside the cut, ordered by nothing (attack 57).

@@ -219,6 +219,20 @@ TEST_CASE("three channels: the channel outside a balance cut meets the pair wher
         "c1:M103/123\nc2:M103/123\nc3:M103/123\n"  // before path 3 works again
         "c1:8\nc3:10\n"
         "c1:M104/123\nc2:M104/123\nc3:M104/123\n");
+  // Sequential: path 3 meets the pair beside the cut too (its head-switch waits name all three).
+  diagnostic_list ds;
+  CHECK(run(nullptr, ds).trace ==
+        "c3:2\n"
+        "c1:M100/123\nc2:M100/123\nc3:M100/123\nc1:4\n"  // head 3 to head 1
+        "c1:M101/123\nc2:M101/123\nc3:M101/123\n"        // beside the cut's opening
+        "c1:M102/12\nc2:M102/12\n"
+        "c1:6\nc2:6\n"
+        "c1:M103/12\nc2:M103/12\n"
+        "c1:M104/123\nc2:M104/123\nc3:M104/123\n"  // beside its closing
+        "c1:8\n"
+        "c1:M105/123\nc2:M105/123\nc3:M105/123\nc3:10\n"  // head 1 to head 3
+        "c1:M106/123\nc2:M106/123\nc3:M106/123\n");
+  CHECK(ds.all().empty());
 }
 
 TEST_CASE("three channels: under sequential every path meets at each head switch", "[wait_plan]") {
