@@ -53,10 +53,10 @@ void scan_line(std::string_view l, job_scan& s) {
   // Most lines are motion (GOTO, coordinates): one look at the first letter settles them.
   if (l.empty()) return;
   char c = ascii::upper(l.front());
-  if (c != 'S' && c != 'H' && c != 'C' && c != '$' && c != 'T') return;  // T: TRANSFER
-  if (ascii::starts_with_keyword(l, "SYNC")) s.explicit_sync = true;     // SYNC/ and SYNCTR/
-  // A part transfer is a synchronisation the job gives: its waits are the job's own.
-  if (ascii::starts_with_keyword(l, "TRANSFER")) s.explicit_sync = true;
+  if (c != 'S' && c != 'H' && c != 'C' && c != '$') return;
+  if (ascii::starts_with_keyword(l, "SYNC")) s.explicit_sync = true;  // SYNC/ and SYNCTR/
+  // A part transfer is no sync record: its waits are a barrier under every policy, and the
+  // work between them is placed by `auto` as any other (issue 39, item 6).
   if (ascii::starts_with_keyword(l, "$$UDE") && l.find("SYNCHRONIZATION") != std::string_view::npos)
     s.explicit_sync = true;
   if (ascii::starts_with_keyword(l, "HEAD")) {

@@ -64,7 +64,7 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
         "56: "
         "it holds the bar, which would be released; after a part-off the sub spindle takes the part away and "
         "the bar stays clamped ([transfer] release_after_cutoff)\nM206\n^\n"
-        "check: 2 channels, 10 waits paired, 1 error\n");
+        "check: 2 channels, 12 waits paired, 1 error\n");
   // Item 5: a tool counter in the transfer's approach position.
   CHECK(
       edited_check(sample_job("pick-off"), "fanuc-0itd-twin", "PICK-OFF_1.nc", "T0303", "M8\n",
@@ -72,5 +72,5 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
       "PICK-OFF_1.nc:39:1: error: channel 1: #501 is written here, but machine 'fanuc-0itd-twin' reserves it "
       "(read by transfer.grip): the setup owns its value; write a variable the machine file does not name\n"
       "#501=#501+1\n^\n"
-      "check: 2 channels, 10 waits paired, 1 error\n");
+      "check: 2 channels, 12 waits paired, 1 error\n");
 }

@@ -56,6 +56,8 @@ TEST_CASE("the job scan finds sync records and the heads in use", "[post]") {
   job_scan words = scan_job(write_temp("HEAD/SIDE\n"));
   CHECK(words.head_words == std::vector<std::string>{"SIDE"});
   CHECK(scan_job(write_temp("$$UDE: MANUSPOST - SYNCHRONIZATION/SYNCHRONIZATION NUMBER=1")).explicit_sync);
+  // A part transfer is a barrier under every policy, not a sync record: `auto` places the rest.
+  CHECK_FALSE(scan_job(write_temp("TRANSFER/GRIP\nTRANSFER/RELEASE")).explicit_sync);
 }
 
 TEST_CASE("the job scan reads a head or a sync wherever its line falls in the file", "[post]") {
@@ -66,7 +68,7 @@ TEST_CASE("the job scan reads a head or a sync wherever its line falls in the fi
     INFO("pad " << pad);
     const std::string moves = "GOTO/" + std::string(static_cast<std::size_t>(pad), '1') + ",0,5\n";
     const std::string text = moves + std::string(static_cast<std::size_t>(pad % 7), ' ') + "HEAD/" +
-                             std::to_string(pad + 1) + "\n" + moves + "TRANSFER/1\n" + moves + "CHANNL/2";
+                             std::to_string(pad + 1) + "\n" + moves + "SYNCTR/1\n" + moves + "CHANNL/2";
     const job_scan s = scan_job(write_temp(text));
     CHECK(s.heads == std::vector<int>{pad + 1});
     CHECK(s.explicit_sync);
