@@ -99,10 +99,14 @@ void note_operation_event(channel_op& op, channel_track& t, const event& e) {
     if (part_spindle) {
       const std::size_t k = t.part == 2 ? 1 : 0;
       t.rpm[k] = s->mode == spindle_mode::rpm ? (s->dir == rotation::ccw ? -s->speed : s->speed) : 0;
+      if (s->mode != spindle_mode::off) t.turned = t.part;
     }
     if (s->mode == spindle_mode::off) {
       op.stops = true;
       op.parts |= t.part;
+      // Unnamed, it stops the spindle the channel last turned (the writer's rule), which may
+      // hold another part than the one the channel works on now: both count.
+      if (s->spindle.empty()) op.parts |= t.turned;
     }
     return;
   }

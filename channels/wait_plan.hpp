@@ -66,6 +66,9 @@ struct channel_track {
   /// An unnamed SPINDL sets the part's spindle: false on a channel with a live-tool spindle
   /// of its own (a mill head), where it may be the tool's.
   bool own_is_part = true;
+  /// The part spindle (bit) this channel last turned: an unnamed SPINDL/OFF stops it, wherever
+  /// the part has gone since (head 1's M5 after a transfer stops the bar's main spindle).
+  unsigned turned = 0;
   unsigned speed_parts = 0;  ///< the parts' spindle bits whose speed (rpm or CSS) this channel gave
   double reach = 10;         ///< the tool's reach past its tip (mm): 10 until TLDATA says
   bool reach_known = false;  ///< a TLDATA or CUTTER gave the tool in use its size

@@ -413,6 +413,23 @@ TEST_CASE("an operation is noted with the region its feed moves sweep, its tool 
     twice.push_back(at(29.5, -50));
     CHECK(std::isnan(noted(twice).rpm[0]));
   }
+  SECTION("an unnamed spindle stop stops the spindle its channel last turned") {
+    // Head 1 turned the main spindle; a transfer then put the part in the sub (the router sets
+    // every track's part to the sub): its SPINDL/OFF stops the main, holding the bar, and
+    // counts on both parts (review 59).
+    channel_track t;
+    channel_op before;
+    note_operation_event(before, t, speed(spindle_mode::rpm, "main"));
+    t.part = 2;
+    channel_op after;
+    note_operation_event(after, t, speed(spindle_mode::off));
+    CHECK(after.stops);
+    CHECK(after.parts == 3u);
+    // Named, it stops that spindle alone.
+    channel_op named;
+    note_operation_event(named, t, speed(spindle_mode::off, "sub"));
+    CHECK(named.parts == 2u);
+  }
   SECTION("a drill: half its diameter; a tool without TLDATA reaches 10 mm; inches in mm") {
     CHECK(noted({tldata("DRILL", 16), tool(1), at(0, 5, true), at(0, -30)}).reach == 8);
     // Without a SPINDL of its own it cuts at the other channel's speed; a speed on the other
