@@ -295,12 +295,7 @@ void channel_router::select(std::vector<int> channels, int line, bool both) {
     // On a job of three or four channels every channel of the job meets at a head switch: one
     // head works at a time, and a wait that left a path out could be pending, with a code given
     // again, while two others meet at the same code (attack 57).
-    if (job_channels_.size() > 2)
-      for (int c : job_channels_)
-        if (c >= 1 && c <= static_cast<int>(m_.channels.size())) all.push_back(c);
-    std::sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end()), all.end());
-    rendezvous(all, line, "a head switch");
+    rendezvous(job_channels_.size() > 2 ? with_job_channels(all) : all, line, "a head switch");
   }
   for (int c : channels) started_[static_cast<std::size_t>(c)] = false;
   active_ = std::move(channels);
@@ -351,13 +346,16 @@ void channel_router::barrier_beside(const std::vector<int>& pair, int line, cons
   // given again (review 58).
   const bool sequential = policy_ == sync_policy::sequential && job_channels_.size() > 2;
   if (!planned && !sequential) return;
-  std::vector<int> all;
-  for (int c : job_channels_)
-    if (c >= 1 && c <= static_cast<int>(m_.channels.size())) all.push_back(c);
-  all.insert(all.end(), pair.begin(), pair.end());
-  std::sort(all.begin(), all.end());
-  all.erase(std::unique(all.begin(), all.end()), all.end());
+  const std::vector<int> all = with_job_channels(pair);
   if (all != pair) rendezvous(all, line, what, true);
+}
+
+std::vector<int> channel_router::with_job_channels(std::vector<int> channels) const {
+  for (int c : job_channels_)
+    if (c >= 1 && c <= static_cast<int>(m_.channels.size())) channels.push_back(c);
+  std::sort(channels.begin(), channels.end());
+  channels.erase(std::unique(channels.begin(), channels.end()), channels.end());
+  return channels;
 }
 
 void channel_router::explicit_sync(const sync_event& s, int line) {

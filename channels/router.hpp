@@ -150,6 +150,8 @@ class channel_router {
   /// channel's plan starts and ends at, and a channel not held there would run its work of
   /// the sections before or after beside the cut, ordered by nothing (attack 57).
   void barrier_beside(const std::vector<int>& pair, int line, const std::string& what);
+  /// `channels` and every channel of the job, sorted, once each.
+  std::vector<int> with_job_channels(std::vector<int> channels) const;
   int grip_line_ = 0;  // the TRANSFER/GRIP not yet released; 0: none
   int grip_column_ = 0;
   /// Between GRIP and RELEASE: the last point's x (CL radius) and the first feed move that

@@ -11,30 +11,15 @@
 
 #include "channels/router.hpp"
 #include "channels/wait_plan.hpp"
+#include "tests/router_test_support.hpp"
 
 using namespace twinpost;
 
 namespace {
 
-machine twin() {
-  machine m;
-  m.name = "twin";
-  for (int c = 1; c <= 2; ++c) {
-    channel_def ch;
-    ch.number = c;
-    ch.heads = {c};
-    m.channels.push_back(ch);
-  }
-  m.waits.first = 100;
-  m.waits.last = 109;
-  return m;
-}
+machine twin() { return test::router_machine(2); }
 
-struct trace_sink : channel_sink {
-  std::string trace;
-  void on_event(int ch, const event& e, bool) override { trace += fmt::format("c{}:{}\n", ch, e.line); }
-  void on_wait(int ch, const wait_mark& w) override { trace += fmt::format("c{}:M{}\n", ch, w.code); }
-};
+using test::trace_sink;
 
 event go(int line) { return {line, motion_event{}}; }
 event tool(int line) { return {line, tool_event{}}; }

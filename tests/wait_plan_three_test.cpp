@@ -10,32 +10,17 @@
 
 #include "channels/router.hpp"
 #include "channels/wait_plan.hpp"
+#include "tests/router_test_support.hpp"
 
 using namespace twinpost;
 
 namespace {
 
-machine three_paths() {
-  machine m;
-  m.name = "three";
-  for (int c = 1; c <= 3; ++c) {
-    channel_def ch;
-    ch.number = c;
-    ch.heads = {c};
-    m.channels.push_back(ch);
-  }
-  m.waits.first = 100;
-  m.waits.last = 109;
-  return m;
-}
+machine three_paths() { return test::router_machine(3); }
 
-// Each event as "c<channel>:<line>", each wait as "c<channel>:M<code>/<its partners>".
-struct trace_sink : channel_sink {
-  std::string trace;
-  void on_event(int ch, const event& e, bool) override { trace += fmt::format("c{}:{}\n", ch, e.line); }
-  void on_wait(int ch, const wait_mark& w) override {
-    trace += fmt::format("c{}:M{}/{}\n", ch, w.code, fmt::join(w.partners, ""));
-  }
+// Each wait with its partners: "c<channel>:M<code>/<partners>".
+struct trace_sink : test::trace_sink {
+  trace_sink() : test::trace_sink(true) {}
 };
 
 event go(int line) { return {line, motion_event{}}; }
