@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "analysis/cl_compare_arc.hpp"
+#include "analysis/cl_compare_turn.hpp"
 #include "analysis/program_units.hpp"
 #include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
@@ -25,6 +26,8 @@ namespace {
 
 constexpr double tip_tolerance = 0.002;   // mm (issue 37)
 constexpr double feed_tolerance = 0.005;  // of the CL's feed (issue 37)
+constexpr double turn_chord =
+    0.01;  // mm a fed C turn may leave the CL's line (the chains' chordal tolerance)
 
 // A G code as ten times its number: G12.1 is 121, G99 is 990.
 int g10(double number) { return static_cast<int>(std::lround(number * 10)); }
@@ -282,6 +285,12 @@ struct cl_comparison::impl {
   bool coolant_fine = false;  // the coolant held to the CL's since either last changed
   bool spindle_fine = false;  // the spindle held to the CL's since either last changed
   bool said_tip = false, said_rapid = false, said_feed = false, said_tool = false, said_spindle = false;
+  // The record's blocks that turned C with the tip off the axis (the first `n_turns`), and the
+  // CL's last motion point (part frame, mm; not known from a tool change to the next record).
+  std::vector<c_turn_block> turns;
+  std::size_t n_turns = 0;
+  vec3 cl_prev;
+  bool cl_prev_known = false, said_turn = false;
 
   void read_tool_call(const std::string& t) {
     const std::size_t at = t.find("T{tool");
@@ -447,6 +456,8 @@ struct cl_comparison::impl {
       for (const auto& c : c_off_codes)
         if (offset_of(c)) c_known = true, c_deg = 0;
     }
+    const double c_before = c_deg;
+    const bool c_known_before = c_known;
     bool not_a_move = false, home = false, machine = false, setting = false, m6 = false;
     const char* home_why = "";
     // Most lines are moves with axis words and an F: only the F is read before the axes.
@@ -695,7 +706,11 @@ struct cl_comparison::impl {
           not_a_move = true;
           break;
         case 690:
-        case 501: frame = mirrored = false; break;
+        case 501:
+          // The axes a frame's blocks set are its coordinates, not the part's.
+          if (frame) x.k = y.k = z.k = axis_state::kind::unknown;
+          frame = mirrored = false;
+          break;
         case 160: polar_coords = true; break;
         case 150: polar_coords = false; break;
         case 930: inverse_time = true; break;
@@ -783,6 +798,9 @@ struct cl_comparison::impl {
       } else
         set_axis(*a, w, incremental);
     }
+    if (has_c && c_known && c_known_before && c_deg != c_before && !polar && !cylinder && !frame && !rotary &&
+        !cycle && !not_a_move && !home && !machine && !setting && (motion == 0 || motion == 1)) [[unlikely]]
+      note_turn(start, start_known, c_before, text);
     if (any && hole_cycle && cycle && !not_a_move && !home && !machine && !setting) {
       hole.valid = true;
       hole.side = hole_cycle == 2;
@@ -811,6 +829,43 @@ struct cl_comparison::impl {
       }
       note_arc(start, start_known);
     }
+  }
+
+  // A block that turned C (G0 or G1): the part turns under the tool, whose tip runs round the
+  // part's axis. Under G0 inside a CL feed move that is a rapid through the cut (review 55: a
+  // `G0 C..` with no X, Y or Z word was no move at all to the comparison).
+  void note_turn(const double* start, bool start_known, double c0, std::string_view text) {
+    const auto known = [](const axis_state& a) { return a.k == axis_state::kind::known; };
+    if (!start_known || !known(x) || !known(z) || (has_y && !known(y))) return;
+    const double zs = z_sign();
+    const vec3 from{start[0] * out_mm / x_div, has_y ? start[1] * out_mm * zs : 0.0, start[2] * out_mm * zs};
+    const vec3 to{part(x, x_div), has_y ? part(y, zs) : 0.0, part(z, zs)};
+    const double tol = std::max(tip_tolerance, axis_half * 3.001);
+    if (std::hypot(from.x, from.y) <= tol && std::hypot(to.x, to.y) <= tol) return;  // on the axis
+    if (n_turns == turns.size()) turns.emplace_back();
+    c_turn_block& b = turns[n_turns++];
+    b.start = from, b.end = to, b.c0 = c0, b.c1 = c_deg, b.rapid = motion == 0;
+    b.text.assign(text);
+    moved = true;
+    move_text.assign(text);
+    move_line = lines;
+    if (b.rapid && !rapid_in_record) {
+      rapid_in_record = true;
+      rapid_text.assign(text);
+    }
+  }
+
+  // The record's C turns against the CL's move to `pos` (docs/emulator.md).
+  void compare_turns(const event& e, const vec3& pos, const std::optional<vec3>& axis, bool feed) {
+    if (n_turns == 0 || said_turn) return;
+    const vec3 to{pos.x * cl_mm, pos.y * cl_mm, pos.z * cl_mm};
+    const double tol = std::max(tip_tolerance, axis_half * 3.001);
+    const std::string fault =
+        c_turn_fault(std::span(turns.data(), n_turns), cl_prev_known ? &cl_prev : nullptr, to,
+                     axis.value_or(vec3{0, 0, 1}), feed, std::max(turn_chord, tol), tol);
+    if (fault.empty()) return;
+    said_turn = true;
+    error(e, fault);
   }
 
   // A feed block while a CL cycle is on: the deepest each way along Z so far in the record.
@@ -1367,7 +1422,10 @@ struct cl_comparison::impl {
         [&](const auto& d) {
           using T = std::decay_t<decltype(d)>;
           if constexpr (std::is_same_v<T, tool_event>) {
-            if (!d.preselect) cl_tool = d.tool, cl_tool_line = e.line, cl_offset = d.offset.value_or(d.tool);
+            if (!d.preselect) {
+              cl_tool = d.tool, cl_tool_line = e.line, cl_offset = d.offset.value_or(d.tool);
+              cl_prev_known = false;  // the tool goes home: its first move comes from there
+            }
           } else if constexpr (std::is_same_v<T, spindle_event>) {
             cl_spindle(d, e.line);
           } else if constexpr (std::is_same_v<T, thread_event>) {
@@ -1400,24 +1458,38 @@ struct cl_comparison::impl {
             units(d.units);
           } else if constexpr (std::is_same_v<T, motion_event>) {
             if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta) {
+              bool followed = true;
               if (cl_cycle && !both)
                 compare_hole(e, d.pos);
               else
-                compare(e, d.pos, d.rapid, both);
+                followed = compare(e, d.pos, d.rapid, both);
+              // Between two holes the cycle moves at rapid.
+              if (followed && !both && !turns_passed())
+                compare_turns(e, d.pos, d.axis, !d.rapid && !cl_cycle);
+              cl_prev = {d.pos.x * cl_mm, d.pos.y * cl_mm, d.pos.z * cl_mm};
+              cl_prev_known = true;
             }
           } else if constexpr (std::is_same_v<T, arc_event>) {
             if (compare(e, d.end, false, both) && !polar) compare_arc(e, d);
+            cl_prev = {d.end.x * cl_mm, d.end.y * cl_mm, d.end.z * cl_mm};
+            cl_prev_known = true;
           }
         },
         e.data);
     moved = false;
     rapid_in_record = false;
     n_arcs = 0;
+    n_turns = 0;
     hole.valid = false;
     fed_low.valid = fed_high.valid = false;
   }
 
   void units(unit_system u) { cl_mm = u == unit_system::inch ? 25.4 : 1.0; }
+
+  // The part frame is not the setup's, or the tip depends on what is not followed.
+  bool turns_passed() const {
+    return frame || shifted || foreign_offset || head_due || rotary || polar || cylinder || polar_coords;
+  }
 
   // The program's unit (G20: inch), its least increment (what an axis word without a decimal
   // point counts: `X44` is 0.044 mm where decimal-point programming is off, the Fanuc default)

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -808,4 +810,82 @@ TEST_CASE("cl comparison: polar interpolation, and a Y left off the centre line"
   // The mode begun with C not at 0 (or not known): its frame is not followed.
   CHECK(run({"G0 Y0."}, "G0 C30.") == std::pair{std::string(), 0L});
   CHECK(run({"G0 Y0."}, "M9") == std::pair{std::string(), 0L});
+}
+
+TEST_CASE("cl comparison: a C turn below the CL's move, in a feed move, or off its straight line",
+          "[analysis][cl_compare]") {
+  // The Integrex's upper head over the face (X a radius after G10.9 X0): the tip at x 20, z 2
+  // above hole 1 at C0, then the program's `blocks` for the CL's move to `to` (a rapid or a
+  // feed, the tool along `axis`). A C turn runs the tip round the part's axis: it may do so no
+  // lower than the CL's move goes, and not at all in a feed move's straight cut.
+  auto run = [](std::vector<const char*> blocks, vec3 to, bool rapid, vec3 axis = {0, 0, 1}) {
+    compared c("integrex-i200st", 1);
+    c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "G94", "M108", "G0 G53 B0.", "M107", "M8",
+             "G0 C0.", "G0 G43 H#3020 X20. Y0. Z2."});
+    c.feed(400, feed_mode::per_minute);
+    motion_event mv;
+    mv.pos = {20, 0, 2};
+    mv.axis = axis;
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    for (const char* b : blocks) c.cmp.line(b);
+    mv.pos = to;
+    mv.rapid = rapid;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return c.text();
+  };
+  const double s = std::sqrt(3.0) / 2;
+  const vec3 hole2{-10, 20 * s, 2};
+  // At the CL's height between the holes: the part turns clear of the tool.
+  CHECK(run({"G0 C120."}, hole2, true) == "");
+  // Down into the part first, turned there, and back up: the ends are right, the path is not.
+  CHECK(run({"G0 Z-5.", "G0 C120.", "G0 Z2."}, hole2, true) ==
+        "job.cls:12:1: error: channel 1: the program turns C with the tool tip below the CL's move here: z "
+        "-5.000 (the part frame, mm), where the CL's move goes no lower than 2.000; the part turns into the "
+        "tool: turn it with the tool clear, as high as the CL's move: `G0 C120.`\n");
+  // Out of a pocket and round to the next: the part turns at the top of the CL's move, not at
+  // the bottom of the pocket the tool leaves.
+  auto up_and_round = [&](std::vector<const char*> blocks) {
+    compared c("integrex-i200st", 1);
+    c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "G94", "M108", "G0 G53 B0.", "M107", "M8",
+             "G0 C0.", "G0 G43 H#3020 X20. Y0. Z2.", "G1 Z-3. F400."});
+    c.feed(400, feed_mode::per_minute);
+    motion_event mv;
+    mv.pos = {20, 0, -3};
+    c.cmp.record({c.next++, mv, 1}, false);
+    for (const char* b : blocks) c.cmp.line(b);
+    mv.pos = {-10, 20 * s, 5};
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return c.text();
+  };
+  CHECK(up_and_round({"G0 Z5.", "C120."}) == "");
+  CHECK(up_and_round({"G0 Z5. C120."}) == "");
+  CHECK(up_and_round({"G0 C120.", "Z5."}) ==
+        "job.cls:12:1: error: channel 1: the program turns C with the tool tip below the CL's move here: z "
+        "-3.000 (the part frame, mm), where the CL's move goes no lower than 5.000; the part turns into the "
+        "tool: turn it with the tool clear, as high as the CL's move: `G0 C120.`\n");
+  // A C turn at rapid inside a feed move (review 55: a `G0 C..` was no move to the comparison).
+  CHECK(run({"G0 C120."}, hole2, false) ==
+        "job.cls:12:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: "
+        "`G0 C120.`\n");
+  // Fed round by C where the CL cuts a straight line: 20 mm from the axis, 10 degrees leave the
+  // chord by 20 (1 - cos 5°).
+  const double t = 10 * std::numbers::pi / 180;
+  CHECK(run({"G1 C10. F400."}, {20 * std::cos(t), 20 * std::sin(t), 2}, false) ==
+        fmt::format(
+            "job.cls:12:1: error: channel 1: the program turns C in a feed move here: the tool tip runs "
+            "round the part's axis and leaves the CL's straight cut by {:.3f} mm (the part frame; 0.010 "
+            "mm allowed): `G1 C10. F400.`\n",
+            20 * (1 - std::cos(t / 2))));
+  // A radial tool (along x): its height is the distance from the axis. Turned at 15 mm where
+  // the CL's move keeps 20.
+  CHECK(run({"G0 X15.", "G0 C120.", "X20."}, hole2, true, {1, 0, 0}) ==
+        "job.cls:12:1: error: channel 1: the program turns C with the tool tip below the CL's move here: the "
+        "distance from the axis 15.000 (the part frame, mm), where the CL's move goes no lower than 20.000; "
+        "the "
+        "part turns into the tool: turn it with the tool clear, as high as the CL's move: `G0 C120.`\n");
+  // The tip on the axis does not move when C turns; a tool at home is far from the part.
+  CHECK(run({"G0 X0.", "G0 C120.", "X20. Y0."}, hole2, true) == "");
+  CHECK(run({"G0 G53 Z0.", "G0 C120.", "G0 X20. Y0. Z2."}, hole2, true) == "");
 }
