@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <optional>
 #include <string>
 
+#include "analysis/rotary_sweep.hpp"
 #include "analysis/spindle_state.hpp"
 #include "machines/macro_variables.hpp"
 
@@ -59,6 +61,8 @@ struct channel_state {
   int change_m = -1;                // the M code of its tool change (M6 of "T{tool:02} M6"); -1: a T word
   int head_unknown = 0;             // the tool call since which the head has not been indexed; 0: known
   bool said_offset = false, said_chuck = false, said_start = false, said_cutoff = false, said_head = false;
+  // A channel with a kinematic chain that has a rotary axis: its rapids' tip paths.
+  std::optional<rotary_sweep> sweep;
 };
 
 constexpr std::uint32_t linear_axes =
@@ -102,6 +106,11 @@ struct control_emulator::impl {
       channels.emplace_back(m, static_cast<int>(i) + 1);
       channels.back().start_line.assign(m.spindles.size(), 0);
       channels.back().chucks.assign(m.spindles.size(), {});
+      // A mill's chain (a lathe's B head indexes at home, its X a diameter: not followed here).
+      const axis_def* x = m.channels[i].axis('X');
+      if (const kinematic_chain* k = m.chain(static_cast<int>(i) + 1);
+          k && !k->rotaries.empty() && !m.channels[i].head_index.present() && !(x && x->diameter))
+        channels.back().sweep.emplace(m, *k, static_cast<int>(i) + 1);
       if (m.channels[i].head_index.present()) {
         channels.back().head = m.channels[i].head_index.address;
         channels.back().change_m = tool_change_code(m.channels[i].tool_call);
@@ -157,6 +166,9 @@ struct control_emulator::impl {
     if (b.channel < 1 || static_cast<std::size_t>(b.channel) > channels.size()) return;
     channel_state& c = channels[static_cast<std::size_t>(b.channel - 1)];
     if (!reserved.empty() && b.text.find('#') != std::string_view::npos) variables(b);
+    if (c.sweep)
+      if (auto f = c.sweep->block(b.words()))
+        say(b, f->first, fmt::format("channel {}: {}", b.channel, f->second));
     // Once an offset is in force, only the G, M and S words matter, except while a part is held
     // by two spindles (a part-off is a move).
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');

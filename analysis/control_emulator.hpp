@@ -18,12 +18,14 @@
 // - the chuck of the spindle a part was cut off from opened after the part-off (a feed to or
 //   past the centre line, X <= 0, while the other spindle held the part): the bar would be
 //   released;
-// - a block that writes a variable the machine reserves (machines/macro_variables.hpp).
+// - a block that writes a variable the machine reserves (machines/macro_variables.hpp);
+// - on a mill's kinematic chain, a rapid that turns a head with tool-tip control off and swings
+//   the tip below the last safe height (analysis/rotary_sweep.hpp).
 //
 // What it does not model yet (docs/emulator.md): the comparison with the CL; the order of
 // blocks across channels (each channel is followed on its own: a chuck opened by one channel
-// while another turns the spindle is the shared-spindle rules' matter); tool offsets, planes,
-// rotary angles.
+// while another turns the spindle is the shared-spindle rules' matter); tool offsets and planes
+// beyond the rotary sweep's.
 #include <memory>
 #include <vector>
 

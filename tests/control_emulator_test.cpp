@@ -152,3 +152,46 @@ TEST_CASE("emulator: the B head indexed again after every tool call", "[analysis
       "the tool changer may leave it anywhere; index it (G0 G53 B..) before the cut\nG1 X40. F100.\n   ^\n"
       "check: 2 channels, 2 waits paired, 1 error\n");
 }
+
+TEST_CASE("emulator: a rapid that turns a head swings the tip below the last safe height",
+          "[analysis][emulator]") {
+  // Issue 37, item 7: the head/head mill (B about Y through a pivot 300 mm above the gauge
+  // point) with a tool 100 mm long: 400 mm from pivot to tip. At B20 the linear words are the
+  // tip's place with the heads at 0, so the tip stands 400 (1 - cos 20°) = 24.123 mm above them:
+  // `Z-9.123` puts it at the CAM's clearance, z 15. Turned back to B0 there, it swings 137 mm
+  // across and drops to z -9.123.
+  machine m = load_machine("head-head-5axis");
+  tool_def t;
+  t.number = 1;
+  t.kind = "mill";
+  t.length = 100;
+  m.tools.push_back(t);
+  const auto run = [&](const std::string& before_unwind, const std::string& on = "G43 H1") {
+    const std::string program = mill_start + "G54\nG0 A0. B20.\nG0 X0. Y0.\nG0 " + on +
+                                " X0. Y0. Z-9.123\nG1 Z-20. F500.\nG0 Z-9.123\n" + before_unwind +
+                                "G0 A0. B0.\nM30\n%\n";
+    return format_sync_text(check_nc_resources({{"P.nc", program}}, m));
+  };
+  CHECK(
+      run("") ==
+      "P.nc:15:4: error: channel 1: the rapid turns the rotary axes (B 20 to 0) with tool-tip control off "
+      "and "
+      "the tool not at home: the tip swings down to z -9.123 (the part frame, mm; a tool 100 mm long), below "
+      "the last safe height z 15.000 the program's first rapid put it at after the last cut; retract Z to "
+      "its reference point (G91 G28 Z0.) before the rotary axes turn\nG0 A0. B0.\n   ^\n"
+      "check: 1 channel, 0 waits paired, 1 error\n");
+  // Retracted first: the tool is at home while the head turns.
+  CHECK(run("G91 G28 Z0.\nG90\n") == clean_mill);
+  // Lifted by the swing first: the tip ends at the clearance.
+  CHECK(run("G0 Z15.\n") == clean_mill);
+  // Under tool-tip control the control keeps the tip where it is.
+  CHECK(run("", "G43.4 H1") == clean_mill);
+}
+
+TEST_CASE("emulator: a rapid that turns a table is not held to a height", "[analysis][emulator]") {
+  // The A table turns the part, not the tool: the tip keeps its distance from the table's axis,
+  // and whether the part reaches it is the part's size, not in the program.
+  CHECK(check_mill(mill_start +
+                   "G54\nG0 A0.\nG0 X0. Y0.\nG0 G43 H1 Z80.\nG1 Z30. F500.\nG0 Z80.\nG0 A90.\nM30\n%\n") ==
+        clean_mill);
+}

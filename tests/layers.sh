@@ -14,7 +14,7 @@ declare -A allowed=(
   [formats]="formats parser machines support"
   [machining]="machining scripting formats kinematics channels parser machines support"
   [check]="check machines support"
-  [analysis]="analysis check parser machines support"
+  [analysis]="analysis check kinematics parser machines support"
   [post]="post analysis machining scripting formats kinematics check channels parser machines support"
   [cli]="cli post analysis machining scripting formats kinematics check channels parser machines support"
 )
