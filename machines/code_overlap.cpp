@@ -346,6 +346,7 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
     if (!c.length_offset.empty())
       f.block(fmt::format("channel {}: length_offset", c.number), c.length_offset, key_of(t, "length_offset"),
               t);
+    if (!c.home.empty()) f.blocks(fmt::format("channel {}: home", c.number), c.home, t, "home");
     const toml::table* h = t && t->get("head_index") ? t->get("head_index")->as_table() : nullptr;
     for (const auto& [key, block] : {std::pair{"unclamp", &c.head_index.unclamp},
                                      {"move", &c.head_index.move},
@@ -419,7 +420,7 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
     // length low after them (verify 46, attacks 47 and 48).
     if (const std::string& on = c.output == multiaxis_output::joints ? c.length_on : c.tool_tip_on;
         c.output != multiaxis_output::pivot && on.empty())
-      for (const std::string& h : m.codes.home)
+      for (const std::string& h : m.home(c.channel))
         if (cancels_length_offset(h, open, close)) {
           f.found.push_back(
               {key_of(codes, "home") ? key_of(codes, "home") : chains[i],

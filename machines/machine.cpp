@@ -68,6 +68,12 @@ std::optional<double> machine::tool_length(int channel, int number) const {
   return t ? t->length : std::nullopt;
 }
 
+const std::vector<std::string>& machine::home(int channel) const {
+  for (const channel_def& c : channels)
+    if (c.number == channel && !c.home.empty()) return c.home;
+  return codes.home;
+}
+
 const kinematic_chain* machine::chain(int channel) const {
   for (const kinematic_chain& c : kinematics)
     if (c.channel == channel) return &c;

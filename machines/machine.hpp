@@ -120,6 +120,9 @@ struct channel_def {
   /// move of a section). Only on a channel without a kinematic chain or an indexing head (those
   /// write their own). Empty: none, and the comparison with the CL holds the program to it.
   std::string length_offset;
+  /// The blocks that take this channel's tool home ([[channel]] home: a head with a Y axis homes
+  /// it with X); empty: the machine's codes.home. Read through machine::home().
+  std::vector<std::string> home;
   std::string spindle = "main";  ///< the spindle this channel works on at start
   /// The channel's tool-driving spindle (a mill head's milling spindle): milling tools, and
   /// drills off the centre line, turn it; empty: the channel has none.
@@ -418,6 +421,8 @@ struct machine {
   const tool_def* tool_named(int channel, std::string_view name) const;
   /// The kinematic chain of channel `channel`, or nullptr.
   const kinematic_chain* chain(int channel) const;
+  /// The home blocks of `channel`: its own ([[channel]] home), else codes.home.
+  const std::vector<std::string>& home(int channel) const;
   /// The spindle named `name`, or nullptr.
   const spindle_def* spindle(std::string_view name) const;
   /// Whether channel `channel` may command spindle `index` (into `spindles`).

@@ -99,6 +99,8 @@ channel_def read_channel_table(const table_reader& r, const machine& m) {
                fmt::format("channel.spindles must name the channel's own spindle '{}' (channel.{})", *own,
                            own == &c.spindle ? "spindle" : "live_spindle"));
   }
+  if (r.read("home", c.home) && c.home.empty())
+    r.fail(*r.find("home"), "channel.home must name at least one block");
   if (r.read("file_suffix", c.file_suffix) && c.file_suffix.find_first_of("/\\") != std::string::npos)
     r.fail(*r.find("file_suffix"), "channel.file_suffix must not contain a path separator");
   read_axes(r, c);
@@ -151,7 +153,7 @@ void read_channels(const table_reader& root, machine& m) {
                          std::initializer_list<std::string_view>{
                              "number", "heads", "head_names", "kind", "tool_call", "offset_call",
                              "length_offset", "spindle", "file_suffix", "axis", "tool_change_stops_spindle",
-                             "live_spindle", "offset_zero", "spindles", "head_index"});
+                             "live_spindle", "offset_zero", "spindles", "head_index", "home"});
     all.push_back({read_channel_table(readers.back(), m), &readers.back()});
   }
   check_numbers_and_heads(all);

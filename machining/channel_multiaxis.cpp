@@ -765,7 +765,7 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
   // bottom of a slot put a 150 mm tool 6 mm into its end wall). A C about the tool's own axis
   // moves no tip; a table turns the part about its own axis: both in place, as before.
   if (rapid && !homed_ && joints && !turn_clear_ && turn_sweep(j, factor) > c.tolerance) [[unlikely]] {
-    if (m_.codes.home.empty()) {
+    if (m_.home(ch_.number).empty()) {
       error(line,
             "the heads would turn below the CAM's clearance, swinging the tip sideways, and the machine "
             "has no home blocks (codes.home) to lift the tool first: give the rapid at the clearance");
@@ -775,7 +775,7 @@ bool channel_writer::write_point(bool rapid, const joint_values& j, const tool_p
     // gone after home blocks that cancel it (`SUPA G0 Z0 D0`), and the post has no code to give
     // it back: the tip would run a tool length low (verify 46).
     if (c.output == multiaxis_output::joints && c.length_on.empty())
-      for (const std::string& h : m_.codes.home)
+      for (const std::string& h : m_.home(ch_.number))
         if (cancels_length_offset(h, m_.program.comment_open, m_.program.comment_close)) {
           error(line,
                 fmt::format("the heads would turn below the CAM's clearance, swinging the tip sideways, "

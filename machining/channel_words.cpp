@@ -89,7 +89,7 @@ void channel_writer::go_home() {
   user_x_.reset();  // the user blocks' X (the gate's) is the post's home from here
   leave_polar();    // no reference return inside polar interpolation or a turned frame
   leave_radial_frame();
-  for (const std::string& b : m_.codes.home) out_.block(b);
+  for (const std::string& b : m_.home(ch_.number)) out_.block(b);
   homed_ = true;
   // Home blocks that cancel the tool's length offset (`G49`, `D0`; attack 47: a GOHOME in the
   // middle of an operation, and the cuts after it ran a tool length low): the next move gives

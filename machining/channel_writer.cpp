@@ -86,7 +86,7 @@ channel_writer::channel_writer(const machine& m, const channel_def& ch, const st
     for (const std::string& block : m.program.header)
       if (block.find(work_->work_offset) != std::string::npos) offset_due_ = false;
   }
-  for (const std::string& b : m.codes.home)
+  for (const std::string& b : m.home(ch.number))
     home_cancels_length_ =
         home_cancels_length_ || cancels_length_offset(b, m.program.comment_open, m.program.comment_close);
   last_x_.max = m.formats['X'].max_count(axis_style_.decimals);
@@ -597,8 +597,9 @@ void channel_writer::footer_cancels_length() {
   // posts' onClose: writeRetract(Z), then disableLengthCompensation(true)).
   const auto& footer = m_.program.footer;
   const auto cancel = std::find(footer.begin(), footer.end(), chain_->tool_tip_off);
-  const auto home =
-      m_.codes.home.empty() ? footer.end() : std::find(footer.begin(), footer.end(), m_.codes.home.front());
+  const auto home = m_.home(ch_.number).empty()
+                        ? footer.end()
+                        : std::find(footer.begin(), footer.end(), m_.home(ch_.number).front());
   if (cancel != footer.end() && home < cancel) {
     length_cancel_due_ = false;
     return;

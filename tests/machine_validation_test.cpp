@@ -137,6 +137,14 @@ TEST_CASE("validation: channel contents", "[machines]") {
         "m.toml:9:8: error: duplicate spindle name 'main'");
   CHECK(error_of(head + "[[channel]]\nnumber = 1\nfile_suffix = \"/../x\"\n" + xz) ==
         "m.toml:8:15: error: channel.file_suffix must not contain a path separator");
+  // A channel's own home blocks; none at all is refused, and without the key the machine's.
+  CHECK(error_of(head + "[[channel]]\nnumber = 1\nhome = []\n" + xz) ==
+        "m.toml:8:8: error: channel.home must name at least one block");
+  const machine m = parse_machine(head + "[[channel]]\nnumber = 1\nhome = [\"G28 U0. V0.\", \"G28 W0.\"]\n" +
+                                      xz + "[[channel]]\nnumber = 2\n" + xz,
+                                  "m.toml");
+  CHECK(m.home(1) == std::vector<std::string>{"G28 U0. V0.", "G28 W0."});
+  CHECK(m.home(2) == std::vector<std::string>{"G28 U0.", "G28 W0."});
 }
 
 TEST_CASE("validation: layouts", "[machines]") {

@@ -151,17 +151,17 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "hold");
   // Polar interpolation for the axial end mill (X a radius, the CL's Y as C, arcs in I/J), off
   // before the reference return; turning mode (G10.9 X1, M202) before the turning spindle starts.
-  CHECK(
-      head1(p, "E.EIA") ==
-      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 "
-      "M6\nM901\nM200\n"
-      "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X11.18 Y0. Z2.\nG17 "
-      "XC\nG12.1\nG0 X10. C5.\n"
-      "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT01 M6\n"
-      "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
-      "X60. Y0. "
-      "Z2.\nM950\nM9\nM5\nM205\n"
-      "M305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  CHECK(head1(p, "E.EIA") ==
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
+        "Z0.\nT05 "
+        "M6\nM901\nM200\n"
+        "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X11.18 Y0. Z2.\nG17 "
+        "XC\nG12.1\nG0 X10. C5.\n"
+        "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT01 M6\n"
+        "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
+        "X60. Y0. "
+        "Z2.\nM950\nM9\nM5\nM205\n"
+        "M305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("the B head turns only at home: a cross hole after face work goes home first", "[post][millturn]") {
@@ -169,14 +169,15 @@ TEST_CASE("the B head turns only at home: a cross hole after face work goes home
       "PARTNO E\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2000,CLW,LIVE\nRAPID\n"
       "GOTO/20,0,5,0,0,1\nRAPID\nGOTO/40,0,-10,1,0,0\nFINI\n";
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "index");
-  CHECK(
-      head1(p, "E.EIA") ==
-      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT12 "
-      "M6\nM901\nM200\n"
-      "G10.9 X0\nG97 S2000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z5.\nG0 G90 G53 X0.\n"
-      "G0 G90 G53 Z0.\nM108\nG0 G53 B90.\nM107\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\n"
-      "G0 G43 H#3020 X10. Y0. Z40.\nM950\nG69\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
-      "G0 G90 G53 Z0.\nM30\n");
+  CHECK(head1(p, "E.EIA") ==
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
+        "Z0.\nT12 "
+        "M6\nM901\nM200\n"
+        "G10.9 X0\nG97 S2000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z5.\nG0 G90 G53 X0. "
+        "Y0.\n"
+        "G0 G90 G53 Z0.\nM108\nG0 G53 B90.\nM107\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\n"
+        "G0 G43 H#3020 X10. Y0. Z40.\nM950\nG69\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("face holes on a stepped face: the drill climbs to the higher plane before C turns",
@@ -225,15 +226,15 @@ TEST_CASE("a tilted tool on the Integrex head goes to the chain: B and C unclamp
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "tilted");
   // B45 tilts the tool from +Z towards +X; C90 turns the point at +Y onto the head. X Y Z are
   // the tip in the part frame (tool-tip control), X in radius.
-  CHECK(
-      head1(p, "E.EIA") ==
-      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT14 "
-      "M6\nM901\nM200\n"
-      "G10.9 X0\nG97 S4000 M3\nG94\nM108\nM212\nG0 B45. C0.\nG0 X40. Y0.\nG0 G43.4 H#3020 X40. Y0. Z10. "
-      "B45. C0.\nG1 X29. Z-1. F300.\n"
-      "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nG49\nG10.9 "
-      "X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
-      "G0 G90 G53 Z0.\nM30\n");
+  CHECK(head1(p, "E.EIA") ==
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
+        "Z0.\nT14 "
+        "M6\nM901\nM200\n"
+        "G10.9 X0\nG97 S4000 M3\nG94\nM108\nM212\nG0 B45. C0.\nG0 X40. Y0.\nG0 G43.4 H#3020 X40. Y0. Z10. "
+        "B45. C0.\nG1 X29. Z-1. F300.\n"
+        "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nG49\nG10.9 "
+        "X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "G0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("the Integrex chain agrees with the mill/turn writer's B and C", "[post][millturn]") {
@@ -333,7 +334,7 @@ TEST_CASE("a cut on the diameter: plunge, G7.1 at the tip's radius, C on past 36
   // + 30 = 360 and on to 390 (no wrap); the plunge to radius 19 inside, then the mode again at
   // 19; the retract inside; off before the rapid (no G0 in the mode).
   CHECK(head1(p, "E.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
         "Z0.\nT21 M6\nM901\n"
         "M200\nG10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B90.\nM107\nG0 C330.\nM210\n"
         "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X10. Y0. Z25.\nG1 Z20. F200.\nM212\nG17\nG7.1 C20.\n"
@@ -418,7 +419,7 @@ TEST_CASE(
   // the pitch (G95 F1.), the spindle's speed and feed mode (G94) again after each rigid tap; C
   // unclamped only to turn to the next hole (C180: the point at -X).
   CHECK(head1(p, "E.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
         "Z0.\nT23 M6\nM901\n"
         "M200\nG10.9 X0\nG97 S500 M3\nM108\nG0 G53 B90.\nM107\nG0 C90.\nM210\n"
         "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X20. Y0. Z35.\nZ28.\nG95\nG17\n"
@@ -463,7 +464,7 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
   const test::posted p = post_on(drill, load_machine("integrex-i200st"), "sub-b180");
   INFO(p.diagnostics);
   CHECK(head1(p, "D.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
         "Z0.\nT04 M6\nG55\n"
         "M902\nG97 S700 M303\nG95\nM108\nG0 G53 B180.\nM107\nG0 G43 P1 H#3020 X0. Y0. Z-5.\nG1 Z10. F0.1\n"
         "M950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
@@ -488,7 +489,7 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
   const std::string nc = f.files.at("D_3.nc");
   CHECK(nc.substr(nc.find("M6 T04")) ==
         "M6 T0400\nT0404\nG55\nG97 S700 M103\nG0 B90.\nG0 X0. Y0. Z-5.\nG1 Z10. F0.1\nG28 "
-        "U0.\nG28 W0.\n"
+        "U0. V0.\nG28 W0.\n"
         "M6 T0500\nT0505\nG97 S900 M103\nG0 B0.\nG0 X40. Y0. Z-2.\nM200 P123\nM105\nM9\nG28 U0.\nG28 "
         "W0.\nM30\n%\n");
 }
@@ -506,6 +507,6 @@ TEST_CASE("the 31i's B head changes the tool with M6 T0700 and takes its offset 
   INFO(p.diagnostics);
   const std::string nc = p.files.at("E_3.nc");
   CHECK(nc.substr(0, nc.find("M200")) ==
-        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM6 T0700\nT0707\nG97 S900 M3\n"
+        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T0700\nT0707\nG97 S900 M3\n"
         "G0 B0.\nG1 X40. Y0. Z2. F0.2\nT0727\nX40. Y0. Z1.\n");
 }

@@ -72,7 +72,7 @@ TEST_CASE("each section of a merged program counts from the start, also under a 
           "[post][sequence]") {
   CHECK(file_of(two_head_job, numbered("integrex-i200st", sequence_mode::all), "LATE.EIA", "merged") ==
         "%\nO1000(LATE)\nG109 L1\nN10 G21\nN20 G0 G90 G54 G97 G18\nN30 G40 G49 G80 G67 G69\nN40 G10.9 X1\n"
-        "N50 G0 G90 G53 X0.\nN60 G0 G90 G53 Z0.\nN70 T01 M6\nN80 M901\nN90 G97 S1000 M203\nN100 G95\n"
+        "N50 G0 G90 G53 X0. Y0.\nN60 G0 G90 G53 Z0.\nN70 T01 M6\nN80 M901\nN90 G97 S1000 M203\nN100 G95\n"
         "N110 M108\nN120 G0 G53 B0.\nN130 M107\nN140 G0 G43 P1 H#3020 X40. Y0. Z5.\n"
         "N150 G1 Z-10. F0.2\nN160 M950\nN170 M951\nN180 M9\nN190 M5\nN200 M205\nN210 M305\n"
         "N220 G0 G90 G53 X0.\nN230 G0 G90 G53 Z0.\nN240 M30\nG109 L2\nN10 G21\n"

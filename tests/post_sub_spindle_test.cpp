@@ -138,18 +138,19 @@ TEST_CASE("the part transfer on the Fanuc twin: home, waits, path 1's blocks, th
 TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then the second spindle",
           "[post][sub]") {
   const test::posted p = post_on(transfer_job, "integrex-i200st", "xfer-integrex");
-  CHECK(file_of(p, "XFER.EIA") ==
-        "%\nO1000(XFER)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nT01 M6\nM901\nG92 S2500 R1\nG96 S180 M203\nG95\nM108\nG0 G53 B0.\nM107\nM8\n"
-        "G1 G43 P1 H#3020 X50. Y0. Z2. F0.2\nZ-20.\nM205\nM9\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
-        "M950\nM306\nM511\nM540\nIF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF "
-        "[#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\nG0 G53 W#501\nG94 G1 G53 W#500 "
-        "F500.\nM541\nM307\nG4 P1000\nG95\nM951\nM952\nM206\nG94 G4 P1000\nG0 G53 W0.\nM513\nM305\nG95\n"
-        "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
-        "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
-        "M952\nM953\nG55\nT0303\nM902\nG97 S800 M303\nG95\n"
-        "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
-        "M30\n%\n");
+  CHECK(
+      file_of(p, "XFER.EIA") ==
+      "%\nO1000(XFER)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\n"
+      "G0 G90 G53 Z0.\nT01 M6\nM901\nG92 S2500 R1\nG96 S180 M203\nG95\nM108\nG0 G53 B0.\nM107\nM8\n"
+      "G1 G43 P1 H#3020 X50. Y0. Z2. F0.2\nZ-20.\nM205\nM9\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\n"
+      "M950\nM306\nM511\nM540\nIF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF "
+      "[#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\nG0 G53 W#501\nG94 G1 G53 W#500 "
+      "F500.\nM541\nM307\nG4 P1000\nG95\nM951\nM952\nM206\nG94 G4 P1000\nG0 G53 W0.\nM513\nM305\nG95\n"
+      "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
+      "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
+      "M952\nM953\nG55\nT0303\nM902\nG97 S800 M303\nG95\n"
+      "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
+      "M30\n%\n");
 }
 
 TEST_CASE("the part transfer on the 31i: the idle mill head waits and goes home too", "[post][sub]") {
@@ -163,7 +164,7 @@ TEST_CASE("the part transfer on the 31i: the idle mill head waits and goes home 
         "U0.\nG28 W0.\n"
         "M30\n%\n");
   CHECK(file_of(p, "XFER_3.nc") ==
-        "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM200 P123\nM201 P123\nM202 P123\n"
+        "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM200 P123\nM201 P123\nM202 P123\n"
         "M204 P123\nG55\nM206 P123\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
 }
 
@@ -177,12 +178,12 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
   const std::string f = file_of(p, "TOOLS.EIA");
   CHECK(
       f.substr(0, f.find("G109 L2")) ==
-      "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
+      "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\n"
       "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-      "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
+      "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
       "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 Y0.\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. "
       "Z2. F0.2\nM5\nG13.1\n"
-      "G18\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 G53 "
+      "G18\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 G53 "
       "B0.\nM107\n"
       "G1 G43 P1 H#3020 X0. Y0. Z5. F0.2\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
       "G0 G90 G53 Z0.\nM30\n");
@@ -196,7 +197,7 @@ TEST_CASE("the 31i mill head turns its live spindle for a milling tool, the main
       "PARTNO E\nHEAD/3\nTLDATA/MILL,10\nLOADTL/7\nSPINDL/RPM,3000,CLW\nFEDRAT/200,MMPM\nGOTO/20,0,2\nFINI\n",
       "fanuc-31i-3path", "31i-mill");
   CHECK(file_of(p, "E_3.nc") ==
-        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nM6 T0700\nT0707\nM35\nG0 G28 H0.\n"
+        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T0700\nT0707\nM35\nG0 G28 H0.\n"
         "G97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X40. C0. Z2. F200.\nM200 P123\nM37\n"
         "G13.1\nG18\nM34\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
 }
@@ -216,15 +217,16 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
   // A constant surface speed is a turning speed: the workpiece spindle.
   const test::posted css = post_on("PARTNO E\nHEAD/1\nLOADTL/1\nSPINDL/SMM,150,MAXRPM,2000,CLW\nFINI\n",
                                    "integrex-i200st", "unknown-css");
-  CHECK(file_of(css, "E.EIA") ==
-        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 "
-        "G90 G53 Z0.\n"
-        "T01 M6\nM901\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 "
-        "Z0.\nM30\n"
-        "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
-        "Z0.\nM950\nM9\nM5\nM205\nM305\nG0 G90 "
-        "G53 X0.\n"
-        "G0 G90 G53 Z0.\nM30\n%\n");
+  CHECK(
+      file_of(css, "E.EIA") ==
+      "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 "
+      "G90 G53 Z0.\n"
+      "T01 M6\nM901\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 "
+      "Z0.\nM30\n"
+      "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
+      "Z0.\nM950\nM9\nM5\nM205\nM305\nG0 G90 "
+      "G53 X0.\n"
+      "G0 G90 G53 Z0.\nM30\n%\n");
 }
 
 TEST_CASE("a milling tool on a turret without a live spindle is an error", "[post][spindles]") {
@@ -296,9 +298,9 @@ TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[p
       m, "table");
   const std::string f = file_of(p, "E.EIA");
   CHECK(f.substr(0, f.find("M950")) ==
-        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
+        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\n"
         "G0 G90 G53 Z0.\nT06 M6\nM901\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
         "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 Y0.\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. "
         "C0. Z2. "
         "F0.2\n");
@@ -360,10 +362,10 @@ TEST_CASE("every section on the Integrex selects the spindle it works on, M901 o
       "integrex-i200st", "select");
   const std::string f = file_of(p, "S.EIA");
   CHECK(f.substr(0, f.find("M950")) ==
-        "%\nO1000(S)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\n"
+        "%\nO1000(S)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nG55\nM902\nG97 S800 M303\nG95\nM108\nG0 G53 B180.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z-2. F0.2\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nT02 M6\nG54\nM305\nM901\n"
-        "G97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nG0 G90 G53 X0.\n"
+        "G1 G43 P1 H#3020 X40. Y0. Z-2. F0.2\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT02 M6\nG54\nM305\nM901\n"
+        "G97 S900 M203\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nG0 G90 G53 X0. Y0.\n"
         "G0 G90 G53 Z0.\nT03 M6\nM901\nM108\nG0 G53 B0.\nM107\nG1 G43 P1 H#3020 X50. Y0. Z2. "
         "F0.2\n");
 }
