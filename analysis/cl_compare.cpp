@@ -63,6 +63,7 @@ struct cl_comparison::impl {
     has_y = ch.axis('Y') != nullptr;
     u_incremental = lathe && !ch.axis('U');
     w_incremental = lathe && !ch.axis('W');
+    v_incremental = lathe && has_y && !ch.axis('V');  // G-code system A: V is Y's increment
     for (const std::string& b : m.program.header)
       for (const nc_word& w : split_nc_words(b))
         if (w.address == 'G' && w.numeric && (g10(w.number) == 900 || g10(w.number) == 910)) g90_modes = true;
@@ -146,7 +147,8 @@ struct cl_comparison::impl {
 
   // The machine file's reading of the words.
   double x_div = 2;  // program X / part-frame x: 2 for a diameter, negative on a mirrored turret
-  bool lathe = true, inch = false, has_y = false, u_incremental = false, w_incremental = false;
+  bool lathe = true, inch = false, has_y = false, u_incremental = false, w_incremental = false,
+       v_incremental = false;
   bool g90_modes = false;  // G90/G91 are the absolute and incremental modes (not lathe cycles)
   double out_mm = 1, axis_half = 0.0005, increment = 0.001;
   double feed_half[2] = {0.05, 0.00005};  // half the feed's last digit, per minute and per revolution, in mm
@@ -409,8 +411,8 @@ struct cl_comparison::impl {
     // A block under block delete (`/G0 X44. Z2.`) runs or not as the operator's switch says (a
     // wait or another M code under it is the checker's).
     constexpr std::uint32_t skip_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
-                                           nc_letter('W') | nc_letter('G') | nc_letter('F') | nc_letter('S') |
-                                           nc_letter('T');
+                                           nc_letter('V') | nc_letter('W') | nc_letter('G') | nc_letter('F') |
+                                           nc_letter('S') | nc_letter('T');
     std::size_t at = 0;
     while (at < text.size() && (text[at] == ' ' || text[at] == '\t')) ++at;
     if (at < text.size() && text[at] == '/' && skip_text.empty() && (letters & skip_letters) != 0)
@@ -424,8 +426,8 @@ struct cl_comparison::impl {
     if (words.empty()) return;
     // Any word but an axis's (a G, M, S, T, F ...) may change what a cut is held to.
     constexpr std::uint32_t axis_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
-                                           nc_letter('W') | nc_letter('I') | nc_letter('J') | nc_letter('K') |
-                                           nc_letter('R') | nc_letter('N');
+                                           nc_letter('V') | nc_letter('W') | nc_letter('I') | nc_letter('J') |
+                                           nc_letter('K') | nc_letter('R') | nc_letter('N');
     if (letters & ~axis_letters) ++version;
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (!gms_only || (letters & gms)) {
@@ -775,6 +777,9 @@ struct cl_comparison::impl {
           break;
         case 'W':
           if (w_incremental) a = &z, incremental = true;
+          break;
+        case 'V':
+          if (v_incremental) a = &y, incremental = true;
           break;
         default: break;
       }

@@ -889,3 +889,24 @@ TEST_CASE("cl comparison: a C turn below the CL's move, in a feed move, or off i
   CHECK(run({"G0 X0.", "G0 C120.", "X20. Y0."}, hole2, true) == "");
   CHECK(run({"G0 G53 Z0.", "G0 C120.", "G0 X20. Y0. Z2."}, hole2, true) == "");
 }
+
+TEST_CASE("cl comparison: V, Y's increment on a lathe channel with Y, at home after G28 U0. V0.",
+          "[analysis][cl_compare]") {
+  // The 31i's path 3 homes Y with X (G-code system A: U, V, W the increments of X, Y, Z). A move
+  // after it that does not give Y again leaves the tool at Y's reference point.
+  compared c("fanuc-31i-3path", 3);
+  c.lines({"M6 T1400", "T1414", "G97 S2000 M33", "G0 B0.", "M90", "G0 C0.", "G0 X80. Y8. Z-20."});
+  motion_event mv;
+  mv.pos = {40, 8, -20};
+  mv.rapid = true;
+  c.cmp.record({c.next++, mv, 1}, false);
+  c.lines({"G28 U0. V0.", "G28 W0.", "G0 X80. Z-20."});
+  c.cmp.record({c.next++, mv, 1}, false);
+  CHECK(
+      c.text() ==
+      "job.cls:11:1: error: channel 3: the program does not put the tool tip on this record's point (the "
+      "part "
+      "frame, mm): Y is where G28 at line 11 of the program left it, not at the CL's 8.000, after the block "
+      "`G0 X80. Z-20.`\n");
+  CHECK(c.cmp.compared() == 2);
+}
