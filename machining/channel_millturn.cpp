@@ -363,7 +363,24 @@ bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, i
                               v, format_nc_number(last_c_.value, axis_style_)));
       return false;
     }
-    position_c(std::atan2(y, x) * deg);  // a rapid in XZC: C first, then X as the radius
+    // A rapid in XZC: C first, then X as the radius. A rapid that also rises (out of a hole
+    // drilled with moves, up to the CL's clearance) rises first: the part turns with the tip as
+    // high as the CL's move goes, not at the bottom it leaves (attack 60 F4; the comparison
+    // holds it to that: docs/emulator.md, "A C turn").
+    const double to_z = nc_z(z);
+    const double up = (to_z - last_z_.value) * z_sign_ * (axis_.z < 0 ? -1.0 : 1.0);
+    if (last_z_.known && pending_g_.empty() && pending_offset_.empty() && up > 0 &&
+        !(last_c_.known && std::abs(wrap_360(last_c_.value) - wrap_360(std::atan2(y, x) * deg)) < 5e-4)) {
+      text_buffer& b = out_.open_block();
+      word_start_ = b.size();
+      b += "G0";
+      motion_g_ = 0;
+      axis_word(b, 'Z', to_z, last_z_);
+      homed_ = false;
+      out_.end_block();
+      word_start_ = std::string::npos;
+    }
+    position_c(std::atan2(y, x) * deg);
     std::tie(u, v) = c_frame(x, y);
   }
   x = u;

@@ -510,3 +510,20 @@ TEST_CASE("the 31i's B head changes the tool with M6 T0700 and takes its offset 
         "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T0700\nT0707\nG97 S900 M3\n"
         "G0 B0.\nG1 X40. Y0. Z2. F0.2\nT0727\nX40. Y0. Z1.\n");
 }
+
+TEST_CASE("a drill's rapid out of a hole and round to the next rises before C turns", "[post][millturn]") {
+  // Attack 60 F4: two holes on the 40 mm pitch circle drilled with moves, the link fed at z 2,
+  // then the CL's rapid straight up to z 10 over the second hole. The writer positions C for a
+  // drill's rapid; turned first, at z 2, the part swept under the tip 2 mm over the face (and the
+  // comparison with the CL refused the post). It rises first now.
+  const std::string cl =
+      "PARTNO L\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2500,CLW,LIVE\nFEDRAT/MMPM,150\nRAPID\n"
+      "GOTO/20,0,10,0,0,1\nRAPID\nGOTO/20,0,2\nGOTO/20,0,-10\nGOTO/20,0,2\nGOTO/-10,17.3205081,2\n"
+      "GOTO/-10,17.3205081,-10\nGOTO/-10,17.3205081,2\nRAPID\nGOTO/-10,17.3205081,10\nSPINDL/OFF\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "rise");
+  const std::string h = head1(p, "L.EIA");
+  CHECK(
+      h.substr(h.find("G1 Z-10. F150.")) ==
+      "G1 Z-10. F150.\nZ2.\nX-10. Y17.321\nZ-10.\nZ2.\nG0 Z10.\nG0 C120.\nX20. Y0. Z10.\nM5\nM950\nG10.9 X1\n"
+      "M202\nM9\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+}
