@@ -1484,7 +1484,10 @@ struct cl_comparison::impl {
     moved = false;
     rapid_in_record = false;
     n_arcs = 0;
-    n_turns = 0;
+    // The C turns of blocks between two motion records (INSERT text, an [events] block, a
+    // tool's or a coolant's blocks) are held to the next one's move (attack 60 F3).
+    if (std::holds_alternative<motion_event>(e.data) || std::holds_alternative<arc_event>(e.data))
+      n_turns = 0;
     hole.valid = false;
     fed_low.valid = fed_high.valid = false;
   }

@@ -110,7 +110,8 @@ struct control_emulator::impl {
       const axis_def* x = m.channels[i].axis('X');
       if (const kinematic_chain* k = m.chain(static_cast<int>(i) + 1);
           k && !k->rotaries.empty() && !m.channels[i].head_index.present() && !(x && x->diameter))
-        channels.back().sweep.emplace(m, *k, static_cast<int>(i) + 1);
+        channels.back().sweep.emplace(m, *k, static_cast<int>(i) + 1,
+                                      tool_change_code(m.channels[i].tool_call));
       if (m.channels[i].head_index.present()) {
         channels.back().head = m.channels[i].head_index.address;
         channels.back().change_m = tool_change_code(m.channels[i].tool_call);

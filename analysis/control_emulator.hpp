@@ -20,7 +20,7 @@
 //   released;
 // - a block that writes a variable the machine reserves (machines/macro_variables.hpp);
 // - on a mill's kinematic chain, a rapid that turns a head with tool-tip control off and swings
-//   the tip below the last safe height (analysis/rotary_sweep.hpp).
+//   the tip below the work's top (analysis/rotary_sweep.hpp).
 //
 // What it does not model yet (docs/emulator.md): the comparison with the CL; the order of
 // blocks across channels (each channel is followed on its own: a chuck opened by one channel

@@ -4,12 +4,12 @@
 // head/head unwinds at the CAM's clearance). One channel with a kinematic chain, followed from
 // its program text and the machine file alone: the linear and rotary axes (G90/G91, G20/G21,
 // G28/G30 and G53 homes), the tool and its length offset, tool-tip control, the tilted plane
-// (G68.2, G53.1, G69). A rapid that turns a rotary axis with tool-tip control off swings the
-// tip: it is followed through the forward transform with every axis moving linearly from its
-// start to its end, and it may not go below the last safe height: the highest the program's
-// rapids have put the tip since its last cut (since the tool call before the first), in the
-// part frame. With the tool at home (Z at its reference point or machine position) the
-// tool is clear; under tool-tip control the control keeps the tip where it is.
+// (G68.2, G53.1, G69). A rapid that turns a head with tool-tip control off swings the tip: it
+// is followed through the forward transform with every axis moving linearly from its start to
+// its end, and it may not pass below the work's top (the channel's last safe height read from
+// the program alone: the highest the program has fed a tool from or to), less a link's sag.
+// With Z at home the tool is clear; under tool-tip control the control keeps the tip where it
+// is; a table turns the part, whose size no program says: not held.
 //
 // The tool's length is the H register's, which the program does not say: the machine file's
 // [[tool]] length of the T word's tool, else 0: the gauge point's path (a head's swing is then
@@ -27,13 +27,14 @@ namespace twinpost {
 class rotary_sweep {
  public:
   /// `chain` is the channel's (machine::chain), with at least one rotary axis.
-  rotary_sweep(const machine& m, const kinematic_chain& chain, int channel);
+  /// `change_m`: the M code of the channel's tool change (M6), -1 where a T word changes it.
+  rotary_sweep(const machine& m, const kinematic_chain& chain, int channel, int change_m);
   ~rotary_sweep();
   rotary_sweep(rotary_sweep&&) noexcept;
   rotary_sweep& operator=(rotary_sweep&&) noexcept;
 
   /// The channel's next block; a finding's message (without "channel n: ") and the column of
-  /// the word it is at, when this block's rapid swings the tip below the last safe height.
+  /// the word it is at, when this block's rapid swings the tip into the work.
   std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words);
 
  private:

@@ -865,6 +865,26 @@ TEST_CASE("cl comparison: a C turn below the CL's move, in a feed move, or off i
         "job.cls:12:1: error: channel 1: the program turns C with the tool tip below the CL's move here: z "
         "-3.000 (the part frame, mm), where the CL's move goes no lower than 5.000; the part turns into the "
         "tool: turn it with the tool clear, as high as the CL's move: `G0 C120.`\n");
+  // Turns written between two motion records (INSERT text, an [events] block at a coolant
+  // record) are held to the next record's move (attack 60 F3).
+  {
+    compared c("integrex-i200st", 1);
+    c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "G94", "M108", "G0 G53 B0.", "M107", "M8",
+             "G0 C0.", "G0 G43 H#3020 X20. Y0. Z2."});
+    motion_event mv;
+    mv.pos = {20, 0, 2};
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    c.lines({"G0 Z-5.", "G0 C120."});
+    c.cmp.record({c.next++, coolant_event{"OFF", ""}, 1}, false);
+    c.lines({"G0 C0.", "G0 Z2."});
+    c.cmp.record({c.next++, mv, 1}, false);
+    CHECK(
+        c.text() ==
+        "job.cls:12:1: error: channel 1: the program turns C with the tool tip below the CL's move here: z "
+        "-5.000 (the part frame, mm), where the CL's move goes no lower than 2.000; the part turns into the "
+        "tool: turn it with the tool clear, as high as the CL's move: `G0 C120.`\n");
+  }
   // A C turn at rapid inside a feed move (review 55: a `G0 C..` was no move to the comparison).
   CHECK(run({"G0 C120."}, hole2, false) ==
         "job.cls:12:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: "

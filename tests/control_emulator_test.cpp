@@ -1,6 +1,7 @@
 // The control emulator's invariants (analysis/control_emulator.hpp), through the checker's
 // reading (check_nc_resources) of hand-made programs: messages asserted to the letter.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <string>
 
@@ -153,39 +154,65 @@ TEST_CASE("emulator: the B head indexed again after every tool call", "[analysis
       "check: 2 channels, 2 waits paired, 1 error\n");
 }
 
-TEST_CASE("emulator: a rapid that turns a head swings the tip below the last safe height",
-          "[analysis][emulator]") {
+TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's top", "[analysis][emulator]") {
   // Issue 37, item 7: the head/head mill (B about Y through a pivot 300 mm above the gauge
   // point) with a tool 100 mm long: 400 mm from pivot to tip. At B20 the linear words are the
   // tip's place with the heads at 0, so the tip stands 400 (1 - cos 20°) = 24.123 mm above them:
-  // `Z-9.123` puts it at the CAM's clearance, z 15. Turned back to B0 there, it swings 137 mm
-  // across and drops to z -9.123.
+  // `Z-9.123` puts it at the CAM's clearance, z 15, where the cut starts (the work reaches that
+  // high). Turned back to B0 there, the tip swings 137 mm across and drops to z -9.123.
   machine m = load_machine("head-head-5axis");
-  tool_def t;
-  t.number = 1;
-  t.kind = "mill";
-  t.length = 100;
-  m.tools.push_back(t);
-  const auto run = [&](const std::string& before_unwind, const std::string& on = "G43 H1") {
-    const std::string program = mill_start + "G54\nG0 A0. B20.\nG0 X0. Y0.\nG0 " + on +
-                                " X0. Y0. Z-9.123\nG1 Z-20. F500.\nG0 Z-9.123\n" + before_unwind +
-                                "G0 A0. B0.\nM30\n%\n";
+  for (const auto& [number, length] : {std::pair{1, 100.0}, {2, 250.0}}) {
+    tool_def t;
+    t.number = number;
+    t.kind = "mill";
+    t.length = length;
+    m.tools.push_back(t);
+  }
+  const auto run = [&](const std::string& before_unwind, const std::string& on = "G43 H1",
+                       const std::string& unwind = "G0 A0. B0.\n", const std::string& call = "") {
+    const std::string program = mill_start + call + "G54\nG0 A0. B20.\nG0 X0. Y0.\nG0 " + on +
+                                " X0. Y0. Z-9.123\nG1 Z-20. F500.\nG0 Z-9.123\n" + before_unwind + unwind +
+                                "M30\n%\n";
     return format_sync_text(check_nc_resources({{"P.nc", program}}, m));
   };
-  CHECK(
-      run("") ==
-      "P.nc:15:4: error: channel 1: the rapid turns the rotary axes (B 20 to 0) with tool-tip control off "
-      "and "
-      "the tool not at home: the tip swings down to z -9.123 (the part frame, mm; a tool 100 mm long), below "
-      "the last safe height z 15.000 the program's first rapid put it at after the last cut; retract Z to "
-      "its reference point (G91 G28 Z0.) before the rotary axes turn\nG0 A0. B0.\n   ^\n"
-      "check: 1 channel, 0 waits paired, 1 error\n");
+  const auto said = [](int line, const std::string& turn, const std::string& low, const std::string& tool) {
+    return fmt::format(
+        "P.nc:{}:4: error: channel 1: the rapid turns the rotary axes ({}) with tool-tip control off and the "
+        "tool not at home: the tip swings down to z {} (the part frame, mm; {}), below z 15.000, the highest "
+        "the program has fed a tool from or to: the work reaches that high; retract Z to its reference point "
+        "(G91 G28 Z0.) before the rotary axes turn\n",
+        line, turn, low, tool);
+  };
+  const std::string tool1 = "a tool 100 mm long";
+  CHECK(run("") == said(15, "B 20 to 0", "-9.123", tool1) + "G0 A0. B0.\n   ^\n" +
+                       "check: 1 channel, 0 waits paired, 1 error\n");
   // Retracted first: the tool is at home while the head turns.
   CHECK(run("G91 G28 Z0.\nG90\n") == clean_mill);
-  // Lifted by the swing first: the tip ends at the clearance.
+  // Lifted by the swing first: the tip ends at the cut's top.
   CHECK(run("G0 Z15.\n") == clean_mill);
-  // Under tool-tip control the control keeps the tip where it is.
+  // Well clear of the work (attack 60 F1: the height the tilt lends the tip is no clearance the
+  // work needs): unwound at Z100 the tip ends at z 100.
+  CHECK(run("G0 Z100.\n") == clean_mill);
+  // A link between two tool axes at the clearance sags a little between its ends (every axis
+  // moving linearly): B20 to B22 at the cut's top, 0.06 mm (attack 60 F2).
+  CHECK(run("G0 Z15.\nG0 Z-11.988 B22.\n", "G43 H1", "") == clean_mill);
+  // Under tool-tip control (G43.4, or G43.5 with the tool axis) the control keeps the tip.
   CHECK(run("", "G43.4 H1") == clean_mill);
+  CHECK(run("", "G43.5 H1") == clean_mill);
+  // Only X at home is no tool at home (attack 60 F5), nor is G53 Z low in the machine (F6); an
+  // increment down from home is not home either.
+  CHECK(run("G91 G28 X0.\nG90\n") == said(17, "B 20 to 0", "-9.123", tool1) + "G0 A0. B0.\n   ^\n" +
+                                         "check: 1 channel, 0 waits paired, 1 error\n");
+  CHECK(run("G53 Z-400.\n").find("error") != std::string::npos);
+  CHECK(run("G91 G28 Z0.\nG0 Z-50.\nG90\n") == clean_mill);  // not known: not followed
+  // G90 G28 goes through its intermediate point, the work's Z0, turning the head on the way (F7).
+  CHECK(run("", "G43 H1", "G90 G28 Z0. B0.\n") ==
+        fmt::format("P.nc:15:13{}", said(15, "B 20 to 0", "-0.854", tool1).substr(9)) +
+            "G90 G28 Z0. B0.\n            ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
+  // The tool in the spindle is the one M6 changed to, not the one a T word preselects (F9).
+  CHECK(run("", "G43 H1", "G0 A0. B0.\n", "T02\n") == said(16, "B 20 to 0", "-9.123", tool1) +
+                                                          "G0 A0. B0.\n   ^\n" +
+                                                          "check: 1 channel, 0 waits paired, 1 error\n");
 }
 
 TEST_CASE("emulator: a rapid that turns a table is not held to a height", "[analysis][emulator]") {

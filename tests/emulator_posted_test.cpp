@@ -73,16 +73,22 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
       "(read by transfer.grip): the setup owns its value; write a variable the machine file does not name\n"
       "#501=#501+1\n^\n"
       "check: 2 channels, 12 waits paired, 1 error\n");
-  // Item 7: the home between G69 and the heads turning back, dropped: the heads unwind at the
-  // plane's clearance, and the tip (the gauge point here: the machine file gives no tool length)
-  // swings below it.
+  // Item 7: the home between G69 and the heads turning back, dropped. A tilted cut on the
+  // head/head mill whose retract (the tip at z 15, where the cut started) is low for the
+  // swing: the heads unwind there, and the tip (the gauge point here: the machine file gives
+  // no tool length) drops 300 (1 - cos 20°) = 18.1 mm into the work.
+  const std::string unwind =
+      "PARTNO UNWIND\nUNITS/MM\nTLDATA/MILL,10,0,100,0,0\nLOADTL/1\nSPINDL/RPM,6000,CLW\nFEDRAT/MMPM,800\n"
+      "RAPID\nGOTO/0,0,60,0,0,1\nRAPID\nGOTO/-20,0,15,0.3420201,0,0.9396926\n"
+      "GOTO/-20,0,-5,0.3420201,0,0.9396926\nGOTO/20,0,-5,0.3420201,0,0.9396926\nRAPID\n"
+      "GOTO/20,0,15,0.3420201,0,0.9396926\nRAPID\nGOTO/20,0,15,0,0,1\nGOTO/20,0,-2,0,0,1\nRAPID\n"
+      "GOTO/20,0,60,0,0,1\nEND\n";
   CHECK(
-      edited_check(sample_job("three-plus-two"), "head-head-5axis", "THREE_PLUS_TWO.nc", "I0. J10. K0.",
-                   "G69\nG91 G28 Z0.\nG90\nG49\n", "G69\n") ==
-      "THREE_PLUS_TWO.nc:40:4: error: channel 1: the rapid turns the rotary axes (A 10 to 0) with tool-tip "
-      "control off and the tool not at home: the tip swings down to z 5.873 (the part frame, mm; the gauge "
-      "point's: the tool's length is not known), below the last safe height z 10.431 the program's first "
-      "rapid put it at after the last cut; retract Z to its reference point (G91 G28 Z0.) before the rotary "
-      "axes turn\nG0 A0. B0.\n   ^\n"
+      edited_check(unwind, "head-head-5axis", "UNWIND.nc", "G69", "G69\nG91 G28 Z0.\nG90\nG49\n", "G69\n") ==
+      "UNWIND.nc:25:4: error: channel 1: the rapid turns the rotary axes (B 20 to 0) with tool-tip control "
+      "off and the tool not at home: the tip swings down to z -3.092 (the part frame, mm; the gauge point's: "
+      "the tool's length is not known), below z 15.000, the highest the program has fed a tool from or to: "
+      "the work reaches that high; retract Z to its reference point (G91 G28 Z0.) before the rotary axes "
+      "turn\nG0 A0. B0.\n   ^\n"
       "check: 1 channel, 0 waits paired, 1 error\n");
 }
