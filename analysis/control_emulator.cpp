@@ -108,8 +108,11 @@ struct control_emulator::impl {
       channels.back().chucks.assign(m.spindles.size(), {});
       // A mill's chain (a lathe's B head indexes at home, its X a diameter: not followed here).
       const axis_def* x = m.channels[i].axis('X');
-      if (const kinematic_chain* k = m.chain(static_cast<int>(i) + 1);
-          k && !k->rotaries.empty() && !m.channels[i].head_index.present() && !(x && x->diameter))
+      const kinematic_chain* k = m.chain(static_cast<int>(i) + 1);
+      bool head = false;  // only a head swings the tip (a table turns the part: not held)
+      for (const rotary_axis_def& r : k ? k->rotaries : std::vector<rotary_axis_def>{})
+        head = head || r.kind == rotary_kind::head;
+      if (head && !m.channels[i].head_index.present() && !(x && x->diameter))
         channels.back().sweep.emplace(m, *k, static_cast<int>(i) + 1,
                                       tool_change_code(m.channels[i].tool_call));
       if (m.channels[i].head_index.present()) {

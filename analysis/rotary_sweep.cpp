@@ -19,6 +19,18 @@ namespace {
 // 5.7°), is no swing into the work.
 constexpr double sag_allowed = 0.5;
 
+// With the tool's length not known, a finding must hold for every tool from the gauge point (0)
+// up to `long_tool` mm, tried every `length_step` mm (a joints program's words depend on the
+// length they were computed for, and the tip's height at each tool axis with it).
+constexpr double long_tool = 300, length_step = 50;
+
+// A height linear in the tool's length L (every transform of the tip is affine in it):
+// at0 + L per_mm.
+struct height {
+  double at0 = 0, per_mm = 0;
+  double at(double l) const { return at0 + l * per_mm; }
+};
+
 int g100(double g) { return static_cast<int>(std::lround(g * 100)); }
 
 // The G number of a machine code ("G43.4" -> 4340); -1 when it has none.
@@ -49,8 +61,22 @@ struct rotary_sweep::impl {
     index_g = code_g(c.plane_index);
     plane_off_g = code_g(c.plane_off);
     units(false);
+    new_tool(-1);
     // With only heads the tip's height is Z's and the heads' alone: X and Y need not be known.
     heads_only = plan.table_count == 0;
+    axis_of.fill(-1);
+    for (int i = 0; i < 3; ++i)
+      if (linear_address[static_cast<std::size_t>(i)] >= 'A' &&
+          linear_address[static_cast<std::size_t>(i)] <= 'Z')
+        axis_of[static_cast<std::size_t>(linear_address[static_cast<std::size_t>(i)] - 'A')] =
+            static_cast<signed char>(i);
+    for (int i = 0; i < plan.rotary_count; ++i)
+      if (rotary_address[static_cast<std::size_t>(i)] >= 'A' &&
+          rotary_address[static_cast<std::size_t>(i)] <= 'Z')
+        axis_of[static_cast<std::size_t>(rotary_address[static_cast<std::size_t>(i)] - 'A')] =
+            static_cast<signed char>(3 + i);
+    for (const rotary_axis_def& r : c.rotaries)
+      reach += std::sqrt(r.point.x * r.point.x + r.point.y * r.point.y + r.point.z * r.point.z);
   }
 
   const machine& m;
@@ -61,6 +87,7 @@ struct rotary_sweep::impl {
   bool heads_only = true;
   std::array<char, 3> linear_address{'X', 'Y', 'Z'};
   std::array<char, 2> rotary_address{0, 0};
+  std::array<signed char, 26> axis_of{};  // by letter: 0-2 a linear axis, 3-4 a rotary one, -1 none
   int tcp_g = -1, off_g = -1, length_g = -1, plane_g = -1, index_g = -1, plane_off_g = -1;
   double increment = 0.001;  // what a word without a decimal point counts, program units
   double mm = 1;             // mm per program unit (G20: 25.4)
@@ -80,13 +107,26 @@ struct rotary_sweep::impl {
   vec3 frame_axis{0, 0, 1};
   std::array<axis_value, 3> flin{};
   int pending_tool = -1;  // a T word waiting for the tool change code
-  double tool_length = 0;
+  // The tool lengths followed: the tool's own, or 0 to long_tool where it is not known.
+  std::vector<double> lengths;
   bool length_known = false;
+  // Where G69 left the linear axes depends on the length (the plane's tip put back with the
+  // heads as they stand): per mm of it; an absolute word of the axis ends it.
+  std::array<double, 3> shift{};
+  // The heads' part of the transform at `offset_at` (tip_height()), at L = 0 and per mm of L.
+  mutable bool offset_cached = false;
+  mutable std::array<double, 2> offset_at{};
+  mutable vec3 offset0{}, offset_per_mm{};
   // The work's top as far as the program has cut: the highest tip of any feed block, where it
-  // starts and where it ends, since the program began.
+  // starts and where it ends, since the program began; per length followed.
   bool has_top = false;
-  double top = 0;
-  int top_line = 0;
+  std::vector<double> top;
+  // under_top(): the last exact feed height, its Z word, the heads' turn since (radians), and
+  // where the last feed block ended; `reach`: the heads' points' distances from the gauge point.
+  bool bounded = false;
+  double ref_z = 0, travel = 0, last_z = 0, reach = 0;
+  height ref_height;
+  std::array<double, 2> last_r{};
   bool said = false;
 
   void units(bool inch) {
@@ -117,25 +157,48 @@ struct rotary_sweep::impl {
     return heads_only || (known(l[0]) && known(l[1]));
   }
 
-  // The tip in the part frame with the axes at `l` (mm; an unknown X or Y as 0: only its height
-  // is read) and `r` (degrees).
-  vec3 tip(const std::array<axis_value, 3>& l, const std::array<double, 2>& r) const {
-    kin::joint_values j;
-    j.linear = {known(l[0]) ? l[0].value : 0.0, known(l[1]) ? l[1].value : 0.0, l[2].value};
+  // The tip's height in the part frame with the axes at `l` (mm; an unknown X or Y as 0: only
+  // the height is read) and `r` (degrees), as a function of the tool's length.
+  height tip_height(const std::array<axis_value, 3>& l, const std::array<double, 2>& r) const {
+    const vec3 at{known(l[0]) ? l[0].value : 0.0, known(l[1]) ? l[1].value : 0.0, l[2].value};
     // Without the length offset the linear axes carry the gauge point, one tool length above
     // where the tip would be at home.
-    if (!length) j.linear = kin::operator-(j.linear, kin::operator*(tool_length, chain.tool_direction));
+    const double lift = length ? 0.0 : chain.tool_direction.z;
+    if (heads_only) {
+      // The linear words are the tip's place with the heads at 0: the heads' part of the
+      // transform is added to them (kin::head_offset), found again only when they turn.
+      if (!offset_cached || r != offset_at) {
+        kin::joint_values j;
+        j.rotary = r;
+        const kin::joint_turns turns(plan, j);
+        offset0 = kin::head_offset(plan, turns, 0);
+        offset_per_mm = kin::operator-(kin::head_offset(plan, turns, 1), offset0);
+        offset_at = r;
+        offset_cached = true;
+      }
+      return {at.z + offset0.z, offset_per_mm.z - lift + shift[2]};
+    }
+    kin::joint_values j;
+    j.linear = at;
     j.rotary = r;
-    return kin::forward(plan, j, tool_length).tip;
+    const double z0 = kin::forward(plan, j, 0).tip.z;
+    j.linear = {at.x - chain.tool_direction.x * (length ? 0.0 : 1.0) + shift[0],
+                at.y - chain.tool_direction.y * (length ? 0.0 : 1.0) + shift[1], at.z - lift + shift[2]};
+    return {z0, kin::forward(plan, j, 1).tip.z - z0};
   }
 
   // The tip's height where the program has put it; none where that is not known.
-  std::optional<double> height_now() const {
-    if (!frame) return height_known(lin, rot) ? std::optional(tip(lin, values(rot)).z) : std::nullopt;
-    if (!plane || !length || tcp) return std::nullopt;
-    for (const axis_value& a : flin)
+  std::optional<height> height_now() const {
+    if (!frame) return height_known(lin, rot) ? std::optional(tip_height(lin, values(rot))) : std::nullopt;
+    return plane_height(flin);
+  }
+
+  // The tip's height at the plane's coordinates `f`: the point itself, whatever the length.
+  std::optional<height> plane_height(const std::array<axis_value, 3>& f) const {
+    if (!frame || !plane || !length || tcp) return std::nullopt;
+    for (const axis_value& a : f)
       if (!known(a)) return std::nullopt;
-    return to_part({flin[0].value, flin[1].value, flin[2].value}, true).z;
+    return height{to_part({f[0].value, f[1].value, f[2].value}, true).z, 0};
   }
 
   static std::array<double, 2> values(const std::array<axis_value, 2>& r) { return {r[0].value, r[1].value}; }
@@ -151,10 +214,12 @@ struct rotary_sweep::impl {
         kin::joint_values angles;
         angles.rotary = values(rot);
         const vec3 t = to_part({flin[0].value, flin[1].value, flin[2].value}, true);
-        const kin::joint_values j = kin::positions(chain, t, angles, tool_length);
+        const kin::joint_values j = kin::positions(chain, t, angles, 0);
         lin = {axis_value{axis_value::kind::known, j.linear.x},
                axis_value{axis_value::kind::known, j.linear.y},
                axis_value{axis_value::kind::known, j.linear.z}};
+        const kin::joint_values j1 = kin::positions(chain, t, angles, 1);
+        shift = {j1.linear.x - j.linear.x, j1.linear.y - j.linear.y, j1.linear.z - j.linear.z};
       } else {
         for (axis_value& a : lin)
           if (a.k == axis_value::kind::known) a.k = axis_value::kind::unknown;
@@ -164,9 +229,18 @@ struct rotary_sweep::impl {
   }
 
   void new_tool(int t) {
-    const std::optional<double> l = m.tool_length(channel, t);
-    tool_length = l.value_or(0);
+    bounded = false;
+    const std::optional<double> l = t >= 0 ? m.tool_length(channel, t) : std::nullopt;
     length_known = l.has_value();
+    lengths.clear();
+    if (l)
+      lengths.push_back(*l);
+    else
+      for (double x = 0; x <= long_tool + 1e-9; x += length_step) lengths.push_back(x);
+    // The work's top stays (the work is the same) for every length of the new tool: where the
+    // last tool's length was not known either, the lowest it may have been.
+    std::vector<double> old = std::move(top);
+    top.assign(lengths.size(), old.empty() ? 0.0 : *std::min_element(old.begin(), old.end()));
   }
 
   // One word of a linear axis (`linear`: in the program's unit, a word without a decimal point
@@ -246,12 +320,10 @@ struct rotary_sweep::impl {
     bool turned = false, table = false;
     std::array<bool, 3> homes{};
     for (const nc_word& w : words) {
-      int li = -1, ri = -1;
-      for (int i = 0; i < 3; ++i)
-        if (w.address == linear_address[static_cast<std::size_t>(i)]) li = i;
-      for (int i = 0; i < plan.rotary_count; ++i)
-        if (w.address == rotary_address[static_cast<std::size_t>(i)]) ri = i;
-      if ((li < 0 && ri < 0) || plane_block) continue;  // G68.2's X Y Z: the plane's origin
+      if (w.address < 'A' || w.address > 'Z') continue;
+      const int a_index = axis_of[static_cast<std::size_t>(w.address - 'A')];
+      if (a_index < 0 || plane_block) continue;  // G68.2's X Y Z: the plane's origin
+      const int li = a_index < 3 ? a_index : -1, ri = a_index >= 3 ? a_index - 3 : -1;
       if (li >= 0 && frame) {
         // The plane's coordinates: the tip's place in it, once its length offset is along its Z.
         axis_value& f = flin[static_cast<std::size_t>(li)];
@@ -279,6 +351,7 @@ struct rotary_sweep::impl {
         // A G28/G30 block moves to its intermediate point first (the words, as a G0 would read
         // them), then home.
         set(a, w, incremental, true);
+        if (!incremental) shift[static_cast<std::size_t>(li)] = 0;
         if (home) homes[static_cast<std::size_t>(li)] = true;
         if (cycle) a.k = axis_value::kind::unknown;  // a cycle's R and bottom
         continue;
@@ -298,8 +371,7 @@ struct rotary_sweep::impl {
       kin::ik_result r;
       r.error = kin::ik_error::unreachable;
       if (plane)
-        r = kin::inverse(plan, kin::tool_pose{{0, 0, 0}, frame_axis}, tool_length, previous,
-                         kin::ik_need::angles);
+        r = kin::inverse(plan, kin::tool_pose{{0, 0, 0}, frame_axis}, 0, previous, kin::ik_need::angles);
       for (int i = 0; i < plan.rotary_count; ++i) {
         const auto u = static_cast<std::size_t>(i);
         if (!r.ok()) {
@@ -330,15 +402,45 @@ struct rotary_sweep::impl {
   // A feed block: the work reaches as high as where it starts and ends.
   void feed_top(const std::array<axis_value, 3>& l0, const std::array<axis_value, 2>& r0,
                 const std::array<axis_value, 3>& f0) {
-    std::optional<double> end = height_now();
-    std::optional<double> start;
-    if (!frame && height_known(l0, r0)) start = tip(l0, values(r0)).z;
-    if (frame && plane && length && !tcp && known(f0[0]) && known(f0[1]) && known(f0[2]))
-      start = to_part({f0[0].value, f0[1].value, f0[2].value}, true).z;
-    if (start) end = end ? std::max(*end, *start) : *start;
-    if (!end) return;
-    if (!has_top || *end > top) top = *end;
+    if (!frame && heads_only && height_known(l0, r0) && height_known(lin, rot) && under_top(l0, r0)) return;
+    const std::optional<height> end = height_now();
+    std::optional<height> start = frame ? plane_height(f0) : std::nullopt;
+    if (!frame && height_known(l0, r0)) start = tip_height(l0, values(r0));
+    if (!end && !start) return;
+    const height e = end.value_or(start.value_or(height{})), b = start.value_or(e);
+    for (std::size_t k = 0; k < lengths.size(); ++k) {
+      const double h = std::max(e.at(lengths[k]), b.at(lengths[k]));
+      if (!has_top || h > top[k]) top[k] = h;
+    }
     has_top = true;
+    // The end's exact height: the reference later feed blocks are bounded from.
+    bounded = false;
+    if (!frame && heads_only && end) {
+      bounded = true;
+      ref_z = lin[2].value;
+      ref_height = *end;
+      travel = 0;
+      last_z = lin[2].value;
+      last_r = values(rot);
+    }
+  }
+
+  // Whether a feed block that continues the last one (it starts where that one ended) cannot
+  // raise the work's top: its height is bounded by the last exact one, the Z words since, and
+  // how far the heads have turned since (the tip moves at most its distance from their axes per
+  // radian), without the trigonometry of an exact height at every block of a joints program.
+  bool under_top(const std::array<axis_value, 3>& l0, const std::array<axis_value, 2>& r0) {
+    if (!bounded || !has_top || l0[2].value != last_z || values(r0) != last_r) return false;
+    const auto r = values(rot);
+    for (int i = 0; i < plan.rotary_count; ++i)
+      travel += std::abs(r[i] - r0[i].value) * std::numbers::pi / 180;
+    last_z = lin[2].value;
+    last_r = r;
+    const double rise = std::max(l0[2].value, lin[2].value) - ref_z;
+    for (std::size_t k = 0; k < lengths.size(); ++k)
+      if (ref_height.at(lengths[k]) + rise + (reach + plan.head_count * lengths[k]) * travel > top[k])
+        return false;
+    return true;
   }
 
   // The tip's path through a rapid that turns a head, against the work's top.
@@ -353,7 +455,12 @@ struct rotary_sweep::impl {
     double most = 0;
     for (int i = 0; i < plan.rotary_count; ++i) most = std::max(most, std::abs(rb[i] - ra[i]));
     const int n = std::clamp(static_cast<int>(std::ceil(most * 4)), 4, 720);  // a quarter degree
-    double low = 0;
+    // The tip below the work's top, carried there by the turn itself: below where the linear
+    // words alone would put it with the heads held (a rapid down to a level the program names
+    // is the program's own; a swing it does not name is the hazard). For every length followed.
+    const std::size_t ks = lengths.size();
+    std::vector<double> low(ks), drop(ks);
+    std::vector<char> found(ks, 0);
     for (int k = 0; k <= n; ++k) {
       const double t = static_cast<double>(k) / n;
       std::array<axis_value, 3> l = l0;
@@ -361,10 +468,15 @@ struct rotary_sweep::impl {
         if (known(l0[i]) && known(lin[i])) l[i].value = l0[i].value + (lin[i].value - l0[i].value) * t;
       std::array<double, 2> r{};
       for (int i = 0; i < 2; ++i) r[i] = ra[i] + (rb[i] - ra[i]) * t;
-      const double z = tip(l, r).z;
-      if (k == 0 || z < low) low = z;
+      const height z = tip_height(l, r), held = tip_height(l, ra);
+      for (std::size_t u = 0; u < ks; ++u) {
+        const double zu = z.at(lengths[u]), hu = held.at(lengths[u]);
+        if (zu >= top[u] - sag_allowed || (found[u] && zu >= low[u]) || hu - zu <= sag_allowed) continue;
+        low[u] = zu, drop[u] = hu - zu, found[u] = 1;
+      }
     }
-    if (low >= top - sag_allowed) return std::nullopt;
+    for (char f : found)
+      if (!f) return std::nullopt;
     said = true;
     std::string turn;
     for (int i = 0; i < plan.rotary_count; ++i)
@@ -374,14 +486,18 @@ struct rotary_sweep::impl {
                             kin::number_text(rb[i]));
     return std::pair{
         column ? column : 1,
-        fmt::format("{} turns the rotary axes ({}) with tool-tip control off and the tool not at home: the "
-                    "tip swings down to z {:.3f} (the part frame, mm; {}), below z {:.3f}, the highest the "
-                    "program has fed a tool from or to: the work reaches that high; retract Z to its "
-                    "reference point (G91 G28 Z0.) before the rotary axes turn",
-                    index ? chain.plane_index : std::string("the rapid"), turn, low,
-                    length_known ? fmt::format("a tool {:g} mm long", tool_length)
-                                 : std::string("the gauge point's: the tool's length is not known"),
-                    top)};
+        fmt::format(
+            "{} turns the rotary axes ({}) with tool-tip control off and the tool not at home: the "
+            "tip swings down to z {:.3f} (the part frame, mm; {}), {:.3f} mm below where the linear "
+            "words put it, and below z {:.3f}, the highest the program has fed a tool from or to: the "
+            "work reaches that high; retract Z to its reference point (G91 G28 Z0.) before the rotary "
+            "axes turn",
+            index ? chain.plane_index : std::string("the rapid"), turn, low[0],
+            length_known ? fmt::format("a tool {:g} mm long", lengths[0])
+                         : fmt::format("the gauge point's: the tool's length is not known, and every tool "
+                                       "up to {:g} mm long swings below too",
+                                       long_tool),
+            drop[0], top[0])};
   }
 };
 

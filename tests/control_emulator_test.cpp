@@ -175,13 +175,15 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
                                 "M30\n%\n";
     return format_sync_text(check_nc_resources({{"P.nc", program}}, m));
   };
-  const auto said = [](int line, const std::string& turn, const std::string& low, const std::string& tool) {
+  const auto said = [](int line, const std::string& turn, const std::string& low, const std::string& tool,
+                       const std::string& drop = "24.123") {
     return fmt::format(
         "P.nc:{}:4: error: channel 1: the rapid turns the rotary axes ({}) with tool-tip control off and the "
-        "tool not at home: the tip swings down to z {} (the part frame, mm; {}), below z 15.000, the highest "
-        "the program has fed a tool from or to: the work reaches that high; retract Z to its reference point "
-        "(G91 G28 Z0.) before the rotary axes turn\n",
-        line, turn, low, tool);
+        "tool not at home: the tip swings down to z {} (the part frame, mm; {}), {} mm below where the "
+        "linear "
+        "words put it, and below z 15.000, the highest the program has fed a tool from or to: the work "
+        "reaches that high; retract Z to its reference point (G91 G28 Z0.) before the rotary axes turn\n",
+        line, turn, low, tool, drop);
   };
   const std::string tool1 = "a tool 100 mm long";
   CHECK(run("") == said(15, "B 20 to 0", "-9.123", tool1) + "G0 A0. B0.\n   ^\n" +
@@ -207,7 +209,7 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
   CHECK(run("G91 G28 Z0.\nG0 Z-50.\nG90\n") == clean_mill);  // not known: not followed
   // G90 G28 goes through its intermediate point, the work's Z0, turning the head on the way (F7).
   CHECK(run("", "G43 H1", "G90 G28 Z0. B0.\n") ==
-        fmt::format("P.nc:15:13{}", said(15, "B 20 to 0", "-0.854", tool1).substr(9)) +
+        fmt::format("P.nc:15:13{}", said(15, "B 20 to 0", "-0.854", tool1, "23.267").substr(9)) +
             "G90 G28 Z0. B0.\n            ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
   // The tool in the spindle is the one M6 changed to, not the one a T word preselects (F9).
   CHECK(run("", "G43 H1", "G0 A0. B0.\n", "T02\n") == said(16, "B 20 to 0", "-9.123", tool1) +
