@@ -107,6 +107,9 @@ struct rotary_sweep::impl {
   vec3 frame_axis{0, 0, 1};
   std::array<axis_value, 3> flin{};
   int pending_tool = -1;  // a T word waiting for the tool change code
+  // A drilling cycle: the level G98 returns to (Z before the cycle), G99's R plane, and which.
+  axis_value initial{}, r_plane{};
+  bool return_to_r = false;
   // The tool lengths followed: the tool's own, or 0 to long_tool where it is not known.
   std::vector<double> lengths;
   bool length_known = false;
@@ -276,7 +279,11 @@ struct rotary_sweep::impl {
       if (g == 2800 || g == 3000) home = true;
       if (g == 5300) machine_block = true;
       if (g == 8000) cycle = false;
-      if (g == 7300 || (g >= 8100 && g <= 8900)) cycle = true;
+      if (g == 7300 || (g >= 8100 && g <= 8900)) {
+        if (!cycle) initial = lin[2];  // the initial level G98 returns to
+        cycle = true;
+      }
+      if (g == 9800 || g == 9900) return_to_r = g == 9900;
       if (g == 400 || g == 1000 || g == 5000 || g == 5200 || g == 6500 || g == 9200) not_a_move = true;
       // Tool-tip control: the chain's code, and Fanuc's two (G43.4, G43.5 with the tool axis).
       if (g == tcp_g || g == 4340 || g == 4350) tcp = length = true;
@@ -396,6 +403,7 @@ struct rotary_sweep::impl {
     for (int i = 0; i < 3; ++i)
       if (homes[static_cast<std::size_t>(i)]) lin[static_cast<std::size_t>(i)].k = axis_value::kind::away;
     if (!rapid && !cycle) feed_top(lin0, rot0, flin0);
+    if (cycle && !frame && absolute) cycle_top(words);
     return finding;
   }
 
@@ -422,6 +430,31 @@ struct rotary_sweep::impl {
       travel = 0;
       last_z = lin[2].value;
       last_r = values(rot);
+    }
+  }
+
+  // A drilling cycle's block: its R plane (a Z under G90 on a mill) is where each hole's feed
+  // starts, at the hole's X and Y: the work reaches that high.
+  void cycle_top(const std::vector<nc_word>& words) {
+    bool moves = false;
+    for (const nc_word& w : words)
+      moves = moves || (w.address >= 'A' && w.address <= 'Z' &&
+                        axis_of[static_cast<std::size_t>(w.address - 'A')] >= 0);
+    // A hole drilled: the tool ends at the initial level (G98) or the R plane (G99).
+    for (const nc_word& w : words)
+      if (w.address == 'R' && w.numeric) r_plane = {axis_value::kind::known, word_value(w)};
+    if (moves) lin[2] = return_to_r ? r_plane : initial;
+    for (const nc_word& w : words) {
+      if (w.address != 'R' || !w.numeric) continue;
+      std::array<axis_value, 3> l = lin;
+      l[2] = {axis_value::kind::known, word_value(w)};
+      if (!height_known(l, rot)) return;
+      const height h = tip_height(l, values(rot));
+      for (std::size_t k = 0; k < lengths.size(); ++k)
+        if (!has_top || h.at(lengths[k]) > top[k]) top[k] = h.at(lengths[k]);
+      has_top = true;
+      bounded = false;
+      return;
     }
   }
 

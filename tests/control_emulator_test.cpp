@@ -176,15 +176,16 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
     return format_sync_text(check_nc_resources({{"P.nc", program}}, m));
   };
   const auto said = [](int line, const std::string& turn, const std::string& low, const std::string& tool,
-                       const std::string& drop = "24.123") {
+                       const std::string& drop = "24.123", const std::string& top = "15.000") {
     return fmt::format(
         "P.nc:{}:4: error: channel 1: the rapid turns the rotary axes ({}) with tool-tip control off and the "
         "tool not at home: the tip swings down to z {} (the part frame, mm; {}), {} mm below where the "
         "linear "
-        "words put it, and below z 15.000, the highest the program has fed a tool from or to: the work "
-        "reaches that high; retract Z to its reference point (G91 G28 Z0.) before the rotary axes turn\n",
-        line, turn, low, tool, drop);
+        "words put it, and below z {}, the highest the program has fed a tool from or to: the work reaches "
+        "that high; retract Z to its reference point (G91 G28 Z0.) before the rotary axes turn\n",
+        line, turn, low, tool, drop, top);
   };
+
   const std::string tool1 = "a tool 100 mm long";
   CHECK(run("") == said(15, "B 20 to 0", "-9.123", tool1) + "G0 A0. B0.\n   ^\n" +
                        "check: 1 channel, 0 waits paired, 1 error\n");
@@ -211,6 +212,13 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
   CHECK(run("", "G43 H1", "G90 G28 Z0. B0.\n") ==
         fmt::format("P.nc:15:13{}", said(15, "B 20 to 0", "-0.854", tool1, "23.267").substr(9)) +
             "G90 G28 Z0. B0.\n            ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
+  // A drilling cycle's R plane is where its feeds start: the work reaches that high (attack 60:
+  // a program whose only cuts were a cycle's was held to nothing).
+  CHECK(format_sync_text(check_nc_resources(
+            {{"P.nc", mill_start + "G54\nG0 A0. B20.\nG0 X0. Y0.\nG43 H1 Z50.\nG0 Z-19.123\n"
+                                   "G98 G81 X30. Y0. Z-40. R-22.123 F100.\nG80\nG0 B0.\nM30\n%\n"}},
+            m)) == said(16, "B 20 to 0", "-19.123", tool1, "24.123", "2.000") +
+                       "G0 B0.\n   ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
   // The tool in the spindle is the one M6 changed to, not the one a T word preselects (F9).
   CHECK(run("", "G43 H1", "G0 A0. B0.\n", "T02\n") == said(16, "B 20 to 0", "-9.123", tool1) +
                                                           "G0 A0. B0.\n   ^\n" +
