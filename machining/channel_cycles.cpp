@@ -283,6 +283,9 @@ void channel_writer::cycle_point(const vec3& p, int line) {
       const bool per_rev = std::string_view(unit).back() == 'R';
       const double value = *f * ((unit[0] == 'I') ? 25.4 : 1.0) * out_per_mm_;
       if (!feed_writable(value, per_rev, "CYCLE", line)) return;
+      // The cycle's own feed (docs/records.md, CYCLE): the FEDRAT it replaces is back at
+      // CYCLE/OFF (review 55 L3: a polar cut after the holes ran at the drill's F150.).
+      if (!fedrat_before_cycle_ && feed_value_ > 0) fedrat_before_cycle_ = std::pair{feed_value_, per_rev_};
       feed_value_ = value;
       feed_mode(per_rev);
     }

@@ -129,6 +129,7 @@ void channel_writer::feed(const feed_event& f, int line) {
                                    "(limits.max_feed)",
                                    mm, max_feed));
   feed_value_ = value;
+  fedrat_before_cycle_.reset();  // the FEDRAT in force from here, after the cycle too
   feed_mode(f.mode == feed_mode::per_rev);
 }
 

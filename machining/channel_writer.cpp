@@ -416,6 +416,11 @@ void channel_writer::process_event(const event& e, bool both) {
           if (d.type == "OFF") {
             cycle_.reset();
             cycle_refused_ = false;
+            if (fedrat_before_cycle_) {
+              feed_value_ = fedrat_before_cycle_->first;
+              feed_mode(fedrat_before_cycle_->second);
+              fedrat_before_cycle_.reset();
+            }
             if (ev_ && !user_cycle_.empty()) [[unlikely]] {
               template_args a;
               a.text = std::move(user_cycle_);

@@ -637,7 +637,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool feed_text_per_rev_ = false;
   bool per_rev_ = false;  // feed mode of the last FEDRAT
   double feed_value_ = 0;
-  std::string pending_g_;    // G40/G41/G42 waiting for the next move
+  std::optional<std::pair<double, bool>> fedrat_before_cycle_;  // a FEDRAT a cycle's feed replaced
+  std::string pending_g_;                                       // G40/G41/G42 waiting for the next move
   bool comp_cl_on_ = false;  // the CL's CUTCOM/LEFT or RIGHT is in force (OFF not yet given)
   std::optional<cycle_event> cycle_;
   int cycle_line_ = 0;                     ///< the CL line of the cycle in force

@@ -527,3 +527,20 @@ TEST_CASE("a drill's rapid out of a hole and round to the next rises before C tu
       "G1 Z-10. F150.\nZ2.\nX-10. Y17.321\nZ-10.\nZ2.\nG0 Z10.\nG0 C120.\nX20. Y0. Z10.\nM5\nM950\nG10.9 X1\n"
       "M202\nM9\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
+
+TEST_CASE("a cycle's own feed ends at CYCLE/OFF: the FEDRAT in force before it is back", "[post][millturn]") {
+  // Review 55 L3: an end mill drills two holes (CYCLE/DRILL ... MMPM,150), then mills a flat in
+  // polar interpolation under the FEDRAT of 400 mm/min given before the cycle. The flat ran at
+  // the drill's F150. (and the comparison with the CL refused the post).
+  const std::string cl =
+      "PARTNO F\nHEAD/1\nTLDATA/MILL,10\nLOADTL/11\nSPINDL/RPM,3000,CLW,LIVE\nFEDRAT/MMPM,400\nRAPID\n"
+      "GOTO/20,0,10,0,0,1\nCYCLE/DRILL,DEPTH,5,RAPTO,2,MMPM,150\nGOTO/20,0,0\nGOTO/-10,17.3205081,0\n"
+      "CYCLE/OFF\nRAPID\nGOTO/40,25,5\nGOTO/40,25,-3\nGOTO/-40,25,-3\nRAPID\nGOTO/-40,25,5\nSPINDL/"
+      "OFF\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "cycle-feed");
+  const std::string h = head1(p, "F.EIA");
+  CHECK(
+      h.substr(h.find("G0 X40. C25. Z5.")) ==
+      "G0 X40. C25. Z5.\nG1 Z-3. F400.\nX-40.\nG0 Z5.\nM5\nM950\nG13.1\nG18\nG10.9 X1\nM202\nM9\nM205\nM305\n"
+      "G0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+}
