@@ -490,10 +490,14 @@ struct rotary_sweep::impl {
     const int n = std::clamp(static_cast<int>(std::ceil(most * 4)), 4, 720);  // a quarter degree
     // The tip below the work's top, carried there by the turn itself: below where the linear
     // words alone would put it with the heads held (a rapid down to a level the program names
-    // is the program's own; a swing it does not name is the hazard). For every length followed.
+    // is the program's own: the unwind at a clearance whose words stay put), or below the
+    // straight line between the tip's own heights at the rapid's ends (the tilt from a point
+    // to the same point tilted, whose words drop to pay for the tilt: review 61). For every
+    // length followed.
     const std::size_t ks = lengths.size();
     std::vector<double> low(ks), drop(ks);
     std::vector<char> found(ks, 0);
+    const height h0 = tip_height(l0, ra), h1 = tip_height(lin, rb);
     for (int k = 0; k <= n; ++k) {
       const double t = static_cast<double>(k) / n;
       std::array<axis_value, 3> l = l0;
@@ -503,9 +507,12 @@ struct rotary_sweep::impl {
       for (int i = 0; i < 2; ++i) r[i] = ra[i] + (rb[i] - ra[i]) * t;
       const height z = tip_height(l, r), held = tip_height(l, ra);
       for (std::size_t u = 0; u < ks; ++u) {
-        const double zu = z.at(lengths[u]), hu = held.at(lengths[u]);
-        if (zu >= top[u] - sag_allowed || (found[u] && zu >= low[u]) || hu - zu <= sag_allowed) continue;
-        low[u] = zu, drop[u] = hu - zu, found[u] = 1;
+        const double zu = z.at(lengths[u]);
+        if (zu >= top[u] - sag_allowed || (found[u] && zu >= low[u])) continue;
+        const double line = h0.at(lengths[u]) + (h1.at(lengths[u]) - h0.at(lengths[u])) * t;
+        const double below = std::max(held.at(lengths[u]), line) - zu;
+        if (below <= sag_allowed) continue;
+        low[u] = zu, drop[u] = below, found[u] = 1;
       }
     }
     for (char f : found)
@@ -522,7 +529,8 @@ struct rotary_sweep::impl {
         fmt::format(
             "{} turns the rotary axes ({}) with tool-tip control off and the tool not at home: the "
             "tip swings down to z {:.3f} (the part frame, mm; {}), {:.3f} mm below where the linear "
-            "words put it, and below z {:.3f}, the highest the program has fed a tool from or to: the "
+            "words, or a straight line between its ends, put it, and below z {:.3f}, the highest the program "
+            "has fed a tool from or to: the "
             "work reaches that high; retract Z to its reference point (G91 G28 Z0.) before the rotary "
             "axes turn",
             index ? chain.plane_index : std::string("the rapid"), turn, low[0],

@@ -180,8 +180,8 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
     return fmt::format(
         "P.nc:{}:4: error: channel 1: the rapid turns the rotary axes ({}) with tool-tip control off and the "
         "tool not at home: the tip swings down to z {} (the part frame, mm; {}), {} mm below where the "
-        "linear "
-        "words put it, and below z {}, the highest the program has fed a tool from or to: the work reaches "
+        "linear words, or a straight line between its ends, put it, and below z {}, the highest the program "
+        "has fed a tool from or to: the work reaches "
         "that high; retract Z to its reference point (G91 G28 Z0.) before the rotary axes turn\n",
         line, turn, low, tool, drop, top);
   };
@@ -212,6 +212,15 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
   CHECK(run("", "G43 H1", "G90 G28 Z0. B0.\n") ==
         fmt::format("P.nc:15:13{}", said(15, "B 20 to 0", "-0.854", tool1, "23.267").substr(9)) +
             "G90 G28 Z0. B0.\n            ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
+  // From vertical to tilted about the same tip point (review 61 C1): the words drop to pay for
+  // the tilt, and half way the tip dips 6 mm below the straight line between its ends, into a
+  // face cut at z 0.
+  CHECK(format_sync_text(check_nc_resources(
+            {{"P.nc", mill_start + "G54\nG0 A0. B0.\nG0 X0. Y0.\nG43 H1 Z5.\nG1 Z0. F500.\nX-30.\nG0 Z3.\n"
+                                   "G0 X136.808 Z-21.123 B20.\nM30\n%\n"}},
+            m)) ==
+        fmt::format("P.nc:16:22{}", said(16, "B 0 to 20", "-2.985", tool1, "5.985", "5.000").substr(9)) +
+            "G0 X136.808 Z-21.123 B20.\n                     ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
   // A drilling cycle's R plane is where its feeds start: the work reaches that high (attack 60:
   // a program whose only cuts were a cycle's was held to nothing).
   CHECK(format_sync_text(check_nc_resources(
