@@ -19,6 +19,10 @@ namespace {
 // 5.7°), is no swing into the work.
 constexpr double sag_allowed = 0.5;
 
+// mm: how far above its end a feed down may have started cutting (a plunge from the CAM's feed
+// plane; an approach at feed from the clearance is taken from this far above its end).
+constexpr double plunge_above = 10;
+
 // With the tool's length not known, a finding must hold for every tool from the gauge point (0)
 // up to `long_tool` mm, tried every `length_step` mm (a joints program's words depend on the
 // length they were computed for, and the tip's height at each tool axis with it).
@@ -97,7 +101,7 @@ struct rotary_sweep::impl {
   std::array<axis_value, 3> lin{};
   std::array<axis_value, 2> rot{};
   bool absolute = true;
-  int motion = -1;
+  int motion = 0;  // a Fanuc control starts in G00
   bool tcp = false, length = false, frame = false, cycle = false;
   // A tilted working plane (G68.2): its origin and Euler angles, its Z in the part frame, and
   // the tip's place in its coordinates.
@@ -124,6 +128,9 @@ struct rotary_sweep::impl {
   // starts and where it ends, since the program began; per length followed.
   bool has_top = false;
   std::vector<double> top;
+  // The level the last rapid or feed retract left the tip at: feeds there link, not cut.
+  bool has_ceiling = false;
+  height ceiling;
   // under_top(): the last exact feed height, its Z word, the heads' turn since (radians), and
   // where the last feed block ended; `reach`: the heads' points' distances from the gauge point.
   bool bounded = false;
@@ -268,7 +275,8 @@ struct rotary_sweep::impl {
     bool change = false, incremental = !absolute;
     int rotary_column = 0, t_word = -1;
     for (const nc_word& w : words) {
-      if (w.address == 'T' && w.numeric) t_word = static_cast<int>(w.number);
+      if (w.address == 'T' && w.numeric && w.number >= 0 && w.number < 1e9)
+        t_word = static_cast<int>(w.number);
       if (w.address == 'M' && w.numeric && w.number == change_m) change = true;
       if (w.address != 'G' || !w.numeric) continue;
       const int g = g100(w.number);
@@ -318,6 +326,9 @@ struct rotary_sweep::impl {
     // The tool: a T word with the change code (or alone where the tool call has none), or the
     // change code after a T that preselected it.
     if (t_word >= 0) pending_tool = t_word;
+    // The tool change takes Z to its tool-change position, above the work (a machining
+    // centre's M6 macro: attack 62 FP5).
+    if (change && change_m >= 0 && known(lin[2])) lin[2].k = axis_value::kind::away;
     if ((change || change_m < 0) && pending_tool >= 0) {
       new_tool(pending_tool);
       pending_tool = -1;
@@ -326,6 +337,7 @@ struct rotary_sweep::impl {
     const std::array<axis_value, 2> rot0 = rot;
     bool turned = false, table = false;
     std::array<bool, 3> homes{};
+    std::array<bool, 2> rotary_homes{};
     for (const nc_word& w : words) {
       if (w.address < 'A' || w.address > 'Z') continue;
       const int a_index = axis_of[static_cast<std::size_t>(w.address - 'A')];
@@ -365,6 +377,7 @@ struct rotary_sweep::impl {
       }
       axis_value& a = rot[static_cast<std::size_t>(ri)];
       set(a, w, incremental && !machine_block, false);
+      if (home) rotary_homes[static_cast<std::size_t>(ri)] = true;
       if (!rotary_column) rotary_column = w.column;
       const bool moved = !known(rot0[static_cast<std::size_t>(ri)]) || !known(a) ||
                          std::abs(a.value - rot0[static_cast<std::size_t>(ri)].value) > 1e-9;
@@ -402,7 +415,27 @@ struct rotary_sweep::impl {
       finding = swing(lin0, rot0, index, rotary_column);
     for (int i = 0; i < 3; ++i)
       if (homes[static_cast<std::size_t>(i)]) lin[static_cast<std::size_t>(i)].k = axis_value::kind::away;
-    if (!rapid && !cycle) feed_top(lin0, rot0, flin0);
+    // G28 B..: from its intermediate point the head turns on to its reference point (0), with
+    // the linear axes the block names at home and the others where they stand (attack 62 M1:
+    // `G91 G28 B0.` at the clearance was never followed, and B kept its old angle).
+    if (rotary_homes[0] || rotary_homes[1]) {
+      const std::array<axis_value, 3> l_mid = lin;
+      const std::array<axis_value, 2> r_mid = rot;
+      bool moved = false;
+      for (std::size_t i = 0; i < 2; ++i)
+        if (rotary_homes[i]) {
+          moved = moved || !known(rot[i]) || rot[i].value != 0;
+          rot[i] = {axis_value::kind::known, 0};
+        }
+      if (moved && !finding && !tcp && !table && !said && !frame)
+        finding = swing(l_mid, r_mid, false, rotary_column);
+    }
+    if (rapid) {
+      // A rapid's end: the level later feeds at or above it link at (a retract, not a cut).
+      if (const std::optional<height> h = height_now()) ceiling = *h, has_ceiling = true;
+    } else if (!cycle) {
+      feed_top(lin0, rot0, flin0);
+    }
     if (cycle && !frame && absolute) cycle_top(words);
     return finding;
   }
@@ -410,16 +443,36 @@ struct rotary_sweep::impl {
   // A feed block: the work reaches as high as where it starts and ends.
   void feed_top(const std::array<axis_value, 3>& l0, const std::array<axis_value, 2>& r0,
                 const std::array<axis_value, 3>& f0) {
+    // (A feed that cannot reach the top is passed over, a retract's ceiling with it: only a feed
+    // above the top could have been taken for a cut by a ceiling missed there, and a feed that
+    // ends above the top is never passed over.)
     if (!frame && heads_only && height_known(l0, r0) && height_known(lin, rot) && under_top(l0, r0)) return;
     const std::optional<height> end = height_now();
     std::optional<height> start = frame ? plane_height(f0) : std::nullopt;
     if (!frame && height_known(l0, r0)) start = tip_height(l0, values(r0));
     if (!end && !start) return;
     const height e = end.value_or(start.value_or(height{})), b = start.value_or(e);
+    // What a feed says of the work (attack 62 FP1: a feed at the clearance made the clearance
+    // the work's top): a feed up (a retract at feed) cuts at its start, and its end is the level
+    // later feeds link at; a feed at or above that level, or at the last rapid's, links; a feed
+    // down cuts from at most `plunge_above` over its end (an approach at feed from the clearance
+    // starts far above the work, a plunge from the feed plane a few mm).
+    const bool up = e.at(lengths[0]) > b.at(lengths[0]) + sag_allowed;
+    bool any = false;
     for (std::size_t k = 0; k < lengths.size(); ++k) {
-      const double h = std::max(e.at(lengths[k]), b.at(lengths[k]));
+      const double eu = e.at(lengths[k]), bu = b.at(lengths[k]);
+      double h = 0;
+      if (up)
+        h = bu;
+      else if (has_ceiling && eu >= ceiling.at(lengths[k]) - sag_allowed)
+        continue;
+      else
+        h = std::max(eu, std::min(bu, eu + plunge_above));
       if (!has_top || h > top[k]) top[k] = h;
+      any = true;
     }
+    if (up) ceiling = e, has_ceiling = true;
+    if (!any) return;
     has_top = true;
     // The end's exact height: the reference later feed blocks are bounded from.
     bounded = false;
@@ -490,10 +543,9 @@ struct rotary_sweep::impl {
     const int n = std::clamp(static_cast<int>(std::ceil(most * 4)), 4, 720);  // a quarter degree
     // The tip below the work's top, carried there by the turn itself: below where the linear
     // words alone would put it with the heads held (a rapid down to a level the program names
-    // is the program's own: the unwind at a clearance whose words stay put), or below the
-    // straight line between the tip's own heights at the rapid's ends (the tilt from a point
-    // to the same point tilted, whose words drop to pay for the tilt: review 61). For every
-    // length followed.
+    // is the program's own: the unwind at a clearance whose words stay put), or below both of
+    // the tip's own heights at the rapid's ends (the tilt from a point to the same point tilted,
+    // whose words drop to pay for the tilt: review 61). For every length followed.
     const std::size_t ks = lengths.size();
     std::vector<double> low(ks), drop(ks);
     std::vector<char> found(ks, 0);
@@ -509,8 +561,8 @@ struct rotary_sweep::impl {
       for (std::size_t u = 0; u < ks; ++u) {
         const double zu = z.at(lengths[u]);
         if (zu >= top[u] - sag_allowed || (found[u] && zu >= low[u])) continue;
-        const double line = h0.at(lengths[u]) + (h1.at(lengths[u]) - h0.at(lengths[u])) * t;
-        const double below = std::max(held.at(lengths[u]), line) - zu;
+        const double ends = std::min(h0.at(lengths[u]), h1.at(lengths[u]));
+        const double below = std::max(held.at(lengths[u]), ends) - zu;
         if (below <= sag_allowed) continue;
         low[u] = zu, drop[u] = below, found[u] = 1;
       }
@@ -529,7 +581,7 @@ struct rotary_sweep::impl {
         fmt::format(
             "{} turns the rotary axes ({}) with tool-tip control off and the tool not at home: the "
             "tip swings down to z {:.3f} (the part frame, mm; {}), {:.3f} mm below where the linear "
-            "words, or a straight line between its ends, put it, and below z {:.3f}, the highest the program "
+            "words, or both its ends, put it, and below z {:.3f}, the highest the program "
             "has fed a tool from or to: the "
             "work reaches that high; retract Z to its reference point (G91 G28 Z0.) before the rotary "
             "axes turn",

@@ -176,11 +176,11 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
     return format_sync_text(check_nc_resources({{"P.nc", program}}, m));
   };
   const auto said = [](int line, const std::string& turn, const std::string& low, const std::string& tool,
-                       const std::string& drop = "24.123", const std::string& top = "15.000") {
+                       const std::string& drop = "24.123", const std::string& top = "14.123") {
     return fmt::format(
         "P.nc:{}:4: error: channel 1: the rapid turns the rotary axes ({}) with tool-tip control off and the "
         "tool not at home: the tip swings down to z {} (the part frame, mm; {}), {} mm below where the "
-        "linear words, or a straight line between its ends, put it, and below z {}, the highest the program "
+        "linear words, or both its ends, put it, and below z {}, the highest the program "
         "has fed a tool from or to: the work reaches "
         "that high; retract Z to its reference point (G91 G28 Z0.) before the rotary axes turn\n",
         line, turn, low, tool, drop, top);
@@ -213,7 +213,7 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
         fmt::format("P.nc:15:13{}", said(15, "B 20 to 0", "-0.854", tool1, "23.267").substr(9)) +
             "G90 G28 Z0. B0.\n            ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
   // From vertical to tilted about the same tip point (review 61 C1): the words drop to pay for
-  // the tilt, and half way the tip dips 6 mm below the straight line between its ends, into a
+  // the tilt, and half way the tip dips 6 mm below both its ends, into a
   // face cut at z 0.
   CHECK(format_sync_text(check_nc_resources(
             {{"P.nc", mill_start + "G54\nG0 A0. B0.\nG0 X0. Y0.\nG43 H1 Z5.\nG1 Z0. F500.\nX-30.\nG0 Z3.\n"
@@ -228,6 +228,19 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
                                    "G98 G81 X30. Y0. Z-40. R-22.123 F100.\nG80\nG0 B0.\nM30\n%\n"}},
             m)) == said(16, "B 20 to 0", "-19.123", tool1, "24.123", "2.000") +
                        "G0 B0.\n   ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
+  // G28 turns the head on from its intermediate point to its reference point, where the block
+  // leaves Z (attack 62 M1): `G91 G28 B0.` at the clearance is the unwind.
+  CHECK(run("", "G43 H1", "G91 G28 B0.\nG90\n") ==
+        fmt::format("P.nc:15:9{}", said(15, "B 20 to 0", "-9.123", tool1).substr(9)) +
+            "G91 G28 B0.\n        ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
+  // A feed from the clearance, or back up to it, is no cut there (attack 62 FP1): unwound 40 mm
+  // over the cut's start, the tip stays clear.
+  CHECK(format_sync_text(check_nc_resources(
+            {{"P.nc", mill_start + "G54\nG0 A0. B20.\nG0 X0. Y0.\nG43 H1 Z100.\nG1 Z-20. F500.\nX20.\n"
+                                   "G1 Z40.\nG0 A0. B0.\nM30\n%\n"}},
+            m)) == clean_mill);
+  // The tool change takes Z to the tool-change position (attack 62 FP5).
+  CHECK(run("T01 M6\n") == clean_mill);
   // The tool in the spindle is the one M6 changed to, not the one a T word preselects (F9).
   CHECK(run("", "G43 H1", "G0 A0. B0.\n", "T02\n") == said(16, "B 20 to 0", "-9.123", tool1) +
                                                           "G0 A0. B0.\n   ^\n" +

@@ -88,7 +88,7 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
       "UNWIND.nc:25:4: error: channel 1: the rapid turns the rotary axes (B 20 to 0) with tool-tip control "
       "off and the tool not at home: the tip swings down to z -3.092 (the part frame, mm; the gauge point's: "
       "the tool's length is not known, and every tool up to 300 mm long swings below too), 18.092 mm below "
-      "where the linear words, or a straight line between its ends, put it, and below z 15.000, the highest "
+      "where the linear words, or both its ends, put it, and below z 5.000, the highest "
       "the program has fed a tool from or to: "
       "the work reaches that high; retract Z to its reference point (G91 G28 Z0.) before the rotary axes "
       "turn\nG0 A0. B0.\n   ^\n"
