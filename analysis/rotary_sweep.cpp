@@ -23,6 +23,11 @@ constexpr double sag_allowed = 0.5;
 // plane; an approach at feed from the clearance is taken from this far above its end).
 constexpr double plunge_above = 10;
 
+// mm: how far above the work a feed down starts at least (a CAM's feed plane: the Autodesk
+// Fusion default "feed height" is 5 mm over the stock's top, NX's engage distance 3 mm;
+// UNVERIFIED for every CAM): a plunge cuts from no higher than this below its start.
+constexpr double feed_plane_above = 2;
+
 // With the tool's length not known, a finding must hold for every tool from the gauge point (0)
 // up to `long_tool` mm, tried every `length_step` mm (a joints program's words depend on the
 // length they were computed for, and the tip's height at each tool axis with it).
@@ -456,7 +461,8 @@ struct rotary_sweep::impl {
     // the work's top): a feed up (a retract at feed) cuts at its start, and its end is the level
     // later feeds link at; a feed at or above that level, or at the last rapid's, links; a feed
     // down cuts from at most `plunge_above` over its end (an approach at feed from the clearance
-    // starts far above the work, a plunge from the feed plane a few mm).
+    // starts far above the work) and `feed_plane_above` under its start (a plunge starts from
+    // the CAM's feed plane, a few mm over the work: attack 62 FP4, a link at that height).
     const bool up = e.at(lengths[0]) > b.at(lengths[0]) + sag_allowed;
     bool any = false;
     for (std::size_t k = 0; k < lengths.size(); ++k) {
@@ -467,7 +473,7 @@ struct rotary_sweep::impl {
       else if (has_ceiling && eu >= ceiling.at(lengths[k]) - sag_allowed)
         continue;
       else
-        h = std::max(eu, std::min(bu, eu + plunge_above));
+        h = std::max(eu, std::min(bu - feed_plane_above, eu + plunge_above));
       if (!has_top || h > top[k]) top[k] = h;
       any = true;
     }

@@ -176,7 +176,7 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
     return format_sync_text(check_nc_resources({{"P.nc", program}}, m));
   };
   const auto said = [](int line, const std::string& turn, const std::string& low, const std::string& tool,
-                       const std::string& drop = "24.123", const std::string& top = "14.123") {
+                       const std::string& drop = "24.123", const std::string& top = "13.000") {
     return fmt::format(
         "P.nc:{}:4: error: channel 1: the rapid turns the rotary axes ({}) with tool-tip control off and the "
         "tool not at home: the tip swings down to z {} (the part frame, mm; {}), {} mm below where the "
@@ -219,7 +219,7 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
             {{"P.nc", mill_start + "G54\nG0 A0. B0.\nG0 X0. Y0.\nG43 H1 Z5.\nG1 Z0. F500.\nX-30.\nG0 Z3.\n"
                                    "G0 X136.808 Z-21.123 B20.\nM30\n%\n"}},
             m)) ==
-        fmt::format("P.nc:16:22{}", said(16, "B 0 to 20", "-2.985", tool1, "5.985", "5.000").substr(9)) +
+        fmt::format("P.nc:16:22{}", said(16, "B 0 to 20", "-2.985", tool1, "5.985", "3.000").substr(9)) +
             "G0 X136.808 Z-21.123 B20.\n                     ^\ncheck: 1 channel, 0 waits paired, 1 error\n");
   // A drilling cycle's R plane is where its feeds start: the work reaches that high (attack 60:
   // a program whose only cuts were a cycle's was held to nothing).
