@@ -111,6 +111,7 @@ struct rotary_sweep::impl {
   // A tilted working plane (G68.2): its origin and Euler angles, its Z in the part frame, and
   // the tip's place in its coordinates.
   bool plane = false;
+  bool xy_turned = false;  // under a G68 rotation about Z: X and Y words are turned coordinates
   vec3 origin{};
   std::array<double, 3> euler{};
   vec3 frame_axis{0, 0, 1};
@@ -321,10 +322,20 @@ struct rotary_sweep::impl {
         frame_axis = to_part({0, 0, 1}, false);
         for (axis_value& a : flin) a.k = axis_value::kind::unknown;
       } else if (g == 6800) {
-        frame = true;  // a rotation the plane's words give some other way: its moves not followed
-        plane = false;
+        // G68 X Y R in the XY plane turns X and Y about Z: heights stay Z's (attack 62 M2). About
+        // another axis (I, J) it is a frame whose moves are not followed.
+        bool about_z = true;
+        for (const nc_word& a : words)
+          if ((a.address == 'I' || a.address == 'J') && (!a.numeric || a.number != 0)) about_z = false;
+        if (about_z) {
+          xy_turned = true;
+        } else {
+          frame = true;
+          plane = false;
+        }
         not_a_move = true;
       }
+      if (g == 6900) xy_turned = false;
       if (g == index_g) index = true;
       if (g == plane_off_g) leave_frame();
     }
@@ -375,6 +386,7 @@ struct rotary_sweep::impl {
         // A G28/G30 block moves to its intermediate point first (the words, as a G0 would read
         // them), then home.
         set(a, w, incremental, true);
+        if (xy_turned && li < 2) a.k = axis_value::kind::unknown;
         if (!incremental) shift[static_cast<std::size_t>(li)] = 0;
         if (home) homes[static_cast<std::size_t>(li)] = true;
         if (cycle) a.k = axis_value::kind::unknown;  // a cycle's R and bottom

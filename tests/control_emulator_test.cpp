@@ -239,6 +239,10 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
             {{"P.nc", mill_start + "G54\nG0 A0. B20.\nG0 X0. Y0.\nG43 H1 Z100.\nG1 Z-20. F500.\nX20.\n"
                                    "G1 Z40.\nG0 A0. B0.\nM30\n%\n"}},
             m)) == clean_mill);
+  // A G68 rotation about Z turns X and Y, not heights: the unwind under it is followed (attack
+  // 62 M2).
+  CHECK(run("G68 X0. Y0. R30.\n") == said(16, "B 20 to 0", "-9.123", tool1) + "G0 A0. B0.\n   ^\n" +
+                                         "check: 1 channel, 0 waits paired, 1 error\n");
   // The tool change takes Z to the tool-change position (attack 62 FP5).
   CHECK(run("T01 M6\n") == clean_mill);
   // The tool in the spindle is the one M6 changed to, not the one a T word preselects (F9).
