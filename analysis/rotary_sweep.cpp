@@ -134,6 +134,30 @@ struct rotary_sweep::impl {
   // starts and where it ends, since the program began; per length followed.
   bool has_top = false;
   std::vector<double> top;
+  // The other work offsets' tops (by G code x 100; G54.1 Pn as 100000 + n), and the one in force.
+  struct part_top {
+    int offset = 0;
+    bool has = false;
+    std::vector<double> top;
+  };
+  std::vector<part_top> other_parts;
+  int offset_in_force = 0;
+
+  void use_offset(int id) {
+    if (id == offset_in_force) return;
+    other_parts.push_back({offset_in_force, has_top, top});
+    has_top = false;
+    top.assign(lengths.size(), 0.0);
+    for (auto p = other_parts.begin(); p != other_parts.end(); ++p)
+      if (p->offset == id) {
+        has_top = p->has && p->top.size() == lengths.size();
+        if (has_top) top = p->top;
+        other_parts.erase(p);
+        break;
+      }
+    offset_in_force = id;
+    bounded = false;
+  }
   // The level the last rapid or feed retract left the tip at: feeds there link, not cut.
   bool has_ceiling = false;
   height ceiling;
@@ -336,6 +360,15 @@ struct rotary_sweep::impl {
         not_a_move = true;
       }
       if (g == 6900) xy_turned = false;
+      if ((g >= 5400 && g <= 5900 && g % 100 == 0) || g == 5410) {
+        // Each work offset is a part of its own, with a top of its own (attack 62 FP6: a second
+        // part in G55 with another Z zero was held to the first's top).
+        int id = g;
+        if (g == 5410)
+          for (const nc_word& a : words)
+            if (a.address == 'P' && a.numeric) id = 100000 + static_cast<int>(a.number);
+        use_offset(id);
+      }
       if (g == index_g) index = true;
       if (g == plane_off_g) leave_frame();
     }

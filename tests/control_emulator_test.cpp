@@ -243,6 +243,12 @@ TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's t
   // 62 M2).
   CHECK(run("G68 X0. Y0. R30.\n") == said(16, "B 20 to 0", "-9.123", tool1) + "G0 A0. B0.\n   ^\n" +
                                          "check: 1 channel, 0 waits paired, 1 error\n");
+  // Each work offset is a part of its own (attack 62 FP6): a second part in G55, whose Z zero
+  // is 100 mm lower, is not held to the first part's top.
+  CHECK(format_sync_text(check_nc_resources(
+            {{"P.nc", mill_start + "G54\nG0 A0. B20.\nG0 X0. Y0.\nG43 H1 Z105.\nG1 Z98. F500.\nX40.\n"
+                                   "G0 Z160.\nG55 G0 X0. Y0.\nG0 Z40.\nG0 B-20.\nM30\n%\n"}},
+            m)) == clean_mill);
   // The tool change takes Z to the tool-change position (attack 62 FP5).
   CHECK(run("T01 M6\n") == clean_mill);
   // The tool in the spindle is the one M6 changed to, not the one a T word preselects (F9).
