@@ -383,6 +383,10 @@ bool channel_writer::c_frame_move(bool rapid, double& x, double& y, double& z, i
     position_c(std::atan2(y, x) * deg);
     std::tie(u, v) = c_frame(x, y);
   }
+  // A drill fed at a C position (a hole drilled with moves, not a canned cycle) holds the part
+  // with C clamped, as a cycle does (review 61 B3; the Fusion "Mazak Integrex i" post clamps C
+  // for its C-axis positioning).
+  if (!rapid && m_.milling.face_holes == "c_axis" && kind_ == tool_kind::drill) clamp_c();
   x = u;
   y = v;
   return true;

@@ -522,10 +522,12 @@ TEST_CASE("a drill's rapid out of a hole and round to the next rises before C tu
       "GOTO/-10,17.3205081,-10\nGOTO/-10,17.3205081,2\nRAPID\nGOTO/-10,17.3205081,10\nSPINDL/OFF\nFINI\n";
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "rise");
   const std::string h = head1(p, "L.EIA");
-  CHECK(
-      h.substr(h.find("G1 Z-10. F150.")) ==
-      "G1 Z-10. F150.\nZ2.\nX-10. Y17.321\nZ-10.\nZ2.\nG0 Z10.\nG0 C120.\nX20. Y0. Z10.\nM5\nM950\nG10.9 X1\n"
-      "M202\nM9\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  // C is clamped for the holes (M210 before the first feed) and unclamped to turn (review 61 B3).
+  CHECK(h.find("Z2.\nM210\nG1 Z-10. F150.") != std::string::npos);
+  CHECK(h.substr(h.find("G1 Z-10. F150.")) ==
+        "G1 Z-10. F150.\nZ2.\nX-10. Y17.321\nZ-10.\nZ2.\nG0 Z10.\nM212\nG0 C120.\nX20. Y0. "
+        "Z10.\nM5\nM950\nG10.9 X1\n"
+        "M202\nM9\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("a cycle's own feed ends at CYCLE/OFF: the FEDRAT in force before it is back", "[post][millturn]") {
