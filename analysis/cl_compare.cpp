@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "analysis/cl_compare_arc.hpp"
+#include "analysis/cl_compare_axis.hpp"
 #include "analysis/cl_compare_turn.hpp"
 #include "analysis/program_units.hpp"
 #include "analysis/spindle_state.hpp"
@@ -25,6 +26,7 @@ namespace twinpost {
 namespace {
 
 constexpr double tip_tolerance = 0.002;   // mm (issue 37)
+constexpr double axis_tolerance = 0.001;  // degrees, the tool axis (issue 37)
 constexpr double feed_tolerance = 0.005;  // of the CL's feed (issue 37)
 constexpr double turn_chord =
     0.01;  // mm a fed C turn may leave the CL's line (the chains' chordal tolerance)
@@ -82,6 +84,7 @@ struct cl_comparison::impl {
     gms_only = spindles.needs_gms();
     if (ch.head_index.present()) {
       head_address = ch.head_index.address;
+      head_dir = head_turn::of(ch.head_index);
       head_offset = !ch.head_index.offset_turning.empty() || !ch.head_index.offset_live.empty();
       for (const std::string* code : {&ch.head_index.offset_turning, &ch.head_index.offset_live})
         if (!code->empty()) head_codes.push_back(split_nc_words(*code));
@@ -207,6 +210,14 @@ struct cl_comparison::impl {
   std::vector<std::vector<nc_word>> head_codes;
   std::string head_wrong;
   bool said_head = false;
+  // Where the head points the tool: its angle as the program left it (degrees; none where not
+  // known: before its first index, after a tool change, which may turn it at the changer, or a
+  // reference return) and the block that set it.
+  head_turn head_dir;
+  std::optional<double> head_deg;
+  std::string head_text;
+  int head_line = 0;
+  bool said_axis = false;
   // The C axis of a channel that has one: the part turned under X and Y (the writer's frame:
   // the program's X, Y are the part's turned by -C about Z).
   bool has_c = false;
@@ -376,6 +387,37 @@ struct cl_comparison::impl {
     head_wrong.assign(text);
   }
 
+  // The head's angle after a block that changed the tool or has the head's word: a tool change
+  // forgets it (the changer may turn the head); the word sets it, absolute under G90 or G53,
+  // added under G91, not known in a reference return (the word is the intermediate point's) or
+  // as an expression. Without a decimal point it counts least increments, as C does.
+  void note_head(const nc_word* w, bool home, bool machine, std::string_view text) {
+    if (!w) return head_deg.reset();
+    const bool incremental = !machine && !absolute;
+    if (!w->numeric || home || (incremental && !head_deg)) return head_deg.reset();
+    const double v = w->point ? w->number : w->number * (m.program.trailing_point ? 0.001 : 1.0);
+    head_deg = incremental ? *head_deg + v : v;
+    head_text.assign(text);
+    head_line = lines;
+  }
+
+  // The tool's axis against the CL's, for a tool the live spindle turns: a turning tool's CL
+  // gives no axis the head is indexed by, and a drill on the centre line stands still while
+  // the part turns (both at the head's turning angle). Once a channel.
+  void compare_axis(const event& e, const std::optional<vec3>& cl_axis, bool in_polar) {
+    if (said_axis || !cl_axis || !head_deg || !head_dir.known()) return;
+    const int sp = spindles.current();
+    if (sp < 0 || !live[static_cast<std::size_t>(sp)]) return;
+    const vec3 a = head_dir.machine_axis(*head_deg);
+    if (in_polar && std::abs(a.x) > 1e-9) return;  // C is a coordinate there: only an axial tool is known
+    const vec3 have = part_axis(a, x_div < 0 ? -1.0 : 1.0, z_sign(), in_polar ? 0.0 : c_turn());
+    if (const std::optional<std::string> why = axis_fault(have, *cl_axis, axis_tolerance)) {
+      said_axis = true;
+      error(e, fmt::format("{}: the head was indexed by `{}` at line {} of the program", *why, head_text,
+                           head_line));
+    }
+  }
+
   // The head's offset is another than its codes give: X Y Z are not the tip (once per channel).
   bool head_offset_wrong(const event& e) {
     if (head_wrong.empty()) return false;
@@ -460,7 +502,8 @@ struct cl_comparison::impl {
     }
     const double c_before = c_deg;
     const bool c_known_before = c_known;
-    bool not_a_move = false, home = false, machine = false, setting = false, m6 = false;
+    bool not_a_move = false, home = false, machine = false, setting = false, m6 = false, tool_call = false;
+    const nc_word* head_word = nullptr;
     const char* home_why = "";
     // Most lines are moves with axis words and an F: only the F is read before the axes.
     const bool plain = (letters & ~(axis_letters | nc_letter('F'))) == 0;
@@ -487,7 +530,7 @@ struct cl_comparison::impl {
             t_pending = t / scale;  // a preselection: the tool changes at M6
           }
           t_text.assign("T").append(w.value);
-          if (!tool_m6) t_active = t_pending;
+          if (!tool_m6) t_active = t_pending, tool_call = true;
         } else {
           t_pending = t_active = t_offset = -1;  // T#1, or a template the tool is not read from
         }
@@ -518,6 +561,7 @@ struct cl_comparison::impl {
         // A head index `G0 G53 B90.`: the tool turned; its tip is X Y Z again once the head's
         // length offset is given (the writer's first move after the index).
         head_due = head_offset;
+        head_word = &w;
         continue;
       }
       if (w.address == 'C' && has_c) {
@@ -754,6 +798,8 @@ struct cl_comparison::impl {
       }
     }
     if (m6) t_active = t_pending;
+    if (m6 || tool_call || head_word) [[unlikely]]
+      note_head(head_word, home, machine, text);
     // The axis words (an arc's centre is measured from where the block starts).
     const double start[3] = {x.value, y.value, z.value};
     const bool start_known = x.k == axis_state::kind::known && z.k == axis_state::kind::known &&
@@ -971,7 +1017,8 @@ struct cl_comparison::impl {
   }
 
   // Returns false when the record is passed over.
-  bool compare(const event& e, const vec3& pos, bool rapid, bool both) {
+  bool compare(const event& e, const vec3& pos, bool rapid, bool both,
+               const std::optional<vec3>& cl_axis = std::nullopt) {
     // The head's offset first: a G49 H0 also makes C unknown, and would pass everything after.
     if (!head_due && head_offset_wrong(e)) return false;
     const bool followed_polar = polar && polar_follow;
@@ -1030,6 +1077,7 @@ struct cl_comparison::impl {
     const bool gauge = needs_length && (!length_on || h_word == 0) && z.k == axis_state::kind::known;
     if (fine(x, x_div, pos.x * cl_mm) && (!with_y || fine(y, zs, pos.y * cl_mm)) && !gauge &&
         fine(z, zs, pos.z * cl_mm)) {
+      compare_axis(e, cl_axis, followed_polar);
       compare_rest(e, rapid);
       return true;
     }
@@ -1070,6 +1118,7 @@ struct cl_comparison::impl {
             fmt::format("the program does not put the tool tip on this record's point (the part frame, mm): "
                         "{}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+    compare_axis(e, cl_axis, followed_polar);
     compare_rest(e, rapid);
     return true;
   }
@@ -1467,7 +1516,7 @@ struct cl_comparison::impl {
               if (cl_cycle && !both)
                 compare_hole(e, d.pos);
               else
-                followed = compare(e, d.pos, d.rapid, both);
+                followed = compare(e, d.pos, d.rapid, both, d.axis);
               // Between two holes the cycle moves at rapid.
               if (followed && !both && !turns_passed())
                 compare_turns(e, d.pos, d.axis, !d.rapid && !cl_cycle);

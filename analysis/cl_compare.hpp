@@ -22,6 +22,7 @@
 //   mode, F x rpm (or F / rpm) at the spindle's speed, CSS at the tip's diameter under its clamp;
 // - S or F given as an expression, and a block under block delete, before a cut.
 // - a CL cycle's hole: the canned cycle block's X, Y (turned by C), or a side cycle's Z;
+// - an indexing head's tool axis for a live tool, against the CL's (analysis/cl_compare_axis);
 // Records it cannot follow yet are passed over, not guessed: a HEAD/BOTH copy, a CL cycle's
 // hole drilled with moves,
 // and while the program has a canned cycle, polar or cylindrical interpolation, a rotated or

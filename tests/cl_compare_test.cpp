@@ -818,9 +818,11 @@ TEST_CASE("cl comparison: a C turn below the CL's move, in a feed move, or off i
   // above hole 1 at C0, then the program's `blocks` for the CL's move to `to` (a rapid or a
   // feed, the tool along `axis`). A C turn runs the tip round the part's axis: it may do so no
   // lower than the CL's move goes, and not at all in a feed move's straight cut.
-  auto run = [](std::vector<const char*> blocks, vec3 to, bool rapid, vec3 axis = {0, 0, 1}) {
+  // (A radial tool: the head at B90, the CL's axis at the second record turned with the part.)
+  auto run = [](std::vector<const char*> blocks, vec3 to, bool rapid, vec3 axis = {0, 0, 1},
+                vec3 axis_to = {0, 0, 1}, const char* index = "G0 G53 B0.") {
     compared c("integrex-i200st", 1);
-    c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "G94", "M108", "G0 G53 B0.", "M107", "M8",
+    c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "G94", "M108", index, "M107", "M8",
              "G0 C0.", "G0 G43 H#3020 X20. Y0. Z2."});
     c.feed(400, feed_mode::per_minute);
     motion_event mv;
@@ -830,6 +832,7 @@ TEST_CASE("cl comparison: a C turn below the CL's move, in a feed move, or off i
     c.cmp.record({c.next++, mv, 1}, false);
     for (const char* b : blocks) c.cmp.line(b);
     mv.pos = to;
+    mv.axis = axis_to;
     mv.rapid = rapid;
     c.cmp.record({c.next++, mv, 1}, false);
     return c.text();
@@ -900,7 +903,7 @@ TEST_CASE("cl comparison: a C turn below the CL's move, in a feed move, or off i
             20 * (1 - std::cos(t / 2))));
   // A radial tool (along x): its height is the distance from the axis. Turned at 15 mm where
   // the CL's move keeps 20.
-  CHECK(run({"G0 X15.", "G0 C120.", "X20."}, hole2, true, {1, 0, 0}) ==
+  CHECK(run({"G0 X15.", "G0 C120.", "X20."}, hole2, true, {1, 0, 0}, {-0.5, s, 0}, "G0 G53 B90.") ==
         "job.cls:12:1: error: channel 1: the program turns C with the tool tip below the CL's move here: the "
         "distance from the axis 15.000 (the part frame, mm), where the CL's move goes no lower than 20.000; "
         "the "
@@ -929,4 +932,84 @@ TEST_CASE("cl comparison: V, Y's increment on a lathe channel with Y, at home af
       "frame, mm): Y is where G28 at line 11 of the program left it, not at the CL's 8.000, after the block "
       "`G0 X80. Z-20.`\n");
   CHECK(c.cmp.compared() == 2);
+}
+
+TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis][cl_compare]") {
+  // The Integrex's upper head (B0 along the spindle axis, B90 across it from the head's side)
+  // with milling tool 12 turning (M3): `index` points it, `c_block` turns the part, and one
+  // rapid record with the CL's tool `axis` is held to the tip and the axis.
+  auto run = [](const char* index, const char* c_block, vec3 pos, vec3 axis,
+                std::vector<const char*> start = {"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3"}) {
+    compared c("integrex-i200st", 1);
+    for (const char* b : start) c.cmp.line(b);
+    c.lines({"M108", index, "M107", c_block, "G0 G43 H#3020 X20. Y0. Z2."});
+    motion_event mv;
+    mv.pos = pos;
+    mv.axis = axis;
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return std::pair{c.text(), c.cmp.compared()};
+  };
+  // Over the face, an axial tool: B0 gives the CL's (0,0,1).
+  CHECK(run("G0 G53 B0.", "G0 C0.", {20, 0, 2}, {0, 0, 1}) == std::pair{std::string(), 1L});
+  CHECK(
+      run("G0 G53 B0.", "G0 C0.", {20, 0, 2}, {1, 0, 0}).first ==
+      "job.cls:10:1: error: channel 1: the CL's tool axis here is (1.0000,0.0000,0.0000), the program's head "
+      "points the tool along (0.0000,0.0000,1.0000) in the part frame (90.000 degrees off): the head was "
+      "indexed by `G0 G53 B0.` at line 10 of the program\n");
+  // Half a degree off the axis (a CL the writer's axial test lets through): the hole would be
+  // drilled 0.5 degrees off.
+  const double t = 0.5 * std::numbers::pi / 180;
+  CHECK(
+      run("G0 G53 B0.", "G0 C0.", {20, 0, 2}, {std::sin(t), 0, std::cos(t)}).first ==
+      "job.cls:10:1: error: channel 1: the CL's tool axis here is (0.0087,0.0000,1.0000), the program's head "
+      "points the tool along (0.0000,0.0000,1.0000) in the part frame (0.500 degrees off): the head was "
+      "indexed by `G0 G53 B0.` at line 10 of the program\n");
+  // A radial tool at B90: at C0 along x; at C90 the part turned a quarter, the tool along y.
+  CHECK(run("G0 G53 B90.", "G0 C0.", {20, 0, 2}, {1, 0, 0}).first.empty());
+  CHECK(run("G0 G53 B90.", "G0 C90.", {0, 20, 2}, {0, 1, 0}).first.empty());
+  CHECK(
+      run("G0 G53 B90.", "G0 C270.", {0, -20, 2}, {0, 1, 0}).first ==
+      "job.cls:10:1: error: channel 1: the CL's tool axis here is (0.0000,1.0000,0.0000), the program's head "
+      "points the tool along (0.0000,-1.0000,0.0000) in the part frame (180.000 degrees off): the head was "
+      "indexed by `G0 G53 B90.` at line 10 of the program\n");
+  // A turning tool (the main spindle turns, M203): its CL gives no axis the head follows.
+  CHECK(run("G0 G53 B0.", "G0 C0.", {10, 0, 2}, {1, 0, 0}, {"T12 M6", "M901", "G97 S800 M203"}) ==
+        std::pair{std::string(), 1L});
+  // The second spindle faces the main one (G55, Z reversed): B180 points the tool at its face.
+  const std::vector<const char*> sub{"T12 M6", "M902", "G55", "M300", "G10.9 X0", "G97 S2500 M3"};
+  CHECK(run("G0 G53 B180.", "G0 C0.", {20, 0, -2}, {0, 0, 1}, sub) == std::pair{std::string(), 1L});
+  CHECK(
+      run("G0 G53 B0.", "G0 C0.", {20, 0, -2}, {0, 0, 1}, sub).first ==
+      "job.cls:10:1: error: channel 1: the CL's tool axis here is (0.0000,0.0000,1.0000), the program's head "
+      "points the tool along (0.0000,0.0000,-1.0000) in the part frame (180.000 degrees off): the head was "
+      "indexed by `G0 G53 B0.` at line 11 of the program\n");
+  // A tool change forgets the angle (the changer may turn the head): until the next index the
+  // axis is not compared (the emulator refuses a cut before it: docs/emulator.md).
+  {
+    compared c("integrex-i200st", 1);
+    c.lines({"T11 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "M108", "G0 G53 B90.", "M107", "G0 C0.",
+             "G0 G43 H#3020 X20. Y0. Z2.", "T12 M6", "G97 S2500 M3", "G0 G43 H#3020 X20. Y0. Z2."});
+    motion_event mv;
+    mv.pos = {20, 0, 2};
+    mv.axis = {0, 0, 1};
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    CHECK(c.text().empty());
+  }
+  // The 31i's path 3: B-90 along the spindle axis, B0 across it.
+  {
+    compared c("fanuc-31i-3path", 3);
+    c.lines({"M6 T1400", "T1414", "G97 S2000 M33", "G0 B0.", "M90", "G0 C0.", "X80. Y0. Z-20."});
+    motion_event mv;
+    mv.pos = {40, 0, -20};
+    mv.axis = {0, 0, 1};
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    CHECK(
+        c.text() ==
+        "job.cls:10:1: error: channel 3: the CL's tool axis here is (0.0000,0.0000,1.0000), the program's "
+        "head points the tool along (1.0000,0.0000,0.0000) in the part frame (90.000 degrees off): the head "
+        "was indexed by `G0 B0.` at line 7 of the program\n");
+  }
 }
