@@ -15,6 +15,7 @@
 #include "analysis/cl_compare_arc.hpp"
 #include "analysis/cl_compare_axis.hpp"
 #include "analysis/cl_compare_turn.hpp"
+#include "analysis/nc_codes.hpp"
 #include "analysis/program_units.hpp"
 #include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
@@ -65,12 +66,9 @@ struct cl_comparison::impl {
     has_y = ch.axis('Y') != nullptr;
     u_incremental = lathe && !ch.axis('U');
     w_incremental = lathe && !ch.axis('W');
-    v_incremental = lathe && has_y && !ch.axis('V');  // G-code system A: V is Y's increment
-    for (const std::string& b : m.program.header)
-      for (const nc_word& w : split_nc_words(b))
-        if (w.address == 'G' && w.numeric && (g10(w.number) == 900 || g10(w.number) == 910)) g90_modes = true;
-    if (!lathe) g90_modes = true;
-    system_c = units_of(m).system_c;  // G70/G71 the units, G20/G21 cycles
+    v_incremental = lathe && has_y && !ch.axis('V');        // G-code system A: V is Y's increment
+    g90_modes = gcode_system_of(m, ch) != gcode_system::a;  // analysis/nc_codes
+    system_c = units_of(m).system_c;                        // G70/G71 the units, G20/G21 cycles
     per_rev_g = code_g10(m.codes.feed_per_rev);
     per_min_g = code_g10(m.codes.feed_per_min);
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "analysis/nc_codes.hpp"
 #include "analysis/rotary_sweep.hpp"
 #include "analysis/spindle_state.hpp"
 #include "machines/macro_variables.hpp"
@@ -47,11 +48,13 @@ struct chuck_state {
 };
 
 struct channel_state {
-  channel_state(const machine& m, int number) : spindles(m, number) {}
+  channel_state(const machine& m, int number)
+      : spindles(m, number), codes(m, m.channels[static_cast<std::size_t>(number - 1)]) {}
   channel_spindles spindles;
+  nc_codes codes;                   // what its G codes make of a block's axis words
   bool offset = false;              // a work offset in force
   int motion = -1;                  // modal G0..G3; -1: unknown
-  bool cycle = false;               // a canned drilling cycle in force
+  bool cycle = false;               // a canned drilling or a lathe's single cycle in force
   bool sync = false;                // spindle synchronisation on
   std::vector<int> start_line;      // per spindle: the block that started it
   std::vector<chuck_state> chucks;  // per spindle, as this channel's blocks left it
@@ -84,17 +87,6 @@ int tool_change_code(const std::string& tool_call) {
     return code;
   }
   return -1;
-}
-
-bool drilling_cycle(double g) {
-  return g == 73 || (g >= 81 && g <= 89 && g == static_cast<int>(g)) || g == 84.2 || g == 84.3;
-}
-
-// G codes whose axis words are no cut: dwell, data setting, reference returns, clamps and
-// coordinate settings, machine coordinates, local frames, the Mazak radius/diameter switch.
-bool not_a_cut(double g) {
-  return g == 4 || g == 10 || g == 10.9 || g == 28 || g == 30 || g == 50 || g == 52 || g == 53 || g == 65 ||
-         g == 68 || g == 68.2 || g == 92 || g == 7.1;
 }
 
 }  // namespace
@@ -188,15 +180,21 @@ struct control_emulator::impl {
     for (const nc_word& w : words) {
       if (w.address == 'G' && w.numeric) {
         const double g = w.number;
-        if (g == 0 || g == 1 || g == 2 || g == 3) {
+        // What the code makes of the block's axis words (analysis/nc_codes): a cycle cuts; a
+        // dwell, data or coordinate setting, reference return, machine coordinates, macro call
+        // or frame does not (a system-A lathe's G92 is its threading cycle, no setting).
+        const axis_words role = c.codes.role(g);
+        if (role == axis_words::motion) {
           c.motion = static_cast<int>(g);
           c.cycle = false;
         }
         if (g == 80) c.cycle = false;
-        if (drilling_cycle(g)) c.cycle = feed_code = true;
+        if (role == axis_words::hole_cycle || role == axis_words::turning_cycle) c.cycle = feed_code = true;
+        if (role == axis_words::repetitive_cycle || role == axis_words::feed_move) feed_code = true;
         if ((g >= 54 && g <= 59 && g == static_cast<int>(g)) || g == 54.1) sets_offset = true;
-        if (g == 92 || g == 50) coordinate_setting = true;
-        if (not_a_cut(g)) no_cut = true;
+        if ((g == 92 || g == 50) && role == axis_words::none) coordinate_setting = true;
+        if (role == axis_words::none || role == axis_words::reference || role == axis_words::machine)
+          no_cut = true;
       } else if (w.address == 'T') {
         tool_call = tool_call || c.change_m < 0;
       } else if (w.address == 'M' && c.change_m >= 0 && w.numeric && w.number == c.change_m) {

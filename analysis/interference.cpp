@@ -1,5 +1,7 @@
 #include "analysis/interference.hpp"
 
+#include "analysis/nc_codes.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -80,12 +82,6 @@ constexpr double merge_size = 2.0;
 // The most boxes a segment keeps; beyond it neighbours are merged (coarser, never smaller).
 constexpr std::size_t segment_cap = 4096;
 
-std::optional<double> g_number(std::string_view code) {
-  const std::vector<nc_word> w = split_nc_words(code);
-  if (w.size() != 1 || w[0].address != 'G' || !w[0].numeric) return std::nullopt;
-  return w[0].number;
-}
-
 // What one block (or a run of merged blocks) of a channel sweeps: 32 bytes, in floats (a
 // micrometre at a metre), since a long job keeps many.
 struct sweep {
@@ -114,10 +110,13 @@ struct segment_data {
 };
 
 struct channel_data {
-  channel_data(const machine& m, int number) : spindles(m, number) {}
+  channel_data(const machine& m, int number)
+      : spindles(m, number), codes(m, m.channels[static_cast<std::size_t>(number - 1)]) {}
   const interference_channel* env = nullptr;
   std::string file;  // the program's name, as in messages
   channel_spindles spindles;
+  nc_codes codes;        // what its G codes make of a block's axis words
+  bool turning = false;  // a lathe's single cycle in force (G90, G92, G94 in system A): modal as G1
   std::vector<segment_data> segments = std::vector<segment_data>(1);
   double x = 0, z = 0;
   // The second coordinate of the tip in the plane across the spindle axis: C under polar
@@ -162,10 +161,6 @@ struct interference_check::impl {
       c.scale = units.inch ? 25.4 : 1.0;
     }
     active = interference_checked(m);
-    const cycle_rules& cy = m.cycles;
-    for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
-                                    &cy.tap_code, &cy.tap_left_code})
-      if (auto g = g_number(*code)) cycle_codes.push_back(*g);
     for (auto [code, into] :
          {std::pair{&m.codes.balance_on, &balance_on}, {&m.codes.balance_off, &balance_off}})
       if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && w[0].numeric) *into = w[0];
@@ -185,7 +180,6 @@ struct interference_check::impl {
   long spill_size = 0;                   // bytes written to it
   mutable bool spill_at_end = true;      // its position is its end (no reading since the last write)
   std::vector<channel_data> channels;
-  std::vector<double> cycle_codes;
   std::vector<int> live_spindles;  // the channels' live spindles (indices into machine::spindles)
   std::optional<nc_word> balance_on, balance_off;
 
@@ -257,23 +251,29 @@ struct interference_check::impl {
     }
     const nc_word *xw = nullptr, *zw = nullptr, *uw = nullptr, *ww = nullptr, *iw = nullptr, *kw = nullptr,
                   *rw = nullptr, *qw = nullptr, *jw = nullptr;
-    bool no_move = false, home = false;
+    bool no_move = false, home = false, once = false;
     for (const nc_word& w : words) {
       if (!w.numeric) continue;
       switch (w.address) {
         case 'G': {
           const double v = w.number;
-          if (v == 0 || v == 1 || v == 2 || v == 3) {
+          const axis_words role = c.codes.role(v);
+          if (role == axis_words::motion) {
             c.motion = static_cast<int>(v);
-            c.cycle = false;
+            c.cycle = c.turning = false;
           } else if (v == 80) {
             c.cycle = false;
-          } else if (std::find(cycle_codes.begin(), cycle_codes.end(), v) != cycle_codes.end()) {
+          } else if (role == axis_words::hole_cycle) {
             c.cycle = true;
-          } else if (v == 28 || v == 30 || v == 53) {
-            home = true;  // to the reference point: the tip is out of the work area
-          } else if (v == 4 || v == 10 || v == 50 || v == 92) {
-            no_move = true;  // dwell, data, clamp or coordinate setting: no motion
+          } else if (role == axis_words::turning_cycle) {
+            c.turning = true;  // to its end point and back to its start, block by block until G0-G3
+            c.cycle = false;
+          } else if (role == axis_words::repetitive_cycle) {
+            once = true;
+          } else if (role == axis_words::reference || role == axis_words::machine) {
+            home = true;  // to (or from) the reference point, or in machine coordinates: out of the work area
+          } else if (role == axis_words::none) {
+            no_move = true;  // a dwell, data or coordinate setting, a clamp, a macro call: no motion
           } else if (const std::optional<bool> inch = units.selected_by(v)) {
             // The control keeps where the axes are: their values are said again in the new unit.
             const double to = *inch ? 25.4 : 1.0;
@@ -359,6 +359,8 @@ struct interference_check::impl {
       tip = unite(tip, arc_of(x0 / 2, z0, c.x / 2, c.z, iw, kw, rw, c.motion == 2));
     }
     add(c, tip, b.line, c.x, shown_z);
+    // A lathe cycle cuts to its end point and returns to where it began (analysis/nc_codes).
+    if ((c.turning || once) && known) c.x = x0, c.z = z0;
   }
 
   // A move from (r0, q0) to (r1, q1) in the plane across the spindle axis (r = X/2, q = C under

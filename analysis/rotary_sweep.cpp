@@ -1,5 +1,7 @@
 #include "analysis/rotary_sweep.hpp"
 
+#include "analysis/nc_codes.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -60,7 +62,8 @@ bool known(const axis_value& a) { return a.k == axis_value::kind::known; }
 
 struct rotary_sweep::impl {
   impl(const machine& m, const kinematic_chain& c, int channel, int change_m)
-      : m(m), chain(c), plan(c), channel(channel), change_m(change_m) {
+      : m(m), chain(c), plan(c), channel(channel), change_m(change_m),
+        codes(m, m.channels[static_cast<std::size_t>(channel - 1)]) {
     for (std::size_t i = 0; i < 3 && i < c.linear.size(); ++i) linear_address[i] = c.linear[i];
     for (std::size_t i = 0; i < c.rotaries.size() && i < 2; ++i) rotary_address[i] = c.rotaries[i].address;
     tcp_g = code_g(c.tool_tip_on);
@@ -92,7 +95,8 @@ struct rotary_sweep::impl {
   const kinematic_chain& chain;
   kin::chain_plan plan;
   int channel;
-  int change_m;  // the M code of the tool change (M6); -1: a T word changes the tool
+  int change_m;    // the M code of the tool change (M6); -1: a T word changes the tool
+  nc_codes codes;  // what its G codes make of a block's axis words
   bool heads_only = true;
   std::array<char, 3> linear_address{'X', 'Y', 'Z'};
   std::array<char, 2> rotary_address{0, 0};
@@ -322,7 +326,8 @@ struct rotary_sweep::impl {
         cycle = true;
       }
       if (g == 9800 || g == 9900) return_to_r = g == 9900;
-      if (g == 400 || g == 1000 || g == 5000 || g == 5200 || g == 6500 || g == 9200) not_a_move = true;
+      // A dwell, data or coordinate setting, macro call, scaling (analysis/nc_codes): no move.
+      if (codes.role(w.number) == axis_words::none) not_a_move = true;
       // Tool-tip control: the chain's code, and Fanuc's two (G43.4, G43.5 with the tool axis).
       if (g == tcp_g || g == 4340 || g == 4350) tcp = length = true;
       if (g == length_g && g != tcp_g) tcp = false, length = true;

@@ -1,5 +1,7 @@
 #include "analysis/shared_resources.hpp"
 
+#include "analysis/nc_codes.hpp"
+
 #include "analysis/control_emulator.hpp"
 #include "analysis/length_offset.hpp"
 
@@ -76,8 +78,11 @@ struct use_rec {
 };
 
 struct channel_data {
-  channel_data(const machine& m, int number) : spindles(m, number), quiet_without_gms(spindles.needs_gms()) {}
+  channel_data(const machine& m, int number)
+      : spindles(m, number), codes(m, m.channels[static_cast<std::size_t>(number - 1)]),
+        quiet_without_gms(spindles.needs_gms()) {}
   channel_spindles spindles;
+  nc_codes codes;          // what its G codes make of a block's axis words
   bool quiet_without_gms;  // a block without G, M or S cannot command a spindle
   int seg = 0;
   bool per_rev = false;
@@ -135,23 +140,11 @@ struct shared_resources::impl {
          {std::pair{&m.codes.balance_on, &balance_on}, {&m.codes.balance_off, &balance_off}})
       if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && !w[0].expression) *into = w[0];
     per_min = g_number(m.codes.feed_per_min);
-    const cycle_rules& cy = m.cycles;
-    for (const std::string* code : {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code,
-                                    &cy.tap_code, &cy.tap_left_code})
-      if (auto g = g_number(*code)) cycle_codes.push_back(*g);
-    if (cy.groove == "g75") cycle_codes.push_back(75);
-    // Threads follow the spindle whatever the feed mode.
-    if (auto g = g_number(cy.sync_feed)) thread_codes.push_back(*g);
-    if (cy.thread.size() > 1 && cy.thread[0] == 'g') {
-      double v = 0;
-      if (number(cy.thread.substr(1), v)) thread_codes.push_back(v);
-    }
   }
 
   const machine& m;
   std::vector<channel_data> channels;
   std::optional<double> per_rev, per_min;
-  std::vector<double> cycle_codes, thread_codes;
   std::vector<bool> shared;  // per spindle: machine::shared_spindle
   // The first word of the balance-cut codes (Fanuc G68/G69, Mazak M562/M563): in a balance cut
   // the paths move together block by block, so a spindle command of one is where the other is.
@@ -238,17 +231,21 @@ struct shared_resources::impl {
           c.balance = is_word(w, balance_on);
           c.has_use_key = false;
         }
-        if (std::find(cycle_codes.begin(), cycle_codes.end(), v) != cycle_codes.end()) {
-          cycle = true;
-          cut_column = w.column;
-        }
-        if (std::find(thread_codes.begin(), thread_codes.end(), v) != thread_codes.end()) {
-          thread = true;
-          cut_column = w.column;
-        } else if (v == 4 || v == 10 || v == 28 || v == 30 || v == 50 || v == 53 || v == 92) {
-          // Dwell, data setting, reference returns, clamps and machine coordinates: the axis
-          // words of these blocks are no cut.
-          no_move = true;
+        // A cycle cuts, and a thread follows the spindle whatever the feed mode; the axis words
+        // of a dwell, a data or coordinate setting, a reference return or machine coordinates
+        // are no cut (analysis/nc_codes: a system-A lathe's G92 is its threading cycle).
+        switch (c.codes.role(v)) {
+          case axis_words::feed_move:
+          case axis_words::hole_cycle:
+          case axis_words::turning_cycle:
+          case axis_words::repetitive_cycle:
+            (c.codes.threads(v) ? thread : cycle) = true;
+            cut_column = w.column;
+            break;
+          case axis_words::none:
+          case axis_words::reference:
+          case axis_words::machine: no_move = true; break;
+          default: break;
         }
       } else if (w.address == 'M' && (is_word(w, balance_on) || is_word(w, balance_off))) {
         c.balance = is_word(w, balance_on);
