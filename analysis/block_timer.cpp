@@ -39,14 +39,6 @@ int g_code_of(const nc_word& w) {
   return static_cast<int>(r);
 }
 
-// The G (or M) codes of a fixed block of the machine file ("G99", "G68").
-void add_codes(std::vector<int>& out, std::string_view block, char address) {
-  for (const nc_word& w : split_nc_words(block))
-    if (w.address == address && w.numeric && g_code_of(w) >= 0) out.push_back(g_code_of(w));
-}
-
-bool among(const std::vector<int>& set, int c) { return std::find(set.begin(), set.end(), c) != set.end(); }
-
 // G codes that set a mode or an offset and take no time of their own.
 bool plain_g_code(int g) {
   static constexpr int codes[] = {
@@ -74,8 +66,20 @@ bool one_shot_cycle(int g, bool lathe_a) {
 
 }  // namespace
 
+namespace {
+
+// Channel `number` of `m`, else its first (as the timer has always taken it).
+const channel_def& channel_or_first(const machine& m, int number) {
+  for (const channel_def& c : m.channels)
+    if (c.number == number) return c;
+  return m.channels.front();
+}
+
+}  // namespace
+
 block_timer::block_timer(const machine& m, int channel)
-    : m_(m), spindles_(m, channel), spindles_need_gms_(spindles_.needs_gms()) {
+    : m_(m), spindles_(m, channel), codes_(m, channel_or_first(m, channel)),
+      spindles_need_gms_(spindles_.needs_gms()) {
   for (const channel_def& c : m.channels)
     if (c.number == channel) ch_ = &c;
   if (!ch_) ch_ = &m.channels.front();
@@ -105,8 +109,10 @@ block_timer::block_timer(const machine& m, int channel)
     }
   for (std::size_t i = 0; i < axes_.size(); ++i)
     if (axes_[i].address == 'X') x_index_ = static_cast<int>(i);  // the last X, as move_time took it
-  // A Fanuc lathe in G-code system A: G90/G92/G94 are turning, thread and facing cycles.
-  lathe_a_ = lathe && m.control.find("fanuc") != std::string::npos;
+  // A lathe in G-code system A: G90/G92/G94 are turning, thread and facing cycles. The system
+  // is read as every analysis reads it (analysis/nc_codes: a lathe whose header gives no G90
+  // or G91); before, the timer alone took it from the control's name.
+  lathe_a_ = lathe && gcode_system_of(m, *ch_) == gcode_system::a;
   for (const auto& [blocks, into] :
        {std::pair{&m.milling.radius_input, &radius_on_}, {&m.milling.diameter_input, &radius_off_}})
     for (const std::string& b : *blocks) into->push_back(split_nc_words(b));
@@ -124,12 +130,10 @@ block_timer::block_timer(const machine& m, int channel)
     }
   has_modes_ = cylinder_address_ || !radius_on_.empty() || !polar_on_.empty();
   target_.resize(axes_.size());
-  add_codes(feed_rev_, m.codes.feed_per_rev, 'G');
-  add_codes(feed_min_, m.codes.feed_per_min, 'G');
-  // Inverse-time feed (G93) of a channel whose chain writes it: F is 1/min, the block takes 1/F.
-  if (const kinematic_chain* c = m.chain(ch_->number)) add_codes(feed_inverse_, c->inverse_time, 'G');
+  // The feed modes (inverse time, G93, of a channel whose chain writes it: F is 1/min, the block
+  // takes 1/F) are analysis/nc_codes' reading, shared with the spindle rules and the comparison.
   for (const int g : {g_code("0"), g_code("1"), g_code("2"), g_code("3")})
-    plain_motion_codes_ = plain_motion_codes_ && !among(feed_rev_, g) && !among(feed_min_, g);
+    plain_motion_codes_ = plain_motion_codes_ && codes_.feed_mode(g / 10.0) == feed_kind::none;
   // The tool call's address and how a number splits into tool and offset (T0303: tool 3).
   const std::string& call = ch_->tool_call;
   if (const std::size_t at = call.find("{tool"); at != std::string::npos && at > 0) {
@@ -200,11 +204,12 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       inch_ = false;
     else if (g == g_code("17") || g == g_code("18") || g == g_code("19"))
       plane_ = g / 10;
-    if (among(feed_rev_, g))
+    const feed_kind feed = codes_.feed_mode(g / 10.0);
+    if (feed == feed_kind::per_rev)
       per_rev_ = true, inverse_time_ = false;
-    else if (among(feed_min_, g))
+    else if (feed == feed_kind::per_minute)
       per_rev_ = false, inverse_time_ = false;
-    else if (among(feed_inverse_, g)) {
+    else if (feed == feed_kind::inverse_time) {
       per_rev_ = false, inverse_time_ = true;
       continue;
     } else if (g == g_code("98") || g == g_code("99"))

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "analysis/nc_codes.hpp"
 #include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
 #include "machines/machine.hpp"
@@ -116,9 +117,9 @@ class block_timer {
   char tool_address_ = 'T';
   long tool_divisor_ = 1;  // T0303 with {tool:02}{offset:02}: the tool is T / 100
   char dwell_address_ = 0;
-  double dwell_unit_ = 1;                                // seconds per unit of the dwell word
-  std::vector<int> feed_rev_, feed_min_, feed_inverse_;  // g_code
-  bool inverse_time_ = false;                            // G93: F is 1/min
+  double dwell_unit_ = 1;      // seconds per unit of the dwell word
+  nc_codes codes_;             // the channel's G codes (its feed modes), analysis/nc_codes
+  bool inverse_time_ = false;  // G93: F is 1/min
   // Mill/turn modes ([milling]): X in radius while the spindle is a C axis, and C a linear
   // axis (the plane's second one, mm) in polar interpolation.
   bool radius_x_ = false, polar_ = false;

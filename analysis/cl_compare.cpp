@@ -35,12 +35,6 @@ constexpr double turn_chord =
 // A G code as ten times its number: G12.1 is 121, G99 is 990.
 int g10(double number) { return static_cast<int>(std::lround(number * 10)); }
 
-// The G code of a one-word machine code ("G99"); -1 when it is none.
-int code_g10(const std::string& code) {
-  const std::vector<nc_word> w = split_nc_words(code);
-  return w.size() == 1 && w[0].address == 'G' && w[0].numeric ? g10(w[0].number) : -1;
-}
-
 // Where one axis is, as the program has left it.
 struct axis_state {
   enum class kind : unsigned char {
@@ -57,7 +51,7 @@ struct axis_state {
 
 struct cl_comparison::impl {
   impl(const machine& m, const channel_def& ch, diagnostic_sink& d, std::string file)
-      : m(m), ch(ch), diags(d), cl_file(std::move(file)), spindles(m, ch.number) {
+      : m(m), ch(ch), diags(d), cl_file(std::move(file)), spindles(m, ch.number), codes(m, ch) {
     const axis_def* x = ch.axis('X');
     x_div = (x && !x->diameter) ? 1.0 : 2.0;  // the writer's rule: X is a diameter unless said
     if (x && x->mirror) x_div = -x_div;
@@ -69,8 +63,6 @@ struct cl_comparison::impl {
     v_incremental = lathe && has_y && !ch.axis('V');        // G-code system A: V is Y's increment
     g90_modes = gcode_system_of(m, ch) != gcode_system::a;  // analysis/nc_codes
     system_c = units_of(m).system_c;                        // G70/G71 the units, G20/G21 cycles
-    per_rev_g = code_g10(m.codes.feed_per_rev);
-    per_min_g = code_g10(m.codes.feed_per_min);
 
     if (const spindle_def* s = m.spindle(ch.spindle)) work = static_cast<int>(s - m.spindles.data());
     for (const spindle_def& s : m.spindles) {
@@ -153,7 +145,7 @@ struct cl_comparison::impl {
   bool g90_modes = false;  // G90/G91 are the absolute and incremental modes (not lathe cycles)
   double out_mm = 1, axis_half = 0.0005, increment = 0.001;
   double feed_half[2] = {0.05, 0.00005};  // half the feed's last digit, per minute and per revolution, in mm
-  int per_rev_g = 990, per_min_g = 980;
+  nc_codes codes;                         // the channel's G codes (the feed modes), analysis/nc_codes
   std::vector<std::vector<nc_word>> offsets;  // each spindle's work offset, split
   std::vector<bool> live;                     // each spindle: some channel's live spindle
   bool gms_only = true;                       // every code that selects a spindle is a G, M or S word
@@ -625,8 +617,9 @@ struct cl_comparison::impl {
       } else if (g == 0 || g == 10 || g == 20 || g == 30 || g == 800) {
         hole_cycle = 0;
       }
-      if (g == per_rev_g || g == per_min_g) {
-        per_rev = g == per_rev_g ? 1 : 0;
+      if (const feed_kind k = codes.feed_mode(w.number);
+          k == feed_kind::per_rev || k == feed_kind::per_minute) {
+        per_rev = k == feed_kind::per_rev ? 1 : 0;
         inverse_time = false;
       }
       switch (g) {

@@ -34,6 +34,13 @@ gcode_system gcode_system_of(const machine& m, const channel_def& ch) {
 }
 
 nc_codes::nc_codes(const machine& m, const channel_def& ch) : system_(gcode_system_of(m, ch)) {
+  const auto g_words = [](std::vector<int>& out, const std::string& code) {
+    for (const nc_word& w : split_nc_words(code))
+      if (w.address == 'G' && w.numeric) out.push_back(g10(w.number));
+  };
+  g_words(per_min_, m.codes.feed_per_min);
+  g_words(per_rev_, m.codes.feed_per_rev);
+  if (const kinematic_chain* k = m.chain(ch.number)) g_words(inverse_, k->inverse_time);
   const cycle_rules& cy = m.cycles;
   for (const std::string* code :
        {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code, &cy.tap_code, &cy.tap_left_code,
@@ -119,6 +126,15 @@ axis_words nc_codes::role(double number) const {
   if (g == 730 || g == 740 || g == 760 || (g >= 810 && g <= 890 && g % 10 == 0) || g == 842 || g == 843)
     return axis_words::hole_cycle;
   return axis_words::modal;
+}
+
+feed_kind nc_codes::feed_mode(double number) const {
+  const int g = g10(number);
+  const auto among = [g](const std::vector<int>& v) { return std::find(v.begin(), v.end(), g) != v.end(); };
+  return among(per_rev_)   ? feed_kind::per_rev
+         : among(per_min_) ? feed_kind::per_minute
+         : among(inverse_) ? feed_kind::inverse_time
+                           : feed_kind::none;
 }
 
 bool nc_codes::threads(double number) const {

@@ -38,6 +38,9 @@ enum class axis_words : unsigned char {
   machine,    ///< G53: machine coordinates
 };
 
+/// The feed mode a G code selects.
+enum class feed_kind : unsigned char { none, per_minute, per_rev, inverse_time };
+
 /// The G codes of one channel, as its control reads them.
 class nc_codes {
  public:
@@ -48,6 +51,9 @@ class nc_codes {
   axis_words role(double g) const;
   /// G`g` cuts a thread (its F is the lead: it follows the spindle whatever the feed mode).
   bool threads(double g) const;
+  /// The feed mode G`g` selects: the machine's codes.feed_per_min and feed_per_rev (every G
+  /// word of them), the channel's chain's inverse_time; none for any other code.
+  feed_kind feed_mode(double g) const;
 
  private:
   gcode_system system_ = gcode_system::mill;
@@ -55,6 +61,7 @@ class nc_codes {
   std::vector<int> boxes_;    // its single lathe cycles (the thread's g92, g292)
   std::vector<int> cycles_;   // its repetitive ones (the thread's g76, g276; the groove's g75)
   std::vector<int> threads_;  // its threading codes: sync_feed and the thread cycle
+  std::vector<int> per_min_, per_rev_, inverse_;  // its feed mode codes
 };
 
 }  // namespace twinpost

@@ -20,16 +20,6 @@ namespace twinpost {
 
 namespace {
 
-bool number(std::string_view s, double& out) { return nc_number(s, out); }
-
-// The G number of a one-word code ("G99" -> 99); nullopt when the code is not one G word.
-std::optional<double> g_number(std::string_view code) {
-  const std::vector<nc_word> w = split_nc_words(code);
-  double v = 0;
-  if (w.size() != 1 || w[0].address != 'G' || !number(w[0].value, v)) return std::nullopt;
-  return v;
-}
-
 struct place_ref {
   std::string file;
   int line = 0;
@@ -135,16 +125,13 @@ struct shared_resources::impl {
     }
     for (std::size_t i = 0; i < m.spindles.size(); ++i)
       shared.push_back(m.shared_spindle(static_cast<int>(i)));
-    per_rev = g_number(m.codes.feed_per_rev);
     for (auto [code, into] :
          {std::pair{&m.codes.balance_on, &balance_on}, {&m.codes.balance_off, &balance_off}})
       if (const std::vector<nc_word> w = split_nc_words(*code); !w.empty() && !w[0].expression) *into = w[0];
-    per_min = g_number(m.codes.feed_per_min);
   }
 
   const machine& m;
   std::vector<channel_data> channels;
-  std::optional<double> per_rev, per_min;
   std::vector<bool> shared;  // per spindle: machine::shared_spindle
   // The first word of the balance-cut codes (Fanuc G68/G69, Mazak M562/M563): in a balance cut
   // the paths move together block by block, so a spindle command of one is where the other is.
@@ -225,8 +212,8 @@ struct shared_resources::impl {
           c.motion = static_cast<int>(v);
           if (v != 0) cut_column = w.column;
         }
-        if (per_rev && v == *per_rev) c.per_rev = true;
-        if (per_min && v == *per_min) c.per_rev = false;
+        if (const feed_kind f = c.codes.feed_mode(v); f != feed_kind::none)
+          c.per_rev = f == feed_kind::per_rev;
         if (is_word(w, balance_on) || is_word(w, balance_off)) {
           c.balance = is_word(w, balance_on);
           c.has_use_key = false;
