@@ -237,6 +237,18 @@ void channel_writer::polar_linear(bool rapid, const vec3& p, int line) {
   word_start_ = std::string::npos;
 }
 
+std::string_view channel_writer::along_tool() const {
+  if (motion_g_ < 1 || motion_g_ > 3 || tool_ < 0) return {};
+  // A machining centre's tool (no chain): along Z.
+  if (!x_diameter_ && !chain_) return "Z";
+  // A live tool on an indexing head, indexed along or across the spindle axis.
+  const bool live = spindle_ && work_ && spindle_ != work_;
+  if (!ch_.head_index.present() || !head_angle_ || !live) return {};
+  if (std::abs(axis_.z) >= along) return "ZW";
+  if (std::abs(axis_.z) <= across) return "XU";
+  return {};
+}
+
 bool channel_writer::index_head(int line) {
   const head_index_rules& h = ch_.head_index;
   if (!h.present() || tool_ < 0) return true;

@@ -89,7 +89,25 @@ void channel_writer::go_home() {
   user_x_.reset();  // the user blocks' X (the gate's) is the post's home from here
   leave_polar();    // no reference return inside polar interpolation or a turned frame
   leave_radial_frame();
-  for (const std::string& b : m_.home(ch_.number)) out_.block(b);
+  // From a cut (a GOHOME or a tool call with no retract in the CL; review 61 A2: a drill at the
+  // bottom of its hole went home X and Y first, through the part) the tool leaves along its axis
+  // first: the home blocks that move that axis, then the others. The public posts take the
+  // CAM's retract for granted here (the Fusion "Mazak Integrex i" post: writeRetract(X, Y),
+  // then writeRetract(Z)); after a rapid the machine's order stands.
+  const std::vector<std::string>& home = m_.home(ch_.number);
+  if (const std::string_view along = along_tool(); !along.empty()) {
+    const auto moves_along = [&](const std::string& b) {
+      for (std::size_t i = 0; i < b.size(); ++i)
+        if (along.find(b[i]) != std::string_view::npos && (i == 0 || b[i - 1] == ' ')) return true;
+      return false;
+    };
+    for (const std::string& b : home)
+      if (moves_along(b)) out_.block(b);
+    for (const std::string& b : home)
+      if (!moves_along(b)) out_.block(b);
+  } else {
+    for (const std::string& b : home) out_.block(b);
+  }
   homed_ = true;
   // Home blocks that cancel the tool's length offset (`G49`, `D0`; attack 47: a GOHOME in the
   // middle of an operation, and the cuts after it ran a tool length low): the next move gives

@@ -230,6 +230,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void program_stop(bool optional);
   /// The machine's home blocks (X, then Z), then a length-offset cancel that waited for them.
   void go_home();
+  /// Where the tool is in a cut (its last move a feed) and the axis along it is known: the
+  /// addresses that move along it (Z and W for an axial tool, X and U for a radial one); "".
+  std::string_view along_tool() const;
   /// The length offset (G43, G43.4, the plane's G43) cancelled, with the tool at its home: the
   /// cancel may move Z by the tool's length, so away from home it waits for the home blocks
   /// (docs/machines.md, "Length offset cancel").

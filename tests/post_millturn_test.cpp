@@ -546,3 +546,23 @@ TEST_CASE("a cycle's own feed ends at CYCLE/OFF: the FEDRAT in force before it i
       "G0 X40. C25. Z5.\nG1 Z-3. F400.\nX-40.\nG0 Z5.\nM5\nM950\nG13.1\nG18\nG10.9 X1\nM202\nM9\nM205\nM305\n"
       "G0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
+
+TEST_CASE("a home straight from a cut leaves along the tool first", "[post][millturn]") {
+  // Review 61 A2: a drill fed to the bottom of its hole, then GOHOME with no retract in the CL.
+  // The upper head's home is X and Y, then Z (the Fusion "Mazak Integrex i" post's order, which
+  // counts on the CAM's retract): the drill went sideways through the part. From a cut the
+  // block along the tool comes first now; after a rapid the machine's order stands.
+  const std::string cl =
+      "PARTNO H\nHEAD/1\nTLDATA/DRILL,6,118\nLOADTL/12\nSPINDL/RPM,2000,CLW,LIVE\n"
+      "FEDRAT/MMPM,120\nRAPID\nGOTO/0,25,10,0,0,1\nRAPID\nGOTO/0,25,2\nGOTO/0,25,-10\n";
+  const machine integrex = load_machine("integrex-i200st");
+  const std::string h = head1(post_on(cl + "GOHOME\nFINI\n", integrex, "home-cut"), "H.EIA");
+  CHECK(h.substr(h.find("G1 Z-10. F120.")) ==
+        "G1 Z-10. F120.\nG0 G90 G53 Z0.\nG0 G90 G53 X0. Y0.\nM950\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\n"
+        "G0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+  const std::string r =
+      head1(post_on(cl + "RAPID\nGOTO/0,25,10\nGOHOME\nFINI\n", integrex, "home-rapid"), "H.EIA");
+  CHECK(r.substr(r.find("G1 Z-10. F120.")) ==
+        "G1 Z-10. F120.\nG0 Z10.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM212\nG10.9 X1\nM202\nM9\nM5\n"
+        "M205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+}
