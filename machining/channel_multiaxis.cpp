@@ -12,8 +12,8 @@
 #include "kinematics/linearise.hpp"
 #include "kinematics/vec3_ops.hpp"
 #include "machines/code_overlap.hpp"
-#include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
+#include "parser/cam_tool.hpp"
 
 namespace twinpost {
 
@@ -56,7 +56,7 @@ const kin::chain_plan& channel_writer::plan() {
 }
 
 void channel_writer::tool_data_length(const tool_data_event& t, bool after_call) {
-  // Every TLDATA form whose length is known for certain (machining/cam_tool.hpp).
+  // Every TLDATA form whose length is known for certain (parser/cam_tool.hpp).
   const std::optional<double> cl = tldata_length(t);
   if (!cl) return;
   const double mm = *cl * cl_mm_;

@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "machines/name_template.hpp"
-#include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
+#include "parser/cam_tool.hpp"
 
 namespace twinpost {
 

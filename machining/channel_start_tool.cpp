@@ -1,8 +1,8 @@
 // A job that moves before any tool call (an NX operation file, one of many operations CATIA or
 // Creo wrote under one LOADTL): which tool is in the spindle, and the program started as after
 // its call. Kinds for tools the CL leaves without one (post --tool-kind).
-#include "machining/cam_tool.hpp"
 #include "machining/channel_writer.hpp"
+#include "parser/cam_tool.hpp"
 #include <fmt/format.h>
 
 namespace twinpost {

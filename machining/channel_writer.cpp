@@ -1,5 +1,5 @@
 #include "machining/channel_writer.hpp"
-#include "machining/cam_tool.hpp"
+#include "parser/cam_tool.hpp"
 
 #include <algorithm>
 #include <array>

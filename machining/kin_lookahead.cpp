@@ -5,7 +5,7 @@
 #include <type_traits>
 #include <variant>
 
-#include "machining/cam_tool.hpp"
+#include "parser/cam_tool.hpp"
 
 namespace twinpost {
 

@@ -9,7 +9,7 @@
 #include "machine_test_support.hpp"
 #include "machines/builtin_machines.hpp"
 #include "machines/machine_loader.hpp"
-#include "machining/cam_tool.hpp"
+#include "parser/cam_tool.hpp"
 #include "post_test_jobs.hpp"
 
 using namespace twinpost;

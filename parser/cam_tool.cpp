@@ -1,4 +1,4 @@
-#include "machining/cam_tool.hpp"
+#include "parser/cam_tool.hpp"
 #include "support/ascii.hpp"
 
 namespace twinpost {
