@@ -17,9 +17,12 @@
 #include "analysis/cl_compare_turn.hpp"
 #include "analysis/nc_codes.hpp"
 #include "analysis/program_units.hpp"
+#include "analysis/rotary_sweep.hpp"
 #include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
+#include "kinematics/vec3_ops.hpp"
 #include "machines/macro_variables.hpp"
+#include "parser/cam_tool.hpp"
 #include "parser/cycle_words.hpp"
 
 namespace twinpost {
@@ -93,7 +96,10 @@ struct cl_comparison::impl {
         if (w.address == 'G' && w.numeric && g10(w.number) >= 730 && g10(w.number) <= 890)
           (side ? side_g : hole_g).push_back(g10(w.number));
     }
-    has_c = ch.axis('C') != nullptr;
+    if (const kinematic_chain* k = m.chain(ch.number); k && !k->rotaries.empty() && !ch.head_index.present())
+      chain_def = k;
+    // A chain's C is one of its rotary axes, not the part turned under X and Y.
+    has_c = ch.axis('C') != nullptr && !chain_def;
     if (has_c)
       for (const spindle_def& s : m.spindles) {
         for (const std::string& b : s.c_axis.on) c_on_codes.push_back(split_nc_words(b));
@@ -106,6 +112,7 @@ struct cl_comparison::impl {
           c_letters |= nc_letter(w.address);
         }
     read_tool_call(ch.tool_call);
+    if (chain_def) chain.emplace(m, *chain_def, ch.number, tool_m6 ? 6 : -1);
     // The coolant codes, each kind's on and off: flood is codes.coolant_on (each block of it
     // turns it on) and coolant_off, the others their [on, off] pairs.
     for (const std::string& b : m.codes.coolant_on) coolant_codes.push_back({split_nc_words(b), 1});
@@ -205,6 +212,13 @@ struct cl_comparison::impl {
   // reference return) and the block that set it.
   head_turn head_dir;
   std::optional<double> head_deg;
+  // A channel with a kinematic chain (but a mill/turn's indexing head): its linear and rotary
+  // words, length offset, tool-tip control and tilted planes followed as the control reads
+  // them (analysis/rotary_sweep), the tip and the tool axis through the forward transform.
+  const kinematic_chain* chain_def = nullptr;
+  std::optional<rotary_sweep> chain;
+  std::optional<double> cl_length, cl_length_next;  // the CL's TLDATA length (mm), now and for the next call
+  bool cl_after_call = false;                       // a TLDATA now describes the tool just called
   std::string head_text;
   int head_line = 0;
   bool said_axis = false;
@@ -401,7 +415,7 @@ struct cl_comparison::impl {
     const vec3 a = head_dir.machine_axis(*head_deg);
     if (in_polar && std::abs(a.x) > 1e-9) return;  // C is a coordinate there: only an axial tool is known
     const vec3 have = part_axis(a, x_div < 0 ? -1.0 : 1.0, z_sign(), in_polar ? 0.0 : c_turn());
-    if (const std::optional<std::string> why = axis_fault(have, *cl_axis, axis_tolerance)) {
+    if (const std::optional<std::string> why = axis_fault(have, *cl_axis, axis_tolerance, "head points")) {
       said_axis = true;
       error(e, fmt::format("{}: the head was indexed by `{}` at line {} of the program", *why, head_text,
                            head_line));
@@ -456,6 +470,8 @@ struct cl_comparison::impl {
                         (u.number >= 14001 && u.number <= 14999)))
           shifted = true;  // a work offset written through its variable (#5223=-5.)
     if (words.empty()) return;
+    // (Its swings are the emulator's to report, in check and in post's self-check.)
+    if (chain) chain->block(words);
     // Any word but an axis's (a G, M, S, T, F ...) may change what a cut is held to.
     constexpr std::uint32_t axis_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
                                            nc_letter('V') | nc_letter('W') | nc_letter('I') | nc_letter('J') |
@@ -603,8 +619,8 @@ struct cl_comparison::impl {
       }
       if (w.address == 'A' || w.address == 'B' || w.address == 'C') {
         // An A or B that is no indexing head's, a C of a channel without one: the tip then
-        // depends on rotary axes this comparison does not follow.
-        if (!(w.address == 'C' && cylinder)) rotary = true;
+        // depends on rotary axes this comparison does not follow (a chain's are: `chain`).
+        if (!(w.address == 'C' && cylinder) && !chain) rotary = true;
         continue;
       }
       if (w.address != 'G' || !w.numeric) continue;
@@ -739,7 +755,7 @@ struct cl_comparison::impl {
         case 680:
         case 681:
         case 682:
-          frame = true;
+          frame = frame || g != 682 || !chain;  // a chain's tilted plane is followed (`chain`)
           not_a_move = true;
           break;
         case 690:
@@ -1012,6 +1028,7 @@ struct cl_comparison::impl {
                const std::optional<vec3>& cl_axis = std::nullopt) {
     // The head's offset first: a G49 H0 also makes C unknown, and would pass everything after.
     if (!head_due && head_offset_wrong(e)) return false;
+    if (chain) return compare_chain(e, pos, rapid, both, cl_axis);
     const bool followed_polar = polar && polar_follow;
     if (both || cl_cycle || cycle || (polar && !polar_follow) || cylinder || frame || polar_coords ||
         rotary || foreign_offset || shifted || head_due || (!c_known && !followed_polar)) {
@@ -1114,6 +1131,75 @@ struct cl_comparison::impl {
     return true;
   }
 
+  // The tool length the chain's words were written for: the [[tool]]'s and the CL's TLDATA, as
+  // [[kinematics]] tool_length says which wins (machines/kinematic_chain.hpp chosen_length).
+  std::optional<double> chain_length() const {
+    return chosen_length(*chain_def, cl_tool >= 0 ? m.tool_length(ch.number, cl_tool) : std::nullopt,
+                         cl_length);
+  }
+
+  // A record of a channel with a kinematic chain: the tip and the tool axis where the program's
+  // words put them through the forward transform, against the CL's point and axis.
+  bool compare_chain(const event& e, const vec3& pos, bool rapid, bool both,
+                     const std::optional<vec3>& cl_axis) {
+    if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || foreign_offset ||
+        shifted) {
+      if (shifted || mirrored) said_passed_shift(e);
+      ++passed;
+      return false;
+    }
+    if (needs_length && (!chain->length_on() || h_word == 0) &&
+        chain_def->output != multiaxis_output::pivot) {
+      ++compared;
+      if (!std::exchange(said_length, true))
+        error(e, fmt::format(
+                     "the program moves with no tool length offset in force (G43 H.., the chain's "
+                     "{}): X Y Z are then the spindle's gauge point, one tool length from the CL's tip{}",
+                     offset_code(*chain_def),
+                     moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+      compare_rest(e, rapid);
+      return true;
+    }
+    // A tool of no known length: the tip only where the length does not move it (every head
+    // that tilts the tool at 0, or tool-tip control).
+    const std::optional<double> length = chain_length();
+    std::optional<rotary_sweep::pose> at = chain->where(length.value_or(0));
+    if (at && !length)
+      if (const std::optional<rotary_sweep::pose> longer = chain->where(100);
+          !longer || kin::distance(longer->tip, at->tip) > tip_tolerance / 10)
+        at.reset();
+    if (!at) {
+      ++passed;
+      return false;
+    }
+    ++compared;
+    const double tol = std::max({tip_tolerance, chain_def->tolerance, axis_half * 3.001});
+    const vec3 want{pos.x * cl_mm, pos.y * cl_mm, pos.z * cl_mm};
+    if (kin::distance(at->tip, want) > tol && !std::exchange(said_tip, true)) {
+      std::string off;
+      const double have_c[3] = {at->tip.x, at->tip.y, at->tip.z}, want_c[3] = {want.x, want.y, want.z};
+      for (int i = 0; i < 3; ++i)
+        if (std::abs(have_c[i] - want_c[i]) > tol)
+          off += fmt::format("{}{} {:.3f} where the CL has {:.3f} ({:.3f} mm off)", off.empty() ? "" : "; ",
+                             "xyz"[i], have_c[i], want_c[i], std::abs(have_c[i] - want_c[i]));
+      if (off.empty()) off = fmt::format("{:.3f} mm from the CL's point", kin::distance(at->tip, want));
+      error(e,
+            fmt::format("the program does not put the tool tip on this record's point (the part frame, mm; "
+                        "the forward transform of its words): {}{}",
+                        off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+    }
+    if (cl_axis && !said_axis)
+      if (const std::optional<std::string> why =
+              axis_fault(at->axis, *cl_axis, std::max(axis_tolerance, chain_def->angle_tolerance),
+                         "rotary axes point")) {
+        said_axis = true;
+        error(e, fmt::format("{}{}", *why,
+                             moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+      }
+    compare_rest(e, rapid);
+    return true;
+  }
+
   // The C angle in force in (-180, 180] degrees (0 without one).
   double c_turn() const { return c_deg == 0 ? 0.0 : std::remainder(c_deg, 360.0); }
 
@@ -1134,7 +1220,7 @@ struct cl_comparison::impl {
   void compare_hole(const event& e, const vec3& pos) {
     if (!head_due && head_offset_wrong(e)) return;
     if (polar || cylinder || frame || polar_coords || rotary || foreign_offset || shifted || head_due ||
-        !c_known) {
+        !c_known || (chain && !chain->upright())) {
       if (shifted || mirrored) said_passed_shift(e);
       ++passed;
       return;
@@ -1463,6 +1549,9 @@ struct cl_comparison::impl {
   void record(const event& e, bool both) {
     if (!std::holds_alternative<motion_event>(e.data) && !std::holds_alternative<arc_event>(e.data))
       ++version;
+    // A TLDATA right after a tool call (comments between) describes that tool, else the next.
+    const bool after_call = cl_after_call;
+    cl_after_call = after_call && keeps_tool_call_open(e);
     std::visit(
         [&](const auto& d) {
           using T = std::decay_t<decltype(d)>;
@@ -1470,7 +1559,13 @@ struct cl_comparison::impl {
             if (!d.preselect) {
               cl_tool = d.tool, cl_tool_line = e.line, cl_offset = d.offset.value_or(d.tool);
               cl_prev_known = false;  // the tool goes home: its first move comes from there
+              cl_length = std::exchange(cl_length_next, std::nullopt);
+              cl_after_call = true;
             }
+          } else if constexpr (std::is_same_v<T, tool_data_event>) {
+            cl_after_call = after_call;
+            if (const std::optional<double> l = tldata_length(d))
+              (after_call ? cl_length : cl_length_next) = *l * cl_mm;
           } else if constexpr (std::is_same_v<T, spindle_event>) {
             cl_spindle(d, e.line);
           } else if constexpr (std::is_same_v<T, thread_event>) {
@@ -1515,7 +1610,8 @@ struct cl_comparison::impl {
               cl_prev_known = true;
             }
           } else if constexpr (std::is_same_v<T, arc_event>) {
-            if (compare(e, d.end, false, both) && !polar) compare_arc(e, d);
+            // (A chain's arc is held to the circle with its rotary axes at 0: X Y Z the tip.)
+            if (compare(e, d.end, false, both) && !polar && (!chain || chain->upright())) compare_arc(e, d);
             cl_prev = {d.end.x * cl_mm, d.end.y * cl_mm, d.end.z * cl_mm};
             cl_prev_known = true;
           }

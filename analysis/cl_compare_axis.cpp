@@ -29,7 +29,8 @@ vec3 part_axis(const vec3& a, double sx, double zs, double c_deg) {
   return kin::rotate(p, {0, 0, 1}, c_deg);
 }
 
-std::optional<std::string> axis_fault(const vec3& have, const vec3& want, double tolerance) {
+std::optional<std::string> axis_fault(const vec3& have, const vec3& want, double tolerance,
+                                      std::string_view who) {
   const double n = kin::norm(want);
   if (!(n > 0)) return std::nullopt;  // no direction given
   const double off = kin::angle_between(have, want);
@@ -40,9 +41,9 @@ std::optional<std::string> axis_fault(const vec3& have, const vec3& want, double
     return fmt::format("({:.4f},{:.4f},{:.4f})", c(a.x), c(a.y), c(a.z));
   };
   return fmt::format(
-      "the CL's tool axis here is {}, the program's head points the tool along {} in the part "
-      "frame ({:.3f} degrees off)",
-      v(want, 1 / n), v(have, 1), off);
+      "the CL's tool axis here is {}, the program's {} the tool along {} in the part frame ({:.3f} "
+      "degrees off)",
+      v(want, 1 / n), who, v(have, 1), off);
 }
 
 }  // namespace twinpost

@@ -6,6 +6,7 @@
 // frame and measures it against the CL's.
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "machines/millturn_rules.hpp"
 #include "support/vec3.hpp"
@@ -32,8 +33,9 @@ struct head_turn {
 vec3 part_axis(const vec3& a, double sx, double zs, double c_deg);
 
 /// What is wrong with the tool's direction `have` (part frame) against the CL's `want` (any
-/// length), or none within `tolerance` degrees: "the program's B head points the tool along
-/// (...)" and how far off, for the comparison's message.
-std::optional<std::string> axis_fault(const vec3& have, const vec3& want, double tolerance);
+/// length), or none within `tolerance` degrees: "the program's <who> the tool along (...)"
+/// (`who`: "head points", "rotary axes point") and how far off, for the comparison's message.
+std::optional<std::string> axis_fault(const vec3& have, const vec3& want, double tolerance,
+                                      std::string_view who);
 
 }  // namespace twinpost

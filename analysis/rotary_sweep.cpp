@@ -72,7 +72,7 @@ struct rotary_sweep::impl {
     plane_g = code_g(c.plane);
     index_g = code_g(c.plane_index);
     plane_off_g = code_g(c.plane_off);
-    units(false);
+    units(m.program.output_units == output_unit::inch);  // the program's unit until G20 or G21
     new_tool(-1);
     // With only heads the tip's height is Z's and the heads' alone: X and Y need not be known.
     heads_only = plan.table_count == 0;
@@ -112,6 +112,7 @@ struct rotary_sweep::impl {
   bool absolute = true;
   int motion = 0;  // a Fanuc control starts in G00
   bool tcp = false, length = false, frame = false, cycle = false;
+  bool vector = false;  // tool-tip control with the tool axis as I J K (G43.5): not followed
   // A tilted working plane (G68.2): its origin and Euler angles, its Z in the part frame, and
   // the tip's place in its coordinates.
   bool plane = false;
@@ -231,6 +232,41 @@ struct rotary_sweep::impl {
     return {z0, kin::forward(plan, j, 1).tip.z - z0};
   }
 
+  // Where the program has put the tip and which way the tool points, for a tool `l` mm long.
+  std::optional<rotary_sweep::pose> where(double l) const {
+    if (cycle || vector) return std::nullopt;
+    kin::joint_values j;
+    for (int i = 0; i < plan.rotary_count; ++i) {
+      if (!known(rot[static_cast<std::size_t>(i)])) return std::nullopt;
+      j.rotary[static_cast<std::size_t>(i)] = rot[static_cast<std::size_t>(i)].value;
+    }
+    const kin::joint_turns turns(plan, j);
+    const std::array<axis_value, 3>& at = frame ? flin : lin;
+    for (const axis_value& a : at)
+      if (!known(a)) return std::nullopt;
+    const vec3 p{at[0].value, at[1].value, at[2].value};
+    // In a tilted plane its coordinates are the tip's, the length along its Z; under tool-tip
+    // control the words are the tip in the part frame.
+    if (frame) {
+      if (!plane || !length || tcp) return std::nullopt;
+      return rotary_sweep::pose{to_part(p, true), kin::tool_axis(plan, turns)};
+    }
+    if (tcp) return rotary_sweep::pose{p, kin::tool_axis(plan, turns)};
+    if (chain.output == multiaxis_output::pivot) {
+      // The words are the pivot for the programmed length (machines/kinematic_chain.hpp
+      // pivot_shift); a length offset making up another tool's length is not followed.
+      if (length) return std::nullopt;
+      const vec3 s = pivot_shift(chain);
+      j.linear = {p.x - s.x, p.y - s.y, p.z - s.z};
+      const kin::tool_pose t = kin::forward(plan, j, chain.programmed_length, turns);
+      return rotary_sweep::pose{t.tip, t.axis};
+    }
+    if (!length) return std::nullopt;  // the gauge point: the comparison says so
+    j.linear = {p.x + l * shift[0], p.y + l * shift[1], p.z + l * shift[2]};
+    const kin::tool_pose t = kin::forward(plan, j, l, turns);
+    return rotary_sweep::pose{t.tip, t.axis};
+  }
+
   // The tip's height where the program has put it; none where that is not known.
   std::optional<height> height_now() const {
     if (!frame) return height_known(lin, rot) ? std::optional(tip_height(lin, values(rot))) : std::nullopt;
@@ -274,6 +310,9 @@ struct rotary_sweep::impl {
 
   void new_tool(int t) {
     bounded = false;
+    // A control whose tool call gives the length offset (joints output with no length_on: a
+    // Sinumerik's T1 D1 M6) has it in force from the call.
+    if (chain.length_on.empty() && chain.output == multiaxis_output::joints && t >= 0) length = true;
     const std::optional<double> l = t >= 0 ? m.tool_length(channel, t) : std::nullopt;
     length_known = l.has_value();
     lengths.clear();
@@ -329,9 +368,9 @@ struct rotary_sweep::impl {
       // A dwell, data or coordinate setting, macro call, scaling (analysis/nc_codes): no move.
       if (codes.role(w.number) == axis_words::none) not_a_move = true;
       // Tool-tip control: the chain's code, and Fanuc's two (G43.4, G43.5 with the tool axis).
-      if (g == tcp_g || g == 4340 || g == 4350) tcp = length = true;
-      if (g == length_g && g != tcp_g) tcp = false, length = true;
-      if (g == off_g || g == 4900) tcp = length = false;
+      if (g == tcp_g || g == 4340 || g == 4350) tcp = length = true, vector = g == 4350;
+      if (g == length_g && g != tcp_g) tcp = vector = false, length = true;
+      if (g == off_g || g == 4900) tcp = vector = length = false;
       if (g == plane_g) {
         // G68.2 X Y Z I J K: the plane's origin and Fanuc's Z-X-Z Euler angles (with a P word
         // the I J K mean something else: the plane is not followed).
@@ -658,6 +697,19 @@ rotary_sweep& rotary_sweep::operator=(rotary_sweep&&) noexcept = default;
 
 std::optional<std::pair<int, std::string>> rotary_sweep::block(const std::vector<nc_word>& words) {
   return p_->block(words);
+}
+
+std::optional<rotary_sweep::pose> rotary_sweep::where(double length) const { return p_->where(length); }
+
+bool rotary_sweep::length_on() const { return p_->length; }
+
+bool rotary_sweep::upright() const {
+  if (p_->frame) return false;
+  for (int i = 0; i < p_->plan.rotary_count; ++i) {
+    const auto& r = p_->rot[static_cast<std::size_t>(i)];
+    if (!known(r) || r.value != 0) return false;
+  }
+  return true;
 }
 
 }  // namespace twinpost

@@ -37,6 +37,24 @@ class rotary_sweep {
   /// the word it is at, when this block's rapid swings the tip into the work.
   std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words);
 
+  /// The tool tip and the tool's axis (tip to holder), in the part frame (mm).
+  struct pose {
+    vec3 tip, axis;
+  };
+  /// Where the blocks so far have put the tip of a tool `length` mm long and which way it
+  /// points, as the control reads them: the linear words under the length offset (G43) through
+  /// the forward transform with the rotary words, under tool-tip control (G43.4) the words
+  /// themselves, in a tilted plane (G68.2, G53.1) its coordinates turned into the part frame.
+  /// None where a word it needs is not known, in a drilling cycle, under G43.5 (its I J K are
+  /// not followed), or with no length offset in force.
+  std::optional<pose> where(double length) const;
+  /// Every rotary axis at 0 and no tilted plane: the linear words are the tip, as on a
+  /// three-axis machine.
+  bool upright() const;
+  /// A tool length offset in force: the chain's length or tool-tip code, or the tool call of a
+  /// control that gives it there (joints output with no `length_on`).
+  bool length_on() const;
+
  private:
   struct impl;
   std::unique_ptr<impl> p_;

@@ -190,8 +190,11 @@ void channel_writer::tool(const tool_event& t, int line) {
                             ch_.offset_call.find("{offset") != std::string::npos ||
                             ch_.length_offset.find("{offset") != std::string::npos;
   // A mill head without a chain or an indexing head takes the tool's length offset with the
-  // first move after the call (channel.length_offset: G43 H..).
-  const bool length_offset = !ch_.length_offset.empty() && !chain_ && !ch_.head_index.present();
+  // first move after the call (channel.length_offset: G43 H..); so do the channel's own moves of
+  // a chain that takes only the tilted ones (moves = "tilted": its plunge along Z ran at the
+  // gauge line, found by the comparison with the CL).
+  const bool length_offset = !ch_.length_offset.empty() && !ch_.head_index.present() &&
+                             (!chain_ || chain_->moves == multiaxis_moves::tilted);
   static constexpr const char* words[] = {"LOADTL", "LOAD/TOOL",     "SELECT/TOOL",
                                           "TURRET", "[[tool]] name", "post --tool"};
   const char* word = words[static_cast<int>(t.source)];

@@ -80,8 +80,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
 
   /// The job's units (UNITS record); values are converted to the program's output units.
   void set_units(unit_system u) {
-    if (observer_) observer_->units(u);
-    release_held(std::nullopt);  // records held at the pole came in the units before
+    release_held(std::nullopt);          // records held at the pole came in the units before
+    if (observer_) observer_->units(u);  // (after them: the comparison reads them in those units)
     cl_mm_ = u == unit_system::inch ? 25.4 : 1.0;
     scale_ = cl_mm_ * out_per_mm_;
   }

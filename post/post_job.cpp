@@ -266,12 +266,11 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
     ws.writers[static_cast<std::size_t>(ch.number - 1)]->start_with(start, o.tool_kind);
     if (o.frame) ws.writers[static_cast<std::size_t>(ch.number - 1)]->write_in(*o.frame);
   }
-  // Each channel's program held to its CL as it is written; a channel with a kinematic chain
-  // checks every point it writes by the forward transform instead (channel_multiaxis), unless
-  // it is a mill/turn head with an indexing head, whose X Y Z are the tip at each index (the
-  // chain's tilted planes are G68.2 frames, which the comparison passes over).
+  // Each channel's program held to its CL as it is written: a channel with a kinematic chain
+  // through the forward transform of its words (its writer checks its own points that way too,
+  // channel_multiaxis, before its blocks go out), a mill/turn head with an indexing head by the
+  // tip at each index (its G68.2 frames passed over).
   for (const channel_def& ch : m.channels) {
-    if (m.chain(ch.number) && !ch.head_index.present()) continue;
     ws.comparisons.push_back(std::make_unique<compared_writing>(m, ch, sink, o.cl_path));
     ws.writers[static_cast<std::size_t>(ch.number - 1)]->set_observer(ws.comparisons.back().get());
   }

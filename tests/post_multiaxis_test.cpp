@@ -727,6 +727,9 @@ TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z 
   machine m = load_machine(std::string(TWINPOST_SOURCE_DIR) + "/tests/kin/head-table.toml");
   m.kinematics[0].moves = multiaxis_moves::tilted;
   m.kinematics[0].tolerance = 0.01;
+  // The channel's own moves take its length offset (without it the plunge ran at the gauge
+  // line, and the comparison with the CL refuses it).
+  m.channels[0].length_offset = "G43 H{offset:02}";
   const test::posted p = test::post_in_fresh_dir(
       "PARTNO TILTED\nTLDATA/MILL,10,0,100,0,0\nMULTAX/ON\nLOADTL/1\nFEDRAT/MMPM,1000\nRAPID\n"
       "GOTO/40,0,5,0,0,1\nGOTO/40,0,-5,0,0,1\nGOTO/30,0,-5,0.0348995,0,0.9993908\nGOTO/20,0,-5,0,0,1\nRAPID\n"
@@ -735,7 +738,7 @@ TEST_CASE("multi-axis: a chain with moves = \"tilted\" leaves the moves along Z 
   INFO(p.diagnostics);
   REQUIRE(p.ok);
   CHECK(p.files.at("TILTED.nc") ==
-        "%\nO1000 (TILTED)\nG28 U0.\nG28 W0.\nG0 B0.\nT01 M6\nG98\nG0 X40. Y0. Z5.\nG1 Z-5. F1000.\n"
+        "%\nO1000 (TILTED)\nG28 U0.\nG28 W0.\nG0 B0.\nT01 M6\nG98\nG0 G43 H01 X40. Y0. Z5.\nG1 Z-5. F1000.\n"
         "G93 G1 G43 H1 X40.554 Y0. Z-5.057 B0.5 C0. F400.\nX41.108 Z-5.141 B1. F400.\n"
         "X41.66 Z-5.251 B1.5 F400.\nX42.212 Z-5.388 B2. F400.\nX36.66 Z-5.251 B1.5 F400.\n"
         "X31.108 Z-5.141 B1. F400.\nX25.554 Z-5.057 B0.5 F400.\nX20. Z-5. B0. F400.\nG98\nG0 Z20.\n"
