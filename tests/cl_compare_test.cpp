@@ -1013,3 +1013,86 @@ TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis]
         "was indexed by `G0 B0.` at line 7 of the program\n");
   }
 }
+
+TEST_CASE("cl comparison: a chain's tip and tool axis through the forward transform of its words",
+          "[analysis][cl_compare]") {
+  // One record after `blocks` on channel 1 of a built-in 5-axis mill: TLDATA gives a 100 mm
+  // tool, then LOADTL/1; the CL's point `pos` with the tool along `axis`.
+  auto run = [](const char* machine, std::vector<const char*> blocks, vec3 pos, vec3 axis,
+                bool tool_data = true) {
+    compared c(machine, 1);
+    if (tool_data)
+      c.cmp.record({c.next++, tool_data_event{"TLDATA", {"MILL"}, {10, 0, 100, 0, 0}}, 1}, false);
+    c.cmp.record({c.next++, tool_event{tool_source::loadtl, 1, std::nullopt, false}, 1}, false);
+    for (const char* b : blocks) c.cmp.line(b);
+    motion_event mv;
+    mv.pos = pos;
+    mv.axis = axis;
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return std::pair{c.text(), c.cmp.compared()};
+  };
+  const double s = std::sin(15 * std::numbers::pi / 180), k = std::cos(15 * std::numbers::pi / 180);
+  // The head/head's joints (`twinpost kin --machine head-head-5axis --tool-length 100
+  // 10,20,-5,sin15,0,cos15`: X113.5276 Y20 Z-18.6297 B15 A0): the tip 400 mm below the pivot.
+  const std::vector<const char*> head{"G21", "G90 G94 G17 G40 G49 G80", "T01 M6", "G54", "S8000 M3"};
+  auto joints = [&](const char* move) {
+    std::vector<const char*> b = head;
+    b.push_back(move);
+    return b;
+  };
+  CHECK(run("head-head-5axis", joints("G0 G43 H1 X113.528 Y20. Z-18.63 A0. B15."), {10, 20, -5}, {s, 0, k}) ==
+        std::pair{std::string(), 1L});
+  // B a degree short: the pivot (X113.528 Y20 Z381.37, 400 mm over the tip at B0) stays, the tip
+  // at 400 (sin 14, 0, -cos 14) from it: x 16.759, z -6.748; the axis a degree off.
+  CHECK(run("head-head-5axis", joints("G0 G43 H1 X113.528 Y20. Z-18.63 A0. B14."), {10, 20, -5}, {s, 0, k})
+            .first ==
+        "job.cls:12:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part "
+        "frame, mm; the forward transform of its words): x 16.759 where the CL has 10.000 (6.759 mm off); z "
+        "-6.748 where the CL has -5.000 (1.748 mm off), after the block `G0 G43 H1 X113.528 Y20. Z-18.63 A0. "
+        "B14.`\n"
+        "job.cls:12:1: error: channel 1: the CL's tool axis here is (0.2588,0.0000,0.9659), the program's "
+        "rotary "
+        "axes point the tool along (0.2419,0.0000,0.9703) in the part frame (1.000 degrees off), after the "
+        "block "
+        "`G0 G43 H1 X113.528 Y20. Z-18.63 A0. B14.`\n");
+  // No length offset in force: X Y Z are the spindle nose's.
+  CHECK(
+      run("head-head-5axis", joints("G0 X113.528 Y20. Z-18.63 A0. B15."), {10, 20, -5}, {s, 0, k}).first ==
+      "job.cls:12:1: error: channel 1: the program moves with no tool length offset in force (G43 H.., the "
+      "chain's G43): X Y Z are then the spindle's gauge point, one tool length from the CL's tip, after the "
+      "block `G0 X113.528 Y20. Z-18.63 A0. B15.`\n");
+  // A tool of no known length (no TLDATA, no [[tool]] length): with the head tilted the tip
+  // depends on it, and the record is passed over; upright it does not.
+  CHECK(run("head-head-5axis", joints("G0 G43 H1 X113.528 Y20. Z-18.63 A0. B15."), {10, 20, -5}, {s, 0, k},
+            false) == std::pair{std::string(), 0L});
+  CHECK(run("head-head-5axis", joints("G0 G43 H1 X10. Y20. Z-5. A0. B0."), {10, 20, -5}, {0, 0, 1}, false) ==
+        std::pair{std::string(), 1L});
+  // The trunnion under tool-tip control (G43.4): X Y Z the tip in the part frame, A15 C90 the
+  // axis; C270 turns it the other way.
+  auto tcp = [&](const char* move) {
+    return std::vector<const char*>{"G21", "G90 G94 G17 G40 G49 G80", "T01 M6", "G54", "S8000 M3", move};
+  };
+  CHECK(run("trunnion-5axis", tcp("G0 G43.4 H1 X10. Y20. Z-5. A15. C90."), {10, 20, -5}, {s, 0, k}) ==
+        std::pair{std::string(), 1L});
+  CHECK(run("trunnion-5axis", tcp("G0 G43.4 H1 X10. Y20. Z-5. A15. C270."), {10, 20, -5}, {s, 0, k}).first ==
+        "job.cls:12:1: error: channel 1: the CL's tool axis here is (0.2588,0.0000,0.9659), the program's "
+        "rotary "
+        "axes point the tool along (-0.2588,0.0000,0.9659) in the part frame (30.000 degrees off), after the "
+        "block `G0 G43.4 H1 X10. Y20. Z-5. A15. C270.`\n");
+  // A tilted plane (G68.2, Fanuc's Z-X-Z Euler angles; G53.1 turns the table to its Z): its
+  // coordinates are the tip's. I90 J15 K-90 tilts Z 15 degrees towards +X.
+  const std::vector<const char*> plane{
+      "G21", "G90 G94 G17 G40 G49 G80",           "T01 M6", "G54",          "S8000 M3",
+      "G49", "G68.2 X0. Y0. Z0. I90. J15. K-90.", "G53.1",  "G0 X20. Y-8.", "G43 H1 X20. Y-8. Z40."};
+  const vec3 at{20 * k + 40 * s, -8, -20 * s + 40 * k};
+  CHECK(run("trunnion-5axis", plane, at, {s, 0, k}) == std::pair{std::string(), 1L});
+  CHECK(run("head-head-5axis", plane, at, {s, 0, k}) == std::pair{std::string(), 1L});
+  CHECK(run("trunnion-5axis", plane, {at.x, at.y + 1, at.z}, {s, 0, k}).first ==
+        "job.cls:12:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part "
+        "frame, mm; the forward transform of its words): y -8.000 where the CL has -7.000 (1.000 mm off), "
+        "after "
+        "the block `G43 H1 X20. Y-8. Z40.`\n");
+}
