@@ -29,9 +29,10 @@
 // tilted frame, polar coordinates, inverse-time feed, a threading cycle, a rotary-axis word
 // since the last tool call that no indexing head or C axis explains, an indexing head's index until its
 // length offset is given again, a C axis whose angle is not known, offsets written (G10, #5221=), a
-// coordinate setting or a work offset no spindle names in force. Channels with a kinematic
-// chain are not compared (their writer checks every point by the forward transform), but for a
-// mill/turn's indexing head: X Y Z are the tip at each index, in the frame C turned the part to.
+// coordinate setting or a work offset no spindle names in force. A channel with a kinematic
+// chain is followed through it (analysis/rotary_sweep's follower): the tip and the tool axis
+// from its words by the forward transform; a mill/turn's indexing head: X Y Z are the tip at
+// each index, in the frame C turned the part to, and the head's angle the tool's axis.
 #include <memory>
 #include <string>
 #include <string_view>
