@@ -1161,21 +1161,22 @@ struct cl_comparison::impl {
       return true;
     }
     // A tool of no known length: the tip only where the length does not move it (every head
-    // that tilts the tool at 0, or tool-tip control).
+    // that tilts the tool at 0, or tool-tip control); the axis in any case.
     const std::optional<double> length = chain_length();
-    std::optional<rotary_sweep::pose> at = chain->where(length.value_or(0));
-    if (at && !length)
-      if (const std::optional<rotary_sweep::pose> longer = chain->where(100);
-          !longer || kin::distance(longer->tip, at->tip) > tip_tolerance / 10)
-        at.reset();
+    const std::optional<rotary_sweep::pose> at = chain->where(length.value_or(0));
     if (!at) {
       ++passed;
       return false;
     }
     ++compared;
+    bool tip_known = true;
+    if (!length)
+      if (const std::optional<rotary_sweep::pose> longer = chain->where(100);
+          !longer || kin::distance(longer->tip, at->tip) > tip_tolerance / 10)
+        tip_known = false;
     const double tol = std::max({tip_tolerance, chain_def->tolerance, axis_half * 3.001});
     const vec3 want{pos.x * cl_mm, pos.y * cl_mm, pos.z * cl_mm};
-    if (kin::distance(at->tip, want) > tol && !std::exchange(said_tip, true)) {
+    if (tip_known && kin::distance(at->tip, want) > tol && !std::exchange(said_tip, true)) {
       std::string off;
       const double have_c[3] = {at->tip.x, at->tip.y, at->tip.z}, want_c[3] = {want.x, want.y, want.z};
       for (int i = 0; i < 3; ++i)
@@ -1188,16 +1189,20 @@ struct cl_comparison::impl {
                         "the forward transform of its words): {}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
     }
-    if (cl_axis && !said_axis)
-      if (const std::optional<std::string> why =
-              axis_fault(at->axis, *cl_axis, std::max(axis_tolerance, chain_def->angle_tolerance),
-                         "rotary axes point")) {
-        said_axis = true;
-        error(e, fmt::format("{}{}", *why,
-                             moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
-      }
+    compare_chain_axis(e, at->axis, cl_axis);
     compare_rest(e, rapid);
     return true;
+  }
+
+  // A chain's tool axis `have` (from its rotary words) against the CL's: once a channel.
+  void compare_chain_axis(const event& e, const vec3& have, const std::optional<vec3>& cl_axis) {
+    if (!cl_axis || said_axis) return;
+    const double tol = std::max(axis_tolerance, chain_def->angle_tolerance);
+    if (const std::optional<std::string> why = axis_fault(have, *cl_axis, tol, "rotary axes point")) {
+      said_axis = true;
+      error(e, fmt::format("{}{}", *why,
+                           moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+    }
   }
 
   // The C angle in force in (-180, 180] degrees (0 without one).
@@ -1599,9 +1604,12 @@ struct cl_comparison::impl {
           } else if constexpr (std::is_same_v<T, motion_event>) {
             if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta) {
               bool followed = true;
-              if (cl_cycle && !both)
+              if (cl_cycle && !both) {
                 compare_hole(e, d.pos);
-              else
+                // A chain drills along its tool axis: the rotary words' against the CL's.
+                if (chain)
+                  if (const std::optional<vec3> a = chain->axis_now()) compare_chain_axis(e, *a, d.axis);
+              } else
                 followed = compare(e, d.pos, d.rapid, both, d.axis);
               // Between two holes the cycle moves at rapid.
               if (followed && !both && !turns_passed())

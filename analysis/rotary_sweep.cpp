@@ -703,6 +703,17 @@ std::optional<rotary_sweep::pose> rotary_sweep::where(double length) const { ret
 
 bool rotary_sweep::length_on() const { return p_->length; }
 
+std::optional<vec3> rotary_sweep::axis_now() const {
+  if (p_->vector) return std::nullopt;
+  kin::joint_values j;
+  for (int i = 0; i < p_->plan.rotary_count; ++i) {
+    const auto& r = p_->rot[static_cast<std::size_t>(i)];
+    if (!known(r)) return std::nullopt;
+    j.rotary[static_cast<std::size_t>(i)] = r.value;
+  }
+  return kin::tool_axis(p_->plan, kin::joint_turns(p_->plan, j));
+}
+
 bool rotary_sweep::upright() const {
   if (p_->frame) return false;
   for (int i = 0; i < p_->plan.rotary_count; ++i) {

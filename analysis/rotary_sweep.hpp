@@ -51,6 +51,9 @@ class rotary_sweep {
   /// Every rotary axis at 0 and no tilted plane: the linear words are the tip, as on a
   /// three-axis machine.
   bool upright() const;
+  /// The tool's axis the rotary words give (a drilling cycle's too); none where one is not
+  /// known, or under G43.5.
+  std::optional<vec3> axis_now() const;
   /// A tool length offset in force: the chain's length or tool-tip code, or the tool call of a
   /// control that gives it there (joints output with no `length_on`).
   bool length_on() const;

@@ -1064,9 +1064,17 @@ TEST_CASE("cl comparison: a chain's tip and tool axis through the forward transf
       "chain's G43): X Y Z are then the spindle's gauge point, one tool length from the CL's tip, after the "
       "block `G0 X113.528 Y20. Z-18.63 A0. B15.`\n");
   // A tool of no known length (no TLDATA, no [[tool]] length): with the head tilted the tip
-  // depends on it, and the record is passed over; upright it does not.
-  CHECK(run("head-head-5axis", joints("G0 G43 H1 X113.528 Y20. Z-18.63 A0. B15."), {10, 20, -5}, {s, 0, k},
-            false) == std::pair{std::string(), 0L});
+  // depends on it and is not held (the axis is); upright it does not.
+  CHECK(run("head-head-5axis", joints("G0 G43 H1 X113.528 Y20. Z-18.63 A0. B15."), {0, 0, 0}, {s, 0, k},
+            false) == std::pair{std::string(), 1L});
+  CHECK(
+      run("head-head-5axis", joints("G0 G43 H1 X113.528 Y20. Z-18.63 A0. B14."), {0, 0, 0}, {s, 0, k}, false)
+          .first ==
+      "job.cls:11:1: error: channel 1: the CL's tool axis here is (0.2588,0.0000,0.9659), the program's "
+      "rotary "
+      "axes point the tool along (0.2419,0.0000,0.9703) in the part frame (1.000 degrees off), after the "
+      "block "
+      "`G0 G43 H1 X113.528 Y20. Z-18.63 A0. B14.`\n");
   CHECK(run("head-head-5axis", joints("G0 G43 H1 X10. Y20. Z-5. A0. B0."), {10, 20, -5}, {0, 0, 1}, false) ==
         std::pair{std::string(), 1L});
   // The trunnion under tool-tip control (G43.4): X Y Z the tip in the part frame, A15 C90 the
