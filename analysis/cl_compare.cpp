@@ -112,7 +112,7 @@ struct cl_comparison::impl {
           c_letters |= nc_letter(w.address);
         }
     read_tool_call(ch.tool_call);
-    if (chain_def) chain.emplace(m, *chain_def, ch.number, tool_m6 ? 6 : -1);
+    if (chain_def) chain.emplace(m, *chain_def, ch.number, tool_m6 ? 6 : -1, true);
     // The coolant codes, each kind's on and off: flood is codes.coolant_on (each block of it
     // turns it on) and coolant_off, the others their [on, off] pairs.
     for (const std::string& b : m.codes.coolant_on) coolant_codes.push_back({split_nc_words(b), 1});

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "kinematics/vec3_ops.hpp"
 
@@ -33,6 +34,12 @@ std::optional<std::string> axis_fault(const vec3& have, const vec3& want, double
                                       std::string_view who) {
   const double n = kin::norm(want);
   if (!(n > 0)) return std::nullopt;  // no direction given
+  // Most axes are right: within the tolerance when |have x want| <= sin(tol) |have| |want| on
+  // the same side, without the arc tangent (a little under the tolerance, never over it).
+  const double within = std::sin(tolerance * std::numbers::pi / 180) * 0.999;
+  const vec3 c = kin::cross(have, want);
+  if (kin::dot(have, want) > 0 && kin::dot(c, c) <= within * within * kin::dot(have, have) * n * n)
+    return std::nullopt;
   const double off = kin::angle_between(have, want);
   if (off <= tolerance) return std::nullopt;
   // Written to 4 places, a component under half the last one as 0 (never "-0.0000").

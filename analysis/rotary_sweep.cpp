@@ -61,8 +61,8 @@ bool known(const axis_value& a) { return a.k == axis_value::kind::known; }
 }  // namespace
 
 struct rotary_sweep::impl {
-  impl(const machine& m, const kinematic_chain& c, int channel, int change_m)
-      : m(m), chain(c), plan(c), channel(channel), change_m(change_m),
+  impl(const machine& m, const kinematic_chain& c, int channel, int change_m, bool follow_only)
+      : m(m), chain(c), plan(c), channel(channel), change_m(change_m), follow_only(follow_only),
         codes(m, m.channels[static_cast<std::size_t>(channel - 1)]) {
     for (std::size_t i = 0; i < 3 && i < c.linear.size(); ++i) linear_address[i] = c.linear[i];
     for (std::size_t i = 0; i < c.rotaries.size() && i < 2; ++i) rotary_address[i] = c.rotaries[i].address;
@@ -95,8 +95,9 @@ struct rotary_sweep::impl {
   const kinematic_chain& chain;
   kin::chain_plan plan;
   int channel;
-  int change_m;    // the M code of the tool change (M6); -1: a T word changes the tool
-  nc_codes codes;  // what its G codes make of a block's axis words
+  int change_m;      // the M code of the tool change (M6); -1: a T word changes the tool
+  bool follow_only;  // the comparison's follower: no swing, no work's top
+  nc_codes codes;    // what its G codes make of a block's axis words
   bool heads_only = true;
   std::array<char, 3> linear_address{'X', 'Y', 'Z'};
   std::array<char, 2> rotary_address{0, 0};
@@ -232,6 +233,18 @@ struct rotary_sweep::impl {
     return {z0, kin::forward(plan, j, 1).tip.z - z0};
   }
 
+  // The rotations at `j`'s rotary values: the last ones kept (most records of a program turn
+  // nothing, or a little: their sines are not computed again).
+  mutable std::array<double, 2> turns_at{std::nan(""), std::nan("")};
+  mutable std::array<kin::turn, 2> turns_kept{};
+  kin::joint_turns turns_of(const kin::joint_values& j) const {
+    if (j.rotary != turns_at) {
+      turns_kept = kin::joint_turns(plan, j).t;
+      turns_at = j.rotary;
+    }
+    return kin::joint_turns(turns_kept);
+  }
+
   // Where the program has put the tip and which way the tool points, for a tool `l` mm long.
   std::optional<rotary_sweep::pose> where(double l) const {
     if (cycle || vector) return std::nullopt;
@@ -240,7 +253,7 @@ struct rotary_sweep::impl {
       if (!known(rot[static_cast<std::size_t>(i)])) return std::nullopt;
       j.rotary[static_cast<std::size_t>(i)] = rot[static_cast<std::size_t>(i)].value;
     }
-    const kin::joint_turns turns(plan, j);
+    const kin::joint_turns turns = turns_of(j);
     const std::array<axis_value, 3>& at = frame ? flin : lin;
     for (const axis_value& a : at)
       if (!known(a)) return std::nullopt;
@@ -501,6 +514,15 @@ struct rotary_sweep::impl {
     }
     std::optional<std::pair<int, std::string>> finding;
     const bool rapid = motion == 0 || home || machine_block || index;
+    if (follow_only) [[likely]] {
+      // The comparison's follower: where the axes are, not the swings or the work's top.
+      for (int i = 0; i < 3; ++i)
+        if (homes[static_cast<std::size_t>(i)]) lin[static_cast<std::size_t>(i)].k = axis_value::kind::away;
+      for (std::size_t i = 0; i < 2; ++i)
+        if (rotary_homes[i]) rot[i] = {axis_value::kind::known, 0};
+      if (cycle && !frame && absolute) cycle_end(words);
+      return finding;
+    }
     // A table turns the part, not the tool: the tip keeps its distance from the table's axis,
     // and whether the part reaches it is the part's size, which the program does not say.
     if (turned && rapid && !tcp && !table && !said && !frame)
@@ -583,15 +605,19 @@ struct rotary_sweep::impl {
 
   // A drilling cycle's block: its R plane (a Z under G90 on a mill) is where each hole's feed
   // starts, at the hole's X and Y: the work reaches that high.
-  void cycle_top(const std::vector<nc_word>& words) {
+  // A hole drilled: the tool ends at the initial level (G98) or the R plane (G99).
+  void cycle_end(const std::vector<nc_word>& words) {
     bool moves = false;
     for (const nc_word& w : words)
       moves = moves || (w.address >= 'A' && w.address <= 'Z' &&
                         axis_of[static_cast<std::size_t>(w.address - 'A')] >= 0);
-    // A hole drilled: the tool ends at the initial level (G98) or the R plane (G99).
     for (const nc_word& w : words)
       if (w.address == 'R' && w.numeric) r_plane = {axis_value::kind::known, word_value(w)};
     if (moves) lin[2] = return_to_r ? r_plane : initial;
+  }
+
+  void cycle_top(const std::vector<nc_word>& words) {
+    cycle_end(words);
     for (const nc_word& w : words) {
       if (w.address != 'R' || !w.numeric) continue;
       std::array<axis_value, 3> l = lin;
@@ -689,8 +715,9 @@ struct rotary_sweep::impl {
   }
 };
 
-rotary_sweep::rotary_sweep(const machine& m, const kinematic_chain& chain, int channel, int change_m)
-    : p_(std::make_unique<impl>(m, chain, channel, change_m)) {}
+rotary_sweep::rotary_sweep(const machine& m, const kinematic_chain& chain, int channel, int change_m,
+                           bool follow_only)
+    : p_(std::make_unique<impl>(m, chain, channel, change_m, follow_only)) {}
 rotary_sweep::~rotary_sweep() = default;
 rotary_sweep::rotary_sweep(rotary_sweep&&) noexcept = default;
 rotary_sweep& rotary_sweep::operator=(rotary_sweep&&) noexcept = default;
@@ -711,7 +738,7 @@ std::optional<vec3> rotary_sweep::axis_now() const {
     if (!known(r)) return std::nullopt;
     j.rotary[static_cast<std::size_t>(i)] = r.value;
   }
-  return kin::tool_axis(p_->plan, kin::joint_turns(p_->plan, j));
+  return kin::tool_axis(p_->plan, p_->turns_of(j));
 }
 
 bool rotary_sweep::upright() const {

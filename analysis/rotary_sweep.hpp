@@ -28,7 +28,10 @@ class rotary_sweep {
  public:
   /// `chain` is the channel's (machine::chain), with at least one rotary axis.
   /// `change_m`: the M code of the channel's tool change (M6), -1 where a T word changes it.
-  rotary_sweep(const machine& m, const kinematic_chain& chain, int channel, int change_m);
+  /// `follow_only`: follow the axes for where() alone (the comparison with the CL), neither
+  /// the swings nor the work's top (block() then finds nothing).
+  rotary_sweep(const machine& m, const kinematic_chain& chain, int channel, int change_m,
+               bool follow_only = false);
   ~rotary_sweep();
   rotary_sweep(rotary_sweep&&) noexcept;
   rotary_sweep& operator=(rotary_sweep&&) noexcept;
