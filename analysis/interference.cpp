@@ -117,6 +117,7 @@ struct channel_data {
   channel_spindles spindles;
   nc_codes codes;        // what its G codes make of a block's axis words
   bool turning = false;  // a lathe's single cycle in force (G90, G92, G94 in system A): modal as G1
+  double turning_z = 0;  // its end's Z, which its next passes keep (attack 63 M6: X28.4 alone)
   std::vector<segment_data> segments = std::vector<segment_data>(1);
   double x = 0, z = 0;
   // The second coordinate of the tip in the plane across the spindle axis: C under polar
@@ -337,6 +338,8 @@ struct interference_check::impl {
     if (uw && c.known_x) c.x += uw->number;
     if (zw && !c.cycle) c.z = zw->number, c.known_z = true;
     if (ww && c.known_z && !c.cycle) c.z += ww->number;
+    if (c.turning && (zw || ww)) c.turning_z = c.z;
+    if (c.turning && !zw && !ww && known) c.z = c.turning_z;
     if (!c.known_x || !c.known_z || c.balance) {
       c.merge_open = false;
       return;

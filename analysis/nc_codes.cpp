@@ -77,8 +77,9 @@ axis_words nc_codes::role(double number) const {
     case 530: return axis_words::machine;
     // A dwell (X is its time), data setting (G10, its mode's end G11, Mazak's radius and
     // diameter input G10.9), a coordinate setting or the speed clamp (G50, G52), a macro call
-    // (its words are arguments), a rotated or tilted frame, scaling and mirror image, the
-    // radius of cylindrical interpolation.
+    // (its words are arguments), a rotated or tilted frame (G68, G68.1, G68.2, G68.3, G68.4),
+    // scaling and mirror image, the radius of cylindrical interpolation, the stored stroke
+    // check's limits (G22 X Z I K: attack 63 M5, read as a move to X0 Z-10).
     case 40:
     case 100:
     case 109:
@@ -90,8 +91,12 @@ axis_words nc_codes::role(double number) const {
     case 650:
     case 660:
     case 661:
+    case 220:
     case 680:
+    case 681:
     case 682:
+    case 683:
+    case 684:
     case 510:
     case 511:
     case 71:

@@ -77,6 +77,7 @@ struct channel_data {
   int seg = 0;
   bool per_rev = false;
   int motion = -1;
+  double turning_g = -1;  // a lathe's single cycle in force (G90, G92, G94 in system A), modal as G1
   std::vector<std::vector<command_rec>> commands;  // per spindle
   std::vector<std::vector<turn_rec>> turns;        // per spindle
   std::vector<cut_rec> cuts;
@@ -199,7 +200,7 @@ struct shared_resources::impl {
     // of its stretch (already noted otherwise).
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (c.quiet_without_gms && !b.may_have(gms) &&
-        (c.motion < 1 || c.motion > 3 || (c.cut_noted() && c.use_noted(shared))))
+        (((c.motion < 1 || c.motion > 3) && c.turning_g < 0) || (c.cut_noted() && c.use_noted(shared))))
       return;
     const std::vector<nc_word>& words = b.words();
     bool cycle = false, thread = false, no_move = false;
@@ -210,6 +211,7 @@ struct shared_resources::impl {
       if (w.address == 'G') {
         if (v == 0 || v == 1 || v == 2 || v == 3) {
           c.motion = static_cast<int>(v);
+          c.turning_g = -1;
           if (v != 0) cut_column = w.column;
         }
         if (const feed_kind f = c.codes.feed_mode(v); f != feed_kind::none)
@@ -222,9 +224,11 @@ struct shared_resources::impl {
         // of a dwell, a data or coordinate setting, a reference return or machine coordinates
         // are no cut (analysis/nc_codes: a system-A lathe's G92 is its threading cycle).
         switch (c.codes.role(v)) {
+          case axis_words::turning_cycle:
+            c.turning_g = v;  // its next blocks with axis words are passes of it (attack 63 M6)
+            [[fallthrough]];
           case axis_words::feed_move:
           case axis_words::hole_cycle:
-          case axis_words::turning_cycle:
           case axis_words::repetitive_cycle:
             (c.codes.threads(v) ? thread : cycle) = true;
             cut_column = w.column;
@@ -272,6 +276,9 @@ struct shared_resources::impl {
         }
       }
     }
+    // A block of axis words under a lathe's single cycle is another pass of it.
+    if (c.turning_g >= 0 && axis_column > 0 && !no_move && !cycle && !thread)
+      (c.codes.threads(c.turning_g) ? thread : cycle) = true;
     const bool feeding = c.motion >= 1 && c.motion <= 3 && axis_column > 0 && !no_move;
     const int s = c.spindles.current();
     if (s < 0 || !(thread || cycle || feeding)) return;

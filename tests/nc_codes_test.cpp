@@ -121,3 +121,37 @@ TEST_CASE("nc codes: a system-A lathe's cycles cut, a macro call's arguments do 
               head + "T0101\nG97 S1000 M3\nG0 X60. Z5.\nG92 X40. Z-25. F1.5\nM100\nG0 X100.\nM101\nM30\n%\n",
               drill) == "check: 2 channels, 4 waits paired, 0 errors\n");
 }
+
+TEST_CASE("nc codes: a lathe cycle's next passes, and codes whose words are limits or a frame",
+          "[analysis]") {
+  // Attack 63 M6: `X28.7` after `G92 X29.2 Z-20. F1.5` is another pass of the thread; after an
+  // M5 the spindle rules took it for no cut, and the interference rule swept it to the cycle's
+  // start Z.
+  const machine twin = load_machine("fanuc-0itd-twin");
+  const std::string idle = head + "T0505\nG0 X200. Z100.\nM101\nM30\n%\n";
+  CHECK(
+      check(twin,
+            head + "T0303\nG97 S800 M3\nG0 X32. Z5.\nG92 X29.2 Z-20. F1.5\nX28.7\nM5\nX28.4\nG0 "
+                   "X100.\nM101\nM30\n%\n",
+            idle) ==
+      "A_1.nc:10:1: error: channel 1 cuts with feed per revolution (G99) on the main spindle, but channel 1 "
+      "stops it at A_1.nc:9 (M5) and no start is known to come after that\n"
+      "X28.4\n^\n"
+      "check: 2 channels, 2 waits paired, 1 error\n");
+  const std::string drill = head + "T0505\nG0 X0. Z5.\nM100\nG1 Z-30. F0.08\nG0 Z50.\nM101\nM30\n%\n";
+  CHECK_THAT(
+      check(twin,
+            head + "T0101\nG96 S180 M3\nG0 X64. Z2.\nM100\nG90 X58. Z-40. F0.25\nX4.\nG0 X100. "
+                   "Z100.\nM101\nM30\n%\n",
+            drill),
+      Catch::StartsWith("A_1.nc:9:1: error: channel 1 (T0101 at X4 Z-40) may meet channel 2 (T0505 at X0 "
+                        "Z-30, A_2.nc:7) on the main spindle"));
+  // Attack 63 M5: a stored stroke check's limits (G22 X Z I K) and a coordinate rotation's
+  // centre (G68.1) are no move: path 2's tool stays at X200, far from path 1's facing cut.
+  const std::string face =
+      head + "T0101\nG96 S180 M3\nG0 X64. Z5.\nM100\nG0 W-5.\nG1 X-1.6 F0.15\nG0 X100. Z100.\nM101\nM30\n%\n";
+  for (const char* block : {"G22 X0. Z-10. I300. K150.", "G68.1 X0. Z-10. R30."})
+    CHECK(check(twin, face,
+                head + "T0505\nG0 X200. Z100.\nM100\n" + block + "\nG0 X200. Z100.\nM101\nM30\n%\n") ==
+          "check: 2 channels, 4 waits paired, 0 errors\n");
+}
