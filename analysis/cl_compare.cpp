@@ -96,10 +96,14 @@ struct cl_comparison::impl {
         if (w.address == 'G' && w.numeric && g10(w.number) >= 730 && g10(w.number) <= 890)
           (side ? side_g : hole_g).push_back(g10(w.number));
     }
-    if (const kinematic_chain* k = m.chain(ch.number); k && !k->rotaries.empty() && !ch.head_index.present())
+    // A mill/turn head's chain writes its tilted tools under tool-tip control (the Integrex's
+    // G43.4 H#3020 with B and C): followed there (attack 63 H1: its records were passed over).
+    if (const kinematic_chain* k = m.chain(ch.number);
+        k && !k->rotaries.empty() && (!ch.head_index.present() || !k->tool_tip_on.empty()))
       chain_def = k;
+    whole_chain = chain_def && !ch.head_index.present();
     // A chain's C is one of its rotary axes, not the part turned under X and Y.
-    has_c = ch.axis('C') != nullptr && !chain_def;
+    has_c = ch.axis('C') != nullptr && !whole_chain;
     if (has_c)
       for (const spindle_def& s : m.spindles) {
         for (const std::string& b : s.c_axis.on) c_on_codes.push_back(split_nc_words(b));
@@ -217,6 +221,7 @@ struct cl_comparison::impl {
   // them (analysis/rotary_sweep), the tip and the tool axis through the forward transform.
   const kinematic_chain* chain_def = nullptr;
   std::optional<rotary_sweep> chain;
+  bool whole_chain = false;  // every move the chain's (else a mill/turn head's, under tool-tip control)
   std::optional<double> cl_length, cl_length_next;  // the CL's TLDATA length (mm), now and for the next call
   bool cl_after_call = false;                       // a TLDATA now describes the tool just called
   std::string head_text;
@@ -620,7 +625,7 @@ struct cl_comparison::impl {
       if (w.address == 'A' || w.address == 'B' || w.address == 'C') {
         // An A or B that is no indexing head's, a C of a channel without one: the tip then
         // depends on rotary axes this comparison does not follow (a chain's are: `chain`).
-        if (!(w.address == 'C' && cylinder) && !chain) rotary = true;
+        if (!(w.address == 'C' && cylinder) && !whole_chain) rotary = true;
         continue;
       }
       if (w.address != 'G' || !w.numeric) continue;
@@ -755,7 +760,7 @@ struct cl_comparison::impl {
         case 680:
         case 681:
         case 682:
-          frame = frame || g != 682 || !chain;  // a chain's tilted plane is followed (`chain`)
+          frame = frame || g != 682 || !whole_chain;  // a chain's tilted plane is followed (`chain`)
           not_a_move = true;
           break;
         case 690:
@@ -1028,7 +1033,7 @@ struct cl_comparison::impl {
                const std::optional<vec3>& cl_axis = std::nullopt) {
     // The head's offset first: a G49 H0 also makes C unknown, and would pass everything after.
     if (!head_due && head_offset_wrong(e)) return false;
-    if (chain) return compare_chain(e, pos, rapid, both, cl_axis);
+    if (whole_chain || (chain && chain->tool_tip_on())) return compare_chain(e, pos, rapid, both, cl_axis);
     const bool followed_polar = polar && polar_follow;
     if (both || cl_cycle || cycle || (polar && !polar_follow) || cylinder || frame || polar_coords ||
         rotary || foreign_offset || shifted || head_due || (!c_known && !followed_polar)) {
@@ -1225,7 +1230,7 @@ struct cl_comparison::impl {
   void compare_hole(const event& e, const vec3& pos) {
     if (!head_due && head_offset_wrong(e)) return;
     if (polar || cylinder || frame || polar_coords || rotary || foreign_offset || shifted || head_due ||
-        !c_known || (chain && !chain->upright())) {
+        !c_known || (whole_chain && !chain->upright())) {
       if (shifted || mirrored) said_passed_shift(e);
       ++passed;
       return;
@@ -1607,7 +1612,7 @@ struct cl_comparison::impl {
               if (cl_cycle && !both) {
                 compare_hole(e, d.pos);
                 // A chain drills along its tool axis: the rotary words' against the CL's.
-                if (chain)
+                if (whole_chain)
                   if (const std::optional<vec3> a = chain->axis_now()) compare_chain_axis(e, *a, d.axis);
               } else
                 followed = compare(e, d.pos, d.rapid, both, d.axis);
@@ -1619,7 +1624,8 @@ struct cl_comparison::impl {
             }
           } else if constexpr (std::is_same_v<T, arc_event>) {
             // (A chain's arc is held to the circle with its rotary axes at 0: X Y Z the tip.)
-            if (compare(e, d.end, false, both) && !polar && (!chain || chain->upright())) compare_arc(e, d);
+            if (compare(e, d.end, false, both) && !polar && (!whole_chain || chain->upright()))
+              compare_arc(e, d);
             cl_prev = {d.end.x * cl_mm, d.end.y * cl_mm, d.end.z * cl_mm};
             cl_prev_known = true;
           }

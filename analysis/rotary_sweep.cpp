@@ -730,6 +730,8 @@ std::optional<rotary_sweep::pose> rotary_sweep::where(double length) const { ret
 
 bool rotary_sweep::length_on() const { return p_->length; }
 
+bool rotary_sweep::tool_tip_on() const { return p_->tcp; }
+
 std::optional<vec3> rotary_sweep::axis_now() const {
   if (p_->vector) return std::nullopt;
   kin::joint_values j;

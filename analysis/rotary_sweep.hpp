@@ -60,6 +60,8 @@ class rotary_sweep {
   /// A tool length offset in force: the chain's length or tool-tip code, or the tool call of a
   /// control that gives it there (joints output with no `length_on`).
   bool length_on() const;
+  /// Tool-tip control in force (the chain's code, G43.4 or G43.5).
+  bool tool_tip_on() const;
 
  private:
   struct impl;

@@ -1104,3 +1104,37 @@ TEST_CASE("cl comparison: a chain's tip and tool axis through the forward transf
         "after "
         "the block `G43 H1 X20. Y-8. Z40.`\n");
 }
+
+TEST_CASE("cl comparison: the Integrex head's tilted tool under tool-tip control", "[analysis][cl_compare]") {
+  // Attack 63 H1: a live drill at 45 degrees is written through the head's chain under tool-tip
+  // control (G43.4 H#3020 with B and C: X Y Z the tip in the part frame); its records were
+  // passed over (the B word left the head's offset due). An INSERT that turns C under it turns
+  // the tool about the tip: the axis is 10 degrees round the part's axis from the CL's.
+  auto run = [](std::vector<const char*> more) {
+    compared c("integrex-i200st", 1);
+    c.lines({"T13 M6", "M901", "M200", "G10.9 X0", "G97 S2000 M3", "G94", "M108", "M212", "G0 B45. C0.",
+             "G0 X40. Y0.", "G0 G43.4 H#3020 X40. Y0. Z20. B45. C0."});
+    const double h = std::sqrt(0.5);
+    motion_event mv;
+    mv.pos = {40, 0, 20};
+    mv.axis = vec3{h, 0, h};
+    mv.rapid = true;
+    c.cmp.record({c.next++, mv, 1}, false);
+    c.feed(150, feed_mode::per_minute);
+    for (const char* b : more) c.cmp.line(b);
+    mv.pos = {30, 0, 10};
+    mv.rapid = false;
+    c.cmp.record({c.next++, mv, 1}, false);
+    return std::pair{c.text(), c.cmp.compared()};
+  };
+  CHECK(run({"G1 X30. Z10. F150."}) == std::pair{std::string(), 2L});
+  CHECK(
+      run({"G0 C10.", "G1 X30. Z10. F150."}).first ==
+      "job.cls:12:1: error: channel 1: the CL's tool axis here is (0.7071,0.0000,0.7071), the program's "
+      "rotary "
+      "axes point the tool along (0.6964,0.1228,0.7071) in the part frame (7.067 degrees off), after the "
+      "block "
+      "`G1 X30. Z10. F150.`\n"
+      "job.cls:12:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: `G0 "
+      "C10.`\n");
+}
