@@ -137,6 +137,9 @@ struct cl_comparison::impl {
     needs_length = tool_m6 && !lathe;
     if (ch.length_offset.find("H{offset") != std::string::npos) h_from = 1;
     if (ch.length_offset.find("H{tool") != std::string::npos) h_from = 0;
+    // A chain writes its length or tool-tip code with H and the CL's offset (LOADTL/n,adj, else
+    // the tool): attack 63 H2, an INSERT `G43 H5` ran the joints solved for tool 1 on H5.
+    if (whole_chain && !offset_code(*chain_def).empty()) h_from = 1;
     units(m.program.output_units == output_unit::inch);
 
     for (const auto& o : offsets)
@@ -1496,8 +1499,10 @@ struct cl_comparison::impl {
         said_offset = true;
         return error(e,
                      fmt::format("the CL cuts with tool {} on offset {} here (the tool call at line {}), the "
-                                 "program with the length offset {} (channel.length_offset {})",
-                                 cl_tool, cl_offset, cl_tool_line, h_text, ch.length_offset));
+                                 "program with the length offset {} ({} {})",
+                                 cl_tool, cl_offset, cl_tool_line, h_text,
+                                 whole_chain ? "the chain's" : "channel.length_offset",
+                                 whole_chain ? offset_code(*chain_def) + " H.." : ch.length_offset));
       }
     }
     // The offset the T word gave: 0 cancels the tool's geometry (the tip runs at the turret's

@@ -1063,6 +1063,11 @@ TEST_CASE("cl comparison: a chain's tip and tool axis through the forward transf
       "job.cls:12:1: error: channel 1: the program moves with no tool length offset in force (G43 H.., the "
       "chain's G43): X Y Z are then the spindle's gauge point, one tool length from the CL's tip, after the "
       "block `G0 X113.528 Y20. Z-18.63 A0. B15.`\n");
+  // The H register is the CL's offset's (LOADTL/1: 1), as the chain writes it (attack 63 H2).
+  CHECK(run("head-head-5axis", joints("G0 G43 H5 X10. Y20. Z-5. A0. B0."), {10, 20, -5}, {0, 0, 1}).first ==
+        "job.cls:12:1: error: channel 1: the CL cuts with tool 1 on offset 1 here (the tool call at line "
+        "11), the "
+        "program with the length offset H5 (the chain's G43 H..)\n");
   // A tool of no known length (no TLDATA, no [[tool]] length): with the head tilted the tip
   // depends on it and is not held (the axis is); upright it does not.
   CHECK(run("head-head-5axis", joints("G0 G43 H1 X113.528 Y20. Z-18.63 A0. B15."), {0, 0, 0}, {s, 0, k},
