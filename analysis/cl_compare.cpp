@@ -224,7 +224,11 @@ struct cl_comparison::impl {
   // them (analysis/rotary_sweep), the tip and the tool axis through the forward transform.
   const kinematic_chain* chain_def = nullptr;
   std::optional<rotary_sweep> chain;
-  bool whole_chain = false;  // every move the chain's (else a mill/turn head's, under tool-tip control)
+  bool whole_chain = false;     // every move the chain's (else a mill/turn head's, under tool-tip control)
+  bool fixture = false;         // a rotary fixture offset (G54.2 Pn) in force
+  std::string unfollowed_text;  // the first frame of a chain's program not followed, and its line
+  int unfollowed_line = 0;
+  bool said_frame = false;
   std::optional<double> cl_length, cl_length_next;  // the CL's TLDATA length (mm), now and for the next call
   bool cl_after_call = false;                       // a TLDATA now describes the tool just called
   std::string head_text;
@@ -428,6 +432,26 @@ struct cl_comparison::impl {
       error(e, fmt::format("{}: the head was indexed by `{}` at line {} of the program", *why, head_text,
                            head_line));
     }
+  }
+
+  // A frame a chain's comparison does not follow: its records are passed over, said once.
+  void note_unfollowed(std::string_view text) {
+    if (!unfollowed_text.empty()) return;
+    unfollowed_text.assign(text);
+    unfollowed_line = lines;
+  }
+  void said_unfollowed(const event& e) {
+    if (unfollowed_text.empty() || std::exchange(said_frame, true)) return;
+    diagnostic d;
+    d.level = severity::warning;
+    d.file = cl_file;
+    d.line = e.line;
+    d.column = e.column;
+    d.message = fmt::format(
+        "channel {}: the records under `{}` (line {} of its program) are not held to the CL: the comparison "
+        "does not follow that frame",
+        ch.number, unfollowed_text, unfollowed_line);
+    diags.report(std::move(d));
   }
 
   // The head's offset is another than its codes give: X Y Z are not the tip (once per channel).
@@ -763,8 +787,23 @@ struct cl_comparison::impl {
         case 680:
         case 681:
         case 682:
-          frame = frame || g != 682 || !whole_chain;  // a chain's tilted plane is followed (`chain`)
+        case 683:
+        case 684: {
+          // A chain's tilted plane is followed (`chain`), but for the forms the post never
+          // writes: G68.2 with P (another angle convention), G68.3, G68.4, G68 (attack 63 H3:
+          // passed over without a word, or G68.3's X Y Z read as a move).
+          const bool followed = g == 682 && whole_chain && !has_address(words, 'P');
+          frame = frame || !followed;
+          if (!followed && whole_chain) note_unfollowed(text);
           not_a_move = true;
+          break;
+        }
+        case 542:
+          // A rotary fixture offset (G54.2 Pn; P0 ends it): the part frame turns with the table.
+          fixture = false;
+          for (const nc_word& p : words)
+            if (p.address == 'P' && (!p.numeric || p.number != 0)) fixture = true;
+          if (fixture && whole_chain) note_unfollowed(text);
           break;
         case 690:
         case 501:
@@ -1150,9 +1189,10 @@ struct cl_comparison::impl {
   // words put them through the forward transform, against the CL's point and axis.
   bool compare_chain(const event& e, const vec3& pos, bool rapid, bool both,
                      const std::optional<vec3>& cl_axis) {
-    if (both || cl_cycle || cycle || polar || cylinder || frame || polar_coords || foreign_offset ||
-        shifted) {
+    if (both || cl_cycle || cycle || polar || cylinder || frame || fixture || polar_coords ||
+        foreign_offset || shifted) {
       if (shifted || mirrored) said_passed_shift(e);
+      if ((frame || fixture) && !both) said_unfollowed(e);
       ++passed;
       return false;
     }
@@ -1683,6 +1723,12 @@ struct cl_comparison::impl {
       f = -1;
       f_expression.assign("F").append(w.value);  // the feed is known only when the block runs
     }
+  }
+
+  static bool has_address(const std::vector<nc_word>& ws, char address) {
+    for (const nc_word& w : ws)
+      if (w.address == address) return true;
+    return false;
   }
 
   static bool has_word(const std::vector<nc_word>& ws, char address, double number) {

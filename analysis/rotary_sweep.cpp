@@ -402,6 +402,13 @@ struct rotary_sweep::impl {
         }
         frame_axis = to_part({0, 0, 1}, false);
         for (axis_value& a : flin) a.k = axis_value::kind::unknown;
+      } else if (g == 6830 || g == 6840) {
+        // Fanuc's tilted planes by the tool axis (G68.3) and by increments (G68.4): a frame
+        // whose moves are not followed (attack 63 H3: their X Y Z were read as a move).
+        frame = true;
+        plane = false;
+        not_a_move = true;
+        for (axis_value& a : flin) a.k = axis_value::kind::unknown;
       } else if (g == 6800) {
         // G68 X Y R in the XY plane turns X and Y about Z: heights stay Z's (attack 62 M2). About
         // another axis (I, J) it is a frame whose moves are not followed.

@@ -1102,6 +1102,14 @@ TEST_CASE("cl comparison: a chain's tip and tool axis through the forward transf
   const vec3 at{20 * k + 40 * s, -8, -20 * s + 40 * k};
   CHECK(run("trunnion-5axis", plane, at, {s, 0, k}) == std::pair{std::string(), 1L});
   CHECK(run("head-head-5axis", plane, at, {s, 0, k}) == std::pair{std::string(), 1L});
+  // A frame the comparison does not follow (G68.3, G68.4, G68.2 with P, G68, G54.2 Pn):
+  // passed over, said once (attack 63 H3: silent, and G68.3's X Y Z read as a move).
+  CHECK(
+      run("head-head-5axis", joints("G68.3 X0. Y0. Z0. R30."), {10, 20, -5}, {0, 0, 1}) ==
+      std::pair{std::string("job.cls:12:1: warning: channel 1: the records under `G68.3 X0. Y0. Z0. R30.` "
+                            "(line 9 of its program) are not held to the CL: the comparison does not follow "
+                            "that frame\n"),
+                0L});
   CHECK(run("trunnion-5axis", plane, {at.x, at.y + 1, at.z}, {s, 0, k}).first ==
         "job.cls:12:1: error: channel 1: the program does not put the tool tip on this record's point (the "
         "part "
