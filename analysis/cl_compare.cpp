@@ -1246,7 +1246,9 @@ struct cl_comparison::impl {
   void compare_chain_axis(const event& e, const vec3& have, const std::optional<vec3>& cl_axis) {
     if (!cl_axis || said_axis) return;
     const double tol = std::max(axis_tolerance, chain_def->angle_tolerance);
-    if (const std::optional<std::string> why = axis_fault(have, *cl_axis, tol, "rotary axes point")) {
+    const char* who =
+        chain_def->output == multiaxis_output::vector ? "words I J K point" : "rotary axes point";
+    if (const std::optional<std::string> why = axis_fault(have, *cl_axis, tol, who)) {
       said_axis = true;
       error(e, fmt::format("{}{}", *why,
                            moved ? fmt::format(", after the block `{}`", move_text) : std::string()));

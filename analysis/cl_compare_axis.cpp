@@ -50,7 +50,7 @@ std::optional<std::string> axis_fault(const vec3& have, const vec3& want, double
   return fmt::format(
       "the CL's tool axis here is {}, the program's {} the tool along {} in the part frame ({:.3f} "
       "degrees off)",
-      v(want, 1 / n), who, v(have, 1), off);
+      v(want, 1 / n), who, v(have, 1 / kin::norm(have)), off);
 }
 
 }  // namespace twinpost

@@ -51,6 +51,16 @@ int code_g(const std::string& code) {
   return -1;
 }
 
+// The M number of a machine code with no G word ("M128" -> 12800); -1 otherwise.
+int code_m(const std::string& code) {
+  int m = -1;
+  for (const nc_word& w : split_nc_words(code)) {
+    if (w.address == 'G') return -1;
+    if (w.address == 'M' && w.numeric && m < 0) m = g100(w.number);
+  }
+  return m;
+}
+
 struct axis_value {
   enum class kind : unsigned char { unknown, known, away } k = kind::unknown;
   double value = 0;  // mm, or degrees
@@ -68,6 +78,9 @@ struct rotary_sweep::impl {
     for (std::size_t i = 0; i < c.rotaries.size() && i < 2; ++i) rotary_address[i] = c.rotaries[i].address;
     tcp_g = code_g(c.tool_tip_on);
     off_g = code_g(c.tool_tip_off);
+    // Tool-tip control as an M code (Heidenhain's M128/M129 in ISO programs; attack 63 L7).
+    tcp_m = code_m(c.tool_tip_on);
+    off_m = code_m(c.tool_tip_off);
     length_g = code_g(c.length_on);
     plane_g = code_g(c.plane);
     index_g = code_g(c.plane_index);
@@ -103,6 +116,7 @@ struct rotary_sweep::impl {
   std::array<char, 2> rotary_address{0, 0};
   std::array<signed char, 26> axis_of{};  // by letter: 0-2 a linear axis, 3-4 a rotary one, -1 none
   int tcp_g = -1, off_g = -1, length_g = -1, plane_g = -1, index_g = -1, plane_off_g = -1;
+  int tcp_m = -1, off_m = -1;
   double increment = 0.001;  // what a word without a decimal point counts, program units
   double mm = 1;             // mm per program unit (G20: 25.4)
 
@@ -113,7 +127,8 @@ struct rotary_sweep::impl {
   bool absolute = true;
   int motion = 0;  // a Fanuc control starts in G00
   bool tcp = false, length = false, frame = false, cycle = false;
-  bool vector = false;  // tool-tip control with the tool axis as I J K (G43.5): not followed
+  bool vector = false;              // tool-tip control with the tool axis as I J K (G43.5)
+  std::array<axis_value, 3> ijk{};  // its I J K, as the last blocks gave them
   // A tilted working plane (G68.2): its origin and Euler angles, its Z in the part frame, and
   // the tip's place in its coordinates.
   bool plane = false;
@@ -247,7 +262,16 @@ struct rotary_sweep::impl {
 
   // Where the program has put the tip and which way the tool points, for a tool `l` mm long.
   std::optional<rotary_sweep::pose> where(double l) const {
-    if (cycle || vector) return std::nullopt;
+    if (cycle) return std::nullopt;
+    if (vector) {
+      // X Y Z the tip, I J K the tool's axis, both in the part frame.
+      if (frame) return std::nullopt;
+      for (const auto* a : {&lin, &ijk})
+        for (const axis_value& v : *a)
+          if (!known(v)) return std::nullopt;
+      return rotary_sweep::pose{{lin[0].value, lin[1].value, lin[2].value},
+                                {ijk[0].value, ijk[1].value, ijk[2].value}};
+    }
     kin::joint_values j;
     for (int i = 0; i < plan.rotary_count; ++i) {
       if (!known(rot[static_cast<std::size_t>(i)])) return std::nullopt;
@@ -364,6 +388,10 @@ struct rotary_sweep::impl {
       if (w.address == 'T' && w.numeric && w.number >= 0 && w.number < 1e9)
         t_word = static_cast<int>(w.number);
       if (w.address == 'M' && w.numeric && w.number == change_m) change = true;
+      if (w.address == 'M' && w.numeric && (tcp_m >= 0 || off_m >= 0)) [[unlikely]] {
+        if (g100(w.number) == tcp_m) tcp = length = true, vector = chain.output == multiaxis_output::vector;
+        if (g100(w.number) == off_m) tcp = vector = length = false;
+      }
       if (w.address != 'G' || !w.numeric) continue;
       const int g = g100(w.number);
       if (g == 0 || g == 100 || g == 200 || g == 300) motion = g / 100, cycle = false;
@@ -381,7 +409,9 @@ struct rotary_sweep::impl {
       // A dwell, data or coordinate setting, macro call, scaling (analysis/nc_codes): no move.
       if (codes.role(w.number) == axis_words::none) not_a_move = true;
       // Tool-tip control: the chain's code, and Fanuc's two (G43.4, G43.5 with the tool axis).
-      if (g == tcp_g || g == 4340 || g == 4350) tcp = length = true, vector = g == 4350;
+      // (The chain's own code writes I J K where its output is `vector`, whatever the code.)
+      if (g == tcp_g || g == 4340 || g == 4350)
+        tcp = length = true, vector = g == 4350 || (g == tcp_g && chain.output == multiaxis_output::vector);
       if (g == length_g && g != tcp_g) tcp = vector = false, length = true;
       if (g == off_g || g == 4900) tcp = vector = length = false;
       if (g == plane_g) {
@@ -454,6 +484,13 @@ struct rotary_sweep::impl {
     for (const nc_word& w : words) {
       if (w.address < 'A' || w.address > 'Z') continue;
       const int a_index = axis_of[static_cast<std::size_t>(w.address - 'A')];
+      if (vector && !plane_block && motion <= 1 && w.address >= 'I' && w.address <= 'K') [[unlikely]] {
+        // Tool-tip control with the tool axis (G43.5): I J K the axis in the part frame, modal
+        // (an arc's are its centre's).
+        axis_value& v = ijk[static_cast<std::size_t>(w.address - 'I')];
+        v = w.numeric ? axis_value{axis_value::kind::known, w.number} : axis_value{};
+        continue;
+      }
       if (a_index < 0 || plane_block) continue;  // G68.2's X Y Z: the plane's origin
       const int li = a_index < 3 ? a_index : -1, ri = a_index >= 3 ? a_index - 3 : -1;
       if (li >= 0 && frame) {
@@ -740,7 +777,11 @@ bool rotary_sweep::length_on() const { return p_->length; }
 bool rotary_sweep::tool_tip_on() const { return p_->tcp; }
 
 std::optional<vec3> rotary_sweep::axis_now() const {
-  if (p_->vector) return std::nullopt;
+  if (p_->vector) {
+    for (const auto& v : p_->ijk)
+      if (!known(v)) return std::nullopt;
+    return vec3{p_->ijk[0].value, p_->ijk[1].value, p_->ijk[2].value};
+  }
   kin::joint_values j;
   for (int i = 0; i < p_->plan.rotary_count; ++i) {
     const auto& r = p_->rot[static_cast<std::size_t>(i)];

@@ -1151,3 +1151,42 @@ TEST_CASE("cl comparison: the Integrex head's tilted tool under tool-tip control
       "job.cls:12:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: `G0 "
       "C10.`\n");
 }
+
+TEST_CASE("cl comparison: a chain's tool axis as I J K, and tool-tip control as an M code",
+          "[analysis][cl_compare]") {
+  // Attack 63 L7: under `output = "vector"` (G43.5 H1 X Y Z I J K: the tip and the tool's
+  // axis in the part frame) nothing was compared; a tool-tip code that is an M code (M128) was
+  // not read, and every job was refused for a move with no length offset.
+  const double s = std::sin(15 * std::numbers::pi / 180), k = std::cos(15 * std::numbers::pi / 180);
+  auto compare = [&](machine m, const char* move, vec3 axis) {
+    diagnostic_list diags;
+    cl_comparison cmp(m, m.channels[0], diags, "job.cls");
+    for (const char* b : {"%", "O1000", "G21", "G90 G94 G17 G40 G49 G80", "T01 M6", "G54", "S8000 M3"})
+      cmp.line(b);
+    cmp.record({10, tool_event{tool_source::loadtl, 1, std::nullopt, false}, 1}, false);
+    cmp.line(move);
+    motion_event mv;
+    mv.pos = {10, 20, -5};
+    mv.axis = axis;
+    mv.rapid = true;
+    cmp.record({11, mv, 1}, false);
+    std::string out;
+    for (const diagnostic& d : diags.all()) out += format_diagnostic(d);
+    return std::pair{out, cmp.compared()};
+  };
+  machine vector = load_machine("trunnion-5axis");
+  vector.kinematics[0].output = multiaxis_output::vector;
+  vector.kinematics[0].tool_tip_on = "G43.5";
+  CHECK(compare(vector, "G0 G43.5 H1 X10. Y20. Z-5. I0.258819 J0. K0.965926", {s, 0, k}) ==
+        std::pair{std::string(), 1L});
+  CHECK(
+      compare(vector, "G0 G43.5 H1 X10. Y20. Z-5. I0.258819 J0.1 K0.965926", {s, 0, k}).first ==
+      "job.cls:11:1: error: channel 1: the CL's tool axis here is (0.2588,0.0000,0.9659), the program's "
+      "words I J "
+      "K point the tool along (0.2575,0.0995,0.9611) in the part frame (5.711 degrees off), after the block "
+      "`G0 G43.5 H1 X10. Y20. Z-5. I0.258819 J0.1 K0.965926`\n");
+  machine m128 = load_machine("trunnion-5axis");
+  m128.kinematics[0].tool_tip_on = "M128";
+  m128.kinematics[0].tool_tip_off = "M129";
+  CHECK(compare(m128, "G0 X10. Y20. Z-5. A15. C90. M128", {s, 0, k}) == std::pair{std::string(), 1L});
+}
