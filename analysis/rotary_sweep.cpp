@@ -380,7 +380,41 @@ struct rotary_sweep::impl {
     }
   }
 
+  // The comparison's follower on a block of axis words and F alone (most of a 5-axis
+  // program's): the axes, as block() sets them; false for any other block.
+  bool plain_block(const std::vector<nc_word>& words) {
+    if (cycle) return false;
+    for (const nc_word& w : words)
+      if (w.address != 'F' &&
+          (w.address < 'A' || w.address > 'Z' || axis_of[static_cast<std::size_t>(w.address - 'A')] < 0))
+        return false;
+    const bool incremental = !absolute;
+    for (const nc_word& w : words) {
+      if (w.address == 'F') continue;
+      const int a = axis_of[static_cast<std::size_t>(w.address - 'A')];
+      if (a >= 3) {
+        set(rot[static_cast<std::size_t>(a - 3)], w, incremental, false);
+        continue;
+      }
+      const auto li = static_cast<std::size_t>(a);
+      if (frame) {
+        if (!plane)
+          flin[li].k = axis_value::kind::unknown;
+        else
+          set(flin[li], w, incremental, true);
+        lin[li].k = axis_value::kind::unknown;
+        continue;
+      }
+      set(lin[li], w, incremental, true);
+      if (xy_turned && li < 2) lin[li].k = axis_value::kind::unknown;
+      if (!incremental) shift[li] = 0;
+    }
+    return true;
+  }
+
   std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words) {
+    if (follow_only && plain_block(words)) [[likely]]
+      return std::nullopt;
     bool home = false, machine_block = false, not_a_move = false, index = false, plane_block = false;
     bool change = false, incremental = !absolute;
     int rotary_column = 0, t_word = -1;
