@@ -55,7 +55,7 @@ void channel_writer::leave_c_axis() {
   if (!c_mode_) return;
   leave_polar();
   leave_radial_frame();
-  if (c_clamped_) out_.block(work_->c_axis.unclamp);
+  if (c_clamped_ && !work_->c_axis.unclamp.empty()) out_.block(work_->c_axis.unclamp);
   c_clamped_ = false;
   if (!m_.milling.diameter_input.empty()) {
     for (const std::string& b : m_.milling.diameter_input) out_.block(b);

@@ -35,6 +35,10 @@ void channel_writer::work_on(const spindle_def& s) {
   unstarted_judged_ = false;
   offset_due_ = false;
   if (&s == work_) return;
+  // The spindle held as the C axis is let go first, with its own codes (review 64 M7: live work
+  // on the main spindle, then the sub: M212 and M202 never came, and the sub's empty unclamp
+  // code was written as an empty block).
+  leave_c_axis();
   work_ = &s;
   z_sign_ = s.reverse_z ? -1.0 : 1.0;
   // Another frame: every axis word goes out again, and the old spindle's restart is void.

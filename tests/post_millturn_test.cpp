@@ -566,3 +566,19 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
         "G1 Z-10. F120.\nG0 Z10.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM212\nG10.9 X1\nM202\nM9\nM5\n"
         "M205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
 }
+
+TEST_CASE("live work on the main spindle, then a tool on the sub: the main's C axis let go first",
+          "[post][millturn]") {
+  // Review 64 M7: the main spindle held as the C axis (M200, clamped M210) for a live drill, then
+  // a turning tool on the second spindle: M212 and M202 never came, and the second spindle's
+  // empty unclamp code was written as an empty block after M902.
+  const std::string cl =
+      "PARTNO S\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2500,CLW,LIVE\nFEDRAT/MMPM,150\nRAPID\n"
+      "GOTO/20,0,10,0,0,1\nGOTO/20,0,-12\nRAPID\nGOTO/20,0,10\nTLDATA/TURN,0.8\nLOADTL/1\n"
+      "SPINDL/SMM,180,MAXRPM,3000,CLW,SUB\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/30,0,5,0,0,1\nGOTO/25,0,2\n"
+      "GOTO/25,0,-30\nRAPID\nGOTO/30,0,5\nFINI\n";
+  const std::string h = head1(post_on(cl, load_machine("integrex-i200st"), "sub-after-c"), "S.EIA");
+  CHECK(h.find("T01 M6\nM212\nG10.9 X1\nM202\nG55\nM902\nG92 S3000 R2\nG96 S180 M303\n") !=
+        std::string::npos);
+  CHECK(h.find("\n\n") == std::string::npos);
+}
