@@ -238,13 +238,19 @@ void channel_writer::polar_linear(bool rapid, const vec3& p, int line) {
 }
 
 std::string_view channel_writer::along_tool() const {
-  if (motion_g_ < 1 || motion_g_ > 3 || tool_ < 0) return {};
+  if (!in_cut_ || tool_ < 0) return {};
   // A machining centre's tool (no chain): along Z.
   if (!x_diameter_ && !chain_) return "Z";
+  // A drill along the spindle axis, on a turret or a head, the part turning against it or not
+  // (review 64 H1: a centre drill 30 mm deep went home X first). Not on a spindle that faces
+  // the main one (Z reversed): Z's home lies beyond its face, deeper into its part.
+  const bool axial = std::abs(axis_.z) >= along;
+  if (axial && work_ && work_->reverse_z) return {};
+  if (kind_ == tool_kind::drill && axial) return "ZW";
   // A live tool on an indexing head, indexed along or across the spindle axis.
   const bool live = spindle_ && work_ && spindle_ != work_;
   if (!ch_.head_index.present() || !head_angle_ || !live) return {};
-  if (std::abs(axis_.z) >= along) return "ZW";
+  if (axial) return "ZW";
   if (std::abs(axis_.z) <= across) return "XU";
   return {};
 }

@@ -85,30 +85,50 @@ void channel_writer::coolant_after_speed() {
   coolant_block(b, false);
 }
 
-void channel_writer::go_home() {
-  user_x_.reset();  // the user blocks' X (the gate's) is the post's home from here
-  leave_polar();    // no reference return inside polar interpolation or a turned frame
-  leave_radial_frame();
-  // From a cut (a GOHOME or a tool call with no retract in the CL; review 61 A2: a drill at the
-  // bottom of its hole went home X and Y first, through the part) the tool leaves along its axis
-  // first: the home blocks that move that axis, then the others. The public posts take the
+// Whether a home block moves an axis of `along` (a word of one of its addresses).
+static bool moves_along(const std::string& b, std::string_view along) {
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (along.find(b[i]) != std::string_view::npos && (i == 0 || b[i - 1] == ' ')) return true;
+  return false;
+}
+
+void channel_writer::leave_cut(bool say) {
+  // From a cut (a GOHOME, a tool call or the program's end with no retract in the CL; review
+  // 61 A2: a drill at the bottom of its hole went home X and Y first) the tool leaves along its
+  // axis first: the home blocks that move that axis, before its spindle and coolant stop
+  // (review 64: an end mill stopped at the bottom of its pocket). The public posts take the
   // CAM's retract for granted here (the Fusion "Mazak Integrex i" post: writeRetract(X, Y),
   // then writeRetract(Z)); after a rapid the machine's order stands.
-  const std::vector<std::string>& home = m_.home(ch_.number);
-  if (const std::string_view along = along_tool(); !along.empty()) {
-    const auto moves_along = [&](const std::string& b) {
-      for (std::size_t i = 0; i < b.size(); ++i)
-        if (along.find(b[i]) != std::string_view::npos && (i == 0 || b[i - 1] == ' ')) return true;
-      return false;
-    };
-    for (const std::string& b : home)
-      if (moves_along(b)) out_.block(b);
-    for (const std::string& b : home)
-      if (!moves_along(b)) out_.block(b);
-  } else {
-    for (const std::string& b : home) out_.block(b);
+  const std::string_view along = along_tool();
+  if (along.empty()) {
+    // A lathe's tool whose way out the post cannot know (a turning tool in a bore, a groove,
+    // under a shoulder: review 64 H3) is said.
+    if (say && in_cut_ && tool_ >= 0 && x_diameter_) [[unlikely]]
+      warning(
+          "the tool goes home straight from a feed move, with no retract in the CL: the home blocks move "
+          "it as the machine file lists them, from where the feed left it; in a bore, a groove or under a "
+          "shoulder it would run into the part: give the retract before GOHOME or the tool change");
+    in_cut_ = false;
+    return;
   }
+  leave_polar();  // no reference return inside polar interpolation or a turned frame
+  leave_radial_frame();
+  for (const std::string& b : m_.home(ch_.number))
+    if (moves_along(b, along)) out_.block(b);
+  left_along_ = along;
+  in_cut_ = false;
+}
+
+void channel_writer::go_home() {
+  user_x_.reset();  // the user blocks' X (the gate's) is the post's home from here
+  leave_cut();      // (its blocks along the tool first, from a cut)
+  leave_polar();    // no reference return inside polar interpolation or a turned frame
+  leave_radial_frame();
+  for (const std::string& b : m_.home(ch_.number))
+    if (left_along_.empty() || !moves_along(b, left_along_)) out_.block(b);
+  left_along_ = {};
   homed_ = true;
+  in_cut_ = false;
   // Home blocks that cancel the tool's length offset (`G49`, `D0`; attack 47: a GOHOME in the
   // middle of an operation, and the cuts after it ran a tool length low): the next move gives
   // it again (`G43 H..`, the chain's length or tool-tip code), or, where the tool call gives it
@@ -261,7 +281,9 @@ void channel_writer::tool(const tool_event& t, int line) {
     return take_tool(t.tool, line, word);  // T12345 on a four-digit T
   // Coolant off before the turret leaves the part and indexes, home X then Z, the call, and
   // the coolant the CL left on back on for the new tool (public Fanuc posts: M9, G28 U0.,
-  // G28 W0., T0202, then coolant once the tool is there; docs/machines.md).
+  // G28 W0., T0202, then coolant once the tool is there; docs/machines.md). From a cut, the
+  // tool leaves along its axis first, its spindle still turning.
+  leave_cut();
   const std::string coolant_was = coolant_block_;
   const std::string coolant_off_was = coolant_off_block_;
   template_args ea;  // events.tool_change

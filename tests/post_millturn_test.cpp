@@ -151,13 +151,15 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "hold");
   // Polar interpolation for the axial end mill (X a radius, the CL's Y as C, arcs in I/J), off
   // before the reference return; turning mode (G10.9 X1, M202) before the turning spindle starts.
+  // The tool change comes straight from the cut at Z-1: the end mill leaves along Z first, its
+  // spindle still turning (review 64 H2, M4).
   CHECK(head1(p, "E.EIA") ==
         "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
         "Z0.\nT05 "
         "M6\nM901\nM200\n"
         "G10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X11.18 Y0. Z2.\nG17 "
         "XC\nG12.1\nG0 X10. C5.\n"
-        "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nM5\nG13.1\nG18\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT01 M6\n"
+        "G1 Z-1. F300.\nG3 X-10. C5. I-10. J0.\nG13.1\nG18\nG0 G90 G53 Z0.\nM5\nG0 G90 G53 X0. Y0.\nT01 M6\n"
         "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
         "X60. Y0. "
         "Z2.\nM950\nM9\nM5\nM205\n"
@@ -564,7 +566,28 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
       head1(post_on(cl + "RAPID\nGOTO/0,25,10\nGOHOME\nFINI\n", integrex, "home-rapid"), "H.EIA");
   CHECK(r.substr(r.find("G1 Z-10. F120.")) ==
         "G1 Z-10. F120.\nG0 Z10.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM212\nG10.9 X1\nM202\nM9\nM5\n"
-        "M205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+        "M205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");  // Review 64 H1: a centre drill the part turns
+                                                               // against (the turning spindle, M203) leaves
+  // along Z too; on the second spindle (Z reversed) Z's home lies beyond its face, deeper into
+  // its part: the machine's order stands, and the post says it goes home from a cut.
+  const std::string centre =
+      "PARTNO H\nHEAD/1\nTLDATA/DRILL,10,118\nLOADTL/11\nSPINDL/RPM,1200,CLW\n"
+      "FEDRAT/0.12,MMPR\nRAPID\nGOTO/0,0,5,0,0,1\nGOTO/0,0,-30\nGOHOME\nFINI\n";
+  const std::string c = head1(post_on(centre, integrex, "home-centre"), "H.EIA");
+  CHECK(c.find("G1 Z-30. F0.12\nG0 G90 G53 Z0.\nG0 G90 G53 X0. Y0.\n") != std::string::npos);
+  std::string on_sub = centre;
+  on_sub.replace(on_sub.find("SPINDL/RPM,1200,CLW"), 19, "SPINDL/RPM,1200,CLW,SUB");
+  const test::posted sub = test::post_in_fresh_dir(on_sub, integrex, "millturn-home-centre-sub",
+                                                   [](const diagnostic&) { return true; });
+  const std::string sh = head1(sub, "H.EIA");
+  CHECK(sh.find("G1 Z30. F0.12\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\n") != std::string::npos);
+  CHECK(
+      sub.diagnostics ==
+      "job.cls:10:1: warning: channel 1: the tool goes home straight from a feed move, with no retract in "
+      "the "
+      "CL: the home blocks move it as the machine file lists them, from where the feed left it; in a bore, a "
+      "groove or under a shoulder it would run into the part: give the retract before GOHOME or the tool "
+      "change\nGOHOME\n^\n");
 }
 
 TEST_CASE("live work on the main spindle, then a tool on the sub: the main's C axis let go first",

@@ -182,8 +182,9 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
       "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
       "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
       "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 Y0.\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. "
-      "Z2. F0.2\nM5\nG13.1\n"
-      "G18\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 G53 "
+      "Z2. F0.2\nG13.1\n"
+      "G18\nG0 G90 G53 Z0.\nM5\nG0 G90 G53 X0. Y0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 "
+      "G53 "
       "B0.\nM107\n"
       "G1 G43 P1 H#3020 X0. Y0. Z5. F0.2\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
       "G0 G90 G53 Z0.\nM30\n");
