@@ -1080,6 +1080,10 @@ struct cl_comparison::impl {
     if (both || cl_cycle || cycle || (polar && !polar_follow) || cylinder || frame || polar_coords ||
         rotary || foreign_offset || shifted || head_due || (!c_known && !followed_polar)) {
       if (shifted || mirrored) said_passed_shift(e);
+      // An index not followed by the head's length offset leaves the tip unknown, not the tool's
+      // axis (review 64: `G0 G53 B10.` between two drill moves posted a 10-degree plunge).
+      if (head_due && !both && c_known && !polar && !cylinder && !frame && !rotary)
+        compare_axis(e, cl_axis, false);
       ++passed;
       return false;
     }

@@ -984,6 +984,22 @@ TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis]
       "job.cls:10:1: error: channel 1: the CL's tool axis here is (0.0000,0.0000,1.0000), the program's head "
       "points the tool along (0.0000,0.0000,-1.0000) in the part frame (180.000 degrees off): the head was "
       "indexed by `G0 G53 B0.` at line 11 of the program\n");
+  // An index with no length offset after it (an INSERT `G0 G53 B10.` between two drill moves):
+  // the tip is not known, the tool's axis is (review 64).
+  {
+    compared c("integrex-i200st", 1);
+    c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "M108", "G0 G53 B0.", "M107", "G0 C0.",
+             "G0 G43 H#3020 X20. Y0. Z2.", "G0 G53 B10.", "G1 Z-5. F100."});
+    motion_event mv;
+    mv.pos = {20, 0, -5};
+    mv.axis = {0, 0, 1};
+    c.cmp.record({c.next++, mv, 1}, false);
+    CHECK(c.text() ==
+          "job.cls:10:1: error: channel 1: the CL's tool axis here is (0.0000,0.0000,1.0000), the program's "
+          "head "
+          "points the tool along (0.1736,0.0000,0.9848) in the part frame (10.000 degrees off): the head was "
+          "indexed by `G0 G53 B10.` at line 14 of the program\n");
+  }
   // A tool change forgets the angle (the changer may turn the head): until the next index the
   // axis is not compared (the emulator refuses a cut before it: docs/emulator.md).
   {
