@@ -301,6 +301,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
           // stand at 0, so the joints are the tip; a tilt that follows starts from here.
           pose_mm_ = {{mv.pos.x * cl_mm_, mv.pos.y * cl_mm_, mv.pos.z * cl_mm_}, axis_};
           joints_.linear = pose_mm_.tip;
+          joints_.rotary = {};  // (not where the last tilted tool left them: review 64)
           pose_known_ = true;
         }
       }

@@ -256,10 +256,14 @@ bool channel_writer::multiaxis_takes() {
   const kinematic_chain& c = *chain_;
   if (c.moves == multiaxis_moves::all || plane_on_) return true;
   // A mill/turn channel writes its own moves along and across the spindle axis (C positions,
-  // polar interpolation, the turned frame of cross holes): only tilted tools come here.
+  // polar interpolation, the turned frame of cross holes): only tilted tools come here. After a
+  // tool call (or a home) the rotary axes the last tilted tool left are no reason: an indexing
+  // head is indexed for the new tool at home (review 64: an axial drill after a tilted end mill
+  // came down under tool-tip control, then went home to index inside its first cut).
   if (has_c_ && (std::abs(axis_.z) >= 0.9999 || std::abs(axis_.z) <= 1e-4) &&
-      std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
-                  [](double v) { return std::abs(v) <= still; }))
+      ((!pose_known_ && ch_.head_index.present()) ||
+       std::all_of(joints_.rotary.begin(), joints_.rotary.end(),
+                   [](double v) { return std::abs(v) <= still; })))
     return false;
   const double len = std::sqrt(axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z);
   const bool along = len > 0 && kin::angle_between(axis_, c.tool_direction) <= c.angle_tolerance;

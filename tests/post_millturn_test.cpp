@@ -605,3 +605,21 @@ TEST_CASE("live work on the main spindle, then a tool on the sub: the main's C a
         std::string::npos);
   CHECK(h.find("\n\n") == std::string::npos);
 }
+
+TEST_CASE("an axial drill after a tilted end mill is indexed at home, not in its first cut",
+          "[post][millturn]") {
+  // Review 64: the rotary axes the tilted tool left (B45 under G43.4) sent the drill's approach
+  // through the chain (G43.4 with B0 C0, no clamp), and its first cut went home to index the
+  // head; the comparison refused it ("the program moves in rapid" inside the feed).
+  const std::string cl =
+      "PARTNO T\nHEAD/1\nTLDATA/MILL,6\nLOADTL/11\nSPINDL/RPM,3000,CLW\nFEDRAT/MMPM,400\nRAPID\n"
+      "GOTO/40,0,30,0.7071068,0,0.7071068\nGOTO/25,0,5,0.7071068,0,0.7071068\nGOTO/"
+      "20,0,0,0.7071068,0,0.7071068\n"
+      "RAPID\nGOTO/40,0,30,0.7071068,0,0.7071068\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2500,CLW,LIVE\n"
+      "FEDRAT/MMPM,150\nRAPID\nGOTO/20,0,10,0,0,1\nGOTO/20,0,-12\nRAPID\nGOTO/20,0,10\nFINI\n";
+  const test::posted p = post_on(cl, load_machine("integrex-i200st"), "tilt-then-axial");
+  const std::string h = head1(p, "T.EIA");
+  CHECK(
+      h.find("T12 M6\nM901\nG97 S2500 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z10.\nM210\n"
+             "G1 Z-12. F150.\nG0 Z10.\n") != std::string::npos);
+}
