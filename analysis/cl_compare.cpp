@@ -102,6 +102,8 @@ struct cl_comparison::impl {
         k && !k->rotaries.empty() && (!ch.head_index.present() || !k->tool_tip_on.empty()))
       chain_def = k;
     whole_chain = chain_def && !ch.head_index.present();
+    if (whole_chain)
+      for (const rotary_axis_def& r : chain_def->rotaries) chain_letters |= nc_letter(r.address);
     // A chain's C is one of its rotary axes, not the part turned under X and Y.
     has_c = ch.axis('C') != nullptr && !whole_chain;
     if (has_c)
@@ -224,9 +226,10 @@ struct cl_comparison::impl {
   // them (analysis/rotary_sweep), the tip and the tool axis through the forward transform.
   const kinematic_chain* chain_def = nullptr;
   std::optional<rotary_sweep> chain;
-  bool whole_chain = false;     // every move the chain's (else a mill/turn head's, under tool-tip control)
-  bool fixture = false;         // a rotary fixture offset (G54.2 Pn) in force
-  std::string unfollowed_text;  // the first frame of a chain's program not followed, and its line
+  bool whole_chain = false;  // every move the chain's (else a mill/turn head's, under tool-tip control)
+  std::uint32_t chain_letters = 0;  // a whole chain's rotary addresses
+  bool fixture = false;             // a rotary fixture offset (G54.2 Pn) in force
+  std::string unfollowed_text;      // the first frame of a chain's program not followed, and its line
   int unfollowed_line = 0;
   bool said_frame = false;
   std::optional<double> cl_length, cl_length_next;  // the CL's TLDATA length (mm), now and for the next call
@@ -508,7 +511,8 @@ struct cl_comparison::impl {
     constexpr std::uint32_t axis_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
                                            nc_letter('V') | nc_letter('W') | nc_letter('I') | nc_letter('J') |
                                            nc_letter('K') | nc_letter('R') | nc_letter('N');
-    if (letters & ~axis_letters) ++version;
+    // (A chain's rotary words are axis words too.)
+    if (letters & ~(axis_letters | chain_letters)) ++version;
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (!gms_only || (letters & gms)) {
       spindles.apply(words);
