@@ -239,8 +239,15 @@ void channel_writer::polar_linear(bool rapid, const vec3& p, int line) {
 
 std::string_view channel_writer::along_tool() const {
   if (!in_cut_ || tool_ < 0) return {};
-  // A machining centre's tool (no chain): along Z.
-  if (!x_diameter_ && !chain_) return "Z";
+  if (!x_diameter_ && !has_c_) {
+    // A machining centre's tool: along Z, unless a head tilts it (a 5-axis head off 0: machine
+    // Z is not its axis; attack 65). A turning tool of a lathe programmed in radius is not one.
+    if (kind_ == tool_kind::turn) return {};
+    if (chain_)
+      for (std::size_t i = 0; i < chain_->rotaries.size(); ++i)
+        if ((tilting_heads_ >> i & 1u) && std::abs(joints_.rotary[i]) > 1e-9) return {};
+    return "Z";
+  }
   // A drill along the spindle axis, on a turret or a head, the part turning against it or not
   // (review 64 H1: a centre drill 30 mm deep went home X first). Not on a spindle that faces
   // the main one (Z reversed): Z's home lies beyond its face, deeper into its part.

@@ -169,6 +169,16 @@ const spindle_def* channel_writer::spindle_for_tool(const spindle_event& s, int 
 
 bool channel_writer::drill_on_centre(double x_cl, int line) {
   if (kind_ != tool_kind::drill || spindle_ != work_ || restart_blocks_.empty() || spindle_held_) return true;
+  // A drill the part turns against cuts towards the chuck: its CL axis (tip to holder) is +Z in
+  // the spindle's frame; (0,0,-1) points it away from the part (attack 65: posted, the
+  // approach a rapid through the part).
+  if (axis_.z <= -0.9999) {
+    error(line, fmt::format(
+                    "tool {} is a drill on the centre line of the {} spindle with the tool axis (0,0,-1): it "
+                    "would point away from the part, which it drills towards the chuck (axis (0,0,1))",
+                    tool_, work_->name));
+    return false;
+  }
   if (part_stands_still()) return true;  // a mill: the spindle turns the drill
   if (std::abs(x_cl * scale_) <= 1e-3) return true;
   error(line, fmt::format("tool {} is a drill (TLDATA/DRILL) and the part turns on the {} spindle, but this "

@@ -92,6 +92,21 @@ static bool moves_along(const std::string& b, std::string_view along) {
   return false;
 }
 
+// The home blocks leave_cut() writes: those that move along the tool, each with the blocks
+// that move nothing right after it (`G91 G28 Z0.` and its `G90`), as bits by index.
+static std::uint64_t along_blocks(const std::vector<std::string>& home, std::string_view along) {
+  std::uint64_t bits = 0;
+  bool with = false;
+  for (std::size_t i = 0; i < home.size() && i < 64; ++i) {
+    if (moves_along(home[i], along))
+      with = true;
+    else if (moves_along(home[i], "XYZUVWABC"))
+      with = false;
+    if (with) bits |= std::uint64_t{1} << i;
+  }
+  return bits;
+}
+
 void channel_writer::leave_cut(bool say) {
   // From a cut (a GOHOME, a tool call or the program's end with no retract in the CL; review
   // 61 A2: a drill at the bottom of its hole went home X and Y first) the tool leaves along its
@@ -103,7 +118,7 @@ void channel_writer::leave_cut(bool say) {
   if (along.empty()) {
     // A lathe's tool whose way out the post cannot know (a turning tool in a bore, a groove,
     // under a shoulder: review 64 H3) is said.
-    if (say && in_cut_ && tool_ >= 0 && x_diameter_) [[unlikely]]
+    if (say && in_cut_ && tool_ >= 0) [[unlikely]]
       warning(
           "the tool goes home straight from a feed move, with no retract in the CL: the home blocks move "
           "it as the machine file lists them, from where the feed left it; in a bore, a groove or under a "
@@ -113,9 +128,10 @@ void channel_writer::leave_cut(bool say) {
   }
   leave_polar();  // no reference return inside polar interpolation or a turned frame
   leave_radial_frame();
-  for (const std::string& b : m_.home(ch_.number))
-    if (moves_along(b, along)) out_.block(b);
-  left_along_ = along;
+  const std::vector<std::string>& home = m_.home(ch_.number);
+  left_blocks_ = along_blocks(home, along);
+  for (std::size_t i = 0; i < home.size() && i < 64; ++i)
+    if (left_blocks_ >> i & 1u) out_.block(home[i]);
   in_cut_ = false;
 }
 
@@ -124,9 +140,10 @@ void channel_writer::go_home() {
   leave_cut();      // (its blocks along the tool first, from a cut)
   leave_polar();    // no reference return inside polar interpolation or a turned frame
   leave_radial_frame();
-  for (const std::string& b : m_.home(ch_.number))
-    if (left_along_.empty() || !moves_along(b, left_along_)) out_.block(b);
-  left_along_ = {};
+  const std::vector<std::string>& home = m_.home(ch_.number);
+  for (std::size_t i = 0; i < home.size(); ++i)
+    if (i >= 64 || !(left_blocks_ >> i & 1u)) out_.block(home[i]);
+  left_blocks_ = 0;
   homed_ = true;
   in_cut_ = false;
   // Home blocks that cancel the tool's length offset (`G49`, `D0`; attack 47: a GOHOME in the

@@ -647,9 +647,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::string pending_g_;                                       // G40/G41/G42 waiting for the next move
   bool comp_cl_on_ = false;  // the CL's CUTCOM/LEFT or RIGHT is in force (OFF not yet given)
   std::optional<cycle_event> cycle_;
-  bool in_cut_ = false;          // the CL's last move was a feed: the tool may be in the part (go_home)
-  std::string_view left_along_;  // leave_cut() wrote the home blocks of these addresses
-  int cycle_line_ = 0;           ///< the CL line of the cycle in force
+  bool in_cut_ = false;            // the CL's last move was a feed: the tool may be in the part (go_home)
+  std::uint64_t left_blocks_ = 0;  // leave_cut() wrote these home blocks (bit i: block i)
+  int cycle_line_ = 0;             ///< the CL line of the cycle in force
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force
   bool thread_saved_per_rev_ = false;      ///< the feed mode to restore at THREAD/OFF
   bool thread_saved_mode_ = false;         ///< whether a feed mode was written before THREAD/TURN

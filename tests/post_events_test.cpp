@@ -900,7 +900,7 @@ section.after = ["(END {name} AT X{x} Y{y} Z{z})"]
         "M3\n"
         "(SECTION TOP T01)\nG0 A0.\nG0 X10. Y20.\nG0 G43 H1 X10. Y20. Z5. A0.\nG1 Z-1. F500.\nX30.\nG0 Z40.\n"
         "(END TOP AT X30. Y20. Z40.)\n(SECTION TOP T01)\nG0 A-90.\nG0 X10. Y5.\nG1 Z30.\n"
-        "(END TOP AT X10. Y5. Z30.)\nM5\nG91 G28 Z0.\nG90\nG49\nT02 M6\nS2000 M3\n(SECTION TOP T02)\n"
+        "(END TOP AT X10. Y5. Z30.)\nG91 G28 Z0.\nG90\nM5\nG49\nT02 M6\nS2000 M3\n(SECTION TOP T02)\n"
         "G0 A-90.\nG0 X0. Y50.\nG0 G43 H2 X0. Y50. Z0. A-90.\n(END TOP AT X0. Y50. Z0.)\nM9\nM5\n"
         "G91 G28 Z0.\nG90\nG49\nM30\n%\n");
 }

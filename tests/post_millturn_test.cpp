@@ -623,3 +623,21 @@ TEST_CASE("an axial drill after a tilted end mill is indexed at home, not in its
       h.find("T12 M6\nM901\nG97 S2500 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z10.\nM210\n"
              "G1 Z-12. F150.\nG0 Z10.\n") != std::string::npos);
 }
+
+TEST_CASE("a drill on the centre line with its axis pointing away from the part stops the post",
+          "[post][millturn]") {
+  // Attack 65: TLDATA/DRILL with the tool axis (0,0,-1) on the main spindle posted: the drill
+  // would point away from the part it drills towards the chuck.
+  const test::posted p = test::post_in_fresh_dir(
+      "PARTNO "
+      "D\nTLDATA/DRILL,10,118\nLOADTL/5\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\nRAPID\nGOTO/0,0,5,0,0,-1\n"
+      "GOTO/0,0,-20\nFINI\n",
+      load_machine("fanuc-0itd-twin"), "drill-away",
+      [](const diagnostic& d) { return d.level == severity::error; });
+  CHECK_FALSE(p.ok);
+  CHECK(p.diagnostics ==
+        "job.cls:8:1: error: channel 1: tool 5 is a drill on the centre line of the main spindle with the "
+        "tool axis "
+        "(0,0,-1): it would point away from the part, which it drills towards the chuck (axis (0,0,1))\n"
+        "GOTO/0,0,-20\n^\n");
+}

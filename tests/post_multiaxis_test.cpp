@@ -1293,3 +1293,28 @@ TEST_CASE("multi-axis: a machine whose home cancels the control's own length off
               "kinematics.length_on (G43), or home blocks that keep the offset") != std::string::npos);
   }
 }
+
+TEST_CASE("multi-axis: a tool change straight from a cut leaves along Z only with the tool along Z",
+          "[post][multiaxis]") {
+  // Attack 65: with the head at 0 the end mill leaves its cut along Z before its spindle stops;
+  // tilted 15 degrees, machine Z is not its axis: the machine's order, and the post says it.
+  const std::string head =
+      "PARTNO CUT\nTLDATA/MILL,10,0,100,0,0\nLOADTL/1\nSPINDL/RPM,8000,CLW\nFEDRAT/MMPM,1000\n"
+      "RAPID\nGOTO/0,0,50,0,0,1\n";
+  const machine m = load_machine("head-head-5axis");
+  const test::posted upright = test::post_in_fresh_dir(
+      head + "GOTO/0,0,-5,0,0,1\nTLDATA/MILL,8,0,100,0,0\nLOADTL/2\nRAPID\nGOTO/0,0,50,0,0,1\nFINI\n", m,
+      "ma-cut-up", [](const diagnostic&) { return true; });
+  INFO(upright.diagnostics);
+  REQUIRE(upright.ok);
+  CHECK(upright.files.at("CUT.nc").find("G1 Z-5. F1000.\nG91 G28 Z0.\nG90\nM5\nG49\nT02 M6\n") !=
+        std::string::npos);
+  const test::posted tilted =
+      test::post_in_fresh_dir(head +
+                                  "GOTO/0,0,-5,0.258819,0,0.965926\nTLDATA/MILL,8,0,100,0,0\nLOADTL/"
+                                  "2\nRAPID\nGOTO/0,0,50,0,0,1\nFINI\n",
+                              m, "ma-cut-tilted", [](const diagnostic&) { return true; });
+  CHECK(tilted.diagnostics.find(
+            "job.cls:10:1: warning: channel 1: the tool goes home straight from a feed move, "
+            "with no retract in the CL") != std::string::npos);
+}

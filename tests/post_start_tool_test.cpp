@@ -178,8 +178,8 @@ TEST_CASE("an operation whose CAM name maps to another tool, with no call of its
   CHECK(only_file(p) ==
         "%\nO5003 (PROGRAM)\nG21\nG90 G94 G17 G40 G49 G80\n(FACE,TOOL,MILL-20MM)\nG91 G28 Z0.\nG90\nT07 M6\n"
         "G54\nS1000 M3\nM8\nG0 A0.\nG0 X0. Y0.\nG0 G43 H7 X0. Y0. Z40. A0.\nG1 X10. Z20. "
-        "F250.\nX20.\n(DRILL,TOOL,DRILL-8)\nM5\nM9\n"
-        "G91 G28 Z0.\nG90\nG49\nT08 M6\nM8\nS1500 M3\nG0 A0.\nG0 X5. Y5.\nG0 G43 H8 X5. Y5. Z10. "
+        "F250.\nX20.\n(DRILL,TOOL,DRILL-8)\nG91 G28 Z0.\nG90\nM5\nM9\n"
+        "G49\nT08 M6\nM8\nS1500 M3\nG0 A0.\nG0 X5. Y5.\nG0 G43 H8 X5. Y5. Z10. "
         "A0.\n(OTHER,TOOL,MILL-20MM)\n"
         "G0 A0.\nG0 X6. Y6.\nG0 G43 H8 X6. Y6. Z10. A0.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
 }
