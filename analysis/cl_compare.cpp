@@ -445,16 +445,11 @@ struct cl_comparison::impl {
   }
   void said_unfollowed(const event& e) {
     if (unfollowed_text.empty() || std::exchange(said_frame, true)) return;
-    diagnostic d;
-    d.level = severity::warning;
-    d.file = cl_file;
-    d.line = e.line;
-    d.column = e.column;
-    d.message = fmt::format(
-        "channel {}: the records under `{}` (line {} of its program) are not held to the CL: the comparison "
-        "does not follow that frame",
-        ch.number, unfollowed_text, unfollowed_line);
-    diags.report(std::move(d));
+    say(e, severity::warning,
+        fmt::format(
+            "the records under `{}` (line {} of its program) are not held to the CL: the comparison does "
+            "not follow that frame",
+            unfollowed_text, unfollowed_line));
   }
 
   // The head's offset is another than its codes give: X Y Z are not the tip (once per channel).
@@ -1047,31 +1042,30 @@ struct cl_comparison::impl {
   void said_passed_shift(const event& e) {
     if (said_shift) return;
     said_shift = true;
-    diagnostic d;
-    d.level = severity::warning;
-    d.file = cl_file;
-    d.line = e.line;
-    d.column = e.column;
-    d.message = shifted
-                    ? fmt::format(
-                          "channel {}: this record and the channel's later ones are not held to the CL: the "
-                          "program sets the part frame itself at line {} of its program (`{}`)",
-                          ch.number, shift_line, shift_text)
-                    : fmt::format(
-                          "channel {}: the records under a mirror image or a scaling are not held to the CL, "
-                          "from this one on: the program sets it at line {} of its program (`{}`)",
-                          ch.number, shift_line, shift_text);
-    diags.report(std::move(d));
+    say(e, severity::warning,
+        shifted
+            ? fmt::format("this record and the channel's later ones are not held to the CL: the program sets "
+                          "the part frame itself at line {} of its program (`{}`)",
+                          shift_line, shift_text)
+            : fmt::format("the records under a mirror image or a scaling are not held to the CL, from this "
+                          "one on: the program sets it at line {} of its program (`{}`)",
+                          shift_line, shift_text));
   }
 
-  void error(const event& e, std::string message) {
-    ++reported;
+  // A finding at the CL record `e`, as "channel n: ...".
+  void say(const event& e, severity level, std::string_view message) {
     diagnostic d;
+    d.level = level;
     d.file = cl_file;
     d.line = e.line;
     d.column = e.column;
     d.message = fmt::format("channel {}: {}", ch.number, message);
     diags.report(std::move(d));
+  }
+
+  void error(const event& e, std::string message) {
+    ++reported;
+    say(e, severity::error, message);
   }
 
   // Returns false when the record is passed over.

@@ -32,6 +32,14 @@ struct compared {
     for (const char* l : ls) cmp.line(l);
   }
   void feed(double value, feed_mode mode) { cmp.record({next++, feed_event{mode, value}, 1}, false); }
+  // A GOTO to `pos` with the tool along `axis`.
+  void to(vec3 pos, vec3 axis, bool rapid = true) {
+    motion_event mv;
+    mv.pos = pos;
+    mv.axis = axis;
+    mv.rapid = rapid;
+    cmp.record({next++, mv, 1}, false);
+  }
   void go(double x, double z, bool rapid = false, bool both = false) {
     motion_event mv;
     mv.pos = {x, 0, z};
@@ -943,11 +951,7 @@ TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis]
     compared c("integrex-i200st", 1);
     for (const char* b : start) c.cmp.line(b);
     c.lines({"M108", index, "M107", c_block, "G0 G43 H#3020 X20. Y0. Z2."});
-    motion_event mv;
-    mv.pos = pos;
-    mv.axis = axis;
-    mv.rapid = true;
-    c.cmp.record({c.next++, mv, 1}, false);
+    c.to(pos, axis);
     return std::pair{c.text(), c.cmp.compared()};
   };
   // Over the face, an axial tool: B0 gives the CL's (0,0,1).
@@ -990,10 +994,7 @@ TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis]
     compared c("integrex-i200st", 1);
     c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "M108", "G0 G53 B0.", "M107", "G0 C0.",
              "G0 G43 H#3020 X20. Y0. Z2.", "G0 G53 B10.", "G1 Z-5. F100."});
-    motion_event mv;
-    mv.pos = {20, 0, -5};
-    mv.axis = {0, 0, 1};
-    c.cmp.record({c.next++, mv, 1}, false);
+    c.to({20, 0, -5}, {0, 0, 1}, false);
     CHECK(c.text() ==
           "job.cls:10:1: error: channel 1: the CL's tool axis here is (0.0000,0.0000,1.0000), the program's "
           "head "
@@ -1006,22 +1007,14 @@ TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis]
     compared c("integrex-i200st", 1);
     c.lines({"T11 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "M108", "G0 G53 B90.", "M107", "G0 C0.",
              "G0 G43 H#3020 X20. Y0. Z2.", "T12 M6", "G97 S2500 M3", "G0 G43 H#3020 X20. Y0. Z2."});
-    motion_event mv;
-    mv.pos = {20, 0, 2};
-    mv.axis = {0, 0, 1};
-    mv.rapid = true;
-    c.cmp.record({c.next++, mv, 1}, false);
+    c.to({20, 0, 2}, {0, 0, 1});
     CHECK(c.text().empty());
   }
   // The 31i's path 3: B-90 along the spindle axis, B0 across it.
   {
     compared c("fanuc-31i-3path", 3);
     c.lines({"M6 T1400", "T1414", "G97 S2000 M33", "G0 B0.", "M90", "G0 C0.", "X80. Y0. Z-20."});
-    motion_event mv;
-    mv.pos = {40, 0, -20};
-    mv.axis = {0, 0, 1};
-    mv.rapid = true;
-    c.cmp.record({c.next++, mv, 1}, false);
+    c.to({40, 0, -20}, {0, 0, 1});
     CHECK(
         c.text() ==
         "job.cls:10:1: error: channel 3: the CL's tool axis here is (0.0000,0.0000,1.0000), the program's "
@@ -1041,11 +1034,7 @@ TEST_CASE("cl comparison: a chain's tip and tool axis through the forward transf
       c.cmp.record({c.next++, tool_data_event{"TLDATA", {"MILL"}, {10, 0, 100, 0, 0}}, 1}, false);
     c.cmp.record({c.next++, tool_event{tool_source::loadtl, 1, std::nullopt, false}, 1}, false);
     for (const char* b : blocks) c.cmp.line(b);
-    motion_event mv;
-    mv.pos = pos;
-    mv.axis = axis;
-    mv.rapid = true;
-    c.cmp.record({c.next++, mv, 1}, false);
+    c.to(pos, axis);
     return std::pair{c.text(), c.cmp.compared()};
   };
   const double s = std::sin(15 * std::numbers::pi / 180), k = std::cos(15 * std::numbers::pi / 180);
