@@ -107,8 +107,8 @@ static std::uint64_t along_blocks(const std::vector<std::string>& home, std::str
   return bits;
 }
 
-void channel_writer::leave_cut(bool say) {
-  // From a cut (a GOHOME, a tool call or the program's end with no retract in the CL; review
+void channel_writer::leave_cut() {
+  // From a cut (a GOHOME or a tool call with no retract in the CL; review
   // 61 A2: a drill at the bottom of its hole went home X and Y first) the tool leaves along its
   // axis first: the home blocks that move that axis, before its spindle and coolant stop
   // (review 64: an end mill stopped at the bottom of its pocket). The public posts take the
@@ -116,9 +116,9 @@ void channel_writer::leave_cut(bool say) {
   // then writeRetract(Z)); after a rapid the machine's order stands.
   const std::string_view along = along_tool();
   if (along.empty()) {
-    // A lathe's tool whose way out the post cannot know (a turning tool in a bore, a groove,
-    // under a shoulder: review 64 H3) is said.
-    if (say && in_cut_ && tool_ >= 0) [[unlikely]]
+    // A tool whose way out the post cannot know (a turning tool in a bore, a groove, under a
+    // shoulder: review 64 H3; a tilted 5-axis tool: attack 65) is said.
+    if (in_cut_ && tool_ >= 0) [[unlikely]]
       warning(
           "the tool goes home straight from a feed move, with no retract in the CL: the home blocks move "
           "it as the machine file lists them, from where the feed left it; in a bore, a groove or under a "

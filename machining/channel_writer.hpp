@@ -230,9 +230,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void program_stop(bool optional);
   /// The machine's home blocks (X, then Z), then a length-offset cancel that waited for them.
   void go_home();
-  /// From a cut, the home blocks along the tool (along_tool) now, the rest at go_home; `say`:
-  /// warn where the way out is not known (a turning tool).
-  void leave_cut(bool say = true);
+  /// From a cut, the home blocks along the tool (along_tool) now, the rest at go_home; a
+  /// warning where the way out is not known (a turning tool).
+  void leave_cut();
   /// Where the tool is in a cut (its last move a feed) and the axis along it is known: the
   /// addresses that move along it (Z and W for an axial tool, X and U for a radial one); "".
   std::string_view along_tool() const;
