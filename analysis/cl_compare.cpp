@@ -472,18 +472,28 @@ struct cl_comparison::impl {
     return out;
   }
 
-  void line(std::string_view text) {
+  // `text`, split here (the writer's thread: post on one core), or split already into
+  // `split` with `letters` (the self-check's reading: nc_block), as line `at` of the program.
+  void line(std::string_view text, const std::vector<nc_word>* split = nullptr,
+            std::uint32_t split_letters = 0, int at = 0) {
     const bool was = shifted, was_mirrored = mirrored;
-    read_line(text);
+    std::uint32_t letters = 0;
+    if (split) {
+      words.assign(split->begin(), split->end());  // views into `text`, as a split of our own
+      letters = split_letters;
+      lines = at;
+    } else {
+      letters = split_nc_words(text, words);
+      ++lines;
+    }
+    read_line(text, letters);
     if ((shifted && !was) || (mirrored && !was_mirrored && !shifted)) {
       shift_text.assign(text);
       shift_line = lines;
     }
   }
 
-  void read_line(std::string_view text) {
-    ++lines;
-    const std::uint32_t letters = split_nc_words(text, words);
+  void read_line(std::string_view text, const std::uint32_t letters) {
     // A block under block delete (`/G0 X44. Z2.`) runs or not as the operator's switch says (a
     // wait or another M code under it is the checker's).
     constexpr std::uint32_t skip_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
@@ -1755,6 +1765,10 @@ cl_comparison::cl_comparison(const machine& m, const channel_def& ch, diagnostic
     : p_(std::make_unique<impl>(m, ch, diags, std::move(cl_file))) {}
 cl_comparison::~cl_comparison() = default;
 void cl_comparison::line(std::string_view text) { p_->line(text); }
+void cl_comparison::block(int line, std::string_view text, const std::vector<nc_word>& words,
+                          std::uint32_t letters) {
+  p_->line(text, &words, letters, line);
+}
 void cl_comparison::units(unit_system u) { p_->units(u); }
 void cl_comparison::record(const event& e, bool both) { p_->record(e, both); }
 long cl_comparison::compared() const { return p_->compared; }

@@ -36,7 +36,9 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "check/nc_program.hpp"
 #include "machines/machine.hpp"
 #include "parser/events.hpp"
 #include "support/diagnostics.hpp"
@@ -53,6 +55,10 @@ class cl_comparison {
 
   /// The next line of the channel's program as written (head, body), without its line end.
   void line(std::string_view text);
+  /// The same, read already: line `line` (1-based) of the program, split into `words` with
+  /// their `letters` (split_nc_words); lines without words may be left out, but not one that
+  /// writes a variable (`#5221=-5.`: nc_read_options::on_macro, handed with no words).
+  void block(int line, std::string_view text, const std::vector<nc_word>& words, std::uint32_t letters);
   /// The job's units (UNITS record): the CL's lengths after it.
   void units(unit_system u);
   /// A record of the channel, after the blocks written for it. `both`: a HEAD/BOTH copy.

@@ -2,6 +2,7 @@
 #include "support/ascii.hpp"
 #include "support/errors.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fmt/format.h>
@@ -51,10 +52,25 @@ void block_writer::flush_if_full() {
 void block_writer::pass_on() {
   // A write that failed is said at the next piece, as a write of our own would have said it.
   if (const int err = relay_->write_error(false)) write_failed(err);
+  if (counting_) {
+    lines_out();
+    counted_ = 0;
+  }
   *buf_.room(1) = '\0';  // the reader's scans stop at it; not one of the file's bytes
   buf_ = relay_->pass(std::move(buf_), f_);
   buf_.clear();
   buf_.reserve(flush_at + 4096);
+}
+
+std::uint64_t block_writer::lines_out() {
+  counting_ = true;
+  lines_ += static_cast<std::uint64_t>(std::count(buf_.data() + counted_, buf_.data() + buf_.size(), '\n'));
+  counted_ = buf_.size();
+  return lines_;
+}
+
+void block_writer::pass_now() {
+  if (started_ && relay_ && buf_.size() > 0) pass_on();  // (not started: nothing written, no name yet)
 }
 
 void block_writer::put(std::string_view s) {

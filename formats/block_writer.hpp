@@ -1,6 +1,7 @@
 #pragma once
 // Writes NC blocks of one channel to a file through a large buffer: sequence numbers,
 // comments made safe for the control, block-length limits. One writer per channel.
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -102,6 +103,11 @@ class block_writer {
   void set_relay(std::unique_ptr<relay> r) { relay_ = std::move(r); }
   /// The head written (see framing), "" before the first line.
   const std::string& head_written() const { return head_; }
+  /// The lines written so far (their line ends; between blocks, not inside an open one).
+  /// Counted from the first call on, once per byte.
+  std::uint64_t lines_out();
+  /// With a relay: the bytes written so far go to it now, though the buffer is not full.
+  void pass_now();
 
  private:
   void put(std::string_view s);
@@ -126,7 +132,10 @@ class block_writer {
   std::function<void(std::string_view)> hook_;
   std::unique_ptr<relay> relay_;
   block_filter* filter_ = nullptr;
-  bool filtering_ = false;  // inside filter_: the blocks it writes go out as they are
+  bool filtering_ = false;   // inside filter_: the blocks it writes go out as they are
+  bool counting_ = false;    // lines_out() was asked: pieces passed count their lines
+  std::uint64_t lines_ = 0;  // line ends before buf_[counted_]
+  std::size_t counted_ = 0;
 };
 
 /// `text` as the control accepts it in a comment: upper case, printable ASCII, no comment

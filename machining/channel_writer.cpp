@@ -146,7 +146,7 @@ int channel_writer::block_cl_line(std::size_t i) const {
 }
 
 void channel_writer::note_line(std::string_view line) {
-  if (observer_) [[unlikely]] {
+  if (observe_lines_) [[unlikely]] {
     if (!observed_head_) {
       observed_head_ = true;
       std::string_view head = out_.head_written();

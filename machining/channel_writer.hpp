@@ -70,6 +70,8 @@ class write_observer {
   virtual void units(unit_system u) = 0;
   /// A record of the channel, after its blocks are written (`both`: a HEAD/BOTH copy).
   virtual void record(const event& e, bool both) = 0;
+  /// Whether line() is to be called (set_observer asks once).
+  virtual bool wants_lines() const { return true; }
 };
 
 class channel_writer : private scripting::script_host, private block_writer::block_filter {
@@ -87,7 +89,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   }
   void on_event(const event& e, bool both);
   /// Shows `o` every line written and every record written (nullptr: none, the default).
-  void set_observer(write_observer* o) { observer_ = o; }
+  void set_observer(write_observer* o) {
+    observer_ = o;
+    observe_lines_ = o && o->wants_lines();
+  }
   /// One record of the channel, in order (on_event's work once nothing is held).
   void process_event(const event& e, bool both);
   /// Balance cutting (HEAD/BOTH): `master` is the writer of the channel that serves head 1,
@@ -126,6 +131,11 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::vector<std::string> footer_in_force() const;
   long blocks() const { return out_.blocks(); }
   const std::string& head_written() const { return out_.head_written(); }
+  /// The lines of the program written so far (block_writer::lines_out): where a record
+  /// shown to the observer stands in its program.
+  std::uint64_t lines_written() { return out_.lines_out(); }
+  /// The bytes written so far to the relay now (block_writer::pass_now).
+  void pass_written() { out_.pass_now(); }
   /// The moves worked out ahead on another thread (machining/kin_lookahead.hpp); nullptr: none.
   void set_lookahead(const kin_lookahead* ahead) { ahead_ = ahead; }
   /// Another thread writes the program's file (block_writer::relay).
@@ -559,6 +569,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   const channel_def& ch_;
   write_observer* observer_ = nullptr;
   bool observed_head_ = false;  // the head's lines shown to observer_
+  bool observe_lines_ = false;  // observer_ wants every line
   diagnostic_sink& diags_;
   std::string cl_file_;
   block_writer out_;

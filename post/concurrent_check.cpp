@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <deque>
 #include <exception>
+#include <limits>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include "analysis/shared_resources.hpp"
@@ -17,11 +19,20 @@ namespace {
 
 constexpr std::size_t queue_pieces = 8;  // pieces of up to 64 KB waiting for the reader
 
+// A record (or the job's units) noted for a channel's comparison, after `lines` lines.
+struct noted {
+  std::uint64_t lines = 0;
+  std::optional<event> record;  // none: the units
+  bool both = false;
+  unit_system units = unit_system::mm;
+};
+
 struct piece {
   int channel = 0;
-  std::string opens;       // not empty: the program starts here, named this
-  text_buffer bytes;       // its NUL (after the bytes) is the one the reader's scans stop at
-  std::FILE* f = nullptr;  // the file the bytes are written to once read
+  std::vector<noted> records;  // noted since the channel's piece before
+  std::string opens;           // not empty: the program starts here, named this
+  text_buffer bytes;           // its NUL (after the bytes) is the one the reader's scans stop at
+  std::FILE* f = nullptr;      // the file the bytes are written to once read
 };
 
 nc_read_options feeding(timeline_feed* feed) {
@@ -36,9 +47,10 @@ nc_read_options feeding(timeline_feed* feed) {
 }  // namespace
 
 struct concurrent_check::impl {
-  impl(const machine& m, timeline_feed* feed)
-      : m(m), feed(feed), names(m.channels.size()), pending(m.channels.size()),
-        write_errors(m.channels.size()), thread([this] { run(); }) {}
+  impl(const machine& m, timeline_feed* feed, std::vector<cl_comparison*> compare)
+      : m(m), feed(feed), compare(std::move(compare)), held(m.channels.size()), due(m.channels.size()),
+        names(m.channels.size()), pending(m.channels.size()), write_errors(m.channels.size()),
+        thread([this] { run(); }) {}
 
   ~impl() {
     stop();
@@ -77,6 +89,72 @@ struct concurrent_check::impl {
     ready.notify_one();
   }
 
+  // What the reader reads with: the check's consumers, each block first to its comparison.
+  nc_read_options reading() {
+    nc_read_options more = feeding(feed);
+    if (compare.empty()) return more;
+    more.on_block = [this, next = std::move(more.on_block)](const nc_block& b) {
+      compare_block(b);
+      if (next) next(b);
+    };
+    more.on_macro = [this, next = std::move(more.on_macro)](const nc_block& b) {
+      compare_block(b);
+      if (next) next(b);
+    };
+    return more;
+  }
+
+  cl_comparison* comparison(std::size_t i) const { return i < compare.size() ? compare[i] : nullptr; }
+
+  // Block `b` to its channel's comparison, after the records noted before its line.
+  void compare_block(const nc_block& b) {
+    const auto i = static_cast<std::size_t>(b.channel - 1);
+    cl_comparison* c = comparison(i);
+    if (!c) return;
+    hand_due(i, static_cast<std::uint64_t>(b.line));
+    c->block(b.line, b.text, b.words(), b.letters());
+  }
+
+  // Channel i's records noted after fewer than `before` lines, to its comparison.
+  void hand_due(std::size_t i, std::uint64_t before) {
+    std::deque<noted>& q = due[i];
+    while (!q.empty() && q.front().lines < before) {
+      noted& n = q.front();
+      if (n.record)
+        compare[i]->record(*n.record, n.both);
+      else
+        compare[i]->units(n.units);
+      q.pop_front();
+    }
+  }
+
+  void join() {
+    stop();
+    if (thread.joinable()) thread.join();
+  }
+
+  bool drain(std::string* why) {
+    join();
+    if (!drained) {
+      drained = true;
+      if (!failed) try {
+          for (std::size_t i = 0; i < due.size(); ++i)
+            if (comparison(i)) hand_due(i, std::numeric_limits<std::uint64_t>::max());
+        } catch (const std::exception& e) {
+          fail(e.what());
+        }
+    }
+    if (why) *why = failure;
+    for (cl_comparison* c : compare)
+      if (c && failed) return false;
+    return true;
+  }
+
+  void fail(const char* what) {
+    failed = true;
+    failure = what;
+  }
+
   // The reading thread: pieces in the order they were written, until stop() and an empty
   // queue. After a failure of the reading it goes on writing the pieces (a writer must never
   // wait for ever, and its file gets every byte).
@@ -86,9 +164,11 @@ struct concurrent_check::impl {
     // cache line with the writer's state. Made on the post's thread, some of it shared lines with
     // the reader's, and the two cores passed those lines to and fro: a third more time.
     try {
-      parts = std::make_unique<check_parts>(m, feed, read);
+      parts = std::make_unique<check_parts>(reading(), m, read);
+    } catch (const std::exception& e) {
+      fail(e.what());
     } catch (...) {
-      failed = true;
+      fail("unknown");
     }
     for (;;) {
       std::unique_lock lock(mutex);
@@ -101,11 +181,15 @@ struct concurrent_check::impl {
       lock.unlock();
       room.notify_one();
       if (!failed) try {
+          for (noted& n : p.records) due[i].push_back(std::move(n));
           if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
           parts->reader.feed(p.channel, p.bytes.view());
+        } catch (const std::exception& e) {
+          fail(e.what());  // the check after the fact meets it again and says it; drain() tells
         } catch (...) {
-          failed = true;  // the check after the fact meets it again and says it
+          fail("unknown");
         }
+      p.records.clear();
       int err = 0;
       if (write && std::fwrite(p.bytes.data(), 1, p.bytes.size(), p.f) != p.bytes.size()) err = errno;
       p.bytes.clear();
@@ -119,14 +203,19 @@ struct concurrent_check::impl {
   }
 
   struct check_parts {
-    check_parts(const machine& m, timeline_feed* feed, diagnostic_list& read)
-        : check(m, feeding(feed)), reader(m, read, check.options()) {}
+    check_parts(const nc_read_options& more, const machine& m, diagnostic_list& read)
+        : check(m, more), reader(m, read, check.options()) {}
     compact_resource_check check;  // the waits, the spindle rules, and the feed
     nc_stream_reader reader;
   };
 
   const machine& m;
   timeline_feed* feed;
+  std::vector<cl_comparison*> compare;   // by channel, or empty: used by the thread
+  std::vector<std::vector<noted>> held;  // by channel: noted since its last piece (the writers' thread)
+  std::vector<std::deque<noted>> due;    // by channel: noted and not yet handed (the thread)
+  bool drained = false;
+  std::string failure;                 // what failed() says
   diagnostic_list read;                // the reading's problems (any: the check after the fact)
   std::unique_ptr<check_parts> parts;  // made and used by the thread until it is joined
   std::vector<std::string> names;      // by channel: the name each program was read under ("" : not opened)
@@ -150,6 +239,7 @@ struct concurrent_check::channel_relay : block_writer::relay {
   text_buffer pass(text_buffer&& bytes, std::FILE* f) override {
     piece next;
     next.channel = channel;
+    next.records.swap(p.held[static_cast<std::size_t>(channel - 1)]);
     std::string& opened = p.names[static_cast<std::size_t>(channel - 1)];
     if (opened.empty()) {
       opened = name();
@@ -167,8 +257,8 @@ struct concurrent_check::channel_relay : block_writer::relay {
   std::function<std::string()> name;
 };
 
-concurrent_check::concurrent_check(const machine& m, timeline_feed* feed)
-    : p_(std::make_unique<impl>(m, feed)) {}
+concurrent_check::concurrent_check(const machine& m, timeline_feed* feed, std::vector<cl_comparison*> compare)
+    : p_(std::make_unique<impl>(m, feed, std::move(compare))) {}
 
 concurrent_check::~concurrent_check() = default;
 
@@ -177,10 +267,23 @@ std::unique_ptr<block_writer::relay> concurrent_check::relay_for(int channel,
   return std::make_unique<channel_relay>(*p_, channel, std::move(name));
 }
 
+bool concurrent_check::note_record(int channel, std::uint64_t lines, const event& e, bool both) {
+  std::vector<noted>& h = p_->held[static_cast<std::size_t>(channel - 1)];
+  h.push_back({lines, e, both, unit_system::mm});
+  return h.size() >= records_per_piece;
+}
+
+bool concurrent_check::note_units(int channel, std::uint64_t lines, unit_system u) {
+  std::vector<noted>& h = p_->held[static_cast<std::size_t>(channel - 1)];
+  h.push_back({lines, std::nullopt, false, u});
+  return h.size() >= records_per_piece;
+}
+
+bool concurrent_check::drain(std::string* why) { return p_->drain(why); }
+
 std::optional<sync_result> concurrent_check::finish(const std::vector<std::string>& names,
                                                     const std::vector<bool>& rewritten) {
-  p_->stop();
-  p_->thread.join();
+  p_->join();
   if (p_->failed || names != p_->names) return std::nullopt;
   for (bool r : rewritten)
     if (r) return std::nullopt;

@@ -15,8 +15,14 @@
 // ordered by a reading of the files one after the other, which the concurrent one is not).
 // Otherwise finish() says so and post checks the files after the fact, as with one core.
 //
+// The comparison of each channel's program with its CL (analysis/cl_compare) runs here too,
+// from the same reading: every block the check reads (split once for all its consumers) goes
+// to the channel's comparison, and each CL record the writer noted (note_record) after the
+// lines written before it; it then stands whether or not the check does.
+//
 // Memory: a few pieces of 64 KB queued; the writer waits when the reader is behind. The
-// buffers go round: a piece written is the next empty buffer of a writer.
+// buffers go round: a piece written is the next empty buffer of a writer. The records noted
+// travel with the next piece: at most `records_per_piece` of them wait for one.
 #include <functional>
 #include <memory>
 #include <optional>
@@ -24,6 +30,7 @@
 #include <string_view>
 #include <vector>
 
+#include "analysis/cl_compare.hpp"
 #include "analysis/cycle_time.hpp"
 #include "check/sync_check.hpp"
 #include "formats/block_writer.hpp"
@@ -33,9 +40,13 @@ namespace twinpost {
 
 class concurrent_check {
  public:
+  /// Records noted for a channel before its writer should pass its bytes (note_record).
+  static constexpr std::size_t records_per_piece = 1024;
+
   /// Starts the reading thread. `feed`, when given, is fed every block and wait (from that
-  /// thread, until finish() returns).
-  concurrent_check(const machine& m, timeline_feed* feed);
+  /// thread, until finish() returns). `compare[c]`, when not null, compares channel c+1's
+  /// program with its CL on that thread, until drain() returns; it must outlive that.
+  concurrent_check(const machine& m, timeline_feed* feed, std::vector<cl_comparison*> compare = {});
   /// Stops the thread once every piece handed in is read and written (a post that failed
   /// does not wait for its check, but its files get every byte their writers gave).
   ~concurrent_check();
@@ -48,7 +59,19 @@ class concurrent_check {
   /// asked on the writer's thread. The relay must not be used after this object is gone.
   std::unique_ptr<block_writer::relay> relay_for(int channel, std::function<std::string()> name);
 
-  /// Waits for the reading to end; the check's result when it may stand for the check of
+  /// A record of `channel` shown to its comparison after the first `lines` lines of its program
+  /// (the writer's thread, in the order of the records; `both`: a HEAD/BOTH copy). True when
+  /// records_per_piece of them wait for the next piece: its writer should pass its bytes now.
+  bool note_record(int channel, std::uint64_t lines, const event& e, bool both);
+  /// The job's units (UNITS record) for `channel`'s comparison, after `lines` lines.
+  bool note_units(int channel, std::uint64_t lines, unit_system u);
+
+  /// Waits for the reading to end, and hands each comparison the records noted after its
+  /// program's last block. False: a comparison did not see its whole program (the reading or
+  /// the comparison failed; `why` says what was thrown). Idempotent.
+  bool drain(std::string* why = nullptr);
+
+  /// Waits for the reading to end (drain); the check's result when it may stand for the check of
   /// the committed files named `names` (by channel), read one after the other, with
   /// `rewritten` telling which of them are not what their writer wrote. nullopt: check
   /// those files after the fact (and feed a fresh timeline).

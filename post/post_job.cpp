@@ -102,26 +102,56 @@ class passing_sink : public diagnostic_sink {
   counting_sink& to_;
 };
 
-// The comparison of a channel's program with its CL (analysis/cl_compare), shown what its
-// writer writes.
+// The comparison of a channel's program with its CL (analysis/cl_compare). Its findings are
+// kept until the programs are written, then said channel by channel (report_comparisons),
+// however the programs were read: on this thread, or on the self-check's.
+struct channel_comparison {
+  channel_comparison(const machine& m, const channel_def& ch, std::string cl_file)
+      : cmp(m, ch, found, std::move(cl_file)) {}
+  diagnostic_list found;
+  cl_comparison cmp;
+};
+
+// The comparison shown what a writer writes, on this thread (one core, or a program the
+// self-check does not read while it is written): it reads the lines itself.
 class compared_writing : public write_observer {
  public:
-  compared_writing(const machine& m, const channel_def& ch, diagnostic_sink& diags, std::string cl_file)
-      : cmp_(m, ch, diags, std::move(cl_file)) {}
+  explicit compared_writing(cl_comparison& c) : cmp_(c) {}
   void line(std::string_view text) override { cmp_.line(text); }
   void units(unit_system u) override { cmp_.units(u); }
   void record(const event& e, bool both) override { cmp_.record(e, both); }
 
  private:
-  cl_comparison cmp_;
+  cl_comparison& cmp_;
+};
+
+// The comparison made on the self-check's thread from its reading of the program: the writer's
+// records are noted there with the number of lines written before each.
+class noted_writing : public write_observer {
+ public:
+  noted_writing(concurrent_check& cc, channel_writer& w, int channel) : cc_(cc), w_(w), channel_(channel) {}
+  bool wants_lines() const override { return false; }
+  void line(std::string_view) override {}
+  void units(unit_system u) override {
+    if (cc_.note_units(channel_, w_.lines_written(), u)) w_.pass_written();
+  }
+  void record(const event& e, bool both) override {
+    if (cc_.note_record(channel_, w_.lines_written(), e, both)) w_.pass_written();
+  }
+
+ private:
+  concurrent_check& cc_;
+  channel_writer& w_;
+  int channel_;
 };
 
 // Routes events to the channel writers; job-level events set the name and units.
 class writers_sink : public channel_sink {
  public:
-  std::vector<std::unique_ptr<channel_writer>> writers;  // index = channel - 1
-  std::vector<std::unique_ptr<compared_writing>> comparisons;
-  job_spindles spindles;  // the starts all writers note
+  std::vector<std::unique_ptr<channel_writer>> writers;          // index = channel - 1
+  std::vector<std::unique_ptr<channel_comparison>> comparisons;  // likewise
+  std::vector<std::unique_ptr<write_observer>> observers;        // likewise
+  job_spindles spindles;                                         // the starts all writers note
   std::string partno;
   const machine* m = nullptr;
   diagnostic_sink* diags = nullptr;
@@ -269,10 +299,12 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
   // Each channel's program held to its CL as it is written: a channel with a kinematic chain
   // through the forward transform of its words (its writer checks its own points that way too,
   // channel_multiaxis, before its blocks go out), a mill/turn head with an indexing head by the
-  // tip at each index (its G68.2 frames passed over).
+  // tip at each index (its G68.2 frames passed over). Shown to it here, unless the self-check
+  // reads the programs while they are written (compare_during).
   for (const channel_def& ch : m.channels) {
-    ws.comparisons.push_back(std::make_unique<compared_writing>(m, ch, sink, o.cl_path));
-    ws.writers[static_cast<std::size_t>(ch.number - 1)]->set_observer(ws.comparisons.back().get());
+    ws.comparisons.push_back(std::make_unique<channel_comparison>(m, ch, o.cl_path));
+    ws.observers.push_back(std::make_unique<compared_writing>(ws.comparisons.back()->cmp));
+    ws.writers[static_cast<std::size_t>(ch.number - 1)]->set_observer(ws.observers.back().get());
   }
   ws.spindles.started.assign(m.spindles.size(), std::vector<char>(m.channels.size(), 0));
   for (auto& w : ws.writers) w->share_spindles(&ws.spindles);
@@ -285,6 +317,40 @@ void open_writers(const post_options& o, const machine& m, const frame_request& 
 // The threads the post may use (post_options::threads).
 int threads(const post_options& o) {
   return o.threads > 0 ? o.threads : std::thread::hardware_concurrency() >= 2 ? 2 : 1;
+}
+
+// The comparisons made on the self-check's thread, from its reading: each writer notes its
+// records there instead of showing its lines here.
+std::vector<cl_comparison*> compared_during(writers_sink& ws) {
+  std::vector<cl_comparison*> out;
+  for (auto& c : ws.comparisons) out.push_back(&c->cmp);
+  return out;
+}
+
+void note_during(writers_sink& ws, concurrent_check& cc) {
+  for (std::size_t i = 0; i < ws.writers.size(); ++i) {
+    ws.observers[i] = std::make_unique<noted_writing>(cc, *ws.writers[i], static_cast<int>(i) + 1);
+    ws.writers[i]->set_observer(ws.observers[i].get());
+  }
+}
+
+// The comparisons' findings, channel by channel, at their CL records (with the CL's lines),
+// once the programs are written; `during`: the self-check that made them, waited for.
+void report_comparisons(const post_options& o, writers_sink& ws, concurrent_check* during,
+                        diagnostic_sink& sink) {
+  std::string why;
+  if (during && !during->drain(&why))
+    sink.report({severity::error,
+                 o.cl_path,
+                 0,
+                 0,
+                 fmt::format("the programs could not be compared with the CL to their end: {}", why),
+                 {}});
+  std::vector<diagnostic> found;
+  for (auto& c : ws.comparisons)
+    for (const diagnostic& d : c->found.all()) found.push_back(d);
+  fill_cl_lines(found, o.cl_path);
+  for (diagnostic& d : found) sink.report(std::move(d));
 }
 
 // Every piece each writer writes goes through the concurrent check, which reads it and then
@@ -564,8 +630,9 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   if ((has_timing(m) || m.limits.blocks_per_second > 0) && m.channels.size() <= 64) feed.emplace(m, to);
   std::optional<concurrent_check> during;  // after `feed`: its thread feeds it
   if (plan.check) {
-    during.emplace(m, feed ? &*feed : nullptr);
+    during.emplace(m, feed ? &*feed : nullptr, compared_during(ws));
     relay_writers(o, req, ws, *during);
+    note_during(ws, *during);
   }
 
   sink.reader = &reader;
@@ -574,6 +641,7 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   const stream_totals t = stream_job(o, reader, router);
   router.finish(t.last_line);
   for (auto& w : ws.writers) w->finish();
+  report_comparisons(o, ws, during ? &*during : nullptr, sink);
   sum.records = static_cast<long>(reader.records());
   sum.channels = static_cast<int>(m.channels.size());
   sum.waits = router.rendezvous();

@@ -144,6 +144,15 @@ std::map<std::string, int> block_cl_lines(const std::vector<nc_source>& files, c
 
 }  // namespace
 
+void fill_cl_lines(std::vector<diagnostic>& found, const std::string& cl_path) {
+  std::map<int, std::string> lines;
+  for (const diagnostic& d : found)
+    if (d.file == cl_path && d.line > 0 && d.source_line.empty()) lines[d.line];
+  read_lines(cl_path, lines);
+  for (diagnostic& d : found)
+    if (d.file == cl_path && d.line > 0 && d.source_line.empty()) d.source_line = lines[d.line];
+}
+
 std::vector<diagnostic> sync_diagnostics_at_cl(
     const std::vector<diagnostic>& found, const std::vector<nc_source>& files, const machine& m,
     const std::string& cl_path, const std::vector<std::vector<int>>& wait_cl_lines, int cl_last_line,

@@ -34,6 +34,10 @@ struct cl_block {
   int cl_line = 0;
 };
 
+/// The source lines of `found`'s diagnostics at lines of the CL file `cl_path` that have none
+/// yet, read from the file in one pass.
+void fill_cl_lines(std::vector<diagnostic>& found, const std::string& cl_path);
+
 /// `found` (the checker's diagnostics on `files`) moved to the CL file `cl_path`.
 /// `wait_cl_lines[c]`: the CL line of each wait block channel c+1 wrote, in order;
 /// `cl_last_line`: the job's last record, where every channel's program ends.

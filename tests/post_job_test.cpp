@@ -364,3 +364,43 @@ TEST_CASE("on three threads the post gives what it gives on one, across many bat
       }
     }
 }
+
+TEST_CASE("the comparison with the CL finds on the self-check's thread what it finds on the post's",
+          "[post][cl_compare]") {
+  // On two threads each channel's program is compared with its CL from the self-check's reading
+  // (post/concurrent_check): the records go there with the lines written before each, in pieces
+  // of 64 KB, or of concurrent_check::records_per_piece records. Both channels' findings, past
+  // several pieces, as on one thread; a sound job as on one thread.
+  auto job = [](bool bad) {
+    std::string cl =
+        "PARTNO/T36\nUNITS/MM\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nGOTO/80,0,2\n";
+    for (int i = 0; i < 20000; ++i) {
+      if (bad && i == 12500) cl += "INSERT/M5\n";
+      cl += fmt::format("GOTO/{},0,{}\n", 40 + i % 7, -(i % 50) * 0.5);
+    }
+    cl += "GOTO/80,0,2\nHEAD/2\nTURRET/4,4\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\nGOTO/-30,0,5\n";
+    for (int i = 0; i < 3000; ++i) {
+      if (bad && i == 2000) cl += "INSERT/T0505\n";
+      cl += fmt::format("GOTO/{},0,{}\n", -30 - i % 5, -(i % 40) * 0.5);
+    }
+    return cl + "GOTO/-30,0,5\nFINI\n";
+  };
+  const machine m = load_machine("fanuc-0itd-twin");
+  auto with = [](int n) { return [n](post_options& o) { o.threads = n; }; };
+  const test::posted bad1 = test::post_in_fresh_dir(job(true), m, "compare-1", {}, {}, with(1));
+  const test::posted bad2 = test::post_in_fresh_dir(job(true), m, "compare-2", {}, {}, with(2));
+  CHECK(bad2.diagnostics ==
+        "job.cls:12509:1: error: channel 1: the CL cuts with the spindle turning clockwise at 1000 rpm here "
+        "(SPINDL at line 5), but the program's main spindle is stopped\nGOTO/45,0,0\n^\n"
+        "job.cls:22016:1: error: channel 2: the CL cuts with tool 4 here (the tool call at line 20011), the "
+        "program with tool 5 (T0505, read by the tool call T{tool:02}{offset:02})\nGOTO/-30,0,0\n^\n");
+  CHECK(bad1.diagnostics == bad2.diagnostics);
+  CHECK(bad2.files.empty());
+  const test::posted sound1 = test::post_in_fresh_dir(job(false), m, "compare-sound-1", {}, {}, with(1));
+  const test::posted sound2 = test::post_in_fresh_dir(job(false), m, "compare-sound-2", {}, {}, with(2));
+  CHECK(sound2.ok);
+  CHECK(sound2.diagnostics == sound1.diagnostics);
+  CHECK(sound2.files == sound1.files);
+  REQUIRE(sound2.files.count("T36_1.nc") == 1);
+  CHECK(sound2.files.at("T36_1.nc").size() > 3 * 65536);  // several pieces
+}
