@@ -2,7 +2,6 @@
 #include "support/ascii.hpp"
 #include "support/errors.hpp"
 
-#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fmt/format.h>
@@ -64,7 +63,12 @@ void block_writer::pass_on() {
 
 std::uint64_t block_writer::lines_out() {
   counting_ = true;
-  lines_ += static_cast<std::uint64_t>(std::count(buf_.data() + counted_, buf_.data() + buf_.size(), '\n'));
+  // One memchr a line (std::count here took six instructions a byte).
+  const char* const end = buf_.data() + buf_.size();
+  for (const char* p = buf_.data() + counted_;
+       (p = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)))) != nullptr;
+       ++p)
+    ++lines_;
   counted_ = buf_.size();
   return lines_;
 }

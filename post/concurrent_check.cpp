@@ -49,8 +49,8 @@ nc_read_options feeding(timeline_feed* feed) {
 struct concurrent_check::impl {
   impl(const machine& m, timeline_feed* feed, std::vector<cl_comparison*> compare)
       : m(m), feed(feed), compare(std::move(compare)), held(m.channels.size()), due(m.channels.size()),
-        names(m.channels.size()), pending(m.channels.size()), write_errors(m.channels.size()),
-        thread([this] { run(); }) {}
+        due_at(m.channels.size()), names(m.channels.size()), pending(m.channels.size()),
+        write_errors(m.channels.size()), thread([this] { run(); }) {}
 
   ~impl() {
     stop();
@@ -112,19 +112,26 @@ struct concurrent_check::impl {
     cl_comparison* c = comparison(i);
     if (!c) return;
     hand_due(i, static_cast<std::uint64_t>(b.line));
-    c->block(b.line, b.text, b.words(), b.letters());
+    const std::vector<nc_word>& words = b.words();  // first: then letters() is the split's, exact
+    c->block(b.line, b.text, words, b.letters());
   }
 
   // Channel i's records noted after fewer than `before` lines, to its comparison.
   void hand_due(std::size_t i, std::uint64_t before) {
-    std::deque<noted>& q = due[i];
-    while (!q.empty() && q.front().lines < before) {
-      noted& n = q.front();
-      if (n.record)
-        compare[i]->record(*n.record, n.both);
-      else
-        compare[i]->units(n.units);
+    std::deque<std::vector<noted>>& q = due[i];
+    std::size_t& at = due_at[i];
+    while (!q.empty()) {
+      const std::vector<noted>& front = q.front();
+      for (; at < front.size(); ++at) {
+        const noted& n = front[at];
+        if (n.lines >= before) return;
+        if (n.record)
+          compare[i]->record(*n.record, n.both);
+        else
+          compare[i]->units(n.units);
+      }
       q.pop_front();
+      at = 0;
     }
   }
 
@@ -181,7 +188,7 @@ struct concurrent_check::impl {
       lock.unlock();
       room.notify_one();
       if (!failed) try {
-          for (noted& n : p.records) due[i].push_back(std::move(n));
+          if (!p.records.empty()) due[i].push_back(std::move(p.records));
           if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
           parts->reader.feed(p.channel, p.bytes.view());
         } catch (const std::exception& e) {
@@ -213,7 +220,8 @@ struct concurrent_check::impl {
   timeline_feed* feed;
   std::vector<cl_comparison*> compare;   // by channel, or empty: used by the thread
   std::vector<std::vector<noted>> held;  // by channel: noted since its last piece (the writers' thread)
-  std::vector<std::deque<noted>> due;    // by channel: noted and not yet handed (the thread)
+  std::vector<std::deque<std::vector<noted>>> due;  // by channel: pieces' records not yet handed (the thread)
+  std::vector<std::size_t> due_at;                  // by channel: the next of due's first piece's
   bool drained = false;
   std::string failure;                 // what failed() says
   diagnostic_list read;                // the reading's problems (any: the check after the fact)
@@ -269,6 +277,7 @@ std::unique_ptr<block_writer::relay> concurrent_check::relay_for(int channel,
 
 bool concurrent_check::note_record(int channel, std::uint64_t lines, const event& e, bool both) {
   std::vector<noted>& h = p_->held[static_cast<std::size_t>(channel - 1)];
+  if (h.capacity() == 0) h.reserve(records_per_piece / 4);  // (given away with each piece)
   h.push_back({lines, e, both, unit_system::mm});
   return h.size() >= records_per_piece;
 }
