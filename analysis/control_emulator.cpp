@@ -91,6 +91,17 @@ int tool_change_code(const std::string& tool_call) {
 
 }  // namespace
 
+bool sweeps_chain(const machine& m, int channel) {
+  // A mill's chain (a lathe's B head indexes at home, its X a diameter: not followed here).
+  const channel_def& c = m.channels[static_cast<std::size_t>(channel - 1)];
+  const axis_def* x = c.axis('X');
+  const kinematic_chain* k = m.chain(channel);
+  bool head = false;  // only a head swings the tip (a table turns the part: not held)
+  for (const rotary_axis_def& r : k ? k->rotaries : std::vector<rotary_axis_def>{})
+    head = head || r.kind == rotary_kind::head;
+  return head && !c.head_index.present() && !(x && x->diameter);
+}
+
 struct control_emulator::impl {
   explicit impl(const machine& m)
       : m(m), sync_on(m.codes.spindle_sync_on), sync_off(m.codes.spindle_sync_off) {
@@ -98,14 +109,8 @@ struct control_emulator::impl {
       channels.emplace_back(m, static_cast<int>(i) + 1);
       channels.back().start_line.assign(m.spindles.size(), 0);
       channels.back().chucks.assign(m.spindles.size(), {});
-      // A mill's chain (a lathe's B head indexes at home, its X a diameter: not followed here).
-      const axis_def* x = m.channels[i].axis('X');
-      const kinematic_chain* k = m.chain(static_cast<int>(i) + 1);
-      bool head = false;  // only a head swings the tip (a table turns the part: not held)
-      for (const rotary_axis_def& r : k ? k->rotaries : std::vector<rotary_axis_def>{})
-        head = head || r.kind == rotary_kind::head;
-      if (head && !m.channels[i].head_index.present() && !(x && x->diameter))
-        channels.back().sweep.emplace(m, *k, static_cast<int>(i) + 1,
+      if (sweeps_chain(m, static_cast<int>(i) + 1))
+        channels.back().sweep.emplace(m, *m.chain(static_cast<int>(i) + 1), static_cast<int>(i) + 1,
                                       tool_change_code(m.channels[i].tool_call));
       if (m.channels[i].head_index.present()) {
         channels.back().head = m.channels[i].head_index.address;

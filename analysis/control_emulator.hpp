@@ -35,6 +35,10 @@
 
 namespace twinpost {
 
+/// Whether the emulator follows channel `channel`'s chain through every block (a mill's chain
+/// with a head, analysis/rotary_sweep): it then reads the words of each of its blocks.
+bool sweeps_chain(const machine& m, int channel);
+
 class control_emulator {
  public:
   explicit control_emulator(const machine& m);

@@ -1,5 +1,6 @@
 #include "post/concurrent_check.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <condition_variable>
 #include <cstdio>
@@ -59,14 +60,24 @@ struct concurrent_check::impl {
 
   // Queues `p` (the writer's thread) and gives back an empty buffer.
   text_buffer push(piece p) {
+    const auto c = static_cast<std::size_t>(p.channel - 1);
     std::unique_lock lock(mutex);
-    room.wait(lock, [this] { return queue.size() < queue_pieces; });
-    ++pending[static_cast<std::size_t>(p.channel - 1)];
+    // A full queue: the writer waits until the reader has read half of it, not for each piece
+    // (a wait and a wake-up per piece once the check is the slower thread: four times the
+    // threads' switches on the lathe job).
+    if (queue.size() >= queue_pieces) room.wait(lock, [this] { return queue.size() <= queue_pieces / 2; });
+    ++pending[c];
     queue.push_back(std::move(p));
     text_buffer empty;
     if (!spare.empty()) {
       empty = std::move(spare.back());
       spare.pop_back();
+    }
+    // Its records' vector too comes round: memory this thread allocated, freed on the other,
+    // goes back to this thread's arena under its lock, for every piece.
+    if (held[c].capacity() == 0 && !spare_records.empty()) {
+      held[c] = std::move(spare_records.back());
+      spare_records.pop_back();
     }
     lock.unlock();
     ready.notify_one();
@@ -92,7 +103,8 @@ struct concurrent_check::impl {
   // What the reader reads with: the check's consumers, each block first to its comparison.
   nc_read_options reading() {
     nc_read_options more = feeding(feed);
-    if (compare.empty()) return more;
+    if (std::none_of(compare.begin(), compare.end(), [](const cl_comparison* c) { return c != nullptr; }))
+      return more;
     more.on_block = [this, next = std::move(more.on_block)](const nc_block& b) {
       compare_block(b);
       if (next) next(b);
@@ -129,6 +141,10 @@ struct concurrent_check::impl {
           compare[i]->record(*n.record, n.both);
         else
           compare[i]->units(n.units);
+      }
+      if (handed.size() < queue_pieces) {
+        q.front().clear();
+        handed.push_back(std::move(q.front()));
       }
       q.pop_front();
       at = 0;
@@ -185,8 +201,9 @@ struct concurrent_check::impl {
       queue.pop_front();
       const auto i = static_cast<std::size_t>(p.channel - 1);
       const bool write = write_errors[i] == 0;  // after a failed write, nothing more of it
+      const bool half = queue.size() == queue_pieces / 2;
       lock.unlock();
-      room.notify_one();
+      if (half) room.notify_one();
       if (!failed) try {
           if (!p.records.empty()) due[i].push_back(std::move(p.records));
           if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
@@ -204,6 +221,9 @@ struct concurrent_check::impl {
       if (err != 0) write_errors[i] = err;
       --pending[i];
       if (spare.size() < queue_pieces) spare.push_back(std::move(p.bytes));
+      for (std::vector<noted>& r : handed)
+        if (spare_records.size() < queue_pieces) spare_records.push_back(std::move(r));
+      handed.clear();
       lock.unlock();
       written.notify_all();
     }
@@ -221,6 +241,8 @@ struct concurrent_check::impl {
   std::vector<cl_comparison*> compare;   // by channel, or empty: used by the thread
   std::vector<std::vector<noted>> held;  // by channel: noted since its last piece (the writers' thread)
   std::vector<std::deque<std::vector<noted>>> due;  // by channel: pieces' records not yet handed (the thread)
+  std::vector<std::vector<noted>> handed;           // due's vectors done with, for spare_records (the thread)
+  std::vector<std::vector<noted>> spare_records;    // for the writers to fill again (under mutex)
   std::vector<std::size_t> due_at;                  // by channel: the next of due's first piece's
   bool drained = false;
   std::string failure;                 // what failed() says
@@ -247,7 +269,8 @@ struct concurrent_check::channel_relay : block_writer::relay {
   text_buffer pass(text_buffer&& bytes, std::FILE* f) override {
     piece next;
     next.channel = channel;
-    next.records.swap(p.held[static_cast<std::size_t>(channel - 1)]);
+    next.records = std::move(p.held[static_cast<std::size_t>(channel - 1)]);
+    p.held[static_cast<std::size_t>(channel - 1)] = {};  // (push gives a spare one back)
     std::string& opened = p.names[static_cast<std::size_t>(channel - 1)];
     if (opened.empty()) {
       opened = name();

@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include "analysis/cl_compare.hpp"
+#include "analysis/control_emulator.hpp"
 #include "analysis/interference.hpp"
 #include "analysis/shared_resources.hpp"
 #include "analysis/timeline_report.hpp"
@@ -319,16 +320,32 @@ int threads(const post_options& o) {
   return o.threads > 0 ? o.threads : std::thread::hardware_concurrency() >= 2 ? 2 : 1;
 }
 
-// The comparisons made on the self-check's thread, from its reading: each writer notes its
-// records there instead of showing its lines here.
-std::vector<cl_comparison*> compared_during(writers_sink& ws) {
+// Whether the self-check's reading splits every block of channel `ch` anyway: for the cycle
+// time (`timed`: every block), the interference rule (a channel with an envelope) or the
+// emulator's rotary sweep (a chain with a head). Such a channel's comparison is made there,
+// from those words; another's stays with its writer: on two cores with three busy threads the
+// CPU is what counts, and handing the records over (a copy of each, its lines counted, the
+// pieces passed more often) cost more than the split it would share (docs/benchmark.md,
+// thirty-sixth session: the 3-axis mill's job 7 % more CPU on the check's thread).
+bool check_splits(const machine& m, const channel_def& ch, bool timed) {
+  return timed || (interference_checked(m) && m.interference.channel(ch.number) != nullptr) ||
+         sweeps_chain(m, ch.number);
+}
+
+// The comparisons made on the self-check's thread, from its reading (by channel; null: made on
+// this thread, check_splits).
+std::vector<cl_comparison*> compared_during(const machine& m, writers_sink& ws, bool timed) {
   std::vector<cl_comparison*> out;
-  for (auto& c : ws.comparisons) out.push_back(&c->cmp);
+  for (std::size_t i = 0; i < ws.comparisons.size(); ++i)
+    out.push_back(check_splits(m, m.channels[i], timed) ? &ws.comparisons[i]->cmp : nullptr);
   return out;
 }
 
-void note_during(writers_sink& ws, concurrent_check& cc) {
+// Each writer whose comparison is made on the self-check's thread notes its records there
+// instead of showing its lines here.
+void note_during(writers_sink& ws, concurrent_check& cc, const std::vector<cl_comparison*>& during) {
   for (std::size_t i = 0; i < ws.writers.size(); ++i) {
+    if (!during[i]) continue;
     ws.observers[i] = std::make_unique<noted_writing>(cc, *ws.writers[i], static_cast<int>(i) + 1);
     ws.writers[i]->set_observer(ws.observers[i].get());
   }
@@ -630,9 +647,10 @@ job_operations post_pass(const post_options& o, const machine& m, pass_setup& se
   if ((has_timing(m) || m.limits.blocks_per_second > 0) && m.channels.size() <= 64) feed.emplace(m, to);
   std::optional<concurrent_check> during;  // after `feed`: its thread feeds it
   if (plan.check) {
-    during.emplace(m, feed ? &*feed : nullptr, compared_during(ws));
+    const std::vector<cl_comparison*> compared = compared_during(m, ws, feed.has_value());
+    during.emplace(m, feed ? &*feed : nullptr, compared);
     relay_writers(o, req, ws, *during);
-    note_during(ws, *during);
+    note_during(ws, *during, compared);
   }
 
   sink.reader = &reader;
