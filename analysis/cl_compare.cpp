@@ -228,8 +228,16 @@ struct cl_comparison::impl {
   std::optional<rotary_sweep> chain;
   bool whole_chain = false;  // every move the chain's (else a mill/turn head's, under tool-tip control)
   std::uint32_t chain_letters = 0;  // a whole chain's rotary addresses
-  bool fixture = false;             // a rotary fixture offset (G54.2 Pn) in force
-  std::string unfollowed_text;      // the first frame of a chain's program not followed, and its line
+  struct chain_block {
+    vec3 tip;
+    int line = 0;
+    std::string text;
+  };
+  std::vector<chain_block> mids;  // a chain's feed blocks since the last motion record (n_mids of them)
+  std::size_t n_mids = 0;
+  bool said_mid = false;
+  bool fixture = false;         // a rotary fixture offset (G54.2 Pn) in force
+  std::string unfollowed_text;  // the first frame of a chain's program not followed, and its line
   int unfollowed_line = 0;
   bool said_frame = false;
   std::optional<double> cl_length, cl_length_next;  // the CL's TLDATA length (mm), now and for the next call
@@ -943,6 +951,57 @@ struct cl_comparison::impl {
       }
       note_arc(start, start_known);
     }
+    // A chain's feed block between two records: where it puts the tip, held at the next record
+    // to the CL's straight move (attack 63 M4: an `on_block` block dipped 20 mm mid-move).
+    constexpr std::uint32_t xyz = nc_letter('X') | nc_letter('Y') | nc_letter('Z');
+    if (chain && motion == 1 && !cycle && !not_a_move && !home && !machine && !setting &&
+        (letters & (xyz | chain_letters)) != 0 && (whole_chain || chain->tool_tip_on())) [[unlikely]]
+      note_chain_block(text);
+  }
+
+  // Where a chain's feed block puts the tip (the part frame, mm), when its words say without
+  // the tool's length or with the length known; a move of more blocks is held at its first 4096.
+  void note_chain_block(std::string_view text) {
+    if (said_mid || n_mids == 4096) return;
+    if (needs_length && (!chain->length_on() || h_word == 0) && chain_def->output != multiaxis_output::pivot)
+      return;  // (the record says so)
+    const std::optional<double> length = chain_length();
+    const std::optional<rotary_sweep::pose> at = chain->where(length.value_or(0));
+    if (!at) return;
+    if (!length)
+      if (const std::optional<rotary_sweep::pose> longer = chain->where(100);
+          !longer || kin::distance(longer->tip, at->tip) > tip_tolerance / 10)
+        return;
+    if (n_mids == mids.size()) mids.emplace_back();
+    chain_block& b = mids[n_mids++];
+    b.tip = at->tip;
+    b.line = lines;
+    b.text.assign(text);
+  }
+
+  // A chain's feed blocks since the last record against the CL's straight move from the record
+  // before to `to`, within `tol`: once a channel.
+  void hold_chain_blocks(const event& e, const vec3& to, double tol) {
+    const vec3 from = cl_prev;
+    const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
+    const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
+    for (std::size_t i = 0; i < n_mids; ++i) {
+      const vec3& p = mids[i].tip;
+      const double t =
+          dd > 0 ? std::clamp(((p.x - from.x) * d.x + (p.y - from.y) * d.y + (p.z - from.z) * d.z) / dd, 0.0,
+                              1.0)
+                 : 0.0;
+      const vec3 on{from.x + t * d.x, from.y + t * d.y, from.z + t * d.z};
+      const double off = kin::distance(p, on);
+      if (off <= tol) continue;
+      said_mid = true;
+      error(e,
+            fmt::format("the program's block `{}` (line {} of its program) takes the tool tip {:.3f} mm off "
+                        "the CL's straight move from ({:.3f}, {:.3f}, {:.3f}) to this record's point, to "
+                        "({:.3f}, {:.3f}, {:.3f}) (the part frame, mm; the forward transform of its words)",
+                        mids[i].text, mids[i].line, off, from.x, from.y, from.z, p.x, p.y, p.z));
+      return;
+    }
   }
 
   // A block that turned C (G0 or G1): the part turns under the tool, whose tip runs round the
@@ -1249,6 +1308,8 @@ struct cl_comparison::impl {
                         "the forward transform of its words): {}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
     }
+    if (tip_known && !rapid && cl_prev_known && !said_mid && std::holds_alternative<motion_event>(e.data))
+      hold_chain_blocks(e, want, tol);
     compare_chain_axis(e, at->axis, cl_axis);
     compare_rest(e, rapid);
     return true;
@@ -1696,7 +1757,7 @@ struct cl_comparison::impl {
     // The C turns of blocks between two motion records (INSERT text, an [events] block, a
     // tool's or a coolant's blocks) are held to the next one's move (attack 60 F3).
     if (std::holds_alternative<motion_event>(e.data) || std::holds_alternative<arc_event>(e.data))
-      n_turns = 0;
+      n_turns = 0, n_mids = 0;
     hole.valid = false;
     fed_low.valid = fed_high.valid = false;
   }

@@ -1123,6 +1123,45 @@ TEST_CASE("cl comparison: a chain's tip and tool axis through the forward transf
         "the block `G43 H1 X20. Y-8. Z40.`\n");
 }
 
+TEST_CASE("cl comparison: a chain's feed blocks between two records, on the CL's straight move",
+          "[analysis][cl_compare]") {
+  // Attack 63 M4: a block in the middle of a move (an `on_block` that adds one, a linearised
+  // move's sub-moves) was not held: only where the record ends was. The trunnion under tool-tip
+  // control: X Y Z the tip; a feed from (10, 20, -5) to (30, 20, -5) upright.
+  auto run = [](std::vector<const char*> mid, bool rapid = false) {
+    compared c("trunnion-5axis", 1);
+    c.cmp.record({c.next++, tool_data_event{"TLDATA", {"MILL"}, {10, 0, 100, 0, 0}}, 1}, false);
+    c.cmp.record({c.next++, tool_event{tool_source::loadtl, 1, std::nullopt, false}, 1}, false);
+    c.lines({"G21", "G90 G94 G17 G40 G49 G80", "T01 M6", "G54", "S8000 M3",
+             "G0 G43.4 H1 X10. Y20. Z-5. A0. C0."});
+    c.to({10, 20, -5}, {0, 0, 1});
+    c.feed(500, feed_mode::per_minute);
+    c.lines({"G1 F500."});
+    for (const char* b : mid) c.cmp.line(b);
+    c.lines({"X30."});
+    c.to({30, 20, -5}, {0, 0, 1}, rapid);
+    return c.text();
+  };
+  // Sub-moves on the line: nothing to say.
+  CHECK(run({"X15.", "X20. A0.", "X25."}).empty());
+  // A block that dips 20 mm mid-move: at the record that ends the move.
+  CHECK(run({"X15.", "X20. Z-25.", "X25. Z-5."}) ==
+        "job.cls:14:1: error: channel 1: the program's block `X20. Z-25.` (line 12 of its program) takes "
+        "the tool tip 20.000 mm off the CL's straight move from (10.000, 20.000, -5.000) to this record's "
+        "point, to (20.000, 20.000, -25.000) (the part frame, mm; the forward transform of its words)\n");
+  // A rotary word that swings the tool about the tip under tool-tip control moves no tip; one
+  // that leaves the tool off the CL's axis is the axis's finding at the record, not this one.
+  CHECK(run({"X15.", "X20. A10.", "X25. A0."}).empty());
+  // Past either end of the move.
+  CHECK(run({"X35."}) ==
+        "job.cls:14:1: error: channel 1: the program's block `X35.` (line 11 of its program) takes the tool "
+        "tip 5.000 mm off the CL's straight move from (10.000, 20.000, -5.000) to this record's point, to "
+        "(35.000, 20.000, -5.000) (the part frame, mm; the forward transform of its words)\n");
+  // A rapid record's blocks are not held (the writer's own retracts and unwinds): the CL's
+  // rapid is only where it ends (exact: nothing at all is said).
+  CHECK(run({"X15.", "X20. Z-25.", "X25. Z-5."}, true).empty());
+}
+
 TEST_CASE("cl comparison: the Integrex head's tilted tool under tool-tip control", "[analysis][cl_compare]") {
   // Attack 63 H1: a live drill at 45 degrees is written through the head's chain under tool-tip
   // control (G43.4 H#3020 with B and C: X Y Z the tip in the part frame); its records were
