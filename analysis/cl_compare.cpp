@@ -235,6 +235,7 @@ struct cl_comparison::impl {
   };
   std::vector<chain_block> mids;  // a chain's feed blocks since the last motion record (n_mids of them)
   std::size_t n_mids = 0;
+  bool mid_staged = false;  // mids[n_mids] is a block whose tip is not worked out yet
   bool said_mid = false;
   bool fixture = false;         // a rotary fixture offset (G54.2 Pn) in force
   std::string unfollowed_text;  // the first frame of a chain's program not followed, and its line
@@ -519,6 +520,7 @@ struct cl_comparison::impl {
           shifted = true;  // a work offset written through its variable (#5223=-5.)
     if (words.empty()) return;
     // (Its swings are the emulator's to report, in check and in post's self-check.)
+    if (mid_staged) settle_chain_block();  // before this block moves the follower on
     if (chain) chain->block(words);
     // Any word but an axis's (a G, M, S, T, F ...) may change what a cut is held to.
     constexpr std::uint32_t axis_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
@@ -956,13 +958,24 @@ struct cl_comparison::impl {
     constexpr std::uint32_t xyz = nc_letter('X') | nc_letter('Y') | nc_letter('Z');
     if (chain && motion == 1 && !cycle && !not_a_move && !home && !machine && !setting &&
         (letters & (xyz | chain_letters)) != 0 && (whole_chain || chain->tool_tip_on())) [[unlikely]]
-      note_chain_block(text);
+      stage_chain_block(text);
   }
 
-  // Where a chain's feed block puts the tip (the part frame, mm), when its words say without
-  // the tool's length or with the length known; a move of more blocks is held at its first 4096.
-  void note_chain_block(std::string_view text) {
+  // A chain's feed block, staged: where it puts the tip is worked out when the next block comes
+  // (the follower still where this one left it), not for the last before a record, whose tip
+  // is the record's (compare_chain). A move of more blocks is held at its first 4096.
+  void stage_chain_block(std::string_view text) {
     if (said_mid || n_mids == 4096) return;
+    if (n_mids == mids.size()) mids.emplace_back();
+    mids[n_mids].line = lines;
+    mids[n_mids].text.assign(text);
+    mid_staged = true;
+  }
+
+  // The staged block's tip (the part frame, mm), when its words say it without the tool's
+  // length or with the length known.
+  void settle_chain_block() {
+    mid_staged = false;
     if (needs_length && (!chain->length_on() || h_word == 0) && chain_def->output != multiaxis_output::pivot)
       return;  // (the record says so)
     const std::optional<double> length = chain_length();
@@ -972,11 +985,7 @@ struct cl_comparison::impl {
       if (const std::optional<rotary_sweep::pose> longer = chain->where(100);
           !longer || kin::distance(longer->tip, at->tip) > tip_tolerance / 10)
         return;
-    if (n_mids == mids.size()) mids.emplace_back();
-    chain_block& b = mids[n_mids++];
-    b.tip = at->tip;
-    b.line = lines;
-    b.text.assign(text);
+    mids[n_mids++].tip = at->tip;
   }
 
   // A chain's feed blocks since the last record against the CL's straight move from the record
@@ -1757,7 +1766,7 @@ struct cl_comparison::impl {
     // The C turns of blocks between two motion records (INSERT text, an [events] block, a
     // tool's or a coolant's blocks) are held to the next one's move (attack 60 F3).
     if (std::holds_alternative<motion_event>(e.data) || std::holds_alternative<arc_event>(e.data))
-      n_turns = 0, n_mids = 0;
+      n_turns = 0, n_mids = 0, mid_staged = false;
     hole.valid = false;
     fed_low.valid = fed_high.valid = false;
   }
