@@ -332,6 +332,26 @@ std::string channel_writer::frame_waits(std::string_view b) const {
   return {};
 }
 
+// The first control character of `text` (a byte below 32 but a tab, or DEL): a carriage return
+// or a line feed inside one block makes two lines to a reader, and what the control makes of
+// the others is its own. npos: none.
+std::size_t control_character(std::string_view text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if ((c < 32 && c != '\t') || c == 127) return i;
+  }
+  return std::string_view::npos;
+}
+
+bool channel_writer::text_is_one_line(std::string_view text, std::string_view who, int line) {
+  const std::size_t at = control_character(text);
+  if (at == std::string_view::npos) return true;
+  error(line, fmt::format("{} has a control character (code {}) at its character {}: a carriage return or a "
+                          "line feed in it would end the block there, for the control and for the check",
+                          who, static_cast<int>(static_cast<unsigned char>(text[at])), at + 1));
+  return false;
+}
+
 bool channel_writer::user_block_passes(const std::string& given, std::string_view own) {
   const program_format& f = m_.program;
   if (!block_fits(given)) return false;
@@ -829,6 +849,7 @@ std::string channel_writer::increment_letters() const {
 }
 
 bool channel_writer::insert_passes(const std::string& text, int line) {
+  if (!text_is_one_line(text, "INSERT text", line)) return false;
   bool glued = false;
   const std::string reading = control_reading(text, m_.program, glued);
   const std::string increments = increment_letters();

@@ -920,6 +920,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// position along a path the post cannot follow (G27, G29, G28/G30 through a point) stops the
   /// post at record `line` (machining/user_block_form.hpp, insert_return_error).
   bool insert_passes(const std::string& text, int line);
+  /// False, with an error at CL line `line`, when `text` (`who` in the message) has a control
+  /// character: one block must be one line (machining/channel_user_gate.cpp).
+  bool text_is_one_line(std::string_view text, std::string_view who, int line);
   /// The addresses that are increments whatever the mode: a lathe's U, V, W, H in G-code
   /// system A where the channel has no axis of that name.
   std::string increment_letters() const;

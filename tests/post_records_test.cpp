@@ -228,6 +228,25 @@ TEST_CASE("INSERT text that returns home along a path the post cannot follow sto
   }
 }
 
+TEST_CASE("INSERT text is one line: a control character stops the post", "[post][records]") {
+  // A carriage return inside INSERT text made two lines for the checker's reader, which ends a
+  // line at a lone CR, and one for the writer: on two threads the comparison with the CL was
+  // handed the record after the wrong block and reported a cut 10 mm off (thirty-sixth
+  // session). To a control, a CR or LF mid-block ends the block there. (The machine file's
+  // templates and a script's blocks refuse control bytes where they are read.)
+  for (const int threads : {1, 2}) {
+    CAPTURE(threads);
+    const test::posted p = test::post_in_fresh_dir(head + "GOTO/20,0,2\nINSERT/(A\rB) M8\n" + cut + "FINI\n",
+                                                   load_machine("fanuc-0itd-twin"), "insert-cr", {}, {},
+                                                   [threads](post_options& o) { o.threads = threads; });
+    CHECK(p.diagnostics ==
+          "job.cls:7:1: error: channel 1: INSERT text has a control character (code 13) at its character 3: "
+          "a carriage return or a line feed in it would end the block there, for the control and for the "
+          "check\nINSERT/(A\\x0DB) M8\n^\n");
+    CHECK(p.files.empty());
+  }
+}
+
 TEST_CASE("a tool axis along Z posts and any other stops the post at the first move under it",
           "[post][records]") {
   // MULTAX points with the axis +Z (as NX writes them on a lathe face) post as 3-axis points.
