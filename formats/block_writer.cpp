@@ -44,6 +44,8 @@ void block_writer::flush_if_full() {
   if (buf_.size() >= flush_at) {
     if (relay_) return pass_on();
     if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size()) write_failed(errno);
+    lines_out();
+    counted_ = 0;
     buf_.clear();
   }
 }
@@ -51,10 +53,8 @@ void block_writer::flush_if_full() {
 void block_writer::pass_on() {
   // A write that failed is said at the next piece, as a write of our own would have said it.
   if (const int err = relay_->write_error(false)) write_failed(err);
-  if (counting_) {
-    lines_out();
-    counted_ = 0;
-  }
+  lines_out();  // every piece's lines, from the first (the head's): lines_out() may be asked later
+  counted_ = 0;
   *buf_.room(1) = '\0';  // the reader's scans stop at it; not one of the file's bytes
   buf_ = relay_->pass(std::move(buf_), f_);
   buf_.clear();
@@ -62,7 +62,6 @@ void block_writer::pass_on() {
 }
 
 std::uint64_t block_writer::lines_out() {
-  counting_ = true;
   // One memchr a line (std::count here took six instructions a byte). A line ends as the
   // checker's reader ends it: at LF, CR LF or a lone CR (a machine file's header line may carry
   // one; the gate refuses them in user blocks). Asked between blocks: the bytes end a line.

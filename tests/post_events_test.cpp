@@ -33,13 +33,13 @@ test::posted post_with(const std::string& events, const std::string& cl, const s
 
 // The same machine with [events] script = "t.lua", the script `lua` beside it.
 test::posted post_with_script(const std::string& events, const std::string& lua, const std::string& cl,
-                              const std::string& tag) {
+                              const std::string& tag, const std::function<void(post_options&)>& adjust = {}) {
   const std::string dir = test::fresh_temp_dir("script-" + tag);
   test::write_file(dir + "/t.lua", lua);
   machine m = parse_machine(twin_with(events), "twin-events.toml");
   m.events.script = "t.lua";
   m.events.script_path = dir + "/t.lua";
-  test::posted p = test::post_in_fresh_dir(cl, m, "events-" + tag);
+  test::posted p = test::post_in_fresh_dir(cl, m, "events-" + tag, {}, {}, adjust);
   std::filesystem::remove_all(dir);
   return p;
 }
@@ -1145,5 +1145,28 @@ TEST_CASE("on_block sees the header and footer blocks, each once, with ctx.part"
         "header and the footer set the modes and end the program safely; give it back, or add to it\n"
         "TURRET/1,1\n^\n");
     CHECK(p.files.empty());
+  }
+}
+
+TEST_CASE("a program start longer than a piece: the comparison on the check's thread counts its lines",
+          "[post][events][cl_compare]") {
+  // Attack 66 H1: 1600 blocks from on_program_start (84 KB) went to the self-check's thread
+  // before the writer noted its first record, uncounted; every record then came to the
+  // comparison 1600 lines early, and an M4 before the cut posted on two threads.
+  std::string pad = "function on_program_start(ctx)\n  for i = 1, 1600 do\n";
+  pad +=
+      "    post.emit('(SETUP SHEET LINE ' .. i .. ' OF THE JOB, THE FIXTURE AND THE STOCK)')\n  end\nend\n";
+  const std::string cl =
+      "PARTNO PAD\nLOADTL/1,1\nSPINDL/RPM,1500,CLW\nRAPID\nGOTO/22,0,2\nFEDRAT/0.2,MMPR\nGOTO/22,0,-10\n"
+      "INSERT/M4\nGOTO/22,0,-30\nFINI\n";
+  const std::string m4 =
+      "job.cls:9:1: error: channel 1: the CL cuts with the spindle turning clockwise at 1500 rpm here "
+      "(SPINDL "
+      "at line 3), but the program's main spindle turns counter-clockwise (M4)\nGOTO/22,0,-30\n^\n";
+  for (const int threads : {1, 2}) {
+    CAPTURE(threads);
+    const test::posted p =
+        post_with_script("", pad, cl, "pad", [threads](post_options& o) { o.threads = threads; });
+    CHECK(p.diagnostics == m4);
   }
 }
