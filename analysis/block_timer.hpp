@@ -22,8 +22,8 @@
 
 #include "analysis/nc_codes.hpp"
 #include "analysis/spindle_state.hpp"
-#include "check/nc_program.hpp"
 #include "machines/machine.hpp"
+#include "nc/nc_words.hpp"
 
 namespace twinpost {
 

@@ -19,9 +19,9 @@
 #include "analysis/program_units.hpp"
 #include "analysis/rotary_sweep.hpp"
 #include "analysis/spindle_state.hpp"
-#include "check/nc_program.hpp"
 #include "kinematics/vec3_ops.hpp"
 #include "machines/macro_variables.hpp"
+#include "nc/nc_words.hpp"
 #include "parser/cam_tool.hpp"
 #include "parser/cycle_words.hpp"
 

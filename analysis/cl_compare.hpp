@@ -38,8 +38,8 @@
 #include <string_view>
 #include <vector>
 
-#include "check/nc_program.hpp"
 #include "machines/machine.hpp"
+#include "nc/nc_words.hpp"
 #include "parser/events.hpp"
 #include "support/diagnostics.hpp"
 

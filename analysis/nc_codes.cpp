@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "analysis/program_units.hpp"
-#include "check/nc_program.hpp"
+#include "nc/nc_words.hpp"
 
 namespace twinpost {
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "check/nc_program.hpp"
+#include "nc/nc_words.hpp"
 
 namespace twinpost {
 

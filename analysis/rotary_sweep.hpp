@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "check/nc_program.hpp"
 #include "machines/machine.hpp"
+#include "nc/nc_words.hpp"
 
 namespace twinpost {
 

@@ -11,8 +11,8 @@
 #include <string_view>
 #include <vector>
 
-#include "check/nc_program.hpp"
 #include "machines/machine.hpp"
+#include "nc/nc_words.hpp"
 
 namespace twinpost {
 

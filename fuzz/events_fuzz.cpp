@@ -17,11 +17,11 @@
 
 #include <fmt/format.h>
 
-#include "check/nc_program.hpp"
 #include "fuzz/fuzz_support.hpp"
 #include "machines/builtin_machines.hpp"
 #include "machines/code_overlap.hpp"
 #include "machines/machine_loader.hpp"
+#include "nc/nc_words.hpp"
 #include "support/errors.hpp"
 
 using namespace twinpost;

@@ -6,17 +6,18 @@ set -euo pipefail
 src=${1:?usage: layers.sh SOURCE_DIR}
 declare -A allowed=(
   [support]="support"
+  [nc]="nc support"
   [machines]="machines support"
   [scripting]="scripting support"
   [parser]="parser support"
   [channels]="channels parser machines support"
   [kinematics]="kinematics machines support"
   [formats]="formats parser machines support"
-  [machining]="machining scripting formats kinematics channels parser machines support"
-  [check]="check machines support"
-  [analysis]="analysis check kinematics parser machines support"
-  [post]="post analysis machining scripting formats kinematics check channels parser machines support"
-  [cli]="cli post analysis machining scripting formats kinematics check channels parser machines support"
+  [machining]="machining scripting formats kinematics channels parser machines nc support"
+  [check]="check machines nc support"
+  [analysis]="analysis check kinematics parser machines nc support"
+  [post]="post analysis machining scripting formats kinematics check channels parser machines nc support"
+  [cli]="cli post analysis machining scripting formats kinematics check channels parser machines nc support"
 )
 bad=0
 for layer in "${!allowed[@]}"; do
