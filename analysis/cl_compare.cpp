@@ -228,10 +228,12 @@ struct cl_comparison::impl {
   std::optional<rotary_sweep> chain;
   bool whole_chain = false;  // every move the chain's (else a mill/turn head's, under tool-tip control)
   std::uint32_t chain_letters = 0;  // a whole chain's rotary addresses
+  enum class mid_kind { feed, rapid, arc, away };
   struct chain_block {
-    vec3 tip;
+    std::optional<vec3> tip, sag;  // where it ends, and halfway along it (feed blocks)
     int line = 0;
     std::string text;
+    mid_kind kind = mid_kind::feed;
   };
   std::vector<chain_block> mids;  // a chain's feed blocks since the last motion record (n_mids of them)
   std::size_t n_mids = 0;
@@ -955,27 +957,44 @@ struct cl_comparison::impl {
     }
     // A chain's feed block between two records: where it puts the tip, held at the next record
     // to the CL's straight move (attack 63 M4: an `on_block` block dipped 20 mm mid-move).
+    // A rapid, an arc or a return to the reference point or to machine coordinates there is
+    // no part of a straight feed move at all (attack 66 M3, M4: an INSERT's G0 plunge, a G2
+    // circle, a G53 G1 posted).
     constexpr std::uint32_t xyz = nc_letter('X') | nc_letter('Y') | nc_letter('Z');
-    if (chain && motion == 1 && !cycle && !not_a_move && !home && !machine && !setting &&
+    if (chain && motion >= 0 && motion <= 3 && !cycle && !not_a_move && !setting &&
         (letters & (xyz | chain_letters)) != 0 && (whole_chain || chain->tool_tip_on())) [[unlikely]]
-      stage_chain_block(text);
+      stage_chain_block(text, home || machine ? mid_kind::away
+                              : motion == 0   ? mid_kind::rapid
+                              : motion >= 2   ? mid_kind::arc
+                                              : mid_kind::feed);
   }
 
-  // A chain's feed block, staged: where it puts the tip is worked out when the next block comes
-  // (the follower still where this one left it), not for the last before a record, whose tip
-  // is the record's (compare_chain). A move of more blocks is held at its first 4096.
-  void stage_chain_block(std::string_view text) {
+  // A chain's block between two records, staged: where its tip goes is worked out when the next
+  // block comes (the follower still where this one left it), not for the last before a record,
+  // whose end is the record's point (compare_chain). A move of more blocks is held at its first
+  // 4096.
+  void stage_chain_block(std::string_view text, mid_kind kind) {
     if (said_mid || n_mids == 4096) return;
     if (n_mids == mids.size()) mids.emplace_back();
-    mids[n_mids].line = lines;
-    mids[n_mids].text.assign(text);
+    chain_block& b = mids[n_mids];
+    b.line = lines;
+    b.text.assign(text);
+    b.kind = kind;
+    b.tip.reset();
+    b.sag.reset();
     mid_staged = true;
   }
 
-  // The staged block's tip (the part frame, mm), when its words say it without the tool's
-  // length or with the length known.
+  // The staged block's tip (the part frame, mm) and where it is halfway along the block, when
+  // its words say it without the tool's length or with the length known. A rapid, an arc or a
+  // return is said as it is.
   void settle_chain_block() {
     mid_staged = false;
+    chain_block& b = mids[n_mids];
+    if (b.kind != mid_kind::feed) {
+      ++n_mids;
+      return;
+    }
     if (needs_length && (!chain->length_on() || h_word == 0) && chain_def->output != multiaxis_output::pivot)
       return;  // (the record says so)
     const std::optional<double> length = chain_length();
@@ -985,32 +1004,77 @@ struct cl_comparison::impl {
       if (const std::optional<rotary_sweep::pose> longer = chain->where(100);
           !longer || kin::distance(longer->tip, at->tip) > tip_tolerance / 10)
         return;
-    mids[n_mids++].tip = at->tip;
+    b.tip = at->tip;
+    b.sag = chain_sag(length);
+    ++n_mids;
   }
 
-  // A chain's feed blocks since the last record against the CL's straight move from the record
-  // before to `to`, within `tol`: once a channel.
-  void hold_chain_blocks(const event& e, const vec3& to, double tol) {
+  // Where the last block's tip is halfway along it as the control interpolates the joints (the
+  // most a short block's tip path sags from the straight line between its ends); none where it
+  // runs straight or is not known (attack 66 M2: one block from a move's first sub-move to its
+  // end, both ends on the CL's line, sagged 3.18 mm below the floor halfway).
+  std::optional<vec3> chain_sag(const std::optional<double>& length) const {
+    if (!length && chain_def->output != multiaxis_output::pivot) return std::nullopt;
+    const std::optional<rotary_sweep::pose> mid = chain->where_along(length.value_or(0), 0.5);
+    return mid ? std::optional(mid->tip) : std::nullopt;
+  }
+
+  // A chain's blocks since the last record against the CL's straight move from the record before
+  // to `to`, within `tol`: once a channel. `last`: halfway along the block that ends at the
+  // record.
+  void hold_chain_blocks(const event& e, const vec3& to, double tol, const std::optional<vec3>& last) {
     const vec3 from = cl_prev;
     const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
     const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
-    for (std::size_t i = 0; i < n_mids; ++i) {
-      const vec3& p = mids[i].tip;
+    const auto off_line = [&](const vec3& p) {
       const double t =
           dd > 0 ? std::clamp(((p.x - from.x) * d.x + (p.y - from.y) * d.y + (p.z - from.z) * d.z) / dd, 0.0,
                               1.0)
                  : 0.0;
-      const vec3 on{from.x + t * d.x, from.y + t * d.y, from.z + t * d.z};
-      const double off = kin::distance(p, on);
-      if (off <= tol) continue;
+      return kin::distance(p, vec3{from.x + t * d.x, from.y + t * d.y, from.z + t * d.z});
+    };
+    const std::string move =
+        fmt::format("the CL's straight move from ({:.3f}, {:.3f}, {:.3f}) to this record's point", from.x,
+                    from.y, from.z);
+    // Halfway along a block the joints' interpolation may leave the line by the chain's
+    // chordal tolerance, as the writer cuts its moves (kin::linearise).
+    const double sag_tol = tol + chain_def->chordal_tolerance;
+    const auto sagged = [&](const std::string& text, int line, const vec3& p) {
       said_mid = true;
       error(e,
-            fmt::format("the program's block `{}` (line {} of its program) takes the tool tip {:.3f} mm off "
-                        "the CL's straight move from ({:.3f}, {:.3f}, {:.3f}) to this record's point, to "
-                        "({:.3f}, {:.3f}, {:.3f}) (the part frame, mm; the forward transform of its words)",
-                        mids[i].text, mids[i].line, off, from.x, from.y, from.z, p.x, p.y, p.z));
-      return;
+            fmt::format(
+                "halfway along the program's block `{}` (line {} of its program) the tool tip is {:.3f} mm "
+                "off {}, at ({:.3f}, {:.3f}, {:.3f}), as the control moves the joints (the part frame, "
+                "mm; the forward transform of its words)",
+                text, line, off_line(p), move, p.x, p.y, p.z));
+    };
+    for (std::size_t i = 0; i < n_mids; ++i) {
+      const chain_block& b = mids[i];
+      if (b.kind != mid_kind::feed) {
+        // (A rapid among this record's own blocks is said as such: compare_rest.)
+        if (b.kind != mid_kind::arc && rapid_in_record) continue;
+        said_mid = true;
+        error(e, fmt::format(
+                     "the program's block `{}` (line {} of its program) is {} inside {}", b.text, b.line,
+                     b.kind == mid_kind::rapid ? "a rapid"
+                     : b.kind == mid_kind::arc ? "an arc"
+                                               : "a return to the reference point or to machine coordinates",
+                     move));
+        return;
+      }
+      if (!b.tip) continue;
+      if (const double off = off_line(*b.tip); off > tol) {
+        said_mid = true;
+        error(e,
+              fmt::format(
+                  "the program's block `{}` (line {} of its program) takes the tool tip {:.3f} mm off "
+                  "{}, to ({:.3f}, {:.3f}, {:.3f}) (the part frame, mm; the forward transform of its words)",
+                  b.text, b.line, off, move, b.tip->x, b.tip->y, b.tip->z));
+        return;
+      }
+      if (b.sag && off_line(*b.sag) > sag_tol) return sagged(b.text, b.line, *b.sag);
     }
+    if (last && off_line(*last) > sag_tol) sagged(move_text, move_line, *last);
   }
 
   // A block that turned C (G0 or G1): the part turns under the tool, whose tip runs round the
@@ -1317,8 +1381,14 @@ struct cl_comparison::impl {
                         "the forward transform of its words): {}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
     }
-    if (tip_known && !rapid && cl_prev_known && !said_mid && std::holds_alternative<motion_event>(e.data))
-      hold_chain_blocks(e, want, tol);
+    if (tip_known && !rapid && cl_prev_known && !said_mid && std::holds_alternative<motion_event>(e.data)) {
+      // The last block: its end is the record's point, held above; halfway along it here.
+      std::optional<vec3> last;
+      if (mid_staged && mids[n_mids].kind == mid_kind::feed) last = chain_sag(length);
+      if (mid_staged && mids[n_mids].kind != mid_kind::feed) ++n_mids;  // said as it is
+      mid_staged = false;
+      hold_chain_blocks(e, want, tol, last);
+    }
     compare_chain_axis(e, at->axis, cl_axis);
     compare_rest(e, rapid);
     return true;

@@ -124,6 +124,9 @@ struct rotary_sweep::impl {
   // gives them (a program may start with the heads where the last one left them).
   std::array<axis_value, 3> lin{};
   std::array<axis_value, 2> rot{};
+  // Where the last block started (the comparison's follower: where_along).
+  std::array<axis_value, 3> lin_from{};
+  std::array<axis_value, 2> rot_from{};
   bool absolute = true;
   int motion = 0;  // a Fanuc control starts in G00
   bool tcp = false, length = false, frame = false, cycle = false;
@@ -289,6 +292,13 @@ struct rotary_sweep::impl {
       return rotary_sweep::pose{to_part(p, true), kin::tool_axis(plan, turns)};
     }
     if (tcp) return rotary_sweep::pose{p, kin::tool_axis(plan, turns)};
+    return joints_pose(p, j, turns, l);
+  }
+
+  // The tip and axis of a tool `l` long with the linear words at `p` and the rotary axes at
+  // `j` (turned `turns`), neither tool-tip control nor a tilted plane in force.
+  std::optional<rotary_sweep::pose> joints_pose(const vec3& p, kin::joint_values j,
+                                                const kin::joint_turns& turns, double l) const {
     if (chain.output == multiaxis_output::pivot) {
       // The words are the pivot for the programmed length (machines/kinematic_chain.hpp
       // pivot_shift); a length offset making up another tool's length is not followed.
@@ -302,6 +312,32 @@ struct rotary_sweep::impl {
     j.linear = {p.x + l * shift[0], p.y + l * shift[1], p.z + l * shift[2]};
     const kin::tool_pose t = kin::forward(plan, j, l, turns);
     return rotary_sweep::pose{t.tip, t.axis};
+  }
+
+  // The tip a fraction `t` along the last block, every axis moving linearly from where it
+  // started (a control's interpolation of the joints); none under tool-tip control, I J K or a
+  // tilted plane, in a cycle, where an end is not known, or when the block turned no rotary
+  // axis (its tip then runs straight).
+  std::optional<rotary_sweep::pose> along(double l, double t) const {
+    if (cycle || vector || frame || tcp) return std::nullopt;
+    kin::joint_values j;
+    bool turned = false;
+    for (int i = 0; i < plan.rotary_count; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (!known(rot[k]) || !known(rot_from[k])) return std::nullopt;
+      turned = turned || rot[k].value != rot_from[k].value;
+      // A `shortest` axis reads its value modulo 360 and turns the shorter way.
+      double turn = rot[k].value - rot_from[k].value;
+      if (chain.rotaries[k].rollover == rotary_rollover::shortest) turn = std::remainder(turn, 360.0);
+      j.rotary[k] = rot_from[k].value + t * turn;
+    }
+    if (!turned) return std::nullopt;
+    double p[3];
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (!known(lin[i]) || !known(lin_from[i])) return std::nullopt;
+      p[i] = lin_from[i].value + t * (lin[i].value - lin_from[i].value);
+    }
+    return joints_pose({p[0], p[1], p[2]}, j, kin::joint_turns(plan, j), l);
   }
 
   // The tip's height where the program has put it; none where that is not known.
@@ -413,6 +449,7 @@ struct rotary_sweep::impl {
   }
 
   std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words) {
+    if (follow_only) lin_from = lin, rot_from = rot;
     if (follow_only && plain_block(words)) [[likely]]
       return std::nullopt;
     bool home = false, machine_block = false, not_a_move = false, index = false, plane_block = false;
@@ -805,6 +842,10 @@ std::optional<std::pair<int, std::string>> rotary_sweep::block(const std::vector
 }
 
 std::optional<rotary_sweep::pose> rotary_sweep::where(double length) const { return p_->where(length); }
+
+std::optional<rotary_sweep::pose> rotary_sweep::where_along(double length, double t) const {
+  return p_->along(length, t);
+}
 
 bool rotary_sweep::length_on() const { return p_->length; }
 

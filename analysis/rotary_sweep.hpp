@@ -51,6 +51,11 @@ class rotary_sweep {
   /// None where a word it needs is not known, in a drilling cycle, under G43.5 (its I J K are
   /// not followed), or with no length offset in force.
   std::optional<pose> where(double length) const;
+  /// In follow-only mode: where the tip is a fraction `t` (0..1) along the last block, every
+  /// axis moving linearly from where the block started, as a control interpolates the joints;
+  /// none under tool-tip control, I J K or a tilted plane, where an end is not known, or when
+  /// the block turned no rotary axis (the tip then runs straight between its ends).
+  std::optional<pose> where_along(double length, double t) const;
   /// Every rotary axis at 0 and no tilted plane: the linear words are the tip, as on a
   /// three-axis machine.
   bool upright() const;

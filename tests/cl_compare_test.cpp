@@ -1128,7 +1128,8 @@ TEST_CASE("cl comparison: a chain's feed blocks between two records, on the CL's
   // Attack 63 M4: a block in the middle of a move (an `on_block` that adds one, a linearised
   // move's sub-moves) was not held: only where the record ends was. The trunnion under tool-tip
   // control: X Y Z the tip; a feed from (10, 20, -5) to (30, 20, -5) upright.
-  auto run = [](std::vector<const char*> mid, bool rapid = false) {
+  // `own_record`: the blocks are an earlier record's (an INSERT's), a FEDRAT after them.
+  auto run = [](std::vector<const char*> mid, bool rapid = false, bool own_record = false) {
     compared c("trunnion-5axis", 1);
     c.cmp.record({c.next++, tool_data_event{"TLDATA", {"MILL"}, {10, 0, 100, 0, 0}}, 1}, false);
     c.cmp.record({c.next++, tool_event{tool_source::loadtl, 1, std::nullopt, false}, 1}, false);
@@ -1138,6 +1139,7 @@ TEST_CASE("cl comparison: a chain's feed blocks between two records, on the CL's
     c.feed(500, feed_mode::per_minute);
     c.lines({"G1 F500."});
     for (const char* b : mid) c.cmp.line(b);
+    if (own_record) c.feed(500, feed_mode::per_minute);
     c.lines({"X30."});
     c.to({30, 20, -5}, {0, 0, 1}, rapid);
     return c.text();
@@ -1160,6 +1162,54 @@ TEST_CASE("cl comparison: a chain's feed blocks between two records, on the CL's
   // A rapid record's blocks are not held (the writer's own retracts and unwinds): the CL's
   // rapid is only where it ends (exact: nothing at all is said).
   CHECK(run({"X15.", "X20. Z-25.", "X25. Z-5."}, true).empty());
+  // A rapid, an arc, a return to machine coordinates among them: no part of a straight move,
+  // wherever they end (attack 66 M3, M4: an INSERT's G0 plunge, a G2 circle, G53 G1 Z-100.).
+  // (Among the record's own blocks a rapid is "the CL asks for a feed move here, but the program
+  // moves in rapid".)
+  const std::string move = "the CL's straight move from (10.000, 20.000, -5.000) to this record's point\n";
+  CHECK(run({"G0 X20.", "G1 X25."}, false, true) ==
+        "job.cls:15:1: error: channel 1: the program's block `G0 X20.` (line 11 of its program) is a rapid "
+        "inside " +
+            move);
+  CHECK(
+      run({"G0 X20.", "G1 X25."}) ==
+      "job.cls:14:1: error: channel 1: the CL asks for a feed move here, but the program moves in rapid: `G0 "
+      "X20.`\n");
+  CHECK(run({"G2 X10. Y20. I0. J10.", "G1 X25."}) ==
+        "job.cls:14:1: error: channel 1: the program's block `G2 X10. Y20. I0. J10.` (line 11 of its "
+        "program) is an "
+        "arc inside " +
+            move);
+  CHECK(run({"G53 G1 Z-100.", "G1 X25. Z-5."}, false, true) ==
+        "job.cls:15:1: error: channel 1: the program's block `G53 G1 Z-100.` (line 11 of its program) is a "
+        "return to "
+        "the reference point or to machine coordinates inside " +
+            move);
+  // Joints output on the head/head (400 mm from the tip to the pivot): one block from the tool
+  // upright at (-40, 0, -5) to B15 at (-20, 0, -5), both ends on the CL's line; halfway, as the
+  // control moves X, Z and B together, the tip is 3.393 mm below it, the sagitta of a 15 degree
+  // turn on 400 mm, 400 (1 - cos 7.5) = 3.42 (attack 66 M2). The writer cuts such a move into
+  // sub-moves of under a degree (0.01 mm, the chordal tolerance: the samples).
+  const double s = std::sin(15 * std::numbers::pi / 180), k = std::cos(15 * std::numbers::pi / 180);
+  auto joints = [&](std::vector<const char*> blocks) {
+    compared c("head-head-5axis", 1);
+    c.cmp.record({c.next++, tool_data_event{"TLDATA", {"MILL"}, {10, 0, 100, 0, 0}}, 1}, false);
+    c.cmp.record({c.next++, tool_event{tool_source::loadtl, 1, std::nullopt, false}, 1}, false);
+    c.lines(
+        {"G21", "G90 G94 G17 G40 G49 G80", "T01 M6", "G54", "S8000 M3", "G0 G43 H1 X-40. Y0. Z-5. A0. B0."});
+    c.to({-40, 0, -5}, {0, 0, 1});
+    c.feed(500, feed_mode::per_minute);
+    for (const char* b : blocks) c.cmp.line(b);
+    c.to({-20, 0, -5}, {s, 0, k}, false);
+    return c.text();
+  };
+  CHECK(
+      joints({"G1 X83.528 Y0. Z-18.63 B15. F500."}) ==
+      "job.cls:14:1: error: channel 1: halfway along the program's block `G1 X83.528 Y0. Z-18.63 B15. F500.` "
+      "(line 10 of its program) the tool tip is 3.393 mm off the CL's straight move from (-40.000, 0.000, "
+      "-5.000) to this record's point, at (-30.446, 0.000, -8.393), as the control moves the joints (the "
+      "part "
+      "frame, mm; the forward transform of its words)\n");
 }
 
 TEST_CASE("cl comparison: the Integrex head's tilted tool under tool-tip control", "[analysis][cl_compare]") {
