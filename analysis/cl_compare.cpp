@@ -1358,7 +1358,13 @@ struct cl_comparison::impl {
     // that tilts the tool at 0, or tool-tip control); the axis in any case.
     const std::optional<double> length = chain_length();
     const std::optional<rotary_sweep::pose> at = chain->where(length.value_or(0));
+    const double tol = std::max({tip_tolerance, chain_def->tolerance, axis_half * 3.001});
+    const vec3 want{pos.x * cl_mm, pos.y * cl_mm, pos.z * cl_mm};
     if (!at) {
+      // Not followed from here (a G53 left Z where the program does not say): the blocks before
+      // are held all the same, a return to machine coordinates among them first.
+      if (!rapid && cl_prev_known && !said_mid && std::holds_alternative<motion_event>(e.data))
+        hold_before(e, want, tol, std::nullopt);
       ++passed;
       return false;
     }
@@ -1368,8 +1374,6 @@ struct cl_comparison::impl {
       if (const std::optional<rotary_sweep::pose> longer = chain->where(100);
           !longer || kin::distance(longer->tip, at->tip) > tip_tolerance / 10)
         tip_known = false;
-    const double tol = std::max({tip_tolerance, chain_def->tolerance, axis_half * 3.001});
-    const vec3 want{pos.x * cl_mm, pos.y * cl_mm, pos.z * cl_mm};
     if (tip_known && kin::distance(at->tip, want) > tol && !std::exchange(said_tip, true)) {
       std::string off;
       const double have_c[3] = {at->tip.x, at->tip.y, at->tip.z}, want_c[3] = {want.x, want.y, want.z};
@@ -1383,17 +1387,23 @@ struct cl_comparison::impl {
                         "the forward transform of its words): {}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
     }
-    if (tip_known && !rapid && cl_prev_known && !said_mid && std::holds_alternative<motion_event>(e.data)) {
-      // The last block: its end is the record's point, held above; halfway along it here.
-      std::optional<vec3> last;
-      if (mid_staged && mids[n_mids].kind == mid_kind::feed) last = chain_sag(length);
-      if (mid_staged && mids[n_mids].kind != mid_kind::feed) ++n_mids;  // said as it is
-      mid_staged = false;
-      hold_chain_blocks(e, want, tol, last);
-    }
+    if (tip_known && !rapid && cl_prev_known && !said_mid && std::holds_alternative<motion_event>(e.data))
+      hold_before(e, want, tol, length);
     compare_chain_axis(e, at->axis, cl_axis);
     compare_rest(e, rapid);
     return true;
+  }
+
+  // The blocks since the last record against the CL's straight move to `want`; the last one, whose
+  // end is the record's point (held by compare_chain), halfway along it when `length` says.
+  void hold_before(const event& e, const vec3& want, double tol, const std::optional<double>& length) {
+    std::optional<vec3> last;
+    if (mid_staged && mids[n_mids].kind == mid_kind::feed &&
+        (length || chain_def->output == multiaxis_output::pivot))
+      last = chain_sag(length);
+    if (mid_staged && mids[n_mids].kind != mid_kind::feed) ++n_mids;  // said as it is
+    mid_staged = false;
+    hold_chain_blocks(e, want, tol, last);
   }
 
   // A chain's tool axis `have` (from its rotary words) against the CL's: once a channel.
