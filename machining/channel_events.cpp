@@ -278,6 +278,7 @@ void channel_writer::note_user_block(std::string_view b, bool waits) {
     forget_axes();
     motion_g_ = -1;
     start_home_ = false;  // it may have moved the channel from the home it went to at a wait
+    homed_ = false;       // or from any home: a transfer or a tilted plane goes home again first
   }
 }
 

@@ -472,6 +472,7 @@ void channel_writer::process_event(const event& e, bool both) {
             if (!insert_passes(d.text, e.line)) return;
             out_.raw(d.text);
             start_home_ = false;
+            homed_ = false;          // (a GOHOME, then `G0 U-200. W-300.`: the transfer went on from there)
             spindle_ended_.clear();  // the user's text may turn either on again
             coolant_ended_.clear();
             // It may move an axis or change the motion mode: the next move writes all its words

@@ -135,6 +135,19 @@ TEST_CASE("the part transfer on the Fanuc twin: home, waits, path 1's blocks, th
         "G28 W0.\nM5\nM30\n%\n");
 }
 
+TEST_CASE("a user's move after a GOHOME: the transfer goes home again first", "[post][sub]") {
+  // GOHOME, then an INSERT (or an [events] block) that moves the turret: the channel was still
+  // taken to be at home, and the transfer's retract wrote no home, the sub spindle coming over
+  // with turret 1 at U-200. W-300. from it (thirty-sixth session).
+  std::string job = transfer_job;
+  const std::string off = "SPINDL/OFF\nTRANSFER/GRIP";
+  REQUIRE(job.find(off) != std::string::npos);
+  job.replace(job.find(off), off.size(), "SPINDL/OFF\nGOHOME\nINSERT/G0 U-200. W-300.\nTRANSFER/GRIP");
+  const test::posted p = post_on(job, "fanuc-0itd-twin", "xfer-moved");
+  CHECK(file_of(p, "XFER_1.nc").find("G28 W0.\nG0 U-200. W-300.\nM9\nG28 U0.\nG28 W0.\nM100\nM169\n") !=
+        std::string::npos);
+}
+
 TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then the second spindle",
           "[post][sub]") {
   const test::posted p = post_on(transfer_job, "integrex-i200st", "xfer-integrex");
