@@ -234,6 +234,7 @@ struct cl_comparison::impl {
     int line = 0;
     std::string text;
     mid_kind kind = mid_kind::feed;
+    bool text_later = false;  // `text` is move_text's once the next block comes
   };
   std::vector<chain_block> mids;  // a chain's feed blocks since the last motion record (n_mids of them)
   std::size_t n_mids = 0;
@@ -978,7 +979,11 @@ struct cl_comparison::impl {
     if (n_mids == mids.size()) mids.emplace_back();
     chain_block& b = mids[n_mids];
     b.line = lines;
-    b.text.assign(text);
+    // A feed block that moved X, Y or Z is move_text until the next block: its text is taken
+    // from there when that one comes (the last before a record is never copied; its findings
+    // quote move_text).
+    b.text_later = kind == mid_kind::feed && move_line == lines;
+    if (!b.text_later) b.text.assign(text);
     b.kind = kind;
     b.tip.reset();
     b.sag.reset();
@@ -991,6 +996,7 @@ struct cl_comparison::impl {
   void settle_chain_block() {
     mid_staged = false;
     chain_block& b = mids[n_mids];
+    if (b.text_later) b.text = move_text;
     if (b.kind != mid_kind::feed) {
       ++n_mids;
       return;
@@ -1022,7 +1028,8 @@ struct cl_comparison::impl {
   // A chain's blocks since the last record against the CL's straight move from the record before
   // to `to`, within `tol`: once a channel. `last`: halfway along the block that ends at the
   // record.
-  void hold_chain_blocks(const event& e, const vec3& to, double tol, const std::optional<vec3>& last) {
+  void hold_chain_blocks(const event& e, const vec3& to, double tol, const std::optional<vec3>& last,
+                         const std::string& last_text, int last_line) {
     const vec3 from = cl_prev;
     const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
     const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
@@ -1076,7 +1083,7 @@ struct cl_comparison::impl {
       }
       if (b.sag && off_line(*b.sag) > sag_tol) return sagged(b.text, b.line, *b.sag);
     }
-    if (last && off_line(*last) > sag_tol) sagged(move_text, move_line, *last);
+    if (last && off_line(*last) > sag_tol) sagged(last_text, last_line, *last);
   }
 
   // A block that turned C (G0 or G1): the part turns under the tool, whose tip runs round the
@@ -1398,12 +1405,16 @@ struct cl_comparison::impl {
   // end is the record's point (held by compare_chain), halfway along it when `length` says.
   void hold_before(const event& e, const vec3& want, double tol, const std::optional<double>& length) {
     std::optional<vec3> last;
-    if (mid_staged && mids[n_mids].kind == mid_kind::feed &&
+    const chain_block* last_block = mid_staged ? &mids[n_mids] : nullptr;
+    if (last_block && last_block->kind == mid_kind::feed &&
         (length || chain_def->output == multiaxis_output::pivot))
       last = chain_sag(length);
     if (mid_staged && mids[n_mids].kind != mid_kind::feed) ++n_mids;  // said as it is
     mid_staged = false;
-    hold_chain_blocks(e, want, tol, last);
+    if (n_mids > 0 || last)
+      hold_chain_blocks(e, want, tol, last,
+                        last_block ? (last_block->text_later ? move_text : last_block->text) : move_text,
+                        last_block ? last_block->line : move_line);
   }
 
   // A chain's tool axis `have` (from its rotary words) against the CL's: once a channel.

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fmt/format.h>
+#include <stdexcept>
 
 namespace twinpost {
 
@@ -44,8 +45,11 @@ void block_writer::flush_if_full() {
   if (buf_.size() >= flush_at) {
     if (relay_) return pass_on();
     if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size()) write_failed(errno);
-    lines_out();
-    counted_ = 0;
+    flushed_ = true;
+    if (counting_) {
+      lines_out();
+      counted_ = 0;
+    }
     buf_.clear();
   }
 }
@@ -53,12 +57,21 @@ void block_writer::flush_if_full() {
 void block_writer::pass_on() {
   // A write that failed is said at the next piece, as a write of our own would have said it.
   if (const int err = relay_->write_error(false)) write_failed(err);
-  lines_out();  // every piece's lines, from the first (the head's): lines_out() may be asked later
-  counted_ = 0;
+  flushed_ = true;
+  if (counting_) {  // every piece's lines, from the first (the head's): lines_out() may be asked later
+    lines_out();
+    counted_ = 0;
+  }
   *buf_.room(1) = '\0';  // the reader's scans stop at it; not one of the file's bytes
   buf_ = relay_->pass(std::move(buf_), f_);
   buf_.clear();
   buf_.reserve(flush_at + 4096);
+}
+
+void block_writer::count_lines() {
+  // Lines already gone out would be missing from the count, and every line number after them.
+  if (flushed_) throw std::logic_error("block_writer::count_lines after the first bytes went out");
+  counting_ = true;
 }
 
 std::uint64_t block_writer::lines_out() {

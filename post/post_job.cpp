@@ -130,7 +130,9 @@ class compared_writing : public write_observer {
 // records are noted there with the number of lines written before each.
 class noted_writing : public write_observer {
  public:
-  noted_writing(concurrent_check& cc, channel_writer& w, int channel) : cc_(cc), w_(w), channel_(channel) {}
+  noted_writing(concurrent_check& cc, channel_writer& w, int channel) : cc_(cc), w_(w), channel_(channel) {
+    w_.count_lines();  // (nothing is written yet: note_during comes before the job's first record)
+  }
   bool wants_lines() const override { return false; }
   void line(std::string_view) override {}
   void units(unit_system u) override {
