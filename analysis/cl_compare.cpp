@@ -961,9 +961,12 @@ struct cl_comparison::impl {
     // A rapid, an arc or a return to the reference point or to machine coordinates there is
     // no part of a straight feed move at all (attack 66 M3, M4: an INSERT's G0 plunge, a G2
     // circle, a G53 G1 posted).
+    // (Under tool-tip control a rapid of rotary words alone turns the tool about its tip: the
+    // writer's turn at the pole, `G0 C90.`, moves no tip; review 67 M1.)
     constexpr std::uint32_t xyz = nc_letter('X') | nc_letter('Y') | nc_letter('Z');
     if (chain && motion >= 0 && motion <= 3 && !cycle && !not_a_move && !setting &&
-        (letters & (xyz | chain_letters)) != 0 && (whole_chain || chain->tool_tip_on())) [[unlikely]]
+        (letters & (xyz | chain_letters)) != 0 && (whole_chain || chain->tool_tip_on()) &&
+        !(motion == 0 && !home && !machine && (letters & xyz) == 0 && chain->tool_tip_on())) [[unlikely]]
       stage_chain_block(text, home || machine ? mid_kind::away
                               : motion == 0   ? mid_kind::rapid
                               : motion >= 2   ? mid_kind::arc
@@ -1028,8 +1031,10 @@ struct cl_comparison::impl {
   // A chain's blocks since the last record against the CL's straight move from the record before
   // to `to`, within `tol`: once a channel. `last`: halfway along the block that ends at the
   // record.
+  // `straight`: a GOTO's move (else a CIRCLE's: only a rapid or a return among its blocks is
+  // said, its arc blocks are the arc's comparison's).
   void hold_chain_blocks(const event& e, const vec3& to, double tol, const std::optional<vec3>& last,
-                         const std::string& last_text, int last_line) {
+                         const std::string& last_text, int last_line, bool straight) {
     const vec3 from = cl_prev;
     const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
     const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
@@ -1059,6 +1064,7 @@ struct cl_comparison::impl {
     };
     for (std::size_t i = 0; i < n_mids; ++i) {
       const chain_block& b = mids[i];
+      if (!straight && (b.kind == mid_kind::feed || b.kind == mid_kind::arc)) continue;
       if (b.kind != mid_kind::feed) {
         // (A rapid among this record's own blocks is said as such: compare_rest.)
         if (b.kind != mid_kind::arc && rapid_in_record) continue;
@@ -1083,7 +1089,7 @@ struct cl_comparison::impl {
       }
       if (b.sag && off_line(*b.sag) > sag_tol) return sagged(b.text, b.line, *b.sag);
     }
-    if (last && off_line(*last) > sag_tol) sagged(last_text, last_line, *last);
+    if (straight && last && off_line(*last) > sag_tol) sagged(last_text, last_line, *last);
   }
 
   // A block that turned C (G0 or G1): the part turns under the tool, whose tip runs round the
@@ -1370,8 +1376,7 @@ struct cl_comparison::impl {
     if (!at) {
       // Not followed from here (a G53 left Z where the program does not say): the blocks before
       // are held all the same, a return to machine coordinates among them first.
-      if (!rapid && cl_prev_known && !said_mid && std::holds_alternative<motion_event>(e.data))
-        hold_before(e, want, tol, std::nullopt);
+      if (!rapid && cl_prev_known && !said_mid) hold_before(e, want, tol, std::nullopt);
       ++passed;
       return false;
     }
@@ -1394,8 +1399,8 @@ struct cl_comparison::impl {
                         "the forward transform of its words): {}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
     }
-    if (tip_known && !rapid && cl_prev_known && !said_mid && std::holds_alternative<motion_event>(e.data))
-      hold_before(e, want, tol, length);
+    // (The blocks' own tips are held where they are known, whether or not the record's is.)
+    if (!rapid && cl_prev_known && !said_mid) hold_before(e, want, tol, length);
     compare_chain_axis(e, at->axis, cl_axis);
     compare_rest(e, rapid);
     return true;
@@ -1404,6 +1409,7 @@ struct cl_comparison::impl {
   // The blocks since the last record against the CL's straight move to `want`; the last one, whose
   // end is the record's point (held by compare_chain), halfway along it when `length` says.
   void hold_before(const event& e, const vec3& want, double tol, const std::optional<double>& length) {
+    const bool straight = std::holds_alternative<motion_event>(e.data);
     std::optional<vec3> last;
     const chain_block* last_block = mid_staged ? &mids[n_mids] : nullptr;
     if (last_block && last_block->kind == mid_kind::feed &&
@@ -1414,7 +1420,7 @@ struct cl_comparison::impl {
     if (n_mids > 0 || last)
       hold_chain_blocks(e, want, tol, last,
                         last_block ? (last_block->text_later ? move_text : last_block->text) : move_text,
-                        last_block ? last_block->line : move_line);
+                        last_block ? last_block->line : move_line, straight);
   }
 
   // A chain's tool axis `have` (from its rotary words) against the CL's: once a channel.

@@ -75,6 +75,8 @@ void block_writer::count_lines() {
 }
 
 std::uint64_t block_writer::lines_out() {
+  if (!counting_ || counted_ > buf_.size())  // (review 67 L1: a length that wraps round)
+    throw std::logic_error("block_writer::lines_out without count_lines, or inside an open block");
   // One memchr a line (std::count here took six instructions a byte). A line ends as the
   // checker's reader ends it: at LF, CR LF or a lone CR (a machine file's header line may carry
   // one; the gate refuses them in user blocks). Asked between blocks: the bytes end a line.
@@ -195,6 +197,7 @@ void block_writer::close() {
     err = ok ? 0 : errno;
   }
   buf_.clear();
+  counted_ = 0;
   if (std::fclose(f_) != 0 && ok) {
     ok = false;
     err = errno;

@@ -245,6 +245,29 @@ void channel_writer::note_user_m(long long code) {
   coolant_ended_.clear();
 }
 
+bool channel_writer::names_an_axis(std::string_view b) const {
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b[i] == m_.program.comment_open) {
+      if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) return false;
+      continue;
+    }
+    switch (ascii::upper(b[i])) {
+      case 'X':
+      case 'Y':
+      case 'Z':
+      case 'U':
+      case 'V':
+      case 'W':
+      case 'A':
+      case 'B':
+      case 'C':
+      case 'H': return true;
+      default: break;
+    }
+  }
+  return false;
+}
+
 void channel_writer::note_user_block(std::string_view b, bool waits) {
   // Its wait codes are numbered like the post's own waits (post/sync_at_cl reports the
   // checker's findings at this CL record).
@@ -254,6 +277,7 @@ void channel_writer::note_user_block(std::string_view b, bool waits) {
   // (note_user_m). A block of neither (a comment, #501=#501+1, G30's axes aside) leaves the
   // footer's spindle stop and coolant off in force.
   bool g = false;
+  const bool moves = names_an_axis(b);
   for (std::size_t i = 0; i < b.size(); ++i) {
     if (b[i] == m_.program.comment_open) {
       if ((i = comment_close(b, i, m_.program)) == std::string_view::npos) break;
@@ -278,8 +302,10 @@ void channel_writer::note_user_block(std::string_view b, bool waits) {
     forget_axes();
     motion_g_ = -1;
     start_home_ = false;  // it may have moved the channel from the home it went to at a wait
-    homed_ = false;       // or from any home: a transfer or a tilted plane goes home again first
   }
+  // An axis word may have moved it from any home: a transfer or a tilted plane goes home again
+  // first (a G code alone, G94, moves nothing: review 67 L4).
+  if (moves) homed_ = false;
 }
 
 void channel_writer::user_blocks(event_point p, bool after, template_args a) {

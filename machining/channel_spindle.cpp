@@ -90,8 +90,10 @@ void channel_writer::table_speed(int line) {
   s.dir = t->ccw ? rotation::ccw : rotation::cw;
   spindle_record(s, line);
   e.data = std::move(s);
-  if (observer_ && errors_ == 0) [[unlikely]]
+  if (observer_ && errors_ == 0) [[unlikely]] {
+    if (observe_lines_) observe_head();
     observer_->record(e, false);
+  }
 }
 
 void channel_writer::tool_data(const tool_data_event& t) {

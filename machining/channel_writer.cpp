@@ -145,19 +145,24 @@ int channel_writer::block_cl_line(std::size_t i) const {
   return line;
 }
 
+void channel_writer::observe_head() {
+  // The head's lines, once written (at the first line after it, or the first record after it
+  // when a script dropped that line: review 67 L2), before anything else.
+  if (observed_head_ || out_.head_written().empty()) return;
+  observed_head_ = true;
+  std::string_view head = out_.head_written();
+  while (!head.empty()) {
+    const std::size_t end = head.find('\n');
+    std::string_view l = head.substr(0, end);
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    observer_->line(l);
+    head.remove_prefix(end == std::string_view::npos ? head.size() : end + 1);
+  }
+}
+
 void channel_writer::note_line(std::string_view line) {
   if (observe_lines_) [[unlikely]] {
-    if (!observed_head_) {
-      observed_head_ = true;
-      std::string_view head = out_.head_written();
-      while (!head.empty()) {
-        const std::size_t end = head.find('\n');
-        std::string_view l = head.substr(0, end);
-        if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
-        observer_->line(l);
-        head.remove_prefix(end == std::string_view::npos ? head.size() : end + 1);
-      }
-    }
+    observe_head();
     observer_->line(line);
   }
   if (plain_block_) {  // a move the writer built without G, M or S: nothing here to read
@@ -472,7 +477,8 @@ void channel_writer::process_event(const event& e, bool both) {
             if (!insert_passes(d.text, e.line)) return;
             out_.raw(d.text);
             start_home_ = false;
-            homed_ = false;          // (a GOHOME, then `G0 U-200. W-300.`: the transfer went on from there)
+            // (a GOHOME, then `G0 U-200. W-300.`: the transfer went on from there)
+            if (names_an_axis(d.text)) homed_ = false;
             spindle_ended_.clear();  // the user's text may turn either on again
             coolant_ended_.clear();
             // It may move an axis or change the motion mode: the next move writes all its words
@@ -507,8 +513,10 @@ void channel_writer::process_event(const event& e, bool both) {
       e.data);
   // After the channel's first error the post has failed: a refused record wrote nothing the
   // comparison could follow.
-  if (observer_ && errors_ == 0) [[unlikely]]
+  if (observer_ && errors_ == 0) [[unlikely]] {
+    if (observe_lines_) observe_head();
     observer_->record(e, both);
+  }
 }
 
 bool channel_writer::dwell_fits(double seconds) {

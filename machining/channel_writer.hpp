@@ -836,6 +836,8 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   vec3 plane_frame_[3];        ///< its X, Y, Z in the part frame, from the angles as written
   vec3 plane_axis_;            ///< the CL tool axis it was opened for
   void note_line(std::string_view line);
+  /// The head's lines to the observer, once, when they are written (note_line, a record).
+  void observe_head();
   bool warned_side_ = false;
   /// *chain_'s plan (kinematics/chain.hpp), made at its first move: plan() gives it.
   kin::chain_plan plan_;
@@ -925,6 +927,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// False, with an error at CL line `line`, when `text` (`who` in the message) has a control
   /// character: one block must be one line (machining/channel_user_gate.cpp).
   bool text_is_one_line(std::string_view text, std::string_view who, int line);
+  /// Whether user block `b` has an axis word outside its comments (X Y Z U V W A B C H): it may
+  /// move the channel from where the post left it (machining/channel_events.cpp).
+  bool names_an_axis(std::string_view b) const;
   /// The addresses that are increments whatever the mode: a lathe's U, V, W, H in G-code
   /// system A where the channel has no axis of that name.
   std::string increment_letters() const;

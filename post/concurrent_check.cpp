@@ -122,7 +122,7 @@ struct concurrent_check::impl {
   void compare_block(const nc_block& b) {
     const auto i = static_cast<std::size_t>(b.channel - 1);
     cl_comparison* c = comparison(i);
-    if (!c) return;
+    if (!c || drained) return;  // (the reader's finish() after drain(): its findings are said)
     hand_due(i, static_cast<std::uint64_t>(b.line));
     const std::vector<nc_word>& words = b.words();  // first: then letters() is the split's, exact
     c->block(b.line, b.text, words, b.letters());
@@ -206,8 +206,10 @@ struct concurrent_check::impl {
       if (half) room.notify_one();
       if (!failed) try {
           if (!p.records.empty()) due[i].push_back(std::move(p.records));
-          if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
-          parts->reader.feed(p.channel, p.bytes.view());
+          if (p.f) {  // (else records alone: flush_records)
+            if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
+            parts->reader.feed(p.channel, p.bytes.view());
+          }
         } catch (const std::exception& e) {
           fail(e.what());  // the check after the fact meets it again and says it; drain() tells
         } catch (...) {
@@ -215,7 +217,7 @@ struct concurrent_check::impl {
         }
       p.records.clear();
       int err = 0;
-      if (write && std::fwrite(p.bytes.data(), 1, p.bytes.size(), p.f) != p.bytes.size()) err = errno;
+      if (write && p.f && std::fwrite(p.bytes.data(), 1, p.bytes.size(), p.f) != p.bytes.size()) err = errno;
       p.bytes.clear();
       lock.lock();
       if (err != 0) write_errors[i] = err;
@@ -309,6 +311,18 @@ bool concurrent_check::note_units(int channel, std::uint64_t lines, unit_system 
   std::vector<noted>& h = p_->held[static_cast<std::size_t>(channel - 1)];
   h.push_back({lines, std::nullopt, false, u});
   return h.size() >= records_per_piece;
+}
+
+void concurrent_check::flush_records(int channel) {
+  std::vector<noted>& h = p_->held[static_cast<std::size_t>(channel - 1)];
+  if (h.empty()) return;
+  piece p;  // no bytes, no file: records alone, after the bytes passed before them
+  p.channel = channel;
+  p.records = std::move(h);
+  h = {};
+  text_buffer back = p_->push(std::move(p));
+  std::lock_guard lock(p_->mutex);  // (a buffer it gave back, for the writers' next piece)
+  if (p_->spare.size() < queue_pieces) p_->spare.push_back(std::move(back));
 }
 
 bool concurrent_check::drain(std::string* why) { return p_->drain(why); }

@@ -65,6 +65,11 @@ class concurrent_check {
   bool note_record(int channel, std::uint64_t lines, const event& e, bool both);
   /// The job's units (UNITS record) for `channel`'s comparison, after `lines` lines.
   bool note_units(int channel, std::uint64_t lines, unit_system u);
+  /// The records noted for `channel` go to the thread now, without bytes: after its writer
+  /// passed its bytes (block_writer::pass_now), when it has none to pass (nothing written since
+  /// its last piece, or nothing yet): so that records_per_piece bounds them however little a
+  /// stretch of records writes (review 67 M3).
+  void flush_records(int channel);
 
   /// Waits for the reading to end, and hands each comparison the records noted after its
   /// program's last block. False: a comparison did not see its whole program (the reading or

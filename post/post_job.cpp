@@ -136,13 +136,18 @@ class noted_writing : public write_observer {
   bool wants_lines() const override { return false; }
   void line(std::string_view) override {}
   void units(unit_system u) override {
-    if (cc_.note_units(channel_, w_.lines_written(), u)) w_.pass_written();
+    if (cc_.note_units(channel_, w_.lines_written(), u)) pass();
   }
   void record(const event& e, bool both) override {
-    if (cc_.note_record(channel_, w_.lines_written(), e, both)) w_.pass_written();
+    if (cc_.note_record(channel_, w_.lines_written(), e, both)) pass();
   }
 
  private:
+  // The bytes written so far go to the check with the records, or the records alone.
+  void pass() {
+    w_.pass_written();
+    cc_.flush_records(channel_);
+  }
   concurrent_check& cc_;
   channel_writer& w_;
   int channel_;

@@ -1180,6 +1180,9 @@ TEST_CASE("cl comparison: a chain's feed blocks between two records, on the CL's
         "program) is an "
         "arc inside " +
             move);
+  // Under tool-tip control a rapid of rotary words alone turns the tool about its tip (the
+  // writer's turn at the pole before a feed move leaves it): no finding (review 67 M1).
+  CHECK(run({"G0 C90.", "G1 X25."}, false, true).empty());
   // (With no Z after it the records are passed over, Z not known: the block is said all the same.)
   CHECK(run({"G53 G1 Z-100.", "G1 X25."}, false, true) ==
         "job.cls:15:1: error: channel 1: the program's block `G53 G1 Z-100.` (line 11 of its program) is a "
