@@ -20,10 +20,10 @@ namespace twinpost {
 
 namespace {
 
+using ascii::is_blank;
 using ascii::is_digit;
 using ascii::is_letter;
 using ascii::upper;
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
 // Line ends in a run of text: a plain loop that the compiler turns into vector code.
 int count_newlines(const char* p, std::size_t n) {

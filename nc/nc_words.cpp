@@ -10,10 +10,10 @@ namespace twinpost {
 
 namespace {
 
+using ascii::is_blank;
 using ascii::is_digit;
 using ascii::is_letter;
 using ascii::upper;
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
 
 // The digits and the point of a number, from `s[at]` (after any sign) up to the first
 // character that is neither; `end` is where they stop. Digits, a point, digits: each run in a

@@ -12,7 +12,7 @@ namespace {
 
 namespace x3 = boost::spirit::x3;
 
-bool is_blank(char c) { return c == ' ' || c == '\t'; }
+using ascii::is_blank;
 
 // The token at `p` for a message: a run up to the next blank, comma or slash. Control and
 // non-ASCII bytes are written as \xHH so that a message is always plain ASCII.

@@ -17,6 +17,8 @@ constexpr bool is_lower(char c) { return c >= 'a' && c <= 'z'; }
 constexpr bool is_letter(char c) { return is_upper(c) || is_lower(c); }
 /// '0'..'9'.
 constexpr bool is_digit(char c) { return c >= '0' && c <= '9'; }
+/// A blank between NC or CL words: a space or a tab.
+constexpr bool is_blank(char c) { return c == ' ' || c == '\t'; }
 /// An ASCII letter or digit.
 constexpr bool is_alnum(char c) { return is_letter(c) || is_digit(c); }
 
