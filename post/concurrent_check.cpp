@@ -300,17 +300,24 @@ std::unique_ptr<block_writer::relay> concurrent_check::relay_for(int channel,
   return std::make_unique<channel_relay>(*p_, channel, std::move(name));
 }
 
+namespace {
+
+// `n` held for `channel`'s next piece; true when records_per_piece wait.
+bool hold(std::vector<std::vector<noted>>& held, int channel, noted&& n) {
+  std::vector<noted>& h = held[static_cast<std::size_t>(channel - 1)];
+  if (h.capacity() == 0) h.reserve(concurrent_check::records_per_piece / 4);  // (given away with each piece)
+  h.push_back(std::move(n));
+  return h.size() >= concurrent_check::records_per_piece;
+}
+
+}  // namespace
+
 bool concurrent_check::note_record(int channel, std::uint64_t lines, const event& e, bool both) {
-  std::vector<noted>& h = p_->held[static_cast<std::size_t>(channel - 1)];
-  if (h.capacity() == 0) h.reserve(records_per_piece / 4);  // (given away with each piece)
-  h.push_back({lines, e, both, unit_system::mm});
-  return h.size() >= records_per_piece;
+  return hold(p_->held, channel, {lines, e, both, unit_system::mm});
 }
 
 bool concurrent_check::note_units(int channel, std::uint64_t lines, unit_system u) {
-  std::vector<noted>& h = p_->held[static_cast<std::size_t>(channel - 1)];
-  h.push_back({lines, std::nullopt, false, u});
-  return h.size() >= records_per_piece;
+  return hold(p_->held, channel, {lines, std::nullopt, false, u});
 }
 
 void concurrent_check::flush_records(int channel) {

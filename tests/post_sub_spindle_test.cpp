@@ -144,8 +144,14 @@ TEST_CASE("a user's move after a GOHOME: the transfer goes home again first", "[
   REQUIRE(job.find(off) != std::string::npos);
   job.replace(job.find(off), off.size(), "SPINDL/OFF\nGOHOME\nINSERT/G0 U-200. W-300.\nTRANSFER/GRIP");
   const test::posted p = post_on(job, "fanuc-0itd-twin", "xfer-moved");
-  CHECK(file_of(p, "XFER_1.nc").find("G28 W0.\nG0 U-200. W-300.\nM9\nG28 U0.\nG28 W0.\nM100\nM169\n") !=
-        std::string::npos);
+  CHECK(
+      file_of(p, "XFER_1.nc") ==
+      "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG50 S2500\nG96 S180 M3\n"
+      "M8\nG1 X50. Z2. F0.2\nZ-20.\nM5\nG28 U0.\nG28 W0.\nG0 U-200. W-300.\nM9\nG28 U0.\nG28 W0.\nM100\n"
+      "M169\nM213\nIF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF [#501 EQ #0] THEN "
+      "#3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\nG0 G53 B#501\nG98 G1 G53.2 B#500 F500.\nM168\n"
+      "G4 U1.\nG99\nM101\nM102\nM69\nG98 G4 U1.\nG28 G53 B0.\nM205\nG99\nM100\nG55\nM101\nM9\nG28 U0.\n"
+      "G28 W0.\nM5\nM30\n%\n");
 }
 
 TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then the second spindle",
