@@ -78,8 +78,8 @@ const channel_def& channel_or_first(const machine& m, int number) {
 }  // namespace
 
 block_timer::block_timer(const machine& m, int channel)
-    : m_(m), spindles_(m, channel), codes_(m, channel_or_first(m, channel)),
-      spindles_need_gms_(spindles_.needs_gms()) {
+    : m_(m), own_spindles_(m, channel), codes_(m, channel_or_first(m, channel)),
+      spindles_need_gms_(own_spindles_.needs_gms()) {
   for (const channel_def& c : m.channels)
     if (c.number == channel) ch_ = &c;
   if (!ch_) ch_ = &m.channels.front();
@@ -163,14 +163,20 @@ block_timing block_timer::time(std::string_view text) {
   return time(words_, letters);
 }
 
-block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t letters) {
+block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t letters,
+                               const channel_spindles* spindles) {
   // Each word's number was read once, when the block was split.
   auto num = [](const nc_word& w, double& v) {
     v = w.number;
     return w.numeric;
   };
   constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-  if (!spindles_need_gms_ || (letters & gms)) spindles_.apply(words);
+  if (spindles) {
+    spindles_ = spindles;
+  } else {
+    spindles_ = &own_spindles_;
+    if (!spindles_need_gms_ || (letters & gms)) own_spindles_.apply(words);
+  }
   block_timing t;
   if (has_modes_ && milling_mode(words)) return t;  // a mode block: no time, no move (G10.9 X0 moves nothing)
   auto untimed = [&t](std::string why) {
@@ -454,24 +460,24 @@ double block_timer::feed_time(double length, double x0, double x1, block_timing&
   if (!per_rev_ && !thread) return length / feed_ * 60;
   // Per revolution: F units per turn at the spindle's rpm; under CSS the rpm follows the
   // diameter, so the move is summed in steps at each step's middle diameter.
-  const bool css = spindles_.mode() == speed_mode::css;
+  const bool css = spindles_->mode() == speed_mode::css;
   if (css && (x0 < 0 || x1 < 0)) {
     t.untimed = code + " under CSS at an unknown diameter";
     return 0;
   }
   double k = 0, limit = 0;
-  if (css && x0 != x1 && spindles_.css_law(inch_, k, limit)) {
+  if (css && x0 != x1 && spindles_->css_law(inch_, k, limit)) {
     // The rpm follows the diameter along the move: integrated exactly (rpm = min(limit, k/d)).
     const double per_unit = integral_of_max(x0 / k, (x1 - x0) / k, limit > 0 ? 1 / limit : 0);
     return length / feed_ * per_unit * 60;
   }
   // rpm mode, or CSS along a constant diameter: one speed for the whole move.
-  const double rpm = spindles_.rpm(std::max((x0 + x1) / 2, 0.0), inch_);
+  const double rpm = spindles_->rpm(std::max((x0 + x1) / 2, 0.0), inch_);
   if (!(rpm > 0)) {
     // A spindle this channel never commanded turns at another channel's speed, which this
     // channel's blocks do not tell (docs/timeline.md).
     const bool others =
-        spindles_.current() >= 0 && spindles_.setting(spindles_.current()).turn == spindle_turn::unknown;
+        spindles_->current() >= 0 && spindles_->setting(spindles_->current()).turn == spindle_turn::unknown;
     t.untimed = code + (thread ? "" : " per revolution") +
                 (others ? " on a spindle only another channel commands" : " on a stopped spindle");
     return 0;

@@ -73,7 +73,10 @@ class block_timer {
   block_timing time(std::string_view text);
   /// The same for a block already split (the reader's nc_block: words and their letters, which
   /// must be exact: split_nc_words' own, not nc_block::letters() before the split).
-  block_timing time(const std::vector<nc_word>& words, std::uint32_t letters);
+  /// `spindles`, when given: the channel's spindles with this block applied already (the
+  /// reading's spindle_states); the timer then keeps no spindle state of its own.
+  block_timing time(const std::vector<nc_word>& words, std::uint32_t letters,
+                    const channel_spindles* spindles = nullptr);
   /// The seconds a wait code costs (machine [timing] wait).
   double wait_seconds() const { return ch_->timing.wait; }
   /// The tool in force, as the program calls it ("T03"); empty before the first call.
@@ -89,7 +92,8 @@ class block_timer {
   };
   const machine& m_;
   const channel_def* ch_ = nullptr;
-  channel_spindles spindles_;
+  channel_spindles own_spindles_;                      // applied by time() when it is not given a reading's
+  const channel_spindles* spindles_ = &own_spindles_;  // the one the block being timed reads
   std::vector<axis_pos> axes_;
   bool lathe_a_ = false;  // Fanuc-style lathe: G90/G92/G94 are cycles, U/W incremental
   bool incremental_ = false;

@@ -48,21 +48,21 @@ struct chuck_state {
 };
 
 struct channel_state {
-  channel_state(const machine& m, int number)
-      : spindles(m, number), codes(m, m.channels[static_cast<std::size_t>(number - 1)]) {}
-  channel_spindles spindles;
-  nc_codes codes;                   // what its G codes make of a block's axis words
-  bool offset = false;              // a work offset in force
-  int motion = -1;                  // modal G0..G3; -1: unknown
-  bool cycle = false;               // a canned drilling or a lathe's single cycle in force
-  bool sync = false;                // spindle synchronisation on
-  std::vector<int> start_line;      // per spindle: the block that started it
-  std::vector<chuck_state> chucks;  // per spindle, as this channel's blocks left it
-  int holder = -1;                  // the spindle that closed its chuck on the part while synchronised
-  int cutoff_line = 0;              // a part-off while `holder` held the part
-  char head = 0;                    // the address of the channel's indexing head (B); 0: none
-  int change_m = -1;                // the M code of its tool change (M6 of "T{tool:02} M6"); -1: a T word
-  int head_unknown = 0;             // the tool call since which the head has not been indexed; 0: known
+  channel_state(const machine& m, const channel_spindles& spindles, int number)
+      : spindles(spindles), codes(m, m.channels[static_cast<std::size_t>(number - 1)]) {}
+  const channel_spindles& spindles;  // the reading's (spindle_states), this block applied
+  nc_codes codes;                    // what its G codes make of a block's axis words
+  bool offset = false;               // a work offset in force
+  int motion = -1;                   // modal G0..G3; -1: unknown
+  bool cycle = false;                // a canned drilling or a lathe's single cycle in force
+  bool sync = false;                 // spindle synchronisation on
+  std::vector<int> start_line;       // per spindle: the block that started it
+  std::vector<chuck_state> chucks;   // per spindle, as this channel's blocks left it
+  int holder = -1;                   // the spindle that closed its chuck on the part while synchronised
+  int cutoff_line = 0;               // a part-off while `holder` held the part
+  char head = 0;                     // the address of the channel's indexing head (B); 0: none
+  int change_m = -1;                 // the M code of its tool change (M6 of "T{tool:02} M6"); -1: a T word
+  int head_unknown = 0;              // the tool call since which the head has not been indexed; 0: known
   bool said_offset = false, said_chuck = false, said_start = false, said_cutoff = false, said_head = false;
   // A channel with a kinematic chain that has a rotary axis: its rapids' tip paths.
   std::optional<rotary_sweep> sweep;
@@ -103,10 +103,10 @@ bool sweeps_chain(const machine& m, int channel) {
 }
 
 struct control_emulator::impl {
-  explicit impl(const machine& m)
+  impl(const machine& m, const spindle_states& spindles)
       : m(m), sync_on(m.codes.spindle_sync_on), sync_off(m.codes.spindle_sync_off) {
     for (std::size_t i = 0; i < m.channels.size(); ++i) {
-      channels.emplace_back(m, static_cast<int>(i) + 1);
+      channels.emplace_back(m, spindles.channel(static_cast<int>(i) + 1), static_cast<int>(i) + 1);
       channels.back().start_line.assign(m.spindles.size(), 0);
       channels.back().chucks.assign(m.spindles.size(), {});
       if (sweeps_chain(m, static_cast<int>(i) + 1))
@@ -239,14 +239,15 @@ struct control_emulator::impl {
       }
     }
     if (cut && c.holder >= 0 && x_column && x <= 0 && !c.cutoff_line) c.cutoff_line = b.line;
-    // Starts, stops, chucks and synchronisation are M words (each spindle's cw/ccw/stop is its
-    // own code): a block without one changes none of them, and most blocks have none.
+    // Starts, stops, chucks and synchronisation are M words (the spindles' changes were applied
+    // to the reading's spindle_states before this block came here): a block without one changes
+    // none of them, and most blocks have none.
     if (!b.may_have(nc_letter('M'))) return;
     spindles_and_chucks(b, c, words);
   }
 
   void spindles_and_chucks(const nc_block& b, channel_state& c, const std::vector<nc_word>& words) {
-    for (const spindle_change& ch : c.spindles.apply(words)) {
+    for (const spindle_change& ch : c.spindles.changes()) {
       const auto s = static_cast<std::size_t>(ch.spindle);
       if (!ch.after.started() || ch.before.started()) continue;
       c.start_line[s] = b.line;
@@ -301,7 +302,8 @@ struct control_emulator::impl {
   }
 };
 
-control_emulator::control_emulator(const machine& m) : p_(std::make_unique<impl>(m)) {}
+control_emulator::control_emulator(const machine& m, const spindle_states& spindles)
+    : p_(std::make_unique<impl>(m, spindles)) {}
 control_emulator::~control_emulator() = default;
 
 void control_emulator::block(const nc_block& b) { p_->block(b); }

@@ -6,7 +6,8 @@
 //
 // State per channel: the work offset in force (G54-G59, G54.1 P.., a G92/G50 coordinate
 // setting), the modal motion (G0-G3) and canned cycle, what the channel has commanded of each
-// spindle (analysis/spindle_state), each spindle's chuck (spindle.chuck_open/chuck_close),
+// spindle (analysis/spindle_state: the reading's one spindle_states, which the timer, the
+// spindle rules and the interference rule read too), each spindle's chuck (spindle.chuck_open/chuck_close),
 // spindle synchronisation (codes.spindle_sync_on/off), and the part held by two spindles at
 // once during a transfer.
 //
@@ -39,9 +40,13 @@ namespace twinpost {
 /// with a head, analysis/rotary_sweep): it then reads the words of each of its blocks.
 bool sweeps_chain(const machine& m, int channel);
 
+class spindle_states;
+
 class control_emulator {
  public:
-  explicit control_emulator(const machine& m);
+  /// `spindles`: the reading's one spindle state (analysis/spindle_state.hpp), which must have
+  /// applied each block before block() is given it; it must outlive the emulator.
+  control_emulator(const machine& m, const spindle_states& spindles);
   ~control_emulator();
   control_emulator(const control_emulator&) = delete;
   control_emulator& operator=(const control_emulator&) = delete;

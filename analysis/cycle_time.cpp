@@ -52,7 +52,7 @@ class timeline_builder {
     for (int i = 0; i < n_; ++i) runs_[static_cast<std::size_t>(i)].times.channel = i + 1;
   }
 
-  void block(const nc_block& b) {
+  void block(const nc_block& b, const spindle_states* spindles) {
     const int channel = b.channel;
     const std::string& file = b.file;
     const int line = b.line;
@@ -61,7 +61,7 @@ class timeline_builder {
     channel_times& c = r.times;
     if (c.file.empty()) c.file = file;
     const std::vector<nc_word>& words = b.words();  // first: split, the letters come exact
-    const block_timing t = r.timer.time(words, b.letters());
+    const block_timing t = r.timer.time(words, b.letters(), spindles ? &spindles->channel(channel) : nullptr);
     ++c.blocks;
     if (m_.limits.blocks_per_second > 0 && !t.rapid && t.motion > 0 &&
         t.motion * m_.limits.blocks_per_second < 1) [[unlikely]] {
@@ -328,10 +328,10 @@ struct timeline_feed::impl {
 timeline_feed::timeline_feed(const machine& m, const timeline_options& o) : m_(m), o_(o) {}
 timeline_feed::~timeline_feed() = default;
 void timeline_feed::make() { p_ = std::make_unique<impl>(m_, o_); }
-void timeline_feed::block(const nc_block& b) {
+void timeline_feed::block(const nc_block& b, const spindle_states* spindles) {
   if (!p_) [[unlikely]]
     make();
-  p_->b.block(b);
+  p_->b.block(b, spindles);
 }
 void timeline_feed::wait(const nc_wait& w) {
   if (!p_) make();
@@ -351,7 +351,7 @@ void for_each_timed_block(const timeline& t, const std::vector<nc_source>& files
   timeline_builder b(m, o);
   b.stream_blocks(channel, std::move(shift), f);
   nc_read_options read;
-  read.on_block = [&](const nc_block& blk) { b.block(blk); };
+  read.on_block = [&](const nc_block& blk) { b.block(blk, nullptr); };
   read.on_wait = [&](const nc_wait& w) { b.wait(w); };
   diagnostic_list ignored;  // the timeline was made from the same files: they read sound
   read_nc_programs(files, m, ignored, read);
@@ -388,10 +388,12 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
   // One reading: the check's first pass feeds the timeline too (what it built is dropped
   // when the check finds anything).
   timeline_builder b(m, o);
-  interference_check meet(m);  // its findings are marked on the page, not a reason for no timeline
+  spindle_states spindles(m);            // one state for the timer and the rule
+  interference_check meet(m, spindles);  // its findings are marked on the page, not a reason for no timeline
   nc_read_options read;
   read.on_block = [&](const nc_block& blk) {
-    b.block(blk);
+    spindles.block(blk);
+    b.block(blk, &spindles);
     if (meet.active()) meet.block(blk);
   };
   read.on_wait = [&](const nc_wait& w) {

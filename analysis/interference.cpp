@@ -110,12 +110,12 @@ struct segment_data {
 };
 
 struct channel_data {
-  channel_data(const machine& m, int number)
-      : spindles(m, number), codes(m, m.channels[static_cast<std::size_t>(number - 1)]) {}
+  channel_data(const machine& m, const channel_spindles& spindles, int number)
+      : spindles(spindles), codes(m, m.channels[static_cast<std::size_t>(number - 1)]) {}
   const interference_channel* env = nullptr;
-  std::string file;  // the program's name, as in messages
-  channel_spindles spindles;
-  nc_codes codes;        // what its G codes make of a block's axis words
+  std::string file;                  // the program's name, as in messages
+  const channel_spindles& spindles;  // the reading's (spindle_states), this block applied
+  nc_codes codes;                    // what its G codes make of a block's axis words
   bool turning = false;  // a lathe's single cycle in force (G90, G92, G94 in system A): modal as G1
   double turning_z = 0;  // its end's Z, which its next passes keep (attack 63 M6: X28.4 alone)
   std::vector<segment_data> segments = std::vector<segment_data>(1);
@@ -150,9 +150,9 @@ bool interference_checked(const machine& m) {
 }
 
 struct interference_check::impl {
-  explicit impl(const machine& mm) : m(mm) {
+  impl(const machine& mm, const spindle_states& spindles) : m(mm) {
     for (const channel_def& c : m.channels) {
-      channels.emplace_back(m, c.number);
+      channels.emplace_back(m, spindles.channel(c.number), c.number);
       channels.back().env = m.interference.channel(c.number);
       if (const spindle_def* live = m.spindle(c.live_spindle))
         live_spindles.push_back(static_cast<int>(live - m.spindles.data()));
@@ -245,11 +245,7 @@ struct interference_check::impl {
     if (!c.env) return;
     if (c.file.empty()) c.file = b.file;  // one file per channel (its sections are joined)
     const std::vector<nc_word>& words = b.words();
-    constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-    if (b.letters() & gms) {
-      c.spindles.apply(words);
-      if (const int s = c.spindles.current(); s >= 0 && !is_live(s)) c.work = s;
-    }
+    if (const int s = c.spindles.current(); s >= 0 && !is_live(s)) c.work = s;
     const nc_word *xw = nullptr, *zw = nullptr, *uw = nullptr, *ww = nullptr, *iw = nullptr, *kw = nullptr,
                   *rw = nullptr, *qw = nullptr, *jw = nullptr;
     bool no_move = false, home = false, once = false;
@@ -666,7 +662,8 @@ void fill_source_lines(std::vector<diagnostic>& found, const std::vector<nc_sour
   read_nc_programs(files, m, ignored, o);
 }
 
-interference_check::interference_check(const machine& m) : p_(std::make_unique<impl>(m)) {}
+interference_check::interference_check(const machine& m, const spindle_states& spindles)
+    : p_(std::make_unique<impl>(m, spindles)) {}
 interference_check::~interference_check() = default;
 bool interference_check::active() const { return p_->active; }
 const std::vector<interference_meeting>& interference_check::meetings() const { return p_->meetings; }

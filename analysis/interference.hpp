@@ -61,9 +61,13 @@ void fill_source_lines(std::vector<diagnostic>& found, const std::vector<nc_sour
 bool interference_checked(const machine& m);
 
 /// The interference rule, fed block by block like analysis/shared_resources.
+class spindle_states;
+
 class interference_check {
  public:
-  explicit interference_check(const machine& m);
+  /// `spindles`: the reading's one spindle state, which must have applied each block before
+  /// block() is given it; it must outlive the rule.
+  interference_check(const machine& m, const spindle_states& spindles);
   ~interference_check();
   interference_check(const interference_check&) = delete;
   interference_check& operator=(const interference_check&) = delete;

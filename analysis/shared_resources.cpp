@@ -3,6 +3,7 @@
 #include "analysis/nc_codes.hpp"
 
 #include "analysis/control_emulator.hpp"
+#include "analysis/cycle_time.hpp"
 #include "analysis/length_offset.hpp"
 
 #include <algorithm>
@@ -68,12 +69,12 @@ struct use_rec {
 };
 
 struct channel_data {
-  channel_data(const machine& m, int number)
-      : spindles(m, number), codes(m, m.channels[static_cast<std::size_t>(number - 1)]),
+  channel_data(const machine& m, const channel_spindles& spindles, int number)
+      : spindles(spindles), codes(m, m.channels[static_cast<std::size_t>(number - 1)]),
         quiet_without_gms(spindles.needs_gms()) {}
-  channel_spindles spindles;
-  nc_codes codes;          // what its G codes make of a block's axis words
-  bool quiet_without_gms;  // a block without G, M or S cannot command a spindle
+  const channel_spindles& spindles;  // the reading's (spindle_states), this block applied
+  nc_codes codes;                    // what its G codes make of a block's axis words
+  bool quiet_without_gms;            // a block without G, M or S cannot command a spindle
   int seg = 0;
   bool per_rev = false;
   int motion = -1;
@@ -116,9 +117,9 @@ struct turn_ref {
 }  // namespace
 
 struct shared_resources::impl {
-  explicit impl(const machine& mm) : m(mm) {
+  impl(const machine& mm, const spindle_states& spindles) : m(mm) {
     for (const channel_def& c : m.channels) {
-      channels.emplace_back(m, c.number);
+      channels.emplace_back(m, spindles.channel(c.number), c.number);
       channels.back().commands.resize(m.spindles.size());
       channels.back().turns.resize(m.spindles.size());
       channels.back().refused.assign(m.spindles.size(), false);
@@ -245,7 +246,6 @@ struct shared_resources::impl {
         axis_column = w.column;
       }
     }
-    c.spindles.apply(words);
     // A place (its file name a copy) is made only for a block that is noted: most blocks with
     // a G word command nothing and cut in a stretch already noted.
     const std::vector<spindle_command>& commands = c.spindles.commands();
@@ -610,7 +610,8 @@ std::vector<std::vector<std::vector<int>>> segment_clocks(const std::vector<std:
   return clocks;
 }
 
-shared_resources::shared_resources(const machine& m) : p_(std::make_unique<impl>(m)) {}
+shared_resources::shared_resources(const machine& m, const spindle_states& spindles)
+    : p_(std::make_unique<impl>(m, spindles)) {}
 shared_resources::~shared_resources() = default;
 
 void shared_resources::block(const nc_block& b) { p_->block(b); }
@@ -656,35 +657,33 @@ void add_findings(sync_result& r, shared_resources& rules, interference_check& m
   r.ok = r.errors == 0;
 }
 
-// The rules fed by a reading, and `more` with them.
-nc_read_options feeding(shared_resources& rules, interference_check& meet, length_offset_rule& len,
-                        control_emulator& control, const nc_read_options& more) {
+// The rules fed by a reading, and `feed` and `more` with them: the spindle state first, once
+// for all who read it (the timer, the spindle rules, the interference rule, the emulator).
+nc_read_options feeding(spindle_states& spindles, shared_resources& rules, interference_check& meet,
+                        length_offset_rule& len, control_emulator& control, const nc_read_options& more,
+                        timeline_feed* feed) {
   nc_read_options also;
-  // `more` first: the cycle time splits every block, and the rules, which ask most blocks
-  // only for their letters, then find them exact without a scan of their own.
-  if (meet.active()) {  // a machine without envelopes pays nothing per block for the rule
-    also.on_block = [&rules, &meet, &len, &control, more](const nc_block& b) {
-      if (more.on_block) more.on_block(b);
-      rules.block(b);
-      meet.block(b);
-      len.block(b);
-      control.block(b);
-    };
-  } else {
-    also.on_block = [&rules, &len, &control, more](const nc_block& b) {
-      if (more.on_block) more.on_block(b);
-      rules.block(b);
-      len.block(b);
-      control.block(b);
-    };
-  }
+  // The cycle time and `more` before the rules: the timer splits every block, and the rules,
+  // which ask most blocks only for their letters, then find them exact without a scan of
+  // their own.
+  also.on_block = [&spindles, &rules, &meet, &len, &control, more, feed,
+                   interfere = meet.active()](const nc_block& b) {
+    spindles.block(b);
+    if (feed) feed->block(b, &spindles);
+    if (more.on_block) more.on_block(b);
+    rules.block(b);
+    if (interfere) meet.block(b);  // a machine without envelopes pays nothing per block for it
+    len.block(b);
+    control.block(b);
+  };
   also.on_macro = [&control, more](const nc_block& b) {
     if (more.on_macro) more.on_macro(b);
     control.block(b);
   };
-  also.on_wait = [&rules, &meet, more](const nc_wait& w) {
+  also.on_wait = [&rules, &meet, more, feed](const nc_wait& w) {
     rules.wait(w.channel);
     meet.wait(w);
+    if (feed) feed->wait(w);
     if (more.on_wait) more.on_wait(w);
   };
   return also;
@@ -693,21 +692,23 @@ nc_read_options feeding(shared_resources& rules, interference_check& meet, lengt
 }  // namespace
 
 sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
-                               const nc_read_options& more) {
-  shared_resources rules(m);
-  interference_check meet(m);
+                               const nc_read_options& more, timeline_feed* feed) {
+  spindle_states spindles(m);
+  shared_resources rules(m, spindles);
+  interference_check meet(m, spindles);
   length_offset_rule len(m.channels.size());
-  control_emulator control(m);
-  sync_result r = check_nc_files(files, m, feeding(rules, meet, len, control, more));
+  control_emulator control(m, spindles);
+  sync_result r = check_nc_files(files, m, feeding(spindles, rules, meet, len, control, more, feed));
   add_findings(r, rules, meet, len, control);
   fill_source_lines(r.diagnostics, files, m);
   return r;
 }
 
 struct compact_resource_check::impl {
-  impl(const machine& m, const nc_read_options& more)
-      : rules(m), meet(m), len(m.channels.size()), control(m),
-        compact(m, feeding(rules, meet, len, control, more)) {}
+  impl(const machine& m, const nc_read_options& more, timeline_feed* feed)
+      : spindles(m), rules(m, spindles), meet(m, spindles), len(m.channels.size()), control(m, spindles),
+        compact(m, feeding(spindles, rules, meet, len, control, more, feed)) {}
+  spindle_states spindles;
   shared_resources rules;
   interference_check meet;
   length_offset_rule len;
@@ -715,8 +716,9 @@ struct compact_resource_check::impl {
   compact_sync_check compact;
 };
 
-compact_resource_check::compact_resource_check(const machine& m, const nc_read_options& more)
-    : p_(std::make_unique<impl>(m, more)) {}
+compact_resource_check::compact_resource_check(const machine& m, const nc_read_options& more,
+                                               timeline_feed* feed)
+    : p_(std::make_unique<impl>(m, more, feed)) {}
 
 compact_resource_check::~compact_resource_check() = default;
 

@@ -33,6 +33,8 @@
 
 namespace twinpost {
 
+class timeline_feed;
+
 /// The vector clocks of the rendezvous (sync_result::rendezvous) for `channels` channels:
 /// [channel-1][segment][other-1] = how many segments of channel `other` are over before that
 /// segment of `channel` begins (docs/shared-resources.md, "The model"). Shared by the spindle
@@ -40,9 +42,13 @@ namespace twinpost {
 std::vector<std::vector<std::vector<int>>> segment_clocks(const std::vector<std::uint64_t>& rendezvous,
                                                           std::size_t channels);
 
+class spindle_states;
+
 class shared_resources {
  public:
-  explicit shared_resources(const machine& m);
+  /// `spindles`: the reading's one spindle state, which must have applied each block before
+  /// block() is given it; it must outlive the rules.
+  shared_resources(const machine& m, const spindle_states& spindles);
   ~shared_resources();
   shared_resources(const shared_resources&) = delete;
   shared_resources& operator=(const shared_resources&) = delete;
@@ -63,15 +69,17 @@ class shared_resources {
 
 /// check_nc_files and the shared-resource rules on the same reading: what `twinpost check`
 /// and post's self-check run. The rules' findings follow the checker's, and count in the result.
-/// `more` gets every block and wait of the same reading, once each (the post's cycle time).
+/// `more` gets every block and wait of the same reading, once each; `feed`, when given, too
+/// (the post's cycle time), with the spindle state the rules read (spindle_states: one owner).
 sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
-                               const nc_read_options& more = {});
+                               const nc_read_options& more = {}, timeline_feed* feed = nullptr);
 
 /// check_nc_resources for a caller that reads the programs itself (post reads its programs
 /// while they are written: nc_stream_reader): read with options(), then result().
 class compact_resource_check {
  public:
-  explicit compact_resource_check(const machine& m, const nc_read_options& more = {});
+  explicit compact_resource_check(const machine& m, const nc_read_options& more = {},
+                                  timeline_feed* feed = nullptr);
   ~compact_resource_check();
   compact_resource_check(const compact_resource_check&) = delete;
   compact_resource_check& operator=(const compact_resource_check&) = delete;

@@ -3,8 +3,9 @@
 // spindle an S word goes to, each spindle's direction, speed mode (CSS or rpm), speed and
 // clamp. Read from NC words with the machine's own codes ([[spindle]] cw/ccw/stop/select and
 // clamp, [codes] css/rpm), so it reads any program of the machine, not only twinpost's.
-// The input of the shared-spindle rules (analysis/shared_resources) and the cycle time
-// (feeds per revolution need the speed in rpm).
+// The input of the shared-spindle rules (analysis/shared_resources), the cycle time (feeds per
+// revolution need the speed in rpm), the interference rule and the control emulator: on a
+// reading they all read one `spindle_states`, applied once per block (issue 37, "one owner").
 #include <algorithm>
 #include <numbers>
 #include <string>
@@ -67,6 +68,14 @@ class channel_spindles {
   const std::vector<spindle_change>& apply(const std::vector<nc_word>& words);
   /// What the last block given to apply() commanded, changed or not.
   const std::vector<spindle_command>& commands() const { return commands_; }
+  /// What the last block given to apply() changed.
+  const std::vector<spindle_change>& changes() const { return changes_; }
+  /// A block that cannot command a spindle (no G, M or S word where needs_gms()): it commanded
+  /// and changed nothing, and apply() need not read it.
+  void nothing_commanded() {
+    changes_.clear();
+    commands_.clear();
+  }
 
   /// The spindle (index into machine::spindles) an S word without a spindle M-code goes to,
   /// and whose speed a feed per revolution follows: the last one this channel selected (its
@@ -136,6 +145,26 @@ class channel_spindles {
     const double cap = s.clamp > 0 ? s.clamp : max;
     return max > 0 ? std::min(cap, max) : cap;
   }
+};
+
+/// The one owner of every channel's spindle state on a reading: each block applied once, before
+/// the consumers that read it (the timer, the spindle rules, the interference rule, the control
+/// emulator) see the block. Before, each of them applied the codes to a copy of its own, and the
+/// emulator only the blocks with an M word: a `G55` that sends the next `M3` to the sub (a
+/// machine whose spindles share their M-codes) was lost to it.
+class spindle_states {
+ public:
+  explicit spindle_states(const machine& m);
+  /// Applies block `b` to its channel's spindles (a channel the machine does not have: nothing).
+  void block(const nc_block& b);
+  /// Channel `number`'s spindles, the block given last included (1-based; in range).
+  const channel_spindles& channel(int number) const {
+    return channels_[static_cast<std::size_t>(number - 1)];
+  }
+
+ private:
+  std::vector<channel_spindles> channels_;
+  std::vector<bool> gms_only_;  // per channel: needs_gms()
 };
 
 }  // namespace twinpost

@@ -36,15 +36,6 @@ struct piece {
   std::FILE* f = nullptr;      // the file the bytes are written to once read
 };
 
-nc_read_options feeding(timeline_feed* feed) {
-  nc_read_options more;
-  if (feed) {
-    more.on_block = [feed](const nc_block& b) { feed->block(b); };
-    more.on_wait = [feed](const nc_wait& w) { feed->wait(w); };
-  }
-  return more;
-}
-
 }  // namespace
 
 struct concurrent_check::impl {
@@ -100,19 +91,14 @@ struct concurrent_check::impl {
     ready.notify_one();
   }
 
-  // What the reader reads with: the check's consumers, each block first to its comparison.
+  // What the reader reads with besides the resource check (which feeds the timeline): each
+  // block to its channel's comparison, after the records noted before it.
   nc_read_options reading() {
-    nc_read_options more = feeding(feed);
+    nc_read_options more;
     if (std::none_of(compare.begin(), compare.end(), [](const cl_comparison* c) { return c != nullptr; }))
       return more;
-    more.on_block = [this, next = std::move(more.on_block)](const nc_block& b) {
-      compare_block(b);
-      if (next) next(b);
-    };
-    more.on_macro = [this, next = std::move(more.on_macro)](const nc_block& b) {
-      compare_block(b);
-      if (next) next(b);
-    };
+    more.on_block = [this](const nc_block& b) { compare_block(b); };
+    more.on_macro = [this](const nc_block& b) { compare_block(b); };
     return more;
   }
 
@@ -187,7 +173,7 @@ struct concurrent_check::impl {
     // cache line with the writer's state. Made on the post's thread, some of it shared lines with
     // the reader's, and the two cores passed those lines to and fro: a third more time.
     try {
-      parts = std::make_unique<check_parts>(reading(), m, read);
+      parts = std::make_unique<check_parts>(reading(), feed, m, read);
     } catch (const std::exception& e) {
       fail(e.what());
     } catch (...) {
@@ -232,8 +218,8 @@ struct concurrent_check::impl {
   }
 
   struct check_parts {
-    check_parts(const nc_read_options& more, const machine& m, diagnostic_list& read)
-        : check(m, more), reader(m, read, check.options()) {}
+    check_parts(const nc_read_options& more, timeline_feed* feed, const machine& m, diagnostic_list& read)
+        : check(m, more, feed), reader(m, read, check.options()) {}
     compact_resource_check check;  // the waits, the spindle rules, and the feed
     nc_stream_reader reader;
   };

@@ -442,12 +442,7 @@ bool self_check(const post_options& o, const machine& m, const std::vector<frame
                 const writers_sink& ws, int last_line, diagnostic_sink& sink, timeline_feed* feed,
                 std::optional<sync_result> done, std::vector<std::uint64_t>& rendezvous) {
   const std::vector<nc_source> sources = staged_sources(o, files);
-  nc_read_options more;
-  if (feed && !done) {
-    more.on_block = [feed](const nc_block& b) { feed->block(b); };
-    more.on_wait = [feed](const nc_wait& w) { feed->wait(w); };
-  }
-  sync_result check = done ? std::move(*done) : check_nc_resources(sources, m, more);
+  sync_result check = done ? std::move(*done) : check_nc_resources(sources, m, {}, feed);
   if (!check.diagnostics.empty()) {
     fill_source_lines(check.diagnostics, sources, m);  // the interference rule's (done: not yet)
     std::vector<std::vector<int>> wait_lines;

@@ -108,6 +108,31 @@ TEST_CASE("emulator: chucks and spindles", "[analysis][emulator]") {
         clean_lathe);
 }
 
+TEST_CASE("emulator: the spindle a work offset selects takes the M-code both share", "[analysis][emulator]") {
+  // A twin-spindle lathe whose sub answers the main's M3/M4/M5: G55 selects it, and the next M3
+  // starts it. The emulator reads the one spindle state the rules and the timer read
+  // (spindle_states); with a copy of its own that read only the blocks with an M word it lost
+  // the G55, started the main instead and let the sub's chuck open on the turning part.
+  machine m = load_machine("fanuc-0itd-twin");
+  m.spindles[1].cw = 3;
+  m.spindles[1].ccw = 4;
+  m.spindles[1].stop = 5;
+  const auto check = [&m](const std::string& one) {
+    const std::string head = "%\nO1000\nG0 G18 G21 G40 G54 G80 G99\n";
+    const std::string end = "M100\nM30\n%\n";
+    return format_sync_text(check_nc_resources({{"P_1.nc", head + one + end}, {"P_2.nc", head + end}}, m));
+  };
+  CHECK(
+      check("G97 S800 M3\nG55\nM3 S300\nM169\n") ==
+      "P_1.nc:7:1: error: channel 1: M169 opens the sub spindle's chuck while the spindle turns (started at "
+      "line 6) and the spindles are not synchronised: stop it first, or open it under M213\nM169\n^\n"
+      "check: 2 channels, 2 waits paired, 1 error\n");
+  // The sub stopped first (its M5 under G55): quiet; the main, still turning, is not its chuck.
+  CHECK(check("G97 S800 M3\nG55\nM3 S300\nM5\nM169\n") == clean_lathe);
+  // Under G54 the M3 starts the main: the sub's chuck opens on a spindle that stands.
+  CHECK(check("G97 S800 M3\nM169\n") == clean_lathe);
+}
+
 TEST_CASE("macro variables: uses in a block and the machine's reserved ones", "[machines][emulator]") {
   const std::vector<macro_use> u =
       macro_uses("IF [#500 EQ #0] THEN #3000=1 (#7=1) #[#1]=2 # 12 = 3 #4==5 #5 00=6 #[499+1] = 7");
