@@ -245,7 +245,9 @@ struct interference_check::impl {
     if (!c.env) return;
     if (c.file.empty()) c.file = b.file;  // one file per channel (its sections are joined)
     const std::vector<nc_word>& words = b.words();
-    if (const int s = c.spindles.current(); s >= 0 && !is_live(s)) c.work = s;
+    constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+    if (b.letters() & gms)  // (only a block with G, M or S can select another spindle)
+      if (const int s = c.spindles.current(); s >= 0 && !is_live(s)) c.work = s;
     const nc_word *xw = nullptr, *zw = nullptr, *uw = nullptr, *ww = nullptr, *iw = nullptr, *kw = nullptr,
                   *rw = nullptr, *qw = nullptr, *jw = nullptr;
     bool no_move = false, home = false, once = false;

@@ -668,6 +668,9 @@ nc_read_options feeding(spindle_states& spindles, shared_resources& rules, inter
   // their own.
   also.on_block = [&spindles, &rules, &meet, &len, &control, more, feed,
                    interfere = meet.active()](const nc_block& b) {
+    // The timer splits every block: split first, and the spindle state finds its letters exact
+    // (else it scans a block's text for them, which the split then reads again).
+    if (feed) (void)b.words();
     spindles.block(b);
     if (feed) feed->block(b, &spindles);
     if (more.on_block) more.on_block(b);

@@ -260,19 +260,10 @@ double channel_spindles::rpm(double diameter, bool inch) const {
 spindle_states::spindle_states(const machine& m) {
   channels_.reserve(m.channels.size());
   for (std::size_t i = 0; i < m.channels.size(); ++i) {
-    channels_.emplace_back(m, static_cast<int>(i) + 1);
-    gms_only_.push_back(channels_.back().needs_gms());
+    channel_spindles c(m, static_cast<int>(i) + 1);
+    const bool gms_only = c.needs_gms();
+    channels_.push_back({std::move(c), gms_only});
   }
-}
-
-void spindle_states::block(const nc_block& b) {
-  if (b.channel < 1 || static_cast<std::size_t>(b.channel) > channels_.size()) return;
-  const auto i = static_cast<std::size_t>(b.channel - 1);
-  constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-  if (gms_only_[i] && !b.may_have(gms))
-    channels_[i].nothing_commanded();
-  else
-    channels_[i].apply(b.words());
 }
 
 }  // namespace twinpost

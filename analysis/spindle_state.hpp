@@ -156,15 +156,28 @@ class spindle_states {
  public:
   explicit spindle_states(const machine& m);
   /// Applies block `b` to its channel's spindles (a channel the machine does not have: nothing).
-  void block(const nc_block& b);
+  /// Inline: every block of every reading comes here, and most have no G, M or S word.
+  void block(const nc_block& b) {
+    if (b.channel < 1 || static_cast<std::size_t>(b.channel) > channels_.size()) [[unlikely]]
+      return;
+    slot& s = channels_[static_cast<std::size_t>(b.channel - 1)];
+    constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
+    if (s.gms_only && !b.may_have(gms))
+      s.spindles.nothing_commanded();
+    else
+      s.spindles.apply(b.words());
+  }
   /// Channel `number`'s spindles, the block given last included (1-based; in range).
   const channel_spindles& channel(int number) const {
-    return channels_[static_cast<std::size_t>(number - 1)];
+    return channels_[static_cast<std::size_t>(number - 1)].spindles;
   }
 
  private:
-  std::vector<channel_spindles> channels_;
-  std::vector<bool> gms_only_;  // per channel: needs_gms()
+  struct slot {
+    channel_spindles spindles;
+    bool gms_only;  // needs_gms(): a block without G, M or S commands nothing
+  };
+  std::vector<slot> channels_;
 };
 
 }  // namespace twinpost
