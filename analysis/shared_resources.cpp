@@ -663,17 +663,18 @@ nc_read_options feeding(spindle_states& spindles, shared_resources& rules, inter
                         length_offset_rule& len, control_emulator& control, const nc_read_options& more,
                         timeline_feed* feed) {
   nc_read_options also;
-  // The cycle time and `more` before the rules: the timer splits every block, and the rules,
-  // which ask most blocks only for their letters, then find them exact without a scan of
-  // their own.
+  // The cycle time and `more` before the rules: the timer (and the comparison with the CL, on
+  // the post's second thread) split every block, and the rules, which ask most blocks only for
+  // their letters, then find them exact without a scan of their own.
   also.on_block = [&spindles, &rules, &meet, &len, &control, more, feed,
                    interfere = meet.active()](const nc_block& b) {
     // The timer splits every block: split first, and the spindle state finds its letters exact
-    // (else it scans a block's text for them, which the split then reads again).
+    // (else it scans a block's text for them, which the split then reads again). `more` (the
+    // comparison with the CL, which keeps its own spindle state) may split it too.
     if (feed) (void)b.words();
+    if (more.on_block) more.on_block(b);
     spindles.block(b);
     if (feed) feed->block(b, &spindles);
-    if (more.on_block) more.on_block(b);
     rules.block(b);
     if (interfere) meet.block(b);  // a machine without envelopes pays nothing per block for it
     len.block(b);

@@ -327,24 +327,29 @@ int threads(const post_options& o) {
   return o.threads > 0 ? o.threads : std::thread::hardware_concurrency() >= 2 ? 2 : 1;
 }
 
-// Whether the self-check's reading splits every block of channel `ch` anyway: for the cycle
-// time (`timed`: every block), the interference rule (a channel with an envelope) or the
-// emulator's rotary sweep (a chain with a head). Such a channel's comparison is made there,
-// from those words; another's stays with its writer: on two cores with three busy threads the
-// CPU is what counts, and handing the records over (a copy of each, its lines counted, the
-// pieces passed more often) cost more than the split it would share (docs/benchmark.md,
-// thirty-sixth session: the 3-axis mill's job 7 % more CPU on the check's thread).
-bool check_splits(const machine& m, const channel_def& ch, bool timed) {
+// Whether channel `ch`'s comparison with the CL is made on the self-check's thread, from its
+// reading. Where that reading splits every block of the channel anyway — for the cycle time
+// (`timed`: every block), the interference rule (a channel with an envelope) or the emulator's
+// rotary sweep (a chain with a head) — the comparison shares the split. A channel with a
+// kinematic chain that turns (a table's too) goes there as well: its comparison follows the
+// chain through every block (the rotary words, the forward transform at each record), most of
+// the writer's thread on a 5-axis job, while the check's thread has little else to do there
+// (docs/benchmark.md, thirty-seventh session: mill5-tcp's post thread 538 M instructions, the
+// check's 70 M). Another channel's comparison stays with its writer: handing the records over (a
+// copy of each, its lines counted, the pieces passed more often) cost more than the split it
+// would share (thirty-sixth session: the 3-axis mill's job 7 % more CPU on the check's thread).
+bool compared_on_check(const machine& m, const channel_def& ch, bool timed) {
+  const kinematic_chain* chain = m.chain(ch.number);
   return timed || (interference_checked(m) && m.interference.channel(ch.number) != nullptr) ||
-         sweeps_chain(m, ch.number);
+         sweeps_chain(m, ch.number) || (chain && !chain->rotaries.empty());
 }
 
 // The comparisons made on the self-check's thread, from its reading (by channel; null: made on
-// this thread, check_splits).
+// this thread, compared_on_check).
 std::vector<cl_comparison*> compared_during(const machine& m, writers_sink& ws, bool timed) {
   std::vector<cl_comparison*> out;
   for (std::size_t i = 0; i < ws.comparisons.size(); ++i)
-    out.push_back(check_splits(m, m.channels[i], timed) ? &ws.comparisons[i]->cmp : nullptr);
+    out.push_back(compared_on_check(m, m.channels[i], timed) ? &ws.comparisons[i]->cmp : nullptr);
   return out;
 }
 
