@@ -111,8 +111,26 @@ std::string section_tail(const frame_request& r, const channel_def& ch, sequence
   const machine& m = *r.machine_def;
   const template_args a = args_for(r, &ch);
   std::string s;
-  for (std::size_t i = 0; i < m.program.footer.size(); ++i) {
-    std::string b = format_template(m.program.footer[i], a);
+  // The footer's home is the channel's: where the footer lists the machine's home blocks
+  // (codes.home) in their order and the channel has its own (channel.home: the Integrex's upper
+  // head homes Y with X, `G0 G90 G53 X0. Y0.`; the 31i's path 3 `G28 U0. V0.`), the channel's are
+  // written there, so that every axis is home at the end code (review 61 A4: the upper head
+  // ended at Y25, its turret without Y could not take the word).
+  const std::vector<std::string>& machine_home = m.codes.home;
+  const std::vector<std::string>& own_home = m.home(ch.number);
+  const std::vector<std::string>& footer = m.program.footer;
+  std::size_t home_at = footer.size();
+  if (!machine_home.empty() && own_home != machine_home)
+    home_at = static_cast<std::size_t>(
+        std::search(footer.begin(), footer.end(), machine_home.begin(), machine_home.end()) - footer.begin());
+  for (std::size_t i = 0; i < footer.size(); ++i) {
+    if (i == home_at) {
+      for (std::size_t k = 0; k < own_home.size(); ++k)
+        add_edited(s, r, ch, seq, own_home[k], false, i + std::min(k, machine_home.size() - 1));
+      i += machine_home.size() - 1;
+      continue;
+    }
+    std::string b = format_template(footer[i], a);
     // The channel's own last M9 or M5, still in force: the same block again would only say twice
     // that the coolant is off.
     if (auto done = std::find(in_force.begin(), in_force.end(), b); done != in_force.end()) {

@@ -138,7 +138,7 @@ TEST_CASE("the Fanuc cross hole: C to the hole and clamped, G87 along X, R from 
   const std::string& f = p.files.at("E_3.nc");
   CHECK(f.substr(f.find("M6 T14")) ==
         "M6 T1400\nT1414\nM35\nG0 G28 H0.\nG97 S2000 M33\nG0 B0.\nG0 C30.\nX100. Y0. Z-20.\nM89\nG98\nX66.\n"
-        "G87 X30. Z-20. R0. Q5000 F120.\nG80\nG0 X66. Z-20.\nM200 P123\nM37\nM90\nM34\nM9\nG28 U0.\n"
+        "G87 X30. Z-20. R0. Q5000 F120.\nG80\nG0 X66. Z-20.\nM200 P123\nM37\nM90\nM34\nM9\nG28 U0. V0.\n"
         "G28 W0.\nM30\n%\n");
 }
 
@@ -247,7 +247,7 @@ TEST_CASE(
         "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T1100\nT1111\nM35\nG0 G28 H0.\n"
         "G97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X80. C25. Z5. F1500.\nZ-3. F400.\n"
         "X-80.\nZ5. F1500.\nG13.1\nG18\nG28 U0. V0.\nG28 W0.\nT1127\nG0 Y0.\nG0 C0.\nG17\nG12.1\n"
-        "G1 X80. C-25. Z5.\nZ-3. F400.\nX-80.\nM200 P123\nM37\nG13.1\nG18\nM34\nM9\nG28 U0.\nG28 "
+        "G1 X80. C-25. Z5.\nZ-3. F400.\nX-80.\nM200 P123\nM37\nG13.1\nG18\nM34\nM9\nG28 U0. V0.\nG28 "
         "W0.\nM30\n%\n");
 }
 

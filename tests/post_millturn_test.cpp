@@ -163,7 +163,7 @@ TEST_CASE("a live tool holds the main spindle as the C axis until a turning tool
         "M901\nG10.9 X1\nM202\nG92 S2000 R1\nG96 S200 M203\nG95\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 "
         "X60. Y0. "
         "Z2.\nM950\nM9\nM5\nM205\n"
-        "M305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+        "M305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("the B head turns only at home: a cross hole after face work goes home first", "[post][millturn]") {
@@ -171,15 +171,16 @@ TEST_CASE("the B head turns only at home: a cross hole after face work goes home
       "PARTNO E\nHEAD/1\nTLDATA/DRILL,5,118\nLOADTL/12\nSPINDL/RPM,2000,CLW,LIVE\nRAPID\n"
       "GOTO/20,0,5,0,0,1\nRAPID\nGOTO/40,0,-10,1,0,0\nFINI\n";
   const test::posted p = post_on(cl, load_machine("integrex-i200st"), "index");
-  CHECK(head1(p, "E.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
-        "Z0.\nT12 "
-        "M6\nM901\nM200\n"
-        "G10.9 X0\nG97 S2000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z5.\nG0 G90 G53 X0. "
-        "Y0.\n"
-        "G0 G90 G53 Z0.\nM108\nG0 G53 B90.\nM107\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\n"
-        "G0 G43 H#3020 X10. Y0. Z40.\nM950\nG69\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
-        "G0 G90 G53 Z0.\nM30\n");
+  CHECK(
+      head1(p, "E.EIA") ==
+      "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
+      "Z0.\nT12 "
+      "M6\nM901\nM200\n"
+      "G10.9 X0\nG97 S2000 M3\nM108\nG0 G53 B0.\nM107\nG0 C0.\nG0 G43 H#3020 X20. Y0. Z5.\nG0 G90 G53 X0. "
+      "Y0.\n"
+      "G0 G90 G53 Z0.\nM108\nG0 G53 B90.\nM107\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\n"
+      "G0 G43 H#3020 X10. Y0. Z40.\nM950\nG69\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\n"
+      "G0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("face holes on a stepped face: the drill climbs to the higher plane before C turns",
@@ -199,7 +200,7 @@ TEST_CASE("face holes on a stepped face: the drill climbs to the higher plane be
         "G98 G81 X20. Y0. Z-25. R-13. F150.\nG80\nG18\nG0 Z-13.\nZ2.\nM212\nG0 C90.\nM210\nX20. Y0. Z2.\n"
         "G17\nG98 G81 X20. Y0. Z-10. R2. F150.\nG80\nG18\nG0 Z2.\nM212\nG0 C180.\nM210\nX20. Y0. Z2.\n"
         "Z-13.\nG17\nG98 G81 X20. Y0. Z-25. R-13. F150.\nG80\nG18\nG0 Z-13.\nZ50.\nM5\nM950\nM212\n"
-        "G10.9 X1\nM202\nM9\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+        "G10.9 X1\nM202\nM9\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("a cross hole on a machine without a turned frame, and a feed across the axis, stop the post",
@@ -235,7 +236,7 @@ TEST_CASE("a tilted tool on the Integrex head goes to the chain: B and C unclamp
         "G10.9 X0\nG97 S4000 M3\nG94\nM108\nM212\nG0 B45. C0.\nG0 X40. Y0.\nG0 G43.4 H#3020 X40. Y0. Z10. "
         "B45. C0.\nG1 X29. Z-1. F300.\n"
         "X0. Y29. C90.\nG0 Y40. Z10.\nM950\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nG49\nG10.9 "
-        "X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\n"
         "G0 G90 G53 Z0.\nM30\n");
 }
 
@@ -341,7 +342,7 @@ TEST_CASE("a cut on the diameter: plunge, G7.1 at the tip's radius, C on past 36
         "M200\nG10.9 X0\nG97 S3000 M3\nG94\nM108\nG0 G53 B90.\nM107\nG0 C330.\nM210\n"
         "G68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 G43 H#3020 X10. Y0. Z25.\nG1 Z20. F200.\nM212\nG17\nG7.1 C20.\n"
         "G1 C360.\nX15. C390.\nZ19.\nG7.1 C0\nG18\nG17\nG7.1 C19.\nG1 C360.\nZ25.\nG7.1 C0\nG18\nG0 Z30.\n"
-        "M950\nG69\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+        "M950\nG69\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("milling on the diameter refuses what cylindrical interpolation cannot do, by name",
@@ -428,7 +429,7 @@ TEST_CASE(
         "G98 G84.2 X20. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M3\nG94\nZ35.\nG97 S500 M4\nG69\n"
         "M212\nG0 C180.\nM210\nG68 X0. Y0. Z0. I0. J1. K0. R90.\nG0 X30. Y0. Z28.\nG95\nG17\n"
         "G98 G84.3 X30. Y0. Z15. R28. F1.\nG80\nG18\nG0 Z28.\nG97 S500 M4\nG94\nM950\nG69\nM212\nG10.9 X1\n"
-        "M202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+        "M202\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   // A machine whose taps are written as moves (G32 with the spindle reversed) cannot tap with a
   // live tool: G32 follows the workpiece spindle.
   machine expanded = load_machine("integrex-i200st");
@@ -469,7 +470,7 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
         "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
         "Z0.\nT04 M6\nG55\n"
         "M902\nG97 S700 M303\nG95\nM108\nG0 G53 B180.\nM107\nG0 G43 P1 H#3020 X0. Y0. Z-5.\nG1 Z10. F0.1\n"
-        "M950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+        "M950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   // A machine file that gives no angle for the sub: the post stops at the move.
   machine m = load_machine("integrex-i200st");
   m.channels[0].head_index.axial_sub.reset();
@@ -492,7 +493,7 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
   CHECK(nc.substr(nc.find("M6 T04")) ==
         "M6 T0400\nT0404\nG55\nG97 S700 M103\nG0 B90.\nG0 X0. Y0. Z-5.\nG1 Z10. F0.1\nG28 "
         "U0. V0.\nG28 W0.\n"
-        "M6 T0500\nT0505\nG97 S900 M103\nG0 B0.\nG0 X40. Y0. Z-2.\nM200 P123\nM105\nM9\nG28 U0.\nG28 "
+        "M6 T0500\nT0505\nG97 S900 M103\nG0 B0.\nG0 X40. Y0. Z-2.\nM200 P123\nM105\nM9\nG28 U0. V0.\nG28 "
         "W0.\nM30\n%\n");
 }
 
@@ -529,7 +530,7 @@ TEST_CASE("a drill's rapid out of a hole and round to the next rises before C tu
   CHECK(h.substr(h.find("G1 Z-10. F150.")) ==
         "G1 Z-10. F150.\nZ2.\nX-10. Y17.321\nZ-10.\nZ2.\nG0 Z10.\nM212\nG0 C120.\nX20. Y0. "
         "Z10.\nM5\nM950\nG10.9 X1\n"
-        "M202\nM9\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+        "M202\nM9\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("a cycle's own feed ends at CYCLE/OFF: the FEDRAT in force before it is back", "[post][millturn]") {
@@ -546,7 +547,7 @@ TEST_CASE("a cycle's own feed ends at CYCLE/OFF: the FEDRAT in force before it i
   CHECK(
       h.substr(h.find("G0 X40. C25. Z5.")) ==
       "G0 X40. C25. Z5.\nG1 Z-3. F400.\nX-40.\nG0 Z5.\nM5\nM950\nG13.1\nG18\nG10.9 X1\nM202\nM9\nM205\nM305\n"
-      "G0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+      "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
 }
 
 TEST_CASE("a home straight from a cut leaves along the tool first", "[post][millturn]") {
@@ -561,13 +562,14 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
   const std::string h = head1(post_on(cl + "GOHOME\nFINI\n", integrex, "home-cut"), "H.EIA");
   CHECK(h.substr(h.find("G1 Z-10. F120.")) ==
         "G1 Z-10. F120.\nG0 G90 G53 Z0.\nG0 G90 G53 X0. Y0.\nM950\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\n"
-        "G0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");
+        "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   const std::string r =
       head1(post_on(cl + "RAPID\nGOTO/0,25,10\nGOHOME\nFINI\n", integrex, "home-rapid"), "H.EIA");
   CHECK(r.substr(r.find("G1 Z-10. F120.")) ==
         "G1 Z-10. F120.\nG0 Z10.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM212\nG10.9 X1\nM202\nM9\nM5\n"
-        "M205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n");  // Review 64 H1: a centre drill the part turns
-                                                               // against (the turning spindle, M203) leaves
+        "M205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");  // Review 64 H1: a centre drill the part
+                                                                   // turns against (the turning spindle,
+                                                                   // M203) leaves
   // along Z too; on the second spindle (Z reversed) Z's home lies beyond its face, deeper into
   // its part: the machine's order stands, and the post says it goes home from a cut.
   const std::string centre =

@@ -165,7 +165,7 @@ TEST_CASE("the part transfer on the Integrex: transfer mode, sync, chucks, then 
       "M950\nM306\nM511\nM540\nIF [#500 EQ #0] THEN #3000=1 (TRANSFER GRIP POSITION #500 NOT SET)\nIF "
       "[#501 EQ #0] THEN #3000=1 (TRANSFER APPROACH POSITION #501 NOT SET)\nG0 G53 W#501\nG94 G1 G53 W#500 "
       "F500.\nM541\nM307\nG4 P1000\nG95\nM951\nM952\nM206\nG94 G4 P1000\nG0 G53 W0.\nM513\nM305\nG95\n"
-      "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
+      "M953\nG55\nM954\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\n"
       "G0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM951\n"
       "M952\nM953\nG55\nT0303\nM902\nG97 S800 M303\nG95\n"
       "G1 X50. Z-2. F0.15\nZ10.\nM305\nM954\nM9\nM5\nM205\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\n"
@@ -184,7 +184,7 @@ TEST_CASE("the part transfer on the 31i: the idle mill head waits and goes home 
         "M30\n%\n");
   CHECK(file_of(p, "XFER_3.nc") ==
         "%\nO1000 (XFER)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM200 P123\nM201 P123\nM202 P123\n"
-        "M204 P123\nG55\nM206 P123\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+        "M204 P123\nG55\nM206 P123\nM9\nG28 U0. V0.\nG28 W0.\nM30\n%\n");
 }
 
 TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the turning one otherwise",
@@ -205,7 +205,7 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
       "G18\nG0 G90 G53 Z0.\nM5\nG0 G90 G53 X0. Y0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 "
       "G53 "
       "B0.\nM107\n"
-      "G1 G43 P1 H#3020 X0. Y0. Z5. F0.2\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+      "G1 G43 P1 H#3020 X0. Y0. Z5. F0.2\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\n"
       "G0 G90 G53 Z0.\nM30\n");
 }
 
@@ -219,7 +219,7 @@ TEST_CASE("the 31i mill head turns its live spindle for a milling tool, the main
   CHECK(file_of(p, "E_3.nc") ==
         "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T0700\nT0707\nM35\nG0 G28 H0.\n"
         "G97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X40. C0. Z2. F200.\nM200 P123\nM37\n"
-        "G13.1\nG18\nM34\nM9\nG28 U0.\nG28 W0.\nM30\n%\n");
+        "G13.1\nG18\nM34\nM9\nG28 U0. V0.\nG28 W0.\nM30\n%\n");
 }
 
 TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles is an error",
@@ -241,7 +241,7 @@ TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles
       file_of(css, "E.EIA") ==
       "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 "
       "G90 G53 Z0.\n"
-      "T01 M6\nM901\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 "
+      "T01 M6\nM901\nG92 S2000 R1\nG96 S150 M203\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
       "Z0.\nM30\n"
       "G109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 "
       "Z0.\nM950\nM9\nM5\nM205\nM305\nG0 G90 "

@@ -65,7 +65,7 @@ TEST_CASE("the mill head stops its spindle for the tool change and starts it bef
         "%\nO1000(TC)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\n"
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
         "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT02 M6\nM901\nM108\nG0 G53 "
-        "B0.\nM107\nG1 G43 P1 H#3020 X30. Y0. Z2. F0.2\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0.\n"
+        "B0.\nM107\nG1 G43 P1 H#3020 X30. Y0. Z2. F0.2\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\n"
         "G0 G90 G53 Z0.\nM30\nG109 L2\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 "
         "X0.\nG0 G90 G53 Z0.\nM950\nM9\nM5\n"
         "M205\nM305\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\n%\n");
@@ -116,7 +116,7 @@ TEST_CASE("each coolant kind is turned on and off with its own codes", "[post][t
         "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nM108\nG0 G53 B0.\nM107\nM51\n"
         "G0 G43 P1 H#3020 X40. Y0. Z2.\nM163\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT02 M6\nM901\nM108\nG0 "
         "G53 B0.\nM107\nM51\nG0 G43 P1 H#3020 X40. Y0. Z3.\nM163\nM950\nM9\nM5\nM205\nM305\n"
-        "G0 G90 G53 X0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\nG0 G90 G54 G97 G18\n"
+        "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\nG109 L2\nG21\nG0 G90 G54 G97 G18\n"
         "G40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0.\nG0 G90 G53 Z0.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 "
         "X0.\nG0 G90 G53 Z0.\nM30\n%\n");
 }
