@@ -92,6 +92,22 @@ static bool moves_along(const std::string& b, std::string_view along) {
   return false;
 }
 
+// Home block `b` without its axis words across the tool (an axis address not in `along`): the
+// words written space-separated, as moves_along reads them.
+static std::string along_words(const std::string& b, std::string_view along) {
+  std::string out;
+  for (std::size_t i = 0; i < b.size();) {
+    std::size_t end = b.find(' ', i);
+    if (end == std::string::npos) end = b.size();
+    const char a = b[i];
+    const bool across = std::string_view("XYZUVWABC").find(a) != std::string_view::npos &&
+                        along.find(a) == std::string_view::npos;
+    if (!across && end > i) out.append(out.empty() ? "" : " ").append(b, i, end - i);
+    i = end + 1;
+  }
+  return out;
+}
+
 // The home blocks leave_cut() writes: those that move along the tool, each with the blocks
 // that move nothing right after it (`G91 G28 Z0.` and its `G90`), as bits by index.
 static std::uint64_t along_blocks(const std::vector<std::string>& home, std::string_view along) {
@@ -130,8 +146,22 @@ void channel_writer::leave_cut() {
   leave_radial_frame();
   const std::vector<std::string>& home = m_.home(ch_.number);
   left_blocks_ = along_blocks(home, along);
-  for (std::size_t i = 0; i < home.size() && i < 64; ++i)
-    if (left_blocks_ >> i & 1u) out_.block(home[i]);
+  bool again = false;  // the block before was cut down: it and its followers go home again
+  for (std::size_t i = 0; i < home.size() && i < 64; ++i) {
+    if (!(left_blocks_ >> i & 1u)) continue;
+    // A block that moves an axis across the tool as well (the Integrex upper head's
+    // `G0 G90 G53 X0. Y0.`, the 31i path 3's `G28 U0. V0.` for a radial drill) would drag the
+    // tool sideways out of its hole: its words along the tool go first, and the whole block
+    // (with the blocks that move nothing after it, `G90` after `G91 G28 ..`) after, with the
+    // other home blocks.
+    const std::string own = along_words(home[i], along);
+    if (own != home[i])
+      again = true;
+    else if (moves_along(home[i], "XYZUVWABC"))
+      again = false;
+    out_.block(own);
+    if (again) left_blocks_ &= ~(std::uint64_t{1} << i);
+  }
   in_cut_ = false;
 }
 

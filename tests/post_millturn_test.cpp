@@ -570,6 +570,18 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
         "M205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");  // Review 64 H1: a centre drill the part
                                                                    // turns against (the turning spindle,
                                                                    // M203) leaves
+  // A cross drill (B90, the turned frame) at the bottom of its hole: X goes home alone first. The
+  // upper head's home block moves Y with X (machine Y0 need not be the centre line): the drill
+  // would be dragged sideways out of its hole (the thirty-fourth note's open item). Then the
+  // whole block, and Z.
+  const std::string cross =
+      "PARTNO H\nHEAD/1\nTLDATA/DRILL,6,118\nLOADTL/12\nSPINDL/RPM,2000,CLW,LIVE\nFEDRAT/MMPM,120\nRAPID\n"
+      "GOTO/40,0,-20,1,0,0\nRAPID\nGOTO/32,0,-20\nGOTO/20,0,-20\nGOHOME\nFINI\n";
+  const std::string x = head1(post_on(cross, integrex, "home-cross"), "H.EIA");
+  CHECK(x.substr(x.find("G1 Z20. F120.")) ==
+        "G1 Z20. F120.\nG69\nG0 G90 G53 X0.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM212\nG10.9 "
+        "X1\nM202\nM9\n"
+        "M5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   // along Z too; on the second spindle (Z reversed) Z's home lies beyond its face, deeper into
   // its part: the machine's order stands, and the post says it goes home from a cut.
   const std::string centre =
