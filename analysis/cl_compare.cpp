@@ -237,6 +237,14 @@ struct cl_comparison::impl {
     bool text_later = false;  // `text` is move_text's once the next block comes
   };
   std::vector<chain_block> mids;  // a chain's feed blocks since the last motion record (n_mids of them)
+  // A channel without a chain (a lathe's, a 3-axis mill's): its moving blocks since the last
+  // motion record, where each ends (the part frame, mm; none where an axis is not known), held
+  // at a feed record to the CL's straight move (plain_blocks; the thirty-sixth note's open item:
+  // an [events] block `X20.` between a rapid and a feed record moved the feed's start).
+  std::vector<chain_block> plains;
+  std::size_t n_plains = 0;
+  bool plain_pending = false;  // plains[n_plains - 1]'s text is move_text until the next line
+  bool said_plain = false;
   std::size_t n_mids = 0;
   bool mid_staged = false;  // mids[n_mids] is a block whose tip is not worked out yet
   bool said_mid = false;
@@ -524,6 +532,10 @@ struct cl_comparison::impl {
     if (words.empty()) return;
     // (Its swings are the emulator's to report, in check and in post's self-check.)
     if (mid_staged) settle_chain_block();  // before this block moves the follower on
+    if (plain_pending) {
+      plain_pending = false;
+      plains[n_plains - 1].text = move_text;
+    }
     if (chain) chain->block(words);
     // Any word but an axis's (a G, M, S, T, F ...) may change what a cut is held to.
     constexpr std::uint32_t axis_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
@@ -971,6 +983,89 @@ struct cl_comparison::impl {
                               : motion == 0   ? mid_kind::rapid
                               : motion >= 2   ? mid_kind::arc
                                               : mid_kind::feed);
+    if (!chain && any && !not_a_move && !setting && !cycle && !said_plain)
+      stage_plain_block(text, home || machine ? mid_kind::away
+                              : motion == 0   ? mid_kind::rapid
+                              : motion >= 2   ? mid_kind::arc
+                                              : mid_kind::feed);
+  }
+
+  // A block of a channel without a chain that moved since the last motion record: where it
+  // ends, when every axis of the part frame is known and plain (no C turned, polar or
+  // cylindrical interpolation, frame or shift; the record's own comparison passes those
+  // over). A move of more blocks is held at its first 64.
+  void stage_plain_block(std::string_view text, mid_kind kind) {
+    if (n_plains == 64) return;
+    if (n_plains == plains.size()) plains.emplace_back();
+    chain_block& b = plains[n_plains++];
+    b.line = lines;
+    // Most are the record's own block, whose text no finding quotes: a block that moved is
+    // move_text until the next line, which copies it (read_line) only when it comes before the
+    // record.
+    plain_pending = move_line == lines;
+    if (!plain_pending) b.text.assign(text);
+    b.kind = kind;
+    b.tip.reset();
+    const auto known = [](const axis_state& a) { return a.k == axis_state::kind::known; };
+    if (kind == mid_kind::away || polar || cylinder || frame || polar_coords || rotary || shifted ||
+        foreign_offset || head_due || !c_known || c_deg != 0 || !known(x) || !known(z) ||
+        (has_y && !known(y)))
+      return;
+    const double zs = z_sign();
+    b.tip = vec3{part(x, x_div), has_y ? part(y, zs) : 0.0, part(z, zs)};
+  }
+
+  // At a feed record of a channel without a chain: its blocks since the last motion record but
+  // the last (whose end is the record's point, held by compare) against the CL's straight move
+  // from the record before to `to` (mm), within `tol`; once a channel. A feed block must end on
+  // that move; a rapid anywhere but at its start (where the tool stands: a move back there is
+  // the CL's own), an arc or a return to the reference point or machine coordinates is no part
+  // of a straight feed move.
+  void hold_plain_blocks(const event& e, const vec3& to, double tol) {
+    if (n_plains < 2 || !cl_prev_known || said_plain) return;
+    const vec3 from = cl_prev;
+    const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
+    const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
+    const auto off_line = [&](const vec3& p) {
+      const double t =
+          dd > 0 ? std::clamp(((p.x - from.x) * d.x + (p.y - from.y) * d.y + (p.z - from.z) * d.z) / dd, 0.0,
+                              1.0)
+                 : 0.0;
+      return kin::distance(p, vec3{from.x + t * d.x, from.y + t * d.y, from.z + t * d.z});
+    };
+    const auto move = [&] {
+      return fmt::format("the CL's straight feed move from ({:.3f}, {:.3f}, {:.3f}) to this record's point",
+                         from.x, from.y, from.z);
+    };
+    for (std::size_t i = 0; i + 1 < n_plains; ++i) {
+      const chain_block& b = plains[i];
+      if (b.kind == mid_kind::rapid && b.tip && kin::distance(*b.tip, from) <= tol) continue;
+      if (b.kind != mid_kind::feed) {
+        // (A rapid among this record's own blocks is said as such: compare_rest.)
+        if (b.kind != mid_kind::arc && rapid_in_record) continue;
+        said_plain = true;
+        error(e, fmt::format(
+                     "the program's block `{}` (line {} of its program) is {} inside {}{}", b.text, b.line,
+                     b.kind == mid_kind::rapid ? "a rapid"
+                     : b.kind == mid_kind::arc ? "an arc"
+                                               : "a return to the reference point or to machine coordinates",
+                     move(),
+                     b.kind == mid_kind::rapid && b.tip
+                         ? fmt::format(", to ({:.3f}, {:.3f}, {:.3f}): the feed then starts there", b.tip->x,
+                                       b.tip->y, b.tip->z)
+                         : std::string()));
+        return;
+      }
+      if (!b.tip) continue;
+      if (const double off = off_line(*b.tip); off > tol) {
+        said_plain = true;
+        error(e, fmt::format(
+                     "the program's block `{}` (line {} of its program) takes the tool tip {:.3f} mm off "
+                     "{}, to ({:.3f}, {:.3f}, {:.3f}) (the part frame, mm)",
+                     b.text, b.line, off, move(), b.tip->x, b.tip->y, b.tip->z));
+        return;
+      }
+    }
   }
 
   // A chain's block between two records, staged: where its tip goes is worked out when the next
@@ -1289,6 +1384,8 @@ struct cl_comparison::impl {
              (a.k == axis_state::kind::known && std::abs(part(a, div) - want) <= tol);
     };
     const bool gauge = needs_length && (!length_on || h_word == 0) && z.k == axis_state::kind::known;
+    if (!rapid && !gauge && std::holds_alternative<motion_event>(e.data)) [[unlikely]]
+      if (n_plains >= 2) hold_plain_blocks(e, {pos.x * cl_mm, pos.y * cl_mm, pos.z * cl_mm}, tol);
     if (fine(x, x_div, pos.x * cl_mm) && (!with_y || fine(y, zs, pos.y * cl_mm)) && !gauge &&
         fine(z, zs, pos.z * cl_mm)) {
       compare_axis(e, cl_axis, followed_polar);
@@ -1865,7 +1962,7 @@ struct cl_comparison::impl {
     // The C turns of blocks between two motion records (INSERT text, an [events] block, a
     // tool's or a coolant's blocks) are held to the next one's move (attack 60 F3).
     if (std::holds_alternative<motion_event>(e.data) || std::holds_alternative<arc_event>(e.data))
-      n_turns = 0, n_mids = 0, mid_staged = false;
+      n_turns = 0, n_mids = 0, mid_staged = false, n_plains = 0, plain_pending = false;
     hole.valid = false;
     fed_low.valid = fed_high.valid = false;
   }

@@ -1288,3 +1288,49 @@ TEST_CASE("cl comparison: a chain's tool axis as I J K, and tool-tip control as 
   m128.kinematics[0].tool_tip_off = "M129";
   CHECK(compare(m128, "G0 X10. Y20. Z-5. A15. C90. M128", {s, 0, k}) == std::pair{std::string(), 1L});
 }
+
+TEST_CASE("cl comparison: a lathe's blocks between two records, on the CL's straight feed move",
+          "[analysis][cl_compare]") {
+  // The thirty-sixth note's open item: an [events] block `X20.` between a rapid record and a feed
+  // record moved where the feed starts; only the record's end was held. A rapid to (40, 2), then
+  // a feed to (40, -30) (the part frame, mm: X a diameter); `mid` are an earlier record's blocks
+  // (an INSERT's, a FEDRAT after them), then the feed's own block.
+  auto run = [](std::vector<const char*> mid, bool own_off = false) {
+    compared c("fanuc-0itd-twin", 1);
+    c.feed(0.2, feed_mode::per_rev);
+    c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2."});
+    c.go(40, 2, true);
+    for (const char* b : mid) c.cmp.line(b);
+    c.feed(0.2, feed_mode::per_rev);
+    c.lines({own_off ? "G1 X60. Z-30. F0.2" : "G1 X80. Z-30. F0.2"});
+    c.go(40, -30);
+    return c.text();
+  };
+  // Blocks on the line (a user block that feeds part of the way), or a rapid back to where the
+  // tool stands: nothing to say.
+  CHECK(run({"G1 Z-10. F0.2"}).empty());
+  CHECK(run({"G0 X80. Z2."}).empty());
+  // A rapid elsewhere: the feed would start there (a cone cut from X20 to X80 Z-30).
+  CHECK(run({"G0 X20."}) ==
+        "job.cls:13:1: error: channel 1: the program's block `G0 X20.` (line 7 of its program) is a rapid "
+        "inside the CL's straight feed move from (40.000, 0.000, 2.000) to this record's point, to (10.000, "
+        "0.000, 2.000): the feed then starts there\n");
+  // A feed block off the line, an arc, a return home: no part of the straight feed move.
+  CHECK(run({"G1 X60. Z-10."}) ==
+        "job.cls:13:1: error: channel 1: the program's block `G1 X60. Z-10.` (line 7 of its program) takes "
+        "the tool tip 10.000 mm off the CL's straight feed move from (40.000, 0.000, 2.000) to this record's "
+        "point, to (30.000, 0.000, -10.000) (the part frame, mm)\n");
+  CHECK(run({"G2 X80. Z-10. R10."}) ==
+        "job.cls:13:1: error: channel 1: the program's block `G2 X80. Z-10. R10.` (line 7 of its program) is "
+        "an arc inside the CL's straight feed move from (40.000, 0.000, 2.000) to this record's point\n");
+  CHECK(
+      run({"G28 U0."}) ==
+      "job.cls:13:1: error: channel 1: the program's block `G28 U0.` (line 7 of its program) is a return to "
+      "the reference point or to machine coordinates inside the CL's straight feed move from (40.000, "
+      "0.000, 2.000) to this record's point\n");
+  // The record's own block is the record's comparison's (its end, its rapid), not held twice.
+  CHECK(run({"G1 Z-10. F0.2"}, true) ==
+        "job.cls:13:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part frame, mm): x 30.000 where the CL has 40.000 (10.000 mm off), after the block `G1 X60. Z-30. "
+        "F0.2`\n");
+}

@@ -440,13 +440,31 @@ TEST_CASE("a user block's words are read as a control that skips blanks reads th
         "job.cls:4:1: error: channel 1: U300. in \"U300.\" is an increment of X where the post does not know "
         "where X is (after a home return, G30 or G53); write an absolute X\nCATCHER\n^\n";
     CHECK(q.diagnostics == unknown + unknown);  // each block of the event is read
+    // The post follows it: the next rapid record writes X44. again.
     const test::posted r = post_with(
         "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"X20.\"]\n",
         "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/22,0,2\nCATCHER\n"
-        "GOTO/22,0,-30\nFINI\n",
+        "RAPID\nGOTO/22,0,2\nGOTO/22,0,-30\nFINI\n",
         "gate-x");
     CHECK(r.diagnostics == "");
-    CHECK(program_1(r).find("\nG0 X44. Z2.\nX20.\nG1 X44. Z-30. F0.2\n") != std::string::npos);
+    CHECK(
+        program_1(r) ==
+        "%\nO1000 (EV)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S800 M3\nG0 X44. Z2.\nX20.\n"
+        "G0 X44. Z2.\nG1 Z-30. F0.2\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+    // Straight into the CL's feed move, the feed would start at X20 and cut a cone to X44 Z-30:
+    // the comparison holds the blocks between two records to the CL's straight move (a lathe's
+    // too since the thirty-seventh session), and nothing is written.
+    const test::posted cone = post_with(
+        "[[events.record]]\nmajor = \"CATCHER\"\nblocks = [\"X20.\"]\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/22,0,2\nCATCHER\n"
+        "GOTO/22,0,-30\nFINI\n",
+        "gate-cone");
+    CHECK(
+        cone.diagnostics ==
+        "job.cls:9:1: error: channel 1: the program's block `X20.` (line 9 of its program) is a rapid inside "
+        "the CL's straight feed move from (22.000, 0.000, 2.000) to this record's point, to (10.000, 0.000, "
+        "2.000): the feed then starts there\nGOTO/22,0,-30\n^\n");
+    CHECK(cone.files.empty());
   }
   SECTION("the twelfth round: no increment of X after G30 or G53 has left it where the post cannot know") {
     const test::posted g30 = post_with(

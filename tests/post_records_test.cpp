@@ -159,7 +159,7 @@ TEST_CASE("an unknown word stops a post, and a permissive post warns and goes on
 
 TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "[post][records]") {
   const std::string body =
-      "GOTO/20,0,0\nINSERT/Stock Size X144. Y25. Z30.\nINSERT/M98 P9101\n" + cut + "FINI\n";
+      "GOTO/20,0,0\nINSERT/Stock Size 144 by 25 by 30\nINSERT/M98 P9101\n" + cut + "FINI\n";
   posted apt = post_text(head + body, "insert-apt");
   // The inserted M98 goes out; the self-check says, at the INSERT record, that it cannot
   // look inside the subprogram, with a note at the block in the program.
@@ -180,7 +180,7 @@ TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "
   // X, or given another F).
   CHECK(apt.files.at("W_1.nc") ==
         "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\n"
-        "G1 X40. Z0. F0.2\nStock Size X144. Y25. Z30.\nM98 P9101\nG1 X40. Z0. F0.2\nZ-5.\nM100\nM9\n"
+        "G1 X40. Z0. F0.2\nStock Size 144 by 25 by 30\nM98 P9101\nG1 X40. Z0. F0.2\nZ-5.\nM100\nM9\n"
         "G28 U0.\nG28 W0.\nM5\nM30\n%\n");
   // UNIT/MM marks a SolidWorks CAM file (parser/dialect.cpp).
   posted sw =
@@ -190,7 +190,7 @@ TEST_CASE("INSERT is a raw block in APT, a comment in the SolidWorks dialect", "
   // SolidWorks CAM: comments, never blocks.
   CHECK(sw.files.at("W_1.nc") ==
         "%\nO1000 (W)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0.\nG28 W0.\nT0101\nG97 S1000 M3\n"
-        "G1 X40. Z0. F0.2\n(STOCK SIZE X144. Y25. Z30.)\n(M98 P9101)\nZ-5.\nM100\n"
+        "G1 X40. Z0. F0.2\n(STOCK SIZE 144 BY 25 BY 30)\n(M98 P9101)\nZ-5.\nM100\n"
         "M9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
 }
 
@@ -221,11 +221,22 @@ TEST_CASE("INSERT text that returns home along a path the post cannot follow sto
   }
   for (const char* text : {"G28 U0.", "G65 P9810 Z-5."}) {
     CAPTURE(text);
-    posted p = post_text(head + "GOTO/20,0,2\nINSERT/" + text + "\n" + cut + "FINI\n", "insert-home-ok");
+    posted p = post_text(head + "RAPID\nGOTO/20,0,2\nINSERT/" + text + "\nRAPID\n" + cut + "FINI\n",
+                         "insert-home-ok");
     // (G65: the checker's warning that it does not read the macro, no error.)
     CHECK(p.ok);
     CHECK(p.files.count("W_1.nc") == 1);
   }
+  // Between two feed records G28 U0. sends X home, and the next feed would come back from there
+  // (the blocks between two records held to the CL's straight move since the thirty-seventh
+  // session).
+  posted fed = post_text(head + "GOTO/20,0,2\nINSERT/G28 U0.\n" + cut + "FINI\n", "insert-home-fed");
+  CHECK(fed.diagnostics ==
+        "job.cls:8:1: error: channel 1: the program's block `G28 U0.` (line 9 of its program) is a return to "
+        "the "
+        "reference point or to machine coordinates inside the CL's straight feed move from (20.000, 0.000, "
+        "2.000) to this record's point\nGOTO/20,0,0\n^\n");
+  CHECK(fed.files.empty());
 }
 
 TEST_CASE("INSERT text is one line: a control character stops the post", "[post][records]") {
