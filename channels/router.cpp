@@ -10,6 +10,11 @@
 
 namespace twinpost {
 
+namespace {
+// The reason of the last rendezvous (next_code's messages), which marks it (wait_mark::ends_job).
+const std::string end_of_programs = "the end of the programs";
+}  // namespace
+
 channel_router::channel_router(const machine& m, sync_policy policy, channel_sink& sink,
                                diagnostic_sink& diags, std::string file, std::vector<int> job_channels)
     : m_(m), policy_(policy), sink_(sink), diags_(diags), file_(std::move(file)), codes_(m.waits),
@@ -321,6 +326,7 @@ void channel_router::rendezvous(const std::vector<int>& channels, int line, cons
   w.partner_text = partner_list(channels, m_.waits.partners);
   w.cl_line = line;
   w.both = both;
+  w.ends_job = what == end_of_programs;
   for (int c : channels) {
     send_wait(c, w);
     busy_[static_cast<std::size_t>(c)] = false;
@@ -635,7 +641,7 @@ void channel_router::finish(int last_line) {
   std::vector<int> all;
   for (const channel_def& c : m_.channels) all.push_back(c.number);
   // Channels that took no part in the last mark (an idle third path) must wait too.
-  if (all.size() > 1) rendezvous(all, last_line, "the end of the programs", last_partners_ != all);
+  if (all.size() > 1) rendezvous(all, last_line, end_of_programs, last_partners_ != all);
 }
 
 }  // namespace twinpost

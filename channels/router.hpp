@@ -41,6 +41,8 @@ struct wait_mark {
   int cl_line = 0;            ///< the CL record that caused it
   /// The wait opens or closes a HEAD/BOTH (balance cutting) section.
   enum class section { none, opens_both, closes_both } both = section::none;
+  /// The last rendezvous, before the programs' footers: the CL's work is over.
+  bool ends_job = false;
 };
 
 /// Receives the routed stream.

@@ -123,16 +123,20 @@ std::string section_tail(const frame_request& r, const channel_def& ch, sequence
   if (!machine_home.empty() && own_home != machine_home)
     home_at = static_cast<std::size_t>(
         std::search(footer.begin(), footer.end(), machine_home.begin(), machine_home.end()) - footer.begin());
+  // (text, footer index) of each block: the footer's, the channel's home in place of codes.home.
+  std::vector<std::pair<std::string, std::size_t>> blocks;
   for (std::size_t i = 0; i < footer.size(); ++i) {
     if (i == home_at) {
       for (std::size_t k = 0; k < own_home.size(); ++k)
-        add_edited(s, r, ch, seq, own_home[k], false, i + std::min(k, machine_home.size() - 1));
+        blocks.emplace_back(own_home[k], i + std::min(k, machine_home.size() - 1));
       i += machine_home.size() - 1;
       continue;
     }
-    std::string b = format_template(footer[i], a);
-    // The channel's own last M9 or M5, still in force: the same block again would only say twice
-    // that the coolant is off.
+    blocks.emplace_back(format_template(footer[i], a), i);
+  }
+  for (const auto& [b, i] : blocks) {
+    // The channel's own last M9 or M5, still in force, or a home block the tool already went
+    // out by: the same block again would only say twice that the coolant is off.
     if (auto done = std::find(in_force.begin(), in_force.end(), b); done != in_force.end()) {
       in_force.erase(done);
       continue;

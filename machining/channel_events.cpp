@@ -305,7 +305,10 @@ void channel_writer::note_user_block(std::string_view b, bool waits) {
   }
   // An axis word may have moved it from any home: a transfer or a tilted plane goes home again
   // first (a G code alone, G94, moves nothing: review 67 L4).
-  if (moves) homed_ = false;
+  if (moves) {
+    homed_ = false;
+    end_home_.clear();  // the footer homes it again
+  }
 }
 
 void channel_writer::user_blocks(event_point p, bool after, template_args a) {

@@ -123,7 +123,7 @@ static std::uint64_t along_blocks(const std::vector<std::string>& home, std::str
   return bits;
 }
 
-void channel_writer::leave_cut() {
+void channel_writer::leave_cut(bool at_end) {
   // From a cut (a GOHOME or a tool call with no retract in the CL; review
   // 61 A2: a drill at the bottom of its hole went home X and Y first) the tool leaves along its
   // axis first: the home blocks that move that axis, before its spindle and coolant stop
@@ -134,7 +134,7 @@ void channel_writer::leave_cut() {
   if (along.empty()) {
     // A tool whose way out the post cannot know (a turning tool in a bore, a groove, under a
     // shoulder: review 64 H3; a tilted 5-axis tool: attack 65) is said.
-    if (in_cut_ && tool_ >= 0) [[unlikely]]
+    if (in_cut_ && tool_ >= 0 && !at_end) [[unlikely]]
       warning(
           "the tool goes home straight from a feed move, with no retract in the CL: the home blocks move "
           "it as the machine file lists them, from where the feed left it; in a bore, a groove or under a "
@@ -160,7 +160,10 @@ void channel_writer::leave_cut() {
     else if (moves_along(home[i], "XYZUVWABC"))
       again = false;
     out_.block(own);
-    if (again) left_blocks_ &= ~(std::uint64_t{1} << i);
+    if (again)
+      left_blocks_ &= ~(std::uint64_t{1} << i);
+    else if (at_end)
+      end_home_.push_back(own);  // the footer need not write it again
   }
   in_cut_ = false;
 }

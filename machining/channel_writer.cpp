@@ -285,6 +285,11 @@ void channel_writer::on_wait(const wait_mark& w) {
   // cycle wherever it stood). After the program's start events, as any block of the body.
   if (ev_ && !program_started_) [[unlikely]]
     user_program_start();
+  // The last wait, before the footers: a tool the CL leaves in the cut goes out along its axis
+  // first, before the others go on (their footers stop the spindles and the coolant) and before
+  // this footer releases the C axis, stops the spindle or homes across the tool (review 37 H1:
+  // a centre drill 15 mm deep went home X and Y first, the spindle stopped in the hole).
+  if (w.ends_job) leave_cut(true);
   if (tool_ < 0 && !homed_ && !balance_copy_) {
     go_home();
     forget_axes();
@@ -478,7 +483,7 @@ void channel_writer::process_event(const event& e, bool both) {
             out_.raw(d.text);
             start_home_ = false;
             // (a GOHOME, then `G0 U-200. W-300.`: the transfer went on from there)
-            if (names_an_axis(d.text)) homed_ = false;
+            if (names_an_axis(d.text)) homed_ = false, end_home_.clear();
             spindle_ended_.clear();  // the user's text may turn either on again
             coolant_ended_.clear();
             // It may move an axis or change the motion mode: the next move writes all its words
@@ -565,6 +570,7 @@ void channel_writer::finish() {
     section_end();
   }
   if (chain_) multiaxis_off();
+  leave_cut(true);  // a channel without a last wait (one channel): out of the cut before the footer
   if (length_cancel_due_) footer_cancels_length();
   if (ev_) [[unlikely]] {
     user_blocks(event_point::program_end, false, {});
@@ -626,7 +632,7 @@ void channel_writer::footer_cancels_length() {
 }
 
 std::vector<std::string> channel_writer::footer_in_force() const {
-  std::vector<std::string> v;
+  std::vector<std::string> v = end_home_;
   if (!coolant_ended_.empty()) v.push_back(coolant_ended_);
   if (!spindle_ended_.empty()) v.push_back(spindle_ended_);
   return v;

@@ -127,7 +127,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void finish();
   /// The footer blocks the channel's end already has in force: its last coolant-off and
   /// spindle-stop blocks, when nothing turned the coolant or the spindle on after them
-  /// (program_layout's frame_tail leaves them out, so no M9 or M5 is written twice).
+  /// (program_layout's frame_tail leaves them out, so no M9 or M5 is written twice), and the
+  /// home blocks a tool left in the cut went out by at the end (leave_cut), when no user block
+  /// moved an axis after them.
   std::vector<std::string> footer_in_force() const;
   long blocks() const { return out_.blocks(); }
   const std::string& head_written() const { return out_.head_written(); }
@@ -244,7 +246,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void go_home();
   /// From a cut, the home blocks along the tool (along_tool) now, the rest at go_home; a
   /// warning where the way out is not known (a turning tool).
-  void leave_cut();
+  /// `at_end`: the job's end (the last wait, or the footer of a channel without one): a tool whose
+  /// way out is not known is left to the footer's home as before, without the warning (the CL's
+  /// last feed of a turning tool, a part-off or a face, is most often its way out).
+  void leave_cut(bool at_end = false);
   /// Where the tool is in a cut (its last move a feed) and the axis along it is known: the
   /// addresses that move along it (Z and W for an axial tool, X and U for a radial one); "".
   std::string_view along_tool() const;
@@ -660,9 +665,10 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::string pending_g_;                                       // G40/G41/G42 waiting for the next move
   bool comp_cl_on_ = false;  // the CL's CUTCOM/LEFT or RIGHT is in force (OFF not yet given)
   std::optional<cycle_event> cycle_;
-  bool in_cut_ = false;            // the CL's last move was a feed: the tool may be in the part (go_home)
-  std::uint64_t left_blocks_ = 0;  // leave_cut() wrote these home blocks (bit i: block i)
-  int cycle_line_ = 0;             ///< the CL line of the cycle in force
+  std::vector<std::string> end_home_;  // home blocks leave_cut(at_end) wrote (footer_in_force)
+  bool in_cut_ = false;                // the CL's last move was a feed: the tool may be in the part (go_home)
+  std::uint64_t left_blocks_ = 0;      // leave_cut() wrote these home blocks (bit i: block i)
+  int cycle_line_ = 0;                 ///< the CL line of the cycle in force
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force
   bool thread_saved_per_rev_ = false;      ///< the feed mode to restore at THREAD/OFF
   bool thread_saved_mode_ = false;         ///< whether a feed mode was written before THREAD/TURN

@@ -244,11 +244,11 @@ TEST_CASE(
   INFO(p.diagnostics);
   REQUIRE(p.ok);
   CHECK(p.files.at("E_3.nc") ==
-        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T1100\nT1111\nM35\nG0 G28 H0.\n"
-        "G97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X80. C25. Z5. F1500.\nZ-3. F400.\n"
-        "X-80.\nZ5. F1500.\nG13.1\nG18\nG28 U0. V0.\nG28 W0.\nT1127\nG0 Y0.\nG0 C0.\nG17\nG12.1\n"
-        "G1 X80. C-25. Z5.\nZ-3. F400.\nX-80.\nM200 P123\nM37\nG13.1\nG18\nM34\nM9\nG28 U0. V0.\nG28 "
-        "W0.\nM30\n%\n");
+        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T1100\nT1111\nM35\n"
+        "G0 G28 H0.\nG97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\n"
+        "G1 X80. C25. Z5. F1500.\nZ-3. F400.\nX-80.\nZ5. F1500.\nG13.1\nG18\nG28 U0. V0.\nG28 W0.\n"
+        "T1127\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X80. C-25. Z5.\nZ-3. F400.\nX-80.\nG13.1\nG18\n"
+        "G28 W0.\nM200 P123\nM37\nM34\nM9\nG28 U0. V0.\nM30\n%\n");
 }
 
 TEST_CASE("an offset change of the polar tool inside the mode is refused", "[post][millturn]") {

@@ -304,7 +304,7 @@ TEST_CASE("a one-channel machine: no pre-pass, and a sync record is an error", "
   REQUIRE(ok.count("ONE.nc") == 1);
   CHECK(ok.at("ONE.nc") ==
         "%\nO1000 (ONE)\nG21\nG90 G17 G40 G49 G80\nG91 G28 Z0\nG90\nT01 M6\nS1000 M3\nG94\n"
-        "G1 G43 H01 X0. Y0. Z5. F500.\nX10. Z0.\nM9\nM5\nG91 G28 Z0\nG90\nM30\n%\n");
+        "G1 G43 H01 X0. Y0. Z5. F500.\nX10. Z0.\nG91 G28 Z0\nG90\nM9\nM5\nM30\n%\n");
   diagnostic_list d;
   const auto bad = post_files(job + "SYNC/1,1,2\nFINI\n", m, "one-sync", &d);
   CHECK(bad.count("(failed)") == 1);

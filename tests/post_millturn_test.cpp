@@ -582,6 +582,22 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
         "G1 Z20. F120.\nG69\nG0 G90 G53 X0.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM212\nG10.9 "
         "X1\nM202\nM9\n"
         "M5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
+  // A CL that ends in the cut (FINI with no retract): out along the tool before the last wait
+  // (the other head's footer may stop a spindle), the C axis let go and the spindle stopped, and
+  // the footer leaves out the home block already written (review 37 H1: the footer's X0. Y0.
+  // came first, the spindle stopped with the drill 30 mm deep).
+  const std::string axial_end =
+      "PARTNO H\nHEAD/1\nTLDATA/DRILL,10,118\nLOADTL/11\nSPINDL/RPM,1200,CLW\nFEDRAT/0.12,MMPR\nRAPID\n"
+      "GOTO/0,0,5,0,0,1\nGOTO/0,0,-30\nFINI\n";
+  const std::string ae = head1(post_on(axial_end, integrex, "end-axial"), "H.EIA");
+  CHECK(ae.substr(ae.find("G1 Z-30. F0.12")) ==
+        "G1 Z-30. F0.12\nG0 G90 G53 Z0.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nM30\n");
+  std::string cross_end = cross;
+  cross_end.replace(cross_end.find("GOHOME\n"), 7, "");
+  const std::string xe = head1(post_on(cross_end, integrex, "end-cross"), "H.EIA");
+  CHECK(xe.substr(xe.find("G1 Z20. F120.")) ==
+        "G1 Z20. F120.\nG69\nG0 G90 G53 X0.\nM950\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\n"
+        "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   // along Z too; on the second spindle (Z reversed) Z's home lies beyond its face, deeper into
   // its part: the machine's order stands, and the post says it goes home from a cut.
   const std::string centre =

@@ -92,9 +92,9 @@ TEST_CASE("a tool the tool table says needs no spindle cuts without one", "[post
   m.tools.push_back({1, 0, "mill"});
   m.tools.back().spindle = false;  // a scribe, a burnishing roller
   CHECK(program_of(no_spindle, m, "ns-table") ==
-        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nG0 A0.\nG0 X0. Y0.\nG0 "
-        "G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nM9\nM5\nG91 G28 "
-        "Z0.\nG90\nG49\nM30\n%\n");
+        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nG0 A0.\n"
+        "G0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nG91 G28 Z0.\nG90\nM9\nM5\n"
+        "G49\nM30\n%\n");
   // The key as the machine file gives it.
   const std::string tool = "[[tool]]\nnumber = 4\nkind = \"turn\"\nspindle = false\ndiameter = 12\n";
   const machine read =
@@ -117,10 +117,10 @@ TEST_CASE("a CL without SPINDL cuts at the tool table's speed", "[post][spindle]
   machine m = load_machine("rotary-4axis");
   m.tools.push_back({1, 0, "mill"});
   m.tools.back().rpm = 2400;
-  CHECK(
-      program_of(no_spindle, m, "ts-rpm") ==
-      "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS2400 M3\nG0 A0.\n"
-      "G0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
+  CHECK(program_of(no_spindle, m, "ts-rpm") ==
+        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS2400 M3\n"
+        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nX10.\nG91 G28 Z0.\nG90\nM9\n"
+        "M5\nG49\nM30\n%\n");
   // 120 m/min on a 10 mm cutter (TLDATA), turning CCW: S3820 M4.
   m.tools.back().rpm.reset();
   m.tools.back().surface_speed = 120;
@@ -129,16 +129,18 @@ TEST_CASE("a CL without SPINDL cuts at the tool table's speed", "[post][spindle]
       "PARTNO NS\nUNITS/MM\nTLDATA/MILL,10,0,75,0,0\nLOADTL/1\nFEDRAT/500,MMPM\n"
       "RAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n";
   CHECK(program_of(with_tldata, m, "ts-smm") ==
-        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS3820 M4\nG0 A0.\n"
-        "G0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
+        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS3820 M4\n"
+        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nG91 G28 Z0.\nG90\nM9\nM5\n"
+        "G49\nM30\n%\n");
   // The CL's own SPINDL after the tool call wins.
   const std::string own = program_of(
       "PARTNO NS\nUNITS/MM\nLOADTL/1\nSPINDL/RPM,1000,CLW\nFEDRAT/500,MMPM\n"
       "RAPID\nGOTO/0,0,5\nGOTO/0,0,-1\nFINI\n",
       m, "ts-own");
   CHECK(own ==
-        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS1000 M3\nG0 A0.\n"
-        "G0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n");
+        "%\nO5003 (NS)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS1000 M3\n"
+        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nG91 G28 Z0.\nG90\nM9\nM5\n"
+        "G49\nM30\n%\n");
   // The keys as the machine file gives them, and what is refused.
   const std::string tool = "[[tool]]\nnumber = 4\nkind = \"mill\"\n";
   const machine read = parse_machine(
@@ -168,8 +170,8 @@ TEST_CASE("a surface speed for a rotating tool is its rpm from the diameter", "[
   // 1000 x 150 / (pi x 10) = 4774.6: S4775, not S150 (nor G96 on a cutter).
   CHECK(program_of(job, load_machine("rotary-4axis"), "smm-mill") ==
         "%\nO5003 (SMM)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT01 M6\nG54\nS4775 M3\n"
-        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nM9\nM5\nG91 G28 "
-        "Z0.\nG90\nG49\nM30\n%\n");
+        "G0 A0.\nG0 X0. Y0.\nG0 G43 H1 X0. Y0. Z5. A0.\nG1 Z-1. F500.\nG91 G28 Z0.\nG90\nM9\nM5\n"
+        "G49\nM30\n%\n");
   // The Integrex's milling spindle: rpm mode (G97), never G96 on the live tool.
   const std::string integrex = program_of(job, load_machine("integrex-i200st"), "smm-integrex");
   CHECK(integrex.find("\nG97 S4775 M3\n") != std::string::npos);
@@ -267,9 +269,8 @@ TEST_CASE("G41/G42 on the mills carry the D register the machine file says", "[p
   // The tool number (Fusion's default diameter offset), on the first move of the compensation.
   CHECK(program_of(job, load_machine("rotary-4axis"), "d-tool") ==
         "%\nO5003 (CC)\nG21\nG90 G94 G17 G40 G49 G80\nG91 G28 Z0.\nG90\nT03 M6\nG54\nS2000 M3\n"
-        "G0 A0.\nG0 X0. Y-20.\nG0 G43 H3 X0. Y-20. Z5. A0.\nG1 Z-2. F400.\nG41 D3 X10.\nG40 "
-        "X0.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n"
-        "%\n");
+        "G0 A0.\nG0 X0. Y-20.\nG0 G43 H3 X0. Y-20. Z5. A0.\nG1 Z-2. F400.\nG41 D3 X10.\nG40 X0.\n"
+        "G91 G28 Z0.\nG90\nM9\nM5\nG49\nM30\n%\n");
   // The CL's register wins.
   std::string with_register = job;
   with_register.replace(with_register.find("CUTCOM/LEFT"), 11, "CUTCOM/LEFT,21");

@@ -46,7 +46,7 @@ const std::string nx_operation =
 std::string nx_program(const std::string& t) {
   return "%\nO5003 (PROGRAM)\nG21\nG90 G94 G17 G40 G49 G80\n(FACE,TOOL,MILL-20MM)\nG91 G28 Z0.\nG90\nT0" + t +
          " M6\nG54\nS1000 M3\nM8\nG0 A0.\nG0 X0. Y0.\nG0 G43 H" + t +
-         " X0. Y0. Z40. A0.\nG1 X10. Z20. F250.\nX20.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\nM30\n%\n";
+         " X0. Y0. Z40. A0.\nG1 X10. Z20. F250.\nX20.\nG91 G28 Z0.\nG90\nM9\nM5\nG49\nM30\n%\n";
 }
 
 }  // namespace

@@ -195,18 +195,15 @@ TEST_CASE("the Integrex head turns the milling spindle for a milling tool, the t
       "LOADTL/6\nSPINDL/RPM,900,CLW\nGOTO/0,0,5\nGOTO/0,0,-10\nFINI\n",
       "integrex-i200st", "tools");
   const std::string f = file_of(p, "TOOLS.EIA");
-  CHECK(
-      f.substr(0, f.find("G109 L2")) ==
-      "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\n"
-      "G0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-      "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
-      "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 Y0.\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. C0. "
-      "Z2. F0.2\nG13.1\n"
-      "G18\nG0 G90 G53 Z0.\nM5\nG0 G90 G53 X0. Y0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 "
-      "G53 "
-      "B0.\nM107\n"
-      "G1 G43 P1 H#3020 X0. Y0. Z5. F0.2\nZ-10.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\n"
-      "G0 G90 G53 Z0.\nM30\n");
+  CHECK(f.substr(0, f.find("G109 L2")) ==
+        "%\nO1000(TOOLS)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\n"
+        "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT01 M6\nM901\nG97 S1000 M203\nG95\nM108\nG0 G53 B0.\n"
+        "M107\nG1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\n"
+        "T05 M6\nM901\nM200\nG10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 Y0.\nG0 C0.\n"
+        "G17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2. F0.2\nG13.1\nG18\nG0 G90 G53 Z0.\nM5\n"
+        "G0 G90 G53 X0. Y0.\nT06 M6\nM901\nG10.9 X1\nM202\nG97 S900 M203\nM108\nG0 G53 B0.\nM107\n"
+        "G1 G43 P1 H#3020 X0. Y0. Z5. F0.2\nZ-10.\nG0 G90 G53 Z0.\nM950\nM9\nM5\nM205\nM305\n"
+        "G0 G90 G53 X0. Y0.\nM30\n");
 }
 
 TEST_CASE("the 31i mill head turns its live spindle for a milling tool, the main spindle held as C",
@@ -217,9 +214,9 @@ TEST_CASE("the 31i mill head turns its live spindle for a milling tool, the main
       "PARTNO E\nHEAD/3\nTLDATA/MILL,10\nLOADTL/7\nSPINDL/RPM,3000,CLW\nFEDRAT/200,MMPM\nGOTO/20,0,2\nFINI\n",
       "fanuc-31i-3path", "31i-mill");
   CHECK(file_of(p, "E_3.nc") ==
-        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T0700\nT0707\nM35\nG0 G28 H0.\n"
-        "G97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\nG1 X40. C0. Z2. F200.\nM200 P123\nM37\n"
-        "G13.1\nG18\nM34\nM9\nG28 U0. V0.\nG28 W0.\nM30\n%\n");
+        "%\nO1000 (E)\nG0 G18 G21 G40 G54 G80 G99\nG28 U0. V0.\nG28 W0.\nM6 T0700\nT0707\nM35\n"
+        "G0 G28 H0.\nG97 S3000 M33\nG98\nG0 B-90.\nG0 Y0.\nG0 C0.\nG17\nG12.1\n"
+        "G1 X40. C0. Z2. F200.\nG13.1\nG18\nG28 W0.\nM200 P123\nM37\nM34\nM9\nG28 U0. V0.\nM30\n%\n");
 }
 
 TEST_CASE("a speed in rpm for a tool of unknown kind on a head with two spindles is an error",
@@ -318,12 +315,11 @@ TEST_CASE("the machine's tool table gives the kind where the CL gives none", "[p
       m, "table");
   const std::string f = file_of(p, "E.EIA");
   CHECK(f.substr(0, f.find("M950")) ==
-        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\n"
-        "G0 G90 G53 Z0.\nT06 M6\nM901\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\nM107\n"
-        "G1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT05 M6\nM901\nM200\n"
-        "G10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 Y0.\nG0 C0.\nG17 XC\nG12.1\nG1 G43 H#3020 X20. "
-        "C0. Z2. "
-        "F0.2\n");
+        "%\nO1000(E)\nG109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\n"
+        "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT06 M6\nM901\nG97 S800 M203\nG95\nM108\nG0 G53 B0.\n"
+        "M107\nG1 G43 P1 H#3020 X40. Y0. Z2. F0.2\nM205\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\n"
+        "T05 M6\nM901\nM200\nG10.9 X0\nG97 S3000 M3\nM108\nG0 G53 B0.\nM107\nG0 Y0.\nG0 C0.\n"
+        "G17 XC\nG12.1\nG1 G43 H#3020 X20. C0. Z2. F0.2\nG13.1\nG18\nG0 G90 G53 Z0.\n");
   const test::posted clash =
       post_on("PARTNO E\nHEAD/1\nTLDATA/TURN\nLOADTL/5\nSPINDL/RPM,800,CLW\nFINI\n", m, "table-clash");
   CHECK_FALSE(clash.ok);

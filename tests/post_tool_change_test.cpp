@@ -178,9 +178,8 @@ TEST_CASE("an offset the channel's tool call cannot write is an error, never the
   REQUIRE(r.ok);
   const std::string nc = r.files.at("TC.nc");
   CHECK(nc.substr(nc.find("T02")) ==
-        "T02 M6\nG54\nS1000 M3\nG0 A0.\nG0 X10. Y0.\nG0 G43 H5 X10. Y0. Z20. A0.\nG1 Z0. "
-        "F300.\nM9\nM5\nG91 G28 Z0.\nG90\nG49\n"
-        "M30\n%\n");
+        "T02 M6\nG54\nS1000 M3\nG0 A0.\nG0 X10. Y0.\nG0 G43 H5 X10. Y0. Z20. A0.\nG1 Z0. F300.\n"
+        "G91 G28 Z0.\nG90\nM9\nM5\nG49\nM30\n%\n");
 }
 
 TEST_CASE("a coolant kind still on at the end is turned off with its own code before the footer",
