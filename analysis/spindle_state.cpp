@@ -59,8 +59,8 @@ channel_spindles::channel_spindles(const machine& m, int channel) : m_(m), setti
     if (m.spindles[i].name == start) current_ = static_cast<int>(i);
   if (current_ < 0 && !m.spindles.empty()) current_ = 0;
   // A key that is no number matches no word (same_word).
-  const auto key = [this](const std::vector<nc_word>& code) {
-    if (code.size() != 1 || !code.front().numeric) return;
+  const auto key = [this](const std::vector<nc_word>& code) {  // (its first word: G54.1 of G54.1 P2)
+    if (code.empty() || !code.front().numeric) return;
     keys_.emplace_back(code.front().address, code.front().number);
     key_letters_ |= nc_letter(code.front().address);
     keys_not_letters_ = keys_not_letters_ || nc_letter(code.front().address) == 0;
@@ -83,7 +83,13 @@ bool channel_spindles::may_command(const std::vector<nc_word>& words) const {
 
 bool channel_spindles::is_code(const std::vector<nc_word>& words, const std::vector<nc_word>& code,
                                int& column) const {
-  return code.size() == 1 && has_word(words, code[0], column);
+  // Every word of the code (`G54.1 P2`, a Fanuc extended work offset: attack 67 H5), at the
+  // column of its first.
+  if (code.empty() || !has_word(words, code[0], column)) return false;
+  int other = 0;
+  for (std::size_t i = 1; i < code.size(); ++i)
+    if (!has_word(words, code[i], other)) return false;
+  return true;
 }
 
 bool channel_spindles::needs_gms() const {
@@ -124,7 +130,19 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
   commands_.clear();
   // Only M and S words and the one-word codes (is_code) can change or command anything below.
   if (current_ < 0 || !may_command(words)) return changes_;
-  // The spindle M-codes of the block: a code several spindles share goes to the current one.
+  // The spindle the block itself selects, by a select code (M902) or a work offset (G55),
+  // wherever it stands in the block: a code several spindles share goes to it (attack 67 H4:
+  // `G55 G97 S500 M4` reversed the main, and `M203 M902` read otherwise than `M902 M203`).
+  int selected = current_;
+  for (std::size_t i = 0; i < m_.spindles.size(); ++i) {
+    int column = 0;
+    if (is_code(words, offset_codes_[i], column)) selected = static_cast<int>(i);
+  }
+  for (const nc_word& w : words)
+    if (w.address == 'M' && w.numeric)
+      for (std::size_t i = 0; i < m_.spindles.size(); ++i)
+        if (m_.spindles[i].select && *m_.spindles[i].select == w.number) selected = static_cast<int>(i);
+  // The spindle M-codes of the block: a code several spindles share goes to the selected one.
   int turned = -1, turned_column = 0;
   spindle_turn turn = spindle_turn::unknown;
   struct stop_word {
@@ -149,7 +167,7 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
                                                     : spindle_turn::unknown;
       const bool sel = s.select && *s.select == code;
       if (t == spindle_turn::unknown && !sel) continue;
-      if (hit < 0 || static_cast<int>(i) == current_) {
+      if (hit < 0 || static_cast<int>(i) == selected) {
         hit = static_cast<int>(i);
         what = t;
         select = sel;

@@ -102,3 +102,34 @@ TEST_CASE("spindle state: the Integrex main spindle held as the C axis (M200) an
         "main:stop,rpm,800,0@1\n"
         "current live\n");
 }
+
+TEST_CASE(
+    "spindle state: the spindle a block selects takes the M-code the spindles share, wherever it stands",
+    "[analysis]") {
+  // Attack 67 H4: a twin-spindle lathe whose sub answers the main's M3/M4/M5, selected by its
+  // work offset. `G55 G97 S500 M4` in one block reversed the main; the same words in two blocks
+  // turned the sub.
+  machine m = load_machine("fanuc-0itd-twin");
+  m.spindles[1].cw = 3;
+  m.spindles[1].ccw = 4;
+  m.spindles[1].stop = 5;
+  const std::string sub_ccw = "sub:ccw,rpm,500,0@";
+  CHECK(run(m, 1, {"G55 G97 S500 M4"}) == sub_ccw + "9\ncurrent sub\n");
+  CHECK(run(m, 1, {"G55", "G97 S500 M4"}) == "\n" + sub_ccw + "5\ncurrent sub\n");
+  // A select code (the Integrex's M902) before or after the shared code in the block: the same.
+  machine mz = load_machine("integrex-i200st");
+  mz.spindles[1].cw = 203;
+  mz.spindles[1].ccw = 204;
+  mz.spindles[1].stop = 205;
+  CHECK(run(mz, 1, {"S300 M203 M902"}) == "sub:cw,?,300,0@1\ncurrent sub\n");
+  CHECK(run(mz, 1, {"S300 M902 M203"}) == "sub:cw,?,300,0@1\ncurrent sub\n");
+}
+
+TEST_CASE("spindle state: a work offset of two words selects its spindle", "[analysis]") {
+  // Attack 67 H5: the sub's offset `G54.1 P2` (a Fanuc extended work offset) never selected it,
+  // and the clamp after it went to the main.
+  machine m = load_machine("fanuc-0itd-twin");
+  m.spindles[1].work_offset = "G54.1 P2";
+  CHECK(run(m, 1, {"G54.1 P2", "G50 S3000", "G54", "G50 S2000"}) ==
+        "\nsub:?,?,0,3000@5\n\nmain:?,?,0,2000@5\ncurrent main\n");
+}
