@@ -4,6 +4,7 @@
 
 #include "machines/name_template.hpp"
 #include "machining/channel_writer.hpp"
+#include "nc/nc_words.hpp"
 
 namespace twinpost {
 
@@ -85,26 +86,34 @@ void channel_writer::coolant_after_speed() {
   coolant_block(b, false);
 }
 
-// Whether a home block moves an axis of `along` (a word of one of its addresses).
+// Whether a home block moves an axis of `along` (a word of one of its addresses), its words
+// read as the checker reads them: glued (`G28U0.`), lower case, comments skipped (attack 67 H7:
+// `G28U0.` then `G28W0.` took a drill out of its hole X first).
 static bool moves_along(const std::string& b, std::string_view along) {
-  for (std::size_t i = 0; i < b.size(); ++i)
-    if (along.find(b[i]) != std::string_view::npos && (i == 0 || b[i - 1] == ' ')) return true;
+  for (const nc_word& w : split_nc_words(std::string_view(b)))
+    if (along.find(w.address) != std::string_view::npos) return true;
   return false;
 }
 
-// Home block `b` without its axis words across the tool (an axis address not in `along`): the
-// words written space-separated, as moves_along reads them.
+// Home block `b` without its axis words across the tool (an axis address not in `along`), the
+// rest as written, comments included (attack 67 M8: `G28 U0. (RETURN Z AND X)` came out
+// `G28 (RETURN Z`), and the blanks after a word left out with it.
 static std::string along_words(const std::string& b, std::string_view along) {
   std::string out;
-  for (std::size_t i = 0; i < b.size();) {
-    std::size_t end = b.find(' ', i);
-    if (end == std::string::npos) end = b.size();
-    const char a = b[i];
-    const bool across = std::string_view("XYZUVWABC").find(a) != std::string_view::npos &&
-                        along.find(a) == std::string_view::npos;
-    if (!across && end > i) out.append(out.empty() ? "" : " ").append(b, i, end - i);
-    i = end + 1;
+  std::size_t from = 0;
+  for (const nc_word& w : split_nc_words(std::string_view(b))) {
+    if (std::string_view("XYZUVWABC").find(w.address) == std::string_view::npos ||
+        along.find(w.address) != std::string_view::npos)
+      continue;
+    const auto at = static_cast<std::size_t>(w.column - 1);
+    std::size_t end =
+        w.value.empty() ? at + 1 : static_cast<std::size_t>(w.value.data() - b.data()) + w.value.size();
+    while (end < b.size() && (b[end] == ' ' || b[end] == '\t')) ++end;
+    out.append(b, from, at - from);
+    from = end;
   }
+  out.append(b, from, std::string::npos);
+  while (!out.empty() && (out.back() == ' ' || out.back() == '\t')) out.pop_back();
   return out;
 }
 

@@ -598,6 +598,25 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
   CHECK(xe.substr(xe.find("G1 Z20. F120.")) ==
         "G1 Z20. F120.\nG69\nG0 G90 G53 X0.\nM950\nM212\nG10.9 X1\nM202\nM9\nM5\nM205\nM305\n"
         "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
+  // Home blocks glued, in lower case or with a comment are read as the checker reads them
+  // (attack 67 H7, M8: `G28U0.` went first from the hole, `G28 U0. (RETURN Z AND X)` came out
+  // `G28 (RETURN Z`): the drill leaves along Z first, and a comment stays whole.
+  const std::string lathe_drill =
+      "PARTNO D\nHEAD/1\nTURRET/1,1\nTLDATA/DRILL,8.0,118.0,50.0\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\n"
+      "RAPID\nGOTO/0,0,5\nGOTO/0,0,-30\nTURRET/3,3\nRAPID\nGOTO/40,0,5\nFINI\n";
+  for (const auto& [home, out] :
+       {std::pair{std::vector<std::string>{"G28U0.", "G28W0."}, "G28W0.\nG28U0.\n"},
+        {{"g28 u0.", "g28 w0."}, "g28 w0.\ng28 u0.\n"},
+        {{"G28 U0. W0. (RETURN X AND Z)"}, "G28 W0. (RETURN X AND Z)\nG28 U0. W0. (RETURN X AND Z)\n"}}) {
+    machine twin = load_machine("fanuc-0itd-twin");
+    twin.codes.home = home;
+    const test::posted p = post_on(lathe_drill, twin, "home-glued");
+    INFO(p.diagnostics);
+    REQUIRE(p.ok);
+    const std::string& f = p.files.at("D_1.nc");
+    CHECK(f.substr(f.find("G1 Z-30. F0.1\n"), 14 + std::string(out).size()) ==
+          "G1 Z-30. F0.1\n" + std::string(out));
+  }
   // along Z too; on the second spindle (Z reversed) Z's home lies beyond its face, deeper into
   // its part: the machine's order stands, and the post says it goes home from a cut.
   const std::string centre =
