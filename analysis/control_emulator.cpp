@@ -118,6 +118,8 @@ struct control_emulator::impl {
       }
     }
     for (const spindle_def& s : m.spindles) chucks.push_back({code(s.chuck_open), code(s.chuck_close)});
+    for (const spindle_def& s : m.spindles)
+      if (!s.work_offset.empty()) offset_codes.emplace_back(s.work_offset);
     reserved = reserved_variables(m);
     for (const chuck_codes& c : chucks) has_chucks = has_chucks || !c.open.empty();
     // Work offsets are the machine file's word: a machine whose spindles name none (a Swiss-type
@@ -132,6 +134,7 @@ struct control_emulator::impl {
   // Per spindle. Each channel is followed on its own (its chucks as its own blocks left them), so
   // the findings do not depend on how the channels' blocks interleave in the reading.
   std::vector<chuck_codes> chucks;
+  std::vector<code> offset_codes;  // each spindle's work offset ([[spindle]] work_offset)
   std::vector<reserved_variable> reserved;
   bool has_chucks = false;
   bool offsets_used = false;
@@ -215,6 +218,9 @@ struct control_emulator::impl {
       }
     }
     if (coordinate_setting && axis_column) sets_offset = true;  // G92 X.. Z..: a frame, if not a clamp
+    // The machine's own work offset codes too, whatever their address (`E1`: attack 67 H6).
+    if (!c.offset && !sets_offset)
+      for (const code& o : offset_codes) sets_offset = sets_offset || o.in(words);
     const bool cut = axis_column && !no_cut && (feed_code || c.cycle || (c.motion >= 1 && c.motion <= 3));
     if (cut && !c.offset && !sets_offset && !c.said_offset) {
       c.said_offset = true;

@@ -115,7 +115,8 @@ struct channel_data {
   const interference_channel* env = nullptr;
   std::string file;                  // the program's name, as in messages
   const channel_spindles& spindles;  // the reading's (spindle_states), this block applied
-  nc_codes codes;                    // what its G codes make of a block's axis words
+  bool gms_only = spindles.needs_gms();
+  nc_codes codes;        // what its G codes make of a block's axis words
   bool turning = false;  // a lathe's single cycle in force (G90, G92, G94 in system A): modal as G1
   double turning_z = 0;  // its end's Z, which its next passes keep (attack 63 M6: X28.4 alone)
   std::vector<segment_data> segments = std::vector<segment_data>(1);
@@ -245,8 +246,10 @@ struct interference_check::impl {
     if (!c.env) return;
     if (c.file.empty()) c.file = b.file;  // one file per channel (its sections are joined)
     const std::vector<nc_word>& words = b.words();
+    // (Only a block with G, M or S can select another spindle, where every work offset and
+    // select code is one: spindle_states' gms_only. A work offset `E1`: attack 67 H6.)
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
-    if (b.letters() & gms)  // (only a block with G, M or S can select another spindle)
+    if (!c.gms_only || (b.letters() & gms))
       if (const int s = c.spindles.current(); s >= 0 && !is_live(s)) c.work = s;
     const nc_word *xw = nullptr, *zw = nullptr, *uw = nullptr, *ww = nullptr, *iw = nullptr, *kw = nullptr,
                   *rw = nullptr, *qw = nullptr, *jw = nullptr;

@@ -250,3 +250,27 @@ TEST_CASE("interference: a static zone of the spindle, however the waits pair", 
       head + "T0101\nG97 S1000 M3\nG0 X60. Z2.\nM100\nG1 Z-160. F0.2\nG0 X100. Z100.\nM101\nM30\n%\n";
   CHECK(check(twin, clear, idle) == "check: 2 channels, 4 waits paired, 0 errors\n");
 }
+
+TEST_CASE("interference: a work offset that is no G code moves a channel's work to its spindle",
+          "[analysis][interference]") {
+  // Attack 67 H6: the twin-turret lathe with work offsets `E1` (main) and `E2` (sub). Channel 2
+  // stood in E2 and then worked in E1 from a block with no G, M or S: its drill on the main
+  // spindle's axis was taken for the sub's, and the meeting with channel 1's facing tool missed.
+  // The emulator takes E1 for the offset it is (no "no work offset in force").
+  machine m = load_machine("fanuc-0itd-twin");
+  m.spindles[0].work_offset = "E1";
+  m.spindles[1].work_offset = "E2";
+  const std::string one =
+      "%\nO1000 (FACE)\nG0 G18 G21 G40 G80 G99\nE1\nT0101\nG50 S2500\nG96 S180 M3\nG0 X64. Z5.\nM100\n"
+      "G0 W-5.\nG1 X-1.6 F0.15\nG0 W2.\nG0 X100. Z100.\nM101\nM5\nM30\n%\n";
+  const std::string two =
+      "%\nO2000 (DRILL)\nG0 G18 G21 G40 G80 G99\nT0505\nG0 E2 X100. Z50.\nM100\nE1\nX0. Z20.\n"
+      "Z-25.\nZ50.\nM101\nM30\n%\n";
+  CHECK(
+      check(m, one, two) ==
+      "A_1.nc:11:1: error: channel 1 (T0101 at X-1.6 Z0) may meet channel 2 (T0505 at X0 Z-25, A_2.nc:9) on "
+      "the main spindle, between M100 (A_1.nc:9) and M101 (A_1.nc:14) of channel 1: 0.0 mm apart, 5 mm "
+      "required; no wait orders the two blocks\nG1 X-1.6 F0.15\n^\n"
+      "A_2.nc:9:1: note: channel 2 is here (T0505 at X0 Z-25)\nZ-25.\n^\n"
+      "check: 2 channels, 4 waits paired, 1 error\n");
+}
