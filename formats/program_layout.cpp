@@ -127,8 +127,11 @@ std::string section_tail(const frame_request& r, const channel_def& ch, sequence
   std::vector<std::pair<std::string, std::size_t>> blocks;
   for (std::size_t i = 0; i < footer.size(); ++i) {
     if (i == home_at) {
+      // Each its own index (edit_block's answers are kept by it): past the footer's for the
+      // blocks a longer home has more (attack 67 H3: two shared one, and Z was never homed).
       for (std::size_t k = 0; k < own_home.size(); ++k)
-        blocks.emplace_back(own_home[k], i + std::min(k, machine_home.size() - 1));
+        blocks.emplace_back(own_home[k],
+                            k < machine_home.size() ? i + k : footer.size() + (k - machine_home.size()));
       i += machine_home.size() - 1;
       continue;
     }

@@ -1066,6 +1066,24 @@ TEST_CASE("on_block sees the header and footer blocks, each once, with ctx.part"
           "W0.\nM100\n(FOOTER)\nM9\n"
           "(FOOTER)\nG30 U0.\n(FOOTER)\nG30 W0.\n(FOOTER)\nM5 (HEADERS 2)\nM30\n%\n");
   }
+  SECTION("a channel's own home in the footer: each block asked for itself") {
+    // Attack 67 H3: a channel home of more blocks than codes.home shared a footer index, and the
+    // script's answer for one was written for the other (path 3 ended `G30 V0.` twice, Z never
+    // homed).
+    const std::string dir = test::fresh_temp_dir("script-frame-home3");
+    test::write_file(dir + "/t.lua", lua);
+    machine m = parse_machine(twin_with(""), "twin-events.toml");
+    m.events.script = "t.lua";
+    m.events.script_path = dir + "/t.lua";
+    m.channels[0].home = {"G28 U0.", "G28 W0.", "M1"};
+    const test::posted p =
+        test::post_in_fresh_dir("PARTNO EV\nHEAD/1\nTURRET/1,1\nFINI\n", m, "events-home3");
+    std::filesystem::remove_all(dir);
+    const std::string f = program_1(p);
+    CHECK(f.substr(f.find("M100\n")) ==
+          "M100\n(FOOTER)\nM9\n(FOOTER)\nG30 U0.\n(FOOTER)\nG30 W0.\n(FOOTER)\nM1\n(FOOTER)\nM5 (HEADERS "
+          "2)\nM30\n%\n");
+  }
   SECTION("a late PARTNO: the header written again under the name gets the same answer") {
     // ctx.program is the name the program had when the block was asked for, as in the body.
     const test::posted p = post_with_script("", lua, "HEAD/1\nTURRET/1,1\nPARTNO EV\nFINI\n", "frame-late");
