@@ -850,6 +850,15 @@ std::string channel_writer::increment_letters() const {
 
 bool channel_writer::insert_passes(const std::string& text, int line) {
   if (!text_is_one_line(text, "INSERT text", line)) return false;
+  // An end of the program in the body (`M30`, `/M30`, `M99`), or a comment no ')' closes: the
+  // checker's reading would stop there, the control too or not (block delete), and nothing
+  // after it would be checked (attack 67 H1: a reserved variable written after `/M30`).
+  const program_format& p = m_.program;
+  if (const std::string fault = code_text_fault(text, p.comment_open, p.comment_close, code_use::line);
+      !fault.empty()) {
+    error(line, fmt::format("INSERT \"{}\": {}", text, fault));
+    return false;
+  }
   bool glued = false;
   const std::string reading = control_reading(text, m_.program, glued);
   const std::string increments = increment_letters();

@@ -472,6 +472,14 @@ void channel_writer::process_event(const event& e, bool both) {
                                              "control would take it for a wait",
                                              d.prefun ? "PREFUN" : "AUXFUN", d.code, address, d.code,
                                              wait_range_text(m_.waits)));
+          // The program's end or a jump back to its start (M2, M30, M99): the checker's reading
+          // would stop there, and nothing after it would be checked (attack 67 H1).
+          if (!d.prefun && (d.code == 2 || d.code == 30 || d.code == 99))
+            return error(e.line,
+                         fmt::format("AUXFUN/{} gives M{}, which ends the program (M99 goes back to its "
+                                     "start) in the middle of the job: only the machine's end code "
+                                     "may end it",
+                                     d.code, d.code));
           std::string b = fmt::format("{}{}", address, d.code);
           if (block_fits(b)) out_.block(b);
           start_home_ = false;     // what the code moves is not known

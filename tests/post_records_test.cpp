@@ -294,3 +294,31 @@ TEST_CASE("INSERT text that sets the part frame is written, and the comparison s
       "program sets the part frame itself at line 9 of its program (`G52 Z-5.`)\nGOTO/20,0,0\n^\n");
   CHECK(p.files.count("W_1.nc") == 1);
 }
+
+TEST_CASE("an end of the program from AUXFUN or INSERT in the body stops the post", "[post][records]") {
+  // Attack 67 H1: the checker's reading stops at M2, M30 or M99 (under block delete too), and
+  // nothing after it was checked: on one thread a reserved variable written after `/M30`
+  // posted; on two the comparison, given no more blocks, reported a false tool-tip error.
+  const std::pair<const char*, const char*> cases[] = {
+      {"AUXFUN/30",
+       "AUXFUN/30 gives M30, which ends the program (M99 goes back to its start) in the middle of the job: "
+       "only "
+       "the machine's end code may end it"},
+      {"INSERT//M30",
+       "INSERT \"/M30\": M30 ends the program (M99 goes back to its start) there: only program.end_code and "
+       "the "
+       "footer may end it"},
+      {"INSERT/M99",
+       "INSERT \"M99\": M99 ends the program (M99 goes back to its start) there: only "
+       "program.end_code and the footer may end it"},
+      {"INSERT/(NOTE",
+       "INSERT \"(NOTE\": '(' opens a comment that no ')' closes: the words after it would not be read"},
+  };
+  for (const auto& [record, message] : cases) {
+    CAPTURE(record);
+    posted p = post_text(head + "GOTO/20,0,2\n" + record + "\n" + cut + "FINI\n", "end-in-body");
+    CHECK(p.diagnostics ==
+          std::string("job.cls:7:1: error: channel 1: ") + message + "\n" + record + "\n^\n");
+    CHECK(p.files.empty());
+  }
+}
