@@ -14,6 +14,9 @@ std::vector<macro_use> macro_uses(std::string_view b) {
       comment = false;
       continue;
     }
+    // A `;` comment runs to the end of the line, as the word splitter reads it (attack 67 M10: a
+    // PPRINT's `#500=0` after it was read as a write of a reserved variable).
+    if (!comment && c == ';') break;
     if (comment || c != '#') continue;
     std::size_t k = i + 1;
     while (k < b.size() && b[k] == ' ') ++k;

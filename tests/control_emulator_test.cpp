@@ -146,6 +146,10 @@ TEST_CASE("macro variables: uses in a block and the machine's reserved ones", "[
   CHECK((u[6].number == 4 && !u[6].write));
   CHECK((u[7].number == 500 && u[7].write));  // a control that skips blanks reads #500
   CHECK((u[8].number == -1 && u[8].write));
+  // A `;` comment to the end of the line is read as the word splitter reads it (attack 67 M10).
+  const std::vector<macro_use> semi = macro_uses("#101=2 ; SET #500=0 AT SETUP");
+  REQUIRE(semi.size() == 1);
+  CHECK((semi[0].number == 101 && semi[0].write));
   // A control ends a comment at its first ')': comments do not nest, "(()#500=1" writes #500.
   const std::vector<macro_use> w = macro_uses("(()#500=1 (#501=2)");
   REQUIRE(w.size() == 1);
