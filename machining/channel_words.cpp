@@ -143,7 +143,7 @@ void channel_writer::leave_cut(bool at_end) {
   if (along.empty()) {
     // A tool whose way out the post cannot know (a turning tool in a bore, a groove, under a
     // shoulder: review 64 H3; a tilted 5-axis tool: attack 65) is said.
-    if (in_cut_ && tool_ >= 0 && !at_end) [[unlikely]]
+    if (in_cut_ && tool_ >= 0 && !(at_end && !chain_)) [[unlikely]]
       warning(
           "the tool goes home straight from a feed move, with no retract in the CL: the home blocks move "
           "it as the machine file lists them, from where the feed left it; in a bore, a groove or under a "

@@ -336,7 +336,13 @@ TEST_CASE("multi-axis: 3+2 work in tilted planes (G68.2) reads back to the CL on
   CHECK(p.diagnostics ==
         "job.cls:4109:1: error: channel 1: the tool axis turns from (0.258819,0,0.965926) to (0,0,1) in a "
         "feed move inside a tilted working plane (G68.2): a 3+2 operation keeps its axis; give a RAPID to "
-        "change it\nGOTO/30,0,10,0,0,1\n^\n");
+        "change it\n"
+        "GOTO/30,0,10,0,0,1\n^\n"
+        "job.cls:4110:1: warning: channel 1: the tool goes home straight from a feed move, with no retract "
+        "in the CL: the home blocks move it as the machine file lists them, from where the feed left it; in "
+        "a bore, a groove or under a shoulder it would run into the part: give the retract before GOHOME or "
+        "the tool change\n"
+        "FINI\n^\n");
   // A cut whose feed moves turn the tool after the RAPID is simultaneous work: no plane, the
   // rapid and the cut in joints (G93 on the turning move), as without `plane`.
   const test::posted s = test::post_in_fresh_dir(
@@ -545,12 +551,16 @@ TEST_CASE("multi-axis: the tool length from TLDATA or the tool table, never gues
   by_table.kinematics.front().tool_length = length_source::table;
   const test::posted t120 = post_moves(by_table, tilt, "ma-len4");
   REQUIRE(t120.ok);
-  CHECK(
-      t120.diagnostics ==
-      "job.cls:8:1: warning: channel 1: tool 1 (LOADTL at line 4): the CL's TLDATA gives a length of 100 mm, "
-      "machine 'head-head-5axis' lists 120 mm ([[tool]] length): the table's is used ([[kinematics]] "
-      "tool_length = \"table\"); on a tilted head the tip lies where that length puts it\n"
-      "GOTO/0,0,50,0,0,1\n^\n");
+  CHECK(t120.diagnostics ==
+        "job.cls:8:1: warning: channel 1: tool 1 (LOADTL at line 4): the CL's TLDATA gives a length of 100 "
+        "mm, machine 'head-head-5axis' lists 120 mm ([[tool]] length): the table's is used ([[kinematics]] "
+        "tool_length = \"table\"); on a tilted head the tip lies where that length puts it\n"
+        "GOTO/0,0,50,0,0,1\n^\n"
+        "job.cls:10:1: warning: channel 1: the tool goes home straight from a feed move, with no retract in "
+        "the CL: the home blocks move it as the machine file lists them, from where the feed left it; in a "
+        "bore, a groove or under a shoulder it would run into the part: give the retract before GOHOME or "
+        "the tool change\n"
+        "FINI\n^\n");
   const test::posted only_table = post_moves(by_table, tilt, "ma-len5", "");
   REQUIRE(only_table.ok);
   CHECK(t120.files == only_table.files);
@@ -601,27 +611,43 @@ TEST_CASE("multi-axis: a rotary word past the control's format stops the post at
   // Each sub-move past it is refused, with its own error (and the post writes no file).
   CHECK(p.diagnostics ==
         "job.cls:10:1: error: channel 1: B word 10.3124985519 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 10.7812484861 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 11.2499984203 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 11.7187483545 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 12.1874982886 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 12.6562482228 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 13.124998157 does not fit the control's format (1.3: at most "
-        "9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 13.5937480912 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 14.0624980254 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 14.5312479595 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
         "job.cls:10:1: error: channel 1: B word 14.9999978937 does not fit the control's format (1.3: at "
-        "most 9.999)\nGOTO/10,0,0,0.2588190,0,0.9659258\n^\n");
+        "most 9.999)\n"
+        "GOTO/10,0,0,0.2588190,0,0.9659258\n^\n"
+        "job.cls:11:1: warning: channel 1: the tool goes home straight from a feed move, with no retract in "
+        "the CL: the home blocks move it as the machine file lists them, from where the feed left it; in a "
+        "bore, a groove or under a shoulder it would run into the part: give the retract before GOHOME or "
+        "the tool change\n"
+        "FINI\n^\n");
 }
 
 TEST_CASE("multi-axis: a rapid onto the pole takes the outer angle of the first point off it",
