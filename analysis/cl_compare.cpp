@@ -243,7 +243,8 @@ struct cl_comparison::impl {
   // an [events] block `X20.` between a rapid and a feed record moved the feed's start).
   std::vector<chain_block> plains;
   std::size_t n_plains = 0;
-  bool plain_pending = false;  // plains[n_plains - 1]'s text is move_text until the next line
+  chain_block plain_next;      // the last block that moved, not in `plains` yet
+  bool plain_pending = false;  // plain_next goes into plains at the next line (settle_plain_block)
   bool said_plain = false;
   std::size_t n_mids = 0;
   bool mid_staged = false;  // mids[n_mids] is a block whose tip is not worked out yet
@@ -531,11 +532,8 @@ struct cl_comparison::impl {
           shifted = true;  // a work offset written through its variable (#5223=-5.)
     if (words.empty()) return;
     // (Its swings are the emulator's to report, in check and in post's self-check.)
-    if (mid_staged) settle_chain_block();  // before this block moves the follower on
-    if (plain_pending) {
-      plain_pending = false;
-      plains[n_plains - 1].text = move_text;
-    }
+    if (mid_staged) settle_chain_block();     // before this block moves the follower on
+    if (plain_pending) settle_plain_block();  // (before this line moves the axes on)
     if (chain) chain->block(words);
     // Any word but an axis's (a G, M, S, T, F ...) may change what a cut is held to.
     constexpr std::uint32_t axis_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
@@ -990,24 +988,34 @@ struct cl_comparison::impl {
                                               : mid_kind::feed);
   }
 
-  // A block of a channel without a chain that moved since the last motion record: where it
-  // ends, when every axis of the part frame is known and plain (no C turned, polar or
-  // cylindrical interpolation, frame or shift; the record's own comparison passes those
-  // over). A move of more blocks is held at its first 64.
+  // A block of a channel without a chain that moved since the last motion record. Most are the
+  // record's own block, held by the record's comparison: it waits as `plain_next`, and what it is
+  // and where it ends goes into `plains` only when another line comes before the record
+  // (settle_plain_block), the state still where it left it. A move of more blocks is held at
+  // its first 64.
   void stage_plain_block(std::string_view text, mid_kind kind) {
+    plain_next.line = lines;
+    plain_next.kind = kind;
+    // A block that moved is move_text until the next line.
+    plain_next.text_later = move_line == lines;
+    if (!plain_next.text_later) plain_next.text.assign(text);
+    plain_pending = true;
+  }
+
+  // The waiting block, with its text and where it ends when every axis of the part frame is known
+  // and plain (no C turned, polar or cylindrical interpolation, frame or shift; the record's own
+  // comparison passes those over).
+  void settle_plain_block() {
+    plain_pending = false;
     if (n_plains == 64) return;
     if (n_plains == plains.size()) plains.emplace_back();
     chain_block& b = plains[n_plains++];
-    b.line = lines;
-    // Most are the record's own block, whose text no finding quotes: a block that moved is
-    // move_text until the next line, which copies it (read_line) only when it comes before the
-    // record.
-    plain_pending = move_line == lines;
-    if (!plain_pending) b.text.assign(text);
-    b.kind = kind;
+    b.line = plain_next.line;
+    b.kind = plain_next.kind;
+    b.text = plain_next.text_later ? move_text : plain_next.text;
     b.tip.reset();
     const auto known = [](const axis_state& a) { return a.k == axis_state::kind::known; };
-    if (kind == mid_kind::away || polar || cylinder || frame || polar_coords || rotary || shifted ||
+    if (b.kind == mid_kind::away || polar || cylinder || frame || polar_coords || rotary || shifted ||
         foreign_offset || head_due || !c_known || c_deg != 0 || !known(x) || !known(z) ||
         (has_y && !known(y)))
       return;
@@ -1022,7 +1030,10 @@ struct cl_comparison::impl {
   // the CL's own), an arc or a return to the reference point or machine coordinates is no part
   // of a straight feed move.
   void hold_plain_blocks(const event& e, const vec3& to, double tol) {
-    if (n_plains < 2 || !cl_prev_known || said_plain) return;
+    // The last block that moved is the record's own, whether a line after it (an M8) has put it
+    // into plains or not.
+    const std::size_t held = plain_pending ? n_plains : n_plains > 0 ? n_plains - 1 : 0;
+    if (held == 0 || !cl_prev_known || said_plain) return;
     const vec3 from = cl_prev;
     const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
     const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
@@ -1037,7 +1048,7 @@ struct cl_comparison::impl {
       return fmt::format("the CL's straight feed move from ({:.3f}, {:.3f}, {:.3f}) to this record's point",
                          from.x, from.y, from.z);
     };
-    for (std::size_t i = 0; i + 1 < n_plains; ++i) {
+    for (std::size_t i = 0; i < held; ++i) {
       const chain_block& b = plains[i];
       if (b.kind == mid_kind::rapid && b.tip && kin::distance(*b.tip, from) <= tol) continue;
       if (b.kind != mid_kind::feed) {
@@ -1385,7 +1396,7 @@ struct cl_comparison::impl {
     };
     const bool gauge = needs_length && (!length_on || h_word == 0) && z.k == axis_state::kind::known;
     if (!rapid && !gauge && std::holds_alternative<motion_event>(e.data)) [[unlikely]]
-      if (n_plains >= 2) hold_plain_blocks(e, {pos.x * cl_mm, pos.y * cl_mm, pos.z * cl_mm}, tol);
+      if (n_plains > 0) hold_plain_blocks(e, {pos.x * cl_mm, pos.y * cl_mm, pos.z * cl_mm}, tol);  // (rare)
     if (fine(x, x_div, pos.x * cl_mm) && (!with_y || fine(y, zs, pos.y * cl_mm)) && !gauge &&
         fine(z, zs, pos.z * cl_mm)) {
       compare_axis(e, cl_axis, followed_polar);

@@ -1295,7 +1295,7 @@ TEST_CASE("cl comparison: a lathe's blocks between two records, on the CL's stra
   // record moved where the feed starts; only the record's end was held. A rapid to (40, 2), then
   // a feed to (40, -30) (the part frame, mm: X a diameter); `mid` are an earlier record's blocks
   // (an INSERT's, a FEDRAT after them), then the feed's own block.
-  auto run = [](std::vector<const char*> mid, bool own_off = false) {
+  auto run = [](std::vector<const char*> mid, bool own_off = false, const char* after = nullptr) {
     compared c("fanuc-0itd-twin", 1);
     c.feed(0.2, feed_mode::per_rev);
     c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2."});
@@ -1303,6 +1303,7 @@ TEST_CASE("cl comparison: a lathe's blocks between two records, on the CL's stra
     for (const char* b : mid) c.cmp.line(b);
     c.feed(0.2, feed_mode::per_rev);
     c.lines({own_off ? "G1 X60. Z-30. F0.2" : "G1 X80. Z-30. F0.2"});
+    if (after) c.cmp.line(after);  // a block that moves nothing, after the record's own
     c.go(40, -30);
     return c.text();
   };
@@ -1310,6 +1311,8 @@ TEST_CASE("cl comparison: a lathe's blocks between two records, on the CL's stra
   // tool stands: nothing to say.
   CHECK(run({"G1 Z-10. F0.2"}).empty());
   CHECK(run({"G0 X80. Z2."}).empty());
+  // The record's own block stays the record's with a block after it that moves nothing.
+  CHECK(run({"G1 Z-10. F0.2"}, false, "M8").empty());
   // A rapid elsewhere: the feed would start there (a cone cut from X20 to X80 Z-30).
   CHECK(run({"G0 X20."}) ==
         "job.cls:13:1: error: channel 1: the program's block `G0 X20.` (line 7 of its program) is a rapid "
