@@ -244,6 +244,7 @@ struct cl_comparison::impl {
   std::vector<chain_block> plains;
   std::size_t n_plains = 0;
   chain_block plain_next;      // the last block that moved, not in `plains` yet
+  bool plains_over = false;    // more blocks than `plains` holds since the last motion record
   bool plain_pending = false;  // plain_next goes into plains at the next line (settle_plain_block)
   bool said_plain = false;
   std::size_t n_mids = 0;
@@ -982,17 +983,17 @@ struct cl_comparison::impl {
                               : motion >= 2   ? mid_kind::arc
                                               : mid_kind::feed);
     if (!chain && any && !not_a_move && !setting && !cycle && !said_plain)
-      stage_plain_block(text, home || machine ? mid_kind::away
-                              : motion == 0   ? mid_kind::rapid
-                              : motion >= 2   ? mid_kind::arc
-                                              : mid_kind::feed);
+      stage_plain_block(text, home || machine              ? mid_kind::away
+                              : motion == 0                ? mid_kind::rapid
+                              : motion == 2 || motion == 3 ? mid_kind::arc
+                                                           : mid_kind::feed);  // (G32: a straight cut)
   }
 
   // A block of a channel without a chain that moved since the last motion record. Most are the
   // record's own block, held by the record's comparison: it waits as `plain_next`, and what it is
   // and where it ends goes into `plains` only when another line comes before the record
-  // (settle_plain_block), the state still where it left it. A move of more blocks is held at
-  // its first 64.
+  // (settle_plain_block), the state still where it left it. A move of more than 4096 blocks is
+  // refused at its record.
   void stage_plain_block(std::string_view text, mid_kind kind) {
     plain_next.line = lines;
     plain_next.kind = kind;
@@ -1007,7 +1008,10 @@ struct cl_comparison::impl {
   // comparison passes those over).
   void settle_plain_block() {
     plain_pending = false;
-    if (n_plains == 64) return;
+    if (n_plains == 4096) {  // (bounded memory: a move past it is refused at its record)
+      plains_over = true;
+      return;
+    }
     if (n_plains == plains.size()) plains.emplace_back();
     chain_block& b = plains[n_plains++];
     b.line = plain_next.line;
@@ -1034,6 +1038,13 @@ struct cl_comparison::impl {
     // into plains or not.
     const std::size_t held = plain_pending ? n_plains : n_plains > 0 ? n_plains - 1 : 0;
     if (held == 0 || !cl_prev_known || said_plain) return;
+    if (plains_over) {  // (attack 68 H3: past the first 64 nothing was held)
+      said_plain = true;
+      return error(e,
+                   fmt::format("the program writes more than {} blocks inside the CL's straight feed move "
+                               "to this record's point: they are not held to it; give the move as CL records",
+                               plains.size()));
+    }
     const vec3 from = cl_prev;
     const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
     const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
@@ -1973,7 +1984,7 @@ struct cl_comparison::impl {
     // The C turns of blocks between two motion records (INSERT text, an [events] block, a
     // tool's or a coolant's blocks) are held to the next one's move (attack 60 F3).
     if (std::holds_alternative<motion_event>(e.data) || std::holds_alternative<arc_event>(e.data))
-      n_turns = 0, n_mids = 0, mid_staged = false, n_plains = 0, plain_pending = false;
+      n_turns = 0, n_mids = 0, mid_staged = false, n_plains = 0, plain_pending = false, plains_over = false;
     hole.valid = false;
     fed_low.valid = fed_high.valid = false;
   }

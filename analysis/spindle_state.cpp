@@ -130,6 +130,10 @@ const std::vector<spindle_change>& channel_spindles::apply(const std::vector<nc_
   commands_.clear();
   // Only M and S words and the one-word codes (is_code) can change or command anything below.
   if (current_ < 0 || !may_command(words)) return changes_;
+  // A macro call's words are its arguments (`G65 P9001 E2. M3`: attack 68 M4), no commands.
+  for (const nc_word& w : words)
+    if (w.address == 'G' && w.numeric && (w.number == 65 || w.number == 66 || w.number == 66.1))
+      return changes_;
   // The spindle the block itself selects, by a select code (M902) or a work offset (G55),
   // wherever it stands in the block: a code several spindles share goes to it (attack 67 H4:
   // `G55 G97 S500 M4` reversed the main, and `M203 M902` read otherwise than `M902 M203`).

@@ -853,14 +853,16 @@ bool channel_writer::insert_passes(const std::string& text, int line) {
   // An end of the program in the body (`M30`, `/M30`, `M99`), or a comment no ')' closes: the
   // checker's reading would stop there, the control too or not (block delete), and nothing
   // after it would be checked (attack 67 H1: a reserved variable written after `/M30`).
+  // As written and as a control that skips blanks reads it (attack 68 H2: `M 30`, `M 9 9`).
   const program_format& p = m_.program;
-  if (const std::string fault = code_text_fault(text, p.comment_open, p.comment_close, code_use::line);
-      !fault.empty()) {
-    error(line, fmt::format("INSERT \"{}\": {}", text, fault));
-    return false;
-  }
   bool glued = false;
   const std::string reading = control_reading(text, m_.program, glued);
+  for (const std::string_view form : {std::string_view(text), std::string_view(reading)})
+    if (const std::string fault = code_text_fault(form, p.comment_open, p.comment_close, code_use::line);
+        !fault.empty()) {
+      error(line, fmt::format("INSERT \"{}\": {}", text, fault));
+      return false;
+    }
   const std::string increments = increment_letters();
   const std::string why = insert_return_error(reading, text, {false, increments, false, {}});
   if (why.empty()) return true;

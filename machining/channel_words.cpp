@@ -171,8 +171,8 @@ void channel_writer::leave_cut(bool at_end) {
     out_.block(own);
     if (again)
       left_blocks_ &= ~(std::uint64_t{1} << i);
-    else if (at_end)
-      end_home_.push_back(own);  // the footer need not write it again
+    else if (at_end && !filtered_)  // (a script's on_block may have written another: attack 68 H1)
+      end_home_.push_back(own);     // the footer need not write it again
   }
   in_cut_ = false;
 }

@@ -1311,6 +1311,14 @@ TEST_CASE("cl comparison: a lathe's blocks between two records, on the CL's stra
   // tool stands: nothing to say.
   CHECK(run({"G1 Z-10. F0.2"}).empty());
   CHECK(run({"G0 X80. Z2."}).empty());
+  // More blocks than are held (attack 68 H3: past the first 64 an off-line block passed).
+  std::vector<std::string> many(4097, "G1 Z-1. F0.2");
+  many.push_back("G1 X200. Z-15.");
+  std::vector<const char*> many_c;
+  for (const std::string& b : many) many_c.push_back(b.c_str());
+  CHECK(run(many_c) ==
+        "job.cls:13:1: error: channel 1: the program writes more than 4096 blocks inside the CL's straight "
+        "feed move to this record's point: they are not held to it; give the move as CL records\n");
   // The record's own block stays the record's with a block after it that moves nothing.
   CHECK(run({"G1 Z-10. F0.2"}, false, "M8").empty());
   // A rapid elsewhere: the feed would start there (a cone cut from X20 to X80 Z-30).

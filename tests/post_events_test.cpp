@@ -1084,6 +1084,19 @@ TEST_CASE("on_block sees the header and footer blocks, each once, with ctx.part"
           "M100\n(FOOTER)\nM9\n(FOOTER)\nG30 U0.\n(FOOTER)\nG30 W0.\n(FOOTER)\nM1\n(FOOTER)\nM5 (HEADERS "
           "2)\nM30\n%\n");
   }
+  SECTION("a script that rewrites the way out of the cut: the footer still homes") {
+    // Attack 68 H1: the drill left in the cut went out by `G28 W0.`, which the script wrote as
+    // `G30 W0.`; the footer, told that G28 W0. was written, left its own out: Z ended at G30.
+    const test::posted p = post_with_script(
+        "",
+        "function on_block(text, ctx)\n  if ctx.part == 'body' and text == 'G28 W0.' then return 'G30 W0.' "
+        "end\nend\n",
+        "PARTNO EV\nHEAD/1\nTURRET/1,1\nTLDATA/DRILL,8,118\nSPINDL/RPM,1000,CLW\nFEDRAT/0.1,MMPR\nRAPID\n"
+        "GOTO/0,0,5\nGOTO/0,0,-30\nFINI\n",
+        "frame-out");
+    const std::string f = program_1(p);
+    CHECK(f.substr(f.find("G1 Z-30.")) == "G1 Z-30. F0.1\nG30 W0.\nM100\nM9\nG28 U0.\nG28 W0.\nM5\nM30\n%\n");
+  }
   SECTION("a late PARTNO: the header written again under the name gets the same answer") {
     // ctx.program is the name the program had when the block was asked for, as in the body.
     const test::posted p = post_with_script("", lua, "HEAD/1\nTURRET/1,1\nPARTNO EV\nFINI\n", "frame-late");

@@ -311,6 +311,10 @@ TEST_CASE("an end of the program from AUXFUN or INSERT in the body stops the pos
       {"INSERT/M99",
        "INSERT \"M99\": M99 ends the program (M99 goes back to its start) there: only "
        "program.end_code and the footer may end it"},
+      // As a control that skips blanks reads it (attack 68 H2).
+      {"INSERT/M 30",
+       "INSERT \"M 30\": M30 ends the program (M99 goes back to its start) there: only "
+       "program.end_code and the footer may end it"},
       {"INSERT/(NOTE",
        "INSERT \"(NOTE\": '(' opens a comment that no ')' closes: the words after it would not be read"},
   };

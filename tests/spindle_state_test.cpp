@@ -133,3 +133,13 @@ TEST_CASE("spindle state: a work offset of two words selects its spindle", "[ana
   CHECK(run(m, 1, {"G54.1 P2", "G50 S3000", "G54", "G50 S2000"}) ==
         "\nsub:?,?,0,3000@5\n\nmain:?,?,0,2000@5\ncurrent main\n");
 }
+
+TEST_CASE("spindle state: a macro call's words are its arguments", "[analysis]") {
+  // Attack 68 M4: `G65 P9001 E2.` on a machine whose sub's work offset is E2 was read as
+  // selecting the sub; an M3 there is an argument too.
+  machine m = load_machine("fanuc-0itd-twin");
+  m.spindles[0].work_offset = "E1";
+  m.spindles[1].work_offset = "E2";
+  CHECK(run(m, 1, {"G65 P9001 E2. M3 S500"}) == "\ncurrent main\n");
+  CHECK(run(m, 1, {"E2", "S500"}) == "\nsub:?,?,500,0@1\ncurrent sub\n");  // (the offset alone selects)
+}
