@@ -338,9 +338,17 @@ std::optional<aux_event> read_aux(const cl_record& r, bool prefun, build_issues&
                       fmt::format("{} needs a code number", prefun ? "PREFUN" : "AUXFUN")});
     return std::nullopt;
   }
+  // A whole number (attack 68 L7: AUXFUN/2.5 was written M3, a spindle start).
+  const double v = r.args[0].number;
+  if (v != std::floor(v) || v < 0 || v > 99999) {
+    issues.push_back({severity::error, r.args[0].offset,
+                      fmt::format("{} code {} {}", prefun ? "PREFUN" : "AUXFUN", format_number(v),
+                                  v != std::floor(v) ? "is not a whole number" : "is out of range")});
+    return std::nullopt;
+  }
   aux_event e;
   e.prefun = prefun;
-  e.code = as_int(r.args[0].number);
+  e.code = static_cast<int>(v);
   for (std::size_t i = 1; i < r.args.size(); ++i)
     if (is_num(r, i)) e.extra.push_back(r.args[i].number);
   return e;

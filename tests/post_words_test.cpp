@@ -125,6 +125,10 @@ TEST_CASE("a tool number is a whole number, or an error at its argument", "[post
   posted half = post_text("PARTNO W\nLOADTL/2.5\nFINI\n", "fanuc-0itd-twin", "half");
   CHECK(half.diagnostics ==
         "job.cls:2:8: error: LOADTL tool number 2.5 is not a whole number\nLOADTL/2.5\n       ^\n");
+  // An AUXFUN's code too (attack 68 L7: AUXFUN/2.5 was written M3, a spindle start).
+  posted aux = post_text("PARTNO W\nAUXFUN/2.5\nFINI\n", "fanuc-0itd-twin", "aux-half");
+  CHECK(aux.diagnostics ==
+        "job.cls:2:8: error: AUXFUN code 2.5 is not a whole number\nAUXFUN/2.5\n       ^\n");
   posted offset = post_text("PARTNO W\nTURRET/1,-1\nFINI\n", "fanuc-0itd-twin", "offset");
   CHECK(offset.diagnostics ==
         "job.cls:2:10: error: TURRET offset number -1 is out of range\nTURRET/1,-1\n         ^\n");
