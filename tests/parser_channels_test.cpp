@@ -83,7 +83,10 @@ TEST_CASE("huge numbers in integer fields saturate instead of overflowing", "[pa
   // error now: tests/post_words_test.cpp; SYNCTR/NEXT after marker INT_MAX:
   // tests/router_test.cpp. A sync marker out of range is an error since attack 49: saturated,
   // two of them paired as one.)
-  CHECK(events_of("AUXFUN/1e300\n") == lines{"1\tauxfun code=2147483647"});
+  // An AUXFUN code out of range is an error (attack 68 L7), no longer saturated.
+  CHECK(read_cl("AUXFUN/1e300\n", dialect::generic).diagnostics ==
+        "t.cl:1:8: error: AUXFUN code 1e+300 is out of range\nAUXFUN/1e300\n       ^\n");
+  CHECK(events_of("AUXFUN/99999\n") == lines{"1\tauxfun code=99999"});
   CHECK(
       read_cl("SYNCTR/NEXT,1e300\n", dialect::generic).diagnostics ==
       "t.cl:1:13: error: SYNCTR: 1e+300 is no marker or channel number: a whole number up to 2147483647 is\n"
