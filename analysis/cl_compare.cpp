@@ -235,6 +235,7 @@ struct cl_comparison::impl {
     std::string text;
     mid_kind kind = mid_kind::feed;
     bool text_later = false;  // `text` is move_text's once the next block comes
+    bool unknown = false;     // (plains) an axis word of its own is a variable or an expression
   };
   std::vector<chain_block> mids;  // a chain's feed blocks since the last motion record (n_mids of them)
   // A channel without a chain (a lathe's, a 3-axis mill's): its moving blocks since the last
@@ -1018,7 +1019,14 @@ struct cl_comparison::impl {
     b.kind = plain_next.kind;
     b.text = plain_next.text_later ? move_text : plain_next.text;
     b.tip.reset();
+    b.unknown = false;
     const auto known = [](const axis_state& a) { return a.k == axis_state::kind::known; };
+    // A feed to an axis word given by a variable (`G1 X#100 Z-15.`): where it ends is known only
+    // when the block runs (attack 68 M5). Read again from its text: rare.
+    if (b.kind == mid_kind::feed && (!known(x) || !known(z) || (has_y && !known(y))))
+      for (const nc_word& w : split_nc_words(std::string_view(b.text)))
+        if (w.expression && std::string_view("XYZUVW").find(w.address) != std::string_view::npos)
+          b.unknown = true;
     if (b.kind == mid_kind::away || polar || cylinder || frame || polar_coords || rotary || shifted ||
         foreign_offset || head_due || !c_known || c_deg != 0 || !known(x) || !known(z) ||
         (has_y && !known(y)))
@@ -1077,6 +1085,14 @@ struct cl_comparison::impl {
                                        b.tip->y, b.tip->z)
                          : std::string()));
         return;
+      }
+      if (b.unknown) {
+        said_plain = true;
+        return error(e,
+                     fmt::format("the program's block `{}` (line {} of its program) moves the tool inside {} "
+                                 "to an axis word given by a variable or an expression: where it cuts is "
+                                 "known only when the block runs",
+                                 b.text, b.line, move()));
       }
       if (!b.tip) continue;
       if (const double off = off_line(*b.tip); off > tol) {

@@ -1319,6 +1319,13 @@ TEST_CASE("cl comparison: a lathe's blocks between two records, on the CL's stra
   CHECK(run(many_c) ==
         "job.cls:13:1: error: channel 1: the program writes more than 4096 blocks inside the CL's straight "
         "feed move to this record's point: they are not held to it; give the move as CL records\n");
+  // A feed to an axis word given by a variable: where it ends is not known (attack 68 M5).
+  CHECK(
+      run({"G1 X#100 Z-10."}) ==
+      "job.cls:13:1: error: channel 1: the program's block `G1 X#100 Z-10.` (line 7 of its program) moves "
+      "the "
+      "tool inside the CL's straight feed move from (40.000, 0.000, 2.000) to this record's point to an axis "
+      "word given by a variable or an expression: where it cuts is known only when the block runs\n");
   // The record's own block stays the record's with a block after it that moves nothing.
   CHECK(run({"G1 Z-10. F0.2"}, false, "M8").empty());
   // A rapid elsewhere: the feed would start there (a cone cut from X20 to X80 Z-30).
