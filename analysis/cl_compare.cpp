@@ -38,6 +38,16 @@ constexpr double turn_chord =
 // A G code as ten times its number: G12.1 is 121, G99 is 990.
 int g10(double number) { return static_cast<int>(std::lround(number * 10)); }
 
+// How far point `p` lies from the segment `from`-`to` (the held blocks of a CL straight move).
+double off_segment(const vec3& from, const vec3& to, const vec3& p) {
+  const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
+  const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
+  const double t =
+      dd > 0 ? std::clamp(((p.x - from.x) * d.x + (p.y - from.y) * d.y + (p.z - from.z) * d.z) / dd, 0.0, 1.0)
+             : 0.0;
+  return kin::distance(p, vec3{from.x + t * d.x, from.y + t * d.y, from.z + t * d.z});
+}
+
 // Where one axis is, as the program has left it.
 struct axis_state {
   enum class kind : unsigned char {
@@ -1046,7 +1056,7 @@ struct cl_comparison::impl {
     // into plains or not.
     const std::size_t held = plain_pending ? n_plains : n_plains > 0 ? n_plains - 1 : 0;
     if (held == 0 || !cl_prev_known || said_plain) return;
-    if (plains_over) {  // (attack 68 H3: past the first 64 nothing was held)
+    if (plains_over) {  // (attack 68 H3: a first version held 64 blocks and let the 65th through)
       said_plain = true;
       return error(e,
                    fmt::format("the program writes more than {} blocks inside the CL's straight feed move "
@@ -1054,15 +1064,7 @@ struct cl_comparison::impl {
                                plains.size()));
     }
     const vec3 from = cl_prev;
-    const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
-    const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
-    const auto off_line = [&](const vec3& p) {
-      const double t =
-          dd > 0 ? std::clamp(((p.x - from.x) * d.x + (p.y - from.y) * d.y + (p.z - from.z) * d.z) / dd, 0.0,
-                              1.0)
-                 : 0.0;
-      return kin::distance(p, vec3{from.x + t * d.x, from.y + t * d.y, from.z + t * d.z});
-    };
+    const auto off_line = [&](const vec3& p) { return off_segment(from, to, p); };
     const auto move = [&] {
       return fmt::format("the CL's straight feed move from ({:.3f}, {:.3f}, {:.3f}) to this record's point",
                          from.x, from.y, from.z);
@@ -1169,15 +1171,7 @@ struct cl_comparison::impl {
   void hold_chain_blocks(const event& e, const vec3& to, double tol, const std::optional<vec3>& last,
                          const std::string& last_text, int last_line, bool straight) {
     const vec3 from = cl_prev;
-    const vec3 d{to.x - from.x, to.y - from.y, to.z - from.z};
-    const double dd = d.x * d.x + d.y * d.y + d.z * d.z;
-    const auto off_line = [&](const vec3& p) {
-      const double t =
-          dd > 0 ? std::clamp(((p.x - from.x) * d.x + (p.y - from.y) * d.y + (p.z - from.z) * d.z) / dd, 0.0,
-                              1.0)
-                 : 0.0;
-      return kin::distance(p, vec3{from.x + t * d.x, from.y + t * d.y, from.z + t * d.z});
-    };
+    const auto off_line = [&](const vec3& p) { return off_segment(from, to, p); };
     // (Formatted for a finding only: at every record it was a third of the comparison's time.)
     const auto move = [&] {
       return fmt::format("the CL's straight move from ({:.3f}, {:.3f}, {:.3f}) to this record's point",
