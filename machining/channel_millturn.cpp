@@ -252,14 +252,44 @@ std::string_view channel_writer::along_tool() const {
   // (review 64 H1: a centre drill 30 mm deep went home X first). Not on a spindle that faces
   // the main one (Z reversed): Z's home lies beyond its face, deeper into its part.
   const bool axial = std::abs(axis_.z) >= along;
-  if (axial && work_ && work_->reverse_z) return {};
-  if (kind_ == tool_kind::drill && axial) return "ZW";
-  // A live tool on an indexing head, indexed along or across the spindle axis.
-  const bool live = spindle_ && work_ && spindle_ != work_;
-  if (!ch_.head_index.present() || !head_angle_ || !live) return {};
-  if (axial) return "ZW";
-  if (std::abs(axis_.z) <= across) return "XU";
+  if (axial && work_ && work_->reverse_z) return {};  // (retract_facing)
+  if (axial) return leaves_axially() ? "ZW" : "";
+  if (std::abs(axis_.z) <= across && head_live()) return "XU";
   return {};
+}
+
+bool channel_writer::head_live() const {
+  const bool live = spindle_ && work_ && spindle_ != work_;
+  return ch_.head_index.present() && head_angle_ && live;
+}
+
+bool channel_writer::leaves_axially() const {
+  return std::abs(axis_.z) >= along && (kind_ == tool_kind::drill || head_live());
+}
+
+void channel_writer::retract_facing() {
+  if (!in_cut_ || tool_ < 0 || !work_ || !work_->reverse_z || !leaves_axially()) return;
+  in_cut_ = false;
+  if (errors_ > 0) return;  // (no file is written: a retract would only say the error again)
+  const double n2 = axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z;
+  const double back = clear_at_ ? ((clear_at_->x - pos_.x) * axis_.x + (clear_at_->y - pos_.y) * axis_.y +
+                                   (clear_at_->z - pos_.z) * axis_.z) /
+                                      n2
+                                : 0.0;
+  if (back <= 1e-9)
+    return error(line_,
+                 fmt::format("the tool is left in a cut on the {} spindle, which faces the main one, with "
+                             "no retract in the CL and no rapid of this tool above it to go back to: its "
+                             "home blocks would move it across its hole, then towards that spindle; "
+                             "give the retract before GOHOME, the tool change or the end",
+                             work_->name));
+  // Back the way the tool came in, along its axis, to the level its last rapid stood at: as the
+  // CL's own retract would be (F-INTGX keeps a separate Z home for the second spindle's work).
+  motion_event mv;
+  mv.rapid = true;
+  mv.pos = {pos_.x + axis_.x * back, pos_.y + axis_.y * back, pos_.z + axis_.z * back};
+  motion(mv, line_);
+  in_cut_ = false;
 }
 
 bool channel_writer::index_head(int line) {

@@ -139,6 +139,7 @@ void channel_writer::leave_cut(bool at_end) {
   // (review 64: an end mill stopped at the bottom of its pocket). The public posts take the
   // CAM's retract for granted here (the Fusion "Mazak Integrex i" post: writeRetract(X, Y),
   // then writeRetract(Z)); after a rapid the machine's order stands.
+  retract_facing();
   const std::string_view along = along_tool();
   if (along.empty()) {
     // A tool whose way out the post cannot know (a turning tool in a bore, a groove, under a
@@ -456,6 +457,7 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   const tool_def* table = m_.tool(ch_.number, tool);
   table_speed_due_ = table && (table->rpm || table->surface_speed);
   tool_ = tool;
+  clear_at_.reset();
   tool_line_ = line;
   tool_word_ = word;
   tool_cam_name_ = cam_tool_;

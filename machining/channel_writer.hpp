@@ -253,6 +253,15 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// Where the tool is in a cut (its last move a feed) and the axis along it is known: the
   /// addresses that move along it (Z and W for an axial tool, X and U for a radial one); "".
   std::string_view along_tool() const;
+  /// A live tool on an indexing head, indexed for the part's spindle.
+  bool head_live() const;
+  /// The tool along the spindle axis leaves a cut along it: a drill, or a live tool on a head.
+  bool leaves_axially() const;
+  /// From a cut, an axial tool on a spindle that faces the main one (Z reversed): no home block
+  /// leaves along it (Z's home lies beyond that spindle's face, deeper into its part), so it goes
+  /// back along its axis to the level of its last rapid point, in the work frame; an error where
+  /// no rapid of this tool gives that level (review 37 H2).
+  void retract_facing();
   /// The length offset (G43, G43.4, the plane's G43) cancelled, with the tool at its home: the
   /// cancel may move Z by the tool's length, so away from home it waits for the home blocks
   /// (docs/machines.md, "Length offset cancel").
@@ -667,6 +676,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::optional<cycle_event> cycle_;
   std::vector<std::string> end_home_;  // home blocks leave_cut(at_end) wrote (footer_in_force)
   bool in_cut_ = false;                // the CL's last move was a feed: the tool may be in the part (go_home)
+  std::optional<vec3> clear_at_;       // the CL's last rapid point of this tool since its call or home
   std::uint64_t left_blocks_ = 0;      // leave_cut() wrote these home blocks (bit i: block i)
   int cycle_line_ = 0;                 ///< the CL line of the cycle in force
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force

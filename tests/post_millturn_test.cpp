@@ -467,10 +467,10 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
   const test::posted p = post_on(drill, load_machine("integrex-i200st"), "sub-b180");
   INFO(p.diagnostics);
   CHECK(head1(p, "D.EIA") ==
-        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\nG0 G90 G53 "
-        "Z0.\nT04 M6\nG55\n"
-        "M902\nG97 S700 M303\nG95\nM108\nG0 G53 B180.\nM107\nG0 G43 P1 H#3020 X0. Y0. Z-5.\nG1 Z10. F0.1\n"
-        "M950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
+        "G109 L1\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\nG0 G90 G53 X0. Y0.\n"
+        "G0 G90 G53 Z0.\nT04 M6\nG55\nM902\nG97 S700 M303\nG95\nM108\nG0 G53 B180.\nM107\n"
+        "G0 G43 P1 H#3020 X0. Y0. Z-5.\nG1 Z10. F0.1\nG0 Z-5.\nM950\nM9\nM5\nM205\nM305\n"
+        "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   // A machine file that gives no angle for the sub: the post stops at the move.
   machine m = load_machine("integrex-i200st");
   m.channels[0].head_index.axial_sub.reset();
@@ -491,10 +491,9 @@ TEST_CASE("the B head faces the sub spindle for work there, or the post stops", 
   INFO(f.diagnostics);
   const std::string nc = f.files.at("D_3.nc");
   CHECK(nc.substr(nc.find("M6 T04")) ==
-        "M6 T0400\nT0404\nG55\nG97 S700 M103\nG0 B90.\nG0 X0. Y0. Z-5.\nG1 Z10. F0.1\nG28 "
-        "U0. V0.\nG28 W0.\n"
-        "M6 T0500\nT0505\nG97 S900 M103\nG0 B0.\nG0 X40. Y0. Z-2.\nM200 P123\nM105\nM9\nG28 U0. V0.\nG28 "
-        "W0.\nM30\n%\n");
+        "M6 T0400\nT0404\nG55\nG97 S700 M103\nG0 B90.\nG0 X0. Y0. Z-5.\nG1 Z10. F0.1\nG0 Z-5.\n"
+        "G28 U0. V0.\nG28 W0.\nM6 T0500\nT0505\nG97 S900 M103\nG0 B0.\nG0 X40. Y0. Z-2.\n"
+        "M200 P123\nM105\nM9\nG28 U0. V0.\nG28 W0.\nM30\n%\n");
 }
 
 TEST_CASE("the 31i's B head changes the tool with M6 T0700 and takes its offset with T0707",
@@ -617,8 +616,10 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
     CHECK(f.substr(f.find("G1 Z-30. F0.1\n"), 14 + std::string(out).size()) ==
           "G1 Z-30. F0.1\n" + std::string(out));
   }
-  // along Z too; on the second spindle (Z reversed) Z's home lies beyond its face, deeper into
-  // its part: the machine's order stands, and the post says it goes home from a cut.
+  // along Z too. On the second spindle (Z reversed) Z's home lies beyond its face, deeper into
+  // its part, and the head's home moves X and Y first: the drill goes back along its axis to the
+  // level of its last rapid, in the work frame (review 37 H2: it went X Y first from 30 deep,
+  // with a warning only), then home as after a retract.
   const std::string centre =
       "PARTNO H\nHEAD/1\nTLDATA/DRILL,10,118\nLOADTL/11\nSPINDL/RPM,1200,CLW\n"
       "FEDRAT/0.12,MMPR\nRAPID\nGOTO/0,0,5,0,0,1\nGOTO/0,0,-30\nGOHOME\nFINI\n";
@@ -626,17 +627,33 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
   CHECK(c.find("G1 Z-30. F0.12\nG0 G90 G53 Z0.\nG0 G90 G53 X0. Y0.\n") != std::string::npos);
   std::string on_sub = centre;
   on_sub.replace(on_sub.find("SPINDL/RPM,1200,CLW"), 19, "SPINDL/RPM,1200,CLW,SUB");
-  const test::posted sub = test::post_in_fresh_dir(on_sub, integrex, "millturn-home-centre-sub",
-                                                   [](const diagnostic&) { return true; });
-  const std::string sh = head1(sub, "H.EIA");
-  CHECK(sh.find("G1 Z30. F0.12\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\n") != std::string::npos);
-  CHECK(
-      sub.diagnostics ==
-      "job.cls:10:1: warning: channel 1: the tool goes home straight from a feed move, with no retract in "
-      "the "
-      "CL: the home blocks move it as the machine file lists them, from where the feed left it; in a bore, a "
-      "groove or under a shoulder it would run into the part: give the retract before GOHOME or the tool "
-      "change\nGOHOME\n^\n");
+  const std::string sh = head1(post_on(on_sub, integrex, "home-centre-sub"), "H.EIA");
+  CHECK(sh.substr(sh.find("G1 Z30. F0.12")) ==
+        "G1 Z30. F0.12\nG0 Z-5.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM9\nM5\nM205\nM305\n"
+        "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
+  // The same at the end of the CL (no GOHOME), and at a tool change.
+  std::string sub_end = on_sub;
+  sub_end.replace(sub_end.find("GOHOME\n"), 7, "");
+  const std::string se = head1(post_on(sub_end, integrex, "end-centre-sub"), "H.EIA");
+  CHECK(se.substr(se.find("G1 Z30. F0.12")) ==
+        "G1 Z30. F0.12\nG0 Z-5.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
+  std::string sub_tc = on_sub;
+  sub_tc.replace(sub_tc.find("GOHOME\n"), 7, "TLDATA/DRILL,8,118\nLOADTL/14\nRAPID\nGOTO/0,0,5\n");
+  const std::string st = head1(post_on(sub_tc, integrex, "tc-centre-sub"), "H.EIA");
+  CHECK(st.substr(st.find("G1 Z30. F0.12"), 73) ==
+        "G1 Z30. F0.12\nG0 Z-5.\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT14 M6\nM902\n");
+  // With no rapid of the tool to go back to, the post cannot know a way out: an error.
+  std::string no_rapid = on_sub;
+  no_rapid.replace(no_rapid.find("RAPID\n"), 6, "");
+  const test::posted nr = test::post_in_fresh_dir(no_rapid, integrex, "millturn-home-centre-sub-norapid",
+                                                  [](const diagnostic&) { return true; });
+  CHECK_FALSE(nr.ok);
+  CHECK(nr.files.empty());
+  CHECK(nr.diagnostics ==
+        "job.cls:9:1: error: channel 1: the tool is left in a cut on the sub spindle, which faces the main "
+        "one, with no retract in the CL and no rapid of this tool above it to go back to: its home blocks "
+        "would move it across its hole, then towards that spindle; give the retract before GOHOME, the tool "
+        "change or the end\nGOHOME\n^\n");
 }
 
 TEST_CASE("live work on the main spindle, then a tool on the sub: the main's C axis let go first",
