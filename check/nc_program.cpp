@@ -632,6 +632,7 @@ class reader {
   // bottom, so a wait behind one may run more often, or not at all, or live in a program it
   // never reads. Said as a warning at the word, never passed over.
   void report_jumps(std::string_view line, const std::vector<nc_word>& words, const line_place& at) {
+    int if_column = 0;
     for (std::size_t i = 0; i < line.size();) {
       const char c = line[i];
       if (c == '(') {
@@ -656,6 +657,14 @@ class reader {
       else if (key == "WHILE")
         report(severity::warning, at(column),
                "WHILE loop: the checker reads its blocks once; waits in it are checked as if it ran once");
+      else if (key == "IF")
+        if_column = column;
+      else if (key == "THEN" && if_column > 0 && !words.empty())  // (attack 67 M9: `.. THEN M5`, then M69;
+                                                                  // an alarm `.. THEN #3000=1` moves nothing)
+        report(
+            severity::warning, at(if_column),
+            "IF ... THEN: the checker does not evaluate the condition; the codes after THEN are checked as "
+            "if it held (a stop there counts as a stop, a wait as a wait)");
       i = j;
     }
     for (const nc_word& w : words) {

@@ -495,6 +495,7 @@ TEST_CASE("jumps, loops and calls the checker does not follow are reported, not 
                      "GOTO 10\n"
                      "IF [#1 GT 2] GOTO20 (RETRY)\n"
                      "WHILE [#2 LT 3] DO1\n"
+                     "IF [#100 EQ 1] THEN M5\n"
                      "M100\n"
                      "END1\n"
                      "G65 P9010 A1.\n"
@@ -515,9 +516,12 @@ TEST_CASE("jumps, loops and calls the checker does not follow are reported, not 
       "J_1.nc:6:1: warning: WHILE loop: the checker reads its blocks once; waits in it are checked as if it "
       "ran "
       "once\nWHILE [#2 LT 3] DO1\n^\n"
-      "J_1.nc:9:1: warning: G65 P9010 calls a macro the checker does not read: waits in it are not checked\n"
+      "J_1.nc:7:1: warning: IF ... THEN: the checker does not evaluate the condition; the codes after THEN "
+      "are checked as if it held (a stop there counts as a stop, a wait as a wait)\nIF [#100 EQ 1] THEN "
+      "M5\n^\n"
+      "J_1.nc:10:1: warning: G65 P9010 calls a macro the checker does not read: waits in it are not checked\n"
       "G65 P9010 A1.\n^\n"
-      "J_1.nc:10:1: warning: M98 P1234 calls a subprogram the checker does not read: waits in it are not "
+      "J_1.nc:11:1: warning: M98 P1234 calls a subprogram the checker does not read: waits in it are not "
       "checked\nm98p1234\n^\n");
 }
 
