@@ -271,23 +271,30 @@ void channel_writer::retract_facing() {
   if (!in_cut_ || tool_ < 0 || !work_ || !work_->reverse_z || !leaves_axially()) return;
   in_cut_ = false;
   if (errors_ > 0) return;  // (no file is written: a retract would only say the error again)
-  const double n2 = axis_.x * axis_.x + axis_.y * axis_.y + axis_.z * axis_.z;
-  const double back = clear_at_ ? ((clear_at_->x - pos_.x) * axis_.x + (clear_at_->y - pos_.y) * axis_.y +
-                                   (clear_at_->z - pos_.z) * axis_.z) /
-                                      n2
-                                : 0.0;
-  if (back <= 1e-9)
+  // The most retracted level the tool stood at at rapid (review 38 H1: the last rapid may be an
+  // expanded peck's, inside the hole, or an R level in a counterbore).
+  const double up = axis_.z > 0 ? 1.0 : -1.0;
+  const double level = up > 0 ? clear_hi_ : clear_lo_;
+  if (clear_known_ && (level - pos_.z) * up <= 1e-6) return;  // the CL fed out to that level or above
+  if (!clear_known_)
     return error(line_,
                  fmt::format("the tool is left in a cut on the {} spindle, which faces the main one, with "
-                             "no retract in the CL and no rapid of this tool above it to go back to: its "
-                             "home blocks would move it across its hole, then towards that spindle; "
-                             "give the retract before GOHOME, the tool change or the end",
+                             "no retract in the CL and no rapid of this tool on that spindle to go back "
+                             "to: its home blocks would move it across its hole, then towards that "
+                             "spindle; give the retract before GOHOME, the tool change or the end",
                              work_->name));
-  // Back the way the tool came in, along its axis, to the level its last rapid stood at: as the
-  // CL's own retract would be (F-INTGX keeps a separate Z home for the second spindle's work).
+  if (c_mode_ || polar_)
+    return error(line_,
+                 fmt::format("the tool is left in a cut on the {} spindle, which faces the main one, with "
+                             "no retract in the CL, and the spindle is held as a C axis: the post does "
+                             "not take it out there; give the retract before GOHOME, the tool change or "
+                             "the end",
+                             work_->name));
+  // Back the way the tool came in, along its axis, to that level: as the CL's own retract would
+  // be (F-INTGX keeps a separate Z home for the second spindle's work).
   motion_event mv;
   mv.rapid = true;
-  mv.pos = {pos_.x + axis_.x * back, pos_.y + axis_.y * back, pos_.z + axis_.z * back};
+  mv.pos = {pos_.x, pos_.y, level};
   motion(mv, line_);
   in_cut_ = false;
 }

@@ -256,7 +256,6 @@ void channel_writer::motion(const motion_event& mv, int line) {
       forget_axes();
       motion_g_ = -1;
       pos_ = mv.pos;
-      clear_at_.reset();
       pose_known_ = false;
       return;
     case motion_kind::go_to:
@@ -308,7 +307,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
       }
       // The tool stands at the CL's point (the next hole starts from it); no hole left it.
       pos_ = mv.pos;
-      if (mv.rapid) clear_at_ = mv.pos;
+      if (mv.rapid) note_clear(mv.pos.z);
       cl_moved_ = at_pos_ = true;
       hole_exit_.reset();
       return;

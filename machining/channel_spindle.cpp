@@ -40,6 +40,7 @@ void channel_writer::work_on(const spindle_def& s) {
   // code was written as an empty block).
   leave_c_axis();
   work_ = &s;
+  clear_known_ = false;  // (the other spindle's levels: review 38 H2)
   z_sign_ = s.reverse_z ? -1.0 : 1.0;
   // Another frame: every axis word goes out again, and the old spindle's restart is void.
   forget_axes();

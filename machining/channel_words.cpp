@@ -457,7 +457,7 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   const tool_def* table = m_.tool(ch_.number, tool);
   table_speed_due_ = table && (table->rpm || table->surface_speed);
   tool_ = tool;
-  clear_at_.reset();
+  clear_known_ = false;
   tool_line_ = line;
   tool_word_ = word;
   tool_cam_name_ = cam_tool_;

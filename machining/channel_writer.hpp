@@ -6,6 +6,7 @@
 // axis words (modal suppression), cutter compensation, an active drilling cycle.
 // Lengths are written in the machine file's output units (mm or inch): the CL's are converted
 // on the way.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstdio>
@@ -259,9 +260,16 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool leaves_axially() const;
   /// From a cut, an axial tool on a spindle that faces the main one (Z reversed): no home block
   /// leaves along it (Z's home lies beyond that spindle's face, deeper into its part), so it goes
-  /// back along its axis to the level of its last rapid point, in the work frame; an error where
-  /// no rapid of this tool gives that level (review 37 H2).
+  /// back along its axis to the most retracted level of its rapid points (since its call or the
+  /// work spindle's change), in the work frame; an error where no rapid gives that level or the
+  /// spindle is held as a C axis (review 37 H2, review 38).
   void retract_facing();
+  /// A rapid of the tool to CL height `z`: a level clear of the part (retract_facing).
+  void note_clear(double z) {
+    clear_hi_ = clear_known_ ? std::max(clear_hi_, z) : z;
+    clear_lo_ = clear_known_ ? std::min(clear_lo_, z) : z;
+    clear_known_ = true;
+  }
   /// The length offset (G43, G43.4, the plane's G43) cancelled, with the tool at its home: the
   /// cancel may move Z by the tool's length, so away from home it waits for the home blocks
   /// (docs/machines.md, "Length offset cancel").
@@ -676,9 +684,12 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::optional<cycle_event> cycle_;
   std::vector<std::string> end_home_;  // home blocks leave_cut(at_end) wrote (footer_in_force)
   bool in_cut_ = false;                // the CL's last move was a feed: the tool may be in the part (go_home)
-  std::optional<vec3> clear_at_;       // the CL's last rapid point of this tool since its call or home
-  std::uint64_t left_blocks_ = 0;      // leave_cut() wrote these home blocks (bit i: block i)
-  int cycle_line_ = 0;                 ///< the CL line of the cycle in force
+  // The highest and lowest CL Z of this tool's rapid points since its call or the work
+  // spindle's change (retract_facing): the levels it stood at clear of the part.
+  double clear_hi_ = 0, clear_lo_ = 0;
+  bool clear_known_ = false;
+  std::uint64_t left_blocks_ = 0;          // leave_cut() wrote these home blocks (bit i: block i)
+  int cycle_line_ = 0;                     ///< the CL line of the cycle in force
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force
   bool thread_saved_per_rev_ = false;      ///< the feed mode to restore at THREAD/OFF
   bool thread_saved_mode_ = false;         ///< whether a feed mode was written before THREAD/TURN

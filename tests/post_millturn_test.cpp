@@ -642,6 +642,22 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
   const std::string st = head1(post_on(sub_tc, integrex, "tc-centre-sub"), "H.EIA");
   CHECK(st.substr(st.find("G1 Z30. F0.12"), 73) ==
         "G1 Z30. F0.12\nG0 Z-5.\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT14 M6\nM902\n");
+  // The most retracted level of the tool's rapids, not the last (review 38 H1: an expanded
+  // peck's rapid back into the hole, 0.5 above its last depth, was taken for the way out).
+  std::string peck = on_sub;
+  peck.replace(peck.find("GOTO/0,0,-30\n"), 13,
+               "GOTO/0,0,-10\nRAPID\nGOTO/0,0,2\nRAPID\nGOTO/0,0,-9.5\nGOTO/0,0,-30\n");
+  const std::string pk = head1(post_on(peck, integrex, "peck-centre-sub"), "H.EIA");
+  CHECK(pk.substr(pk.find("Z9.5")) ==
+        "Z9.5\nG1 Z30.\nG0 Z-5.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM9\n"
+        "M5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
+  // Fed back out to that level (a reamer's way out): no retract to add (review 38 M5: refused).
+  std::string ream = on_sub;
+  ream.replace(ream.find("GOTO/0,0,-30\n"), 13, "GOTO/0,0,-30\nGOTO/0,0,5\n");
+  const std::string rm = head1(post_on(ream, integrex, "ream-centre-sub"), "H.EIA");
+  CHECK(rm.substr(rm.find("G1 Z30. F0.12")) ==
+        "G1 Z30. F0.12\nZ-5.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM9\n"
+        "M5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   // With no rapid of the tool to go back to, the post cannot know a way out: an error.
   std::string no_rapid = on_sub;
   no_rapid.replace(no_rapid.find("RAPID\n"), 6, "");
@@ -651,9 +667,9 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
   CHECK(nr.files.empty());
   CHECK(nr.diagnostics ==
         "job.cls:9:1: error: channel 1: the tool is left in a cut on the sub spindle, which faces the main "
-        "one, with no retract in the CL and no rapid of this tool above it to go back to: its home blocks "
-        "would move it across its hole, then towards that spindle; give the retract before GOHOME, the tool "
-        "change or the end\nGOHOME\n^\n");
+        "one, with no retract in the CL and no rapid of this tool on that spindle to go back to: its home "
+        "blocks would move it across its hole, then towards that spindle; give the retract before GOHOME, "
+        "the tool change or the end\nGOHOME\n^\n");
 }
 
 TEST_CASE("live work on the main spindle, then a tool on the sub: the main's C axis let go first",
