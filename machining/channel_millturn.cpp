@@ -131,6 +131,20 @@ void channel_writer::enter_polar(const vec3& first, bool rapid) {
 
 void channel_writer::leave_polar() {
   if (!polar_) return;
+  // Polar interpolation is set and cancelled with cutter compensation cancelled, as the tilted
+  // plane is (plane_comp_off): a G40 still waiting for its move goes out on its own first, and
+  // compensation the CL leaves on is refused (review 38: `G41 G1 X30.` stayed on through
+  // `G13.1` and the home blocks).
+  if (comp_cl_on_) {
+    comp_cl_on_ = false;  // (said once)
+    error(line_,
+          "polar interpolation ends with cutter compensation on (CUTCOM/LEFT or RIGHT without "
+          "CUTCOM/OFF): it is cancelled with G40 in force; give CUTCOM/OFF and a move before GOHOME, "
+          "the tool change or the end of the face milling");
+  } else if (pending_g_.starts_with("G40")) {
+    out_.block(pending_g_);
+    pending_g_.clear();
+  }
   for (const std::string& b : m_.milling.polar_off) out_.block(b);
   polar_ = false;
   motion_g_ = -1;

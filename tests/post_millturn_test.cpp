@@ -458,6 +458,28 @@ TEST_CASE("cutter compensation on the diameter starts and ends inside cylindrica
         "G41 G1 C90.\nC180.\nG40 C270.\nZ25.\nG7.1 C0\nG18\nG0 Z30.\n");
 }
 
+TEST_CASE("polar interpolation ends with cutter compensation cancelled", "[post][millturn]") {
+  // Review 38: a CL that left CUTCOM/LEFT on at GOHOME kept `G41` through `G13.1` and the home
+  // blocks. As with the tilted plane, compensation is cancelled before the mode ends: a CUTCOM/OFF
+  // with no move after it goes out as `G40` alone, one never given stops the post.
+  const std::string cl =
+      "PARTNO CC\nHEAD/1\nTLDATA/MILL,10,0,75\nLOADTL/14\nSPINDL/RPM,3000,CLW,MAIN\nFEDRAT/MMPM,300\n"
+      "RAPID\nGOTO/40,0,10,0,0,1\nRAPID\nGOTO/40,0,-3\nCUTCOM/LEFT\nGOTO/30,0,-3\nGOTO/30,10,-3\n";
+  const machine integrex = load_machine("integrex-i200st");
+  const std::string h =
+      head1(post_on(cl + "CUTCOM/OFF\nGOHOME\nFINI\n", integrex, "polar-comp-off"), "CC.EIA");
+  CHECK(h.substr(h.find("G41"), h.find("M950") - h.find("G41")) ==
+        "G41 G1 X30. F300.\nC10.\nG40\nG13.1\nG18\nG0 G90 G53 Z0.\nG0 G90 G53 X0. Y0.\n");
+  const test::posted on = post_on(cl + "GOHOME\nFINI\n", integrex, "polar-comp-on");
+  CHECK_FALSE(on.ok);
+  CHECK(on.files.empty());
+  CHECK(
+      on.diagnostics ==
+      "job.cls:14:1: error: channel 1: polar interpolation ends with cutter compensation on (CUTCOM/LEFT or "
+      "RIGHT without CUTCOM/OFF): it is cancelled with G40 in force; give CUTCOM/OFF and a move before "
+      "GOHOME, the tool change or the end of the face milling\nGOHOME\n^\n");
+}
+
 TEST_CASE("the B head faces the sub spindle for work there, or the post stops", "[post][millturn]") {
   // After M902 the Integrex head turns half a turn (B180) for a drill on the second spindle's
   // centre: at B0 it would point at the main spindle, the drill's back end towards the part.
