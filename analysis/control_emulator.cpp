@@ -63,7 +63,8 @@ struct channel_state {
   char head = 0;                     // the address of the channel's indexing head (B); 0: none
   int change_m = -1;                 // the M code of its tool change (M6 of "T{tool:02} M6"); -1: a T word
   int head_unknown = 0;              // the tool call since which the head has not been indexed; 0: known
-  bool said_offset = false, said_chuck = false, said_start = false, said_cutoff = false, said_head = false;
+  bool said_offset = false, said_chuck = false, said_start = false, said_cutoff = false, said_head = false,
+       said_released = false;
   // A channel with a kinematic chain that has a rotary axis: its rapids' tip paths.
   std::optional<rotary_sweep> sweep;
 };
@@ -299,6 +300,21 @@ struct control_emulator::impl {
                         b.channel, k.open.text, m.spindles[s].name, c.cutoff_line,
                         m.spindles[static_cast<std::size_t>(c.holder)].name));
       }
+      // In a transfer (the spindles synchronised) the part is in one chuck or both: the one that
+      // opens must leave it in another, closed since this channel opened it (the sub's M168
+      // dropped: M69 let the part go with the sub's chuck still open from M169).
+      if (c.sync && !c.said_released)
+        for (std::size_t t = 0; t < chucks.size(); ++t)
+          if (t != s && !chucks[t].close.empty() && c.chucks[t].open) {
+            c.said_released = true;
+            say(b, 1,
+                fmt::format("channel {}: {} opens the {} spindle's chuck in the transfer while the {} "
+                            "spindle's is open ({} at line {}): the part would be held by neither; close "
+                            "it first ({})",
+                            b.channel, k.open.text, m.spindles[s].name, m.spindles[t].name,
+                            chucks[t].open.text, c.chucks[t].line, chucks[t].close.text));
+            break;
+          }
       c.chucks[s] = {true, b.line};
       if (static_cast<int>(s) == c.holder || c.cutoff_line == 0) {
         c.holder = -1;

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <vector>
 
 #include "analysis/shared_resources.hpp"
 #include "check/sync_report.hpp"
@@ -19,24 +20,35 @@ std::string sample_job(const std::string& name) {
   return test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/samples/" + name + "/job.cls");
 }
 
-// The posted program `file` of `job` on `machine`, with its first `from` after `after` replaced
-// by `to`, checked as `twinpost check` would.
+// One edit of a posted program: its first `from` after `after` replaced by `to`.
+struct edit {
+  std::string after, from, to;
+};
+
+// The posted program `file` of `job` on `machine`, with `edits` made in order, checked as
+// `twinpost check` would.
 std::string edited_check(const std::string& job, const std::string& machine_name, const std::string& file,
-                         const std::string& after, const std::string& from, const std::string& to) {
+                         const std::vector<edit>& edits) {
   const machine m = load_machine(machine_name);
   const test::posted p = test::post_in_fresh_dir(job, m, "emulator-" + machine_name);
   REQUIRE(p.ok);
   std::vector<nc_source> files;
   for (const auto& [name, text] : p.files) {
     std::string t = text;
-    if (name == file) {
-      const std::size_t at = t.find(from, t.find(after));
-      REQUIRE(at != std::string::npos);
-      t.replace(at, from.size(), to);
-    }
+    if (name == file)
+      for (const edit& e : edits) {
+        const std::size_t at = t.find(e.from, t.find(e.after));
+        REQUIRE(at != std::string::npos);
+        t.replace(at, e.from.size(), e.to);
+      }
     files.push_back({name, t});
   }
   return format_sync_text(check_nc_resources(files, m));
+}
+
+std::string edited_check(const std::string& job, const std::string& machine_name, const std::string& file,
+                         const std::string& after, const std::string& from, const std::string& to) {
+  return edited_check(job, machine_name, file, {{after, from, to}});
 }
 
 }  // namespace
@@ -73,6 +85,32 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
       "(read by transfer.grip): the setup owns its value; write a variable the machine file does not name\n"
       "#501=#501+1\n^\n"
       "check: 2 channels, 12 waits paired, 1 error\n");
+  // Item 9: the sub's stop at the pick-off's tool change put back, the main cut next at G95.
+  CHECK(edited_check(sample_job("pick-off"), "integrex-i200st", "PICK-OFF.EIA", "(", "T03 M6\n",
+                     "M205\nT03 M6\n") ==
+        "PICK-OFF.EIA:57:1: error: channel 1 cuts with feed per revolution (G95) on the main spindle, but "
+        "channel 1 stops it at PICK-OFF.EIA:48 (M205) and no start is known to come after that\n"
+        "G1 X-1. F0.05\n^\ncheck: 2 channels, 12 waits paired, 1 error\n");
+  // The transfer's chucks: the sub's close before the main opens, dropped (the part let go with
+  // the sub's chuck still open); the main's stop and the synchronisation before it opens, dropped.
+  const std::string transfer = sample_job("transfer-to-sub");
+  CHECK(edited_check(transfer, "fanuc-0itd-twin", "TRANSFER-TO-SUB_1.nc", "M213", "M168\n", "") ==
+        "TRANSFER-TO-SUB_1.nc:51:1: error: channel 1: M69 opens the main spindle's chuck in the transfer "
+        "while the sub spindle's is open (M169 at line 41): the part would be held by neither; close it "
+        "first (M168)\n"
+        "M69\n^\ncheck: 2 channels, 10 waits paired, 1 error\n");
+  CHECK(edited_check(transfer, "fanuc-0itd-twin", "TRANSFER-TO-SUB_1.nc",
+                     {{"X80. Z50.", "M5\n", ""}, {"M169", "M213\n", ""}}) ==
+        "TRANSFER-TO-SUB_1.nc:50:1: error: channel 1: M69 opens the main spindle's chuck while the spindle "
+        "turns (started at line 9) and the spindles are not synchronised: stop it first, or open it under "
+        "M213\n"
+        "M69\n^\ncheck: 2 channels, 10 waits paired, 1 error\n");
+  // A spindle started with its chuck open: the main's chuck released before the drill's start.
+  CHECK(edited_check(transfer, "fanuc-0itd-twin", "TRANSFER-TO-SUB_1.nc", "T0202", "G97 S1100 M3\n",
+                     "M5\nM69\nG97 S1100 M3\n") ==
+        "TRANSFER-TO-SUB_1.nc:30:5: error: channel 1: the main spindle is started with its chuck open (M69 "
+        "at line 29): close the chuck first (M68)\n"
+        "G97 S1100 M3\n    ^\ncheck: 2 channels, 10 waits paired, 1 error\n");
   // Item 7: the home between G69 and the heads turning back, dropped. A tilted cut on the
   // head/head mill whose retract (the tip at z 15, where the cut started) is low for the
   // swing: the heads unwind there, and the tip (the gauge point here: the machine file gives
