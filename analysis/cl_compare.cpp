@@ -90,7 +90,11 @@ struct cl_comparison::impl {
       head_dir = head_turn::of(ch.head_index);
       head_offset = !ch.head_index.offset_turning.empty() || !ch.head_index.offset_live.empty();
       for (const std::string* code : {&ch.head_index.offset_turning, &ch.head_index.offset_live})
-        if (!code->empty()) head_codes.push_back(split_nc_words(*code));
+        if (!code->empty()) {
+          (code == &ch.head_index.offset_turning ? head_turning : head_live) =
+              static_cast<int>(head_codes.size());
+          head_codes.push_back(split_nc_words(*code));
+        }
       // A tilted tool's tool-tip control (the chain's G43.4 H#3020) is the head's too: its
       // records are a G68.2 frame's, passed over.
       if (const kinematic_chain* k = m.chain(ch.number); k && !k->tool_tip_on.empty())
@@ -225,6 +229,8 @@ struct cl_comparison::impl {
   // that left another offset in force than theirs (G49, G44, G43 H5); "" while theirs is.
   std::vector<std::vector<nc_word>> head_codes;
   std::string head_wrong;
+  std::string head_wrong_why;             // why head_wrong's code is the other spindle's
+  int head_turning = -1, head_live = -1;  // their places in head_codes
   bool said_head = false;
   // Where the head points the tool: its angle as the program left it (degrees; none where not
   // known: before its first index, after a tool change, which may turn it at the changer, or a
@@ -416,7 +422,9 @@ struct cl_comparison::impl {
   // A G43 on an indexing head's channel: the head's own offset (one of its codes, every word
   // as the machine file writes it: `G43 P1 H#3020`), or another register (`G43 P1 H5`).
   void note_head_offset(std::string_view text) {
-    for (const auto& code : head_codes) {
+    head_wrong_why.clear();
+    for (std::size_t i = 0; i < head_codes.size(); ++i) {
+      const std::vector<nc_word>& code = head_codes[i];
       bool all = true;
       for (const nc_word& c : code) {
         bool found = false;
@@ -434,9 +442,26 @@ struct cl_comparison::impl {
                                 (c.numeric ? w.number == c.number : w.value == c.value));
         all = all && in_code;
       }
-      if (all) return head_wrong.clear();
+      if (!all) continue;
+      // The turning offset for a tool that turns with the part's spindle or stands while the part
+      // turns (a centre drill), the live one for a tool the live spindle turns: the Fusion
+      // "Mazak Integrex i" post writes `G43 P1` for turning and axial centre drilling (rev. 44083).
+      const int sp = spindles.current();
+      const int want = sp < 0 || head_turning < 0 || head_live < 0 ? static_cast<int>(i)
+                       : live[static_cast<std::size_t>(sp)]        ? head_live
+                                                                   : head_turning;
+      if (want == static_cast<int>(i) ||
+          (static_cast<int>(i) != head_turning && static_cast<int>(i) != head_live))
+        return head_wrong.clear();
+      head_wrong.assign(text);
+      head_wrong_why = fmt::format(
+          "the head's offset for a {} tool, and the tool cuts with the {} "
+          "spindle, whose offset code is `{}`",
+          want == head_live ? "turning or stationary" : "live", m.spindles[static_cast<std::size_t>(sp)].name,
+          want == head_live ? ch.head_index.offset_live : ch.head_index.offset_turning);
+      return;
     }
-    head_wrong.assign(text);
+    head_wrong.assign(text), head_wrong_why.clear();
   }
 
   // The head's angle after a block that changed the tool or has the head's word: a tool change
@@ -488,12 +513,20 @@ struct cl_comparison::impl {
   // The head's offset is another than its codes give: X Y Z are not the tip (once per channel).
   bool head_offset_wrong(const event& e) {
     if (head_wrong.empty()) return false;
-    if (!std::exchange(said_head, true))
-      error(e, fmt::format(
-                   "the head's tool length offset is not the machine's here: `{}` left {} in force where "
-                   "the head's offset codes give {}: X Y Z are not the tool tip",
-                   head_wrong, head_wrong.find("G43") != std::string::npos ? "another offset" : "none",
-                   head_code_text()));
+    if (!std::exchange(said_head, true)) {
+      if (!head_wrong_why.empty())  // (review 37 item 10: `G43 P1` is the Integrex's turning offset)
+        error(
+            e,
+            fmt::format(
+                "the head's tool length offset is not the tool's: `{}` gives {}: X Y Z are not the tool tip",
+                head_wrong, head_wrong_why));
+      else
+        error(e, fmt::format(
+                     "the head's tool length offset is not the machine's here: `{}` left {} in force where "
+                     "the head's offset codes give {}: X Y Z are not the tool tip",
+                     head_wrong, head_wrong.find("G43") != std::string::npos ? "another offset" : "none",
+                     head_code_text()));
+    }
     ++passed;
     return true;
   }
@@ -688,7 +721,7 @@ struct cl_comparison::impl {
           c_deg = 0, c_known = true;
         else if (head_offset && !has_word(words, 'G', 43) && !has_word(words, 'G', 43.4) &&
                  !has_word(words, 'G', 43.5) && !has_word(words, 'G', 44) && !has_word(words, 'G', 49))
-          head_wrong.assign(text);
+          head_wrong.assign(text), head_wrong_why.clear();
         else if (!head_offset && !has_word(words, 'G', 43) && !has_word(words, 'G', 44))
           c_known = false;
         continue;
@@ -787,7 +820,7 @@ struct cl_comparison::impl {
         case 440:  // G44 subtracts the offset: never the tip
         case 490:
           length_on = false;
-          if (head_offset) head_wrong.assign(text);
+          if (head_offset) head_wrong.assign(text), head_wrong_why.clear();
           break;
         case 540:
         case 550:

@@ -714,7 +714,7 @@ TEST_CASE("cl comparison: the fourth attack's ways past the C axis, the holes an
     drill.type = "DRILL";
     c.cmp.record({c.next++, drill, 1}, false);
     c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "M108", "G0 G53 B0.", "M107", "G0 C120.",
-             "G0 G43 P1 H#3020 X20. Y0. Z10."});
+             "G0 G43 H#3020 X20. Y0. Z10."});
     c.lines(before);
     c.lines({"X20. Y0. Z2.", cycle});
     motion_event mv;
@@ -750,7 +750,13 @@ TEST_CASE("cl comparison: the fourth attack's ways past the C axis, the holes an
               "H#3020`: X Y Z are not the tool tip\n",
               offset, offset.find("G43") != std::string::npos ? "another offset" : "none"));
   // The head's codes with their words in another order and the move's words: its own offset.
-  CHECK(integrex({"G0 H#3020 P1 G43 X20. Y0. Z2."}, g81).empty());
+  CHECK(integrex({"G0 H#3020 G43 X20. Y0. Z2."}, g81).empty());
+  // The head's turning offset for a drill the live spindle turns (the issue's item 10: `G43 P1` is
+  // the Integrex's offset for turning and centre drilling, the Fusion Integrex post's).
+  CHECK(integrex({"G0 G43 P1 H#3020 X20. Y0. Z2."}, g81) ==
+        "job.cls:11:1: error: channel 1: the head's tool length offset is not the tool's: `G0 G43 P1 H#3020 "
+        "X20. Y0. Z2.` gives the head's offset for a turning or stationary tool, and the tool cuts with the "
+        "live spindle, whose offset code is `G43 H#3020`: X Y Z are not the tool tip\n");
   // A coordinate setting of C (G92 C0.: C's origin moved, not C): the records after it are
   // passed over, not read as C at 0 (attack 48: a right program was refused), with a warning.
   CHECK(integrex({"G92 C0."}, g81) ==
@@ -947,10 +953,11 @@ TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis]
   // with milling tool 12 turning (M3): `index` points it, `c_block` turns the part, and one
   // rapid record with the CL's tool `axis` is held to the tip and the axis.
   auto run = [](const char* index, const char* c_block, vec3 pos, vec3 axis,
-                std::vector<const char*> start = {"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3"}) {
+                std::vector<const char*> start = {"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3"},
+                const char* offset = "G0 G43 H#3020 X20. Y0. Z2.") {
     compared c("integrex-i200st", 1);
     for (const char* b : start) c.cmp.line(b);
-    c.lines({"M108", index, "M107", c_block, "G0 G43 H#3020 X20. Y0. Z2."});
+    c.lines({"M108", index, "M107", c_block, offset});
     c.to(pos, axis);
     return std::pair{c.text(), c.cmp.compared()};
   };
@@ -977,9 +984,16 @@ TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis]
       "job.cls:10:1: error: channel 1: the CL's tool axis here is (0.0000,1.0000,0.0000), the program's head "
       "points the tool along (0.0000,-1.0000,0.0000) in the part frame (180.000 degrees off): the head was "
       "indexed by `G0 G53 B90.` at line 10 of the program\n");
-  // A turning tool (the main spindle turns, M203): its CL gives no axis the head follows.
-  CHECK(run("G0 G53 B0.", "G0 C0.", {10, 0, 2}, {1, 0, 0}, {"T12 M6", "M901", "G97 S800 M203"}) ==
+  // A turning tool (the main spindle turns, M203): its CL gives no axis the head follows. Its
+  // offset is the head's turning one, `G43 P1` (the issue's item 10: the live spindle's `G43`
+  // there is named).
+  const std::vector<const char*> turning{"T12 M6", "M901", "G97 S800 M203"};
+  CHECK(run("G0 G53 B0.", "G0 C0.", {10, 0, 2}, {1, 0, 0}, turning, "G0 G43 P1 H#3020 X20. Y0. Z2.") ==
         std::pair{std::string(), 1L});
+  CHECK(run("G0 G53 B0.", "G0 C0.", {10, 0, 2}, {1, 0, 0}, turning).first ==
+        "job.cls:10:1: error: channel 1: the head's tool length offset is not the tool's: `G0 G43 H#3020 "
+        "X20. Y0. Z2.` gives the head's offset for a live tool, and the tool cuts with the main spindle, "
+        "whose offset code is `G43 P1 H#3020`: X Y Z are not the tool tip\n");
   // The second spindle faces the main one (G55, Z reversed): B180 points the tool at its face.
   const std::vector<const char*> sub{"T12 M6", "M902", "G55", "M300", "G10.9 X0", "G97 S2500 M3"};
   CHECK(run("G0 G53 B180.", "G0 C0.", {20, 0, -2}, {0, 0, 1}, sub) == std::pair{std::string(), 1L});
