@@ -73,6 +73,58 @@ TEST_CASE("cl comparison: the tool tip of a lathe program against the CL", "[ana
         "frame, mm): x 40.500 where the CL has 40.000 (0.500 mm off), after the block `X81. Z-30.`\n");
 }
 
+TEST_CASE("cl comparison: the tolerances at their edges", "[analysis][cl_compare]") {
+  // Issue 37: the tip within 0.002 mm, the tool axis within 0.001 degree, the feed within 0.5 %.
+  auto tip = [](const char* block) {
+    compared c("fanuc-0itd-twin", 1);
+    c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2."});
+    c.go(40, 2, true);
+    c.lines({block});
+    c.go(40, -20, true);
+    return c.text();
+  };
+  CHECK(tip("Z-20.").empty());
+  CHECK(tip("X80.002 Z-20.").empty());  // 0.001 mm off on the radius
+  CHECK(tip("X80.006 Z-20.") ==
+        "job.cls:11:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part frame, mm): x 40.003 where the CL has 40.000 (0.003 mm off), after the block `X80.006 "
+        "Z-20.`\n");  // 0.003 mm
+  CHECK(tip("X80. Z-20.003") ==
+        "job.cls:11:1: error: channel 1: the program does not put the tool tip on this record's point (the "
+        "part frame, mm): z -20.003 where the CL has -20.000 (0.003 mm off), after the block `X80. "
+        "Z-20.003`\n");
+  auto feed = [](const char* f) {
+    compared c("fanuc-0itd-twin", 1);
+    c.feed(0.2, feed_mode::per_rev);
+    c.lines({"T0101", "G97 S1000 M3", "G0 X80. Z2."});
+    c.go(40, 2, true);
+    c.lines({fmt::format("G1 Z-20. {}", f).c_str()});
+    c.go(40, -20);
+    return c.text();
+  };
+  CHECK(feed("F0.2").empty());
+  CHECK(feed("F0.2009").empty());  // 0.45 %
+  CHECK(feed("F0.2011") ==
+        "job.cls:12:1: error: channel 1: the CL feeds at 0.2 mm/rev here, the program at 0.2011 mm/rev "
+        "(F0.2011 under G99)\n");  // 0.55 %
+  CHECK(feed("F0.1989") ==
+        "job.cls:12:1: error: channel 1: the CL feeds at 0.2 mm/rev here, the program at 0.1989 mm/rev "
+        "(F0.1989 under G99)\n");
+  auto axis = [](double degrees) {
+    compared c("integrex-i200st", 1);
+    c.lines({"T12 M6", "M901", "M200", "G10.9 X0", "G97 S2500 M3", "M108", "G0 G53 B0.", "M107", "G0 C0.",
+             "G0 G43 H#3020 X20. Y0. Z2."});
+    const double t = degrees * std::numbers::pi / 180;
+    c.to({20, 0, 2}, {std::sin(t), 0, std::cos(t)});
+    return c.text();
+  };
+  CHECK(axis(0.0009).empty());
+  CHECK(axis(0.0011) ==
+        "job.cls:10:1: error: channel 1: the CL's tool axis here is (0.0000,0.0000,1.0000), the program's "
+        "head points the tool along (0.0000,0.0000,1.0000) in the part frame (0.001 degrees off): the head "
+        "was indexed by `G0 G53 B0.` at line 10 of the program\n");
+}
+
 TEST_CASE("cl comparison: the lower turret's mirrored X and the sub spindle's reversed Z",
           "[analysis][cl_compare]") {
   compared c("fanuc-0itd-twin", 2);
