@@ -231,6 +231,8 @@ struct cl_comparison::impl {
   std::string head_wrong;
   std::string head_wrong_why;             // why head_wrong's code is the other spindle's
   int head_turning = -1, head_live = -1;  // their places in head_codes
+  int head_used = -1;                     // the head code in force (note_head_offset), its block:
+  std::string head_used_text;
   bool said_head = false;
   // Where the head points the tool: its angle as the program left it (degrees; none where not
   // known: before its first index, after a tool change, which may turn it at the changer, or a
@@ -443,23 +445,9 @@ struct cl_comparison::impl {
         all = all && in_code;
       }
       if (!all) continue;
-      // The turning offset for a tool that turns with the part's spindle or stands while the part
-      // turns (a centre drill), the live one for a tool the live spindle turns: the Fusion
-      // "Mazak Integrex i" post writes `G43 P1` for turning and axial centre drilling (rev. 44083).
-      const int sp = spindles.current();
-      const int want = sp < 0 || head_turning < 0 || head_live < 0 ? static_cast<int>(i)
-                       : live[static_cast<std::size_t>(sp)]        ? head_live
-                                                                   : head_turning;
-      if (want == static_cast<int>(i) ||
-          (static_cast<int>(i) != head_turning && static_cast<int>(i) != head_live))
-        return head_wrong.clear();
-      head_wrong.assign(text);
-      head_wrong_why = fmt::format(
-          "the head's offset for a {} tool, and the tool cuts with the {} "
-          "spindle, whose offset code is `{}`",
-          want == head_live ? "turning or stationary" : "live", m.spindles[static_cast<std::size_t>(sp)].name,
-          want == head_live ? ch.head_index.offset_live : ch.head_index.offset_turning);
-      return;
+      head_used = static_cast<int>(i);  // (which one the tool wants, at its cut: head_spindle_wrong)
+      head_used_text.assign(text);
+      return head_wrong.clear();
     }
     head_wrong.assign(text), head_wrong_why.clear();
   }
@@ -508,6 +496,27 @@ struct cl_comparison::impl {
             "the records under `{}` (line {} of its program) are not held to the CL: the comparison does "
             "not follow that frame",
             unfollowed_text, unfollowed_line));
+  }
+
+  // At a cut: the head's turning offset for a tool that turns with the part's spindle or stands
+  // while the part turns (a centre drill), the live one for a tool the live spindle turns (the
+  // issue's item 10; the Fusion "Mazak Integrex i" post, rev. 44083, writes `G43 P1` for turning
+  // and axial centre drilling). Judged where the tool cuts, not at the offset's block: a SPINDL
+  // may come after the approach that gave the offset (attack 69 H1).
+  bool head_spindle_wrong(const event& e) {
+    const int sp = spindles.current();
+    if (head_used < 0 || head_turning < 0 || head_live < 0 || sp < 0 || !head_wrong.empty() ||
+        ch.head_index.offset_turning == ch.head_index.offset_live)
+      return head_offset_wrong(e);
+    const int want = live[static_cast<std::size_t>(sp)] ? head_live : head_turning;
+    if (want == head_used) return false;
+    head_wrong = head_used_text;
+    head_wrong_why = fmt::format(
+        "the head's offset for a {} tool, and the tool cuts with the {} spindle, whose "
+        "offset code is `{}`",
+        want == head_live ? "turning or stationary" : "live", m.spindles[static_cast<std::size_t>(sp)].name,
+        want == head_live ? ch.head_index.offset_live : ch.head_index.offset_turning);
+    return head_offset_wrong(e);
   }
 
   // The head's offset is another than its codes give: X Y Z are not the tip (once per channel).
@@ -1389,7 +1398,7 @@ struct cl_comparison::impl {
   bool compare(const event& e, const vec3& pos, bool rapid, bool both,
                const std::optional<vec3>& cl_axis = std::nullopt) {
     // The head's offset first: a G49 H0 also makes C unknown, and would pass everything after.
-    if (!head_due && head_offset_wrong(e)) return false;
+    if (!head_due && (rapid ? head_offset_wrong(e) : head_spindle_wrong(e))) return false;
     if (whole_chain || (chain && chain->tool_tip_on())) return compare_chain(e, pos, rapid, both, cl_axis);
     const bool followed_polar = polar && polar_follow;
     if (both || cl_cycle || cycle || (polar && !polar_follow) || cylinder || frame || polar_coords ||
@@ -1616,7 +1625,7 @@ struct cl_comparison::impl {
   // program drilled it with since the last record: along Z, its X and Y (turned by C) are the
   // hole's; a side cycle (along X) drills at the hole's Z, on the side C turned to it.
   void compare_hole(const event& e, const vec3& pos) {
-    if (!head_due && head_offset_wrong(e)) return;
+    if (!head_due && head_spindle_wrong(e)) return;
     if (polar || cylinder || frame || polar_coords || rotary || foreign_offset || shifted || head_due ||
         !c_known || (whole_chain && !chain->upright())) {
       if (shifted || mirrored) said_passed_shift(e);

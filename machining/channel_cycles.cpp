@@ -138,6 +138,23 @@ vec3 channel_writer::cycle_approach(const vec3& p) const {
   return {p.x + *above * axis_.x / len, p.y + *above * axis_.y / len, p.z + *above * axis_.z / len};
 }
 
+bool channel_writer::hole_from_cut(const vec3& p, int line) {
+  // The control positions a hole's cycle across the tool at the level the tool stands at, then
+  // goes to its R level: straight from a cut below that level (no retract in the CL) the
+  // positioning runs through the part, and on a mill/turn C turns the part under the cutter
+  // (review 38b P3: an end mill 3 mm deep, then `G0 C0.` and `X20. Y10. Z2.`).
+  const vec3 r = cycle_approach(p);
+  const double n = kin::norm(axis_);
+  const double below = ((r.x - pos_.x) * axis_.x + (r.y - pos_.y) * axis_.y + (r.z - pos_.z) * axis_.z) / n;
+  if (below <= 1e-6) return false;
+  error(line, fmt::format("CYCLE/{}: the hole's cycle starts straight from a cut, {} below its R level: the "
+                          "control would position it across the tool there, through the part; give the "
+                          "retract before the cycle",
+                          cycle_->type, kin::number_text(below * cl_mm_)));
+  from_cut_ = false;
+  return true;
+}
+
 void channel_writer::cycle_point(const vec3& p, int line) {
   const cycle_event& c = *cycle_;
   c_hole_deg_.reset();

@@ -131,18 +131,20 @@ void channel_writer::enter_polar(const vec3& first, bool rapid) {
 
 void channel_writer::leave_polar() {
   if (!polar_) return;
-  // Polar interpolation is set and cancelled with cutter compensation cancelled, as the tilted
-  // plane is (plane_comp_off): a G40 still waiting for its move goes out on its own first, and
-  // compensation the CL leaves on is refused (review 38: `G41 G1 X30.` stayed on through
-  // `G13.1` and the home blocks).
-  if (comp_cl_on_) {
+  // Polar interpolation is set and cancelled with cutter compensation cancelled (review 38:
+  // `G41 G1 X30.` stayed on through `G13.1` and the home blocks). Compensation the CL leaves on
+  // is refused, and so is a CUTCOM/OFF with no move after it: the control takes the offset off
+  // on a move, and a `G40` alone would shift the cutter by its radius where it stands, into the
+  // wall it has just finished (review 38b P1; the Fusion Integrex post writes G40 only with a
+  // feed move).
+  if (comp_cl_on_ || pending_g_.starts_with("G40")) {
+    error(line_, comp_cl_on_ ? "polar interpolation ends with cutter compensation on (CUTCOM/LEFT or RIGHT "
+                               "without CUTCOM/OFF): it is cancelled with G40 in force; give CUTCOM/OFF and "
+                               "a lead-out move before GOHOME, the tool change or the end of the face milling"
+                             : "polar interpolation ends with CUTCOM/OFF given and no move after it: the "
+                               "control takes the offset off on a move, and G40 alone would shift the cutter "
+                               "by its radius where it stands; give a lead-out move after CUTCOM/OFF");
     comp_cl_on_ = false;  // (said once)
-    error(line_,
-          "polar interpolation ends with cutter compensation on (CUTCOM/LEFT or RIGHT without "
-          "CUTCOM/OFF): it is cancelled with G40 in force; give CUTCOM/OFF and a move before GOHOME, "
-          "the tool change or the end of the face milling");
-  } else if (pending_g_.starts_with("G40")) {
-    out_.block(pending_g_);
     pending_g_.clear();
   }
   for (const std::string& b : m_.milling.polar_off) out_.block(b);
@@ -285,17 +287,25 @@ void channel_writer::retract_facing() {
   if (!in_cut_ || tool_ < 0 || !work_ || !work_->reverse_z || !leaves_axially()) return;
   in_cut_ = false;
   if (errors_ > 0) return;  // (no file is written: a retract would only say the error again)
-  // The most retracted level the tool stood at at rapid (review 38 H1: the last rapid may be an
-  // expanded peck's, inside the hole, or an R level in a counterbore).
+  // The most retracted level the tool stood at at rapid above the point it stands at (review
+  // 38 H1: the last rapid may be an expanded peck's, inside the hole, or an R level in a
+  // counterbore; attack 69 M2: not a level it only reached elsewhere, 400 mm out at the tool
+  // change, which here would run it along the centre line towards the other spindle).
   const double up = axis_.z > 0 ? 1.0 : -1.0;
-  const double level = up > 0 ? clear_hi_ : clear_lo_;
-  if (clear_known_ && (level - pos_.z) * up <= 1e-6) return;  // the CL fed out to that level or above
-  if (!clear_known_)
+  std::optional<double> level;
+  for (std::size_t i = 0; i < std::min(clear_n_, clear_at_.size()); ++i) {
+    const vec3& r = clear_at_[i];
+    if (std::abs(r.x - pos_.x) * cl_mm_ > 1e-3 || std::abs(r.y - pos_.y) * cl_mm_ > 1e-3) continue;
+    if (!level || (r.z - *level) * up > 0) level = r.z;
+  }
+  if (level && (*level - pos_.z) * up <= 1e-6) return;  // the CL fed out to that level or above
+  if (!level)
     return error(line_,
                  fmt::format("the tool is left in a cut on the {} spindle, which faces the main one, with "
-                             "no retract in the CL and no rapid of this tool on that spindle to go back "
-                             "to: its home blocks would move it across its hole, then towards that "
-                             "spindle; give the retract before GOHOME, the tool change or the end",
+                             "no retract in the CL and no rapid of this tool above that point on that "
+                             "spindle to go back to: its home blocks would move it across its hole, then "
+                             "towards that spindle; give the retract before GOHOME, the tool change or "
+                             "the end",
                              work_->name));
   if (c_mode_ || polar_)
     return error(line_,
@@ -308,7 +318,7 @@ void channel_writer::retract_facing() {
   // be (F-INTGX keeps a separate Z home for the second spindle's work).
   motion_event mv;
   mv.rapid = true;
-  mv.pos = {pos_.x, pos_.y, level};
+  mv.pos = {pos_.x, pos_.y, *level};
   motion(mv, line_);
   in_cut_ = false;
 }
@@ -351,7 +361,8 @@ bool channel_writer::index_head(int line) {
   const bool stationary = !live && kind_ != tool_kind::mill;
   const std::string& offset = stationary ? h.offset_turning : h.offset_live;
   if (head_angle_ && std::abs(*head_angle_ - *want) < 5e-4) {
-    if (after_index_) pending_offset_ = offset;  // a new tool at the same angle: its own offset
+    if (after_index_)
+      pending_offset_ = head_offset_chosen_ = offset;  // a new tool at the same angle: its own
     after_index_ = false;
     write_coolant_due();
     return true;
@@ -376,7 +387,7 @@ bool channel_writer::index_head(int line) {
   axes_free_ = false;
   head_angle_ = want;
   motion_g_ = -1;  // the move block was G0 in machine coordinates
-  pending_offset_ = offset;
+  pending_offset_ = head_offset_chosen_ = offset;
   after_index_ = false;
   write_coolant_due();
   return true;

@@ -278,6 +278,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
         groove_cycle_point(mv.pos, line);
         return;
       } else if (cycle_) {
+        if (from_cut_ && hole_from_cut(mv.pos, line)) return;
         // A hole as the first move after a tool call (NX writes CYCLE before the first GOTO):
         // the length offset goes out with a rapid to the hole's retract plane first, as a
         // GOTO there would; the canned cycle starts from that plane.
@@ -307,7 +308,7 @@ void channel_writer::motion(const motion_event& mv, int line) {
       }
       // The tool stands at the CL's point (the next hole starts from it); no hole left it.
       pos_ = mv.pos;
-      if (mv.rapid) note_clear(mv.pos.z);
+      if (mv.rapid) note_clear(mv.pos);
       cl_moved_ = at_pos_ = true;
       hole_exit_.reset();
       return;

@@ -40,7 +40,7 @@ void channel_writer::work_on(const spindle_def& s) {
   // code was written as an empty block).
   leave_c_axis();
   work_ = &s;
-  clear_known_ = false;  // (the other spindle's levels: review 38 H2)
+  clear_n_ = 0;  // (the other spindle's levels: review 38 H2)
   z_sign_ = s.reverse_z ? -1.0 : 1.0;
   // Another frame: every axis word goes out again, and the old spindle's restart is void.
   forget_axes();
@@ -266,6 +266,20 @@ void channel_writer::spindle(const spindle_event& s, int line) {
     }
   }
   spindle_ = target;
+  if (!head_offset_chosen_.empty()) [[unlikely]] {
+    // A SPINDL after the tool's approach gave the head's offset: that offset follows what turns
+    // (index_head), and another spindle now would leave the other code in force (attack 69 H1: a
+    // centre drill under the live tool's `G43 H#3020`).
+    const head_index_rules& h = ch_.head_index;
+    const bool live = spindle_ && work_ && spindle_ != work_;
+    const std::string& want = !live && kind_ != tool_kind::mill ? h.offset_turning : h.offset_live;
+    if (want != head_offset_chosen_ && s.mode != spindle_mode::off)
+      return error(line,
+                   fmt::format("SPINDL turns the {} spindle for this tool after its first move gave the "
+                               "head's offset for a {} tool (`{}`); the tool wants `{}`: give the SPINDL "
+                               "before the tool's first GOTO",
+                               spindle_->name, live ? "stationary" : "live", head_offset_chosen_, want));
+  }
   if (s.mode == spindle_mode::on) {
     // APT: ON turns the spindle on again at the last speed, mode and direction, never S0.
     if (!last_speed_)

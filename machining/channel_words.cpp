@@ -419,6 +419,7 @@ void channel_writer::tool(const tool_event& t, int line) {
   }
   tool_call_ = call + offset_block;
   after_index_ = true;
+  head_offset_chosen_.clear();
   take_tool(t.tool, line, word);
   if (script_) [[unlikely]]
     script_tool(t.tool, a.offset);
@@ -457,7 +458,7 @@ void channel_writer::take_tool(int tool, int line, const char* word) {
   const tool_def* table = m_.tool(ch_.number, tool);
   table_speed_due_ = table && (table->rpm || table->surface_speed);
   tool_ = tool;
-  clear_known_ = false;
+  clear_n_ = 0;
   tool_line_ = line;
   tool_word_ = word;
   tool_cam_name_ = cam_tool_;

@@ -385,7 +385,10 @@ void channel_writer::process_event(const event& e, bool both) {
           if (d.axis) axis_ = *d.axis;
           // Where the CL leaves the tool: in a cut after a feed move (a CL cycle's holes end
           // at the cycle's return level), clear after a rapid.
-          if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta) in_cut_ = !d.rapid && !cycle_;
+          if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta) {
+            from_cut_ = in_cut_;
+            in_cut_ = !d.rapid && !cycle_;
+          }
           // With [events], through user_motion (a section may open); the plain path stays a tail call.
           if (ev_) [[unlikely]]
             return user_motion(d, e.line);

@@ -214,6 +214,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   /// Where a hole at CL point `p` of the cycle in force is approached: above it on the
   /// cycle's retract plane (RTRCTO, else the R plane: RAPTO or CLEAR above the top).
   vec3 cycle_approach(const vec3& p) const;
+  /// A hole's cycle whose first point comes straight from a cut below its R level: an error
+  /// (true) where the positioning would run through the part.
+  bool hole_from_cut(const vec3& p, int line);
   // Frames of the CL (machining/channel_frames.cpp).
   /// NX MSYS: its rotation (MCS to absolute) turns every later point and tool axis; SolidWorks
   /// CSYS: a rigid frame about the world origin names the operation's tool axis (the points stay
@@ -260,16 +263,12 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   bool leaves_axially() const;
   /// From a cut, an axial tool on a spindle that faces the main one (Z reversed): no home block
   /// leaves along it (Z's home lies beyond that spindle's face, deeper into its part), so it goes
-  /// back along its axis to the most retracted level of its rapid points (since its call or the
-  /// work spindle's change), in the work frame; an error where no rapid gives that level or the
-  /// spindle is held as a C axis (review 37 H2, review 38).
+  /// back along its axis to the most retracted level of its rapid points above where it stands
+  /// (since its call or the work spindle's change), in the work frame; an error where no rapid
+  /// gives that level or the spindle is held as a C axis (review 37 H2, review 38, attack 69 M2).
   void retract_facing();
   /// A rapid of the tool to CL height `z`: a level clear of the part (retract_facing).
-  void note_clear(double z) {
-    clear_hi_ = clear_known_ ? std::max(clear_hi_, z) : z;
-    clear_lo_ = clear_known_ ? std::min(clear_lo_, z) : z;
-    clear_known_ = true;
-  }
+  void note_clear(const vec3& p) { clear_at_[clear_n_++ % clear_at_.size()] = p; }
   /// The length offset (G43, G43.4, the plane's G43) cancelled, with the tool at its home: the
   /// cancel may move Z by the tool's length, so away from home it waits for the home blocks
   /// (docs/machines.md, "Length offset cancel").
@@ -645,6 +644,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
     coolant_due_.clear();
   }
   bool after_index_ = false;          // a tool was called: its offset words are due
+  std::string head_offset_chosen_;    // the head's offset code index_head gave this tool
   double c_cos_ = 1, c_sin_ = 0;      // of the C angle in force
   std::optional<double> head_angle_;  // the indexing head's angle, once written
   double cl_clamp_ = 0;               // the speed clamp of the CL's last SPINDL under CSS (rpm); 0: none yet
@@ -684,10 +684,11 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::optional<cycle_event> cycle_;
   std::vector<std::string> end_home_;  // home blocks leave_cut(at_end) wrote (footer_in_force)
   bool in_cut_ = false;                // the CL's last move was a feed: the tool may be in the part (go_home)
-  // The highest and lowest CL Z of this tool's rapid points since its call or the work
-  // spindle's change (retract_facing): the levels it stood at clear of the part.
-  double clear_hi_ = 0, clear_lo_ = 0;
-  bool clear_known_ = false;
+  bool from_cut_ = false;              // in_cut_ before this motion record (a hole cycle's first point)
+  // This tool's last rapid points since its call or the work spindle's change (retract_facing:
+  // the levels it stood at clear of the part, above the point it stands at), and how many.
+  std::array<vec3, 64> clear_at_{};
+  std::size_t clear_n_ = 0;
   std::uint64_t left_blocks_ = 0;          // leave_cut() wrote these home blocks (bit i: block i)
   int cycle_line_ = 0;                     ///< the CL line of the cycle in force
   std::optional<thread_event> threading_;  ///< THREAD/TURN in force

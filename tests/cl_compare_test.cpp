@@ -1042,7 +1042,14 @@ TEST_CASE("cl comparison: the tool axis a B head gives a live tool", "[analysis]
   const std::vector<const char*> turning{"T12 M6", "M901", "G97 S800 M203"};
   CHECK(run("G0 G53 B0.", "G0 C0.", {10, 0, 2}, {1, 0, 0}, turning, "G0 G43 P1 H#3020 X20. Y0. Z2.") ==
         std::pair{std::string(), 1L});
-  CHECK(run("G0 G53 B0.", "G0 C0.", {10, 0, 2}, {1, 0, 0}, turning).first ==
+  // Judged where the tool cuts, not at the offset's block (attack 69 H1: a SPINDL after the
+  // approach): the live code is named at the turning tool's first feed, not at its approach.
+  CHECK(run("G0 G53 B0.", "G0 C0.", {10, 0, 2}, {1, 0, 0}, turning).first.empty());
+  compared tt("integrex-i200st", 1);
+  tt.lines({"T12 M6", "M901", "G97 S800 M203", "M108", "G0 G53 B0.", "M107", "G0 C0.",
+            "G0 G43 H#3020 X20. Y0. Z2.", "G1 Z-5. F100."});
+  tt.to({10, 0, -5}, {1, 0, 0}, false);
+  CHECK(tt.text() ==
         "job.cls:10:1: error: channel 1: the head's tool length offset is not the tool's: `G0 G43 H#3020 "
         "X20. Y0. Z2.` gives the head's offset for a live tool, and the tool cuts with the main spindle, "
         "whose offset code is `G43 P1 H#3020`: X Y Z are not the tool tip\n");

@@ -460,24 +460,78 @@ TEST_CASE("cutter compensation on the diameter starts and ends inside cylindrica
 
 TEST_CASE("polar interpolation ends with cutter compensation cancelled", "[post][millturn]") {
   // Review 38: a CL that left CUTCOM/LEFT on at GOHOME kept `G41` through `G13.1` and the home
-  // blocks. As with the tilted plane, compensation is cancelled before the mode ends: a CUTCOM/OFF
-  // with no move after it goes out as `G40` alone, one never given stops the post.
+  // blocks. Compensation is taken off on a move before the mode ends: the CL's lead-out after
+  // CUTCOM/OFF carries `G40`; a CUTCOM/OFF with no move after it (a `G40` alone would shift the
+  // cutter by its radius at depth: review 38b P1) and one never given stop the post.
   const std::string cl =
       "PARTNO CC\nHEAD/1\nTLDATA/MILL,10,0,75\nLOADTL/14\nSPINDL/RPM,3000,CLW,MAIN\nFEDRAT/MMPM,300\n"
       "RAPID\nGOTO/40,0,10,0,0,1\nRAPID\nGOTO/40,0,-3\nCUTCOM/LEFT\nGOTO/30,0,-3\nGOTO/30,10,-3\n";
   const machine integrex = load_machine("integrex-i200st");
   const std::string h =
-      head1(post_on(cl + "CUTCOM/OFF\nGOHOME\nFINI\n", integrex, "polar-comp-off"), "CC.EIA");
+      head1(post_on(cl + "CUTCOM/OFF\nGOTO/30,20,-3\nGOHOME\nFINI\n", integrex, "polar-comp-out"), "CC.EIA");
   CHECK(h.substr(h.find("G41"), h.find("M950") - h.find("G41")) ==
-        "G41 G1 X30. F300.\nC10.\nG40\nG13.1\nG18\nG0 G90 G53 Z0.\nG0 G90 G53 X0. Y0.\n");
-  const test::posted on = post_on(cl + "GOHOME\nFINI\n", integrex, "polar-comp-on");
-  CHECK_FALSE(on.ok);
-  CHECK(on.files.empty());
+        "G41 G1 X30. F300.\nC10.\nG40 C20.\nG13.1\nG18\nG0 G90 G53 Z0.\nG0 G90 G53 X0. Y0.\n");
+  for (const auto& [end, why] :
+       {std::pair{
+            "CUTCOM/OFF\nGOHOME\nFINI\n",
+            "polar interpolation ends with CUTCOM/OFF given and no move after it: the control takes the "
+            "offset off on a move, and G40 alone would shift the cutter by its radius where it stands; "
+            "give a lead-out move after CUTCOM/OFF\nGOHOME\n^\n"},
+        {"GOHOME\nFINI\n",
+         "polar interpolation ends with cutter compensation on (CUTCOM/LEFT or RIGHT without CUTCOM/OFF): it "
+         "is cancelled with G40 in force; give CUTCOM/OFF and a lead-out move before GOHOME, the tool change "
+         "or the end of the face milling\nGOHOME\n^\n"}}) {
+    const test::posted p = post_on(cl + end, integrex, "polar-comp-left");
+    CHECK_FALSE(p.ok);
+    CHECK(p.files.empty());
+    const std::string at = std::string(end).starts_with("CUTCOM") ? "15" : "14";
+    CHECK(p.diagnostics == "job.cls:" + at + ":1: error: channel 1: " + why);
+  }
+}
+
+TEST_CASE("the head's offset follows the spindle the tool cuts with, and a SPINDL after it stops the post",
+          "[post][millturn]") {
+  // Attack 69 H1: a centre drill whose SPINDL (the main spindle: the part turns) came after its
+  // approach was written with the live tool's `G43 H#3020` left from the end mill before it.
+  const std::string cl =
+      "PARTNO H5\nHEAD/1\nTLDATA/MILL,10\nLOADTL/11\nSPINDL/RPM,3000,CLW,LIVE\nFEDRAT/MMPM,200\nRAPID\n"
+      "GOTO/0,0,10,0,0,1\nGOTO/0,0,-1\nRAPID\nGOTO/0,0,10\nSPINDL/OFF\nTLDATA/DRILL,10,118\nLOADTL/12\n";
+  const std::string drill = "FEDRAT/0.1,MMPR\nGOTO/0,0,-20\nRAPID\nGOTO/0,0,10\nSPINDL/OFF\nFINI\n";
+  const machine integrex = load_machine("integrex-i200st");
+  const std::string h = head1(
+      post_on(cl + "SPINDL/RPM,800,CLW,MAIN\nRAPID\nGOTO/0,0,10,0,0,1\n" + drill, integrex, "offset-main"),
+      "H5.EIA");
+  CHECK(h.substr(h.find("T12 M6"), h.find("G1 Z-20.") - h.find("T12 M6")) ==
+        "T12 M6\nM901\nG10.9 X1\nM202\nG97 S800 M203\nM108\nG0 G53 B0.\nM107\nG0 G43 P1 H#3020 X0. Y0. "
+        "Z10.\nG95\n");
+  const test::posted late =
+      post_on(cl + "RAPID\nGOTO/0,0,10,0,0,1\nSPINDL/RPM,800,CLW,MAIN\n" + drill, integrex, "offset-late");
+  CHECK(late.files.empty());
   CHECK(
-      on.diagnostics ==
-      "job.cls:14:1: error: channel 1: polar interpolation ends with cutter compensation on (CUTCOM/LEFT or "
-      "RIGHT without CUTCOM/OFF): it is cancelled with G40 in force; give CUTCOM/OFF and a move before "
-      "GOHOME, the tool change or the end of the face milling\nGOHOME\n^\n");
+      late.diagnostics ==
+      "job.cls:17:1: error: channel 1: SPINDL turns the main spindle for this tool after its first move gave "
+      "the head's offset for a live tool (`G43 H#3020`); the tool wants `G43 P1 H#3020`: give the SPINDL "
+      "before the tool's first GOTO\nSPINDL/RPM,800,CLW,MAIN\n^\n");
+}
+
+TEST_CASE("a hole's cycle straight from a cut below its R level stops the post", "[post][millturn]") {
+  // Review 38b P3: an end mill 3 mm deep, then CYCLE/DRILL with no retract: the post wrote
+  // `G0 C0.` (the part turned under the cutter) and `X20. Y10. Z2.` from the cut.
+  const std::string cl =
+      "PARTNO PK\nHEAD/1\nTLDATA/MILL,10,0,75\nLOADTL/14\nSPINDL/RPM,3000,CLW,MAIN\nFEDRAT/MMPM,300\n"
+      "RAPID\nGOTO/40,0,10,0,0,1\nRAPID\nGOTO/40,0,-3\nGOTO/30,0,-3\nGOTO/30,10,-3\n";
+  const std::string hole =
+      "CYCLE/DRILL,FEDTO,-10.0,RAPTO,2.0,MMPM,100\nGOTO/20,20,0\nCYCLE/OFF\nGOHOME\nFINI\n";
+  const machine integrex = load_machine("integrex-i200st");
+  const test::posted p = post_on(cl + hole, integrex, "hole-from-cut");
+  CHECK(p.files.empty());
+  CHECK(
+      p.diagnostics ==
+      "job.cls:14:1: error: channel 1: CYCLE/DRILL: the hole's cycle starts straight from a cut, 5 below its "
+      "R level: the control would position it across the tool there, through the part; give the retract "
+      "before the cycle\nGOTO/20,20,0\n^\n");
+  // A feed out to the R level or above first (a CL's retract at feed): the cycle as usual.
+  CHECK(post_on(cl + "GOTO/30,10,5\n" + hole, integrex, "hole-after-feed-out").ok);
 }
 
 TEST_CASE("the B head faces the sub spindle for work there, or the post stops", "[post][millturn]") {
@@ -673,6 +727,12 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
   CHECK(pk.substr(pk.find("Z9.5")) ==
         "Z9.5\nG1 Z30.\nG0 Z-5.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM9\n"
         "M5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
+  // Only a rapid above the point the tool stands at counts (attack 69 M2: the tool change's
+  // rapid 400 out at X200 sent the drill 400 mm along the centre line towards the main spindle).
+  std::string far = on_sub;
+  far.replace(far.find("RAPID\nGOTO/0,0,5,0,0,1\n"), 23, "RAPID\nGOTO/200,0,400,0,0,1\nRAPID\nGOTO/0,0,5\n");
+  const std::string fr = head1(post_on(far, integrex, "far-centre-sub"), "H.EIA");
+  CHECK(fr.substr(fr.find("G1 Z30. F0.12"), 41) == "G1 Z30. F0.12\nG0 Z-5.\nG0 G90 G53 X0. Y0.\n");
   // Fed back out to that level (a reamer's way out): no retract to add (review 38 M5: refused).
   std::string ream = on_sub;
   ream.replace(ream.find("GOTO/0,0,-30\n"), 13, "GOTO/0,0,-30\nGOTO/0,0,5\n");
@@ -689,9 +749,10 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
   CHECK(nr.files.empty());
   CHECK(nr.diagnostics ==
         "job.cls:9:1: error: channel 1: the tool is left in a cut on the sub spindle, which faces the main "
-        "one, with no retract in the CL and no rapid of this tool on that spindle to go back to: its home "
-        "blocks would move it across its hole, then towards that spindle; give the retract before GOHOME, "
-        "the tool change or the end\nGOHOME\n^\n");
+        "one, with no retract in the CL and no rapid of this tool above that point on that spindle to go "
+        "back to: its home blocks would move it across its hole, then towards that spindle; give the retract "
+        "before GOHOME, the tool change or the end\n"
+        "GOHOME\n^\n");
 }
 
 TEST_CASE("live work on the main spindle, then a tool on the sub: the main's C axis let go first",
