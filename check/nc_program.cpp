@@ -659,8 +659,9 @@ class reader {
                "WHILE loop: the checker reads its blocks once; waits in it are checked as if it ran once");
       else if (key == "IF")
         if_column = column;
-      else if (key == "THEN" && if_column > 0 && !words.empty())  // (attack 67 M9: `.. THEN M5`, then M69;
-                                                                  // an alarm `.. THEN #3000=1` moves nothing)
+      else if (key.starts_with("THEN") && if_column > 0 &&
+               !words.empty())  // (attack 67 M9: `.. THEN M5`, then M69;
+                                // an alarm `.. THEN #3000=1` moves nothing)
         report(
             severity::warning, at(if_column),
             "IF ... THEN: the checker does not evaluate the condition; the codes after THEN are checked as "

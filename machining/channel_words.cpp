@@ -257,6 +257,12 @@ void channel_writer::feed_mode(bool per_rev) {
 
 void channel_writer::tool(const tool_event& t, int line) {
   if (t.preselect) return;
+  // Cutter compensation the CL never turned off reaches the next tool (attack 69 L9: `G42` of a
+  // turning tool in force through the tool change to the end): said once a tool change.
+  if (comp_cl_on_) [[unlikely]]
+    warning(
+        "the tool changes with cutter compensation still on (CUTCOM/LEFT or RIGHT without CUTCOM/OFF): the "
+        "control carries G41 or G42 to the next tool; give CUTCOM/OFF with a move before the tool change");
   template_args a;  // template_uses::tool_call
   a.tool = t.tool;
   a.offset = t.offset.value_or(t.tool);

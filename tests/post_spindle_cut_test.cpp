@@ -366,3 +366,20 @@ TEST_CASE("an axial hole off centre says what this machine lacks, not that C-axi
   CHECK(errors_of(hole("SPINDL/RPM,800,CLW,LIVE"), load_machine("integrex-i200st"), "offcentre-live") ==
         "(posted)");
 }
+
+TEST_CASE("a tool change with the CL's cutter compensation still on is said", "[post][spindle]") {
+  // Attack 69 L9: `G41` of a turning tool whose CL never gave CUTCOM/OFF stayed in force through
+  // the tool change to the end of the program, without a word.
+  const std::string job =
+      "PARTNO CC\nHEAD/1\nTURRET/1,1\nSPINDL/RPM,1000,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/40,0,5\nCUTCOM/LEFT\n"
+      "GOTO/40,0,-20\nGOTO/45,0,-20\nRAPID\nGOTO/60,0,5\nTURRET/2,2\nSPINDL/RPM,1000,CLW\nRAPID\nGOTO/"
+      "30,0,5\n"
+      "GOTO/30,0,-10\nRAPID\nGOTO/60,0,5\nFINI\n";
+  const test::posted p = test::post_in_fresh_dir(job, load_machine("fanuc-0itd-twin"), "cutcom-tool-change");
+  REQUIRE(p.ok);
+  CHECK(
+      p.diagnostics ==
+      "job.cls:13:1: warning: channel 1: the tool changes with cutter compensation still on (CUTCOM/LEFT or "
+      "RIGHT without CUTCOM/OFF): the control carries G41 or G42 to the next tool; give CUTCOM/OFF with a "
+      "move before the tool change\nTURRET/2,2\n^\n");
+}
