@@ -707,37 +707,35 @@ TEST_CASE("a home straight from a cut leaves along the tool first", "[post][mill
   CHECK(sh.substr(sh.find("G1 Z30. F0.12")) ==
         "G1 Z30. F0.12\nG0 Z-5.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM9\nM5\nM205\nM305\n"
         "G0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
+  // `on_sub` with its first `from` replaced by `to`, posted: the upper head's program from the
+  // block `at` on.
+  auto sub_edit = [&](const std::string& from, const std::string& to, const std::string& tag,
+                      const std::string& at) {
+    std::string job = on_sub;
+    job.replace(job.find(from), from.size(), to);
+    const std::string h = head1(post_on(job, integrex, tag), "H.EIA");
+    return h.substr(h.find(at));
+  };
   // The same at the end of the CL (no GOHOME), and at a tool change.
-  std::string sub_end = on_sub;
-  sub_end.replace(sub_end.find("GOHOME\n"), 7, "");
-  const std::string se = head1(post_on(sub_end, integrex, "end-centre-sub"), "H.EIA");
-  CHECK(se.substr(se.find("G1 Z30. F0.12")) ==
+  CHECK(sub_edit("GOHOME\n", "", "end-centre-sub", "G1 Z30. F0.12") ==
         "G1 Z30. F0.12\nG0 Z-5.\nM950\nM9\nM5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
-  std::string sub_tc = on_sub;
-  sub_tc.replace(sub_tc.find("GOHOME\n"), 7, "TLDATA/DRILL,8,118\nLOADTL/14\nRAPID\nGOTO/0,0,5\n");
-  const std::string st = head1(post_on(sub_tc, integrex, "tc-centre-sub"), "H.EIA");
-  CHECK(st.substr(st.find("G1 Z30. F0.12"), 73) ==
+  CHECK(sub_edit("GOHOME\n", "TLDATA/DRILL,8,118\nLOADTL/14\nRAPID\nGOTO/0,0,5\n", "tc-centre-sub",
+                 "G1 Z30. F0.12")
+            .substr(0, 73) ==
         "G1 Z30. F0.12\nG0 Z-5.\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nT14 M6\nM902\n");
   // The most retracted level of the tool's rapids, not the last (review 38 H1: an expanded
   // peck's rapid back into the hole, 0.5 above its last depth, was taken for the way out).
-  std::string peck = on_sub;
-  peck.replace(peck.find("GOTO/0,0,-30\n"), 13,
-               "GOTO/0,0,-10\nRAPID\nGOTO/0,0,2\nRAPID\nGOTO/0,0,-9.5\nGOTO/0,0,-30\n");
-  const std::string pk = head1(post_on(peck, integrex, "peck-centre-sub"), "H.EIA");
-  CHECK(pk.substr(pk.find("Z9.5")) ==
+  CHECK(sub_edit("GOTO/0,0,-30\n", "GOTO/0,0,-10\nRAPID\nGOTO/0,0,2\nRAPID\nGOTO/0,0,-9.5\nGOTO/0,0,-30\n",
+                 "peck-centre-sub", "Z9.5") ==
         "Z9.5\nG1 Z30.\nG0 Z-5.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM9\n"
         "M5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   // Only a rapid above the point the tool stands at counts (attack 69 M2: the tool change's
   // rapid 400 out at X200 sent the drill 400 mm along the centre line towards the main spindle).
-  std::string far = on_sub;
-  far.replace(far.find("RAPID\nGOTO/0,0,5,0,0,1\n"), 23, "RAPID\nGOTO/200,0,400,0,0,1\nRAPID\nGOTO/0,0,5\n");
-  const std::string fr = head1(post_on(far, integrex, "far-centre-sub"), "H.EIA");
-  CHECK(fr.substr(fr.find("G1 Z30. F0.12"), 41) == "G1 Z30. F0.12\nG0 Z-5.\nG0 G90 G53 X0. Y0.\n");
+  CHECK(sub_edit("RAPID\nGOTO/0,0,5,0,0,1\n", "RAPID\nGOTO/200,0,400,0,0,1\nRAPID\nGOTO/0,0,5\n",
+                 "far-centre-sub", "G1 Z30. F0.12")
+            .substr(0, 41) == "G1 Z30. F0.12\nG0 Z-5.\nG0 G90 G53 X0. Y0.\n");
   // Fed back out to that level (a reamer's way out): no retract to add (review 38 M5: refused).
-  std::string ream = on_sub;
-  ream.replace(ream.find("GOTO/0,0,-30\n"), 13, "GOTO/0,0,-30\nGOTO/0,0,5\n");
-  const std::string rm = head1(post_on(ream, integrex, "ream-centre-sub"), "H.EIA");
-  CHECK(rm.substr(rm.find("G1 Z30. F0.12")) ==
+  CHECK(sub_edit("GOTO/0,0,-30\n", "GOTO/0,0,-30\nGOTO/0,0,5\n", "ream-centre-sub", "G1 Z30. F0.12") ==
         "G1 Z30. F0.12\nZ-5.\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM950\nM9\n"
         "M5\nM205\nM305\nG0 G90 G53 X0. Y0.\nG0 G90 G53 Z0.\nM30\n");
   // With no rapid of the tool to go back to, the post cannot know a way out: an error.
