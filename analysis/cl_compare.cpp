@@ -199,8 +199,10 @@ struct cl_comparison::impl {
   int cl_coolant_line = 0;
   std::string coolant_text;
 
-  // The program as read so far.
-  std::vector<nc_word> words;
+  // The program as read so far: the block's words, split here (own_words) or by the
+  // self-check's reader (its split, not copied), while the block is read.
+  std::vector<nc_word> own_words;
+  const std::vector<nc_word>* block_words = &own_words;
   const std::vector<nc_word> no_words;
   long t_pending = -1, t_active = -1;  // the tool a T word named, and the one in the spindle
   std::string t_text;                  // the T word that called it
@@ -412,6 +414,7 @@ struct cl_comparison::impl {
 
   bool offset_of(const std::vector<nc_word>& code) const {
     if (code.empty()) return false;
+    const std::vector<nc_word>& words = *block_words;
     for (const nc_word& c : code) {
       bool found = false;
       for (const nc_word& w : words)
@@ -424,6 +427,7 @@ struct cl_comparison::impl {
   // A G43 on an indexing head's channel: the head's own offset (one of its codes, every word
   // as the machine file writes it: `G43 P1 H#3020`), or another register (`G43 P1 H5`).
   void note_head_offset(std::string_view text) {
+    const std::vector<nc_word>& words = *block_words;
     head_wrong_why.clear();
     for (std::size_t i = 0; i < head_codes.size(); ++i) {
       const std::vector<nc_word>& code = head_codes[i];
@@ -554,14 +558,16 @@ struct cl_comparison::impl {
     const bool was = shifted, was_mirrored = mirrored;
     std::uint32_t letters = 0;
     if (split) {
-      words.assign(split->begin(), split->end());  // views into `text`, as a split of our own
+      block_words = split;  // views into `text`, as a split of our own
       letters = split_letters;
       lines = at;
     } else {
-      letters = split_nc_words(text, words);
+      letters = split_nc_words(text, own_words);
+      block_words = &own_words;
       ++lines;
     }
     read_line(text, letters);
+    block_words = &own_words;  // (the reader's words are its until its next block)
     if ((shifted && !was) || (mirrored && !was_mirrored && !shifted)) {
       shift_text.assign(text);
       shift_line = lines;
@@ -569,6 +575,7 @@ struct cl_comparison::impl {
   }
 
   void read_line(std::string_view text, const std::uint32_t letters) {
+    const std::vector<nc_word>& words = *block_words;
     // A block under block delete (`/G0 X44. Z2.`) runs or not as the operator's switch says (a
     // wait or another M code under it is the checker's).
     constexpr std::uint32_t skip_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
@@ -1316,6 +1323,7 @@ struct cl_comparison::impl {
   std::size_t n_arcs = 0;
 
   void note_arc(const double* start, bool start_known) {
+    const std::vector<nc_word>& words = *block_words;
     if ((motion != 2 && motion != 3) || cycle) return;
     if (n_arcs == arcs.size()) arcs.emplace_back();
     nc_arc_block& arc = arcs[n_arcs++];

@@ -21,10 +21,14 @@ namespace {
 constexpr std::size_t queue_pieces = 8;  // pieces of up to 64 KB waiting for the reader
 
 // A record (or the job's units) noted for a channel's comparison, after `lines` lines.
+// Built in place in its piece's vector (one copy of the event, no optional around it).
 struct noted {
+  noted(std::uint64_t lines, const event& e, bool both) : lines(lines), record(e), both(both) {}
+  noted(std::uint64_t lines, unit_system u) : lines(lines), is_units(true), units(u) {}
   std::uint64_t lines = 0;
-  std::optional<event> record;  // none: the units
+  event record;  // (when not is_units)
   bool both = false;
+  bool is_units = false;
   unit_system units = unit_system::mm;
 };
 
@@ -123,8 +127,8 @@ struct concurrent_check::impl {
       for (; at < front.size(); ++at) {
         const noted& n = front[at];
         if (n.lines >= before) return;
-        if (n.record)
-          compare[i]->record(*n.record, n.both);
+        if (!n.is_units)
+          compare[i]->record(n.record, n.both);
         else
           compare[i]->units(n.units);
       }
@@ -288,22 +292,24 @@ std::unique_ptr<block_writer::relay> concurrent_check::relay_for(int channel,
 
 namespace {
 
-// `n` held for `channel`'s next piece; true when records_per_piece wait.
-bool hold(std::vector<std::vector<noted>>& held, int channel, noted&& n) {
+// A record (or the units: `args`) held for `channel`'s next piece, made in place; true when
+// records_per_piece wait.
+template <class... Args>
+bool hold(std::vector<std::vector<noted>>& held, int channel, const Args&... args) {
   std::vector<noted>& h = held[static_cast<std::size_t>(channel - 1)];
   if (h.capacity() == 0) h.reserve(concurrent_check::records_per_piece / 4);  // (given away with each piece)
-  h.push_back(std::move(n));
+  h.emplace_back(args...);
   return h.size() >= concurrent_check::records_per_piece;
 }
 
 }  // namespace
 
 bool concurrent_check::note_record(int channel, std::uint64_t lines, const event& e, bool both) {
-  return hold(p_->held, channel, {lines, e, both, unit_system::mm});
+  return hold(p_->held, channel, lines, e, both);
 }
 
 bool concurrent_check::note_units(int channel, std::uint64_t lines, unit_system u) {
-  return hold(p_->held, channel, {lines, std::nullopt, false, u});
+  return hold(p_->held, channel, lines, u);
 }
 
 void concurrent_check::flush_records(int channel) {
