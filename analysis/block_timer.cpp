@@ -15,17 +15,16 @@ namespace {
 
 constexpr double two_pi = 2 * std::numbers::pi;
 
-// The integral over u in [0, 1] of max(a + b u, c): a feed per revolution under CSS, where the
-// minutes per unit of path are max(d(u) / k, 1 / limit) / f with the diameter d linear in u.
-double integral_of_max(double a, double b, double c) {
-  auto part = [&](double p, double q) {
-    const double mid = a + b * (p + q) / 2;  // on each part the line stays on one side of c
-    return mid >= c ? a * (q - p) + b * (q * q - p * p) / 2 : c * (q - p);
-  };
-  if (b == 0) return std::max(a, c);
-  const double u = (c - a) / b;
-  if (!(u > 0 && u < 1)) return part(0, 1);
-  return part(0, u) + part(u, 1);
+// The mean over u in [0, 1] of max(d0 + (d1 - d0) u, c): a feed per revolution under CSS,
+// where the minutes per unit of path are max(d(u), c) / (k f), the diameter d linear in u
+// and c the diameter below which the clamp holds the rpm (0: none). A division only where the
+// move crosses c (the divisions of the whole integral, one after another, were most of the
+// timer's time).
+double mean_of_max(double d0, double d1, double c) {
+  if (d0 >= c && d1 >= c) return (d0 + d1) / 2;
+  if (d0 <= c && d1 <= c) return c;
+  const double u = (c - d0) / (d1 - d0);  // where it crosses c, inside (0, 1)
+  return d0 < c ? c * u + (1 - u) * (c + d1) / 2 : u * (d0 + c) / 2 + (1 - u) * c;
 }
 
 // The code of a G word as compared (g_code): "01", "1." and "1.0" are G1, "84.2" is G84.2;
@@ -468,8 +467,13 @@ double block_timer::feed_time(double length, double x0, double x1, block_timing&
   double k = 0, limit = 0;
   if (css && x0 != x1 && spindles_->css_law(inch_, k, limit)) {
     // The rpm follows the diameter along the move: integrated exactly (rpm = min(limit, k/d)).
-    const double per_unit = integral_of_max(x0 / k, (x1 - x0) / k, limit > 0 ? 1 / limit : 0);
-    return length / feed_ * per_unit * 60;
+    // The law's divisions once per law and feed (most moves share both).
+    if (k != css_.k || limit != css_.limit || feed_ != css_.feed) {
+      css_.k = k, css_.limit = limit, css_.feed = feed_;
+      css_.clamped_below = limit > 0 ? k / limit : 0;
+      css_.seconds_per = 60 / (feed_ * k);
+    }
+    return length * mean_of_max(x0, x1, css_.clamped_below) * css_.seconds_per;
   }
   // rpm mode, or CSS along a constant diameter: one speed for the whole move.
   const double rpm = spindles_->rpm(std::max((x0 + x1) / 2, 0.0), inch_);

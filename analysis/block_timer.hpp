@@ -116,6 +116,11 @@ class block_timer {
       g_code_text(g_code("3"), "G")};
   int cycle_ = -1;  // a modal cycle in force (G83, or G90 on a Fanuc lathe, as g_code); -1: none
   double feed_ = 0;
+  // The CSS law of the last feed move under CSS (feed_time): its k (rpm = k / d), clamp and F,
+  // the diameter below which the clamp holds, and seconds per mm of path and mm of diameter.
+  struct css_law_kept {
+    double k = -1, limit = -1, feed = -1, clamped_below = 0, seconds_per = 0;
+  } css_;
   std::string tool_;
   int tool_number_ = -1;
   char tool_address_ = 'T';

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -326,9 +327,22 @@ struct cl_comparison::impl {
   std::string s_expression, f_expression;  // S or F in force given as an expression (S[900*3])
   std::string skip_text;                   // a block under block delete since the last record
   std::string f_text;
-  int work = -1;          // the workpiece spindle: its Z may run against the CL's
-  bool moved = false;     // a move since the last record
-  std::string move_text;  // the last block that moved
+  int work = -1;       // the workpiece spindle: its Z may run against the CL's
+  bool moved = false;  // a move since the last record
+  // The last block that moved: a view of the reader's line (kept by keep_texts before the
+  // reader's bytes go) or a copy. A copy per block was a sixth of the comparison's reading.
+  std::string move_copy;
+  std::string_view move_view;         // not empty: the text, not copied yet
+  std::array<axis_state, 3> hole_at;  // the block's X Y Z in a hole cycle (read_line)
+  // The last block that moved.
+  const std::string& move_text() {
+    if (!move_view.empty()) move_copy.assign(move_view), move_view = {};
+    return move_copy;
+  }
+  void note_moved(std::string_view text) {
+    if (text.empty()) move_copy.clear();
+    move_view = text;
+  }
   int move_line = 0;
 
   // The CL as read so far.
@@ -567,7 +581,8 @@ struct cl_comparison::impl {
       ++lines;
     }
     read_line(text, letters);
-    block_words = &own_words;  // (the reader's words are its until its next block)
+    block_words = &own_words;       // (the reader's words are its until its next block)
+    if (!split) (void)move_text();  // (a line of the writer's: copied at once)
     if ((shifted && !was) || (mirrored && !was_mirrored && !shifted)) {
       shift_text.assign(text);
       shift_line = lines;
@@ -636,8 +651,10 @@ struct cl_comparison::impl {
     bool not_a_move = false, home = false, machine = false, setting = false, m6 = false, tool_call = false;
     const nc_word* head_word = nullptr;
     const char* home_why = "";
-    // Most lines are moves with axis words and an F: only the F is read before the axes.
-    const bool plain = (letters & ~(axis_letters | nc_letter('F'))) == 0;
+    // Most lines are moves with axis words and an F: only the F is read before the axes. A whole
+    // chain's rotary words are such a line's too (the chain follows them; no C of the part,
+    // no head index, no rotary left unfollowed on its channel: the loop below passes them by).
+    const bool plain = (letters & ~(axis_letters | nc_letter('F') | chain_letters)) == 0;
     if (plain)
       for (const nc_word& w : words)
         if (w.address == 'F') take_feed(w);
@@ -952,9 +969,8 @@ struct cl_comparison::impl {
     const bool start_known = x.k == axis_state::kind::known && z.k == axis_state::kind::known &&
                              (!has_y || y.k == axis_state::kind::known || plane == 18);
     bool any = false;
-    axis_state hx, hy, hz;  // where a hole cycle's block puts the axes
-    if (hole_cycle) hx = x, hy = y, hz = z;
-    bool repeats = false;  // a cycle block's repeat count (K or L) above 1
+    if (hole_cycle) hole_at = {x, y, z};  // where a hole cycle's block puts the axes
+    bool repeats = false;                 // a cycle block's repeat count (K or L) above 1
     if (cycle)
       for (const nc_word& w : words)
         if ((w.address == 'K' || w.address == 'L') && (!w.numeric || w.number > 1)) repeats = true;
@@ -984,7 +1000,7 @@ struct cl_comparison::impl {
       else if (machine)
         send_away(*a, "G53");
       else if (setting || cycle) {
-        if (hole_cycle && !setting) set_axis(a == &x ? hx : a == &y ? hy : hz, w, incremental);
+        if (hole_cycle && !setting) set_axis(hole_at[a == &x ? 0 : a == &y ? 1 : 2], w, incremental);
         // A hole cycle leaves the axes across its drill at the hole (G81 X20. Y8.: Y stays at 8
         // after G80), unless it repeats (K, L: the holes step on); the axis along the drill
         // ends at the R or initial level.
@@ -1002,7 +1018,7 @@ struct cl_comparison::impl {
     if (any && hole_cycle && cycle && !not_a_move && !home && !machine && !setting) {
       hole.valid = true;
       hole.side = hole_cycle == 2;
-      hole.x = hx, hole.y = hy, hole.z = hz;
+      hole.x = hole_at[0], hole.y = hole_at[1], hole.z = hole_at[2];
       hole.text.assign(text);
     }
     // A reference return, check or machine-coordinate block moves its axes at rapid: inside a
@@ -1013,7 +1029,7 @@ struct cl_comparison::impl {
     }
     if (any && !not_a_move && !home && !machine && !setting) {
       moved = true;
-      move_text.assign(text);
+      note_moved(text);
       move_line = lines;
       if (cl_cycle && cl_drilling && motion == 1 && !cycle) [[unlikely]]
         note_fed(text);
@@ -1025,7 +1041,7 @@ struct cl_comparison::impl {
         rapid_in_record = true;
         rapid_text.assign(text);
       }
-      note_arc(start, start_known);
+      if ((motion == 2 || motion == 3) && !cycle) note_arc(start, start_known);
     }
     // A chain's feed block between two records: where it puts the tip, held at the next record
     // to the CL's straight move (attack 63 M4: an `on_block` block dipped 20 mm mid-move).
@@ -1076,7 +1092,7 @@ struct cl_comparison::impl {
     chain_block& b = plains[n_plains++];
     b.line = plain_next.line;
     b.kind = plain_next.kind;
-    b.text = plain_next.text_later ? move_text : plain_next.text;
+    b.text = plain_next.text_later ? move_text() : plain_next.text;
     b.tip.reset();
     b.unknown = false;
     const auto known = [](const axis_state& a) { return a.k == axis_state::kind::known; };
@@ -1183,7 +1199,7 @@ struct cl_comparison::impl {
   void settle_chain_block() {
     mid_staged = false;
     chain_block& b = mids[n_mids];
-    if (b.text_later) b.text = move_text;
+    if (b.text_later) b.text = move_text();
     if (b.kind != mid_kind::feed) {
       ++n_mids;
       return;
@@ -1284,7 +1300,7 @@ struct cl_comparison::impl {
     b.start = from, b.end = to, b.c0 = c0, b.c1 = c_deg, b.rapid = motion == 0;
     b.text.assign(text);
     moved = true;
-    move_text.assign(text);
+    note_moved(text);
     move_line = lines;
     if (b.rapid && !rapid_in_record) {
       rapid_in_record = true;
@@ -1322,15 +1338,15 @@ struct cl_comparison::impl {
   std::vector<nc_arc_block> arcs;
   std::size_t n_arcs = 0;
 
+  // (A block that moved in G2 or G3, no cycle.)
   void note_arc(const double* start, bool start_known) {
     const std::vector<nc_word>& words = *block_words;
-    if ((motion != 2 && motion != 3) || cycle) return;
     if (n_arcs == arcs.size()) arcs.emplace_back();
     nc_arc_block& arc = arcs[n_arcs++];
     arc.r = 0;
     arc.ccw = motion == 3;
     arc.plane = plane;
-    arc.text = move_text;
+    arc.text = move_text();
     double off[3] = {0, 0, 0};
     bool given = false;
     for (const nc_word& w : words) {
@@ -1501,7 +1517,7 @@ struct cl_comparison::impl {
               fmt::format("the program moves Z with no tool length offset in force (G43 H..): Z is then the "
                           "spindle's gauge line, one tool length below the CL's tip; give the channel a "
                           "length offset (channel.length_offset = \"G43 H{{offset:02}}\"){}",
-                          moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+                          moved ? fmt::format(", after the block `{}`", move_text()) : std::string()));
       }
     } else {
       check('Z', z, zs, pos.z * cl_mm);
@@ -1510,7 +1526,7 @@ struct cl_comparison::impl {
       error(e,
             fmt::format("the program does not put the tool tip on this record's point (the part frame, mm): "
                         "{}{}",
-                        off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+                        off, moved ? fmt::format(", after the block `{}`", move_text()) : std::string()));
     compare_axis(e, cl_axis, followed_polar);
     compare_rest(e, rapid);
     return true;
@@ -1542,7 +1558,7 @@ struct cl_comparison::impl {
                      "the program moves with no tool length offset in force (G43 H.., the chain's "
                      "{}): X Y Z are then the spindle's gauge point, one tool length from the CL's tip{}",
                      offset_code(*chain_def),
-                     moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+                     moved ? fmt::format(", after the block `{}`", move_text()) : std::string()));
       compare_rest(e, rapid);
       return true;
     }
@@ -1576,7 +1592,7 @@ struct cl_comparison::impl {
       error(e,
             fmt::format("the program does not put the tool tip on this record's point (the part frame, mm; "
                         "the forward transform of its words): {}{}",
-                        off, moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+                        off, moved ? fmt::format(", after the block `{}`", move_text()) : std::string()));
     }
     // (The blocks' own tips are held where they are known, whether or not the record's is.)
     if (!rapid && cl_prev_known && !said_mid) hold_before(e, want, tol, length);
@@ -1598,7 +1614,7 @@ struct cl_comparison::impl {
     mid_staged = false;
     if (n_mids > 0 || last)
       hold_chain_blocks(e, want, tol, last,
-                        last_block ? (last_block->text_later ? move_text : last_block->text) : move_text,
+                        last_block ? (last_block->text_later ? move_text() : last_block->text) : move_text(),
                         last_block ? last_block->line : move_line, straight);
   }
 
@@ -1611,7 +1627,7 @@ struct cl_comparison::impl {
     if (const std::optional<std::string> why = axis_fault(have, *cl_axis, tol, who)) {
       said_axis = true;
       error(e, fmt::format("{}{}", *why,
-                           moved ? fmt::format(", after the block `{}`", move_text) : std::string()));
+                           moved ? fmt::format(", after the block `{}`", move_text()) : std::string()));
     }
   }
 
@@ -2117,6 +2133,7 @@ void cl_comparison::block(int line, std::string_view text, const std::vector<nc_
                           std::uint32_t letters) {
   p_->line(text, &words, letters, line);
 }
+void cl_comparison::keep_texts() { (void)p_->move_text(); }
 void cl_comparison::units(unit_system u) { p_->units(u); }
 void cl_comparison::record(const event& e, bool both) { p_->record(e, both); }
 long cl_comparison::compared() const { return p_->compared; }

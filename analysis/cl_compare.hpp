@@ -58,7 +58,11 @@ class cl_comparison {
   /// The same, read already: line `line` (1-based) of the program, split into `words` with
   /// their `letters` (split_nc_words); lines without words may be left out, but not one that
   /// writes a variable (`#5221=-5.`: nc_read_options::on_macro, handed with no words).
+  /// `text` may be quoted later: it must live until keep_texts() (the reader's bytes, kept
+  /// until the piece they came in is read).
   void block(int line, std::string_view text, const std::vector<nc_word>& words, std::uint32_t letters);
+  /// Copies what the comparison may still quote of the texts block() was given.
+  void keep_texts();
   /// The job's units (UNITS record): the CL's lengths after it.
   void units(unit_system u);
   /// A record of the channel, after the blocks written for it. `both`: a HEAD/BOTH copy.

@@ -199,6 +199,8 @@ struct concurrent_check::impl {
           if (p.f) {  // (else records alone: flush_records)
             if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
             parts->reader.feed(p.channel, p.bytes.view());
+            for (cl_comparison* c : compare)  // (the piece's bytes go now)
+              if (c) c->keep_texts();
           }
         } catch (const std::exception& e) {
           fail(e.what());  // the check after the fact meets it again and says it; drain() tells

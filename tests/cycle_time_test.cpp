@@ -368,6 +368,18 @@ TEST_CASE("block timer: a facing cut under CSS follows the rpm along the diamete
         "1.5000\n");  // 10 mm at 0.2 mm/rev x 2000 rpm (below the clamp's diameter all the way)
 }
 
+TEST_CASE("block timer: one facing block across the clamp's diameter, either way", "[analysis][timeline]") {
+  const machine m = load_machine("fanuc-0itd-twin");
+  // As above, X100 to X0 in one block: 10.5873 s under CSS down to d = 31.831 mm, then
+  // 15.9155 mm of path at 0.2 mm/rev x 2000 rpm, 2.3873 s; back out the same.
+  CHECK(times(m, 1, {"G50 X100. Z0.", "G50 S2000", "G96 S200 M3", "G99 G1 X0. F0.2", "G1 X100."}) ==
+        "0.0000\n"
+        "0.0000\n"
+        "0.1000\n"
+        "12.9746\n"
+        "12.9746\n");
+}
+
 TEST_CASE("timeline: who meets whom is the checker's word, fixed waits of two of three paths included",
           "[analysis][timeline]") {
   // Star-style: M82 is a wait of paths 1 and 2 only, M300 (no P) of all three. Timing: X and Z
