@@ -600,7 +600,7 @@ struct cl_comparison::impl {
     while (at < text.size() && (text[at] == ' ' || text[at] == '\t')) ++at;
     if (at < text.size() && text[at] == '/' && skip_text.empty() && (letters & skip_letters) != 0)
       skip_text.assign(text);
-    if (text.find('#') != std::string_view::npos)
+    if (letters & nc_variable_bit)
       for (const macro_use& u : macro_uses(text))
         if (u.write && (u.number < 0 || (u.number >= 2500 && u.number <= 2806) ||
                         (u.number >= 5201 && u.number <= 5335) || (u.number >= 7001 && u.number <= 7999) ||

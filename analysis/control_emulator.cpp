@@ -170,7 +170,7 @@ struct control_emulator::impl {
   void block(const nc_block& b) {
     if (b.channel < 1 || static_cast<std::size_t>(b.channel) > channels.size()) return;
     channel_state& c = channels[static_cast<std::size_t>(b.channel - 1)];
-    if (!reserved.empty() && b.text.find('#') != std::string_view::npos) variables(b);
+    if (!reserved.empty() && (b.letters() & nc_variable_bit)) variables(b);
     if (c.sweep)
       if (auto f = c.sweep->block(b.words()))
         say(b, f->first, fmt::format("channel {}: {}", b.channel, f->second));

@@ -606,7 +606,7 @@ class reader {
     const line_place at{f, no, line};
     if (bang_) {
       read_bang_waits(line, words, channel, at);
-      letters_ = 0;
+      letters_ &= nc_variable_bit;  // (the split's: the bang waits' words are its own)
       for (const nc_word& w : words) letters_ |= nc_letter(w.address);
     }
     if (channel >= 0 && !(channel > 0 && state_[static_cast<std::size_t>(channel - 1)].ended))

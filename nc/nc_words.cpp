@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <cstdint>
+#include <cstring>
 
 #include "support/ascii.hpp"
 
@@ -106,6 +107,7 @@ std::uint32_t nc_block::scan_letters() const {
     std::array<std::uint32_t, 256> t{};
     for (char c = 'A'; c <= 'Z'; ++c)
       t[static_cast<unsigned char>(c)] = t[static_cast<unsigned char>(c - 'A' + 'a')] = nc_letter(c);
+    t[static_cast<unsigned char>('#')] = nc_variable_bit;
     return t;
   }();
   std::uint32_t may = 0;
@@ -142,9 +144,14 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
   const std::size_t n = line.size();
   std::size_t i = 0;
   while (i < n && is_blank(line[i])) ++i;
+  // A '#' in the skipped text of a bracket, an expression or a '%' line: a variable.
+  const auto variables_in = [&](std::size_t from, std::size_t to) {
+    if (to > from && std::memchr(line.data() + from, '#', to - from) != nullptr) letters |= nc_variable_bit;
+  };
   if (i < n && line[i] == '%') {
     words.clear();
-    return 0;
+    variables_in(i, n);
+    return letters;
   }
   while (i < n) {
     const char c = line[i];
@@ -193,6 +200,7 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
         else
           while (d < n && is_digit(line[d])) ++d;
         expression = true;
+        variables_in(k, d);
       } else {
         i = j;  // a letter with no value
         continue;
@@ -215,8 +223,11 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
     } else if (c == '/') {
       i += i + 1 < n && is_digit(line[i + 1]) ? 2 : 1;  // block delete, optionally /1../9
     } else if (c == '[') {
+      const std::size_t from = i;
       i = skip_brackets(line, i);
+      variables_in(from, i);
     } else if (c == '#') {
+      letters |= nc_variable_bit;
       for (++i; i < n && is_digit(line[i]);) ++i;  // a variable, not a word
     } else {
       ++i;

@@ -29,6 +29,11 @@ constexpr std::uint32_t nc_letter(char address) {
   return address >= 'A' && address <= 'Z' ? std::uint32_t{1} << (address - 'A') : 0;
 }
 
+/// Not a letter: set in a block's letters (split_nc_words, nc_block::letters) when it has a
+/// '#' outside its comments, a macro variable read or written (`#5221=-5.`, `X#100`): one test
+/// instead of a search of the text by each reader that looks for variables.
+inline constexpr std::uint32_t nc_variable_bit = std::uint32_t{1} << 26;
+
 /// One block of a channel's program as the reader hands it on (nc_read_options::on_block).
 /// It is split at most once, on the first call of words() by any consumer, and that split
 /// serves them all; a consumer that needs no words of most blocks asks letters() first.
@@ -51,8 +56,8 @@ class nc_block {
   /// Its words (split_nc_words), split on the first call. Inline: every consumer asks, and
   /// all but the first find it split.
   const std::vector<nc_word>& words() const { return split_ ? *store_ : split(); }
-  /// The addresses it may have (nc_letter bits): exact once split, else every letter of the
-  /// text, comments included (a superset: a bit not set is a word not there).
+  /// The addresses it may have (nc_letter bits, and nc_variable_bit): exact once split, else
+  /// every letter of the text, comments included (a superset: a bit not set is a word not there).
   std::uint32_t letters() const { return has_letters_ ? letters_ : scan_letters(); }
   /// Whether it may have a word of an address of `mask` (nc_letter bits), as `letters() & mask`
   /// says; a long block not split yet is scanned for G, M and S only when the mask asks no
@@ -96,7 +101,8 @@ std::vector<nc_word> split_nc_words(std::string&& line) = delete;
 /// else (an expression, "1.2.3").
 bool nc_number(std::string_view value, double& out);
 /// The same into `words`, reusing its elements: no allocation per block once it has grown.
-/// Returns the addresses found (nc_letter bits).
+/// Returns the addresses found (nc_letter bits), and nc_variable_bit for a '#' outside the
+/// comments (in a word's value, a bracket or on its own).
 std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words);
 inline std::uint32_t split_nc_words(const char* line, std::vector<nc_word>& words) {
   return split_nc_words(std::string_view(line), words);

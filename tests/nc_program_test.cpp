@@ -11,6 +11,7 @@
 
 #include "check/nc_program.hpp"
 #include "file_test_support.hpp"
+#include "machines/macro_variables.hpp"
 
 using namespace twinpost;
 
@@ -560,6 +561,30 @@ TEST_CASE("may_have says what letters() says, split or not", "[check]") {
       (void)fresh.words();
       CHECK(fresh.may_have(mask) == ((fresh.letters() & mask) != 0));  // split: exact
     }
+  }
+}
+
+TEST_CASE("a '#' outside the comments is in the letters as nc_variable_bit, split or not", "[check]") {
+  std::vector<nc_word> words;
+  const std::string file = "p.nc";
+  // Each line, and whether it uses a variable as macro_uses reads it (a comment's '#' is not).
+  for (const auto& [text, has] :
+       std::vector<std::pair<std::string_view, bool>>{{"#5221=-5.", true},
+                                                      {"G1 X#100 Z5.", true},
+                                                      {"G65 P9000 A[#1+2.]", true},
+                                                      {"IF [#1 EQ 0] GOTO 10", true},
+                                                      {"X[1+2] Z5.", false},
+                                                      {"G1 X10. (#5 IN A COMMENT)", false},
+                                                      {"G1 X10. ; #500=0", false},
+                                                      {"/ #5221=1.", true},
+                                                      {"%#1", true},
+                                                      {"G1 X10. Z5.", false}}) {
+    INFO(text);
+    CHECK(((split_nc_words(text, words) & nc_variable_bit) != 0) == has);
+    CHECK(!macro_uses(text).empty() == has);
+    // Not split, the letters are a superset: every '#', a comment's too.
+    const nc_block b(1, file, 1, text, words);
+    CHECK(((b.letters() & nc_variable_bit) != 0) == (text.find('#') != std::string_view::npos));
   }
 }
 
