@@ -45,11 +45,7 @@ void block_writer::flush_if_full() {
   if (buf_.size() >= flush_at) {
     if (relay_) return pass_on();
     if (std::fwrite(buf_.data(), 1, buf_.size(), f_) != buf_.size()) write_failed(errno);
-    flushed_ = true;
-    if (counting_) {
-      lines_out();
-      counted_ = 0;
-    }
+    out_bytes_ += buf_.size();
     buf_.clear();
   }
 }
@@ -57,44 +53,11 @@ void block_writer::flush_if_full() {
 void block_writer::pass_on() {
   // A write that failed is said at the next piece, as a write of our own would have said it.
   if (const int err = relay_->write_error(false)) write_failed(err);
-  flushed_ = true;
-  if (counting_) {  // every piece's lines, from the first (the head's): lines_out() may be asked later
-    lines_out();
-    counted_ = 0;
-  }
+  out_bytes_ += buf_.size();
   *buf_.room(1) = '\0';  // the reader's scans stop at it; not one of the file's bytes
   buf_ = relay_->pass(std::move(buf_), f_);
   buf_.clear();
   buf_.reserve(flush_at + 4096);
-}
-
-void block_writer::count_lines() {
-  // Lines already gone out would be missing from the count, and every line number after them.
-  if (flushed_) throw std::logic_error("block_writer::count_lines after the first bytes went out");
-  counting_ = true;
-}
-
-std::uint64_t block_writer::lines_out() {
-  if (!counting_ || counted_ > buf_.size())  // (review 67 L1: a length that wraps round)
-    throw std::logic_error("block_writer::lines_out without count_lines, or inside an open block");
-  // Asked at every CL record, over the few bytes written since (mostly one block): one memchr
-  // for its LF and one for a CR (a loop over the bytes, even as vector code, cost more on a
-  // block's 20 bytes; std::count took six instructions a byte). A line ends as the checker's
-  // reader ends it: at LF, CR LF or a lone CR (a machine file's header line may carry one; the
-  // gate refuses them in user blocks). Asked between blocks: the bytes end a line.
-  const char* const end = buf_.data() + buf_.size();
-  for (const char* p = buf_.data() + counted_;
-       p < end &&
-       (p = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)))) != nullptr;
-       ++p)
-    ++lines_;
-  for (const char* p = buf_.data() + counted_;
-       p < end &&
-       (p = static_cast<const char*>(std::memchr(p, '\r', static_cast<std::size_t>(end - p)))) != nullptr;
-       ++p)
-    if (p + 1 < end && p[1] != '\n') ++lines_;
-  counted_ = buf_.size();
-  return lines_;
 }
 
 void block_writer::pass_now() {
@@ -187,6 +150,7 @@ void block_writer::close() {
   if (!f_) return;
   if (!started_) start();
   if (frame_.tail) buf_.append(frame_.tail(seq_));
+  const std::size_t last = buf_.size();
   bool ok = true;
   int err = 0;
   if (relay_) {
@@ -200,8 +164,8 @@ void block_writer::close() {
     ok = std::fwrite(buf_.data(), 1, buf_.size(), f_) == buf_.size();
     err = ok ? 0 : errno;
   }
+  out_bytes_ += last;
   buf_.clear();
-  counted_ = 0;
   if (std::fclose(f_) != 0 && ok) {
     ok = false;
     err = errno;

@@ -103,14 +103,12 @@ class block_writer {
   void set_relay(std::unique_ptr<relay> r) { relay_ = std::move(r); }
   /// The head written (see framing), "" before the first line.
   const std::string& head_written() const { return head_; }
-  /// Count the lines written, from the first byte: call before anything is written. Each piece
-  /// is then counted as it goes (attack 66 H1: counted only from the first lines_out(), a head
-  /// of 84 KB passed before it went uncounted, and every record was handed to the comparison
-  /// 1300 lines early, passing unchecked).
-  void count_lines();
-  /// The lines written so far (their line ends; between blocks, not inside an open one), with
-  /// count_lines() called before the first byte.
-  std::uint64_t lines_out();
+  /// The bytes of the program written so far, from the first (the head's): those gone to the
+  /// file or the relay and those in the buffer. Between blocks it is where the next line
+  /// starts: the self-check hands a CL record to the comparison before the block that starts
+  /// there (post/concurrent_check; counted from the first byte: attack 66 H1, where records
+  /// counted from later were handed 1300 lines early and passed unchecked).
+  std::uint64_t bytes_out() const { return out_bytes_ + buf_.size(); }
   /// With a relay: the bytes written so far go to it now, though the buffer is not full.
   void pass_now();
 
@@ -137,11 +135,8 @@ class block_writer {
   std::function<void(std::string_view)> hook_;
   std::unique_ptr<relay> relay_;
   block_filter* filter_ = nullptr;
-  bool filtering_ = false;   // inside filter_: the blocks it writes go out as they are
-  bool counting_ = false;    // count_lines()
-  bool flushed_ = false;     // a buffer has gone out (to the file or the relay)
-  std::uint64_t lines_ = 0;  // line ends before buf_[counted_]
-  std::size_t counted_ = 0;
+  bool filtering_ = false;       // inside filter_: the blocks it writes go out as they are
+  std::uint64_t out_bytes_ = 0;  // the bytes of the buffers gone out
 };
 
 /// `text` as the control accepts it in a comment: upper case, printable ASCII, no comment

@@ -134,11 +134,9 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   std::vector<std::string> footer_in_force() const;
   long blocks() const { return out_.blocks(); }
   const std::string& head_written() const { return out_.head_written(); }
-  /// The lines of the program written so far (block_writer::lines_out), counted from the
-  /// first byte once count_lines() is called, before anything is written: where a record shown
+  /// The bytes of the program written so far (block_writer::bytes_out): where a record shown
   /// to the observer stands in its program.
-  void count_lines() { out_.count_lines(); }
-  std::uint64_t lines_written() { return out_.lines_out(); }
+  std::uint64_t bytes_written() const { return out_.bytes_out(); }
   /// The bytes written so far to the relay now (block_writer::pass_now).
   void pass_written() { out_.pass_now(); }
   /// The moves worked out ahead on another thread (machining/kin_lookahead.hpp); nullptr: none.

@@ -20,12 +20,13 @@ namespace {
 
 constexpr std::size_t queue_pieces = 8;  // pieces of up to 64 KB waiting for the reader
 
-// A record (or the job's units) noted for a channel's comparison, after `lines` lines.
-// Built in place in its piece's vector (one copy of the event, no optional around it).
+// A record (or the job's units) noted for a channel's comparison, after `bytes` bytes of its
+// program: before the block that starts there. Built in place in its piece's vector (one copy
+// of the event, no optional around it).
 struct noted {
-  noted(std::uint64_t lines, const event& e, bool both) : lines(lines), record(e), both(both) {}
-  noted(std::uint64_t lines, unit_system u) : lines(lines), is_units(true), units(u) {}
-  std::uint64_t lines = 0;
+  noted(std::uint64_t bytes, const event& e, bool both) : bytes(bytes), record(e), both(both) {}
+  noted(std::uint64_t bytes, unit_system u) : bytes(bytes), is_units(true), units(u) {}
+  std::uint64_t bytes = 0;
   event record;  // (when not is_units)
   bool both = false;
   bool is_units = false;
@@ -45,8 +46,8 @@ struct piece {
 struct concurrent_check::impl {
   impl(const machine& m, timeline_feed* feed, std::vector<cl_comparison*> compare)
       : m(m), feed(feed), compare(std::move(compare)), held(m.channels.size()), due(m.channels.size()),
-        due_at(m.channels.size()), names(m.channels.size()), pending(m.channels.size()),
-        write_errors(m.channels.size()), thread([this] { run(); }) {}
+        due_at(m.channels.size()), fed(m.channels.size()), names(m.channels.size()),
+        pending(m.channels.size()), write_errors(m.channels.size()), thread([this] { run(); }) {}
 
   ~impl() {
     stop();
@@ -108,25 +109,35 @@ struct concurrent_check::impl {
 
   cl_comparison* comparison(std::size_t i) const { return i < compare.size() ? compare[i] : nullptr; }
 
-  // Block `b` to its channel's comparison, after the records noted before its line.
+  // Block `b` to its channel's comparison, after the records noted before it: at or before the
+  // byte its line starts at. A line in the piece being read starts where its text is in the
+  // piece; one the reader carried over from the piece before (its start there) starts before
+  // this piece, after every record noted there (records are noted between blocks, and a
+  // writer's pieces end at a line's end).
   void compare_block(const nc_block& b) {
     const auto i = static_cast<std::size_t>(b.channel - 1);
     cl_comparison* c = comparison(i);
     if (!c || drained) return;  // (the reader's finish() after drain(): its findings are said)
-    hand_due(i, static_cast<std::uint64_t>(b.line));
+    const char* t = b.text.data();
+    std::uint64_t starts = now_read.channel == b.channel ? now_read.at : fed[i];  // (carried: just before)
+    if (now_read.channel == b.channel && t >= now_read.begin && t < now_read.end)
+      starts += static_cast<std::uint64_t>(t - now_read.begin);
+    else if (starts > 0)
+      --starts;
+    hand_due(i, starts);
     const std::vector<nc_word>& words = b.words();  // first: then letters() is the split's, exact
     c->block(b.line, b.text, words, b.letters());
   }
 
-  // Channel i's records noted after fewer than `before` lines, to its comparison.
-  void hand_due(std::size_t i, std::uint64_t before) {
+  // Channel i's records noted at or before byte `at`, to its comparison.
+  void hand_due(std::size_t i, std::uint64_t at_byte) {
     std::deque<std::vector<noted>>& q = due[i];
     std::size_t& at = due_at[i];
     while (!q.empty()) {
       const std::vector<noted>& front = q.front();
       for (; at < front.size(); ++at) {
         const noted& n = front[at];
-        if (n.lines >= before) return;
+        if (n.bytes > at_byte) return;
         if (!n.is_units)
           compare[i]->record(n.record, n.both);
         else
@@ -198,7 +209,10 @@ struct concurrent_check::impl {
           if (!p.records.empty()) due[i].push_back(std::move(p.records));
           if (p.f) {  // (else records alone: flush_records)
             if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
+            now_read = {p.channel, p.bytes.data(), p.bytes.data() + p.bytes.size(), fed[i]};
+            fed[i] += p.bytes.size();  // (a line carried over to the next piece starts before this)
             parts->reader.feed(p.channel, p.bytes.view());
+            now_read = {};
             for (cl_comparison* c : compare)  // (the piece's bytes go now)
               if (c) c->keep_texts();
           }
@@ -238,6 +252,13 @@ struct concurrent_check::impl {
   std::vector<std::vector<noted>> handed;           // due's vectors done with, for spare_records (the thread)
   std::vector<std::vector<noted>> spare_records;    // for the writers to fill again (under mutex)
   std::vector<std::size_t> due_at;                  // by channel: the next of due's first piece's
+  std::vector<std::uint64_t> fed;                   // by channel: the bytes of its pieces read (the thread)
+  struct piece_read {                               // the piece being read (the thread)
+    int channel = 0;
+    const char* begin = nullptr;
+    const char* end = nullptr;
+    std::uint64_t at = 0;  // its first byte's place in its program
+  } now_read;
   bool drained = false;
   std::string failure;                 // what failed() says
   diagnostic_list read;                // the reading's problems (any: the check after the fact)
@@ -306,12 +327,12 @@ bool hold(std::vector<std::vector<noted>>& held, int channel, const Args&... arg
 
 }  // namespace
 
-bool concurrent_check::note_record(int channel, std::uint64_t lines, const event& e, bool both) {
-  return hold(p_->held, channel, lines, e, both);
+bool concurrent_check::note_record(int channel, std::uint64_t bytes, const event& e, bool both) {
+  return hold(p_->held, channel, bytes, e, both);
 }
 
-bool concurrent_check::note_units(int channel, std::uint64_t lines, unit_system u) {
-  return hold(p_->held, channel, lines, u);
+bool concurrent_check::note_units(int channel, std::uint64_t bytes, unit_system u) {
+  return hold(p_->held, channel, bytes, u);
 }
 
 void concurrent_check::flush_records(int channel) {

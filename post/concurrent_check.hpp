@@ -17,8 +17,9 @@
 //
 // The comparison of each channel's program with its CL (analysis/cl_compare) runs here too,
 // from the same reading: every block the check reads (split once for all its consumers) goes
-// to the channel's comparison, and each CL record the writer noted (note_record) after the
-// lines written before it; it then stands whether or not the check does.
+// to the channel's comparison, and each CL record the writer noted (note_record) before the
+// block that starts where the bytes written before it end; it then stands whether or not the
+// check does.
 //
 // Memory: a few pieces of 64 KB queued; the writer waits when the reader is behind. The
 // buffers go round: a piece written is the next empty buffer of a writer. The records noted
@@ -59,12 +60,13 @@ class concurrent_check {
   /// asked on the writer's thread. The relay must not be used after this object is gone.
   std::unique_ptr<block_writer::relay> relay_for(int channel, std::function<std::string()> name);
 
-  /// A record of `channel` shown to its comparison after the first `lines` lines of its program
-  /// (the writer's thread, in the order of the records; `both`: a HEAD/BOTH copy). True when
+  /// A record of `channel` shown to its comparison after the first `bytes` bytes of its program
+  /// (block_writer::bytes_out, between blocks: before the block that starts there; the
+  /// writer's thread, in the order of the records; `both`: a HEAD/BOTH copy). True when
   /// records_per_piece of them wait for the next piece: its writer should pass its bytes now.
-  bool note_record(int channel, std::uint64_t lines, const event& e, bool both);
-  /// The job's units (UNITS record) for `channel`'s comparison, after `lines` lines.
-  bool note_units(int channel, std::uint64_t lines, unit_system u);
+  bool note_record(int channel, std::uint64_t bytes, const event& e, bool both);
+  /// The job's units (UNITS record) for `channel`'s comparison, after `bytes` bytes.
+  bool note_units(int channel, std::uint64_t bytes, unit_system u);
   /// The records noted for `channel` go to the thread now, without bytes: after its writer
   /// passed its bytes (block_writer::pass_now), when it has none to pass (nothing written since
   /// its last piece, or nothing yet): so that records_per_piece bounds them however little a

@@ -130,16 +130,14 @@ class compared_writing : public write_observer {
 // records are noted there with the number of lines written before each.
 class noted_writing : public write_observer {
  public:
-  noted_writing(concurrent_check& cc, channel_writer& w, int channel) : cc_(cc), w_(w), channel_(channel) {
-    w_.count_lines();  // (nothing is written yet: note_during comes before the job's first record)
-  }
+  noted_writing(concurrent_check& cc, channel_writer& w, int channel) : cc_(cc), w_(w), channel_(channel) {}
   bool wants_lines() const override { return false; }
   void line(std::string_view) override {}
   void units(unit_system u) override {
-    if (cc_.note_units(channel_, w_.lines_written(), u)) pass();
+    if (cc_.note_units(channel_, w_.bytes_written(), u)) pass();
   }
   void record(const event& e, bool both) override {
-    if (cc_.note_record(channel_, w_.lines_written(), e, both)) pass();
+    if (cc_.note_record(channel_, w_.bytes_written(), e, both)) pass();
   }
 
  private:
