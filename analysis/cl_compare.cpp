@@ -658,6 +658,8 @@ struct cl_comparison::impl {
     if (plain)
       for (const nc_word& w : words)
         if (w.address == 'F') take_feed(w);
+    if (plain && !cycle && motion != 2 && motion != 3) [[likely]]
+      return read_plain_move(text, letters);
     for (const nc_word& w : plain ? no_words : words) {
       if (w.address == 'T') {
         // The control applies the new tool's offsets with its next move: the program's
@@ -975,23 +977,8 @@ struct cl_comparison::impl {
       for (const nc_word& w : words)
         if ((w.address == 'K' || w.address == 'L') && (!w.numeric || w.number > 1)) repeats = true;
     for (const nc_word& w : words) {
-      axis_state* a = nullptr;
       bool incremental = !absolute;
-      switch (w.address) {
-        case 'X': a = &x; break;
-        case 'Y': a = &y; break;
-        case 'Z': a = &z; break;
-        case 'U':
-          if (u_incremental) a = &x, incremental = true;
-          break;
-        case 'W':
-          if (w_incremental) a = &z, incremental = true;
-          break;
-        case 'V':
-          if (v_incremental) a = &y, incremental = true;
-          break;
-        default: break;
-      }
+      axis_state* const a = axis_of(w, incremental);
       if (!a) continue;
       any = true;
       if (not_a_move) continue;
@@ -1028,21 +1015,63 @@ struct cl_comparison::impl {
       rapid_text.assign(text);
     }
     if (any && !not_a_move && !home && !machine && !setting) {
-      moved = true;
-      note_moved(text);
-      move_line = lines;
-      if (cl_cycle && cl_drilling && motion == 1 && !cycle) [[unlikely]]
-        note_fed(text);
-      // A rapid with X or Z still at its reference point or machine position (the Y set to the
-      // centre line at the tool-change position before polar interpolation) is far from the
-      // part: no rapid through the cut.
-      if (motion == 0 && !cycle && !rapid_in_record && x.k != axis_state::kind::away &&
-          z.k != axis_state::kind::away) {
-        rapid_in_record = true;
-        rapid_text.assign(text);
-      }
+      note_move(text);
       if ((motion == 2 || motion == 3) && !cycle) note_arc(start, start_known);
     }
+    stage_block(text, letters, any, not_a_move, home || machine, setting);
+  }
+
+  // The axis state word `w` sets (X, Y, Z; U, V, W where they are increments: `incremental`
+  // then true), or none.
+  axis_state* axis_of(const nc_word& w, bool& incremental) {
+    switch (w.address) {
+      case 'X': return &x;
+      case 'Y': return &y;
+      case 'Z': return &z;
+      case 'U': return u_incremental ? (incremental = true, &x) : nullptr;
+      case 'W': return w_incremental ? (incremental = true, &z) : nullptr;
+      case 'V': return v_incremental ? (incremental = true, &y) : nullptr;
+      default: return nullptr;
+    }
+  }
+
+  // A block of axis words (an F among them) and nothing else, out of a cycle, not an arc:
+  // read_line's way for it with every other word's flag at rest (most blocks of a program).
+  void read_plain_move(std::string_view text, std::uint32_t letters) {
+    bool any = false;
+    for (const nc_word& w : *block_words) {
+      bool incremental = !absolute;
+      if (axis_state* const a = axis_of(w, incremental)) {
+        any = true;
+        set_axis(*a, w, incremental);
+      }
+    }
+    if (any) note_move(text);
+    stage_block(text, letters, any, false, false, false);
+  }
+
+  // A block that moved an axis of the part frame (no home, no machine coordinates, no
+  // setting): the last that moved, and a feed in a CL cycle or a rapid as they go.
+  void note_move(std::string_view text) {
+    moved = true;
+    note_moved(text);
+    move_line = lines;
+    if (cl_cycle && cl_drilling && motion == 1 && !cycle) [[unlikely]]
+      note_fed(text);
+    // A rapid with X or Z still at its reference point or machine position (the Y set to the
+    // centre line at the tool-change position before polar interpolation) is far from the
+    // part: no rapid through the cut.
+    if (motion == 0 && !cycle && !rapid_in_record && x.k != axis_state::kind::away &&
+        z.k != axis_state::kind::away) {
+      rapid_in_record = true;
+      rapid_text.assign(text);
+    }
+  }
+
+  // The block staged as a chain's or a plain channel's block between two records. `away`: a
+  // return to the reference point or to machine coordinates.
+  void stage_block(std::string_view text, std::uint32_t letters, bool any, bool not_a_move, bool away,
+                   bool setting) {
     // A chain's feed block between two records: where it puts the tip, held at the next record
     // to the CL's straight move (attack 63 M4: an `on_block` block dipped 20 mm mid-move).
     // A rapid, an arc or a return to the reference point or to machine coordinates there is
@@ -1053,13 +1082,13 @@ struct cl_comparison::impl {
     constexpr std::uint32_t xyz = nc_letter('X') | nc_letter('Y') | nc_letter('Z');
     if (chain && motion >= 0 && motion <= 3 && !cycle && !not_a_move && !setting &&
         (letters & (xyz | chain_letters)) != 0 && (whole_chain || chain->tool_tip_on()) &&
-        !(motion == 0 && !home && !machine && (letters & xyz) == 0 && chain->tool_tip_on())) [[unlikely]]
-      stage_chain_block(text, home || machine ? mid_kind::away
-                              : motion == 0   ? mid_kind::rapid
-                              : motion >= 2   ? mid_kind::arc
-                                              : mid_kind::feed);
+        !(motion == 0 && !away && (letters & xyz) == 0 && chain->tool_tip_on())) [[unlikely]]
+      stage_chain_block(text, away          ? mid_kind::away
+                              : motion == 0 ? mid_kind::rapid
+                              : motion >= 2 ? mid_kind::arc
+                                            : mid_kind::feed);
     if (!chain && any && !not_a_move && !setting && !cycle && !said_plain)
-      stage_plain_block(text, home || machine              ? mid_kind::away
+      stage_plain_block(text, away                         ? mid_kind::away
                               : motion == 0                ? mid_kind::rapid
                               : motion == 2 || motion == 3 ? mid_kind::arc
                                                            : mid_kind::feed);  // (G32: a straight cut)
