@@ -346,11 +346,12 @@ struct cl_comparison::impl {
   int move_line = 0;
 
   // The CL as read so far.
-  int cl_tool = -1, cl_tool_line = 0;  // LOADTL / TURRET
-  int cl_offset = -1;                  // its offset (LOADTL/n,adj; the tool's number when none)
-  double cl_lead = -1;                 // THREAD/TURN's lead in mm while it is on; -1 off
-  double cl_clamp = 0;                 // SPINDL/...,MAXRPM under CSS; 0 none
-  int cl_spin_index = -1;              // the spindle SPINDL names (MAIN, SUB, LIVE); -1 none
+  int cl_tool = -1, cl_tool_line = 0;   // LOADTL / TURRET
+  std::optional<double> cl_tool_table;  // cl_tool's length in the machine's [[tool]] table
+  int cl_offset = -1;                   // its offset (LOADTL/n,adj; the tool's number when none)
+  double cl_lead = -1;                  // THREAD/TURN's lead in mm while it is on; -1 off
+  double cl_clamp = 0;                  // SPINDL/...,MAXRPM under CSS; 0 none
+  int cl_spin_index = -1;               // the spindle SPINDL names (MAIN, SUB, LIVE); -1 none
   // The CL's spindle: -1 not given, 0 off, 1 turning; its speed in rpm or (css) m/min.
   int cl_spin = -1;
   bool cl_css = false;
@@ -1563,10 +1564,7 @@ struct cl_comparison::impl {
 
   // The tool length the chain's words were written for: the [[tool]]'s and the CL's TLDATA, as
   // [[kinematics]] tool_length says which wins (machines/kinematic_chain.hpp chosen_length).
-  std::optional<double> chain_length() const {
-    return chosen_length(*chain_def, cl_tool >= 0 ? m.tool_length(ch.number, cl_tool) : std::nullopt,
-                         cl_length);
-  }
+  std::optional<double> chain_length() const { return chosen_length(*chain_def, cl_tool_table, cl_length); }
 
   // A record of a channel with a kinematic chain: the tip and the tool axis where the program's
   // words put them through the forward transform, against the CL's point and axis.
@@ -2020,6 +2018,7 @@ struct cl_comparison::impl {
           if constexpr (std::is_same_v<T, tool_event>) {
             if (!d.preselect) {
               cl_tool = d.tool, cl_tool_line = e.line, cl_offset = d.offset.value_or(d.tool);
+              cl_tool_table = cl_tool >= 0 ? m.tool_length(ch.number, cl_tool) : std::nullopt;
               cl_prev_known = false;  // the tool goes home: its first move comes from there
               cl_length = std::exchange(cl_length_next, std::nullopt);
               cl_after_call = true;
