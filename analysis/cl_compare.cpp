@@ -334,6 +334,7 @@ struct cl_comparison::impl {
   std::string move_copy;
   std::string_view move_view;         // not empty: the text, not copied yet
   std::array<axis_state, 3> hole_at;  // the block's X Y Z in a hole cycle (read_line)
+  std::array<axis_state, 2> turned;   // x and y turned by C or polar interpolation (compare)
   // The last block that moved.
   const std::string& move_text() {
     if (!move_view.empty()) move_copy.assign(move_view), move_view = {};
@@ -1466,8 +1467,10 @@ struct cl_comparison::impl {
       return false;
     }
     const double zs = z_sign();
-    // Under a C angle the part's x, y are the program's turned by +C about Z.
-    axis_state turned_x, turned_y;  // x and y turned by C, when it is
+    // Under a C angle the part's x, y are the program's turned by +C about Z (members: not
+    // made for every record).
+    axis_state& turned_x = turned[0];
+    axis_state& turned_y = turned[1];
     const axis_state* xp = &this->x;
     const axis_state* yp = &this->y;
     bool with_y = has_y;  // y is compared: the channel has Y, or C turned x into it
@@ -1520,6 +1523,18 @@ struct cl_comparison::impl {
       compare_rest(e, rapid);
       return true;
     }
+    tip_fault(e, pos, x, y, with_y, gauge, zs, tol);
+    compare_axis(e, cl_axis, followed_polar);
+    compare_rest(e, rapid);
+    return true;
+  }
+
+  // The record's tip is not where the program's axes `x` and `y` (turned by C or polar
+  // interpolation; y compared when `with_y`) and Z put it, or Z is the gauge line: said once
+  // (the rare way out of compare, kept apart so that the common one stays short).
+  [[gnu::cold]] [[gnu::noinline]] void tip_fault(const event& e, const vec3& pos, const axis_state& x,
+                                                 const axis_state& y, bool with_y, bool gauge, double zs,
+                                                 double tol) {
     std::string off;
     double worst = 0;
     auto check = [&](char name, const axis_state& a, double div, double want) {
@@ -1550,16 +1565,13 @@ struct cl_comparison::impl {
                           moved ? fmt::format(", after the block `{}`", move_text()) : std::string()));
       }
     } else {
-      check('Z', z, zs, pos.z * cl_mm);
+      check('Z', this->z, zs, pos.z * cl_mm);
     }
     if (!off.empty() && !std::exchange(said_tip, true))
       error(e,
             fmt::format("the program does not put the tool tip on this record's point (the part frame, mm): "
                         "{}{}",
                         off, moved ? fmt::format(", after the block `{}`", move_text()) : std::string()));
-    compare_axis(e, cl_axis, followed_polar);
-    compare_rest(e, rapid);
-    return true;
   }
 
   // The tool length the chain's words were written for: the [[tool]]'s and the CL's TLDATA, as
