@@ -72,6 +72,13 @@ bool decode_number(std::string_view s, double& out, bool& point) {
   return n.end == s.size() && n.value(negative, s, out, point);
 }
 
+// The characters a number may start with: a digit, a point or a sign.
+constexpr auto starts_number = [] {
+  std::array<bool, 256> t{};
+  for (const char c : std::string_view("0123456789.-+")) t[static_cast<unsigned char>(c)] = true;
+  return t;
+}();
+
 /// Index just past the `[...]` group that opens at `i` (groups nest).
 std::size_t skip_brackets(std::string_view s, std::size_t i) {
   int depth = 0;
@@ -133,9 +140,10 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
   // The words are written over the vector's old ones, their values views into `line`: a
   // caller that splits every block of a long program allocates and copies nothing per block.
   std::size_t used = 0;
+  std::size_t have = words.size();  // (kept: size() divides by the word's size, per word)
   std::uint32_t letters = 0;
   auto next = [&]() -> nc_word& {
-    if (used == words.size()) words.emplace_back();
+    if (used == have) words.emplace_back(), ++have;
     nc_word& w = words[used++];
     w.expression = false;
     return w;
@@ -155,12 +163,15 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
   }
   while (i < n) {
     const char c = line[i];
+    if (c == ' ') {  // the blank between two words: the commonest character that starts none
+      ++i;
+      continue;
+    }
     // A letter first: most characters of a block begin a word (or are its digits, read with it).
     if (is_letter(c)) {
       // The commonest word, a letter right before its number (X-12.5, G1): read and decoded
       // in one pass. Anything else (a keyword, blanks, a variable) takes the general way.
-      if (i + 1 < n &&
-          (is_digit(line[i + 1]) || line[i + 1] == '.' || line[i + 1] == '-' || line[i + 1] == '+')) {
+      if (i + 1 < n && starts_number[static_cast<unsigned char>(line[i + 1])]) {
         const std::size_t k = i + 1;
         const bool negative = line[k] == '-';
         const std::size_t v = line[k] == '+' || negative ? k + 1 : k;
@@ -168,12 +179,13 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
         const std::size_t d = number.end;
         if (d > v) {
           nc_word& w = next();
-          w.address = upper(c);
+          const char a = upper(c);
+          w.address = a;
           w.column = static_cast<int>(i) + 1;
           w.value = std::string_view(line.data() + k, d - k);
           w.numeric = number.value(negative, w.value, w.number, w.point);
           if (!w.numeric) w.number = 0, w.point = false;
-          letters |= nc_letter(w.address);
+          letters |= std::uint32_t{1} << (a - 'A');  // (a letter: nc_letter without its test)
           i = d;
           continue;
         }
