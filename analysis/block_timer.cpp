@@ -290,7 +290,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   // Where the block sends each axis (program units; X as programmed).
   std::vector<std::optional<double>>& target = target_;  // one per axis (sized once)
   bool moves = false;
-  for (std::size_t i = 0; i < axes_.size(); ++i) target[i] = axes_[i].value;
+  const std::size_t n_axes = axes_.size();  // (asked once: size() divides by an axis's size)
+  for (std::size_t i = 0; i < n_axes; ++i) target[i] = axes_[i].value;
   const bool lathe = lathe_x_;
   for (const nc_word& w : words) {
     const auto u = static_cast<unsigned char>(w.address);
@@ -317,7 +318,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   const bool arc_words = (letters & (nc_letter('I') | nc_letter('J') | nc_letter('K') | nc_letter('R'))) != 0;
 
   if (setting) {
-    for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
+    for (std::size_t i = 0; i < n_axes; ++i) axes_[i].value = target[i];
     return t;
   }
   if (reference) {
@@ -343,13 +344,13 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     }
     untimed(g_code_text(g, "G"));
     if (one_shot < 0 && modal_drill_cycle(cycle_, lathe_a_))
-      for (std::size_t i = 0; i < axes_.size(); ++i)
+      for (std::size_t i = 0; i < n_axes; ++i)
         if (axes_[i].address != 'Z') axes_[i].value = target[i];
     return t;
   }
   if (!moves && !(arc_words && (motion_num_ == 2 || motion_num_ == 3))) return t;
   if (!t.untimed.empty()) {
-    for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
+    for (std::size_t i = 0; i < n_axes; ++i) axes_[i].value = target[i];
     t.seconds = 0;
     return t;
   }
@@ -358,7 +359,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     return t;
   }
   const double s = move_time(target, motion_num_ == 0, motion_code_, words, t);
-  for (std::size_t i = 0; i < axes_.size(); ++i) axes_[i].value = target[i];
+  for (std::size_t i = 0; i < n_axes; ++i) axes_[i].value = target[i];
   if (!t.untimed.empty()) {
     t.seconds = 0;
     return t;
@@ -408,7 +409,8 @@ double block_timer::move_time(const std::vector<std::optional<double>>& target, 
                               bool sync) {
   // Every axis that moves must start from a known place.
   double linear2 = 0, rotary = 0, slowest = 0;
-  for (std::size_t i = 0; i < axes_.size(); ++i) {
+  const std::size_t n_axes = axes_.size();
+  for (std::size_t i = 0; i < n_axes; ++i) {
     const axis_pos& p = axes_[i];
     if (!target[i] || (p.value && *p.value == *target[i])) continue;
     if (!p.value) {

@@ -133,15 +133,19 @@ struct concurrent_check::impl {
   void hand_due(std::size_t i, std::uint64_t at_byte) {
     std::deque<std::vector<noted>>& q = due[i];
     std::size_t& at = due_at[i];
+    cl_comparison* const c = compare[i];
     while (!q.empty()) {
-      const std::vector<noted>& front = q.front();
-      for (; at < front.size(); ++at) {
+      // (Its size and the comparison kept: a call may change anything, for all the compiler
+      // knows, and the size is a division.)
+      const noted* const front = q.front().data();
+      const std::size_t count = q.front().size();
+      for (; at < count; ++at) {
         const noted& n = front[at];
         if (n.bytes > at_byte) return;
         if (!n.is_units)
-          compare[i]->record(n.record, n.both);
+          c->record(n.record, n.both);
         else
-          compare[i]->units(n.units);
+          c->units(n.units);
       }
       if (handed.size() < queue_pieces) {
         q.front().clear();
