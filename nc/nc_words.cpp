@@ -231,6 +231,11 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
       if (close == std::string_view::npos) break;  // an unclosed comment runs to the end
       i = close + 1;
     } else if (c == ';') {
+      // The rest is a comment to this reading, but not always to a control's: a '(' the split
+      // skipped inside a bracket opens a comment the ';' stands in, and the code goes on after
+      // its ')' (attack 70 F1: `IF [1 EQ 1(]; )] THEN #501=1.` writes #501). A '#' anywhere
+      // after it counts: the bit may say more than macro_uses finds, never less.
+      variables_in(i, n);
       break;
     } else if (c == '/') {
       i += i + 1 < n && is_digit(line[i + 1]) ? 2 : 1;  // block delete, optionally /1../9

@@ -29,9 +29,11 @@ constexpr std::uint32_t nc_letter(char address) {
   return address >= 'A' && address <= 'Z' ? std::uint32_t{1} << (address - 'A') : 0;
 }
 
-/// Not a letter: set in a block's letters (split_nc_words, nc_block::letters) when it has a
-/// '#' outside its comments, a macro variable read or written (`#5221=-5.`, `X#100`): one test
-/// instead of a search of the text by each reader that looks for variables.
+/// Not a letter: set in a block's letters (split_nc_words, nc_block::letters) when it may have
+/// a '#' outside its comments, a macro variable read or written (`#5221=-5.`, `X#100`): one
+/// test instead of a search of the text by each reader that looks for variables, which then
+/// reads the line exactly (macro_uses). Never missing where there is one; also set for a '#'
+/// after a `;` (a comment to the split, not always to a control: attack 70 F1).
 inline constexpr std::uint32_t nc_variable_bit = std::uint32_t{1} << 26;
 
 /// One block of a channel's program as the reader hands it on (nc_read_options::on_block).
@@ -102,7 +104,7 @@ std::vector<nc_word> split_nc_words(std::string&& line) = delete;
 bool nc_number(std::string_view value, double& out);
 /// The same into `words`, reusing its elements: no allocation per block once it has grown.
 /// Returns the addresses found (nc_letter bits), and nc_variable_bit for a '#' outside the
-/// comments (in a word's value, a bracket or on its own).
+/// `(...)` comments (in a word's value, a bracket, on its own, or after a `;`).
 std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words);
 inline std::uint32_t split_nc_words(const char* line, std::vector<nc_word>& words) {
   return split_nc_words(std::string_view(line), words);
