@@ -75,6 +75,10 @@ TEST_CASE("emulator: a variable the machine reserves is not written", "[analysis
       "machine 'fanuc-0itd-twin' reserves #500, #501: write a numbered variable the machine file does not "
       "name\n#[499+2]=1\n^\ncheck: 2 channels, 2 waits paired, 1 error\n");
   CHECK(check_lathe("#5 01=1\n").starts_with("P_1.nc:4:1: error: channel 1: #501 is written here"));
+  // Behind a comment a bracket's '(' opens, whose ')' ends it after a ';' (attack 70 F1): the
+  // control runs `IF [1 EQ 1] THEN #501=1.`.
+  CHECK(check_lathe("IF [1 EQ 1(]; )] THEN #501=1.\n")
+            .starts_with("P_1.nc:4:23: error: channel 1: #501 is written here"));
   // Read, or another variable written, or #501 in a comment: quiet.
   CHECK(check_lathe("#601=#501+1\nIF [#500 EQ #0] THEN #3000=1 (#500 NOT SET)\n(#501=1)\n") == clean_lathe);
 }
