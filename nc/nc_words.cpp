@@ -72,13 +72,6 @@ bool decode_number(std::string_view s, double& out, bool& point) {
   return n.end == s.size() && n.value(negative, s, out, point);
 }
 
-// The characters a number may start with: a digit, a point or a sign.
-constexpr auto starts_number = [] {
-  std::array<bool, 256> t{};
-  for (const char c : std::string_view("0123456789.-+")) t[static_cast<unsigned char>(c)] = true;
-  return t;
-}();
-
 /// Index just past the `[...]` group that opens at `i` (groups nest).
 std::size_t skip_brackets(std::string_view s, std::size_t i) {
   int depth = 0;
@@ -163,15 +156,12 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
   }
   while (i < n) {
     const char c = line[i];
-    if (c == ' ') {  // the blank between two words: the commonest character that starts none
-      ++i;
-      continue;
-    }
     // A letter first: most characters of a block begin a word (or are its digits, read with it).
     if (is_letter(c)) {
       // The commonest word, a letter right before its number (X-12.5, G1): read and decoded
       // in one pass. Anything else (a keyword, blanks, a variable) takes the general way.
-      if (i + 1 < n && starts_number[static_cast<unsigned char>(line[i + 1])]) {
+      if (i + 1 < n &&
+          (is_digit(line[i + 1]) || line[i + 1] == '.' || line[i + 1] == '-' || line[i + 1] == '+')) {
         const std::size_t k = i + 1;
         const bool negative = line[k] == '-';
         const std::size_t v = line[k] == '+' || negative ? k + 1 : k;

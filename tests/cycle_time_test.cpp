@@ -360,19 +360,18 @@ TEST_CASE("block timer: a facing cut under CSS follows the rpm along the diamete
   // Facing from X100 to X20 (40 mm of path) at 0.2 mm/rev:
   //   above 31.831: the integral of d / k over the move, k = 200000 / pi;
   //   below it: 2000 rpm. Worked out: 11.4746 s (a 200000-step sum gives the same to 1e-9).
-  CHECK(times(m, 1, {"G50 X100. Z0.", "G50 S2000", "G96 S200 M3", "G99 G1 X20. F0.2", "G1 X0."}) ==
+  const auto facing = [&](const char* first, const char* second) {
+    return times(m, 1, {"G50 X100. Z0.", "G50 S2000", "G96 S200 M3", first, second});
+  };
+  CHECK(facing("G99 G1 X20. F0.2", "G1 X0.") ==
         "0.0000\n"
         "0.0000\n"
         "0.1000\n"
         "11.4746\n"
         "1.5000\n");  // 10 mm at 0.2 mm/rev x 2000 rpm (below the clamp's diameter all the way)
-}
-
-TEST_CASE("block timer: one facing block across the clamp's diameter, either way", "[analysis][timeline]") {
-  const machine m = load_machine("fanuc-0itd-twin");
-  // As above, X100 to X0 in one block: 10.5873 s under CSS down to d = 31.831 mm, then
-  // 15.9155 mm of path at 0.2 mm/rev x 2000 rpm, 2.3873 s; back out the same.
-  CHECK(times(m, 1, {"G50 X100. Z0.", "G50 S2000", "G96 S200 M3", "G99 G1 X0. F0.2", "G1 X100."}) ==
+  // X100 to X0 in one block, across the clamp's diameter: 10.5873 s under CSS down to
+  // d = 31.831 mm, then 15.9155 mm of path at 0.2 mm/rev x 2000 rpm, 2.3873 s; back out the same.
+  CHECK(facing("G99 G1 X0. F0.2", "G1 X100.") ==
         "0.0000\n"
         "0.0000\n"
         "0.1000\n"
