@@ -63,7 +63,7 @@ struct axis_state {
 
 }  // namespace
 
-struct cl_comparison::impl {
+struct alignas(64) cl_comparison::impl {
   impl(const machine& m, const channel_def& ch, diagnostic_sink& d, std::string file)
       : m(m), ch(ch), diags(d), cl_file(std::move(file)), spindles(m, ch.number), codes(m, ch) {
     const axis_def* x = ch.axis('X');
@@ -2166,17 +2166,22 @@ struct cl_comparison::impl {
 
 cl_comparison::cl_comparison(const machine& m, const channel_def& ch, diagnostic_sink& diags,
                              std::string cl_file)
-    : p_(std::make_unique<impl>(m, ch, diags, std::move(cl_file))) {}
+    : m_(m), ch_(ch), diags_(diags), cl_file_(std::move(cl_file)) {}
 cl_comparison::~cl_comparison() = default;
-void cl_comparison::line(std::string_view text) { p_->line(text); }
+cl_comparison::impl& cl_comparison::made() {
+  if (!p_) [[unlikely]]
+    p_ = std::make_unique<impl>(m_, ch_, diags_, std::move(cl_file_));
+  return *p_;
+}
+void cl_comparison::line(std::string_view text) { made().line(text); }
 void cl_comparison::block(int line, std::string_view text, const std::vector<nc_word>& words,
                           std::uint32_t letters) {
-  p_->line(text, &words, letters, line);
+  made().line(text, &words, letters, line);
 }
-void cl_comparison::keep_texts() { (void)p_->move_text(); }
-void cl_comparison::units(unit_system u) { p_->units(u); }
-void cl_comparison::record(const event& e, bool both) { p_->record(e, both); }
-long cl_comparison::compared() const { return p_->compared; }
-long cl_comparison::passed_over() const { return p_->passed; }
+void cl_comparison::keep_texts() { (void)made().move_text(); }
+void cl_comparison::units(unit_system u) { made().units(u); }
+void cl_comparison::record(const event& e, bool both) { made().record(e, both); }
+long cl_comparison::compared() const { return p_ ? p_->compared : 0; }
+long cl_comparison::passed_over() const { return p_ ? p_->passed : 0; }
 
 }  // namespace twinpost

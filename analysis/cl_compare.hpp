@@ -45,7 +45,8 @@
 
 namespace twinpost {
 
-class cl_comparison {
+// (In a cache line of its own: the self-check's thread reads it at every block.)
+class alignas(64) cl_comparison {
  public:
   /// Compares channel `ch` of `m`; findings go to `diags` at the CL record of `cl_file`.
   cl_comparison(const machine& m, const channel_def& ch, diagnostic_sink& diags, std::string cl_file);
@@ -72,7 +73,15 @@ class cl_comparison {
   long passed_over() const;
 
  private:
+  // Made by the first call, on the thread that feeds it (the self-check's, on two cores): its
+  // state, written at every block, then comes from that thread's memory, never in a cache
+  // line with the writer's (docs/design.md, "Two cores"); as the timeline's.
   struct impl;
+  impl& made();
+  const machine& m_;
+  const channel_def& ch_;
+  diagnostic_sink& diags_;
+  std::string cl_file_;
   std::unique_ptr<impl> p_;
 };
 

@@ -33,6 +33,18 @@ struct noted {
   unit_system units = unit_system::mm;
 };
 
+// A channel's state on each thread, in cache lines of its own: a line one core writes and the
+// other reads goes to and fro between them at every write (the writer notes a record in `held`
+// for every CL record, the thread hands them on and counts the bytes read for every block).
+struct alignas(64) writer_lane {
+  std::vector<noted> held;  // noted since the channel's last piece
+};
+struct alignas(64) reader_lane {
+  std::deque<std::vector<noted>> due;  // pieces' records not yet handed
+  std::size_t due_at = 0;              // the next of due's first piece's
+  std::uint64_t fed = 0;               // the bytes of its pieces read
+};
+
 struct piece {
   int channel = 0;
   std::vector<noted> records;  // noted since the channel's piece before
@@ -43,11 +55,11 @@ struct piece {
 
 }  // namespace
 
-struct concurrent_check::impl {
+struct alignas(64) concurrent_check::impl {
   impl(const machine& m, timeline_feed* feed, std::vector<cl_comparison*> compare)
-      : m(m), feed(feed), compare(std::move(compare)), held(m.channels.size()), due(m.channels.size()),
-        due_at(m.channels.size()), fed(m.channels.size()), names(m.channels.size()),
-        pending(m.channels.size()), write_errors(m.channels.size()), thread([this] { run(); }) {}
+      : m(m), feed(feed), compare(std::move(compare)), written_lanes(m.channels.size()),
+        read_lanes(m.channels.size()), names(m.channels.size()), pending(m.channels.size()),
+        write_errors(m.channels.size()), thread([this] { run(); }) {}
 
   ~impl() {
     stop();
@@ -71,8 +83,8 @@ struct concurrent_check::impl {
     }
     // Its records' vector too comes round: memory this thread allocated, freed on the other,
     // goes back to this thread's arena under its lock, for every piece.
-    if (held[c].capacity() == 0 && !spare_records.empty()) {
-      held[c] = std::move(spare_records.back());
+    if (written_lanes[c].held.capacity() == 0 && !spare_records.empty()) {
+      written_lanes[c].held = std::move(spare_records.back());
       spare_records.pop_back();
     }
     lock.unlock();
@@ -119,7 +131,8 @@ struct concurrent_check::impl {
     cl_comparison* c = comparison(i);
     if (!c || drained) return;  // (the reader's finish() after drain(): its findings are said)
     const char* t = b.text.data();
-    std::uint64_t starts = now_read.channel == b.channel ? now_read.at : fed[i];  // (carried: just before)
+    std::uint64_t starts =
+        now_read.channel == b.channel ? now_read.at : read_lanes[i].fed;  // (carried: just before)
     if (now_read.channel == b.channel && t >= now_read.begin && t < now_read.end)
       starts += static_cast<std::uint64_t>(t - now_read.begin);
     else if (starts > 0)
@@ -131,8 +144,8 @@ struct concurrent_check::impl {
 
   // Channel i's records noted at or before byte `at`, to its comparison.
   void hand_due(std::size_t i, std::uint64_t at_byte) {
-    std::deque<std::vector<noted>>& q = due[i];
-    std::size_t& at = due_at[i];
+    std::deque<std::vector<noted>>& q = read_lanes[i].due;
+    std::size_t& at = read_lanes[i].due_at;
     cl_comparison* const c = compare[i];
     while (!q.empty()) {
       // (Its size and the comparison kept: a call may change anything, for all the compiler
@@ -166,7 +179,7 @@ struct concurrent_check::impl {
     if (!drained) {
       drained = true;
       if (!failed) try {
-          for (std::size_t i = 0; i < due.size(); ++i)
+          for (std::size_t i = 0; i < read_lanes.size(); ++i)
             if (comparison(i)) hand_due(i, std::numeric_limits<std::uint64_t>::max());
         } catch (const std::exception& e) {
           fail(e.what());
@@ -210,11 +223,12 @@ struct concurrent_check::impl {
       lock.unlock();
       if (half) room.notify_one();
       if (!failed) try {
-          if (!p.records.empty()) due[i].push_back(std::move(p.records));
+          if (!p.records.empty()) read_lanes[i].due.push_back(std::move(p.records));
           if (p.f) {  // (else records alone: flush_records)
             if (!p.opens.empty()) parts->reader.open(p.channel, std::move(p.opens));
-            now_read = {p.channel, p.bytes.data(), p.bytes.data() + p.bytes.size(), fed[i]};
-            fed[i] += p.bytes.size();  // (a line carried over to the next piece starts before this)
+            now_read = {p.channel, p.bytes.data(), p.bytes.data() + p.bytes.size(), read_lanes[i].fed};
+            read_lanes[i].fed +=
+                p.bytes.size();  // (a line carried over to the next piece starts before this)
             parts->reader.feed(p.channel, p.bytes.view());
             now_read = {};
             for (cl_comparison* c : compare)  // (the piece's bytes go now)
@@ -250,14 +264,12 @@ struct concurrent_check::impl {
 
   const machine& m;
   timeline_feed* feed;
-  std::vector<cl_comparison*> compare;   // by channel, or empty: used by the thread
-  std::vector<std::vector<noted>> held;  // by channel: noted since its last piece (the writers' thread)
-  std::vector<std::deque<std::vector<noted>>> due;  // by channel: pieces' records not yet handed (the thread)
-  std::vector<std::vector<noted>> handed;           // due's vectors done with, for spare_records (the thread)
-  std::vector<std::vector<noted>> spare_records;    // for the writers to fill again (under mutex)
-  std::vector<std::size_t> due_at;                  // by channel: the next of due's first piece's
-  std::vector<std::uint64_t> fed;                   // by channel: the bytes of its pieces read (the thread)
-  struct piece_read {                               // the piece being read (the thread)
+  std::vector<cl_comparison*> compare;            // by channel, or empty: used by the thread
+  std::vector<writer_lane> written_lanes;         // by channel: the writers' thread
+  std::vector<reader_lane> read_lanes;            // by channel: the thread
+  std::vector<std::vector<noted>> handed;         // due's vectors done with, for spare_records (the thread)
+  std::vector<std::vector<noted>> spare_records;  // for the writers to fill again (under mutex)
+  struct alignas(64) piece_read {                 // the piece being read (the thread; a line of its own)
     int channel = 0;
     const char* begin = nullptr;
     const char* end = nullptr;
@@ -288,8 +300,9 @@ struct concurrent_check::channel_relay : block_writer::relay {
   text_buffer pass(text_buffer&& bytes, std::FILE* f) override {
     piece next;
     next.channel = channel;
-    next.records = std::move(p.held[static_cast<std::size_t>(channel - 1)]);
-    p.held[static_cast<std::size_t>(channel - 1)] = {};  // (push gives a spare one back)
+    std::vector<noted>& held = p.written_lanes[static_cast<std::size_t>(channel - 1)].held;
+    next.records = std::move(held);
+    held = {};  // (push gives a spare one back)
     std::string& opened = p.names[static_cast<std::size_t>(channel - 1)];
     if (opened.empty()) {
       opened = name();
@@ -322,8 +335,8 @@ namespace {
 // A record (or the units: `args`) held for `channel`'s next piece, made in place; true when
 // records_per_piece wait.
 template <class... Args>
-bool hold(std::vector<std::vector<noted>>& held, int channel, const Args&... args) {
-  std::vector<noted>& h = held[static_cast<std::size_t>(channel - 1)];
+bool hold(std::vector<writer_lane>& lanes, int channel, const Args&... args) {
+  std::vector<noted>& h = lanes[static_cast<std::size_t>(channel - 1)].held;
   if (h.capacity() == 0) h.reserve(concurrent_check::records_per_piece / 4);  // (given away with each piece)
   h.emplace_back(args...);
   return h.size() >= concurrent_check::records_per_piece;
@@ -332,15 +345,15 @@ bool hold(std::vector<std::vector<noted>>& held, int channel, const Args&... arg
 }  // namespace
 
 bool concurrent_check::note_record(int channel, std::uint64_t bytes, const event& e, bool both) {
-  return hold(p_->held, channel, bytes, e, both);
+  return hold(p_->written_lanes, channel, bytes, e, both);
 }
 
 bool concurrent_check::note_units(int channel, std::uint64_t bytes, unit_system u) {
-  return hold(p_->held, channel, bytes, u);
+  return hold(p_->written_lanes, channel, bytes, u);
 }
 
 void concurrent_check::flush_records(int channel) {
-  std::vector<noted>& h = p_->held[static_cast<std::size_t>(channel - 1)];
+  std::vector<noted>& h = p_->written_lanes[static_cast<std::size_t>(channel - 1)].held;
   if (h.empty()) return;
   piece p;  // no bytes, no file: records alone, after the bytes passed before them
   p.channel = channel;
