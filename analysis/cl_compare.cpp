@@ -25,6 +25,7 @@
 #include "nc/nc_words.hpp"
 #include "parser/cam_tool.hpp"
 #include "parser/cycle_words.hpp"
+#include "support/ascii.hpp"
 
 namespace twinpost {
 
@@ -101,6 +102,11 @@ struct alignas(64) cl_comparison::impl {
       if (const kinematic_chain* k = m.chain(ch.number); k && !k->tool_tip_on.empty())
         head_codes.push_back(split_nc_words(k->tool_tip_on));
     }
+    // The dwell's time word: the letter before `{seconds}` or `{ms}` in the machine's template.
+    for (const auto& [field, scale] : {std::pair{std::string_view("{seconds}"), 1.0}, {"{ms}", 0.001}})
+      if (const std::size_t at = m.codes.dwell.find(field);
+          at != std::string::npos && at > 0 && ascii::is_letter(m.codes.dwell[at - 1]))
+        dwell_address = ascii::upper(m.codes.dwell[at - 1]), dwell_scale = scale;
     const cycle_rules& cy = m.cycles;
     for (const std::string* code :
          {&cy.drill_code, &cy.dwell_code, &cy.peck_code, &cy.chip_break_code, &cy.tap_code, &cy.tap_left_code,
@@ -376,6 +382,14 @@ struct alignas(64) cl_comparison::impl {
   bool coolant_fine = false;  // the coolant held to the CL's since either last changed
   bool spindle_fine = false;  // the spindle held to the CL's since either last changed
   bool said_tip = false, said_rapid = false, said_feed = false, said_tool = false, said_spindle = false;
+  // The dwells written since the last record (a DELAY's): their seconds, and the first one a
+  // control may count in revolutions (written under feed per revolution).
+  char dwell_address = 0;  // the machine's dwell template's time word (U in `G4 U{seconds}`)
+  double dwell_scale = 1;  // its seconds per unit (0.001 for `P{ms}`)
+  double dwelt = 0;        // seconds
+  int dwells = 0;
+  std::string dwell_text, dwell_per_rev;
+  bool said_dwell = false;
   // The record's blocks that turned C with the tip off the axis (the first `n_turns`), and the
   // CL's last motion point (part frame, mm; not known from a tool change to the next record).
   std::vector<c_turn_block> turns;
@@ -650,7 +664,8 @@ struct alignas(64) cl_comparison::impl {
     }
     const double c_before = c_deg;
     const bool c_known_before = c_known;
-    bool not_a_move = false, home = false, machine = false, setting = false, m6 = false, tool_call = false;
+    bool not_a_move = false, home = false, machine = false, setting = false, m6 = false, tool_call = false,
+         dwell = false;
     const nc_word* head_word = nullptr;
     const char* home_why = "";
     // Most lines are moves with axis words and an F: only the F is read before the axes. A whole
@@ -960,11 +975,16 @@ struct alignas(64) cl_comparison::impl {
           home_why = g == 270 ? "G27" : "G29";
           break;
         case 40:
+          dwell = true;
+          not_a_move = true;
+          break;
         case 650:
         case 661: not_a_move = true; break;
         default: break;
       }
     }
+    if (dwell && dwell_address) [[unlikely]]
+      note_dwell(words, text);
     if (m6) t_active = t_pending;
     if (m6 || tool_call || head_word) [[unlikely]]
       note_head(head_word, home, machine, text);
@@ -1925,6 +1945,43 @@ struct alignas(64) cl_comparison::impl {
     cl_spin_line = line;
   }
 
+  // A dwell block (`G4 U2.`, `G98 G4 U2.`): its seconds, and whether it is written under feed per
+  // revolution, where a control may count it in spindle revolutions (Fanuc parameter 3405#1
+  // DWL, "dwell per rotation in the feed per rotation mode"; issue 37, item 10).
+  void note_dwell(const std::vector<nc_word>& words, std::string_view text) {
+    if (dwells++ == 0) dwelt = 0, dwell_text.assign(text), dwell_per_rev.clear();
+    for (const nc_word& w : words)
+      if (w.address == dwell_address && w.numeric) {
+        // Seconds without a decimal point count least increments (`U2` is 0.002 s where
+        // decimal-point programming is off), as an axis word does; milliseconds are whole.
+        const bool seconds = dwell_scale == 1;
+        dwelt +=
+            (w.point || !seconds || !m.program.trailing_point ? w.number : w.number * 0.001) * dwell_scale;
+      }
+    if (per_rev == 1 && dwell_per_rev.empty()) dwell_per_rev.assign(text);
+  }
+
+  // The CL's DELAY of `seconds` against the dwells written for it.
+  void compare_dwell(const event& e, double seconds) {
+    if (said_dwell || !dwell_address) return;
+    const double half = 0.0005;  // (a millisecond's half: the last digit written)
+    std::string why;
+    if (dwells == 0)
+      why = fmt::format("the CL dwells {:g} s here (DELAY), the program does not", seconds);
+    else if (std::abs(dwelt - seconds) > half + 1e-9)
+      why = fmt::format("the CL dwells {:g} s here (DELAY), the program {:g} s (`{}`)", seconds, dwelt,
+                        dwell_text);
+    else if (!dwell_per_rev.empty())
+      why = fmt::format(
+          "the CL dwells {:g} s here (DELAY), the program under {} (`{}`): a control that counts "
+          "a dwell in spindle revolutions under feed per revolution (Fanuc parameter 3405#1) "
+          "waits {:g} revolutions",
+          seconds, m.codes.feed_per_rev, dwell_per_rev, dwelt);
+    if (why.empty()) return;
+    said_dwell = true;
+    error(e, why);
+  }
+
   void compare_coolant(const event& e) {
     if (said_coolant || coolant_fine || cl_coolant < 0 || nc_coolant < 0) return;
     if (cl_coolant == nc_coolant) {
@@ -2069,6 +2126,8 @@ struct alignas(64) cl_comparison::impl {
             }
           } else if constexpr (std::is_same_v<T, units_event>) {
             units(d.units);
+          } else if constexpr (std::is_same_v<T, delay_event>) {
+            if (!d.revolutions) compare_dwell(e, d.value);
           } else if constexpr (std::is_same_v<T, motion_event>) {
             if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta) {
               bool followed = true;
@@ -2097,6 +2156,7 @@ struct alignas(64) cl_comparison::impl {
     moved = false;
     rapid_in_record = false;
     n_arcs = 0;
+    dwells = 0;
     // The C turns of blocks between two motion records (INSERT text, an [events] block, a
     // tool's or a coolant's blocks) are held to the next one's move (attack 60 F3).
     if (std::holds_alternative<motion_event>(e.data) || std::holds_alternative<arc_event>(e.data))
