@@ -64,7 +64,7 @@ struct channel_state {
   int change_m = -1;                 // the M code of its tool change (M6 of "T{tool:02} M6"); -1: a T word
   int head_unknown = 0;              // the tool call since which the head has not been indexed; 0: known
   bool said_offset = false, said_chuck = false, said_start = false, said_cutoff = false, said_head = false,
-       said_released = false;
+       said_released = false, said_coolant = false;
   // A channel with a kinematic chain that has a rotary axis: its rapids' tip paths.
   std::optional<rotary_sweep> sweep;
 };
@@ -118,6 +118,9 @@ struct control_emulator::impl {
         channels.back().change_m = tool_change_code(m.channels[i].tool_call);
       }
     }
+    for (const std::string& b : m.codes.coolant_on) coolant_on.emplace_back(b);
+    for (const auto* pair : {&m.codes.coolant_mist, &m.codes.coolant_through, &m.codes.coolant_air})
+      if (!pair->empty()) coolant_on.emplace_back(pair->front());
     for (const spindle_def& s : m.spindles) chucks.push_back({code(s.chuck_open), code(s.chuck_close)});
     for (const spindle_def& s : m.spindles)
       if (!s.work_offset.empty()) offset_codes.emplace_back(s.work_offset);
@@ -136,13 +139,14 @@ struct control_emulator::impl {
   // the findings do not depend on how the channels' blocks interleave in the reading.
   std::vector<chuck_codes> chucks;
   std::vector<code> offset_codes;  // each spindle's work offset ([[spindle]] work_offset)
+  std::vector<code> coolant_on;    // each kind's code that turns it on
   std::vector<reserved_variable> reserved;
   bool has_chucks = false;
   bool offsets_used = false;
   std::vector<diagnostic> found;
 
-  void say(const nc_block& b, int column, std::string message) {
-    found.push_back({severity::error, b.file, b.line, column, std::move(message), std::string(b.text)});
+  void say(const nc_block& b, int column, std::string message, severity level = severity::error) {
+    found.push_back({level, b.file, b.line, column, std::move(message), std::string(b.text)});
   }
 
   void variables(const nc_block& b) {
@@ -235,6 +239,20 @@ struct control_emulator::impl {
     if (c.head) {
       if (tool_call) c.head_unknown = b.line;
       if (head_move) c.head_unknown = 0;
+      // The coolant before the index sprays while the head turns at the tool changer (the
+      // issue's item 10: public Integrex posts turn it on after the index).
+      if (c.head_unknown && !c.said_coolant && b.may_have(nc_letter('M')))
+        for (const code& k : coolant_on)
+          if (k.in(words)) {
+            c.said_coolant = true;
+            const head_index_rules& h = m.channels[static_cast<std::size_t>(b.channel - 1)].head_index;
+            say(b, 1,
+                fmt::format("channel {}: {} turns the coolant on before the {} head is indexed for the tool "
+                            "called at line {}: it sprays while the head turns; index it ({} {}..) first",
+                            b.channel, k.text, c.head, c.head_unknown, h.move, c.head),
+                severity::warning);
+            break;
+          }
       if (cut && c.head_unknown && !c.said_head) {
         c.said_head = true;
         const head_index_rules& h = m.channels[static_cast<std::size_t>(b.channel - 1)].head_index;

@@ -302,7 +302,8 @@ TEST_CASE("cl comparison: units, decimal points and the G91 a home block leaves"
       "2.000 (G91 is in force: the axis words after it are increments), after the block `G0 X44. Z2.`\n");
 }
 
-TEST_CASE("cl comparison: a dwell's seconds and the feed mode it is written under", "[analysis][cl_compare]") {
+TEST_CASE("cl comparison: a dwell's seconds and the feed mode it is written under",
+          "[analysis][cl_compare]") {
   // Issue 37, item 10: the CL's DELAY/2 as the post writes it under feed per revolution: under
   // G98 for the dwell, G99 again after it.
   const auto delay = [](compared& c, double s) { c.cmp.record({c.next++, delay_event{s, false}, 1}, false); };
@@ -323,22 +324,25 @@ TEST_CASE("cl comparison: a dwell's seconds and the feed mode it is written unde
   compared e("fanuc-0itd-twin", 1);
   e.lines({"G98", "G4 U2"});
   delay(e, 2);
-  CHECK(e.text() == "job.cls:10:1: error: channel 1: the CL dwells 2 s here (DELAY), the program 0.002 s (`G4 U2`)\n");
+  CHECK(e.text() ==
+        "job.cls:10:1: error: channel 1: the CL dwells 2 s here (DELAY), the program 0.002 s (`G4 U2`)\n");
   compared f("fanuc-0itd-twin", 1);
   f.lines({"G98", "G4 U2."});
   delay(f, 2);  // (its dwell)
   delay(f, 1.5);
-  CHECK(f.text() == "job.cls:11:1: error: channel 1: the CL dwells 1.5 s here (DELAY), the program does not\n");
+  CHECK(f.text() ==
+        "job.cls:11:1: error: channel 1: the CL dwells 1.5 s here (DELAY), the program does not\n");
   // Milliseconds in P on the Integrex: G94 for the dwell; under G95 it is named.
   compared g("integrex-i200st", 1);
   g.lines({"G95", "G94 G4 P2000", "G95"});
   delay(g, 2);
   g.lines({"G4 P1500"});
   delay(g, 1.5);
-  CHECK(g.text() ==
-        "job.cls:11:1: error: channel 1: the CL dwells 1.5 s here (DELAY), the program under G95 (`G4 P1500`): "
-        "a control that counts a dwell in spindle revolutions under feed per revolution (Fanuc parameter "
-        "3405#1) waits 1.5 revolutions\n");
+  CHECK(
+      g.text() ==
+      "job.cls:11:1: error: channel 1: the CL dwells 1.5 s here (DELAY), the program under G95 (`G4 P1500`): "
+      "a control that counts a dwell in spindle revolutions under feed per revolution (Fanuc parameter "
+      "3405#1) waits 1.5 revolutions\n");
 }
 
 TEST_CASE("cl comparison: a mill's tool length offset", "[analysis][cl_compare]") {

@@ -65,10 +65,19 @@ TEST_CASE("emulator: the posted programs check sound, and undoing a fix is named
   CHECK(
       edited_check(sample_job("drill-tap"), "integrex-i200st", "DRILL-TAP.EIA", "T03 M6",
                    "M108\nG0 G53 B0.\nM107\n", "") ==
+      "DRILL-TAP.EIA:70:1: warning: channel 1: M8 turns the coolant on before the B head is indexed for the "
+      "tool called at line 67: it sprays while the head turns; index it (G0 G53 B..) first\nM8\n^\n"
       "DRILL-TAP.EIA:74:11: error: channel 1: a feed move with the B head not indexed since the tool call at "
       "line 67: the tool changer may leave it anywhere; index it (G0 G53 B..) before the cut\n"
       "G98 G84.2 X0. Y0. Z-18. R5. F1.5\n          ^\n"
-      "check: 2 channels, 2 waits paired, 1 error\n");
+      "check: 2 channels, 2 waits paired, 1 error, 1 warning\n");
+  // Item 10: the coolant turned on before the index again.
+  CHECK(
+      edited_check(sample_job("drill-tap"), "integrex-i200st", "DRILL-TAP.EIA", "T03 M6",
+                   "M108\nG0 G53 B0.\nM107\nM8\n", "M8\nM108\nG0 G53 B0.\nM107\n") ==
+      "DRILL-TAP.EIA:70:1: warning: channel 1: M8 turns the coolant on before the B head is indexed for the "
+      "tool called at line 67: it sprays while the head turns; index it (G0 G53 B..) first\nM8\n^\n"
+      "check: 2 channels, 2 waits paired, 0 errors, 1 warning\n");
   // Item 2: the pick-off's release opening the main chuck on the bar again.
   CHECK(edited_check(sample_job("pick-off"), "integrex-i200st", "PICK-OFF.EIA", "M952", "G0 G53 W0.\n",
                      "M206\nG0 G53 W0.\n") ==
