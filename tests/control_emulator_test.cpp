@@ -185,6 +185,15 @@ TEST_CASE("emulator: the B head indexed again after every tool call", "[analysis
       "P.EIA:14:4: error: channel 1: a feed move with the B head not indexed since the tool call at line 12: "
       "the tool changer may leave it anywhere; index it (G0 G53 B..) before the cut\nG1 X40. F100.\n   ^\n"
       "check: 2 channels, 2 waits paired, 1 error\n");
+  // The coolant: after the index, or in its block, quiet; before it, a warning, once; the
+  // through-tool pair's on code counts too.
+  CHECK(check(first + "T02 M6\nM108\nG0 G53 B90. M8\nM107\nG0 X54. Z2.\nG1 X40. F100.\n") ==
+        "check: 2 channels, 2 waits paired, 0 errors\n");
+  CHECK(check(first + "T02 M6\nM51\nM108\nG0 G53 B90.\nM107\nM8\nG0 X54. Z2.\nG1 X40. F100.\nT03 M6\nM8\n"
+                      "M108\nG0 G53 B0.\nM107\n") ==
+        "P.EIA:13:1: warning: channel 1: M51 turns the coolant on before the B head is indexed for the tool "
+        "called at line 12: it sprays while the head turns; index it (G0 G53 B..) first\nM51\n^\n"
+        "check: 2 channels, 2 waits paired, 0 errors, 1 warning\n");
 }
 
 TEST_CASE("emulator: a rapid that turns a head swings the tip below the work's top", "[analysis][emulator]") {
