@@ -390,6 +390,14 @@ struct alignas(64) cl_comparison::impl {
   int dwells = 0;
   std::string dwell_text, dwell_per_rev;
   bool said_dwell = false;
+  // The CAM's name of the tool an operation was made for (NX `TOOL PATH/..,TOOL,name`, CATIA
+  // `TPRINT/name`), and the name in force when the program's tool was first held to it: an
+  // operation for another tool, cut with no tool call between, is cut with the wrong tool (the
+  // issue's item 6: post --tool 1 on an NX file of two operations).
+  std::string cl_cam_name, cl_cam_record, named_cam;
+  int cl_cam_line = 0, named_cam_line = 0;
+  long named_tool = -1;  // the program's tool named_cam belongs to
+  bool said_cam = false;
   // The record's blocks that turned C with the tip off the axis (the first `n_turns`), and the
   // CL's last motion point (part frame, mm; not known from a tool change to the next record).
   std::vector<c_turn_block> turns;
@@ -1995,7 +2003,26 @@ struct alignas(64) cl_comparison::impl {
                  kinds[cl_coolant], cl_coolant_line, kinds[nc_coolant], coolant_text));
   }
 
+  // The operation's CAM tool against the one the program's tool was first held to.
+  void compare_cam_tool(const event& e) {
+    if (t_active < 0 || cl_cam_name.empty() || said_cam) return;
+    if (named_tool != t_active) {
+      named_tool = t_active, named_cam = cl_cam_name, named_cam_line = cl_cam_line;
+      return;
+    }
+    if (cl_cam_name == named_cam) return;
+    // Two names the machine's tool table gives the same tool are one tool.
+    if (const tool_def* t = m.tool_named(ch.number, cl_cam_name); t && t->number == t_active) return;
+    said_cam = true;
+    error(e,
+          fmt::format("the CL's operation ({} at line {}) names the tool '{}', but the program has tool {} "
+                      "({}) in the spindle here, held since the CL named '{}' (line {}), and calls no tool "
+                      "between",
+                      cl_cam_record, cl_cam_line, cl_cam_name, t_active, t_text, named_cam, named_cam_line));
+  }
+
   void compare_tool(const event& e) {
+    compare_cam_tool(e);
     if (cl_tool < 0 || t_active < 0) return;
     if (t_active != cl_tool) {
       if (said_tool) return;
@@ -2091,6 +2118,7 @@ struct alignas(64) cl_comparison::impl {
               cl_prev_known = false;  // the tool goes home: its first move comes from there
               cl_length = std::exchange(cl_length_next, std::nullopt);
               cl_after_call = true;
+              named_tool = -1;  // the CL's own call: its tool, whatever the operation's name
             }
           } else if constexpr (std::is_same_v<T, tool_data_event>) {
             cl_after_call = after_call;
@@ -2128,6 +2156,9 @@ struct alignas(64) cl_comparison::impl {
             units(d.units);
           } else if constexpr (std::is_same_v<T, delay_event>) {
             if (!d.revolutions) compare_dwell(e, d.value);
+          } else if constexpr (std::is_same_v<T, text_event>) {
+            if (const std::string_view name = cam_tool_name(d); !name.empty())
+              cl_cam_name.assign(name), cl_cam_line = e.line, cl_cam_record = d.major;
           } else if constexpr (std::is_same_v<T, motion_event>) {
             if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta) {
               bool followed = true;

@@ -345,6 +345,60 @@ TEST_CASE("cl comparison: a dwell's seconds and the feed mode it is written unde
       "3405#1) waits 1.5 revolutions\n");
 }
 
+TEST_CASE("cl comparison: an operation for another CAM tool, cut with no tool call between",
+          "[analysis][cl_compare]") {
+  // Issue 37, item 6: post --tool 1 on an NX file of two operations, its writer's refusal undone.
+  const auto op = [](compared& c, const char* text) {
+    c.cmp.record({c.next++, text_event{text_kind::toolpath, "TOOL PATH", text}, 1}, false);
+  };
+  const auto cut = [](compared& c) {
+    c.lines({"T01 M6", "G54", "S1000 M3", "G0 A0.", "G0 G43 H1 X0. Y0. Z5."});
+    c.to({0, 0, 5}, {0, 0, 1});
+    c.lines({"G1 Z-2. F250."});
+    c.to({0, 0, -2}, {0, 0, 1}, false);
+  };
+  compared c("rotary-4axis", 1);
+  op(c, "FACE,TOOL,MILL-20MM");
+  cut(c);
+  op(c, "DRILL_HOLE,TOOL,DRILL-8MM");
+  c.lines({"G0 X30. Y0. Z5."});
+  c.to({30, 0, 5}, {0, 0, 1});
+  CHECK(
+      c.text() ==
+      "job.cls:14:1: error: channel 1: the CL's operation (TOOL PATH at line 13) names the tool 'DRILL-8MM', "
+      "but the program has tool 1 (T01) in the spindle here, held since the CL named 'MILL-20MM' (line 10), "
+      "and calls no tool between\n");
+  // A tool call between, in the program or in the CL (LOAD/TOOL), and two names the machine's
+  // tool table gives one tool: quiet.
+  compared d("rotary-4axis", 1);
+  op(d, "FACE,TOOL,MILL-20MM");
+  cut(d);
+  op(d, "DRILL_HOLE,TOOL,DRILL-8MM");
+  d.lines({"T02 M6", "G0 G43 H2 X30. Y0. Z5."});
+  d.to({30, 0, 5}, {0, 0, 1});
+  op(d, "SPOT,TOOL,SPOT-10");
+  tool_event call;
+  call.tool = 2;
+  d.cmp.record({d.next++, call, 1}, false);
+  d.lines({"G0 X40. Y0. Z5."});
+  d.to({40, 0, 5}, {0, 0, 1});
+  CHECK(d.text().empty());
+  compared e("rotary-4axis", 1);
+  tool_def t;
+  t.number = 1;
+  t.kind = "mill";
+  t.name = "MILL-20MM";
+  tool_def u = t;
+  u.name = "ROUGH-20";
+  e.m.tools = {t, u};
+  op(e, "FACE,TOOL,MILL-20MM");
+  cut(e);
+  op(e, "ROUGH,TOOL,ROUGH-20");
+  e.lines({"G0 X30. Y0. Z5."});
+  e.to({30, 0, 5}, {0, 0, 1});
+  CHECK(e.text().empty());
+}
+
 TEST_CASE("cl comparison: a mill's tool length offset", "[analysis][cl_compare]") {
   const std::string mill = std::string(TWINPOST_SOURCE_DIR) + "/bench/bench-mill.toml";
   compared c(mill, 1);
