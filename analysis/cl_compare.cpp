@@ -103,7 +103,8 @@ struct alignas(64) cl_comparison::impl {
         head_codes.push_back(split_nc_words(k->tool_tip_on));
     }
     // The dwell's time word: the letter before `{seconds}` or `{ms}` in the machine's template.
-    for (const auto& [field, scale] : {std::pair{std::string_view("{seconds}"), 1.0}, {"{ms}", 0.001}})
+    // (`{seconds:.3f}` too: the field's name, as the writer finds it.)
+    for (const auto& [field, scale] : {std::pair{std::string_view("{seconds"), 1.0}, {"{ms", 0.001}})
       if (const std::size_t at = m.codes.dwell.find(field);
           at != std::string::npos && at > 0 && ascii::is_letter(m.codes.dwell[at - 1]))
         dwell_address = ascii::upper(m.codes.dwell[at - 1]), dwell_scale = scale;
@@ -382,13 +383,16 @@ struct alignas(64) cl_comparison::impl {
   bool coolant_fine = false;  // the coolant held to the CL's since either last changed
   bool spindle_fine = false;  // the spindle held to the CL's since either last changed
   bool said_tip = false, said_rapid = false, said_feed = false, said_tool = false, said_spindle = false;
-  // The dwells written since the last record (a DELAY's): their seconds, and the first one a
-  // control may count in revolutions (written under feed per revolution).
+  // The last dwell written since the last record (a DELAY's own comes last: a wait's event
+  // blocks before it are written at its record, attack 71 F1): its seconds, and whether a
+  // control may count it in revolutions (written under feed per revolution, or with no feed
+  // mode set: a control may keep the last program's G95, attack 71 F3).
   char dwell_address = 0;  // the machine's dwell template's time word (U in `G4 U{seconds}`)
   double dwell_scale = 1;  // its seconds per unit (0.001 for `P{ms}`)
   double dwelt = 0;        // seconds
   int dwells = 0;
-  std::string dwell_text, dwell_per_rev;
+  int dwell_mode = 0;  // its feed mode: 1 per revolution, 0 per minute, -1 not known
+  std::string dwell_text;
   bool said_dwell = false;
   // The CAM's name of the tool an operation was made for (NX `TOOL PATH/..,TOOL,name`, CATIA
   // `TPRINT/name`), and the name in force when the program's tool was first held to it: an
@@ -1957,7 +1961,8 @@ struct alignas(64) cl_comparison::impl {
   // revolution, where a control may count it in spindle revolutions (Fanuc parameter 3405#1
   // DWL, "dwell per rotation in the feed per rotation mode"; issue 37, item 10).
   void note_dwell(const std::vector<nc_word>& words, std::string_view text) {
-    if (dwells++ == 0) dwelt = 0, dwell_text.assign(text), dwell_per_rev.clear();
+    ++dwells;
+    dwelt = 0, dwell_text.assign(text), dwell_mode = per_rev;
     for (const nc_word& w : words)
       if (w.address == dwell_address && w.numeric) {
         // Seconds without a decimal point count least increments (`U2` is 0.002 s where
@@ -1966,7 +1971,6 @@ struct alignas(64) cl_comparison::impl {
         dwelt +=
             (w.point || !seconds || !m.program.trailing_point ? w.number : w.number * 0.001) * dwell_scale;
       }
-    if (per_rev == 1 && dwell_per_rev.empty()) dwell_per_rev.assign(text);
   }
 
   // The CL's DELAY of `seconds` against the dwells written for it.
@@ -1979,12 +1983,19 @@ struct alignas(64) cl_comparison::impl {
     else if (std::abs(dwelt - seconds) > half + 1e-9)
       why = fmt::format("the CL dwells {:g} s here (DELAY), the program {:g} s (`{}`)", seconds, dwelt,
                         dwell_text);
-    else if (!dwell_per_rev.empty())
+    else if (dwell_mode == 1)
       why = fmt::format(
           "the CL dwells {:g} s here (DELAY), the program under {} (`{}`): a control that counts "
           "a dwell in spindle revolutions under feed per revolution (Fanuc parameter 3405#1) "
           "waits {:g} revolutions",
-          seconds, m.codes.feed_per_rev, dwell_per_rev, dwelt);
+          seconds, m.codes.feed_per_rev, dwell_text, dwelt);
+    else if (dwell_mode < 0 && !m.codes.feed_per_rev.empty())
+      why = fmt::format(
+          "the CL dwells {:g} s here (DELAY), the program with no feed mode set (`{}`): a control "
+          "that keeps {} from the last program and counts a dwell in spindle revolutions under "
+          "it (Fanuc parameter 3405#1) waits {:g} revolutions; set {} first",
+          seconds, dwell_text, m.codes.feed_per_rev, dwelt,
+          m.codes.feed_per_min.empty() ? std::string("the feed mode") : m.codes.feed_per_min);
     if (why.empty()) return;
     said_dwell = true;
     error(e, why);

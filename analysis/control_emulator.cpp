@@ -187,7 +187,7 @@ struct control_emulator::impl {
     if (!moves_matter && !b.may_have(mask)) return;
     const std::vector<nc_word>& words = b.words();
     bool feed_code = false, no_cut = false, sets_offset = false, coordinate_setting = false;
-    bool tool_call = false, head_move = false;
+    bool tool_call = false, head_move = false, head_data = false;
     int axis_column = 0, x_column = 0;
     double x = 0;
     for (const nc_word& w : words) {
@@ -202,6 +202,7 @@ struct control_emulator::impl {
           c.cycle = false;
         }
         if (g == 80) c.cycle = false;
+        if (g == 10 || g == 65 || g == 66 || g == 66.1) head_data = true;
         if (role == axis_words::hole_cycle || role == axis_words::turning_cycle) c.cycle = feed_code = true;
         if (role == axis_words::repetitive_cycle || role == axis_words::feed_move) feed_code = true;
         if ((g >= 54 && g <= 59 && g == static_cast<int>(g)) || g == 54.1) sets_offset = true;
@@ -238,9 +239,9 @@ struct control_emulator::impl {
     if (sets_offset) c.offset = true;
     if (c.head) {
       if (tool_call) c.head_unknown = b.line;
-      if (head_move) c.head_unknown = 0;
       // The coolant before the index sprays while the head turns at the tool changer (the
-      // issue's item 10: public Integrex posts turn it on after the index).
+      // issue's item 10: public Integrex posts turn it on after the index); in the index's own
+      // block too, where a Fanuc gives the M code as the block starts (attack 71 F4).
       if (c.head_unknown && !c.said_coolant && b.may_have(nc_letter('M')))
         for (const code& k : coolant_on)
           if (k.in(words)) {
@@ -253,6 +254,8 @@ struct control_emulator::impl {
                 severity::warning);
             break;
           }
+      // (A B word of a data setting or a macro call's argument turns no head: attack 71 F5.)
+      if (head_move && !head_data) c.head_unknown = 0;
       if (cut && c.head_unknown && !c.said_head) {
         c.said_head = true;
         const head_index_rules& h = m.channels[static_cast<std::size_t>(b.channel - 1)].head_index;

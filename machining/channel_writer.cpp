@@ -553,6 +553,10 @@ bool channel_writer::dwell_fits(double seconds) {
 }
 
 void channel_writer::write_dwell(double seconds) {
+  if (!(seconds >= 0)) {
+    error(line_, fmt::format("DELAY/{}: a dwell of a negative time; give the seconds to wait", seconds));
+    return;
+  }
   if (!dwell_fits(seconds)) return;
   template_args a;  // template_uses::dwell
   a.channel = ch_.number;
@@ -564,9 +568,15 @@ void channel_writer::write_dwell(double seconds) {
   // parameter 3405#1 DWL: "dwell per rotation in the feed per rotation mode"; Mazak alike): the
   // dwell is written under feed per minute, where it is seconds whatever the parameter, and the
   // channel's mode follows at once (issue 37, item 10; the Integrex transfer's `G94 G4 P1000`).
+  // A mode not known yet (the Integrex header sets none, and a control may keep G95 from the
+  // last program: attack 71 F3) is set to feed per minute for the dwell, and stays.
   const control_codes& c = m_.codes;
-  if (!c.feed_per_min.empty() && !c.feed_per_rev.empty() && feed_g_ == c.feed_per_rev) {
+  if (!c.feed_per_min.empty() && !c.feed_per_rev.empty() && feed_g_ != c.feed_per_min) {
     out_.block(c.feed_per_min + ' ' + b);
+    if (feed_g_.empty()) {
+      feed_g_ = c.feed_per_min;
+      return;
+    }
     out_.block(feed_g_);
     last_f_.clear();  // the next feed move writes its F again under the mode put back
     return;

@@ -343,6 +343,33 @@ TEST_CASE("cl comparison: a dwell's seconds and the feed mode it is written unde
       "job.cls:11:1: error: channel 1: the CL dwells 1.5 s here (DELAY), the program under G95 (`G4 P1500`): "
       "a control that counts a dwell in spindle revolutions under feed per revolution (Fanuc parameter "
       "3405#1) waits 1.5 revolutions\n");
+  // No feed mode set yet (the Integrex's header sets none): a control may keep the last
+  // program's G95 (attack 71 F3).
+  compared h("integrex-i200st", 1);
+  h.lines({"G4 P2000"});
+  delay(h, 2);
+  CHECK(h.text() ==
+        "job.cls:10:1: error: channel 1: the CL dwells 2 s here (DELAY), the program with no feed mode set "
+        "(`G4 "
+        "P2000`): a control that keeps G95 from the last program and counts a dwell in spindle revolutions "
+        "under it (Fanuc parameter 3405#1) waits 2 revolutions; set G94 first\n");
+  // A wait's event blocks dwell too, written before the DELAY's own at its record: the DELAY is
+  // held to its own, the last (attack 71 F1).
+  compared w("fanuc-0itd-twin", 1);
+  w.lines({"G4 U0.3", "M100", "G4 U0.5", "G98 G4 U2.", "G99"});
+  delay(w, 2);
+  CHECK(w.text().empty());
+  // A template with a format spec: its word is read as written (`U2` without its point is 2 ms
+  // where decimal-point programming is off: attack 71 F2).
+  machine m = load_machine("fanuc-0itd-twin");
+  m.codes.dwell = "G4 U{seconds:g}";
+  diagnostic_list found;
+  cl_comparison spec(m, m.channels[0], found, "job.cls");
+  for (const char* l : {"G0 G18 G21 G40 G54 G80 G99", "G98 G4 U2", "G99"}) spec.line(l);
+  spec.record({7, delay_event{2, false}, 1}, false);
+  REQUIRE(found.all().size() == 1);
+  CHECK(format_diagnostic(found.all()[0]) ==
+        "job.cls:7:1: error: channel 1: the CL dwells 2 s here (DELAY), the program 0.002 s (`G98 G4 U2`)\n");
 }
 
 TEST_CASE("cl comparison: an operation for another CAM tool, cut with no tool call between",

@@ -253,10 +253,12 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
   // decimal-point programming off, the default): seconds always carry their point, and
   // milliseconds (P) are whole numbers, which no setting reads otherwise. Under feed per
   // revolution (the Fanuc lathes' G99) the dwell is written under G98, where it is seconds
-  // whatever parameter 3405#1 says, and G99 follows.
+  // whatever parameter 3405#1 says, and G99 follows. The Integrex's header sets no feed mode
+  // (a control may keep the last program's G95): G94 with the first dwell, and it stays.
   const std::map<std::string, std::string> want = {
-      {"fanuc-0itd-twin", "G98 G4 U1."}, {"fanuc-31i-3path", "G98 G4 U1."}, {"integrex-i200st", "G4 P1000"},
-      {"head-head-5axis", "G4 P1000"},   {"rotary-4axis", "G4 P1000"},      {"trunnion-5axis", "G4 P1000"},
+      {"fanuc-0itd-twin", "G98 G4 U1."},   {"fanuc-31i-3path", "G98 G4 U1."},
+      {"integrex-i200st", "G94 G4 P1000"}, {"head-head-5axis", "G4 P1000"},
+      {"rotary-4axis", "G4 P1000"},        {"trunnion-5axis", "G4 P1000"},
   };
   for (const auto& [name, block] : want) {
     INFO(name);
@@ -268,6 +270,11 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
     CHECK(all.find("\n" + block + (per_rev ? "\nG99\n" : "\n")) != std::string::npos);
     CHECK(all.find(per_rev ? "\nG98 G4 U2.25\nG99\n" : "\nG4 P2250\n") != std::string::npos);
   }
+  // A negative time is no dwell (attack 71 F7: `G4 U-1.` was written).
+  posted negative = post_text("PARTNO W\nLOADTL/1\nDELAY/-1\nFINI\n", "fanuc-0itd-twin", "dwell-negative");
+  CHECK(negative.diagnostics ==
+        "job.cls:3:1: error: channel 1: DELAY/-1: a dwell of a negative time; give the seconds to wait\n"
+        "DELAY/-1\n^\n");
   // Between two cuts under G99: the dwell under G98, then G99 and the next cut's F again.
   posted cut = post_text(
       "PARTNO W\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,2\n"
