@@ -78,6 +78,7 @@ class alignas(64) cl_comparison {
   // line with the writer's (docs/design.md, "Two cores"); as the timeline's.
   struct impl;
   impl& made();
+  void make();
   const machine& m_;
   const channel_def& ch_;
   diagnostic_sink& diags_;
