@@ -400,7 +400,8 @@ struct alignas(64) cl_comparison::impl {
   // issue's item 6: post --tool 1 on an NX file of two operations).
   std::string cl_cam_name, cl_cam_record, named_cam;
   int cl_cam_line = 0, named_cam_line = 0;
-  long named_tool = -1;  // the program's tool named_cam belongs to
+  long named_tool = -1;                    // the program's tool named_cam belongs to
+  unsigned cam_names = 0, cam_judged = 0;  // the CL's names read, and up to which one judged
   bool said_cam = false;
   // The record's blocks that turned C with the tip off the axis (the first `n_turns`), and the
   // CL's last motion point (part frame, mm; not known from a tool change to the next record).
@@ -2015,8 +2016,9 @@ struct alignas(64) cl_comparison::impl {
   }
 
   // The operation's CAM tool against the one the program's tool was first held to.
-  void compare_cam_tool(const event& e) {
+  [[gnu::noinline]] void compare_cam_tool(const event& e) {
     if (t_active < 0 || cl_cam_name.empty() || said_cam) return;
+    cam_judged = cam_names;
     if (named_tool != t_active) {
       named_tool = t_active, named_cam = cl_cam_name, named_cam_line = cl_cam_line;
       return;
@@ -2033,7 +2035,9 @@ struct alignas(64) cl_comparison::impl {
   }
 
   void compare_tool(const event& e) {
-    compare_cam_tool(e);
+    // (Nothing new since the last record, most of them: the test here, the judging out of line.)
+    if (named_tool != t_active || cam_judged != cam_names) [[unlikely]]
+      compare_cam_tool(e);
     if (cl_tool < 0 || t_active < 0) return;
     if (t_active != cl_tool) {
       if (said_tool) return;
@@ -2169,7 +2173,7 @@ struct alignas(64) cl_comparison::impl {
             if (!d.revolutions) compare_dwell(e, d.value);
           } else if constexpr (std::is_same_v<T, text_event>) {
             if (const std::string_view name = cam_tool_name(d); !name.empty())
-              cl_cam_name.assign(name), cl_cam_line = e.line, cl_cam_record = d.major;
+              cl_cam_name.assign(name), cl_cam_line = e.line, cl_cam_record = d.major, ++cam_names;
           } else if constexpr (std::is_same_v<T, motion_event>) {
             if (d.kind == motion_kind::go_to || d.kind == motion_kind::delta) {
               bool followed = true;
