@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "support/ascii.hpp"
+#include "support/swar.hpp"
 
 namespace twinpost {
 
@@ -165,6 +166,30 @@ std::uint32_t split_nc_words(std::string_view line, std::vector<nc_word>& words)
         const std::size_t k = i + 1;
         const bool negative = line[k] == '-';
         const std::size_t v = line[k] == '+' || negative ? k + 1 : k;
+        // Eight characters at a time (support/swar.hpp): a word's number ends within one or
+        // two words of the text, with no loop over its digits. A second point after it
+        // (`1.2.3`), eight digits on a side, or none, go the character way.
+        swar::short_decimal sd;
+        const char* const text = line.data();
+        if (swar::read_short_decimal(text, text + v, text + n, sd) &&
+            (sd.end == text + n || (*sd.end != '.' && !is_digit(*sd.end)))) [[likely]] {
+          static constexpr double pow10[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7};
+          const auto d = static_cast<std::size_t>(sd.end - text);
+          nc_word& w = next();
+          const char a = upper(c);
+          w.address = a;
+          w.column = static_cast<int>(i) + 1;
+          w.value = std::string_view(text + k, d - k);
+          // At most fourteen digits: exact as a signed integer, and one correctly rounded
+          // division, as decimal_scan's and from_chars' value.
+          const double x = static_cast<double>(static_cast<std::int64_t>(sd.mantissa)) / pow10[sd.fraction];
+          w.number = negative ? -x : x;
+          w.point = sd.point;
+          w.numeric = true;
+          letters |= std::uint32_t{1} << (a - 'A');  // (a letter: nc_letter without its test)
+          i = d;
+          continue;
+        }
         const decimal_scan number(line, v);
         const std::size_t d = number.end;
         if (d > v) {
