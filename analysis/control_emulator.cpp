@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "analysis/modal_state.hpp"
 #include "analysis/nc_codes.hpp"
 #include "analysis/rotary_sweep.hpp"
 #include "analysis/spindle_state.hpp"
@@ -48,13 +49,11 @@ struct chuck_state {
 };
 
 struct channel_state {
-  channel_state(const machine& m, const channel_spindles& spindles, int number)
-      : spindles(spindles), codes(m, m.channels[static_cast<std::size_t>(number - 1)]) {}
+  channel_state(const channel_spindles& spindles, const channel_modes& modes)
+      : spindles(spindles), modes(modes) {}
   const channel_spindles& spindles;  // the reading's (spindle_states), this block applied
-  nc_codes codes;                    // what its G codes make of a block's axis words
+  const channel_modes& modes;        // the reading's (modal_states): the motion, the cycle in force
   bool offset = false;               // a work offset in force
-  int motion = -1;                   // modal G0..G3; -1: unknown
-  bool cycle = false;                // a canned drilling or a lathe's single cycle in force
   bool sync = false;                 // spindle synchronisation on
   std::vector<int> start_line;       // per spindle: the block that started it
   std::vector<chuck_state> chucks;   // per spindle, as this channel's blocks left it
@@ -104,10 +103,11 @@ bool sweeps_chain(const machine& m, int channel) {
 }
 
 struct control_emulator::impl {
-  impl(const machine& m, const spindle_states& spindles)
+  impl(const machine& m, const spindle_states& spindles, const modal_states& modes)
       : m(m), sync_on(m.codes.spindle_sync_on), sync_off(m.codes.spindle_sync_off) {
     for (std::size_t i = 0; i < m.channels.size(); ++i) {
-      channels.emplace_back(m, spindles.channel(static_cast<int>(i) + 1), static_cast<int>(i) + 1);
+      channels.emplace_back(spindles.channel(static_cast<int>(i) + 1),
+                            modes.channel(static_cast<int>(i) + 1));
       channels.back().start_line.assign(m.spindles.size(), 0);
       channels.back().chucks.assign(m.spindles.size(), {});
       if (sweeps_chain(m, static_cast<int>(i) + 1))
@@ -186,30 +186,17 @@ struct control_emulator::impl {
     const bool moves_matter = !c.offset || c.holder >= 0 || c.head_unknown;
     if (!moves_matter && !b.may_have(mask)) return;
     const std::vector<nc_word>& words = b.words();
-    bool feed_code = false, no_cut = false, sets_offset = false, coordinate_setting = false;
-    bool tool_call = false, head_move = false, head_data = false;
+    // What the block's G codes did (analysis/modal_state): a cycle cuts; a dwell, data or
+    // coordinate setting, reference return, machine coordinates, macro call or frame does not
+    // (a system-A lathe's G92 is its threading cycle, no setting).
+    const block_g_codes& g = c.modes.now;
+    const bool feed_code = g.cycle || g.once || g.feed_move, no_cut = g.no_move || g.reference || g.machine;
+    const bool coordinate_setting = g.coordinate_setting, head_data = g.data;
+    bool sets_offset = g.work_offset, tool_call = false, head_move = false;
     int axis_column = 0, x_column = 0;
     double x = 0;
     for (const nc_word& w : words) {
-      if (w.address == 'G' && w.numeric) {
-        const double g = w.number;
-        // What the code makes of the block's axis words (analysis/nc_codes): a cycle cuts; a
-        // dwell, data or coordinate setting, reference return, machine coordinates, macro call
-        // or frame does not (a system-A lathe's G92 is its threading cycle, no setting).
-        const axis_words role = c.codes.role(g);
-        if (role == axis_words::motion) {
-          c.motion = static_cast<int>(g);
-          c.cycle = false;
-        }
-        if (g == 80) c.cycle = false;
-        if (g == 10 || g == 65 || g == 66 || g == 66.1) head_data = true;
-        if (role == axis_words::hole_cycle || role == axis_words::turning_cycle) c.cycle = feed_code = true;
-        if (role == axis_words::repetitive_cycle || role == axis_words::feed_move) feed_code = true;
-        if ((g >= 54 && g <= 59 && g == static_cast<int>(g)) || g == 54.1) sets_offset = true;
-        if ((g == 92 || g == 50) && role == axis_words::none) coordinate_setting = true;
-        if (role == axis_words::none || role == axis_words::reference || role == axis_words::machine)
-          no_cut = true;
-      } else if (w.address == 'T') {
+      if (w.address == 'T') {
         tool_call = tool_call || c.change_m < 0;
       } else if (w.address == 'M' && c.change_m >= 0 && w.numeric && w.number == c.change_m) {
         tool_call = true;
@@ -227,7 +214,9 @@ struct control_emulator::impl {
     // The machine's own work offset codes too, whatever their address (`E1`: attack 67 H6).
     if (!c.offset && !sets_offset)
       for (const code& o : offset_codes) sets_offset = sets_offset || o.in(words);
-    const bool cut = axis_column && !no_cut && (feed_code || c.cycle || (c.motion >= 1 && c.motion <= 3));
+    const int motion = c.modes.motion;
+    const bool cut =
+        axis_column && !no_cut && (feed_code || c.modes.in_cycle() || (motion >= 1 && motion <= 3));
     if (cut && !c.offset && !sets_offset && !c.said_offset) {
       c.said_offset = true;
       say(b, axis_column,
@@ -345,8 +334,9 @@ struct control_emulator::impl {
   }
 };
 
-control_emulator::control_emulator(const machine& m, const spindle_states& spindles)
-    : p_(std::make_unique<impl>(m, spindles)) {}
+control_emulator::control_emulator(const machine& m, const spindle_states& spindles,
+                                   const modal_states& modes)
+    : p_(std::make_unique<impl>(m, spindles, modes)) {}
 control_emulator::~control_emulator() = default;
 
 void control_emulator::block(const nc_block& b) { p_->block(b); }

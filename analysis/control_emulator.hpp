@@ -41,12 +41,14 @@ namespace twinpost {
 bool sweeps_chain(const machine& m, int channel);
 
 class spindle_states;
+class modal_states;
 
 class control_emulator {
  public:
-  /// `spindles`: the reading's one spindle state (analysis/spindle_state.hpp), which must have
-  /// applied each block before block() is given it; it must outlive the emulator.
-  control_emulator(const machine& m, const spindle_states& spindles);
+  /// `spindles`, `modes`: the reading's one spindle state (analysis/spindle_state.hpp) and modal
+  /// state (analysis/modal_state.hpp), which must have applied each block before block() is
+  /// given it; they must outlive the emulator.
+  control_emulator(const machine& m, const spindle_states& spindles, const modal_states& modes);
   ~control_emulator();
   control_emulator(const control_emulator&) = delete;
   control_emulator& operator=(const control_emulator&) = delete;

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "analysis/block_timer.hpp"
+#include "analysis/modal_state.hpp"
 #include "check/nc_input.hpp"
 #include "check/sync_check.hpp"
 
@@ -388,11 +389,14 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
   // One reading: the check's first pass feeds the timeline too (what it built is dropped
   // when the check finds anything).
   timeline_builder b(m, o);
-  spindle_states spindles(m);            // one state for the timer and the rule
-  interference_check meet(m, spindles);  // its findings are marked on the page, not a reason for no timeline
+  spindle_states spindles(m);  // one state for the timer and the rule
+  modal_states modes(m);
+  interference_check meet(m, spindles,
+                          modes);  // its findings are marked on the page, not a reason for no timeline
   nc_read_options read;
   read.on_block = [&](const nc_block& blk) {
     spindles.block(blk);
+    modes.block(blk);
     b.block(blk, &spindles);
     if (meet.active()) meet.block(blk);
   };

@@ -12,7 +12,7 @@
 #include <optional>
 #include <string>
 
-#include "analysis/program_units.hpp"
+#include "analysis/modal_state.hpp"
 #include "analysis/shared_resources.hpp"
 #include "analysis/spindle_state.hpp"
 #include "support/errors.hpp"
@@ -110,15 +110,16 @@ struct segment_data {
 };
 
 struct channel_data {
-  channel_data(const machine& m, const channel_spindles& spindles, int number)
-      : spindles(spindles), codes(m, m.channels[static_cast<std::size_t>(number - 1)]) {}
+  channel_data(const channel_spindles& spindles, const channel_modes& modes)
+      : spindles(spindles), modes(modes) {}
   const interference_channel* env = nullptr;
   std::string file;                  // the program's name, as in messages
   const channel_spindles& spindles;  // the reading's (spindle_states), this block applied
   bool gms_only = spindles.needs_gms();
-  nc_codes codes;        // what its G codes make of a block's axis words
-  bool turning = false;  // a lathe's single cycle in force (G90, G92, G94 in system A): modal as G1
-  double turning_z = 0;  // its end's Z, which its next passes keep (attack 63 M6: X28.4 alone)
+  // The reading's modal state (modal_states), this block applied: the motion, the cycle in
+  // force (a lathe's single cycle, G90 G92 G94 in system A, modal as G1), G91, the unit, polar.
+  const channel_modes& modes;
+  double turning_z = 0;  // a single cycle's end Z, which its next passes keep (attack 63 M6: X28.4 alone)
   std::vector<segment_data> segments = std::vector<segment_data>(1);
   double x = 0, z = 0;
   // The second coordinate of the tip in the plane across the spindle axis: C under polar
@@ -128,12 +129,9 @@ struct channel_data {
   // Millimetres per program unit (25.4 after G20): x, z and q are in program units, the sweeps'
   // boxes, the envelopes and the clearance in millimetres.
   double scale = 1;
-  bool polar = false;  // G12.1 / G112 in force (until G13.1 / G113)
-  int motion = 0;
   // The workpiece spindle the channel works on: the frame of its sweeps. A channel that turns
   // its live spindle (a milling tool) still works on the part in this one (issue 37, item 3).
   int work = -1;
-  bool cycle = false;    // a drilling cycle is modal (until G80)
   bool balance = false;  // in a balance cut: ordered by its own sync
   // The T words seen, as written ("0505"); [0] is none. `tool` is the one in force.
   std::vector<std::array<char, 12>> tools = std::vector<std::array<char, 12>>(1);
@@ -151,16 +149,16 @@ bool interference_checked(const machine& m) {
 }
 
 struct interference_check::impl {
-  impl(const machine& mm, const spindle_states& spindles) : m(mm) {
+  impl(const machine& mm, const spindle_states& spindles, const modal_states& modes) : m(mm) {
     for (const channel_def& c : m.channels) {
-      channels.emplace_back(m, spindles.channel(c.number), c.number);
+      channels.emplace_back(spindles.channel(c.number), modes.channel(c.number));
       channels.back().env = m.interference.channel(c.number);
       if (const spindle_def* live = m.spindle(c.live_spindle))
         live_spindles.push_back(static_cast<int>(live - m.spindles.data()));
     }
     for (channel_data& c : channels) {
       if (!is_live(c.spindles.current())) c.work = c.spindles.current();
-      c.scale = units.inch ? 25.4 : 1.0;
+      c.scale = c.modes.inch ? 25.4 : 1.0;
     }
     active = interference_checked(m);
     for (auto [code, into] :
@@ -173,7 +171,6 @@ struct interference_check::impl {
   }
 
   const machine& m;
-  const program_units units = units_of(m);
   bool active = false;
   static constexpr std::size_t spill_buffer_size = std::size_t{1} << 16;
   std::unique_ptr<char[]> spill_buffer;  // the spill's stdio buffer (closed with it in ~impl)
@@ -253,45 +250,25 @@ struct interference_check::impl {
       if (const int s = c.spindles.current(); s >= 0 && !is_live(s)) c.work = s;
     const nc_word *xw = nullptr, *zw = nullptr, *uw = nullptr, *ww = nullptr, *iw = nullptr, *kw = nullptr,
                   *rw = nullptr, *qw = nullptr, *jw = nullptr;
-    bool no_move = false, home = false, once = false;
+    // What the block's G codes did, read once for every rule (analysis/modal_state).
+    const channel_modes& md = c.modes;
+    const block_g_codes& g = md.now;
+    // To (or from) the reference point, or in machine coordinates: out of the work area.
+    const bool home = g.reference || g.machine;
+    // A dwell, data or coordinate setting, a clamp, a macro call: no motion.
+    const bool no_move = g.no_move, once = g.once, cycle = md.hole_cycle, turning = md.turning_cycle;
+    if (g.units) {
+      // The control keeps where the axes are: their values are said again in the new unit.
+      const double to = md.inch ? 25.4 : 1.0;
+      c.x *= c.scale / to, c.z *= c.scale / to, c.q *= c.scale / to;
+      c.scale = to;
+    }
+    if (g.polar) c.q = 0;  // (off: the C axis is a rotation again; Y was not moved under polar)
+    const bool polar = md.polar;
     for (const nc_word& w : words) {
       if (!w.numeric) continue;
       switch (w.address) {
-        case 'G': {
-          const double v = w.number;
-          const axis_words role = c.codes.role(v);
-          if (role == axis_words::motion) {
-            c.motion = static_cast<int>(v);
-            c.cycle = c.turning = false;
-          } else if (v == 80) {
-            c.cycle = false;
-          } else if (role == axis_words::hole_cycle) {
-            c.cycle = true;
-          } else if (role == axis_words::turning_cycle) {
-            c.turning = true;  // to its end point and back to its start, block by block until G0-G3
-            c.cycle = false;
-          } else if (role == axis_words::repetitive_cycle) {
-            once = true;
-          } else if (role == axis_words::reference || role == axis_words::machine) {
-            home = true;  // to (or from) the reference point, or in machine coordinates: out of the work area
-          } else if (role == axis_words::none) {
-            no_move = true;  // a dwell, data or coordinate setting, a clamp, a macro call: no motion
-          } else if (const std::optional<bool> inch = units.selected_by(v)) {
-            // The control keeps where the axes are: their values are said again in the new unit.
-            const double to = *inch ? 25.4 : 1.0;
-            c.x *= c.scale / to, c.z *= c.scale / to, c.q *= c.scale / to;
-            c.scale = to;
-          } else if (v == 12.1 || v == 112) {
-            c.polar = true;
-            c.q = 0;
-          } else if (v == 13.1 || v == 113) {
-            c.polar = false;
-            c.q = 0;  // the C axis is a rotation again; Y was not moved under polar
-          }
-          if (is_word(w, balance_on)) c.balance = true;
-          if (is_word(w, balance_off)) c.balance = false;
-          break;
-        }
+        case 'G':
         case 'M':
           if (is_word(w, balance_on)) c.balance = true;
           if (is_word(w, balance_off)) c.balance = false;
@@ -318,10 +295,10 @@ struct interference_check::impl {
         case 'R': rw = &w; break;
         case 'J': jw = &w; break;
         case 'C':
-          if (c.polar) qw = &w;
+          if (polar) qw = &w;
           break;
         case 'Y':
-          if (!c.polar) qw = &w;
+          if (!polar) qw = &w;
           break;
         default: break;
       }
@@ -333,14 +310,20 @@ struct interference_check::impl {
     }
     if (no_move || !(xw || zw || uw || ww || qw)) return;
     const double x0 = c.x, z0 = c.z, q0 = c.q;
-    if (qw) c.q = qw->number;
     const bool known = c.known_x && c.known_z;
-    if (xw) c.x = xw->number, c.known_x = true;
+    if (md.incremental) {  // G91: every axis word an increment, as U and W are
+      if (qw) c.q += qw->number;
+      if (xw && c.known_x) c.x += xw->number;
+      if (zw && c.known_z && !cycle) c.z += zw->number;
+    } else {
+      if (qw) c.q = qw->number;
+      if (xw) c.x = xw->number, c.known_x = true;
+      if (zw && !cycle) c.z = zw->number, c.known_z = true;
+    }
     if (uw && c.known_x) c.x += uw->number;
-    if (zw && !c.cycle) c.z = zw->number, c.known_z = true;
-    if (ww && c.known_z && !c.cycle) c.z += ww->number;
-    if (c.turning && (zw || ww)) c.turning_z = c.z;
-    if (c.turning && !zw && !ww && known) c.z = c.turning_z;
+    if (ww && c.known_z && !cycle) c.z += ww->number;
+    if (turning && (zw || ww)) c.turning_z = c.z;
+    if (turning && !zw && !ww && known) c.z = c.turning_z;
     if (!c.known_x || !c.known_z || c.balance) {
       c.merge_open = false;
       return;
@@ -350,21 +333,21 @@ struct interference_check::impl {
     xz_box tip{std::min(rs, c.x / 2), std::max(rs, c.x / 2), std::min(zs, c.z), std::max(zs, c.z)};
     if (q0 != 0 || c.q != 0) {  // off the XZ plane: the tip's distance from the spindle axis
       const double qs = known ? q0 : c.q;
-      const bool arc = known && (c.motion == 2 || c.motion == 3) && !c.cycle;
+      const bool arc = known && (md.motion == 2 || md.motion == 3) && !cycle;
       planar_span(tip, rs, qs, c.x / 2, c.q, arc ? arc_radius(rs, qs, c.x / 2, c.q, iw, jw, kw, rw) : -1,
-                  c.polar);
+                  polar);
     }
     double shown_z = c.z;
-    if (c.cycle && zw) {  // down to the hole's bottom and back
+    if (cycle && zw) {  // down to the hole's bottom and back
       tip.z0 = std::min(tip.z0, zw->number);
       tip.z1 = std::max(tip.z1, zw->number);
       shown_z = zw->number;
-    } else if (known && (c.motion == 2 || c.motion == 3) && (iw || kw || rw) && q0 == 0 && c.q == 0) {
-      tip = unite(tip, arc_of(x0 / 2, z0, c.x / 2, c.z, iw, kw, rw, c.motion == 2));
+    } else if (known && (md.motion == 2 || md.motion == 3) && (iw || kw || rw) && q0 == 0 && c.q == 0) {
+      tip = unite(tip, arc_of(x0 / 2, z0, c.x / 2, c.z, iw, kw, rw, md.motion == 2));
     }
     add(c, tip, b.line, c.x, shown_z);
     // A lathe cycle cuts to its end point and returns to where it began (analysis/nc_codes).
-    if ((c.turning || once) && known) c.x = x0, c.z = z0;
+    if ((turning || once) && known) c.x = x0, c.z = z0;
   }
 
   // A move from (r0, q0) to (r1, q1) in the plane across the spindle axis (r = X/2, q = C under
@@ -667,8 +650,9 @@ void fill_source_lines(std::vector<diagnostic>& found, const std::vector<nc_sour
   read_nc_programs(files, m, ignored, o);
 }
 
-interference_check::interference_check(const machine& m, const spindle_states& spindles)
-    : p_(std::make_unique<impl>(m, spindles)) {}
+interference_check::interference_check(const machine& m, const spindle_states& spindles,
+                                       const modal_states& modes)
+    : p_(std::make_unique<impl>(m, spindles, modes)) {}
 interference_check::~interference_check() = default;
 bool interference_check::active() const { return p_->active; }
 const std::vector<interference_meeting>& interference_check::meetings() const { return p_->meetings; }

@@ -62,12 +62,14 @@ bool interference_checked(const machine& m);
 
 /// The interference rule, fed block by block like analysis/shared_resources.
 class spindle_states;
+class modal_states;
 
 class interference_check {
  public:
-  /// `spindles`: the reading's one spindle state, which must have applied each block before
-  /// block() is given it; it must outlive the rule.
-  interference_check(const machine& m, const spindle_states& spindles);
+  /// `spindles`, `modes`: the reading's one spindle state and modal state
+  /// (analysis/modal_state.hpp), which must have applied each block before block() is given it;
+  /// they must outlive the rule.
+  interference_check(const machine& m, const spindle_states& spindles, const modal_states& modes);
   ~interference_check();
   interference_check(const interference_check&) = delete;
   interference_check& operator=(const interference_check&) = delete;

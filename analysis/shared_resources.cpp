@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "analysis/interference.hpp"
+#include "analysis/modal_state.hpp"
 #include "analysis/spindle_state.hpp"
 
 namespace twinpost {
@@ -658,15 +659,16 @@ void add_findings(sync_result& r, shared_resources& rules, interference_check& m
 }
 
 // The rules fed by a reading, and `feed` and `more` with them: the spindle state first, once
-// for all who read it (the timer, the spindle rules, the interference rule, the emulator).
-nc_read_options feeding(spindle_states& spindles, shared_resources& rules, interference_check& meet,
-                        length_offset_rule& len, control_emulator& control, const nc_read_options& more,
-                        timeline_feed* feed) {
+// for all who read it (the timer, the spindle rules, the interference rule, the emulator), and
+// the modal state (the interference rule, the emulator).
+nc_read_options feeding(spindle_states& spindles, modal_states& modes, shared_resources& rules,
+                        interference_check& meet, length_offset_rule& len, control_emulator& control,
+                        const nc_read_options& more, timeline_feed* feed) {
   nc_read_options also;
   // The cycle time and `more` before the rules: the timer (and the comparison with the CL, on
   // the post's second thread) split every block, and the rules, which ask most blocks only for
   // their letters, then find them exact without a scan of their own.
-  also.on_block = [&spindles, &rules, &meet, &len, &control, more, feed,
+  also.on_block = [&spindles, &modes, &rules, &meet, &len, &control, more, feed,
                    interfere = meet.active()](const nc_block& b) {
     // The timer splits every block: split first, and the spindle state finds its letters exact
     // (else it scans a block's text for them, which the split then reads again). `more` (the
@@ -674,14 +676,16 @@ nc_read_options feeding(spindle_states& spindles, shared_resources& rules, inter
     if (feed) (void)b.words();
     if (more.on_block) more.on_block(b);
     spindles.block(b);
+    modes.block(b);
     if (feed) feed->block(b, &spindles);
     rules.block(b);
     if (interfere) meet.block(b);  // a machine without envelopes pays nothing per block for it
     len.block(b);
     control.block(b);
   };
-  also.on_macro = [&control, more](const nc_block& b) {
+  also.on_macro = [&modes, &control, more](const nc_block& b) {
     if (more.on_macro) more.on_macro(b);
+    modes.block(b);  // (no words: the block's own G codes none)
     control.block(b);
   };
   also.on_wait = [&rules, &meet, more, feed](const nc_wait& w) {
@@ -698,11 +702,12 @@ nc_read_options feeding(spindle_states& spindles, shared_resources& rules, inter
 sync_result check_nc_resources(const std::vector<nc_source>& files, const machine& m,
                                const nc_read_options& more, timeline_feed* feed) {
   spindle_states spindles(m);
+  modal_states modes(m);
   shared_resources rules(m, spindles);
-  interference_check meet(m, spindles);
+  interference_check meet(m, spindles, modes);
   length_offset_rule len(m.channels.size());
-  control_emulator control(m, spindles);
-  sync_result r = check_nc_files(files, m, feeding(spindles, rules, meet, len, control, more, feed));
+  control_emulator control(m, spindles, modes);
+  sync_result r = check_nc_files(files, m, feeding(spindles, modes, rules, meet, len, control, more, feed));
   add_findings(r, rules, meet, len, control);
   fill_source_lines(r.diagnostics, files, m);
   return r;
@@ -710,9 +715,11 @@ sync_result check_nc_resources(const std::vector<nc_source>& files, const machin
 
 struct compact_resource_check::impl {
   impl(const machine& m, const nc_read_options& more, timeline_feed* feed)
-      : spindles(m), rules(m, spindles), meet(m, spindles), len(m.channels.size()), control(m, spindles),
-        compact(m, feeding(spindles, rules, meet, len, control, more, feed)) {}
+      : spindles(m), modes(m), rules(m, spindles), meet(m, spindles, modes), len(m.channels.size()),
+        control(m, spindles, modes),
+        compact(m, feeding(spindles, modes, rules, meet, len, control, more, feed)) {}
   spindle_states spindles;
+  modal_states modes;
   shared_resources rules;
   interference_check meet;
   length_offset_rule len;

@@ -152,6 +152,32 @@ TEST_CASE("interference: the rule in check, concurrent and sequenced, to the let
   CHECK(check(load_machine("citizen-2system"), face, drill).find("may meet") == std::string::npos);
 }
 
+TEST_CASE("interference: G91 moves are increments, read from the one modal state", "[analysis]") {
+  // The Integrex's programs are in G-code system B (its header gives G90): G91 makes X and Z
+  // increments (analysis/modal_state). The upper head faces from X64. to the centre with
+  // `G91 G1 X-65.6` (to X-1.6) while the lower turret's drill waits at X0 Z5 between the same
+  // waits. Read as an absolute X-65.6 (as the rule did before it read the modal state) the
+  // face ended 32.8 mm below the axis; it ends at the centre, on the drill.
+  const machine integrex = load_machine("integrex-i200st");
+  const std::string head = "%\nO1000\nG21\nG0 G90 G54 G97 G18\n";
+  const auto face = [&](const std::string& feed) {
+    return head + "T0101\nG97 S1000 M3\nG0 X64. Z0.\nM950\n" + feed + "\nG90 G0 X100. Z100.\nM951\nM30\n%\n";
+  };
+  const std::string drill = head + "T0505\nG0 X0. Z5.\nM950\nG0 X0. Z5.\nM951\nM30\n%\n";
+  CHECK(check(integrex, face("G91 G1 X-65.6 F0.15"), drill) ==
+        "A_1.nc:9:1: error: channel 1 (T0101 at X-1.6 Z0) may meet channel 2 (T0505 at X0 Z5, A_2.nc:8) on "
+        "the main spindle, between M950 (A_1.nc:8) and M951 (A_1.nc:11) of channel 1: 0.0 mm apart, 5 mm "
+        "required; no wait orders the two blocks\n"
+        "G91 G1 X-65.6 F0.15\n^\n"
+        "A_2.nc:8:1: note: channel 2 is here (T0505 at X0 Z5)\n"
+        "G0 X0. Z5.\n^\n"
+        "check: 2 channels, 4 waits paired, 1 error\n");
+  // A pass that stays outside: `G91 G1 X-4.` ends at X60. (r 30), clear of the drill as X60. in
+  // the concurrent case of the test above. Read as an absolute X-4. it crossed the axis: a
+  // finding where there is none.
+  CHECK(check(integrex, face("G91 G1 X-4. F0.15"), drill) == "check: 2 channels, 4 waits paired, 0 errors\n");
+}
+
 TEST_CASE("interference: live-tool work on the part in polar interpolation, in the spindle's frame",
           "[analysis]") {
   // Path 3 of the 31i mills across the face of the part in the main spindle with its live
