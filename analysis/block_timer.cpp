@@ -77,8 +77,8 @@ const channel_def& channel_or_first(const machine& m, int number) {
 }  // namespace
 
 block_timer::block_timer(const machine& m, int channel)
-    : m_(m), own_spindles_(m, channel), codes_(m, channel_or_first(m, channel)),
-      spindles_need_gms_(own_spindles_.needs_gms()) {
+    : m_(m), own_spindles_(m, channel), own_modes_(m), channel_(channel_or_first(m, channel).number),
+      codes_(m, channel_or_first(m, channel)), spindles_need_gms_(own_spindles_.needs_gms()) {
   for (const channel_def& c : m.channels)
     if (c.number == channel) ch_ = &c;
   if (!ch_) ch_ = &m.channels.front();
@@ -163,7 +163,7 @@ block_timing block_timer::time(std::string_view text) {
 }
 
 block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t letters,
-                               const channel_spindles* spindles) {
+                               const channel_spindles* spindles, const channel_modes* modes) {
   // Each word's number was read once, when the block was split.
   auto num = [](const nc_word& w, double& v) {
     v = w.number;
@@ -175,6 +175,22 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
   } else {
     spindles_ = &own_spindles_;
     if (!spindles_need_gms_ || (letters & gms)) own_spindles_.apply(words);
+  }
+  // The modal state, this block applied (analysis/modal_state): one reading of the unit
+  // (G20/G21, system C's G70/G71), G90/G91, the plane and the feed mode for every rule.
+  // Only a G word changes them: most blocks read nothing here.
+  if (!modes) {
+    own_modes_.block(channel_, words, letters);
+    modes = &own_modes_.channel(channel_);
+  }
+  if (modes->now.any || !modes_read_) {
+    modes_read_ = true;
+    inch_ = modes->inch;
+    incremental_ = modes->incremental;
+    if (modes->plane) plane_ = modes->plane;
+    per_rev_ = modes->feed == feed_kind::per_rev;
+    inverse_time_ = modes->feed == feed_kind::inverse_time;
+    cyc_.return_r = modes->return_to_r;
   }
   block_timing t;
   if (has_modes_ && milling_mode(words)) return t;  // a mode block: no time, no move (G10.9 X0 moves nothing)
@@ -203,31 +219,15 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       end_cycle();
       continue;
     }
-    if (g == g_code("20"))
-      inch_ = true;
-    else if (g == g_code("21"))
-      inch_ = false;
-    else if (g == g_code("17") || g == g_code("18") || g == g_code("19"))
-      plane_ = g / 10;
-    const feed_kind feed = codes_.feed_mode(g / 10.0);
-    if (feed == feed_kind::per_rev)
-      per_rev_ = true, inverse_time_ = false;
-    else if (feed == feed_kind::per_minute)
-      per_rev_ = false, inverse_time_ = false;
-    else if (feed == feed_kind::inverse_time) {
-      per_rev_ = false, inverse_time_ = true;
-      continue;
-    } else if (g == g_code("98") || g == g_code("99"))
-      cyc_.return_r = g == g_code("99");  // where they are not feed modes: the drilling cycles' return level
+    // (The unit, the plane, the feed mode, G90/G91, the drilling cycles' return level: the
+    // modal state's, above.)
     if (lathe_a_ && (g == g_code("90") || g == g_code("92") || g == g_code("94"))) {
       if (cycle_ != g) end_cycle();
       cycle_ = g;  // box cycles: modal until another motion code
       continue;
     }
-    if (g == g_code("90"))
-      incremental_ = false;
-    else if (g == g_code("91"))
-      incremental_ = true;
+    if (g == g_code("90") || g == g_code("91"))
+      continue;
     else if (g <= g_code("3") && g % 10 == 0)
       set_motion(g), end_cycle();
     else if (g == g_code("32") || g == g_code("33"))
@@ -245,8 +245,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       cycle_ = g;
     } else if (one_shot_cycle(g, lathe_a_))
       one_shot = g;
-    else if (!plain_g_code(g))
-      untimed(g_code_text(g, "G"));
+    else if (!plain_g_code(g) && codes_.feed_mode(g / 10.0) == feed_kind::none)
+      untimed(g_code_text(g, "G"));  // (a feed mode of the machine's, G93: the modal state's)
   }
 
   // Tool calls, M codes, the feed.

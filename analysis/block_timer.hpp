@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "analysis/modal_state.hpp"
 #include "analysis/nc_codes.hpp"
 #include "analysis/spindle_state.hpp"
 #include "machines/machine.hpp"
@@ -74,9 +75,11 @@ class block_timer {
   /// The same for a block already split (the reader's nc_block: words and their letters, which
   /// must be exact: split_nc_words' own, not nc_block::letters() before the split).
   /// `spindles`, when given: the channel's spindles with this block applied already (the
-  /// reading's spindle_states); the timer then keeps no spindle state of its own.
+  /// reading's spindle_states); the timer then keeps no spindle state of its own. `modes`, when
+  /// given: the same for the modal state (the reading's modal_states), which gives the unit,
+  /// absolute or incremental, the plane and the feed mode; else the timer keeps its own.
   block_timing time(const std::vector<nc_word>& words, std::uint32_t letters,
-                    const channel_spindles* spindles = nullptr);
+                    const channel_spindles* spindles = nullptr, const channel_modes* modes = nullptr);
   /// The seconds a wait code costs (machine [timing] wait).
   double wait_seconds() const { return ch_->timing.wait; }
   /// The tool in force, as the program calls it ("T03"); empty before the first call.
@@ -94,6 +97,9 @@ class block_timer {
   const channel_def* ch_ = nullptr;
   channel_spindles own_spindles_;                      // applied by time() when it is not given a reading's
   const channel_spindles* spindles_ = &own_spindles_;  // the one the block being timed reads
+  modal_states own_modes_;                             // the same for the modal state
+  int channel_ = 1;                                    // the channel timed (own_modes_'s)
+  bool modes_read_ = false;                            // the modes were taken once (then at G words)
   std::vector<axis_pos> axes_;
   bool lathe_a_ = false;  // Fanuc-style lathe: G90/G92/G94 are cycles, U/W incremental
   bool incremental_ = false;
@@ -174,7 +180,7 @@ class block_timer {
   struct cycle_state {
     std::optional<double> initial;    // the hole axis where the drilling cycle began
     std::optional<double> r, bottom;  // modal R level and bottom of the drilling cycle
-    bool return_r = false;            // G99 where G98/G99 are return levels: back to R
+    bool return_r = false;            // G99 where G98/G99 are return levels: back to R (the modal state's)
     // G76 (Fanuc lathe) first block: finishing passes, tool angle, least cut, allowance (mm)
     bool thread_set = false;
     int finish_passes = 1;

@@ -53,7 +53,7 @@ class timeline_builder {
     for (int i = 0; i < n_; ++i) runs_[static_cast<std::size_t>(i)].times.channel = i + 1;
   }
 
-  void block(const nc_block& b, const spindle_states* spindles) {
+  void block(const nc_block& b, const spindle_states* spindles, const modal_states* modes) {
     const int channel = b.channel;
     const std::string& file = b.file;
     const int line = b.line;
@@ -62,7 +62,8 @@ class timeline_builder {
     channel_times& c = r.times;
     if (c.file.empty()) c.file = file;
     const std::vector<nc_word>& words = b.words();  // first: split, the letters come exact
-    const block_timing t = r.timer.time(words, b.letters(), spindles ? &spindles->channel(channel) : nullptr);
+    const block_timing t = r.timer.time(words, b.letters(), spindles ? &spindles->channel(channel) : nullptr,
+                                        modes ? &modes->channel(channel) : nullptr);
     ++c.blocks;
     if (m_.limits.blocks_per_second > 0 && !t.rapid && t.motion > 0 &&
         t.motion * m_.limits.blocks_per_second < 1) [[unlikely]] {
@@ -329,10 +330,10 @@ struct timeline_feed::impl {
 timeline_feed::timeline_feed(const machine& m, const timeline_options& o) : m_(m), o_(o) {}
 timeline_feed::~timeline_feed() = default;
 void timeline_feed::make() { p_ = std::make_unique<impl>(m_, o_); }
-void timeline_feed::block(const nc_block& b, const spindle_states* spindles) {
+void timeline_feed::block(const nc_block& b, const spindle_states* spindles, const modal_states* modes) {
   if (!p_) [[unlikely]]
     make();
-  p_->b.block(b, spindles);
+  p_->b.block(b, spindles, modes);
 }
 void timeline_feed::wait(const nc_wait& w) {
   if (!p_) make();
@@ -352,7 +353,8 @@ void for_each_timed_block(const timeline& t, const std::vector<nc_source>& files
   timeline_builder b(m, o);
   b.stream_blocks(channel, std::move(shift), f);
   nc_read_options read;
-  read.on_block = [&](const nc_block& blk) { b.block(blk, nullptr); };
+  // (The timers keep their own spindle and modal states, read by the rules the reading's keep.)
+  read.on_block = [&](const nc_block& blk) { b.block(blk, nullptr, nullptr); };
   read.on_wait = [&](const nc_wait& w) { b.wait(w); };
   diagnostic_list ignored;  // the timeline was made from the same files: they read sound
   read_nc_programs(files, m, ignored, read);
@@ -397,7 +399,7 @@ timeline make_timeline(const std::vector<nc_source>& given, const machine& m, co
   read.on_block = [&](const nc_block& blk) {
     spindles.block(blk);
     modes.block(blk);
-    b.block(blk, &spindles);
+    b.block(blk, &spindles, &modes);
     if (meet.active()) meet.block(blk);
   };
   read.on_wait = [&](const nc_wait& w) {

@@ -138,6 +138,7 @@ timeline make_timeline(const std::vector<nc_source>& files, const machine& m, co
 /// that check's rendezvous (sync_result::rendezvous): who meets whom is the checker's word.
 /// `m` must have timing (has_timing) and at most 64 channels.
 class spindle_states;
+class modal_states;
 
 class timeline_feed {
  public:
@@ -146,9 +147,10 @@ class timeline_feed {
   timeline_feed(const timeline_feed&) = delete;
   timeline_feed& operator=(const timeline_feed&) = delete;
   /// Callbacks for nc_read_options (on_block, on_wait) that feed this timeline. `spindles`,
-  /// when given: the reading's one spindle state, with `b` applied already (the resource
-  /// check's, check_nc_resources); else the timer keeps its own.
-  void block(const nc_block& b, const spindle_states* spindles = nullptr);
+  /// `modes`, when given: the reading's one spindle state and modal state, with `b` applied
+  /// already (the resource check's, check_nc_resources); else the timer keeps its own.
+  void block(const nc_block& b, const spindle_states* spindles = nullptr,
+             const modal_states* modes = nullptr);
   void wait(const nc_wait& w);
   timeline finish(const std::vector<std::uint64_t>& rendezvous);
 

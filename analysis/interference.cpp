@@ -257,13 +257,13 @@ struct interference_check::impl {
     const bool home = g.reference || g.machine;
     // A dwell, data or coordinate setting, a clamp, a macro call: no motion.
     const bool no_move = g.no_move, once = g.once, cycle = md.hole_cycle, turning = md.turning_cycle;
-    if (g.units) {
+    if (g.any && g.units) {
       // The control keeps where the axes are: their values are said again in the new unit.
       const double to = md.inch ? 25.4 : 1.0;
       c.x *= c.scale / to, c.z *= c.scale / to, c.q *= c.scale / to;
       c.scale = to;
     }
-    if (g.polar) c.q = 0;  // (off: the C axis is a rotation again; Y was not moved under polar)
+    if (g.any && g.polar) c.q = 0;  // (off: the C axis is a rotation again; Y was not moved under polar)
     const bool polar = md.polar;
     for (const nc_word& w : words) {
       if (!w.numeric) continue;

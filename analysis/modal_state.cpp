@@ -58,7 +58,10 @@ void modal_states::apply(slot& s, const std::vector<nc_word>& words) const {
     // (System A has neither: its G90 is the turning cycle, its increments U and W.)
     if (g == 91 && !system_a) md.incremental = true;
     if (g == 90 && !system_a) md.incremental = false;
-    if (const feed_kind f = s.codes.feed_mode(g); f != feed_kind::none) md.feed = f;
+    if (const feed_kind f = s.codes.feed_mode(g); f != feed_kind::none)
+      md.feed = f;
+    else if (g == 98 || g == 99)
+      md.return_to_r = g == 99;
   }
 }
 

@@ -44,7 +44,10 @@ struct channel_modes {
   int plane = 0;                     ///< 17, 18, 19; 0: none given
   feed_kind feed = feed_kind::none;  ///< the feed mode a code selected; none: none given
   bool polar = false;                ///< polar interpolation (G12.1/G112 until G13.1/G113)
-  block_g_codes now;                 ///< the last block's G words
+  /// G99 where G98 and G99 are the drilling cycles' return levels (no feed modes): back to R;
+  /// G98 (and before either): to the initial level.
+  bool return_to_r = false;
+  block_g_codes now;  ///< the last block's G words
 
   /// A canned cycle is modal: the block's axis words place a hole or a cycle's end point.
   bool in_cycle() const { return hole_cycle || turning_cycle; }
@@ -61,6 +64,13 @@ class modal_states {
     slot& s = channels_[static_cast<std::size_t>(b.channel - 1)];
     if (s.modes.now.any) s.modes.now = {};
     if (b.may_have(nc_letter('G'))) apply(s, b.words());
+  }
+  /// The same for a block of channel `channel` already split into `words` (with their exact
+  /// `letters`): a timer that reads one channel on its own (analysis/block_timer).
+  void block(int channel, const std::vector<nc_word>& words, std::uint32_t letters) {
+    slot& s = channels_[static_cast<std::size_t>(channel - 1)];
+    if (s.modes.now.any) s.modes.now = {};
+    if (letters & nc_letter('G')) apply(s, words);
   }
   /// Channel `number`'s state (1-based), with the last block applied.
   const channel_modes& channel(int number) const {

@@ -677,7 +677,7 @@ nc_read_options feeding(spindle_states& spindles, modal_states& modes, shared_re
     if (more.on_block) more.on_block(b);
     spindles.block(b);
     modes.block(b);
-    if (feed) feed->block(b, &spindles);
+    if (feed) feed->block(b, &spindles, &modes);
     rules.block(b);
     if (interfere) meet.block(b);  // a machine without envelopes pays nothing per block for it
     len.block(b);
