@@ -77,8 +77,9 @@ const channel_def& channel_or_first(const machine& m, int number) {
 }  // namespace
 
 block_timer::block_timer(const machine& m, int channel)
-    : m_(m), own_spindles_(m, channel), own_modes_(m), channel_(channel_or_first(m, channel).number),
-      codes_(m, channel_or_first(m, channel)), spindles_need_gms_(own_spindles_.needs_gms()) {
+    : m_(m), own_spindles_(m, channel), own_modes_(m), units_(units_of(m)),
+      channel_(channel_or_first(m, channel).number), codes_(m, channel_or_first(m, channel)),
+      spindles_need_gms_(own_spindles_.needs_gms()) {
   for (const channel_def& c : m.channels)
     if (c.number == channel) ch_ = &c;
   if (!ch_) ch_ = &m.channels.front();
@@ -245,8 +246,10 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       cycle_ = g;
     } else if (one_shot_cycle(g, lathe_a_))
       one_shot = g;
-    else if (!plain_g_code(g) && codes_.feed_mode(g / 10.0) == feed_kind::none)
-      untimed(g_code_text(g, "G"));  // (a feed mode of the machine's, G93: the modal state's)
+    else if (!plain_g_code(g) && codes_.feed_mode(g / 10.0) == feed_kind::none &&
+             !units_.selected_by(g / 10.0))
+      untimed(
+          g_code_text(g, "G"));  // (a feed mode of the machine's, G93, system C's G70/G71: the modal state's)
   }
 
   // Tool calls, M codes, the feed.

@@ -98,6 +98,7 @@ class block_timer {
   channel_spindles own_spindles_;                      // applied by time() when it is not given a reading's
   const channel_spindles* spindles_ = &own_spindles_;  // the one the block being timed reads
   modal_states own_modes_;                             // the same for the modal state
+  program_units units_;                                // the unit codes (no time of their own)
   int channel_ = 1;                                    // the channel timed (own_modes_'s)
   bool modes_read_ = false;                            // the modes were taken once (then at G words)
   std::vector<axis_pos> axes_;
