@@ -16,6 +16,7 @@
 #include "analysis/cl_compare_arc.hpp"
 #include "analysis/cl_compare_axis.hpp"
 #include "analysis/cl_compare_turn.hpp"
+#include "analysis/modal_state.hpp"
 #include "analysis/nc_codes.hpp"
 #include "analysis/program_units.hpp"
 #include "analysis/rotary_sweep.hpp"
@@ -65,8 +66,12 @@ struct axis_state {
 }  // namespace
 
 struct alignas(64) cl_comparison::impl {
-  impl(const machine& m, const channel_def& ch, diagnostic_sink& d, std::string file)
-      : m(m), ch(ch), diags(d), cl_file(std::move(file)), spindles(m, ch.number), codes(m, ch) {
+  impl(const machine& m, const channel_def& ch, diagnostic_sink& d, std::string file,
+       const channel_spindles* reading_spindles, const channel_modes* reading_modes)
+      : m(m), ch(ch), diags(d), cl_file(std::move(file)), own_spindles(m, ch.number), own_modes(m),
+        codes(m, ch) {
+    if (reading_spindles) spindles_given = reading_spindles;
+    if (reading_modes) modes_given = reading_modes;
     const axis_def* x = ch.axis('X');
     x_div = (x && !x->diameter) ? 1.0 : 2.0;  // the writer's rule: X is a diameter unless said
     if (x && x->mirror) x_div = -x_div;
@@ -86,7 +91,7 @@ struct alignas(64) cl_comparison::impl {
       for (const channel_def& c : m.channels) is_live = is_live || c.live_spindle == s.name;
       live.push_back(is_live);
     }
-    gms_only = spindles.needs_gms();
+    gms_only = own_spindles.needs_gms();
     if (ch.head_index.present()) {
       head_address = ch.head_index.address;
       head_dir = head_turn::of(ch.head_index);
@@ -174,7 +179,13 @@ struct alignas(64) cl_comparison::impl {
   const channel_def& ch;
   diagnostic_sink& diags;
   std::string cl_file;
-  channel_spindles spindles;
+  // The spindles and the modal G state (analysis/spindle_state, analysis/modal_state): the
+  // reading's, with each block applied before it comes here (post's self-check), else kept here.
+  channel_spindles own_spindles;
+  modal_states own_modes;
+  const channel_spindles* spindles_given = nullptr;
+  const channel_modes* modes_given = nullptr;
+  const channel_spindles& spindles_now() const { return spindles_given ? *spindles_given : own_spindles; }
 
   // The machine file's reading of the words.
   double x_div = 2;  // program X / part-frame x: 2 for a diameter, negative on a mirrored turret
@@ -518,7 +529,7 @@ struct alignas(64) cl_comparison::impl {
   // the part turns (both at the head's turning angle). Once a channel.
   void compare_axis(const event& e, const std::optional<vec3>& cl_axis, bool in_polar) {
     if (said_axis || !cl_axis || !head_deg || !head_dir.known()) return;
-    const int sp = spindles.current();
+    const int sp = spindles_now().current();
     if (sp < 0 || !live[static_cast<std::size_t>(sp)]) return;
     const vec3 a = head_dir.machine_axis(*head_deg);
     if (in_polar && std::abs(a.x) > 1e-9) return;  // C is a coordinate there: only an axial tool is known
@@ -551,7 +562,7 @@ struct alignas(64) cl_comparison::impl {
   // and axial centre drilling). Judged where the tool cuts, not at the offset's block: a SPINDL
   // may come after the approach that gave the offset (attack 69 H1).
   bool head_spindle_wrong(const event& e) {
-    const int sp = spindles.current();
+    const int sp = spindles_now().current();
     if (head_used < 0 || head_turning < 0 || head_live < 0 || sp < 0 || !head_wrong.empty() ||
         ch.head_index.offset_turning == ch.head_index.offset_live)
       return head_offset_wrong(e);
@@ -636,6 +647,11 @@ struct alignas(64) cl_comparison::impl {
                         (u.number >= 14001 && u.number <= 14999)))
           shifted = true;  // a work offset written through its variable (#5223=-5.)
     if (words.empty()) return;
+    // The unit, G90/G91, the plane and the feed mode: the modal state's, this block applied
+    // (only a G word changes them).
+    if (!modes_given) own_modes.block(ch.number, words, letters);
+    if (const channel_modes& md = modes_given ? *modes_given : own_modes.channel(ch.number); md.now.any)
+      take_modes(md);
     // (Its swings are the emulator's to report, in check and in post's self-check.)
     if (mid_staged) settle_chain_block();     // before this block moves the follower on
     if (plain_pending) settle_plain_block();  // (before this line moves the axes on)
@@ -648,7 +664,7 @@ struct alignas(64) cl_comparison::impl {
     if (letters & ~(axis_letters | chain_letters)) ++version;
     constexpr std::uint32_t gms = nc_letter('G') | nc_letter('M') | nc_letter('S');
     if (!gms_only || (letters & gms)) {
-      spindles.apply(words);
+      if (!spindles_given) own_spindles.apply(words);
       spindle_fine = false;
       // The workpiece spindle: its work offset (G55 for the sub) or its select code; a live
       // spindle's select code does not move the part.
@@ -807,11 +823,6 @@ struct alignas(64) cl_comparison::impl {
       } else if (g == 0 || g == 10 || g == 20 || g == 30 || g == 800) {
         hole_cycle = 0;
       }
-      if (const feed_kind k = codes.feed_mode(w.number);
-          k == feed_kind::per_rev || k == feed_kind::per_minute) {
-        per_rev = k == feed_kind::per_rev ? 1 : 0;
-        inverse_time = false;
-      }
       switch (g) {
         case 0:
         case 10:
@@ -820,9 +831,6 @@ struct alignas(64) cl_comparison::impl {
           motion = g / 10;
           cycle = false;
           break;
-        case 170:
-        case 180:
-        case 190: plane = g / 10; break;
         case 320:
         case 330:
         case 340:
@@ -832,11 +840,9 @@ struct alignas(64) cl_comparison::impl {
         case 800: cycle = false; break;
         case 700:
         case 710:
-          // G-code system C: G70 inch, G71 metric (its lathe cycles are G72-G78).
-          if (system_c)
-            units(g == 700);
-          else
-            cycle = true;
+          // G-code system C: G70 inch, G71 metric (the modal state's; its lathe cycles are
+          // G72-G78).
+          if (!system_c) cycle = true;
           break;
         case 770:
         case 780:
@@ -859,18 +865,12 @@ struct alignas(64) cl_comparison::impl {
         case 880:
         case 890: cycle = true; break;
         case 900:
-          if (g90_modes)
-            absolute = true;
-          else
-            cycle = true;  // a lathe's G90 (G-code system A): the turning cycle
+          // (G90 and G91 in systems B and C, and on a mill: the modal state's.)
+          if (!g90_modes) cycle = true;  // a lathe's G90 (G-code system A): the turning cycle
           break;
-        case 910: absolute = false; break;  // system A has no G91 (an alarm); B and C: increments
         case 200:
         case 210:
-          if (system_c)
-            cycle = true;  // system C's G20, G21: the OD and threading cycles
-          else
-            units(g == 200);
+          if (system_c) cycle = true;  // system C's G20, G21: the OD and threading cycles (else units)
           break;
         case 430:
           head_due = false;
@@ -955,7 +955,6 @@ struct alignas(64) cl_comparison::impl {
           break;
         case 160: polar_coords = true; break;
         case 150: polar_coords = false; break;
-        case 930: inverse_time = true; break;
         case 280:
         case 300:
           home = true;
@@ -1901,7 +1900,7 @@ struct alignas(64) cl_comparison::impl {
     }
     // The other mode: through the speed of the spindle the feed follows, at the tip's diameter.
     const double diameter = x.k == axis_state::kind::known ? std::abs(x.value * 2 / x_div) : 0;
-    const double rpm = spindles.rpm(diameter, inch);
+    const double rpm = spindles_now().rpm(diameter, inch);
     if (rpm <= 0) return;  // a speed this channel did not give (another channel's): not followed
     const double have = nc_rev ? f_mm * rpm : f_mm / rpm;
     const double slack = nc_rev ? half * rpm : half / rpm;
@@ -2078,9 +2077,9 @@ struct alignas(64) cl_comparison::impl {
   void compare_spindle(const event& e) {
     if (said_spindle || cl_spin != 1 || spindle_fine || !s_expression.empty()) return;
     // The spindle the CL names (SPINDL/...,MAIN), else the one the channel commanded last.
-    const int sp = cl_spin_index >= 0 ? cl_spin_index : spindles.current();
+    const int sp = cl_spin_index >= 0 ? cl_spin_index : spindles_now().current();
     if (sp < 0) return;
-    const spindle_setting& s = spindles.setting(sp);
+    const spindle_setting& s = spindles_now().setting(sp);
     if (s.turn == spindle_turn::unknown || s.turn == spindle_turn::held) return;  // another channel's
     const spindle_def& def = m.spindles[static_cast<std::size_t>(sp)];
     const bool cw = cl_dir != rotation::ccw;
@@ -2221,6 +2220,20 @@ struct alignas(64) cl_comparison::impl {
   // The program's unit (G20: inch), its least increment (what an axis word without a decimal
   // point counts: `X44` is 0.044 mm where decimal-point programming is off, the Fanuc default)
   // and half of it in mm.
+  // The modes a block's G words changed (analysis/modal_state): the unit (G20/G21, system C's
+  // G70/G71), G90/G91 (system A has no G91: an alarm), the plane and the feed mode.
+  void take_modes(const channel_modes& md) {
+    if (md.inch != inch) units(md.inch);
+    absolute = !md.incremental;
+    plane = md.plane;
+    if (md.feed == feed_kind::inverse_time) {
+      inverse_time = true;
+    } else if (md.feed != feed_kind::none) {
+      per_rev = md.feed == feed_kind::per_rev ? 1 : 0;
+      inverse_time = false;
+    }
+  }
+
   void units(bool in_inch) {
     // The control keeps where the axes are: their values are said again in the new unit.
     const double was = out_mm;
@@ -2277,7 +2290,7 @@ cl_comparison::~cl_comparison() = default;
 // (Out of line, so that each call's test stays a test: the construction inlined into every
 // entry point cost them a frame each, 2 M instructions on the lathe job.)
 [[gnu::noinline, gnu::cold]] void cl_comparison::make() {
-  p_ = std::make_unique<impl>(m_, ch_, diags_, std::move(cl_file_));
+  p_ = std::make_unique<impl>(m_, ch_, diags_, std::move(cl_file_), spindles_, modes_);
 }
 inline cl_comparison::impl& cl_comparison::made() {
   if (!p_) [[unlikely]]

@@ -45,6 +45,9 @@
 
 namespace twinpost {
 
+class channel_spindles;
+struct channel_modes;
+
 // (In a cache line of its own: the self-check's thread reads it at every block.)
 class alignas(64) cl_comparison {
  public:
@@ -54,6 +57,13 @@ class alignas(64) cl_comparison {
   cl_comparison(const cl_comparison&) = delete;
   cl_comparison& operator=(const cl_comparison&) = delete;
 
+  /// Reads the channel's spindles and modal G state from the reading's (post's self-check:
+  /// analysis/spindle_state, analysis/modal_state), which apply each block before block() is
+  /// given it, instead of keeping its own; before the first line or block. They must outlive it.
+  void follow(const channel_spindles* spindles, const channel_modes* modes) {
+    spindles_ = spindles;
+    modes_ = modes;
+  }
   /// The next line of the channel's program as written (head, body), without its line end.
   void line(std::string_view text);
   /// The same, read already: line `line` (1-based) of the program, split into `words` with
@@ -83,6 +93,8 @@ class alignas(64) cl_comparison {
   const channel_def& ch_;
   diagnostic_sink& diags_;
   std::string cl_file_;
+  const channel_spindles* spindles_ = nullptr;
+  const channel_modes* modes_ = nullptr;
   std::unique_ptr<impl> p_;
 };
 

@@ -55,8 +55,11 @@ void modal_states::apply(slot& s, const std::vector<nc_word>& words) const {
     if (g == 12.1 || g == 112) md.polar = now.polar = true;
     if (g == 13.1 || g == 113) md.polar = false, now.polar = true;
     if (g == 17 || g == 18 || g == 19) md.plane = static_cast<int>(g);
-    // (System A has neither: its G90 is the turning cycle, its increments U and W.)
-    if (g == 91 && !system_a) md.incremental = true;
+    // System A has neither: its G90 is the turning cycle, its increments U and W, and a G91 an
+    // alarm. Read as B and C read it, the words after it are increments: the comparison with
+    // the CL then finds them off the CL's points, where a G91 taken for nothing would pass a
+    // program the control refuses.
+    if (g == 91) md.incremental = true;
     if (g == 90 && !system_a) md.incremental = false;
     if (const feed_kind f = s.codes.feed_mode(g); f != feed_kind::none)
       md.feed = f;

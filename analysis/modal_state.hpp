@@ -36,12 +36,12 @@ struct block_g_codes {
 
 /// One channel's modal G state after the block last applied.
 struct channel_modes {
-  int motion = -1;                   ///< the modal motion: 0, 1, 2, 3 (G0-G3); -1: none yet
-  bool hole_cycle = false;           ///< a drilling cycle is modal (until G80 or a motion code)
-  bool turning_cycle = false;        ///< a lathe's single cycle is modal (until a motion code)
-  bool incremental = false;          ///< G91 until G90 (system A has neither: U and W are its increments)
-  bool inch = false;                 ///< the program's unit is the inch (G20, system C's G70)
-  int plane = 0;                     ///< 17, 18, 19; 0: none given
+  int motion = -1;             ///< the modal motion: 0, 1, 2, 3 (G0-G3); -1: none yet
+  bool hole_cycle = false;     ///< a drilling cycle is modal (until G80 or a motion code)
+  bool turning_cycle = false;  ///< a lathe's single cycle is modal (until a motion code)
+  bool incremental = false;    ///< G91 until G90 (system A's G90 is a cycle; its G91, an alarm, read as B's)
+  bool inch = false;           ///< the program's unit is the inch (G20, system C's G70)
+  int plane = 0;               ///< 17, 18, 19; 0: none given
   feed_kind feed = feed_kind::none;  ///< the feed mode a code selected; none: none given
   bool polar = false;                ///< polar interpolation (G12.1/G112 until G13.1/G113)
   /// G99 where G98 and G99 are the drilling cycles' return levels (no feed modes): back to R;

@@ -665,18 +665,18 @@ nc_read_options feeding(spindle_states& spindles, modal_states& modes, shared_re
                         interference_check& meet, length_offset_rule& len, control_emulator& control,
                         const nc_read_options& more, timeline_feed* feed) {
   nc_read_options also;
-  // The cycle time and `more` before the rules: the timer (and the comparison with the CL, on
-  // the post's second thread) split every block, and the rules, which ask most blocks only for
-  // their letters, then find them exact without a scan of their own.
+  // `more` settles what it owes the blocks before (before_block) with the states as they left
+  // them, then the states apply the block once for all who read them, then `more` reads it.
+  also.before_block = more.before_block;
   also.on_block = [&spindles, &modes, &rules, &meet, &len, &control, more, feed,
                    interfere = meet.active()](const nc_block& b) {
     // The timer splits every block: split first, and the spindle state finds its letters exact
     // (else it scans a block's text for them, which the split then reads again). `more` (the
-    // comparison with the CL, which keeps its own spindle state) may split it too.
-    if (feed) (void)b.words();
-    if (more.on_block) more.on_block(b);
+    // comparison with the CL) splits it too.
+    if (feed || more.on_block) (void)b.words();
     spindles.block(b);
     modes.block(b);
+    if (more.on_block) more.on_block(b);
     if (feed) feed->block(b, &spindles, &modes);
     rules.block(b);
     if (interfere) meet.block(b);  // a machine without envelopes pays nothing per block for it
@@ -684,8 +684,8 @@ nc_read_options feeding(spindle_states& spindles, modal_states& modes, shared_re
     control.block(b);
   };
   also.on_macro = [&modes, &control, more](const nc_block& b) {
-    if (more.on_macro) more.on_macro(b);
     modes.block(b);  // (no words: the block's own G codes none)
+    if (more.on_macro) more.on_macro(b);
     control.block(b);
   };
   also.on_wait = [&rules, &meet, more, feed](const nc_wait& w) {
@@ -734,6 +734,8 @@ compact_resource_check::compact_resource_check(const machine& m, const nc_read_o
 compact_resource_check::~compact_resource_check() = default;
 
 const nc_read_options& compact_resource_check::options() const { return p_->compact.options(); }
+const spindle_states& compact_resource_check::spindles() const { return p_->spindles; }
+const modal_states& compact_resource_check::modes() const { return p_->modes; }
 
 std::optional<sync_result> compact_resource_check::result(const nc_programs& programs,
                                                           const diagnostic_list& read) {

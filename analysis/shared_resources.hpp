@@ -43,6 +43,7 @@ std::vector<std::vector<std::vector<int>>> segment_clocks(const std::vector<std:
                                                           std::size_t channels);
 
 class spindle_states;
+class modal_states;
 
 class shared_resources {
  public:
@@ -85,6 +86,10 @@ class compact_resource_check {
   compact_resource_check& operator=(const compact_resource_check&) = delete;
   /// What to read with: the check's and the rules' callbacks, and `more`'s.
   const nc_read_options& options() const;
+  /// The reading's spindle state and modal state (each block applied before `more`'s
+  /// on_block is given it): for a consumer of `more` that reads them.
+  const spindle_states& spindles() const;
+  const modal_states& modes() const;
   /// What check_nc_resources returns for the same programs, when the reading found nothing to
   /// say (compact_sync_check::result); nullopt: read them with check_nc_resources instead.
   std::optional<sync_result> result(const nc_programs& programs, const diagnostic_list& read);

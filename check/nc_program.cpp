@@ -613,8 +613,11 @@ class reader {
       report_jumps(line, words, at);
     if (words.empty()) {
       if (options_.on_macro && channel > 0 && !state_[static_cast<std::size_t>(channel - 1)].ended &&
-          line.find('#') != std::string_view::npos)
-        options_.on_macro(nc_block(channel, f.name, no, line, words_, letters_));
+          line.find('#') != std::string_view::npos) {
+        const nc_block blk(channel, f.name, no, line, words_, letters_);
+        if (options_.before_block) options_.before_block(blk);
+        options_.on_macro(blk);
+      }
       return;
     }
     const block_words b = classify_words(words, channel, at);
@@ -716,7 +719,11 @@ class reader {
     st.last_line = no;
     st.pending_source = &f;
     st.pending_text = line;
-    if (options_.on_block && is_block) options_.on_block(nc_block(channel, f.name, no, line, words_));
+    if (options_.on_block && is_block) {
+      const nc_block blk(channel, f.name, no, line, words_);
+      if (options_.before_block) options_.before_block(blk);
+      options_.on_block(blk);
+    }
   }
 
   // Whether a '/' (block delete, /1../9) stands before column `column` (1-based) of `line`,
@@ -797,9 +804,11 @@ class reader {
     if (st.last_file != at.f.name) st.last_file = at.f.name;
     st.last_line = at.no;
     st.last_text.assign(at.line);
-    if (options_.on_block && is_block)
-      options_.on_block(
-          nc_block(channel, at.f.name, at.no, at.line, words_, letters_));  // split in read_line
+    if (options_.on_block && is_block) {
+      const nc_block blk(channel, at.f.name, at.no, at.line, words_, letters_);  // split in read_line
+      if (options_.before_block) options_.before_block(blk);
+      options_.on_block(blk);
+    }
     if (b.wait) {
       nc_wait w = make_wait(channel, b.wait_code, b.partner, at(b.wait->column));
       if (options_.on_wait)

@@ -95,6 +95,12 @@ struct nc_read_options {
   /// nothing, and the timer and the spindle rules have nothing to read in it), but the control
   /// emulator's reserved variables are written in such lines. Handed with no words.
   std::function<void(const nc_block&)> on_macro;
+  /// When set, called with each block just before on_block or on_macro is: the resource
+  /// check's reading (analysis/shared_resources) applies its spindle and modal states to a
+  /// block between the two, so a consumer that owes something to the blocks before this one
+  /// (post's comparison with the CL: the records written before it) settles it here, with the
+  /// states as the blocks before left them, and reads the block itself in on_block.
+  std::function<void(const nc_block&)> before_block;
 };
 
 /// Reads `files` as the programs of machine `m`; layout and syntax problems go to `sink`.

@@ -399,6 +399,7 @@ struct compact_sync_check::impl {
     };
     options.on_block = also.on_block;
     options.on_macro = also.on_macro;
+    options.before_block = also.before_block;
   }
   static nc_programs one_per_channel(const machine& m) {
     nc_programs p;

@@ -11,7 +11,9 @@
 #include <optional>
 #include <thread>
 
+#include "analysis/modal_state.hpp"
 #include "analysis/shared_resources.hpp"
+#include "analysis/spindle_state.hpp"
 #include "check/nc_program.hpp"
 
 namespace twinpost {
@@ -114,6 +116,9 @@ struct alignas(64) concurrent_check::impl {
     nc_read_options more;
     if (std::none_of(compare.begin(), compare.end(), [](const cl_comparison* c) { return c != nullptr; }))
       return more;
+    // The records written before a block with the states as the blocks before left them; the
+    // block itself once the reading's states have applied it (nc_read_options::before_block).
+    more.before_block = [this](const nc_block& b) { compare_due(b); };
     more.on_block = [this](const nc_block& b) { compare_block(b); };
     more.on_macro = [this](const nc_block& b) { compare_block(b); };
     return more;
@@ -126,10 +131,9 @@ struct alignas(64) concurrent_check::impl {
   // piece; one the reader carried over from the piece before (its start there) starts before
   // this piece, after every record noted there (records are noted between blocks, and a
   // writer's pieces end at a line's end).
-  void compare_block(const nc_block& b) {
+  void compare_due(const nc_block& b) {
     const auto i = static_cast<std::size_t>(b.channel - 1);
-    cl_comparison* c = comparison(i);
-    if (!c || drained) return;  // (the reader's finish() after drain(): its findings are said)
+    if (!comparison(i) || drained) return;  // (the reader's finish() after drain(): its findings are said)
     const char* t = b.text.data();
     std::uint64_t starts =
         now_read.channel == b.channel ? now_read.at : read_lanes[i].fed;  // (carried: just before)
@@ -138,6 +142,11 @@ struct alignas(64) concurrent_check::impl {
     else if (starts > 0)
       --starts;
     hand_due(i, starts);
+  }
+  // (compare_due first: the records at or before the byte it starts at.)
+  void compare_block(const nc_block& b) {
+    cl_comparison* c = comparison(static_cast<std::size_t>(b.channel - 1));
+    if (!c || drained) return;
     const std::vector<nc_word>& words = b.words();  // first: then letters() is the split's, exact
     c->block(b.line, b.text, words, b.letters());
   }
@@ -206,6 +215,11 @@ struct alignas(64) concurrent_check::impl {
     // the reader's, and the two cores passed those lines to and fro: a third more time.
     try {
       parts = std::make_unique<check_parts>(reading(), feed, m, read);
+      // The comparisons read the reading's spindle and modal states, not states of their own.
+      for (std::size_t i = 0; i < compare.size(); ++i)
+        if (compare[i])
+          compare[i]->follow(&parts->check.spindles().channel(static_cast<int>(i) + 1),
+                             &parts->check.modes().channel(static_cast<int>(i) + 1));
     } catch (const std::exception& e) {
       fail(e.what());
     } catch (...) {

@@ -37,7 +37,8 @@ TEST_CASE("modal state: a system-A lathe's single cycles, G80 and the drilling c
   CHECK(c.now.work_offset);
   CHECK(c.now.units);
   // G90 is the turning cycle in system A: modal until a motion code; G80 ends drilling cycles
-  // only; G91 is no code of system A (its increments are U and W).
+  // only. G91 is no code of system A (an alarm; its increments are U and W): read as system B
+  // reads it, and G90 does not end it.
   feed(modes, {"G90 X50. Z-20. F0.2"});
   CHECK(c.turning_cycle);
   CHECK(c.in_cycle());
@@ -46,8 +47,8 @@ TEST_CASE("modal state: a system-A lathe's single cycles, G80 and the drilling c
   feed(modes, {"X46.", "G80"});
   CHECK(c.turning_cycle);
   CHECK_FALSE(c.now.cycle);
-  feed(modes, {"G91"});
-  CHECK_FALSE(c.incremental);
+  feed(modes, {"G91", "G90 X50. Z-20."});
+  CHECK(c.incremental);
   // A drilling cycle ends at G80, and at a code of group 01 (G0-G3, the single cycles).
   feed(modes, {"G0 X0. Z5.", "G83 Z-20. R1. Q5000 F0.1"});
   CHECK(c.hole_cycle);
