@@ -1978,6 +1978,7 @@ struct alignas(64) cl_comparison::impl {
     if (said_dwell || !dwell_address) return;
     const double half = 0.0005;  // (a millisecond's half: the last digit written)
     std::string why;
+    if (dwells == 0 && seconds < half) return;  // no time as written (P0): none is (the writer says so)
     if (dwells == 0)
       why = fmt::format("the CL dwells {:g} s here (DELAY), the program does not", seconds);
     else if (std::abs(dwelt - seconds) > half + 1e-9)

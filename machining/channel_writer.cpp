@@ -14,6 +14,8 @@
 #include "kinematics/vec3_ops.hpp"
 #include "machines/code_overlap.hpp"
 #include "machines/name_template.hpp"
+#include "nc/nc_words.hpp"
+#include "support/ascii.hpp"
 #include "support/errors.hpp"
 
 namespace twinpost {
@@ -345,6 +347,8 @@ void channel_writer::call_tool(const tool_event& d, int line) {
 }
 
 void channel_writer::on_event(const event& e, bool both) {
+  if (!feed_back_.empty()) [[unlikely]]
+    feed_back_due(e);
   if (ev_ && !program_started_) [[unlikely]] {
     line_ = e.line;
     column_ = e.column;
@@ -564,24 +568,53 @@ void channel_writer::write_dwell(double seconds) {
   a.ms = static_cast<int>(std::lround(seconds * 1000));
   std::string b = format_template(m_.codes.dwell, a);
   if (!block_fits(b)) return;
+  // A time the word writes as 0 (DELAY/0, DELAY/0.0004 as P0) is no dwell: left out, and said
+  // (review 40; the Fusion post the Integrex's file cites writes at least P1).
+  for (std::string_view key : {"{seconds", "{ms"})
+    if (const std::size_t at = m_.codes.dwell.find(key); at != std::string::npos && at > 0)
+      for (const nc_word& w : split_nc_words(std::string_view(b)))
+        if (w.address == ascii::upper(m_.codes.dwell[at - 1]) && w.numeric && w.number == 0) {
+          warning(fmt::format("DELAY/{}: the dwell is written as no time ({}{}): left out",
+                              kin::number_text(seconds), w.address, w.value));
+          return;
+        }
   // Under feed per revolution a dwell may count spindle revolutions, not seconds (Fanuc
   // parameter 3405#1 DWL: "dwell per rotation in the feed per rotation mode"; Mazak alike): the
   // dwell is written under feed per minute, where it is seconds whatever the parameter, and the
   // channel's mode follows at once (issue 37, item 10; the Integrex transfer's `G94 G4 P1000`).
   // A mode not known yet (the Integrex header sets none, and a control may keep G95 from the
   // last program: attack 71 F3) is set to feed per minute for the dwell, and stays.
+  // The mode put back waits for the next record (feed_back_due): a FEDRAT per minute after the
+  // dwell keeps it, and a dwell at the end leaves the program in it.
   const control_codes& c = m_.codes;
   if (!c.feed_per_min.empty() && !c.feed_per_rev.empty() && feed_g_ != c.feed_per_min) {
     out_.block(c.feed_per_min + ' ' + b);
-    if (feed_g_.empty()) {
-      feed_g_ = c.feed_per_min;
-      return;
-    }
-    out_.block(feed_g_);
-    last_f_.clear();  // the next feed move writes its F again under the mode put back
+    feed_back_ = feed_g_;  // (empty: no mode was set, per minute stays)
+    feed_g_ = c.feed_per_min;
     return;
   }
   out_.block(b);
+}
+
+void channel_writer::feed_back_due(const event& e) {
+  // A FEDRAT sets its own mode (none written when it is per minute); a record that may move
+  // the tool or write a move of its own (GOTO, CIRCLE, CYCLE, THREAD, a transfer, INSERT) first
+  // has the mode the dwell left; the others (another dwell, a tool call, SPINDL, COOLNT, the
+  // end) leave it waiting, and at the end of the program it is not written.
+  const bool moves = std::visit(
+      [](const auto& d) {
+        using T = std::decay_t<decltype(d)>;
+        return std::is_same_v<T, motion_event> || std::is_same_v<T, arc_event> ||
+               std::is_same_v<T, cycle_event> || std::is_same_v<T, thread_event> ||
+               std::is_same_v<T, transfer_event> || std::is_same_v<T, passthrough_event>;
+      },
+      e.data);
+  if (moves) {
+    out_.block(feed_back_);
+    feed_g_ = feed_back_;
+    last_f_.clear();  // the next feed move writes its F again under the mode put back
+  }
+  if (moves || std::holds_alternative<feed_event>(e.data)) feed_back_.clear();
 }
 
 void channel_writer::finish() {

@@ -241,6 +241,7 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   void cycle_block(const hole& h, const std::string& code, double q, double pitch, int line);
   /// A dwell block from the machine's dwell template, if the time fits its word.
   void write_dwell(double seconds);
+  void feed_back_due(const event& e);  // the mode a dwell left, before the next record (feed_back_)
   /// M0/M1, then the spindle and coolant blocks in force again: the stop turns them off on
   /// most lathes, and cycle start must not resume cutting with a still spindle.
   void program_stop(bool optional);
@@ -667,7 +668,11 @@ class channel_writer : private scripting::script_host, private block_writer::blo
   axis_memory last_x_, last_y_, last_z_;      // axis words written last
   axis_memory last_c_;                        // the C word written last (degrees)
   std::string feed_g_;                        // G99/G98 (G95/G94) in force
-  bool absolute_code_ = false;                // the safe start writes G90 (absolute, not a lathe cycle)
+  // The feed mode a dwell written under feed per minute left (G99): written again before the
+  // next record that is no feed and no dwell, unless a FEDRAT sets a mode first or the program
+  // ends (review 40: no G94/G95/G94 around a dwell, no G95 before M30).
+  std::string feed_back_;
+  bool absolute_code_ = false;  // the safe start writes G90 (absolute, not a lathe cycle)
   std::string last_f_;
   text_buffer arc_;  // the block being built, reused (arcs; moves are built in place)
   std::size_t word_start_ = std::string::npos;  // where a block built in place begins

@@ -205,7 +205,7 @@ TEST_CASE("a dwell template without an address letter still keeps its millisecon
   m.codes.dwell = "G4 P=#{ms}";
   posted ok = post_text(head + "DELAY/1.5\nFINI\n", m, "dwell-ok");
   CHECK(ok.diagnostics == "");
-  CHECK(ok.files.at("W_1.nc").find("\nG98 G4 P=#1500\nG99\n") != std::string::npos);
+  CHECK(ok.files.at("W_1.nc").find("\nG98 G4 P=#1500\nM100\n") != std::string::npos);
   posted big = post_text(head + "DELAY/1e7\nFINI\n", m, "dwell-big");
   CHECK(big.diagnostics ==
         "job.cls:6:1: error: channel 1: DELAY/10000000 is longer than any dwell the control "
@@ -253,8 +253,9 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
   // decimal-point programming off, the default): seconds always carry their point, and
   // milliseconds (P) are whole numbers, which no setting reads otherwise. Under feed per
   // revolution (the Fanuc lathes' G99) the dwell is written under G98, where it is seconds
-  // whatever parameter 3405#1 says, and G99 follows. The Integrex's header sets no feed mode
-  // (a control may keep the last program's G95): G94 with the first dwell, and it stays.
+  // whatever parameter 3405#1 says, and G99 comes back before the next move (not before a
+  // second dwell, and not at the program's end: review 40). The Integrex's header sets no feed
+  // mode (a control may keep the last program's G95): G94 with the first dwell, and it stays.
   const std::map<std::string, std::string> want = {
       {"fanuc-0itd-twin", "G98 G4 U1."},   {"fanuc-31i-3path", "G98 G4 U1."},
       {"integrex-i200st", "G94 G4 P1000"}, {"head-head-5axis", "G4 P1000"},
@@ -267,8 +268,11 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
     std::string all;
     for (const auto& [file, text] : p.files) all += text;
     const bool per_rev = block.starts_with("G98");
-    CHECK(all.find("\n" + block + (per_rev ? "\nG99\n" : "\n")) != std::string::npos);
-    CHECK(all.find(per_rev ? "\nG98 G4 U2.25\nG99\n" : "\nG4 P2250\n") != std::string::npos);
+    CHECK(all.find("\n" + block + (per_rev ? "\nG4 U2.25\n" : "\nG4 P2250\n")) != std::string::npos);
+    if (per_rev) {  // (no G99 before the end of the channel's program)
+      const std::string& one = p.files.at("W_1.nc");
+      CHECK(one.find("G99", one.find("G4 U2.25")) == std::string::npos);
+    }
   }
   // A negative time is no dwell (attack 71 F7: `G4 U-1.` was written).
   posted negative = post_text("PARTNO W\nLOADTL/1\nDELAY/-1\nFINI\n", "fanuc-0itd-twin", "dwell-negative");
@@ -281,14 +285,31 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
       "GOTO/20,0,-10\nDELAY/2\nGOTO/21,0,-10\nFINI\n",
       "fanuc-0itd-twin", "dwell-cut");
   CHECK(cut.files.at("W_1.nc").find("\nG1 Z-10. F0.2\nG98 G4 U2.\nG99\nX42. F0.2\n") != std::string::npos);
+  // A FEDRAT per minute after the dwell: G98 stays, no G99 and G98 again (review 40).
+  posted per_min = post_text(
+      "PARTNO W\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,2\n"
+      "GOTO/20,0,-10\nDELAY/2\nFEDRAT/200,MMPM\nGOTO/21,0,-10\nFINI\n",
+      "fanuc-0itd-twin", "dwell-per-min");
+  CHECK(per_min.diagnostics == "");
+  CHECK(per_min.files.at("W_1.nc").find("\nG1 Z-10. F0.2\nG98 G4 U2.\nX42. F200.\nM100\n") !=
+        std::string::npos);
+  // A time the word writes as none (U0., P0) is no dwell: left out, and said.
+  posted none =
+      post_text("PARTNO W\nLOADTL/1\nDELAY/0\nDELAY/0.0004\nFINI\n", "integrex-i200st", "dwell-none");
+  CHECK(none.diagnostics ==
+        "job.cls:3:1: warning: channel 1: DELAY/0: the dwell is written as no time (P0): left out\n"
+        "DELAY/0\n^\n"
+        "job.cls:4:1: warning: channel 1: DELAY/0.0004: the dwell is written as no time (P0): left out\n"
+        "DELAY/0.0004\n^\n");
+  for (const auto& [file, text] : none.files) CHECK(text.find("G4 P") == std::string::npos);
   // A machine file's own template: {seconds} with no spec has its point; with a spec it is fmt's.
   machine m = load_machine("fanuc-0itd-twin");
   m.codes.dwell = "G4 X{seconds}";
   posted x = post_text("PARTNO W\nTURRET/1,1\nDELAY/3\nFINI\n", m, "dwell-x");
-  CHECK(x.files.at("W_1.nc").find("\nG98 G4 X3.\nG99\n") != std::string::npos);
+  CHECK(x.files.at("W_1.nc").find("\nG98 G4 X3.\nM100\n") != std::string::npos);
   m.codes.dwell = "G4 U{seconds:.1f}";
   posted spec = post_text("PARTNO W\nTURRET/1,1\nDELAY/3\nFINI\n", m, "dwell-spec");
-  CHECK(spec.files.at("W_1.nc").find("\nG98 G4 U3.0\nG99\n") != std::string::npos);
+  CHECK(spec.files.at("W_1.nc").find("\nG98 G4 U3.0\nM100\n") != std::string::npos);
 }
 
 TEST_CASE("a lathe arc that passes the centre line between its ends is warned about", "[post][words]") {
