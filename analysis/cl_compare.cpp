@@ -655,7 +655,7 @@ struct alignas(64) cl_comparison::impl {
     // (Its swings are the emulator's to report, in check and in post's self-check.)
     if (mid_staged) settle_chain_block();     // before this block moves the follower on
     if (plain_pending) settle_plain_block();  // (before this line moves the axes on)
-    if (chain) chain->block(words);
+    if (chain) chain->block(words, modes_given ? *modes_given : own_modes.channel(ch.number));
     // Any word but an axis's (a G, M, S, T, F ...) may change what a cut is held to.
     constexpr std::uint32_t axis_letters = nc_letter('X') | nc_letter('Y') | nc_letter('Z') | nc_letter('U') |
                                            nc_letter('V') | nc_letter('W') | nc_letter('I') | nc_letter('J') |

@@ -176,7 +176,7 @@ struct control_emulator::impl {
     channel_state& c = channels[static_cast<std::size_t>(b.channel - 1)];
     if (!reserved.empty() && (b.letters() & nc_variable_bit)) variables(b);
     if (c.sweep)
-      if (auto f = c.sweep->block(b.words()))
+      if (auto f = c.sweep->block(b.words(), c.modes))
         say(b, f->first, fmt::format("channel {}: {}", b.channel, f->second));
     // Once an offset is in force, only the G, M and S words matter, except while a part is held
     // by two spindles (a part-off is a move).

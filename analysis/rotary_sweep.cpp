@@ -1,4 +1,5 @@
 #include "analysis/rotary_sweep.hpp"
+#include "analysis/modal_state.hpp"
 
 #include "analysis/nc_codes.hpp"
 
@@ -448,7 +449,14 @@ struct rotary_sweep::impl {
     return true;
   }
 
-  std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words) {
+  std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words,
+                                                   const channel_modes& md) {
+    if (md.now
+            .any) {  // G90/G91, the unit and the return level: the modal state's (only a G word changes them)
+      absolute = !md.incremental;
+      if (mm != (md.inch ? 25.4 : 1.0)) units(md.inch);
+      return_to_r = md.return_to_r;
+    }
     if (follow_only) lin_from = lin, rot_from = rot;
     if (follow_only && plain_block(words)) [[likely]]
       return std::nullopt;
@@ -466,9 +474,6 @@ struct rotary_sweep::impl {
       if (w.address != 'G' || !w.numeric) continue;
       const int g = g100(w.number);
       if (g == 0 || g == 100 || g == 200 || g == 300) motion = g / 100, cycle = false;
-      if (g == 9000) absolute = true, incremental = false;
-      if (g == 9100) absolute = false, incremental = true;
-      if (g == 2000 || g == 2100) units(g == 2000);
       if (g == 2800 || g == 3000) home = true;
       if (g == 5300) machine_block = true;
       if (g == 8000) cycle = false;
@@ -476,7 +481,6 @@ struct rotary_sweep::impl {
         if (!cycle) initial = lin[2];  // the initial level G98 returns to
         cycle = true;
       }
-      if (g == 9800 || g == 9900) return_to_r = g == 9900;
       // A dwell, data or coordinate setting, macro call, scaling (analysis/nc_codes): no move.
       if (codes.role(w.number) == axis_words::none) not_a_move = true;
       // Tool-tip control: the chain's code, and Fanuc's two (G43.4, G43.5 with the tool axis).
@@ -837,8 +841,9 @@ rotary_sweep::~rotary_sweep() = default;
 rotary_sweep::rotary_sweep(rotary_sweep&&) noexcept = default;
 rotary_sweep& rotary_sweep::operator=(rotary_sweep&&) noexcept = default;
 
-std::optional<std::pair<int, std::string>> rotary_sweep::block(const std::vector<nc_word>& words) {
-  return p_->block(words);
+std::optional<std::pair<int, std::string>> rotary_sweep::block(const std::vector<nc_word>& words,
+                                                               const channel_modes& modes) {
+  return p_->block(words, modes);
 }
 
 std::optional<rotary_sweep::pose> rotary_sweep::where(double length) const { return p_->where(length); }

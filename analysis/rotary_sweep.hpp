@@ -24,6 +24,8 @@
 
 namespace twinpost {
 
+struct channel_modes;
+
 class rotary_sweep {
  public:
   /// `chain` is the channel's (machine::chain), with at least one rotary axis.
@@ -37,8 +39,11 @@ class rotary_sweep {
   rotary_sweep& operator=(rotary_sweep&&) noexcept;
 
   /// The channel's next block; a finding's message (without "channel n: ") and the column of
-  /// the word it is at, when this block's rapid swings the tip into the work.
-  std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words);
+  /// the word it is at, when this block's rapid swings the tip into the work. `modes`: the
+  /// channel's modal state with the block applied (analysis/modal_state), whose G90/G91, unit
+  /// and drilling return level the sweep reads.
+  std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words,
+                                                   const channel_modes& modes);
 
   /// The tool tip and the tool's axis (tip to holder), in the part frame (mm).
   struct pose {
