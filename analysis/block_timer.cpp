@@ -192,6 +192,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     per_rev_ = modes->feed == feed_kind::per_rev;
     inverse_time_ = modes->feed == feed_kind::inverse_time;
     cyc_.return_r = modes->return_to_r;
+    // The modal motion too (G0-G3, 32 for threading); its text made once per change.
+    if (modes->motion >= 0 && modes->motion != motion_num_) set_motion(modes->motion * 10);
   }
   block_timing t;
   if (has_modes_ && milling_mode(words)) return t;  // a mode block: no time, no move (G10.9 X0 moves nothing)
@@ -214,9 +216,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       untimed(fmt::format("G{}", w.value));
       continue;
     }
-    // Most G words of a program are G0-G3: the motion, set at once.
+    // Most G words of a program are G0-G3: the motion (the modal state's, above) ends a cycle.
     if (plain_motion_codes_ && g <= g_code("3") && g % 10 == 0) {
-      if (motion_num_ != g / 10) set_motion(g);
       end_cycle();
       continue;
     }
@@ -230,9 +231,9 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     if (g == g_code("90") || g == g_code("91"))
       continue;
     else if (g <= g_code("3") && g % 10 == 0)
-      set_motion(g), end_cycle();
+      end_cycle();
     else if (g == g_code("32") || g == g_code("33"))
-      set_motion(g_code("32")), end_cycle();
+      end_cycle();
     else if (g == g_code("80"))
       end_cycle();
     else if (g == g_code("4"))

@@ -827,16 +827,10 @@ struct alignas(64) cl_comparison::impl {
         case 0:
         case 10:
         case 20:
-        case 30:
-          motion = g / 10;
-          cycle = false;
-          break;
+        case 30: cycle = false; break;  // (the motion: the modal state's)
         case 320:
         case 330:
-        case 340:
-          motion = 32;
-          cycle = false;
-          break;
+        case 340: cycle = false; break;
         case 800: cycle = false; break;
         case 700:
         case 710:
@@ -2221,9 +2215,11 @@ struct alignas(64) cl_comparison::impl {
   // The program's unit (G20: inch), its least increment (what an axis word without a decimal
   // point counts: `X44` is 0.044 mm where decimal-point programming is off, the Fanuc default)
   // and half of it in mm.
-  // The modes a block's G words changed (analysis/modal_state): the unit (G20/G21, system C's
-  // G70/G71), G90/G91 (system A has no G91: an alarm), the plane and the feed mode.
+  // The modes a block's G words changed (analysis/modal_state): the motion (G0-G3, 32 for
+  // threading), the unit (G20/G21, system C's G70/G71), G90/G91 (system A has no G91: an alarm),
+  // the plane and the feed mode.
   void take_modes(const channel_modes& md) {
+    motion = md.motion;
     if (md.inch != inch) units(md.inch);
     absolute = !md.incremental;
     plane = md.plane;

@@ -215,8 +215,8 @@ struct control_emulator::impl {
     if (!c.offset && !sets_offset)
       for (const code& o : offset_codes) sets_offset = sets_offset || o.in(words);
     const int motion = c.modes.motion;
-    const bool cut =
-        axis_column && !no_cut && (feed_code || c.modes.in_cycle() || (motion >= 1 && motion <= 3));
+    const bool cut = axis_column && !no_cut &&
+                     (feed_code || c.modes.in_cycle() || (motion >= 1 && motion <= 3) || motion == 32);
     if (cut && !c.offset && !sets_offset && !c.said_offset) {
       c.said_offset = true;
       say(b, axis_column,

@@ -36,7 +36,13 @@ void modal_states::apply(slot& s, const std::vector<nc_word>& words) const {
         now.cycle = true;
         break;
       case axis_words::repetitive_cycle: now.once = true; break;
-      case axis_words::feed_move: now.feed_move = true; break;
+      case axis_words::feed_move:
+        // Threading (G32, G33, G34, the machine's sync feed): a code of group 01 as G1 is, modal
+        // (the next block's Z alone cuts on along the thread).
+        md.motion = 32;
+        md.hole_cycle = md.turning_cycle = false;
+        now.feed_move = true;
+        break;
       case axis_words::reference: now.reference = true; break;
       case axis_words::machine: now.machine = true; break;
       case axis_words::none:

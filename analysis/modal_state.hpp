@@ -36,7 +36,7 @@ struct block_g_codes {
 
 /// One channel's modal G state after the block last applied.
 struct channel_modes {
-  int motion = -1;             ///< the modal motion: 0, 1, 2, 3 (G0-G3); -1: none yet
+  int motion = -1;             ///< the modal motion: 0, 1, 2, 3 (G0-G3), 32 (threading); -1: none yet
   bool hole_cycle = false;     ///< a drilling cycle is modal (until G80 or a motion code)
   bool turning_cycle = false;  ///< a lathe's single cycle is modal (until a motion code)
   bool incremental = false;    ///< G91 until G90 (system A's G90 is a cycle; its G91, an alarm, read as B's)

@@ -451,8 +451,10 @@ struct rotary_sweep::impl {
 
   std::optional<std::pair<int, std::string>> block(const std::vector<nc_word>& words,
                                                    const channel_modes& md) {
-    if (md.now
-            .any) {  // G90/G91, the unit and the return level: the modal state's (only a G word changes them)
+    // The motion, G90/G91, the unit and the return level: the modal state's (only a G word
+    // changes them).
+    if (md.now.any) {
+      if (md.motion >= 0) motion = md.motion;
       absolute = !md.incremental;
       if (mm != (md.inch ? 25.4 : 1.0)) units(md.inch);
       return_to_r = md.return_to_r;
@@ -473,7 +475,7 @@ struct rotary_sweep::impl {
       }
       if (w.address != 'G' || !w.numeric) continue;
       const int g = g100(w.number);
-      if (g == 0 || g == 100 || g == 200 || g == 300) motion = g / 100, cycle = false;
+      if (g == 0 || g == 100 || g == 200 || g == 300) cycle = false;  // (the motion: the modal state's)
       if (g == 2800 || g == 3000) home = true;
       if (g == 5300) machine_block = true;
       if (g == 8000) cycle = false;

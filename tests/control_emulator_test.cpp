@@ -59,6 +59,19 @@ TEST_CASE("emulator: a feed move with no work offset in force", "[analysis][emul
         "whatever offset the last program left; set one (G54-G59, G54.1 P..) before the first cut\n"
         "G98 G81 X10. Y0. Z-5. R2. F100.\n        ^\n"
         "check: 1 channel, 0 waits paired, 1 error\n");
+  // Threading is a motion of group 01, modal as G1 (analysis/modal_state): after a G32 that
+  // moves nothing, the next block's Z cuts on along the thread. Read as G0's (the emulator kept
+  // G0-G3 alone), it was no cut.
+  const std::string no_offset = "%\nO1000\nG0 G18 G21 G40 G80 G99\n";
+  CHECK(format_sync_text(check_nc_resources(
+            {{"P_1.nc",
+              no_offset + "T0101\nG97 S500 M3\nG0 X20. Z2.\nG32 F1.5\nZ-20.\nG0 X30.\nM100\nM30\n%\n"},
+             {"P_2.nc", no_offset + "M100\nM30\n%\n"}},
+            load_machine("fanuc-0itd-twin"))) ==
+        "P_1.nc:8:1: error: channel 1: a feed move with no work offset in force: the program would cut in "
+        "whatever offset the last program left; set one (G54-G59, G54.1 P..) before the first cut\n"
+        "Z-20.\n^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
 }
 
 TEST_CASE("emulator: a variable the machine reserves is not written", "[analysis][emulator]") {
