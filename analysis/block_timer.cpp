@@ -185,6 +185,14 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     modes = &own_modes_.channel(channel_);
   }
   if (modes->now.any || !modes_read_) {
+    if (modes_read_ && modes->inch != inch_) {
+      // The control keeps where the axes are: their values are said again in the new unit
+      // (review 41 H5; the interference rule and the comparison did so, the timer kept the
+      // numbers).
+      const double to_new = inch_ ? 25.4 : 1 / 25.4;
+      for (axis_pos& a : axes_)
+        if (a.value && !a.rotary) *a.value *= to_new;
+    }
     modes_read_ = true;
     inch_ = modes->inch;
     incremental_ = modes->incremental;
@@ -226,6 +234,12 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     if (lathe_a_ && (g == g_code("90") || g == g_code("92") || g == g_code("94"))) {
       if (cycle_ != g) end_cycle();
       cycle_ = g;  // box cycles: modal until another motion code
+      continue;
+    }
+    // Another system's single cycle (B's G77-G79, C's G20 G21 G24): not timed, nor its passes
+    // after it (below; review 41 H4: system C's G20 was timed as a rapid).
+    if (!lathe_a_ && modes->turning_cycle && codes_.role(g / 10.0) == axis_words::turning_cycle) {
+      turning_text_ = g_code_text(g, "G");
       continue;
     }
     if (g == g_code("90") || g == g_code("91"))
@@ -317,6 +331,12 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     if (inc && !p->value) target[i].reset();
     if (inc && !p->value && !setting)
       untimed(fmt::format("{} from an unknown position", motion_num_ < 0 ? "move" : motion_code_));
+  }
+  if (moves && !lathe_a_ && modes->turning_cycle) {
+    // (Not timed; a single cycle returns to where it began: the axes stay.)
+    untimed(turning_text_.empty() ? "a lathe cycle" : turning_text_);
+    t.seconds = 0;
+    return t;
   }
   // `letters` are the block's exact addresses (it is split).
   const bool arc_words = (letters & (nc_letter('I') | nc_letter('J') | nc_letter('K') | nc_letter('R'))) != 0;

@@ -101,6 +101,7 @@ class block_timer {
   program_units units_;                                // the unit codes (no time of their own)
   int channel_ = 1;                                    // the channel timed (own_modes_'s)
   bool modes_read_ = false;                            // the modes were taken once (then at G words)
+  std::string turning_text_;  // a single cycle of G-code system B or C in force ("G20"): not timed
   std::vector<axis_pos> axes_;
   bool lathe_a_ = false;  // Fanuc-style lathe: G90/G92/G94 are cycles, U/W incremental
   bool incremental_ = false;

@@ -604,9 +604,12 @@ void channel_writer::feed_back_due(const event& e) {
   const bool moves = std::visit(
       [](const auto& d) {
         using T = std::decay_t<decltype(d)>;
-        return std::is_same_v<T, motion_event> || std::is_same_v<T, arc_event> ||
-               std::is_same_v<T, cycle_event> || std::is_same_v<T, thread_event> ||
-               std::is_same_v<T, transfer_event> || std::is_same_v<T, passthrough_event>;
+        if constexpr (std::is_same_v<T, text_event>)
+          return d.kind == text_kind::insert;  // NC text as written: a move of its own (review 41 H1)
+        else
+          return std::is_same_v<T, motion_event> || std::is_same_v<T, arc_event> ||
+                 std::is_same_v<T, cycle_event> || std::is_same_v<T, thread_event> ||
+                 std::is_same_v<T, transfer_event> || std::is_same_v<T, passthrough_event>;
       },
       e.data);
   if (moves) {

@@ -68,6 +68,27 @@ TEST_CASE("block timer: the unit is the modal state's, G70 and G71 in G-code sys
       "0.6350\n"
       "0.0000\n"
       "0.0250\n");
+  // The axes stay where they are at a unit change, their numbers said again: Z5. (mm) is Z0.19685
+  // in inches, and G0 Z1. runs 20.4 mm, 0.051 s (review 41 H5: the timer kept the number 5, 5 in,
+  // and timed 101.6 mm, 0.254 s).
+  CHECK(times(m, 1, {"G0 G18 G71 G40 G54 G80 G90 G98", "G0 X100. Z5.", "G70", "G0 Z1.", "G71", "G0 Z5."}) ==
+        "0.0000\n"
+        "0.0000|G0 from an unknown position\n"
+        "0.0000\n"
+        "0.0510\n"
+        "0.0000\n"
+        "0.0510\n");
+  // System C's G20 is its OD turning cycle: it and its passes are not timed (the timer knows
+  // system A's cycles only), and the tool is back where the cycle began: G0 X110. from X100.
+  // is 5 mm, 0.015 s (review 41 H4: G20 was timed as a rapid to X80. Z-40.).
+  CHECK(
+      times(m, 1,
+            {"G0 G18 G71 G40 G54 G80 G90 G99", "G0 X100. Z5.", "G20 X80. Z-40. F0.2", "X76.", "G0 X110."}) ==
+      "0.0000\n"
+      "0.0000|G0 from an unknown position\n"
+      "0.0000|G20\n"
+      "0.0000|G20\n"
+      "0.0150\n");
 }
 
 TEST_CASE("block timer: feed per revolution, CSS at the diameter, G32 at lead x rpm",

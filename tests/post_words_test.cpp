@@ -285,6 +285,14 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
       "GOTO/20,0,-10\nDELAY/2\nGOTO/21,0,-10\nFINI\n",
       "fanuc-0itd-twin", "dwell-cut");
   CHECK(cut.files.at("W_1.nc").find("\nG1 Z-10. F0.2\nG98 G4 U2.\nG99\nX42. F0.2\n") != std::string::npos);
+  // An INSERT after the dwell is NC text that may feed: G99 comes back before it (review 41 H1:
+  // G1 X41. Z-11. ran at F0.2 mm/min).
+  posted insert = post_text(
+      "PARTNO W\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,2\n"
+      "GOTO/20,0,-10\nDELAY/2\nINSERT/G1 X41. Z-11.\nGOTO/21,0,-12\nFINI\n",
+      "fanuc-0itd-twin", "dwell-insert");
+  CHECK(insert.files.at("W_1.nc").find(
+            "\nG1 Z-10. F0.2\nG98 G4 U2.\nG99\nG1 X41. Z-11.\nG1 X42. Z-12. F0.2\n") != std::string::npos);
   // A FEDRAT per minute after the dwell: G98 stays, no G99 and G98 again (review 40).
   posted per_min = post_text(
       "PARTNO W\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,2\n"
