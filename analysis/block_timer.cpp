@@ -238,7 +238,8 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     }
     // Another system's single cycle (B's G77-G79, C's G20 G21 G24): not timed, nor its passes
     // after it (below; review 41 H4: system C's G20 was timed as a rapid).
-    if (!lathe_a_ && modes->turning_cycle && codes_.role(g / 10.0) == axis_words::turning_cycle) {
+    if (!lathe_a_ && modes->turning_cycle && !one_shot_cycle(g, lathe_a_) &&
+        codes_.role(g / 10.0) == axis_words::turning_cycle) {
       turning_text_ = g_code_text(g, "G");
       continue;
     }
@@ -259,10 +260,11 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     else if (modal_drill_cycle(g, lathe_a_)) {
       if (cycle_ < 0) cyc_.initial.reset();  // a new cycle: its initial level is where it begins
       cycle_ = g;
-    } else if (one_shot_cycle(g, lathe_a_))
+    } else if (one_shot_cycle(g, lathe_a_)) {
       one_shot = g;
-    else if (!plain_g_code(g) && codes_.feed_mode(g / 10.0) == feed_kind::none &&
-             !units_.selected_by(g / 10.0))
+      turning_text_.clear();  // (a cycle the timer times ends another system's)
+    } else if (!plain_g_code(g) && codes_.feed_mode(g / 10.0) == feed_kind::none &&
+               !units_.selected_by(g / 10.0))
       untimed(
           g_code_text(g, "G"));  // (a feed mode of the machine's, G93, system C's G70/G71: the modal state's)
   }
@@ -332,9 +334,10 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     if (inc && !p->value && !setting)
       untimed(fmt::format("{} from an unknown position", motion_num_ < 0 ? "move" : motion_code_));
   }
-  if (moves && !lathe_a_ && modes->turning_cycle) {
+  if (!modes->turning_cycle) turning_text_.clear();
+  if (moves && !turning_text_.empty()) {
     // (Not timed; a single cycle returns to where it began: the axes stay.)
-    untimed(turning_text_.empty() ? "a lathe cycle" : turning_text_);
+    untimed(turning_text_);
     t.seconds = 0;
     return t;
   }
