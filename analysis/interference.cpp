@@ -137,6 +137,8 @@ struct channel_data {
   std::vector<std::array<char, 12>> tools = std::vector<std::array<char, 12>>(1);
   std::uint16_t tool = 0;
   bool merge_open = false;  // the last sweep may take the next one
+  long unplaced = 0;        // blocks moved by increments from a place not known: not held
+  int unplaced_line = 0;    // the first of them
 };
 
 }  // namespace
@@ -325,6 +327,10 @@ struct interference_check::impl {
     if (turning && (zw || ww)) c.turning_z = c.z;
     if (turning && !zw && !ww && known) c.z = c.turning_z;
     if (!c.known_x || !c.known_z || c.balance) {
+      // Increments from a place not known (after a reference return, G53, or from the start):
+      // not held, and said (review 41 H3: a program in G91 throughout passed without a word).
+      if (!c.balance && (uw || ww || (md.incremental && (xw || zw))) && c.unplaced++ == 0)
+        c.unplaced_line = b.line;
       c.merge_open = false;
       return;
     }
@@ -664,6 +670,18 @@ std::vector<diagnostic> interference_check::finish(const std::vector<std::uint64
   std::vector<diagnostic> out;
   if (!p_->active) return out;
   for (channel_data& c : p_->channels) p_->close(c.segments.back());
+  for (std::size_t i = 0; i < p_->channels.size(); ++i)
+    if (const channel_data& c = p_->channels[i]; c.unplaced > 0)
+      out.push_back({severity::warning,
+                     c.file,
+                     c.unplaced_line,
+                     1,
+                     fmt::format("channel {}: {} block{} from here on move{} by increments from a place the "
+                                 "interference rule does not know (after a reference return or a move in "
+                                 "machine coordinates): not held to the other channels; give X and Z "
+                                 "absolute first",
+                                 i + 1, c.unplaced, c.unplaced == 1 ? "" : "s", c.unplaced == 1 ? "s" : ""),
+                     {}});
   p_->zone_rule(out);
   if (!waits_sound) return out;
   p_->make_clocks(rendezvous);

@@ -176,6 +176,18 @@ TEST_CASE("interference: G91 moves are increments, read from the one modal state
   // the concurrent case of the test above. Read as an absolute X-4. it crossed the axis: a
   // finding where there is none.
   CHECK(check(integrex, face("G91 G1 X-4. F0.15"), drill) == "check: 2 channels, 4 waits paired, 0 errors\n");
+  // Increments from a place not known (after G28, in G91 throughout): not held, and said once
+  // (review 41 H3: no word, where a rule that read them as positions had found a meeting).
+  const std::string lost =
+      head + "T0101\nG97 S1000 M3\nG91 G28 X0. Z0.\nM950\nG1 X-60. F0.15\nZ-5.\nM951\nM30\n%\n";
+  CHECK(
+      check(integrex, lost, drill) ==
+      "A_1.nc:9:1: warning: channel 1: 2 blocks from here on move by increments from a place the "
+      "interference "
+      "rule does not know (after a reference return or a move in machine coordinates): not held to the other "
+      "channels; give X and Z absolute first\n"
+      "G1 X-60. F0.15\n^\n"
+      "check: 2 channels, 4 waits paired, 0 errors, 1 warning\n");
 }
 
 TEST_CASE("interference: live-tool work on the part in polar interpolation, in the spindle's frame",
