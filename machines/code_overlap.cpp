@@ -454,6 +454,33 @@ void check_code_overlaps(const table_reader& root, const machine& m) {
                          fmt::format("cycles.{} \"{}\" holds G{}, a motion code: the hole's words would move "
                                      "the tool to its bottom at that motion",
                                      key, m.cycles.*field, g)});
+  // A coolant code that is an indexing head's clamp or unclamp code: the post writes it at every
+  // index, and the control turns the coolant on or off there (attack 71 F6: coolant_through =
+  // M108, the Integrex's unclamp, sprayed at every head index, and the emulator warned of
+  // coolant before the index at each one).
+  for (const channel_def& c : m.channels)
+    for (const auto& [key, block] :
+         {std::pair{"unclamp", &c.head_index.unclamp}, {"clamp", &c.head_index.clamp}})
+      for (const auto& [letter, v] : words_of(*block, open, close)) {
+        if (letter != 'M') continue;
+        std::vector<std::pair<std::string, const std::string*>> coolant = {
+            {"coolant_off", &m.codes.coolant_off}};
+        for (const std::string& on : m.codes.coolant_on) coolant.emplace_back("coolant_on", &on);
+        for (const auto& [kind, pair] : {std::pair{"coolant_mist", &m.codes.coolant_mist},
+                                         {"coolant_through", &m.codes.coolant_through},
+                                         {"coolant_air", &m.codes.coolant_air}})
+          for (const std::string& code : *pair) coolant.emplace_back(kind, &code);
+        for (const auto& [kind, code] : coolant)
+          for (const auto& [cl, cv] : words_of(*code, open, close))
+            if (cl == 'M' && std::abs(cv - v) < 1e-9)
+              f.found.push_back(
+                  {key_of(codes, kind) ? key_of(codes, kind) : &root.table(),
+                   fmt::format("codes.{} \"{}\" holds M{}, channel {}'s head_index.{} code: the post writes "
+                               "it at every index of the head, where the control would turn the coolant {} "
+                               "too; give the coolant a code of its own",
+                               kind, *code, v, c.number, key,
+                               kind == std::string("coolant_off") ? "off" : "on")});
+      }
   // A wait range over the codes every control gives a meaning of its own (M30 taken for a wait
   // would end the program at the meeting).
   if (m.waits.address == 'M' && m.waits.syntax != wait_syntax::bang)

@@ -338,3 +338,20 @@ TEST_CASE("a comment to the end of the line: a semicolon comment_open with no co
                                test::two_channels) ==
         "m.toml:7:17: error: program.comment_close must be one character, not '))'");
 }
+
+TEST_CASE("a coolant code that is an indexing head's clamp or unclamp code is refused", "[machines]") {
+  // Attack 71 F6: the Integrex with coolant_through = ["M108", "M109"] (the Fanuc lathes' codes)
+  // loaded, and every index of the B head (M108 unclamp, M107 clamp) turned the coolant on.
+  std::string text =
+      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/integrex-i200st.toml");
+  const std::string line = "coolant_through = [\"M51\", \"M163\"]";
+  REQUIRE(text.find(line) != std::string::npos);
+  const std::size_t at = text.find(line);
+  text.replace(at, line.size(), "coolant_through = [\"M108\", \"M109\"]");
+  CHECK(
+      test::machine_error_of(text) ==
+      "m.toml:89:19: error: codes.coolant_through \"M108\" holds M108, channel 1's head_index.unclamp code: "
+      "the "
+      "post writes it at every index of the head, where the control would turn the coolant on too; give the "
+      "coolant a code of its own");
+}
