@@ -1982,8 +1982,11 @@ struct alignas(64) cl_comparison::impl {
       why = fmt::format(
           "the CL dwells {:g} s here (DELAY), the program under {} (`{}`): a control that counts "
           "a dwell in spindle revolutions under feed per revolution (Fanuc parameter 3405#1) "
-          "waits {:g} revolutions",
-          seconds, m.codes.feed_per_rev, dwell_text, dwelt);
+          "waits {:g} revolutions{}",
+          seconds, m.codes.feed_per_rev, dwell_text, dwelt,
+          m.codes.feed_per_min.empty()
+              ? "; the machine file gives no codes.feed_per_min to write the dwell under: give it (G98, G94)"
+              : "");
     else if (dwell_mode < 0 && !m.codes.feed_per_rev.empty())
       why = fmt::format(
           "the CL dwells {:g} s here (DELAY), the program with no feed mode set (`{}`): a control "

@@ -310,6 +310,20 @@ TEST_CASE("a dwell of 1 s reads as 1 s whatever the control's decimal-point sett
         "job.cls:4:1: warning: channel 1: DELAY/0.0004: the dwell is written as no time (P0): left out\n"
         "DELAY/0.0004\n^\n");
   for (const auto& [file, text] : none.files) CHECK(text.find("G4 P") == std::string::npos);
+  // A machine file with no feed-per-minute code: the dwell stays under G99, and the self-check
+  // says what to give (attack 71 F7).
+  machine no_min = load_machine("fanuc-0itd-twin");
+  no_min.codes.feed_per_min = "";
+  posted stays = post_text(
+      "PARTNO W\nTURRET/1,1\nSPINDL/RPM,800,CLW\nFEDRAT/0.2,MMPR\nRAPID\nGOTO/20,0,2\n"
+      "GOTO/20,0,-10\nDELAY/2\nGOTO/21,0,-10\nFINI\n",
+      no_min, "dwell-no-min");
+  CHECK(
+      stays.diagnostics ==
+      "job.cls:8:1: error: channel 1: the CL dwells 2 s here (DELAY), the program under G99 (`G4 U2.`): a "
+      "control that counts a dwell in spindle revolutions under feed per revolution (Fanuc parameter 3405#1) "
+      "waits 2 revolutions; the machine file gives no codes.feed_per_min to write the dwell under: give it "
+      "(G98, G94)\nDELAY/2\n^\n");
   // A machine file's own template: {seconds} with no spec has its point; with a spec it is fmt's.
   machine m = load_machine("fanuc-0itd-twin");
   m.codes.dwell = "G4 X{seconds}";
