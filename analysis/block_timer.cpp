@@ -334,7 +334,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     if (inc && !p->value && !setting)
       untimed(fmt::format("{} from an unknown position", motion_num_ < 0 ? "move" : motion_code_));
   }
-  if (!modes->turning_cycle) turning_text_.clear();
+  if (!turning_text_.empty() && !modes->turning_cycle) turning_text_.clear();
   if (moves && !turning_text_.empty()) {
     // (Not timed; a single cycle returns to where it began: the axes stay.)
     untimed(turning_text_);
