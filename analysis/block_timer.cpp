@@ -231,9 +231,11 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
     }
     // (The unit, the plane, the feed mode, G90/G91, the drilling cycles' return level: the
     // modal state's, above.)
-    if (lathe_a_ && (g == g_code("90") || g == g_code("92") || g == g_code("94"))) {
+    // Box cycles: modal until another motion code, each later block with axis words another
+    // pass (the Integrex's G292 too: attack 72 F6, its passes were timed as rapids).
+    if ((lathe_a_ && (g == g_code("90") || g == g_code("92") || g == g_code("94"))) || g == g_code("292")) {
       if (cycle_ != g) end_cycle();
-      cycle_ = g;  // box cycles: modal until another motion code
+      cycle_ = g;
       continue;
     }
     // Another system's single cycle (B's G77-G79, C's G20 G21 G24): not timed, nor its passes
@@ -261,8 +263,13 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       if (cycle_ < 0) cyc_.initial.reset();  // a new cycle: its initial level is where it begins
       cycle_ = g;
     } else if (one_shot_cycle(g, lathe_a_)) {
+      // Timed in its own block; a single cycle's passes after it (the Integrex's G292, modal)
+      // are not (attack 72 F6: they were timed as rapids).
       one_shot = g;
-      turning_text_.clear();  // (a cycle the timer times ends another system's)
+      if (!lathe_a_ && modes->turning_cycle && codes_.role(g / 10.0) == axis_words::turning_cycle)
+        turning_text_ = g_code_text(g, "G");
+      else
+        turning_text_.clear();
     } else if (!plain_g_code(g) && codes_.feed_mode(g / 10.0) == feed_kind::none &&
                !units_.selected_by(g / 10.0))
       untimed(
@@ -335,7 +342,7 @@ block_timing block_timer::time(const std::vector<nc_word>& words, std::uint32_t 
       untimed(fmt::format("{} from an unknown position", motion_num_ < 0 ? "move" : motion_code_));
   }
   if (!turning_text_.empty() && !modes->turning_cycle) turning_text_.clear();
-  if (moves && !turning_text_.empty()) {
+  if (moves && one_shot < 0 && !turning_text_.empty()) {
     // (Not timed; a single cycle returns to where it began: the axes stay.)
     untimed(turning_text_);
     t.seconds = 0;

@@ -58,6 +58,8 @@ struct channel_state {
   std::vector<int> start_line;       // per spindle: the block that started it
   std::vector<chuck_state> chucks;   // per spindle, as this channel's blocks left it
   int holder = -1;                   // the spindle that closed its chuck on the part while synchronised
+  std::optional<double> x_now;       // while `holder` holds the part: where X stands (none: not known)
+  bool u_is_x = false;               // U is X's increment (a lathe's X in diameter, no U axis)
   int cutoff_line = 0;               // a part-off while `holder` held the part
   char head = 0;                     // the address of the channel's indexing head (B); 0: none
   int change_m = -1;                 // the M code of its tool change (M6 of "T{tool:02} M6"); -1: a T word
@@ -113,6 +115,8 @@ struct control_emulator::impl {
       if (sweeps_chain(m, static_cast<int>(i) + 1))
         channels.back().sweep.emplace(m, *m.chain(static_cast<int>(i) + 1), static_cast<int>(i) + 1,
                                       tool_change_code(m.channels[i].tool_call));
+      const axis_def* x = m.channels[i].axis('X');
+      channels.back().u_is_x = x && x->diameter && !m.channels[i].axis('U');
       if (m.channels[i].head_index.present()) {
         channels.back().head = m.channels[i].head_index.address;
         channels.back().change_m = tool_change_code(m.channels[i].tool_call);
@@ -194,7 +198,7 @@ struct control_emulator::impl {
     const bool coordinate_setting = g.coordinate_setting, head_data = g.data;
     bool sets_offset = g.work_offset, tool_call = false, head_move = false;
     int axis_column = 0, x_column = 0;
-    double x = 0;
+    const nc_word *xw = nullptr, *uw = nullptr;
     for (const nc_word& w : words) {
       if (w.address == 'T') {
         tool_call = tool_call || c.change_m < 0;
@@ -204,9 +208,9 @@ struct control_emulator::impl {
         head_move = true;
       } else if ((nc_letter(w.address) & linear_axes) != 0) {
         if (!axis_column) axis_column = w.column;
-        if (w.address == 'X' && w.numeric) {
+        if ((w.address == 'X' || (w.address == 'U' && c.u_is_x)) && w.numeric) {
           x_column = w.column;
-          x = w.number;
+          (w.address == 'X' ? xw : uw) = &w;
         }
       }
     }
@@ -255,7 +259,24 @@ struct control_emulator::impl {
                 b.channel, c.head, c.head_unknown, h.move, c.head));
       }
     }
-    if (cut && c.holder >= 0 && x_column && x <= 0 && !c.cutoff_line) c.cutoff_line = b.line;
+    if (c.holder >= 0) {
+      // Where X stands while the part is held by both spindles: an X, or an increment (U, X under
+      // G91) from where it stood (attack 72 F4: a part-off by U was missed, and `G91 G1 X-10.`
+      // from X30. was taken for one).
+      if (g.reference || g.machine)
+        c.x_now.reset();
+      else if (xw && (coordinate_setting || !c.modes.incremental))
+        c.x_now = xw->number;
+      else if (xw && c.x_now)
+        *c.x_now += xw->number;
+      if (uw && !g.reference && !g.machine && !coordinate_setting) {
+        if (c.x_now) *c.x_now += uw->number;
+      } else if (uw && coordinate_setting) {
+        c.x_now.reset();
+      }
+    }
+    if (cut && c.holder >= 0 && x_column && c.x_now && *c.x_now <= 0 && !c.cutoff_line)
+      c.cutoff_line = b.line;
     // Starts, stops, chucks and synchronisation are M words (the spindles' changes were applied
     // to the reading's spindle_states before this block came here): a block without one changes
     // none of them, and most blocks have none.
@@ -289,7 +310,7 @@ struct control_emulator::impl {
       const chuck_codes& k = chucks[s];
       if (k.close.in(words)) {
         c.chucks[s].open = false;
-        if (c.sync) c.holder = static_cast<int>(s);
+        if (c.sync) c.holder = static_cast<int>(s), c.x_now.reset();
       }
       if (!k.open.in(words)) continue;
       const spindle_setting& now = c.spindles.setting(static_cast<int>(s));

@@ -310,6 +310,14 @@ struct interference_check::impl {
       c.merge_open = false;
       return;
     }
+    if (g.coordinate_setting && (xw || zw)) {
+      // G50 X Z (G92 in systems B and C): the tool stands where the words say, in the frame they
+      // set (attack 72 F3: it was left unknown, and a meeting after it passed).
+      if (xw) c.x = xw->number, c.known_x = true;
+      if (zw) c.z = zw->number, c.known_z = true;
+      c.merge_open = false;
+      return;
+    }
     if (no_move || !(xw || zw || uw || ww || qw)) return;
     const double x0 = c.x, z0 = c.z, q0 = c.q;
     const bool known = c.known_x && c.known_z;
@@ -344,10 +352,20 @@ struct interference_check::impl {
                   polar);
     }
     double shown_z = c.z;
-    if (cycle && zw) {  // down to the hole's bottom and back
+    if (cycle && zw && !md.incremental) {  // down to the hole's bottom and back
       tip.z0 = std::min(tip.z0, zw->number);
       tip.z1 = std::max(tip.z1, zw->number);
       shown_z = zw->number;
+    } else if (cycle && (ww || zw)) {
+      // The depth by increments (W, or Z under G91): from the R level, itself R from where the
+      // cycle starts (Fanuc), or from the start where the control reads R otherwise; both are
+      // swept (attack 72 F1: the depth was lost, and a drill's meeting passed).
+      const double depth = (ww ? ww : zw)->number, r = rw && rw->numeric ? rw->number : 0;
+      for (const double bottom : {c.z + depth, c.z + r + depth}) {
+        tip.z0 = std::min(tip.z0, bottom);
+        tip.z1 = std::max(tip.z1, bottom);
+      }
+      shown_z = c.z + r + depth;
     } else if (known && (md.motion == 2 || md.motion == 3) && (iw || kw || rw) && q0 == 0 && c.q == 0) {
       tip = unite(tip, arc_of(x0 / 2, z0, c.x / 2, c.z, iw, kw, rw, md.motion == 2));
     }
@@ -677,9 +695,9 @@ std::vector<diagnostic> interference_check::finish(const std::vector<std::uint64
                      c.unplaced_line,
                      1,
                      fmt::format("channel {}: {} block{} from here on move{} by increments from a place the "
-                                 "interference rule does not know (after a reference return or a move in "
-                                 "machine coordinates): not held to the other channels; give X and Z "
-                                 "absolute first",
+                                 "interference rule does not know (the program's start, a reference return "
+                                 "or a move in machine coordinates): not held to the other channels; give X "
+                                 "and Z absolute first",
                                  i + 1, c.unplaced, c.unplaced == 1 ? "" : "s", c.unplaced == 1 ? "s" : ""),
                      {}});
   p_->zone_rule(out);

@@ -125,6 +125,29 @@ TEST_CASE("emulator: chucks and spindles", "[analysis][emulator]") {
         clean_lathe);
 }
 
+TEST_CASE("emulator: a part-off by increments, and an increment that is none", "[analysis][emulator]") {
+  // Attack 72 F4: in a transfer (M169 the sub's chuck, M213 the spindles synchronised, M168),
+  // `G1 U-31.` from X30. parts off to X-1.: opening the main chuck after it releases the bar
+  // (it passed); on the Integrex `G91 G1 X-10.` from X30. ends at X20., no part-off (M206 after
+  // it was refused).
+  CHECK(check_lathe("G97 S800 M3\nM169\nM213\nM168\nG0 X30. Z-20.\nG1 U-31. F0.05\nM69\nM205\n") ==
+        "P_1.nc:10:1: error: channel 1: M69 opens the main spindle's chuck after the part-off at line 9: it "
+        "holds "
+        "the bar, which would be released; after a part-off the sub spindle takes the part away and the bar "
+        "stays clamped ([transfer] release_after_cutoff)\n"
+        "M69\n^\n"
+        "check: 2 channels, 2 waits paired, 1 error\n");
+  CHECK(check_lathe("G97 S800 M3\nM169\nM213\nM168\nG0 X30. Z-20.\nG1 U-20. F0.05\nM69\nM205\n") ==
+        clean_lathe);
+  const std::string head = "%\nO1000\nG21\nG0 G90 G54 G97 G18\nG40 G49 G80 G67 G69\nG10.9 X1\n";
+  CHECK(format_sync_text(check_nc_resources(
+            {{"A_1.nc", head + "M950\nM30\n%\n"},
+             {"A_2.nc", head +
+                            "T0101\nG97 S800 M203\nM306\nM511\nM307\nG0 X30. Z-20.\nG91 G1 X-10. F0.05\nG90\n"
+                            "M206\nM513\nM950\nM30\n%\n"}},
+            load_machine("integrex-i200st"))) == "check: 2 channels, 2 waits paired, 0 errors\n");
+}
+
 TEST_CASE("emulator: the spindle a work offset selects takes the M-code both share", "[analysis][emulator]") {
   // A twin-spindle lathe whose sub answers the main's M3/M4/M5: G55 selects it, and the next M3
   // starts it. The emulator reads the one spindle state the rules and the timer read

@@ -180,14 +180,37 @@ TEST_CASE("interference: G91 moves are increments, read from the one modal state
   // (review 41 H3: no word, where a rule that read them as positions had found a meeting).
   const std::string lost =
       head + "T0101\nG97 S1000 M3\nG91 G28 X0. Z0.\nM950\nG1 X-60. F0.15\nZ-5.\nM951\nM30\n%\n";
-  CHECK(
-      check(integrex, lost, drill) ==
-      "A_1.nc:9:1: warning: channel 1: 2 blocks from here on move by increments from a place the "
-      "interference "
-      "rule does not know (after a reference return or a move in machine coordinates): not held to the other "
-      "channels; give X and Z absolute first\n"
-      "G1 X-60. F0.15\n^\n"
-      "check: 2 channels, 4 waits paired, 0 errors, 1 warning\n");
+  CHECK(check(integrex, lost, drill) ==
+        "A_1.nc:9:1: warning: channel 1: 2 blocks from here on move by increments from a place the "
+        "interference "
+        "rule does not know (the program's start, a reference return or a move in machine coordinates): not "
+        "held to the other channels; give X and Z absolute first\n"
+        "G1 X-60. F0.15\n^\n"
+        "check: 2 channels, 4 waits paired, 0 errors, 1 warning\n");
+}
+
+TEST_CASE("interference: a drilling cycle's depth by increments, and a coordinate setting", "[analysis]") {
+  // Attack 72 F1: `G83 X0. W-50. R-100.` from Z5. drills to Z-145. (R from the start, W from R);
+  // the depth was lost and the turret at X3. Z-150. passed. F3: after `G50 X200. Z100.` the
+  // tool stands there; its U/W moves were not placed, and the face to the centre passed.
+  const machine twin = load_machine("fanuc-0itd-twin");
+  const std::string head = "%\nO1000\nG0 G18 G21 G40 G54 G80 G99\n";
+  const std::string deep =
+      head + "T0101\nG97 S1000 M3\nG0 X30. Z-150.\nM101\nG1 X3. F0.15\nG0 X100.\nM102\nM100\nM30\n%\n";
+  const std::string drill =
+      head + "T0505\nG0 X0. Z5.\nM101\nG83 X0. W-50. R-100. F0.1\nG80\nG0 Z50.\nM102\nM100\nM30\n%\n";
+  CHECK_THAT(
+      check(twin, deep, drill),
+      Catch::StartsWith("A_1.nc:8:1: error: channel 1 (T0101 at X3 Z-150) may meet channel 2 (T0505 at X0 "
+                        "Z-145, A_2.nc:7) on the main spindle"));
+  const std::string set = head +
+                          "T0101\nG50 X200. Z100.\nG97 S1000 M3\nG0 U-136. W-100.\nM100\nG1 U-65.6 F0.15\n"
+                          "G0 U40. W100.\nM101\nM100\nM30\n%\n";
+  const std::string bore = head + "T0505\nG0 X0. Z5.\nM100\nG1 Z-25. F0.08\nG0 Z50.\nM101\nM100\nM30\n%\n";
+  CHECK_THAT(
+      check(twin, set, bore),
+      Catch::StartsWith("A_1.nc:9:1: error: channel 1 (T0101 at X-1.6 Z0) may meet channel 2 (T0505 at X0 "
+                        "Z-25, A_2.nc:7) on the main spindle"));
 }
 
 TEST_CASE("interference: live-tool work on the part in polar interpolation, in the spindle's frame",
