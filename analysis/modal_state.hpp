@@ -4,9 +4,11 @@
 // the unit, the plane, the feed mode and polar interpolation, as the channel's control reads
 // them (the machine's codes: analysis/nc_codes, analysis/program_units), and what the block's
 // own G words did. The reading applies each block once, before the rules read it, as it does
-// the spindle state (analysis/spindle_state): the control emulator and the interference rule
-// read it, where each kept a modal motion and cycle of its own by rules of its own (a G80 ended
-// a lathe's single cycle for the one and not for the other; G91 was read by neither).
+// the spindle state (analysis/spindle_state): the control emulator, the interference rule, the
+// timer, the rotary sweep and (in post's self-check) the comparison with the CL read it, where
+// each kept a modal motion, cycle, unit or G90/G91 of its own by rules of its own (a G80 ended a
+// lathe's single cycle for one and not for another; the interference rule read no G91, the
+// timer no G70/G71). Docs: docs/emulator.md, "One owner".
 #include <cstdint>
 #include <vector>
 
