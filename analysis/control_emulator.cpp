@@ -66,6 +66,11 @@ struct channel_state {
   int head_unknown = 0;              // the tool call since which the head has not been indexed; 0: known
   bool said_offset = false, said_chuck = false, said_start = false, said_cutoff = false, said_head = false,
        said_released = false, said_coolant = false;
+  // The coolant before an index: said once, at the first; the later ones counted into its message
+  // (review 40 L4: a program that did it at every tool change had one warning, for the first).
+  std::size_t coolant_said = 0;    // its index in `found`
+  long coolant_more = 0;           // the later blocks that did it too
+  std::vector<int> coolant_lines;  // the first of them
   // A channel with a kinematic chain that has a rotary axis: its rapids' tip paths.
   std::optional<rotary_sweep> sweep;
 };
@@ -235,10 +240,15 @@ struct control_emulator::impl {
       // The coolant before the index sprays while the head turns at the tool changer (the
       // issue's item 10: public Integrex posts turn it on after the index); in the index's own
       // block too, where a Fanuc gives the M code as the block starts (attack 71 F4).
-      if (c.head_unknown && !c.said_coolant && b.may_have(nc_letter('M')))
+      if (c.head_unknown && b.may_have(nc_letter('M')))
         for (const code& k : coolant_on)
           if (k.in(words)) {
+            if (c.said_coolant) {
+              if (c.coolant_more++ < 5) c.coolant_lines.push_back(b.line);
+              break;
+            }
             c.said_coolant = true;
+            c.coolant_said = found.size();
             const head_index_rules& h = m.channels[static_cast<std::size_t>(b.channel - 1)].head_index;
             say(b, 1,
                 fmt::format("channel {}: {} turns the coolant on before the {} head is indexed for the tool "
@@ -362,6 +372,16 @@ control_emulator::~control_emulator() = default;
 
 void control_emulator::block(const nc_block& b) { p_->block(b); }
 
-std::vector<diagnostic> control_emulator::finish() { return std::move(p_->found); }
+std::vector<diagnostic> control_emulator::finish() {
+  for (const channel_state& c : p_->channels)
+    if (c.coolant_more > 0) {
+      std::string lines;
+      for (const int l : c.coolant_lines) lines += fmt::format("{}{}", lines.empty() ? "" : ", ", l);
+      p_->found[c.coolant_said].message += fmt::format(
+          "; the same at {} more block{} (line{} {}{})", c.coolant_more, c.coolant_more == 1 ? "" : "s",
+          c.coolant_more == 1 ? "" : "s", lines, c.coolant_more > 5 ? ", ..." : "");
+    }
+  return std::move(p_->found);
+}
 
 }  // namespace twinpost

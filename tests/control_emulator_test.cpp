@@ -222,8 +222,9 @@ TEST_CASE("emulator: the B head indexed again after every tool call", "[analysis
       "the tool changer may leave it anywhere; index it (G0 G53 B..) before the cut\nG1 X40. F100.\n   ^\n"
       "check: 2 channels, 2 waits paired, 1 error\n");
   // The coolant: after the index, quiet; before it, or in its block (a Fanuc gives the block's M
-  // code as it starts: attack 71 F4), a warning, once; the through-tool pair's on code counts
-  // too; a B word of a data setting or a macro call is no index (attack 71 F5).
+  // code as it starts: attack 71 F4), a warning, once, which counts the later ones (review 40
+  // L4); the through-tool pair's on code counts too; a B word of a data setting or a macro call
+  // is no index (attack 71 F5).
   CHECK(check(first + "T02 M6\nM108\nG0 G53 B90. M8\nM107\nG0 X54. Z2.\nG1 X40. F100.\n") ==
         "P.EIA:14:1: warning: channel 1: M8 turns the coolant on before the B head is indexed for the tool "
         "called at line 12: it sprays while the head turns; index it (G0 G53 B..) first\nG0 G53 B90. M8\n^\n"
@@ -235,7 +236,8 @@ TEST_CASE("emulator: the B head indexed again after every tool call", "[analysis
   CHECK(check(first + "T02 M6\nM51\nM108\nG0 G53 B90.\nM107\nM8\nG0 X54. Z2.\nG1 X40. F100.\nT03 M6\nM8\n"
                       "M108\nG0 G53 B0.\nM107\n") ==
         "P.EIA:13:1: warning: channel 1: M51 turns the coolant on before the B head is indexed for the tool "
-        "called at line 12: it sprays while the head turns; index it (G0 G53 B..) first\nM51\n^\n"
+        "called at line 12: it sprays while the head turns; index it (G0 G53 B..) first; the same at 1 more "
+        "block (line 21)\nM51\n^\n"
         "check: 2 channels, 2 waits paired, 0 errors, 1 warning\n");
 }
 
