@@ -632,12 +632,7 @@ TEST_CASE("cl comparison: the third attack's ways past it", "[analysis][cl_compa
 }
 
 TEST_CASE("cl comparison: G-code system C's units are G70 and G71", "[analysis][cl_compare]") {
-  std::string text =
-      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/fanuc-0itd-twin.toml");
-  const std::string header = "header = [\"G0 G18 G21 G40 G54 G80 G99\"]";
-  REQUIRE(text.find(header) != std::string::npos);
-  text.replace(text.find(header), header.size(), "header = [\"G0 G18 G71 G40 G54 G80 G90 G99\"]");
-  const machine m = parse_machine(text, "sysc.toml");
+  const machine m = test::system_c_twin();
   diagnostic_list diags;
   cl_comparison cmp(m, m.channels[0], diags, "job.cls");
   cmp.record({8, feed_event{feed_mode::per_rev, 0.2}, 1}, false);

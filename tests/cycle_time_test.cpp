@@ -54,12 +54,7 @@ TEST_CASE("block timer: the unit is the modal state's, G70 and G71 in G-code sys
   // inch (analysis/modal_state), a mode block of no time; the rapid W-10. is then 254 mm at
   // 24000 mm/min, 0.635 s. (The timer kept a unit of its own and took G70 for an unknown
   // code: "G70" not timed, and 10 mm, 0.025 s.)
-  std::string text =
-      test::read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/fanuc-0itd-twin.toml");
-  const std::string header = "header = [\"G0 G18 G21 G40 G54 G80 G99\"]";
-  REQUIRE(text.find(header) != std::string::npos);
-  text.replace(text.find(header), header.size(), "header = [\"G0 G18 G71 G40 G54 G80 G90 G99\"]");
-  const machine m = parse_machine(text, "sysc.toml");
+  const machine m = test::system_c_twin();
   CHECK(
       times(m, 1, {"G0 G18 G71 G40 G54 G80 G90 G98", "G0 X100. Z5.", "G70", "G0 W-10.", "G71", "G0 W-10."}) ==
       "0.0000\n"

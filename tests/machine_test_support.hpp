@@ -1,7 +1,9 @@
 #pragma once
 // Test support for machine-file tests.
+#include <stdexcept>
 #include <string>
 
+#include "file_test_support.hpp"
 #include "machines/machine.hpp"
 #include "machines/machine_loader.hpp"
 #include "support/errors.hpp"
@@ -23,6 +25,17 @@ inline const std::string xz_axes = "axis = [{address = \"X\"}, {address = \"Z\"}
 /// Two valid channels, appended after the line that a test is about.
 inline const std::string two_channels =
     "[[channel]]\nnumber = 1\n" + xz_axes + "[[channel]]\nnumber = 2\n" + xz_axes;
+
+/// The built-in fanuc-0itd-twin with a header in G-code system C (G71 millimetres, G90
+/// absolute), which no built-in machine is in: G70/G71 are its units, G20/G21 its cycles.
+inline machine system_c_twin() {
+  std::string text = read_file(std::string(TWINPOST_SOURCE_DIR) + "/machines/builtin/fanuc-0itd-twin.toml");
+  const std::string header = "header = [\"G0 G18 G21 G40 G54 G80 G99\"]";
+  const std::size_t at = text.find(header);
+  if (at == std::string::npos) throw std::logic_error("fanuc-0itd-twin.toml's header changed");
+  text.replace(at, header.size(), "header = [\"G0 G18 G71 G40 G54 G80 G90 G99\"]");
+  return parse_machine(text, "sysc.toml");
+}
 
 /// The message of the config_error that parsing `text` (as "m.toml") throws, or "(no error)".
 /// Every error in a machine file is at a place in it: one made without a place (which the
