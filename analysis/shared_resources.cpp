@@ -660,7 +660,7 @@ void add_findings(sync_result& r, shared_resources& rules, interference_check& m
 
 // The rules fed by a reading, and `feed` and `more` with them: the spindle state first, once
 // for all who read it (the timer, the spindle rules, the interference rule, the emulator), and
-// the modal state (the interference rule, the emulator).
+// the modal state (the timer, the interference rule, the emulator, and `more`'s comparison).
 nc_read_options feeding(spindle_states& spindles, modal_states& modes, shared_resources& rules,
                         interference_check& meet, length_offset_rule& len, control_emulator& control,
                         const nc_read_options& more, timeline_feed* feed) {
